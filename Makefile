@@ -1,0 +1,136 @@
+# saarcor top-level Makefile.
+#   make            build build/saarcor (fp24 format e7m16)
+#   make run        install missing Debian packages, build, run the default job
+#   make test       install missing packages, build, run all tests (+ sanitizer build of the unit tests)
+#   make asan       build and run the unit tests with AddressSanitizer + UndefinedBehaviorSanitizer
+#   make verify-fp  fp24 verification against MPFR: 10^7 random vectors per op and width, exhaustive unary
+#   make bench-fp   fp24 throughput: fast path and integer path against native float -> build/bench/
+#   make widths     build build/w/<format>/saarcor for every tested fp24 format
+# Variables: BUILD (output folder), SAN=1 (sanitizers), V=1 (show commands), VERIFY_N.
+
+SHELL := /bin/bash
+.DEFAULT_GOAL := all
+.DELETE_ON_ERROR:
+
+BUILD ?= build
+CC := gcc
+CXX := g++
+SAN ?= 0
+V ?= 0
+Q := $(if $(filter 1,$(V)),,@)
+
+# fp24 formats: e<E>m<M>. The default is the paper's 1+7+16 = 24 bits.
+DEFAULT_FMT := e7m16
+FORMATS := e7m8 e7m10 e7m12 e7m16 e7m20 e7m23 e8m23
+fmt_flags = -DF24_EXP_BITS=$(word 1,$(subst m, ,$(subst e,,$(1)))) -DF24_MAN_BITS=$(word 2,$(subst m, ,$(subst e,,$(1))))
+
+VERSION := $(shell git describe --always --dirty 2>/dev/null || echo unknown)
+
+WARN := -Wall -Wextra -Werror -Wshadow -Wno-unused-label
+OPT := -O2 -g
+SAN_ON := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
+SANFLAGS := $(if $(filter 1,$(SAN)),$(SAN_ON))
+# no fused multiply-add: the fast fp24 path relies on one binary64 rounding per operation
+CFLAGS := -std=c11 $(WARN) $(OPT) -ffp-contract=off -fno-math-errno $(SANFLAGS) -MMD -MP
+CXXFLAGS := -std=c++17 $(WARN) $(OPT) $(SANFLAGS) -MMD -MP
+INCLUDES := -Ihls/fp24 -Itb/fp -Itb/cli -Ihost/image
+LDLIBS := -lmpfr -lgmp -lOpenImageIO -lOpenImageIO_Util -lstdc++ -lm
+TEST_LDLIBS := -lcmocka $(LDLIBS)
+
+# ---- sources -------------------------------------------------------------------------------
+HLS_FP24 := $(sort $(wildcard hls/fp24/*.c))
+TB_FP := $(sort $(wildcard tb/fp/*.c))
+CLI := $(sort $(wildcard tb/cli/*.c))
+HOST_CXX := host/image/img_oiio.cpp
+
+# per-format objects: everything that depends on the fp24 parameters
+fmt_objs = $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(HLS_FP24) $(TB_FP))
+HOST_OBJS := $(patsubst %.cpp,$(BUILD)/obj/host/%.o,$(HOST_CXX))
+
+$(BUILD)/obj/host/%.o: %.cpp
+	@mkdir -p $(@D)
+	@echo "  CXX   $@"
+	$(Q)$(CXX) $(CXXFLAGS) $(INCLUDES) -c $< -o $@
+
+define FORMAT_RULES
+$(BUILD)/obj/$(1)/%.o: %.c
+	@mkdir -p $$(@D)
+	@echo "  CC    $$@"
+	$(Q)$$(CC) $$(CFLAGS) $(call fmt_flags,$(1)) -DSAARCOR_VERSION='"$(VERSION)"' $$(INCLUDES) -c $$< -o $$@
+
+$(BUILD)/w/$(1)/saarcor: $(call fmt_objs,$(1)) $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(CLI)) $(HOST_OBJS)
+	@mkdir -p $$(@D)
+	@echo "  LD    $$@"
+	$(Q)$$(CC) $$(SANFLAGS) $$^ -o $$@ $$(LDLIBS)
+
+$(BUILD)/w/$(1)/test_f24: $(BUILD)/obj/$(1)/tests/test_f24.o $(call fmt_objs,$(1))
+	@mkdir -p $$(@D)
+	@echo "  LD    $$@"
+	$(Q)$$(CC) $$(SANFLAGS) $$^ -o $$@ $$(TEST_LDLIBS)
+
+$(BUILD)/w/$(1)/test_f24_select: $(BUILD)/obj/$(1)/tests/test_f24_select.o $(call fmt_objs,$(1))
+	@mkdir -p $$(@D)
+	@echo "  LD    $$@"
+	$(Q)$$(CC) $$(SANFLAGS) $$^ -o $$@ $$(TEST_LDLIBS)
+endef
+$(foreach f,$(FORMATS),$(eval $(call FORMAT_RULES,$(f))))
+
+# tests find tests/golden and other inputs from the source tree
+$(BUILD)/obj/%/tests/test_f24.o $(BUILD)/obj/%/tests/test_image.o: CFLAGS += -DSAARCOR_SRC_DIR='"$(CURDIR)"'
+
+# the selection test is compiled with the build-time switch that maps f24_* onto the fast path
+$(BUILD)/obj/%/tests/test_f24_select.o: CFLAGS += -DF24_FAST_SIM
+
+$(BUILD)/saarcor: $(BUILD)/w/$(DEFAULT_FMT)/saarcor
+	cp $< $@
+
+$(BUILD)/test_image: $(BUILD)/obj/$(DEFAULT_FMT)/tests/test_image.o $(HOST_OBJS)
+	$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
+
+.PHONY: all widths deps run test unit-tests test-programs asan verify-fp bench-fp clean
+all: $(BUILD)/saarcor
+widths: $(foreach f,$(FORMATS),$(BUILD)/w/$(f)/saarcor)
+
+deps:
+	@bash scripts/install-deps.sh
+
+run: deps
+	@$(MAKE) --no-print-directory all
+	$(BUILD)/saarcor version
+
+# ---- tests ---------------------------------------------------------------------------------
+UNIT_TESTS := $(foreach f,$(FORMATS),$(BUILD)/w/$(f)/test_f24 $(BUILD)/w/$(f)/test_f24_select) $(BUILD)/test_image
+test-programs: $(UNIT_TESTS) $(BUILD)/saarcor
+
+# unit tests of this build folder (used with BUILD=build/asan SAN=1 by `make asan`)
+unit-tests: test-programs
+	@bash tests/run.sh --report $(BUILD)/test-report.txt $(UNIT_TESTS)
+
+asan:
+	@$(MAKE) --no-print-directory BUILD=build/asan SAN=1 unit-tests
+
+test: deps
+	@$(MAKE) --no-print-directory -j$$(nproc) test-programs
+	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 test-programs
+	@bash tests/run.sh --report $(BUILD)/test-report.txt \
+	  $(UNIT_TESTS) tests/test_cli.sh $(patsubst $(BUILD)/%,build/asan/%,$(UNIT_TESTS))
+
+# ---- verification and benchmarks -----------------------------------------------------------
+VERIFY_N ?= 10000000
+verify-fp: deps
+	@$(MAKE) --no-print-directory -j$$(nproc) widths
+	@bash tests/verify_fp.sh $(BUILD) $(VERIFY_N) $(FORMATS)
+
+bench-fp: deps
+	@$(MAKE) --no-print-directory $(BUILD)/bench_fp
+	@mkdir -p $(BUILD)/bench
+	$(BUILD)/bench_fp --json $(BUILD)/bench/fp.json --markdown $(BUILD)/bench/fp.md
+	@cat $(BUILD)/bench/fp.md
+
+$(BUILD)/bench_fp: $(BUILD)/obj/$(DEFAULT_FMT)/tests/bench/bench_fp.o $(call fmt_objs,$(DEFAULT_FMT))
+	$(CC) $^ -o $@ $(LDLIBS)
+
+clean:
+	rm -rf build
+
+-include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)

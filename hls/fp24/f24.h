@@ -1,0 +1,96 @@
+/*
+ * fp24: the number format of the saarcor pipeline (paper section 4.2).
+ *
+ * A binary floating-point format with 1 sign bit, F24_EXP_BITS exponent bits and F24_MAN_BITS
+ * fraction bits, stored in the low 1+E+M bits of a uint32_t (default E=7, M=16: 24 bits).
+ * Semantics (exact rules in docs/fp24.md, which the RTL matches bit for bit):
+ *   - round to nearest, ties to even; tininess detected after rounding;
+ *   - subnormal inputs are read as zero of the same sign, results below the smallest normal
+ *     are flushed to zero of the result's sign;
+ *   - exponent all ones: Inf (fraction 0) or NaN; every NaN result is F24_DEFAULT_NAN;
+ *   - overflow gives Inf.
+ * This is the hardware reference: integer-only C, no libc, no floating-point types, bounded
+ * loops, usable unchanged by HLS. One file per operation, one shared round-and-pack routine
+ * (f24_round_pack.c), as in Berkeley SoftFloat.
+ */
+#ifndef SAARCOR_F24_H
+#define SAARCOR_F24_H
+
+#include <stdint.h>
+
+#ifndef F24_EXP_BITS
+#define F24_EXP_BITS 7
+#endif
+#ifndef F24_MAN_BITS
+#define F24_MAN_BITS 16
+#endif
+#if F24_EXP_BITS < 3 || F24_EXP_BITS > 8
+#error "F24_EXP_BITS must be in 3..8 (every value must be exactly representable in binary32)"
+#endif
+#if F24_MAN_BITS < 2 || F24_MAN_BITS > 23
+#error "F24_MAN_BITS must be in 2..23 (binary32 conversions; 7 round bits in the datapath)"
+#endif
+
+typedef uint32_t f24_t;
+
+#define F24_WIDTH      (1 + F24_EXP_BITS + F24_MAN_BITS)
+#define F24_BIAS       ((1 << (F24_EXP_BITS - 1)) - 1)
+#define F24_EXP_MAX    ((1 << F24_EXP_BITS) - 1) /* biased exponent of Inf and NaN */
+#define F24_FRAC_MASK  ((1u << F24_MAN_BITS) - 1u)
+#define F24_SIGN_BIT   (1u << (F24_EXP_BITS + F24_MAN_BITS))
+#define F24_ABS_MASK   (F24_SIGN_BIT - 1u)
+#define F24_MASK       (F24_SIGN_BIT | F24_ABS_MASK)
+#define F24_POS_INF    ((uint32_t)F24_EXP_MAX << F24_MAN_BITS)
+#define F24_DEFAULT_NAN (F24_POS_INF | (1u << (F24_MAN_BITS - 1)))
+#define F24_ONE        ((uint32_t)F24_BIAS << F24_MAN_BITS)
+#define F24_MIN_NORMAL (1u << F24_MAN_BITS)
+#define F24_MAX_NORMAL (F24_POS_INF - 1u)
+
+/* Field access. Bits above F24_WIDTH are ignored by every operation. */
+static inline uint32_t f24_sign(f24_t a) { return (a >> (F24_EXP_BITS + F24_MAN_BITS)) & 1u; }
+static inline int32_t f24_exp(f24_t a) { return (int32_t)((a >> F24_MAN_BITS) & (uint32_t)F24_EXP_MAX); }
+static inline uint32_t f24_frac(f24_t a) { return a & F24_FRAC_MASK; }
+static inline f24_t f24_pack(uint32_t sign, uint32_t exp, uint32_t frac)
+{
+    return (sign << (F24_EXP_BITS + F24_MAN_BITS)) | (exp << F24_MAN_BITS) | frac;
+}
+
+/* Classification. Zero includes the subnormal encodings, which every operation reads as zero. */
+static inline int f24_is_nan(f24_t a) { return f24_exp(a) == F24_EXP_MAX && f24_frac(a) != 0; }
+static inline int f24_is_inf(f24_t a) { return f24_exp(a) == F24_EXP_MAX && f24_frac(a) == 0; }
+static inline int f24_is_zero(f24_t a) { return f24_exp(a) == 0; }
+
+/* Sign operations: pure bit operations (IEEE 754 "quiet-computational"), no rounding, no DAZ. */
+static inline f24_t f24_neg(f24_t a) { return (a ^ F24_SIGN_BIT) & F24_MASK; }
+static inline f24_t f24_abs(f24_t a) { return a & F24_ABS_MASK; }
+
+/* Arithmetic (correctly rounded, f24_add.c ... f24_sqrt.c). */
+f24_t f24_add(f24_t a, f24_t b);
+f24_t f24_sub(f24_t a, f24_t b);
+f24_t f24_mul(f24_t a, f24_t b);
+f24_t f24_div(f24_t a, f24_t b);
+f24_t f24_sqrt(f24_t a);
+
+/* Comparisons: 1 or 0. lt/le/eq are false when either operand is NaN; -0 == +0. */
+int f24_lt(f24_t a, f24_t b);
+int f24_le(f24_t a, f24_t b);
+int f24_eq(f24_t a, f24_t b);
+int f24_unordered(f24_t a, f24_t b);
+
+/* IEEE 754-2019 minimumNumber/maximumNumber: a NaN operand yields the other operand,
+ * -0 < +0, subnormal inputs come back as signed zero. */
+f24_t f24_min(f24_t a, f24_t b);
+f24_t f24_max(f24_t a, f24_t b);
+
+/* Conversions. binary32 values are passed as their bit patterns (uint32_t). */
+f24_t f24_from_f32(uint32_t bits);
+uint32_t f24_to_f32(f24_t a); /* exact: every fp24 value is a binary32 value */
+f24_t f24_from_i32(int32_t i);
+
+/* Host simulation builds may select the bit-identical fast path (tb/fp/f24_fast.h) at build
+ * time; hardware and reference builds never define F24_FAST_SIM. */
+#ifdef F24_FAST_SIM
+#include "f24_fast.h"
+#endif
+
+#endif

@@ -1,0 +1,44 @@
+/*
+ * Image input/output and comparison for the host, through OpenImageIO (a thin C++ shim,
+ * img_oiio.cpp, with this extern "C" API). PNG and other 8-bit formats are written as 8-bit,
+ * EXR as half floats; pixels are float RGB(A) in [0,1] for 8-bit formats.
+ */
+#ifndef SAARCOR_IMG_H
+#define SAARCOR_IMG_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct {
+    int width, height, channels;
+    float *pixels; /* width*height*channels, row-major, top row first */
+} img_t;
+
+/* Reads any format OpenImageIO knows into float pixels. 0 on success; on failure fills err
+ * with a one-line message and returns -1. img_free releases the pixels. */
+int img_read(const char *path, img_t *out, char *err, size_t errlen);
+int img_write(const char *path, const img_t *img, char *err, size_t errlen);
+void img_free(img_t *img);
+
+typedef struct {
+    double mean_error, rms_error, psnr, max_error; /* psnr is +inf for identical images */
+    int max_x, max_y, max_channel;
+    uint64_t pixels, differing_pixels; /* pixels with some channel differing by > threshold */
+} img_compare_result;
+
+/* Compares two images of the same size and channel count; optionally writes |A-B| to
+ * diff_path (NULL: none). PSNR = 20 log10(1 / RMS) over all channels (peak value 1). */
+int img_compare(const char *path_a, const char *path_b, double threshold, const char *diff_path,
+                img_compare_result *res, char *err, size_t errlen);
+
+const char *img_library_version(void);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

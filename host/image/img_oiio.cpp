@@ -1,0 +1,143 @@
+// OpenImageIO shim behind img.h: no C++ exception or OIIO type crosses into C.
+#include "img.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <string>
+
+using namespace OIIO;
+
+namespace {
+
+void set_error(char *err, size_t errlen, const std::string &msg)
+{
+    if (!err || errlen == 0)
+        return;
+    std::string line = msg.substr(0, msg.find('\n')); // one line
+    std::snprintf(err, errlen, "%s", line.c_str());
+}
+
+bool read_buf(const char *path, ImageBuf &buf, char *err, size_t errlen)
+{
+    buf.reset(path);
+    if (!buf.read(0, 0, true, TypeDesc::FLOAT)) {
+        set_error(err, errlen, std::string("cannot read image '") + path + "': " + buf.geterror());
+        return false;
+    }
+    return true;
+}
+
+} // namespace
+
+extern "C" int img_read(const char *path, img_t *out, char *err, size_t errlen)
+{
+    try {
+        ImageBuf buf;
+        if (!read_buf(path, buf, err, errlen))
+            return -1;
+        const ImageSpec &spec = buf.spec();
+        const size_t n = (size_t)spec.width * spec.height * spec.nchannels;
+        float *px = (float *)std::malloc(n * sizeof(float));
+        if (!px) {
+            set_error(err, errlen, "out of memory");
+            return -1;
+        }
+        if (!buf.get_pixels(buf.roi(), TypeDesc::FLOAT, px)) {
+            std::free(px);
+            set_error(err, errlen, std::string("cannot read pixels of '") + path + "'");
+            return -1;
+        }
+        out->width = spec.width;
+        out->height = spec.height;
+        out->channels = spec.nchannels;
+        out->pixels = px;
+        return 0;
+    } catch (const std::exception &e) {
+        set_error(err, errlen, e.what());
+        return -1;
+    }
+}
+
+extern "C" int img_write(const char *path, const img_t *img, char *err, size_t errlen)
+{
+    try {
+        auto out = ImageOutput::create(path);
+        if (!out) {
+            set_error(err, errlen, std::string("cannot write '") + path + "': " + OIIO::geterror());
+            return -1;
+        }
+        const TypeDesc type = out->supports("floatpixels") ? TypeDesc::HALF : TypeDesc::UINT8;
+        ImageSpec spec(img->width, img->height, img->channels, type);
+        if (!out->open(path, spec) || !out->write_image(TypeDesc::FLOAT, img->pixels) || !out->close()) {
+            set_error(err, errlen, std::string("cannot write '") + path + "': " + out->geterror());
+            return -1;
+        }
+        return 0;
+    } catch (const std::exception &e) {
+        set_error(err, errlen, e.what());
+        return -1;
+    }
+}
+
+extern "C" void img_free(img_t *img)
+{
+    std::free(img->pixels);
+    img->pixels = nullptr;
+}
+
+extern "C" int img_compare(const char *path_a, const char *path_b, double threshold, const char *diff_path,
+                           img_compare_result *res, char *err, size_t errlen)
+{
+    try {
+        ImageBuf a, b;
+        if (!read_buf(path_a, a, err, errlen) || !read_buf(path_b, b, err, errlen))
+            return -1;
+        const ImageSpec &sa = a.spec(), &sb = b.spec();
+        if (sa.width != sb.width || sa.height != sb.height || sa.nchannels != sb.nchannels) {
+            char msg[256];
+            std::snprintf(msg, sizeof msg, "images differ in size: %dx%dx%d vs %dx%dx%d", sa.width, sa.height,
+                          sa.nchannels, sb.width, sb.height, sb.nchannels);
+            set_error(err, errlen, msg);
+            return -1;
+        }
+        const auto cr = ImageBufAlgo::compare(a, b, (float)threshold, (float)threshold);
+        if (a.has_error() || b.has_error()) {
+            set_error(err, errlen, "compare failed: " + a.geterror() + b.geterror());
+            return -1;
+        }
+        res->mean_error = cr.meanerror;
+        res->rms_error = cr.rms_error;
+        res->psnr = cr.rms_error > 0 ? 20.0 * std::log10(1.0 / cr.rms_error)
+                                     : std::numeric_limits<double>::infinity();
+        res->max_error = cr.maxerror;
+        res->max_x = cr.maxx;
+        res->max_y = cr.maxy;
+        res->max_channel = cr.maxc;
+        res->pixels = (uint64_t)sa.width * sa.height;
+        res->differing_pixels = cr.nfail;
+        if (diff_path) {
+            ImageBuf d = ImageBufAlgo::absdiff(a, b);
+            if (d.has_error() || !d.write(diff_path)) {
+                set_error(err, errlen, std::string("cannot write difference image '") + diff_path + "': " +
+                                           d.geterror());
+                return -1;
+            }
+        }
+        return 0;
+    } catch (const std::exception &e) {
+        set_error(err, errlen, e.what());
+        return -1;
+    }
+}
+
+extern "C" const char *img_library_version(void)
+{
+    return OIIO_VERSION_STRING;
+}

@@ -1,0 +1,136 @@
+#!/usr/bin/env bash
+# Command-line tests of build/saarcor: help, exit codes, one-line errors, f24gen/f24/f24verify
+# output, and `saarcor compare` against OIIO's idiff on the same images. Prints cmocka-style
+# "[ RUN      ]" / "[       OK ]" / "[  FAILED  ]" lines for tests/run.sh.
+set -u
+cd "$(dirname "$0")/.."
+BIN=${SAARCOR_BIN:-build/saarcor}
+T=$(mktemp -d /tmp/saarcor-test-cli-XXXXXX)
+trap 'rm -rf "$T"' EXIT
+fails=0
+
+run_case() { # name, function
+  echo "[ RUN      ] $1"
+  # a plain command, not part of `if`/`||`: otherwise bash ignores set -e inside the case
+  ( set -e; "$2" ) >"$T/case.log" 2>&1
+  local rc=$?
+  if [[ $rc -eq 0 ]]; then
+    echo "[       OK ] $1"
+  else
+    cat "$T/case.log"
+    echo "[  FAILED  ] $1"
+    fails=$((fails + 1))
+  fi
+}
+
+# expect CODE CMD...: runs CMD, checks the exit code; stdout in $T/out, stderr in $T/err
+expect() {
+  local want=$1; shift
+  local got=0
+  "$@" >"$T/out" 2>"$T/err" || got=$?
+  if [[ $got -ne $want ]]; then
+    echo "expected exit $want, got $got: $*"; cat "$T/err"; return 1
+  fi
+}
+
+has() { # regex, file
+  grep -q "$1" "$2" || { echo "no line matches '$1' in $2:"; head -20 "$2"; return 1; }
+}
+
+every_line_matches() { # regex, file
+  if grep -vqE "$1" "$2"; then echo "a line of $2 does not match $1:"; grep -vE "$1" "$2" | head -3; return 1; fi
+}
+
+one_line_error() { # stderr is exactly one line that says error
+  [[ $(wc -l <"$T/err") -eq 1 ]] && has 'error' "$T/err" || { echo "stderr not one error line:"; cat "$T/err"; return 1; }
+}
+
+t_help() {
+  expect 0 "$BIN" --help
+  for c in version f24 f24gen f24verify compare; do grep -q "^  $c " "$T/out"; done
+  for c in version f24 f24gen f24verify compare; do expect 0 "$BIN" "$c" --help; has usage "$T/out"; done
+}
+
+t_bad_usage() {
+  expect 2 "$BIN"
+  expect 2 "$BIN" frobnicate; one_line_error
+  expect 2 "$BIN" version extra; one_line_error
+  expect 2 "$BIN" f24gen add; one_line_error
+  expect 2 "$BIN" f24gen nosuchop 5; one_line_error
+  expect 2 "$BIN" f24gen add -5; one_line_error
+  expect 2 "$BIN" f24gen add 10 --seed x; one_line_error
+  expect 2 "$BIN" f24gen add 10 --bogus; one_line_error
+  expect 2 "$BIN" f24 add 1; one_line_error
+  expect 2 "$BIN" f24 add 1 zz; one_line_error
+  expect 2 "$BIN" f24verify -n 1.5; one_line_error
+  expect 2 "$BIN" compare a.png; one_line_error
+  expect 2 "$BIN" compare a.png b.png --psnr-min nan; one_line_error
+}
+
+t_version() {
+  expect 0 "$BIN" version
+  grep -q 'E=7 M=16 (24 bits' "$T/out"
+}
+
+t_f24_eval() {
+  expect 0 "$BIN" f24 add 1 2;        grep -q '= 3  \[0x408000\]' "$T/out"
+  expect 0 "$BIN" f24 div 1 3;        has '\[0x3D5555\]' "$T/out"
+  expect 0 "$BIN" f24 sqrt 0x3F0000;  has '\[0x3F0000\]' "$T/out"
+  expect 0 "$BIN" f24 lt nan 1;       grep -q '= 0  \[0x0\]' "$T/out"
+  expect 0 "$BIN" f24 from_i32 -7;    grep -q '= -7 ' "$T/out"
+}
+
+t_f24gen_format() {
+  expect 0 "$BIN" f24gen mul 100 --seed 5 --no-edges
+  [[ $(wc -l <"$T/out") -eq 100 ]]
+  every_line_matches '^[0-9A-F]{6} [0-9A-F]{6} [0-9A-F]{6}$' "$T/out"
+  expect 0 "$BIN" f24gen sqrt 10 -o "$T/v.hex"
+  every_line_matches '^[0-9A-F]{6} [0-9A-F]{6}$' "$T/v.hex"
+  expect 0 "$BIN" f24gen lt 10 --no-edges
+  every_line_matches '^[0-9A-F]{6} [0-9A-F]{6} [01]$' "$T/out"
+  expect 0 "$BIN" f24gen from_f32 10 --no-edges
+  every_line_matches '^[0-9A-F]{8} [0-9A-F]{6}$' "$T/out"
+  # same seed, same vectors; different seed, different vectors
+  "$BIN" f24gen add 50 --seed 9 --no-edges >"$T/a"; "$BIN" f24gen add 50 --seed 9 --no-edges >"$T/b"
+  cmp -s "$T/a" "$T/b"
+  "$BIN" f24gen add 50 --seed 10 --no-edges >"$T/b"
+  if cmp -s "$T/a" "$T/b"; then echo "different seeds gave the same vectors"; return 1; fi
+  expect 3 "$BIN" f24gen add 5 -o /nonexistent-dir/v.hex; one_line_error
+}
+
+t_f24verify() {
+  expect 0 "$BIN" f24verify -n 2000 --json "$T/v.json"
+  grep -q 'all results agree with MPFR' "$T/out"
+  python3 -c "import json,sys; d=json.load(open('$T/v.json')); assert len(d['results'])==16; assert all(r['hw_mismatches']==0 and r['fast_mismatches']==0 for r in d['results'])"
+}
+
+make_images() {
+  oiiotool --pattern constant:color=0.5,0.5,0.5 64x48 3 -o "$T/a.png"
+  oiiotool --pattern constant:color=0.6,0.5,0.5 64x48 3 -o "$T/b.png"
+  oiiotool --pattern constant:color=0.5,0.5,0.5 32x48 3 -o "$T/small.png"
+}
+
+t_compare() {
+  make_images
+  expect 0 "$BIN" compare "$T/a.png" "$T/a.png"; grep -q '^psnr_db inf' "$T/out"
+  expect 0 "$BIN" compare "$T/a.png" "$T/b.png" --diff "$T/d.exr"
+  grep -q '^differing_pixels 3072 of 3072' "$T/out"
+  [[ -s "$T/d.exr" ]]
+  local ours theirs
+  ours=$(awk '/^psnr_db/ {print $2}' "$T/out")
+  theirs=$(idiff -v -a -fail 0 "$T/a.png" "$T/b.png" 2>&1 | awk -F'= ' '/Peak SNR/ {print $2}')
+  awk -v a="$ours" -v b="$theirs" 'BEGIN { d = a - b; exit !(d < 1e-3 && d > -1e-3) }' || { echo "psnr $ours vs idiff $theirs"; return 1; }
+  expect 0 "$BIN" compare "$T/a.png" "$T/b.png" --psnr-min 20; has PASS "$T/out"
+  expect 1 "$BIN" compare "$T/a.png" "$T/b.png" --psnr-min 30; has FAIL "$T/out"
+  expect 3 "$BIN" compare "$T/a.png" "$T/missing.png"; one_line_error
+  expect 3 "$BIN" compare "$T/a.png" "$T/small.png"; one_line_error
+}
+
+run_case cli_help t_help
+run_case cli_bad_usage_exit_2_one_line t_bad_usage
+run_case cli_version t_version
+run_case cli_f24_eval t_f24_eval
+run_case cli_f24gen_format t_f24gen_format
+run_case cli_f24verify t_f24verify
+run_case cli_compare_vs_idiff t_compare
+exit $((fails != 0))

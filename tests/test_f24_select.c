@@ -1,0 +1,42 @@
+/*
+ * Test of the build-time arithmetic selection: compiled with -DF24_FAST_SIM, so f24_add ...
+ * f24_from_f32 below are the host fast path (tb/fp/f24_fast.h), while the operation table
+ * (compiled without the switch) still holds the integer hardware path. They must agree.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "f24.h"
+#include "f24_ops.h"
+#include "f24_vec.h"
+
+#ifndef f24_add
+#error "F24_FAST_SIM must map f24_add onto the fast path"
+#endif
+
+static void selected_path_is_fast_and_identical(void **state)
+{
+    (void)state;
+    assert_ptr_equal((void *)&f24_add, (void *)&f24_fast_add);
+    f24_rng rng;
+    f24_rng_seed(&rng, 3);
+    for (int i = 0; i < 50000; i++) {
+        const f24_pair v = f24_vec_random(F24_OP_MUL, &rng);
+        assert_int_equal(f24_add(v.a, v.b), f24_ops[F24_OP_ADD].hw(v.a, v.b));
+        assert_int_equal(f24_sub(v.a, v.b), f24_ops[F24_OP_SUB].hw(v.a, v.b));
+        assert_int_equal(f24_mul(v.a, v.b), f24_ops[F24_OP_MUL].hw(v.a, v.b));
+        assert_int_equal(f24_div(v.a, v.b), f24_ops[F24_OP_DIV].hw(v.a, v.b));
+        assert_int_equal(f24_sqrt(v.a), f24_ops[F24_OP_SQRT].hw(v.a, 0));
+        assert_int_equal(f24_from_i32((int32_t)v.a), f24_ops[F24_OP_FROM_I32].hw(v.a, 0));
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = { cmocka_unit_test(selected_path_is_fast_and_identical) };
+    return cmocka_run_group_tests_name("fp24 build-time path selection", tests, NULL, NULL);
+}
