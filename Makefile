@@ -124,11 +124,15 @@ verify-fp: deps
 bench-fp: deps
 	@$(MAKE) --no-print-directory $(BUILD)/bench_fp
 	@mkdir -p $(BUILD)/bench
-	$(BUILD)/bench_fp --json $(BUILD)/bench/fp.json --markdown $(BUILD)/bench/fp.md
+	valgrind --tool=callgrind --callgrind-out-file=$(BUILD)/bench/fp.callgrind $(BUILD)/bench_fp --count 2>/dev/null
+	callgrind_annotate --inclusive=yes $(BUILD)/bench/fp.callgrind > $(BUILD)/bench/fp.callgrind.txt
+	$(BUILD)/bench_fp --json $(BUILD)/bench/fp.json --markdown $(BUILD)/bench/fp.md \
+	  --instructions $(BUILD)/bench/fp.callgrind.txt
 	@cat $(BUILD)/bench/fp.md
 
 $(BUILD)/bench_fp: $(BUILD)/obj/$(DEFAULT_FMT)/tests/bench/bench_fp.o $(call fmt_objs,$(DEFAULT_FMT))
-	$(CC) $^ -o $@ $(LDLIBS)
+	@echo "  LD    $@"
+	$(Q)$(CC) $^ -o $@ $(LDLIBS)
 
 clean:
 	rm -rf build

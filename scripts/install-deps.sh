@@ -5,7 +5,7 @@
 set -euo pipefail
 
 PACKAGES=(
-  build-essential pkg-config         # C/C++ toolchain
+  build-essential pkg-config python3  # toolchain, report scripts
   libmpfr-dev                        # correctly rounded reference for fp24 verification
   libcmocka-dev                      # unit-test framework
   libopenimageio-dev openimageio-tools  # image I/O, compare, idiff
