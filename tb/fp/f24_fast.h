@@ -23,21 +23,33 @@
 
 #include "f24.h"
 
+/* binary64 exponent field minus fp24 bias, in the fp24 exponent position */
+#define F24_FAST_REBIAS ((uint64_t)(1023 - F24_BIAS) << F24_MAN_BITS)
+
 static inline double f24_fast_decode(f24_t a)
 {
     const uint64_t sign = (uint64_t)f24_sign(a) << 63;
-    const int32_t exp = f24_exp(a);
+    const uint64_t mag = a & F24_ABS_MASK;
     uint64_t bits;
-    if (exp == 0)
-        bits = sign;
-    else if (exp == F24_EXP_MAX)
-        bits = sign | 0x7FF0000000000000ull | ((uint64_t)(f24_frac(a) != 0) << 51);
+    if (mag - F24_MIN_NORMAL < (uint64_t)(F24_POS_INF - F24_MIN_NORMAL)) /* normal: one range check */
+        bits = sign | ((mag + F24_FAST_REBIAS) << (52 - F24_MAN_BITS));
+    else if (mag < F24_MIN_NORMAL)
+        bits = sign; /* zero or subnormal encoding */
     else
-        bits = sign | ((uint64_t)(exp - F24_BIAS + 1023) << 52) |
-               ((uint64_t)f24_frac(a) << (52 - F24_MAN_BITS));
+        bits = sign | 0x7FF0000000000000ull | ((uint64_t)(mag != F24_POS_INF) << 51);
     double d;
     memcpy(&d, &bits, sizeof d);
     return d;
+}
+
+/* Rare results of f24_fast_encode: zero, flushed, overflowed, Inf and NaN. */
+static inline f24_t f24_fast_encode_special(uint32_t sign, uint64_t mag52, uint64_t rebiased)
+{
+    if (mag52 > 0x7FF0000000000000ull)
+        return F24_DEFAULT_NAN;
+    if ((int64_t)rebiased >= (int64_t)F24_POS_INF)
+        return f24_pack(sign, F24_EXP_MAX, 0u); /* Inf, or overflow after rounding */
+    return f24_pack(sign, 0u, 0u);              /* zero, or tiny after rounding (negative): flush */
 }
 
 static inline f24_t f24_fast_encode(double d)
@@ -46,21 +58,13 @@ static inline f24_t f24_fast_encode(double d)
     uint64_t bits;
     memcpy(&bits, &d, sizeof bits);
     const uint32_t sign = (uint32_t)(bits >> 63);
-    uint64_t mag = bits & 0x7FFFFFFFFFFFFFFFull;
-
-    if (mag >= 0x7FF0000000000000ull)
-        return mag > 0x7FF0000000000000ull ? F24_DEFAULT_NAN : f24_pack(sign, F24_EXP_MAX, 0u);
-    if (mag == 0)
-        return f24_pack(sign, 0u, 0u);
+    const uint64_t mag52 = bits & 0x7FFFFFFFFFFFFFFFull;
     /* round to nearest even on the magnitude; a carry moves into the exponent field */
-    mag += ((1ull << (SHIFT - 1)) - 1u) + ((mag >> SHIFT) & 1u);
-    mag >>= SHIFT;
-    const int64_t exp = (int64_t)(mag >> F24_MAN_BITS) - 1023 + F24_BIAS;
-    if (exp <= 0)
-        return f24_pack(sign, 0u, 0u);
-    if (exp >= F24_EXP_MAX)
-        return f24_pack(sign, F24_EXP_MAX, 0u);
-    return f24_pack(sign, (uint32_t)exp, (uint32_t)mag & F24_FRAC_MASK);
+    const uint64_t mag = (mag52 + ((1ull << (SHIFT - 1)) - 1u) + ((mag52 >> SHIFT) & 1u)) >> SHIFT;
+    const uint64_t rebiased = mag - F24_FAST_REBIAS; /* fp24 exponent and fraction fields */
+    if (rebiased - F24_MIN_NORMAL < (uint64_t)(F24_POS_INF - F24_MIN_NORMAL)) /* normal result */
+        return (sign << (F24_EXP_BITS + F24_MAN_BITS)) | (uint32_t)rebiased;
+    return f24_fast_encode_special(sign, mag52, rebiased);
 }
 
 static inline f24_t f24_fast_add(f24_t a, f24_t b) { return f24_fast_encode(f24_fast_decode(a) + f24_fast_decode(b)); }
