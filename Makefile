@@ -24,7 +24,7 @@ DEFAULT_FMT := e7m16
 FORMATS := e7m8 e7m10 e7m12 e7m16 e7m20 e7m23 e8m23
 fmt_flags = -DF24_EXP_BITS=$(word 1,$(subst m, ,$(subst e,,$(1)))) -DF24_MAN_BITS=$(word 2,$(subst m, ,$(subst e,,$(1))))
 
-VERSION := $(shell git describe --always --dirty 2>/dev/null || echo unknown)
+VERSION := 0.1.0+$(shell git describe --always --dirty 2>/dev/null || echo unknown)
 
 WARN := -Wall -Wextra -Werror -Wshadow -Wno-unused-label
 OPT := -O2 -g
@@ -56,7 +56,7 @@ define FORMAT_RULES
 $(BUILD)/obj/$(1)/%.o: %.c
 	@mkdir -p $$(@D)
 	@echo "  CC    $$@"
-	$(Q)$$(CC) $$(CFLAGS) $(call fmt_flags,$(1)) -DSAARCOR_VERSION='"$(VERSION)"' $$(INCLUDES) -c $$< -o $$@
+	$(Q)$$(CC) $$(CFLAGS) $(call fmt_flags,$(1)) $$(INCLUDES) -I$(BUILD) -c $$< -o $$@
 
 $(BUILD)/w/$(1)/saarcor: $(call fmt_objs,$(1)) $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(CLI)) $(HOST_OBJS)
 	@mkdir -p $$(@D)
@@ -80,6 +80,14 @@ $(BUILD)/obj/%/tests/test_f24.o $(BUILD)/obj/%/tests/test_image.o: CFLAGS += -DS
 
 # the selection test is compiled with the build-time switch that maps f24_* onto the fast path
 $(BUILD)/obj/%/tests/test_f24_select.o: CFLAGS += -DF24_FAST_SIM
+
+# the version string lives in a generated header that changes only when the version does
+$(BUILD)/version.h: FORCE
+	@mkdir -p $(@D)
+	@echo '#define SAARCOR_VERSION "$(VERSION)"' > $@.tmp
+	@cmp -s $@.tmp $@ && rm $@.tmp || mv $@.tmp $@
+FORCE:
+$(foreach f,$(FORMATS),$(BUILD)/obj/$(f)/tb/cli/cmd_version.o): $(BUILD)/version.h
 
 $(BUILD)/saarcor: $(BUILD)/w/$(DEFAULT_FMT)/saarcor
 	cp $< $@

@@ -5,10 +5,7 @@
 #include "cli.h"
 #include "f24.h"
 #include "img.h"
-
-#ifndef SAARCOR_VERSION
-#define SAARCOR_VERSION "unknown"
-#endif
+#include "version.h" /* generated: build/version.h */
 
 #ifdef F24_FAST_SIM
 #define F24_PATH "fast (binary64 + one rounding, bit-identical to the integer path)"
