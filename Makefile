@@ -33,24 +33,30 @@ SANFLAGS := $(if $(filter 1,$(SAN)),$(SAN_ON))
 # no fused multiply-add: the fast fp24 path relies on one binary64 rounding per operation
 CFLAGS := -std=c11 $(WARN) $(OPT) -ffp-contract=off -fno-math-errno $(SANFLAGS) -MMD -MP
 CXXFLAGS := -std=c++17 $(WARN) $(OPT) $(SANFLAGS) -MMD -MP
-INCLUDES := -Ihls/fp24 -Itb/fp -Itb/cli -Ihost/image
-LDLIBS := -lmpfr -lgmp -lOpenImageIO -lOpenImageIO_Util -lstdc++ -lm
+INCLUDES := -Ihls/fp24 -Itb/fp -Itb/cli -Ihost/image -Ihost/scene -Ihost/kdtree -Iscenes
+LDLIBS := -lmpfr -lgmp -ltinygltf -lOpenImageIO -lOpenImageIO_Util -lstdc++ -lm
 TEST_LDLIBS := -lcmocka $(LDLIBS)
 
 # ---- sources -------------------------------------------------------------------------------
 HLS_FP24 := $(sort $(wildcard hls/fp24/*.c))
 TB_FP := $(sort $(wildcard tb/fp/*.c))
 CLI := $(sort $(wildcard tb/cli/*.c))
-HOST_CXX := host/image/img_oiio.cpp
+HOST_CXX := $(sort $(wildcard host/*/*.cpp))
+HOST_C := $(sort $(wildcard host/*/*.c scenes/*.c))
 
 # per-format objects: everything that depends on the fp24 parameters
 fmt_objs = $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(HLS_FP24) $(TB_FP))
-HOST_OBJS := $(patsubst %.cpp,$(BUILD)/obj/host/%.o,$(HOST_CXX))
+HOST_OBJS := $(patsubst %.cpp,$(BUILD)/obj/host/%.o,$(HOST_CXX)) $(patsubst %.c,$(BUILD)/obj/host/%.o,$(HOST_C))
 
 $(BUILD)/obj/host/%.o: %.cpp
 	@mkdir -p $(@D)
 	@echo "  CXX   $@"
 	$(Q)$(CXX) $(CXXFLAGS) $(INCLUDES) -c $< -o $@
+
+$(BUILD)/obj/host/%.o: %.c
+	@mkdir -p $(@D)
+	@echo "  CC    $@"
+	$(Q)$(CC) $(CFLAGS) $(INCLUDES) -c $< -o $@
 
 define FORMAT_RULES
 $(BUILD)/obj/$(1)/%.o: %.c
@@ -76,7 +82,7 @@ endef
 $(foreach f,$(FORMATS),$(eval $(call FORMAT_RULES,$(f))))
 
 # tests find tests/golden and other inputs from the source tree
-$(BUILD)/obj/%/tests/test_f24.o $(BUILD)/obj/%/tests/test_image.o: CFLAGS += -DSAARCOR_SRC_DIR='"$(CURDIR)"'
+$(BUILD)/obj/%/tests/test_f24.o $(BUILD)/obj/host/tests/%.o: CFLAGS += -DSAARCOR_SRC_DIR='"$(CURDIR)"'
 
 # the selection test is compiled with the build-time switch that maps f24_* onto the fast path
 $(BUILD)/obj/%/tests/test_f24_select.o: CFLAGS += -DF24_FAST_SIM
@@ -92,8 +98,11 @@ $(foreach f,$(FORMATS),$(BUILD)/obj/$(f)/tb/cli/cmd_version.o): $(BUILD)/version
 $(BUILD)/saarcor: $(BUILD)/w/$(DEFAULT_FMT)/saarcor
 	cp $< $@
 
-$(BUILD)/test_image: $(BUILD)/obj/$(DEFAULT_FMT)/tests/test_image.o $(HOST_OBJS)
-	$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
+# host module tests: tests/test_<module>.c linked with all host objects
+HOST_TESTS := $(patsubst tests/%.c,$(BUILD)/%,$(wildcard tests/test_image.c tests/test_kdtree.c tests/test_scene.c tests/test_memimage.c))
+$(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS)
+	@echo "  LD    $@"
+	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
 
 .PHONY: all widths deps run test unit-tests test-programs asan verify-fp bench-fp clean
 all: $(BUILD)/saarcor
@@ -107,7 +116,7 @@ run: deps
 	$(BUILD)/saarcor version
 
 # ---- tests ---------------------------------------------------------------------------------
-UNIT_TESTS := $(foreach f,$(FORMATS),$(BUILD)/w/$(f)/test_f24 $(BUILD)/w/$(f)/test_f24_select) $(BUILD)/test_image
+UNIT_TESTS := $(foreach f,$(FORMATS),$(BUILD)/w/$(f)/test_f24 $(BUILD)/w/$(f)/test_f24_select) $(HOST_TESTS)
 test-programs: $(UNIT_TESTS) $(BUILD)/saarcor
 
 # unit tests of this build folder (used with BUILD=build/asan SAN=1 by `make asan`)

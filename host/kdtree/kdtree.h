@@ -1,0 +1,92 @@
+/*
+ * SAH kd-tree builder (host). One builder serves both levels of the paper's two-level scheme:
+ * the bottom level over the triangles of one object (built once, exact SAH over event lists with
+ * perfect splits from triangle-box clipping) and the top level over the world-space boxes of the
+ * object instances (rebuilt every frame, binned SAH for speed).
+ *
+ * Primitives are abstract: the caller supplies their bounds and, for perfect splits, a clipping
+ * function. Split planes can be snapped to the device's number format (quantize), and primitives
+ * are classified against the snapped plane, so the tree stays exact after conversion to fp24.
+ *
+ * Node layout: nodes[0] is the root; an inner node's children are nodes[child] (below the split)
+ * and nodes[child + 1] (above it), with child > the node's own index, so the tree has no cycles
+ * and a validator can check that in one pass.
+ */
+#ifndef SAARCOR_KDTREE_H
+#define SAARCOR_KDTREE_H
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct { double lo[3], hi[3]; } aabb;
+
+typedef struct {
+    uint32_t count;
+    const void *user;
+    /* Bounds of primitive i (finite; lo <= hi). */
+    aabb (*bounds)(const void *user, uint32_t i);
+    /* Bounds of the part of primitive i inside box; returns 0 if it does not overlap box.
+     * NULL: the intersection of bounds(i) with box is used (exact for box primitives). */
+    int (*clip)(const void *user, uint32_t i, const aabb *box, aabb *out);
+} kd_source;
+
+typedef struct {
+    double cost_traversal;     /* C_t: cost of one traversal step, default 1.0 */
+    double cost_intersection;  /* C_i: cost of one primitive test, default 1.5 */
+    double empty_bonus;        /* a split with an empty side costs (1 - empty_bonus) x, default 0.2 */
+    uint32_t max_depth;        /* 0: automatic, 8 + 1.3 log2(count), at most 64 */
+    uint32_t leaf_size;        /* never split a node with at most this many primitives, default 1 */
+    uint32_t bins;             /* 0: exact SAH over all events; n > 0: binned SAH with n bins per axis */
+    /* Snaps a candidate split position to a representable device value (NULL: no snapping). */
+    double (*quantize)(double split);
+} kd_params;
+
+typedef struct {
+    uint32_t axis;   /* 0, 1, 2: inner node split axis; KD_LEAF: leaf */
+    uint32_t child;  /* inner: index of the left child, the right child is child + 1 */
+    double split;    /* inner: split plane position on axis */
+    uint32_t first;  /* leaf: first entry in kd_tree.prims */
+    uint32_t count;  /* leaf: number of entries */
+} kd_node;
+
+#define KD_LEAF 3u
+
+typedef struct {
+    uint32_t n_leaves, n_empty_leaves, depth;
+    uint64_t references;       /* sum of leaf counts (primitives are referenced by every leaf they overlap) */
+    uint32_t max_leaf_count;
+    double sah_cost;           /* C_t * sum_inner SA/SA_root + C_i * sum_leaf count * SA/SA_root */
+    double build_seconds;
+} kd_stats;
+
+typedef struct {
+    kd_node *nodes;
+    uint32_t n_nodes;
+    uint32_t *prims;           /* leaf lists, concatenated */
+    uint32_t n_prims;
+    aabb bounds;               /* union of all primitive bounds */
+    kd_stats stats;
+} kd_tree;
+
+void kd_params_default(kd_params *p);
+
+/* Builds a tree; 0 on success, -1 if memory ran out (out is then empty). count may be 0. */
+int kd_build(const kd_source *src, const kd_params *p, kd_tree *out);
+
+void kd_free(kd_tree *t);
+
+/* Clips triangle (a, b, c) to box (Sutherland-Hodgman against the six planes) and returns the
+ * bounds of the clipped polygon; 0 if nothing is left. For kd_source.clip of triangle meshes. */
+int kd_clip_triangle(const double a[3], const double b[3], const double c[3], const aabb *box, aabb *out);
+
+/* SAH cost of any tree under p (used to compare against baselines in tests). */
+double kd_sah_cost(const kd_tree *t, const kd_params *p);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,675 @@
+// glTF 2.0 loader behind scene.h (tinygltf from Debian, route A: header + -ltinygltf).
+// Every accessor read is bounds-checked; malformed files give one-line errors, unsupported
+// features (skins, Draco, meshopt, KTX2, points and lines) one-line warnings, never a crash.
+#include "scene.h"
+
+#include <tiny_gltf.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace {
+
+struct load_error : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+std::string first_line(const std::string &s)
+{
+    std::string l = s.substr(0, s.find('\n'));
+    while (!l.empty() && (l.back() == '\r' || l.back() == ' '))
+        l.pop_back();
+    return l;
+}
+
+template <typename T> T *alloc_array(size_t n)
+{
+    if (n == 0)
+        return nullptr;
+    T *p = static_cast<T *>(std::calloc(n, sizeof(T)));
+    if (!p)
+        throw std::bad_alloc();
+    return p;
+}
+
+template <typename T> T *copy_array(const std::vector<T> &v)
+{
+    T *p = alloc_array<T>(v.size());
+    if (p)
+        std::memcpy(p, v.data(), v.size() * sizeof(T));
+    return p;
+}
+
+class Loader {
+  public:
+    Loader(const tinygltf::Model &m, const std::string &path, scene *out) : m_(m), path_(path), s_(out) {}
+
+    void run()
+    {
+        check_required_extensions();
+        load_materials();
+        load_textures();
+        load_meshes();
+        load_cameras_and_lights();
+        load_nodes();
+        load_animations();
+        load_roots();
+        if (scene_evaluate(s_, 0.0, 0) != 0)
+            throw std::bad_alloc();
+    }
+
+  private:
+    const tinygltf::Model &m_;
+    std::string path_;
+    scene *s_;
+    std::vector<uint32_t> image_to_texture_;
+
+    void warn(const std::string &msg)
+    {
+        std::fprintf(stderr, "saarcor: warning: %s: %s\n", path_.c_str(), msg.c_str());
+        s_->warnings++;
+    }
+
+    [[noreturn]] void fail(const std::string &msg) { throw load_error(msg); }
+
+    void check_required_extensions()
+    {
+        static const char *supported[] = { "KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
+                                           "KHR_materials_emissive_strength" };
+        for (const std::string &e : m_.extensionsUsed) {
+            bool ok = false;
+            for (const char *x : supported)
+                ok = ok || e == x;
+            if (!ok)
+                warn("extension " + e + " is not supported and is ignored");
+        }
+        for (const std::string &e : m_.extensionsRequired)
+            if (e == "KHR_draco_mesh_compression" || e == "EXT_meshopt_compression" || e == "KHR_texture_basisu")
+                warn("required extension " + e + " is not supported: affected primitives/textures are skipped");
+        if (!m_.skins.empty())
+            warn("skins are not supported: skinned meshes are drawn in their bind pose");
+    }
+
+    // ---- accessors ----------------------------------------------------------------------
+
+    const tinygltf::Accessor &accessor(int index, const char *what)
+    {
+        if (index < 0 || (size_t)index >= m_.accessors.size())
+            fail(std::string(what) + ": accessor index " + std::to_string(index) + " out of range");
+        return m_.accessors[(size_t)index];
+    }
+
+    static int components(int type)
+    {
+        switch (type) {
+        case TINYGLTF_TYPE_SCALAR: return 1;
+        case TINYGLTF_TYPE_VEC2: return 2;
+        case TINYGLTF_TYPE_VEC3: return 3;
+        case TINYGLTF_TYPE_VEC4: return 4;
+        case TINYGLTF_TYPE_MAT4: return 16;
+        default: return 0;
+        }
+    }
+
+    static double read_component(const unsigned char *p, int ctype, bool normalized)
+    {
+        switch (ctype) {
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p, 4); return f; }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? p[0] / 255.0 : p[0];
+        case TINYGLTF_COMPONENT_TYPE_BYTE: { double v = (signed char)p[0]; return normalized ? std::fmax(v / 127.0, -1.0) : v; }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t v; std::memcpy(&v, p, 2); return normalized ? v / 65535.0 : v; }
+        case TINYGLTF_COMPONENT_TYPE_SHORT: { int16_t v; std::memcpy(&v, p, 2); return normalized ? std::fmax(v / 32767.0, -1.0) : v; }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t v; std::memcpy(&v, p, 4); return v; }
+        default: return NAN;
+        }
+    }
+
+    // Reads `count` elements of `ncomp` components from a buffer view, bounds-checked.
+    void read_view(int view_index, size_t offset, size_t count, int ctype, int ncomp, bool normalized,
+                   const std::string &what, double *out)
+    {
+        if (view_index < 0 || (size_t)view_index >= m_.bufferViews.size())
+            fail(what + ": buffer view out of range");
+        const tinygltf::BufferView &bv = m_.bufferViews[(size_t)view_index];
+        if (bv.buffer < 0 || (size_t)bv.buffer >= m_.buffers.size())
+            fail(what + ": buffer out of range");
+        const std::vector<unsigned char> &data = m_.buffers[(size_t)bv.buffer].data;
+        const int csize = tinygltf::GetComponentSizeInBytes((uint32_t)ctype);
+        if (csize <= 0)
+            fail(what + ": bad component type " + std::to_string(ctype));
+        const size_t elem = (size_t)csize * (size_t)ncomp;
+        const size_t stride = bv.byteStride ? bv.byteStride : elem;
+        if (bv.byteOffset > data.size() || bv.byteLength > data.size() - bv.byteOffset)
+            fail(what + ": buffer view exceeds its buffer");
+        if (count && (offset > bv.byteLength || (count - 1) > (bv.byteLength - offset) / stride ||
+                      (count - 1) * stride + elem > bv.byteLength - offset))
+            fail(what + ": accessor exceeds its buffer view");
+        const unsigned char *base = data.data() + bv.byteOffset + offset;
+        for (size_t i = 0; i < count; i++)
+            for (int c = 0; c < ncomp; c++)
+                out[i * (size_t)ncomp + (size_t)c] = read_component(base + i * stride + (size_t)c * (size_t)csize, ctype, normalized);
+    }
+
+    // Accessor as doubles, ncomp per element, with sparse substitution applied.
+    std::vector<double> read(int index, int want_type, const std::string &what)
+    {
+        const tinygltf::Accessor &a = accessor(index, what.c_str());
+        const int nc = components(a.type);
+        if (a.type != want_type || nc == 0)
+            fail(what + ": accessor has the wrong type");
+        if (a.count > (1u << 28))
+            fail(what + ": accessor too large");
+        std::vector<double> v((size_t)a.count * (size_t)nc, 0.0);
+        if (a.bufferView >= 0)
+            read_view(a.bufferView, a.byteOffset, a.count, a.componentType, nc, a.normalized, what, v.data());
+        if (a.sparse.isSparse) {
+            const size_t n = (size_t)a.sparse.count;
+            if (n > a.count)
+                fail(what + ": sparse count exceeds accessor count");
+            std::vector<double> idx(n), val(n * (size_t)nc);
+            read_view(a.sparse.indices.bufferView, a.sparse.indices.byteOffset, n, a.sparse.indices.componentType, 1,
+                      false, what + " (sparse indices)", idx.data());
+            read_view(a.sparse.values.bufferView, a.sparse.values.byteOffset, n, a.componentType, nc, a.normalized,
+                      what + " (sparse values)", val.data());
+            for (size_t i = 0; i < n; i++) {
+                if (!(idx[i] >= 0 && idx[i] < (double)a.count))
+                    fail(what + ": sparse index out of range");
+                for (int c = 0; c < nc; c++)
+                    v[(size_t)idx[i] * (size_t)nc + (size_t)c] = val[i * (size_t)nc + (size_t)c];
+            }
+        }
+        return v;
+    }
+
+    // The same, failing on NaN/Inf (positions, transforms, key times).
+    std::vector<double> read_finite(int index, int want_type, const std::string &what)
+    {
+        std::vector<double> v = read(index, want_type, what);
+        for (size_t i = 0; i < v.size(); i++)
+            if (!std::isfinite(v[i]))
+                fail(what + ": non-finite value at element " + std::to_string(i / (size_t)components(want_type)));
+        return v;
+    }
+
+    // ---- materials and textures ---------------------------------------------------------
+
+    void load_materials()
+    {
+        s_->n_materials = (uint32_t)m_.materials.size() + 1;
+        s_->materials = alloc_array<scene_material>(s_->n_materials);
+        for (uint32_t i = 0; i < s_->n_materials; i++) {
+            scene_material &d = s_->materials[i];
+            d = scene_material{};
+            for (int c = 0; c < 4; c++)
+                d.base_color[c] = c < 3 ? 0.8f : 1.0f;
+            d.base_color_texture = SCENE_NONE;
+            d.alpha_cutoff = 0.5f;
+            d.metallic = 0.0f;
+            d.roughness = 1.0f;
+            d.ior = 1.5f;
+            if (i == 0)
+                continue;
+            const tinygltf::Material &g = m_.materials[i - 1];
+            const auto &pbr = g.pbrMetallicRoughness;
+            for (int c = 0; c < 4 && c < (int)pbr.baseColorFactor.size(); c++)
+                d.base_color[c] = (float)pbr.baseColorFactor[(size_t)c];
+            d.metallic = (float)pbr.metallicFactor;
+            d.roughness = (float)pbr.roughnessFactor;
+            d.base_color_texture = pbr.baseColorTexture.index; // resolved in load_textures
+            d.texcoord_set = (uint32_t)std::max(0, pbr.baseColorTexture.texCoord);
+            if (d.texcoord_set != 0)
+                warn("material " + std::to_string(i - 1) + " uses TEXCOORD_" + std::to_string(d.texcoord_set) +
+                     ": only TEXCOORD_0 is loaded");
+            d.alpha = g.alphaMode == "MASK" ? ALPHA_MASK : g.alphaMode == "BLEND" ? ALPHA_BLEND : ALPHA_OPAQUE;
+            d.alpha_cutoff = (float)g.alphaCutoff;
+            for (int c = 0; c < 3 && c < (int)g.emissiveFactor.size(); c++)
+                d.emissive[c] = (float)g.emissiveFactor[(size_t)c];
+            d.double_sided = g.doubleSided;
+            auto es = g.extensions.find("KHR_materials_emissive_strength");
+            if (es != g.extensions.end() && es->second.Has("emissiveStrength"))
+                for (float &e : d.emissive)
+                    e *= (float)es->second.Get("emissiveStrength").GetNumberAsDouble();
+            auto tr = g.extensions.find("KHR_materials_transmission");
+            if (tr != g.extensions.end() && tr->second.Has("transmissionFactor"))
+                d.transmission = (float)tr->second.Get("transmissionFactor").GetNumberAsDouble();
+            auto ior = g.extensions.find("KHR_materials_ior");
+            if (ior != g.extensions.end() && ior->second.Has("ior"))
+                d.ior = (float)ior->second.Get("ior").GetNumberAsDouble();
+        }
+    }
+
+    void load_textures()
+    {
+        image_to_texture_.assign(m_.images.size(), SCENE_NONE);
+        std::vector<scene_texture> tex;
+        for (size_t i = 0; i < m_.images.size(); i++) {
+            const tinygltf::Image &im = m_.images[i];
+            const size_t n = (size_t)im.width * (size_t)im.height;
+            const int bytes = im.bits == 16 ? 2 : 1;
+            if (im.width <= 0 || im.height <= 0 || im.component < 1 || im.component > 4 ||
+                im.image.size() < n * (size_t)im.component * (size_t)bytes) {
+                warn("image " + std::to_string(i) + " could not be decoded and is skipped");
+                continue;
+            }
+            scene_texture t{ im.width, im.height, alloc_array<uint8_t>(n * 4) };
+            for (size_t p = 0; p < n; p++)
+                for (int c = 0; c < 4; c++) {
+                    const int src = im.component >= 3 ? (c < im.component ? c : -1) : (c < 3 ? 0 : (im.component == 2 ? 1 : -1));
+                    const size_t at = (p * (size_t)im.component + (size_t)(src < 0 ? 0 : src)) * (size_t)bytes;
+                    const uint8_t v = bytes == 2 ? im.image[at + 1] : im.image[at]; // little-endian high byte
+                    t.rgba[p * 4 + (size_t)c] = src < 0 ? 255 : v;
+                }
+            image_to_texture_[i] = (uint32_t)tex.size();
+            tex.push_back(t);
+        }
+        s_->n_textures = (uint32_t)tex.size();
+        s_->textures = copy_array(tex);
+        for (uint32_t i = 1; i < s_->n_materials; i++) {
+            scene_material &d = s_->materials[i];
+            const int ti = (int)d.base_color_texture;
+            d.base_color_texture = SCENE_NONE;
+            if (ti < 0 || (size_t)ti >= m_.textures.size())
+                continue;
+            const int src = m_.textures[(size_t)ti].source;
+            if (src >= 0 && (size_t)src < image_to_texture_.size())
+                d.base_color_texture = image_to_texture_[(size_t)src];
+            else
+                warn("texture " + std::to_string(ti) + " has no usable image (KTX2/BasisU?) and is skipped");
+        }
+    }
+
+    // ---- meshes --------------------------------------------------------------------------
+
+    struct mesh_build {
+        std::vector<float> pos, nrm, uv;
+        std::vector<uint32_t> idx, mat;
+        bool any_normals = false, any_uv = false;
+        uint32_t n_targets = 0;
+        std::vector<std::pair<uint32_t, std::vector<std::vector<double>>>> prim_targets; // first vertex, deltas
+    };
+
+    static std::vector<uint32_t> triangulate(const std::vector<uint32_t> &v, int mode)
+    {
+        if (mode == TINYGLTF_MODE_TRIANGLES)
+            return v;
+        std::vector<uint32_t> t;
+        for (size_t i = 2; i < v.size(); i++) {
+            if (mode == TINYGLTF_MODE_TRIANGLE_STRIP)
+                t.insert(t.end(), i % 2 ? std::initializer_list<uint32_t>{ v[i - 1], v[i - 2], v[i] }
+                                        : std::initializer_list<uint32_t>{ v[i - 2], v[i - 1], v[i] });
+            else
+                t.insert(t.end(), { v[0], v[i - 1], v[i] });
+        }
+        return t;
+    }
+
+    void add_primitive(mesh_build &b, const tinygltf::Primitive &p, const std::string &what)
+    {
+        if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+            p.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+            warn(what + ": mode " + std::to_string(p.mode) + " (points/lines) is not supported, skipped");
+            return;
+        }
+        if (p.extensions.count("KHR_draco_mesh_compression")) {
+            warn(what + ": Draco-compressed primitive skipped");
+            return;
+        }
+        auto pos_it = p.attributes.find("POSITION");
+        if (pos_it == p.attributes.end())
+            fail(what + ": primitive has no POSITION");
+        const std::vector<double> pos = read_finite(pos_it->second, TINYGLTF_TYPE_VEC3, what + " POSITION");
+        const size_t nv = pos.size() / 3;
+        const uint32_t base = (uint32_t)(b.pos.size() / 3);
+        if (b.pos.size() / 3 + nv > (1u << 30))
+            fail(what + ": too many vertices");
+        for (double x : pos)
+            b.pos.push_back((float)x);
+        auto fill = [&](const char *name, int type, int nc, std::vector<float> &dst, bool &any) {
+            auto it = p.attributes.find(name);
+            dst.resize((size_t)base * (size_t)nc, 0.0f);
+            if (it == p.attributes.end()) {
+                dst.resize((size_t)(base + nv) * (size_t)nc, 0.0f);
+                return;
+            }
+            std::vector<double> v = read(it->second, type, what + " " + name);
+            if (v.size() != nv * (size_t)nc)
+                fail(what + ": " + name + " count differs from POSITION count");
+            size_t bad = 0;
+            for (double x : v) {
+                bad += !std::isfinite(x);
+                dst.push_back(std::isfinite(x) ? (float)x : 0.0f); // zero normal: shade with the geometric one
+            }
+            if (bad)
+                warn(what + ": " + std::to_string(bad) + " non-finite " + name + " components replaced by 0");
+            any = true;
+        };
+        fill("NORMAL", TINYGLTF_TYPE_VEC3, 3, b.nrm, b.any_normals);
+        fill("TEXCOORD_0", TINYGLTF_TYPE_VEC2, 2, b.uv, b.any_uv);
+
+        std::vector<uint32_t> idx;
+        if (p.indices >= 0) {
+            const tinygltf::Accessor &a = accessor(p.indices, (what + " indices").c_str());
+            if (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+                a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+                a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+                fail(what + ": indices must be unsigned integers");
+            for (double x : read_finite(p.indices, TINYGLTF_TYPE_SCALAR, what + " indices")) {
+                if (!(x >= 0 && x < (double)nv))
+                    fail(what + ": vertex index " + std::to_string((long long)x) + " out of range (" +
+                         std::to_string(nv) + " vertices)");
+                idx.push_back((uint32_t)x);
+            }
+        } else {
+            for (uint32_t i = 0; i < nv; i++)
+                idx.push_back(i);
+        }
+        idx = triangulate(idx, p.mode);
+        if (idx.size() % 3)
+            fail(what + ": index count is not a multiple of 3");
+        const uint32_t material = p.material >= 0 && (size_t)p.material < m_.materials.size() ? (uint32_t)p.material + 1 : 0;
+        for (uint32_t i : idx)
+            b.idx.push_back(base + i);
+        b.mat.insert(b.mat.end(), idx.size() / 3, material);
+
+        std::vector<std::vector<double>> deltas;
+        for (size_t t = 0; t < p.targets.size(); t++) {
+            auto it = p.targets[t].find("POSITION");
+            std::vector<double> d = it == p.targets[t].end() ? std::vector<double>(nv * 3, 0.0)
+                                                            : read_finite(it->second, TINYGLTF_TYPE_VEC3, what + " morph target");
+            if (d.size() != nv * 3)
+                fail(what + ": morph target count differs from POSITION count");
+            deltas.push_back(std::move(d));
+        }
+        b.n_targets = std::max(b.n_targets, (uint32_t)deltas.size());
+        b.prim_targets.emplace_back(base, std::move(deltas));
+    }
+
+    void load_meshes()
+    {
+        s_->n_meshes = (uint32_t)m_.meshes.size();
+        s_->meshes = alloc_array<scene_mesh>(s_->n_meshes);
+        for (size_t mi = 0; mi < m_.meshes.size(); mi++) {
+            const tinygltf::Mesh &gm = m_.meshes[mi];
+            mesh_build b;
+            for (size_t pi = 0; pi < gm.primitives.size(); pi++)
+                add_primitive(b, gm.primitives[pi], "mesh " + std::to_string(mi) + " primitive " + std::to_string(pi));
+            scene_mesh &sm = s_->meshes[mi];
+            std::snprintf(sm.name, sizeof sm.name, "%s", gm.name.empty() ? ("mesh" + std::to_string(mi)).c_str() : gm.name.c_str());
+            sm.n_vertices = (uint32_t)(b.pos.size() / 3);
+            sm.n_triangles = (uint32_t)(b.idx.size() / 3);
+            sm.positions = copy_array(b.pos);
+            sm.normals = b.any_normals ? copy_array(b.nrm) : nullptr;
+            sm.texcoords = b.any_uv ? copy_array(b.uv) : nullptr;
+            sm.indices = copy_array(b.idx);
+            sm.material = copy_array(b.mat);
+            if (b.n_targets == 0)
+                continue;
+            sm.n_targets = b.n_targets;
+            sm.base_positions = copy_array(b.pos);
+            sm.target_deltas = alloc_array<float>((size_t)b.n_targets * b.pos.size());
+            for (auto &pt : b.prim_targets)
+                for (size_t t = 0; t < pt.second.size(); t++)
+                    for (size_t k = 0; k < pt.second[t].size(); k++)
+                        sm.target_deltas[t * b.pos.size() + (size_t)pt.first * 3 + k] = (float)pt.second[t][k];
+            sm.weights = alloc_array<float>(b.n_targets);
+            for (uint32_t t = 0; t < b.n_targets && t < gm.weights.size(); t++)
+                sm.weights[t] = (float)gm.weights[t];
+            // positions reflect the default weights
+            for (size_t v = 0; v < b.pos.size(); v++) {
+                double p = b.pos[v];
+                for (uint32_t t = 0; t < b.n_targets; t++)
+                    p += (double)sm.weights[t] * sm.target_deltas[t * b.pos.size() + v];
+                sm.positions[v] = (float)p;
+            }
+        }
+    }
+
+    // ---- cameras, lights, nodes ------------------------------------------------------------
+
+    void load_cameras_and_lights()
+    {
+        s_->n_cameras = (uint32_t)m_.cameras.size();
+        s_->cameras = alloc_array<scene_camera>(s_->n_cameras);
+        for (size_t i = 0; i < m_.cameras.size(); i++) {
+            const tinygltf::Camera &c = m_.cameras[i];
+            scene_camera &d = s_->cameras[i];
+            d.node = SCENE_NONE;
+            d.world = affine_identity();
+            if (c.type == "orthographic") {
+                d.kind = CAMERA_ORTHOGRAPHIC;
+                d.xmag = c.orthographic.xmag;
+                d.ymag = c.orthographic.ymag;
+                d.znear = c.orthographic.znear;
+                d.zfar = c.orthographic.zfar;
+            } else {
+                d.kind = CAMERA_PERSPECTIVE;
+                d.yfov = c.perspective.yfov;
+                d.aspect = c.perspective.aspectRatio;
+                d.znear = c.perspective.znear;
+                d.zfar = c.perspective.zfar;
+                if (!(d.yfov > 0 && d.yfov < M_PI))
+                    fail("camera " + std::to_string(i) + ": yfov must be in (0, pi)");
+            }
+        }
+        s_->n_lights = (uint32_t)m_.lights.size();
+        s_->lights = alloc_array<scene_light>(s_->n_lights);
+        for (size_t i = 0; i < m_.lights.size(); i++) {
+            const tinygltf::Light &l = m_.lights[i];
+            scene_light &d = s_->lights[i];
+            d.kind = l.type == "directional" ? LIGHT_DIRECTIONAL : l.type == "spot" ? LIGHT_SPOT : LIGHT_POINT;
+            for (int c = 0; c < 3; c++)
+                d.color[c] = c < (int)l.color.size() ? (float)l.color[(size_t)c] : 1.0f;
+            d.intensity = (float)l.intensity;
+            d.range = (float)l.range;
+            d.inner_cone = (float)l.spot.innerConeAngle;
+            d.outer_cone = (float)l.spot.outerConeAngle;
+            d.node = SCENE_NONE;
+            d.direction[2] = -1;
+        }
+    }
+
+    static bool all_finite(const std::vector<double> &v)
+    {
+        for (double x : v)
+            if (!std::isfinite(x))
+                return false;
+        return true;
+    }
+
+    void load_nodes()
+    {
+        s_->n_nodes = (uint32_t)m_.nodes.size();
+        s_->nodes = alloc_array<scene_node>(s_->n_nodes);
+        for (uint32_t i = 0; i < s_->n_nodes; i++)
+            s_->nodes[i].parent = -1;
+        for (size_t i = 0; i < m_.nodes.size(); i++) {
+            const tinygltf::Node &g = m_.nodes[i];
+            scene_node &d = s_->nodes[i];
+            const std::string what = "node " + std::to_string(i);
+            std::snprintf(d.name, sizeof d.name, "%s", g.name.c_str());
+            d.mesh = g.mesh >= 0 && (size_t)g.mesh < m_.meshes.size() ? (uint32_t)g.mesh : SCENE_NONE;
+            if (g.mesh >= 0 && d.mesh == SCENE_NONE)
+                fail(what + ": mesh index out of range");
+            d.camera = g.camera >= 0 && (size_t)g.camera < m_.cameras.size() ? (uint32_t)g.camera : SCENE_NONE;
+            d.light = SCENE_NONE;
+            auto lx = g.extensions.find("KHR_lights_punctual");
+            if (lx != g.extensions.end() && lx->second.Has("light")) {
+                const int li = lx->second.Get("light").GetNumberAsInt();
+                if (li < 0 || (size_t)li >= m_.lights.size())
+                    fail(what + ": light index out of range");
+                d.light = (uint32_t)li;
+                s_->lights[li].node = (uint32_t)i;
+            }
+            if (d.camera != SCENE_NONE)
+                s_->cameras[d.camera].node = (uint32_t)i;
+            if (!all_finite(g.matrix) || !all_finite(g.translation) || !all_finite(g.rotation) || !all_finite(g.scale))
+                fail(what + ": non-finite transformation");
+            d.has_matrix = g.matrix.size() == 16;
+            if (d.has_matrix)
+                for (int r = 0; r < 3; r++)
+                    for (int c = 0; c < 4; c++)
+                        d.matrix.m[r][c] = g.matrix[(size_t)c * 4 + (size_t)r]; // column-major
+            for (int k = 0; k < 3; k++) {
+                d.translation[k] = g.translation.size() == 3 ? g.translation[(size_t)k] : 0.0;
+                d.scale[k] = g.scale.size() == 3 ? g.scale[(size_t)k] : 1.0;
+            }
+            for (int k = 0; k < 4; k++)
+                d.rotation[k] = g.rotation.size() == 4 ? g.rotation[(size_t)k] : (k == 3 ? 1.0 : 0.0);
+            const uint32_t nt = d.mesh != SCENE_NONE ? s_->meshes[d.mesh].n_targets : 0;
+            if (nt) {
+                d.n_weights = nt;
+                d.weights = alloc_array<double>(nt);
+                for (uint32_t t = 0; t < nt; t++)
+                    d.weights[t] = t < g.weights.size() ? g.weights[t] : s_->meshes[d.mesh].weights[t];
+            }
+            for (int c : g.children) {
+                if (c < 0 || (size_t)c >= m_.nodes.size())
+                    fail(what + ": child index out of range");
+                if (s_->nodes[c].parent >= 0 || (size_t)c == i)
+                    fail("node " + std::to_string(c) + " has more than one parent (the node graph must be a tree)");
+                s_->nodes[c].parent = (int)i;
+            }
+        }
+        for (uint32_t i = 0; i < s_->n_nodes; i++) { // cycles: a walk up must end within n steps
+            uint32_t steps = 0;
+            for (int p = s_->nodes[i].parent; p >= 0; p = s_->nodes[p].parent)
+                if (++steps > s_->n_nodes)
+                    fail("the node hierarchy has a cycle");
+        }
+    }
+
+    // ---- animations ----------------------------------------------------------------------
+
+    void load_animations()
+    {
+        s_->n_animations = (uint32_t)m_.animations.size();
+        s_->animations = alloc_array<scene_animation>(s_->n_animations);
+        for (size_t ai = 0; ai < m_.animations.size(); ai++) {
+            const tinygltf::Animation &ga = m_.animations[ai];
+            scene_animation &a = s_->animations[ai];
+            std::snprintf(a.name, sizeof a.name, "%s", ga.name.c_str());
+            std::vector<scene_channel> chans;
+            for (size_t ci = 0; ci < ga.channels.size(); ci++) {
+                const tinygltf::AnimationChannel &gc = ga.channels[ci];
+                const std::string what = "animation " + std::to_string(ai) + " channel " + std::to_string(ci);
+                if (gc.target_node < 0 || (size_t)gc.target_node >= m_.nodes.size())
+                    fail(what + ": target node out of range");
+                if (gc.sampler < 0 || (size_t)gc.sampler >= ga.samplers.size())
+                    fail(what + ": sampler out of range");
+                const tinygltf::AnimationSampler &gs = ga.samplers[(size_t)gc.sampler];
+                scene_channel c{};
+                c.node = (uint32_t)gc.target_node;
+                int type = TINYGLTF_TYPE_VEC3;
+                if (gc.target_path == "translation") c.path = ANIM_TRANSLATION, c.components = 3;
+                else if (gc.target_path == "rotation") c.path = ANIM_ROTATION, c.components = 4, type = TINYGLTF_TYPE_VEC4;
+                else if (gc.target_path == "scale") c.path = ANIM_SCALE, c.components = 3;
+                else if (gc.target_path == "weights") {
+                    c.path = ANIM_WEIGHTS;
+                    c.components = s_->nodes[c.node].n_weights;
+                    type = TINYGLTF_TYPE_SCALAR;
+                    if (c.components == 0) {
+                        warn(what + ": weights channel on a node without morph targets, skipped");
+                        continue;
+                    }
+                } else {
+                    warn(what + ": target path '" + gc.target_path + "' is not supported, skipped");
+                    continue;
+                }
+                c.interp = gs.interpolation == "STEP" ? INTERP_STEP : gs.interpolation == "CUBICSPLINE" ? INTERP_CUBICSPLINE : INTERP_LINEAR;
+                const std::vector<double> t = read_finite(gs.input, TINYGLTF_TYPE_SCALAR, what + " input");
+                const std::vector<double> v = read_finite(gs.output, type, what + " output");
+                const size_t per_key = (size_t)c.components * (c.interp == INTERP_CUBICSPLINE ? 3 : 1);
+                if (t.empty() || v.size() != t.size() * per_key)
+                    fail(what + ": output count does not match input count");
+                for (size_t k = 1; k < t.size(); k++)
+                    if (!(t[k] > t[k - 1]))
+                        fail(what + ": key times must increase");
+                c.n_keys = (uint32_t)t.size();
+                c.times = alloc_array<float>(t.size());
+                c.values = alloc_array<float>(v.size());
+                for (size_t k = 0; k < t.size(); k++)
+                    c.times[k] = (float)t[k];
+                for (size_t k = 0; k < v.size(); k++)
+                    c.values[k] = (float)v[k];
+                a.duration = std::max(a.duration, c.times[c.n_keys - 1]);
+                chans.push_back(c);
+            }
+            a.n_channels = (uint32_t)chans.size();
+            a.channels = copy_array(chans);
+        }
+    }
+
+    void load_roots()
+    {
+        std::vector<uint32_t> roots;
+        if (!m_.scenes.empty()) {
+            const size_t si = m_.defaultScene >= 0 && (size_t)m_.defaultScene < m_.scenes.size() ? (size_t)m_.defaultScene : 0;
+            for (int n : m_.scenes[si].nodes) {
+                if (n < 0 || (size_t)n >= m_.nodes.size())
+                    fail("scene " + std::to_string(si) + ": node index out of range");
+                if (s_->nodes[n].parent >= 0)
+                    fail("scene " + std::to_string(si) + ": root node " + std::to_string(n) + " has a parent");
+                roots.push_back((uint32_t)n);
+            }
+        } else {
+            for (uint32_t i = 0; i < s_->n_nodes; i++)
+                if (s_->nodes[i].parent < 0)
+                    roots.push_back(i);
+        }
+        s_->n_roots = (uint32_t)roots.size();
+        s_->roots = copy_array(roots);
+    }
+};
+
+bool ends_with(const std::string &s, const char *suffix)
+{
+    const size_t n = std::strlen(suffix);
+    if (s.size() < n)
+        return false;
+    for (size_t i = 0; i < n; i++)
+        if (std::tolower((unsigned char)s[s.size() - n + i]) != suffix[i])
+            return false;
+    return true;
+}
+
+void set_error(char *err, size_t errlen, const std::string &msg)
+{
+    if (err && errlen)
+        std::snprintf(err, errlen, "%s", first_line(msg).c_str());
+}
+
+} // namespace
+
+extern "C" int scene_load_gltf(const char *path, scene *out, char *err, size_t errlen)
+{
+    std::memset(out, 0, sizeof *out);
+    try {
+        tinygltf::TinyGLTF loader;
+        tinygltf::Model model;
+        std::string e, w;
+        const std::string p(path);
+        const bool ok = ends_with(p, ".glb") ? loader.LoadBinaryFromFile(&model, &e, &w, p)
+                                             : loader.LoadASCIIFromFile(&model, &e, &w, p);
+        if (!ok) {
+            set_error(err, errlen, p + ": " + (e.empty() ? "cannot load glTF" : first_line(e)));
+            return -1;
+        }
+        if (!w.empty())
+            std::fprintf(stderr, "saarcor: warning: %s: %s\n", path, first_line(w).c_str());
+        Loader(model, p, out).run();
+        return 0;
+    } catch (const load_error &x) {
+        set_error(err, errlen, std::string(path) + ": " + x.what());
+    } catch (const std::bad_alloc &) {
+        set_error(err, errlen, std::string(path) + ": out of memory");
+    } catch (const std::exception &x) {
+        set_error(err, errlen, std::string(path) + ": " + x.what());
+    }
+    scene_free(out);
+    return -1;
+}

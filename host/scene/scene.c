@@ -1,0 +1,318 @@
+/*
+ * Scene model helpers: affine algebra, animation sampling (glTF LINEAR / STEP / CUBICSPLINE,
+ * quaternion slerp for rotations), scene evaluation at a time (node hierarchy -> world
+ * transforms, morph weights -> positions, instances, cameras, lights) and freeing.
+ */
+#include "scene.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+affine affine_identity(void)
+{
+    affine a = { { { 1, 0, 0, 0 }, { 0, 1, 0, 0 }, { 0, 0, 1, 0 } } };
+    return a;
+}
+
+affine affine_mul(const affine *a, const affine *b)
+{
+    affine r;
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 4; j++) {
+            double v = j == 3 ? a->m[i][3] : 0.0;
+            for (int k = 0; k < 3; k++)
+                v += a->m[i][k] * b->m[k][j];
+            r.m[i][j] = v;
+        }
+    }
+    return r;
+}
+
+affine affine_from_trs(const double t[3], const double q[4], const double s[3])
+{
+    const double x = q[0], y = q[1], z = q[2], w = q[3];
+    const double r[3][3] = {
+        { 1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w) },
+        { 2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w) },
+        { 2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y) },
+    };
+    affine a;
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++)
+            a.m[i][j] = r[i][j] * s[j];
+        a.m[i][3] = t[i];
+    }
+    return a;
+}
+
+int affine_invert(const affine *a, affine *inv)
+{
+    const double(*m)[4] = a->m;
+    const double c00 = m[1][1] * m[2][2] - m[1][2] * m[2][1];
+    const double c01 = m[1][2] * m[2][0] - m[1][0] * m[2][2];
+    const double c02 = m[1][0] * m[2][1] - m[1][1] * m[2][0];
+    const double det = m[0][0] * c00 + m[0][1] * c01 + m[0][2] * c02;
+    if (det == 0.0 || !isfinite(det))
+        return 0;
+    const double d = 1.0 / det;
+    double r[3][3] = {
+        { c00 * d, (m[0][2] * m[2][1] - m[0][1] * m[2][2]) * d, (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * d },
+        { c01 * d, (m[0][0] * m[2][2] - m[0][2] * m[2][0]) * d, (m[0][2] * m[1][0] - m[0][0] * m[1][2]) * d },
+        { c02 * d, (m[0][1] * m[2][0] - m[0][0] * m[2][1]) * d, (m[0][0] * m[1][1] - m[0][1] * m[1][0]) * d },
+    };
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++)
+            inv->m[i][j] = r[i][j];
+        inv->m[i][3] = -(r[i][0] * m[0][3] + r[i][1] * m[1][3] + r[i][2] * m[2][3]);
+    }
+    return 1;
+}
+
+void affine_apply_point(const affine *a, const double p[3], double out[3])
+{
+    double r[3];
+    for (int i = 0; i < 3; i++)
+        r[i] = a->m[i][0] * p[0] + a->m[i][1] * p[1] + a->m[i][2] * p[2] + a->m[i][3];
+    memcpy(out, r, sizeof r);
+}
+
+void affine_apply_vector(const affine *a, const double v[3], double out[3])
+{
+    double r[3];
+    for (int i = 0; i < 3; i++)
+        r[i] = a->m[i][0] * v[0] + a->m[i][1] * v[1] + a->m[i][2] * v[2];
+    memcpy(out, r, sizeof r);
+}
+
+/* ---- animation sampling ------------------------------------------------------------------ */
+
+static void normalize4(double q[4])
+{
+    const double n = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    if (n > 0)
+        for (int i = 0; i < 4; i++)
+            q[i] /= n;
+}
+
+static void slerp(const float *a, const float *b, double u, double out[4])
+{
+    double dot = 0, qb[4];
+    for (int i = 0; i < 4; i++)
+        dot += (double)a[i] * b[i];
+    for (int i = 0; i < 4; i++)
+        qb[i] = dot < 0 ? -(double)b[i] : (double)b[i]; /* shortest arc */
+    dot = fabs(dot);
+    double wa = 1 - u, wb = u;
+    if (dot < 0.9995) {
+        const double th = acos(dot), s = sin(th);
+        wa = sin((1 - u) * th) / s;
+        wb = sin(u * th) / s;
+    }
+    for (int i = 0; i < 4; i++)
+        out[i] = wa * a[i] + wb * qb[i];
+    normalize4(out);
+}
+
+/* Samples channel c at time t into out[c->components]. */
+static void sample_channel(const scene_channel *c, double t, double *out)
+{
+    const uint32_t n = c->components, stride = c->interp == INTERP_CUBICSPLINE ? 3 * n : n;
+    const uint32_t vo = c->interp == INTERP_CUBICSPLINE ? n : 0; /* value within a key */
+    uint32_t k = 0;
+    if (c->n_keys == 0)
+        return;
+    if (t <= c->times[0] || c->n_keys == 1) {
+        for (uint32_t i = 0; i < n; i++)
+            out[i] = c->values[vo + i];
+        if (c->path == ANIM_ROTATION)
+            normalize4(out);
+        return;
+    }
+    while (k + 1 < c->n_keys && c->times[k + 1] <= t)
+        k++;
+    if (k + 1 >= c->n_keys) {
+        for (uint32_t i = 0; i < n; i++)
+            out[i] = c->values[k * stride + vo + i];
+        if (c->path == ANIM_ROTATION)
+            normalize4(out);
+        return;
+    }
+    const double t0 = c->times[k], t1 = c->times[k + 1], dt = t1 - t0;
+    const double u = dt > 0 ? (t - t0) / dt : 0;
+    const float *v0 = &c->values[k * stride], *v1 = &c->values[(k + 1) * stride];
+    switch (c->interp) {
+    case INTERP_STEP:
+        for (uint32_t i = 0; i < n; i++)
+            out[i] = v0[vo + i];
+        break;
+    case INTERP_LINEAR:
+        if (c->path == ANIM_ROTATION)
+            slerp(v0, v1, u, out);
+        else
+            for (uint32_t i = 0; i < n; i++)
+                out[i] = (1 - u) * v0[i] + u * v1[i];
+        break;
+    case INTERP_CUBICSPLINE: { /* Hermite: value v, out-tangent b of key k, in-tangent a of k+1 */
+        const double u2 = u * u, u3 = u2 * u;
+        const double h00 = 2 * u3 - 3 * u2 + 1, h10 = u3 - 2 * u2 + u, h01 = -2 * u3 + 3 * u2, h11 = u3 - u2;
+        for (uint32_t i = 0; i < n; i++)
+            out[i] = h00 * v0[n + i] + h10 * dt * v0[2 * n + i] + h01 * v1[n + i] + h11 * dt * v1[i];
+        if (c->path == ANIM_ROTATION)
+            normalize4(out);
+        break;
+    }
+    }
+}
+
+static void apply_animation(scene *s, const scene_animation *a, double t)
+{
+    for (uint32_t i = 0; i < a->n_channels; i++) {
+        const scene_channel *c = &a->channels[i];
+        if (c->node >= s->n_nodes)
+            continue;
+        scene_node *nd = &s->nodes[c->node];
+        double v[64];
+        if (c->components > 64)
+            continue;
+        sample_channel(c, t, v);
+        switch (c->path) {
+        case ANIM_TRANSLATION: memcpy(nd->translation, v, sizeof nd->translation); break;
+        case ANIM_ROTATION: memcpy(nd->rotation, v, sizeof nd->rotation); break;
+        case ANIM_SCALE: memcpy(nd->scale, v, sizeof nd->scale); break;
+        case ANIM_WEIGHTS:
+            if (nd->weights && nd->n_weights == c->components)
+                memcpy(nd->weights, v, c->components * sizeof(double));
+            break;
+        }
+        if (c->path != ANIM_WEIGHTS)
+            nd->has_matrix = 0; /* glTF: animated nodes use TRS */
+    }
+}
+
+/* ---- evaluation -------------------------------------------------------------------------- */
+
+static affine node_local(const scene_node *n)
+{
+    return n->has_matrix ? n->matrix : affine_from_trs(n->translation, n->rotation, n->scale);
+}
+
+/* Positions = base + sum_k w_k * delta_k. Returns 1 if the geometry changed. */
+static int morph_mesh(scene_mesh *m, const double *w)
+{
+    int changed = 0;
+    for (uint32_t k = 0; k < m->n_targets; k++)
+        if ((float)w[k] != m->weights[k]) {
+            m->weights[k] = (float)w[k];
+            changed = 1;
+        }
+    if (!changed)
+        return 0;
+    for (uint32_t v = 0; v < 3 * m->n_vertices; v++) {
+        double p = m->base_positions[v];
+        for (uint32_t k = 0; k < m->n_targets; k++)
+            p += (double)m->weights[k] * m->target_deltas[(size_t)k * 3 * m->n_vertices + v];
+        m->positions[v] = (float)p;
+    }
+    return 1;
+}
+
+/* A node is displayed if the root of its hierarchy is one of the scene's roots. */
+static int node_displayed(const scene *s, uint32_t i)
+{
+    uint32_t steps = 0;
+    while (s->nodes[i].parent >= 0 && steps++ < s->n_nodes)
+        i = (uint32_t)s->nodes[i].parent;
+    for (uint32_t r = 0; r < s->n_roots; r++)
+        if (s->roots[r] == i)
+            return 1;
+    return 0;
+}
+
+int scene_evaluate(scene *s, double t, int loop)
+{
+    if (!s->instances && s->n_nodes) {
+        s->instances = calloc(s->n_nodes, sizeof *s->instances);
+        if (!s->instances)
+            return -1;
+    }
+    for (uint32_t i = 0; i < s->n_animations; i++) {
+        const scene_animation *a = &s->animations[i];
+        const double ta = loop && a->duration > 0 ? fmod(t, a->duration) : t;
+        apply_animation(s, a, ta);
+    }
+    /* nodes are in file order, not parent-first: walk each node's parents (bounded by n) */
+    for (uint32_t i = 0; i < s->n_nodes; i++) {
+        affine w = node_local(&s->nodes[i]);
+        uint32_t steps = 0;
+        for (int p = s->nodes[i].parent; p >= 0 && steps < s->n_nodes; p = s->nodes[p].parent, steps++) {
+            const affine lp = node_local(&s->nodes[p]);
+            w = affine_mul(&lp, &w);
+        }
+        s->nodes[i].world = w;
+    }
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < s->n_nodes; i++) {
+        const scene_node *nd = &s->nodes[i];
+        if (nd->mesh == SCENE_NONE || nd->mesh >= s->n_meshes || !node_displayed(s, i))
+            continue;
+        scene_mesh *m = &s->meshes[nd->mesh];
+        if (m->n_targets > 0 && nd->weights && nd->n_weights == m->n_targets)
+            morph_mesh(m, nd->weights);
+        s->instances[n++] = (scene_instance){ nd->mesh, i, nd->world };
+    }
+    s->n_instances = n;
+    for (uint32_t i = 0; i < s->n_cameras; i++)
+        if (s->cameras[i].node < s->n_nodes)
+            s->cameras[i].world = s->nodes[s->cameras[i].node].world;
+    for (uint32_t i = 0; i < s->n_lights; i++) {
+        scene_light *l = &s->lights[i];
+        if (l->node >= s->n_nodes)
+            continue;
+        const affine *w = &s->nodes[l->node].world;
+        const double o[3] = { 0, 0, 0 }, fwd[3] = { 0, 0, -1 };
+        affine_apply_point(w, o, l->position);
+        affine_apply_vector(w, fwd, l->direction);
+        const double len = sqrt(l->direction[0] * l->direction[0] + l->direction[1] * l->direction[1] +
+                                l->direction[2] * l->direction[2]);
+        for (int k = 0; k < 3 && len > 0; k++)
+            l->direction[k] /= len;
+    }
+    return 0;
+}
+
+void scene_free(scene *s)
+{
+    for (uint32_t i = 0; i < s->n_meshes; i++) {
+        scene_mesh *m = &s->meshes[i];
+        free(m->positions);
+        free(m->normals);
+        free(m->texcoords);
+        free(m->indices);
+        free(m->material);
+        free(m->base_positions);
+        free(m->target_deltas);
+        free(m->weights);
+    }
+    for (uint32_t i = 0; i < s->n_nodes; i++)
+        free(s->nodes[i].weights);
+    for (uint32_t i = 0; i < s->n_textures; i++)
+        free(s->textures[i].rgba);
+    for (uint32_t i = 0; i < s->n_animations; i++) {
+        for (uint32_t c = 0; c < s->animations[i].n_channels; c++) {
+            free(s->animations[i].channels[c].times);
+            free(s->animations[i].channels[c].values);
+        }
+        free(s->animations[i].channels);
+    }
+    free(s->meshes);
+    free(s->nodes);
+    free(s->materials);
+    free(s->textures);
+    free(s->cameras);
+    free(s->lights);
+    free(s->animations);
+    free(s->roots);
+    free(s->instances);
+    memset(s, 0, sizeof *s);
+}

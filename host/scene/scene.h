@@ -1,0 +1,171 @@
+/*
+ * The host's scene model: what the glTF loader produces, what the scene generators build, what
+ * the kd-tree builders and the memory-image writer consume. Plain C structs, all arrays owned by
+ * the scene (scene_free releases everything). Host code: double precision where it matters.
+ *
+ * Mapping from glTF: each glTF mesh (all its TRIANGLES primitives) is one OBJECT with its own
+ * bottom-level tree; each node that references a mesh is one INSTANCE of that object with the
+ * node's world transformation. Nodes, animations and morph weights are kept so that the scene
+ * can be evaluated at any time (scene_evaluate).
+ */
+#ifndef SAARCOR_SCENE_H
+#define SAARCOR_SCENE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define SCENE_NONE UINT32_MAX
+
+/* Affine transformation x' = m * x + t, stored row-major as 3 rows of (m00 m01 m02 t0). */
+typedef struct { double m[3][4]; } affine;
+
+typedef enum { ALPHA_OPAQUE = 0, ALPHA_MASK = 1, ALPHA_BLEND = 2 } alpha_mode;
+
+typedef struct {
+    float base_color[4];        /* linear RGBA factor */
+    uint32_t base_color_texture; /* index into scene.textures or SCENE_NONE */
+    uint32_t texcoord_set;       /* TEXCOORD_n used by the texture (only 0 is loaded) */
+    alpha_mode alpha;
+    float alpha_cutoff;
+    float metallic, roughness;
+    float emissive[3];
+    float transmission;          /* KHR_materials_transmission factor, 0 if absent */
+    float ior;                   /* KHR_materials_ior, 1.5 if absent */
+    int double_sided;
+} scene_material;
+
+typedef struct {
+    int width, height;
+    uint8_t *rgba; /* width*height*4 bytes, row-major, top row first, sRGB-encoded as stored */
+} scene_texture;
+
+/* One object: the triangles of all TRIANGLES primitives of one glTF mesh. */
+typedef struct {
+    char name[64];
+    uint32_t n_vertices, n_triangles;
+    float *positions;   /* 3 * n_vertices (current geometry: base + weighted morph targets) */
+    float *normals;     /* 3 * n_vertices, or NULL */
+    float *texcoords;   /* 2 * n_vertices, or NULL */
+    uint32_t *indices;  /* 3 * n_triangles, every index < n_vertices */
+    uint32_t *material; /* n_triangles: index into scene.materials (a default material exists) */
+    /* morph targets (position deltas only are applied to the geometry) */
+    uint32_t n_targets;
+    float *base_positions;  /* 3 * n_vertices, the positions without morphing (n_targets > 0) */
+    float *target_deltas;   /* n_targets * 3 * n_vertices */
+    float *weights;         /* n_targets current weights */
+} scene_mesh;
+
+typedef enum { CAMERA_PERSPECTIVE = 0, CAMERA_ORTHOGRAPHIC = 1 } camera_kind;
+
+typedef struct {
+    camera_kind kind;
+    double yfov;         /* radians, perspective */
+    double aspect;       /* 0 if the file does not say */
+    double xmag, ymag;   /* orthographic half extents */
+    double znear, zfar;
+    uint32_t node;       /* node that carries it (world transform), SCENE_NONE for a default camera */
+    affine world;        /* camera-to-world: looks down -Z, +Y up (glTF convention) */
+} scene_camera;
+
+typedef enum { LIGHT_DIRECTIONAL = 0, LIGHT_POINT = 1, LIGHT_SPOT = 2 } light_kind;
+
+typedef struct {
+    light_kind kind;
+    float color[3];
+    float intensity;
+    float range;             /* 0: infinite */
+    float inner_cone, outer_cone;
+    uint32_t node;
+    double position[3];      /* world space (point, spot) */
+    double direction[3];     /* world space, normalized, the way the light shines (-Z of the node) */
+} scene_light;
+
+typedef struct {
+    char name[64];
+    int parent;              /* index or -1 */
+    uint32_t mesh;           /* SCENE_NONE if none */
+    uint32_t camera, light;  /* SCENE_NONE if none */
+    /* local transformation: either TRS (has_matrix = 0) or a matrix */
+    int has_matrix;
+    affine matrix;
+    double translation[3], rotation[4] /* x y z w */, scale[3];
+    double *weights;         /* morph weights of the node's mesh instance (NULL: mesh defaults) */
+    uint32_t n_weights;
+    affine world;            /* evaluated by scene_evaluate */
+} scene_node;
+
+typedef enum { ANIM_TRANSLATION, ANIM_ROTATION, ANIM_SCALE, ANIM_WEIGHTS } anim_path;
+typedef enum { INTERP_LINEAR, INTERP_STEP, INTERP_CUBICSPLINE } anim_interp;
+
+typedef struct {
+    uint32_t node;
+    anim_path path;
+    anim_interp interp;
+    uint32_t n_keys;
+    float *times;            /* n_keys, increasing */
+    uint32_t components;     /* per key and element: 3, 4 or n_weights */
+    float *values;           /* n_keys * components (x3 for CUBICSPLINE: in-tangent, value, out-tangent) */
+} scene_channel;
+
+typedef struct {
+    char name[64];
+    uint32_t n_channels;
+    scene_channel *channels;
+    float duration;          /* last key time over all channels */
+} scene_animation;
+
+typedef struct {
+    uint32_t mesh;           /* object */
+    uint32_t node;
+    affine world;            /* object-to-world */
+} scene_instance;
+
+typedef struct {
+    uint32_t n_meshes, n_nodes, n_materials, n_textures, n_cameras, n_lights, n_animations;
+    scene_mesh *meshes;
+    scene_node *nodes;
+    scene_material *materials;   /* materials[0] is the default material */
+    scene_texture *textures;
+    scene_camera *cameras;
+    scene_light *lights;
+    scene_animation *animations;
+    uint32_t *roots;             /* root nodes of the displayed scene */
+    uint32_t n_roots;
+    /* evaluated by scene_evaluate */
+    uint32_t n_instances;
+    scene_instance *instances;
+    uint32_t warnings;           /* unsupported features skipped while loading */
+} scene;
+
+/* Loads a .gltf or .glb file and evaluates it at time 0. On failure returns -1 with a one-line
+ * message in err (the scene is left empty). Unsupported features are skipped with a one-line
+ * warning each on stderr (counted in scene.warnings). */
+int scene_load_gltf(const char *path, scene *out, char *err, size_t errlen);
+
+/* Writes a scene as glTF 2.0 (.glb or .gltf by extension). Returns 0 or -1 with err. */
+int scene_write_gltf(const scene *s, const char *path, char *err, size_t errlen);
+
+/* Applies the animations at time t (seconds; looped by each animation's duration when loop is
+ * set), recomputes world transforms, morphed positions, instances (nodes with a mesh under one
+ * of the roots), camera and light placement. Returns 0, or -1 if memory ran out. */
+int scene_evaluate(scene *s, double t, int loop);
+
+void scene_free(scene *s);
+
+/* Affine helpers. */
+affine affine_identity(void);
+affine affine_mul(const affine *a, const affine *b);                 /* a * b */
+affine affine_from_trs(const double t[3], const double q[4], const double s[3]);
+int affine_invert(const affine *a, affine *inv);                      /* 0 if singular */
+void affine_apply_point(const affine *a, const double p[3], double out[3]);
+void affine_apply_vector(const affine *a, const double v[3], double out[3]);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
