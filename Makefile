@@ -4,7 +4,8 @@
 #   make test       install missing packages, build, run all tests (+ sanitizer build of the unit tests)
 #   make asan       build and run the unit tests with AddressSanitizer + UndefinedBehaviorSanitizer
 #   make verify-fp  fp24 verification against MPFR: 10^7 random vectors per op and width, exhaustive unary
-#   make bench-fp   fp24 throughput: fast path and integer path against native float -> build/bench/
+#   make bench      all benchmarks -> build/bench/ (bench-fp: fp24 throughput; bench-build: kd-tree and
+#                   memory-image build against Embree)
 #   make widths     build build/w/<format>/saarcor for every tested fp24 format
 # Variables: BUILD (output folder), SAN=1 (sanitizers), V=1 (show commands), VERIFY_N.
 
@@ -33,7 +34,7 @@ SANFLAGS := $(if $(filter 1,$(SAN)),$(SAN_ON))
 # no fused multiply-add: the fast fp24 path relies on one binary64 rounding per operation
 CFLAGS := -std=c11 $(WARN) $(OPT) -ffp-contract=off -fno-math-errno $(SANFLAGS) -MMD -MP
 CXXFLAGS := -std=c++17 $(WARN) $(OPT) $(SANFLAGS) -MMD -MP
-INCLUDES := -Ihls/fp24 -Itb/fp -Itb/cli -Ihost/image -Ihost/scene -Ihost/kdtree -Iscenes
+INCLUDES := -Ihls/fp24 -Itb/fp -Itb/cli -Ihost/image -Ihost/scene -Ihost/kdtree -Ihost/memimage -Iscenes
 LDLIBS := -lmpfr -lgmp -ltinygltf -lOpenImageIO -lOpenImageIO_Util -lstdc++ -lm
 TEST_LDLIBS := -lcmocka $(LDLIBS)
 
@@ -42,10 +43,12 @@ HLS_FP24 := $(sort $(wildcard hls/fp24/*.c))
 TB_FP := $(sort $(wildcard tb/fp/*.c))
 CLI := $(sort $(wildcard tb/cli/*.c))
 HOST_CXX := $(sort $(wildcard host/*/*.cpp))
-HOST_C := $(sort $(wildcard host/*/*.c scenes/*.c))
+HOST_C := $(sort $(filter-out host/memimage/%,$(wildcard host/*/*.c scenes/*.c)))
+MEMIMAGE := $(sort $(wildcard host/memimage/*.c))
 
 # per-format objects: everything that depends on the fp24 parameters
-fmt_objs = $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(HLS_FP24) $(TB_FP))
+fp_objs = $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(HLS_FP24) $(TB_FP))
+fmt_objs = $(call fp_objs,$(1)) $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(MEMIMAGE))
 HOST_OBJS := $(patsubst %.cpp,$(BUILD)/obj/host/%.o,$(HOST_CXX)) $(patsubst %.c,$(BUILD)/obj/host/%.o,$(HOST_C))
 
 $(BUILD)/obj/host/%.o: %.cpp
@@ -69,12 +72,12 @@ $(BUILD)/w/$(1)/saarcor: $(call fmt_objs,$(1)) $(patsubst %.c,$(BUILD)/obj/$(1)/
 	@echo "  LD    $$@"
 	$(Q)$$(CC) $$(SANFLAGS) $$^ -o $$@ $$(LDLIBS)
 
-$(BUILD)/w/$(1)/test_f24: $(BUILD)/obj/$(1)/tests/test_f24.o $(call fmt_objs,$(1))
+$(BUILD)/w/$(1)/test_f24: $(BUILD)/obj/$(1)/tests/test_f24.o $(call fp_objs,$(1))
 	@mkdir -p $$(@D)
 	@echo "  LD    $$@"
 	$(Q)$$(CC) $$(SANFLAGS) $$^ -o $$@ $$(TEST_LDLIBS)
 
-$(BUILD)/w/$(1)/test_f24_select: $(BUILD)/obj/$(1)/tests/test_f24_select.o $(call fmt_objs,$(1))
+$(BUILD)/w/$(1)/test_f24_select: $(BUILD)/obj/$(1)/tests/test_f24_select.o $(call fp_objs,$(1))
 	@mkdir -p $$(@D)
 	@echo "  LD    $$@"
 	$(Q)$$(CC) $$(SANFLAGS) $$^ -o $$@ $$(TEST_LDLIBS)
@@ -98,22 +101,26 @@ $(foreach f,$(FORMATS),$(BUILD)/obj/$(f)/tb/cli/cmd_version.o): $(BUILD)/version
 $(BUILD)/saarcor: $(BUILD)/w/$(DEFAULT_FMT)/saarcor
 	cp $< $@
 
-# host module tests: tests/test_<module>.c linked with all host objects
-HOST_TESTS := $(patsubst tests/%.c,$(BUILD)/%,$(wildcard tests/test_image.c tests/test_kdtree.c tests/test_scene.c tests/test_memimage.c))
-$(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS)
+# host module tests: tests/test_<module>.c linked with all host objects (default fp24 format)
+HOST_TESTS := $(patsubst tests/%.c,$(BUILD)/%,$(wildcard tests/test_image.c tests/test_kdtree.c tests/test_scene.c tests/test_scenes.c tests/test_memimage.c))
+$(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS) $(call fmt_objs,$(DEFAULT_FMT))
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
 
-.PHONY: all widths deps run test unit-tests test-programs asan verify-fp bench-fp clean
+.PHONY: all widths deps run test unit-tests test-programs asan verify-fp bench bench-fp bench-build clean
 all: $(BUILD)/saarcor
 widths: $(foreach f,$(FORMATS),$(BUILD)/w/$(f)/saarcor)
 
 deps:
 	@bash scripts/install-deps.sh
 
+# until the renderer exists: generate the default scene and show what the host makes of it
+DEFAULT_SCENE := room
 run: deps
 	@$(MAKE) --no-print-directory all
 	$(BUILD)/saarcor version
+	$(BUILD)/saarcor gen $(DEFAULT_SCENE) -o $(BUILD)/$(DEFAULT_SCENE).glb
+	$(BUILD)/saarcor info $(BUILD)/$(DEFAULT_SCENE).glb --validate
 
 # ---- tests ---------------------------------------------------------------------------------
 UNIT_TESTS := $(foreach f,$(FORMATS),$(BUILD)/w/$(f)/test_f24 $(BUILD)/w/$(f)/test_f24_select) $(HOST_TESTS)
@@ -147,7 +154,20 @@ bench-fp: deps
 	  --instructions $(BUILD)/bench/fp.callgrind.txt
 	@cat $(BUILD)/bench/fp.md
 
-$(BUILD)/bench_fp: $(BUILD)/obj/$(DEFAULT_FMT)/tests/bench/bench_fp.o $(call fmt_objs,$(DEFAULT_FMT))
+# host build benchmark: kd-trees and memory image against Embree's BVH build
+bench-build: deps
+	@$(MAKE) --no-print-directory $(BUILD)/bench_build
+	@mkdir -p $(BUILD)/bench
+	$(BUILD)/bench_build --out $(BUILD)/bench
+	@cat $(BUILD)/bench/build.md
+
+$(BUILD)/bench_build: $(BUILD)/obj/host/tests/bench/bench_build.o $(HOST_OBJS) $(call fmt_objs,$(DEFAULT_FMT))
+	@echo "  LD    $@"
+	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(LDLIBS) -lembree3
+
+bench: bench-fp bench-build
+
+$(BUILD)/bench_fp: $(BUILD)/obj/$(DEFAULT_FMT)/tests/bench/bench_fp.o $(call fp_objs,$(DEFAULT_FMT))
 	@echo "  LD    $@"
 	$(Q)$(CC) $^ -o $@ $(LDLIBS)
 

@@ -126,6 +126,35 @@ t_compare() {
   expect 3 "$BIN" compare "$T/a.png" "$T/small.png"; one_line_error
 }
 
+t_gen() {
+  expect 0 "$BIN" gen --list
+  [[ $(grep -cE '^(cornell|room|plants|terrain|animated) ' "$T/out") -eq 5 ]]
+  expect 0 "$BIN" gen cornell -o "$T/c.glb"
+  [[ -s "$T/c.glb" ]]
+  expect 0 "$BIN" gen plants --detail 10 --seed 3 -o "$T/p.gltf"
+  expect 2 "$BIN" gen nosuch -o "$T/x.glb"; one_line_error
+  expect 2 "$BIN" gen cornell; one_line_error
+  expect 3 "$BIN" gen cornell -o /nonexistent-dir/x.glb; one_line_error
+}
+
+t_info() {
+  "$BIN" gen cornell -o "$T/c.glb"
+  expect 0 "$BIN" info "$T/c.glb" --validate --json "$T/i.json"
+  has '^validate     ok' "$T/out"
+  has '^objects      3 (meshes), instances 4' "$T/out"
+  python3 -c "import json; d=json.load(open('$T/i.json')); assert d['instances']==4 and d['triangles']==24"
+  expect 0 "$BIN" info animated --frames 4
+  has '^frames       4 at 30 fps' "$T/out"
+  expect 0 "$BIN" info room --ct 2 --ci 1 --max-depth 12 --leaf-size 2
+  expect 3 "$BIN" info "$T/missing.glb"; one_line_error
+  printf '{"asset":{"version":"2.0"},"meshes":[' >"$T/bad.gltf"
+  expect 3 "$BIN" info "$T/bad.gltf"; one_line_error
+  expect 3 "$BIN" info terrain --mem-mb 1; one_line_error; has 'does not fit' "$T/err"
+  expect 2 "$BIN" info cornell --mem-mb 0; one_line_error
+  expect 2 "$BIN" info cornell --empty-bonus 2; one_line_error
+  expect 2 "$BIN" info; one_line_error
+}
+
 run_case cli_help t_help
 run_case cli_bad_usage_exit_2_one_line t_bad_usage
 run_case cli_version t_version
@@ -133,4 +162,6 @@ run_case cli_f24_eval t_f24_eval
 run_case cli_f24gen_format t_f24gen_format
 run_case cli_f24verify t_f24verify
 run_case cli_compare_vs_idiff t_compare
+run_case cli_gen t_gen
+run_case cli_info t_info
 exit $((fails != 0))

@@ -238,7 +238,9 @@ int scene_evaluate(scene *s, double t, int loop)
     }
     for (uint32_t i = 0; i < s->n_animations; i++) {
         const scene_animation *a = &s->animations[i];
-        const double ta = loop && a->duration > 0 ? fmod(t, a->duration) : t;
+        double ta = loop && a->duration > 0 ? fmod(t, a->duration) : t;
+        if (ta < 0 && loop && a->duration > 0)
+            ta += a->duration;
         apply_animation(s, a, ta);
     }
     /* nodes are in file order, not parent-first: walk each node's parents (bounded by n) */

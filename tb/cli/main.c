@@ -18,6 +18,8 @@ static const saarcor_cmd commands[] = {
     { "f24gen", "write TestFloat-style hex test vectors: saarcor f24gen OP N", cmd_f24gen },
     { "f24verify", "check the fp24 arithmetic against MPFR (edge, random, exhaustive)", cmd_f24verify },
     { "compare", "compare two images: PSNR, max error, differing pixels", cmd_compare },
+    { "info", "scene statistics: objects, triangles, kd-trees, build times, memory image", cmd_info },
+    { "gen", "write a generated scene as glTF: saarcor gen NAME -o FILE (gen --list)", cmd_gen },
 };
 #define N_COMMANDS (sizeof commands / sizeof commands[0])
 

@@ -1,0 +1,690 @@
+/*
+ * Memory-image builder (layout: docs/memory-image.md). Prepares every object once (triangle
+ * transformations, bottom-level kd-tree over the non-degenerate triangles), then writes the
+ * regions; mi_update rewrites only the per-frame regions and the geometry of morphing objects
+ * whose weights changed. All device numbers are rounded from double to fp24 here, bounds
+ * outward so that they stay conservative.
+ */
+#define _GNU_SOURCE /* clock_gettime, M_PI */
+#include "memimage.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "f24.h"
+#include "f24_fast.h"
+
+typedef struct {
+    uint32_t mesh;
+    int dynamic;
+    kd_tree tree;       /* leaf entries index valid[] = the object's triangles in the image */
+    uint32_t *valid;    /* mesh triangle of each image triangle */
+    affine *xf;         /* triangle transformations of the image triangles */
+    uint32_t n_valid;
+    float *weights_seen;
+    uint32_t base, words; /* geometry block in the image */
+} mi_object;
+
+struct mi_builder {
+    mi_params p;
+    uint32_t *words, n_words;
+    uint32_t n_objects;
+    mi_object *obj;
+    uint32_t n_textures;       /* textures stored (scene textures used as base colour) */
+    uint32_t *texture_map;     /* scene texture -> image texture or MI_NONE */
+    uint32_t *inst_mesh;       /* per image instance: scene instance index */
+    uint32_t n_inst;
+    uint32_t frame;
+    kd_tree top;
+    mi_stats st;
+};
+
+static const char *region_names[MI_REGION_COUNT] = {
+    "HEADER", "MATERIALS", "TEXTURES", "STATIC_GEOMETRY", "DYNAMIC_GEOMETRY", "OBJECTS",
+    "CAMERA", "LIGHTS", "INSTANCES", "TOP_NODES", "TOP_LISTS",
+};
+
+const char *mi_region_name(mi_region r) { return r < MI_REGION_COUNT ? region_names[r] : "?"; }
+
+static double quantize(double x) { return f24_fast_decode(f24_fast_encode(x)); }
+
+void mi_params_default(mi_params *p)
+{
+    memset(p, 0, sizeof *p);
+    p->memory_bytes = MI_DEFAULT_BYTES;
+    p->width = 512;
+    p->height = 384;
+    p->camera = 0;
+    kd_params_default(&p->bottom);
+    kd_params_default(&p->top);
+    p->top.bins = 32;
+    p->bottom.quantize = quantize;
+    p->top.quantize = quantize;
+    p->max_condition = 16777216.0; /* 2^24 */
+}
+
+static double seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* ---- fp24 words --------------------------------------------------------------------------- */
+
+static uint32_t f24w(double x) { return f24_fast_encode(x); }
+
+/* fp24 value <= x (dir < 0) or >= x (dir > 0): conservative bounds. */
+static uint32_t f24_outward(double x, int dir)
+{
+    uint32_t v = f24_fast_encode(x);
+    const double d = f24_fast_decode(v);
+    if ((dir < 0 && d > x) || (dir > 0 && d < x)) {
+        const int toward_larger_magnitude = (d < 0) == (dir < 0);
+        if (f24_is_zero(v))
+            v = dir < 0 ? (F24_SIGN_BIT | F24_MIN_NORMAL) : F24_MIN_NORMAL;
+        else if (toward_larger_magnitude)
+            v += 1u; /* next fp24 away from zero (may reach Inf: still conservative) */
+        else
+            v = f24_exp(v) == 1 && f24_frac(v) == 0 ? (v & F24_SIGN_BIT) : v - 1u;
+    }
+    return v;
+}
+
+static void put_affine(uint32_t *w, const affine *a)
+{
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 4; j++)
+            w[i * 4 + j] = f24w(a->m[i][j]);
+}
+
+/* Bounds of an empty tree are not meaningful: an empty box at the origin is written instead. */
+static void put_bounds(uint32_t *w, const aabb *b)
+{
+    int ok = 1;
+    for (int k = 0; k < 3; k++)
+        ok = ok && isfinite(b->lo[k]) && isfinite(b->hi[k]) && b->lo[k] <= b->hi[k];
+    if (!ok) {
+        for (int k = 0; k < 6; k++)
+            w[k] = 0;
+        return;
+    }
+    for (int k = 0; k < 3; k++) {
+        w[k] = f24_outward(b->lo[k], -1);
+        w[3 + k] = f24_outward(b->hi[k], +1);
+    }
+}
+
+static int affine_fits_f24(const affine *a)
+{
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 4; j++)
+            if (!isfinite(a->m[i][j]) || f24_is_inf(f24w(a->m[i][j])))
+                return 0;
+    return 1;
+}
+
+/* ---- objects ------------------------------------------------------------------------------ */
+
+typedef struct {
+    const scene_mesh *m;
+    const uint32_t *valid;
+} tri_source;
+
+static void tri_vertex(const scene_mesh *m, uint32_t tri, int k, double out[3])
+{
+    const float *p = &m->positions[3 * (size_t)m->indices[3 * (size_t)tri + (size_t)k]];
+    for (int i = 0; i < 3; i++)
+        out[i] = p[i];
+}
+
+static aabb tri_bounds(const void *user, uint32_t i)
+{
+    const tri_source *s = user;
+    aabb b;
+    for (int k = 0; k < 3; k++) {
+        double v[3];
+        tri_vertex(s->m, s->valid[i], k, v);
+        for (int a = 0; a < 3; a++) {
+            b.lo[a] = k ? fmin(b.lo[a], v[a]) : v[a];
+            b.hi[a] = k ? fmax(b.hi[a], v[a]) : v[a];
+        }
+    }
+    return b;
+}
+
+static int tri_clip(const void *user, uint32_t i, const aabb *box, aabb *out)
+{
+    const tri_source *s = user;
+    double a[3], b[3], c[3];
+    tri_vertex(s->m, s->valid[i], 0, a);
+    tri_vertex(s->m, s->valid[i], 1, b);
+    tri_vertex(s->m, s->valid[i], 2, c);
+    return kd_clip_triangle(a, b, c, box, out);
+}
+
+static void object_release(mi_object *o)
+{
+    kd_free(&o->tree);
+    free(o->valid);
+    free(o->xf);
+    o->valid = NULL;
+    o->xf = NULL;
+    o->n_valid = 0;
+}
+
+/* Triangle transformations and the bottom-level tree of one mesh. */
+static int object_prepare(mi_builder *b, const scene_mesh *m, mi_object *o)
+{
+    object_release(o);
+    o->valid = malloc(((size_t)m->n_triangles + 1) * sizeof *o->valid);
+    o->xf = malloc(((size_t)m->n_triangles + 1) * sizeof *o->xf);
+    if (!o->valid || !o->xf)
+        return -1;
+    const double t0 = seconds();
+    for (uint32_t t = 0; t < m->n_triangles; t++) {
+        double a[3], bb[3], c[3];
+        tri_vertex(m, t, 0, a);
+        tri_vertex(m, t, 1, bb);
+        tri_vertex(m, t, 2, c);
+        if (mi_triangle_transform(a, bb, c, b->p.max_condition, &o->xf[o->n_valid]) &&
+            affine_fits_f24(&o->xf[o->n_valid]))
+            o->valid[o->n_valid++] = t;
+    }
+    const double t1 = seconds();
+    b->st.transform_seconds += t1 - t0;
+    b->st.degenerate_triangles += m->n_triangles - o->n_valid;
+    const tri_source src = { m, o->valid };
+    const kd_source ks = { o->n_valid, &src, tri_bounds, tri_clip };
+    if (kd_build(&ks, &b->p.bottom, &o->tree) != 0)
+        return -1;
+    b->st.bottom_build_seconds += seconds() - t1;
+    if (o->dynamic) {
+        free(o->weights_seen);
+        o->weights_seen = malloc(m->n_targets * sizeof(float));
+        if (!o->weights_seen)
+            return -1;
+        memcpy(o->weights_seen, m->weights, m->n_targets * sizeof(float));
+    }
+    o->words = MI_NODE_WORDS * o->tree.n_nodes + o->tree.n_prims + (MI_TRIANGLE_WORDS + MI_SHADING_WORDS) * o->n_valid;
+    return 0;
+}
+
+static void put_node(uint32_t *w, const kd_node *n)
+{
+    if (n->axis == KD_LEAF) {
+        w[0] = mi_node_word0(MI_NODE_LEAF, n->count);
+        w[1] = n->first;
+    } else {
+        w[0] = mi_node_word0(n->axis, n->child);
+        w[1] = f24w(n->split); /* already an fp24 value (quantized split) */
+    }
+}
+
+static void write_shading(uint32_t *w, const scene_mesh *m, uint32_t tri)
+{
+    for (int k = 0; k < 3; k++) {
+        const size_t v = m->indices[3 * (size_t)tri + (size_t)k];
+        for (int i = 0; i < 3; i++)
+            w[3 * k + i] = m->normals ? f24w(m->normals[3 * v + (size_t)i]) : 0u;
+        for (int i = 0; i < 2; i++)
+            w[9 + 2 * k + i] = m->texcoords ? f24w(m->texcoords[2 * v + (size_t)i]) : 0u;
+    }
+    w[15] = m->material[tri];
+}
+
+/* Geometry block: nodes, leaf lists, triangle transformations, shading records. */
+static void object_write(mi_builder *b, const scene *s, const mi_object *o)
+{
+    const scene_mesh *m = &s->meshes[o->mesh];
+    uint32_t *w = b->words + o->base;
+    for (uint32_t i = 0; i < o->tree.n_nodes; i++, w += MI_NODE_WORDS)
+        put_node(w, &o->tree.nodes[i]);
+    memcpy(w, o->tree.prims, o->tree.n_prims * sizeof *w);
+    w += o->tree.n_prims;
+    for (uint32_t i = 0; i < o->n_valid; i++, w += MI_TRIANGLE_WORDS)
+        put_affine(w, &o->xf[i]);
+    for (uint32_t i = 0; i < o->n_valid; i++, w += MI_SHADING_WORDS)
+        write_shading(w, m, o->valid[i]);
+}
+
+static void object_describe(uint32_t *w, const mi_object *o, const scene_mesh *m)
+{
+    memset(w, 0, MI_OBJECT_WORDS * sizeof *w);
+    w[MI_O_NODES] = o->base;
+    w[MI_O_LISTS] = o->base + MI_NODE_WORDS * o->tree.n_nodes;
+    w[MI_O_TRIANGLES] = w[MI_O_LISTS] + o->tree.n_prims;
+    w[MI_O_SHADING] = w[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * o->n_valid;
+    w[MI_O_N_NODES] = o->tree.n_nodes;
+    w[MI_O_N_LIST] = o->tree.n_prims;
+    w[MI_O_N_TRIANGLES] = o->n_valid;
+    w[MI_O_FLAGS] = (m->normals ? MI_OBJECT_HAS_NORMALS : 0u) | (m->texcoords ? MI_OBJECT_HAS_TEXCOORDS : 0u) |
+                    (o->dynamic ? MI_OBJECT_DYNAMIC : 0u);
+    put_bounds(&w[MI_O_BOUNDS], &o->tree.bounds);
+}
+
+/* ---- per-frame content: instances, top level, camera, lights ------------------------------ */
+
+typedef struct {
+    const scene *s;
+    const mi_builder *b;
+} inst_source;
+
+static aabb instance_bounds(const void *user, uint32_t i)
+{
+    const inst_source *is = user;
+    const scene_instance *in = &is->s->instances[is->b->inst_mesh[i]];
+    const aabb *ob = &is->b->obj[in->mesh].tree.bounds;
+    aabb r;
+    for (int c = 0; c < 8; c++) {
+        const double p[3] = { c & 1 ? ob->hi[0] : ob->lo[0], c & 2 ? ob->hi[1] : ob->lo[1], c & 4 ? ob->hi[2] : ob->lo[2] };
+        double q[3];
+        affine_apply_point(&in->world, p, q);
+        for (int k = 0; k < 3; k++) {
+            r.lo[k] = c ? fmin(r.lo[k], q[k]) : q[k];
+            r.hi[k] = c ? fmax(r.hi[k], q[k]) : q[k];
+        }
+    }
+    return r;
+}
+
+/* Instances whose object has triangles and whose transformation is invertible in fp24. */
+static int select_instances(mi_builder *b, const scene *s)
+{
+    free(b->inst_mesh);
+    b->inst_mesh = malloc(((size_t)s->n_instances + 1) * sizeof *b->inst_mesh);
+    if (!b->inst_mesh)
+        return -1;
+    b->n_inst = 0;
+    for (uint32_t i = 0; i < s->n_instances; i++) {
+        affine inv;
+        if (b->obj[s->instances[i].mesh].n_valid == 0 || !affine_invert(&s->instances[i].world, &inv) ||
+            !affine_fits_f24(&inv))
+            continue;
+        b->inst_mesh[b->n_inst++] = i;
+    }
+    return 0;
+}
+
+static void write_instances(mi_builder *b, const scene *s, uint32_t *w)
+{
+    for (uint32_t i = 0; i < b->n_inst; i++, w += MI_INSTANCE_WORDS) {
+        const scene_instance *in = &s->instances[b->inst_mesh[i]];
+        affine inv;
+        affine_invert(&in->world, &inv);
+        memset(w, 0, MI_INSTANCE_WORDS * sizeof *w);
+        put_affine(w, &inv);
+        w[12] = in->mesh;
+    }
+}
+
+/* A view of the whole scene when the file has no camera. */
+static scene_camera default_camera(const aabb *bounds)
+{
+    scene_camera c = { 0 };
+    c.kind = CAMERA_PERSPECTIVE;
+    c.yfov = 45.0 * M_PI / 180.0;
+    double ctr[3], diag = 0;
+    for (int k = 0; k < 3; k++) {
+        ctr[k] = 0.5 * (bounds->lo[k] + bounds->hi[k]);
+        diag += (bounds->hi[k] - bounds->lo[k]) * (bounds->hi[k] - bounds->lo[k]);
+    }
+    diag = sqrt(diag);
+    c.world = affine_identity(); /* looks down -Z from in front of the box */
+    c.world.m[0][3] = ctr[0];
+    c.world.m[1][3] = ctr[1];
+    c.world.m[2][3] = ctr[2] + (diag > 0 ? 1.2 * diag : 1.0);
+    return c;
+}
+
+/* Camera block: kind, width, height, origin O, pixel steps U and V, direction W to the corner of
+ * pixel (0,0): primary ray of pixel (x, y) has direction W + (x+1/2) U + (y+1/2) V (perspective)
+ * or origin O + (x+1/2) U + (y+1/2) V and direction W (orthographic). */
+static void write_camera(const mi_builder *b, const scene *s, uint32_t *w)
+{
+    const scene_camera c = b->p.camera < s->n_cameras ? s->cameras[b->p.camera] : default_camera(&b->top.bounds);
+    const double wpx = b->p.width, hpx = b->p.height, aspect = wpx / hpx;
+    double o[3] = { 0, 0, 0 }, u[3], v[3], d[3];
+    if (c.kind == CAMERA_ORTHOGRAPHIC) {
+        const double ul[3] = { -c.xmag, c.ymag, 0 }, su[3] = { 2 * c.xmag / wpx, 0, 0 }, sv[3] = { 0, -2 * c.ymag / hpx, 0 },
+                     dir[3] = { 0, 0, -1 };
+        affine_apply_point(&c.world, ul, o);
+        affine_apply_vector(&c.world, su, u);
+        affine_apply_vector(&c.world, sv, v);
+        affine_apply_vector(&c.world, dir, d);
+    } else {
+        const double th = tan(0.5 * c.yfov);
+        const double su[3] = { 2 * th * aspect / wpx, 0, 0 }, sv[3] = { 0, -2 * th / hpx, 0 }, corner[3] = { -th * aspect, th, -1 };
+        affine_apply_point(&c.world, o, o);
+        affine_apply_vector(&c.world, su, u);
+        affine_apply_vector(&c.world, sv, v);
+        affine_apply_vector(&c.world, corner, d);
+    }
+    memset(w, 0, MI_CAMERA_WORDS * sizeof *w);
+    w[0] = c.kind;
+    w[1] = b->p.width;
+    w[2] = b->p.height;
+    for (int k = 0; k < 3; k++) {
+        w[4 + k] = f24w(o[k]);
+        w[7 + k] = f24w(u[k]);
+        w[10 + k] = f24w(v[k]);
+        w[13 + k] = f24w(d[k]);
+    }
+}
+
+static void write_lights(const scene *s, uint32_t *w)
+{
+    for (uint32_t i = 0; i < s->n_lights; i++, w += MI_LIGHT_WORDS) {
+        const scene_light *l = &s->lights[i];
+        memset(w, 0, MI_LIGHT_WORDS * sizeof *w);
+        w[0] = l->kind;
+        for (int k = 0; k < 3; k++) {
+            w[1 + k] = f24w((double)l->color[k] * l->intensity);
+            w[4 + k] = f24w(l->position[k]);
+            w[7 + k] = f24w(l->direction[k]);
+        }
+        w[10] = f24w(l->range);
+        w[11] = f24w(cos(l->inner_cone));
+        w[12] = f24w(cos(l->outer_cone));
+    }
+}
+
+static void write_materials(const mi_builder *b, const scene *s, uint32_t *w)
+{
+    for (uint32_t i = 0; i < s->n_materials; i++, w += MI_MATERIAL_WORDS) {
+        const scene_material *m = &s->materials[i];
+        memset(w, 0, MI_MATERIAL_WORDS * sizeof *w);
+        for (int k = 0; k < 4; k++)
+            w[k] = f24w(m->base_color[k]);
+        for (int k = 0; k < 3; k++)
+            w[4 + k] = f24w(m->emissive[k]);
+        w[7] = m->base_color_texture < s->n_textures ? b->texture_map[m->base_color_texture] : MI_NONE;
+        w[8] = (uint32_t)m->alpha | (m->double_sided ? 4u : 0u);
+        w[9] = f24w(m->alpha_cutoff);
+        w[10] = f24w(m->metallic);
+        w[11] = f24w(m->roughness);
+        w[12] = f24w(m->transmission);
+        w[13] = f24w(m->ior);
+    }
+}
+
+/* Only textures that some material uses as base colour are stored. */
+static uint32_t texture_words(mi_builder *b, const scene *s)
+{
+    uint32_t words = 0;
+    b->n_textures = 0;
+    for (uint32_t t = 0; t < s->n_textures; t++) {
+        b->texture_map[t] = MI_NONE;
+        for (uint32_t m = 0; m < s->n_materials; m++)
+            if (s->materials[m].base_color_texture == t) {
+                b->texture_map[t] = b->n_textures++;
+                words += (uint32_t)s->textures[t].width * (uint32_t)s->textures[t].height;
+                break;
+            }
+    }
+    return words + MI_TEXTURE_WORDS * b->n_textures;
+}
+
+static void write_textures(const mi_builder *b, const scene *s, uint32_t *w, uint32_t base)
+{
+    uint32_t texel = base + MI_TEXTURE_WORDS * b->n_textures;
+    for (uint32_t t = 0; t < s->n_textures; t++) {
+        if (b->texture_map[t] == MI_NONE)
+            continue;
+        const scene_texture *tx = &s->textures[t];
+        const uint32_t n = (uint32_t)tx->width * (uint32_t)tx->height;
+        uint32_t *e = w + MI_TEXTURE_WORDS * b->texture_map[t];
+        e[0] = (uint32_t)tx->width;
+        e[1] = (uint32_t)tx->height;
+        e[2] = texel;
+        e[3] = 0;
+        uint32_t *dst = w + (texel - base);
+        for (uint32_t i = 0; i < n; i++)
+            dst[i] = (uint32_t)tx->rgba[4 * (size_t)i] | (uint32_t)tx->rgba[4 * (size_t)i + 1] << 8 |
+                     (uint32_t)tx->rgba[4 * (size_t)i + 2] << 16 | (uint32_t)tx->rgba[4 * (size_t)i + 3] << 24;
+        texel += n;
+    }
+}
+
+/* ---- layout and frames -------------------------------------------------------------------- */
+
+static uint32_t *region_entry(mi_builder *b, mi_region r) { return &b->words[MI_H_REGION_TABLE + 2 * r]; }
+
+static void format_mb(char *buf, size_t n, uint64_t words)
+{
+    snprintf(buf, n, "%.2f MB", (double)words * 4.0 / (1024.0 * 1024.0));
+}
+
+/* Places the regions with the given lengths; fails if the image exceeds the memory size. */
+static int place_regions(mi_builder *b, const uint64_t len[MI_REGION_COUNT], uint32_t off[MI_REGION_COUNT],
+                         char *err, size_t errlen)
+{
+    uint64_t at = 0;
+    for (int r = 0; r < MI_REGION_COUNT; r++) {
+        off[r] = (uint32_t)at;
+        at += len[r];
+    }
+    const uint64_t cap = b->p.memory_bytes / 4;
+    if (at > cap || at > UINT32_MAX / 2) {
+        int big = 0;
+        for (int r = 1; r < MI_REGION_COUNT; r++)
+            if (len[r] > len[big])
+                big = r;
+        char need[32], have[32], region[32];
+        format_mb(need, sizeof need, at);
+        format_mb(have, sizeof have, cap);
+        format_mb(region, sizeof region, len[big]);
+        snprintf(err, errlen, "scene does not fit the %s device memory: the image needs %s, largest region %s "
+                 "is %s (raise --mem-mb)", have, need, region_names[big], region);
+        return -1;
+    }
+    return 0;
+}
+
+static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_changed, char *err, size_t errlen)
+{
+    const double t0 = seconds();
+    if (select_instances(b, s) != 0)
+        goto oom;
+    inst_source is = { s, b };
+    kd_free(&b->top);
+    const kd_source ks = { b->n_inst, &is, instance_bounds, NULL };
+    if (kd_build(&ks, &b->p.top, &b->top) != 0)
+        goto oom;
+    b->st.top_build_seconds = seconds() - t0;
+
+    uint64_t len[MI_REGION_COUNT] = { 0 };
+    len[MI_R_HEADER] = MI_HEADER_WORDS;
+    len[MI_R_MATERIALS] = (uint64_t)MI_MATERIAL_WORDS * s->n_materials;
+    len[MI_R_TEXTURES] = texture_words(b, s);
+    for (uint32_t i = 0; i < b->n_objects; i++)
+        len[b->obj[i].dynamic ? MI_R_DYNAMIC_GEOMETRY : MI_R_STATIC_GEOMETRY] += b->obj[i].words;
+    len[MI_R_OBJECTS] = (uint64_t)MI_OBJECT_WORDS * b->n_objects;
+    len[MI_R_CAMERA] = MI_CAMERA_WORDS;
+    len[MI_R_LIGHTS] = (uint64_t)MI_LIGHT_WORDS * s->n_lights;
+    len[MI_R_INSTANCES] = (uint64_t)MI_INSTANCE_WORDS * b->n_inst;
+    len[MI_R_TOP_NODES] = (uint64_t)MI_NODE_WORDS * b->top.n_nodes;
+    len[MI_R_TOP_LISTS] = b->top.n_prims;
+    uint32_t off[MI_REGION_COUNT];
+    if (place_regions(b, len, off, err, errlen) != 0)
+        return -1;
+    const uint32_t total = off[MI_REGION_COUNT - 1] + (uint32_t)len[MI_REGION_COUNT - 1];
+    uint32_t *w = realloc(b->words, ((size_t)total + 1) * sizeof *w);
+    if (!w)
+        goto oom;
+    b->words = w;
+    b->n_words = total;
+
+    /* geometry blocks get their addresses, in object order within each region */
+    uint32_t at[2] = { off[MI_R_STATIC_GEOMETRY], off[MI_R_DYNAMIC_GEOMETRY] };
+    for (uint32_t i = 0; i < b->n_objects; i++) {
+        mi_object *o = &b->obj[i];
+        o->base = at[o->dynamic];
+        at[o->dynamic] += o->words;
+        if (full || (o->dynamic && dynamic_changed))
+            object_write(b, s, o);
+    }
+    int written[MI_REGION_COUNT] = { 0 };
+    if (full) {
+        write_materials(b, s, w + off[MI_R_MATERIALS]);
+        write_textures(b, s, w + off[MI_R_TEXTURES], off[MI_R_TEXTURES]);
+        written[MI_R_MATERIALS] = written[MI_R_TEXTURES] = written[MI_R_STATIC_GEOMETRY] = 1;
+    }
+    if (full || dynamic_changed) {
+        for (uint32_t i = 0; i < b->n_objects; i++)
+            object_describe(w + off[MI_R_OBJECTS] + MI_OBJECT_WORDS * i, &b->obj[i], &s->meshes[b->obj[i].mesh]);
+        written[MI_R_DYNAMIC_GEOMETRY] = written[MI_R_OBJECTS] = 1;
+    }
+    write_camera(b, s, w + off[MI_R_CAMERA]);
+    write_lights(s, w + off[MI_R_LIGHTS]);
+    write_instances(b, s, w + off[MI_R_INSTANCES]);
+    for (uint32_t i = 0; i < b->top.n_nodes; i++)
+        put_node(w + off[MI_R_TOP_NODES] + MI_NODE_WORDS * i, &b->top.nodes[i]);
+    memcpy(w + off[MI_R_TOP_LISTS], b->top.prims, b->top.n_prims * sizeof *w);
+    written[MI_R_HEADER] = written[MI_R_CAMERA] = written[MI_R_LIGHTS] = written[MI_R_INSTANCES] = 1;
+    written[MI_R_TOP_NODES] = written[MI_R_TOP_LISTS] = 1;
+
+    /* header */
+    const uint32_t head[MI_H_SCENE_BOUNDS] = { MI_MAGIC, MI_VERSION, (uint32_t)(F24_EXP_BITS << 8 | F24_MAN_BITS),
+                                                (uint32_t)(b->p.memory_bytes / 4), total, b->frame,
+                                                b->n_objects, b->n_inst, s->n_materials, b->n_textures, s->n_lights,
+                                                b->top.n_nodes };
+    memcpy(w, head, sizeof head);
+    put_bounds(w + MI_H_SCENE_BOUNDS, &b->top.bounds);
+    uint64_t upload = 0;
+    for (int r = 0; r < MI_REGION_COUNT; r++) {
+        region_entry(b, (mi_region)r)[0] = off[r];
+        region_entry(b, (mi_region)r)[1] = (uint32_t)len[r];
+        b->st.region_words[r] = (uint32_t)len[r];
+        upload += written[r] ? len[r] * 4 : 0;
+    }
+    b->st.frame_upload_bytes = upload;
+    return 0;
+oom:
+    snprintf(err, errlen, "out of memory while building the memory image");
+    return -1;
+}
+
+static void collect_stats(mi_builder *b, const scene *s)
+{
+    mi_stats *st = &b->st;
+    st->objects = b->n_objects;
+    st->instances = b->n_inst;
+    st->triangles = 0;
+    st->bottom_nodes = st->bottom_leaves = st->bottom_empty_leaves = st->bottom_depth = 0;
+    st->bottom_references = 0;
+    st->bottom_sah = 0;
+    for (uint32_t i = 0; i < b->n_objects; i++) {
+        const kd_tree *t = &b->obj[i].tree;
+        st->triangles += s->meshes[i].n_triangles;
+        st->bottom_nodes += t->n_nodes;
+        st->bottom_leaves += t->stats.n_leaves;
+        st->bottom_empty_leaves += t->stats.n_empty_leaves;
+        st->bottom_depth = t->stats.depth > st->bottom_depth ? t->stats.depth : st->bottom_depth;
+        st->bottom_references += t->stats.references;
+        st->bottom_sah += t->stats.sah_cost * b->obj[i].n_valid;
+    }
+    st->top_nodes = b->top.n_nodes;
+    st->top_leaves = b->top.stats.n_leaves;
+    st->top_empty_leaves = b->top.stats.n_empty_leaves;
+    st->top_depth = b->top.stats.depth;
+    st->top_references = b->top.stats.references;
+    st->top_sah = b->top.stats.sah_cost;
+}
+
+mi_builder *mi_build(const scene *s, const mi_params *p, char *err, size_t errlen)
+{
+    mi_builder *b = calloc(1, sizeof *b);
+    if (!b) {
+        snprintf(err, errlen, "out of memory");
+        return NULL;
+    }
+    b->p = *p;
+    b->n_objects = s->n_meshes;
+    b->obj = calloc((size_t)s->n_meshes + 1, sizeof *b->obj);
+    b->texture_map = calloc((size_t)s->n_textures + 1, sizeof *b->texture_map);
+    if (!b->obj || !b->texture_map) {
+        snprintf(err, errlen, "out of memory");
+        mi_free(b);
+        return NULL;
+    }
+    uint64_t floor_words = 0; /* what the triangles need before any tree: fail early on hopeless scenes */
+    for (uint32_t i = 0; i < s->n_meshes; i++)
+        floor_words += (uint64_t)(MI_TRIANGLE_WORDS + MI_SHADING_WORDS) * s->meshes[i].n_triangles;
+    if (floor_words > p->memory_bytes / 4) {
+        char need[32], have[32];
+        format_mb(need, sizeof need, floor_words);
+        format_mb(have, sizeof have, p->memory_bytes / 4);
+        snprintf(err, errlen, "scene does not fit the %s device memory: the triangle transformations and shading "
+                 "records of region STATIC_GEOMETRY alone need %s (raise --mem-mb)", have, need);
+        mi_free(b);
+        return NULL;
+    }
+    for (uint32_t i = 0; i < s->n_meshes; i++) {
+        b->obj[i].mesh = i;
+        b->obj[i].dynamic = s->meshes[i].n_targets > 0;
+        if (object_prepare(b, &s->meshes[i], &b->obj[i]) != 0) {
+            snprintf(err, errlen, "out of memory while building the tree of mesh '%s'", s->meshes[i].name);
+            mi_free(b);
+            return NULL;
+        }
+    }
+    if (write_frame(b, s, 1, 1, err, errlen) != 0) {
+        mi_free(b);
+        return NULL;
+    }
+    collect_stats(b, s);
+    return b;
+}
+
+int mi_update(mi_builder *b, const scene *s, char *err, size_t errlen)
+{
+    int changed = 0;
+    b->frame++;
+    b->st.rebuilt_objects = 0;
+    b->st.bottom_build_seconds = b->st.transform_seconds = 0; /* figures of this update only */
+    for (uint32_t i = 0; i < b->n_objects; i++) {
+        mi_object *o = &b->obj[i];
+        const scene_mesh *m = &s->meshes[i];
+        if (!o->dynamic || memcmp(o->weights_seen, m->weights, m->n_targets * sizeof(float)) == 0)
+            continue;
+        b->st.degenerate_triangles -= m->n_triangles - o->n_valid;
+        if (object_prepare(b, m, o) != 0) {
+            snprintf(err, errlen, "out of memory while rebuilding the tree of mesh '%s'", m->name);
+            return -1;
+        }
+        b->st.rebuilt_objects++;
+        changed = 1;
+    }
+    if (write_frame(b, s, 0, changed, err, errlen) != 0)
+        return -1;
+    collect_stats(b, s);
+    return 0;
+}
+
+const uint32_t *mi_words(const mi_builder *b, uint32_t *n_words)
+{
+    *n_words = b->n_words;
+    return b->words;
+}
+
+const mi_stats *mi_get_stats(const mi_builder *b) { return &b->st; }
+
+void mi_free(mi_builder *b)
+{
+    if (!b)
+        return;
+    for (uint32_t i = 0; i < b->n_objects && b->obj; i++) {
+        object_release(&b->obj[i]);
+        free(b->obj[i].weights_seen);
+    }
+    kd_free(&b->top);
+    free(b->obj);
+    free(b->texture_map);
+    free(b->inst_mesh);
+    free(b->words);
+    free(b);
+}

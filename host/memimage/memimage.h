@@ -1,0 +1,125 @@
+/*
+ * The device memory image: one flat array of 32-bit words that is the hardware's entire view of
+ * the world (the prototype's SRAM banks). Layout, word by word: docs/memory-image.md. All device
+ * numbers are fp24 bit patterns (hls/fp24); addresses are word indices into the image.
+ *
+ * The host builds it in two parts. Static regions (materials, textures, object table, geometry
+ * of rigid objects) are written once. Per-frame regions (camera, lights, instance table,
+ * top-level tree, geometry of morphing objects when their weights change) are rewritten by
+ * mi_update, which also reports how many bytes a frame uploads.
+ */
+#ifndef SAARCOR_MEMIMAGE_H
+#define SAARCOR_MEMIMAGE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "kdtree.h"
+#include "scene.h"
+
+#define MI_MAGIC 0x524F4353u /* "SCOR" in little-endian bytes */
+#define MI_VERSION 1u
+#define MI_NONE 0xFFFFFFFFu
+#define MI_DEFAULT_BYTES (24u << 20) /* the prototype's six 4 MB banks */
+
+/* Header words. */
+enum {
+    MI_H_MAGIC = 0, MI_H_VERSION, MI_H_FORMAT, MI_H_MEMORY_WORDS, MI_H_USED_WORDS, MI_H_FRAME,
+    MI_H_OBJECTS, MI_H_INSTANCES, MI_H_MATERIALS, MI_H_TEXTURES, MI_H_LIGHTS, MI_H_TOP_NODES,
+    MI_H_SCENE_BOUNDS,                 /* 6 fp24 words: lo xyz, hi xyz (root box of the top level) */
+    MI_H_REGION_TABLE = MI_H_SCENE_BOUNDS + 6, /* MI_REGION_COUNT x {offset, length} */
+};
+
+/* Regions, in address order. Static regions come first; the geometry of morphing objects and
+ * everything rewritten every frame follow, so a frame never moves a static region. */
+typedef enum {
+    MI_R_HEADER, MI_R_MATERIALS, MI_R_TEXTURES, MI_R_STATIC_GEOMETRY, MI_R_DYNAMIC_GEOMETRY,
+    MI_R_OBJECTS, MI_R_CAMERA, MI_R_LIGHTS, MI_R_INSTANCES, MI_R_TOP_NODES, MI_R_TOP_LISTS,
+    MI_REGION_COUNT
+} mi_region;
+
+#define MI_HEADER_WORDS (MI_H_REGION_TABLE + 2 * MI_REGION_COUNT)
+
+/* Record sizes in words. */
+enum {
+    MI_NODE_WORDS = 2,      /* kd node: {child<<2 | axis, split} or {count<<2 | 3, first} */
+    MI_TRIANGLE_WORDS = 12, /* affine 3x4, rows (m0 m1 m2 t): world/object -> unit triangle */
+    MI_SHADING_WORDS = 16,  /* normals A B C (9), texcoords A B C (6), material (1) */
+    MI_OBJECT_WORDS = 16,   /* see mi_object word offsets */
+    MI_INSTANCE_WORDS = 16, /* world-to-object 3x4 (12), object (1), reserved (3) */
+    MI_MATERIAL_WORDS = 16,
+    MI_TEXTURE_WORDS = 4,   /* width, height, texel address, reserved; texels follow the table */
+    MI_CAMERA_WORDS = 16,
+    MI_LIGHT_WORDS = 16,
+};
+
+/* Object descriptor words. */
+enum {
+    MI_O_NODES = 0, MI_O_LISTS, MI_O_TRIANGLES, MI_O_SHADING, MI_O_N_NODES, MI_O_N_LIST,
+    MI_O_N_TRIANGLES, MI_O_FLAGS, MI_O_BOUNDS /* 6 fp24 words */
+};
+#define MI_OBJECT_HAS_NORMALS 1u
+#define MI_OBJECT_HAS_TEXCOORDS 2u
+#define MI_OBJECT_DYNAMIC 4u
+
+/* Node word 0. */
+#define MI_NODE_LEAF 3u
+static inline uint32_t mi_node_word0(uint32_t axis_or_leaf, uint32_t child_or_count)
+{
+    return (child_or_count << 2) | axis_or_leaf;
+}
+
+typedef struct {
+    uint64_t memory_bytes;     /* size of the device memory (default MI_DEFAULT_BYTES) */
+    uint32_t width, height;    /* image size the camera block is set up for (default 512 x 384) */
+    uint32_t camera;           /* scene camera to use; SCENE_NONE or out of range: a default view */
+    kd_params bottom, top;     /* tree parameters; top uses binned SAH */
+    double max_condition;      /* triangles whose matrix condition number exceeds this are dropped */
+} mi_params;
+
+void mi_params_default(mi_params *p);
+
+typedef struct {
+    uint32_t objects, instances, triangles, degenerate_triangles;
+    uint32_t bottom_nodes, bottom_leaves, bottom_empty_leaves, bottom_depth;
+    uint64_t bottom_references;
+    double bottom_sah;         /* sum over objects of SAH cost x triangles (a size-weighted figure) */
+    uint32_t top_nodes, top_leaves, top_empty_leaves, top_depth;
+    uint64_t top_references;
+    double top_sah;
+    double bottom_build_seconds, top_build_seconds, transform_seconds; /* of the last build/update */
+    uint32_t region_words[MI_REGION_COUNT];
+    uint64_t frame_upload_bytes;  /* bytes rewritten by the last mi_build/mi_update */
+    uint32_t rebuilt_objects;     /* morphing objects rebuilt by the last update */
+} mi_stats;
+
+/* Host-side state kept across frames: bottom-level trees, dropped triangles, the image. */
+typedef struct mi_builder mi_builder;
+
+/* Builds the complete image for the scene as evaluated now. Returns NULL with a one-line
+ * message in err (e.g. the scene does not fit, naming the region and the sizes). */
+mi_builder *mi_build(const scene *s, const mi_params *p, char *err, size_t errlen);
+
+/* After scene_evaluate for a new time: rebuilds the per-frame regions (and the geometry of
+ * morphing objects whose weights changed). 0, or -1 with err. */
+int mi_update(mi_builder *b, const scene *s, char *err, size_t errlen);
+
+const uint32_t *mi_words(const mi_builder *b, uint32_t *n_words);
+const mi_stats *mi_get_stats(const mi_builder *b);
+void mi_free(mi_builder *b);
+
+const char *mi_region_name(mi_region r);
+
+/* Checks an image before the device model uses it: header, region bounds, every index and
+ * count, tree shape (children after parents, so no cycles), finite fp24 where required.
+ * Returns 0 if valid, else -1 with a one-line description of the first problem. */
+int mi_validate(const uint32_t *words, uint32_t n_words, char *err, size_t errlen);
+
+/* Triangle transformation of paper section 2.1: the affine map taking a, b, c to (1,0,0),
+ * (0,1,0), (0,0,0) and the unit normal to (0,0,1). Returns 0 (and leaves t untouched) when the
+ * triangle is degenerate: zero or non-finite area, or condition number of [a-c, b-c, n] above
+ * max_condition. */
+int mi_triangle_transform(const double a[3], const double b[3], const double c[3], double max_condition,
+                          affine *t);
+
+#endif

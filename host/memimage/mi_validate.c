@@ -1,0 +1,188 @@
+/*
+ * Memory-image validator: everything the device model relies on is checked before it reads the
+ * image, so that a corrupted or hostile image gives an error instead of an out-of-bounds read.
+ * Every address range is checked in 64-bit arithmetic; trees must have children after parents
+ * (no cycles, bounded traversal); device numbers must be finite fp24 of this build's format.
+ */
+#include <stdarg.h>
+#include <stdio.h>
+
+#include "f24.h"
+#include "memimage.h"
+
+typedef struct {
+    const uint32_t *w;
+    uint32_t n;
+    uint32_t off[MI_REGION_COUNT], len[MI_REGION_COUNT];
+    char *err;
+    size_t errlen;
+} checker;
+
+static int bad(checker *c, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static int bad(checker *c, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    const int k = snprintf(c->err, c->errlen, "memory image: ");
+    if (k >= 0 && (size_t)k < c->errlen)
+        vsnprintf(c->err + k, c->errlen - (size_t)k, fmt, ap);
+    va_end(ap);
+    return -1;
+}
+
+static int finite_f24(uint32_t v) { return (v & ~F24_MASK) == 0 && f24_exp(v) != F24_EXP_MAX; }
+
+/* [addr, addr + count * size) inside region r. */
+static int in_region(const checker *c, mi_region r, uint64_t addr, uint64_t count, uint64_t size)
+{
+    return addr >= c->off[r] && addr + count * size <= (uint64_t)c->off[r] + c->len[r];
+}
+
+static int finite_words(const checker *c, uint32_t at, uint32_t n)
+{
+    for (uint32_t i = 0; i < n; i++)
+        if (!finite_f24(c->w[at + i]))
+            return 0;
+    return 1;
+}
+
+static int check_header(checker *c)
+{
+    const uint32_t *w = c->w;
+    if (c->n < MI_HEADER_WORDS)
+        return bad(c, "%u words is smaller than the header (%u words)", c->n, (unsigned)MI_HEADER_WORDS);
+    if (w[MI_H_MAGIC] != MI_MAGIC)
+        return bad(c, "bad magic 0x%08X", w[MI_H_MAGIC]);
+    if (w[MI_H_VERSION] != MI_VERSION)
+        return bad(c, "version %u, this build reads version %u", w[MI_H_VERSION], MI_VERSION);
+    if (w[MI_H_FORMAT] != (uint32_t)(F24_EXP_BITS << 8 | F24_MAN_BITS))
+        return bad(c, "number format e%um%u, this build is e%dm%d", w[MI_H_FORMAT] >> 8, w[MI_H_FORMAT] & 0xFF,
+                   F24_EXP_BITS, F24_MAN_BITS);
+    if (w[MI_H_USED_WORDS] != c->n || w[MI_H_MEMORY_WORDS] < c->n)
+        return bad(c, "size fields (used %u, memory %u) disagree with the %u words present", w[MI_H_USED_WORDS],
+                   w[MI_H_MEMORY_WORDS], c->n);
+    uint64_t end = 0;
+    for (int r = 0; r < MI_REGION_COUNT; r++) {
+        c->off[r] = w[MI_H_REGION_TABLE + 2 * r];
+        c->len[r] = w[MI_H_REGION_TABLE + 2 * r + 1];
+        if (c->off[r] != end || (uint64_t)c->off[r] + c->len[r] > c->n)
+            return bad(c, "region %s [%u, +%u) is not contiguous or exceeds the image", mi_region_name((mi_region)r),
+                       c->off[r], c->len[r]);
+        end = (uint64_t)c->off[r] + c->len[r];
+    }
+    if (end != c->n || c->len[MI_R_HEADER] != MI_HEADER_WORDS)
+        return bad(c, "regions do not cover the image exactly");
+    const struct { mi_region r; uint32_t count; uint32_t words; } sized[] = {
+        { MI_R_OBJECTS, w[MI_H_OBJECTS], MI_OBJECT_WORDS }, { MI_R_INSTANCES, w[MI_H_INSTANCES], MI_INSTANCE_WORDS },
+        { MI_R_MATERIALS, w[MI_H_MATERIALS], MI_MATERIAL_WORDS }, { MI_R_LIGHTS, w[MI_H_LIGHTS], MI_LIGHT_WORDS },
+        { MI_R_TOP_NODES, w[MI_H_TOP_NODES], MI_NODE_WORDS }, { MI_R_CAMERA, 1, MI_CAMERA_WORDS },
+    };
+    for (size_t i = 0; i < sizeof sized / sizeof sized[0]; i++)
+        if ((uint64_t)sized[i].count * sized[i].words != c->len[sized[i].r])
+            return bad(c, "region %s has %u words for %u records", mi_region_name(sized[i].r), c->len[sized[i].r],
+                       sized[i].count);
+    if ((uint64_t)w[MI_H_TEXTURES] * MI_TEXTURE_WORDS > c->len[MI_R_TEXTURES])
+        return bad(c, "texture table larger than its region");
+    if (w[MI_H_MATERIALS] == 0 || w[MI_H_TOP_NODES] == 0)
+        return bad(c, "no default material or no top-level root node");
+    if (!finite_words(c, MI_H_SCENE_BOUNDS, 6))
+        return bad(c, "scene bounds are not finite");
+    return 0;
+}
+
+/* A kd-tree: inner nodes' children after the node and in range, leaves' lists in range,
+ * finite split planes, list entries naming existing items. */
+static int check_tree(checker *c, const char *what, uint32_t nodes, uint32_t n_nodes, uint32_t lists,
+                      uint32_t n_list, uint32_t n_items)
+{
+    if (n_nodes == 0)
+        return bad(c, "%s: empty tree", what);
+    for (uint32_t i = 0; i < n_nodes; i++) {
+        const uint32_t w0 = c->w[nodes + 2 * i], w1 = c->w[nodes + 2 * i + 1], hi = w0 >> 2;
+        if ((w0 & 3u) == MI_NODE_LEAF) {
+            if ((uint64_t)w1 + hi > n_list)
+                return bad(c, "%s: leaf %u list [%u, +%u) exceeds the %u list entries", what, i, w1, hi, n_list);
+        } else if (hi <= i || (uint64_t)hi + 1 >= n_nodes) {
+            return bad(c, "%s: node %u child index %u is not after the node or out of range", what, i, hi);
+        } else if (!finite_f24(w1)) {
+            return bad(c, "%s: node %u split plane 0x%X is not a finite fp24 value", what, i, w1);
+        }
+    }
+    for (uint32_t i = 0; i < n_list; i++)
+        if (c->w[lists + i] >= n_items)
+            return bad(c, "%s: list entry %u names item %u of %u", what, i, c->w[lists + i], n_items);
+    return 0;
+}
+
+static int check_objects(checker *c)
+{
+    const uint32_t n_mat = c->w[MI_H_MATERIALS];
+    for (uint32_t o = 0; o < c->w[MI_H_OBJECTS]; o++) {
+        const uint32_t *d = c->w + c->off[MI_R_OBJECTS] + MI_OBJECT_WORDS * o;
+        const mi_region r = (d[MI_O_FLAGS] & MI_OBJECT_DYNAMIC) ? MI_R_DYNAMIC_GEOMETRY : MI_R_STATIC_GEOMETRY;
+        const uint32_t nt = d[MI_O_N_TRIANGLES];
+        char what[48];
+        snprintf(what, sizeof what, "object %u", o);
+        if (!in_region(c, r, d[MI_O_NODES], d[MI_O_N_NODES], MI_NODE_WORDS) ||
+            !in_region(c, r, d[MI_O_LISTS], d[MI_O_N_LIST], 1) ||
+            !in_region(c, r, d[MI_O_TRIANGLES], nt, MI_TRIANGLE_WORDS) ||
+            !in_region(c, r, d[MI_O_SHADING], nt, MI_SHADING_WORDS))
+            return bad(c, "%s: geometry outside region %s", what, mi_region_name(r));
+        if (!finite_words(c, c->off[MI_R_OBJECTS] + MI_OBJECT_WORDS * o + MI_O_BOUNDS, 6))
+            return bad(c, "%s: bounds are not finite", what);
+        if (check_tree(c, what, d[MI_O_NODES], d[MI_O_N_NODES], d[MI_O_LISTS], d[MI_O_N_LIST], nt) != 0)
+            return -1;
+        if (!finite_words(c, d[MI_O_TRIANGLES], nt * MI_TRIANGLE_WORDS))
+            return bad(c, "%s: a triangle transformation is not finite", what);
+        for (uint32_t t = 0; t < nt; t++) {
+            const uint32_t s = d[MI_O_SHADING] + MI_SHADING_WORDS * t;
+            if (!finite_words(c, s, 15) || c->w[s + 15] >= n_mat)
+                return bad(c, "%s: shading record %u has non-finite data or material %u of %u", what, t,
+                           c->w[s + 15], n_mat);
+        }
+    }
+    return 0;
+}
+
+static int check_records(checker *c)
+{
+    const uint32_t *w = c->w;
+    for (uint32_t i = 0; i < w[MI_H_INSTANCES]; i++) {
+        const uint32_t at = c->off[MI_R_INSTANCES] + MI_INSTANCE_WORDS * i;
+        if (!finite_words(c, at, 12) || w[at + 12] >= w[MI_H_OBJECTS])
+            return bad(c, "instance %u: non-finite transformation or object %u of %u", i, w[at + 12], w[MI_H_OBJECTS]);
+    }
+    for (uint32_t i = 0; i < w[MI_H_MATERIALS]; i++) {
+        const uint32_t at = c->off[MI_R_MATERIALS] + MI_MATERIAL_WORDS * i;
+        if (!finite_words(c, at, 7) || !finite_words(c, at + 9, 5) || (w[at + 8] & 3u) > ALPHA_BLEND ||
+            (w[at + 7] != MI_NONE && w[at + 7] >= w[MI_H_TEXTURES]))
+            return bad(c, "material %u: bad value or texture index", i);
+    }
+    for (uint32_t i = 0; i < w[MI_H_TEXTURES]; i++) {
+        const uint32_t *t = w + c->off[MI_R_TEXTURES] + MI_TEXTURE_WORDS * i;
+        const uint64_t table_end = (uint64_t)c->off[MI_R_TEXTURES] + MI_TEXTURE_WORDS * w[MI_H_TEXTURES];
+        if (t[0] == 0 || t[1] == 0 || t[2] < table_end || !in_region(c, MI_R_TEXTURES, t[2], (uint64_t)t[0] * t[1], 1))
+            return bad(c, "texture %u: %ux%u texels at %u outside the texture region", i, t[0], t[1], t[2]);
+    }
+    const uint32_t cam = c->off[MI_R_CAMERA];
+    if (w[cam] > CAMERA_ORTHOGRAPHIC || w[cam + 1] == 0 || w[cam + 2] == 0 || w[cam + 1] > 65536 ||
+        w[cam + 2] > 65536 || !finite_words(c, cam + 4, 12))
+        return bad(c, "camera: bad kind, size or non-finite vectors");
+    for (uint32_t i = 0; i < w[MI_H_LIGHTS]; i++) {
+        const uint32_t at = c->off[MI_R_LIGHTS] + MI_LIGHT_WORDS * i;
+        if (w[at] > LIGHT_SPOT || !finite_words(c, at + 1, 12))
+            return bad(c, "light %u: bad kind or non-finite values", i);
+    }
+    return check_tree(c, "top level", c->off[MI_R_TOP_NODES], w[MI_H_TOP_NODES], c->off[MI_R_TOP_LISTS],
+                      c->len[MI_R_TOP_LISTS], w[MI_H_INSTANCES]);
+}
+
+int mi_validate(const uint32_t *words, uint32_t n_words, char *err, size_t errlen)
+{
+    checker c = { .w = words, .n = n_words, .err = err, .errlen = errlen };
+    if (!words)
+        return bad(&c, "no image");
+    if (check_header(&c) != 0 || check_objects(&c) != 0 || check_records(&c) != 0)
+        return -1;
+    return 0;
+}

@@ -1,0 +1,210 @@
+/*
+ * saarcor info SCENE: what the host makes of a scene: objects, instances, triangles (and the
+ * degenerate ones dropped), kd-tree statistics of both levels, build times, and the memory image
+ * region by region. With --frames N it also steps the animation and reports the bytes each frame
+ * uploads; --validate runs the image validator; --json writes the figures.
+ */
+#define _GNU_SOURCE
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "cli.h"
+#include "scene_opts.h"
+
+typedef struct {
+    uint32_t frames;
+    double fps;
+    const char *json, *image_out;
+} info_opts;
+
+static void print_tree(const char *name, uint32_t nodes, uint32_t leaves, uint32_t empty, uint32_t depth,
+                       uint64_t refs, double sah)
+{
+    const uint32_t full = leaves - empty;
+    printf("%-12s nodes %u, leaves %u (%u empty), depth %u, references %llu (%.2f per non-empty leaf), "
+           "SAH cost %.2f\n", name, nodes, leaves, empty, depth, (unsigned long long)refs,
+           full ? (double)refs / full : 0.0, sah);
+}
+
+static void print_report(const scene *s, const mi_builder *b, const scene_opts *o)
+{
+    const mi_stats *st = mi_get_stats(b);
+    uint64_t inst_tris = 0;
+    for (uint32_t i = 0; i < s->n_instances; i++)
+        inst_tris += s->meshes[s->instances[i].mesh].n_triangles;
+    printf("scene        %s\n", o->scene);
+    printf("objects      %u (meshes), instances %u, triangles %u unique / %llu instanced, degenerate dropped %u\n",
+           st->objects, st->instances, st->triangles, (unsigned long long)inst_tris, st->degenerate_triangles);
+    printf("content      %u materials, %u textures, %u cameras, %u lights, %u animations, %u nodes, %u warnings\n",
+           s->n_materials, s->n_textures, s->n_cameras, s->n_lights, s->n_animations, s->n_nodes, s->warnings);
+    print_tree("bottom level", st->bottom_nodes, st->bottom_leaves, st->bottom_empty_leaves, st->bottom_depth,
+               st->bottom_references, st->triangles ? st->bottom_sah / st->triangles : 0.0);
+    print_tree("top level", st->top_nodes, st->top_leaves, st->top_empty_leaves, st->top_depth, st->top_references,
+               st->top_sah);
+    printf("build        triangle transformations %.3f s, bottom-level trees %.3f s, top-level tree %.3f ms\n",
+           st->transform_seconds, st->bottom_build_seconds, 1e3 * st->top_build_seconds);
+    uint32_t n_words;
+    mi_words(b, &n_words);
+    printf("memory image %.3f MB of %.1f MB (%.1f%%), %.1f bytes per triangle\n", n_words * 4.0 / 1048576.0,
+           (double)o->mi.memory_bytes / 1048576.0, 100.0 * n_words * 4.0 / (double)o->mi.memory_bytes,
+           st->triangles ? 4.0 * (st->region_words[MI_R_STATIC_GEOMETRY] + st->region_words[MI_R_DYNAMIC_GEOMETRY]) /
+                               st->triangles : 0.0);
+    for (int r = 0; r < MI_REGION_COUNT; r++)
+        printf("  %-17s %10u words %10.1f KB\n", mi_region_name((mi_region)r), st->region_words[r],
+               st->region_words[r] * 4.0 / 1024.0);
+}
+
+static int write_json(const char *path, const scene_opts *o, const mi_stats *st, const double *upload, uint32_t frames)
+{
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return -1;
+    fprintf(f, "{\n  \"scene\": \"%s\", \"objects\": %u, \"instances\": %u, \"triangles\": %u, \"degenerate\": %u,\n",
+            o->scene, st->objects, st->instances, st->triangles, st->degenerate_triangles);
+    fprintf(f, "  \"bottom\": {\"nodes\": %u, \"leaves\": %u, \"empty_leaves\": %u, \"depth\": %u, \"references\": %llu, "
+               "\"build_seconds\": %.6f},\n", st->bottom_nodes, st->bottom_leaves, st->bottom_empty_leaves,
+            st->bottom_depth, (unsigned long long)st->bottom_references, st->bottom_build_seconds);
+    fprintf(f, "  \"top\": {\"nodes\": %u, \"leaves\": %u, \"empty_leaves\": %u, \"depth\": %u, \"references\": %llu, "
+               "\"sah\": %.4f, \"build_seconds\": %.6f},\n", st->top_nodes, st->top_leaves, st->top_empty_leaves,
+            st->top_depth, (unsigned long long)st->top_references, st->top_sah, st->top_build_seconds);
+    fprintf(f, "  \"transform_seconds\": %.6f,\n  \"regions\": {", st->transform_seconds);
+    for (int r = 0; r < MI_REGION_COUNT; r++)
+        fprintf(f, "%s\"%s\": %u", r ? ", " : "", mi_region_name((mi_region)r), st->region_words[r]);
+    fprintf(f, "},\n  \"frame_upload_bytes\": [");
+    for (uint32_t i = 0; i < frames; i++)
+        fprintf(f, "%s%.0f", i ? ", " : "", upload[i]);
+    fprintf(f, "]\n}\n");
+    return fclose(f);
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Steps the animation over `frames` frames and reports the upload per frame. */
+static int run_frames(scene *s, mi_builder *b, const scene_opts *o, const info_opts *io, double *upload)
+{
+    char err[512];
+    uint32_t rebuilt = 0;
+    for (uint32_t f = 0; f < io->frames; f++) {
+        if (scene_evaluate(s, o->time + (f + 1) / io->fps, 1) != 0 || mi_update(b, s, err, sizeof err) != 0) {
+            cli_error("info", "frame %u: %s", f + 1, err);
+            return SAARCOR_EXIT_INTERNAL;
+        }
+        upload[f] = (double)mi_get_stats(b)->frame_upload_bytes;
+        rebuilt += mi_get_stats(b)->rebuilt_objects;
+    }
+    double *sorted = malloc(io->frames * sizeof *sorted);
+    if (!sorted)
+        return SAARCOR_EXIT_INTERNAL;
+    for (uint32_t f = 0; f < io->frames; f++)
+        sorted[f] = upload[f];
+    qsort(sorted, io->frames, sizeof *sorted, cmp_double);
+    printf("frames       %u at %.0f fps: upload per frame min %.1f KB, median %.1f KB, max %.1f KB; "
+           "morphing objects rebuilt %u times\n", io->frames, io->fps, sorted[0] / 1024.0,
+           sorted[io->frames / 2] / 1024.0, sorted[io->frames - 1] / 1024.0, rebuilt);
+    free(sorted);
+    return SAARCOR_EXIT_OK;
+}
+
+static int usage(void)
+{
+    printf("usage: saarcor info SCENE [options]\n\n"
+           "Loads a scene, builds its kd-trees and memory image, and prints objects, instances,\n"
+           "triangles (degenerate ones dropped), tree statistics of both levels, build times and the\n"
+           "memory image region by region.\n\n"
+           "  --frames N      step the animation N frames and report bytes uploaded per frame\n"
+           "  --fps F         frame rate for --frames (default 30)\n"
+           "  --validate      check the memory image with the validator\n"
+           "  --json FILE     write the figures as JSON\n"
+           "  --image FILE    write the memory image (little-endian 32-bit words)\n\n%s", SCENE_OPTIONS_HELP);
+    return SAARCOR_EXIT_OK;
+}
+
+int cmd_info(int argc, char **argv)
+{
+    static const struct option opts[] = {
+        SCENE_LONG_OPTIONS, { "frames", required_argument, NULL, 'f' }, { "fps", required_argument, NULL, 'r' },
+        { "validate", no_argument, NULL, 'v' }, { "json", required_argument, NULL, 'j' },
+        { "image", required_argument, NULL, 'i' }, { "help", no_argument, NULL, 'h' }, { 0, 0, 0, 0 }
+    };
+    scene_opts o;
+    info_opts io = { 0, 30.0, NULL, NULL };
+    int validate = 0, c;
+    scene_opts_default(&o);
+    optind = 0;
+    opterr = 0;
+    while ((c = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+        uint64_t v;
+        const int r = c >= SCENE_OPT_BASE ? scene_opts_parse(&o, "info", c, optarg) : 0;
+        if (r < 0)
+            return SAARCOR_EXIT_USAGE;
+        if (r > 0)
+            continue;
+        switch (c) {
+        case 'f':
+            if (!cli_parse_u64(optarg, 1, 100000, &v))
+                return cli_usage_error("info", "bad --frames '%s'", optarg);
+            io.frames = (uint32_t)v;
+            break;
+        case 'r':
+            if (!cli_parse_double(optarg, &io.fps) || io.fps <= 0 || io.fps > 1e4)
+                return cli_usage_error("info", "bad --fps '%s'", optarg);
+            break;
+        case 'v': validate = 1; break;
+        case 'j': io.json = optarg; break;
+        case 'i': io.image_out = optarg; break;
+        case 'h': return usage();
+        default: return cli_bad_option("info", argc, argv);
+        }
+    }
+    if (argc - optind != 1)
+        return cli_usage_error("info", "expected one SCENE");
+    o.scene = argv[optind];
+
+    scene s;
+    int rc = scene_opts_load(&o, "info", &s);
+    if (rc != SAARCOR_EXIT_OK)
+        return rc;
+    char err[512];
+    mi_builder *b = mi_build(&s, &o.mi, err, sizeof err);
+    if (!b) {
+        cli_error("info", "%s", err);
+        scene_free(&s);
+        return SAARCOR_EXIT_INPUT;
+    }
+    print_report(&s, b, &o);
+    uint32_t n_words;
+    const uint32_t *w = mi_words(b, &n_words);
+    if (validate) {
+        if (mi_validate(w, n_words, err, sizeof err) != 0) {
+            printf("validate     FAILED: %s\n", err);
+            rc = SAARCOR_EXIT_FAIL;
+        } else {
+            printf("validate     ok\n");
+        }
+    }
+    if (io.image_out) {
+        FILE *f = fopen(io.image_out, "wb");
+        if (!f || fwrite(w, 4, n_words, f) != n_words || fclose(f) != 0) {
+            cli_error("info", "cannot write '%s'", io.image_out);
+            rc = SAARCOR_EXIT_INPUT;
+        }
+    }
+    double *upload = calloc(io.frames + 1, sizeof *upload);
+    if (!upload)
+        rc = SAARCOR_EXIT_INTERNAL;
+    if (rc == SAARCOR_EXIT_OK && io.frames)
+        rc = run_frames(&s, b, &o, &io, upload);
+    if (rc == SAARCOR_EXIT_OK && io.json && write_json(io.json, &o, mi_get_stats(b), upload, io.frames) != 0) {
+        cli_error("info", "cannot write '%s'", io.json);
+        rc = SAARCOR_EXIT_INPUT;
+    }
+    free(upload);
+    mi_free(b);
+    scene_free(&s);
+    return rc;
+}

@@ -1,0 +1,104 @@
+/* Shared scene/tree options (see scene_opts.h). */
+#include "scene_opts.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cli.h"
+#include "scenes.h"
+
+void scene_opts_default(scene_opts *o)
+{
+    memset(o, 0, sizeof *o);
+    mi_params_default(&o->mi);
+}
+
+static int number(const char *cmd, const char *name, const char *arg, double lo, double hi, double *out)
+{
+    if (!cli_parse_double(arg, out) || *out < lo || *out > hi) {
+        cli_usage_error(cmd, "bad --%s '%s' (expected %g..%g)", name, arg, lo, hi);
+        return -1;
+    }
+    return 1;
+}
+
+static int count(const char *cmd, const char *name, const char *arg, uint64_t lo, uint64_t hi, uint32_t *out)
+{
+    uint64_t v;
+    if (!cli_parse_u64(arg, lo, hi, &v)) {
+        cli_usage_error(cmd, "bad --%s '%s' (expected %llu..%llu)", name, arg, (unsigned long long)lo,
+                        (unsigned long long)hi);
+        return -1;
+    }
+    *out = (uint32_t)v;
+    return 1;
+}
+
+int scene_opts_parse(scene_opts *o, const char *cmd, int c, const char *arg)
+{
+    double d;
+    uint32_t u;
+    int r;
+    switch (c - SCENE_OPT_BASE) {
+    case 0:
+        if ((r = count(cmd, "mem-mb", arg, 1, 2047, &u)) > 0)
+            o->mi.memory_bytes = (uint64_t)u << 20;
+        return r;
+    case 1:
+        if ((r = number(cmd, "ct", arg, 1e-6, 1e6, &d)) > 0)
+            o->mi.bottom.cost_traversal = o->mi.top.cost_traversal = d;
+        return r;
+    case 2:
+        if ((r = number(cmd, "ci", arg, 1e-6, 1e6, &d)) > 0)
+            o->mi.bottom.cost_intersection = o->mi.top.cost_intersection = d;
+        return r;
+    case 3:
+        if ((r = number(cmd, "empty-bonus", arg, 0, 1, &d)) > 0)
+            o->mi.bottom.empty_bonus = o->mi.top.empty_bonus = d;
+        return r;
+    case 4:
+        if ((r = count(cmd, "max-depth", arg, 0, 64, &u)) > 0)
+            o->mi.bottom.max_depth = o->mi.top.max_depth = u;
+        return r;
+    case 5:
+        if ((r = count(cmd, "leaf-size", arg, 1, 1u << 20, &u)) > 0)
+            o->mi.bottom.leaf_size = o->mi.top.leaf_size = u;
+        return r;
+    case 6: return count(cmd, "top-bins", arg, 2, 1024, &o->mi.top.bins);
+    case 7: return count(cmd, "width", arg, 1, 16384, &o->mi.width);
+    case 8: return count(cmd, "height", arg, 1, 16384, &o->mi.height);
+    case 9: return number(cmd, "time", arg, 0, 1e9, &o->time);
+    case 10:
+        if ((r = number(cmd, "max-condition", arg, 1, 1e30, &d)) > 0)
+            o->mi.max_condition = d;
+        return r;
+    case 11: return count(cmd, "camera", arg, 0, 1u << 20, &o->mi.camera);
+    default: return 0;
+    }
+}
+
+int scene_opts_load(const scene_opts *o, const char *cmd, scene *s)
+{
+    char err[512];
+    memset(s, 0, sizeof *s);
+    const scene_generator *g = access(o->scene, F_OK) != 0 ? scene_generator_find(o->scene) : NULL;
+    if (g) {
+        const scene_gen_params gp = { 1, 0 };
+        if (g->build(s, &gp, err, sizeof err) != 0) {
+            cli_error(cmd, "generator %s: %s", o->scene, err);
+            scene_free(s);
+            return SAARCOR_EXIT_INTERNAL;
+        }
+    } else if (scene_load_gltf(o->scene, s, err, sizeof err) != 0) {
+        cli_error(cmd, "%s", err);
+        return SAARCOR_EXIT_INPUT;
+    }
+    if (scene_evaluate(s, o->time, 1) != 0) {
+        cli_error(cmd, "out of memory");
+        scene_free(s);
+        return SAARCOR_EXIT_INTERNAL;
+    }
+    return SAARCOR_EXIT_OK;
+}

@@ -1,0 +1,54 @@
+/*
+ * Options shared by the commands that load a scene and build its memory image (info, and later
+ * render and bench): the scene argument (a .gltf/.glb path or the name of a generator) and the
+ * kd-tree and memory parameters.
+ */
+#ifndef SAARCOR_SCENE_OPTS_H
+#define SAARCOR_SCENE_OPTS_H
+
+#include <getopt.h>
+
+#include "memimage.h"
+#include "scene.h"
+
+/* getopt_long entries for the shared options (values from SCENE_OPT_BASE up) and their help. */
+#define SCENE_OPT_BASE 1000
+#define SCENE_LONG_OPTIONS                                                                              \
+    { "mem-mb", required_argument, NULL, SCENE_OPT_BASE + 0 }, { "ct", required_argument, NULL, SCENE_OPT_BASE + 1 }, \
+    { "ci", required_argument, NULL, SCENE_OPT_BASE + 2 }, { "empty-bonus", required_argument, NULL, SCENE_OPT_BASE + 3 }, \
+    { "max-depth", required_argument, NULL, SCENE_OPT_BASE + 4 }, { "leaf-size", required_argument, NULL, SCENE_OPT_BASE + 5 }, \
+    { "top-bins", required_argument, NULL, SCENE_OPT_BASE + 6 }, { "width", required_argument, NULL, SCENE_OPT_BASE + 7 }, \
+    { "height", required_argument, NULL, SCENE_OPT_BASE + 8 }, { "time", required_argument, NULL, SCENE_OPT_BASE + 9 }, \
+    { "max-condition", required_argument, NULL, SCENE_OPT_BASE + 10 }, { "camera", required_argument, NULL, SCENE_OPT_BASE + 11 }
+
+#define SCENE_OPTIONS_HELP                                                                              \
+    "scene options:\n"                                                                                  \
+    "  SCENE                 a .gltf/.glb file, or a generator name (saarcor gen --list)\n"            \
+    "  --time T              evaluate animations at T seconds (default 0)\n"                           \
+    "  --camera N            use the scene's camera N (default 0; a default view if there is none)\n" \
+    "  --width W --height H  image size for the camera set-up (default 512 x 384)\n"                   \
+    "  --mem-mb N            device memory size in MB (default 24, as the prototype)\n"                \
+    "  --ct X --ci Y         SAH traversal and intersection costs (default 1, 1.5)\n"                  \
+    "  --empty-bonus B       SAH bonus for cutting off empty space, 0..1 (default 0.2)\n"              \
+    "  --max-depth D         kd-tree depth limit (default 0: 8 + 1.3 log2 N)\n"                        \
+    "  --leaf-size L         never split nodes with at most L primitives (default 1)\n"               \
+    "  --top-bins N          bins of the top-level SAH (default 32)\n"                                 \
+    "  --max-condition K     drop triangles whose shape condition number exceeds K (default 2^24)\n"
+
+typedef struct {
+    const char *scene;   /* path or generator name */
+    double time;
+    mi_params mi;
+} scene_opts;
+
+void scene_opts_default(scene_opts *o);
+
+/* Handles one getopt result c >= SCENE_OPT_BASE. Returns 1 if handled, 0 if not a shared
+ * option, -1 after printing a usage error (the command then exits with SAARCOR_EXIT_USAGE). */
+int scene_opts_parse(scene_opts *o, const char *cmd, int c, const char *arg);
+
+/* Loads (or generates) the scene and evaluates it at o->time. Returns a SAARCOR_EXIT_* code;
+ * errors are printed as one line. */
+int scene_opts_load(const scene_opts *o, const char *cmd, scene *s);
+
+#endif

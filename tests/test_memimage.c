@@ -1,0 +1,368 @@
+/*
+ * Tests of the memory image (host/memimage): triangle transformations (A, B, C, N map to the
+ * unit triangle within tolerance; degenerate triangles are detected), the image layout and its
+ * validator, instancing end to end in fp24 (world vertex -> instance matrix -> triangle matrix
+ * lands on the unit-triangle corner), the too-small-memory error, per-frame updates of rigid and
+ * morphing objects, and random corruption of valid images (rejected, or still safe to walk).
+ */
+#define _GNU_SOURCE
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "f24.h"
+#include "f24_fast.h"
+#include "memimage.h"
+#include "scene.h"
+
+static double f24d(uint32_t w) { return f24_fast_decode(w); }
+
+static uint64_t rng_state = 0x9E3779B97F4A7C15ull;
+static double urand(void)
+{
+    rng_state ^= rng_state << 13;
+    rng_state ^= rng_state >> 7;
+    rng_state ^= rng_state << 17;
+    return (double)(rng_state >> 11) / 9007199254740992.0;
+}
+
+/* ---- triangle transformations ------------------------------------------------------------ */
+
+static void apply(const affine *t, const double p[3], double out[3]) { affine_apply_point(t, p, out); }
+
+static void transform_maps_vertices(void **state)
+{
+    (void)state;
+    for (int i = 0; i < 1000; i++) {
+        double a[3], b[3], c[3], n[3];
+        const double scale = pow(10.0, 6 * urand() - 3);
+        for (int k = 0; k < 3; k++) {
+            a[k] = scale * (urand() - 0.5) + 100 * urand();
+            b[k] = a[k] + scale * (urand() - 0.5);
+            c[k] = a[k] + scale * (urand() - 0.5);
+        }
+        affine t;
+        if (!mi_triangle_transform(a, b, c, 1e6, &t))
+            continue;
+        double pa[3], pb[3], pc[3], pn[3];
+        apply(&t, a, pa);
+        apply(&t, b, pb);
+        apply(&t, c, pc);
+        const double e1[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] }, e2[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+        n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+        n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+        n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        const double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        for (int k = 0; k < 3; k++)
+            n[k] /= len;
+        affine_apply_vector(&t, n, pn);
+        const double want[4][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 0 }, { 0, 0, 1 } };
+        const double *got[4] = { pa, pb, pc, pn };
+        for (int v = 0; v < 4; v++)
+            for (int k = 0; k < 3; k++)
+                assert_float_equal(got[v][k], want[v][k], 1e-7);
+    }
+}
+
+static void degenerate_triangles(void **state)
+{
+    (void)state;
+    affine t;
+    const double o[3] = { 0, 0, 0 }, x[3] = { 1, 0, 0 }, y[3] = { 0, 1, 0 }, x2[3] = { 2, 0, 0 };
+    const double sliver[3] = { 0.5, 1e-9, 0 }, thin[3] = { 0.5, 1e-3, 0 }, inf[3] = { INFINITY, 0, 0 };
+    assert_int_equal(mi_triangle_transform(o, x, y, 1 << 24, &t), 1);
+    assert_int_equal(mi_triangle_transform(o, x, x2, 1 << 24, &t), 0);  /* collinear */
+    assert_int_equal(mi_triangle_transform(o, x, x, 1 << 24, &t), 0);   /* repeated vertex */
+    assert_int_equal(mi_triangle_transform(o, o, o, 1 << 24, &t), 0);   /* a point */
+    assert_int_equal(mi_triangle_transform(o, x, sliver, 1 << 24, &t), 0); /* aspect 1e9 */
+    assert_int_equal(mi_triangle_transform(o, x, thin, 1 << 24, &t), 1);   /* aspect 1e3 is kept */
+    assert_int_equal(mi_triangle_transform(o, x, thin, 100, &t), 0);       /* ... unless K is small */
+    assert_int_equal(mi_triangle_transform(o, x, inf, 1 << 24, &t), 0);
+    /* size alone is not a degeneracy */
+    const double tiny_x[3] = { 1e-6, 0, 0 }, tiny_y[3] = { 0, 1e-6, 0 };
+    assert_int_equal(mi_triangle_transform(o, tiny_x, tiny_y, 1 << 24, &t), 1);
+}
+
+/* ---- test scenes ------------------------------------------------------------------------- */
+
+static float *floats(const float *v, size_t n)
+{
+    float *p = malloc(n * sizeof *p);
+    memcpy(p, v, n * sizeof *p);
+    return p;
+}
+
+/* A tetrahedron (+ one degenerate triangle), instanced `copies` times along x; optionally a
+ * second mesh with one morph target on its own node. */
+static void make_scene(scene *s, uint32_t copies, int morph)
+{
+    memset(s, 0, sizeof *s);
+    static const float tet[] = { 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+    static const uint32_t tet_idx[] = { 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3, 0, 0, 1 };
+    s->n_meshes = morph ? 2 : 1;
+    s->meshes = calloc(s->n_meshes, sizeof *s->meshes);
+    for (uint32_t m = 0; m < s->n_meshes; m++) {
+        scene_mesh *me = &s->meshes[m];
+        snprintf(me->name, sizeof me->name, "mesh%u", m);
+        me->n_vertices = 4;
+        me->n_triangles = 5;
+        me->positions = floats(tet, 12);
+        me->indices = malloc(sizeof tet_idx);
+        memcpy(me->indices, tet_idx, sizeof tet_idx);
+        me->material = calloc(5, sizeof *me->material);
+    }
+    if (morph) {
+        scene_mesh *me = &s->meshes[1];
+        static const float delta[] = { 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 1 };
+        me->n_targets = 1;
+        me->base_positions = floats(tet, 12);
+        me->target_deltas = floats(delta, 12);
+        me->weights = calloc(1, sizeof(float));
+    }
+    s->n_materials = 1;
+    s->materials = calloc(1, sizeof *s->materials);
+    s->materials[0].base_color[0] = 0.8f;
+    s->materials[0].base_color_texture = SCENE_NONE;
+    s->n_nodes = copies + (morph ? 1 : 0);
+    s->nodes = calloc(s->n_nodes, sizeof *s->nodes);
+    s->roots = calloc(s->n_nodes, sizeof *s->roots);
+    s->n_roots = s->n_nodes;
+    for (uint32_t i = 0; i < s->n_nodes; i++) {
+        scene_node *n = &s->nodes[i];
+        n->parent = -1;
+        n->mesh = i < copies ? 0 : 1;
+        n->camera = n->light = SCENE_NONE;
+        n->translation[0] = 3.0 * i;
+        n->rotation[3] = 1;
+        n->scale[0] = n->scale[1] = n->scale[2] = 1 + 0.25 * i;
+        s->roots[i] = i;
+        if (n->mesh == 1) {
+            n->n_weights = 1;
+            n->weights = calloc(1, sizeof(double));
+        }
+    }
+    assert_int_equal(scene_evaluate(s, 0, 0), 0);
+}
+
+static mi_builder *build(const scene *s, uint64_t mem)
+{
+    mi_params p;
+    mi_params_default(&p);
+    if (mem)
+        p.memory_bytes = mem;
+    char err[256];
+    mi_builder *b = mi_build(s, &p, err, sizeof err);
+    if (!b)
+        fail_msg("mi_build: %s", err);
+    return b;
+}
+
+static void layout_and_validate(void **state)
+{
+    (void)state;
+    scene s;
+    make_scene(&s, 3, 0);
+    mi_builder *b = build(&s, 0);
+    uint32_t n;
+    const uint32_t *w = mi_words(b, &n);
+    char err[256];
+    if (mi_validate(w, n, err, sizeof err) != 0)
+        fail_msg("%s", err);
+    assert_int_equal(w[MI_H_MAGIC], MI_MAGIC);
+    assert_int_equal(w[MI_H_OBJECTS], 1);
+    assert_int_equal(w[MI_H_INSTANCES], 3);
+    assert_int_equal(w[MI_H_USED_WORDS], n);
+    const mi_stats *st = mi_get_stats(b);
+    assert_int_equal(st->degenerate_triangles, 1);
+    const uint32_t *obj = w + w[MI_H_REGION_TABLE + 2 * MI_R_OBJECTS];
+    assert_int_equal(obj[MI_O_N_TRIANGLES], 4);
+    /* the object's bounds contain the tetrahedron, rounded outward */
+    for (int k = 0; k < 3; k++) {
+        assert_true(f24d(obj[MI_O_BOUNDS + k]) <= 0.0);
+        assert_true(f24d(obj[MI_O_BOUNDS + 3 + k]) >= 1.0);
+    }
+    mi_free(b);
+    scene_free(&s);
+}
+
+/* World-space vertex -> instance world-to-object -> triangle transformation, all in fp24 values,
+ * lands on the unit-triangle corners: the instanced object equals the flattened mesh. */
+static void instancing_end_to_end(void **state)
+{
+    (void)state;
+    scene s;
+    make_scene(&s, 4, 0);
+    mi_builder *b = build(&s, 0);
+    uint32_t n;
+    const uint32_t *w = mi_words(b, &n);
+    const uint32_t *obj = w + w[MI_H_REGION_TABLE + 2 * MI_R_OBJECTS];
+    for (uint32_t i = 0; i < w[MI_H_INSTANCES]; i++) {
+        const uint32_t *in = w + w[MI_H_REGION_TABLE + 2 * MI_R_INSTANCES] + MI_INSTANCE_WORDS * i;
+        affine w2o, tri;
+        for (int r = 0; r < 3; r++)
+            for (int c = 0; c < 4; c++)
+                w2o.m[r][c] = f24d(in[4 * r + c]);
+        const scene_instance *si = &s.instances[i];
+        for (uint32_t t = 0; t < obj[MI_O_N_TRIANGLES]; t++) {
+            const uint32_t *tw = w + obj[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * t;
+            for (int r = 0; r < 3; r++)
+                for (int c = 0; c < 4; c++)
+                    tri.m[r][c] = f24d(tw[4 * r + c]);
+            const scene_mesh *m = &s.meshes[0];
+            for (int k = 0; k < 3; k++) { /* image triangle t is mesh triangle t (the degenerate one is last) */
+                const float *p = &m->positions[3 * m->indices[3 * t + (uint32_t)k]];
+                const double op[3] = { p[0], p[1], p[2] };
+                double wp[3], q[3], u[3];
+                affine_apply_point(&si->world, op, wp);
+                affine_apply_point(&w2o, wp, q);
+                affine_apply_point(&tri, q, u);
+                for (int j = 0; j < 3; j++)
+                    assert_float_equal(u[j], j == k && k < 2 ? 1.0 : 0.0, 1e-3);
+            }
+        }
+    }
+    mi_free(b);
+    scene_free(&s);
+}
+
+static void too_small_memory(void **state)
+{
+    (void)state;
+    scene s;
+    make_scene(&s, 20000, 0);
+    mi_params p;
+    mi_params_default(&p);
+    p.memory_bytes = 64 * 1024;
+    char err[256] = "";
+    assert_null(mi_build(&s, &p, err, sizeof err));
+    assert_non_null(strstr(err, "does not fit"));
+    assert_non_null(strstr(err, "INSTANCES"));
+    scene_free(&s);
+}
+
+static void frames_upload_only_what_changed(void **state)
+{
+    (void)state;
+    scene s;
+    make_scene(&s, 2, 1);
+    mi_builder *b = build(&s, 0);
+    uint32_t n0;
+    const uint32_t *w0 = mi_words(b, &n0);
+    const uint32_t static_off = w0[MI_H_REGION_TABLE + 2 * MI_R_STATIC_GEOMETRY];
+    const uint32_t static_len = w0[MI_H_REGION_TABLE + 2 * MI_R_STATIC_GEOMETRY + 1];
+    uint32_t *saved = malloc(static_len * sizeof *saved);
+    memcpy(saved, w0 + static_off, static_len * sizeof *saved);
+    const uint64_t full = mi_get_stats(b)->frame_upload_bytes;
+    assert_int_equal(full, (uint64_t)n0 * 4);
+
+    /* move an instance: per-frame regions only */
+    s.nodes[0].translation[1] = 5;
+    assert_int_equal(scene_evaluate(&s, 0, 0), 0);
+    char err[256];
+    assert_int_equal(mi_update(b, &s, err, sizeof err), 0);
+    uint32_t n1;
+    const uint32_t *w1 = mi_words(b, &n1);
+    assert_int_equal(mi_get_stats(b)->rebuilt_objects, 0);
+    assert_true(mi_get_stats(b)->frame_upload_bytes < full);
+    assert_memory_equal(w1 + static_off, saved, static_len * sizeof *saved);
+    assert_int_equal(w1[MI_H_FRAME], 1);
+    assert_int_equal(mi_validate(w1, n1, err, sizeof err), 0);
+
+    /* change the morph weight: the morphing object is rebuilt, the rigid one is not */
+    s.nodes[2].weights[0] = 0.5;
+    assert_int_equal(scene_evaluate(&s, 0, 0), 0);
+    assert_int_equal(mi_update(b, &s, err, sizeof err), 0);
+    const uint32_t *w2 = mi_words(b, &n1);
+    assert_int_equal(mi_get_stats(b)->rebuilt_objects, 1);
+    assert_memory_equal(w2 + static_off, saved, static_len * sizeof *saved);
+    const uint32_t *obj1 = w2 + w2[MI_H_REGION_TABLE + 2 * MI_R_OBJECTS] + MI_OBJECT_WORDS;
+    assert_true(obj1[MI_O_FLAGS] & MI_OBJECT_DYNAMIC);
+    assert_float_equal(f24d(obj1[MI_O_BOUNDS + 3]), 1.5, 1e-3); /* vertex 1 moved to x = 1.5 */
+    assert_int_equal(mi_validate(w2, n1, err, sizeof err), 0);
+    free(saved);
+    mi_free(b);
+    scene_free(&s);
+}
+
+/* ---- corruption ---------------------------------------------------------------------------- */
+
+/* Reads what a device would read, following every tree from its root: with a validated image,
+ * every access must be inside the image (AddressSanitizer watches the reads). */
+static uint64_t walk_tree(const uint32_t *w, uint32_t n, uint32_t nodes, uint32_t count, uint32_t lists)
+{
+    uint64_t sum = 0;
+    uint32_t stack[128], sp = 0;
+    stack[sp++] = 0;
+    while (sp) {
+        const uint32_t i = stack[--sp];
+        assert_true(i < count && nodes + 2 * i + 1 < n);
+        const uint32_t w0 = w[nodes + 2 * i], w1 = w[nodes + 2 * i + 1];
+        if ((w0 & 3) == MI_NODE_LEAF) {
+            for (uint32_t k = 0; k < (w0 >> 2); k++) {
+                assert_true(lists + w1 + k < n);
+                sum += w[lists + w1 + k];
+            }
+        } else if (sp + 2 <= 128) {
+            stack[sp++] = w0 >> 2;
+            stack[sp++] = (w0 >> 2) + 1;
+        }
+    }
+    return sum;
+}
+
+static void corruption(void **state)
+{
+    (void)state;
+    scene s;
+    make_scene(&s, 5, 1);
+    mi_builder *b = build(&s, 0);
+    uint32_t n;
+    const uint32_t *good = mi_words(b, &n);
+    uint32_t *w = malloc(n * sizeof *w);
+    char err[256];
+    uint32_t rejected = 0;
+    for (int trial = 0; trial < 20000; trial++) {
+        memcpy(w, good, n * sizeof *w);
+        const int flips = 1 + (int)(urand() * 3);
+        for (int f = 0; f < flips; f++) {
+            const uint32_t at = (uint32_t)(urand() * n);
+            w[at] = urand() < 0.5 ? w[at] ^ (1u << (int)(urand() * 32)) : (uint32_t)(urand() * 4294967295.0);
+        }
+        const uint32_t len = urand() < 0.05 ? (uint32_t)(urand() * n) : n; /* sometimes truncated */
+        if (mi_validate(w, len, err, sizeof err) != 0) {
+            rejected++;
+            assert_null(strchr(err, '\n'));
+            continue;
+        }
+        const uint32_t *objs = w + w[MI_H_REGION_TABLE + 2 * MI_R_OBJECTS];
+        for (uint32_t o = 0; o < w[MI_H_OBJECTS]; o++) {
+            const uint32_t *d = objs + MI_OBJECT_WORDS * o;
+            walk_tree(w, len, d[MI_O_NODES], d[MI_O_N_NODES], d[MI_O_LISTS]);
+        }
+        walk_tree(w, len, w[MI_H_REGION_TABLE + 2 * MI_R_TOP_NODES], w[MI_H_TOP_NODES],
+                  w[MI_H_REGION_TABLE + 2 * MI_R_TOP_LISTS]);
+    }
+    print_message("corruption: %u of 20000 corrupted images rejected, the rest walked safely\n", rejected);
+    assert_true(rejected > 1000);
+    free(w);
+    mi_free(b);
+    scene_free(&s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(transform_maps_vertices), cmocka_unit_test(degenerate_triangles),
+        cmocka_unit_test(layout_and_validate), cmocka_unit_test(instancing_end_to_end),
+        cmocka_unit_test(too_small_memory), cmocka_unit_test(frames_upload_only_what_changed),
+        cmocka_unit_test(corruption),
+    };
+    return cmocka_run_group_tests_name("memimage", tests, NULL, NULL);
+}

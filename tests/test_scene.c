@@ -1,0 +1,298 @@
+/*
+ * Tests of the glTF loader and the scene model (host/scene): counts of the shared real scenes
+ * (../shared/scenes, skipped with a message when absent), instancing, animation evaluation, and
+ * malformed files (truncated, wrong accessor types, out-of-range indices, NaN positions, broken
+ * hierarchies), which must give a one-line error and an empty scene, never a crash.
+ */
+#define _GNU_SOURCE
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "scene.h"
+
+#ifndef SAARCOR_SRC_DIR
+#define SAARCOR_SRC_DIR "."
+#endif
+#define SHARED SAARCOR_SRC_DIR "/../shared/scenes/"
+
+static char dir[64];
+
+static int have_shared(void)
+{
+    if (access(SHARED "SOURCES.md", R_OK) == 0)
+        return 1;
+    print_message("../shared/scenes is absent: shared-scene tests skipped\n");
+    return 0;
+}
+
+static uint64_t instanced_triangles(const scene *s)
+{
+    uint64_t n = 0;
+    for (uint32_t i = 0; i < s->n_instances; i++)
+        n += s->meshes[s->instances[i].mesh].n_triangles;
+    return n;
+}
+
+static uint64_t unique_triangles(const scene *s)
+{
+    uint64_t n = 0;
+    for (uint32_t i = 0; i < s->n_meshes; i++)
+        n += s->meshes[i].n_triangles;
+    return n;
+}
+
+/* Triangle counts from ../shared/scenes/SOURCES.md. */
+static void shared_scene_counts(void **state)
+{
+    (void)state;
+    if (!have_shared())
+        skip();
+    const struct { const char *file; uint64_t tris, scene_tris; uint32_t textures_min; } expect[] = {
+        { "Box.glb", 12, 12, 0 }, { "BoxTextured.glb", 12, 12, 1 }, { "BoxAnimated.glb", 254, 254, 0 },
+        { "CesiumMilkTruck.glb", 2856, 3624, 1 }, { "Fox.glb", 576, 576, 1 }, { "Avocado/Avocado.gltf", 682, 682, 1 },
+        { "cornell_box.glb", 32, 32, 0 }, { "teapot.glb", 9128, 9128, 0 }, { "primitives.glb", 3636, 3636, 0 },
+        { "subpass_scene_opaque.glb", 11132, 23388, 0 }, { "bunny.glb", 69451, 69451, 0 },
+        { "bunny_instanced16.glb", 69451, 1111216, 0 }, { "gallery_ccby_503k.glb", 503770, 503770, 0 },
+    };
+    for (size_t i = 0; i < sizeof expect / sizeof expect[0]; i++) {
+        char path[512], err[512];
+        scene s;
+        snprintf(path, sizeof path, SHARED "%s", expect[i].file);
+        if (scene_load_gltf(path, &s, err, sizeof err) != 0)
+            fail_msg("%s", err);
+        if (unique_triangles(&s) != expect[i].tris || instanced_triangles(&s) != expect[i].scene_tris)
+            fail_msg("%s: %llu/%llu triangles, expected %llu/%llu", expect[i].file,
+                     (unsigned long long)unique_triangles(&s), (unsigned long long)instanced_triangles(&s),
+                     (unsigned long long)expect[i].tris, (unsigned long long)expect[i].scene_tris);
+        assert_true(s.n_textures >= expect[i].textures_min);
+        for (uint32_t m = 0; m < s.n_meshes; m++)
+            for (uint32_t k = 0; k < 3 * s.meshes[m].n_triangles; k++)
+                assert_true(s.meshes[m].indices[k] < s.meshes[m].n_vertices);
+        scene_free(&s);
+    }
+}
+
+/* The wheel mesh of the milk truck is stored once and drawn twice; the truck and the bunny field
+ * place copies by their node transformations. */
+static void instancing(void **state)
+{
+    (void)state;
+    if (!have_shared())
+        skip();
+    scene s;
+    char err[512];
+    assert_int_equal(scene_load_gltf(SHARED "bunny_instanced16.glb", &s, err, sizeof err), 0);
+    assert_int_equal(s.n_meshes, 1);
+    assert_int_equal(s.n_instances, 16);
+    /* instance k's world-space vertex = its world transformation applied to the object vertex */
+    const scene_mesh *m = &s.meshes[0];
+    double first[3] = { 0 };
+    for (uint32_t k = 0; k < s.n_instances; k++) {
+        const double p[3] = { m->positions[0], m->positions[1], m->positions[2] };
+        double q[3];
+        affine_apply_point(&s.instances[k].world, p, q);
+        if (k == 0)
+            memcpy(first, q, sizeof q);
+        else
+            assert_true(fabs(q[0] - first[0]) + fabs(q[1] - first[1]) + fabs(q[2] - first[2]) > 1e-6);
+    }
+    scene_free(&s);
+    assert_int_equal(scene_load_gltf(SHARED "CesiumMilkTruck.glb", &s, err, sizeof err), 0);
+    uint32_t uses[8] = { 0 };
+    for (uint32_t k = 0; k < s.n_instances; k++)
+        uses[s.instances[k].mesh]++;
+    assert_int_equal(s.n_meshes, 2);
+    assert_true(uses[0] == 2 || uses[1] == 2);
+    scene_free(&s);
+}
+
+static void animation(void **state)
+{
+    (void)state;
+    if (!have_shared())
+        skip();
+    scene s;
+    char err[512];
+    assert_int_equal(scene_load_gltf(SHARED "BoxAnimated.glb", &s, err, sizeof err), 0);
+    assert_true(s.n_animations >= 1 && s.animations[0].duration > 0);
+    affine a0[8], a1[8];
+    assert_true(s.n_instances <= 8);
+    for (uint32_t i = 0; i < s.n_instances; i++)
+        a0[i] = s.instances[i].world;
+    assert_int_equal(scene_evaluate(&s, 0.3 * s.animations[0].duration, 1), 0);
+    double moved = 0;
+    for (uint32_t i = 0; i < s.n_instances; i++) {
+        a1[i] = s.instances[i].world;
+        for (int r = 0; r < 3; r++)
+            for (int c = 0; c < 4; c++)
+                moved += fabs(a1[i].m[r][c] - a0[i].m[r][c]);
+    }
+    assert_true(moved > 1e-3);
+    /* looping: t and t + duration give the same pose */
+    assert_int_equal(scene_evaluate(&s, 1.3 * s.animations[0].duration, 1), 0);
+    for (uint32_t i = 0; i < s.n_instances; i++)
+        for (int r = 0; r < 3; r++)
+            for (int c = 0; c < 4; c++)
+                assert_float_equal(s.instances[i].world.m[r][c], a1[i].m[r][c], 1e-5);
+    scene_free(&s);
+}
+
+static void affine_algebra(void **state)
+{
+    (void)state;
+    const double t[3] = { 1, -2, 3 }, q[4] = { 0.1825742, 0.3651484, 0.5477226, 0.7302967 }, sc[3] = { 2, 0.5, 3 };
+    const affine a = affine_from_trs(t, q, sc);
+    affine inv, id;
+    assert_int_equal(affine_invert(&a, &inv), 1);
+    id = affine_mul(&a, &inv);
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 4; c++)
+            assert_float_equal(id.m[r][c], r == c ? 1.0 : 0.0, 1e-12);
+    affine sing = affine_identity();
+    sing.m[1][1] = 0;
+    assert_int_equal(affine_invert(&sing, &inv), 0);
+}
+
+/* ---- malformed files --------------------------------------------------------------------- */
+
+static void base64(const unsigned char *in, size_t n, char *out)
+{
+    static const char tab[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    size_t o = 0;
+    for (size_t i = 0; i < n; i += 3) {
+        const uint32_t v = (uint32_t)in[i] << 16 | (i + 1 < n ? (uint32_t)in[i + 1] << 8 : 0) | (i + 2 < n ? in[i + 2] : 0);
+        out[o++] = tab[v >> 18 & 63];
+        out[o++] = tab[v >> 12 & 63];
+        out[o++] = i + 1 < n ? tab[v >> 6 & 63] : '=';
+        out[o++] = i + 2 < n ? tab[v & 63] : '=';
+    }
+    out[o] = '\0';
+}
+
+/* One triangle: 3 float positions then 3 uint16 indices; the caller may break any part. */
+static const char *write_gltf(const char *name, const float pos[9], const uint16_t idx[3], const char *pos_type,
+                              const char *extra_nodes)
+{
+    unsigned char buf[44] = { 0 };
+    memcpy(buf, pos, 36);
+    memcpy(buf + 36, idx, 6);
+    char b64[80];
+    base64(buf, 42, b64);
+    static char path[128];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "w");
+    fprintf(f,
+            "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],"
+            "\"nodes\":[{\"mesh\":0%s}],"
+            "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}],"
+            "\"buffers\":[{\"byteLength\":42,\"uri\":\"data:application/octet-stream;base64,%s\"}],"
+            "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":36},{\"buffer\":0,\"byteOffset\":36,\"byteLength\":6}],"
+            "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"%s\",\"max\":[1,1,0],\"min\":[0,0,0]},"
+            "{\"bufferView\":1,\"componentType\":5123,\"count\":3,\"type\":\"SCALAR\"}]}",
+            extra_nodes, b64, pos_type);
+    fclose(f);
+    return path;
+}
+
+static void expect_load_error(const char *path, const char *needle)
+{
+    scene s;
+    char err[512] = "";
+    if (scene_load_gltf(path, &s, err, sizeof err) == 0)
+        fail_msg("%s loaded, expected an error mentioning '%s'", path, needle);
+    assert_null(strchr(err, '\n'));
+    if (!strstr(err, needle))
+        fail_msg("error '%s' does not mention '%s'", err, needle);
+    assert_int_equal(s.n_meshes, 0);
+    assert_null(s.meshes);
+}
+
+static void malformed_files(void **state)
+{
+    (void)state;
+    const float ok_pos[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 };
+    const uint16_t ok_idx[3] = { 0, 1, 2 }, bad_idx[3] = { 0, 1, 7 };
+    float nan_pos[9];
+    memcpy(nan_pos, ok_pos, sizeof nan_pos);
+    nan_pos[4] = NAN;
+
+    scene s;
+    char err[512];
+    assert_int_equal(scene_load_gltf(write_gltf("ok.gltf", ok_pos, ok_idx, "VEC3", ""), &s, err, sizeof err), 0);
+    assert_int_equal(s.n_meshes, 1);
+    assert_int_equal(s.meshes[0].n_triangles, 1);
+    scene_free(&s);
+
+    expect_load_error(write_gltf("badidx.gltf", ok_pos, bad_idx, "VEC3", ""), "out of range");
+    expect_load_error(write_gltf("nan.gltf", nan_pos, ok_idx, "VEC3", ""), "non-finite");
+    expect_load_error(write_gltf("type.gltf", ok_pos, ok_idx, "VEC4", ""), "accessor");
+    expect_load_error(write_gltf("cycle.gltf", ok_pos, ok_idx, "VEC3", ",\"children\":[0]"), "parent");
+    expect_load_error(write_gltf("badmesh.gltf", ok_pos, ok_idx, "VEC3", "},{\"mesh\":5"), "mesh");
+    char path[128];
+    snprintf(path, sizeof path, "%s/missing.glb", dir);
+    expect_load_error(path, "missing.glb");
+    snprintf(path, sizeof path, "%s/garbage.gltf", dir);
+    FILE *f = fopen(path, "w");
+    fputs("{\"asset\": {\"version\": \"2.0\"}, \"nodes\": [", f);
+    fclose(f);
+    expect_load_error(path, "garbage.gltf");
+}
+
+/* Every truncation of a valid .glb is refused cleanly (or, if it happens to still parse, loads). */
+static void truncated_glb(void **state)
+{
+    (void)state;
+    if (!have_shared())
+        skip();
+    FILE *f = fopen(SHARED "Box.glb", "rb");
+    assert_non_null(f);
+    unsigned char data[4096];
+    const size_t n = fread(data, 1, sizeof data, f);
+    fclose(f);
+    char path[128];
+    snprintf(path, sizeof path, "%s/cut.glb", dir);
+    for (size_t cut = 0; cut < n; cut += 7) {
+        f = fopen(path, "wb");
+        fwrite(data, 1, cut, f);
+        fclose(f);
+        scene s;
+        char err[512];
+        if (scene_load_gltf(path, &s, err, sizeof err) == 0)
+            scene_free(&s);
+        else
+            assert_null(strchr(err, '\n'));
+    }
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    snprintf(dir, sizeof dir, "/tmp/saarcor-test-scene-XXXXXX");
+    return mkdtemp(dir) ? 0 : -1;
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    return system(cmd) == 0 ? 0 : -1;
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(shared_scene_counts), cmocka_unit_test(instancing), cmocka_unit_test(animation),
+        cmocka_unit_test(affine_algebra), cmocka_unit_test(malformed_files), cmocka_unit_test(truncated_glb),
+    };
+    return cmocka_run_group_tests_name("scene", tests, setup, teardown);
+}
