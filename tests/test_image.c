@@ -10,6 +10,8 @@
 #include <stdint.h>
 
 #include <cmocka.h>
+
+#include "test_tmpdir.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,14 +22,13 @@
 
 enum { W = 16, H = 8, C = 3 };
 
-static char dir[64];
 
 static const char *tmp(const char *name)
 {
     static char path[4][128];
     static int k;
     k = (k + 1) % 4;
-    snprintf(path[k], sizeof path[k], "%s/%s", dir, name);
+    snprintf(path[k], sizeof path[k], "%s/%s", test_dir, name);
     return path[k];
 }
 
@@ -183,20 +184,7 @@ static void errors_are_reported(void **state)
     img_free(&small);
 }
 
-static int setup(void **state)
-{
-    (void)state;
-    snprintf(dir, sizeof dir, "/tmp/saarcor-test-image-XXXXXX");
-    return mkdtemp(dir) ? 0 : -1;
-}
 
-static int teardown(void **state)
-{
-    (void)state;
-    char cmd[128];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    return system(cmd) == 0 ? 0 : -1;
-}
 
 int main(void)
 {
@@ -206,5 +194,5 @@ int main(void)
         cmocka_unit_test(agrees_with_idiff),
         cmocka_unit_test(errors_are_reported),
     };
-    return cmocka_run_group_tests_name("image", tests, setup, teardown);
+    return cmocka_run_group_tests_name("image", tests, test_tmpdir_setup, test_tmpdir_teardown);
 }

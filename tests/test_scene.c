@@ -11,6 +11,8 @@
 #include <stdint.h>
 
 #include <cmocka.h>
+
+#include "test_tmpdir.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -24,7 +26,6 @@
 #endif
 #define SHARED SAARCOR_SRC_DIR "/../shared/scenes/"
 
-static char dir[64];
 
 static int have_shared(void)
 {
@@ -188,7 +189,7 @@ static const char *write_gltf(const char *name, const float pos[9], const uint16
     char b64[80];
     base64(buf, 42, b64);
     static char path[128];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
+    snprintf(path, sizeof path, "%s/%s", test_dir, name);
     FILE *f = fopen(path, "w");
     fprintf(f,
             "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],"
@@ -238,9 +239,9 @@ static void malformed_files(void **state)
     expect_load_error(write_gltf("cycle.gltf", ok_pos, ok_idx, "VEC3", ",\"children\":[0]"), "parent");
     expect_load_error(write_gltf("badmesh.gltf", ok_pos, ok_idx, "VEC3", "},{\"mesh\":5"), "mesh");
     char path[128];
-    snprintf(path, sizeof path, "%s/missing.glb", dir);
+    snprintf(path, sizeof path, "%s/missing.glb", test_dir);
     expect_load_error(path, "missing.glb");
-    snprintf(path, sizeof path, "%s/garbage.gltf", dir);
+    snprintf(path, sizeof path, "%s/garbage.gltf", test_dir);
     FILE *f = fopen(path, "w");
     fputs("{\"asset\": {\"version\": \"2.0\"}, \"nodes\": [", f);
     fclose(f);
@@ -259,7 +260,7 @@ static void truncated_glb(void **state)
     const size_t n = fread(data, 1, sizeof data, f);
     fclose(f);
     char path[128];
-    snprintf(path, sizeof path, "%s/cut.glb", dir);
+    snprintf(path, sizeof path, "%s/cut.glb", test_dir);
     for (size_t cut = 0; cut < n; cut += 7) {
         f = fopen(path, "wb");
         fwrite(data, 1, cut, f);
@@ -273,20 +274,7 @@ static void truncated_glb(void **state)
     }
 }
 
-static int setup(void **state)
-{
-    (void)state;
-    snprintf(dir, sizeof dir, "/tmp/saarcor-test-scene-XXXXXX");
-    return mkdtemp(dir) ? 0 : -1;
-}
 
-static int teardown(void **state)
-{
-    (void)state;
-    char cmd[128];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    return system(cmd) == 0 ? 0 : -1;
-}
 
 int main(void)
 {
@@ -294,5 +282,5 @@ int main(void)
         cmocka_unit_test(shared_scene_counts), cmocka_unit_test(instancing), cmocka_unit_test(animation),
         cmocka_unit_test(affine_algebra), cmocka_unit_test(malformed_files), cmocka_unit_test(truncated_glb),
     };
-    return cmocka_run_group_tests_name("scene", tests, setup, teardown);
+    return cmocka_run_group_tests_name("scene", tests, test_tmpdir_setup, test_tmpdir_teardown);
 }

@@ -12,6 +12,8 @@
 #include <stdint.h>
 
 #include <cmocka.h>
+
+#include "test_tmpdir.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -21,14 +23,13 @@
 #include "scene.h"
 #include "scenes.h"
 
-static char dir[64];
 
 static const char *tmp(const char *name)
 {
     static char path[4][256];
     static int k;
     k = (k + 1) % 4;
-    snprintf(path[k], sizeof path[k], "%s/%s", dir, name);
+    snprintf(path[k], sizeof path[k], "%s/%s", test_dir, name);
     return path[k];
 }
 
@@ -671,20 +672,7 @@ static void writer_errors(void **state)
     assert_null(scene_generator_find("no-such-scene"));
 }
 
-static int setup(void **state)
-{
-    (void)state;
-    snprintf(dir, sizeof dir, "/tmp/saarcor-test-scenes-XXXXXX");
-    return mkdtemp(dir) ? 0 : -1;
-}
 
-static int teardown(void **state)
-{
-    (void)state;
-    char cmd[128];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    return system(cmd) == 0 ? 0 : -1;
-}
 
 int main(void)
 {
@@ -697,5 +685,5 @@ int main(void)
         cmocka_unit_test(round_trip_animated), cmocka_unit_test(animation_moves_and_morphs),
         cmocka_unit_test(writer_errors),
     };
-    return cmocka_run_group_tests_name("scenes", tests, setup, teardown);
+    return cmocka_run_group_tests_name("scenes", tests, test_tmpdir_setup, test_tmpdir_teardown);
 }

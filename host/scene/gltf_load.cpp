@@ -2,6 +2,7 @@
 // Every accessor read is bounds-checked; malformed files give one-line errors, unsupported
 // features (skins, Draco, meshopt, KTX2, points and lines) one-line warnings, never a crash.
 #include "scene.h"
+#include "gltf_util.h"
 
 #include <tiny_gltf.h>
 
@@ -15,17 +16,14 @@
 
 namespace {
 
+using gltf_util::ends_with;
+using gltf_util::first_line;
+using gltf_util::set_error;
+
 struct load_error : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-std::string first_line(const std::string &s)
-{
-    std::string l = s.substr(0, s.find('\n'));
-    while (!l.empty() && (l.back() == '\r' || l.back() == ' '))
-        l.pop_back();
-    return l;
-}
 
 template <typename T> T *alloc_array(size_t n)
 {
@@ -626,22 +624,7 @@ class Loader {
     }
 };
 
-bool ends_with(const std::string &s, const char *suffix)
-{
-    const size_t n = std::strlen(suffix);
-    if (s.size() < n)
-        return false;
-    for (size_t i = 0; i < n; i++)
-        if (std::tolower((unsigned char)s[s.size() - n + i]) != suffix[i])
-            return false;
-    return true;
-}
 
-void set_error(char *err, size_t errlen, const std::string &msg)
-{
-    if (err && errlen)
-        std::snprintf(err, errlen, "%s", first_line(msg).c_str());
-}
 
 } // namespace
 

@@ -7,6 +7,7 @@
 // default) is written as "no material". Textures are PNG images (encoded by tinygltf's stb image
 // writer) in the buffer. No C++ exception crosses into C: errors are one line in err.
 #include "scene.h"
+#include "gltf_util.h"
 
 #include <tiny_gltf.h>
 
@@ -20,6 +21,10 @@
 #include <vector>
 
 namespace {
+
+using gltf_util::ends_with;
+using gltf_util::first_line;
+using gltf_util::set_error;
 
 struct write_error : std::runtime_error {
     using std::runtime_error::runtime_error;
@@ -501,24 +506,7 @@ class Writer {
     }
 };
 
-bool ends_with(const std::string &s, const char *suffix)
-{
-    const size_t n = std::strlen(suffix);
-    if (s.size() < n)
-        return false;
-    for (size_t i = 0; i < n; i++)
-        if (std::tolower((unsigned char)s[s.size() - n + i]) != suffix[i])
-            return false;
-    return true;
-}
 
-void set_error(char *err, size_t errlen, const std::string &msg)
-{
-    if (err && errlen) {
-        std::string l = msg.substr(0, msg.find('\n'));
-        std::snprintf(err, errlen, "%s", l.c_str());
-    }
-}
 
 } // namespace
 
