@@ -18,7 +18,8 @@
  *
  * SAH quality is compared against an object-median baseline built here with the same node
  * layout; kd_sah_cost is checked against hand-computed values, kd_clip_triangle against
- * hand-computed polygons.
+ * hand-computed polygons. Large binned builds, which use threads, must repeat bit for bit and
+ * equal the single-threaded build.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -209,7 +210,8 @@ typedef struct {
     kd_stats st;  /* recounted */
 } checker;
 
-static void check_leaf(checker *c, const kd_node *n, const aabb *box)
+/* near: the primitives whose bounds overlap box (closed); the others do not touch the leaf. */
+static void check_leaf(checker *c, const kd_node *n, const aabb *box, const uint32_t *near, uint32_t n_near)
 {
     const kd_source *src = c->src;
     assert_true((uint64_t)n->first + n->count <= c->t->n_prims);
@@ -218,8 +220,12 @@ static void check_leaf(checker *c, const kd_node *n, const aabb *box)
         assert_true(id < src->count);
         assert_int_equal(c->member[id], 0); /* listed once */
         c->member[id] = 1;
+        aabb part;
+        if (!box_overlap(&c->bounds[id], box, &part))
+            fail_msg("leaf lists primitive %u, which does not touch the leaf", id);
     }
-    for (uint32_t i = 0; i < src->count; i++) {
+    for (uint32_t k = 0; k < n_near; k++) {
+        const uint32_t i = near[k];
         aabb part;
         const int touches = box_overlap(&c->bounds[i], box, &part) && part_of(src, i, box, &part);
         if (touches && reaches_interior(&part, box) && !c->member[i])
@@ -236,7 +242,20 @@ static void check_leaf(checker *c, const kd_node *n, const aabb *box)
         c->st.max_leaf_count = n->count;
 }
 
-static void check_node(checker *c, uint32_t index, const aabb *box, uint32_t depth)
+/* The primitives of near[0..n) whose bounds overlap box, into out. */
+static uint32_t near_box(const checker *c, const uint32_t *near, uint32_t n, const aabb *box, uint32_t *out)
+{
+    uint32_t k = 0;
+    for (uint32_t e = 0; e < n; e++) {
+        aabb part;
+        if (box_overlap(&c->bounds[near[e]], box, &part))
+            out[k++] = near[e];
+    }
+    return k;
+}
+
+/* near: the primitives whose bounds overlap box (a leaf needs to look at no others). */
+static void check_node(checker *c, uint32_t index, const aabb *box, uint32_t depth, const uint32_t *near, uint32_t n_near)
 {
     assert_true(index < c->t->n_nodes);
     assert_int_equal(c->visited[index], 0);
@@ -247,7 +266,7 @@ static void check_node(checker *c, uint32_t index, const aabb *box, uint32_t dep
     const double root = half_area_of(&c->t->bounds); /* the recount covers roots with area only */
     const double weight = root > 0 ? half_area_of(box) / root : 0;
     if (n->axis == KD_LEAF) {
-        check_leaf(c, n, box);
+        check_leaf(c, n, box, near, n_near);
         c->st.sah_cost += c->p->cost_intersection * n->count * weight;
         return;
     }
@@ -260,8 +279,11 @@ static void check_node(checker *c, uint32_t index, const aabb *box, uint32_t dep
         assert_true(c->p->quantize(n->split) == n->split);
     aabb lb = *box, rb = *box;
     lb.hi[n->axis] = rb.lo[n->axis] = n->split;
-    check_node(c, n->child, &lb, depth + 1);
-    check_node(c, n->child + 1, &rb, depth + 1);
+    uint32_t *sub = malloc((n_near + 1u) * sizeof *sub);
+    assert_non_null(sub);
+    check_node(c, n->child, &lb, depth + 1, sub, near_box(c, near, n_near, &lb, sub));
+    check_node(c, n->child + 1, &rb, depth + 1, sub, near_box(c, near, n_near, &rb, sub));
+    free(sub);
 }
 
 /* All invariants of the file comment; stats only for trees from kd_build. */
@@ -285,7 +307,12 @@ static void check_tree_opt(const kd_source *src, const kd_params *p, const kd_tr
         assert_true(t->bounds.lo[k] == u.lo[k]);
         assert_true(t->bounds.hi[k] == u.hi[k]);
     }
-    check_node(&c, 0, &t->bounds, 0);
+    uint32_t *near = malloc((src->count + 1u) * sizeof *near);
+    assert_non_null(near);
+    for (uint32_t i = 0; i < src->count; i++)
+        near[i] = i;
+    check_node(&c, 0, &t->bounds, 0, near, near_box(&c, near, src->count, &t->bounds, near));
+    free(near);
     for (uint32_t i = 0; i < t->n_nodes; i++)
         assert_int_equal(c.visited[i], 1); /* every node reached */
     assert_true(c.st.depth <= expected_max_depth(src, p));
@@ -816,6 +843,83 @@ static void thin_roots(void **state)
     free(bs.b);
 }
 
+/* ---- tests: parallel build -------------------------------------------------------------------- */
+
+/* Boxes like the instances of a top level: centres uniform in [0, 100]^3, half-sizes 0.2 .. 1.7. */
+static box_set instance_boxes(uint32_t n, uint64_t s)
+{
+    seed(s);
+    box_set r = { calloc(n + 1u, sizeof(aabb)), n };
+    assert_non_null(r.b);
+    for (uint32_t i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) {
+            const double c = 100 * urand(), e = 0.2 + 1.5 * urand();
+            r.b[i].lo[k] = c - e;
+            r.b[i].hi[k] = c + e;
+        }
+    return r;
+}
+
+static double to_float(double x) { return (double)(float)x; }
+
+/* Box intersection, what the builder does without a clip function (with the same min/max, so
+ * that even the signs of zeros agree); a source with a clip function is built in one thread. */
+static int box_clip(const void *user, uint32_t i, const aabb *box, aabb *out)
+{
+    const aabb b = box_bounds(user, i);
+    for (int k = 0; k < 3; k++) {
+        out->lo[k] = b.lo[k] > box->lo[k] ? b.lo[k] : box->lo[k];
+        out->hi[k] = b.hi[k] < box->hi[k] ? b.hi[k] : box->hi[k];
+        if (out->lo[k] > out->hi[k])
+            return 0;
+    }
+    return 1;
+}
+
+static void assert_same_tree(const kd_tree *a, const kd_tree *b)
+{
+    assert_int_equal(a->n_nodes, b->n_nodes);
+    assert_int_equal(a->n_prims, b->n_prims);
+    assert_memory_equal(a->nodes, b->nodes, a->n_nodes * sizeof *a->nodes);
+    assert_memory_equal(a->prims, b->prims, a->n_prims * sizeof *a->prims);
+    assert_memory_equal(&a->bounds, &b->bounds, sizeof a->bounds);
+    assert_int_equal(a->stats.n_leaves, b->stats.n_leaves);
+    assert_int_equal(a->stats.n_empty_leaves, b->stats.n_empty_leaves);
+    assert_int_equal(a->stats.depth, b->stats.depth);
+    assert_true(a->stats.references == b->stats.references);
+    assert_int_equal(a->stats.max_leaf_count, b->stats.max_leaf_count);
+    assert_memory_equal(&a->stats.sah_cost, &b->stats.sah_cost, sizeof(double)); /* to the bit */
+}
+
+/* A large binned build without a clip function runs on several threads (given several cores),
+ * which build subtrees concurrently and merge them. The tree must not depend on their timing:
+ * repeated builds are bit-identical, and identical to the single-threaded build. */
+static void parallel_deterministic(void **state)
+{
+    (void)state;
+    box_set inst = instance_boxes(20000, 71), mixed = random_boxes(5000, 72); /* mixed: 10% points */
+    const box_set *sets[] = { &inst, &mixed };
+    double (*quant[])(double) = { to_float, grid8 };
+    for (int i = 0; i < 2; i++) {
+        const kd_source src = box_source(sets[i]), serial = { sets[i]->n, sets[i], box_bounds, box_clip };
+        const kd_params p = params(32, quant[i]);
+        kd_tree first, t;
+        assert_int_equal(kd_build(&src, &p, &first), 0);
+        check_tree(&src, &p, &first);
+        for (int rep = 0; rep < 4; rep++) {
+            assert_int_equal(kd_build(&src, &p, &t), 0);
+            assert_same_tree(&first, &t);
+            kd_free(&t);
+        }
+        assert_int_equal(kd_build(&serial, &p, &t), 0);
+        assert_same_tree(&first, &t);
+        kd_free(&t);
+        kd_free(&first);
+    }
+    free(inst.b);
+    free(mixed.b);
+}
+
 /* ---- tests: parameters ---------------------------------------------------------------------- */
 
 static void parameters(void **state)
@@ -1110,6 +1214,7 @@ int main(void)
         cmocka_unit_test(planar_in_candidate_planes),
         cmocka_unit_test(zero_area_triangles),
         cmocka_unit_test(thin_roots),
+        cmocka_unit_test(parallel_deterministic),
         cmocka_unit_test(parameters),
         cmocka_unit_test(defaults),
         cmocka_unit_test(too_many_primitives),

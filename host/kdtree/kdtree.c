@@ -31,14 +31,30 @@
  * are skipped; primitives are then classified against the snapped plane, so the tree is exact
  * for the planes it stores. quantize should be monotone (any rounding is); exact mode skips a
  * snapped candidate that would move the sweep backwards.
+ *
+ * Threads: binned mode without a clip function (the top level) builds sources of at least
+ * PAR_MIN_COUNT primitives on all CPUs (at most PAR_MAX_THREADS): subtrees are built concurrently
+ * into separate arrays, which are then merged in a fixed order into exactly the layout of the
+ * single-threaded build, so the tree is the same bit for bit, whatever the thread timing. After
+ * the root, such a build calls only quantize, from several threads at a time: it must be a pure
+ * function (thread-safe). If no thread can be started, the calling thread builds alone. Exact mode
+ * (which calls clip) and binned mode with a clip function stay single-threaded.
+ *
+ * Statistics are gathered while building; the SAH cost sums every subtree as its node's term plus
+ * (left sum + right sum), so that subtrees built in different threads give the same bits as
+ * kd_sah_cost, which sums the same way.
  */
-#define _POSIX_C_SOURCE 200809L /* clock_gettime */
+#define _GNU_SOURCE /* clock_gettime, sched_getaffinity */
 #include "kdtree.h"
 
 #include <math.h>
+#include <pthread.h>
+#include <sched.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 /* Event types; the numeric order is the tie-break of events at the same position. */
 enum { EV_END, EV_PLANAR, EV_START, EV_TYPES };
@@ -53,6 +69,15 @@ typedef struct {
 /* Binned mode: nodes of at most this many primitives, and fewer bounds than bin planes, are
  * split with exact SAH counted directly (O(n^2), cheaper than the bins there). */
 enum { SMALL_NODE = 16 };
+
+/* Parallel build (see offload): sources with fewer primitives are built single-threaded (thread
+ * start-up costs ~20-50 us); only subtrees over at least PAR_GRAIN primitives are handed to
+ * another thread; nodes over at least PAR_SPLIT_MIN primitives are counted and split by all
+ * threads waiting for work, in PAR_PARTS parts; at most PAR_MAX_THREADS threads (the caller
+ * included) and PAR_MAX_TASKS tasks per build. */
+enum { PAR_MIN_COUNT = 512, PAR_GRAIN = 64, PAR_SPLIT_MIN = 2048, PAR_PARTS = 8 };
+enum { PAR_MAX_THREADS = 8, PAR_MAX_TASKS = 4096 };
+_Static_assert((int)PAR_SPLIT_MIN > (int)SMALL_NODE, "nodes split in parts are binned");
 
 typedef struct {
     uint32_t id;
@@ -74,6 +99,48 @@ typedef struct {
     int planar_left; /* primitives lying in the plane go to the left child */
 } split;
 
+/* Node weights relative to the root: surface area, or length for a segment root, or 1 for a
+ * point (or empty) root, which cannot be split anyway. */
+typedef enum { MEASURE_AREA, MEASURE_LENGTH, MEASURE_UNIT } measure_kind;
+
+static double half_area(const aabb *b)
+{
+    const double x = b->hi[0] - b->lo[0], y = b->hi[1] - b->lo[1], z = b->hi[2] - b->lo[2];
+    return x * y + y * z + z * x;
+}
+
+static double length(const aabb *b) { return (b->hi[0] - b->lo[0]) + (b->hi[1] - b->lo[1]) + (b->hi[2] - b->lo[2]); }
+
+static double measure(measure_kind m, const aabb *b)
+{
+    return m == MEASURE_AREA ? half_area(b) : m == MEASURE_LENGTH ? length(b) : 1.0;
+}
+
+/* The SAH sum of a subtree: C_t * weight of each inner node, C_i * count * weight of each leaf,
+ * summed as own term + (left sum + right sum) at every node, so that subtrees built apart add up
+ * to the same bits (tree_stats sums the same way). pending: a hole lies below, see pending_sum. */
+typedef struct {
+    double sum;
+    int pending;
+} subtree_sum;
+
+/* A node's SAH sum (its term plus its children's sums) that waits for the sums of holes below. */
+typedef struct {
+    double own, sum[2]; /* sum[c]: of child c, unless pending[c] */
+    uint8_t pending[2];
+} pending_sum;
+
+/* Parallel build: a subtree handed to another thread, and the place in the handing builder's
+ * output where the single-threaded build would have put it (see layout()). */
+typedef struct {
+    uint32_t node;             /* the subtree's root in the handing builder's nodes */
+    uint32_t task;             /* the task building it */
+    uint32_t at_node, at_prim; /* n_nodes and n_prims of the handing builder when the subtree was due */
+    uint32_t node_off, prim_off; /* layout(): output index - local index after this hole */
+} hole;
+
+typedef struct pool pool;
+
 typedef struct {
     const kd_source *src;
     kd_params p;
@@ -85,6 +152,14 @@ typedef struct {
     uint8_t *side;    /* exact mode: SIDE_* of each primitive of the node being split */
     double *cand;     /* binned mode: candidate planes of one axis */
     uint32_t *counts; /* binned mode: 3 x (bins + 1) counters */
+    measure_kind kind;   /* of SAH weights: measure(kind, node box) / root_measure */
+    double root_measure;
+    kd_stats st;         /* of the nodes built here: counts, depth (sah_cost: see build_node) */
+    pending_sum *pend;   /* parallel build: inner nodes with holes below (count - 1 indexes) */
+    uint32_t n_pend, cap_pend;
+    pool *pool;       /* parallel build (binned mode): where to hand subtrees; NULL: single-threaded */
+    hole *holes;      /* subtrees handed away, in the order they were due */
+    uint32_t n_holes, cap_holes, holes_owed; /* owed: handed away, not yet due (room reserved) */
 } builder;
 
 /* ---- boxes and cost ------------------------------------------------------------------------ */
@@ -160,6 +235,35 @@ static void consider(const axis_terms *t, double q, uint32_t nl, uint32_t np, ui
         *best = (split){ c, t->axis, q, left <= right };
 }
 
+/* consider() for the candidates q[0..m) in order, m <= CHUNK, with counts nl, np, nr: the same
+ * arithmetic, but the costs of all candidates first, without branches (an empty side scales the
+ * cost by 1 - empty_bonus, a non-empty one by 1, which is exact), so that they pipeline. */
+enum { CHUNK = 32 };
+static void consider_chunk(const axis_terms *t, const double *q, const uint32_t *nl, const uint32_t *np,
+                           const uint32_t *nr, uint32_t m, split *best)
+{
+    double cost[CHUNK];
+    for (uint32_t j = 0; j < m; j++) {
+        const double pl = (t->base + (q[j] - t->lo) * t->slope) * t->inv;
+        const double pr = (t->base + (t->hi - q[j]) * t->slope) * t->inv;
+        const uint32_t l = nl[j] + np[j];
+        cost[j] = (t->ct + t->ci * (pl * l + pr * nr[j])) * (l == 0 || nr[j] == 0 ? t->empty : 1.0);
+    }
+    for (uint32_t j = 0; j < m; j++) {
+        double c = cost[j];
+        int planar_left = 1;
+        if (np[j]) { /* rare: primitives in the plane, try them on the right too */
+            const double pl = (t->base + (q[j] - t->lo) * t->slope) * t->inv;
+            const double pr = (t->base + (t->hi - q[j]) * t->slope) * t->inv;
+            const double right = split_cost(t, pl, pr, nl[j], nr[j] + np[j]);
+            planar_left = c <= right;
+            c = planar_left ? c : right;
+        }
+        if (c < best->cost)
+            *best = (split){ c, t->axis, q[j], planar_left };
+    }
+}
+
 static double snap(const builder *b, double x) { return b->p.quantize ? b->p.quantize(x) : x; }
 
 /* Side of a primitive whose part in the node spans [lo, hi] on the split axis. */
@@ -224,7 +328,8 @@ static uint32_t *new_leaf(builder *b, uint32_t node, uint32_t n)
     if (!p)
         return NULL;
     b->prims = p;
-    b->nodes[node] = (kd_node){ KD_LEAF, 0, 0.0, b->n_prims, n };
+    /* child (0 in a finished tree): how many holes came before the list, for copy_nodes() */
+    b->nodes[node] = (kd_node){ KD_LEAF, b->n_holes, 0.0, b->n_prims, n };
     b->n_prims += n;
     return p + b->nodes[node].first;
 }
@@ -425,10 +530,9 @@ static int leaf_from_events(builder *b, uint32_t node, const prim_set *s)
 
 /* ---- binned mode ---------------------------------------------------------------------------- */
 
-/* Snapped bin boundaries of axis k strictly inside box, sorted and distinct, into b->cand. */
-static uint32_t bin_planes(const builder *b, const aabb *box, uint32_t k)
+/* Snapped bin boundaries of axis k strictly inside box, sorted and distinct, into c (bins - 1). */
+static uint32_t bin_planes(const builder *b, const aabb *box, uint32_t k, double *c)
 {
-    double *c = b->cand;
     const double w = (box->hi[k] - box->lo[k]) / b->p.bins;
     uint32_t m = 0;
     for (uint32_t j = 1; j < b->p.bins; j++) {
@@ -473,52 +577,91 @@ static inline uint32_t rank_of(const double *c, uint32_t m, double x, int inclus
     return rank_search(c, m, x, inclusive);
 }
 
-/* Exact counts at the bin planes of axis k. A primitive with rank s = #(planes <= lo) is left
- * of planes s, s+1, ...; with e = #(planes < hi) it is right of planes 0..e-1; a flat primitive
- * lying in plane s-1 is in neither and counted as planar there. */
-static void binned_axis(const builder *b, const prim_set *s, const aabb *box, uint32_t k, split *best)
+/* Exact counts at the planes c[0..m) of axis k, of primitives [from, to) of s, added to ns (starts
+ * at ns), ne (ends, at ns + m + 1) and np (planar, at ns + 2 (m + 1)). A primitive with rank
+ * s = #(planes <= lo) is left of planes s, s+1, ...; with e = #(planes < hi) it is right of planes
+ * 0..e-1; a flat primitive lying in plane s-1 is in neither and counted as planar there. */
+static void count_planes(const prim_set *s, uint32_t from, uint32_t to, const aabb *box, uint32_t k, const double *c,
+                         uint32_t m, uint32_t *ns)
 {
-    const uint32_t m = bin_planes(b, box, k);
-    if (m == 0)
-        return;
-    uint32_t *ns = b->counts, *ne = ns + m + 1, *np = ne + m + 1;
-    memset(ns, 0, 3 * ((size_t)m + 1) * sizeof *ns);
+    uint32_t *ne = ns + m + 1, *np = ne + m + 1;
     const double scale = (m + 1) / (box->hi[k] - box->lo[k]); /* planes per unit length */
-    for (uint32_t i = 0; i < s->n; i++) {
+    for (uint32_t i = from; i < to; i++) {
         const double lo = s->ref[i].b.lo[k], hi = s->ref[i].b.hi[k];
-        const uint32_t rs = rank_of(b->cand, m, lo, 1, (lo - box->lo[k]) * scale);
+        const uint32_t rs = rank_of(c, m, lo, 1, (lo - box->lo[k]) * scale);
         ns[rs]++;
-        ne[rank_of(b->cand, m, hi, 0, (hi - box->lo[k]) * scale)]++;
-        if (lo == hi && rs > 0 && b->cand[rs - 1] == lo)
+        ne[rank_of(c, m, hi, 0, (hi - box->lo[k]) * scale)]++;
+        if (lo == hi && rs > 0 && c[rs - 1] == lo)
             np[rs - 1]++;
-    }
-    const axis_terms t = terms_of(b, box, k);
-    uint32_t nl = 0, ended = 0;
-    for (uint32_t j = 0; j < m; j++) {
-        nl += ns[j];
-        ended += ne[j];
-        consider(&t, b->cand[j], nl, np[j], s->n - ended, best);
     }
 }
 
-/* Small nodes (SMALL_NODE): exact SAH over the snapped bounds of their primitives. */
+/* The candidates c[0..m) of axis k with the counts of count_planes over all of s. */
+static void eval_planes(const builder *b, const prim_set *s, const aabb *box, uint32_t k, const double *c, uint32_t m,
+                        const uint32_t *ns, split *best)
+{
+    const uint32_t *ne = ns + m + 1, *np = ne + m + 1;
+    const axis_terms t = terms_of(b, box, k);
+    uint32_t nl[CHUNK], nr[CHUNK], below = 0, ended = 0;
+    for (uint32_t j0 = 0; j0 < m; j0 += CHUNK) {
+        const uint32_t n = m - j0 < CHUNK ? m - j0 : CHUNK;
+        for (uint32_t j = 0; j < n; j++) {
+            below += ns[j0 + j];
+            ended += ne[j0 + j];
+            nl[j] = below;
+            nr[j] = s->n - ended;
+        }
+        consider_chunk(&t, c + j0, nl, np + j0, nr, n, best);
+    }
+}
+
+/* The bin planes of axis k, counted exactly. */
+static void binned_axis(const builder *b, const prim_set *s, const aabb *box, uint32_t k, split *best)
+{
+    const uint32_t m = bin_planes(b, box, k, b->cand);
+    if (m == 0)
+        return;
+    memset(b->counts, 0, 3 * ((size_t)m + 1) * sizeof *b->counts);
+    count_planes(s, 0, s->n, box, k, b->cand, m, b->counts);
+    eval_planes(b, s, box, k, b->cand, m, b->counts, best);
+}
+
+/* Pairs of doubles (GCC and Clang vector extension, SSE2 on x86-64); a comparison gives -1 (true)
+ * or 0 in each lane. */
+typedef double v2d __attribute__((vector_size(16)));
+typedef long long v2l __attribute__((vector_size(16)));
+
+/* Small nodes (SMALL_NODE): exact SAH over the snapped bounds of their primitives, counted two
+ * primitives at a time. */
 static void small_axis(const builder *b, const prim_set *s, const aabb *box, uint32_t k, split *best)
 {
     const axis_terms t = terms_of(b, box, k);
-    for (uint32_t j = 0; j < 2 * s->n; j++) {
-        const aabb *own = &s->ref[j / 2].b;
-        const double q = snap(b, j % 2 ? own->hi[k] : own->lo[k]);
-        if (!strictly_inside(box, k, q))
-            continue;
-        uint32_t nl = 0, np = 0, nr = 0;
-        for (uint32_t i = 0; i < s->n; i++) {
-            const uint32_t left = s->ref[i].b.lo[k] < q, right = s->ref[i].b.hi[k] > q;
-            nl += left;
-            nr += right;
-            np += (left | right) == 0; /* lo >= q >= hi: lying in the plane */
-        }
-        consider(&t, q, nl, np, nr, best);
+    /* the bounds on axis k in pairs, padded with an entry on no side of any plane */
+    v2d lo[SMALL_NODE / 2], hi[SMALL_NODE / 2];
+    const uint32_t nv = (s->n + 1) / 2;
+    for (uint32_t i = 0; i < 2 * nv; i++) {
+        lo[i / 2][i % 2] = i < s->n ? s->ref[i].b.lo[k] : INFINITY;
+        hi[i / 2][i % 2] = i < s->n ? s->ref[i].b.hi[k] : -INFINITY;
     }
+    double q[2 * SMALL_NODE];
+    uint32_t nl[2 * SMALL_NODE], np[2 * SMALL_NODE], nr[2 * SMALL_NODE], m = 0;
+    for (uint32_t j = 0; j < 2 * s->n; j++) {
+        q[m] = snap(b, j % 2 ? s->ref[j / 2].b.hi[k] : s->ref[j / 2].b.lo[k]);
+        if (!strictly_inside(box, k, q[m]))
+            continue;
+        const v2d qv = { q[m], q[m] };
+        v2l l = { 0, 0 }, r = l, side = l;
+        for (uint32_t i = 0; i < nv; i++) {
+            const v2l left = lo[i] < qv, right = hi[i] > qv;
+            l -= left;
+            r -= right;
+            side -= left | right;
+        }
+        nl[m] = (uint32_t)(l[0] + l[1]);
+        np[m] = s->n - (uint32_t)(side[0] + side[1]); /* the others lie in the plane: lo >= q >= hi */
+        nr[m++] = (uint32_t)(r[0] + r[1]);
+    }
+    consider_chunk(&t, q, nl, np, nr, m, best);
 }
 
 /* Appends primitive pr to child c, clipped to box (NULL: it lies on one side, keep it as is). */
@@ -529,9 +672,14 @@ static void keep_ref(const builder *b, prim_set *c, const prim_ref *pr, const aa
         c->ref[c->n++] = out;
 }
 
+static int split_refs_parallel(const builder *b, const prim_set *s, const split *sp, const aabb *lb, const aabb *rb,
+                               prim_set *l, prim_set *r);
+
 static int split_refs(const builder *b, const prim_set *s, const split *sp, const aabb *lb, const aabb *rb,
                       prim_set *l, prim_set *r)
 {
+    if (b->pool && s->n >= PAR_SPLIT_MIN)
+        return split_refs_parallel(b, s, sp, lb, rb, l, r);
     size_t nl = 0, nr = 0;
     for (uint32_t i = 0; i < s->n; i++) {
         const int side = side_of(s->ref[i].b.lo[sp->axis], s->ref[i].b.hi[sp->axis], sp);
@@ -587,8 +735,13 @@ static void set_free(prim_set *s)
 
 static int binned(const builder *b) { return b->p.bins > 0; }
 
+static int find_split_parallel(const builder *b, const prim_set *s, const aabb *box, split *best);
+
 static void find_split(const builder *b, const prim_set *s, const aabb *box, split *best)
 {
+    /* large binned nodes (never small ones) in parts on several threads, unless memory ran out */
+    if (b->pool && binned(b) && s->n >= PAR_SPLIT_MIN && find_split_parallel(b, s, box, best) == 0)
+        return;
     for (uint32_t k = 0; k < 3; k++) {
         if (!binned(b))
             sweep_axis(b, s, box, k, best);
@@ -599,13 +752,346 @@ static void find_split(const builder *b, const prim_set *s, const aabb *box, spl
     }
 }
 
-/* Builds node `node` (already allocated) over s, which it frees. */
-static int build_node(builder *b, uint32_t node, const aabb *box, prim_set *s, uint32_t depth)
+/* ---- parallel build: handing subtrees to other threads --------------------------------------- *
+ *
+ * Binned mode without a clip function calls nothing after the root but quantize (assumed pure),
+ * so subtrees can be built concurrently. Every thread of a pool runs tasks: a task builds one
+ * subtree into its own builder (nodes, leaf lists, scratch). A builder splitting a node while a
+ * thread of the pool waits for work hands the larger child (at least PAR_GRAIN primitives) to a
+ * new task and leaves a hole there. Afterwards layout() and copy_nodes() merge the outputs of all
+ * tasks into the layout of the single-threaded build, so the tree does not depend on the number
+ * of threads or their timing: it is bit-identical to the single-threaded one. Large nodes (the
+ * root) are counted and split by several threads in parts (pool_for), again with the same result. */
+
+/* Node marking a hole while a builder runs; child is the task. */
+#define KD_HOLE 4u
+
+typedef struct {
+    builder b;  /* output: the subtree at b.nodes[0] */
+    aabb box;
+    prim_set s; /* freed by the build */
+    uint32_t depth;
+    subtree_sum sum; /* of the subtree */
+    uint32_t out_root, out_first, out_first_prim; /* layout(): where nodes 0, 1 and prims[0] go */
+} task;
+
+typedef void (*for_fn)(void *ctx, uint32_t i);
+
+struct pool {
+    pthread_mutex_t mu;
+    pthread_cond_t cv;   /* any change: a task or loop item to run, one finished, shutdown */
+    atomic_uint changes; /* counts the changes, for waiting threads that spin before they sleep */
+    task **tasks;        /* [0]: the root; [next, n_tasks): waiting to run */
+    uint32_t n_tasks, next;
+    uint32_t unfinished; /* tasks not yet finished: when 0, the build is over */
+    uint32_t idle;       /* threads waiting for work */
+    int failed;          /* a task ran out of memory: the remaining tasks only free their input */
+    int shutdown;        /* the threads other than the caller return */
+    /* one parallel loop at a time (pool_for): items [for_next, for_n) wait, for_left unfinished */
+    for_fn fn;
+    void *ctx;
+    uint32_t for_next, for_n, for_left;
+    int for_busy;
+};
+
+/* A change of the pool's state (made with pl->mu locked): wakes the waiting threads. */
+static void notify(pool *pl)
 {
+    atomic_fetch_add_explicit(&pl->changes, 1, memory_order_release);
+    pthread_cond_broadcast(&pl->cv);
+}
+
+static double now(void);
+
+/* Waits for a change (called and returns with pl->mu locked; the caller checks what changed).
+ * Waking a sleeping thread takes ~20 us, more than handing it most pieces of work would gain,
+ * so it watches for a change for up to SPIN_SECONDS first. */
+#define SPIN_SECONDS 100e-6
+static void wait_change(pool *pl)
+{
+    const unsigned seen = atomic_load_explicit(&pl->changes, memory_order_relaxed);
+    pthread_mutex_unlock(&pl->mu);
+    const double t0 = now();
+    int changed = 0;
+    for (unsigned i = 1; !changed; i++) {
+        changed = atomic_load_explicit(&pl->changes, memory_order_acquire) != seen;
+        if (i % 64 == 0 && now() - t0 > SPIN_SECONDS)
+            break;
+    }
+    pthread_mutex_lock(&pl->mu);
+    if (!changed && atomic_load_explicit(&pl->changes, memory_order_relaxed) == seen)
+        pthread_cond_wait(&pl->cv, &pl->mu);
+}
+
+/* Runs the next loop item; called and returns with pl->mu locked. */
+static void run_item(pool *pl)
+{
+    const uint32_t i = pl->for_next++;
+    const for_fn fn = pl->fn;
+    void *ctx = pl->ctx;
+    pthread_mutex_unlock(&pl->mu);
+    fn(ctx, i);
+    pthread_mutex_lock(&pl->mu);
+    if (--pl->for_left == 0)
+        notify(pl);
+}
+
+/* fn(ctx, i) for i in [0, n), on this thread and those of the pool that wait for work or become
+ * free meanwhile; while another loop runs, on this thread alone. */
+static void pool_for(pool *pl, uint32_t n, for_fn fn, void *ctx)
+{
+    pthread_mutex_lock(&pl->mu);
+    if (pl->for_busy || n < 2) {
+        pthread_mutex_unlock(&pl->mu);
+        for (uint32_t i = 0; i < n; i++)
+            fn(ctx, i);
+        return;
+    }
+    pl->for_busy = 1;
+    pl->fn = fn;
+    pl->ctx = ctx;
+    pl->for_next = 0;
+    pl->for_n = pl->for_left = n;
+    notify(pl);
+    while (pl->for_next < pl->for_n)
+        run_item(pl);
+    while (pl->for_left > 0)
+        wait_change(pl);
+    pl->for_busy = 0;
+    pl->for_n = pl->for_next = 0;
+    pthread_mutex_unlock(&pl->mu);
+}
+
+/* Binned SAH of a large node, counted in parts by the waiting threads: the same counts, the same
+ * candidates in the same order as binned_axis() on each axis, so the same split. */
+typedef struct {
+    const prim_set *s;
+    const aabb *box;
+    const double *cand; /* 3 x bins: the planes of each axis */
+    uint32_t m[3], bins;
+    size_t stride;      /* counters per axis: 3 (m + 1) <= 3 (bins + 1) */
+    uint32_t *counts;   /* PAR_PARTS x 3 axes x stride */
+} count_job;
+
+static void count_part(void *arg, uint32_t i)
+{
+    const count_job *j = arg;
+    const uint64_t n = j->s->n;
+    for (uint32_t k = 0; k < 3; k++)
+        if (j->m[k] > 0)
+            count_planes(j->s, (uint32_t)(n * i / PAR_PARTS), (uint32_t)(n * (i + 1) / PAR_PARTS), j->box, k,
+                         j->cand + (size_t)k * j->bins, j->m[k], j->counts + (3 * (size_t)i + k) * j->stride);
+}
+
+static int find_split_parallel(const builder *b, const prim_set *s, const aabb *box, split *best)
+{
+    count_job j = { s, box, NULL, { 0, 0, 0 }, b->p.bins, 3 * ((size_t)b->p.bins + 1), NULL };
+    double *cand = malloc(3 * (size_t)b->p.bins * sizeof *cand);
+    j.counts = calloc(PAR_PARTS * 3 * j.stride, sizeof *j.counts);
+    if (!cand || !j.counts) {
+        free(cand);
+        free(j.counts);
+        return -1;
+    }
+    j.cand = cand;
+    for (uint32_t k = 0; k < 3; k++)
+        j.m[k] = bin_planes(b, box, k, cand + (size_t)k * b->p.bins);
+    pool_for(b->pool, PAR_PARTS, count_part, &j);
+    for (uint32_t k = 0; k < 3; k++) {
+        if (j.m[k] == 0)
+            continue;
+        uint32_t *sum = j.counts + k * j.stride;
+        for (uint32_t i = 1; i < PAR_PARTS; i++)
+            for (size_t c = 0; c < 3 * ((size_t)j.m[k] + 1); c++)
+                sum[c] += j.counts[(3 * (size_t)i + k) * j.stride + c];
+        eval_planes(b, s, box, k, cand + (size_t)k * b->p.bins, j.m[k], sum, best);
+    }
+    free(cand);
+    free(j.counts);
+    return 0;
+}
+
+/* split_refs() of a large node in parts by the waiting threads: each part counts its primitives
+ * on each side, then copies them to its range of the children's lists, which are then closed up
+ * (a clipped part may come out empty): the same lists in the same order. */
+typedef struct {
+    const builder *b;
+    const prim_set *s;
+    const split *sp;
+    const aabb *lb, *rb;
+    prim_set *l, *r;
+    uint32_t nl[PAR_PARTS], nr[PAR_PARTS];     /* per part: entries for the children, then kept */
+    uint32_t offl[PAR_PARTS], offr[PAR_PARTS]; /* where the part's entries start */
+} split_job;
+
+static void side_part(void *arg, uint32_t i)
+{
+    split_job *j = arg;
+    const uint64_t n = j->s->n;
+    uint32_t nl = 0, nr = 0;
+    for (uint32_t e = (uint32_t)(n * i / PAR_PARTS); e < (uint32_t)(n * (i + 1) / PAR_PARTS); e++) {
+        const int side = side_of(j->s->ref[e].b.lo[j->sp->axis], j->s->ref[e].b.hi[j->sp->axis], j->sp);
+        nl += side != SIDE_RIGHT;
+        nr += side != SIDE_LEFT;
+    }
+    j->nl[i] = nl;
+    j->nr[i] = nr;
+}
+
+static void copy_part(void *arg, uint32_t i)
+{
+    split_job *j = arg;
+    const uint64_t n = j->s->n;
+    prim_set l = { .ref = j->l->ref + j->offl[i] }, r = { .ref = j->r->ref + j->offr[i] };
+    for (uint32_t e = (uint32_t)(n * i / PAR_PARTS); e < (uint32_t)(n * (i + 1) / PAR_PARTS); e++) {
+        const prim_ref *pr = &j->s->ref[e];
+        const int side = side_of(pr->b.lo[j->sp->axis], pr->b.hi[j->sp->axis], j->sp);
+        if (side != SIDE_RIGHT)
+            keep_ref(j->b, &l, pr, side == SIDE_BOTH ? j->lb : NULL);
+        if (side != SIDE_LEFT)
+            keep_ref(j->b, &r, pr, side == SIDE_BOTH ? j->rb : NULL);
+    }
+    j->nl[i] = l.n;
+    j->nr[i] = r.n;
+}
+
+/* Moves the parts of c (at off[i], n[i] entries each) together. */
+static void close_up(prim_set *c, const uint32_t *off, const uint32_t *n)
+{
+    c->n = 0;
+    for (uint32_t i = 0; i < PAR_PARTS; i++) {
+        if (off[i] != c->n && n[i] > 0)
+            memmove(c->ref + c->n, c->ref + off[i], n[i] * sizeof *c->ref);
+        c->n += n[i];
+    }
+}
+
+static int split_refs_parallel(const builder *b, const prim_set *s, const split *sp, const aabb *lb, const aabb *rb,
+                               prim_set *l, prim_set *r)
+{
+    split_job j = { .b = b, .s = s, .sp = sp, .lb = lb, .rb = rb, .l = l, .r = r };
+    pool_for(b->pool, PAR_PARTS, side_part, &j);
+    size_t nl = 0, nr = 0;
+    for (uint32_t i = 0; i < PAR_PARTS; i++) {
+        j.offl[i] = (uint32_t)nl;
+        j.offr[i] = (uint32_t)nr;
+        nl += j.nl[i];
+        nr += j.nr[i];
+    }
+    l->ref = malloc((nl + 1) * sizeof *l->ref);
+    r->ref = malloc((nr + 1) * sizeof *r->ref);
+    if (!l->ref || !r->ref)
+        return -1;
+    pool_for(b->pool, PAR_PARTS, copy_part, &j);
+    close_up(l, j.offl, j.nl);
+    close_up(r, j.offr, j.nr);
+    return 0;
+}
+
+/* Hands primitives s of a child (box, depth) to a new task if a thread is waiting for work; s is
+ * then the task's. Returns the task, or UINT32_MAX if the caller builds the child itself. */
+static uint32_t offload(builder *b, const aabb *box, prim_set *s, uint32_t depth)
+{
+    pool *pl = b->pool;
+    pthread_mutex_lock(&pl->mu);
+    const int wanted = pl->idle > pl->n_tasks - pl->next && pl->n_tasks < PAR_MAX_TASKS && !pl->failed;
+    pthread_mutex_unlock(&pl->mu);
+    if (!wanted)
+        return UINT32_MAX;
+    hole *h = reserve(b->holes, &b->cap_holes, (uint64_t)b->n_holes + b->holes_owed + 1, sizeof *h);
+    if (!h)
+        return UINT32_MAX;
+    b->holes = h;
+    task *t = calloc(1, sizeof *t);
+    if (t) {
+        t->b = (builder){ .src = b->src, .p = b->p, .max_depth = b->max_depth, .kind = b->kind,
+                          .root_measure = b->root_measure, .pool = pl };
+        t->b.cand = malloc((size_t)b->p.bins * sizeof *t->b.cand);
+        t->b.counts = malloc(3 * ((size_t)b->p.bins + 1) * sizeof *t->b.counts);
+        t->b.prims = reserve(NULL, &t->b.cap_prims, (uint64_t)s->n + 1, sizeof *t->b.prims); /* never NULL after */
+        uint32_t root;
+        if (!t->b.cand || !t->b.counts || !t->b.prims || add_nodes(&t->b, 1, &root) != 0) {
+            free(t->b.cand);
+            free(t->b.counts);
+            free(t->b.prims);
+            free(t->b.nodes);
+            free(t);
+            t = NULL;
+        }
+    }
+    if (!t)
+        return UINT32_MAX;
+    t->box = *box;
+    t->s = *s;
+    t->depth = depth;
+    memset(s, 0, sizeof *s);
+    pthread_mutex_lock(&pl->mu);
+    const uint32_t id = pl->n_tasks++;
+    pl->tasks[id] = t;
+    pl->unfinished++;
+    notify(pl);
+    pthread_mutex_unlock(&pl->mu);
+    b->holes_owed++;
+    return id;
+}
+
+/* The subtree at node, handed to task, is due now: where the single-threaded build would start it. */
+static void add_hole(builder *b, uint32_t node, uint32_t task_id)
+{
+    b->nodes[node] = (kd_node){ KD_HOLE, task_id, 0.0, 0, 0 };
+    b->holes[b->n_holes++] = (hole){ node, task_id, b->n_nodes, b->n_prims, 0, 0 };
+    b->holes_owed--;
+}
+
+static int build_node(builder *b, uint32_t node, const aabb *box, prim_set *s, uint32_t depth, subtree_sum *sum);
+
+/* Builds children child and child + 1 (boxes lb, rb, primitives l, r), one of them perhaps in
+ * another thread. */
+static int build_children(builder *b, uint32_t child, const aabb *lb, const aabb *rb, prim_set *l, prim_set *r,
+                          uint32_t depth, subtree_sum sum[2])
+{
+    if (b->pool) {
+        const int right = r->n > l->n;
+        if ((right ? r : l)->n >= PAR_GRAIN) {
+            const uint32_t t = offload(b, right ? rb : lb, right ? r : l, depth);
+            sum[right] = (subtree_sum){ 0.0, 1 };
+            if (t != UINT32_MAX && !right) {
+                add_hole(b, child, t);
+                return build_node(b, child + 1, rb, r, depth, &sum[1]);
+            }
+            if (t != UINT32_MAX) {
+                if (build_node(b, child, lb, l, depth, &sum[0]) != 0)
+                    return -1;
+                add_hole(b, child + 1, t);
+                return 0;
+            }
+        }
+    }
+    if (build_node(b, child, lb, l, depth, &sum[0]) != 0) {
+        set_free(r);
+        return -1;
+    }
+    return build_node(b, child + 1, rb, r, depth, &sum[1]);
+}
+
+/* Builds node `node` (already allocated) over s, which it frees; adds its subtree to b->st and
+ * returns its SAH sum in *sum. */
+static int build_node(builder *b, uint32_t node, const aabb *box, prim_set *s, uint32_t depth, subtree_sum *sum)
+{
+    const double weight = measure(b->kind, box) / b->root_measure;
     split best = { INFINITY, 0, 0.0, 0 };
+    if (depth > b->st.depth)
+        b->st.depth = depth;
     if (s->n > b->p.leaf_size && depth < b->max_depth)
         find_split(b, s, box, &best);
     if (!(best.cost < b->p.cost_intersection * s->n)) {
+        const uint32_t n = s->n;
+        b->st.n_leaves++;
+        b->st.n_empty_leaves += n == 0;
+        b->st.references += n;
+        if (n > b->st.max_leaf_count)
+            b->st.max_leaf_count = n;
+        *sum = (subtree_sum){ b->p.cost_intersection * n * weight, 0 };
         const int rc = binned(b) ? leaf_from_refs(b, node, s) : leaf_from_events(b, node, s);
         set_free(s);
         return rc;
@@ -624,31 +1110,297 @@ static int build_node(builder *b, uint32_t node, const aabb *box, prim_set *s, u
         return -1;
     }
     b->nodes[node] = (kd_node){ best.axis, child, best.pos, 0, 0 };
-    if (build_node(b, child, &lb, &l, depth + 1) != 0) {
-        set_free(&r);
+    subtree_sum cs[2];
+    if (build_children(b, child, &lb, &rb, &l, &r, depth + 1, cs) != 0)
         return -1;
+    const double own = b->p.cost_traversal * weight;
+    if (!cs[0].pending && !cs[1].pending) {
+        *sum = (subtree_sum){ own + (cs[0].sum + cs[1].sum), 0 };
+        return 0;
     }
-    return build_node(b, child + 1, &rb, &r, depth + 1);
+    pending_sum *ps = reserve(b->pend, &b->cap_pend, (uint64_t)b->n_pend + 1, sizeof *ps);
+    if (!ps)
+        return -1;
+    b->pend = ps;
+    ps[b->n_pend++] = (pending_sum){ own, { cs[0].sum, cs[1].sum }, { (uint8_t)cs[0].pending, (uint8_t)cs[1].pending } };
+    b->nodes[node].count = b->n_pend; /* until copy_nodes() */
+    *sum = (subtree_sum){ 0.0, 1 };
+    return 0;
+}
+
+/* ---- parallel build: threads and merging --------------------------------------------------- */
+
+static void task_free(task *t)
+{
+    set_free(&t->s);
+    free(t->b.nodes);
+    free(t->b.prims);
+    free(t->b.cand);
+    free(t->b.counts);
+    free(t->b.holes);
+    free(t->b.pend);
+    memset(&t->b, 0, sizeof t->b);
+}
+
+/* Runs loop items and tasks: the caller until every task has finished, the other threads until
+ * shutdown. */
+static void work(pool *pl, int caller)
+{
+    pthread_mutex_lock(&pl->mu);
+    for (;;) {
+        if (pl->for_next < pl->for_n) {
+            run_item(pl);
+            continue;
+        }
+        if (pl->next < pl->n_tasks) {
+            task *t = pl->tasks[pl->next++];
+            const int skip = pl->failed;
+            pthread_mutex_unlock(&pl->mu);
+            const int rc = skip ? -1 : build_node(&t->b, 0, &t->box, &t->s, t->depth, &t->sum); /* frees t->s */
+            set_free(&t->s);
+            pthread_mutex_lock(&pl->mu);
+            pl->failed |= rc != 0;
+            if (--pl->unfinished == 0)
+                notify(pl);
+            continue;
+        }
+        if (caller ? pl->unfinished == 0 : pl->shutdown)
+            break;
+        pl->idle++;
+        wait_change(pl);
+        pl->idle--;
+    }
+    pthread_mutex_unlock(&pl->mu);
+}
+
+static void *worker(void *arg)
+{
+    work(arg, 0);
+    return NULL;
+}
+
+/* Output index of local node i >= 1 of b, given the offsets of the holes before holes[n_holes]
+ * (the last hole due at or before i decides; local 1 goes to first). */
+static uint32_t map_node(const builder *b, uint32_t n_holes, uint32_t first, uint32_t i)
+{
+    uint32_t h = 0; /* holes[0..n_holes) are sorted by at_node and few: a count without branches */
+    for (uint32_t k = 0; k < n_holes; k++)
+        h += b->holes[k].at_node <= i;
+    return i + (h == 0 ? first - 1 : b->holes[h - 1].node_off);
+}
+
+/* Places the subtree of task id in the output, in the order of the single-threaded build: its
+ * root at node `root`, its other nodes and its leaf entries from *n_nodes and *n_prims on (which
+ * it advances), with the subtree of each hole inserted where it was due. Sets the offsets that
+ * copy_nodes() and copy_prims() use. */
+static void layout(pool *pl, uint32_t id, uint32_t root, uint32_t *n_nodes, uint32_t *n_prims)
+{
+    task *t = pl->tasks[id];
+    builder *b = &t->b;
+    t->out_root = root;
+    t->out_first = *n_nodes;
+    t->out_first_prim = *n_prims;
+    uint32_t at_node = 1, at_prim = 0; /* local entries up to here are placed */
+    for (uint32_t h = 0; h < b->n_holes; h++) {
+        hole *ho = &b->holes[h];
+        *n_nodes += ho->at_node - at_node;
+        *n_prims += ho->at_prim - at_prim;
+        layout(pl, ho->task, map_node(b, h, t->out_first, ho->node), n_nodes, n_prims);
+        ho->node_off = *n_nodes - ho->at_node; /* unsigned: modulo 2^32, exact in the end */
+        ho->prim_off = *n_prims - ho->at_prim;
+        at_node = ho->at_node;
+        at_prim = ho->at_prim;
+    }
+    *n_nodes += b->n_nodes - at_node;
+    *n_prims += b->n_prims - at_prim;
+}
+
+/* Copies nodes [lo, hi) of task t to out, with their final child and first indices. */
+static void copy_nodes(const task *t, uint32_t lo, uint32_t hi, kd_node *out)
+{
+    const builder *b = &t->b;
+    const uint32_t first = t->out_first, first_prim = t->out_first_prim;
+    uint32_t h = 0;
+    while (h < b->n_holes && b->holes[h].at_node <= lo)
+        h++;
+    for (uint32_t i = lo; i < hi; h++) { /* node segments between the holes */
+        const uint32_t end = h < b->n_holes && b->holes[h].at_node < hi ? b->holes[h].at_node : hi;
+        const uint32_t off = h == 0 ? first - 1 : b->holes[h - 1].node_off;
+        for (; i < end; i++) {
+            kd_node n = b->nodes[i];
+            if (n.axis == KD_HOLE)
+                continue; /* written by its task */
+            /* without branches on the kind of node, which is unpredictable */
+            const int leaf = n.axis == KD_LEAF;
+            const uint32_t holes_before = leaf ? n.child : 0;
+            const uint32_t prim_off = holes_before ? b->holes[holes_before - 1].prim_off : first_prim;
+            const uint32_t child = map_node(b, b->n_holes, first, n.child);
+            n.first = leaf ? n.first + prim_off : 0;
+            n.count = leaf ? n.count : 0; /* inner: pending_sum index */
+            n.child = leaf ? 0 : child;
+            out[i == 0 ? t->out_root : i + off] = n;
+        }
+    }
+}
+
+/* Copies leaf entries [lo, hi) of task t to out. */
+static void copy_prims(const task *t, uint32_t lo, uint32_t hi, uint32_t *out)
+{
+    const builder *b = &t->b;
+    for (uint32_t h = 0, at = 0; h <= b->n_holes && at < hi; h++) { /* segments between the holes */
+        const uint32_t end = h < b->n_holes ? b->holes[h].at_prim : b->n_prims;
+        const uint32_t off = h == 0 ? t->out_first_prim : b->holes[h - 1].prim_off;
+        const uint32_t from = at > lo ? at : lo, to = end < hi ? end : hi;
+        if (to > from)
+            memcpy(out + from + off, b->prims + from, (size_t)(to - from) * sizeof *out);
+        at = end;
+    }
+}
+
+/* Copying in parallel: item i copies part i % COPY_PARTS of task i / COPY_PARTS. */
+enum { COPY_PARTS = 4 };
+
+typedef struct {
+    pool *pl;
+    kd_tree *out;
+} copy_ctx;
+
+static void copy_item(void *arg, uint32_t i)
+{
+    const copy_ctx *c = arg;
+    const task *t = c->pl->tasks[i / COPY_PARTS];
+    const uint64_t part = i % COPY_PARTS, n = t->b.n_nodes, np = t->b.n_prims;
+    copy_nodes(t, (uint32_t)(n * part / COPY_PARTS), (uint32_t)(n * (part + 1) / COPY_PARTS), c->out->nodes);
+    copy_prims(t, (uint32_t)(np * part / COPY_PARTS), (uint32_t)(np * (part + 1) / COPY_PARTS), c->out->prims);
+}
+
+/* SAH sum of the subtree at node (box) of task id: the sums left pending by holes, finished. */
+static double resolve(const pool *pl, uint32_t id, uint32_t node, const aabb *box)
+{
+    const task *t = pl->tasks[id];
+    if (node == 0 && !t->sum.pending)
+        return t->sum.sum;
+    const kd_node *n = &t->b.nodes[node];
+    if (n->axis == KD_HOLE)
+        return resolve(pl, n->child, 0, box);
+    const pending_sum *ps = &t->b.pend[n->count - 1];
+    aabb cb[2] = { *box, *box };
+    cb[0].hi[n->axis] = cb[1].lo[n->axis] = n->split;
+    double sum[2];
+    for (int c = 0; c < 2; c++)
+        sum[c] = ps->pending[c] ? resolve(pl, id, n->child + (uint32_t)c, &cb[c]) : ps->sum[c];
+    return ps->own + (sum[0] + sum[1]);
+}
+
+static void stats_add(kd_stats *a, const kd_stats *b)
+{
+    a->n_leaves += b->n_leaves;
+    a->n_empty_leaves += b->n_empty_leaves;
+    a->references += b->references;
+    if (b->depth > a->depth)
+        a->depth = b->depth;
+    if (b->max_leaf_count > a->max_leaf_count)
+        a->max_leaf_count = b->max_leaf_count;
+}
+
+/* Threads to use: the CPUs this thread may run on, at most PAR_MAX_THREADS. */
+static uint32_t thread_count(void)
+{
+    cpu_set_t set;
+    long n = 0;
+    if (sched_getaffinity(0, sizeof set, &set) == 0)
+        n = CPU_COUNT(&set);
+    if (n <= 0)
+        n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n <= 1 ? 1u : n >= PAR_MAX_THREADS ? (uint32_t)PAR_MAX_THREADS : (uint32_t)n;
+}
+
+/* Builds b's tree from the root (box, s) with a pool of threads (the caller being one of them),
+ * like build_node(b, 0, box, s, 0, ...), and frees s; *sah: the tree's SAH sum. A thread that
+ * cannot be started is done without; with none, the caller builds the tree alone. -1: no memory;
+ * b's output is then freed. */
+static int build_parallel(builder *b, const aabb *box, prim_set *s, uint32_t threads, double *sah)
+{
+    pool pl = { .n_tasks = 1, .unfinished = 1 };
+    atomic_init(&pl.changes, 0);
+    task root = { .b = *b, .box = *box, .s = *s, .depth = 0 };
+    memset(s, 0, sizeof *s);
+    pl.tasks = malloc(PAR_MAX_TASKS * sizeof *pl.tasks);
+    int ok = pl.tasks != NULL;
+    if (ok && pthread_mutex_init(&pl.mu, NULL) != 0)
+        ok = 0;
+    if (ok && pthread_cond_init(&pl.cv, NULL) != 0) {
+        pthread_mutex_destroy(&pl.mu);
+        ok = 0;
+    }
+    if (!ok) { /* single-threaded after all */
+        free(pl.tasks);
+        const int rc = build_node(&root.b, 0, &root.box, &root.s, 0, &root.sum);
+        *b = root.b;
+        *sah = root.sum.sum;
+        return rc;
+    }
+    pl.tasks[0] = &root;
+    root.b.pool = &pl;
+    pthread_t tid[PAR_MAX_THREADS];
+    uint32_t started = 0;
+    for (uint32_t i = 1; i < threads; i++)
+        if (pthread_create(&tid[started], NULL, worker, &pl) == 0)
+            started++;
+    work(&pl, 1);
+
+    int rc = pl.failed ? -1 : 0;
+    kd_tree out = { 0 };
+    uint64_t n_nodes = 1, n_prims = 0;
+    for (uint32_t i = 0; i < pl.n_tasks; i++) {
+        n_nodes += pl.tasks[i]->b.n_nodes - 1u;
+        n_prims += pl.tasks[i]->b.n_prims;
+        if (i > 0)
+            stats_add(&root.b.st, &pl.tasks[i]->b.st);
+    }
+    if (rc == 0 && n_nodes <= UINT32_MAX && n_prims < UINT32_MAX) {
+        out.nodes = malloc((size_t)n_nodes * sizeof *out.nodes);
+        out.prims = malloc(((size_t)n_prims + 1) * sizeof *out.prims);
+    }
+    if (out.nodes && out.prims) {
+        out.n_nodes = 1;
+        layout(&pl, 0, 0, &out.n_nodes, &out.n_prims);
+        copy_ctx c = { &pl, &out };
+        pool_for(&pl, pl.n_tasks * COPY_PARTS, copy_item, &c);
+        *sah = resolve(&pl, 0, 0, box);
+    } else {
+        free(out.nodes);
+        free(out.prims);
+        out = (kd_tree){ 0 };
+        rc = -1;
+    }
+
+    pthread_mutex_lock(&pl.mu);
+    pl.shutdown = 1;
+    notify(&pl);
+    pthread_mutex_unlock(&pl.mu);
+    for (uint32_t i = 0; i < started; i++)
+        pthread_join(tid[i], NULL);
+    pthread_cond_destroy(&pl.cv);
+    pthread_mutex_destroy(&pl.mu);
+    for (uint32_t i = 1; i < pl.n_tasks; i++) {
+        task_free(pl.tasks[i]);
+        free(pl.tasks[i]);
+    }
+    free(pl.tasks);
+    free(root.b.nodes);
+    free(root.b.prims);
+    free(root.b.holes);
+    free(root.b.pend);
+    b->st = root.b.st;
+    b->nodes = out.nodes; /* b's scratch stays the caller's to free */
+    b->n_nodes = b->cap_nodes = out.n_nodes;
+    b->prims = out.prims;
+    b->n_prims = b->cap_prims = out.n_prims;
+    return rc;
 }
 
 /* ---- statistics ----------------------------------------------------------------------------- */
-
-/* Node weights relative to the root: surface area, or length for a segment root, or 1 for a
- * point (or empty) root, which cannot be split anyway. */
-typedef enum { MEASURE_AREA, MEASURE_LENGTH, MEASURE_UNIT } measure_kind;
-
-static double half_area(const aabb *b)
-{
-    const double x = b->hi[0] - b->lo[0], y = b->hi[1] - b->lo[1], z = b->hi[2] - b->lo[2];
-    return x * y + y * z + z * x;
-}
-
-static double length(const aabb *b) { return (b->hi[0] - b->lo[0]) + (b->hi[1] - b->lo[1]) + (b->hi[2] - b->lo[2]); }
-
-static double measure(measure_kind m, const aabb *b)
-{
-    return m == MEASURE_AREA ? half_area(b) : m == MEASURE_LENGTH ? length(b) : 1.0;
-}
 
 typedef struct {
     const kd_tree *t;
@@ -658,7 +1410,8 @@ typedef struct {
     kd_stats st;
 } walker;
 
-static void walk(walker *w, uint32_t node, const aabb *box, uint32_t depth)
+/* Adds the subtree at node (box, depth) to w->st; returns its SAH sum, added up like build_node. */
+static double walk(walker *w, uint32_t node, const aabb *box, uint32_t depth)
 {
     const kd_node *n = &w->t->nodes[node];
     const double weight = measure(w->kind, box) / w->root_measure;
@@ -670,26 +1423,26 @@ static void walk(walker *w, uint32_t node, const aabb *box, uint32_t depth)
         w->st.references += n->count;
         if (n->count > w->st.max_leaf_count)
             w->st.max_leaf_count = n->count;
-        w->st.sah_cost += w->p->cost_intersection * n->count * weight;
-        return;
+        return w->p->cost_intersection * n->count * weight;
     }
-    w->st.sah_cost += w->p->cost_traversal * weight;
+    const double own = w->p->cost_traversal * weight;
     aabb lb = *box, rb = *box;
     lb.hi[n->axis] = rb.lo[n->axis] = n->split;
-    walk(w, n->child, &lb, depth + 1);
-    walk(w, n->child + 1, &rb, depth + 1);
+    const double left = walk(w, n->child, &lb, depth + 1);
+    return own + (left + walk(w, n->child + 1, &rb, depth + 1));
+}
+
+static measure_kind measure_of(const aabb *root)
+{
+    return half_area(root) > 0 ? MEASURE_AREA : length(root) > 0 ? MEASURE_LENGTH : MEASURE_UNIT;
 }
 
 static kd_stats tree_stats(const kd_tree *t, const kd_params *p)
 {
-    walker w = { t, p, MEASURE_UNIT, 1.0, { 0 } };
-    if (half_area(&t->bounds) > 0)
-        w.kind = MEASURE_AREA;
-    else if (length(&t->bounds) > 0)
-        w.kind = MEASURE_LENGTH;
+    walker w = { t, p, measure_of(&t->bounds), 1.0, { 0 } };
     w.root_measure = measure(w.kind, &t->bounds);
     if (t->n_nodes > 0)
-        walk(&w, 0, &t->bounds, 0);
+        w.st.sah_cost = walk(&w, 0, &t->bounds, 0);
     return w.st;
 }
 
@@ -757,8 +1510,15 @@ int kd_build(const kd_source *src, const kd_params *p, kd_tree *out)
     prim_set s = { 0 };
     aabb root;
     int rc = start(&b, &s, &root);
-    if (rc == 0)
-        rc = build_node(&b, 0, &root, &s, 0); /* frees s */
+    b.kind = measure_of(&root);
+    b.root_measure = measure(b.kind, &root);
+    /* threads only where nothing but quantize is called after the root (see offload) */
+    const uint32_t threads = binned(&b) && !src->clip && src->count >= PAR_MIN_COUNT ? thread_count() : 1;
+    subtree_sum sum = { 0.0, 0 };
+    if (rc == 0 && threads > 1)
+        rc = build_parallel(&b, &root, &s, threads, &sum.sum); /* frees s */
+    else if (rc == 0)
+        rc = build_node(&b, 0, &root, &s, 0, &sum); /* frees s */
     set_free(&s);
     free(b.side);
     free(b.cand);
@@ -770,7 +1530,8 @@ int kd_build(const kd_source *src, const kd_params *p, kd_tree *out)
     }
     *out = (kd_tree){ shrink(b.nodes, b.n_nodes * sizeof *b.nodes), b.n_nodes,
                       shrink(b.prims, ((size_t)b.n_prims + 1) * sizeof *b.prims), b.n_prims, root, { 0 } };
-    out->stats = tree_stats(out, p);
+    out->stats = b.st;
+    out->stats.sah_cost = sum.sum;
     out->stats.build_seconds = now() - t0;
     return 0;
 }

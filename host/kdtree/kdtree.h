@@ -40,7 +40,9 @@ typedef struct {
     uint32_t max_depth;        /* 0: automatic, 8 + 1.3 log2(count), at most 64 */
     uint32_t leaf_size;        /* never split a node with at most this many primitives, default 1 */
     uint32_t bins;             /* 0: exact SAH over all events; n > 0: binned SAH with n bins per axis */
-    /* Snaps a candidate split position to a representable device value (NULL: no snapping). */
+    /* Snaps a candidate split position to a representable device value (NULL: no snapping).
+     * Must be a pure function: binned builds without a clip function use all cores and call it
+     * from several threads (the tree is the same as a single-threaded build, bit for bit). */
     double (*quantize)(double split);
 } kd_params;
 
