@@ -34,7 +34,7 @@ SANFLAGS := $(if $(filter 1,$(SAN)),$(SAN_ON))
 # no fused multiply-add: the fast fp24 path relies on one binary64 rounding per operation
 CFLAGS := -std=c11 $(WARN) $(OPT) -ffp-contract=off -fno-math-errno $(SANFLAGS) -MMD -MP
 CXXFLAGS := -std=c++17 $(WARN) $(OPT) $(SANFLAGS) -MMD -MP
-INCLUDES := -Ihls/fp24 -Itb/fp -Itb/cli -Ihost/image -Ihost/scene -Ihost/kdtree -Ihost/memimage -Iscenes
+INCLUDES := -Ihls/fp24 -Ihls/units -Itb/fp -Itb/cli -Ihost/image -Ihost/scene -Ihost/kdtree -Ihost/memimage -Iscenes
 LDLIBS := -lmpfr -lgmp -ltinygltf -lOpenImageIO -lOpenImageIO_Util -lstdc++ -lm
 TEST_LDLIBS := -lcmocka $(LDLIBS)
 
@@ -45,10 +45,11 @@ CLI := $(sort $(wildcard tb/cli/*.c))
 HOST_CXX := $(sort $(wildcard host/*/*.cpp))
 HOST_C := $(sort $(filter-out host/memimage/%,$(wildcard host/*/*.c scenes/*.c)))
 MEMIMAGE := $(sort $(wildcard host/memimage/*.c))
+HLS_UNITS := $(sort $(wildcard hls/units/*.c))
 
 # per-format objects: everything that depends on the fp24 parameters
 fp_objs = $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(HLS_FP24) $(TB_FP))
-fmt_objs = $(call fp_objs,$(1)) $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(MEMIMAGE))
+fmt_objs = $(call fp_objs,$(1)) $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(MEMIMAGE) $(HLS_UNITS))
 HOST_OBJS := $(patsubst %.cpp,$(BUILD)/obj/host/%.o,$(HOST_CXX)) $(patsubst %.c,$(BUILD)/obj/host/%.o,$(HOST_C))
 
 $(BUILD)/obj/host/%.o: %.cpp
@@ -102,7 +103,7 @@ $(BUILD)/saarcor: $(BUILD)/w/$(DEFAULT_FMT)/saarcor
 	cp $< $@
 
 # host module tests: tests/test_<module>.c linked with all host objects (default fp24 format)
-HOST_TESTS := $(patsubst tests/%.c,$(BUILD)/%,$(wildcard tests/test_image.c tests/test_kdtree.c tests/test_scene.c tests/test_scenes.c tests/test_memimage.c))
+HOST_TESTS := $(patsubst tests/%.c,$(BUILD)/%,$(wildcard tests/test_image.c tests/test_kdtree.c tests/test_scene.c tests/test_scenes.c tests/test_memimage.c tests/test_xform_unit.c tests/test_isect_unit.c))
 $(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS) $(call fmt_objs,$(DEFAULT_FMT))
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)

@@ -1,0 +1,17 @@
+/* Unit-triangle intersection unit: see isect_unit.h. */
+#include "isect_unit.h"
+
+#define F24_ZERO 0u
+
+isect_result isect_unit_triangle(f24_vec3 o, f24_vec3 d, f24_t tmin, f24_t tmax)
+{
+    isect_result r;
+    r.cos_n = d.z;
+    r.t = f24_div(f24_neg(o.z), d.z);
+    r.u = f24_add(o.x, f24_mul(r.t, d.x));
+    r.v = f24_add(o.y, f24_mul(r.t, d.y));
+    const f24_t uv = f24_add(r.u, r.v);
+    r.hit = f24_le(F24_ZERO, r.u) && f24_le(F24_ZERO, r.v) && f24_le(uv, F24_ONE) && f24_le(tmin, r.t) &&
+            f24_lt(r.t, tmax);
+    return r;
+}

@@ -1,0 +1,32 @@
+/*
+ * Unit-triangle intersection unit (paper section 2.1; Table 2: 3 adders, 2 multipliers,
+ * 1 divider).
+ *
+ * The ray has already been transformed by the triangle's transformation (xform_unit) into the
+ * space where the triangle is (1,0,0), (0,1,0), (0,0,0) and its normal is (0,0,1):
+ *   t = -O'z / D'z,  u = O'x + t D'x,  v = O'y + t D'y,
+ *   hit when u >= 0, v >= 0, u + v <= 1 and tmin <= t < tmax.
+ * u is the barycentric weight of vertex A, v of B; D'z is the cosine between the ray direction
+ * and the normal (times the direction's length) for shading, for free.
+ * Edge cases, by the fp24 rules (docs/fp24.md): a ray parallel to the plane (D'z = 0) gives
+ * t = +-Inf or NaN and misses, because no comparison with NaN or with a finite tmax succeeds;
+ * edges and vertices (u = 0, v = 0 or u + v = 1 exactly) are hits, so neighbouring triangles
+ * sharing an edge cannot both miss a ray that meets the edge in exact arithmetic; an origin on
+ * the plane gives t = +-0, a hit if tmin <= 0 (secondary rays use tmin > 0 against acne).
+ * Datapath: negation is a sign flip, 1 divider, 2 multipliers, 3 adders (u, v, u+v), 5
+ * comparators; rays are intersected one at a time.
+ */
+#ifndef SAARCOR_ISECT_UNIT_H
+#define SAARCOR_ISECT_UNIT_H
+
+#include "vec3.h"
+
+typedef struct {
+    int hit;
+    f24_t t, u, v;
+    f24_t cos_n; /* D'z */
+} isect_result;
+
+isect_result isect_unit_triangle(f24_vec3 o, f24_vec3 d, f24_t tmin, f24_t tmax);
+
+#endif

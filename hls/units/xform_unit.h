@@ -1,0 +1,20 @@
+/*
+ * Transformation unit (paper sections 2.1, 2.2 and 3; Table 2: 9 adders, 9 multipliers).
+ *
+ * One affine map per step: three rows, each m0*x + m1*y + m2*z (+ t). A point (ray origin)
+ * takes the translation, a vector (ray direction) does not: the translation adder is bypassed,
+ * not fed with zero, so that a -0 result keeps its sign. The summation order is fixed and part
+ * of the contract with the RTL: ((m0*x + m1*y) + m2*z) + t.
+ * Datapath: 9 fp24 multipliers, 6 adders for the dot products and 3 for the translation;
+ * pipelined, one step per cycle. A ray takes two steps (origin, direction); rays that share an
+ * origin (a packet of primary rays, shadow rays towards one light) share the origin step.
+ */
+#ifndef SAARCOR_XFORM_UNIT_H
+#define SAARCOR_XFORM_UNIT_H
+
+#include "vec3.h"
+
+f24_vec3 xform_point(const f24_affine *m, f24_vec3 p);
+f24_vec3 xform_vector(const f24_affine *m, f24_vec3 v);
+
+#endif

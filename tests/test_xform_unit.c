@@ -1,0 +1,106 @@
+/*
+ * Tests of the transformation unit (hls/units/xform_unit): exact cases, the translation only on
+ * points, the fixed summation order (bit-exact against a step-by-step evaluation), loading from
+ * the memory image, and the error bound against double precision on random inputs.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+#include <math.h>
+
+#include "f24_fast.h"
+#include "xform_unit.h"
+
+static f24_t F(double x) { return f24_fast_encode(x); }
+static double D(f24_t x) { return f24_fast_decode(x); }
+
+static uint64_t rng = 88172645463325252ull;
+static double urand(void)
+{
+    rng ^= rng << 13;
+    rng ^= rng >> 7;
+    rng ^= rng << 17;
+    return (double)(rng >> 11) / 9007199254740992.0;
+}
+
+static f24_affine affine_of(const double m[3][4])
+{
+    f24_affine a;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 4; j++)
+            a.m[i][j] = F(m[i][j]);
+    return a;
+}
+
+static void exact_cases(void **state)
+{
+    (void)state;
+    const double m[3][4] = { { 2, 0, 0, 1 }, { 0, 0.5, 0, -2 }, { 0, 0, -4, 0.25 } };
+    const f24_affine a = affine_of(m);
+    const f24_vec3 p = { F(3), F(8), F(0.5) };
+    const f24_vec3 q = xform_point(&a, p), v = xform_vector(&a, p);
+    assert_int_equal(q.x, F(7));
+    assert_int_equal(q.y, F(2));
+    assert_int_equal(q.z, F(-1.75));
+    assert_int_equal(v.x, F(6)); /* no translation for directions */
+    assert_int_equal(v.y, F(4));
+    assert_int_equal(v.z, F(-2));
+}
+
+/* The unit's result equals ((m0 x + m1 y) + m2 z) + t with each operation rounded, bit for bit. */
+static void summation_order(void **state)
+{
+    (void)state;
+    for (int n = 0; n < 20000; n++) {
+        double m[3][4];
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 4; j++)
+                m[i][j] = (urand() - 0.5) * pow(2.0, 20 * urand() - 10);
+        const f24_affine a = affine_of(m);
+        const f24_vec3 p = { F(urand() - 0.5), F(1000 * (urand() - 0.5)), F(1e-3 * (urand() - 0.5)) };
+        const f24_vec3 q = xform_point(&a, p);
+        const f24_t in[3] = { p.x, p.y, p.z }, out[3] = { q.x, q.y, q.z };
+        for (int i = 0; i < 3; i++) {
+            f24_t s = f24_fast_mul(a.m[i][0], in[0]);
+            s = f24_fast_add(s, f24_fast_mul(a.m[i][1], in[1]));
+            s = f24_fast_add(s, f24_fast_mul(a.m[i][2], in[2]));
+            s = f24_fast_add(s, a.m[i][3]);
+            assert_int_equal(out[i], s);
+            /* and the error against exact arithmetic on the fp24 inputs is within gamma_4 */
+            double exact = D(a.m[i][3]), mag = fabs(D(a.m[i][3]));
+            for (int k = 0; k < 3; k++) {
+                exact += D(a.m[i][k]) * D(in[k]);
+                mag += fabs(D(a.m[i][k]) * D(in[k]));
+            }
+            const double u = ldexp(1.0, -(F24_MAN_BITS + 1));
+            assert_true(fabs(D(out[i]) - exact) <= 4.5 * u * mag);
+        }
+    }
+}
+
+static void load_from_image(void **state)
+{
+    (void)state;
+    uint32_t mem[20] = { 0 };
+    for (int k = 0; k < 12; k++)
+        mem[5 + k] = F(k + 1) | 0xFF000000u; /* bits above the format are ignored */
+    const f24_affine a = f24_affine_load(mem, 5);
+    assert_int_equal(a.m[0][0], F(1));
+    assert_int_equal(a.m[2][3], F(12));
+    const f24_vec3 o = { 0, 0, 0 };
+    const f24_vec3 t = xform_point(&a, o);
+    assert_int_equal(t.x, F(4));
+    assert_int_equal(t.y, F(8));
+    assert_int_equal(t.z, F(12));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(exact_cases), cmocka_unit_test(summation_order), cmocka_unit_test(load_from_image),
+    };
+    return cmocka_run_group_tests_name("xform_unit", tests, NULL, NULL);
+}
