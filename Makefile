@@ -103,7 +103,7 @@ $(BUILD)/saarcor: $(BUILD)/w/$(DEFAULT_FMT)/saarcor
 	cp $< $@
 
 # host module tests: tests/test_<module>.c linked with all host objects (default fp24 format)
-HOST_TESTS := $(patsubst tests/%.c,$(BUILD)/%,$(wildcard tests/test_image.c tests/test_kdtree.c tests/test_scene.c tests/test_scenes.c tests/test_memimage.c tests/test_xform_unit.c tests/test_isect_unit.c))
+HOST_TESTS := $(patsubst tests/%.c,$(BUILD)/%,$(wildcard tests/test_image.c tests/test_kdtree.c tests/test_scene.c tests/test_scenes.c tests/test_memimage.c tests/test_xform_unit.c tests/test_isect_unit.c tests/test_trace.c))
 $(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS) $(call fmt_objs,$(DEFAULT_FMT))
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
