@@ -101,7 +101,7 @@ t_f24gen_format() {
 t_f24verify() {
   expect 0 "$BIN" f24verify -n 2000 --json "$T/v.json"
   grep -q 'all results agree with MPFR' "$T/out"
-  python3 -c "import json,sys; d=json.load(open('$T/v.json')); assert len(d['results'])==16; assert all(r['hw_mismatches']==0 and r['fast_mismatches']==0 for r in d['results'])"
+  python3 -c "import json,sys; d=json.load(open('$T/v.json')); assert len(d['results'])==17; assert all(r['hw_mismatches']==0 and r['fast_mismatches']==0 for r in d['results'])"
 }
 
 make_images() {

@@ -63,7 +63,7 @@ static void exhaustive_unary(void **state)
     (void)state;
     if (F24_WIDTH > 20)
         skip();
-    const f24_op ops[] = { F24_OP_SQRT, F24_OP_NEG, F24_OP_ABS, F24_OP_TO_F32 };
+    const f24_op ops[] = { F24_OP_SQRT, F24_OP_NEG, F24_OP_ABS, F24_OP_TO_F32, F24_OP_TO_I32 };
     for (size_t i = 0; i < sizeof ops / sizeof ops[0]; i++)
         expect_no_mismatch(f24_check_exhaustive(ops[i], stdout, 10));
 }

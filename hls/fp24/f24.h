@@ -86,6 +86,7 @@ f24_t f24_max(f24_t a, f24_t b);
 f24_t f24_from_f32(uint32_t bits);
 uint32_t f24_to_f32(f24_t a); /* exact: every fp24 value is a binary32 value */
 f24_t f24_from_i32(int32_t i);
+int32_t f24_to_i32(f24_t a); /* toward zero, saturating, NaN -> 0 */
 
 /* Host simulation builds may select the bit-identical fast path (tb/fp/f24_fast.h) at build
  * time; hardware and reference builds never define F24_FAST_SIM. */

@@ -137,6 +137,17 @@ uint32_t f24_mpfr(f24_op op, uint32_t a, uint32_t b)
         break;
     }
     case F24_OP_FROM_I32: mpfr_set_si(r, (int32_t)a, MPFR_RNDN); break;
+    case F24_OP_TO_I32: /* toward zero, saturating, NaN -> 0 */
+        if (mpfr_nan_p(x))
+            out = 0;
+        else if (mpfr_cmp_si(x, INT32_MAX) > 0)
+            out = (uint32_t)INT32_MAX;
+        else if (mpfr_cmp_si(x, INT32_MIN) < 0)
+            out = (uint32_t)INT32_MIN;
+        else
+            out = (uint32_t)(int32_t)mpfr_get_si(x, MPFR_RNDZ);
+        rounded = 0;
+        break;
     case F24_OP_TO_F32:
         mpfr_set_emin(old_emin);
         mpfr_set_emax(old_emax);

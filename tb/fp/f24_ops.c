@@ -17,6 +17,7 @@ UN(f24_fast_from_f32)
 
 static uint32_t f24_from_i32_w(uint32_t a, uint32_t b) { (void)b; return f24_from_i32((int32_t)a); }
 static uint32_t f24_fast_from_i32_w(uint32_t a, uint32_t b) { (void)b; return f24_fast_from_i32((int32_t)a); }
+static uint32_t f24_to_i32_w(uint32_t a, uint32_t b) { (void)b; return (uint32_t)f24_to_i32(a); }
 
 /* The fast path reuses the integer comparisons, min/max, sign operations and to_f32. */
 #define OP(name, arity, arg, res, hw, fast) { name, arity, arg, res, hw##_w, fast##_w }
@@ -37,6 +38,7 @@ const f24_op_info f24_ops[F24_OP_COUNT] = {
     [F24_OP_FROM_F32] = OP("from_f32", 1, F24_KIND_F32, F24_KIND_F24, f24_from_f32, f24_fast_from_f32),
     [F24_OP_TO_F32] = OP("to_f32", 1, F24_KIND_F24, F24_KIND_F32, f24_to_f32, f24_to_f32),
     [F24_OP_FROM_I32] = OP("from_i32", 1, F24_KIND_I32, F24_KIND_F24, f24_from_i32, f24_fast_from_i32),
+    [F24_OP_TO_I32] = OP("to_i32", 1, F24_KIND_F24, F24_KIND_I32, f24_to_i32, f24_to_i32),
 };
 
 int f24_op_find(const char *name)
