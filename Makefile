@@ -115,13 +115,13 @@ widths: $(foreach f,$(FORMATS),$(BUILD)/w/$(f)/saarcor)
 deps:
 	@bash scripts/install-deps.sh
 
-# until the renderer exists: generate the default scene and show what the host makes of it
+# generate the default scene, show what the host makes of it, render it through the units
 DEFAULT_SCENE := room
 run: deps
 	@$(MAKE) --no-print-directory all
-	$(BUILD)/saarcor version
 	$(BUILD)/saarcor gen $(DEFAULT_SCENE) -o $(BUILD)/$(DEFAULT_SCENE).glb
 	$(BUILD)/saarcor info $(BUILD)/$(DEFAULT_SCENE).glb --validate
+	$(BUILD)/saarcor render $(BUILD)/$(DEFAULT_SCENE).glb -o $(BUILD)/$(DEFAULT_SCENE).png --width 1024 --height 768
 
 # ---- tests ---------------------------------------------------------------------------------
 UNIT_TESTS := $(foreach f,$(FORMATS),$(BUILD)/w/$(f)/test_f24 $(BUILD)/w/$(f)/test_f24_select) $(HOST_TESTS)

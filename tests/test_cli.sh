@@ -155,6 +155,19 @@ t_info() {
   expect 2 "$BIN" info; one_line_error
 }
 
+t_render() {
+  expect 0 "$BIN" render cornell -o "$T/r1.png" --width 96 --height 72 --threads 1 --stats "$T/s.json"
+  has 'rendered cornell: 96x72, 6912 primary rays' "$T/out"
+  expect 0 "$BIN" render cornell -o "$T/r2.png" --width 96 --height 72 --threads 3
+  cmp "$T/r1.png" "$T/r2.png"                      # bit-identical for any thread count
+  python3 -c "import json; d=json.load(open('$T/s.json')); assert d['rays']==6912 and d['intersections']>0"
+  "$BIN" compare "$T/r1.png" "$T/r2.png" --psnr-min 99 >/dev/null
+  expect 0 "$BIN" render room -o "$T/odd.png" --width 33 --height 17 --threads 2   # odd sizes
+  expect 2 "$BIN" render cornell --threads 0; one_line_error
+  expect 3 "$BIN" render "$T/missing.glb"; one_line_error
+  expect 3 "$BIN" render cornell -o /nonexistent-dir/x.png; one_line_error
+}
+
 run_case cli_help t_help
 run_case cli_bad_usage_exit_2_one_line t_bad_usage
 run_case cli_version t_version
@@ -164,4 +177,5 @@ run_case cli_f24verify t_f24verify
 run_case cli_compare_vs_idiff t_compare
 run_case cli_gen t_gen
 run_case cli_info t_info
+run_case cli_render t_render
 exit $((fails != 0))

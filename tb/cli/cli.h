@@ -27,6 +27,7 @@ int cmd_f24gen(int argc, char **argv);
 int cmd_f24verify(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
 int cmd_info(int argc, char **argv);
+int cmd_render(int argc, char **argv);
 int cmd_gen(int argc, char **argv);
 
 /* Prints "saarcor CMD: error: ..." on one line to stderr and returns SAARCOR_EXIT_USAGE. */

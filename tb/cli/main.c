@@ -19,6 +19,7 @@ static const saarcor_cmd commands[] = {
     { "f24verify", "check the fp24 arithmetic against MPFR (edge, random, exhaustive)", cmd_f24verify },
     { "compare", "compare two images: PSNR, max error, differing pixels", cmd_compare },
     { "info", "scene statistics: objects, triangles, kd-trees, build times, memory image", cmd_info },
+    { "render", "render a scene through the hardware units (functional mode)", cmd_render },
     { "gen", "write a generated scene as glTF: saarcor gen NAME -o FILE (gen --list)", cmd_gen },
 };
 #define N_COMMANDS (sizeof commands / sizeof commands[0])
