@@ -12,6 +12,7 @@
 SHELL := /bin/bash
 .DEFAULT_GOAL := all
 .DELETE_ON_ERROR:
+.SECONDARY:
 
 BUILD ?= build
 CC := gcc
@@ -103,7 +104,7 @@ $(BUILD)/saarcor: $(BUILD)/w/$(DEFAULT_FMT)/saarcor
 	cp $< $@
 
 # host module tests: tests/test_<module>.c linked with all host objects (default fp24 format)
-HOST_TESTS := $(patsubst tests/%.c,$(BUILD)/%,$(wildcard tests/test_image.c tests/test_kdtree.c tests/test_scene.c tests/test_scenes.c tests/test_memimage.c tests/test_xform_unit.c tests/test_isect_unit.c tests/test_trace.c))
+HOST_TESTS := $(patsubst tests/%.c,$(BUILD)/%,$(filter-out tests/test_f24.c tests/test_f24_select.c,$(wildcard tests/test_*.c)))
 $(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS) $(call fmt_objs,$(DEFAULT_FMT))
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
