@@ -4,7 +4,8 @@
 #include "xform_unit.h"
 
 enum {
-    H_REGIONS = 18, R_MATERIALS = 1, R_OBJECTS = 5, R_CAMERA = 6, R_INSTANCES = 8,
+    H_LIGHTS = 10, H_REGIONS = 18, R_MATERIALS = 1, R_OBJECTS = 5, R_CAMERA = 6, R_LIGHTS = 7, R_INSTANCES = 8,
+    LIGHT_WORDS = 16, MAX_LIGHTS = 64,
     OBJ_WORDS = 16, O_TRIANGLES = 2, O_SHADING = 3, O_FLAGS = 7, HAS_NORMALS = 1,
     INST_WORDS = 16, TRI_WORDS = 12, SHADE_WORDS = 16, MAT_WORDS = 16,
 };
@@ -100,24 +101,115 @@ static uint32_t quantize8(f24_t c)
     return v < 0 ? 0u : v > 255 ? 255u : (uint32_t)v;
 }
 
-uint32_t rgs_shade(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h)
+static f24_vec3 sub3(f24_vec3 a, f24_vec3 b) { return (f24_vec3){ f24_sub(a.x, b.x), f24_sub(a.y, b.y), f24_sub(a.z, b.z) }; }
+static f24_vec3 scale3(f24_vec3 a, f24_t s) { return (f24_vec3){ f24_mul(a.x, s), f24_mul(a.y, s), f24_mul(a.z, s) }; }
+static f24_vec3 neg3(f24_vec3 a) { return (f24_vec3){ f24_neg(a.x), f24_neg(a.y), f24_neg(a.z) }; }
+
+/* What shading needs to know about a hit: point, unit normal facing the viewer, material. */
+typedef struct {
+    int valid;
+    f24_vec3 p, n;
+    uint32_t mat; /* address of the material record */
+} surface;
+
+static surface surface_at(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h)
 {
-    if (h->instance == TRACE_NO_HIT)
-        return BACKGROUND;
+    surface sf = { 0, { 0, 0, 0 }, { 0, 0, 0 }, 0 };
+    if (h->instance == TRACE_NO_HIT || !(rp->active >> i & 1u))
+        return sf;
     const uint32_t ia = region_start(mem, R_INSTANCES) + INST_WORDS * h->instance;
     const uint32_t obj = region_start(mem, R_OBJECTS) + OBJ_WORDS * mem[ia + 12];
     const uint32_t shade = mem[obj + O_SHADING] + SHADE_WORDS * h->triangle;
-    const uint32_t mat = region_start(mem, R_MATERIALS) + MAT_WORDS * mem[shade + 15];
-    const f24_vec3 n = hit_normal(mem, h, obj, h->instance), d = rp->d[i];
-    /* |cos| between normal and view direction: light at the eye, both faces lit */
-    const f24_t nd = dot3(n, d);
-    const f24_t cosang = f24_div(f24_abs(nd), f24_sqrt(f24_mul(dot3(n, n), dot3(d, d))));
-    const f24_t light = f24_add(ratio(1, 5), f24_mul(ratio(4, 5), f24_min(cosang, F24_ONE)));
-    uint32_t rgb = 0;
-channels:
-    for (int c = 0; c < 3; c++) {
-        const f24_t v = f24_add(f24_mul(mem[mat + (uint32_t)c], light), mem[mat + 4 + (uint32_t)c]);
-        rgb |= quantize8(f24_min(v, F24_ONE)) << (16 - 8 * c);
+    f24_vec3 n = hit_normal(mem, h, obj, h->instance);
+    if (!f24_sign(dot3(n, rp->d[i])))
+        n = neg3(n); /* towards the viewer: both faces are front faces */
+    sf.valid = 1;
+    sf.n = scale3(n, f24_div(F24_ONE, f24_sqrt(dot3(n, n))));
+    sf.p = (f24_vec3){ f24_add(rp->o[i].x, f24_mul(h->t, rp->d[i].x)), f24_add(rp->o[i].y, f24_mul(h->t, rp->d[i].y)),
+                       f24_add(rp->o[i].z, f24_mul(h->t, rp->d[i].z)) };
+    sf.mat = region_start(mem, R_MATERIALS) + MAT_WORDS * mem[shade + 15];
+    return sf;
+}
+
+/* Cosine between unit vector n and direction d (any length). */
+static f24_t cos_to(f24_vec3 n, f24_vec3 d) { return f24_div(dot3(n, d), f24_sqrt(dot3(d, d))); }
+
+/* Light colour scaled to a maximum component of one: the fixed-function shader uses the
+ * light's colour and direction, not its photometric intensity. */
+static void light_colour(const uint32_t *l, f24_t out[3])
+{
+    const f24_t m = f24_max(f24_max(l[1], l[2]), l[3]);
+normalize_colour:
+    for (int c = 0; c < 3; c++)
+        out[c] = f24_lt(0, m) ? f24_div(l[1 + c], m) : 0;
+}
+
+/* Shadow rays of light l for the packet's surfaces; weight[i] = cosine x spot factor, 0 if the
+ * light does not reach the point. */
+static void light_packet(const uint32_t *l, const surface sf[], ray_packet *sh, f24_t weight[])
+{
+    const f24_vec3 lpos = { l[4], l[5], l[6] }, ldir = { l[7], l[8], l[9] };
+    sh->active = 0;
+shadow_rays:
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        weight[i] = 0;
+        if (!sf[i].valid)
+            continue;
+        const int directional = l[0] == 0;
+        sh->o[i] = sf[i].p;
+        sh->d[i] = directional ? neg3(ldir) : sub3(lpos, sf[i].p);
+        sh->tmin[i] = ratio(1, 512); /* of the distance to the light: keeps the ray off its own surface */
+        sh->tmax[i] = directional ? F24_POS_INF : F24_ONE;
+        f24_t w = cos_to(sf[i].n, sh->d[i]);
+        if (l[0] == 2) { /* spot: smooth step from the outer to the inner cone */
+            const f24_t c = f24_neg(cos_to(ldir, sh->d[i]));
+            const f24_t f = f24_div(f24_sub(c, l[12]), f24_sub(l[11], l[12]));
+            w = f24_mul(w, f24_max(0, f24_min(f, F24_ONE)));
+        }
+        if (f24_lt(0, w)) {
+            weight[i] = w;
+            sh->active |= 1u << i;
+        }
     }
-    return rgb;
+}
+
+void rgs_shade_packet(const uint32_t *mem, const ray_packet *rp, const hit_record h[], uint32_t rgb[], trace_counters *c)
+{
+    surface sf[TRACE_PACKET];
+    f24_t light[TRACE_PACKET][3];
+    const f24_t ambient = ratio(3, 20), diffuse = ratio(17, 20);
+    const uint32_t n_lights = mem[H_LIGHTS] < MAX_LIGHTS ? mem[H_LIGHTS] : MAX_LIGHTS;
+surfaces:
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        sf[i] = surface_at(mem, rp, i, &h[i]);
+        /* no lights in the scene: a light at the eye, which needs no shadow ray */
+        const f24_t head = n_lights ? 0 : f24_mul(diffuse, f24_abs(cos_to(sf[i].n, rp->d[i])));
+        for (int k = 0; k < 3; k++)
+            light[i][k] = f24_add(ambient, head);
+    }
+lights:
+    for (uint32_t li = 0; li < n_lights; li++) {
+        const uint32_t *l = &mem[region_start(mem, R_LIGHTS) + LIGHT_WORDS * li];
+        ray_packet sh;
+        f24_t weight[TRACE_PACKET], colour[3];
+        hit_record blocked[TRACE_PACKET];
+        light_packet(l, sf, &sh, weight);
+        light_colour(l, colour);
+        trace_packet(mem, &sh, blocked, c);
+        for (int i = 0; i < TRACE_PACKET; i++)
+            if ((sh.active >> i & 1u) && blocked[i].instance == TRACE_NO_HIT)
+                for (int k = 0; k < 3; k++)
+                    light[i][k] = f24_add(light[i][k], f24_mul(f24_mul(diffuse, weight[i]), colour[k]));
+    }
+pixels:
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        rgb[i] = BACKGROUND;
+        if (!sf[i].valid)
+            continue;
+        rgb[i] = 0;
+        for (int k = 0; k < 3; k++) {
+            const f24_t v = f24_add(f24_mul(mem[sf[i].mat + (uint32_t)k], light[i][k]), mem[sf[i].mat + 4 + (uint32_t)k]);
+            rgb[i] |= quantize8(f24_min(v, F24_ONE)) << (16 - 8 * k);
+        }
+    }
 }

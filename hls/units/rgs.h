@@ -9,9 +9,12 @@
  * (orthographic). A packet is a 2x2 pixel block, whose rays share their origin.
  * Shading: interpolated vertex normal (or the geometric normal, row 2 of the triangle
  * transformation, when the object has none or it is zero), taken to world space with the
- * transposed world-to-object matrix and turned towards the viewer; base colour times
- * (ambient + diffuse) from a light at the eye, plus emission; 8-bit RGB via f24_to_i32.
- * Shadows, reflection, refraction, textures and the scene's lights come with the next stage.
+ * transposed world-to-object matrix, normalized and turned towards the viewer; base colour times
+ * (ambient 0.15 + 0.85 x sum over the scene's lights of cosine x spot factor x light colour, for
+ * lights whose shadow ray reaches the point), plus emission; 8-bit RGB via f24_to_i32. Shadow
+ * rays of a packet towards one light form one packet (origin the hit point, direction to the
+ * light, t in [1/512, 1]). A scene without lights gets a light at the eye (no shadows).
+ * Reflection, refraction and textures come with the next stage.
  */
 #ifndef SAARCOR_RGS_H
 #define SAARCOR_RGS_H
@@ -22,8 +25,8 @@
  * inactive. */
 void rgs_primary(const uint32_t *mem, uint32_t x0, uint32_t y0, ray_packet *rp);
 
-/* 0xRRGGBB colour of ray i of the packet given its hit. */
-uint32_t rgs_shade(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h);
+/* 0xRRGGBB colours of the packet's rays given their hits; shadow rays are traced (counted in c). */
+void rgs_shade_packet(const uint32_t *mem, const ray_packet *rp, const hit_record h[], uint32_t rgb[], trace_counters *c);
 
 /* Image size of the camera block. */
 void rgs_image_size(const uint32_t *mem, uint32_t *width, uint32_t *height);

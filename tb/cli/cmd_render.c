@@ -35,11 +35,13 @@ static void *render_rows(void *arg)
             ray_packet rp;
             hit_record h[TRACE_PACKET];
             rgs_primary(j->mem, x, y, &rp);
+            uint32_t rgb[TRACE_PACKET];
             trace_packet(j->mem, &rp, h, &j->counters);
+            rgs_shade_packet(j->mem, &rp, h, rgb, &j->counters);
             for (int i = 0; i < TRACE_PACKET; i++) {
                 if (!(rp.active >> i & 1u))
                     continue;
-                j->pixels[(size_t)(y + (uint32_t)(i >> 1)) * j->width + x + (uint32_t)(i & 1)] = rgs_shade(j->mem, &rp, i, &h[i]);
+                j->pixels[(size_t)(y + (uint32_t)(i >> 1)) * j->width + x + (uint32_t)(i & 1)] = rgb[i];
                 j->rays++;
             }
         }
@@ -117,7 +119,7 @@ static int usage(void)
     printf("usage: saarcor render SCENE [-o out.png] [--threads N] [--stats FILE] [scene options]\n\n"
            "Renders the scene through the hardware units in functional mode (each packet of 2x2\n"
            "primary rays runs to completion): RGS, traversal, list, transformation and intersection\n"
-           "units reading the memory image. Shading: base colour with a light at the eye. The image is\n"
+           "units reading the memory image. Shading: base colour, the scene's lights with shadows. The image is\n"
            "bit-identical for any --threads (default: the number of cores).\n\n%s", SCENE_OPTIONS_HELP);
     return SAARCOR_EXIT_OK;
 }
