@@ -26,6 +26,7 @@ typedef struct {
     uint32_t sp;
     trav_entry cur;
     int have_cur;
+    uint32_t leaf_first, leaf_count; /* list range of the leaf last returned */
 } walker;
 
 typedef struct {
@@ -130,6 +131,9 @@ walk:
         c->words_read += 2;
         if ((w0 & 3u) == MI_NODE_LEAF) {
             w->have_cur = 0;
+            w->leaf_first = w1;
+            w->leaf_count = w0 >> 2;
+            c->leaves++;
             return 1;
         }
         c->traversal_steps++;
@@ -192,12 +196,10 @@ to_object_space:
     const uint32_t tris = mem[obj + O_TRIANGLES];
 bottom_leaves:
     while (walker_next_leaf(&w, mem, o, d, best_t, c)) {
-        c->leaves++;
         const trav_entry *e = &w.cur;
-        const uint32_t n = mem[w.nodes + 2 * e->node] >> 2, first = mem[w.nodes + 2 * e->node + 1];
     bottom_list:
-        for (uint32_t k = 0; k < n; k++) {
-            const uint32_t tri = mem[w.lists + first + k];
+        for (uint32_t k = 0; k < w.leaf_count; k++) {
+            const uint32_t tri = mem[w.lists + w.leaf_first + k];
             c->list_entries++;
             c->words_read++;
             const f24_affine tx = f24_affine_load(mem, tris + TRI_WORDS * tri);
@@ -246,12 +248,10 @@ init_rays:
     walker_start(&w, region_start(mem, R_TOP_NODES), region_start(mem, R_TOP_LISTS), mask, tn, tf);
 top_leaves:
     while (walker_next_leaf(&w, mem, rays->o, rays->d, best_t, c)) {
-        c->leaves++;
         const trav_entry *e = &w.cur;
-        const uint32_t n = mem[w.nodes + 2 * e->node] >> 2, first = mem[w.nodes + 2 * e->node + 1];
     top_list:
-        for (uint32_t k = 0; k < n; k++) {
-            const uint32_t inst = mem[w.lists + first + k];
+        for (uint32_t k = 0; k < w.leaf_count; k++) {
+            const uint32_t inst = mem[w.lists + w.leaf_first + k];
             uint32_t need = 0;
             c->list_entries++;
         top_mailbox:
