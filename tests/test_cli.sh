@@ -163,6 +163,11 @@ t_render() {
   python3 -c "import json; d=json.load(open('$T/s.json')); assert d['rays']==6912 and d['intersections']>0"
   "$BIN" compare "$T/r1.png" "$T/r2.png" --psnr-min 99 >/dev/null
   expect 0 "$BIN" render room -o "$T/odd.png" --width 33 --height 17 --threads 2   # odd sizes
+  expect 0 "$BIN" render animated --frames 0:2 --fps 2 -o "$T/a.png" --width 64 --height 48
+  [[ $(grep -c '^rendered animated' "$T/out") -eq 3 ]]
+  [[ -s "$T/a_0000.png" && -s "$T/a_0002.png" ]]
+  if cmp -s "$T/a_0000.png" "$T/a_0002.png"; then echo "animation frames are identical"; return 1; fi
+  expect 2 "$BIN" render animated --frames 3:1; one_line_error
   expect 2 "$BIN" render cornell --threads 0; one_line_error
   expect 3 "$BIN" render "$T/missing.glb"; one_line_error
   expect 3 "$BIN" render cornell -o /nonexistent-dir/x.png; one_line_error

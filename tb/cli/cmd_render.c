@@ -116,24 +116,117 @@ static int write_png(const char *path, const uint32_t *pixels, uint32_t w, uint3
 
 static int usage(void)
 {
-    printf("usage: saarcor render SCENE [-o out.png] [--threads N] [--stats FILE] [scene options]\n\n"
+    printf("usage: saarcor render SCENE [-o out.png] [--frames A:B [--fps F]] [--threads N] [--stats FILE]\n"
+           "                      [scene options]\n\n"
            "Renders the scene through the hardware units in functional mode (each packet of 2x2\n"
            "primary rays runs to completion): RGS, traversal, list, transformation and intersection\n"
-           "units reading the memory image. Shading: base colour, the scene's lights with shadows. The image is\n"
-           "bit-identical for any --threads (default: the number of cores).\n\n%s", SCENE_OPTIONS_HELP);
+           "units reading the memory image. Shading: base colour, the scene's lights with shadows. The\n"
+           "image is bit-identical for any --threads (default: the number of cores).\n"
+           "--frames A:B renders frames A..B of the animation at --fps (default 30) to OUT_NNNN.png,\n"
+           "rebuilding per frame only what changed (the top level, morphing objects).\n\n%s", SCENE_OPTIONS_HELP);
     return SAARCOR_EXIT_OK;
+}
+
+typedef struct {
+    const char *out, *stats;
+    uint32_t threads, first, last;
+    int sequence;
+    double fps;
+} render_opts;
+
+/* out.png -> out_0007.png for frame sequences. */
+static void frame_path(const render_opts *ro, uint32_t frame, char *buf, size_t n)
+{
+    if (!ro->sequence) {
+        snprintf(buf, n, "%s", ro->out);
+        return;
+    }
+    const char *dot = strrchr(ro->out, '.');
+    const int stem = dot ? (int)(dot - ro->out) : (int)strlen(ro->out);
+    snprintf(buf, n, "%.*s_%04u%s", stem, ro->out, frame, dot ? dot : ".png");
+}
+
+static int write_stats(const char *path, uint64_t rays, double secs, const trace_counters *sum)
+{
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return -1;
+    fprintf(f, "{\"rays\": %llu, \"seconds\": %.6f, \"traversal_steps\": %llu, \"leaves\": %llu, "
+               "\"list_entries\": %llu, \"mailbox_skips\": %llu, \"transformations\": %llu, "
+               "\"intersections\": %llu, \"words_read\": %llu}\n", (unsigned long long)rays, secs,
+            (unsigned long long)sum->traversal_steps, (unsigned long long)sum->leaves,
+            (unsigned long long)sum->list_entries, (unsigned long long)sum->mailbox_skips,
+            (unsigned long long)sum->transformations, (unsigned long long)sum->intersections,
+            (unsigned long long)sum->words_read);
+    return fclose(f);
+}
+
+/* Renders one frame of the current image and writes it. */
+static int render_frame(const mi_builder *b, const render_opts *ro, uint32_t frame, const char *scene_name)
+{
+    char err[512], path[1024];
+    uint32_t n, w, h;
+    const uint32_t *mem = mi_words(b, &n);
+    if (mi_validate(mem, n, err, sizeof err) != 0) {
+        cli_error("render", "%s", err);
+        return SAARCOR_EXIT_INTERNAL;
+    }
+    rgs_image_size(mem, &w, &h);
+    uint32_t *pixels = calloc((size_t)w * h, sizeof *pixels);
+    trace_counters sum;
+    uint64_t rays = 0;
+    const double t0 = now();
+    if (!pixels || render(mem, ro->threads, pixels, &sum, &rays) != 0) {
+        free(pixels);
+        cli_error("render", "out of memory");
+        return SAARCOR_EXIT_INTERNAL;
+    }
+    const double secs = now() - t0;
+    frame_path(ro, frame, path, sizeof path);
+    const int wrc = write_png(path, pixels, w, h);
+    free(pixels);
+    if (wrc != 0)
+        return SAARCOR_EXIT_INPUT;
+    printf("rendered %s: %ux%u, %llu primary rays in %.3f s (%u threads), upload %.1f KB -> %s\n", scene_name, w, h,
+           (unsigned long long)rays, secs, ro->threads, (double)mi_get_stats(b)->frame_upload_bytes / 1024.0, path);
+    printf("per primary ray (shadow rays included): %.2f traversal steps, %.2f leaves, %.2f list entries, "
+           "%.2f mailbox skips, %.2f intersections, %.1f words read\n", (double)sum.traversal_steps / rays,
+           (double)sum.leaves / rays, (double)sum.list_entries / rays, (double)sum.mailbox_skips / rays,
+           (double)sum.intersections / rays, (double)sum.words_read / rays);
+    fflush(stdout);
+    if (ro->stats && write_stats(ro->stats, rays, secs, &sum) != 0) {
+        cli_error("render", "cannot write '%s'", ro->stats);
+        return SAARCOR_EXIT_INPUT;
+    }
+    return SAARCOR_EXIT_OK;
+}
+
+static int parse_frames(const char *arg, render_opts *ro)
+{
+    uint64_t a, b;
+    char first[32];
+    const char *colon = strchr(arg, ':');
+    if (!colon || colon - arg >= (long)sizeof first)
+        return 0;
+    snprintf(first, sizeof first, "%.*s", (int)(colon - arg), arg);
+    if (!cli_parse_u64(first, 0, 1000000, &a) || !cli_parse_u64(colon + 1, 0, 1000000, &b) || b < a)
+        return 0;
+    ro->first = (uint32_t)a;
+    ro->last = (uint32_t)b;
+    ro->sequence = 1;
+    return 1;
 }
 
 int cmd_render(int argc, char **argv)
 {
     static const struct option opts[] = {
         SCENE_LONG_OPTIONS, { "output", required_argument, NULL, 'o' }, { "threads", required_argument, NULL, 't' },
-        { "stats", required_argument, NULL, 's' }, { "help", no_argument, NULL, 'h' }, { 0, 0, 0, 0 }
+        { "stats", required_argument, NULL, 's' }, { "frames", required_argument, NULL, 'F' },
+        { "fps", required_argument, NULL, 'r' }, { "help", no_argument, NULL, 'h' }, { 0, 0, 0, 0 }
     };
     scene_opts o;
-    const char *out = "render.png", *stats = NULL;
-    long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
-    uint32_t threads = ncpu > 0 && ncpu < 256 ? (uint32_t)ncpu : 1;
+    const long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+    render_opts ro = { "render.png", NULL, ncpu > 0 && ncpu < 256 ? (uint32_t)ncpu : 1, 0, 0, 0, 30.0 };
     int c;
     scene_opts_default(&o);
     optind = 0;
@@ -146,13 +239,21 @@ int cmd_render(int argc, char **argv)
         if (r > 0)
             continue;
         switch (c) {
-        case 'o': out = optarg; break;
+        case 'o': ro.out = optarg; break;
         case 't':
             if (!cli_parse_u64(optarg, 1, 256, &v))
                 return cli_usage_error("render", "bad --threads '%s'", optarg);
-            threads = (uint32_t)v;
+            ro.threads = (uint32_t)v;
             break;
-        case 's': stats = optarg; break;
+        case 's': ro.stats = optarg; break;
+        case 'F':
+            if (!parse_frames(optarg, &ro))
+                return cli_usage_error("render", "bad --frames '%s' (expected A:B with A <= B)", optarg);
+            break;
+        case 'r':
+            if (!cli_parse_double(optarg, &ro.fps) || ro.fps <= 0 || ro.fps > 1e4)
+                return cli_usage_error("render", "bad --fps '%s'", optarg);
+            break;
         case 'h': return usage();
         default: return cli_bad_option("render", argc, argv);
         }
@@ -160,60 +261,33 @@ int cmd_render(int argc, char **argv)
     if (argc - optind != 1)
         return cli_usage_error("render", "expected one SCENE");
     o.scene = argv[optind];
+    if (ro.sequence)
+        o.time = ro.first / ro.fps;
     scene s;
     int rc = scene_opts_load(&o, "render", &s);
     if (rc != SAARCOR_EXIT_OK)
         return rc;
     char err[512];
     mi_builder *b = mi_build(&s, &o.mi, err, sizeof err);
-    scene_free(&s);
     if (!b) {
         cli_error("render", "%s", err);
+        scene_free(&s);
         return SAARCOR_EXIT_INPUT;
     }
-    uint32_t n;
-    const uint32_t *mem = mi_words(b, &n);
-    if (mi_validate(mem, n, err, sizeof err) != 0) {
-        cli_error("render", "%s", err);
-        mi_free(b);
-        return SAARCOR_EXIT_INTERNAL;
-    }
-    uint32_t *pixels = calloc((size_t)o.mi.width * o.mi.height, sizeof *pixels);
-    trace_counters sum;
-    uint64_t rays = 0;
-    const double t0 = now();
-    if (!pixels || render(mem, threads, pixels, &sum, &rays) != 0) {
-        cli_error("render", "out of memory");
-        rc = SAARCOR_EXIT_INTERNAL;
-    }
-    const double secs = now() - t0;
-    if (rc == SAARCOR_EXIT_OK && write_png(out, pixels, o.mi.width, o.mi.height) != 0)
-        rc = SAARCOR_EXIT_INPUT;
-    if (rc == SAARCOR_EXIT_OK) {
-        printf("rendered %s: %ux%u, %llu primary rays in %.3f s (%u threads) -> %s\n", o.scene, o.mi.width, o.mi.height,
-               (unsigned long long)rays, secs, threads, out);
-        printf("per ray: %.2f traversal steps, %.2f leaves, %.2f list entries, %.2f mailbox skips, %.2f intersections, "
-               "%.1f words read\n", (double)sum.traversal_steps / rays, (double)sum.leaves / rays,
-               (double)sum.list_entries / rays, (double)sum.mailbox_skips / rays, (double)sum.intersections / rays,
-               (double)sum.words_read / rays);
-    }
-    if (rc == SAARCOR_EXIT_OK && stats) {
-        FILE *f = fopen(stats, "w");
-        if (!f) {
-            cli_error("render", "cannot write '%s'", stats);
-            rc = SAARCOR_EXIT_INPUT;
-        } else {
-            fprintf(f, "{\"rays\": %llu, \"seconds\": %.6f, \"traversal_steps\": %llu, \"leaves\": %llu, "
-                       "\"list_entries\": %llu, \"mailbox_skips\": %llu, \"transformations\": %llu, "
-                       "\"intersections\": %llu, \"words_read\": %llu}\n", (unsigned long long)rays, secs,
-                    (unsigned long long)sum.traversal_steps, (unsigned long long)sum.leaves,
-                    (unsigned long long)sum.list_entries, (unsigned long long)sum.mailbox_skips,
-                    (unsigned long long)sum.transformations, (unsigned long long)sum.intersections,
-                    (unsigned long long)sum.words_read);
-            fclose(f);
+    rc = render_frame(b, &ro, ro.first, o.scene);
+    for (uint32_t f = ro.first + 1; rc == SAARCOR_EXIT_OK && f <= ro.last; f++) {
+        if (scene_evaluate(&s, f / ro.fps, 1) != 0) {
+            cli_error("render", "frame %u: out of memory", f);
+            rc = SAARCOR_EXIT_INTERNAL;
+        } else if (mi_update(b, &s, err, sizeof err) != 0) {
+            cli_error("render", "frame %u: %s", f, err);
+            rc = SAARCOR_EXIT_INTERNAL;
         }
+        if (rc != SAARCOR_EXIT_OK)
+            break;
+        rc = render_frame(b, &ro, f, o.scene);
     }
-    free(pixels);
     mi_free(b);
+    scene_free(&s);
     return rc;
 }
