@@ -7,6 +7,7 @@
 #define _GNU_SOURCE
 #include <getopt.h>
 #include <pthread.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,11 +26,26 @@ typedef struct {
     uint32_t *pixels;
     trace_counters counters;
     uint64_t rays;
+    atomic_uint *rows_done; /* block rows finished by all threads, for the progress line */
 } render_job;
+
+static double now(void);
+
+/* Progress on stderr (thread 0, a terminal, at most every half second). */
+static void progress(const render_job *j, double *last)
+{
+    const double t = now();
+    if (j->thread != 0 || !isatty(2) || t - *last < 0.5)
+        return;
+    *last = t;
+    const unsigned rows = (j->height + 1) / 2;
+    fprintf(stderr, "\rrender: %3u%%", 100u * atomic_load(j->rows_done) / (rows ? rows : 1));
+}
 
 static void *render_rows(void *arg)
 {
     render_job *j = arg;
+    double last = now();
     for (uint32_t y = 2 * j->thread; y < j->height; y += 2 * j->threads) {
         for (uint32_t x = 0; x < j->width; x += 2) {
             ray_packet rp;
@@ -45,7 +61,11 @@ static void *render_rows(void *arg)
                 j->rays++;
             }
         }
+        atomic_fetch_add(j->rows_done, 1u);
+        progress(j, &last);
     }
+    if (j->thread == 0 && isatty(2))
+        fprintf(stderr, "\r%*s\r", 14, ""); /* clear the progress line */
     return NULL;
 }
 
@@ -61,6 +81,7 @@ static int render(const uint32_t *mem, uint32_t threads, uint32_t *pixels, trace
 {
     uint32_t w, h;
     rgs_image_size(mem, &w, &h);
+    atomic_uint rows_done = 0;
     render_job *jobs = calloc(threads, sizeof *jobs);
     pthread_t *tid = calloc(threads, sizeof *tid);
     if (!jobs || !tid) {
@@ -69,7 +90,7 @@ static int render(const uint32_t *mem, uint32_t threads, uint32_t *pixels, trace
         return -1;
     }
     for (uint32_t t = 0; t < threads; t++) {
-        jobs[t] = (render_job){ mem, w, h, t, threads, pixels, { 0 }, 0 };
+        jobs[t] = (render_job){ mem, w, h, t, threads, pixels, { 0 }, 0, &rows_done };
         if (t > 0 && pthread_create(&tid[t], NULL, render_rows, &jobs[t]) != 0)
             jobs[t].threads = 0; /* could not start: done below in this thread */
     }
