@@ -168,6 +168,12 @@ t_render() {
   [[ -s "$T/a_0000.png" && -s "$T/a_0002.png" ]]
   if cmp -s "$T/a_0000.png" "$T/a_0002.png"; then echo "animation frames are identical"; return 1; fi
   expect 2 "$BIN" render animated --frames 3:1; one_line_error
+  expect 0 "$BIN" render cornell -o "$T/c.png" --aov "$T/c.exr" --width 64 --height 48
+  iinfo -v "$T/c.exr" >"$T/iinfo"
+  for ch in t N.X N.Y N.Z node triangle u v; do has "channel list:.*[ ,]$ch\(,\|\$\)" "$T/iinfo"; done
+  oiiotool "$T/c.exr" --ch triangle --printstats >"$T/stats" 2>&1
+  has 'Stats Min: -1.0' "$T/stats"                   # misses around the open box
+  awk '/Stats Max/ { exit !($3 >= 0 && $3 < 36) }' "$T/stats"   # 36 triangles in the scene
   expect 2 "$BIN" render cornell --threads 0; one_line_error
   expect 3 "$BIN" render "$T/missing.glb"; one_line_error
   expect 3 "$BIN" render cornell -o /nonexistent-dir/x.png; one_line_error

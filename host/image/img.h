@@ -24,6 +24,9 @@ int img_read(const char *path, img_t *out, char *err, size_t errlen);
 int img_write(const char *path, const img_t *img, char *err, size_t errlen);
 void img_free(img_t *img);
 
+/* Writes a float image with named channels (e.g. an EXR of AOVs); full float precision. */
+int img_write_channels(const char *path, const img_t *img, const char *const *names, char *err, size_t errlen);
+
 typedef struct {
     double mean_error, rms_error, psnr, max_error; /* psnr is +inf for identical images */
     int max_x, max_y, max_channel;

@@ -86,6 +86,30 @@ extern "C" int img_write(const char *path, const img_t *img, char *err, size_t e
     }
 }
 
+extern "C" int img_write_channels(const char *path, const img_t *img, const char *const *names, char *err,
+                                  size_t errlen)
+{
+    try {
+        auto out = ImageOutput::create(path);
+        if (!out) {
+            set_error(err, errlen, std::string("cannot write '") + path + "': " + OIIO::geterror());
+            return -1;
+        }
+        ImageSpec spec(img->width, img->height, img->channels, TypeDesc::FLOAT);
+        spec.channelnames.clear();
+        for (int c = 0; c < img->channels; c++)
+            spec.channelnames.push_back(names[c]);
+        if (!out->open(path, spec) || !out->write_image(TypeDesc::FLOAT, img->pixels) || !out->close()) {
+            set_error(err, errlen, std::string("cannot write '") + path + "': " + out->geterror());
+            return -1;
+        }
+        return 0;
+    } catch (const std::exception &e) {
+        set_error(err, errlen, e.what());
+        return -1;
+    }
+}
+
 extern "C" void img_free(img_t *img)
 {
     std::free(img->pixels);

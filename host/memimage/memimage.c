@@ -673,6 +673,17 @@ const uint32_t *mi_words(const mi_builder *b, uint32_t *n_words)
 
 const mi_stats *mi_get_stats(const mi_builder *b) { return &b->st; }
 
+uint32_t mi_scene_instance(const mi_builder *b, uint32_t image_instance)
+{
+    return image_instance < b->n_inst ? b->inst_mesh[image_instance] : MI_NONE;
+}
+
+uint32_t mi_mesh_triangle(const mi_builder *b, uint32_t object, uint32_t image_triangle)
+{
+    return object < b->n_objects && image_triangle < b->obj[object].n_valid ? b->obj[object].valid[image_triangle]
+                                                                             : MI_NONE;
+}
+
 void mi_free(mi_builder *b)
 {
     if (!b)

@@ -106,6 +106,12 @@ int mi_update(mi_builder *b, const scene *s, char *err, size_t errlen);
 
 const uint32_t *mi_words(const mi_builder *b, uint32_t *n_words);
 const mi_stats *mi_get_stats(const mi_builder *b);
+
+/* Host-side provenance of device indices (for AOVs and hit comparisons): the scene instance of
+ * an image instance, and the mesh triangle (primitives concatenated in file order) of an image
+ * triangle of an object (degenerate triangles are not in the image). MI_NONE if out of range. */
+uint32_t mi_scene_instance(const mi_builder *b, uint32_t image_instance);
+uint32_t mi_mesh_triangle(const mi_builder *b, uint32_t object, uint32_t image_triangle);
 void mi_free(mi_builder *b);
 
 const char *mi_region_name(mi_region r);

@@ -6,6 +6,7 @@
  */
 #define _GNU_SOURCE
 #include <getopt.h>
+#include <math.h>
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdio.h>
@@ -15,6 +16,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "f24_fast.h"
 #include "img.h"
 #include "rgs.h"
 #include "scene_opts.h"
@@ -27,6 +29,7 @@ typedef struct {
     trace_counters counters;
     uint64_t rays;
     atomic_uint *rows_done; /* block rows finished by all threads, for the progress line */
+    hit_record *hits;       /* per pixel primary hit, for --aov (NULL: not kept) */
 } render_job;
 
 static double now(void);
@@ -57,7 +60,10 @@ static void *render_rows(void *arg)
             for (int i = 0; i < TRACE_PACKET; i++) {
                 if (!(rp.active >> i & 1u))
                     continue;
-                j->pixels[(size_t)(y + (uint32_t)(i >> 1)) * j->width + x + (uint32_t)(i & 1)] = rgb[i];
+                const size_t px = (size_t)(y + (uint32_t)(i >> 1)) * j->width + x + (uint32_t)(i & 1);
+                j->pixels[px] = rgb[i];
+                if (j->hits)
+                    j->hits[px] = h[i];
                 j->rays++;
             }
         }
@@ -77,7 +83,8 @@ static double now(void)
 }
 
 /* Renders with `threads` host threads; fills pixels and the summed counters. */
-static int render(const uint32_t *mem, uint32_t threads, uint32_t *pixels, trace_counters *sum, uint64_t *rays)
+static int render(const uint32_t *mem, uint32_t threads, uint32_t *pixels, hit_record *hits, trace_counters *sum,
+                  uint64_t *rays)
 {
     uint32_t w, h;
     rgs_image_size(mem, &w, &h);
@@ -90,7 +97,7 @@ static int render(const uint32_t *mem, uint32_t threads, uint32_t *pixels, trace
         return -1;
     }
     for (uint32_t t = 0; t < threads; t++) {
-        jobs[t] = (render_job){ mem, w, h, t, threads, pixels, { 0 }, 0, &rows_done };
+        jobs[t] = (render_job){ mem, w, h, t, threads, pixels, { 0 }, 0, &rows_done, hits };
         if (t > 0 && pthread_create(&tid[t], NULL, render_rows, &jobs[t]) != 0)
             jobs[t].threads = 0; /* could not start: done below in this thread */
     }
@@ -137,19 +144,22 @@ static int write_png(const char *path, const uint32_t *pixels, uint32_t w, uint3
 
 static int usage(void)
 {
-    printf("usage: saarcor render SCENE [-o out.png] [--frames A:B [--fps F]] [--threads N] [--stats FILE]\n"
-           "                      [scene options]\n\n"
+    printf("usage: saarcor render SCENE [-o out.png] [--aov FILE.exr] [--frames A:B [--fps F]] [--threads N]\n"
+           "                      [--stats FILE] [scene options]\n\n"
            "Renders the scene through the hardware units in functional mode (each packet of 2x2\n"
            "primary rays runs to completion): RGS, traversal, list, transformation and intersection\n"
            "units reading the memory image. Shading: base colour, the scene's lights with shadows. The\n"
            "image is bit-identical for any --threads (default: the number of cores).\n"
+           "--aov FILE.exr writes per-pixel primary hits as float channels t, N.X N.Y N.Z (world\n"
+           "geometric normal), node (glTF node of the instance), triangle (index in its glTF mesh,\n"
+           "primitives in file order), u, v (barycentrics of A and B); misses: t = inf, -1 indices.\n"
            "--frames A:B renders frames A..B of the animation at --fps (default 30) to OUT_NNNN.png,\n"
            "rebuilding per frame only what changed (the top level, morphing objects).\n\n%s", SCENE_OPTIONS_HELP);
     return SAARCOR_EXIT_OK;
 }
 
 typedef struct {
-    const char *out, *stats;
+    const char *out, *stats, *aov;
     uint32_t threads, first, last;
     int sequence;
     double fps;
@@ -182,8 +192,59 @@ static int write_stats(const char *path, uint64_t rays, double secs, const trace
     return fclose(f);
 }
 
+static double f24d(uint32_t w) { return (double)f24_fast_decode(w); }
+
+/* Per-pixel primary-hit data as named float channels: t, world geometric normal (unit, in the
+ * triangle's A B C orientation), glTF node of the instance, triangle index within its glTF mesh
+ * (primitives concatenated in file order), barycentrics u (of A) and v (of B). Misses: t = +inf,
+ * node = triangle = -1. */
+static int write_aov(const char *path, const mi_builder *b, const scene *s, const hit_record *hits, uint32_t w, uint32_t h)
+{
+    static const char *const names[] = { "t", "N.X", "N.Y", "N.Z", "node", "triangle", "u", "v" };
+    enum { NCH = 8 };
+    uint32_t n;
+    const uint32_t *mem = mi_words(b, &n);
+    img_t img = { (int)w, (int)h, NCH, calloc((size_t)w * h * NCH, sizeof(float)) };
+    if (!img.pixels)
+        return -1;
+    for (size_t p = 0; p < (size_t)w * h; p++) {
+        float *o = &img.pixels[NCH * p];
+        const hit_record *hr = &hits[p];
+        if (hr->instance == TRACE_NO_HIT) {
+            o[0] = INFINITY;
+            o[4] = o[5] = -1.0f;
+            continue;
+        }
+        const uint32_t ia = mem[MI_H_REGION_TABLE + 2 * MI_R_INSTANCES] + MI_INSTANCE_WORDS * hr->instance;
+        const uint32_t object = mem[ia + 12];
+        const uint32_t *od = mem + mem[MI_H_REGION_TABLE + 2 * MI_R_OBJECTS] + MI_OBJECT_WORDS * object;
+        const uint32_t *tri = mem + od[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * hr->triangle;
+        double nw[3] = { 0, 0, 0 }, len = 0;
+        for (int j = 0; j < 3; j++) { /* n_world = (world-to-object)^T n_object, n_object = row 2 of T */
+            for (int i = 0; i < 3; i++)
+                nw[j] += f24d(mem[ia + 4 * i + j]) * f24d(tri[8 + i]);
+            len += nw[j] * nw[j];
+        }
+        len = len > 0 ? sqrt(len) : 1;
+        const uint32_t si = mi_scene_instance(b, hr->instance);
+        o[0] = (float)f24d(hr->t);
+        for (int k = 0; k < 3; k++)
+            o[1 + k] = (float)(nw[k] / len);
+        o[4] = si < s->n_instances ? (float)s->instances[si].node : -1.0f;
+        o[5] = (float)(int64_t)mi_mesh_triangle(b, object, hr->triangle);
+        o[6] = (float)f24d(hr->u);
+        o[7] = (float)f24d(hr->v);
+    }
+    char err[256];
+    const int rc = img_write_channels(path, &img, names, err, sizeof err);
+    if (rc != 0)
+        cli_error("render", "%s", err);
+    img_free(&img);
+    return rc;
+}
+
 /* Renders one frame of the current image and writes it. */
-static int render_frame(const mi_builder *b, const render_opts *ro, uint32_t frame, const char *scene_name)
+static int render_frame(const mi_builder *b, const scene *s, const render_opts *ro, uint32_t frame, const char *scene_name)
 {
     char err[512], path[1024];
     uint32_t n, w, h;
@@ -194,18 +255,28 @@ static int render_frame(const mi_builder *b, const render_opts *ro, uint32_t fra
     }
     rgs_image_size(mem, &w, &h);
     uint32_t *pixels = calloc((size_t)w * h, sizeof *pixels);
+    hit_record *hits = ro->aov ? calloc((size_t)w * h, sizeof *hits) : NULL;
     trace_counters sum;
     uint64_t rays = 0;
     const double t0 = now();
-    if (!pixels || render(mem, ro->threads, pixels, &sum, &rays) != 0) {
+    if (!pixels || (ro->aov && !hits) || render(mem, ro->threads, pixels, hits, &sum, &rays) != 0) {
         free(pixels);
+        free(hits);
         cli_error("render", "out of memory");
         return SAARCOR_EXIT_INTERNAL;
     }
     const double secs = now() - t0;
     frame_path(ro, frame, path, sizeof path);
-    const int wrc = write_png(path, pixels, w, h);
+    int wrc = write_png(path, pixels, w, h);
+    if (wrc == 0 && ro->aov) {
+        char aov_path[1024];
+        render_opts aov = *ro;
+        aov.out = ro->aov;
+        frame_path(&aov, frame, aov_path, sizeof aov_path);
+        wrc = write_aov(aov_path, b, s, hits, w, h);
+    }
     free(pixels);
+    free(hits);
     if (wrc != 0)
         return SAARCOR_EXIT_INPUT;
     printf("rendered %s: %ux%u, %llu primary rays in %.3f s (%u threads), upload %.1f KB -> %s\n", scene_name, w, h,
@@ -243,11 +314,12 @@ int cmd_render(int argc, char **argv)
     static const struct option opts[] = {
         SCENE_LONG_OPTIONS, { "output", required_argument, NULL, 'o' }, { "threads", required_argument, NULL, 't' },
         { "stats", required_argument, NULL, 's' }, { "frames", required_argument, NULL, 'F' },
-        { "fps", required_argument, NULL, 'r' }, { "help", no_argument, NULL, 'h' }, { 0, 0, 0, 0 }
+        { "fps", required_argument, NULL, 'r' }, { "aov", required_argument, NULL, 'a' },
+        { "help", no_argument, NULL, 'h' }, { 0, 0, 0, 0 }
     };
     scene_opts o;
     const long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
-    render_opts ro = { "render.png", NULL, ncpu > 0 && ncpu < 256 ? (uint32_t)ncpu : 1, 0, 0, 0, 30.0 };
+    render_opts ro = { "render.png", NULL, NULL, ncpu > 0 && ncpu < 256 ? (uint32_t)ncpu : 1, 0, 0, 0, 30.0 };
     int c;
     scene_opts_default(&o);
     optind = 0;
@@ -267,6 +339,7 @@ int cmd_render(int argc, char **argv)
             ro.threads = (uint32_t)v;
             break;
         case 's': ro.stats = optarg; break;
+        case 'a': ro.aov = optarg; break;
         case 'F':
             if (!parse_frames(optarg, &ro))
                 return cli_usage_error("render", "bad --frames '%s' (expected A:B with A <= B)", optarg);
@@ -295,7 +368,7 @@ int cmd_render(int argc, char **argv)
         scene_free(&s);
         return SAARCOR_EXIT_INPUT;
     }
-    rc = render_frame(b, &ro, ro.first, o.scene);
+    rc = render_frame(b, &s, &ro, ro.first, o.scene);
     for (uint32_t f = ro.first + 1; rc == SAARCOR_EXIT_OK && f <= ro.last; f++) {
         if (scene_evaluate(&s, f / ro.fps, 1) != 0) {
             cli_error("render", "frame %u: out of memory", f);
@@ -306,7 +379,7 @@ int cmd_render(int argc, char **argv)
         }
         if (rc != SAARCOR_EXIT_OK)
             break;
-        rc = render_frame(b, &ro, f, o.scene);
+        rc = render_frame(b, &s, &ro, f, o.scene);
     }
     mi_free(b);
     scene_free(&s);
