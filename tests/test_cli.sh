@@ -174,6 +174,10 @@ t_render() {
   oiiotool "$T/c.exr" --ch triangle --printstats >"$T/stats" 2>&1
   has 'Stats Min: -1.0' "$T/stats"                   # misses around the open box
   awk '/Stats Max/ { exit !($3 >= 0 && $3 < 36) }' "$T/stats"   # 36 triangles in the scene
+  expect 0 "$BIN" render cornell -o "$T/v.png" --width 64 --height 48 --eye 0,1,3 --at 0,1,0 --fov 60
+  if cmp -s "$T/v.png" "$T/c.png"; then echo "--eye/--at did not change the view"; return 1; fi
+  expect 2 "$BIN" render cornell --eye 1,2; one_line_error
+  expect 2 "$BIN" render cornell --fov 200; one_line_error
   expect 2 "$BIN" render cornell --threads 0; one_line_error
   expect 3 "$BIN" render "$T/missing.glb"; one_line_error
   expect 3 "$BIN" render cornell -o /nonexistent-dir/x.png; one_line_error

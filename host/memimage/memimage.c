@@ -340,12 +340,45 @@ static scene_camera default_camera(const aabb *bounds)
     return c;
 }
 
+static void normalize3(double v[3])
+{
+    const double l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    for (int k = 0; k < 3 && l > 0; k++)
+        v[k] /= l;
+}
+
+/* A perspective camera at eye looking at `at` (glTF convention: looks down -Z, +Y up). */
+static scene_camera view_camera(const mi_params *p)
+{
+    scene_camera c = { 0 };
+    c.kind = CAMERA_PERSPECTIVE;
+    c.yfov = p->fov_degrees * M_PI / 180.0;
+    double f[3] = { p->at[0] - p->eye[0], p->at[1] - p->eye[1], p->at[2] - p->eye[2] }, r[3], u[3];
+    normalize3(f);
+    r[0] = f[1] * p->up[2] - f[2] * p->up[1];
+    r[1] = f[2] * p->up[0] - f[0] * p->up[2];
+    r[2] = f[0] * p->up[1] - f[1] * p->up[0];
+    normalize3(r);
+    u[0] = r[1] * f[2] - r[2] * f[1];
+    u[1] = r[2] * f[0] - r[0] * f[2];
+    u[2] = r[0] * f[1] - r[1] * f[0];
+    for (int k = 0; k < 3; k++) {
+        c.world.m[k][0] = r[k];
+        c.world.m[k][1] = u[k];
+        c.world.m[k][2] = -f[k];
+        c.world.m[k][3] = p->eye[k];
+    }
+    return c;
+}
+
 /* Camera block: kind, width, height, origin O, pixel steps U and V, direction W to the corner of
  * pixel (0,0): primary ray of pixel (x, y) has direction W + (x+1/2) U + (y+1/2) V (perspective)
  * or origin O + (x+1/2) U + (y+1/2) V and direction W (orthographic). */
 static void write_camera(const mi_builder *b, const scene *s, uint32_t *w)
 {
-    const scene_camera c = b->p.camera < s->n_cameras ? s->cameras[b->p.camera] : default_camera(&b->top.bounds);
+    const scene_camera c = b->p.explicit_view            ? view_camera(&b->p)
+                           : b->p.camera < s->n_cameras ? s->cameras[b->p.camera]
+                                                        : default_camera(&b->top.bounds);
     const double wpx = b->p.width, hpx = b->p.height, aspect = wpx / hpx;
     double o[3] = { 0, 0, 0 }, u[3], v[3], d[3];
     if (c.kind == CAMERA_ORTHOGRAPHIC) {

@@ -73,6 +73,8 @@ typedef struct {
     uint64_t memory_bytes;     /* size of the device memory (default MI_DEFAULT_BYTES) */
     uint32_t width, height;    /* image size the camera block is set up for (default 512 x 384) */
     uint32_t camera;           /* scene camera to use; SCENE_NONE or out of range: a default view */
+    int explicit_view;         /* 1: ignore the scene's cameras, look from eye at `at` */
+    double eye[3], at[3], up[3], fov_degrees; /* vertical field of view */
     kd_params bottom, top;     /* tree parameters; top uses binned SAH */
     double max_condition;      /* triangles whose matrix condition number exceeds this are dropped */
 } mi_params;

@@ -1,4 +1,5 @@
 /* Shared scene/tree options (see scene_opts.h). */
+#define _GNU_SOURCE /* strtok_r */
 #include "scene_opts.h"
 
 #include <math.h>
@@ -13,6 +14,24 @@ void scene_opts_default(scene_opts *o)
 {
     memset(o, 0, sizeof *o);
     mi_params_default(&o->mi);
+    o->mi.up[1] = 1.0;
+    o->mi.fov_degrees = 45.0;
+}
+
+/* "x,y,z" with finite numbers. */
+static int vector3(const char *cmd, const char *name, const char *arg, double v[3])
+{
+    char buf[128], *save = NULL;
+    snprintf(buf, sizeof buf, "%s", arg);
+    int k = 0;
+    for (char *tok = strtok_r(buf, ",", &save); tok && k < 4; tok = strtok_r(NULL, ",", &save), k++)
+        if (k < 3 && !cli_parse_double(tok, &v[k]))
+            k = 4;
+    if (k != 3) {
+        cli_usage_error(cmd, "bad --%s '%s' (expected x,y,z)", name, arg);
+        return -1;
+    }
+    return 1;
 }
 
 static int number(const char *cmd, const char *name, const char *arg, double lo, double hi, double *out)
@@ -75,6 +94,10 @@ int scene_opts_parse(scene_opts *o, const char *cmd, int c, const char *arg)
             o->mi.max_condition = d;
         return r;
     case 11: return count(cmd, "camera", arg, 0, 1u << 20, &o->mi.camera);
+    case 12: o->mi.explicit_view = 1; return vector3(cmd, "eye", arg, o->mi.eye);
+    case 13: o->mi.explicit_view = 1; return vector3(cmd, "at", arg, o->mi.at);
+    case 14: return vector3(cmd, "up", arg, o->mi.up);
+    case 15: return number(cmd, "fov", arg, 1, 179, &o->mi.fov_degrees);
     default: return 0;
     }
 }

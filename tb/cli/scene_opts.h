@@ -19,13 +19,17 @@
     { "max-depth", required_argument, NULL, SCENE_OPT_BASE + 4 }, { "leaf-size", required_argument, NULL, SCENE_OPT_BASE + 5 }, \
     { "top-bins", required_argument, NULL, SCENE_OPT_BASE + 6 }, { "width", required_argument, NULL, SCENE_OPT_BASE + 7 }, \
     { "height", required_argument, NULL, SCENE_OPT_BASE + 8 }, { "time", required_argument, NULL, SCENE_OPT_BASE + 9 }, \
-    { "max-condition", required_argument, NULL, SCENE_OPT_BASE + 10 }, { "camera", required_argument, NULL, SCENE_OPT_BASE + 11 }
+    { "max-condition", required_argument, NULL, SCENE_OPT_BASE + 10 }, { "camera", required_argument, NULL, SCENE_OPT_BASE + 11 }, \
+    { "eye", required_argument, NULL, SCENE_OPT_BASE + 12 }, { "at", required_argument, NULL, SCENE_OPT_BASE + 13 }, \
+    { "up", required_argument, NULL, SCENE_OPT_BASE + 14 }, { "fov", required_argument, NULL, SCENE_OPT_BASE + 15 }
 
 #define SCENE_OPTIONS_HELP                                                                              \
     "scene options:\n"                                                                                  \
     "  SCENE                 a .gltf/.glb file, or a generator name (saarcor gen --list)\n"            \
     "  --time T              evaluate animations at T seconds (default 0)\n"                           \
     "  --camera N            use the scene's camera N (default 0; a default view if there is none)\n" \
+    "  --eye X,Y,Z --at X,Y,Z [--up X,Y,Z] [--fov DEG]  explicit perspective view instead (up 0,1,0,\n" \
+    "                        vertical field of view 45 degrees; pixel centres at +1/2)\n"             \
     "  --width W --height H  image size for the camera set-up (default 512 x 384)\n"                   \
     "  --mem-mb N            device memory size in MB (default 24, as the prototype)\n"                \
     "  --ct X --ci Y         SAH traversal and intersection costs (default 1, 1.5)\n"                  \
