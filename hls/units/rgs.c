@@ -4,7 +4,8 @@
 #include "xform_unit.h"
 
 enum {
-    H_LIGHTS = 10, H_REGIONS = 18, R_MATERIALS = 1, R_OBJECTS = 5, R_CAMERA = 6, R_LIGHTS = 7, R_INSTANCES = 8,
+    H_LIGHTS = 10, H_TEXTURES = 9, H_REGIONS = 18, R_MATERIALS = 1, R_TEXTURES = 2, R_OBJECTS = 5,
+    TEX_WORDS = 4, HAS_TEXCOORDS = 2, R_CAMERA = 6, R_LIGHTS = 7, R_INSTANCES = 8,
     LIGHT_WORDS = 16, MAX_LIGHTS = 64,
     OBJ_WORDS = 16, O_TRIANGLES = 2, O_SHADING = 3, O_FLAGS = 7, HAS_NORMALS = 1,
     INST_WORDS = 16, TRI_WORDS = 12, SHADE_WORDS = 16, MAT_WORDS = 16,
@@ -109,12 +110,67 @@ static f24_vec3 neg3(f24_vec3 a) { return (f24_vec3){ f24_neg(a.x), f24_neg(a.y)
 typedef struct {
     int valid;
     f24_vec3 p, n;
-    uint32_t mat; /* address of the material record */
+    uint32_t mat;   /* address of the material record */
+    f24_t base[3];  /* base colour: factor x bilinear texture sample */
 } surface;
+
+/* Texel channel k (0..3) of texture entry tex at integer coordinates, wrapped (repeat). */
+static f24_t texel(const uint32_t *mem, const uint32_t *tex, int32_t x, int32_t y, int k)
+{
+    const int32_t w = (int32_t)tex[0], h = (int32_t)tex[1];
+    const int32_t xw = ((x % w) + w) % w, yw = ((y % h) + h) % h;
+    const uint32_t t = mem[tex[2] + (uint32_t)(yw * w + xw)];
+    return f24_div(f24_from_i32((int32_t)(t >> (8 * k) & 0xFFu)), f24_from_i32(255));
+}
+
+/* Floor of x as an integer and the fraction x - floor(x). */
+static int32_t floor_frac(f24_t x, f24_t *frac)
+{
+    int32_t i = f24_to_i32(x);
+    if (f24_lt(x, f24_from_i32(i)))
+        i -= 1; /* to_i32 rounds toward zero */
+    *frac = f24_sub(x, f24_from_i32(i));
+    return i;
+}
+
+static f24_t lerp(f24_t a, f24_t b, f24_t t) { return f24_add(a, f24_mul(t, f24_sub(b, a))); }
+
+/* Bilinear sample (texel centres at +1/2, repeat wrapping) of texture entry tex at (s, t). */
+static void sample_bilinear(const uint32_t *mem, const uint32_t *tex, f24_t s, f24_t t, f24_t out[3])
+{
+    const f24_t half = ratio(1, 2);
+    f24_t fx, fy;
+    const int32_t x = floor_frac(f24_sub(f24_mul(s, f24_from_i32((int32_t)tex[0])), half), &fx);
+    const int32_t y = floor_frac(f24_sub(f24_mul(t, f24_from_i32((int32_t)tex[1])), half), &fy);
+bilinear:
+    for (int k = 0; k < 3; k++)
+        out[k] = lerp(lerp(texel(mem, tex, x, y, k), texel(mem, tex, x + 1, y, k), fx),
+                      lerp(texel(mem, tex, x, y + 1, k), texel(mem, tex, x + 1, y + 1, k), fx), fy);
+}
+
+/* Base colour at the hit: the material factor, times the texture if the material has one and
+ * the object has texture coordinates. */
+static void base_colour(const uint32_t *mem, uint32_t mat, uint32_t obj, const uint32_t *shade, const hit_record *h,
+                        f24_t out[3])
+{
+    const uint32_t t = mem[mat + 7];
+base_factor:
+    for (int k = 0; k < 3; k++)
+        out[k] = mem[mat + (uint32_t)k];
+    if (t >= mem[H_TEXTURES] || !(mem[obj + O_FLAGS] & HAS_TEXCOORDS))
+        return;
+    const f24_t c = f24_sub(f24_sub(F24_ONE, h->u), h->v);
+    const f24_t s = f24_add(f24_add(f24_mul(h->u, shade[9]), f24_mul(h->v, shade[11])), f24_mul(c, shade[13]));
+    const f24_t tt = f24_add(f24_add(f24_mul(h->u, shade[10]), f24_mul(h->v, shade[12])), f24_mul(c, shade[14]));
+    f24_t tex[3];
+    sample_bilinear(mem, &mem[region_start(mem, R_TEXTURES) + TEX_WORDS * t], s, tt, tex);
+    for (int k = 0; k < 3; k++)
+        out[k] = f24_mul(out[k], tex[k]);
+}
 
 static surface surface_at(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h)
 {
-    surface sf = { 0, { 0, 0, 0 }, { 0, 0, 0 }, 0 };
+    surface sf = { 0, { 0, 0, 0 }, { 0, 0, 0 }, 0, { 0, 0, 0 } };
     if (h->instance == TRACE_NO_HIT || !(rp->active >> i & 1u))
         return sf;
     const uint32_t ia = region_start(mem, R_INSTANCES) + INST_WORDS * h->instance;
@@ -128,6 +184,7 @@ static surface surface_at(const uint32_t *mem, const ray_packet *rp, int i, cons
     sf.p = (f24_vec3){ f24_add(rp->o[i].x, f24_mul(h->t, rp->d[i].x)), f24_add(rp->o[i].y, f24_mul(h->t, rp->d[i].y)),
                        f24_add(rp->o[i].z, f24_mul(h->t, rp->d[i].z)) };
     sf.mat = region_start(mem, R_MATERIALS) + MAT_WORDS * mem[shade + 15];
+    base_colour(mem, sf.mat, obj, &mem[shade], h, sf.base);
     return sf;
 }
 
@@ -208,7 +265,7 @@ pixels:
             continue;
         rgb[i] = 0;
         for (int k = 0; k < 3; k++) {
-            const f24_t v = f24_add(f24_mul(mem[sf[i].mat + (uint32_t)k], light[i][k]), mem[sf[i].mat + 4 + (uint32_t)k]);
+            const f24_t v = f24_add(f24_mul(sf[i].base[k], light[i][k]), mem[sf[i].mat + 4 + (uint32_t)k]);
             rgb[i] |= quantize8(f24_min(v, F24_ONE)) << (16 - 8 * k);
         }
     }

@@ -14,7 +14,9 @@
  * lights whose shadow ray reaches the point), plus emission; 8-bit RGB via f24_to_i32. Shadow
  * rays of a packet towards one light form one packet (origin the hit point, direction to the
  * light, t in [1/512, 1]). A scene without lights gets a light at the eye (no shadows).
- * Reflection, refraction and textures come with the next stage.
+ * The base colour is the material factor times a bilinear sample of its base-colour texture
+ * (texel centres at +1/2, repeat wrapping, texels as stored, i.e. sRGB-encoded values used as
+ * they are). Reflection and refraction come with the next stage.
  */
 #ifndef SAARCOR_RGS_H
 #define SAARCOR_RGS_H
