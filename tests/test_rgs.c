@@ -12,6 +12,7 @@
 
 #include <cmocka.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "f24_fast.h"
@@ -99,8 +100,84 @@ static void shading(void **state)
     scene_free(&s);
 }
 
+/* A unit quad in z = 0 with uv = xy, a 2x2 texture (red, green, blue, white), no lights (the
+ * light at the eye), seen head-on from (0.5, 0.5, 2): the centre pixel samples the texture centre,
+ * the bilinear average of the four texels; a pixel at the centre of texel (0, 0) gets red. */
+static void bilinear_texture(void **state)
+{
+    (void)state;
+    scene s;
+    memset(&s, 0, sizeof s);
+    static const float pos[] = { 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0 }, uv[] = { 0, 0, 1, 0, 1, 1, 0, 1 };
+    static const uint32_t idx[] = { 0, 1, 2, 0, 2, 3 };
+    static const uint8_t texels[] = { 255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255 };
+    s.n_meshes = 1;
+    s.meshes = calloc(1, sizeof *s.meshes);
+    scene_mesh *m = &s.meshes[0];
+    m->n_vertices = 4;
+    m->n_triangles = 2;
+    m->positions = malloc(sizeof pos);
+    memcpy(m->positions, pos, sizeof pos);
+    m->texcoords = malloc(sizeof uv);
+    memcpy(m->texcoords, uv, sizeof uv);
+    m->indices = malloc(sizeof idx);
+    memcpy(m->indices, idx, sizeof idx);
+    m->material = calloc(2, sizeof *m->material);
+    s.n_materials = 1;
+    s.materials = calloc(1, sizeof *s.materials);
+    for (int k = 0; k < 4; k++)
+        s.materials[0].base_color[k] = 1.0f;
+    s.materials[0].base_color_texture = 0;
+    s.n_textures = 1;
+    s.textures = calloc(1, sizeof *s.textures);
+    s.textures[0] = (scene_texture){ 2, 2, malloc(sizeof texels) };
+    memcpy(s.textures[0].rgba, texels, sizeof texels);
+    s.n_nodes = s.n_roots = 1;
+    s.nodes = calloc(1, sizeof *s.nodes);
+    s.nodes[0] = (scene_node){ .parent = -1, .mesh = 0, .camera = SCENE_NONE, .light = SCENE_NONE,
+                               .rotation = { 0, 0, 0, 1 }, .scale = { 1, 1, 1 } };
+    s.roots = calloc(1, sizeof *s.roots);
+    assert_int_equal(scene_evaluate(&s, 0, 0), 0);
+    mi_params p;
+    mi_params_default(&p);
+    p.width = p.height = 64;
+    p.explicit_view = 1;
+    const double eye[3] = { 0.5, 0.5, 2 }, at[3] = { 0.5, 0.5, 0 }, up[3] = { 0, 1, 0 };
+    memcpy(p.eye, eye, sizeof eye);
+    memcpy(p.at, at, sizeof at);
+    memcpy(p.up, up, sizeof up);
+    p.fov_degrees = 40; /* the view spans [-0.228, 1.228] in x and y at the quad */
+    char err[256];
+    mi_builder *b = mi_build(&s, &p, err, sizeof err);
+    assert_non_null(b);
+    uint32_t n;
+    const uint32_t *mem = mi_words(b, &n);
+    trace_counters c;
+    memset(&c, 0, sizeof c);
+    ray_packet rp;
+    hit_record h[TRACE_PACKET];
+    uint32_t rgb[TRACE_PACKET];
+    rgs_primary(mem, 31, 31, &rp); /* pixels 31..32: around the image centre = texture centre */
+    trace_packet(mem, &rp, h, &c);
+    rgs_shade_packet(mem, &rp, h, rgb, &c);
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        assert_true(h[i].instance != TRACE_NO_HIT);
+        const int r = (int)(rgb[i] >> 16 & 255), g = (int)(rgb[i] >> 8 & 255), bl = (int)(rgb[i] & 255);
+        assert_true(abs(r - 127) <= 8 && abs(g - 127) <= 8 && abs(bl - 127) <= 8); /* (R+G+B+W)/4 */
+    }
+    /* pixel (20, 42) sees (u, v) = (0.238, 0.261): the centre of texel (0, 0), red */
+    rgs_primary(mem, 20, 42, &rp);
+    trace_packet(mem, &rp, h, &c);
+    rgs_shade_packet(mem, &rp, h, rgb, &c);
+    assert_true(h[0].instance != TRACE_NO_HIT);
+    assert_true((rgb[0] >> 16 & 255) > 200 && (rgb[0] >> 8 & 255) < 60 && (rgb[0] & 255) < 60);
+    mi_free(b);
+    scene_free(&s);
+}
+
 int main(void)
 {
-    const struct CMUnitTest tests[] = { cmocka_unit_test(primary_rays), cmocka_unit_test(shading) };
+    const struct CMUnitTest tests[] = { cmocka_unit_test(primary_rays), cmocka_unit_test(shading),
+                                        cmocka_unit_test(bilinear_texture) };
     return cmocka_run_group_tests_name("rgs", tests, NULL, NULL);
 }
