@@ -5,7 +5,7 @@
 #   make asan       build and run the unit tests with AddressSanitizer + UndefinedBehaviorSanitizer
 #   make verify-fp  fp24 verification against MPFR: 10^7 random vectors per op and width, exhaustive unary
 #   make bench      all benchmarks -> build/bench/ (bench-fp: fp24 throughput; bench-build: kd-tree and
-#                   memory-image build against Embree)
+#                   memory-image build against Embree; bench-render: primary rays against Embree)
 #   make widths     build build/w/<format>/saarcor for every tested fp24 format
 # Variables: BUILD (output folder), SAN=1 (sanitizers), V=1 (show commands), VERIFY_N.
 
@@ -109,7 +109,7 @@ $(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS) $(call fmt_objs,$
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
 
-.PHONY: all widths deps run test unit-tests test-programs asan verify-fp bench bench-fp bench-build clean
+.PHONY: all widths deps run test unit-tests test-programs asan verify-fp bench bench-fp bench-build bench-render clean
 all: $(BUILD)/saarcor
 widths: $(foreach f,$(FORMATS),$(BUILD)/w/$(f)/saarcor)
 
@@ -163,11 +163,22 @@ bench-build: deps
 	$(BUILD)/bench_build --out $(BUILD)/bench
 	@cat $(BUILD)/bench/build.md
 
-$(BUILD)/bench_build: $(BUILD)/obj/host/tests/bench/bench_build.o $(HOST_OBJS) $(call fmt_objs,$(DEFAULT_FMT))
+$(BUILD)/bench_build: $(BUILD)/obj/host/tests/bench/bench_build.o $(BUILD)/obj/host/tests/bench/embree_scene.o $(HOST_OBJS) $(call fmt_objs,$(DEFAULT_FMT))
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(LDLIBS) -lembree3
 
-bench: bench-fp bench-build
+# primary rays at 1024x768: the units (functional) against Embree on the same rays
+bench-render: deps
+	@$(MAKE) --no-print-directory $(BUILD)/bench_render
+	@mkdir -p $(BUILD)/bench
+	$(BUILD)/bench_render --out $(BUILD)/bench
+	@cat $(BUILD)/bench/render.md
+
+$(BUILD)/bench_render: $(BUILD)/obj/host/tests/bench/bench_render.o $(BUILD)/obj/host/tests/bench/embree_scene.o $(HOST_OBJS) $(call fmt_objs,$(DEFAULT_FMT))
+	@echo "  LD    $@"
+	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(LDLIBS) -lembree3
+
+bench: bench-fp bench-build bench-render
 
 $(BUILD)/bench_fp: $(BUILD)/obj/$(DEFAULT_FMT)/tests/bench/bench_fp.o $(call fp_objs,$(DEFAULT_FMT))
 	@echo "  LD    $@"
