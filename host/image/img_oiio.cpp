@@ -65,7 +65,9 @@ extern "C" int img_read(const char *path, img_t *out, char *err, size_t errlen)
     }
 }
 
-extern "C" int img_write(const char *path, const img_t *img, char *err, size_t errlen)
+// Writes float pixels; names == nullptr: 8-bit for formats without float pixels (PNG) and half
+// floats otherwise (EXR); with channel names: full floats.
+static int write_pixels(const char *path, const img_t *img, const char *const *names, char *err, size_t errlen)
 {
     try {
         auto out = ImageOutput::create(path);
@@ -73,8 +75,13 @@ extern "C" int img_write(const char *path, const img_t *img, char *err, size_t e
             set_error(err, errlen, std::string("cannot write '") + path + "': " + OIIO::geterror());
             return -1;
         }
-        const TypeDesc type = out->supports("floatpixels") ? TypeDesc::HALF : TypeDesc::UINT8;
+        const TypeDesc type = names ? TypeDesc::FLOAT : out->supports("floatpixels") ? TypeDesc::HALF : TypeDesc::UINT8;
         ImageSpec spec(img->width, img->height, img->channels, type);
+        if (names) {
+            spec.channelnames.clear();
+            for (int c = 0; c < img->channels; c++)
+                spec.channelnames.push_back(names[c]);
+        }
         if (!out->open(path, spec) || !out->write_image(TypeDesc::FLOAT, img->pixels) || !out->close()) {
             set_error(err, errlen, std::string("cannot write '") + path + "': " + out->geterror());
             return -1;
@@ -86,28 +93,15 @@ extern "C" int img_write(const char *path, const img_t *img, char *err, size_t e
     }
 }
 
+extern "C" int img_write(const char *path, const img_t *img, char *err, size_t errlen)
+{
+    return write_pixels(path, img, nullptr, err, errlen);
+}
+
 extern "C" int img_write_channels(const char *path, const img_t *img, const char *const *names, char *err,
                                   size_t errlen)
 {
-    try {
-        auto out = ImageOutput::create(path);
-        if (!out) {
-            set_error(err, errlen, std::string("cannot write '") + path + "': " + OIIO::geterror());
-            return -1;
-        }
-        ImageSpec spec(img->width, img->height, img->channels, TypeDesc::FLOAT);
-        spec.channelnames.clear();
-        for (int c = 0; c < img->channels; c++)
-            spec.channelnames.push_back(names[c]);
-        if (!out->open(path, spec) || !out->write_image(TypeDesc::FLOAT, img->pixels) || !out->close()) {
-            set_error(err, errlen, std::string("cannot write '") + path + "': " + out->geterror());
-            return -1;
-        }
-        return 0;
-    } catch (const std::exception &e) {
-        set_error(err, errlen, e.what());
-        return -1;
-    }
+    return write_pixels(path, img, names, err, errlen);
 }
 
 extern "C" void img_free(img_t *img)

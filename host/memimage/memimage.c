@@ -371,33 +371,44 @@ static scene_camera view_camera(const mi_params *p)
     return c;
 }
 
-/* Camera block: kind, width, height, origin O, pixel steps U and V, direction W to the corner of
- * pixel (0,0): primary ray of pixel (x, y) has direction W + (x+1/2) U + (y+1/2) V (perspective)
+/* The camera in double: origin O, pixel steps U and V, direction W to the corner of pixel
+ * (0,0); the primary ray of pixel (x, y) has direction W + (x+1/2) U + (y+1/2) V (perspective)
  * or origin O + (x+1/2) U + (y+1/2) V and direction W (orthographic). */
-static void write_camera(const mi_builder *b, const scene *s, uint32_t *w)
+void mi_camera_frame(const mi_builder *b, const scene *s, mi_camera *out)
 {
     const scene_camera c = b->p.explicit_view            ? view_camera(&b->p)
                            : b->p.camera < s->n_cameras ? s->cameras[b->p.camera]
                                                         : default_camera(&b->top.bounds);
     const double wpx = b->p.width, hpx = b->p.height, aspect = wpx / hpx;
-    double o[3] = { 0, 0, 0 }, u[3], v[3], d[3];
-    if (c.kind == CAMERA_ORTHOGRAPHIC) {
+    const double zero[3] = { 0, 0, 0 };
+    out->orthographic = c.kind == CAMERA_ORTHOGRAPHIC;
+    out->width = b->p.width;
+    out->height = b->p.height;
+    if (out->orthographic) {
         const double ul[3] = { -c.xmag, c.ymag, 0 }, su[3] = { 2 * c.xmag / wpx, 0, 0 }, sv[3] = { 0, -2 * c.ymag / hpx, 0 },
                      dir[3] = { 0, 0, -1 };
-        affine_apply_point(&c.world, ul, o);
-        affine_apply_vector(&c.world, su, u);
-        affine_apply_vector(&c.world, sv, v);
-        affine_apply_vector(&c.world, dir, d);
+        affine_apply_point(&c.world, ul, out->o);
+        affine_apply_vector(&c.world, su, out->u);
+        affine_apply_vector(&c.world, sv, out->v);
+        affine_apply_vector(&c.world, dir, out->w);
     } else {
         const double th = tan(0.5 * c.yfov);
         const double su[3] = { 2 * th * aspect / wpx, 0, 0 }, sv[3] = { 0, -2 * th / hpx, 0 }, corner[3] = { -th * aspect, th, -1 };
-        affine_apply_point(&c.world, o, o);
-        affine_apply_vector(&c.world, su, u);
-        affine_apply_vector(&c.world, sv, v);
-        affine_apply_vector(&c.world, corner, d);
+        affine_apply_point(&c.world, zero, out->o);
+        affine_apply_vector(&c.world, su, out->u);
+        affine_apply_vector(&c.world, sv, out->v);
+        affine_apply_vector(&c.world, corner, out->w);
     }
+}
+
+/* Camera block: mi_camera_frame rounded to fp24. */
+static void write_camera(const mi_builder *b, const scene *s, uint32_t *w)
+{
+    mi_camera c;
+    mi_camera_frame(b, s, &c);
+    const double *o = c.o, *u = c.u, *v = c.v, *d = c.w;
     memset(w, 0, MI_CAMERA_WORDS * sizeof *w);
-    w[0] = c.kind;
+    w[0] = (uint32_t)c.orthographic;
     w[1] = b->p.width;
     w[2] = b->p.height;
     for (int k = 0; k < 3; k++) {

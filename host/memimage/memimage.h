@@ -116,6 +116,14 @@ uint32_t mi_scene_instance(const mi_builder *b, uint32_t image_instance);
 uint32_t mi_mesh_triangle(const mi_builder *b, uint32_t object, uint32_t image_triangle);
 void mi_free(mi_builder *b);
 
+/* The camera of the image in double precision, before rounding to fp24 (the camera block). */
+typedef struct {
+    int orthographic;
+    uint32_t width, height;
+    double o[3], u[3], v[3], w[3];
+} mi_camera;
+void mi_camera_frame(const mi_builder *b, const scene *s, mi_camera *out);
+
 const char *mi_region_name(mi_region r);
 
 /* Checks an image before the device model uses it: header, region bounds, every index and
