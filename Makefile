@@ -110,7 +110,7 @@ $(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS) $(call fmt_objs,$
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
 
 .PHONY: all widths deps run test unit-tests test-programs asan verify-fp bench bench-fp bench-build bench-render clean
-all: $(BUILD)/saarcor
+all: $(BUILD)/saarcor $(BUILD)/w/e8m23/saarcor
 widths: $(foreach f,$(FORMATS),$(BUILD)/w/$(f)/saarcor)
 
 deps:

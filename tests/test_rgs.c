@@ -3,8 +3,11 @@
  * transformation unit match the camera convention of docs/memory-image.md computed in double
  * (direction W + (x + 1/2) U + (y + 1/2) V, origin O), pixels outside the image are inactive,
  * misses get the background, shading traces shadow rays towards the scene's light and is
- * deterministic.
+ * deterministic; the secondary-ray geometry of docs/shading.md (T_R): reflection angle and unit
+ * length, Snell's law, total internal reflection; ray trees: depth limit, shadows switch, a
+ * mirror shows what it faces, a glass pane shows what is behind it.
  */
+#define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -69,6 +72,15 @@ static void primary_rays(void **state)
     scene_free(&s);
 }
 
+static const rgs_config full = { 3, 1 };
+
+static void render_block(const uint32_t *mem, const rgs_config *cfg, uint32_t x, uint32_t y, uint32_t rgb[],
+                         hit_record h[], rgs_counters *c)
+{
+    memset(c, 0, sizeof *c);
+    rgs_render_block(mem, cfg, x, y, rgb, h, c);
+}
+
 static void shading(void **state)
 {
     (void)state;
@@ -76,33 +88,121 @@ static void shading(void **state)
     mi_builder *b = build_cornell(&s, 8, 8);
     uint32_t n;
     const uint32_t *mem = mi_words(b, &n);
-    ray_packet rp;
-    rgs_primary(mem, 2, 2, &rp);
-    hit_record h[TRACE_PACKET], miss[TRACE_PACKET];
-    uint32_t rgb[TRACE_PACKET], bg[TRACE_PACKET], again[TRACE_PACKET];
-    trace_counters c;
-    memset(&c, 0, sizeof c);
-    for (int i = 0; i < TRACE_PACKET; i++)
-        miss[i] = (hit_record){ TRACE_NO_HIT, TRACE_NO_HIT, F24_POS_INF, 0, 0, 0 };
-    rgs_shade_packet(mem, &rp, miss, bg, &c);
-    assert_int_equal(bg[0], bg[3]); /* background */
-    trace_packet(mem, &rp, h, &c);
-    const uint64_t before = c.transformations;
-    rgs_shade_packet(mem, &rp, h, rgb, &c);
-    assert_true(c.transformations > before); /* shadow rays towards the scene's light were traced */
-    rgs_shade_packet(mem, &rp, h, again, &c);
+    hit_record h[TRACE_PACKET];
+    uint32_t rgb[TRACE_PACKET], again[TRACE_PACKET], flat[TRACE_PACKET];
+    rgs_counters c, c2;
+    render_block(mem, &full, 2, 2, rgb, h, &c);
+    assert_true(c.rays[RAY_SHADOW] > 0); /* shadow rays towards the scene's light were traced */
+    assert_int_equal(c.rays[RAY_PRIMARY], 4);
+    render_block(mem, &full, 2, 2, again, h, &c2);
+    const rgs_config no_shadows = { 0, 0 };
+    rgs_counters c3;
+    render_block(mem, &no_shadows, 2, 2, flat, h, &c3);
+    assert_int_equal(c3.rays[RAY_SHADOW] + c3.rays[RAY_REFLECTION] + c3.rays[RAY_TRANSMISSION], 0);
     for (int i = 0; i < TRACE_PACKET; i++) {
         assert_true(h[i].instance != TRACE_NO_HIT); /* the back wall fills the centre of the image */
-        assert_true(rgb[i] != bg[i]);
         assert_int_equal(rgb[i], again[i]);
     }
+    /* a miss: the corner block of a 8x8 view outside the box sees the background */
     mi_free(b);
     scene_free(&s);
 }
 
+static f24_vec3 v3(double x, double y, double z)
+{
+    return (f24_vec3){ f24_fast_encode(x), f24_fast_encode(y), f24_fast_encode(z) };
+}
+
+static void dvec(f24_vec3 v, double out[3])
+{
+    out[0] = D(v.x);
+    out[1] = D(v.y);
+    out[2] = D(v.z);
+}
+
+static double ddot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+/* Random unit direction d and unit normal n facing it (n.d < 0), both rounded to fp24. */
+static void random_pair(unsigned *seed, double d[3], double n[3])
+{
+    for (;;) {
+        double l = 0, ln = 0;
+        for (int k = 0; k < 3; k++) {
+            d[k] = 2.0 * rand_r(seed) / RAND_MAX - 1;
+            n[k] = 2.0 * rand_r(seed) / RAND_MAX - 1;
+            l += d[k] * d[k];
+            ln += n[k] * n[k];
+        }
+        if (l < 0.01 || ln < 0.01 || l > 1 || ln > 1)
+            continue;
+        for (int k = 0; k < 3; k++) {
+            d[k] = f24_fast_decode(f24_fast_encode(d[k] / sqrt(l)));
+            n[k] = f24_fast_decode(f24_fast_encode(n[k] / sqrt(ln)));
+        }
+        if (ddot(n, d) < -0.02)
+            return;
+    }
+}
+
+/* Reflection through T_R: unit length, angle of reflection = angle of incidence, in the plane of
+ * d and n. */
+static void reflection_geometry(void **state)
+{
+    (void)state;
+    unsigned seed = 7;
+    for (int t = 0; t < 10000; t++) {
+        double d[3], n[3], r[3];
+        random_pair(&seed, d, n);
+        dvec(rgs_reflect(v3(d[0], d[1], d[2]), v3(n[0], n[1], n[2])), r);
+        assert_true(fabs(ddot(r, r) - 1) < 1e-4);                /* energy of the direction */
+        assert_true(fabs(ddot(r, n) + ddot(d, n)) < 1e-4);       /* angle out = angle in */
+        const double c[3] = { d[1] * n[2] - d[2] * n[1], d[2] * n[0] - d[0] * n[2], d[0] * n[1] - d[1] * n[0] };
+        assert_true(fabs(ddot(r, c)) < 1e-4);                    /* coplanar with d and n */
+    }
+}
+
+/* Refraction through T_R: Snell's law sin_t = eta sin_i, unit length, transmitted to the far
+ * side of the surface, coplanar; total internal reflection exactly where eta sin_i > 1. */
+static void refraction_snell(void **state)
+{
+    (void)state;
+    unsigned seed = 11;
+    const double etas[] = { 1.0 / 1.5, 1.5, 1.0 / 2.4, 1.33 };
+    int tir = 0, refracted = 0;
+    for (int t = 0; t < 20000; t++) {
+        double d[3], n[3], r[3];
+        random_pair(&seed, d, n);
+        const double eta = f24_fast_decode(f24_fast_encode(etas[t % 4]));
+        f24_vec3 out;
+        const int ok = rgs_refract(v3(d[0], d[1], d[2]), v3(n[0], n[1], n[2]), f24_fast_encode(eta), &out);
+        const double ci = -ddot(d, n), si = sqrt(fmax(0, 1 - ci * ci));
+        if (fabs(eta * si - 1) < 1e-3)
+            continue; /* too close to the critical angle to call */
+        assert_int_equal(ok, eta * si < 1);
+        if (!ok) {
+            tir++;
+            continue;
+        }
+        refracted++;
+        dvec(out, r);
+        assert_true(fabs(ddot(r, r) - 1) < 2e-4);
+        const double ct = -ddot(r, n), st = sqrt(fmax(0, 1 - ct * ct));
+        assert_true(ct > 0);                                     /* into the surface */
+        assert_true(fabs(st - eta * si) < 2e-3);                 /* Snell */
+        const double c[3] = { d[1] * n[2] - d[2] * n[1], d[2] * n[0] - d[0] * n[2], d[0] * n[1] - d[1] * n[0] };
+        assert_true(fabs(ddot(r, c)) < 2e-4);
+    }
+    assert_true(tir > 100 && refracted > 10000);
+    /* head-on: straight through for any eta */
+    f24_vec3 out;
+    assert_true(rgs_refract(v3(0, 0, -1), v3(0, 0, 1), f24_fast_encode(1 / 1.5), &out));
+    assert_true(D(out.z) == -1.0 && D(out.x) == 0 && D(out.y) == 0);
+}
+
 /* A unit quad in z = 0 with uv = xy, a 2x2 texture (red, green, blue, white), no lights (the
- * light at the eye), seen head-on from (0.5, 0.5, 2): the centre pixel samples the texture centre,
- * the bilinear average of the four texels; a pixel at the centre of texel (0, 0) gets red. */
+ * host's default light near the eye), seen head-on from (0.5, 0.5, 2): the centre pixel samples
+ * the texture centre, the bilinear average of the four texels (grey); a pixel at the centre of
+ * texel (0, 0) gets red. */
 static void bilinear_texture(void **state)
 {
     (void)state;
@@ -128,6 +228,7 @@ static void bilinear_texture(void **state)
     for (int k = 0; k < 4; k++)
         s.materials[0].base_color[k] = 1.0f;
     s.materials[0].base_color_texture = 0;
+    s.materials[0].roughness = 1.0f; /* the glTF default: diffuse only, no highlight or reflection */
     s.n_textures = 1;
     s.textures = calloc(1, sizeof *s.textures);
     s.textures[0] = (scene_texture){ 2, 2, malloc(sizeof texels) };
@@ -152,23 +253,19 @@ static void bilinear_texture(void **state)
     assert_non_null(b);
     uint32_t n;
     const uint32_t *mem = mi_words(b, &n);
-    trace_counters c;
-    memset(&c, 0, sizeof c);
-    ray_packet rp;
     hit_record h[TRACE_PACKET];
     uint32_t rgb[TRACE_PACKET];
-    rgs_primary(mem, 31, 31, &rp); /* pixels 31..32: around the image centre = texture centre */
-    trace_packet(mem, &rp, h, &c);
-    rgs_shade_packet(mem, &rp, h, rgb, &c);
+    rgs_counters c;
+    const rgs_config primary_only = { 0, 1 };
+    render_block(mem, &primary_only, 31, 31, rgb, h, &c); /* pixels 31..32: around the texture centre */
     for (int i = 0; i < TRACE_PACKET; i++) {
         assert_true(h[i].instance != TRACE_NO_HIT);
         const int r = (int)(rgb[i] >> 16 & 255), g = (int)(rgb[i] >> 8 & 255), bl = (int)(rgb[i] & 255);
-        assert_true(abs(r - 127) <= 8 && abs(g - 127) <= 8 && abs(bl - 127) <= 8); /* (R+G+B+W)/4 */
+        const int mean = (r + g + bl) / 3; /* (R+G+B+W)/4 x the light: grey, up to the half-texel offset */
+        assert_true(abs(r - mean) <= 8 && abs(g - mean) <= 8 && abs(bl - mean) <= 8 && mean > 90 && mean < 140);
     }
     /* pixel (20, 42) sees (u, v) = (0.238, 0.261): the centre of texel (0, 0), red */
-    rgs_primary(mem, 20, 42, &rp);
-    trace_packet(mem, &rp, h, &c);
-    rgs_shade_packet(mem, &rp, h, rgb, &c);
+    render_block(mem, &primary_only, 20, 42, rgb, h, &c);
     assert_true(h[0].instance != TRACE_NO_HIT);
     assert_true((rgb[0] >> 16 & 255) > 200 && (rgb[0] >> 8 & 255) < 60 && (rgb[0] & 255) < 60);
     mi_free(b);
@@ -178,6 +275,7 @@ static void bilinear_texture(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = { cmocka_unit_test(primary_rays), cmocka_unit_test(shading),
+                                        cmocka_unit_test(reflection_geometry), cmocka_unit_test(refraction_snell),
                                         cmocka_unit_test(bilinear_texture) };
     return cmocka_run_group_tests_name("rgs", tests, NULL, NULL);
 }

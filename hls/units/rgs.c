@@ -1,21 +1,86 @@
-/* Ray generation and shading unit: see rgs.h. */
+/* Ray generation and shading unit: see rgs.h and docs/shading.md. */
 #include "rgs.h"
 
 #include "xform_unit.h"
 
 enum {
-    H_LIGHTS = 10, H_TEXTURES = 9, H_REGIONS = 18, R_MATERIALS = 1, R_TEXTURES = 2, R_OBJECTS = 5,
-    TEX_WORDS = 4, HAS_TEXCOORDS = 2, R_CAMERA = 6, R_LIGHTS = 7, R_INSTANCES = 8,
-    LIGHT_WORDS = 16, MAX_LIGHTS = 64,
-    OBJ_WORDS = 16, O_TRIANGLES = 2, O_SHADING = 3, O_FLAGS = 7, HAS_NORMALS = 1,
+    H_LIGHTS = 10, H_TEXTURES = 9, H_SCENE_BOUNDS = 12, H_REGIONS = 18,
+    R_MATERIALS = 1, R_TEXTURES = 2, R_OBJECTS = 5, R_CAMERA = 6, R_LIGHTS = 7, R_INSTANCES = 8,
+    TEX_WORDS = 4, LIGHT_WORDS = 16, MAX_LIGHTS = 64,
+    OBJ_WORDS = 16, O_TRIANGLES = 2, O_SHADING = 3, O_FLAGS = 7, HAS_NORMALS = 1, HAS_TEXCOORDS = 2,
     INST_WORDS = 16, TRI_WORDS = 12, SHADE_WORDS = 16, MAT_WORDS = 16,
+    M_EMISSIVE = 4, M_TEXTURE = 7, M_METALLIC = 10, M_ETA = 13, M_SHADER0 = 14, M_SHADER1 = 15,
 };
 
 #define BACKGROUND 0x1A1A24u
+#define Q12_MAX 65535u
+#define Q12_AMBIENT 614u   /* 0.15 */
+#define Q12_DIFFUSE 3482u  /* 0.85 */
+#define MIN_WEIGHT 16u     /* 1/256: lighter secondary rays are not spawned */
+#define EPS_SHIFT 10       /* e = 2^-10 x the largest extent of the scene bounds */
+
+/* ---- integer colour arithmetic (Q12) ---------------------------------------------------- */
+
+static uint32_t q_sat(uint32_t x) { return x < Q12_MAX ? x : Q12_MAX; }
+static uint32_t q_mul(uint32_t a, uint32_t b) { return q_sat((a * b + 2048u) >> 12); }
+static uint32_t q_add(uint32_t a, uint32_t b) { return q_sat(a + b); }
+static uint32_t q_byte(uint32_t t) { return (t << 4) | (t >> 4); } /* 8-bit -> Q12, 255 -> 4095 */
+
+/* fp24 -> Q12: one multiplier, one adder, the float-to-int converter; clamps to [0, 65535]. */
+static uint32_t q_of(f24_t x)
+{
+    const int32_t i = f24_to_i32(f24_add(f24_mul(x, f24_from_i32(4096)), f24_div(F24_ONE, f24_from_i32(2))));
+    return i < 0 ? 0u : q_sat((uint32_t)i);
+}
+
+static uint32_t q_max3(const uint32_t c[3])
+{
+    const uint32_t m = c[0] > c[1] ? c[0] : c[1];
+    return m > c[2] ? m : c[2];
+}
+
+/* ---- fp24 vector helpers ------------------------------------------------------------------ */
 
 static uint32_t region_start(const uint32_t *mem, uint32_t r) { return mem[H_REGIONS + 2 * r]; }
-
 static f24_t ratio(int32_t num, int32_t den) { return f24_div(f24_from_i32(num), f24_from_i32(den)); }
+static f24_t dot3(f24_vec3 a, f24_vec3 b)
+{
+    return f24_add(f24_add(f24_mul(a.x, b.x), f24_mul(a.y, b.y)), f24_mul(a.z, b.z));
+}
+static f24_vec3 sub3(f24_vec3 a, f24_vec3 b) { return (f24_vec3){ f24_sub(a.x, b.x), f24_sub(a.y, b.y), f24_sub(a.z, b.z) }; }
+static f24_vec3 scale3(f24_vec3 a, f24_t s) { return (f24_vec3){ f24_mul(a.x, s), f24_mul(a.y, s), f24_mul(a.z, s) }; }
+static f24_vec3 neg3(f24_vec3 a) { return (f24_vec3){ f24_neg(a.x), f24_neg(a.y), f24_neg(a.z) }; }
+static f24_t length3(f24_vec3 a) { return f24_sqrt(dot3(a, a)); }
+/* Cosine between unit vector n and direction d (any length). */
+static f24_t cos_to(f24_vec3 n, f24_vec3 d) { return f24_div(dot3(n, d), length3(d)); }
+
+/* T_R = [D^, N^, D^; O]: the transformation of every secondary ray of a hit. */
+static f24_affine t_r(f24_vec3 o, f24_vec3 d, f24_vec3 n)
+{
+    const f24_affine m = { { { d.x, n.x, d.x, o.x }, { d.y, n.y, d.y, o.y }, { d.z, n.z, d.z, o.z } } };
+    return m;
+}
+
+f24_vec3 rgs_reflect(f24_vec3 d, f24_vec3 n)
+{
+    const f24_affine m = t_r((f24_vec3){ 0, 0, 0 }, d, n);
+    const f24_t c = dot3(n, d);
+    return xform_vector(&m, (f24_vec3){ F24_ONE, f24_neg(f24_add(c, c)), 0 });
+}
+
+int rgs_refract(f24_vec3 d, f24_vec3 n, f24_t eta_r, f24_vec3 *out)
+{
+    const f24_t c = dot3(n, d);
+    const f24_t k = f24_sub(F24_ONE, f24_mul(f24_mul(eta_r, eta_r), f24_sub(F24_ONE, f24_mul(c, c))));
+    if (f24_lt(k, 0))
+        return 0; /* total internal reflection */
+    const f24_t mu = f24_sub(f24_neg(f24_mul(eta_r, c)), f24_sqrt(k));
+    const f24_affine m = t_r((f24_vec3){ 0, 0, 0 }, d, n);
+    *out = xform_vector(&m, (f24_vec3){ eta_r, mu, 0 });
+    return 1;
+}
+
+/* ---- ray generation -------------------------------------------------------------------------- */
 
 void rgs_image_size(const uint32_t *mem, uint32_t *width, uint32_t *height)
 {
@@ -27,7 +92,7 @@ void rgs_image_size(const uint32_t *mem, uint32_t *width, uint32_t *height)
 void rgs_primary(const uint32_t *mem, uint32_t x0, uint32_t y0, ray_packet *rp)
 {
     const uint32_t cam = region_start(mem, R_CAMERA), kind = mem[cam], w = mem[cam + 1], h = mem[cam + 2];
-    f24_affine t; /* columns U V W, translation O */
+    f24_affine t; /* T_init: columns U V W, translation O */
 camera_matrix:
     for (int r = 0; r < 3; r++) {
         t.m[r][0] = mem[cam + 7 + (uint32_t)r];
@@ -58,10 +123,19 @@ block_pixels:
     }
 }
 
-static f24_t dot3(f24_vec3 a, f24_vec3 b)
-{
-    return f24_add(f24_add(f24_mul(a.x, b.x), f24_mul(a.y, b.y)), f24_mul(a.z, b.z));
-}
+/* ---- the surface at a hit ------------------------------------------------------------------- */
+
+/* What shading needs to know about a hit. */
+typedef struct {
+    int valid;
+    f24_vec3 p, d, n;   /* hit point, unit ray direction, unit shading normal facing the ray */
+    f24_affine tr;      /* T_R of the hit */
+    f24_t t_hat;        /* hit distance along d */
+    int entering;       /* the geometric normal faces against the ray */
+    uint32_t mat;       /* address of the material record */
+    uint32_t base[3];   /* Q12 base colour: factor x bilinear texture sample */
+    uint32_t tint[3];   /* Q12 colour of reflection and highlight: 1 + metallic (base - 1) */
+} surface;
 
 static f24_vec3 lerp3(const uint32_t *w, f24_t u, f24_t v)
 {
@@ -74,19 +148,21 @@ interpolate:
     return n;
 }
 
-/* World-space normal at the hit (not normalized). */
+/* World-space shading normal at the hit (not normalized): interpolated vertex normal, or the
+ * geometric normal (row 2 of the triangle transformation), through the transposed
+ * world-to-object matrix. */
 static f24_vec3 hit_normal(const uint32_t *mem, const hit_record *h, uint32_t obj, uint32_t inst)
 {
     const uint32_t shade = mem[obj + O_SHADING] + SHADE_WORDS * h->triangle;
     f24_vec3 n = { 0, 0, 0 };
     if (mem[obj + O_FLAGS] & HAS_NORMALS)
         n = lerp3(&mem[shade], h->u, h->v);
-    if (f24_is_zero(dot3(n, n))) { /* geometric normal: row 2 of the triangle transformation */
+    if (f24_is_zero(dot3(n, n))) {
         const uint32_t tri = mem[obj + O_TRIANGLES] + TRI_WORDS * h->triangle;
         n = (f24_vec3){ mem[tri + 8], mem[tri + 9], mem[tri + 10] };
     }
     const f24_affine w2o = f24_affine_load(mem, region_start(mem, R_INSTANCES) + INST_WORDS * inst);
-    f24_affine tr; /* transposed 3x3: object-space normals to world space */
+    f24_affine tr;
 transpose:
     for (int r = 0; r < 3; r++) {
         for (int c = 0; c < 3; c++)
@@ -96,177 +172,336 @@ transpose:
     return xform_vector(&tr, n);
 }
 
-static uint32_t quantize8(f24_t c)
+/* Texel channel k of texture entry tex at wrapped coordinates, as Q12. */
+static uint32_t texel(const uint32_t *mem, const uint32_t *tex, uint32_t x, uint32_t y, int k)
 {
-    const int32_t v = f24_to_i32(f24_add(f24_mul(c, f24_from_i32(255)), ratio(1, 2)));
-    return v < 0 ? 0u : v > 255 ? 255u : (uint32_t)v;
+    return q_byte(mem[tex[2] + y * tex[0] + x] >> (8 * k) & 0xFFu);
 }
 
-static f24_vec3 sub3(f24_vec3 a, f24_vec3 b) { return (f24_vec3){ f24_sub(a.x, b.x), f24_sub(a.y, b.y), f24_sub(a.z, b.z) }; }
-static f24_vec3 scale3(f24_vec3 a, f24_t s) { return (f24_vec3){ f24_mul(a.x, s), f24_mul(a.y, s), f24_mul(a.z, s) }; }
-static f24_vec3 neg3(f24_vec3 a) { return (f24_vec3){ f24_neg(a.x), f24_neg(a.y), f24_neg(a.z) }; }
-
-/* What shading needs to know about a hit: point, unit normal facing the viewer, material. */
-typedef struct {
-    int valid;
-    f24_vec3 p, n;
-    uint32_t mat;   /* address of the material record */
-    f24_t base[3];  /* base colour: factor x bilinear texture sample */
-} surface;
-
-/* Texel channel k (0..3) of texture entry tex at integer coordinates, wrapped (repeat). */
-static f24_t texel(const uint32_t *mem, const uint32_t *tex, int32_t x, int32_t y, int k)
+/* Texel coordinate of texture coordinate s over n texels (centres at +1/2): the wrapped integer
+ * part i0, its right neighbour i1 and the fraction in Q8 (0..256). */
+static void texel_axis(f24_t s, uint32_t n, uint32_t *i0, uint32_t *i1, uint32_t *frac)
 {
-    const int32_t w = (int32_t)tex[0], h = (int32_t)tex[1];
-    const int32_t xw = ((x % w) + w) % w, yw = ((y % h) + h) % h;
-    const uint32_t t = mem[tex[2] + (uint32_t)(yw * w + xw)];
-    return f24_div(f24_from_i32((int32_t)(t >> (8 * k) & 0xFFu)), f24_from_i32(255));
-}
-
-/* Floor of x as an integer and the fraction x - floor(x). */
-static int32_t floor_frac(f24_t x, f24_t *frac)
-{
+    const f24_t x = f24_sub(f24_mul(s, f24_from_i32((int32_t)n)), ratio(1, 2));
     int32_t i = f24_to_i32(x);
     if (f24_lt(x, f24_from_i32(i)))
-        i -= 1; /* to_i32 rounds toward zero */
-    *frac = f24_sub(x, f24_from_i32(i));
-    return i;
+        i -= 1; /* to_i32 rounds toward zero; this is floor */
+    const f24_t f = f24_sub(x, f24_from_i32(i));
+    const int32_t q = f24_to_i32(f24_add(f24_mul(f, f24_from_i32(256)), ratio(1, 2)));
+    const int32_t m = i % (int32_t)n;
+    *i0 = (uint32_t)(m < 0 ? m + (int32_t)n : m); /* repeat wrapping */
+    *i1 = *i0 + 1 == n ? 0 : *i0 + 1;
+    *frac = q < 0 ? 0u : q > 256 ? 256u : (uint32_t)q;
 }
 
-static f24_t lerp(f24_t a, f24_t b, f24_t t) { return f24_add(a, f24_mul(t, f24_sub(b, a))); }
-
-/* Bilinear sample (texel centres at +1/2, repeat wrapping) of texture entry tex at (s, t). */
-static void sample_bilinear(const uint32_t *mem, const uint32_t *tex, f24_t s, f24_t t, f24_t out[3])
+/* Bilinear sample (Q12) of texture entry tex at (s, t), in integers: weights in Q8. */
+static void sample_bilinear(const uint32_t *mem, const uint32_t *tex, f24_t s, f24_t t, uint32_t out[3])
 {
-    const f24_t half = ratio(1, 2);
-    f24_t fx, fy;
-    const int32_t x = floor_frac(f24_sub(f24_mul(s, f24_from_i32((int32_t)tex[0])), half), &fx);
-    const int32_t y = floor_frac(f24_sub(f24_mul(t, f24_from_i32((int32_t)tex[1])), half), &fy);
+    uint32_t x0, x1, fx, y0, y1, fy;
+    texel_axis(s, tex[0], &x0, &x1, &fx);
+    texel_axis(t, tex[1], &y0, &y1, &fy);
 bilinear:
-    for (int k = 0; k < 3; k++)
-        out[k] = lerp(lerp(texel(mem, tex, x, y, k), texel(mem, tex, x + 1, y, k), fx),
-                      lerp(texel(mem, tex, x, y + 1, k), texel(mem, tex, x + 1, y + 1, k), fx), fy);
+    for (int k = 0; k < 3; k++) {
+        const uint32_t top = texel(mem, tex, x0, y0, k) * (256u - fx) + texel(mem, tex, x1, y0, k) * fx;
+        const uint32_t bottom = texel(mem, tex, x0, y1, k) * (256u - fx) + texel(mem, tex, x1, y1, k) * fx;
+        out[k] = (top * (256u - fy) + bottom * fy + 32768u) >> 16;
+    }
 }
 
 /* Base colour at the hit: the material factor, times the texture if the material has one and
  * the object has texture coordinates. */
 static void base_colour(const uint32_t *mem, uint32_t mat, uint32_t obj, const uint32_t *shade, const hit_record *h,
-                        f24_t out[3])
+                        uint32_t out[3])
 {
-    const uint32_t t = mem[mat + 7];
+    const uint32_t t = mem[mat + M_TEXTURE];
 base_factor:
     for (int k = 0; k < 3; k++)
-        out[k] = mem[mat + (uint32_t)k];
+        out[k] = q_of(mem[mat + (uint32_t)k]);
     if (t >= mem[H_TEXTURES] || !(mem[obj + O_FLAGS] & HAS_TEXCOORDS))
         return;
     const f24_t c = f24_sub(f24_sub(F24_ONE, h->u), h->v);
     const f24_t s = f24_add(f24_add(f24_mul(h->u, shade[9]), f24_mul(h->v, shade[11])), f24_mul(c, shade[13]));
     const f24_t tt = f24_add(f24_add(f24_mul(h->u, shade[10]), f24_mul(h->v, shade[12])), f24_mul(c, shade[14]));
-    f24_t tex[3];
+    uint32_t tex[3];
     sample_bilinear(mem, &mem[region_start(mem, R_TEXTURES) + TEX_WORDS * t], s, tt, tex);
+texture_modulate:
     for (int k = 0; k < 3; k++)
-        out[k] = f24_mul(out[k], tex[k]);
+        out[k] = q_mul(out[k], tex[k]);
 }
 
 static surface surface_at(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h)
 {
-    surface sf = { 0, { 0, 0, 0 }, { 0, 0, 0 }, 0, { 0, 0, 0 } };
+    surface sf = { 0 };
     if (h->instance == TRACE_NO_HIT || !(rp->active >> i & 1u))
         return sf;
     const uint32_t ia = region_start(mem, R_INSTANCES) + INST_WORDS * h->instance;
     const uint32_t obj = region_start(mem, R_OBJECTS) + OBJ_WORDS * mem[ia + 12];
     const uint32_t shade = mem[obj + O_SHADING] + SHADE_WORDS * h->triangle;
-    f24_vec3 n = hit_normal(mem, h, obj, h->instance);
-    if (!f24_sign(dot3(n, rp->d[i])))
-        n = neg3(n); /* towards the viewer: both faces are front faces */
+    const f24_t dlen = length3(rp->d[i]);
     sf.valid = 1;
-    sf.n = scale3(n, f24_div(F24_ONE, f24_sqrt(dot3(n, n))));
-    sf.p = (f24_vec3){ f24_add(rp->o[i].x, f24_mul(h->t, rp->d[i].x)), f24_add(rp->o[i].y, f24_mul(h->t, rp->d[i].y)),
-                       f24_add(rp->o[i].z, f24_mul(h->t, rp->d[i].z)) };
+    sf.d = scale3(rp->d[i], f24_div(F24_ONE, dlen));
+    f24_vec3 n = hit_normal(mem, h, obj, h->instance);
+    if (!f24_sign(dot3(n, sf.d)))
+        n = neg3(n); /* towards the ray: both faces are front faces */
+    sf.n = scale3(n, f24_div(F24_ONE, length3(n)));
+    sf.entering = f24_sign(h->cos_n) != 0; /* the sign of n.d survives the instance transformation */
+    sf.t_hat = f24_mul(h->t, dlen);
+    sf.tr = t_r(rp->o[i], sf.d, sf.n);
+    sf.p = xform_point(&sf.tr, (f24_vec3){ 0, 0, sf.t_hat });
     sf.mat = region_start(mem, R_MATERIALS) + MAT_WORDS * mem[shade + 15];
     base_colour(mem, sf.mat, obj, &mem[shade], h, sf.base);
+    const uint32_t metal = q_of(mem[sf.mat + M_METALLIC]);
+tint:
+    for (int k = 0; k < 3; k++) /* 1 + m (b - 1) = (1 - m) + m b */
+        sf.tint[k] = q_add(RGS_Q12_ONE - (metal < RGS_Q12_ONE ? metal : RGS_Q12_ONE), q_mul(metal, sf.base[k]));
     return sf;
 }
 
-/* Cosine between unit vector n and direction d (any length). */
-static f24_t cos_to(f24_vec3 n, f24_vec3 d) { return f24_div(dot3(n, d), f24_sqrt(dot3(d, d))); }
+/* Material shader words (docs/memory-image.md): kd | kr << 13 | k << 26 and kt | ks << 13. */
+static uint32_t mat_kd(const uint32_t *m) { return m[M_SHADER0] & 0x1FFFu; }
+static uint32_t mat_kr(const uint32_t *m) { return m[M_SHADER0] >> 13 & 0x1FFFu; }
+static uint32_t mat_k(const uint32_t *m) { return m[M_SHADER0] >> 26 & 0xFu; }
+static uint32_t mat_kt(const uint32_t *m) { return m[M_SHADER1] & 0x1FFFu; }
+static uint32_t mat_ks(const uint32_t *m) { return m[M_SHADER1] >> 13 & 0x1FFFu; }
 
-/* Light colour scaled to a maximum component of one: the fixed-function shader uses the
- * light's colour and direction, not its photometric intensity. */
-static void light_colour(const uint32_t *l, f24_t out[3])
+/* ---- lights ----------------------------------------------------------------------------------- */
+
+/* Light colour scaled to a maximum component of one, in Q12. */
+static void light_colour(const uint32_t *l, uint32_t out[3])
 {
     const f24_t m = f24_max(f24_max(l[1], l[2]), l[3]);
 normalize_colour:
     for (int c = 0; c < 3; c++)
-        out[c] = f24_lt(0, m) ? f24_div(l[1 + c], m) : 0;
+        out[c] = f24_lt(0, m) ? q_of(f24_div(l[1 + c], m)) : 0u;
 }
 
-/* Shadow rays of light l for the packet's surfaces; weight[i] = cosine x spot factor, 0 if the
- * light does not reach the point. */
-static void light_packet(const uint32_t *l, const surface sf[], ray_packet *sh, f24_t weight[])
+/* Diffuse and highlight weights of light l at the packet's surfaces and the shadow packet that
+ * tests them; rays whose weights are zero are not traced. */
+static void light_packet(const uint32_t *l, const surface sf[], f24_t eps, ray_packet *sh, uint32_t diff[],
+                         uint32_t spec[], uint32_t k_of[])
 {
     const f24_vec3 lpos = { l[4], l[5], l[6] }, ldir = { l[7], l[8], l[9] };
+    const int directional = l[0] == 0;
     sh->active = 0;
 shadow_rays:
     for (int i = 0; i < TRACE_PACKET; i++) {
-        weight[i] = 0;
+        diff[i] = spec[i] = 0;
+        sh->o[i] = sh->d[i] = (f24_vec3){ 0, 0, 0 };
+        sh->tmin[i] = sh->tmax[i] = 0;
         if (!sf[i].valid)
             continue;
-        const int directional = l[0] == 0;
         sh->o[i] = sf[i].p;
         sh->d[i] = directional ? neg3(ldir) : sub3(lpos, sf[i].p);
-        sh->tmin[i] = ratio(1, 512); /* of the distance to the light: keeps the ray off its own surface */
+        const f24_t dist = length3(sh->d[i]);
+        sh->tmin[i] = directional ? eps : f24_div(eps, dist);
         sh->tmax[i] = directional ? F24_POS_INF : F24_ONE;
-        f24_t w = cos_to(sf[i].n, sh->d[i]);
+        f24_t w = f24_div(dot3(sf[i].n, sh->d[i]), dist);
+        if (!f24_lt(0, w))
+            continue; /* the light is behind the surface */
         if (l[0] == 2) { /* spot: smooth step from the outer to the inner cone */
             const f24_t c = f24_neg(cos_to(ldir, sh->d[i]));
             const f24_t f = f24_div(f24_sub(c, l[12]), f24_sub(l[11], l[12]));
             w = f24_mul(w, f24_max(0, f24_min(f, F24_ONE)));
         }
-        if (f24_lt(0, w)) {
-            weight[i] = w;
+        diff[i] = q_mul(q_of(w), Q12_DIFFUSE);
+        uint32_t s = q_of(f24_max(0, cos_to(rgs_reflect(sf[i].d, sf[i].n), sh->d[i])));
+    phong_power:
+        for (uint32_t j = 0; j < 8; j++)
+            if (j < k_of[i])
+                s = q_mul(s, s); /* cos^(2^k): k squarings */
+        spec[i] = s;
+        if (diff[i] | spec[i])
             sh->active |= 1u << i;
-        }
     }
 }
 
-void rgs_shade_packet(const uint32_t *mem, const ray_packet *rp, const hit_record h[], uint32_t rgb[], trace_counters *c)
+static uint32_t count_rays(uint32_t mask) { return (mask & 1u) + (mask >> 1 & 1u) + (mask >> 2 & 1u) + (mask >> 3 & 1u); }
+
+/* Diffuse (ambient included) and highlight light arriving at each surface, Q12 RGB. */
+static void gather_light(const uint32_t *mem, const rgs_config *cfg, const rgs_block *b, const surface sf[],
+                         uint32_t diffuse[][3], uint32_t highlight[][3], rgs_counters *c)
 {
-    surface sf[TRACE_PACKET];
-    f24_t light[TRACE_PACKET][3];
-    const f24_t ambient = ratio(3, 20), diffuse = ratio(17, 20);
     const uint32_t n_lights = mem[H_LIGHTS] < MAX_LIGHTS ? mem[H_LIGHTS] : MAX_LIGHTS;
-surfaces:
+    uint32_t k_of[TRACE_PACKET];
+ambient:
     for (int i = 0; i < TRACE_PACKET; i++) {
-        sf[i] = surface_at(mem, rp, i, &h[i]);
-        /* no lights in the scene: a light at the eye, which needs no shadow ray */
-        const f24_t head = n_lights ? 0 : f24_mul(diffuse, f24_abs(cos_to(sf[i].n, rp->d[i])));
-        for (int k = 0; k < 3; k++)
-            light[i][k] = f24_add(ambient, head);
+        k_of[i] = sf[i].valid ? mat_k(&mem[sf[i].mat]) : 0u;
+        for (int k = 0; k < 3; k++) {
+            diffuse[i][k] = Q12_AMBIENT;
+            highlight[i][k] = 0;
+        }
     }
 lights:
     for (uint32_t li = 0; li < n_lights; li++) {
         const uint32_t *l = &mem[region_start(mem, R_LIGHTS) + LIGHT_WORDS * li];
         ray_packet sh;
-        f24_t weight[TRACE_PACKET], colour[3];
+        uint32_t diff[TRACE_PACKET], spec[TRACE_PACKET], colour[3];
         hit_record blocked[TRACE_PACKET];
-        light_packet(l, sf, &sh, weight);
+        light_packet(l, sf, b->eps, &sh, diff, spec, k_of);
         light_colour(l, colour);
-        trace_packet(mem, &sh, blocked, c);
+        uint32_t visible = sh.active;
+        if (cfg->shadows && sh.active) {
+            trace_packet(mem, &sh, blocked, &c->trace);
+            c->rays[RAY_SHADOW] += count_rays(sh.active);
+            for (int i = 0; i < TRACE_PACKET; i++)
+                if (blocked[i].instance != TRACE_NO_HIT)
+                    visible &= ~(1u << i);
+        }
+    add_light:
         for (int i = 0; i < TRACE_PACKET; i++)
-            if ((sh.active >> i & 1u) && blocked[i].instance == TRACE_NO_HIT)
-                for (int k = 0; k < 3; k++)
-                    light[i][k] = f24_add(light[i][k], f24_mul(f24_mul(diffuse, weight[i]), colour[k]));
+            if (visible >> i & 1u)
+                for (int k = 0; k < 3; k++) {
+                    diffuse[i][k] = q_add(diffuse[i][k], q_mul(diff[i], colour[k]));
+                    highlight[i][k] = q_add(highlight[i][k], q_mul(spec[i], colour[k]));
+                }
     }
+}
+
+/* ---- the ray tree of a block ----------------------------------------------------------------- */
+
+static void push(rgs_block *b, const rgs_task *t, rgs_counters *c)
+{
+    if (b->sp < RGS_STACK)
+        b->stack[b->sp++] = *t;
+    else
+        c->dropped++; /* cannot happen for depth <= RGS_MAX_DEPTH: the stack holds a full tree's path */
+}
+
+void rgs_block_begin(const uint32_t *mem, uint32_t x0, uint32_t y0, rgs_block *b)
+{
+    f24_t extent = 0;
+scene_extent:
+    for (uint32_t k = 0; k < 3; k++)
+        extent = f24_max(extent, f24_sub(mem[H_SCENE_BOUNDS + 3 + k], mem[H_SCENE_BOUNDS + k]));
+    b->eps = f24_div(extent, f24_from_i32(1 << EPS_SHIFT));
+    b->sp = 0;
+    rgs_task t;
+    rgs_primary(mem, x0, y0, &t.rays);
+    t.depth = 0;
+    t.kind = RAY_PRIMARY;
+init_block:
+    for (int i = 0; i < TRACE_PACKET; i++)
+        for (int k = 0; k < 3; k++) {
+            t.weight[i][k] = RGS_Q12_ONE;
+            b->acc[i][k] = 0;
+        }
+    b->stack[b->sp++] = t;
+}
+
+int rgs_block_next(rgs_block *b)
+{
+    if (b->sp == 0)
+        return 0;
+    b->cur = b->stack[--b->sp];
+    return 1;
+}
+
+/* The child rays of one surface: reflection (weight kr tint) and transmission (weight kt base;
+ * refraction, straight transparency for eta = 1, or reflection on total internal reflection). */
+static void spawn_children(const uint32_t *mem, const rgs_block *b, int i, const surface *sf, rgs_task *refl,
+                           rgs_task *trans)
+{
+    const uint32_t *m = &mem[sf->mat], w_r = mat_kr(m), w_t = mat_kt(m);
+    const f24_t c = dot3(sf->n, sf->d), e = b->eps;
+    const f24_vec3 back = xform_point(&sf->tr, (f24_vec3){ f24_neg(e), 0, sf->t_hat });
+    const f24_vec3 ahead = xform_point(&sf->tr, (f24_vec3){ e, 0, sf->t_hat });
+    const f24_vec3 mirror = xform_vector(&sf->tr, (f24_vec3){ F24_ONE, f24_neg(f24_add(c, c)), 0 });
+child_weights:
+    for (int k = 0; k < 3; k++) {
+        refl->weight[i][k] = q_mul(q_mul(b->cur.weight[i][k], w_r), sf->tint[k]);
+        trans->weight[i][k] = q_mul(q_mul(b->cur.weight[i][k], w_t), sf->base[k]);
+    }
+    refl->rays.o[i] = back;
+    refl->rays.d[i] = mirror;
+    if (q_max3(refl->weight[i]) >= MIN_WEIGHT)
+        refl->rays.active |= 1u << i;
+    const f24_t ior = m[M_ETA], eta_r = sf->entering ? f24_div(F24_ONE, ior) : ior;
+    trans->rays.o[i] = ahead;
+    if (f24_eq(ior, F24_ONE))
+        trans->rays.d[i] = sf->d; /* transparency: (1, 0, 0) through T_R */
+    else if (!rgs_refract(sf->d, sf->n, eta_r, &trans->rays.d[i])) {
+        trans->rays.o[i] = back; /* total internal reflection */
+        trans->rays.d[i] = mirror;
+    }
+    if (q_max3(trans->weight[i]) >= MIN_WEIGHT)
+        trans->rays.active |= 1u << i;
+}
+
+static void task_init(rgs_task *t, uint32_t depth, uint32_t kind)
+{
+    t->rays.active = 0;
+    t->depth = depth;
+    t->kind = kind;
+task_rays:
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        t->rays.o[i] = t->rays.d[i] = (f24_vec3){ 0, 0, 0 };
+        t->rays.tmin[i] = 0;
+        t->rays.tmax[i] = F24_POS_INF;
+        for (int k = 0; k < 3; k++)
+            t->weight[i][k] = 0;
+    }
+}
+
+void rgs_block_shade(const uint32_t *mem, const rgs_config *cfg, rgs_block *b, const hit_record h[], rgs_counters *c)
+{
+    surface sf[TRACE_PACKET];
+    uint32_t diffuse[TRACE_PACKET][3], highlight[TRACE_PACKET][3];
+    c->rays[b->cur.kind] += count_rays(b->cur.rays.active);
+surfaces:
+    for (int i = 0; i < TRACE_PACKET; i++)
+        sf[i] = surface_at(mem, &b->cur.rays, i, &h[i]);
+    gather_light(mem, cfg, b, sf, diffuse, highlight, c);
+    rgs_task refl, trans;
+    const uint32_t depth = b->cur.depth + 1;
+    const int children = depth <= cfg->max_depth && depth <= RGS_MAX_DEPTH;
+    task_init(&refl, depth, RAY_REFLECTION);
+    task_init(&trans, depth, RAY_TRANSMISSION);
+accumulate:
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        if (!(b->cur.rays.active >> i & 1u))
+            continue;
+        const uint32_t *m = sf[i].valid ? &mem[sf[i].mat] : 0;
+        for (int k = 0; k < 3; k++) {
+            uint32_t local = q_byte(BACKGROUND >> (16 - 8 * k) & 0xFFu);
+            if (sf[i].valid)
+                local = q_add(q_add(q_of(m[M_EMISSIVE + (uint32_t)k]), q_mul(q_mul(mat_kd(m), sf[i].base[k]), diffuse[i][k])),
+                              q_mul(q_mul(mat_ks(m), sf[i].tint[k]), highlight[i][k]));
+            b->acc[i][k] = q_add(b->acc[i][k], q_mul(b->cur.weight[i][k], local));
+        }
+        if (sf[i].valid && children)
+            spawn_children(mem, b, i, &sf[i], &refl, &trans);
+    }
+    if (trans.rays.active)
+        push(b, &trans, c);
+    if (refl.rays.active)
+        push(b, &refl, c);
+}
+
+void rgs_block_finish(const rgs_block *b, uint32_t rgb[])
+{
 pixels:
     for (int i = 0; i < TRACE_PACKET; i++) {
-        rgb[i] = BACKGROUND;
-        if (!sf[i].valid)
-            continue;
         rgb[i] = 0;
         for (int k = 0; k < 3; k++) {
-            const f24_t v = f24_add(f24_mul(sf[i].base[k], light[i][k]), mem[sf[i].mat + 4 + (uint32_t)k]);
-            rgb[i] |= quantize8(f24_min(v, F24_ONE)) << (16 - 8 * k);
+            const uint32_t v = (b->acc[i][k] * 255u + 2048u) >> 12;
+            rgb[i] |= (v < 255u ? v : 255u) << (16 - 8 * k);
         }
     }
+}
+
+void rgs_render_block(const uint32_t *mem, const rgs_config *cfg, uint32_t x0, uint32_t y0, uint32_t rgb[],
+                      hit_record primary_hits[], rgs_counters *c)
+{
+    rgs_block b;
+    hit_record h[TRACE_PACKET];
+    rgs_block_begin(mem, x0, y0, &b);
+ray_tree:
+    for (uint32_t n = 0; n < RGS_MAX_PACKETS && rgs_block_next(&b); n++) {
+        trace_packet(mem, &b.cur.rays, h, &c->trace);
+        if (n == 0 && primary_hits)
+            for (int i = 0; i < TRACE_PACKET; i++)
+                primary_hits[i] = h[i];
+        rgs_block_shade(mem, cfg, &b, h, c);
+    }
+    rgs_block_finish(&b, rgb);
 }

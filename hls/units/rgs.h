@@ -1,36 +1,96 @@
 /*
- * Ray generation and shading unit (RGS, paper section 2.2 and 3), first stage: primary rays and
- * local shading of the closest hit.
+ * Ray generation and shading unit (RGS, paper sections 2.2 and 3; contract: docs/shading.md).
  *
- * Primary rays use the transformation unit: the camera block of the memory image holds O and the
- * columns U, V, W of T_R = [U V W] (the corrected form of the paper's matrix, see
- * docs/memory-image.md), so the direction of pixel (x, y) is T_R (x + 1/2, y + 1/2, 1) and the
- * origin is O (perspective), or the origin O + (x + 1/2) U + (y + 1/2) V and direction W
- * (orthographic). A packet is a 2x2 pixel block, whose rays share their origin.
- * Shading: interpolated vertex normal (or the geometric normal, row 2 of the triangle
- * transformation, when the object has none or it is zero), taken to world space with the
- * transposed world-to-object matrix, normalized and turned towards the viewer; base colour times
- * (ambient 0.15 + 0.85 x sum over the scene's lights of cosine x spot factor x light colour, for
- * lights whose shadow ray reaches the point), plus emission; 8-bit RGB via f24_to_i32. Shadow
- * rays of a packet towards one light form one packet (origin the hit point, direction to the
- * light, t in [1/512, 1]). A scene without lights gets a light at the eye (no shadows).
- * The base colour is the material factor times a bilinear sample of its base-colour texture
- * (texel centres at +1/2, repeat wrapping, texels as stored, i.e. sRGB-encoded values used as
- * they are). Reflection and refraction come with the next stage.
+ * Ray generation goes through the transformation unit. Primary rays: the camera block holds O
+ * and the columns U, V, W of T_init = [U V W; O] (docs/memory-image.md), so the direction of pixel
+ * (x, y) is T_init (x + 1/2, y + 1/2, 1) and the origin O (perspective), or the origin
+ * O + (x + 1/2) U + (y + 1/2) V and direction W (orthographic); a packet is a 2x2 pixel block,
+ * whose rays share their origin. Secondary rays: T_R = [D^, N^, D^; O] (the corrected form of the
+ * paper's matrix) applied to the initial rays of reflection (-e, 0, t^)/(1, -2c, 0), transparency
+ * (e, 0, t^)/(1, 0, 0) and refraction (e, 0, t^)/(eta_r, mu, 0) with mu = -eta_r c - sqrt(k);
+ * shadow rays from the hit point P = T_R (0, 0, t^) towards each light.
+ *
+ * Shading is fixed function: Phong-like (ambient + diffuse with interpolated normals + highlight
+ * of exponent 2^k), base colour x bilinear texture, the scene's lights with shadow rays (the
+ * host adds a default light if it has none), mirror reflection and transmission rays weighted by the material,
+ * up to RGS_MAX_DEPTH levels. Geometry of shading (normals, cosines, directions) is fp24; all
+ * colour arithmetic is integer Q12 (4096 = 1.0, saturating at 65535).
+ *
+ * State: per 2x2 pixel block, the depth-first stack of pending ray packets with their per-ray
+ * RGB weights, and the colour accumulators. Step (rgs_block_shade): shade one traced packet,
+ * accumulate, push its child packets. The functional driver rgs_render_block runs a block to
+ * completion; the cycle model drives the same steps.
+ *
+ * fp24 operators per shaded ray (datapath, shared across the steps): normalization of D and N
+ * (2 sqrt, 2 div), T_R steps on the transformation unit, per light 2 dot products (diffuse and
+ * highlight cosines), the spot factor (1 div) and the float-to-Q12 converters. Latency and
+ * throughput: a cycle-model parameter (docs/cycle-model.md once it exists).
  */
 #ifndef SAARCOR_RGS_H
 #define SAARCOR_RGS_H
 
 #include "trace.h"
 
+#define RGS_MAX_DEPTH 8                           /* deepest secondary level the unit supports */
+#define RGS_STACK (RGS_MAX_DEPTH + 2)             /* pending packets of a depth-first ray tree */
+#define RGS_MAX_PACKETS ((1u << (RGS_MAX_DEPTH + 1)) - 1u) /* packets of a full binary ray tree */
+#define RGS_Q12_ONE 4096u
+
+enum { RAY_PRIMARY, RAY_SHADOW, RAY_REFLECTION, RAY_TRANSMISSION, RAY_KINDS };
+
+typedef struct {
+    uint32_t max_depth; /* secondary levels below the primary rays, 0 .. RGS_MAX_DEPTH */
+    uint32_t shadows;   /* 0: every light is visible (no shadow rays) */
+} rgs_config;
+
+typedef struct {
+    trace_counters trace;
+    uint64_t rays[RAY_KINDS]; /* rays traced, by kind */
+    uint64_t dropped;         /* child packets not spawned because the ray stack was full */
+} rgs_counters;
+
+typedef struct {
+    ray_packet rays;
+    uint32_t weight[TRACE_PACKET][3]; /* Q12 RGB weight of each ray's contribution */
+    uint32_t depth, kind;
+} rgs_task;
+
+typedef struct {
+    rgs_task stack[RGS_STACK];
+    uint32_t sp;
+    rgs_task cur;                   /* the packet being traced and shaded */
+    uint32_t acc[TRACE_PACKET][3];  /* Q12 pixel colours */
+    f24_t eps;                      /* ray offset e (docs/shading.md) */
+} rgs_block;
+
 /* Primary rays of the 2x2 block with top-left pixel (x0, y0); pixels outside the image are
  * inactive. */
 void rgs_primary(const uint32_t *mem, uint32_t x0, uint32_t y0, ray_packet *rp);
 
-/* 0xRRGGBB colours of the packet's rays given their hits; shadow rays are traced (counted in c). */
-void rgs_shade_packet(const uint32_t *mem, const ray_packet *rp, const hit_record h[], uint32_t rgb[], trace_counters *c);
+/* Starts the ray tree of a block with its primary packet. */
+void rgs_block_begin(const uint32_t *mem, uint32_t x0, uint32_t y0, rgs_block *b);
+
+/* Next packet to trace (b->cur.rays), 0 when the block is done. */
+int rgs_block_next(rgs_block *b);
+
+/* Shades b->cur given its hits: accumulates, traces shadow rays, pushes child packets. */
+void rgs_block_shade(const uint32_t *mem, const rgs_config *cfg, rgs_block *b, const hit_record h[], rgs_counters *c);
+
+/* 0xRRGGBB of the block's pixels. */
+void rgs_block_finish(const rgs_block *b, uint32_t rgb[]);
+
+/* Functional mode: the whole ray tree of one block; primary_hits (may be NULL) gets the primary
+ * rays' hits. */
+void rgs_render_block(const uint32_t *mem, const rgs_config *cfg, uint32_t x0, uint32_t y0, uint32_t rgb[],
+                      hit_record primary_hits[], rgs_counters *c);
 
 /* Image size of the camera block. */
 void rgs_image_size(const uint32_t *mem, uint32_t *width, uint32_t *height);
+
+/* Secondary-ray directions of docs/shading.md for unit d and unit n facing the ray (n.d <= 0):
+ * the mirror direction, and the refracted direction for eta_r = n_from / n_to through T_R
+ * (returns 0 on total internal reflection). Exposed for the tests of the derivation. */
+f24_vec3 rgs_reflect(f24_vec3 d, f24_vec3 n);
+int rgs_refract(f24_vec3 d, f24_vec3 n, f24_t eta_r, f24_vec3 *out);
 
 #endif

@@ -7,6 +7,7 @@
  */
 #define _GNU_SOURCE /* clock_gettime, M_PI */
 #include "memimage.h"
+#include "shading_model.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -419,22 +420,61 @@ static void write_camera(const mi_builder *b, const scene *s, uint32_t *w)
     }
 }
 
-static void write_lights(const scene *s, uint32_t *w)
+/* The light of a scene that has none (docs/shading.md): a white point light above and to the
+ * right of the eye, 0.3 x the largest extent of the scene bounds away along the camera's up and
+ * right, so that shadows fall visibly behind and below what the camera sees. */
+void mi_default_light(const mi_builder *b, const scene *s, scene_light *out)
 {
-    for (uint32_t i = 0; i < s->n_lights; i++, w += MI_LIGHT_WORDS) {
-        const scene_light *l = &s->lights[i];
-        memset(w, 0, MI_LIGHT_WORDS * sizeof *w);
-        w[0] = l->kind;
-        for (int k = 0; k < 3; k++) {
-            w[1 + k] = f24w((double)l->color[k] * l->intensity);
-            w[4 + k] = f24w(l->position[k]);
-            w[7 + k] = f24w(l->direction[k]);
-        }
-        w[10] = f24w(l->range);
-        w[11] = f24w(cos(l->inner_cone));
-        w[12] = f24w(cos(l->outer_cone));
+    mi_camera c;
+    mi_camera_frame(b, s, &c);
+    double extent = 0, eye[3], right[3], up[3];
+    for (int k = 0; k < 3; k++) {
+        extent = fmax(extent, b->top.bounds.hi[k] - b->top.bounds.lo[k]);
+        eye[k] = c.orthographic ? c.o[k] + 0.5 * (c.width * c.u[k] + c.height * c.v[k]) : c.o[k];
+        right[k] = c.u[k];
+        up[k] = -c.v[k];
     }
+    normalize3(right);
+    normalize3(up);
+    memset(out, 0, sizeof *out);
+    out->kind = LIGHT_POINT;
+    out->color[0] = out->color[1] = out->color[2] = 1.0f;
+    out->intensity = 1.0f;
+    out->node = SCENE_NONE;
+    for (int k = 0; k < 3; k++)
+        out->position[k] = eye[k] + 0.3 * extent * (up[k] + right[k]);
+    out->direction[2] = -1;
 }
+
+static uint32_t light_count(const scene *s) { return s->n_lights ? s->n_lights : 1; }
+
+static void write_light(const scene_light *l, uint32_t *w)
+{
+    memset(w, 0, MI_LIGHT_WORDS * sizeof *w);
+    w[0] = l->kind;
+    for (int k = 0; k < 3; k++) {
+        w[1 + k] = f24w((double)l->color[k] * l->intensity);
+        w[4 + k] = f24w(l->position[k]);
+        w[7 + k] = f24w(l->direction[k]);
+    }
+    w[10] = f24w(l->range);
+    w[11] = f24w(cos(l->inner_cone));
+    w[12] = f24w(cos(l->outer_cone));
+}
+
+static void write_lights(const mi_builder *b, const scene *s, uint32_t *w)
+{
+    if (s->n_lights == 0) {
+        scene_light l;
+        mi_default_light(b, s, &l);
+        write_light(&l, w);
+    }
+    for (uint32_t i = 0; i < s->n_lights; i++, w += MI_LIGHT_WORDS)
+        write_light(&s->lights[i], w);
+}
+
+/* A shader weight in [0, 1] as Q12 (docs/shading.md). */
+static uint32_t q12(double x) { return (uint32_t)lround(4096.0 * (x > 0 ? (x < 1 ? x : 1) : 0)); }
 
 static void write_materials(const mi_builder *b, const scene *s, uint32_t *w)
 {
@@ -451,7 +491,11 @@ static void write_materials(const mi_builder *b, const scene *s, uint32_t *w)
         w[10] = f24w(m->metallic);
         w[11] = f24w(m->roughness);
         w[12] = f24w(m->transmission);
-        w[13] = f24w(m->ior);
+        shading_params sp;
+        shading_params_of(m, &sp);
+        w[13] = f24w(sp.eta);
+        w[14] = q12(sp.kd) | q12(sp.kr) << 13 | sp.exp_shift << 26;
+        w[15] = q12(sp.kt) | q12(sp.ks) << 13;
     }
 }
 
@@ -548,7 +592,7 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
         len[b->obj[i].dynamic ? MI_R_DYNAMIC_GEOMETRY : MI_R_STATIC_GEOMETRY] += b->obj[i].words;
     len[MI_R_OBJECTS] = (uint64_t)MI_OBJECT_WORDS * b->n_objects;
     len[MI_R_CAMERA] = MI_CAMERA_WORDS;
-    len[MI_R_LIGHTS] = (uint64_t)MI_LIGHT_WORDS * s->n_lights;
+    len[MI_R_LIGHTS] = (uint64_t)MI_LIGHT_WORDS * light_count(s);
     len[MI_R_INSTANCES] = (uint64_t)MI_INSTANCE_WORDS * b->n_inst;
     len[MI_R_TOP_NODES] = (uint64_t)MI_NODE_WORDS * b->top.n_nodes;
     len[MI_R_TOP_LISTS] = b->top.n_prims;
@@ -583,7 +627,7 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
         written[MI_R_DYNAMIC_GEOMETRY] = written[MI_R_OBJECTS] = 1;
     }
     write_camera(b, s, w + off[MI_R_CAMERA]);
-    write_lights(s, w + off[MI_R_LIGHTS]);
+    write_lights(b, s, w + off[MI_R_LIGHTS]);
     write_instances(b, s, w + off[MI_R_INSTANCES]);
     for (uint32_t i = 0; i < b->top.n_nodes; i++)
         put_node(w + off[MI_R_TOP_NODES] + MI_NODE_WORDS * i, &b->top.nodes[i]);
@@ -594,7 +638,7 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
     /* header */
     const uint32_t head[MI_H_SCENE_BOUNDS] = { MI_MAGIC, MI_VERSION, (uint32_t)(F24_EXP_BITS << 8 | F24_MAN_BITS),
                                                 (uint32_t)(b->p.memory_bytes / 4), total, b->frame,
-                                                b->n_objects, b->n_inst, s->n_materials, b->n_textures, s->n_lights,
+                                                b->n_objects, b->n_inst, s->n_materials, b->n_textures, light_count(s),
                                                 b->top.n_nodes };
     memcpy(w, head, sizeof head);
     put_bounds(w + MI_H_SCENE_BOUNDS, &b->top.bounds);

@@ -124,6 +124,9 @@ typedef struct {
 } mi_camera;
 void mi_camera_frame(const mi_builder *b, const scene *s, mi_camera *out);
 
+/* The light the image holds for a scene without lights (docs/shading.md). */
+void mi_default_light(const mi_builder *b, const scene *s, scene_light *out);
+
 const char *mi_region_name(mi_region r);
 
 /* Checks an image before the device model uses it: header, region bounds, every index and

@@ -127,7 +127,7 @@ static int usage(void)
 int cmd_info(int argc, char **argv)
 {
     static const struct option opts[] = {
-        SCENE_LONG_OPTIONS, { "frames", required_argument, NULL, 'f' }, { "fps", required_argument, NULL, 'r' },
+        SCENE_LONG_OPTIONS, SCENE_KD_DEPTH_ALIAS, { "frames", required_argument, NULL, 'f' }, { "fps", required_argument, NULL, 'r' },
         { "validate", no_argument, NULL, 'v' }, { "json", required_argument, NULL, 'j' },
         { "image", required_argument, NULL, 'i' }, { "help", no_argument, NULL, 'h' }, { 0, 0, 0, 0 }
     };

@@ -20,14 +20,15 @@
 #include "img.h"
 #include "rgs.h"
 #include "scene_opts.h"
+#include "shading_model.h"
 #include "trace.h"
 
 typedef struct {
     const uint32_t *mem;
+    const rgs_config *cfg;
     uint32_t width, height, thread, threads;
     uint32_t *pixels;
-    trace_counters counters;
-    uint64_t rays;
+    rgs_counters counters;
     atomic_uint *rows_done; /* block rows finished by all threads, for the progress line */
     hit_record *hits;       /* per pixel primary hit, for --aov (NULL: not kept) */
 } render_job;
@@ -51,20 +52,16 @@ static void *render_rows(void *arg)
     double last = now();
     for (uint32_t y = 2 * j->thread; y < j->height; y += 2 * j->threads) {
         for (uint32_t x = 0; x < j->width; x += 2) {
-            ray_packet rp;
             hit_record h[TRACE_PACKET];
-            rgs_primary(j->mem, x, y, &rp);
             uint32_t rgb[TRACE_PACKET];
-            trace_packet(j->mem, &rp, h, &j->counters);
-            rgs_shade_packet(j->mem, &rp, h, rgb, &j->counters);
+            rgs_render_block(j->mem, j->cfg, x, y, rgb, h, &j->counters);
             for (int i = 0; i < TRACE_PACKET; i++) {
-                if (!(rp.active >> i & 1u))
+                const uint32_t px = x + (uint32_t)(i & 1), py = y + (uint32_t)(i >> 1);
+                if (px >= j->width || py >= j->height)
                     continue;
-                const size_t px = (size_t)(y + (uint32_t)(i >> 1)) * j->width + x + (uint32_t)(i & 1);
-                j->pixels[px] = rgb[i];
+                j->pixels[(size_t)py * j->width + px] = rgb[i];
                 if (j->hits)
-                    j->hits[px] = h[i];
-                j->rays++;
+                    j->hits[(size_t)py * j->width + px] = h[i];
             }
         }
         atomic_fetch_add(j->rows_done, 1u);
@@ -83,8 +80,23 @@ static double now(void)
 }
 
 /* Renders with `threads` host threads; fills pixels and the summed counters. */
-static int render(const uint32_t *mem, uint32_t threads, uint32_t *pixels, hit_record *hits, trace_counters *sum,
-                  uint64_t *rays)
+/* Adds the counters of one thread to the sum. */
+static void add_counters(rgs_counters *sum, const rgs_counters *c)
+{
+    sum->trace.traversal_steps += c->trace.traversal_steps;
+    sum->trace.leaves += c->trace.leaves;
+    sum->trace.list_entries += c->trace.list_entries;
+    sum->trace.mailbox_skips += c->trace.mailbox_skips;
+    sum->trace.transformations += c->trace.transformations;
+    sum->trace.intersections += c->trace.intersections;
+    sum->trace.words_read += c->trace.words_read;
+    for (int k = 0; k < RAY_KINDS; k++)
+        sum->rays[k] += c->rays[k];
+    sum->dropped += c->dropped;
+}
+
+static int render(const uint32_t *mem, const rgs_config *cfg, uint32_t threads, uint32_t *pixels, hit_record *hits,
+                  rgs_counters *sum)
 {
     uint32_t w, h;
     rgs_image_size(mem, &w, &h);
@@ -97,13 +109,12 @@ static int render(const uint32_t *mem, uint32_t threads, uint32_t *pixels, hit_r
         return -1;
     }
     for (uint32_t t = 0; t < threads; t++) {
-        jobs[t] = (render_job){ mem, w, h, t, threads, pixels, { 0 }, 0, &rows_done, hits };
+        jobs[t] = (render_job){ mem, cfg, w, h, t, threads, pixels, { { 0 }, { 0 }, 0 }, &rows_done, hits };
         if (t > 0 && pthread_create(&tid[t], NULL, render_rows, &jobs[t]) != 0)
             jobs[t].threads = 0; /* could not start: done below in this thread */
     }
     render_rows(&jobs[0]);
     memset(sum, 0, sizeof *sum);
-    *rays = 0;
     for (uint32_t t = 0; t < threads; t++) {
         if (t > 0 && jobs[t].threads)
             pthread_join(tid[t], NULL);
@@ -111,15 +122,7 @@ static int render(const uint32_t *mem, uint32_t threads, uint32_t *pixels, hit_r
             jobs[t].threads = threads;
             render_rows(&jobs[t]);
         }
-        const trace_counters *c = &jobs[t].counters;
-        sum->traversal_steps += c->traversal_steps;
-        sum->leaves += c->leaves;
-        sum->list_entries += c->list_entries;
-        sum->mailbox_skips += c->mailbox_skips;
-        sum->transformations += c->transformations;
-        sum->intersections += c->intersections;
-        sum->words_read += c->words_read;
-        *rays += jobs[t].rays;
+        add_counters(sum, &jobs[t].counters);
     }
     free(jobs);
     free(tid);
@@ -142,19 +145,32 @@ static int write_png(const char *path, const uint32_t *pixels, uint32_t w, uint3
     return rc;
 }
 
+_Static_assert(RGS_MAX_DEPTH == SHADE_MAX_DEPTH, "the shading model and the RGS unit agree on the deepest level");
+
 static int usage(void)
 {
-    printf("usage: saarcor render SCENE [-o out.png] [--aov FILE.exr] [--frames A:B [--fps F]] [--threads N]\n"
-           "                      [--stats FILE] [scene options]\n\n"
-           "Renders the scene through the hardware units in functional mode (each packet of 2x2\n"
-           "primary rays runs to completion): RGS, traversal, list, transformation and intersection\n"
-           "units reading the memory image. Shading: base colour, the scene's lights with shadows. The\n"
+    printf("usage: saarcor render SCENE [-o out.png] [--max-depth D] [--no-shadows] [--precision P]\n"
+           "                      [--aov FILE.exr] [--frames A:B [--fps F]] [--threads N] [--stats FILE]\n"
+           "                      [scene options]\n\n"
+           "Renders the scene through the hardware units in functional mode (each 2x2 pixel block runs\n"
+           "its whole ray tree to completion): RGS, traversal, list, transformation and intersection\n"
+           "units reading the memory image. Shading (docs/shading.md): Phong-like with interpolated\n"
+           "normals, bilinear textures, the scene's lights with shadow rays (a default light if it has\n"
+           "none), reflection and transmission/refraction rays weighted by the glTF material. The\n"
            "image is bit-identical for any --threads (default: the number of cores).\n"
-           "--aov FILE.exr writes per-pixel primary hits as float channels t, N.X N.Y N.Z (world\n"
-           "geometric normal), node (glTF node of the instance), triangle (index in its glTF mesh,\n"
-           "primitives in file order), u, v (barycentrics of A and B); misses: t = inf, -1 indices.\n"
-           "--frames A:B renders frames A..B of the animation at --fps (default 30) to OUT_NNNN.png,\n"
-           "rebuilding per frame only what changed (the top level, morphing objects).\n\n%s", SCENE_OPTIONS_HELP);
+           "  --max-depth D      levels of secondary rays, 0..%u (default %u; 0: primary rays only)\n"
+           "  --no-shadows       lights are not occluded (no shadow rays)\n"
+           "  --precision P      number format of the units: fp24 (e7m16, default), fp32 (e8m23), or\n"
+           "                     any built format eEmM (make widths); runs build/w/<format>/saarcor\n"
+           "  --aov FILE.exr     per-pixel primary hits as float channels t, N.X N.Y N.Z (world geometric\n"
+           "                     normal), node (glTF node of the instance), triangle (index in its glTF\n"
+           "                     mesh, primitives in file order), u, v (barycentrics of A and B); misses:\n"
+           "                     t = inf, -1 indices\n"
+           "  --stats FILE       counters as JSON: rays by kind, traversal steps, leaves, list entries,\n"
+           "                     mailbox skips, transformations, intersections, memory words read\n"
+           "  --frames A:B       frames A..B of the animation at --fps (default 30) to OUT_NNNN.png (and\n"
+           "                     AOV/stats files numbered alike), rebuilding per frame only what changed\n\n%s",
+           RGS_MAX_DEPTH, SHADE_DEFAULT_DEPTH, SCENE_OPTIONS_HELP);
     return SAARCOR_EXIT_OK;
 }
 
@@ -163,6 +179,7 @@ typedef struct {
     uint32_t threads, first, last;
     int sequence;
     double fps;
+    rgs_config cfg;
 } render_opts;
 
 /* out.png -> out_0007.png for frame sequences. */
@@ -177,18 +194,32 @@ static void frame_path(const render_opts *ro, uint32_t frame, char *buf, size_t 
     snprintf(buf, n, "%.*s_%04u%s", stem, ro->out, frame, dot ? dot : ".png");
 }
 
-static int write_stats(const char *path, uint64_t rays, double secs, const trace_counters *sum)
+static const char *const ray_kind_names[RAY_KINDS] = { "primary", "shadow", "reflection", "transmission" };
+
+static uint64_t all_rays(const rgs_counters *c)
+{
+    uint64_t n = 0;
+    for (int k = 0; k < RAY_KINDS; k++)
+        n += c->rays[k];
+    return n;
+}
+
+/* Counters of one frame as JSON: rays by kind, work of the units, memory words read. */
+static int write_stats(const char *path, const render_opts *ro, uint32_t frame, double secs, const rgs_counters *c)
 {
     FILE *f = fopen(path, "w");
     if (!f)
         return -1;
-    fprintf(f, "{\"rays\": %llu, \"seconds\": %.6f, \"traversal_steps\": %llu, \"leaves\": %llu, "
-               "\"list_entries\": %llu, \"mailbox_skips\": %llu, \"transformations\": %llu, "
-               "\"intersections\": %llu, \"words_read\": %llu}\n", (unsigned long long)rays, secs,
-            (unsigned long long)sum->traversal_steps, (unsigned long long)sum->leaves,
-            (unsigned long long)sum->list_entries, (unsigned long long)sum->mailbox_skips,
-            (unsigned long long)sum->transformations, (unsigned long long)sum->intersections,
-            (unsigned long long)sum->words_read);
+    const trace_counters *t = &c->trace;
+    fprintf(f, "{\"frame\": %u, \"seconds\": %.6f, \"max_depth\": %u, \"shadows\": %s, \"rays\": %llu, \"rays_by_kind\": {",
+            frame, secs, ro->cfg.max_depth, ro->cfg.shadows ? "true" : "false", (unsigned long long)all_rays(c));
+    for (int k = 0; k < RAY_KINDS; k++)
+        fprintf(f, "%s\"%s\": %llu", k ? ", " : "", ray_kind_names[k], (unsigned long long)c->rays[k]);
+    fprintf(f, "}, \"traversal_steps\": %llu, \"leaves\": %llu, \"list_entries\": %llu, \"mailbox_skips\": %llu, "
+               "\"transformations\": %llu, \"intersections\": %llu, \"words_read\": %llu, \"dropped_packets\": %llu}\n",
+            (unsigned long long)t->traversal_steps, (unsigned long long)t->leaves, (unsigned long long)t->list_entries,
+            (unsigned long long)t->mailbox_skips, (unsigned long long)t->transformations,
+            (unsigned long long)t->intersections, (unsigned long long)t->words_read, (unsigned long long)c->dropped);
     return fclose(f);
 }
 
@@ -256,10 +287,9 @@ static int render_frame(const mi_builder *b, const scene *s, const render_opts *
     rgs_image_size(mem, &w, &h);
     uint32_t *pixels = calloc((size_t)w * h, sizeof *pixels);
     hit_record *hits = ro->aov ? calloc((size_t)w * h, sizeof *hits) : NULL;
-    trace_counters sum;
-    uint64_t rays = 0;
+    rgs_counters sum;
     const double t0 = now();
-    if (!pixels || (ro->aov && !hits) || render(mem, ro->threads, pixels, hits, &sum, &rays) != 0) {
+    if (!pixels || (ro->aov && !hits) || render(mem, &ro->cfg, ro->threads, pixels, hits, &sum) != 0) {
         free(pixels);
         free(hits);
         cli_error("render", "out of memory");
@@ -279,15 +309,26 @@ static int render_frame(const mi_builder *b, const scene *s, const render_opts *
     free(hits);
     if (wrc != 0)
         return SAARCOR_EXIT_INPUT;
-    printf("rendered %s: %ux%u, %llu primary rays in %.3f s (%u threads), upload %.1f KB -> %s\n", scene_name, w, h,
-           (unsigned long long)rays, secs, ro->threads, (double)mi_get_stats(b)->frame_upload_bytes / 1024.0, path);
-    printf("per primary ray (shadow rays included): %.2f traversal steps, %.2f leaves, %.2f list entries, "
-           "%.2f mailbox skips, %.2f intersections, %.1f words read\n", (double)sum.traversal_steps / rays,
-           (double)sum.leaves / rays, (double)sum.list_entries / rays, (double)sum.mailbox_skips / rays,
-           (double)sum.intersections / rays, (double)sum.words_read / rays);
+    const uint64_t rays = all_rays(&sum), primary = sum.rays[RAY_PRIMARY] ? sum.rays[RAY_PRIMARY] : 1;
+    const trace_counters *t = &sum.trace;
+    printf("rendered %s: %ux%u, %llu rays (%llu primary, %llu shadow, %llu reflection, %llu transmission) in %.3f s "
+           "(%u threads), upload %.1f KB -> %s\n", scene_name, w, h, (unsigned long long)rays,
+           (unsigned long long)sum.rays[RAY_PRIMARY], (unsigned long long)sum.rays[RAY_SHADOW],
+           (unsigned long long)sum.rays[RAY_REFLECTION], (unsigned long long)sum.rays[RAY_TRANSMISSION], secs,
+           ro->threads, (double)mi_get_stats(b)->frame_upload_bytes / 1024.0, path);
+    printf("per primary ray (secondary rays included): %.2f traversal steps, %.2f leaves, %.2f list entries, "
+           "%.2f mailbox skips, %.2f intersections, %.1f words read\n", (double)t->traversal_steps / primary,
+           (double)t->leaves / primary, (double)t->list_entries / primary, (double)t->mailbox_skips / primary,
+           (double)t->intersections / primary, (double)t->words_read / primary);
     fflush(stdout);
-    if (ro->stats && write_stats(ro->stats, rays, secs, &sum) != 0) {
-        cli_error("render", "cannot write '%s'", ro->stats);
+    char stats_path[1024];
+    if (ro->stats) {
+        render_opts st = *ro;
+        st.out = ro->stats;
+        frame_path(&st, frame, stats_path, sizeof stats_path);
+    }
+    if (ro->stats && write_stats(stats_path, ro, frame, secs, &sum) != 0) {
+        cli_error("render", "cannot write '%s'", stats_path);
         return SAARCOR_EXIT_INPUT;
     }
     return SAARCOR_EXIT_OK;
@@ -309,18 +350,56 @@ static int parse_frames(const char *arg, render_opts *ro)
     return 1;
 }
 
+/* --precision: fp24, fp32 or eEmM -> exponent and fraction bits; 0 if malformed. */
+static int parse_precision(const char *arg, int *e, int *m)
+{
+    char tail;
+    if (strcmp(arg, "fp24") == 0)
+        *e = 7, *m = 16;
+    else if (strcmp(arg, "fp32") == 0)
+        *e = 8, *m = 23;
+    else if (sscanf(arg, "e%dm%d%c", e, m, &tail) != 2)
+        return 0;
+    return *e >= 3 && *e <= 8 && *m >= 2 && *m <= 23;
+}
+
+/* The units are compiled for one number format per program (build/w/eEmM/saarcor): a render
+ * in another format runs that program with the same arguments. Returns only on error. */
+static int run_format(int e, int m, char **argv)
+{
+    char self[1024], path[1200];
+    const ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+    if (n <= 0)
+        return cli_error("render", "cannot locate this program to find the e%dm%d build", e, m), SAARCOR_EXIT_INTERNAL;
+    self[n] = 0;
+    char *slash = strrchr(self, '/');
+    *slash = 0; /* build/ or build/w/eEmM/ */
+    const char *dir = strrchr(self, '/');
+    int fe, fm;
+    char tail;
+    if (dir && sscanf(dir + 1, "e%dm%d%c", &fe, &fm, &tail) == 2)
+        snprintf(path, sizeof path, "%s/../e%dm%d/saarcor", self, e, m);
+    else
+        snprintf(path, sizeof path, "%s/w/e%dm%d/saarcor", self, e, m);
+    execv(path, argv);
+    cli_error("render", "--precision e%dm%d: no program for that format at %s (build it with make widths)", e, m, path);
+    return SAARCOR_EXIT_USAGE;
+}
+
 int cmd_render(int argc, char **argv)
 {
     static const struct option opts[] = {
         SCENE_LONG_OPTIONS, { "output", required_argument, NULL, 'o' }, { "threads", required_argument, NULL, 't' },
         { "stats", required_argument, NULL, 's' }, { "frames", required_argument, NULL, 'F' },
         { "fps", required_argument, NULL, 'r' }, { "aov", required_argument, NULL, 'a' },
-        { "help", no_argument, NULL, 'h' }, { 0, 0, 0, 0 }
+        { "max-depth", required_argument, NULL, 'd' }, { "no-shadows", no_argument, NULL, 'S' },
+        { "precision", required_argument, NULL, 'p' }, { "help", no_argument, NULL, 'h' }, { 0, 0, 0, 0 }
     };
     scene_opts o;
     const long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
-    render_opts ro = { "render.png", NULL, NULL, ncpu > 0 && ncpu < 256 ? (uint32_t)ncpu : 1, 0, 0, 0, 30.0 };
-    int c;
+    render_opts ro = { "render.png", NULL, NULL, ncpu > 0 && ncpu < 256 ? (uint32_t)ncpu : 1, 0, 0, 0, 30.0,
+                       { SHADE_DEFAULT_DEPTH, 1 } };
+    int c, prec_e = F24_EXP_BITS, prec_m = F24_MAN_BITS;
     scene_opts_default(&o);
     optind = 0;
     opterr = 0;
@@ -348,12 +427,27 @@ int cmd_render(int argc, char **argv)
             if (!cli_parse_double(optarg, &ro.fps) || ro.fps <= 0 || ro.fps > 1e4)
                 return cli_usage_error("render", "bad --fps '%s'", optarg);
             break;
+        case 'd':
+            if (!cli_parse_u64(optarg, 0, RGS_MAX_DEPTH, &v))
+                return cli_usage_error("render", "bad --max-depth '%s' (0..%u)", optarg, RGS_MAX_DEPTH);
+            ro.cfg.max_depth = (uint32_t)v;
+            break;
+        case 'S': ro.cfg.shadows = 0; break;
+        case 'p':
+            if (strcmp(optarg, "fp64") == 0)
+                return cli_usage_error("render", "--precision fp64 is not available: the units' formats are at most "
+                                                 "32 bits wide (fp32 = e8m23)");
+            if (!parse_precision(optarg, &prec_e, &prec_m))
+                return cli_usage_error("render", "bad --precision '%s' (fp24, fp32 or eEmM with E 3..8, M 2..23)", optarg);
+            break;
         case 'h': return usage();
         default: return cli_bad_option("render", argc, argv);
         }
     }
     if (argc - optind != 1)
         return cli_usage_error("render", "expected one SCENE");
+    if (prec_e != F24_EXP_BITS || prec_m != F24_MAN_BITS)
+        return run_format(prec_e, prec_m, argv - 1);
     o.scene = argv[optind];
     if (ro.sequence)
         o.time = ro.first / ro.fps;

@@ -78,7 +78,7 @@ int scene_opts_parse(scene_opts *o, const char *cmd, int c, const char *arg)
             o->mi.bottom.empty_bonus = o->mi.top.empty_bonus = d;
         return r;
     case 4:
-        if ((r = count(cmd, "max-depth", arg, 0, 64, &u)) > 0)
+        if ((r = count(cmd, "kd-max-depth", arg, 0, 64, &u)) > 0)
             o->mi.bottom.max_depth = o->mi.top.max_depth = u;
         return r;
     case 5:

@@ -16,12 +16,16 @@
 #define SCENE_LONG_OPTIONS                                                                              \
     { "mem-mb", required_argument, NULL, SCENE_OPT_BASE + 0 }, { "ct", required_argument, NULL, SCENE_OPT_BASE + 1 }, \
     { "ci", required_argument, NULL, SCENE_OPT_BASE + 2 }, { "empty-bonus", required_argument, NULL, SCENE_OPT_BASE + 3 }, \
-    { "max-depth", required_argument, NULL, SCENE_OPT_BASE + 4 }, { "leaf-size", required_argument, NULL, SCENE_OPT_BASE + 5 }, \
+    { "kd-max-depth", required_argument, NULL, SCENE_OPT_BASE + 4 }, { "leaf-size", required_argument, NULL, SCENE_OPT_BASE + 5 }, \
     { "top-bins", required_argument, NULL, SCENE_OPT_BASE + 6 }, { "width", required_argument, NULL, SCENE_OPT_BASE + 7 }, \
     { "height", required_argument, NULL, SCENE_OPT_BASE + 8 }, { "time", required_argument, NULL, SCENE_OPT_BASE + 9 }, \
     { "max-condition", required_argument, NULL, SCENE_OPT_BASE + 10 }, { "camera", required_argument, NULL, SCENE_OPT_BASE + 11 }, \
     { "eye", required_argument, NULL, SCENE_OPT_BASE + 12 }, { "at", required_argument, NULL, SCENE_OPT_BASE + 13 }, \
     { "up", required_argument, NULL, SCENE_OPT_BASE + 14 }, { "fov", required_argument, NULL, SCENE_OPT_BASE + 15 }
+
+/* `info` also accepts the kd-tree depth as --max-depth (render and reference use that name for
+ * the ray depth). */
+#define SCENE_KD_DEPTH_ALIAS { "max-depth", required_argument, NULL, SCENE_OPT_BASE + 4 }
 
 #define SCENE_OPTIONS_HELP                                                                              \
     "scene options:\n"                                                                                  \
@@ -34,7 +38,7 @@
     "  --mem-mb N            device memory size in MB (default 24, as the prototype)\n"                \
     "  --ct X --ci Y         SAH traversal and intersection costs (default 1, 1.5)\n"                  \
     "  --empty-bonus B       SAH bonus for cutting off empty space, 0..1 (default 0.2)\n"              \
-    "  --max-depth D         kd-tree depth limit (default 0: 8 + 1.3 log2 N)\n"                        \
+    "  --kd-max-depth D      kd-tree depth limit (default 0: 8 + 1.3 log2 N)\n"                        \
     "  --leaf-size L         never split nodes with at most L primitives (default 1)\n"               \
     "  --top-bins N          bins of the top-level SAH (default 32)\n"                                 \
     "  --max-condition K     drop triangles whose shape condition number exceeds K (default 2^24)\n"

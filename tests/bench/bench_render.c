@@ -76,20 +76,18 @@ static double trace_ours(const uint32_t *mem, float *t_out)
     return now() - t0;
 }
 
-static double render_ours(const uint32_t *mem)
+/* The whole frame through the units with the given ray depth (0: primary rays and shadows). */
+static double render_ours(const uint32_t *mem, uint32_t max_depth)
 {
-    trace_counters c;
+    rgs_counters c;
     memset(&c, 0, sizeof c);
+    const rgs_config cfg = { max_depth, 1 };
     uint32_t sink = 0;
     const double t0 = now();
     for (uint32_t y = 0; y < H; y += 2)
         for (uint32_t x = 0; x < W; x += 2) {
-            ray_packet rp;
-            hit_record h[TRACE_PACKET];
             uint32_t rgb[TRACE_PACKET];
-            rgs_primary(mem, x, y, &rp);
-            trace_packet(mem, &rp, h, &c);
-            rgs_shade_packet(mem, &rp, h, rgb, &c);
+            rgs_render_block(mem, &cfg, x, y, rgb, NULL, &c);
             sink ^= rgb[0];
         }
     return now() - t0 + 0.0 * sink;
@@ -175,7 +173,7 @@ static void bench_one(const char *name, result *r)
         for (uint32_t i = 0; i < s.n_instances; i++)
             r->tris += s.meshes[s.instances[i].mesh].n_triangles;
         r->ours_trace = trace_ours(mem, t);
-        r->ours_render = render_ours(mem);
+        r->ours_render = render_ours(mem, 0);
         r->ok = trace_embree(&s, mem, t, r) == 0;
     }
     fprintf(stderr, " %s\n", r->ok ? "done" : "failed");
