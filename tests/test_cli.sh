@@ -157,10 +157,10 @@ t_info() {
 
 t_render() {
   expect 0 "$BIN" render cornell -o "$T/r1.png" --width 96 --height 72 --threads 1 --stats "$T/s.json"
-  has 'rendered cornell: 96x72, 6912 primary rays' "$T/out"
+  has 'rendered cornell: 96x72, [0-9]* rays (6912 primary, [0-9]* shadow' "$T/out"
   expect 0 "$BIN" render cornell -o "$T/r2.png" --width 96 --height 72 --threads 3
   cmp "$T/r1.png" "$T/r2.png"                      # bit-identical for any thread count
-  python3 -c "import json; d=json.load(open('$T/s.json')); assert d['rays']==6912 and d['intersections']>0"
+  python3 -c "import json; d=json.load(open('$T/s.json')); k=d['rays_by_kind']; assert k['primary']==6912 and d['rays']==sum(k.values()) and d['intersections']>0"
   "$BIN" compare "$T/r1.png" "$T/r2.png" --psnr-min 99 >/dev/null
   expect 0 "$BIN" render room -o "$T/odd.png" --width 33 --height 17 --threads 2   # odd sizes
   expect 0 "$BIN" render animated --frames 0:2 --fps 2 -o "$T/a.png" --width 64 --height 48
@@ -183,6 +183,28 @@ t_render() {
   expect 3 "$BIN" render cornell -o /nonexistent-dir/x.png; one_line_error
 }
 
+# ray depth, shadows, number format and the ground plane of render
+t_render_rays() {
+  kinds() { python3 -c "import json; k=json.load(open('$1'))['rays_by_kind']; print(k['shadow'], k['reflection'], k['transmission'])"; }
+  expect 0 "$BIN" render room -o "$T/d3.png" --width 64 --height 48 --stats "$T/d3.json"
+  read -r sh refl trans < <(kinds "$T/d3.json")
+  [[ $sh -gt 0 && $refl -gt 0 && $trans -gt 0 ]]      # the room has glass, metal and lights
+  expect 0 "$BIN" render room -o "$T/d0.png" --width 64 --height 48 --max-depth 0 --no-shadows --stats "$T/d0.json"
+  [[ "$(kinds "$T/d0.json")" == "0 0 0" ]]
+  if cmp -s "$T/d0.png" "$T/d3.png"; then echo "--max-depth 0 --no-shadows changed nothing"; return 1; fi
+  expect 0 "$BIN" render room -o "$T/f32.png" --width 64 --height 48 --precision fp32
+  "$BIN" compare "$T/f32.png" "$T/d3.png" --psnr-min 25 >/dev/null   # same picture, other arithmetic
+  expect 0 "$BIN" render room -o "$T/e7.png" --width 64 --height 48 --precision e7m16
+  cmp "$T/e7.png" "$T/d3.png"                        # the build's own format: the same program
+  expect 0 "$BIN" render cornell -o "$T/g.png" --width 64 --height 48 --ground --stats "$T/g.json"
+  read -r sh refl trans < <(kinds "$T/g.json")
+  [[ $refl -gt 0 ]]                                   # the polished ground reflects
+  expect 2 "$BIN" render room --max-depth 9; one_line_error
+  expect 2 "$BIN" render room --precision fp64; one_line_error
+  expect 2 "$BIN" render room --precision e9m40; one_line_error
+  expect 2 "$BIN" render room --ground=1; one_line_error
+}
+
 run_case cli_help t_help
 run_case cli_bad_usage_exit_2_one_line t_bad_usage
 run_case cli_version t_version
@@ -193,4 +215,5 @@ run_case cli_compare_vs_idiff t_compare
 run_case cli_gen t_gen
 run_case cli_info t_info
 run_case cli_render t_render
+run_case cli_render_rays t_render_rays
 exit $((fails != 0))

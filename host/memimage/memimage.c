@@ -322,25 +322,6 @@ static void write_instances(mi_builder *b, const scene *s, uint32_t *w)
     }
 }
 
-/* A view of the whole scene when the file has no camera. */
-static scene_camera default_camera(const aabb *bounds)
-{
-    scene_camera c = { 0 };
-    c.kind = CAMERA_PERSPECTIVE;
-    c.yfov = 45.0 * M_PI / 180.0;
-    double ctr[3], diag = 0;
-    for (int k = 0; k < 3; k++) {
-        ctr[k] = 0.5 * (bounds->lo[k] + bounds->hi[k]);
-        diag += (bounds->hi[k] - bounds->lo[k]) * (bounds->hi[k] - bounds->lo[k]);
-    }
-    diag = sqrt(diag);
-    c.world = affine_identity(); /* looks down -Z from in front of the box */
-    c.world.m[0][3] = ctr[0];
-    c.world.m[1][3] = ctr[1];
-    c.world.m[2][3] = ctr[2] + (diag > 0 ? 1.2 * diag : 1.0);
-    return c;
-}
-
 static void normalize3(double v[3])
 {
     const double l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
@@ -379,7 +360,7 @@ void mi_camera_frame(const mi_builder *b, const scene *s, mi_camera *out)
 {
     const scene_camera c = b->p.explicit_view            ? view_camera(&b->p)
                            : b->p.camera < s->n_cameras ? s->cameras[b->p.camera]
-                                                        : default_camera(&b->top.bounds);
+                                                        : scene_default_camera(b->top.bounds.lo, b->top.bounds.hi);
     const double wpx = b->p.width, hpx = b->p.height, aspect = wpx / hpx;
     const double zero[3] = { 0, 0, 0 };
     out->orthographic = c.kind == CAMERA_ORTHOGRAPHIC;

@@ -318,3 +318,111 @@ void scene_free(scene *s)
     free(s->instances);
     memset(s, 0, sizeof *s);
 }
+
+/* World bounds of the evaluated instances; 0 if the scene has no vertex. */
+static int world_bounds(const scene *s, double lo[3], double hi[3])
+{
+    int any = 0;
+    for (uint32_t i = 0; i < s->n_instances; i++) {
+        const scene_mesh *m = &s->meshes[s->instances[i].mesh];
+        for (uint32_t v = 0; v < m->n_vertices; v++) {
+            const double p[3] = { m->positions[3 * v], m->positions[3 * v + 1], m->positions[3 * v + 2] };
+            double w[3];
+            affine_apply_point(&s->instances[i].world, p, w);
+            for (int k = 0; k < 3; k++) {
+                if (!isfinite(w[k]))
+                    continue;
+                lo[k] = any ? fmin(lo[k], w[k]) : w[k];
+                hi[k] = any ? fmax(hi[k], w[k]) : w[k];
+            }
+            any = 1;
+        }
+    }
+    return any;
+}
+
+/* Grows an array of n elements of size sz by one zeroed element; NULL if memory ran out. */
+static void *grow(void *p, uint32_t n, size_t sz)
+{
+    char *q = realloc(p, (n + 1) * sz);
+    if (q)
+        memset(q + n * sz, 0, sz);
+    return q;
+}
+
+int scene_add_ground(scene *s)
+{
+    double lo[3], hi[3];
+    if (!world_bounds(s, lo, hi))
+        return 0;
+    const double ext = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
+    const double cx = 0.5 * (lo[0] + hi[0]), cz = 0.5 * (lo[2] + hi[2]), y = lo[1] - 1e-3 * ext, r = 2 * ext;
+    scene_material mat = { .base_color = { 0.6f, 0.6f, 0.62f, 1 }, .base_color_texture = SCENE_NONE,
+                           .metallic = 1, .roughness = 0.2f, .ior = 1.5f };
+    scene_mesh mesh = { .name = "ground", .n_vertices = 4, .n_triangles = 2 };
+    mesh.positions = malloc(12 * sizeof(float));
+    mesh.normals = malloc(12 * sizeof(float));
+    mesh.indices = malloc(6 * sizeof(uint32_t));
+    mesh.material = malloc(2 * sizeof(uint32_t));
+    scene_mesh *meshes = grow(s->meshes, s->n_meshes, sizeof *meshes);
+    if (meshes)
+        s->meshes = meshes;
+    scene_material *mats = grow(s->materials, s->n_materials, sizeof *mats);
+    if (mats)
+        s->materials = mats;
+    scene_camera *cams = s->n_cameras ? s->cameras : grow(s->cameras, 0, sizeof *cams);
+    if (cams)
+        s->cameras = cams;
+    scene_node *nodes = grow(s->nodes, s->n_nodes, sizeof *nodes);
+    if (nodes)
+        s->nodes = nodes;
+    uint32_t *roots = grow(s->roots, s->n_roots, sizeof *roots);
+    if (roots)
+        s->roots = roots;
+    if (!mesh.positions || !mesh.normals || !mesh.indices || !mesh.material || !meshes || !mats || !cams || !nodes || !roots) {
+        free(mesh.positions);
+        free(mesh.normals);
+        free(mesh.indices);
+        free(mesh.material);
+        return -1;
+    }
+    static const double corner[4][2] = { { -1, -1 }, { -1, 1 }, { 1, 1 }, { 1, -1 } };
+    static const uint32_t idx[6] = { 0, 1, 2, 0, 2, 3 }; /* counter-clockwise seen from above */
+    for (int v = 0; v < 4; v++) {
+        const float p[3] = { (float)(cx + r * corner[v][0]), (float)y, (float)(cz + r * corner[v][1]) };
+        const float n[3] = { 0, 1, 0 };
+        memcpy(mesh.positions + 3 * v, p, sizeof p);
+        memcpy(mesh.normals + 3 * v, n, sizeof n);
+    }
+    memcpy(mesh.indices, idx, sizeof idx);
+    if (s->n_cameras == 0) /* keep the default view on the scene, not on the ground */
+        s->cameras[s->n_cameras++] = scene_default_camera(lo, hi);
+    mesh.material[0] = mesh.material[1] = s->n_materials;
+    s->materials[s->n_materials++] = mat;
+    s->meshes[s->n_meshes] = mesh;
+    s->nodes[s->n_nodes] = (scene_node){ .name = "ground", .parent = -1, .mesh = s->n_meshes++, .camera = SCENE_NONE,
+                                         .light = SCENE_NONE, .rotation = { 0, 0, 0, 1 }, .scale = { 1, 1, 1 } };
+    s->roots[s->n_roots++] = s->n_nodes++;
+    free(s->instances); /* sized by the node count: scene_evaluate makes it anew */
+    s->instances = NULL;
+    return 0;
+}
+
+scene_camera scene_default_camera(const double lo[3], const double hi[3])
+{
+    scene_camera c = { 0 };
+    c.kind = CAMERA_PERSPECTIVE;
+    c.yfov = 45.0 * 3.14159265358979323846 / 180.0;
+    c.node = SCENE_NONE;
+    double ctr[3], diag = 0;
+    for (int k = 0; k < 3; k++) {
+        ctr[k] = 0.5 * (lo[k] + hi[k]);
+        diag += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    }
+    diag = sqrt(diag);
+    c.world = affine_identity(); /* looks down -Z from in front of the box */
+    c.world.m[0][3] = ctr[0];
+    c.world.m[1][3] = ctr[1];
+    c.world.m[2][3] = ctr[2] + (diag > 0 ? 1.2 * diag : 1.0);
+    return c;
+}

@@ -156,6 +156,17 @@ int scene_evaluate(scene *s, double t, int loop);
 
 void scene_free(scene *s);
 
+/* The view of a scene without cameras: looking down -Z at the centre of the box [lo, hi] from
+ * 1.2 diagonals away, vertical field of view 45 degrees. */
+scene_camera scene_default_camera(const double lo[3], const double hi[3]);
+
+/* Adds a ground plane under the evaluated scene (+Y up, as glTF): a polished metal square
+ * (base 0.6 grey, metallic 1, roughness 0.2) four times the scene's largest extent wide, just
+ * below its lowest point, so that shadows and reflections show. A scene without cameras gets
+ * its default view of the scene without the ground. Call scene_evaluate after it.
+ * Returns 0 (also for an empty scene, which gets none), -1 if memory ran out. */
+int scene_add_ground(scene *s);
+
 /* Affine helpers. */
 affine affine_identity(void);
 affine affine_mul(const affine *a, const affine *b);                 /* a * b */

@@ -98,6 +98,7 @@ int scene_opts_parse(scene_opts *o, const char *cmd, int c, const char *arg)
     case 13: o->mi.explicit_view = 1; return vector3(cmd, "at", arg, o->mi.at);
     case 14: return vector3(cmd, "up", arg, o->mi.up);
     case 15: return number(cmd, "fov", arg, 1, 179, &o->mi.fov_degrees);
+    case 16: o->ground = 1; return 1;
     default: return 0;
     }
 }
@@ -118,7 +119,8 @@ int scene_opts_load(const scene_opts *o, const char *cmd, scene *s)
         cli_error(cmd, "%s", err);
         return SAARCOR_EXIT_INPUT;
     }
-    if (scene_evaluate(s, o->time, 1) != 0) {
+    if (scene_evaluate(s, o->time, 1) != 0 ||
+        (o->ground && (scene_add_ground(s) != 0 || scene_evaluate(s, o->time, 1) != 0))) {
         cli_error(cmd, "out of memory");
         scene_free(s);
         return SAARCOR_EXIT_INTERNAL;

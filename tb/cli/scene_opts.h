@@ -21,7 +21,8 @@
     { "height", required_argument, NULL, SCENE_OPT_BASE + 8 }, { "time", required_argument, NULL, SCENE_OPT_BASE + 9 }, \
     { "max-condition", required_argument, NULL, SCENE_OPT_BASE + 10 }, { "camera", required_argument, NULL, SCENE_OPT_BASE + 11 }, \
     { "eye", required_argument, NULL, SCENE_OPT_BASE + 12 }, { "at", required_argument, NULL, SCENE_OPT_BASE + 13 }, \
-    { "up", required_argument, NULL, SCENE_OPT_BASE + 14 }, { "fov", required_argument, NULL, SCENE_OPT_BASE + 15 }
+    { "up", required_argument, NULL, SCENE_OPT_BASE + 14 }, { "fov", required_argument, NULL, SCENE_OPT_BASE + 15 }, \
+    { "ground", no_argument, NULL, SCENE_OPT_BASE + 16 }
 
 /* `info` also accepts the kd-tree depth as --max-depth (render and reference use that name for
  * the ray depth). */
@@ -34,6 +35,8 @@
     "  --camera N            use the scene's camera N (default 0; a default view if there is none)\n" \
     "  --eye X,Y,Z --at X,Y,Z [--up X,Y,Z] [--fov DEG]  explicit perspective view instead (up 0,1,0,\n" \
     "                        vertical field of view 45 degrees; pixel centres at +1/2)\n"             \
+    "  --ground              add a polished metal ground plane under the scene (+Y up), so that\n"    \
+    "                        shadows and reflections show\n"                                         \
     "  --width W --height H  image size for the camera set-up (default 512 x 384)\n"                   \
     "  --mem-mb N            device memory size in MB (default 24, as the prototype)\n"                \
     "  --ct X --ci Y         SAH traversal and intersection costs (default 1, 1.5)\n"                  \
@@ -46,6 +49,7 @@
 typedef struct {
     const char *scene;   /* path or generator name */
     double time;
+    int ground;          /* --ground: add scene_add_ground's plane */
     mi_params mi;
 } scene_opts;
 
