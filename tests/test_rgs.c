@@ -272,10 +272,122 @@ static void bilinear_texture(void **state)
     scene_free(&s);
 }
 
+/* A scene of axis-aligned squares (one node and material each) for the ray-tree tests: square
+ * k spans [-r, r]^2 around centre c[k] in the plane z = c[k].z, facing +z or -z. */
+typedef struct {
+    double z, r;
+    scene_material m;
+} square;
+
+static void square_scene(scene *s, const square *q, uint32_t n)
+{
+    memset(s, 0, sizeof *s);
+    s->meshes = calloc(n, sizeof *s->meshes);
+    s->materials = calloc(n, sizeof *s->materials);
+    s->nodes = calloc(n, sizeof *s->nodes);
+    s->roots = calloc(n, sizeof *s->roots);
+    for (uint32_t k = 0; k < n; k++) {
+        scene_mesh *m = &s->meshes[k];
+        const float r = (float)q[k].r, z = (float)q[k].z;
+        const float pos[] = { -r, -r, z, r, -r, z, r, r, z, -r, r, z };
+        static const uint32_t idx[] = { 0, 1, 2, 0, 2, 3 };
+        m->n_vertices = 4;
+        m->n_triangles = 2;
+        m->positions = malloc(sizeof pos);
+        memcpy(m->positions, pos, sizeof pos);
+        m->indices = malloc(sizeof idx);
+        memcpy(m->indices, idx, sizeof idx);
+        m->material = malloc(2 * sizeof *m->material);
+        m->material[0] = m->material[1] = k;
+        s->materials[k] = q[k].m;
+        s->materials[k].base_color_texture = SCENE_NONE;
+        s->nodes[k] = (scene_node){ .parent = -1, .mesh = k, .camera = SCENE_NONE, .light = SCENE_NONE,
+                                    .rotation = { 0, 0, 0, 1 }, .scale = { 1, 1, 1 } };
+        s->roots[k] = k;
+    }
+    s->n_meshes = s->n_materials = s->n_nodes = s->n_roots = n;
+    /* one directional light shining along -y: grazing every square, so nothing is lit directly */
+    s->lights = calloc(1, sizeof *s->lights);
+    s->lights[0] = (scene_light){ .kind = LIGHT_DIRECTIONAL, .color = { 1, 1, 1 }, .intensity = 1, .node = SCENE_NONE,
+                                  .direction = { 0, -1, 0 } };
+    s->n_lights = 1;
+    assert_int_equal(scene_evaluate(s, 0, 0), 0);
+}
+
+/* Colour of the centre block of a 16x16 view from (0, 0, 2) down -z. */
+static uint32_t centre_colour(const scene *s, uint32_t max_depth, rgs_counters *c)
+{
+    mi_params p;
+    mi_params_default(&p);
+    p.width = p.height = 16;
+    p.explicit_view = 1;
+    const double eye[3] = { 0, 0, 2 }, at[3] = { 0, 0, 0 }, up[3] = { 0, 1, 0 };
+    memcpy(p.eye, eye, sizeof eye);
+    memcpy(p.at, at, sizeof at);
+    memcpy(p.up, up, sizeof up);
+    p.fov_degrees = 20;
+    char err[256];
+    mi_builder *b = mi_build(s, &p, err, sizeof err);
+    assert_non_null(b);
+    uint32_t n, rgb[TRACE_PACKET];
+    hit_record h[TRACE_PACKET];
+    const rgs_config cfg = { max_depth, 1 };
+    render_block(mi_words(b, &n), &cfg, 7, 7, rgb, h, c);
+    for (int i = 1; i < TRACE_PACKET; i++)
+        assert_int_equal(rgb[i], rgb[0]);
+    mi_free(b);
+    return rgb[0];
+}
+
+static scene_material material(float r, float g, float b, float metallic, float roughness)
+{
+    scene_material m = { .base_color = { r, g, b, 1 }, .metallic = metallic, .roughness = roughness, .ior = 1.5f };
+    return m;
+}
+
+/* A mirror (metallic 1, roughness 0: kr = 1, kd = 0) at z = 0 facing the camera shows the red
+ * emitter behind the camera at z = 3; without secondary rays it is black (plus nothing). */
+static void mirror_reflects(void **state)
+{
+    (void)state;
+    square q[2] = { { 0, 1, material(1, 1, 1, 1, 0) }, { 3, 5, material(0, 0, 0, 0, 1) } };
+    q[1].m.emissive[0] = 1;
+    scene s;
+    square_scene(&s, q, 2);
+    rgs_counters c;
+    assert_int_equal(centre_colour(&s, 1, &c), 0xFF0000u);
+    assert_int_equal(c.rays[RAY_REFLECTION], 4);
+    assert_int_equal(centre_colour(&s, 0, &c), 0x000000u);
+    assert_int_equal(c.rays[RAY_REFLECTION], 0);
+    scene_free(&s);
+}
+
+/* Clear glass (transmission 1, roughness 1: kt = 1) in front of a green emitter: seen through
+ * it with eta = 1 (straight) and with eta = 1.5 (refracted, head-on: undeviated); tinted glass
+ * multiplies the base colour in; a second pane needs a second level. */
+static void glass_transmits(void **state)
+{
+    (void)state;
+    square q[3] = { { 0.5, 1, material(1, 1, 1, 0, 1) }, { 0.25, 1, material(1, 1, 1, 0, 1) }, { -1, 5, material(0, 0, 0, 0, 1) } };
+    q[0].m.transmission = q[1].m.transmission = 1;
+    q[2].m.emissive[1] = 1;
+    scene s;
+    square_scene(&s, q, 3);
+    rgs_counters c;
+    assert_int_equal(centre_colour(&s, 2, &c), 0x00FF00u);
+    assert_int_equal(c.rays[RAY_TRANSMISSION], 8);
+    assert_int_equal(centre_colour(&s, 1, &c), 0x000000u); /* the second pane is dark at depth 1 */
+    s.materials[0].ior = s.materials[1].ior = 1.0f;
+    s.materials[0].base_color[1] = 0.5f;
+    assert_int_equal(centre_colour(&s, 2, &c), 0x008000u);
+    scene_free(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = { cmocka_unit_test(primary_rays), cmocka_unit_test(shading),
                                         cmocka_unit_test(reflection_geometry), cmocka_unit_test(refraction_snell),
-                                        cmocka_unit_test(bilinear_texture) };
+                                        cmocka_unit_test(bilinear_texture), cmocka_unit_test(mirror_reflects),
+                                        cmocka_unit_test(glass_transmits) };
     return cmocka_run_group_tests_name("rgs", tests, NULL, NULL);
 }
