@@ -3,8 +3,10 @@
  * (two-level trees, instancing with scale and rotation, a morphing object in the dynamic region)
  * traced through the memory image with fp24 units, against brute force in double precision over
  * every instanced triangle of the scene: hit/miss agreement and the distance to the closest hit.
- * Also: rays with zero direction components and rays that disagree within a packet.
+ * Also: rays with zero direction components, rays lying in split planes, and rays that
+ * disagree within a packet.
  */
+#define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -12,13 +14,16 @@
 
 #include <cmocka.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "f24_fast.h"
 #include "memimage.h"
 #include "scene.h"
 #include "scenes.h"
+#include "isect_unit.h"
 #include "trace.h"
+#include "xform_unit.h"
 
 static double D(f24_t x) { return f24_fast_decode(x); }
 static f24_t F(double x) { return f24_fast_encode(x); }
@@ -185,11 +190,92 @@ static void zero_components_and_disagreeing_packets(void **state)
     scene_free(&s);
 }
 
+/* Closest hit over every instance and triangle of the image with the units' own arithmetic
+ * (world-to-object and triangle transformation, unit-triangle test): what a complete traversal
+ * must find, bit for bit. */
+static f24_t brute_force_units(const uint32_t *mem, f24_vec3 o, f24_vec3 d)
+{
+    const uint32_t *inst = mem + mem[MI_H_REGION_TABLE + 2 * MI_R_INSTANCES];
+    const uint32_t *objs = mem + mem[MI_H_REGION_TABLE + 2 * MI_R_OBJECTS];
+    f24_t best = F24_POS_INF;
+    for (uint32_t i = 0; i < mem[MI_H_INSTANCES]; i++) {
+        const f24_affine w2o = f24_affine_load(mem, (uint32_t)(inst - mem) + MI_INSTANCE_WORDS * i);
+        const uint32_t *obj = objs + MI_OBJECT_WORDS * inst[MI_INSTANCE_WORDS * i + 12];
+        const f24_vec3 oo = xform_point(&w2o, o), od = xform_vector(&w2o, d);
+        for (uint32_t t = 0; t < obj[6]; t++) {
+            const f24_affine tx = f24_affine_load(mem, obj[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * t);
+            const isect_result r = isect_unit_triangle(xform_point(&tx, oo), xform_vector(&tx, od), 0, best);
+            if (r.hit)
+                best = r.t;
+        }
+    }
+    return best;
+}
+
+/* Rays lying in the split planes of the top-level tree (origin on the plane, direction
+ * component along the split axis +0 or -0) in the room scene: the traversal must send them to
+ * both children or the correct one: their closest hits equal, bit for bit, brute force over all
+ * triangles with the same units (brute force in double may differ where such a ray grazes an
+ * edge that lies in the plane, within fp24 precision). */
+static void rays_in_split_planes(void **state)
+{
+    (void)state;
+    scene s;
+    char err[256];
+    const scene_gen_params gp = { 1, 0 };
+    assert_int_equal(scene_generator_find("room")->build(&s, &gp, err, sizeof err), 0);
+    assert_int_equal(scene_evaluate(&s, 0, 0), 0);
+    mi_params p;
+    mi_params_default(&p);
+    mi_builder *b = mi_build(&s, &p, err, sizeof err);
+    assert_non_null(b);
+    uint32_t n;
+    const uint32_t *mem = mi_words(b, &n);
+    const uint32_t *nodes = mem + mem[MI_H_REGION_TABLE + 2 * MI_R_TOP_NODES], *bounds = mem + MI_H_SCENE_BOUNDS;
+    trace_counters c;
+    memset(&c, 0, sizeof c);
+    unsigned seed = 3;
+    uint32_t rays = 0, agree = 0, planes = 0;
+    for (uint32_t k = 0, rep = 0; k < mem[MI_H_TOP_NODES]; k += rep == 7, rep = (rep + 1) % 8) {
+        const uint32_t w0 = nodes[2 * k], axis = w0 & 3u;
+        if (axis == 3)
+            continue; /* a leaf */
+        planes += rep == 0;
+        ray_packet rp = { .active = 0xF };
+        for (int i = 0; i < TRACE_PACKET; i++) {
+            double o[3], d[3];
+            for (uint32_t j = 0; j < 3; j++) {
+                const double lo = D(bounds[j]), hi = D(bounds[3 + j]), r = (double)rand_r(&seed) / RAND_MAX;
+                o[j] = j == axis ? D(nodes[2 * k + 1]) : lo + (0.1 + 0.8 * r) * (hi - lo);
+                d[j] = j == axis ? 0 : 2.0 * rand_r(&seed) / RAND_MAX - 1;
+            }
+            rp.o[i] = (f24_vec3){ F(o[0]), F(o[1]), F(o[2]) };
+            rp.d[i] = (f24_vec3){ F(d[0]), F(d[1]), F(d[2]) };
+            if (i & 1) /* -0 along the axis for half of the rays */
+                (&rp.d[i].x)[axis] = F24_SIGN_BIT;
+            rp.tmin[i] = 0;
+            rp.tmax[i] = F24_POS_INF;
+        }
+        hit_record h[TRACE_PACKET];
+        trace_packet(mem, &rp, h, &c);
+        for (int i = 0; i < TRACE_PACKET; i++) {
+            const f24_t ref = brute_force_units(mem, rp.o[i], rp.d[i]);
+            rays++;
+            agree += h[i].instance == TRACE_NO_HIT ? ref == F24_POS_INF : h[i].t == ref;
+        }
+    }
+    print_message("split planes: %u planes, %u rays, %u agree with brute force\n", planes, rays, agree);
+    assert_true(planes >= 5);
+    assert_int_equal(agree, rays);
+    mi_free(b);
+    scene_free(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(cornell), cmocka_unit_test(room), cmocka_unit_test(animated),
-        cmocka_unit_test(zero_components_and_disagreeing_packets),
+        cmocka_unit_test(zero_components_and_disagreeing_packets), cmocka_unit_test(rays_in_split_planes),
     };
     return cmocka_run_group_tests_name("trace", tests, NULL, NULL);
 }
