@@ -135,6 +135,7 @@ typedef struct {
     uint32_t mat;       /* address of the material record */
     uint32_t base[3];   /* Q12 base colour: factor x bilinear texture sample */
     uint32_t tint[3];   /* Q12 colour of reflection and highlight: 1 + metallic (base - 1) */
+    uint32_t words;     /* memory words read for it */
 } surface;
 
 static f24_vec3 lerp3(const uint32_t *w, f24_t u, f24_t v)
@@ -151,7 +152,7 @@ interpolate:
 /* World-space shading normal at the hit (not normalized): interpolated vertex normal, or the
  * geometric normal (row 2 of the triangle transformation), through the transposed
  * world-to-object matrix. */
-static f24_vec3 hit_normal(const uint32_t *mem, const hit_record *h, uint32_t obj, uint32_t inst)
+static f24_vec3 hit_normal(const uint32_t *mem, const hit_record *h, uint32_t obj, uint32_t inst, uint32_t *words)
 {
     const uint32_t shade = mem[obj + O_SHADING] + SHADE_WORDS * h->triangle;
     f24_vec3 n = { 0, 0, 0 };
@@ -160,6 +161,7 @@ static f24_vec3 hit_normal(const uint32_t *mem, const hit_record *h, uint32_t ob
     if (f24_is_zero(dot3(n, n))) {
         const uint32_t tri = mem[obj + O_TRIANGLES] + TRI_WORDS * h->triangle;
         n = (f24_vec3){ mem[tri + 8], mem[tri + 9], mem[tri + 10] };
+        *words += 3;
     }
     const f24_affine w2o = f24_affine_load(mem, region_start(mem, R_INSTANCES) + INST_WORDS * inst);
     f24_affine tr;
@@ -211,7 +213,7 @@ bilinear:
 /* Base colour at the hit: the material factor, times the texture if the material has one and
  * the object has texture coordinates. */
 static void base_colour(const uint32_t *mem, uint32_t mat, uint32_t obj, const uint32_t *shade, const hit_record *h,
-                        uint32_t out[3])
+                        uint32_t out[3], uint32_t *words)
 {
     const uint32_t t = mem[mat + M_TEXTURE];
 base_factor:
@@ -223,6 +225,7 @@ base_factor:
     const f24_t s = f24_add(f24_add(f24_mul(h->u, shade[9]), f24_mul(h->v, shade[11])), f24_mul(c, shade[13]));
     const f24_t tt = f24_add(f24_add(f24_mul(h->u, shade[10]), f24_mul(h->v, shade[12])), f24_mul(c, shade[14]));
     uint32_t tex[3];
+    *words += TEX_WORDS + 4; /* texture entry, four texels */
     sample_bilinear(mem, &mem[region_start(mem, R_TEXTURES) + TEX_WORDS * t], s, tt, tex);
 texture_modulate:
     for (int k = 0; k < 3; k++)
@@ -240,7 +243,8 @@ static surface surface_at(const uint32_t *mem, const ray_packet *rp, int i, cons
     const f24_t dlen = length3(rp->d[i]);
     sf.valid = 1;
     sf.d = scale3(rp->d[i], f24_div(F24_ONE, dlen));
-    f24_vec3 n = hit_normal(mem, h, obj, h->instance);
+    sf.words = 13 + 4 + SHADE_WORDS + MAT_WORDS; /* instance, object descriptor, shading record, material */
+    f24_vec3 n = hit_normal(mem, h, obj, h->instance, &sf.words);
     if (!f24_sign(dot3(n, sf.d)))
         n = neg3(n); /* towards the ray: both faces are front faces */
     sf.n = scale3(n, f24_div(F24_ONE, length3(n)));
@@ -249,7 +253,7 @@ static surface surface_at(const uint32_t *mem, const ray_packet *rp, int i, cons
     sf.tr = t_r(rp->o[i], sf.d, sf.n);
     sf.p = xform_point(&sf.tr, (f24_vec3){ 0, 0, sf.t_hat });
     sf.mat = region_start(mem, R_MATERIALS) + MAT_WORDS * mem[shade + 15];
-    base_colour(mem, sf.mat, obj, &mem[shade], h, sf.base);
+    base_colour(mem, sf.mat, obj, &mem[shade], h, sf.base, &sf.words);
     const uint32_t metal = q_of(mem[sf.mat + M_METALLIC]);
 tint:
     for (int k = 0; k < 3; k++) /* 1 + m (b - 1) = (1 - m) + m b */
@@ -338,6 +342,7 @@ lights:
         uint32_t diff[TRACE_PACKET], spec[TRACE_PACKET], colour[3];
         hit_record blocked[TRACE_PACKET];
         light_packet(l, sf, b->eps, &sh, diff, spec, k_of);
+        c->trace.words[MEM_SHADING] += LIGHT_WORDS;
         light_colour(l, colour);
         uint32_t visible = sh.active;
         if (cfg->shadows && sh.active) {
@@ -447,9 +452,13 @@ void rgs_block_shade(const uint32_t *mem, const rgs_config *cfg, rgs_block *b, c
     surface sf[TRACE_PACKET];
     uint32_t diffuse[TRACE_PACKET][3], highlight[TRACE_PACKET][3];
     c->rays[b->cur.kind] += count_rays(b->cur.rays.active);
+    if (b->cur.kind == RAY_PRIMARY)
+        c->trace.words[MEM_SHADING] += 16; /* the camera block */
 surfaces:
-    for (int i = 0; i < TRACE_PACKET; i++)
+    for (int i = 0; i < TRACE_PACKET; i++) {
         sf[i] = surface_at(mem, &b->cur.rays, i, &h[i]);
+        c->trace.words[MEM_SHADING] += sf[i].valid ? sf[i].words : 0u;
+    }
     gather_light(mem, cfg, b, sf, diffuse, highlight, c);
     rgs_task refl, trans;
     const uint32_t depth = b->cur.depth + 1;

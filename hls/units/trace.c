@@ -128,7 +128,7 @@ walk:
             continue;
         }
         const uint32_t w0 = mem[w->nodes + 2 * e->node], w1 = mem[w->nodes + 2 * e->node + 1];
-        c->words_read += 2;
+        c->words[MEM_NODES] += 2;
         if ((w0 & 3u) == MI_NODE_LEAF) {
             w->have_cur = 0;
             w->leaf_first = w1;
@@ -169,7 +169,7 @@ static void trace_instance(const uint32_t *mem, const ray_packet *rays, uint32_t
     const uint32_t ia = region_start(mem, R_INSTANCES) + INST_WORDS * inst;
     const f24_affine w2o = f24_affine_load(mem, ia);
     const uint32_t obj = region_start(mem, R_OBJECTS) + OBJ_WORDS * mem[ia + 12];
-    c->words_read += 13 + 9;
+    c->words[MEM_MATRICES] += 13 + 9; /* instance: matrix and object index; object descriptor */
     f24_vec3 o[TRACE_PACKET], d[TRACE_PACKET];
     f24_t tn[TRACE_PACKET], tf[TRACE_PACKET];
     mailbox box[TRACE_PACKET];
@@ -201,9 +201,9 @@ bottom_leaves:
         for (uint32_t k = 0; k < w.leaf_count; k++) {
             const uint32_t tri = mem[w.lists + w.leaf_first + k];
             c->list_entries++;
-            c->words_read++;
+            c->words[MEM_LISTS]++;
             const f24_affine tx = f24_affine_load(mem, tris + TRI_WORDS * tri);
-            c->words_read += TRI_WORDS;
+            c->words[MEM_MATRICES] += TRI_WORDS;
         bottom_rays:
             for (int i = 0; i < TRACE_PACKET; i++) {
                 if (!(e->mask >> i & 1u))
@@ -254,6 +254,7 @@ top_leaves:
             const uint32_t inst = mem[w.lists + w.leaf_first + k];
             uint32_t need = 0;
             c->list_entries++;
+            c->words[MEM_LISTS]++;
         top_mailbox:
             for (int i = 0; i < TRACE_PACKET; i++) {
                 if (!(e->mask >> i & 1u))

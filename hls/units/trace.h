@@ -39,9 +39,14 @@ typedef struct {
     f24_t t, u, v, cos_n;
 } hit_record;
 
+/* Memory words read, by data type (the prototype's per-type caches): kd nodes, leaf lists,
+ * matrices (instance and triangle transformations, object descriptors) and shading data (camera,
+ * lights, materials, shading records, texels; uncached). */
+enum { MEM_NODES, MEM_LISTS, MEM_MATRICES, MEM_SHADING, MEM_KINDS };
+
 typedef struct {
     uint64_t traversal_steps, leaves, list_entries, mailbox_skips, transformations, intersections;
-    uint64_t words_read;
+    uint64_t words[MEM_KINDS];
 } trace_counters;
 
 void trace_packet(const uint32_t *mem, const ray_packet *rays, hit_record hits[TRACE_PACKET], trace_counters *c);

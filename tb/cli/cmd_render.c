@@ -89,7 +89,8 @@ static void add_counters(rgs_counters *sum, const rgs_counters *c)
     sum->trace.mailbox_skips += c->trace.mailbox_skips;
     sum->trace.transformations += c->trace.transformations;
     sum->trace.intersections += c->trace.intersections;
-    sum->trace.words_read += c->trace.words_read;
+    for (int k = 0; k < MEM_KINDS; k++)
+        sum->trace.words[k] += c->trace.words[k];
     for (int k = 0; k < RAY_KINDS; k++)
         sum->rays[k] += c->rays[k];
     sum->dropped += c->dropped;
@@ -196,6 +197,11 @@ static void frame_path(const render_opts *ro, uint32_t frame, char *buf, size_t 
 
 static const char *const ray_kind_names[RAY_KINDS] = { "primary", "shadow", "reflection", "transmission" };
 
+static uint64_t words_total(const trace_counters *t)
+{
+    return t->words[MEM_NODES] + t->words[MEM_LISTS] + t->words[MEM_MATRICES] + t->words[MEM_SHADING];
+}
+
 static uint64_t all_rays(const rgs_counters *c)
 {
     uint64_t n = 0;
@@ -216,10 +222,14 @@ static int write_stats(const char *path, const render_opts *ro, uint32_t frame, 
     for (int k = 0; k < RAY_KINDS; k++)
         fprintf(f, "%s\"%s\": %llu", k ? ", " : "", ray_kind_names[k], (unsigned long long)c->rays[k]);
     fprintf(f, "}, \"traversal_steps\": %llu, \"leaves\": %llu, \"list_entries\": %llu, \"mailbox_skips\": %llu, "
-               "\"transformations\": %llu, \"intersections\": %llu, \"words_read\": %llu, \"dropped_packets\": %llu}\n",
+               "\"transformations\": %llu, \"intersections\": %llu, \"words_read\": %llu, \"words_by_type\": {\"kd_nodes\": %llu, "
+               "\"lists\": %llu, \"matrices\": %llu, \"shading\": %llu}, \"dropped_packets\": %llu}\n",
             (unsigned long long)t->traversal_steps, (unsigned long long)t->leaves, (unsigned long long)t->list_entries,
             (unsigned long long)t->mailbox_skips, (unsigned long long)t->transformations,
-            (unsigned long long)t->intersections, (unsigned long long)t->words_read, (unsigned long long)c->dropped);
+            (unsigned long long)t->intersections, (unsigned long long)words_total(t),
+            (unsigned long long)t->words[MEM_NODES], (unsigned long long)t->words[MEM_LISTS],
+            (unsigned long long)t->words[MEM_MATRICES], (unsigned long long)t->words[MEM_SHADING],
+            (unsigned long long)c->dropped);
     return fclose(f);
 }
 
@@ -319,7 +329,7 @@ static int render_frame(const mi_builder *b, const scene *s, const render_opts *
     printf("per primary ray (secondary rays included): %.2f traversal steps, %.2f leaves, %.2f list entries, "
            "%.2f mailbox skips, %.2f intersections, %.1f words read\n", (double)t->traversal_steps / primary,
            (double)t->leaves / primary, (double)t->list_entries / primary, (double)t->mailbox_skips / primary,
-           (double)t->intersections / primary, (double)t->words_read / primary);
+           (double)t->intersections / primary, (double)words_total(t) / primary);
     fflush(stdout);
     char stats_path[1024];
     if (ro->stats) {
