@@ -35,7 +35,7 @@ SANFLAGS := $(if $(filter 1,$(SAN)),$(SAN_ON))
 # no fused multiply-add: the fast fp24 path relies on one binary64 rounding per operation
 CFLAGS := -std=c11 $(WARN) $(OPT) -ffp-contract=off -fno-math-errno $(SANFLAGS) -MMD -MP
 CXXFLAGS := -std=c++17 $(WARN) $(OPT) $(SANFLAGS) -MMD -MP
-INCLUDES := -Ihls/fp24 -Ihls/units -Itb/fp -Itb/cli -Ihost/image -Ihost/scene -Ihost/kdtree -Ihost/memimage -Iscenes
+INCLUDES := -Ihls/fp24 -Ihls/units -Itb/fp -Itb/ref -Itb/cli -Ihost/image -Ihost/scene -Ihost/kdtree -Ihost/memimage -Iscenes
 LDLIBS := -lmpfr -lgmp -ltinygltf -lOpenImageIO -lOpenImageIO_Util -lstdc++ -lm
 TEST_LDLIBS := -lcmocka $(LDLIBS)
 
@@ -45,12 +45,14 @@ TB_FP := $(sort $(wildcard tb/fp/*.c))
 CLI := $(sort $(wildcard tb/cli/*.c))
 HOST_CXX := $(sort $(wildcard host/*/*.cpp))
 HOST_C := $(sort $(filter-out host/memimage/%,$(wildcard host/*/*.c scenes/*.c)))
+# the double-precision reference renderer (tb/ref) calls the memory image only for the camera
+REF := $(sort $(wildcard tb/ref/*.c))
 MEMIMAGE := $(sort $(wildcard host/memimage/*.c))
 HLS_UNITS := $(sort $(wildcard hls/units/*.c))
 
 # per-format objects: everything that depends on the fp24 parameters
 fp_objs = $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(HLS_FP24) $(TB_FP))
-fmt_objs = $(call fp_objs,$(1)) $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(MEMIMAGE) $(HLS_UNITS))
+fmt_objs = $(call fp_objs,$(1)) $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(MEMIMAGE) $(HLS_UNITS) $(REF))
 HOST_OBJS := $(patsubst %.cpp,$(BUILD)/obj/host/%.o,$(HOST_CXX)) $(patsubst %.c,$(BUILD)/obj/host/%.o,$(HOST_C))
 
 $(BUILD)/obj/host/%.o: %.cpp

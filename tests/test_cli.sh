@@ -47,8 +47,8 @@ one_line_error() { # stderr is exactly one line that says error
 
 t_help() {
   expect 0 "$BIN" --help
-  for c in version f24 f24gen f24verify compare; do grep -q "^  $c " "$T/out"; done
-  for c in version f24 f24gen f24verify compare; do expect 0 "$BIN" "$c" --help; has usage "$T/out"; done
+  for c in version f24 f24gen f24verify compare render reference compare-hits; do grep -q "^  $c " "$T/out"; done
+  for c in version f24 f24gen f24verify compare render reference compare-hits; do expect 0 "$BIN" "$c" --help; has usage "$T/out"; done
 }
 
 t_bad_usage() {
@@ -205,6 +205,27 @@ t_render_rays() {
   expect 2 "$BIN" render room --ground=1; one_line_error
 }
 
+# the double-precision reference and the per-ray hit comparison
+t_reference() {
+  expect 0 "$BIN" reference --help; has usage "$T/out"
+  expect 0 "$BIN" reference room -o "$T/ref.exr" --png "$T/ref.png" --aov "$T/ref_aov.exr" --width 64 --height 48 --threads 1
+  expect 0 "$BIN" reference room -o "$T/ref3.exr" --png "$T/ref3.png" --width 64 --height 48 --threads 3
+  cmp "$T/ref.png" "$T/ref3.png"                      # independent of the thread count
+  iinfo -v "$T/ref_aov.exr" >"$T/iinfo"
+  for ch in t N.X N.Y N.Z node triangle u v; do has "channel list:.*[ ,]$ch\(,\|\$\)" "$T/iinfo"; done
+  expect 0 "$BIN" render room -o "$T/dev.png" --width 64 --height 48
+  "$BIN" compare "$T/dev.png" "$T/ref.png" --psnr-min 35 >/dev/null   # fp24 close to the truth
+  expect 0 "$BIN" compare-hits room --width 64 --height 48 --json "$T/hits.json"
+  has 'agreement (same triangle or both miss)' "$T/out"
+  python3 -c "import json; d=json.load(open('$T/hits.json')); assert d['rays']==3072 and d['agreement']>0.99, d"
+  expect 2 "$BIN" reference room --max-depth 99; one_line_error
+  expect 2 "$BIN" reference room --bogus; one_line_error
+  expect 2 "$BIN" compare-hits; one_line_error
+  expect 3 "$BIN" reference "$T/missing.glb"; one_line_error
+  expect 3 "$BIN" compare-hits "$T/missing.glb"; one_line_error
+  expect 3 "$BIN" reference room -o /nonexistent-dir/x.exr --width 8 --height 8; one_line_error
+}
+
 run_case cli_help t_help
 run_case cli_bad_usage_exit_2_one_line t_bad_usage
 run_case cli_version t_version
@@ -216,4 +237,5 @@ run_case cli_gen t_gen
 run_case cli_info t_info
 run_case cli_render t_render
 run_case cli_render_rays t_render_rays
+run_case cli_reference t_reference
 exit $((fails != 0))

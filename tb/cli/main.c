@@ -20,6 +20,8 @@ static const saarcor_cmd commands[] = {
     { "compare", "compare two images: PSNR, max error, differing pixels", cmd_compare },
     { "info", "scene statistics: objects, triangles, kd-trees, build times, memory image", cmd_info },
     { "render", "render a scene through the hardware units (functional mode)", cmd_render },
+    { "reference", "render a scene with the double-precision reference (own BVH, binary64)", cmd_reference },
+    { "compare-hits", "per primary ray: the units' hits against the reference's", cmd_compare_hits },
     { "gen", "write a generated scene as glTF: saarcor gen NAME -o FILE (gen --list)", cmd_gen },
 };
 #define N_COMMANDS (sizeof commands / sizeof commands[0])
