@@ -141,7 +141,7 @@ test: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) test-programs
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 test-programs
 	@bash tests/run.sh --report $(BUILD)/test-report.txt \
-	  $(UNIT_TESTS) tests/test_cli.sh $(patsubst $(BUILD)/%,build/asan/%,$(UNIT_TESTS))
+	  $(UNIT_TESTS) tests/test_cli.sh tests/test_golden.sh $(patsubst $(BUILD)/%,build/asan/%,$(UNIT_TESTS))
 
 # ---- verification and benchmarks -----------------------------------------------------------
 VERIFY_N ?= 10000000

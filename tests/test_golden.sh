@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# Golden-image testbench: for every case of tests/golden/images/cases.txt, renders the scene
+# through the hardware units (fp24) and with the double-precision reference, and checks
+#   1. the fp24 image equals the committed golden fp24 image pixel for pixel (the hardware's
+#      bits did not change by accident),
+#   2. the reference image is within 50 dB of the committed golden reference (the truth did not
+#      move),
+#   3. fp24 against the reference meets the case's thresholds (PSNR, share of differing pixels).
+# Cases on ../shared scenes are skipped with a message when ../shared is absent. Prints
+# cmocka-style lines for tests/run.sh. To update the golden images on purpose:
+# tests/golden/update-images.sh (see tests/golden/README.md).
+set -u
+cd "$(dirname "$0")/.."
+BIN=${SAARCOR_BIN:-build/saarcor}
+G=tests/golden/images
+T=$(mktemp -d /tmp/saarcor-golden-XXXXXX)
+trap 'rm -rf "$T"' EXIT
+fails=0
+
+field() { echo "$1" | cut -d'|' -f"$2" | sed 's/^ *//; s/ *$//'; }
+psnr() { awk '/^psnr_db/ { print $2 }' "$1"; }
+share() { awk '/^differing_pixels/ { gsub(/[(%)]/, "", $5); print $5 }' "$1"; }
+
+check_case() { # name scene options psnr_min share_max
+  local name=$1 scene=$2 opts=$3 pmin=$4 smax=$5
+  # shellcheck disable=SC2086
+  "$BIN" render "$scene" $opts --threads 2 -o "$T/$name.png" >/dev/null || return 1
+  # shellcheck disable=SC2086
+  "$BIN" reference "$scene" $opts --threads 2 -o "$T/$name.ref.exr" --png "$T/$name.ref.png" >/dev/null || return 1
+  "$BIN" compare "$T/$name.png" "$G/$name.fp24.png" >"$T/c1" || return 1
+  [[ $(awk '/^differing_pixels/ { print $2 }' "$T/c1") == 0 ]] ||
+    { echo "$name: fp24 image differs from $G/$name.fp24.png:"; cat "$T/c1"; return 1; }
+  "$BIN" compare "$T/$name.ref.png" "$G/$name.ref.png" --psnr-min 50 >"$T/c2" ||
+    { echo "$name: reference image moved from $G/$name.ref.png:"; cat "$T/c2"; return 1; }
+  "$BIN" compare "$T/$name.png" "$T/$name.ref.png" --threshold 0.0157 --psnr-min "$pmin" >"$T/c3" ||
+    { echo "$name: fp24 against the reference below $pmin dB:"; cat "$T/c3"; return 1; }
+  awk -v s="$(share "$T/c3")" -v m="$smax" 'BEGIN { exit !(s <= m) }' ||
+    { echo "$name: $(share "$T/c3")% of pixels differ from the reference (at most $smax%)"; cat "$T/c3"; return 1; }
+  echo "$name: fp24 vs reference $(psnr "$T/c3") dB (min $pmin), $(share "$T/c3")% pixels differ (max $smax%)"
+}
+
+while IFS= read -r line; do
+  [[ -z $line || $line == \#* ]] && continue
+  name=$(field "$line" 1) scene=$(field "$line" 2) opts=$(field "$line" 3)
+  echo "[ RUN      ] golden_$name"
+  if [[ $scene == ../shared/* && ! -e $scene ]]; then
+    echo "golden_$name: skipped, $scene is absent (../shared not available)"
+    echo "[  SKIPPED ] golden_$name"
+    continue
+  fi
+  if check_case "$name" "$scene" "$opts" "$(field "$line" 4)" "$(field "$line" 5)" >"$T/log" 2>&1; then
+    cat "$T/log"
+    echo "[       OK ] golden_$name"
+  else
+    cat "$T/log"
+    echo "[  FAILED  ] golden_$name"
+    fails=$((fails + 1))
+  fi
+done <"$G/cases.txt"
+exit $((fails != 0))
