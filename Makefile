@@ -5,7 +5,8 @@
 #   make asan       build and run the unit tests with AddressSanitizer + UndefinedBehaviorSanitizer
 #   make verify-fp  fp24 verification against MPFR: 10^7 random vectors per op and width, exhaustive unary
 #   make bench      all benchmarks -> build/bench/ (bench-fp: fp24 throughput; bench-build: kd-tree and
-#                   memory-image build against Embree; bench-render: primary rays against Embree)
+#                   memory-image build against Embree; bench-render: primary rays against Embree;
+#                   bench-accuracy: fp24 images and hits against the double-precision reference)
 #   make widths     build build/w/<format>/saarcor for every tested fp24 format
 # Variables: BUILD (output folder), SAN=1 (sanitizers), V=1 (show commands), VERIFY_N.
 
@@ -111,7 +112,7 @@ $(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS) $(call fmt_objs,$
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
 
-.PHONY: all widths deps run test unit-tests test-programs asan verify-fp bench bench-fp bench-build bench-render clean
+.PHONY: all widths deps run test unit-tests test-programs asan verify-fp bench bench-fp bench-build bench-render bench-accuracy clean
 all: $(BUILD)/saarcor $(BUILD)/w/e8m23/saarcor
 widths: $(foreach f,$(FORMATS),$(BUILD)/w/$(f)/saarcor)
 
@@ -128,7 +129,7 @@ run: deps
 
 # ---- tests ---------------------------------------------------------------------------------
 UNIT_TESTS := $(foreach f,$(FORMATS),$(BUILD)/w/$(f)/test_f24 $(BUILD)/w/$(f)/test_f24_select) $(HOST_TESTS)
-test-programs: $(UNIT_TESTS) $(BUILD)/saarcor
+test-programs: $(UNIT_TESTS) $(BUILD)/saarcor $(BUILD)/w/e8m23/saarcor
 
 # unit tests of this build folder (used with BUILD=build/asan SAN=1 by `make asan`)
 unit-tests: test-programs
@@ -180,7 +181,13 @@ $(BUILD)/bench_render: $(BUILD)/obj/host/tests/bench/bench_render.o $(BUILD)/obj
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(LDLIBS) -lembree3
 
-bench: bench-fp bench-build bench-render
+# fp24 images against the double-precision reference at 1024x768 (after bench-render: Embree beside)
+bench-accuracy: deps
+	@$(MAKE) --no-print-directory all
+	@mkdir -p $(BUILD)/bench
+	python3 tests/bench/bench_accuracy.py --out $(BUILD)/bench
+
+bench: bench-fp bench-build bench-render bench-accuracy
 
 $(BUILD)/bench_fp: $(BUILD)/obj/$(DEFAULT_FMT)/tests/bench/bench_fp.o $(call fp_objs,$(DEFAULT_FMT))
 	@echo "  LD    $@"

@@ -1,0 +1,103 @@
+#!/usr/bin/env python3
+"""make bench-accuracy: how far the hardware's images are from the truth, at 1024x768.
+
+For every generated scene and the shared scenes present in ../shared/scenes, renders through the
+units (`saarcor render`, fp24, functional mode, ray depth 3, shadows) and with the
+double-precision reference (`saarcor reference`), and measures PSNR and the share of pixels
+differing by more than 4/255 (`saarcor compare`), and the per-ray primary hit agreement, relative
+t error and barycentric error (`saarcor compare-hits`). Both renderers run with 2 host threads;
+their times are wall-clock seconds of one run (including nothing but the frame). Writes
+OUT/accuracy.md and OUT/accuracy.json; if OUT/render.json (make bench-render) exists, its Embree
+primary-ray times are put beside ours.
+"""
+import json, os, re, subprocess, sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+BIN = os.path.join(ROOT, "build", "saarcor")
+SHARED = os.path.join(ROOT, "..", "shared", "scenes")
+SIZE = ["--width", "1024", "--height", "768"]
+SCENES = [  # name in the tables, scene, extra options, name in render.json
+    ("cornell", "cornell", [], "cornell"),
+    ("room", "room", [], "room"),
+    ("plants", "plants", [], "plants"),
+    ("terrain", "terrain", [], "terrain"),
+    ("animated (t=1.5 s)", "animated", ["--time", "1.5"], None),
+    ("teapot", os.path.join(SHARED, "teapot.glb"), ["--ground"], "teapot.glb"),
+    ("bunny", os.path.join(SHARED, "bunny.glb"), ["--ground"], "bunny.glb"),
+    ("CesiumMilkTruck", os.path.join(SHARED, "CesiumMilkTruck.glb"), ["--ground"], "CesiumMilkTruck.glb"),
+    ("gallery_ccby_503k", os.path.join(SHARED, "gallery_ccby_503k.glb"), ["--mem-mb", "256"], "gallery_ccby_503k.glb"),
+]
+
+
+def run(args):
+    r = subprocess.run([BIN] + args, capture_output=True, text=True)
+    if r.returncode != 0:
+        raise RuntimeError(" ".join(args) + ": " + r.stderr.strip())
+    return r.stdout
+
+
+def bench(name, scene, opts, out):
+    tmp = os.path.join(out, "accuracy")
+    os.makedirs(tmp, exist_ok=True)
+    stem = os.path.join(tmp, re.sub(r"\W+", "_", name))
+    o = opts + SIZE
+    render = run(["render", scene, "-o", stem + ".png", "--threads", "2", "--stats", stem + ".stats.json"] + o)
+    ref = run(["reference", scene, "-o", stem + ".ref.exr", "--png", stem + ".ref.png", "--threads", "2"] + o)
+    cmp = run(["compare", stem + ".png", stem + ".ref.png", "--threshold", "0.0157", "--diff", stem + ".diff.png"])
+    run(["compare-hits", scene, "--json", stem + ".hits.json"] + o)
+    stats = json.load(open(stem + ".stats.json"))
+    hits = json.load(open(stem + ".hits.json"))
+    return {
+        "scene": name,
+        "units_seconds": float(re.search(r" in ([0-9.]+) s", render).group(1)),
+        "reference_seconds": float(re.search(r" in ([0-9.]+) s", ref).group(1)),
+        "rays": stats["rays"], "rays_by_kind": stats["rays_by_kind"],
+        "psnr_db": float(re.search(r"psnr_db (\S+)", cmp).group(1)),
+        "differing_pct": float(re.search(r"\(([0-9.]+)%\)", cmp).group(1)),
+        "hit_agreement": hits["agreement"], "t_rel_error": hits["t_rel_error"], "uv_error": hits["uv_error"],
+    }
+
+
+def main():
+    out = sys.argv[sys.argv.index("--out") + 1] if "--out" in sys.argv else os.path.join(ROOT, "build", "bench")
+    os.makedirs(out, exist_ok=True)
+    embree = {}
+    try:
+        embree = {s["scene"]: s for s in json.load(open(os.path.join(out, "render.json")))["scenes"]}
+    except (OSError, ValueError, KeyError):
+        pass
+    rows = []
+    for name, scene, opts, ename in SCENES:
+        if scene.startswith(SHARED) and not os.path.exists(scene):
+            print(f"bench-accuracy: {name}: skipped ({scene} absent)", file=sys.stderr)
+            continue
+        print(f"bench-accuracy: {name} ...", file=sys.stderr, flush=True)
+        r = bench(name, scene, opts, out)
+        e = embree.get(ename)
+        r["embree_primary_seconds"] = e["embree_s"] if e else None
+        r["units_primary_seconds_1thread"] = e["units_trace_s"] if e else None
+        rows.append(r)
+    json.dump({"width": 1024, "height": 768, "scenes": rows}, open(os.path.join(out, "accuracy.json"), "w"), indent=1)
+    with open(os.path.join(out, "accuracy.md"), "w") as md:
+        md.write("# fp24 units against the double-precision reference, 1024x768\n\n"
+                 "Ray depth 3 with shadows (docs/shading.md); `--ground` for the teapot, bunny and truck. "
+                 "*PSNR* and *pixels > 4/255* compare the units' image with the reference's (8-bit); "
+                 "*hit agreement*: primary rays hitting the same triangle or both missing (`saarcor compare-hits`); "
+                 "*t error*, *uv error*: median / max over rays on the same triangle. *units s*, *reference s*: "
+                 "the whole frame, 2 host threads, one run. *Embree s*: rtcIntersect1 on the same primary rays, "
+                 "1 thread, next to the units' primary rays alone on 1 thread (`make bench-render`).\n\n"
+                 "| scene | rays | PSNR dB | pixels > 4/255 | hit agreement | t error med / max | uv error med / max "
+                 "| units s | reference s | units primary s (1 thr) | Embree primary s (1 thr) |\n"
+                 "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n")
+        for r in rows:
+            fmt = lambda x: f"{x:.3f}" if x is not None else "-"
+            md.write(f"| {r['scene']} | {r['rays']} | {r['psnr_db']:.2f} | {r['differing_pct']:.3f}% | "
+                     f"{100 * r['hit_agreement']:.3f}% | {r['t_rel_error']['median']:.1e} / {r['t_rel_error']['max']:.1e} | "
+                     f"{r['uv_error']['median']:.1e} / {r['uv_error']['max']:.1e} | {r['units_seconds']:.2f} | "
+                     f"{r['reference_seconds']:.2f} | {fmt(r['units_primary_seconds_1thread'])} | "
+                     f"{fmt(r['embree_primary_seconds'])} |\n")
+    print(open(os.path.join(out, "accuracy.md")).read())
+
+
+if __name__ == "__main__":
+    main()
