@@ -8,7 +8,9 @@
 #                   memory-image build against Embree; bench-render: primary rays against Embree;
 #                   bench-accuracy: fp24 images and hits against the double-precision reference)
 #   make widths     build build/w/<format>/saarcor for every tested fp24 format
-# Variables: BUILD (output folder), SAN=1 (sanitizers), V=1 (show commands), VERIFY_N.
+# Variables: BUILD (output folder), SAN=1 (sanitizers), V=1 (show commands), VERIFY_N,
+#   SIM_ARITH=fast|hw: arithmetic of the simulator's units (default fast: the host fast path of
+#   tb/fp/f24_fast.h; hw: the integer hardware reference; the same bits, make test checks it).
 
 SHELL := /bin/bash
 .DEFAULT_GOAL := all
@@ -51,6 +53,12 @@ REF := $(sort $(wildcard tb/ref/*.c))
 MEMIMAGE := $(sort $(wildcard host/memimage/*.c))
 HLS_UNITS := $(sort $(wildcard hls/units/*.c))
 
+# the simulator (units, memory image, reference, command line) computes fp24 with the host fast
+# path unless SIM_ARITH=hw; hls/fp24 and tb/fp always hold the integer reference
+SIM_ARITH ?= fast
+SIM_FLAGS := $(if $(filter fast,$(SIM_ARITH)),-DF24_FAST_SIM,$(if $(filter hw,$(SIM_ARITH)),,$(error SIM_ARITH must be fast or hw)))
+SIM_SRCS = $(MEMIMAGE) $(HLS_UNITS) $(REF) $(CLI)
+
 # per-format objects: everything that depends on the fp24 parameters
 fp_objs = $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(HLS_FP24) $(TB_FP))
 fmt_objs = $(call fp_objs,$(1)) $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(MEMIMAGE) $(HLS_UNITS) $(REF))
@@ -67,6 +75,8 @@ $(BUILD)/obj/host/%.o: %.c
 	$(Q)$(CC) $(CFLAGS) $(INCLUDES) -c $< -o $@
 
 define FORMAT_RULES
+$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(SIM_SRCS)): CFLAGS += $(SIM_FLAGS)
+
 $(BUILD)/obj/$(1)/%.o: %.c
 	@mkdir -p $$(@D)
 	@echo "  CC    $$@"
@@ -140,6 +150,7 @@ asan:
 
 test: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) test-programs
+	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(BUILD)/hw SIM_ARITH=hw $(BUILD)/hw/saarcor
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 test-programs
 	@bash tests/run.sh --report $(BUILD)/test-report.txt \
 	  $(UNIT_TESTS) tests/test_cli.sh tests/test_golden.sh $(patsubst $(BUILD)/%,build/asan/%,$(UNIT_TESTS))

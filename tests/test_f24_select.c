@@ -32,11 +32,36 @@ static void selected_path_is_fast_and_identical(void **state)
         assert_int_equal(f24_div(v.a, v.b), f24_ops[F24_OP_DIV].hw(v.a, v.b));
         assert_int_equal(f24_sqrt(v.a), f24_ops[F24_OP_SQRT].hw(v.a, 0));
         assert_int_equal(f24_from_i32((int32_t)v.a), f24_ops[F24_OP_FROM_I32].hw(v.a, 0));
+        assert_int_equal(f24_lt(v.a, v.b), f24_ops[F24_OP_LT].hw(v.a, v.b));
+        assert_int_equal(f24_le(v.a, v.b), f24_ops[F24_OP_LE].hw(v.a, v.b));
+        assert_int_equal(f24_eq(v.a, v.b), f24_ops[F24_OP_EQ].hw(v.a, v.b));
+        assert_int_equal(f24_min(v.a, v.b), f24_ops[F24_OP_MIN].hw(v.a, v.b));
+        assert_int_equal(f24_max(v.a, v.b), f24_ops[F24_OP_MAX].hw(v.a, v.b));
+    }
+}
+
+/* The edge sets (zeros of both signs, subnormal encodings, Inf, NaN, extremes) of the mapped
+ * comparisons and min/max. */
+static void mapped_comparisons_on_edges(void **state)
+{
+    (void)state;
+    static f24_pair e[F24_VEC_MAX_EDGES];
+    const f24_op ops[] = { F24_OP_LT, F24_OP_MIN };
+    for (size_t k = 0; k < 2; k++) {
+        const size_t n = f24_vec_edges(ops[k], e, F24_VEC_MAX_EDGES);
+        for (size_t i = 0; i < n; i++) {
+            assert_int_equal(f24_lt(e[i].a, e[i].b), f24_ops[F24_OP_LT].hw(e[i].a, e[i].b));
+            assert_int_equal(f24_le(e[i].a, e[i].b), f24_ops[F24_OP_LE].hw(e[i].a, e[i].b));
+            assert_int_equal(f24_eq(e[i].a, e[i].b), f24_ops[F24_OP_EQ].hw(e[i].a, e[i].b));
+            assert_int_equal(f24_min(e[i].a, e[i].b), f24_ops[F24_OP_MIN].hw(e[i].a, e[i].b));
+            assert_int_equal(f24_max(e[i].a, e[i].b), f24_ops[F24_OP_MAX].hw(e[i].a, e[i].b));
+        }
     }
 }
 
 int main(void)
 {
-    const struct CMUnitTest tests[] = { cmocka_unit_test(selected_path_is_fast_and_identical) };
+    const struct CMUnitTest tests[] = { cmocka_unit_test(selected_path_is_fast_and_identical),
+                                        cmocka_unit_test(mapped_comparisons_on_edges) };
     return cmocka_run_group_tests_name("fp24 build-time path selection", tests, NULL, NULL);
 }

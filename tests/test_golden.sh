@@ -5,17 +5,21 @@
 #      bits did not change by accident),
 #   2. the reference image is within 50 dB of the committed golden reference (the truth did not
 #      move),
-#   3. fp24 against the reference meets the case's thresholds (PSNR, share of differing pixels).
+#   3. fp24 against the reference meets the case's thresholds (PSNR, share of differing pixels),
+#   4. the program built with the integer hardware arithmetic (build/hw/saarcor, make
+#      SIM_ARITH=hw) draws the same fp24 image bit for bit as the fast-path simulator.
 # Cases on ../shared scenes are skipped with a message when ../shared is absent. Prints
 # cmocka-style lines for tests/run.sh. To update the golden images on purpose:
 # tests/golden/update-images.sh (see tests/golden/README.md).
 set -u
 cd "$(dirname "$0")/.."
 BIN=${SAARCOR_BIN:-build/saarcor}
+HW_BIN=${SAARCOR_HW_BIN:-build/hw/saarcor}
 G=tests/golden/images
 T=$(mktemp -d /tmp/saarcor-golden-XXXXXX)
 trap 'rm -rf "$T"' EXIT
 fails=0
+[[ -x $HW_BIN ]] || { echo "test_golden: $HW_BIN is missing (make BUILD=build/hw SIM_ARITH=hw build/hw/saarcor)"; exit 1; }
 
 field() { echo "$1" | cut -d'|' -f"$2" | sed 's/^ *//; s/ *$//'; }
 psnr() { awk '/^psnr_db/ { print $2 }' "$1"; }
@@ -26,10 +30,14 @@ check_case() { # name scene options psnr_min share_max
   # shellcheck disable=SC2086
   "$BIN" render "$scene" $opts --threads 2 -o "$T/$name.png" >/dev/null || return 1
   # shellcheck disable=SC2086
+  "$HW_BIN" render "$scene" $opts --threads 2 -o "$T/$name.hw.png" >/dev/null || return 1
   "$BIN" reference "$scene" $opts --threads 2 -o "$T/$name.ref.exr" --png "$T/$name.ref.png" >/dev/null || return 1
   "$BIN" compare "$T/$name.png" "$G/$name.fp24.png" >"$T/c1" || return 1
   [[ $(awk '/^differing_pixels/ { print $2 }' "$T/c1") == 0 ]] ||
     { echo "$name: fp24 image differs from $G/$name.fp24.png:"; cat "$T/c1"; return 1; }
+  "$BIN" compare "$T/$name.hw.png" "$G/$name.fp24.png" >"$T/c4" || return 1
+  [[ $(awk '/^differing_pixels/ { print $2 }' "$T/c4") == 0 ]] ||
+    { echo "$name: the integer-arithmetic program ($HW_BIN) draws a different image:"; cat "$T/c4"; return 1; }
   "$BIN" compare "$T/$name.ref.png" "$G/$name.ref.png" --psnr-min 50 >"$T/c2" ||
     { echo "$name: reference image moved from $G/$name.ref.png:"; cat "$T/c2"; return 1; }
   "$BIN" compare "$T/$name.png" "$T/$name.ref.png" --threshold 0.0157 --psnr-min "$pmin" >"$T/c3" ||

@@ -1,6 +1,8 @@
 /* Unit-triangle intersection unit: see isect_unit.h. */
 #include "isect_unit.h"
 
+#include "xform_unit.h"
+
 #define F24_ZERO 0u
 
 isect_result isect_unit_triangle(f24_vec3 o, f24_vec3 d, f24_t tmin, f24_t tmax)
@@ -14,4 +16,14 @@ isect_result isect_unit_triangle(f24_vec3 o, f24_vec3 d, f24_t tmin, f24_t tmax)
     r.hit = f24_le(F24_ZERO, r.u) && f24_le(F24_ZERO, r.v) && f24_le(uv, F24_ONE) && f24_le(tmin, r.t) &&
             f24_lt(r.t, tmax);
     return r;
+}
+
+isect_result isect_unit_transformed(const f24_affine *m, f24_vec3 o, f24_vec3 d, f24_t tmin, f24_t tmax)
+{
+    const f24_t oz = xform_row(m->m[2], o, 1), dz = xform_row(m->m[2], d, 0);
+    const f24_t t = f24_div(f24_neg(oz), dz);
+    if (f24_le(tmin, t) && f24_lt(t, tmax))
+        return isect_unit_triangle(xform_point(m, o), xform_vector(m, d), tmin, tmax);
+    const isect_result miss = { 0, t, F24_ZERO, F24_ZERO, dz };
+    return miss;
 }

@@ -125,18 +125,6 @@ block_pixels:
 
 /* ---- the surface at a hit ------------------------------------------------------------------- */
 
-/* What shading needs to know about a hit. */
-typedef struct {
-    int valid;
-    f24_vec3 p, d, n;   /* hit point, unit ray direction, unit shading normal facing the ray */
-    f24_affine tr;      /* T_R of the hit */
-    f24_t t_hat;        /* hit distance along d */
-    int entering;       /* the geometric normal faces against the ray */
-    uint32_t mat;       /* address of the material record */
-    uint32_t base[3];   /* Q12 base colour: factor x bilinear texture sample */
-    uint32_t tint[3];   /* Q12 colour of reflection and highlight: 1 + metallic (base - 1) */
-    uint32_t words;     /* memory words read for it */
-} surface;
 
 static f24_vec3 lerp3(const uint32_t *w, f24_t u, f24_t v)
 {
@@ -321,45 +309,94 @@ shadow_rays:
 
 static uint32_t count_rays(uint32_t mask) { return (mask & 1u) + (mask >> 1 & 1u) + (mask >> 2 & 1u) + (mask >> 3 & 1u); }
 
-/* Diffuse (ambient included) and highlight light arriving at each surface, Q12 RGB. */
-static void gather_light(const uint32_t *mem, const rgs_config *cfg, const rgs_block *b, const surface sf[],
-                         uint32_t diffuse[][3], uint32_t highlight[][3], rgs_counters *c)
+static uint32_t at_least_one(uint32_t n) { return n ? n : 1u; }
+
+/* Next operation of a block (rgs_step). */
+enum { RB_GEN, RB_NEXT, RB_TRACE, RB_SURFACES, RB_LIGHT, RB_SHADOW_GEN, RB_SHADOW_TRACE, RB_ACCUM, RB_CHILD_GEN, RB_DONE };
+
+static void op_set(unit_op *op, uint32_t unit, uint32_t slots, uint32_t shading_words, rgs_counters *c)
 {
-    const uint32_t n_lights = mem[H_LIGHTS] < MAX_LIGHTS ? mem[H_LIGHTS] : MAX_LIGHTS;
-    uint32_t k_of[TRACE_PACKET];
-ambient:
+    op->unit = unit;
+    op->slots = slots;
+    op->n_reads = 0;
+    if (shading_words) { /* uncached: only the amount matters */
+        op->read[0].kind = MEM_SHADING;
+        op->read[0].addr = 0;
+        op->read[0].words = shading_words;
+        op->n_reads = 1;
+        c->trace.words[MEM_SHADING] += shading_words;
+    }
+}
+
+/* ---- shading steps ---------------------------------------------------------------------------- */
+
+/* RGS: the surfaces of the traced packet (normals, texture samples, T_R); ambient light. */
+static void op_surfaces(const uint32_t *mem, rgs_block *b, unit_op *op, rgs_counters *c)
+{
+    uint32_t words = 0;
+    c->rays[b->cur.kind] += count_rays(b->cur.rays.active);
+surfaces:
     for (int i = 0; i < TRACE_PACKET; i++) {
-        k_of[i] = sf[i].valid ? mat_k(&mem[sf[i].mat]) : 0u;
+        b->sf[i] = surface_at(mem, &b->cur.rays, i, &b->trace.hits[i]);
+        words += b->sf[i].valid ? b->sf[i].words : 0u;
+        b->k_of[i] = b->sf[i].valid ? mat_k(&mem[b->sf[i].mat]) : 0u;
         for (int k = 0; k < 3; k++) {
-            diffuse[i][k] = Q12_AMBIENT;
-            highlight[i][k] = 0;
+            b->diffuse[i][k] = Q12_AMBIENT;
+            b->highlight[i][k] = 0;
         }
     }
-lights:
-    for (uint32_t li = 0; li < n_lights; li++) {
-        const uint32_t *l = &mem[region_start(mem, R_LIGHTS) + LIGHT_WORDS * li];
-        ray_packet sh;
-        uint32_t diff[TRACE_PACKET], spec[TRACE_PACKET], colour[3];
-        hit_record blocked[TRACE_PACKET];
-        light_packet(l, sf, b->eps, &sh, diff, spec, k_of);
-        c->trace.words[MEM_SHADING] += LIGHT_WORDS;
-        light_colour(l, colour);
-        uint32_t visible = sh.active;
-        if (cfg->shadows && sh.active) {
-            trace_packet(mem, &sh, blocked, &c->trace);
-            c->rays[RAY_SHADOW] += count_rays(sh.active);
-            for (int i = 0; i < TRACE_PACKET; i++)
-                if (blocked[i].instance != TRACE_NO_HIT)
-                    visible &= ~(1u << i);
-        }
-    add_light:
-        for (int i = 0; i < TRACE_PACKET; i++)
-            if (visible >> i & 1u)
-                for (int k = 0; k < 3; k++) {
-                    diffuse[i][k] = q_add(diffuse[i][k], q_mul(diff[i], colour[k]));
-                    highlight[i][k] = q_add(highlight[i][k], q_mul(spec[i], colour[k]));
-                }
+    op_set(op, UNIT_RGS, at_least_one(count_rays(b->cur.rays.active)), words, c);
+    b->light = 0;
+    b->phase = RB_LIGHT;
+}
+
+/* Adds the light of the current light source to the rays in visible. */
+static void add_light(rgs_block *b, uint32_t visible)
+{
+add_light_rays:
+    for (int i = 0; i < TRACE_PACKET; i++)
+        if (visible >> i & 1u)
+            for (int k = 0; k < 3; k++) {
+                b->diffuse[i][k] = q_add(b->diffuse[i][k], q_mul(b->diff[i], b->colour[k]));
+                b->highlight[i][k] = q_add(b->highlight[i][k], q_mul(b->spec[i], b->colour[k]));
+            }
+}
+
+/* RGS: the next light's weights and its shadow packet; unoccluded light is added at once. */
+static void op_light(const uint32_t *mem, const rgs_config *cfg, rgs_block *b, unit_op *op, rgs_counters *c)
+{
+    const uint32_t *l = &mem[region_start(mem, R_LIGHTS) + LIGHT_WORDS * b->light];
+    light_packet(l, b->sf, b->eps, &b->shadow, b->diff, b->spec, b->k_of);
+    light_colour(l, b->colour);
+    op_set(op, UNIT_RGS, at_least_one(count_rays(b->shadow.active)), LIGHT_WORDS, c);
+    if (cfg->shadows && b->shadow.active) {
+        b->phase = RB_SHADOW_GEN;
+        return;
     }
+    add_light(b, b->shadow.active);
+    b->light++;
+}
+
+/* Transformation unit: shadow rays generated (T_shadow), n + 1 steps: they share the light. */
+static void op_shadow_gen(rgs_block *b, unit_op *op, rgs_counters *c)
+{
+    op_set(op, UNIT_XFORM, count_rays(b->shadow.active) + 1u, 0, c);
+    c->rays[RAY_SHADOW] += count_rays(b->shadow.active);
+    trace_begin(&b->shadow, &b->trace);
+    b->phase = RB_SHADOW_TRACE;
+}
+
+/* The shadow packet is traced: light reaches the rays that hit nothing. */
+static void shadow_done(rgs_block *b)
+{
+    uint32_t visible = b->shadow.active;
+blocked_rays:
+    for (int i = 0; i < TRACE_PACKET; i++)
+        if (b->trace.hits[i].instance != TRACE_NO_HIT)
+            visible &= ~(1u << i);
+    add_light(b, visible);
+    b->light++;
+    b->phase = RB_LIGHT;
 }
 
 /* ---- the ray tree of a block ----------------------------------------------------------------- */
@@ -380,6 +417,9 @@ scene_extent:
         extent = f24_max(extent, f24_sub(mem[H_SCENE_BOUNDS + 3 + k], mem[H_SCENE_BOUNDS + k]));
     b->eps = f24_div(extent, f24_from_i32(1 << EPS_SHIFT));
     b->sp = 0;
+    b->phase = RB_GEN;
+    b->packets = 0;
+    b->n_lights = mem[H_LIGHTS] < MAX_LIGHTS ? mem[H_LIGHTS] : MAX_LIGHTS;
     rgs_task t;
     rgs_primary(mem, x0, y0, &t.rays);
     t.depth = 0;
@@ -391,14 +431,6 @@ init_block:
             b->acc[i][k] = 0;
         }
     b->stack[b->sp++] = t;
-}
-
-int rgs_block_next(rgs_block *b)
-{
-    if (b->sp == 0)
-        return 0;
-    b->cur = b->stack[--b->sp];
-    return 1;
 }
 
 /* The child rays of one surface: reflection (weight kr tint) and transmission (weight kt base;
@@ -447,24 +479,17 @@ task_rays:
     }
 }
 
-void rgs_block_shade(const uint32_t *mem, const rgs_config *cfg, rgs_block *b, const hit_record h[], rgs_counters *c)
+/* RGS: the shaded colours accumulate into the pixels; the child packets are pushed. */
+static void op_accumulate(const uint32_t *mem, const rgs_config *cfg, rgs_block *b, unit_op *op, rgs_counters *c)
 {
-    surface sf[TRACE_PACKET];
-    uint32_t diffuse[TRACE_PACKET][3], highlight[TRACE_PACKET][3];
-    c->rays[b->cur.kind] += count_rays(b->cur.rays.active);
-    if (b->cur.kind == RAY_PRIMARY)
-        c->trace.words[MEM_SHADING] += 16; /* the camera block */
-surfaces:
-    for (int i = 0; i < TRACE_PACKET; i++) {
-        sf[i] = surface_at(mem, &b->cur.rays, i, &h[i]);
-        c->trace.words[MEM_SHADING] += sf[i].valid ? sf[i].words : 0u;
-    }
-    gather_light(mem, cfg, b, sf, diffuse, highlight, c);
+    const surface *sf = b->sf;
     rgs_task refl, trans;
     const uint32_t depth = b->cur.depth + 1;
     const int children = depth <= cfg->max_depth && depth <= RGS_MAX_DEPTH;
     task_init(&refl, depth, RAY_REFLECTION);
     task_init(&trans, depth, RAY_TRANSMISSION);
+    op_set(op, UNIT_RGS, at_least_one(count_rays(b->cur.rays.active)), 0, c);
+    b->children = 0;
 accumulate:
     for (int i = 0; i < TRACE_PACKET; i++) {
         if (!(b->cur.rays.active >> i & 1u))
@@ -473,17 +498,76 @@ accumulate:
         for (int k = 0; k < 3; k++) {
             uint32_t local = q_byte(BACKGROUND >> (16 - 8 * k) & 0xFFu);
             if (sf[i].valid)
-                local = q_add(q_add(q_of(m[M_EMISSIVE + (uint32_t)k]), q_mul(q_mul(mat_kd(m), sf[i].base[k]), diffuse[i][k])),
-                              q_mul(q_mul(mat_ks(m), sf[i].tint[k]), highlight[i][k]));
+                local = q_add(q_add(q_of(m[M_EMISSIVE + (uint32_t)k]), q_mul(q_mul(mat_kd(m), sf[i].base[k]), b->diffuse[i][k])),
+                              q_mul(q_mul(mat_ks(m), sf[i].tint[k]), b->highlight[i][k]));
             b->acc[i][k] = q_add(b->acc[i][k], q_mul(b->cur.weight[i][k], local));
         }
-        if (sf[i].valid && children)
+        if (sf[i].valid && children) {
             spawn_children(mem, b, i, &sf[i], &refl, &trans);
+            b->children++;
+        }
     }
     if (trans.rays.active)
         push(b, &trans, c);
     if (refl.rays.active)
         push(b, &refl, c);
+    b->phase = b->children ? RB_CHILD_GEN : RB_NEXT;
+}
+
+/* The next pending packet starts tracing (no unit operation), or the block is done. */
+static void next_packet(rgs_block *b)
+{
+    if (b->sp == 0 || b->packets >= RGS_MAX_PACKETS) {
+        b->phase = RB_DONE;
+        return;
+    }
+    b->cur = b->stack[--b->sp];
+    b->packets++;
+    trace_begin(&b->cur.rays, &b->trace);
+    b->phase = RB_TRACE;
+}
+
+int rgs_step(const uint32_t *mem, const rgs_config *cfg, rgs_block *b, unit_op *op, rgs_counters *c)
+{
+route:
+    for (int guard = 0; guard < 4; guard++) { /* transitions without a unit operation, then one operation */
+        switch (b->phase) {
+        case RB_GEN: /* transformation unit: primary rays T_init, n + 1 steps (shared origin); camera block */
+            op_set(op, UNIT_XFORM, TRACE_PACKET + 1, 16, c);
+            b->phase = RB_NEXT;
+            return 1;
+        case RB_NEXT: next_packet(b); break;
+        case RB_TRACE:
+            if (trace_step(mem, &b->trace, op, &c->trace))
+                return 1;
+            if (b->packets == 1)
+                for (int i = 0; i < TRACE_PACKET; i++)
+                    b->primary_hits[i] = b->trace.hits[i];
+            b->phase = RB_SURFACES;
+            break;
+        case RB_SURFACES: op_surfaces(mem, b, op, c); return 1;
+        case RB_LIGHT:
+            if (b->light >= b->n_lights) {
+                b->phase = RB_ACCUM;
+                break;
+            }
+            op_light(mem, cfg, b, op, c);
+            return 1;
+        case RB_SHADOW_GEN: op_shadow_gen(b, op, c); return 1;
+        case RB_SHADOW_TRACE:
+            if (trace_step(mem, &b->trace, op, &c->trace))
+                return 1;
+            shadow_done(b);
+            break;
+        case RB_ACCUM: op_accumulate(mem, cfg, b, op, c); return 1;
+        case RB_CHILD_GEN: /* transformation unit: T_R steps for the back, ahead and mirror vectors */
+            op_set(op, UNIT_XFORM, 3 * b->children, 0, c);
+            b->phase = RB_NEXT;
+            return 1;
+        default: return 0;
+        }
+    }
+    return 0;
 }
 
 void rgs_block_finish(const rgs_block *b, uint32_t rgb[])
@@ -502,15 +586,13 @@ void rgs_render_block(const uint32_t *mem, const rgs_config *cfg, uint32_t x0, u
                       hit_record primary_hits[], rgs_counters *c)
 {
     rgs_block b;
-    hit_record h[TRACE_PACKET];
+    unit_op op;
     rgs_block_begin(mem, x0, y0, &b);
-ray_tree:
-    for (uint32_t n = 0; n < RGS_MAX_PACKETS && rgs_block_next(&b); n++) {
-        trace_packet(mem, &b.cur.rays, h, &c->trace);
-        if (n == 0 && primary_hits)
-            for (int i = 0; i < TRACE_PACKET; i++)
-                primary_hits[i] = h[i];
-        rgs_block_shade(mem, cfg, &b, h, c);
-    }
+block_ops:
+    for (uint32_t n = 0; n < RGS_STEP_LIMIT && rgs_step(mem, cfg, &b, &op, c); n++)
+        ;
+    if (primary_hits)
+        for (int i = 0; i < TRACE_PACKET; i++)
+            primary_hits[i] = b.primary_hits[i];
     rgs_block_finish(&b, rgb);
 }

@@ -16,10 +16,11 @@
  * up to RGS_MAX_DEPTH levels. Geometry of shading (normals, cosines, directions) is fp24; all
  * colour arithmetic is integer Q12 (4096 = 1.0, saturating at 65535).
  *
- * State: per 2x2 pixel block, the depth-first stack of pending ray packets with their per-ray
- * RGB weights, and the colour accumulators. Step (rgs_block_shade): shade one traced packet,
- * accumulate, push its child packets. The functional driver rgs_render_block runs a block to
- * completion; the cycle model drives the same steps.
+ * State: per 2x2 pixel block (one thread of the DynRTP), the depth-first stack of pending ray
+ * packets with their per-ray RGB weights, the colour accumulators, and the packet in flight with
+ * its trace_state. Step (rgs_step): one operation of one unit. The functional driver
+ * rgs_render_block runs a block's steps back to back; the cycle model (tb/cycle) times the same
+ * steps, so both give the same bits.
  *
  * fp24 operators per shaded ray (datapath, shared across the steps): normalization of D and N
  * (2 sqrt, 2 div), T_R steps on the transformation unit, per light 2 dot products (diffuse and
@@ -35,6 +36,7 @@
 #define RGS_STACK (RGS_MAX_DEPTH + 2)             /* pending packets of a depth-first ray tree */
 #define RGS_MAX_PACKETS ((1u << (RGS_MAX_DEPTH + 1)) - 1u) /* packets of a full binary ray tree */
 #define RGS_Q12_ONE 4096u
+#define RGS_STEP_LIMIT (1u << 30) /* bound of the operations of one block */
 
 enum { RAY_PRIMARY, RAY_SHADOW, RAY_REFLECTION, RAY_TRANSMISSION, RAY_KINDS };
 
@@ -55,26 +57,49 @@ typedef struct {
     uint32_t depth, kind;
 } rgs_task;
 
+/* What shading needs to know about a hit. */
+typedef struct {
+    int valid;
+    f24_vec3 p, d, n;   /* hit point, unit ray direction, unit shading normal facing the ray */
+    f24_affine tr;      /* T_R of the hit */
+    f24_t t_hat;        /* hit distance along d */
+    int entering;       /* the geometric normal faces against the ray */
+    uint32_t mat;       /* address of the material record */
+    uint32_t base[3];   /* Q12 base colour: factor x bilinear texture sample */
+    uint32_t tint[3];   /* Q12 colour of reflection and highlight: 1 + metallic (base - 1) */
+    uint32_t words;     /* memory words read for it */
+} surface;
+
+/* A 2x2 pixel block's thread: its ray tree, the packet in flight and its shading state. */
 typedef struct {
     rgs_task stack[RGS_STACK];
-    uint32_t sp;
+    uint32_t sp, packets;           /* pending packets; packets started */
     rgs_task cur;                   /* the packet being traced and shaded */
+    trace_state trace;              /* the core's state of the packet (or shadow packet) in flight */
     uint32_t acc[TRACE_PACKET][3];  /* Q12 pixel colours */
     f24_t eps;                      /* ray offset e (docs/shading.md) */
+    uint32_t phase, n_lights, light, children;
+    surface sf[TRACE_PACKET];       /* the surfaces of cur */
+    uint32_t k_of[TRACE_PACKET];    /* their highlight exponents */
+    uint32_t diffuse[TRACE_PACKET][3], highlight[TRACE_PACKET][3]; /* light gathered so far */
+    ray_packet shadow;              /* the current light's shadow rays and their weights */
+    uint32_t diff[TRACE_PACKET], spec[TRACE_PACKET], colour[3];
+    hit_record primary_hits[TRACE_PACKET];
 } rgs_block;
 
 /* Primary rays of the 2x2 block with top-left pixel (x0, y0); pixels outside the image are
  * inactive. */
 void rgs_primary(const uint32_t *mem, uint32_t x0, uint32_t y0, ray_packet *rp);
 
-/* Starts the ray tree of a block with its primary packet. */
+/* Starts the ray tree of a block with its primary packet (no unit operation yet). */
 void rgs_block_begin(const uint32_t *mem, uint32_t x0, uint32_t y0, rgs_block *b);
 
-/* Next packet to trace (b->cur.rays), 0 when the block is done. */
-int rgs_block_next(rgs_block *b);
-
-/* Shades b->cur given its hits: accumulates, traces shadow rays, pushes child packets. */
-void rgs_block_shade(const uint32_t *mem, const rgs_config *cfg, rgs_block *b, const hit_record h[], rgs_counters *c);
+/* Performs the block's next operation on one unit (the RGS itself, or through trace_step the
+ * core's units) and describes it in op; returns 0 when the block is done. Operations of the RGS:
+ * primary ray generation (transformation unit, path a), the surfaces of a traced packet, one
+ * light (its shadow packet; shadow ray generation on the transformation unit), accumulation and
+ * child packets (T_R steps on the transformation unit). */
+int rgs_step(const uint32_t *mem, const rgs_config *cfg, rgs_block *b, unit_op *op, rgs_counters *c);
 
 /* 0xRRGGBB of the block's pixels. */
 void rgs_block_finish(const rgs_block *b, uint32_t rgb[]);

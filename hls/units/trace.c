@@ -1,44 +1,47 @@
-/* Functional model of the ray tracing core for one packet: see trace.h. */
+/* The ray tracing core for one packet, as a state machine of unit operations: see trace.h. */
 #include "trace.h"
 
 #include "isect_unit.h"
 #include "xform_unit.h"
 
-#define MI_NODE_LEAF 3u     /* docs/memory-image.md: kd node word 0 = child << 2 | axis, or count << 2 | 3 */
-#define STEP_LIMIT (1u << 24) /* bound of every walk (a valid tree has fewer nodes than this) */
+#define MI_NODE_LEAF 3u /* docs/memory-image.md: kd node word 0 = child << 2 | axis, or count << 2 | 3 */
 
 /* Memory-image layout constants used by the core (docs/memory-image.md). */
 enum {
     H_OBJECTS = 6, H_INSTANCES = 7, H_TOP_NODES = 11, H_SCENE_BOUNDS = 12, H_REGIONS = 18,
     R_OBJECTS = 5, R_INSTANCES = 8, R_TOP_NODES = 9, R_TOP_LISTS = 10,
     OBJ_WORDS = 16, O_NODES = 0, O_LISTS = 1, O_TRIANGLES = 2, O_BOUNDS = 8,
-    INST_WORDS = 16, TRI_WORDS = 12,
+    INST_WORDS = 16, INST_READ = 13, OBJ_READ = 14, TRI_WORDS = 12,
 };
 
-typedef struct {
-    uint32_t node, mask;
-    f24_t tn[TRACE_PACKET], tf[TRACE_PACKET];
-} trav_entry;
-
-typedef struct {
-    uint32_t nodes, lists; /* word addresses of the tree */
-    trav_entry stack[TRACE_STACK];
-    uint32_t sp;
-    trav_entry cur;
-    int have_cur;
-    uint32_t leaf_first, leaf_count; /* list range of the leaf last returned */
-} walker;
-
-typedef struct {
-    uint32_t key[TRACE_MAILBOX];
-    uint32_t next;
-} mailbox;
+/* Next operation of a packet. */
+enum { TP_SCENE_CLIP, TP_WALK, TP_LIST, TP_INST_XFORM, TP_INST_CLIP, TP_TRI_XFORM, TP_TRI_ISECT, TP_DONE };
 
 static uint32_t region_start(const uint32_t *mem, uint32_t r) { return mem[H_REGIONS + 2 * r]; }
 
 static f24_t axis_of(f24_vec3 v, uint32_t k) { return k == 0 ? v.x : k == 1 ? v.y : v.z; }
 
-static void mailbox_clear(mailbox *m)
+static uint32_t bit(uint32_t mask, int i) { return mask >> i & 1u; }
+
+static uint32_t count_rays(uint32_t mask) { return bit(mask, 0) + bit(mask, 1) + bit(mask, 2) + bit(mask, 3); }
+
+static void op_set(unit_op *op, uint32_t unit, uint32_t slots)
+{
+    op->unit = unit;
+    op->slots = slots;
+    op->n_reads = 0;
+}
+
+static void op_read(unit_op *op, trace_counters *c, uint32_t kind, uint32_t addr, uint32_t words)
+{
+    op->read[op->n_reads].kind = kind;
+    op->read[op->n_reads].addr = addr;
+    op->read[op->n_reads].words = words;
+    op->n_reads++;
+    c->words[kind] += words;
+}
+
+static void mailbox_clear(trace_mailbox *m)
 {
 mailbox_clear_loop:
     for (int i = 0; i < TRACE_MAILBOX; i++)
@@ -47,7 +50,7 @@ mailbox_clear_loop:
 }
 
 /* 1 if key was seen (skip it), else remembers it (round robin) and returns 0. */
-static int mailbox_seen(mailbox *m, uint32_t key)
+static int mailbox_seen(trace_mailbox *m, uint32_t key)
 {
 mailbox_search:
     for (int i = 0; i < TRACE_MAILBOX; i++)
@@ -76,7 +79,9 @@ clip_axes:
     }
 }
 
-static void walker_start(walker *w, uint32_t nodes, uint32_t lists, uint32_t mask, const f24_t tn[], const f24_t tf[])
+/* ---- traversal unit ------------------------------------------------------------------------ */
+
+static void walker_start(trav_walker *w, uint32_t nodes, uint32_t lists, uint32_t mask, const f24_t tn[], const f24_t tf[])
 {
     w->nodes = nodes;
     w->lists = lists;
@@ -84,6 +89,7 @@ static void walker_start(walker *w, uint32_t nodes, uint32_t lists, uint32_t mas
     w->have_cur = 1;
     w->cur.node = 0;
     w->cur.mask = mask;
+    w->leaf_count = w->k = 0;
 walker_copy:
     for (int i = 0; i < TRACE_PACKET; i++) {
         w->cur.tn[i] = tn[i];
@@ -105,167 +111,304 @@ static void split_ray(const trav_entry *e, int i, f24_t ts, int near_is_left, tr
         r->mask |= 1u << i;
 }
 
-/* Advances to the next leaf that some ray of the packet needs; 0 when the tree is done.
- * best_t: each ray's closest hit so far (rays whose hit lies before a node skip it). */
-static int walker_next_leaf(walker *w, const uint32_t *mem, const f24_vec3 o[], const f24_vec3 d[],
-                            const f24_t best_t[], trace_counters *c)
+/* An inner node: both children for the rays that need them; the far side of the packet's first
+ * ray waits on the stack. */
+static void walker_split(trav_walker *w, uint32_t w0, f24_t split, const f24_vec3 o[], const f24_vec3 d[])
 {
-walk:
-    for (uint32_t step = 0; step < STEP_LIMIT; step++) {
-        if (!w->have_cur) {
-            if (w->sp == 0)
-                return 0;
-            w->cur = w->stack[--w->sp];
-            w->have_cur = 1;
-        }
-        trav_entry *e = &w->cur;
-    prune:
-        for (int i = 0; i < TRACE_PACKET; i++)
-            if ((e->mask >> i & 1u) && f24_lt(best_t[i], e->tn[i]))
-                e->mask &= ~(1u << i);
-        if (!e->mask) {
-            w->have_cur = 0;
+    const trav_entry *e = &w->cur;
+    const uint32_t axis = w0 & 3u, child = w0 >> 2;
+    trav_entry l = { child, 0, { 0 }, { 0 } }, r = { child + 1, 0, { 0 }, { 0 } };
+    int first_near_left = -1;
+split_rays:
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        if (!bit(e->mask, i))
             continue;
-        }
-        const uint32_t w0 = mem[w->nodes + 2 * e->node], w1 = mem[w->nodes + 2 * e->node + 1];
-        c->words[MEM_NODES] += 2;
+        const f24_t dk = axis_of(d[i], axis);
+        const f24_t ts = f24_div(f24_sub(split, axis_of(o[i], axis)), dk);
+        const int near_left = !f24_sign(dk);
+        if (first_near_left < 0)
+            first_near_left = near_left;
+        split_ray(e, i, ts, near_left, &l, &r);
+    }
+    if (l.mask && r.mask && w->sp < TRACE_STACK) {
+        w->stack[w->sp++] = first_near_left ? r : l;
+        w->cur = first_near_left ? l : r;
+    } else {
+        w->cur = l.mask ? l : r; /* (a full stack cannot occur: depth <= 64 = TRACE_STACK) */
+    }
+}
+
+/* One kd-tree entry: prune the rays whose closest hit lies before it, then read the node and
+ * split, or report a leaf (its list range). Afterwards, if the entry is used up, the next one is
+ * popped; !w->have_cur then means the tree is done. Returns 1 at a leaf with entries. */
+static int walker_step(trav_walker *w, const uint32_t *mem, const f24_vec3 o[], const f24_vec3 d[], const f24_t best_t[],
+                       unit_op *op, trace_counters *c)
+{
+    trav_entry *e = &w->cur;
+    int leaf = 0;
+    op_set(op, UNIT_TRAV, 1);
+prune:
+    for (int i = 0; i < TRACE_PACKET; i++)
+        if (bit(e->mask, i) && f24_lt(best_t[i], e->tn[i]))
+            e->mask &= ~(1u << i);
+    if (!e->mask) {
+        w->have_cur = 0;
+    } else {
+        const uint32_t a = w->nodes + 2 * e->node, w0 = mem[a], w1 = mem[a + 1];
+        op_read(op, c, MEM_NODES, a, 2);
         if ((w0 & 3u) == MI_NODE_LEAF) {
             w->have_cur = 0;
             w->leaf_first = w1;
             w->leaf_count = w0 >> 2;
+            w->leaf_mask = e->mask;
+            w->k = 0;
             c->leaves++;
-            return 1;
-        }
-        c->traversal_steps++;
-        const uint32_t axis = w0 & 3u, child = w0 >> 2;
-        trav_entry l = { child, 0, { 0 }, { 0 } }, r = { child + 1, 0, { 0 }, { 0 } };
-        int first_near_left = -1;
-    split_rays:
-        for (int i = 0; i < TRACE_PACKET; i++) {
-            if (!(e->mask >> i & 1u))
-                continue;
-            const f24_t dk = axis_of(d[i], axis);
-            const f24_t ts = f24_div(f24_sub(w1, axis_of(o[i], axis)), dk);
-            const int near_left = !f24_sign(dk);
-            if (first_near_left < 0)
-                first_near_left = near_left;
-            split_ray(e, i, ts, near_left, &l, &r);
-        }
-        if (l.mask && r.mask && w->sp < TRACE_STACK) {
-            w->stack[w->sp++] = first_near_left ? r : l; /* the far side of the packet's first ray */
-            w->cur = first_near_left ? l : r;
+            leaf = w->leaf_count != 0;
         } else {
-            w->cur = l.mask ? l : r; /* (a full stack cannot occur: depth <= 64 = TRACE_STACK) */
+            c->traversal_steps++;
+            walker_split(w, w0, w1, o, d);
         }
     }
-    return 0;
+    if (!w->have_cur && w->sp > 0) {
+        w->cur = w->stack[--w->sp];
+        w->have_cur = 1;
+    }
+    return leaf;
 }
 
+/* ---- routing between the units (paths b..f) -------------------------------------------------- */
 
-/* The bottom level of one instance for the rays in mask (in world space). */
-static void trace_instance(const uint32_t *mem, const ray_packet *rays, uint32_t inst, uint32_t mask, hit_record hits[],
-                           f24_t best_t[], trace_counters *c)
+/* Where a packet goes after a list entry of the given level, or after its walk found no leaf:
+ * the next entry, the next kd-tree entry, or back up / done. */
+static void route_after_list(trace_state *s)
 {
-    const uint32_t ia = region_start(mem, R_INSTANCES) + INST_WORDS * inst;
-    const f24_affine w2o = f24_affine_load(mem, ia);
-    const uint32_t obj = region_start(mem, R_OBJECTS) + OBJ_WORDS * mem[ia + 12];
-    c->words[MEM_MATRICES] += 13 + 9; /* instance: matrix and object index; object descriptor */
-    f24_vec3 o[TRACE_PACKET], d[TRACE_PACKET];
-    f24_t tn[TRACE_PACKET], tf[TRACE_PACKET];
-    mailbox box[TRACE_PACKET];
-to_object_space:
+route_levels:
+    for (int guard = 0; guard < 2; guard++) {
+        const trav_walker *w = &s->walk[s->level];
+        if (w->k < w->leaf_count) {
+            s->phase = TP_LIST;
+            return;
+        }
+        if (w->have_cur) {
+            s->phase = TP_WALK;
+            return;
+        }
+        if (s->level == 0) {
+            s->phase = TP_DONE;
+            return;
+        }
+        s->level = 0; /* the object is done: back to the top-level list */
+    }
+}
+
+/* The rays of the current leaf that a list entry still needs: each ray's mailbox of that level
+ * (at the top level, an instance already visited gave the ray its closest hit in it). */
+static uint32_t list_need(trace_state *s, uint32_t key, trace_counters *c)
+{
+    uint32_t need = 0;
+mailbox_rays:
     for (int i = 0; i < TRACE_PACKET; i++) {
-        tn[i] = F24_POS_INF;
-        tf[i] = 0;
-        mailbox_clear(&box[i]);
-        if (!(mask >> i & 1u))
+        if (!bit(s->walk[s->level].leaf_mask, i))
             continue;
-        o[i] = xform_point(&w2o, rays->o[i]);
-        d[i] = xform_vector(&w2o, rays->d[i]);
-        c->transformations += 2;
-        tn[i] = rays->tmin[i];
-        tf[i] = best_t[i];
-        clip_box(&mem[obj + O_BOUNDS], o[i], d[i], &tn[i], &tf[i]);
+        if (mailbox_seen(&s->box[s->level][i], key))
+            c->mailbox_skips++;
+        else
+            need |= 1u << i;
+    }
+    return need;
+}
+
+/* Issue slots of the transformation unit for the rays in mask: origin and direction each, or one
+ * shared origin step if all their origins are equal. */
+static uint32_t xform_slots(const f24_vec3 o[], uint32_t mask)
+{
+    int first = -1, shared = 1;
+same_origin:
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        if (!bit(mask, i))
+            continue;
+        if (first < 0)
+            first = i;
+        else if (o[i].x != o[first].x || o[i].y != o[first].y || o[i].z != o[first].z)
+            shared = 0;
+    }
+    const uint32_t n = count_rays(mask);
+    return shared ? n + 1 : 2 * n;
+}
+
+/* ---- the operations ------------------------------------------------------------------------ */
+
+/* Traversal unit: clip the packet to the scene bounds; rays that miss them never enter traversal. */
+static void op_scene_clip(const uint32_t *mem, trace_state *s, unit_op *op)
+{
+    f24_t tn[TRACE_PACKET], tf[TRACE_PACKET];
+    uint32_t mask = s->rays.active;
+    op_set(op, UNIT_TRAV, 1);
+scene_rays:
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        tn[i] = s->rays.tmin[i];
+        tf[i] = s->rays.tmax[i];
+        if (bit(mask, i))
+            clip_box(&mem[H_SCENE_BOUNDS], s->rays.o[i], s->rays.d[i], &tn[i], &tf[i]);
         if (!f24_le(tn[i], tf[i]))
             mask &= ~(1u << i);
     }
-    if (!mask)
+    if (!mask || mem[H_INSTANCES] == 0) {
+        s->phase = TP_DONE;
         return;
-    walker w;
-    walker_start(&w, mem[obj + O_NODES], mem[obj + O_LISTS], mask, tn, tf);
-    const uint32_t tris = mem[obj + O_TRIANGLES];
-bottom_leaves:
-    while (walker_next_leaf(&w, mem, o, d, best_t, c)) {
-        const trav_entry *e = &w.cur;
-    bottom_list:
-        for (uint32_t k = 0; k < w.leaf_count; k++) {
-            const uint32_t tri = mem[w.lists + w.leaf_first + k];
-            c->list_entries++;
-            c->words[MEM_LISTS]++;
-            const f24_affine tx = f24_affine_load(mem, tris + TRI_WORDS * tri);
-            c->words[MEM_MATRICES] += TRI_WORDS;
-        bottom_rays:
-            for (int i = 0; i < TRACE_PACKET; i++) {
-                if (!(e->mask >> i & 1u))
-                    continue;
-                if (mailbox_seen(&box[i], tri)) {
-                    c->mailbox_skips++;
-                    continue;
-                }
-                const isect_result r = isect_unit_triangle(xform_point(&tx, o[i]), xform_vector(&tx, d[i]),
-                                                           rays->tmin[i], best_t[i]);
-                c->transformations += 2;
-                c->intersections++;
-                if (r.hit) {
-                    best_t[i] = r.t;
-                    hits[i] = (hit_record){ inst, tri, r.t, r.u, r.v, r.cos_n };
-                }
-            }
+    }
+    walker_start(&s->walk[0], region_start(mem, R_TOP_NODES), region_start(mem, R_TOP_LISTS), mask, tn, tf);
+    s->phase = TP_WALK;
+}
+
+/* Traversal unit: one kd-tree entry of the current level. */
+static void op_walk(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
+{
+    const int top = s->level == 0;
+    trav_walker *w = &s->walk[s->level];
+    walker_step(w, mem, top ? s->rays.o : s->o, top ? s->rays.d : s->d, s->best_t, op, c);
+    route_after_list(s);
+}
+
+/* List unit: one entry of the current leaf (an instance at the top level, a triangle below). */
+static void op_list(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
+{
+    trav_walker *w = &s->walk[s->level];
+    const uint32_t a = w->lists + w->leaf_first + w->k, key = mem[a];
+    op_set(op, UNIT_LIST, 1);
+    op_read(op, c, MEM_LISTS, a, 1);
+    c->list_entries++;
+    w->k++;
+    s->need = list_need(s, key, c);
+    if (!s->need) {
+        route_after_list(s);
+        return;
+    }
+    if (s->level == 0) {
+        s->inst = key;
+        s->phase = TP_INST_XFORM;
+    } else {
+        s->tri = key;
+        s->phase = TP_TRI_XFORM;
+    }
+}
+
+/* Transformation unit: the rays that need an instance into its object space (path d). */
+static void op_inst_xform(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
+{
+    const uint32_t ia = region_start(mem, R_INSTANCES) + INST_WORDS * s->inst;
+    const f24_affine w2o = f24_affine_load(mem, ia);
+    s->obj = region_start(mem, R_OBJECTS) + OBJ_WORDS * mem[ia + 12];
+    op_set(op, UNIT_XFORM, xform_slots(s->rays.o, s->need));
+    op_read(op, c, MEM_MATRICES, ia, INST_READ);  /* matrix and object index */
+    op_read(op, c, MEM_MATRICES, s->obj, OBJ_READ); /* object descriptor: tree, triangles, bounds */
+    c->transformations += op->slots;
+to_object_space:
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        if (!bit(s->need, i))
+            continue;
+        s->o[i] = xform_point(&w2o, s->rays.o[i]);
+        s->d[i] = xform_vector(&w2o, s->rays.d[i]);
+    }
+    s->phase = TP_INST_CLIP;
+}
+
+/* Traversal unit: clip the object-space rays to the object's bounds and start its tree (path b). */
+static void op_inst_clip(const uint32_t *mem, trace_state *s, unit_op *op)
+{
+    f24_t tn[TRACE_PACKET], tf[TRACE_PACKET];
+    uint32_t mask = s->need;
+    op_set(op, UNIT_TRAV, 1);
+object_rays:
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        tn[i] = F24_POS_INF;
+        tf[i] = 0;
+        mailbox_clear(&s->box[1][i]);
+        if (!bit(mask, i))
+            continue;
+        tn[i] = s->rays.tmin[i];
+        tf[i] = s->best_t[i];
+        clip_box(&mem[s->obj + O_BOUNDS], s->o[i], s->d[i], &tn[i], &tf[i]);
+        if (!f24_le(tn[i], tf[i]))
+            mask &= ~(1u << i);
+    }
+    if (!mask) {
+        route_after_list(s);
+        return;
+    }
+    s->tris = mem[s->obj + O_TRIANGLES];
+    walker_start(&s->walk[1], mem[s->obj + O_NODES], mem[s->obj + O_LISTS], mask, tn, tf);
+    s->level = 1;
+    s->phase = TP_WALK;
+}
+
+/* Transformation unit: the rays that need a triangle into its unit-triangle space (path e). The
+ * transformed rays are computed with the intersection below, which needs them only then. */
+static void op_tri_xform(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
+{
+    const uint32_t a = s->tris + TRI_WORDS * s->tri;
+    s->tx = f24_affine_load(mem, a);
+    op_set(op, UNIT_XFORM, xform_slots(s->o, s->need));
+    op_read(op, c, MEM_MATRICES, a, TRI_WORDS);
+    c->transformations += op->slots;
+    s->phase = TP_TRI_ISECT;
+}
+
+/* Intersection unit: one ray per slot; closest hits back to the traversal (path f). */
+static void op_tri_isect(trace_state *s, unit_op *op, trace_counters *c)
+{
+    op_set(op, UNIT_ISECT, count_rays(s->need));
+isect_rays:
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        if (!bit(s->need, i))
+            continue;
+        const isect_result r = isect_unit_transformed(&s->tx, s->o[i], s->d[i], s->rays.tmin[i], s->best_t[i]);
+        c->intersections++;
+        if (r.hit) {
+            s->best_t[i] = r.t;
+            s->hits[i] = (hit_record){ s->inst, s->tri, r.t, r.u, r.v, r.cos_n };
         }
+    }
+    route_after_list(s);
+}
+
+void trace_begin(const ray_packet *rays, trace_state *s)
+{
+    s->rays = *rays;
+    s->phase = TP_SCENE_CLIP;
+    s->level = 0;
+    s->walk[0].have_cur = s->walk[1].have_cur = 0;
+init_rays:
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        s->hits[i] = (hit_record){ TRACE_NO_HIT, TRACE_NO_HIT, F24_POS_INF, 0, 0, 0 };
+        s->best_t[i] = rays->tmax[i];
+        mailbox_clear(&s->box[0][i]);
+    }
+}
+
+int trace_step(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
+{
+    switch (s->phase) {
+    case TP_SCENE_CLIP: op_scene_clip(mem, s, op); return 1;
+    case TP_WALK: op_walk(mem, s, op, c); return 1;
+    case TP_LIST: op_list(mem, s, op, c); return 1;
+    case TP_INST_XFORM: op_inst_xform(mem, s, op, c); return 1;
+    case TP_INST_CLIP: op_inst_clip(mem, s, op); return 1;
+    case TP_TRI_XFORM: op_tri_xform(mem, s, op, c); return 1;
+    case TP_TRI_ISECT: op_tri_isect(s, op, c); return 1;
+    default: return 0;
     }
 }
 
 void trace_packet(const uint32_t *mem, const ray_packet *rays, hit_record hits[TRACE_PACKET], trace_counters *c)
 {
-    f24_t best_t[TRACE_PACKET], tn[TRACE_PACKET], tf[TRACE_PACKET];
-    uint32_t mask = rays->active;
-    mailbox seen[TRACE_PACKET];
-init_rays:
-    for (int i = 0; i < TRACE_PACKET; i++) {
-        hits[i] = (hit_record){ TRACE_NO_HIT, TRACE_NO_HIT, F24_POS_INF, 0, 0, 0 };
-        best_t[i] = rays->tmax[i];
-        tn[i] = rays->tmin[i];
-        tf[i] = rays->tmax[i];
-        mailbox_clear(&seen[i]);
-        if (mask >> i & 1u)
-            clip_box(&mem[H_SCENE_BOUNDS], rays->o[i], rays->d[i], &tn[i], &tf[i]);
-        if (!f24_le(tn[i], tf[i]))
-            mask &= ~(1u << i); /* misses the scene: never enters traversal */
-    }
-    if (!mask || mem[H_INSTANCES] == 0)
-        return;
-    walker w;
-    walker_start(&w, region_start(mem, R_TOP_NODES), region_start(mem, R_TOP_LISTS), mask, tn, tf);
-top_leaves:
-    while (walker_next_leaf(&w, mem, rays->o, rays->d, best_t, c)) {
-        const trav_entry *e = &w.cur;
-    top_list:
-        for (uint32_t k = 0; k < w.leaf_count; k++) {
-            const uint32_t inst = mem[w.lists + w.leaf_first + k];
-            uint32_t need = 0;
-            c->list_entries++;
-            c->words[MEM_LISTS]++;
-        top_mailbox:
-            for (int i = 0; i < TRACE_PACKET; i++) {
-                if (!(e->mask >> i & 1u))
-                    continue;
-                if (mailbox_seen(&seen[i], inst))
-                    c->mailbox_skips++; /* the instance already gave this ray its closest hit */
-                else
-                    need |= 1u << i;
-            }
-            if (need)
-                trace_instance(mem, rays, inst, need, hits, best_t, c);
-        }
-    }
+    trace_state s;
+    unit_op op;
+    trace_begin(rays, &s);
+packet_ops:
+    for (uint32_t n = 0; n < TRACE_STEP_LIMIT && trace_step(mem, &s, &op, c); n++)
+        ;
+copy_hits:
+    for (int i = 0; i < TRACE_PACKET; i++)
+        hits[i] = s.hits[i];
 }

@@ -1,11 +1,28 @@
 /*
- * Functional model of the ray tracing core for one packet of 4 rays (paper sections 2 and 3):
- * the traversal unit walks the top-level kd-tree, at a top-level leaf the list unit feeds the
- * instances to the transformation unit (world to object space), the traversal unit walks the
- * object's bottom-level tree, and at its leaves the list unit feeds (mailboxed) triangles to the
- * transformation unit (object to unit-triangle space) and the intersection unit. Closest hit.
- * Reads only the memory image, which mi_validate has checked. Integer-only fp24, bounded loops,
- * no recursion (the two tree levels have their own stacks).
+ * The ray tracing core for one packet of 4 rays (paper sections 2 and 3, Figure 2): the traversal
+ * unit walks the top-level kd-tree, at a top-level leaf the list unit feeds the instances to the
+ * transformation unit (world to object space, path d), the traversal unit walks the object's
+ * bottom-level tree (path b), and at its leaves the list unit feeds (mailboxed) triangles to the
+ * transformation unit (object to unit-triangle space) and the intersection unit (path e), whose
+ * results return to the traversal (path f). Closest hit. Reads only the memory image, which
+ * mi_validate has checked. Integer-only fp24, bounded loops, no recursion (the two tree levels
+ * have their own stacks).
+ *
+ * As a state machine: trace_state holds one packet's thread state (the prototype's per-thread
+ * state: rays, stacks, mailboxes, closest hits), and trace_step performs exactly one operation of
+ * one unit and describes it in a unit_op (which unit, how many issue slots, which memory block it
+ * read). The functional mode (trace_packet) runs the steps back to back; the cycle model
+ * (tb/cycle) times the same steps through pipelined units and caches, so both compute the same
+ * bits by construction.
+ *
+ * Operations (one trace_step each):
+ *   traversal unit    clip to the scene bounds (start), clip to an object's bounds (after its
+ *                     transformation), or one kd-tree entry: prune rays whose closest hit lies
+ *                     before it, read the node, split (4 rays in parallel) or report a leaf;
+ *   list unit         one leaf-list entry: read it, check each ray's mailbox;
+ *   transformation    an instance's world-to-object map or a triangle's transformation applied to
+ *                     the rays that need it (2 steps per ray, n + 1 if all share their origin);
+ *   intersection      the rays that need a triangle, one per issue slot.
  *
  * Traversal unit datapath (Table 2: 4 adders, 4 dividers, 13 comparators): per inner node and
  * ray, t_split = (split - O_axis) / D_axis; the near child is chosen by the sign bit of D_axis
@@ -26,6 +43,7 @@
 #define TRACE_STACK 64     /* traversal states per packet and level (the prototype kept 64) */
 #define TRACE_MAILBOX 8    /* entries of the per-ray mailbox of the list unit */
 #define TRACE_NO_HIT 0xFFFFFFFFu
+#define TRACE_STEP_LIMIT (1u << 26) /* bound of the operations of one packet (a valid image needs far fewer) */
 
 typedef struct {
     f24_vec3 o[TRACE_PACKET], d[TRACE_PACKET];
@@ -49,6 +67,56 @@ typedef struct {
     uint64_t words[MEM_KINDS];
 } trace_counters;
 
+/* The units of a DynRTP (paper Figure 2). */
+enum { UNIT_RGS, UNIT_XFORM, UNIT_TRAV, UNIT_LIST, UNIT_ISECT, UNIT_KINDS };
+
+/* One operation of one unit: the memory blocks it reads before it issues (word address and
+ * count by data type; words 0: none) and the issue slots it occupies. */
+#define UNIT_OP_READS 2
+typedef struct {
+    uint32_t unit, slots, n_reads;
+    struct { uint32_t kind, addr, words; } read[UNIT_OP_READS];
+} unit_op;
+
+typedef struct {
+    uint32_t node, mask;
+    f24_t tn[TRACE_PACKET], tf[TRACE_PACKET];
+} trav_entry;
+
+typedef struct {
+    uint32_t nodes, lists; /* word addresses of the tree */
+    trav_entry stack[TRACE_STACK];
+    uint32_t sp;
+    trav_entry cur;
+    uint32_t have_cur;
+    uint32_t leaf_first, leaf_count, leaf_mask, k; /* the current leaf: list range, its rays, next entry */
+} trav_walker;
+
+typedef struct {
+    uint32_t key[TRACE_MAILBOX];
+    uint32_t next;
+} trace_mailbox;
+
+typedef struct {
+    ray_packet rays;
+    hit_record hits[TRACE_PACKET];
+    f24_t best_t[TRACE_PACKET];
+    uint32_t phase, level;             /* next operation; tree level 0 (top) or 1 (bottom) */
+    trav_walker walk[2];
+    trace_mailbox box[2][TRACE_PACKET]; /* instances per ray; triangles per ray and instance visit */
+    uint32_t inst, obj, tris, tri, need; /* current instance, its object, triangle, rays needing it */
+    f24_vec3 o[TRACE_PACKET], d[TRACE_PACKET]; /* the rays in the current object's space */
+    f24_affine tx;                     /* the current triangle's transformation */
+} trace_state;
+
+/* Starts tracing a packet (no unit operation yet). */
+void trace_begin(const ray_packet *rays, trace_state *s);
+
+/* Performs the next operation and describes it in op; returns 0 (and performs nothing) when the
+ * packet is done: the closest hits are in s->hits. */
+int trace_step(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c);
+
+/* Functional mode: the whole packet. */
 void trace_packet(const uint32_t *mem, const ray_packet *rays, hit_record hits[TRACE_PACKET], trace_counters *c);
 
 #endif

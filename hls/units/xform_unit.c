@@ -1,8 +1,8 @@
 /* Transformation unit: see xform_unit.h. */
 #include "xform_unit.h"
 
-/* One row: ((m0*x + m1*y) + m2*z), plus t when with_translation (a mux, not an add of zero). */
-static f24_t xform_row(const f24_t row[4], f24_vec3 p, int with_translation)
+/* The translation goes through a mux, not an add of zero, so a -0 sum keeps its sign. */
+f24_t xform_row(const f24_t row[4], f24_vec3 p, int with_translation)
 {
     const f24_t s = f24_add(f24_add(f24_mul(row[0], p.x), f24_mul(row[1], p.y)), f24_mul(row[2], p.z));
     return with_translation ? f24_add(s, row[3]) : s;

@@ -14,6 +14,9 @@
 
 #include "vec3.h"
 
+/* One row of the map: ((m0*x + m1*y) + m2*z), plus t when with_translation. */
+f24_t xform_row(const f24_t row[4], f24_vec3 p, int with_translation);
+
 f24_vec3 xform_point(const f24_affine *m, f24_vec3 p);
 f24_vec3 xform_vector(const f24_affine *m, f24_vec3 v);
 

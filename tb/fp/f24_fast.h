@@ -11,8 +11,8 @@
  * the integer path and MPFR at every tested width instead of relying on the argument.
  *
  * Build with -ffp-contract=off (no fused multiply-add) and without -ffast-math.
- * With -DF24_FAST_SIM, f24.h maps f24_add ... f24_from_i32 onto these functions; the
- * comparisons, min/max and sign operations stay the integer ones (they are already cheap).
+ * With -DF24_FAST_SIM, f24.h maps f24_add ... f24_from_f32, the comparisons lt/le/eq and min/max
+ * onto these functions; the sign operations and conversions to integers stay the integer ones.
  */
 #ifndef SAARCOR_F24_FAST_H
 #define SAARCOR_F24_FAST_H
@@ -83,7 +83,32 @@ static inline f24_t f24_fast_from_f32(uint32_t bits)
     return f24_fast_encode((double)f);
 }
 
+/* Comparisons and minimumNumber/maximumNumber on the decoded values: binary64 comparisons are
+ * false for NaN and treat -0 == +0, and decoding reads subnormal encodings as zero, as
+ * f24_compare.c and f24_minmax.c do. */
+static inline int f24_fast_lt(f24_t a, f24_t b) { return f24_fast_decode(a) < f24_fast_decode(b); }
+static inline int f24_fast_le(f24_t a, f24_t b) { return f24_fast_decode(a) <= f24_fast_decode(b); }
+static inline int f24_fast_eq(f24_t a, f24_t b) { return f24_fast_decode(a) == f24_fast_decode(b); }
+
+static inline f24_t f24_fast_minmax(f24_t a, f24_t b, int want_max)
+{
+    const double x = f24_fast_decode(a), y = f24_fast_decode(b);
+    if (x != x)
+        return y != y ? F24_DEFAULT_NAN : f24_fast_encode(y);
+    if (y != y)
+        return f24_fast_encode(x);
+    const int x_first = x < y || (x == y && __builtin_signbit(x)); /* -0 before +0 */
+    return f24_fast_encode(x_first != want_max ? x : y);
+}
+static inline f24_t f24_fast_min(f24_t a, f24_t b) { return f24_fast_minmax(a, b, 0); }
+static inline f24_t f24_fast_max(f24_t a, f24_t b) { return f24_fast_minmax(a, b, 1); }
+
 #ifdef F24_FAST_SIM
+#define f24_lt f24_fast_lt
+#define f24_le f24_fast_le
+#define f24_eq f24_fast_eq
+#define f24_min f24_fast_min
+#define f24_max f24_fast_max
 #define f24_add f24_fast_add
 #define f24_sub f24_fast_sub
 #define f24_mul f24_fast_mul
