@@ -38,7 +38,7 @@ SANFLAGS := $(if $(filter 1,$(SAN)),$(SAN_ON))
 # no fused multiply-add: the fast fp24 path relies on one binary64 rounding per operation
 CFLAGS := -std=c11 $(WARN) $(OPT) -ffp-contract=off -fno-math-errno $(SANFLAGS) -MMD -MP
 CXXFLAGS := -std=c++17 $(WARN) $(OPT) $(SANFLAGS) -MMD -MP
-INCLUDES := -Ihls/fp24 -Ihls/units -Itb/fp -Itb/ref -Itb/cli -Ihost/image -Ihost/scene -Ihost/kdtree -Ihost/memimage -Iscenes
+INCLUDES := -Ihls/fp24 -Ihls/units -Itb/fp -Itb/ref -Itb/cycle -Itb/cli -Ihost/image -Ihost/scene -Ihost/kdtree -Ihost/memimage -Iscenes
 LDLIBS := -lmpfr -lgmp -ltinygltf -lOpenImageIO -lOpenImageIO_Util -lstdc++ -lm
 TEST_LDLIBS := -lcmocka $(LDLIBS)
 
@@ -52,16 +52,17 @@ HOST_C := $(sort $(filter-out host/memimage/%,$(wildcard host/*/*.c scenes/*.c))
 REF := $(sort $(wildcard tb/ref/*.c))
 MEMIMAGE := $(sort $(wildcard host/memimage/*.c))
 HLS_UNITS := $(sort $(wildcard hls/units/*.c))
+CYCLE := $(sort $(wildcard tb/cycle/*.c))
 
 # the simulator (units, memory image, reference, command line) computes fp24 with the host fast
 # path unless SIM_ARITH=hw; hls/fp24 and tb/fp always hold the integer reference
 SIM_ARITH ?= fast
 SIM_FLAGS := $(if $(filter fast,$(SIM_ARITH)),-DF24_FAST_SIM,$(if $(filter hw,$(SIM_ARITH)),,$(error SIM_ARITH must be fast or hw)))
-SIM_SRCS = $(MEMIMAGE) $(HLS_UNITS) $(REF) $(CLI)
+SIM_SRCS = $(MEMIMAGE) $(HLS_UNITS) $(CYCLE) $(REF) $(CLI)
 
 # per-format objects: everything that depends on the fp24 parameters
 fp_objs = $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(HLS_FP24) $(TB_FP))
-fmt_objs = $(call fp_objs,$(1)) $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(MEMIMAGE) $(HLS_UNITS) $(REF))
+fmt_objs = $(call fp_objs,$(1)) $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(MEMIMAGE) $(HLS_UNITS) $(CYCLE) $(REF))
 HOST_OBJS := $(patsubst %.cpp,$(BUILD)/obj/host/%.o,$(HOST_CXX)) $(patsubst %.c,$(BUILD)/obj/host/%.o,$(HOST_C))
 
 $(BUILD)/obj/host/%.o: %.cpp

@@ -1,0 +1,532 @@
+/* Cycle-level model of the DynRTC: see cycle_sim.h and docs/cycle-model.md. */
+#define _GNU_SOURCE
+#include "cycle_sim.h"
+
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+
+const char *const unit_names[UNIT_KINDS] = { "RGS", "transformation", "traversal", "list", "intersection" };
+const char *const mem_kind_names[MEM_KINDS] = { "kd_nodes", "lists", "matrices", "shading" };
+
+void cycle_config_default(cycle_config *c)
+{
+    memset(c, 0, sizeof *c);
+    c->pipes = 1;
+    c->threads_per_pipe = 32;
+    c->latency[UNIT_RGS] = 12;
+    c->latency[UNIT_XFORM] = 10;
+    c->latency[UNIT_TRAV] = 12;
+    c->latency[UNIT_LIST] = 3;
+    c->latency[UNIT_ISECT] = 14;
+    c->tile = 16;
+    c->epoch = 256;
+    c->host_threads = 1;
+    c->mem.cache[MEM_NODES] = (cache_config){ 4096, 16 };
+    c->mem.cache[MEM_LISTS] = (cache_config){ 2048, 16 };
+    c->mem.cache[MEM_MATRICES] = (cache_config){ 6144, 48 };
+    c->mem.latency = 10;
+    c->mem.mbps = 1000.0;
+    c->mem.clock_mhz = 90.0;
+}
+
+void rgs_counters_add(rgs_counters *sum, const rgs_counters *c)
+{
+    sum->trace.traversal_steps += c->trace.traversal_steps;
+    sum->trace.leaves += c->trace.leaves;
+    sum->trace.list_entries += c->trace.list_entries;
+    sum->trace.mailbox_skips += c->trace.mailbox_skips;
+    sum->trace.transformations += c->trace.transformations;
+    sum->trace.intersections += c->trace.intersections;
+    for (int k = 0; k < MEM_KINDS; k++)
+        sum->trace.words[k] += c->trace.words[k];
+    for (int k = 0; k < RAY_KINDS; k++)
+        sum->rays[k] += c->rays[k];
+    sum->dropped += c->dropped;
+}
+
+/* ---- one pipe ------------------------------------------------------------------------------ */
+
+enum { TH_IDLE, TH_MEMORY, TH_QUEUED, TH_UNIT };
+
+typedef struct {
+    rgs_block blk;
+    unit_op op;
+    uint32_t state, x0, y0, wait_kind;
+    uint64_t since; /* cycle the current state began */
+} thread;
+
+typedef struct {
+    uint32_t *ids, head, count; /* ring buffer of thread ids */
+} fifo;
+
+#define TILE_QUEUE 2
+
+typedef struct {
+    const uint32_t *mem;
+    const rgs_config *rcfg;
+    const cycle_config *cfg;
+    uint32_t width, height, *pixels;
+    hit_record *hits;
+    thread *th;
+    fifo queue[UNIT_KINDS];
+    uint64_t free_at[UNIT_KINDS];
+    uint64_t *heap; /* events: cycle << 16 | thread, min first */
+    uint32_t heap_n;
+    uint32_t tiles[TILE_QUEUE], n_tiles; /* tile queue filled by the controller */
+    uint32_t tile_block, cur_tile, have_tile;
+    uint32_t *arrived, n_arrived; /* threads whose results arrive this cycle */
+    uint64_t now, last_event;
+    uint32_t active; /* threads holding a block */
+    mem_iface mi;
+    rgs_counters counters;
+    cycle_stats st;
+} pipe_state;
+
+static void heap_push(pipe_state *p, uint64_t cycle, uint32_t t)
+{
+    uint64_t *h = p->heap, v = cycle << 16 | t;
+    uint32_t i = p->heap_n++;
+    while (i > 0 && h[(i - 1) / 2] > v) {
+        h[i] = h[(i - 1) / 2];
+        i = (i - 1) / 2;
+    }
+    h[i] = v;
+}
+
+static uint64_t heap_pop(pipe_state *p)
+{
+    uint64_t *h = p->heap, top = h[0], v = h[--p->heap_n];
+    uint32_t i = 0;
+    for (;;) {
+        uint32_t c = 2 * i + 1;
+        if (c >= p->heap_n)
+            break;
+        if (c + 1 < p->heap_n && h[c + 1] < h[c])
+            c++;
+        if (h[c] >= v)
+            break;
+        h[i] = h[c];
+        i = c;
+    }
+    h[i] = v;
+    return top;
+}
+
+static void fifo_push(fifo *f, uint32_t cap, uint32_t id) { f->ids[(f->head + f->count++) % cap] = id; }
+
+static uint32_t fifo_pop(fifo *f, uint32_t cap)
+{
+    const uint32_t id = f->ids[f->head];
+    f->head = (f->head + 1) % cap;
+    f->count--;
+    return id;
+}
+
+/* Thread-cycles of the state being left. */
+static void leave_state(pipe_state *p, thread *t)
+{
+    const uint64_t d = p->now - t->since;
+    switch (t->state) {
+    case TH_MEMORY:
+        p->st.thread_cycles[ST_MEMORY] += d;
+        p->st.wait_mem[t->wait_kind] += d;
+        break;
+    case TH_QUEUED:
+        p->st.thread_cycles[ST_UNIT_QUEUE] += d;
+        p->st.wait_unit[t->op.unit] += d;
+        break;
+    case TH_UNIT: p->st.thread_cycles[ST_UNIT_BUSY] += d; break;
+    default: p->st.thread_cycles[ST_NO_WORK] += d; break;
+    }
+    t->since = p->now;
+}
+
+/* The next 2x2 block of the pipe's tiles, 0 if it has none now. */
+static int next_block(pipe_state *p, uint32_t *x0, uint32_t *y0)
+{
+    const uint32_t tile = p->cfg->tile, per_row = tile / 2, tiles_x = (p->width + tile - 1) / tile;
+tile_blocks:
+    for (;;) {
+        if (!p->have_tile) {
+            if (!p->n_tiles)
+                return 0;
+            p->cur_tile = p->tiles[0];
+            memmove(p->tiles, p->tiles + 1, --p->n_tiles * sizeof *p->tiles);
+            p->have_tile = 1;
+            p->tile_block = 0;
+            p->st.tiles++;
+        }
+        if (p->tile_block >= per_row * per_row) {
+            p->have_tile = 0;
+            continue;
+        }
+        const uint32_t tx = p->cur_tile % tiles_x, ty = p->cur_tile / tiles_x, b = p->tile_block++;
+        *x0 = tx * tile + 2 * (b % per_row);
+        *y0 = ty * tile + 2 * (b / per_row);
+        if (*x0 < p->width && *y0 < p->height)
+            return 1; /* (blocks beyond the image edge are skipped) */
+    }
+}
+
+static void finish_block(pipe_state *p, thread *t)
+{
+    uint32_t rgb[TRACE_PACKET];
+    rgs_block_finish(&t->blk, rgb);
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        const uint32_t x = t->x0 + (uint32_t)(i & 1), y = t->y0 + (uint32_t)(i >> 1);
+        if (x >= p->width || y >= p->height)
+            continue;
+        p->pixels[(size_t)y * p->width + x] = rgb[i];
+        if (p->hits)
+            p->hits[(size_t)y * p->width + x] = t->blk.primary_hits[i];
+    }
+    p->st.blocks++;
+}
+
+/* A thread's result has arrived (or it is idle): it decides its next operation, reads that
+ * operation's memory blocks, and waits for them or joins the unit's queue. */
+static void advance(pipe_state *p, uint32_t id)
+{
+    thread *t = &p->th[id];
+    leave_state(p, t);
+next_op:
+    while (t->state == TH_IDLE || !rgs_step(p->mem, p->rcfg, &t->blk, &t->op, &p->counters)) {
+        if (t->state != TH_IDLE) { /* the block is done */
+            finish_block(p, t);
+            p->active--;
+            t->state = TH_IDLE;
+        }
+        if (!next_block(p, &t->x0, &t->y0))
+            return;
+        rgs_block_begin(p->mem, t->x0, t->y0, &t->blk);
+        p->active++;
+        t->state = TH_QUEUED; /* holds a block from here on */
+    }
+    uint64_t ready = p->now;
+    for (uint32_t r = 0; r < t->op.n_reads; r++) {
+        const uint64_t at = mem_iface_read(&p->mi, t->op.read[r].kind, t->op.read[r].addr, t->op.read[r].words, p->now);
+        if (at > ready) {
+            ready = at;
+            t->wait_kind = t->op.read[r].kind;
+        }
+    }
+    if (ready > p->now) {
+        t->state = TH_MEMORY;
+        heap_push(p, ready, id);
+    } else {
+        t->state = TH_QUEUED;
+        fifo_push(&p->queue[t->op.unit], p->cfg->threads_per_pipe, id);
+    }
+}
+
+static int cmp_u32(const void *a, const void *b)
+{
+    const uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return (x > y) - (x < y);
+}
+
+/* One cycle: compute (each unit picks its issue from the current state), then commit. */
+static void pipe_cycle(pipe_state *p)
+{
+    const uint32_t cap = p->cfg->threads_per_pipe;
+    uint32_t issue[UNIT_KINDS];
+    for (int k = 0; k < UNIT_KINDS; k++) { /* phase 1: decisions from the current state only */
+        const int u = p->cfg->reverse_order ? UNIT_KINDS - 1 - k : k;
+        issue[u] = p->queue[u].count && p->free_at[u] <= p->now ? p->queue[u].ids[p->queue[u].head] : UINT32_MAX;
+    }
+    p->n_arrived = 0;
+    while (p->heap_n && p->heap[0] >> 16 == p->now) /* results and memory data arriving now */
+        p->arrived[p->n_arrived++] = (uint32_t)(heap_pop(p) & 0xFFFFu);
+    for (int u = 0; u < UNIT_KINDS; u++) { /* phase 2: commit, in a fixed order */
+        if (issue[u] == UINT32_MAX)
+            continue;
+        thread *t = &p->th[fifo_pop(&p->queue[u], cap)];
+        leave_state(p, t);
+        t->state = TH_UNIT;
+        p->free_at[u] = p->now + t->op.slots;
+        p->st.busy[u] += t->op.slots;
+        p->st.ops[u]++;
+        heap_push(p, p->now + t->op.slots - 1 + p->cfg->latency[u], issue[u]);
+    }
+    qsort(p->arrived, p->n_arrived, sizeof *p->arrived, cmp_u32);
+    for (uint32_t i = 0; i < p->n_arrived; i++) {
+        thread *t = &p->th[p->arrived[i]];
+        if (t->state == TH_MEMORY) { /* data is here: join the unit's queue */
+            leave_state(p, t);
+            t->state = TH_QUEUED;
+            fifo_push(&p->queue[t->op.unit], cap, p->arrived[i]);
+        } else {
+            advance(p, p->arrived[i]);
+        }
+    }
+    if (p->n_arrived)
+        p->last_event = p->now;
+}
+
+/* The first cycle from p->now on at which anything can happen (UINT64_MAX: nothing pending). */
+static uint64_t next_cycle(const pipe_state *p)
+{
+    uint64_t n = p->heap_n ? p->heap[0] >> 16 : UINT64_MAX;
+    for (int u = 0; u < UNIT_KINDS; u++)
+        if (p->queue[u].count) {
+            const uint64_t f = p->free_at[u] > p->now ? p->free_at[u] : p->now;
+            n = f < n ? f : n;
+        }
+    return n;
+}
+
+/* Idle threads take blocks from the tile queue (the controller has just refilled it), in
+ * thread order, as a commit at the end of the previous cycle. */
+static void wake_idle(pipe_state *p)
+{
+    for (uint32_t i = 0; i < p->cfg->threads_per_pipe && (p->n_tiles || p->have_tile); i++)
+        if (p->th[i].state == TH_IDLE)
+            advance(p, i);
+}
+
+/* Runs the pipe's cycles from p->now up to `until` (exclusive), skipping cycles in which
+ * nothing can happen. */
+static void pipe_run(pipe_state *p, uint64_t until)
+{
+    wake_idle(p);
+cycles:
+    for (;;) {
+        const uint64_t n = next_cycle(p);
+        if (n >= until) {
+            p->now = until;
+            return;
+        }
+        p->now = n;
+        pipe_cycle(p);
+        p->now = n + 1;
+    }
+}
+
+static int pipe_busy(const pipe_state *p) { return p->active || p->n_tiles || p->have_tile; }
+
+/* ---- the DynRTC: pipes, controller, host threads ------------------------------------------------ */
+
+struct cycle_sim {
+    cycle_config cfg;
+    pipe_state *pipes;
+};
+
+cycle_sim *cycle_create(const cycle_config *cfg)
+{
+    cycle_sim *s = calloc(1, sizeof *s);
+    if (!s)
+        return NULL;
+    s->cfg = *cfg;
+    s->pipes = calloc(cfg->pipes, sizeof *s->pipes);
+    int ok = s->pipes != NULL;
+    for (uint32_t i = 0; ok && i < cfg->pipes; i++) {
+        pipe_state *p = &s->pipes[i];
+        const uint32_t n = cfg->threads_per_pipe;
+        p->cfg = &s->cfg;
+        p->th = calloc(n, sizeof *p->th);
+        p->heap = calloc(n, sizeof *p->heap);
+        p->arrived = calloc(n, sizeof *p->arrived);
+        ok = p->th && p->heap && p->arrived && mem_iface_init(&p->mi, &cfg->mem) == 0;
+        for (int u = 0; ok && u < UNIT_KINDS; u++)
+            ok = (p->queue[u].ids = calloc(n, sizeof(uint32_t))) != NULL;
+    }
+    if (!ok) {
+        cycle_free(s);
+        return NULL;
+    }
+    return s;
+}
+
+void cycle_free(cycle_sim *s)
+{
+    if (!s)
+        return;
+    for (uint32_t i = 0; s->pipes && i < s->cfg.pipes; i++) {
+        pipe_state *p = &s->pipes[i];
+        free(p->th);
+        free(p->heap);
+        free(p->arrived);
+        for (int u = 0; u < UNIT_KINDS; u++)
+            free(p->queue[u].ids);
+        mem_iface_free(&p->mi);
+    }
+    free(s->pipes);
+    free(s);
+}
+
+void cycle_flush(cycle_sim *s)
+{
+    for (uint32_t i = 0; i < s->cfg.pipes; i++)
+        mem_iface_flush(&s->pipes[i].mi);
+}
+
+/* Host threads: worker w simulates pipes w, w + n, ... of each epoch between two barriers. The
+ * barriers are set up for the threads that did start, before any of them uses them (the gate). */
+typedef struct {
+    cycle_sim *sim;
+    uint32_t workers, ready;
+    pthread_mutex_t lock;
+    pthread_cond_t gate;
+    pthread_barrier_t start, done;
+    uint64_t until;
+    int stop;
+} host_pool;
+
+typedef struct {
+    host_pool *pool;
+    uint32_t worker;
+} worker_arg;
+
+static void run_share(cycle_sim *s, uint32_t worker, uint32_t workers, uint64_t until)
+{
+    for (uint32_t i = worker; i < s->cfg.pipes; i += workers)
+        pipe_run(&s->pipes[i], until);
+}
+
+static void *worker_main(void *arg)
+{
+    worker_arg *w = arg;
+    host_pool *h = w->pool;
+    pthread_mutex_lock(&h->lock);
+    while (!h->ready)
+        pthread_cond_wait(&h->gate, &h->lock);
+    pthread_mutex_unlock(&h->lock);
+    for (;;) {
+        pthread_barrier_wait(&h->start);
+        if (h->stop)
+            return NULL;
+        run_share(h->sim, w->worker, h->workers, h->until);
+        pthread_barrier_wait(&h->done);
+    }
+}
+
+/* Tops up each pipe's tile queue, in pipe order. */
+static void controller_refill(cycle_sim *s, uint32_t *next_tile, uint32_t n_tiles)
+{
+    for (uint32_t i = 0; i < s->cfg.pipes; i++) {
+        pipe_state *p = &s->pipes[i];
+        while (p->n_tiles < TILE_QUEUE && *next_tile < n_tiles)
+            p->tiles[p->n_tiles++] = (*next_tile)++;
+    }
+}
+
+static void pipe_reset(pipe_state *p, const uint32_t *mem, const rgs_config *rcfg, uint32_t *pixels, hit_record *hits)
+{
+    p->mem = mem;
+    p->rcfg = rcfg;
+    rgs_image_size(mem, &p->width, &p->height);
+    p->pixels = pixels;
+    p->hits = hits;
+    for (uint32_t i = 0; i < p->cfg->threads_per_pipe; i++)
+        p->th[i] = (thread){ .state = TH_IDLE };
+    for (int u = 0; u < UNIT_KINDS; u++) {
+        p->queue[u].head = p->queue[u].count = 0;
+        p->free_at[u] = 0;
+    }
+    p->heap_n = p->n_tiles = p->have_tile = p->active = 0;
+    p->now = p->last_event = 0;
+    memset(&p->counters, 0, sizeof p->counters);
+    memset(&p->st, 0, sizeof p->st);
+    mem_iface_new_frame(&p->mi);
+}
+
+static void collect(cycle_sim *s, rgs_counters *counters, cycle_stats *st)
+{
+    memset(counters, 0, sizeof *counters);
+    memset(st, 0, sizeof *st);
+    st->pipe_cycles_min = UINT64_MAX;
+    for (uint32_t i = 0; i < s->cfg.pipes; i++) {
+        pipe_state *p = &s->pipes[i];
+        const uint64_t end = p->last_event + 1;
+        for (uint32_t t = 0; t < s->cfg.threads_per_pipe; t++) { /* close the books at the pipe's end */
+            p->now = end;
+            leave_state(p, &p->th[t]);
+        }
+        rgs_counters_add(counters, &p->counters);
+        st->pipe_cycles_max = end > st->pipe_cycles_max ? end : st->pipe_cycles_max;
+        st->pipe_cycles_min = end < st->pipe_cycles_min ? end : st->pipe_cycles_min;
+        for (int u = 0; u < UNIT_KINDS; u++) {
+            st->busy[u] += p->st.busy[u];
+            st->ops[u] += p->st.ops[u];
+            st->wait_unit[u] += p->st.wait_unit[u];
+        }
+        for (int k = 0; k < ST_KINDS; k++)
+            st->thread_cycles[k] += p->st.thread_cycles[k];
+        for (int k = 0; k < MEM_KINDS; k++) {
+            st->wait_mem[k] += p->st.wait_mem[k];
+            st->mem.lookups[k] += p->mi.stats.lookups[k];
+            st->mem.hits[k] += p->mi.stats.hits[k];
+            st->mem.bytes[k] += p->mi.stats.bytes[k];
+            st->mem.requests[k] += p->mi.stats.requests[k];
+        }
+        st->blocks += p->st.blocks;
+        st->tiles += p->st.tiles;
+    }
+    st->cycles = st->pipe_cycles_max;
+}
+
+int cycle_render(cycle_sim *s, const uint32_t *mem, const rgs_config *rcfg, uint32_t *pixels, hit_record *hits,
+                 rgs_counters *counters, cycle_stats *stats, cycle_progress_fn progress, void *arg)
+{
+    uint32_t width, height;
+    rgs_image_size(mem, &width, &height);
+    const uint32_t tile = s->cfg.tile, n_tiles = ((width + tile - 1) / tile) * ((height + tile - 1) / tile);
+    const uint64_t all_blocks = (uint64_t)((width + 1) / 2) * ((height + 1) / 2);
+    for (uint32_t i = 0; i < s->cfg.pipes; i++)
+        pipe_reset(&s->pipes[i], mem, rcfg, pixels, hits);
+    const uint32_t want = s->cfg.host_threads < s->cfg.pipes ? s->cfg.host_threads : s->cfg.pipes;
+    pthread_t *tid = calloc(want ? want : 1, sizeof *tid);
+    worker_arg *wa = calloc(want ? want : 1, sizeof *wa);
+    host_pool h = { .sim = s, .workers = 1 };
+    if (!tid || !wa) {
+        free(tid);
+        free(wa);
+        return -1;
+    }
+    pthread_mutex_init(&h.lock, NULL);
+    pthread_cond_init(&h.gate, NULL);
+    for (uint32_t i = 1; i < want; i++) {
+        wa[i] = (worker_arg){ &h, i };
+        if (pthread_create(&tid[i], NULL, worker_main, &wa[i]) != 0)
+            break; /* fewer host threads: the same result, later */
+        h.workers++;
+    }
+    pthread_barrier_init(&h.start, NULL, h.workers);
+    pthread_barrier_init(&h.done, NULL, h.workers);
+    pthread_mutex_lock(&h.lock);
+    h.ready = 1;
+    pthread_cond_broadcast(&h.gate);
+    pthread_mutex_unlock(&h.lock);
+    uint32_t next_tile = 0;
+epochs:
+    for (uint64_t epoch = 0;; epoch++) {
+        controller_refill(s, &next_tile, n_tiles);
+        int busy = 0;
+        uint64_t blocks = 0;
+        for (uint32_t i = 0; i < s->cfg.pipes; i++) {
+            busy |= pipe_busy(&s->pipes[i]);
+            blocks += s->pipes[i].st.blocks;
+        }
+        if (!busy)
+            break;
+        if (progress && epoch % 64 == 0)
+            progress(blocks, all_blocks, arg);
+        h.until += s->cfg.epoch;
+        pthread_barrier_wait(&h.start);
+        run_share(s, 0, h.workers, h.until);
+        pthread_barrier_wait(&h.done);
+    }
+    h.stop = 1;
+    pthread_barrier_wait(&h.start);
+    for (uint32_t i = 1; i < h.workers; i++)
+        pthread_join(tid[i], NULL);
+    pthread_barrier_destroy(&h.start);
+    pthread_barrier_destroy(&h.done);
+    pthread_cond_destroy(&h.gate);
+    pthread_mutex_destroy(&h.lock);
+    free(tid);
+    free(wa);
+    collect(s, counters, stats);
+    return 0;
+}

@@ -1,0 +1,85 @@
+/*
+ * Cycle-level model of the SaarCOR DynRTC (paper sections 3 and 4): several dynamic ray tracing
+ * pipelines (DynRTPs), each with T threads (2x2 pixel blocks, a packet of 4 rays in flight each),
+ * five pipelined units (RGS, transformation, traversal, list, intersection) fed from input
+ * queues, and a memory interface with per-type caches (mem_iface.h). A ray generation
+ * controller hands out screen tiles to the pipes.
+ *
+ * The work is the hardware's own: every thread runs the same step functions as the functional
+ * mode (rgs_step -> trace_step, hls/units), one unit operation at a time, so image and work
+ * counters are bit-identical to the functional mode for any T and P. This model adds only time:
+ *   - a thread whose operation is decided reads its memory blocks through the caches; a miss
+ *     parks only that thread until its data arrives, then it joins the unit's queue;
+ *   - a unit issues the operation at the head of its queue when its issue slots are free; the
+ *     operation occupies `slots` issue cycles (transformation steps, rays intersected, rays
+ *     shaded) and its result leaves the pipeline `latency` cycles after its last slot, when the
+ *     thread decides its next operation (the routing of paths a..g).
+ * Two-phase clock (as in Utah's simtrax): per cycle, every unit decides from the current state
+ * whom it issues, then all changes commit in a fixed order (issues, then the threads whose
+ * results arrive, in thread order), so nothing depends on the order units are stepped. Cycles in
+ * which nothing can happen are skipped. Pipes are independent between controller epochs and run
+ * on host threads in parallel; the controller refills each pipe's tile queue at epoch boundaries
+ * in pipe order, so the result is deterministic for any host thread count.
+ */
+#ifndef SAARCOR_CYCLE_SIM_H
+#define SAARCOR_CYCLE_SIM_H
+
+#include <stdint.h>
+
+#include "mem_iface.h"
+#include "rgs.h"
+
+typedef struct {
+    uint32_t pipes, threads_per_pipe; /* P DynRTPs, T threads each */
+    uint32_t latency[UNIT_KINDS];     /* pipeline latency of each unit, cycles */
+    uint32_t tile;                    /* tile edge in pixels (even) handed out by the controller */
+    uint32_t epoch;                   /* cycles between controller refills */
+    uint32_t host_threads;            /* simulator threads (no effect on any result) */
+    uint32_t reverse_order;           /* step units and threads in reverse (for the order test) */
+    mem_config mem;
+} cycle_config;
+
+/* The defaults of docs/cycle-model.md (the prototype's caches, 1 GB/s at 90 MHz). */
+void cycle_config_default(cycle_config *c);
+
+/* Where a thread's time went, in thread-cycles. */
+enum { ST_UNIT_QUEUE, ST_UNIT_BUSY, ST_MEMORY, ST_NO_WORK, ST_KINDS };
+
+typedef struct {
+    uint64_t cycles;                          /* of the frame: the last pipe's last result */
+    uint64_t pipe_cycles_max, pipe_cycles_min;
+    uint64_t busy[UNIT_KINDS];                /* issue slots used, over all pipes */
+    uint64_t ops[UNIT_KINDS];                 /* operations issued */
+    uint64_t thread_cycles[ST_KINDS];         /* over all threads of all pipes */
+    uint64_t wait_unit[UNIT_KINDS];           /* thread-cycles queued at each unit */
+    uint64_t wait_mem[MEM_KINDS];             /* thread-cycles waiting for memory, by data type */
+    uint64_t blocks, tiles;
+    mem_stats mem;                            /* summed over pipes */
+} cycle_stats;
+
+typedef struct cycle_sim cycle_sim;
+
+/* NULL if out of memory. */
+cycle_sim *cycle_create(const cycle_config *cfg);
+void cycle_free(cycle_sim *s);
+
+/* Empties the caches: the memory image changed. */
+void cycle_flush(cycle_sim *s);
+
+/* progress(done blocks, all blocks) is called now and then from the controller (may be NULL). */
+typedef void (*cycle_progress_fn)(uint64_t done, uint64_t all, void *arg);
+
+/* Renders one frame of the memory image: pixels (0xRRGGBB, width x height of the camera block),
+ * primary hits per pixel (may be NULL), the work counters (summed) and the timing. The caches
+ * keep their contents from the previous frame unless cycle_flush was called. 0, or -1 if out
+ * of memory. */
+int cycle_render(cycle_sim *s, const uint32_t *mem, const rgs_config *rcfg, uint32_t *pixels, hit_record *hits,
+                 rgs_counters *counters, cycle_stats *stats, cycle_progress_fn progress, void *arg);
+
+/* sum += c */
+void rgs_counters_add(rgs_counters *sum, const rgs_counters *c);
+
+extern const char *const unit_names[UNIT_KINDS];
+extern const char *const mem_kind_names[MEM_KINDS];
+
+#endif
