@@ -1,0 +1,231 @@
+/*
+ * Tests of the cycle-level model (tb/cycle): the image, the primary hits and every work counter
+ * equal the functional mode's bit for bit for several scenes, thread counts and pipe counts; the
+ * cycle count is deterministic (repeated runs, host thread counts, units stepped in reverse
+ * order); caches: a second identical frame hits 100% when the cache holds the whole image, a
+ * tiny cache misses, and the bytes over the port equal the misses times the line size; more
+ * threads per pipe hide latency (fewer cycles), and a slower memory costs cycles.
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cycle_sim.h"
+#include "memimage.h"
+#include "rgs.h"
+#include "scenes.h"
+
+enum { W = 40, H = 30 };
+
+typedef struct {
+    scene s;
+    mi_builder *b;
+    const uint32_t *mem;
+    uint32_t words;
+} image;
+
+static void image_build(image *im, const char *name)
+{
+    char err[256];
+    const scene_gen_params gp = { 1, 0 };
+    assert_int_equal(scene_generator_find(name)->build(&im->s, &gp, err, sizeof err), 0);
+    assert_int_equal(scene_evaluate(&im->s, 0.5, 0), 0);
+    mi_params p;
+    mi_params_default(&p);
+    p.width = W;
+    p.height = H;
+    im->b = mi_build(&im->s, &p, err, sizeof err);
+    assert_non_null(im->b);
+    im->mem = mi_words(im->b, &im->words);
+}
+
+static void image_free(image *im)
+{
+    mi_free(im->b);
+    scene_free(&im->s);
+}
+
+typedef struct {
+    uint32_t rgb[W * H];
+    hit_record hits[W * H];
+    rgs_counters c;
+} frame;
+
+static void functional(const uint32_t *mem, const rgs_config *rc, frame *f)
+{
+    memset(f, 0, sizeof *f);
+    for (uint32_t y = 0; y < H; y += 2)
+        for (uint32_t x = 0; x < W; x += 2) {
+            uint32_t rgb[4];
+            hit_record h[4];
+            rgs_render_block(mem, rc, x, y, rgb, h, &f->c);
+            for (int i = 0; i < 4; i++) {
+                f->rgb[(y + (uint32_t)(i >> 1)) * W + x + (uint32_t)(i & 1)] = rgb[i];
+                f->hits[(y + (uint32_t)(i >> 1)) * W + x + (uint32_t)(i & 1)] = h[i];
+            }
+        }
+}
+
+static void cycle(cycle_sim *sim, const uint32_t *mem, const rgs_config *rc, frame *f, cycle_stats *st)
+{
+    memset(f, 0, sizeof *f);
+    assert_int_equal(cycle_render(sim, mem, rc, f->rgb, f->hits, &f->c, st, NULL, NULL), 0);
+}
+
+static void cycle_with(const cycle_config *cfg, const uint32_t *mem, const rgs_config *rc, frame *f, cycle_stats *st)
+{
+    cycle_sim *sim = cycle_create(cfg);
+    assert_non_null(sim);
+    cycle(sim, mem, rc, f, st);
+    cycle_free(sim);
+}
+
+static void assert_same_frame(const frame *a, const frame *b)
+{
+    assert_memory_equal(a->rgb, b->rgb, sizeof a->rgb);
+    for (size_t i = 0; i < W * H; i++) {
+        assert_int_equal(a->hits[i].instance, b->hits[i].instance);
+        assert_int_equal(a->hits[i].triangle, b->hits[i].triangle);
+        assert_int_equal(a->hits[i].t, b->hits[i].t);
+    }
+    assert_memory_equal(&a->c, &b->c, sizeof a->c);
+}
+
+static const rgs_config full = { 2, 1 };
+
+/* Every scene, T in {1, 5, 64}, P in {1, 3}: the functional mode's bits and counters. */
+static void same_bits_as_functional(void **state)
+{
+    (void)state;
+    static const char *const names[] = { "cornell", "room", "plants", "terrain", "animated" };
+    static frame ref, got;
+    for (size_t k = 0; k < sizeof names / sizeof *names; k++) {
+        image im;
+        image_build(&im, names[k]);
+        functional(im.mem, &full, &ref);
+        const uint32_t threads[] = { 1, 5, 64 }, pipes[] = { 1, 3 };
+        for (int t = 0; t < 3; t++)
+            for (int p = 0; p < 2; p++) {
+                cycle_config cfg;
+                cycle_config_default(&cfg);
+                cfg.threads_per_pipe = threads[t];
+                cfg.pipes = pipes[p];
+                cfg.tile = 8;
+                cycle_stats st;
+                cycle_with(&cfg, im.mem, &full, &got, &st);
+                assert_same_frame(&ref, &got);
+                assert_int_equal(st.blocks, (W / 2) * (H / 2));
+                assert_true(st.cycles > 0);
+            }
+        image_free(&im);
+    }
+}
+
+/* The same cycle count on every run, for 1, 2 and 4 host threads, and with the units stepped in
+ * reverse order. */
+static void deterministic(void **state)
+{
+    (void)state;
+    static frame f;
+    image im;
+    image_build(&im, "room");
+    cycle_config cfg;
+    cycle_config_default(&cfg);
+    cfg.pipes = 4;
+    cfg.threads_per_pipe = 16;
+    cfg.tile = 4;
+    cycle_stats first, st;
+    cycle_with(&cfg, im.mem, &full, &f, &first);
+    const uint32_t host[] = { 1, 2, 4, 3 };
+    for (int i = 0; i < 4; i++) {
+        cfg.host_threads = host[i];
+        cfg.reverse_order = i == 3;
+        cycle_with(&cfg, im.mem, &full, &f, &st);
+        assert_memory_equal(&first, &st, sizeof st);
+    }
+    image_free(&im);
+}
+
+/* A cache holding the whole image: the second identical frame hits 100%. A tiny cache misses;
+ * the bytes over the port are misses x line size for every cached kind. */
+static void caches(void **state)
+{
+    (void)state;
+    static frame f;
+    image im;
+    image_build(&im, "cornell");
+    cycle_config cfg;
+    cycle_config_default(&cfg);
+    for (int k = 0; k < MI_CACHED_KINDS; k++)
+        cfg.mem.cache[k] = (cache_config){ 4 * 1024 * 1024, 16 };
+    assert_true(im.words * 4u <= 4u * 1024 * 1024);
+    cycle_sim *sim = cycle_create(&cfg);
+    assert_non_null(sim);
+    cycle_stats cold, warm;
+    cycle(sim, im.mem, &full, &f, &cold);
+    cycle(sim, im.mem, &full, &f, &warm);
+    for (int k = 0; k < MI_CACHED_KINDS; k++) {
+        assert_true(cold.mem.lookups[k] > 0);
+        assert_true(cold.mem.hits[k] < cold.mem.lookups[k] || k == MEM_NODES); /* cornell: few nodes */
+        assert_int_equal(warm.mem.hits[k], warm.mem.lookups[k]);
+        assert_int_equal(warm.mem.bytes[k], 0);
+    }
+    assert_true(warm.cycles <= cold.cycles);
+    cycle_flush(sim);
+    cycle(sim, im.mem, &full, &f, &warm);
+    assert_memory_equal(&cold.mem, &warm.mem, sizeof cold.mem); /* flushed: cold again */
+    cycle_free(sim);
+
+    for (int k = 0; k < MI_CACHED_KINDS; k++)
+        cfg.mem.cache[k] = (cache_config){ 64, 16 };
+    cycle_with(&cfg, im.mem, &full, &f, &cold);
+    for (int k = 0; k < MI_CACHED_KINDS; k++) {
+        const uint64_t misses = cold.mem.lookups[k] - cold.mem.hits[k];
+        assert_true(misses > 0);
+        assert_int_equal(cold.mem.bytes[k], misses * 16);
+        assert_int_equal(cold.mem.requests[k], misses);
+    }
+    assert_int_equal(cold.mem.bytes[MEM_SHADING], 4 * f.c.trace.words[MEM_SHADING]); /* uncached */
+    image_free(&im);
+}
+
+/* Latency hiding: 32 threads take far fewer cycles than 1; a slow memory port costs cycles;
+ * usage never exceeds the issue slots. */
+static void threads_hide_latency(void **state)
+{
+    (void)state;
+    static frame f;
+    image im;
+    image_build(&im, "room");
+    cycle_config cfg;
+    cycle_config_default(&cfg);
+    cycle_stats one, many, slow;
+    cfg.threads_per_pipe = 1;
+    cycle_with(&cfg, im.mem, &full, &f, &one);
+    cfg.threads_per_pipe = 32;
+    cycle_with(&cfg, im.mem, &full, &f, &many);
+    assert_true(many.cycles * 4 < one.cycles);
+    for (int u = 0; u < UNIT_KINDS; u++)
+        assert_true(many.busy[u] <= many.cycles);
+    cfg.mem.mbps = 20;
+    cycle_with(&cfg, im.mem, &full, &f, &slow);
+    assert_true(slow.cycles > many.cycles);
+    image_free(&im);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(same_bits_as_functional),
+        cmocka_unit_test(deterministic),
+        cmocka_unit_test(caches),
+        cmocka_unit_test(threads_hide_latency),
+    };
+    return cmocka_run_group_tests_name("cycle model (tb/cycle)", tests, NULL, NULL);
+}
