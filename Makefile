@@ -6,7 +6,8 @@
 #   make verify-fp  fp24 verification against MPFR: 10^7 random vectors per op and width, exhaustive unary
 #   make bench      all benchmarks -> build/bench/ (bench-fp: fp24 throughput; bench-build: kd-tree and
 #                   memory-image build against Embree; bench-render: primary rays against Embree;
-#                   bench-accuracy: fp24 images and hits against the double-precision reference)
+#                   bench-accuracy: fp24 images and hits against the double-precision reference;
+#                   bench-cycle: the cycle model beside the paper's Tables 3 and 4, sweeps, simulator speed)
 #   make widths     build build/w/<format>/saarcor for every tested fp24 format
 # Variables: BUILD (output folder), SAN=1 (sanitizers), V=1 (show commands), VERIFY_N,
 #   SIM_ARITH=fast|hw: arithmetic of the simulator's units (default fast: the host fast path of
@@ -123,7 +124,7 @@ $(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS) $(call fmt_objs,$
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
 
-.PHONY: all widths deps run test unit-tests test-programs asan verify-fp bench bench-fp bench-build bench-render bench-accuracy clean
+.PHONY: all widths deps run test unit-tests test-programs asan verify-fp bench bench-fp bench-build bench-render bench-accuracy bench-cycle clean
 all: $(BUILD)/saarcor $(BUILD)/w/e8m23/saarcor
 widths: $(foreach f,$(FORMATS),$(BUILD)/w/$(f)/saarcor)
 
@@ -199,7 +200,14 @@ bench-accuracy: deps
 	@mkdir -p $(BUILD)/bench
 	python3 tests/bench/bench_accuracy.py --out $(BUILD)/bench
 
-bench: bench-fp bench-build bench-render bench-accuracy
+# the cycle model at 512x384 and 1024x768 beside the paper, thread and pipe sweeps, simulator speed
+# (runs bench_render for Embree in the same run)
+bench-cycle: deps
+	@$(MAKE) --no-print-directory all $(BUILD)/bench_render
+	@mkdir -p $(BUILD)/bench
+	python3 tests/bench/bench_cycle.py --out $(BUILD)/bench
+
+bench: bench-fp bench-build bench-render bench-accuracy bench-cycle
 
 $(BUILD)/bench_fp: $(BUILD)/obj/$(DEFAULT_FMT)/tests/bench/bench_fp.o $(call fp_objs,$(DEFAULT_FMT))
 	@echo "  LD    $@"
