@@ -199,6 +199,10 @@ t_render_rays() {
   expect 0 "$BIN" render cornell -o "$T/g.png" --width 64 --height 48 --ground --stats "$T/g.json"
   read -r sh refl trans < <(kinds "$T/g.json")
   [[ $refl -gt 0 ]]                                   # the polished ground reflects
+  expect 0 "$BIN" render animated -o "$T/f45.png" --width 32 --height 24 --frame 45
+  expect 0 "$BIN" render animated -o "$T/t15.png" --width 32 --height 24 --time 1.5
+  cmp "$T/f45.png" "$T/t15.png"                       # frame 45 at 30 fps is t = 1.5 s
+  expect 2 "$BIN" render animated --frame 3 --frames 1:2; one_line_error
   expect 2 "$BIN" render room --max-depth 9; one_line_error
   expect 2 "$BIN" render room --precision fp64; one_line_error
   expect 2 "$BIN" render room --precision e9m40; one_line_error

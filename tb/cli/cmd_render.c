@@ -137,7 +137,8 @@ _Static_assert(RGS_MAX_DEPTH == SHADE_MAX_DEPTH, "the shading model and the RGS 
 static int usage(void)
 {
     printf("usage: saarcor render SCENE [-o out.png] [--mode functional|cycle] [--max-depth D] [--no-shadows]\n"
-           "                      [--precision P] [--aov FILE.exr] [--frames A:B [--fps F]] [--threads N]\n"
+           "                      [--precision P] [--aov FILE.exr] [--frame N | --frames A:B] [--fps F]\n"
+           "                      [--threads N]\n"
            "                      [--stats FILE] [cycle mode options] [scene options]\n\n"
            "Renders the scene through the hardware units: RGS, traversal, list, transformation and\n"
            "intersection units reading the memory image. Shading (docs/shading.md): Phong-like with\n"
@@ -159,6 +160,7 @@ static int usage(void)
            "  --stats FILE       counters as JSON: rays by kind, traversal steps, leaves, list entries,\n"
            "                     mailbox skips, transformations, intersections, memory words read; in\n"
            "                     cycle mode also the timing (\"cycle\": cycles, fps, usage, caches, ...)\n"
+           "  --frame N          frame N of the animation at --fps (time N / fps), to -o\n"
            "  --frames A:B       frames A..B of the animation at --fps (default 30) to OUT_NNNN.png (and\n"
            "                     AOV/stats files numbered alike), rebuilding per frame only what changed\n\n%s\n%s",
            RGS_MAX_DEPTH, SHADE_DEFAULT_DEPTH, CYCLE_OPTIONS_HELP, SCENE_OPTIONS_HELP);
@@ -168,7 +170,7 @@ static int usage(void)
 typedef struct {
     const char *out, *stats, *aov;
     uint32_t threads, first, last;
-    int sequence;
+    int sequence, one_frame; /* --frames A:B, --frame N */
     double fps;
     rgs_config cfg;
     int cycle;       /* --mode cycle */
@@ -420,14 +422,14 @@ int cmd_render(int argc, char **argv)
     static const struct option opts[] = {
         SCENE_LONG_OPTIONS, { "output", required_argument, NULL, 'o' }, { "threads", required_argument, NULL, 't' },
         { "stats", required_argument, NULL, 's' }, { "frames", required_argument, NULL, 'F' },
-        { "fps", required_argument, NULL, 'r' }, { "aov", required_argument, NULL, 'a' },
+        { "fps", required_argument, NULL, 'r' }, { "frame", required_argument, NULL, 'f' }, { "aov", required_argument, NULL, 'a' },
         { "max-depth", required_argument, NULL, 'd' }, { "no-shadows", no_argument, NULL, 'S' },
         { "precision", required_argument, NULL, 'p' }, { "mode", required_argument, NULL, 'm' },
         CYCLE_LONG_OPTIONS, { "help", no_argument, NULL, 'h' }, { 0, 0, 0, 0 }
     };
     scene_opts o;
     const long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
-    render_opts ro = { "render.png", NULL, NULL, ncpu > 0 && ncpu < 256 ? (uint32_t)ncpu : 1, 0, 0, 0, 30.0,
+    render_opts ro = { "render.png", NULL, NULL, ncpu > 0 && ncpu < 256 ? (uint32_t)ncpu : 1, 0, 0, 0, 0, 30.0,
                        { SHADE_DEFAULT_DEPTH, 1 }, 0, { 0 }, NULL };
     int c, prec_e = F24_EXP_BITS, prec_m = F24_MAN_BITS;
     scene_opts_default(&o);
@@ -454,6 +456,12 @@ int cmd_render(int argc, char **argv)
         case 'F':
             if (!parse_frames(optarg, &ro))
                 return cli_usage_error("render", "bad --frames '%s' (expected A:B with A <= B)", optarg);
+            break;
+        case 'f':
+            if (!cli_parse_u64(optarg, 0, 1000000, &v))
+                return cli_usage_error("render", "bad --frame '%s' (0..1000000)", optarg);
+            ro.first = ro.last = (uint32_t)v;
+            ro.one_frame = 1;
             break;
         case 'r':
             if (!cli_parse_double(optarg, &ro.fps) || ro.fps <= 0 || ro.fps > 1e4)
@@ -486,7 +494,9 @@ int cmd_render(int argc, char **argv)
     if (prec_e != F24_EXP_BITS || prec_m != F24_MAN_BITS)
         return run_format(prec_e, prec_m, argv - 1);
     o.scene = argv[optind];
-    if (ro.sequence)
+    if (ro.sequence && ro.one_frame)
+        return cli_usage_error("render", "--frame and --frames exclude each other");
+    if (ro.sequence || ro.one_frame)
         o.time = ro.first / ro.fps;
     scene s;
     int rc = scene_opts_load(&o, "render", &s);
