@@ -124,7 +124,7 @@ $(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS) $(call fmt_objs,$
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
 
-.PHONY: all widths deps run test unit-tests test-programs asan verify-fp bench bench-fp bench-build bench-render bench-accuracy bench-cycle clean
+.PHONY: all widths deps run test unit-tests test-programs asan verify-fp bench bench-fp bench-build bench-render bench-accuracy bench-cycle rtl-lint rtl-test clean
 all: $(BUILD)/saarcor $(BUILD)/w/e8m23/saarcor
 widths: $(foreach f,$(FORMATS),$(BUILD)/w/$(f)/saarcor)
 
@@ -156,6 +156,41 @@ test: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 test-programs
 	@bash tests/run.sh --report $(BUILD)/test-report.txt \
 	  $(UNIT_TESTS) tests/test_cli.sh tests/test_golden.sh $(patsubst $(BUILD)/%,build/asan/%,$(UNIT_TESTS))
+
+# ---- RTL: Verilator co-simulation against the C model, lint, synthesis -------------------------
+RTL := $(sort $(wildcard rtl/*.sv))
+RTL_FORMATS := e7m8 e7m12 e7m16 e7m20 e7m23 e8m23
+VERILATOR_FLAGS := --cc --exe --build -j 2 -Wall -Wno-fatal -O2 --x-assign fast --x-initial fast
+rtl_c_objs = $(call fp_objs,$(1)) $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(HLS_UNITS))
+fmt_e = $(word 1,$(subst m, ,$(subst e,,$(1))))
+fmt_m = $(word 2,$(subst m, ,$(subst e,,$(1))))
+
+# build/rtl/<format>/tb_<name>: the Verilator model of rtl/tb/tb_<name>.sv with its C++ bench,
+# linked with the C model of the same format
+define RTL_RULES
+$(BUILD)/rtl/$(1)/tb_%: rtl/tb/tb_%.sv rtl/tb/tb_%.cpp $(RTL) $(call rtl_c_objs,$(1))
+	@mkdir -p $$(@D)
+	@echo "  VERILATOR $$@"
+	$(Q)verilator $(VERILATOR_FLAGS) -GE=$(call fmt_e,$(1)) -GM=$(call fmt_m,$(1)) --top-module tb_$$* \
+	  -Mdir $(BUILD)/rtl/$(1)/obj_$$* -o $(CURDIR)/$$@ $(addprefix $(CURDIR)/,$(RTL)) \
+	  $(CURDIR)/rtl/tb/tb_$$*.sv $(CURDIR)/rtl/tb/tb_$$*.cpp \
+	  -CFLAGS "$(call fmt_flags,$(1)) $(addprefix -I$(CURDIR)/,hls/fp24 hls/units tb/fp)" \
+	  -LDFLAGS "$(addprefix $(CURDIR)/,$(call rtl_c_objs,$(1))) -lmpfr -lgmp -lm" >$(BUILD)/rtl/$(1)/build_$$*.log 2>&1 \
+	  || { tail -30 $(BUILD)/rtl/$(1)/build_$$*.log; exit 1; }
+endef
+$(foreach f,$(RTL_FORMATS),$(eval $(call RTL_RULES,$(f))))
+
+RTL_N ?= 1000000
+rtl-lint:
+	@for m in $(notdir $(basename $(RTL))); do verilator --lint-only -Wall $(RTL) --top-module $$m || exit 1; done
+	@echo "rtl-lint: verilator --lint-only -Wall clean for $(words $(RTL)) modules"
+
+# every operator at every format: edge set + RTL_N random vectors per operation class (+ golden hex)
+rtl-test: deps rtl-lint
+	@$(MAKE) --no-print-directory $(foreach f,$(RTL_FORMATS),$(BUILD)/rtl/$(f)/tb_f24_ops)
+	@for f in $(RTL_FORMATS); do \
+	  extra=; [ $$f = $(DEFAULT_FMT) ] && extra="tests/golden/f24/add.hex tests/golden/f24/sub.hex tests/golden/f24/mul.hex tests/golden/f24/div.hex"; \
+	  $(BUILD)/rtl/$$f/tb_f24_ops -n $(RTL_N) $$extra || exit 1; done
 
 # ---- verification and benchmarks -----------------------------------------------------------
 VERIFY_N ?= 10000000

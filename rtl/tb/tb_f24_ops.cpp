@@ -1,0 +1,162 @@
+// Co-simulation of the fp24 operators (rtl/f24_*.sv) against the C model (hls/fp24): one operand
+// pair enters every cycle; every result leaving an operator is compared with the C model's
+// result for the pair that entered `latency` cycles earlier. Vectors: the TestFloat-style edge
+// set of each operation (tb/fp/f24_vec.c), N random pairs per operation class, and optional hex
+// vector files ("a b result", tests/golden/f24, saarcor f24gen). A mismatch prints the vector,
+// the cycle and both results; the exit code is 1 on any mismatch.
+// usage: tb_f24_ops [-n N] [--seed S] [FILE.hex ...]
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <deque>
+#include <string>
+#include <vector>
+
+#include "Vtb_f24_ops.h"
+#include "verilated.h"
+
+extern "C" {
+#include "f24.h"
+#include "f24_ops.h"
+#include "f24_vec.h"
+}
+
+namespace {
+
+struct pending {
+    uint32_t a, b;
+    uint64_t cycle;
+};
+
+struct checker {
+    const char *name;
+    std::deque<pending> q;
+    uint64_t checked = 0, mismatches = 0;
+};
+
+uint64_t g_cycle = 0;
+
+void report(checker &c, const pending &p, uint32_t rtl, uint32_t model, uint64_t cycle)
+{
+    if (c.mismatches++ < 20)
+        std::printf("MISMATCH %s: a=%06x b=%06x (entered cycle %llu, left cycle %llu): rtl %06x, C model %06x\n",
+                    c.name, p.a, p.b, (unsigned long long)p.cycle, (unsigned long long)cycle, rtl, model);
+}
+
+void check(checker &c, bool valid, uint32_t rtl, uint32_t (*model)(uint32_t, uint32_t))
+{
+    if (!valid)
+        return;
+    if (c.q.empty()) {
+        std::printf("PROTOCOL %s: result without a pending operation at cycle %llu\n", c.name, (unsigned long long)g_cycle);
+        c.mismatches++;
+        return;
+    }
+    const pending p = c.q.front();
+    c.q.pop_front();
+    const uint32_t want = model(p.a, p.b);
+    c.checked++;
+    if (rtl != want)
+        report(c, p, rtl, want, g_cycle);
+}
+
+uint32_t m_add(uint32_t a, uint32_t b) { return f24_add(a, b); }
+uint32_t m_sub(uint32_t a, uint32_t b) { return f24_sub(a, b); }
+uint32_t m_mul(uint32_t a, uint32_t b) { return f24_mul(a, b); }
+uint32_t m_div(uint32_t a, uint32_t b) { return f24_div(a, b); }
+uint32_t m_flags(uint32_t a, uint32_t b)
+{
+    return (uint32_t)f24_lt(a, b) | (uint32_t)f24_le(a, b) << 1 | (uint32_t)f24_eq(a, b) << 2 |
+           (uint32_t)f24_unordered(a, b) << 3;
+}
+uint32_t m_min(uint32_t a, uint32_t b) { return f24_min(a, b); }
+uint32_t m_max(uint32_t a, uint32_t b) { return f24_max(a, b); }
+
+}  // namespace
+
+int main(int argc, char **argv)
+{
+    uint64_t n = 1000000, seed = 1;
+    std::vector<std::string> files;
+    for (int i = 1; i < argc; i++) {
+        if (!std::strcmp(argv[i], "-n") && i + 1 < argc)
+            n = std::strtoull(argv[++i], nullptr, 0);
+        else if (!std::strcmp(argv[i], "--seed") && i + 1 < argc)
+            seed = std::strtoull(argv[++i], nullptr, 0);
+        else
+            files.push_back(argv[i]);
+    }
+    std::vector<f24_pair> vec;
+    static f24_pair edges[F24_VEC_MAX_EDGES];
+    const f24_op classes[] = { F24_OP_ADD, F24_OP_MUL, F24_OP_DIV, F24_OP_LT, F24_OP_MIN };
+    for (f24_op op : classes) {
+        const size_t k = f24_vec_edges(op, edges, F24_VEC_MAX_EDGES);
+        vec.insert(vec.end(), edges, edges + k);
+    }
+    f24_rng rng;
+    f24_rng_seed(&rng, seed);
+    for (uint64_t i = 0; i < n; i++)
+        vec.push_back(f24_vec_random(classes[i % 5], &rng));
+    for (const std::string &f : files) {
+        FILE *in = std::fopen(f.c_str(), "r");
+        if (!in) {
+            std::printf("tb_f24_ops: cannot read %s\n", f.c_str());
+            return 2;
+        }
+        unsigned a, b, r;
+        char line[128];
+        while (std::fgets(line, sizeof line, in))
+            if (std::sscanf(line, "%x %x %x", &a, &b, &r) == 3)
+                vec.push_back(f24_pair{ a, b });
+        std::fclose(in);
+    }
+
+    VerilatedContext ctx;
+    Vtb_f24_ops top{ &ctx };
+    checker c_add{ "add" }, c_sub{ "sub" }, c_mul{ "mul" }, c_div{ "div" }, c_flags{ "lt/le/eq/unordered" },
+        c_min{ "min" }, c_max{ "max" };
+    checker *all[] = { &c_add, &c_sub, &c_mul, &c_div, &c_flags, &c_min, &c_max };
+    const uint32_t mask = F24_MASK;
+    top.rst_ni = 0;
+    top.clk_i = 0;
+    top.eval();
+    top.clk_i = 1;
+    top.eval();
+    top.rst_ni = 1;
+    const auto t0 = std::chrono::steady_clock::now();
+    for (size_t i = 0; i < vec.size() + 16; i++, g_cycle++) {
+        const bool valid = i < vec.size();
+        const uint32_t a = valid ? vec[i].a & mask : 0, b = valid ? vec[i].b & mask : 0;
+        top.clk_i = 0;
+        top.valid_i = valid;
+        top.a_i = a;
+        top.b_i = b;
+        top.eval();
+        top.clk_i = 1;
+        top.eval(); // registers take the inputs; outputs show results of earlier cycles
+        if (valid)
+            for (checker *c : all)
+                c->q.push_back(pending{ a, b, g_cycle });
+        check(c_add, top.add_valid_o, top.add_o, m_add);
+        check(c_sub, top.sub_valid_o, top.sub_o, m_sub);
+        check(c_mul, top.mul_valid_o, top.mul_o, m_mul);
+        check(c_div, top.div_valid_o, top.div_o, m_div);
+        check(c_flags, top.cmp_valid_o, top.cmp_flags_o, m_flags);
+        check(c_min, top.cmp_valid_o, top.min_o, m_min);
+        check(c_max, top.cmp_valid_o, top.max_o, m_max);
+    }
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    uint64_t bad = 0, checked = 0;
+    for (checker *c : all) {
+        bad += c->mismatches + c->q.size();
+        checked += c->checked;
+        if (!c->q.empty())
+            std::printf("PROTOCOL %s: %zu operations never left the operator\n", c->name, c->q.size());
+    }
+    top.final();
+    std::printf("tb_f24_ops e%dm%d: %zu vectors x 7 results, %llu checked, %llu mismatches, %.2f s (%.2f M vectors/s)\n",
+                F24_EXP_BITS, F24_MAN_BITS, vec.size(), (unsigned long long)checked, (unsigned long long)bad, secs,
+                vec.size() / secs / 1e6);
+    return bad ? 1 : 0;
+}
