@@ -61,6 +61,10 @@ SIM_ARITH ?= fast
 SIM_FLAGS := $(if $(filter fast,$(SIM_ARITH)),-DF24_FAST_SIM,$(if $(filter hw,$(SIM_ARITH)),,$(error SIM_ARITH must be fast or hw)))
 SIM_SRCS = $(MEMIMAGE) $(HLS_UNITS) $(CYCLE) $(REF) $(CLI)
 
+# render --capture-unit-io records the units' calls through linker wrappers (tb/cli/capture.c)
+comma := ,
+CAPTURE_WRAP := $(addprefix -Wl$(comma)--wrap=,xform_point xform_vector isect_unit_transformed trav_node_split)
+
 # per-format objects: everything that depends on the fp24 parameters
 fp_objs = $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(HLS_FP24) $(TB_FP))
 fmt_objs = $(call fp_objs,$(1)) $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(MEMIMAGE) $(HLS_UNITS) $(CYCLE) $(REF))
@@ -87,7 +91,7 @@ $(BUILD)/obj/$(1)/%.o: %.c
 $(BUILD)/w/$(1)/saarcor: $(call fmt_objs,$(1)) $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(CLI)) $(HOST_OBJS)
 	@mkdir -p $$(@D)
 	@echo "  LD    $$@"
-	$(Q)$$(CC) $$(SANFLAGS) $$^ -o $$@ $$(LDLIBS)
+	$(Q)$$(CC) $$(SANFLAGS) $$^ -o $$@ $$(CAPTURE_WRAP) $$(LDLIBS)
 
 $(BUILD)/w/$(1)/test_f24: $(BUILD)/obj/$(1)/tests/test_f24.o $(call fp_objs,$(1))
 	@mkdir -p $$(@D)

@@ -2,6 +2,7 @@
 #include "trace.h"
 
 #include "isect_unit.h"
+#include "trav_node.h"
 #include "xform_unit.h"
 
 #define MI_NODE_LEAF 3u /* docs/memory-image.md: kd node word 0 = child << 2 | axis, or count << 2 | 3 */
@@ -97,39 +98,21 @@ walker_copy:
     }
 }
 
-/* Child intervals of one ray at an inner node: near = [tn, min(tf, ts)], far = [max(tn, ts), tf]. */
-static void split_ray(const trav_entry *e, int i, f24_t ts, int near_is_left, trav_entry *l, trav_entry *r)
-{
-    trav_entry *nearc = near_is_left ? l : r, *farc = near_is_left ? r : l;
-    nearc->tn[i] = e->tn[i];
-    nearc->tf[i] = f24_min(e->tf[i], ts);
-    farc->tn[i] = f24_max(e->tn[i], ts);
-    farc->tf[i] = e->tf[i];
-    if (f24_le(l->tn[i], l->tf[i]))
-        l->mask |= 1u << i;
-    if (f24_le(r->tn[i], r->tf[i]))
-        r->mask |= 1u << i;
-}
-
-/* An inner node: both children for the rays that need them; the far side of the packet's first
- * ray waits on the stack. */
+/* An inner node: both children for the rays that need them (trav_node_split); the far side of
+ * the packet's first ray waits on the stack. */
 static void walker_split(trav_walker *w, uint32_t w0, f24_t split, const f24_vec3 o[], const f24_vec3 d[])
 {
-    const trav_entry *e = &w->cur;
     const uint32_t axis = w0 & 3u, child = w0 >> 2;
-    trav_entry l = { child, 0, { 0 }, { 0 } }, r = { child + 1, 0, { 0 }, { 0 } };
-    int first_near_left = -1;
-split_rays:
-    for (int i = 0; i < TRACE_PACKET; i++) {
-        if (!bit(e->mask, i))
-            continue;
-        const f24_t dk = axis_of(d[i], axis);
-        const f24_t ts = f24_div(f24_sub(split, axis_of(o[i], axis)), dk);
-        const int near_left = !f24_sign(dk);
-        if (first_near_left < 0)
-            first_near_left = near_left;
-        split_ray(e, i, ts, near_left, &l, &r);
-    }
+    trav_entry l, r;
+    uint32_t near_left;
+    trav_node_split(&w->cur, axis, split, o, d, &l, &r, &near_left);
+    l.node = child;
+    r.node = child + 1;
+    int first = 0;
+first_ray:
+    while (first < TRACE_PACKET - 1 && !bit(w->cur.mask, first))
+        first++;
+    const uint32_t first_near_left = bit(near_left, first);
     if (l.mask && r.mask && w->sp < TRACE_STACK) {
         w->stack[w->sp++] = first_near_left ? r : l;
         w->cur = first_near_left ? l : r;

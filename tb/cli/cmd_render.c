@@ -16,6 +16,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "capture.h"
 #include "cli.h"
 #include "cycle_opts.h"
 #include "f24_fast.h"
@@ -160,6 +161,9 @@ static int usage(void)
            "  --stats FILE       counters as JSON: rays by kind, traversal steps, leaves, list entries,\n"
            "                     mailbox skips, transformations, intersections, memory words read; in\n"
            "                     cycle mode also the timing (\"cycle\": cycles, fps, usage, caches, ...)\n"
+           "  --capture-unit-io DIR  record the transformation, intersection and traversal-node\n"
+           "                     transactions as hex vectors for the RTL co-simulation (DIR/xform.hex,\n"
+           "                     isect.hex, trav.hex; at most --capture-limit N per unit, default 100000)\n"
            "  --frame N          frame N of the animation at --fps (time N / fps), to -o\n"
            "  --frames A:B       frames A..B of the animation at --fps (default 30) to OUT_NNNN.png (and\n"
            "                     AOV/stats files numbered alike), rebuilding per frame only what changed\n\n%s\n%s",
@@ -176,6 +180,8 @@ typedef struct {
     int cycle;       /* --mode cycle */
     cycle_config cc;
     cycle_sim *sim;  /* kept across the frames of a sequence (warm caches) */
+    const char *capture; /* --capture-unit-io DIR */
+    uint64_t capture_limit;
 } render_opts;
 
 /* out.png -> out_0007.png for frame sequences. */
@@ -425,12 +431,13 @@ int cmd_render(int argc, char **argv)
         { "fps", required_argument, NULL, 'r' }, { "frame", required_argument, NULL, 'f' }, { "aov", required_argument, NULL, 'a' },
         { "max-depth", required_argument, NULL, 'd' }, { "no-shadows", no_argument, NULL, 'S' },
         { "precision", required_argument, NULL, 'p' }, { "mode", required_argument, NULL, 'm' },
+        { "capture-unit-io", required_argument, NULL, 'C' }, { "capture-limit", required_argument, NULL, 'L' },
         CYCLE_LONG_OPTIONS, { "help", no_argument, NULL, 'h' }, { 0, 0, 0, 0 }
     };
     scene_opts o;
     const long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
     render_opts ro = { "render.png", NULL, NULL, ncpu > 0 && ncpu < 256 ? (uint32_t)ncpu : 1, 0, 0, 0, 0, 30.0,
-                       { SHADE_DEFAULT_DEPTH, 1 }, 0, { 0 }, NULL };
+                       { SHADE_DEFAULT_DEPTH, 1 }, 0, { 0 }, NULL, NULL, 100000 };
     int c, prec_e = F24_EXP_BITS, prec_m = F24_MAN_BITS;
     scene_opts_default(&o);
     cycle_config_default(&ro.cc);
@@ -473,6 +480,12 @@ int cmd_render(int argc, char **argv)
             ro.cfg.max_depth = (uint32_t)v;
             break;
         case 'S': ro.cfg.shadows = 0; break;
+        case 'C': ro.capture = optarg; break;
+        case 'L':
+            if (!cli_parse_u64(optarg, 1, 100000000, &v))
+                return cli_usage_error("render", "bad --capture-limit '%s' (1..1e8)", optarg);
+            ro.capture_limit = v;
+            break;
         case 'm':
             if (strcmp(optarg, "functional") != 0 && strcmp(optarg, "cycle") != 0)
                 return cli_usage_error("render", "bad --mode '%s' (functional or cycle)", optarg);
@@ -510,6 +523,12 @@ int cmd_render(int argc, char **argv)
         return SAARCOR_EXIT_INPUT;
     }
     ro.cc.host_threads = ro.threads;
+    if (ro.capture && capture_start(ro.capture, ro.capture_limit, err, sizeof err) != 0) {
+        cli_error("render", "--capture-unit-io: %s", err);
+        mi_free(b);
+        scene_free(&s);
+        return SAARCOR_EXIT_INPUT;
+    }
     if (ro.cycle && !(ro.sim = cycle_create(&ro.cc))) {
         cli_error("render", "out of memory for the cycle model");
         mi_free(b);
@@ -532,6 +551,17 @@ int cmd_render(int argc, char **argv)
         rc = render_frame(b, &s, &ro, f, o.scene);
     }
     cycle_free(ro.sim);
+    if (ro.capture) {
+        uint64_t n[3];
+        capture_counts(n);
+        if (capture_stop() != 0 && rc == SAARCOR_EXIT_OK) {
+            cli_error("render", "--capture-unit-io: writing the vectors in '%s' failed", ro.capture);
+            rc = SAARCOR_EXIT_INPUT;
+        } else {
+            printf("captured unit transactions in %s: xform %llu, isect %llu, trav %llu\n", ro.capture,
+                   (unsigned long long)n[0], (unsigned long long)n[1], (unsigned long long)n[2]);
+        }
+    }
     mi_free(b);
     scene_free(&s);
     return rc;

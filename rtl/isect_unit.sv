@@ -1,0 +1,66 @@
+// isect_unit: the unit-triangle intersection unit (paper section 2.1; hls/units/isect_unit.c).
+// On a ray already in unit-triangle space: t = -O'z / D'z, u = O'x + t D'x, v = O'y + t D'y,
+// hit when u >= 0, v >= 0, u + v <= 1 and tmin <= t < tmax; D'z is the cosine output.
+// Datapath: 1 divider, 2 multipliers, 3 adders (Table 2), 5 comparators. Latency LATENCY
+// (default: divider 6 + multiplier 3 + adder 3 + adder 3 + comparator 1 = 16), one ray per
+// cycle (II = 1). Handshake: valid/ready.
+module isect_unit #(
+  parameter int E = 7,
+  parameter int M = 16,
+  parameter int LATENCY = 16
+) (
+  input  logic                 clk_i,
+  input  logic                 rst_ni,
+  input  logic                 valid_i,
+  output logic                 ready_o,
+  input  logic [3*(E+M+1)-1:0] o_i,
+  input  logic [3*(E+M+1)-1:0] d_i,
+  input  logic [E+M:0]         tmin_i,
+  input  logic [E+M:0]         tmax_i,
+  output logic                 valid_o,
+  input  logic                 ready_i,
+  output logic                 hit_o,
+  output logic [E+M:0]         t_o,
+  output logic [E+M:0]         u_o,
+  output logic [E+M:0]         v_o,
+  output logic [E+M:0]         cos_o
+);
+  localparam int W = 1 + E + M;
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic nc_lt_o [64], nc_le_o [64], nc_eq_o [64], nc_unordered_o [64];
+  logic [E+M:0] nc_min_o [64], nc_max_o [64]; // comparator outputs this datapath does not use
+  logic [3:0] f_u, f_v, f_uv, f_tmin, f_tmax; // {unordered, eq, le, lt}: le and lt are used
+  /* verilator lint_on UNUSEDSIGNAL */
+  localparam int BIAS = (1 << (E - 1)) - 1;
+  localparam logic [W-1:0] ONE = {1'b0, E'(BIAS), {M{1'b0}}};
+  logic [W-1:0] oz_neg, t, tdx, tdy, u, v, uv;
+  logic hit;
+
+  assign oz_neg = o_i[2*W +: W] ^ {1'b1, {(W-1){1'b0}}};
+  f24_div_core #(.E(E), .M(M)) u_t (.a_i(oz_neg), .b_i(d_i[2*W +: W]), .res_o(t));
+  f24_mul_core #(.E(E), .M(M)) u_mx (.a_i(t), .b_i(d_i[0 +: W]), .res_o(tdx));
+  f24_mul_core #(.E(E), .M(M)) u_my (.a_i(t), .b_i(d_i[W +: W]), .res_o(tdy));
+  f24_add_core #(.E(E), .M(M)) u_u (.a_i(o_i[0 +: W]), .b_i(tdx), .sub_i(1'b0), .res_o(u));
+  f24_add_core #(.E(E), .M(M)) u_v (.a_i(o_i[W +: W]), .b_i(tdy), .sub_i(1'b0), .res_o(v));
+  f24_add_core #(.E(E), .M(M)) u_uv (.a_i(u), .b_i(v), .sub_i(1'b0), .res_o(uv));
+  // comparator flags {unordered, eq, le, lt}
+  f24_cmp_core #(.E(E), .M(M)) u_c0 (.a_i('0), .b_i(u), .lt_o(f_u[0]), .le_o(f_u[1]), .eq_o(f_u[2]),
+                                     .unordered_o(f_u[3]), .min_o(nc_min_o[0]), .max_o(nc_max_o[1]));
+  f24_cmp_core #(.E(E), .M(M)) u_c1 (.a_i('0), .b_i(v), .lt_o(f_v[0]), .le_o(f_v[1]), .eq_o(f_v[2]),
+                                     .unordered_o(f_v[3]), .min_o(nc_min_o[2]), .max_o(nc_max_o[3]));
+  f24_cmp_core #(.E(E), .M(M)) u_c2 (.a_i(uv), .b_i(ONE), .lt_o(f_uv[0]), .le_o(f_uv[1]), .eq_o(f_uv[2]),
+                                     .unordered_o(f_uv[3]), .min_o(nc_min_o[4]), .max_o(nc_max_o[5]));
+  f24_cmp_core #(.E(E), .M(M)) u_c3 (.a_i(tmin_i), .b_i(t), .lt_o(f_tmin[0]), .le_o(f_tmin[1]), .eq_o(f_tmin[2]),
+                                     .unordered_o(f_tmin[3]), .min_o(nc_min_o[6]), .max_o(nc_max_o[7]));
+  f24_cmp_core #(.E(E), .M(M)) u_c4 (.a_i(t), .b_i(tmax_i), .lt_o(f_tmax[0]), .le_o(f_tmax[1]), .eq_o(f_tmax[2]),
+                                     .unordered_o(f_tmax[3]), .min_o(nc_min_o[8]), .max_o(nc_max_o[9]));
+  assign hit = f_u[1] && f_v[1] && f_uv[1] && f_tmin[1] && f_tmax[0];
+
+  logic en;
+  assign en = ready_i || !valid_o;
+  assign ready_o = en;
+  f24_pipe #(.W(1 + 4 * W), .STAGES(LATENCY)) u_pipe (
+    .clk_i(clk_i), .rst_ni(rst_ni), .en_i(en), .valid_i(valid_i), .data_i({hit, t, u, v, d_i[2*W +: W]}),
+    .valid_o(valid_o), .data_o({hit_o, t_o, u_o, v_o, cos_o})
+  );
+endmodule
