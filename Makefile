@@ -9,6 +9,9 @@
 #                   bench-accuracy: fp24 images and hits against the double-precision reference;
 #                   bench-cycle: the cycle model beside the paper's Tables 3 and 4, sweeps, simulator speed)
 #   make widths     build build/w/<format>/saarcor for every tested fp24 format
+#   make rtl-test   Verilator co-simulation of rtl/ against the C model (operators at 6 formats with
+#                   10^6 vectors each, units on random and captured vectors), lint
+#   make synth      Yosys synthesis figures -> docs/synth.md
 # Variables: BUILD (output folder), SAN=1 (sanitizers), V=1 (show commands), VERIFY_N,
 #   SIM_ARITH=fast|hw: arithmetic of the simulator's units (default fast: the host fast path of
 #   tb/fp/f24_fast.h; hw: the integer hardware reference; the same bits, make test checks it).
@@ -128,7 +131,7 @@ $(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS) $(call fmt_objs,$
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
 
-.PHONY: all widths deps run test unit-tests test-programs asan verify-fp bench bench-fp bench-build bench-render bench-accuracy bench-cycle rtl-lint rtl-test clean
+.PHONY: all widths deps run test unit-tests test-programs asan verify-fp bench bench-fp bench-build bench-render bench-accuracy bench-cycle rtl-lint rtl-test synth clean
 all: $(BUILD)/saarcor $(BUILD)/w/e8m23/saarcor
 widths: $(foreach f,$(FORMATS),$(BUILD)/w/$(f)/saarcor)
 
@@ -157,9 +160,10 @@ asan:
 test: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) test-programs
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(BUILD)/hw SIM_ARITH=hw $(BUILD)/hw/saarcor
+	@$(MAKE) --no-print-directory $(BUILD)/rtl/$(DEFAULT_FMT)/tb_f24_ops $(BUILD)/rtl/$(DEFAULT_FMT)/tb_units
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 test-programs
 	@bash tests/run.sh --report $(BUILD)/test-report.txt \
-	  $(UNIT_TESTS) tests/test_cli.sh tests/test_golden.sh $(patsubst $(BUILD)/%,build/asan/%,$(UNIT_TESTS))
+	  $(UNIT_TESTS) tests/test_cli.sh tests/test_golden.sh tests/test_rtl.sh $(patsubst $(BUILD)/%,build/asan/%,$(UNIT_TESTS))
 
 # ---- RTL: Verilator co-simulation against the C model, lint, synthesis -------------------------
 RTL := $(sort $(wildcard rtl/*.sv))
@@ -191,10 +195,23 @@ rtl-lint:
 
 # every operator at every format: edge set + RTL_N random vectors per operation class (+ golden hex)
 rtl-test: deps rtl-lint
-	@$(MAKE) --no-print-directory $(foreach f,$(RTL_FORMATS),$(BUILD)/rtl/$(f)/tb_f24_ops)
-	@for f in $(RTL_FORMATS); do \
-	  extra=; [ $$f = $(DEFAULT_FMT) ] && extra="tests/golden/f24/add.hex tests/golden/f24/sub.hex tests/golden/f24/mul.hex tests/golden/f24/div.hex"; \
-	  $(BUILD)/rtl/$$f/tb_f24_ops -n $(RTL_N) $$extra || exit 1; done
+	@$(MAKE) --no-print-directory all $(foreach f,$(RTL_FORMATS),$(BUILD)/rtl/$(f)/tb_f24_ops $(BUILD)/rtl/$(f)/tb_units)
+	@mkdir -p $(BUILD)/rtl/capture
+	@set -o pipefail; for f in $(RTL_FORMATS); do \
+	  extra=; [ $$f = $(DEFAULT_FMT) ] && extra=$$(ls tests/golden/f24/{add,sub,mul,div,lt,le,eq,min,max}.hex); \
+	  $(BUILD)/rtl/$$f/tb_f24_ops -n $(RTL_N) $$extra || exit 1; done | tee $(BUILD)/rtl/ops.log
+	@set -o pipefail; for s in room terrain plants; do \
+	  for f in $(DEFAULT_FMT) e8m23; do \
+	    $(BUILD)/w/$$f/saarcor render $$s -o $(BUILD)/rtl/$$s.$$f.png --width 128 --height 96 \
+	      --capture-unit-io $(BUILD)/rtl/capture/$$s.$$f --capture-limit 200000 >/dev/null || exit 1; \
+	    $(BUILD)/rtl/$$f/tb_units -n 0 --capture $(BUILD)/rtl/capture/$$s.$$f || exit 1; done; done | tee $(BUILD)/rtl/units.log
+	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_units -n $(RTL_N) || exit 1; done \
+	  | tee -a $(BUILD)/rtl/units.log
+
+# Yosys synthesis of every module (synth_xilinx; synth_ice40 + nextpnr-ice40 for the operators;
+# the operators and the intersection unit across mantissa widths) -> docs/synth.md
+synth: deps
+	python3 scripts/synth.py
 
 # ---- verification and benchmarks -----------------------------------------------------------
 VERIFY_N ?= 10000000

@@ -16,7 +16,7 @@ const char CYCLE_OPTIONS_HELP[] =
     "  --line-bytes N,L,M    their line sizes (default 16,16,48)\n"
     "  --mem-latency C       memory latency in cycles after a transfer (default 10)\n"
     "  --mem-mbps B          memory port bandwidth per pipe in MB/s (default 1000)\n"
-    "  --unit-latency LIST   unit pipeline latencies, e.g. rgs=12,xform=10,trav=12,list=3,isect=14\n"
+    "  --unit-latency LIST   unit pipeline latencies, e.g. rgs=12,xform=12,trav=11,list=3,isect=16\n"
     "  --tile N              tile edge in pixels handed out by the controller (even, default 16)\n";
 
 static const char *const unit_keys[UNIT_KINDS] = { "rgs", "xform", "trav", "list", "isect" };

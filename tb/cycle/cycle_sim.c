@@ -14,11 +14,13 @@ void cycle_config_default(cycle_config *c)
     memset(c, 0, sizeof *c);
     c->pipes = 1;
     c->threads_per_pipe = 32;
+    /* the RTL's latencies (rtl/xform_unit.sv 12, rtl/trav_node.sv 11, rtl/isect_unit.sv 16, from
+     * operator latencies add 3, mul 3, div 6, cmp 1); list and RGS have no RTL yet: estimates */
     c->latency[UNIT_RGS] = 12;
-    c->latency[UNIT_XFORM] = 10;
-    c->latency[UNIT_TRAV] = 12;
+    c->latency[UNIT_XFORM] = 12;
+    c->latency[UNIT_TRAV] = 11;
     c->latency[UNIT_LIST] = 3;
-    c->latency[UNIT_ISECT] = 14;
+    c->latency[UNIT_ISECT] = 16;
     c->tile = 16;
     c->epoch = 256;
     c->host_threads = 1;

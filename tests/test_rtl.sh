@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# RTL tests in make test (the short form of make rtl-test): verilator --lint-only -Wall is clean
+# for every module in rtl/; the fp24 operators match the C model bit for bit on the edge sets,
+# 10^5 random vectors and the golden hex vectors; the datapath units match on random vectors and
+# on transactions captured while rendering the room (saarcor render --capture-unit-io); the
+# benches catch a mutant (a rounder that never rounds ties to even). Prints cmocka-style lines.
+set -u
+cd "$(dirname "$0")/.."
+B=${BUILD:-build}
+BIN=$B/saarcor
+T=$(mktemp -d /tmp/saarcor-test-rtl-XXXXXX)
+trap 'rm -rf "$T"' EXIT
+fails=0
+
+run_case() { # name, function
+  echo "[ RUN      ] $1"
+  ( set -e; "$2" ) >"$T/case.log" 2>&1
+  if [[ $? -eq 0 ]]; then tail -1 "$T/case.log"; echo "[       OK ] $1"
+  else cat "$T/case.log"; echo "[  FAILED  ] $1"; fails=$((fails + 1)); fi
+}
+
+t_lint() {
+  for f in rtl/*.sv; do
+    verilator --lint-only -Wall rtl/*.sv --top-module "$(basename "$f" .sv)"
+  done
+  echo "verilator --lint-only -Wall: $(ls rtl/*.sv | wc -l) modules clean"
+}
+
+t_operators() {
+  "$B/rtl/e7m16/tb_f24_ops" -n 100000 tests/golden/f24/{add,sub,mul,div,lt,le,eq,min,max}.hex
+}
+
+t_units() {
+  "$BIN" render room -o "$T/room.png" --width 48 --height 32 --capture-unit-io "$T/cap" --capture-limit 20000 >/dev/null
+  "$B/rtl/e7m16/tb_units" -n 20000 --capture "$T/cap"
+}
+
+t_mutant_caught() { # the bench must fail on a wrong rounder
+  mkdir -p "$T/mut"
+  sed "s/kept_even = tie ? {kept\[M+1:1\], 1'b0} : kept;/kept_even = kept;/" rtl/f24_round_pack.sv >"$T/mut/f24_round_pack.sv"
+  ! cmp -s rtl/f24_round_pack.sv "$T/mut/f24_round_pack.sv"
+  local srcs=()
+  for f in rtl/*.sv; do [[ $f == rtl/f24_round_pack.sv ]] || srcs+=("$PWD/$f"); done
+  verilator --cc --exe --build -j 2 -Wno-fatal -GE=7 -GM=16 --top-module tb_f24_ops -Mdir "$T/mut/obj" \
+    -o "$T/mut/tb" "${srcs[@]}" "$T/mut/f24_round_pack.sv" "$PWD/rtl/tb/tb_f24_ops.sv" "$PWD/rtl/tb/tb_f24_ops.cpp" \
+    -CFLAGS "-DF24_EXP_BITS=7 -DF24_MAN_BITS=16 -I$PWD/hls/fp24 -I$PWD/hls/units -I$PWD/tb/fp" \
+    -LDFLAGS "$(ls "$PWD/$B"/obj/e7m16/hls/fp24/*.o "$PWD/$B"/obj/e7m16/tb/fp/*.o | tr '\n' ' ') -lmpfr -lgmp -lm" >/dev/null
+  if "$T/mut/tb" -n 20000 >"$T/mut/log"; then echo "the mutant rounder passed the bench"; return 1; fi
+  grep -c MISMATCH "$T/mut/log" | sed 's/^/mutant caught: /; s/$/ mismatch lines shown/'
+}
+
+run_case rtl_lint_clean t_lint
+run_case rtl_operators_match_c_model t_operators
+run_case rtl_units_match_c_model_and_capture t_units
+run_case rtl_bench_catches_mutant t_mutant_caught
+exit $((fails != 0))
