@@ -97,10 +97,55 @@ static void load_from_image(void **state)
     assert_int_equal(t.z, F(12));
 }
 
+/* xform_identity gives xform_point/xform_vector's bits for identities with signed zeros, on
+ * vectors of edge values (signed zeros, subnormals, Inf, NaN, extremes) and random values. */
+static void identity_shortcut(void **state)
+{
+    (void)state;
+    const f24_t edge[] = { 0, F24_SIGN_BIT, 1, F24_SIGN_BIT | 1, F24_MIN_NORMAL, F24_ONE, F24_ONE | F24_SIGN_BIT,
+                           F24_MAX_NORMAL, F24_POS_INF, F24_POS_INF | F24_SIGN_BIT, F24_DEFAULT_NAN, F(-3.25), F(1e-3) };
+    const int n_edge = sizeof edge / sizeof *edge;
+    uint64_t checked = 0;
+    for (uint32_t signs = 0; signs < 4096; signs += 37) { /* sign patterns of the 9 zeros (+1 walks them) */
+        f24_affine m;
+        for (int r = 0; r < 3; r++)
+            for (int c = 0; c < 4; c++) {
+                const uint32_t bit = (uint32_t)(4 * r + c);
+                m.m[r][c] = r == c ? F24_ONE : (signs >> bit & 1u ? F24_SIGN_BIT : (bit & 1u) ? 1u : 0u);
+            }
+        assert_true(xform_is_identity(&m));
+        for (int a = 0; a < n_edge; a++)
+            for (int b = 0; b < n_edge; b++)
+                for (int c = 0; c < n_edge; c++) {
+                    const f24_vec3 v = { edge[a], edge[b], edge[(c + (int)signs) % n_edge] };
+                    for (int point = 0; point < 2; point++) {
+                        const f24_vec3 want = point ? xform_point(&m, v) : xform_vector(&m, v);
+                        const f24_vec3 got = xform_identity(&m, v, point);
+                        assert_int_equal(got.x, want.x);
+                        assert_int_equal(got.y, want.y);
+                        assert_int_equal(got.z, want.z);
+                        checked++;
+                    }
+                }
+        for (int i = 0; i < 200; i++) {
+            const f24_vec3 v = { F(urand() - 0.5), F(urand() < 0.2 ? 0.0 : -urand()), F(1e3 * (urand() - 0.5)) };
+            const f24_vec3 got = xform_identity(&m, v, i & 1), want = i & 1 ? xform_point(&m, v) : xform_vector(&m, v);
+            assert_memory_equal(&got, &want, sizeof got);
+        }
+    }
+    f24_affine not_id = { { { F24_ONE, 0, 0, 0 }, { 0, F24_ONE, 0, 0 }, { 0, 0, F(0.5), 0 } } };
+    assert_false(xform_is_identity(&not_id));
+    not_id.m[2][2] = F24_ONE;
+    not_id.m[1][3] = F(1e-3);
+    assert_false(xform_is_identity(&not_id));
+    print_message("identity shortcut: %llu edge vectors equal\n", (unsigned long long)checked);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(exact_cases), cmocka_unit_test(summation_order), cmocka_unit_test(load_from_image),
+        cmocka_unit_test(identity_shortcut),
     };
     return cmocka_run_group_tests_name("xform_unit", tests, NULL, NULL);
 }

@@ -382,7 +382,7 @@ static void op_shadow_gen(rgs_block *b, unit_op *op, rgs_counters *c)
 {
     op_set(op, UNIT_XFORM, count_rays(b->shadow.active) + 1u, 0, c);
     c->rays[RAY_SHADOW] += count_rays(b->shadow.active);
-    trace_begin(&b->shadow, &b->trace);
+    trace_begin(&b->shadow, trace_flags_of(b->profile, 1), &b->trace);
     b->phase = RB_SHADOW_TRACE;
 }
 
@@ -420,6 +420,7 @@ scene_extent:
     b->phase = RB_GEN;
     b->packets = 0;
     b->n_lights = mem[H_LIGHTS] < MAX_LIGHTS ? mem[H_LIGHTS] : MAX_LIGHTS;
+    b->profile = trace_profile(mem);
     rgs_task t;
     rgs_primary(mem, x0, y0, &t.rays);
     t.depth = 0;
@@ -485,7 +486,7 @@ static void op_accumulate(const uint32_t *mem, const rgs_config *cfg, rgs_block 
     const surface *sf = b->sf;
     rgs_task refl, trans;
     const uint32_t depth = b->cur.depth + 1;
-    const int children = depth <= cfg->max_depth && depth <= RGS_MAX_DEPTH;
+    const int children = depth <= cfg->max_depth && depth <= RGS_MAX_DEPTH && !(b->profile & PROFILE_NO_SECONDARY);
     task_init(&refl, depth, RAY_REFLECTION);
     task_init(&trans, depth, RAY_TRANSMISSION);
     op_set(op, UNIT_RGS, at_least_one(count_rays(b->cur.rays.active)), 0, c);
@@ -503,8 +504,10 @@ accumulate:
             b->acc[i][k] = q_add(b->acc[i][k], q_mul(b->cur.weight[i][k], local));
         }
         if (sf[i].valid && children) {
+            const uint32_t spawned = refl.rays.active | trans.rays.active;
             spawn_children(mem, b, i, &sf[i], &refl, &trans);
-            b->children++;
+            if (!(b->profile & PROFILE_LIVE_CHILDREN) || ((refl.rays.active | trans.rays.active) != spawned))
+                b->children++; /* its T_R steps (the general pipeline runs them for every surface) */
         }
     }
     if (trans.rays.active)
@@ -523,7 +526,7 @@ static void next_packet(rgs_block *b)
     }
     b->cur = b->stack[--b->sp];
     b->packets++;
-    trace_begin(&b->cur.rays, &b->trace);
+    trace_begin(&b->cur.rays, trace_flags_of(b->profile, 0), &b->trace);
     b->phase = RB_TRACE;
 }
 

@@ -79,6 +79,7 @@ typedef struct {
     uint32_t acc[TRACE_PACKET][3];  /* Q12 pixel colours */
     f24_t eps;                      /* ray offset e (docs/shading.md) */
     uint32_t phase, n_lights, light, children;
+    uint32_t profile;               /* the image's PROFILE_* skip bits (trace.h) */
     surface sf[TRACE_PACKET];       /* the surfaces of cur */
     uint32_t k_of[TRACE_PACKET];    /* their highlight exponents */
     uint32_t diffuse[TRACE_PACKET][3], highlight[TRACE_PACKET][3]; /* light gathered so far */

@@ -10,7 +10,7 @@
 /* Memory-image layout constants used by the core (docs/memory-image.md). */
 enum {
     H_OBJECTS = 6, H_INSTANCES = 7, H_TOP_NODES = 11, H_SCENE_BOUNDS = 12, H_REGIONS = 18,
-    R_OBJECTS = 5, R_INSTANCES = 8, R_TOP_NODES = 9, R_TOP_LISTS = 10,
+    R_OBJECTS = 5, R_CAMERA = 6, R_INSTANCES = 8, R_TOP_NODES = 9, R_TOP_LISTS = 10, CAM_PROFILE = 3,
     OBJ_WORDS = 16, O_NODES = 0, O_LISTS = 1, O_TRIANGLES = 2, O_BOUNDS = 8,
     INST_WORDS = 16, INST_READ = 13, OBJ_READ = 14, TRI_WORDS = 12,
 };
@@ -125,11 +125,12 @@ first_ray:
  * split, or report a leaf (its list range). Afterwards, if the entry is used up, the next one is
  * popped; !w->have_cur then means the tree is done. Returns 1 at a leaf with entries. */
 static int walker_step(trav_walker *w, const uint32_t *mem, const f24_vec3 o[], const f24_vec3 d[], const f24_t best_t[],
-                       unit_op *op, trace_counters *c)
+                       uint32_t alive, unit_op *op, trace_counters *c)
 {
     trav_entry *e = &w->cur;
     int leaf = 0;
     op_set(op, UNIT_TRAV, 1);
+    e->mask &= alive; /* rays done (any hit found) leave the packet */
 prune:
     for (int i = 0; i < TRACE_PACKET; i++)
         if (bit(e->mask, i) && f24_lt(best_t[i], e->tn[i]))
@@ -168,6 +169,10 @@ static void route_after_list(trace_state *s)
 route_levels:
     for (int guard = 0; guard < 2; guard++) {
         const trav_walker *w = &s->walk[s->level];
+        if (!s->alive) {
+            s->phase = TP_DONE; /* every ray has its hit (any-hit tracing) */
+            return;
+        }
         if (w->k < w->leaf_count) {
             s->phase = TP_LIST;
             return;
@@ -191,7 +196,7 @@ static uint32_t list_need(trace_state *s, uint32_t key, trace_counters *c)
     uint32_t need = 0;
 mailbox_rays:
     for (int i = 0; i < TRACE_PACKET; i++) {
-        if (!bit(s->walk[s->level].leaf_mask, i))
+        if (!bit(s->walk[s->level].leaf_mask & s->alive, i))
             continue;
         if (mailbox_seen(&s->box[s->level][i], key))
             c->mailbox_skips++;
@@ -221,8 +226,36 @@ same_origin:
 
 /* ---- the operations ------------------------------------------------------------------------ */
 
+/* The one object of a PROFILE_SINGLE_OBJECT scene: the packet goes straight to its
+ * transformation, as the one-leaf top-level tree would send it. With PROFILE_IDENTITY that
+ * transformation is wiring (xform_identity gives the bits xform_point/xform_vector give for an
+ * identity whose zeros may be signed), the instance and object descriptor are read with the
+ * scene clip, and the packet goes on to the object's bounds (path b). The top level holds no further entries, so the packet is done when
+ * the object is. */
+static void enter_single_object(const uint32_t *mem, trace_state *s, uint32_t mask, unit_op *op, trace_counters *c)
+{
+    const uint32_t ia = region_start(mem, R_INSTANCES);
+    s->inst = mem[region_start(mem, R_TOP_LISTS)];
+    s->need = mask;
+    s->walk[0].leaf_count = s->walk[0].k = 0;
+    if (!(s->flags & TRACE_IDENTITY)) {
+        s->phase = TP_INST_XFORM;
+        return;
+    }
+    const f24_affine w2o = f24_affine_load(mem, ia + INST_WORDS * s->inst);
+    s->obj = region_start(mem, R_OBJECTS) + OBJ_WORDS * mem[ia + INST_WORDS * s->inst + 12];
+    op_read(op, c, MEM_MATRICES, ia + INST_WORDS * s->inst, INST_READ); /* the signs of its zeros */
+    op_read(op, c, MEM_MATRICES, s->obj, OBJ_READ);
+identity_rays:
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        s->o[i] = xform_identity(&w2o, s->rays.o[i], 1);
+        s->d[i] = xform_identity(&w2o, s->rays.d[i], 0);
+    }
+    s->phase = TP_INST_CLIP;
+}
+
 /* Traversal unit: clip the packet to the scene bounds; rays that miss them never enter traversal. */
-static void op_scene_clip(const uint32_t *mem, trace_state *s, unit_op *op)
+static void op_scene_clip(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
 {
     f24_t tn[TRACE_PACKET], tf[TRACE_PACKET];
     uint32_t mask = s->rays.active;
@@ -240,6 +273,10 @@ scene_rays:
         s->phase = TP_DONE;
         return;
     }
+    if (s->flags & TRACE_SKIP_TOP) {
+        enter_single_object(mem, s, mask, op, c);
+        return;
+    }
     walker_start(&s->walk[0], region_start(mem, R_TOP_NODES), region_start(mem, R_TOP_LISTS), mask, tn, tf);
     s->phase = TP_WALK;
 }
@@ -249,7 +286,7 @@ static void op_walk(const uint32_t *mem, trace_state *s, unit_op *op, trace_coun
 {
     const int top = s->level == 0;
     trav_walker *w = &s->walk[s->level];
-    walker_step(w, mem, top ? s->rays.o : s->o, top ? s->rays.d : s->d, s->best_t, op, c);
+    walker_step(w, mem, top ? s->rays.o : s->o, top ? s->rays.d : s->d, s->best_t, s->alive, op, c);
     route_after_list(s);
 }
 
@@ -350,14 +387,28 @@ isect_rays:
         if (r.hit) {
             s->best_t[i] = r.t;
             s->hits[i] = (hit_record){ s->inst, s->tri, r.t, r.u, r.v, r.cos_n };
+            if (s->flags & TRACE_ANY_HIT)
+                s->alive &= ~(1u << i);
         }
     }
     route_after_list(s);
 }
 
-void trace_begin(const ray_packet *rays, trace_state *s)
+uint32_t trace_profile(const uint32_t *mem) { return mem[region_start(mem, R_CAMERA) + CAM_PROFILE]; }
+
+uint32_t trace_flags_of(uint32_t profile, int shadow)
+{
+    return (profile & PROFILE_SINGLE_OBJECT ? TRACE_SKIP_TOP : 0u) |
+           ((profile & (PROFILE_SINGLE_OBJECT | PROFILE_IDENTITY)) == (PROFILE_SINGLE_OBJECT | PROFILE_IDENTITY)
+                ? TRACE_IDENTITY : 0u) |
+           (shadow && (profile & PROFILE_ANY_HIT) ? TRACE_ANY_HIT : 0u);
+}
+
+void trace_begin(const ray_packet *rays, uint32_t flags, trace_state *s)
 {
     s->rays = *rays;
+    s->flags = flags;
+    s->alive = rays->active;
     s->phase = TP_SCENE_CLIP;
     s->level = 0;
     s->walk[0].have_cur = s->walk[1].have_cur = 0;
@@ -372,7 +423,7 @@ init_rays:
 int trace_step(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
 {
     switch (s->phase) {
-    case TP_SCENE_CLIP: op_scene_clip(mem, s, op); return 1;
+    case TP_SCENE_CLIP: op_scene_clip(mem, s, op, c); return 1;
     case TP_WALK: op_walk(mem, s, op, c); return 1;
     case TP_LIST: op_list(mem, s, op, c); return 1;
     case TP_INST_XFORM: op_inst_xform(mem, s, op, c); return 1;
@@ -387,7 +438,7 @@ void trace_packet(const uint32_t *mem, const ray_packet *rays, hit_record hits[T
 {
     trace_state s;
     unit_op op;
-    trace_begin(rays, &s);
+    trace_begin(rays, trace_flags_of(trace_profile(mem), 0), &s);
 packet_ops:
     for (uint32_t n = 0; n < TRACE_STEP_LIMIT && trace_step(mem, &s, &op, c); n++)
         ;

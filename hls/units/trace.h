@@ -97,9 +97,27 @@ typedef struct {
     uint32_t next;
 } trace_mailbox;
 
+/* The scene profile's skip bits (memory image, camera word 3; docs/memory-image.md): what the host
+ * proved this scene does not need, so that the device skips it with the same image. 0 is the
+ * general pipeline. */
+enum {
+    PROFILE_SINGLE_OBJECT = 1, /* one instance, alone in a one-leaf top-level tree: rays go
+                                  straight to its transformation (no top-level traversal, no list) */
+    PROFILE_ANY_HIT = 2,       /* shadow rays stop at their first occluder */
+    PROFILE_NO_SECONDARY = 4,  /* no material reflects or transmits: no child rays to generate */
+    PROFILE_LIVE_CHILDREN = 8, /* T_R steps only for surfaces that spawn a child ray */
+    PROFILE_IDENTITY = 16,     /* with SINGLE_OBJECT: its transformation is the identity, skipped */
+    PROFILE_ALL = 31
+};
+
+/* How a packet is traced: the closest hit, or any hit (a ray is done at its first hit, and the
+ * packet drops it); TRACE_SKIP_TOP and TRACE_IDENTITY as PROFILE_SINGLE_OBJECT and _IDENTITY. */
+enum { TRACE_SKIP_TOP = 1, TRACE_ANY_HIT = 2, TRACE_IDENTITY = 4 };
+
 typedef struct {
     ray_packet rays;
     hit_record hits[TRACE_PACKET];
+    uint32_t flags, alive; /* TRACE_* bits; rays still being traced */
     f24_t best_t[TRACE_PACKET];
     uint32_t phase, level;             /* next operation; tree level 0 (top) or 1 (bottom) */
     trav_walker walk[2];
@@ -109,14 +127,20 @@ typedef struct {
     f24_affine tx;                     /* the current triangle's transformation */
 } trace_state;
 
-/* Starts tracing a packet (no unit operation yet). */
-void trace_begin(const ray_packet *rays, trace_state *s);
+/* The profile word of the memory image. */
+uint32_t trace_profile(const uint32_t *mem);
+
+/* The TRACE_* flags for a packet under the profile (shadow: a shadow packet, which needs any hit). */
+uint32_t trace_flags_of(uint32_t profile, int shadow);
+
+/* Starts tracing a packet with TRACE_* flags (no unit operation yet). */
+void trace_begin(const ray_packet *rays, uint32_t flags, trace_state *s);
 
 /* Performs the next operation and describes it in op; returns 0 (and performs nothing) when the
  * packet is done: the closest hits are in s->hits. */
 int trace_step(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c);
 
-/* Functional mode: the whole packet. */
+/* Functional mode: the whole packet, closest hits (skipping the top level if the profile says so). */
 void trace_packet(const uint32_t *mem, const ray_packet *rays, hit_record hits[TRACE_PACKET], trace_counters *c);
 
 #endif

@@ -18,3 +18,37 @@ static f24_vec3 xform_step(const f24_affine *m, f24_vec3 p, int with_translation
 f24_vec3 xform_point(const f24_affine *m, f24_vec3 p) { return xform_step(m, p, 1); }
 
 f24_vec3 xform_vector(const f24_affine *m, f24_vec3 v) { return xform_step(m, v, 0); }
+
+f24_vec3 xform_identity(const f24_affine *m, f24_vec3 v, int point)
+{
+    const f24_t c[3] = { v.x, v.y, v.z };
+    f24_t r[3];
+identity_rows:
+    for (int k = 0; k < 3; k++) {
+        int nan = f24_is_nan(c[k]);
+        uint32_t negative = point ? f24_sign(m->m[k][3]) : 1u; /* all terms of the zero sum are -0 */
+        for (int j = 0; j < 3; j++) {
+            if (j != k && f24_exp(c[j]) == F24_EXP_MAX)
+                nan = 1; /* 0 x Inf or 0 x NaN */
+            negative &= j == k ? f24_sign(c[j]) : f24_sign(m->m[k][j]) ^ f24_sign(c[j]);
+        }
+        if (nan)
+            r[k] = F24_DEFAULT_NAN;
+        else if (!f24_is_zero(c[k]))
+            r[k] = c[k];
+        else
+            r[k] = negative ? F24_SIGN_BIT : 0u;
+    }
+    const f24_vec3 out = { r[0], r[1], r[2] };
+    return out;
+}
+
+int xform_is_identity(const f24_affine *m)
+{
+    int id = 1;
+identity_check:
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 4; c++)
+            id &= r == c ? m->m[r][c] == F24_ONE : f24_is_zero(m->m[r][c]);
+    return id;
+}

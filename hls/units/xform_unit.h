@@ -20,4 +20,14 @@ f24_t xform_row(const f24_t row[4], f24_vec3 p, int with_translation);
 f24_vec3 xform_point(const f24_affine *m, f24_vec3 p);
 f24_vec3 xform_vector(const f24_affine *m, f24_vec3 v);
 
+/* What xform_point (point != 0) or xform_vector compute, bit for bit, for a map m that is the
+ * identity up to the signs of its zeros (1 on the diagonal, +-0 elsewhere), without an
+ * arithmetic operator: a nonzero component passes through; a zero one is the sum of zero
+ * products (and the translation), -0 only if all of them are -0; a row that multiplies Inf or NaN
+ * by 0 is NaN. In hardware: sign logic and muxes (the profile's identity path, trace.h). */
+f24_vec3 xform_identity(const f24_affine *m, f24_vec3 v, int point);
+
+/* 1 if m is the identity up to the signs of its zeros. */
+int xform_is_identity(const f24_affine *m);
+
 #endif

@@ -7,6 +7,8 @@
  */
 #define _GNU_SOURCE /* clock_gettime, M_PI */
 #include "memimage.h"
+#include "mi_profile.h"
+#include "trace.h"
 #include "shading_model.h"
 
 #include <math.h>
@@ -65,6 +67,7 @@ void mi_params_default(mi_params *p)
     p->bottom.quantize = quantize;
     p->top.quantize = quantize;
     p->max_condition = 16777216.0; /* 2^24 */
+    p->skip = PROFILE_ALL;
 }
 
 static double seconds(void)
@@ -630,6 +633,9 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
         b->st.region_words[r] = (uint32_t)len[r];
         upload += written[r] ? len[r] * 4 : 0;
     }
+    mi_profile prof;
+    mi_profile_derive(w, &prof);
+    w[off[MI_R_CAMERA] + MI_CAM_PROFILE] = prof.skip & b->p.skip;
     b->st.frame_upload_bytes = upload;
     return 0;
 oom:

@@ -53,6 +53,9 @@ enum {
     MI_LIGHT_WORDS = 16,
 };
 
+/* Camera word 3: the scene profile's skip bits (PROFILE_* in hls/units/trace.h, mi_profile.h). */
+#define MI_CAM_PROFILE 3
+
 /* Object descriptor words. */
 enum {
     MI_O_NODES = 0, MI_O_LISTS, MI_O_TRIANGLES, MI_O_SHADING, MI_O_N_NODES, MI_O_N_LIST,
@@ -77,6 +80,8 @@ typedef struct {
     double eye[3], at[3], up[3], fov_degrees; /* vertical field of view */
     kd_params bottom, top;     /* tree parameters; top uses binned SAH */
     double max_condition;      /* triangles whose matrix condition number exceeds this are dropped */
+    uint32_t skip;             /* PROFILE_* bits the device may use where the scene profile allows
+                                  them (default all; 0: the general pipeline, render --general) */
 } mi_params;
 
 void mi_params_default(mi_params *p);

@@ -9,6 +9,7 @@
 
 #include "f24.h"
 #include "memimage.h"
+#include "mi_profile.h"
 
 typedef struct {
     const uint32_t *w;
@@ -168,13 +169,20 @@ static int check_records(checker *c)
     if (w[cam] > CAMERA_ORTHOGRAPHIC || w[cam + 1] == 0 || w[cam + 2] == 0 || w[cam + 1] > 65536 ||
         w[cam + 2] > 65536 || !finite_words(c, cam + 4, 12))
         return bad(c, "camera: bad kind, size or non-finite vectors");
+    if (check_tree(c, "top level", c->off[MI_R_TOP_NODES], w[MI_H_TOP_NODES], c->off[MI_R_TOP_LISTS],
+                   c->len[MI_R_TOP_LISTS], w[MI_H_INSTANCES]) != 0)
+        return -1;
+    mi_profile prof;
+    mi_profile_derive(w, &prof);
+    if (w[cam + MI_CAM_PROFILE] & ~prof.skip)
+        return bad(c, "camera: profile bits 0x%x claim what the scene needs (it allows 0x%x)", w[cam + MI_CAM_PROFILE],
+                   prof.skip);
     for (uint32_t i = 0; i < w[MI_H_LIGHTS]; i++) {
         const uint32_t at = c->off[MI_R_LIGHTS] + MI_LIGHT_WORDS * i;
         if (w[at] > LIGHT_SPOT || !finite_words(c, at + 1, 12))
             return bad(c, "light %u: bad kind or non-finite values", i);
     }
-    return check_tree(c, "top level", c->off[MI_R_TOP_NODES], w[MI_H_TOP_NODES], c->off[MI_R_TOP_LISTS],
-                      c->len[MI_R_TOP_LISTS], w[MI_H_INSTANCES]);
+    return 0;
 }
 
 int mi_validate(const uint32_t *words, uint32_t n_words, char *err, size_t errlen)

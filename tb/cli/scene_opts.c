@@ -99,6 +99,7 @@ int scene_opts_parse(scene_opts *o, const char *cmd, int c, const char *arg)
     case 14: return vector3(cmd, "up", arg, o->mi.up);
     case 15: return number(cmd, "fov", arg, 1, 179, &o->mi.fov_degrees);
     case 16: o->ground = 1; return 1;
+    case 17: o->mi.skip = 0; return 1;
     default: return 0;
     }
 }

@@ -22,7 +22,7 @@
     { "max-condition", required_argument, NULL, SCENE_OPT_BASE + 10 }, { "camera", required_argument, NULL, SCENE_OPT_BASE + 11 }, \
     { "eye", required_argument, NULL, SCENE_OPT_BASE + 12 }, { "at", required_argument, NULL, SCENE_OPT_BASE + 13 }, \
     { "up", required_argument, NULL, SCENE_OPT_BASE + 14 }, { "fov", required_argument, NULL, SCENE_OPT_BASE + 15 }, \
-    { "ground", no_argument, NULL, SCENE_OPT_BASE + 16 }
+    { "ground", no_argument, NULL, SCENE_OPT_BASE + 16 }, { "general", no_argument, NULL, SCENE_OPT_BASE + 17 }
 
 /* `info` also accepts the kd-tree depth as --max-depth (render and reference use that name for
  * the ray depth). */
@@ -44,7 +44,9 @@
     "  --kd-max-depth D      kd-tree depth limit (default 0: 8 + 1.3 log2 N)\n"                        \
     "  --leaf-size L         never split nodes with at most L primitives (default 1)\n"               \
     "  --top-bins N          bins of the top-level SAH (default 32)\n"                                 \
-    "  --max-condition K     drop triangles whose shape condition number exceeds K (default 2^24)\n"
+    "  --max-condition K     drop triangles whose shape condition number exceeds K (default 2^24)\n" \
+    "  --general             the general pipeline: ignore the scene profile (no any-hit shadow rays,\n" \
+    "                        no single-object shortcut, ...; same image, more work; saarcor profile)\n"
 
 typedef struct {
     const char *scene;   /* path or generator name */
