@@ -42,7 +42,7 @@ SANFLAGS := $(if $(filter 1,$(SAN)),$(SAN_ON))
 # no fused multiply-add: the fast fp24 path relies on one binary64 rounding per operation
 CFLAGS := -std=c11 $(WARN) $(OPT) -ffp-contract=off -fno-math-errno $(SANFLAGS) -MMD -MP
 CXXFLAGS := -std=c++17 $(WARN) $(OPT) $(SANFLAGS) -MMD -MP
-INCLUDES := -Ihls/fp24 -Ihls/units -Itb/fp -Itb/ref -Itb/cycle -Itb/cli -Ihost/image -Ihost/scene -Ihost/kdtree -Ihost/memimage -Iscenes
+INCLUDES := -Ihls -Ihls/fp24 -Ihls/units -Itb/fp -Itb/ref -Itb/cycle -Itb/cli -Ihost/image -Ihost/scene -Ihost/kdtree -Ihost/memimage -Iscenes
 LDLIBS := -lmpfr -lgmp -ltinygltf -lOpenImageIO -lOpenImageIO_Util -lstdc++ -lm
 TEST_LDLIBS := -lcmocka $(LDLIBS)
 
@@ -131,7 +131,7 @@ $(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS) $(call fmt_objs,$
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
 
-.PHONY: all widths deps run test unit-tests test-programs asan verify-fp bench bench-fp bench-build bench-render bench-accuracy bench-cycle rtl-lint rtl-test synth clean
+.PHONY: all widths deps run test unit-tests test-programs asan verify-fp hls-check bench bench-skip bench-fp bench-build bench-render bench-accuracy bench-cycle rtl-lint rtl-test synth clean
 all: $(BUILD)/saarcor $(BUILD)/w/e8m23/saarcor
 widths: $(foreach f,$(FORMATS),$(BUILD)/w/$(f)/saarcor)
 
@@ -163,7 +163,13 @@ test: deps
 	@$(MAKE) --no-print-directory $(BUILD)/rtl/$(DEFAULT_FMT)/tb_f24_ops $(BUILD)/rtl/$(DEFAULT_FMT)/tb_units
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 test-programs
 	@bash tests/run.sh --report $(BUILD)/test-report.txt \
-	  $(UNIT_TESTS) tests/test_cli.sh tests/test_golden.sh tests/test_rtl.sh $(patsubst $(BUILD)/%,build/asan/%,$(UNIT_TESTS))
+	  $(UNIT_TESTS) tests/test_cli.sh tests/test_golden.sh tests/test_rtl.sh tests/test_hls.sh $(patsubst $(BUILD)/%,build/asan/%,$(UNIT_TESTS))
+
+# ---- HLS readiness: hls/ alone in the synthesizable subset, per configuration -------------------
+# make hls-check: the general design and every hls/config_NAME.h; CONFIG=NAME: that one only
+HLS_CONFIGS := $(patsubst hls/config_%.h,%,$(wildcard hls/config_*.h))
+hls-check:
+	@python3 scripts/hls_summary.py $(if $(CONFIG),$(CONFIG),default $(HLS_CONFIGS))
 
 # ---- RTL: Verilator co-simulation against the C model, lint, synthesis -------------------------
 RTL := $(sort $(wildcard rtl/*.sv))
@@ -182,7 +188,7 @@ $(BUILD)/rtl/$(1)/tb_%: rtl/tb/tb_%.sv rtl/tb/tb_%.cpp $(RTL) $(call rtl_c_objs,
 	$(Q)verilator $(VERILATOR_FLAGS) -GE=$(call fmt_e,$(1)) -GM=$(call fmt_m,$(1)) --top-module tb_$$* \
 	  -Mdir $(BUILD)/rtl/$(1)/obj_$$* -o $(CURDIR)/$$@ $(addprefix $(CURDIR)/,$(RTL)) \
 	  $(CURDIR)/rtl/tb/tb_$$*.sv $(CURDIR)/rtl/tb/tb_$$*.cpp \
-	  -CFLAGS "$(call fmt_flags,$(1)) $(addprefix -I$(CURDIR)/,hls/fp24 hls/units tb/fp)" \
+	  -CFLAGS "$(call fmt_flags,$(1)) $(addprefix -I$(CURDIR)/,hls hls/fp24 hls/units tb/fp)" \
 	  -LDFLAGS "$(addprefix $(CURDIR)/,$(call rtl_c_objs,$(1))) -lmpfr -lgmp -lm" >$(BUILD)/rtl/$(1)/build_$$*.log 2>&1 \
 	  || { tail -30 $(BUILD)/rtl/$(1)/build_$$*.log; exit 1; }
 endef
@@ -263,7 +269,11 @@ bench-cycle: deps
 	@mkdir -p $(BUILD)/bench
 	python3 tests/bench/bench_cycle.py --out $(BUILD)/bench
 
-bench: bench-fp bench-build bench-render bench-accuracy bench-cycle
+bench-skip: deps
+	@$(MAKE) --no-print-directory all
+	python3 tests/bench/bench_skip.py --out $(BUILD)/bench
+
+bench: bench-fp bench-build bench-render bench-accuracy bench-cycle bench-skip
 
 $(BUILD)/bench_fp: $(BUILD)/obj/$(DEFAULT_FMT)/tests/bench/bench_fp.o $(call fp_objs,$(DEFAULT_FMT))
 	@echo "  LD    $@"

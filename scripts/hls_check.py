@@ -115,6 +115,38 @@ def call_graph(out):
     return errors, functions
 
 
+FP_OPS = {"add": ("f24_add", "f24_sub"), "mul": ("f24_mul",), "div": ("f24_div",), "sqrt": ("f24_sqrt",),
+          "cmp": ("f24_lt", "f24_le", "f24_eq", "f24_min", "f24_max")}
+
+
+def fp_call_sites(out):
+    """fp24 operator call sites in hls/units and hls/top: an upper bound of the operator instances
+    an HLS tool allocates before it shares them."""
+    sites = {k: 0 for k in FP_OPS}
+    for ci in glob.glob(os.path.join(out, "callgraph", "*.ci")):
+        for src, dst in re.findall(r'edge: \{ sourcename: "([^"]+)" targetname: "([^"]+)"', open(ci).read()):
+            if "fp24/" in src:
+                continue
+            for k, names in FP_OPS.items():
+                sites[k] += dst in names
+    return sites
+
+
+def state_bytes(config, out):
+    """Bytes of one thread's state (rgs_block: ray tree, packet, core state) in this configuration."""
+    src = os.path.join(out, "state_size.c")
+    with open(src, "w") as f:
+        f.write('#include <stdio.h>\n#include "rgs.h"\nint main(void) { printf("%zu %zu\\n", '
+                "sizeof(rgs_block), sizeof(trace_state)); return 0; }\n")
+    exe = os.path.join(out, "state_size")
+    pre = ["-include", config] if config else []
+    r = subprocess.run(["gcc"] + pre + INCLUDES + [src, "-o", exe], capture_output=True, text=True)
+    if r.returncode != 0:
+        return 0, 0
+    a, b = subprocess.run([exe], capture_output=True, text=True).stdout.split()
+    return int(a), int(b)
+
+
 def functions_of(text):
     """Splits a GCC tree dump into {function: section}."""
     parts = re.split(r"^;; Function ", text, flags=re.M)[1:]
@@ -181,10 +213,13 @@ def main():
     if objs:
         r = subprocess.run(["size", "-t"] + objs, capture_output=True, text=True)
         size = int(r.stdout.splitlines()[-1].split()[0]) if r.returncode == 0 else 0
+    sites = fp_call_sites(out) if objs else {}
+    block, core = state_bytes(config, out) if not args.src else (0, 0)
     with open(os.path.join(out, "report.txt"), "w") as f:
         f.write(f"config {name}\nsources {len(srcs)}\nfunctions {len(functions)}\nloops {loops}\n"
-                f"text_bytes {size}\nviolations {len(errors)}\n")
-        f.write("".join(fn + "\n" for fn in sorted(functions)))
+                f"text_bytes {size}\nthread_state_bytes {block}\ncore_state_bytes {core}\nviolations {len(errors)}\n")
+        f.write("".join(f"fp_{k} {v}\n" for k, v in sites.items()))
+        f.write("".join("function " + fn + "\n" for fn in sorted(functions)))
     status = "FAILED" if errors else "clean"
     print(f"hls-check [{name}]: {status}: {len(srcs)} sources, {len(functions)} functions in the call graph, "
           f"{loops} loops with static bounds checked, {size} bytes of code, {len(errors)} violations")

@@ -43,7 +43,7 @@ t_mutant_caught() { # the bench must fail on a wrong rounder
   for f in rtl/*.sv; do [[ $f == rtl/f24_round_pack.sv ]] || srcs+=("$PWD/$f"); done
   verilator --cc --exe --build -j 2 -Wno-fatal -GE=7 -GM=16 --top-module tb_f24_ops -Mdir "$T/mut/obj" \
     -o "$T/mut/tb" "${srcs[@]}" "$T/mut/f24_round_pack.sv" "$PWD/rtl/tb/tb_f24_ops.sv" "$PWD/rtl/tb/tb_f24_ops.cpp" \
-    -CFLAGS "-DF24_EXP_BITS=7 -DF24_MAN_BITS=16 -I$PWD/hls/fp24 -I$PWD/hls/units -I$PWD/tb/fp" \
+    -CFLAGS "-DF24_EXP_BITS=7 -DF24_MAN_BITS=16 -I$PWD/hls -I$PWD/hls/fp24 -I$PWD/hls/units -I$PWD/tb/fp" \
     -LDFLAGS "$(ls "$PWD/$B"/obj/e7m16/hls/fp24/*.o "$PWD/$B"/obj/e7m16/tb/fp/*.o | tr '\n' ' ') -lmpfr -lgmp -lm" >/dev/null
   if "$T/mut/tb" -n 20000 >"$T/mut/log"; then echo "the mutant rounder passed the bench"; return 1; fi
   grep -c MISMATCH "$T/mut/log" | sed 's/^/mutant caught: /; s/$/ mismatch lines shown/'

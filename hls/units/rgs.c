@@ -33,11 +33,6 @@ static uint32_t q_of(f24_t x)
     return i < 0 ? 0u : q_sat((uint32_t)i);
 }
 
-static uint32_t q_max3(const uint32_t c[3])
-{
-    const uint32_t m = c[0] > c[1] ? c[0] : c[1];
-    return m > c[2] ? m : c[2];
-}
 
 /* ---- fp24 vector helpers ------------------------------------------------------------------ */
 
@@ -68,6 +63,7 @@ f24_vec3 rgs_reflect(f24_vec3 d, f24_vec3 n)
     return xform_vector(&m, (f24_vec3){ F24_ONE, f24_neg(f24_add(c, c)), 0 });
 }
 
+#if SAARCOR_CFG_REFRACTION
 int rgs_refract(f24_vec3 d, f24_vec3 n, f24_t eta_r, f24_vec3 *out)
 {
     const f24_t c = dot3(n, d);
@@ -79,6 +75,7 @@ int rgs_refract(f24_vec3 d, f24_vec3 n, f24_t eta_r, f24_vec3 *out)
     *out = xform_vector(&m, (f24_vec3){ eta_r, mu, 0 });
     return 1;
 }
+#endif
 
 /* ---- ray generation -------------------------------------------------------------------------- */
 
@@ -108,7 +105,7 @@ block_pixels:
         const uint32_t x = x0 + (uint32_t)(i & 1), y = y0 + (uint32_t)(i >> 1);
         const f24_vec3 p = { f24_mul(f24_from_i32((int32_t)(2 * x + 1)), half),
                              f24_mul(f24_from_i32((int32_t)(2 * y + 1)), half), F24_ONE };
-        if (kind == 1) { /* orthographic: O + x U + y V, direction W */
+        if (SAARCOR_CFG_ORTHOGRAPHIC && kind == 1) { /* orthographic: O + x U + y V, direction W */
             const f24_vec3 p2 = { p.x, p.y, 0 };
             rp->o[i] = xform_point(&t, p2);
             rp->d[i] = (f24_vec3){ t.m[0][2], t.m[1][2], t.m[2][2] };
@@ -162,6 +159,7 @@ transpose:
     return xform_vector(&tr, n);
 }
 
+#if SAARCOR_CFG_TEXTURES
 /* Texel channel k of texture entry tex at wrapped coordinates, as Q12. */
 static uint32_t texel(const uint32_t *mem, const uint32_t *tex, uint32_t x, uint32_t y, int k)
 {
@@ -197,6 +195,7 @@ bilinear:
         out[k] = (top * (256u - fy) + bottom * fy + 32768u) >> 16;
     }
 }
+#endif
 
 /* Base colour at the hit: the material factor, times the texture if the material has one and
  * the object has texture coordinates. */
@@ -207,6 +206,7 @@ static void base_colour(const uint32_t *mem, uint32_t mat, uint32_t obj, const u
 base_factor:
     for (int k = 0; k < 3; k++)
         out[k] = q_of(mem[mat + (uint32_t)k]);
+#if SAARCOR_CFG_TEXTURES
     if (t >= mem[H_TEXTURES] || !(mem[obj + O_FLAGS] & HAS_TEXCOORDS))
         return;
     const f24_t c = f24_sub(f24_sub(F24_ONE, h->u), h->v);
@@ -218,6 +218,9 @@ base_factor:
 texture_modulate:
     for (int k = 0; k < 3; k++)
         out[k] = q_mul(out[k], tex[k]);
+#else
+    (void)t, (void)obj, (void)shade, (void)h, (void)words;
+#endif
 }
 
 static surface surface_at(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h)
@@ -251,9 +254,7 @@ tint:
 
 /* Material shader words (docs/memory-image.md): kd | kr << 13 | k << 26 and kt | ks << 13. */
 static uint32_t mat_kd(const uint32_t *m) { return m[M_SHADER0] & 0x1FFFu; }
-static uint32_t mat_kr(const uint32_t *m) { return m[M_SHADER0] >> 13 & 0x1FFFu; }
 static uint32_t mat_k(const uint32_t *m) { return m[M_SHADER0] >> 26 & 0xFu; }
-static uint32_t mat_kt(const uint32_t *m) { return m[M_SHADER1] & 0x1FFFu; }
 static uint32_t mat_ks(const uint32_t *m) { return m[M_SHADER1] >> 13 & 0x1FFFu; }
 
 /* ---- lights ----------------------------------------------------------------------------------- */
@@ -290,7 +291,7 @@ shadow_rays:
         f24_t w = f24_div(dot3(sf[i].n, sh->d[i]), dist);
         if (!f24_lt(0, w))
             continue; /* the light is behind the surface */
-        if (l[0] == 2) { /* spot: smooth step from the outer to the inner cone */
+        if (SAARCOR_CFG_SPOT_LIGHTS && l[0] == 2) { /* spot: smooth step from the outer to the inner cone */
             const f24_t c = f24_neg(cos_to(ldir, sh->d[i]));
             const f24_t f = f24_div(f24_sub(c, l[12]), f24_sub(l[11], l[12]));
             w = f24_mul(w, f24_max(0, f24_min(f, F24_ONE)));
@@ -369,7 +370,7 @@ static void op_light(const uint32_t *mem, const rgs_config *cfg, rgs_block *b, u
     light_packet(l, b->sf, b->eps, &b->shadow, b->diff, b->spec, b->k_of);
     light_colour(l, b->colour);
     op_set(op, UNIT_RGS, at_least_one(count_rays(b->shadow.active)), LIGHT_WORDS, c);
-    if (cfg->shadows && b->shadow.active) {
+    if (SAARCOR_CFG_SHADOWS && cfg->shadows && b->shadow.active) {
         b->phase = RB_SHADOW_GEN;
         return;
     }
@@ -377,6 +378,7 @@ static void op_light(const uint32_t *mem, const rgs_config *cfg, rgs_block *b, u
     b->light++;
 }
 
+#if SAARCOR_CFG_SHADOWS
 /* Transformation unit: shadow rays generated (T_shadow), n + 1 steps: they share the light. */
 static void op_shadow_gen(rgs_block *b, unit_op *op, rgs_counters *c)
 {
@@ -398,6 +400,7 @@ blocked_rays:
     b->light++;
     b->phase = RB_LIGHT;
 }
+#endif
 
 /* ---- the ray tree of a block ----------------------------------------------------------------- */
 
@@ -434,6 +437,16 @@ init_block:
     b->stack[b->sp++] = t;
 }
 
+#if SAARCOR_CFG_SECONDARY
+static uint32_t mat_kr(const uint32_t *m) { return m[M_SHADER0] >> 13 & 0x1FFFu; }
+static uint32_t mat_kt(const uint32_t *m) { return m[M_SHADER1] & 0x1FFFu; }
+
+static uint32_t q_max3(const uint32_t c[3])
+{
+    const uint32_t m = c[0] > c[1] ? c[0] : c[1];
+    return m > c[2] ? m : c[2];
+}
+
 /* The child rays of one surface: reflection (weight kr tint) and transmission (weight kt base;
  * refraction, straight transparency for eta = 1, or reflection on total internal reflection). */
 static void spawn_children(const uint32_t *mem, const rgs_block *b, int i, const surface *sf, rgs_task *refl,
@@ -453,17 +466,19 @@ child_weights:
     refl->rays.d[i] = mirror;
     if (q_max3(refl->weight[i]) >= MIN_WEIGHT)
         refl->rays.active |= 1u << i;
-    const f24_t ior = m[M_ETA], eta_r = sf->entering ? f24_div(F24_ONE, ior) : ior;
     trans->rays.o[i] = ahead;
-    if (f24_eq(ior, F24_ONE))
-        trans->rays.d[i] = sf->d; /* transparency: (1, 0, 0) through T_R */
-    else if (!rgs_refract(sf->d, sf->n, eta_r, &trans->rays.d[i])) {
+    trans->rays.d[i] = sf->d; /* transparency: (1, 0, 0) through T_R */
+#if SAARCOR_CFG_REFRACTION
+    const f24_t ior = m[M_ETA], eta_r = sf->entering ? f24_div(F24_ONE, ior) : ior;
+    if (!f24_eq(ior, F24_ONE) && !rgs_refract(sf->d, sf->n, eta_r, &trans->rays.d[i])) {
         trans->rays.o[i] = back; /* total internal reflection */
         trans->rays.d[i] = mirror;
     }
+#endif
     if (q_max3(trans->weight[i]) >= MIN_WEIGHT)
         trans->rays.active |= 1u << i;
 }
+#endif
 
 static void task_init(rgs_task *t, uint32_t depth, uint32_t kind)
 {
@@ -486,7 +501,9 @@ static void op_accumulate(const uint32_t *mem, const rgs_config *cfg, rgs_block 
     const surface *sf = b->sf;
     rgs_task refl, trans;
     const uint32_t depth = b->cur.depth + 1;
-    const int children = depth <= cfg->max_depth && depth <= RGS_MAX_DEPTH && !(b->profile & PROFILE_NO_SECONDARY);
+    const int children = SAARCOR_CFG_SECONDARY && depth <= cfg->max_depth && depth <= RGS_MAX_DEPTH &&
+                         !(b->profile & PROFILE_NO_SECONDARY);
+    (void)children; /* unused when the configuration has no secondary rays */
     task_init(&refl, depth, RAY_REFLECTION);
     task_init(&trans, depth, RAY_TRANSMISSION);
     op_set(op, UNIT_RGS, at_least_one(count_rays(b->cur.rays.active)), 0, c);
@@ -503,12 +520,14 @@ accumulate:
                               q_mul(q_mul(mat_ks(m), sf[i].tint[k]), b->highlight[i][k]));
             b->acc[i][k] = q_add(b->acc[i][k], q_mul(b->cur.weight[i][k], local));
         }
+#if SAARCOR_CFG_SECONDARY
         if (sf[i].valid && children) {
             const uint32_t spawned = refl.rays.active | trans.rays.active;
             spawn_children(mem, b, i, &sf[i], &refl, &trans);
             if (!(b->profile & PROFILE_LIVE_CHILDREN) || ((refl.rays.active | trans.rays.active) != spawned))
                 b->children++; /* its T_R steps (the general pipeline runs them for every surface) */
         }
+#endif
     }
     if (trans.rays.active)
         push(b, &trans, c);
@@ -556,12 +575,14 @@ route:
             }
             op_light(mem, cfg, b, op, c);
             return 1;
+#if SAARCOR_CFG_SHADOWS
         case RB_SHADOW_GEN: op_shadow_gen(b, op, c); return 1;
         case RB_SHADOW_TRACE:
             if (trace_step(mem, &b->trace, op, &c->trace))
                 return 1;
             shadow_done(b);
             break;
+#endif
         case RB_ACCUM: op_accumulate(mem, cfg, b, op, c); return 1;
         case RB_CHILD_GEN: /* transformation unit: T_R steps for the back, ahead and mirror vectors */
             op_set(op, UNIT_XFORM, 3 * b->children, 0, c);

@@ -30,9 +30,10 @@
 #ifndef SAARCOR_RGS_H
 #define SAARCOR_RGS_H
 
+#include "config.h"
 #include "trace.h"
 
-#define RGS_MAX_DEPTH 8                           /* deepest secondary level the unit supports */
+#define RGS_MAX_DEPTH SAARCOR_CFG_MAX_DEPTH       /* deepest secondary level the unit supports (8) */
 #define RGS_STACK (RGS_MAX_DEPTH + 2)             /* pending packets of a depth-first ray tree */
 #define RGS_MAX_PACKETS ((1u << (RGS_MAX_DEPTH + 1)) - 1u) /* packets of a full binary ray tree */
 #define RGS_Q12_ONE 4096u

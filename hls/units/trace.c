@@ -273,7 +273,7 @@ scene_rays:
         s->phase = TP_DONE;
         return;
     }
-    if (s->flags & TRACE_SKIP_TOP) {
+    if (!SAARCOR_CFG_TOP_LEVEL || (s->flags & TRACE_SKIP_TOP)) {
         enter_single_object(mem, s, mask, op, c);
         return;
     }

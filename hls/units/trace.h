@@ -37,6 +37,7 @@
 
 #include <stdint.h>
 
+#include "config.h"
 #include "vec3.h"
 
 #define TRACE_PACKET 4
