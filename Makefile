@@ -131,7 +131,7 @@ $(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS) $(call fmt_objs,$
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
 
-.PHONY: all widths deps run test unit-tests test-programs asan verify-fp hls-check bench bench-skip bench-fp bench-build bench-render bench-accuracy bench-cycle rtl-lint rtl-test synth clean
+.PHONY: all widths deps run test unit-tests test-programs asan verify-fp hls-check hls-vectors bench bench-skip bench-fp bench-build bench-render bench-accuracy bench-cycle rtl-lint rtl-test synth clean
 all: $(BUILD)/saarcor $(BUILD)/w/e8m23/saarcor
 widths: $(foreach f,$(FORMATS),$(BUILD)/w/$(f)/saarcor)
 
@@ -170,6 +170,14 @@ test: deps
 HLS_CONFIGS := $(patsubst hls/config_%.h,%,$(wildcard hls/config_*.h))
 hls-check:
 	@python3 scripts/hls_summary.py $(if $(CONFIG),$(CONFIG),default $(HLS_CONFIGS))
+
+# test vectors for hls/vitis/run.tcl (the ones tests/test_hls.sh makes): captured unit
+# transactions of the room, and the cornell memory image with the simulator's image of it
+hls-vectors: $(BUILD)/saarcor
+	@mkdir -p $(BUILD)/hls-vectors
+	$(BUILD)/saarcor render room --width 64 --height 48 --capture-unit-io $(BUILD)/hls-vectors/cap --capture-limit 20000 -o $(BUILD)/hls-vectors/room.png >/dev/null
+	$(BUILD)/saarcor info cornell --width 64 --height 48 --image $(BUILD)/hls-vectors/cornell.bin >/dev/null
+	$(BUILD)/saarcor render cornell --width 64 --height 48 -o $(BUILD)/hls-vectors/cornell.ppm >/dev/null
 
 # ---- RTL: Verilator co-simulation against the C model, lint, synthesis -------------------------
 RTL := $(sort $(wildcard rtl/*.sv))
