@@ -1,4 +1,7 @@
 /*
+ * HOST-ONLY TESTBENCH, not part of the design: it uses libc (stdio, malloc) to read vectors and
+ * is never synthesized; make hls-check covers hls/fp24, hls/units and hls/top only.
+ *
  * Testbench of dynrtc_top (C simulation with GCC in `make test`, csim and cosim in Vitis HLS,
  * hls/vitis/run.tcl): renders every tile of a memory image through the top function and diffs
  * the frame buffer against the simulator's image of the same scene (a binary PPM written by

@@ -1,4 +1,7 @@
 /*
+ * HOST-ONLY TESTBENCH, not part of the design: it uses libc (stdio, malloc) to read vectors and
+ * is never synthesized; make hls-check covers hls/fp24, hls/units and hls/top only.
+ *
  * Testbench of the datapath top functions xform_top, isect_top and trav_top (C simulation with GCC
  * in `make test`, csim and cosim in Vitis HLS, hls/vitis/run.tcl): replays the transactions that
  * `saarcor render --capture-unit-io DIR` recorded (the vectors rtl/tb replays against the RTL) in
