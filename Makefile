@@ -12,6 +12,8 @@
 #   make rtl-test   Verilator co-simulation of rtl/ against the C model (operators at 6 formats with
 #                   10^6 vectors each, units on random and captured vectors), lint
 #   make synth      Yosys synthesis figures -> docs/synth.md
+#   make stress     numerical stability stress suite at every width and with the robust edge option
+#                   (make robust) -> build/bench/stress.md, stress.json
 # Variables: BUILD (output folder), SAN=1 (sanitizers), V=1 (show commands), VERIFY_N,
 #   SIM_ARITH=fast|hw: arithmetic of the simulator's units (default fast: the host fast path of
 #   tb/fp/f24_fast.h; hw: the integer hardware reference; the same bits, make test checks it).
@@ -30,7 +32,7 @@ Q := $(if $(filter 1,$(V)),,@)
 
 # fp24 formats: e<E>m<M>. The default is the paper's 1+7+16 = 24 bits.
 DEFAULT_FMT := e7m16
-FORMATS := e7m8 e7m10 e7m12 e7m16 e7m20 e7m23 e8m23
+FORMATS := e7m8 e7m10 e7m12 e7m14 e7m16 e7m18 e7m20 e7m23 e8m23
 fmt_flags = -DF24_EXP_BITS=$(word 1,$(subst m, ,$(subst e,,$(1)))) -DF24_MAN_BITS=$(word 2,$(subst m, ,$(subst e,,$(1))))
 
 VERSION := 0.1.0+$(shell git describe --always --dirty 2>/dev/null || echo unknown)
@@ -40,7 +42,9 @@ OPT := -O2 -g
 SAN_ON := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 SANFLAGS := $(if $(filter 1,$(SAN)),$(SAN_ON))
 # no fused multiply-add: the fast fp24 path relies on one binary64 rounding per operation
-CFLAGS := -std=c11 $(WARN) $(OPT) -ffp-contract=off -fno-math-errno $(SANFLAGS) -MMD -MP
+# CFG_FLAGS: hls/config.h settings of this build folder (e.g. the robust edge option, make robust)
+CFG_FLAGS ?=
+CFLAGS := -std=c11 $(WARN) $(OPT) -ffp-contract=off -fno-math-errno $(SANFLAGS) $(CFG_FLAGS) -MMD -MP
 CXXFLAGS := -std=c++17 $(WARN) $(OPT) $(SANFLAGS) -MMD -MP
 INCLUDES := -Ihls -Ihls/fp24 -Ihls/units -Itb/fp -Itb/ref -Itb/cycle -Itb/cli -Ihost/image -Ihost/scene -Ihost/kdtree -Ihost/memimage -Iscenes
 LDLIBS := -lmpfr -lgmp -ltinygltf -lOpenImageIO -lOpenImageIO_Util -lstdc++ -lm
@@ -131,7 +135,7 @@ $(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS) $(call fmt_objs,$
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
 
-.PHONY: all widths deps run test unit-tests test-programs asan verify-fp hls-check hls-vectors bench bench-skip bench-fp bench-build bench-render bench-accuracy bench-cycle rtl-lint rtl-test synth clean
+.PHONY: all widths deps run test unit-tests test-programs asan verify-fp hls-check hls-vectors bench bench-skip bench-fp bench-build bench-render bench-accuracy bench-cycle robust stress rtl-lint rtl-test synth clean
 all: $(BUILD)/saarcor $(BUILD)/w/e8m23/saarcor
 widths: $(foreach f,$(FORMATS),$(BUILD)/w/$(f)/saarcor)
 
@@ -162,8 +166,9 @@ test: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(BUILD)/hw SIM_ARITH=hw $(BUILD)/hw/saarcor
 	@$(MAKE) --no-print-directory $(BUILD)/rtl/$(DEFAULT_FMT)/tb_f24_ops $(BUILD)/rtl/$(DEFAULT_FMT)/tb_units
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 test-programs
+	@$(MAKE) --no-print-directory -j$$(nproc) robust
 	@bash tests/run.sh --report $(BUILD)/test-report.txt \
-	  $(UNIT_TESTS) tests/test_cli.sh tests/test_golden.sh tests/test_rtl.sh tests/test_hls.sh $(patsubst $(BUILD)/%,build/asan/%,$(UNIT_TESTS))
+	  $(UNIT_TESTS) tests/test_cli.sh tests/test_golden.sh tests/test_rtl.sh tests/test_hls.sh tests/test_stress.sh $(patsubst $(BUILD)/%,build/asan/%,$(UNIT_TESTS))
 
 # ---- HLS readiness: hls/ alone in the synthesizable subset, per configuration -------------------
 # make hls-check: the general design and every hls/config_NAME.h; CONFIG=NAME: that one only
@@ -281,7 +286,17 @@ bench-skip: deps
 	@$(MAKE) --no-print-directory all
 	python3 tests/bench/bench_skip.py --out $(BUILD)/bench
 
-bench: bench-fp bench-build bench-render bench-accuracy bench-cycle bench-skip
+# the robust edge option (hls/config.h SAARCOR_CFG_EDGE_EPS, docs/stress.md) in its own build folder
+ROBUST_EDGE_EPS := 8
+robust:
+	@$(MAKE) --no-print-directory BUILD=$(BUILD)/robust CFG_FLAGS=-DSAARCOR_CFG_EDGE_EPS=$(ROBUST_EDGE_EPS) $(BUILD)/robust/saarcor
+
+# the numerical stability stress suite at every width and with the robust option -> build/bench/stress.md
+stress: deps
+	@$(MAKE) --no-print-directory -j$$(nproc) widths robust
+	python3 tests/bench/bench_stress.py --out $(BUILD)/bench
+
+bench: bench-fp bench-build bench-render bench-accuracy bench-cycle bench-skip stress
 
 $(BUILD)/bench_fp: $(BUILD)/obj/$(DEFAULT_FMT)/tests/bench/bench_fp.o $(call fp_objs,$(DEFAULT_FMT))
 	@echo "  LD    $@"

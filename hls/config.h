@@ -29,6 +29,11 @@
 #ifndef SAARCOR_CFG_ORTHOGRAPHIC
 #define SAARCOR_CFG_ORTHOGRAPHIC 1 /* orthographic primary rays */
 #endif
+#ifndef SAARCOR_CFG_EDGE_EPS
+#define SAARCOR_CFG_EDGE_EPS 0     /* robust edge tests (docs/stress.md): k > 0 widens every triangle's
+                                      barycentric bounds by eps = 2^-k (u, v >= -eps, u + v <= 1 + eps);
+                                      0: the paper's exact bounds */
+#endif
 #ifndef SAARCOR_CFG_MAX_DEPTH
 #define SAARCOR_CFG_MAX_DEPTH 8    /* secondary levels the ray stack holds */
 #endif

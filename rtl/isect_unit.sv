@@ -4,10 +4,13 @@
 // Datapath: 1 divider, 2 multipliers, 3 adders (Table 2), 5 comparators. Latency LATENCY
 // (default: divider 6 + multiplier 3 + adder 3 + adder 3 + comparator 1 = 16), one ray per
 // cycle (II = 1). Handshake: valid/ready.
+// EDGE_EPS = k > 0: the robust edge option (SAARCOR_CFG_EDGE_EPS, docs/stress.md): the bounds
+// become u, v >= -2^-k and u + v <= 1 + 2^-k; only the comparators' constants change.
 module isect_unit #(
   parameter int E = 7,
   parameter int M = 16,
-  parameter int LATENCY = 16
+  parameter int LATENCY = 16,
+  parameter int EDGE_EPS = 0
 ) (
   input  logic                 clk_i,
   input  logic                 rst_ni,
@@ -33,6 +36,8 @@ module isect_unit #(
   /* verilator lint_on UNUSEDSIGNAL */
   localparam int BIAS = (1 << (E - 1)) - 1;
   localparam logic [W-1:0] ONE = {1'b0, E'(BIAS), {M{1'b0}}};
+  localparam logic [W-1:0] LO = EDGE_EPS > 0 ? {1'b1, E'(BIAS - EDGE_EPS), {M{1'b0}}} : '0;
+  localparam logic [W-1:0] HI = EDGE_EPS > 0 ? ONE | W'(1 << (M - EDGE_EPS)) : ONE;
   logic [W-1:0] oz_neg, t, tdx, tdy, u, v, uv;
   logic hit;
 
@@ -44,11 +49,11 @@ module isect_unit #(
   f24_add_core #(.E(E), .M(M)) u_v (.a_i(o_i[W +: W]), .b_i(tdy), .sub_i(1'b0), .res_o(v));
   f24_add_core #(.E(E), .M(M)) u_uv (.a_i(u), .b_i(v), .sub_i(1'b0), .res_o(uv));
   // comparator flags {unordered, eq, le, lt}
-  f24_cmp_core #(.E(E), .M(M)) u_c0 (.a_i('0), .b_i(u), .lt_o(f_u[0]), .le_o(f_u[1]), .eq_o(f_u[2]),
+  f24_cmp_core #(.E(E), .M(M)) u_c0 (.a_i(LO), .b_i(u), .lt_o(f_u[0]), .le_o(f_u[1]), .eq_o(f_u[2]),
                                      .unordered_o(f_u[3]), .min_o(nc_min_o[0]), .max_o(nc_max_o[1]));
-  f24_cmp_core #(.E(E), .M(M)) u_c1 (.a_i('0), .b_i(v), .lt_o(f_v[0]), .le_o(f_v[1]), .eq_o(f_v[2]),
+  f24_cmp_core #(.E(E), .M(M)) u_c1 (.a_i(LO), .b_i(v), .lt_o(f_v[0]), .le_o(f_v[1]), .eq_o(f_v[2]),
                                      .unordered_o(f_v[3]), .min_o(nc_min_o[2]), .max_o(nc_max_o[3]));
-  f24_cmp_core #(.E(E), .M(M)) u_c2 (.a_i(uv), .b_i(ONE), .lt_o(f_uv[0]), .le_o(f_uv[1]), .eq_o(f_uv[2]),
+  f24_cmp_core #(.E(E), .M(M)) u_c2 (.a_i(uv), .b_i(HI), .lt_o(f_uv[0]), .le_o(f_uv[1]), .eq_o(f_uv[2]),
                                      .unordered_o(f_uv[3]), .min_o(nc_min_o[4]), .max_o(nc_max_o[5]));
   f24_cmp_core #(.E(E), .M(M)) u_c3 (.a_i(tmin_i), .b_i(t), .lt_o(f_tmin[0]), .le_o(f_tmin[1]), .eq_o(f_tmin[2]),
                                      .unordered_o(f_tmin[3]), .min_o(nc_min_o[6]), .max_o(nc_max_o[7]));

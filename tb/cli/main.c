@@ -20,6 +20,7 @@ static const saarcor_cmd commands[] = {
     { "compare", "compare two images: PSNR, max error, differing pixels", cmd_compare },
     { "info", "scene statistics: objects, triangles, kd-trees, build times, memory image", cmd_info },
     { "profile", "scene profile: what the scene needs, what the device skips, hls/ configuration", cmd_profile },
+    { "stress", "numerical stability stress suite of this number format (docs/stress.md)", cmd_stress },
     { "render", "render a scene through the hardware units (functional mode)", cmd_render },
     { "reference", "render a scene with the double-precision reference (own BVH, binary64)", cmd_reference },
     { "compare-hits", "per primary ray: the units' hits against the reference's", cmd_compare_hits },

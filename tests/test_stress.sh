@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# The short form of `make stress` in make test (docs/stress.md): at the default format the cases
+# the design claims pass their criteria (rays inside a closed mesh never escape, geometry far
+# from the origin and at extreme scales, slivers, coplanar and extreme instances agree with the
+# binary64 reference, NaN/Inf inputs give no
+# non-finite hit, every trace is deterministic); the exact unit-triangle test is shown to leak
+# at shared edges, and the robust edge option (make robust) closes every leak; bad options fail
+# with exit 2. Prints cmocka-style lines.
+set -u
+cd "$(dirname "$0")/.."
+B=${BUILD:-build}
+T=$(mktemp -d /tmp/saarcor-test-stress-XXXXXX)
+trap 'rm -rf "$T"' EXIT
+fails=0
+CLAIMED=inside-sphere,far-1e2,far-1e3,far-1e4,scale,sliver,coplanar,inst-,face-planes,grazing,long-,nan-
+
+run_case() { # name, function
+  echo "[ RUN      ] $1"
+  ( set -e; "$2" ) >"$T/case.log" 2>&1
+  if [[ $? -eq 0 ]]; then tail -1 "$T/case.log"; echo "[       OK ] $1"
+  else cat "$T/case.log"; echo "[  FAILED  ] $1"; fails=$((fails + 1)); fi
+}
+
+t_claimed() {
+  $B/saarcor stress --rays 2000 --case "$CLAIMED" --check --json "$T/s.json"
+  python3 -c "import json,sys; r=json.load(open(sys.argv[1])); assert len(r) >= 17, len(r); print(len(r), 'cases pass')" "$T/s.json"
+}
+
+t_exact_leaks() {
+  local out; out=$($B/saarcor stress --rays 2000 --case edges-ico2)
+  echo "$out"
+  ! $B/saarcor stress --rays 2000 --case edges-ico2 --check >/dev/null || { echo "expected leaks with the exact bounds"; return 1; }
+  echo "the exact bounds leak at shared edges, as measured"
+}
+
+t_robust_closes_leaks() {
+  $B/robust/saarcor stress --rays 2000 --case edges-ico,edges-lathe,inside-sphere --check
+}
+
+t_bad_options() {
+  set +e
+  $B/saarcor stress --rays 0 >/dev/null 2>"$T/e1"; local a=$?
+  $B/saarcor stress --bogus >/dev/null 2>"$T/e2"; local b=$?
+  $B/saarcor stress --case nothing-matches >/dev/null 2>"$T/e3"; local c=$?
+  set -e
+  [[ $a -eq 2 && $b -eq 2 && $c -eq 2 ]] || { echo "exit codes $a $b $c, expected 2"; return 1; }
+  [[ $(wc -l <"$T/e1") -eq 1 ]] || { cat "$T/e1"; return 1; }
+  echo "bad options: exit 2 with one line"
+}
+
+run_case stress_claimed_cases_pass t_claimed
+run_case stress_exact_bounds_leak_at_edges t_exact_leaks
+run_case stress_robust_option_closes_leaks t_robust_closes_leaks
+run_case stress_bad_options t_bad_options
+exit $((fails > 0))
