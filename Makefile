@@ -12,6 +12,7 @@
 #   make rtl-test   Verilator co-simulation of rtl/ against the C model (operators at 6 formats with
 #                   10^6 vectors each, units on random and captured vectors), lint
 #   make synth      Yosys synthesis figures -> docs/synth.md
+#   make bench-precision  every format against the binary64 reference: time, cycles, PSNR, plots
 #   make stress     numerical stability stress suite at every width and with the robust edge option
 #                   (make robust) -> build/bench/stress.md, stress.json
 # Variables: BUILD (output folder), SAN=1 (sanitizers), V=1 (show commands), VERIFY_N,
@@ -135,7 +136,7 @@ $(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS) $(call fmt_objs,$
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
 
-.PHONY: all widths deps run test unit-tests test-programs asan verify-fp hls-check hls-vectors bench bench-skip bench-fp bench-build bench-render bench-accuracy bench-cycle robust stress rtl-lint rtl-test synth clean
+.PHONY: all widths deps run test unit-tests test-programs asan verify-fp hls-check hls-vectors bench bench-skip bench-fp bench-build bench-render bench-accuracy bench-cycle bench-precision robust stress rtl-lint rtl-test synth clean
 all: $(BUILD)/saarcor $(BUILD)/w/e8m23/saarcor
 widths: $(foreach f,$(FORMATS),$(BUILD)/w/$(f)/saarcor)
 
@@ -296,7 +297,13 @@ stress: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) widths robust
 	python3 tests/bench/bench_stress.py --out $(BUILD)/bench
 
-bench: bench-fp bench-build bench-render bench-accuracy bench-cycle bench-skip stress
+# every format against the binary64 reference: run time, cycles, PSNR, hits (after stress and synth
+# for the leak and area columns, if their results exist) -> build/bench/precision.md
+bench-precision: deps
+	@$(MAKE) --no-print-directory -j$$(nproc) all widths
+	python3 tests/bench/bench_precision.py --out $(BUILD)/bench
+
+bench: bench-fp bench-build bench-render bench-accuracy bench-cycle bench-skip stress bench-precision
 
 $(BUILD)/bench_fp: $(BUILD)/obj/$(DEFAULT_FMT)/tests/bench/bench_fp.o $(call fp_objs,$(DEFAULT_FMT))
 	@echo "  LD    $@"
