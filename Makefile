@@ -136,7 +136,7 @@ $(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS) $(call fmt_objs,$
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
 
-.PHONY: all widths deps run test unit-tests test-programs asan verify-fp hls-check hls-vectors bench bench-skip bench-fp bench-build bench-render bench-accuracy bench-cycle bench-precision robust stress rtl-lint rtl-test synth clean
+.PHONY: all widths deps run test unit-tests test-programs asan verify-fp hls-check hls-vectors bench bench-skip bench-fp bench-build bench-render bench-accuracy bench-cycle bench-precision bench-peers robust stress rtl-lint rtl-test synth clean
 all: $(BUILD)/saarcor $(BUILD)/w/e8m23/saarcor
 widths: $(foreach f,$(FORMATS),$(BUILD)/w/$(f)/saarcor)
 
@@ -303,7 +303,19 @@ bench-precision: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) all widths
 	python3 tests/bench/bench_precision.py --out $(BUILD)/bench
 
-bench: bench-fp bench-build bench-render bench-accuracy bench-cycle bench-skip stress bench-precision
+# peers on the same primary rays: Embree single rays and packets (1, 2 threads), our functional
+# and cycle modes (traversal-algorithm variants: not yet) -> build/bench/peers.md
+bench-peers: deps
+	@$(MAKE) --no-print-directory all $(BUILD)/bench_peers
+	@mkdir -p $(BUILD)/bench
+	$(BUILD)/bench_peers --out $(BUILD)/bench
+	python3 tests/bench/bench_peers.py --out $(BUILD)/bench
+
+$(BUILD)/bench_peers: $(BUILD)/obj/host/tests/bench/bench_peers.o $(BUILD)/obj/host/tests/bench/embree_scene.o $(HOST_OBJS) $(call fmt_objs,$(DEFAULT_FMT))
+	@echo "  LD    $@"
+	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(LDLIBS) -lembree3 -lpthread
+
+bench: bench-fp bench-build bench-render bench-accuracy bench-cycle bench-skip stress bench-precision bench-peers
 
 $(BUILD)/bench_fp: $(BUILD)/obj/$(DEFAULT_FMT)/tests/bench/bench_fp.o $(call fp_objs,$(DEFAULT_FMT))
 	@echo "  LD    $@"
