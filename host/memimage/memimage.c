@@ -105,8 +105,15 @@ static void put_affine(uint32_t *w, const affine *a)
             w[i * 4 + j] = f24w(a->m[i][j]);
 }
 
+/* Object bounds margin in ulps of the box's largest coordinate: the unit-triangle test accepts rays
+ * a few ulps outside a triangle's edge (its own rounding), so an exact slab test of the object's
+ * bounds would reject a ray grazing an edge on the box's face that the triangle test accepts
+ * (stress case split-planes, docs/stress.md). The scene bounds stay exact: the RGS derives its
+ * epsilon from them, and world-space rays meet the top-level boxes before any rounding. */
+#define OBJECT_BOUNDS_MARGIN_ULPS 8
+
 /* Bounds of an empty tree are not meaningful: an empty box at the origin is written instead. */
-static void put_bounds(uint32_t *w, const aabb *b)
+static void put_bounds(uint32_t *w, const aabb *b, int margin_ulps)
 {
     int ok = 1;
     for (int k = 0; k < 3; k++)
@@ -116,9 +123,13 @@ static void put_bounds(uint32_t *w, const aabb *b)
             w[k] = 0;
         return;
     }
+    double big = 0;
+    for (int k = 0; k < 3; k++)
+        big = fmax(big, fmax(fabs(b->lo[k]), fabs(b->hi[k])));
+    const double margin = ldexp(big, -F24_MAN_BITS) * margin_ulps;
     for (int k = 0; k < 3; k++) {
-        w[k] = f24_outward(b->lo[k], -1);
-        w[3 + k] = f24_outward(b->hi[k], +1);
+        w[k] = f24_outward(b->lo[k] - margin, -1);
+        w[3 + k] = f24_outward(b->hi[k] + margin, +1);
     }
 }
 
@@ -267,7 +278,7 @@ static void object_describe(uint32_t *w, const mi_object *o, const scene_mesh *m
     w[MI_O_N_TRIANGLES] = o->n_valid;
     w[MI_O_FLAGS] = (m->normals ? MI_OBJECT_HAS_NORMALS : 0u) | (m->texcoords ? MI_OBJECT_HAS_TEXCOORDS : 0u) |
                     (o->dynamic ? MI_OBJECT_DYNAMIC : 0u);
-    put_bounds(&w[MI_O_BOUNDS], &o->tree.bounds);
+    put_bounds(&w[MI_O_BOUNDS], &o->tree.bounds, OBJECT_BOUNDS_MARGIN_ULPS);
 }
 
 /* ---- per-frame content: instances, top level, camera, lights ------------------------------ */
@@ -625,7 +636,7 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
                                                 b->n_objects, b->n_inst, s->n_materials, b->n_textures, light_count(s),
                                                 b->top.n_nodes };
     memcpy(w, head, sizeof head);
-    put_bounds(w + MI_H_SCENE_BOUNDS, &b->top.bounds);
+    put_bounds(w + MI_H_SCENE_BOUNDS, &b->top.bounds, 0);
     uint64_t upload = 0;
     for (int r = 0; r < MI_REGION_COUNT; r++) {
         region_entry(b, (mi_region)r)[0] = off[r];
