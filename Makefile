@@ -13,6 +13,7 @@
 #                   10^6 vectors each, units on random and captured vectors), lint
 #   make synth      Yosys synthesis figures -> docs/synth.md
 #   make bench-precision  every format against the binary64 reference: time, cycles, PSNR, plots
+#   make results    docs/results.md from build/bench/ (run after make bench)
 #   make stress     numerical stability stress suite at every width and with the robust edge option
 #                   (make robust) -> build/bench/stress.md, stress.json
 # Variables: BUILD (output folder), SAN=1 (sanitizers), V=1 (show commands), VERIFY_N,
@@ -136,7 +137,7 @@ $(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS) $(call fmt_objs,$
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
 
-.PHONY: all widths deps run test unit-tests test-programs asan verify-fp hls-check hls-vectors bench bench-skip bench-fp bench-build bench-render bench-accuracy bench-cycle bench-precision bench-peers robust stress rtl-lint rtl-test synth clean
+.PHONY: all widths deps run test unit-tests test-programs asan verify-fp hls-check hls-vectors bench bench-skip bench-fp bench-build bench-render bench-accuracy bench-cycle bench-precision bench-peers results robust stress rtl-lint rtl-test synth clean
 all: $(BUILD)/saarcor $(BUILD)/w/e8m23/saarcor
 widths: $(foreach f,$(FORMATS),$(BUILD)/w/$(f)/saarcor)
 
@@ -315,7 +316,12 @@ $(BUILD)/bench_peers: $(BUILD)/obj/host/tests/bench/bench_peers.o $(BUILD)/obj/h
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(LDLIBS) -lembree3 -lpthread
 
+# docs/results.md from the reports in build/bench/ (each row with machine, command, date)
+results:
+	python3 scripts/results.py
+
 bench: bench-fp bench-build bench-render bench-accuracy bench-cycle bench-skip stress bench-precision bench-peers
+	@$(MAKE) --no-print-directory results
 
 $(BUILD)/bench_fp: $(BUILD)/obj/$(DEFAULT_FMT)/tests/bench/bench_fp.o $(call fp_objs,$(DEFAULT_FMT))
 	@echo "  LD    $@"
