@@ -554,8 +554,8 @@ static const case_def cases[] = {
     { "grazing", "rays passing a fine sphere's silhouette within +-10^-3 of its radius", 0, CRIT_BASE, make_grazing, 1e-3 },
     { "acne-eps", "rays leaving the sphere outwards from the units' hit points, tmin = e (RGS)", STRESS_MUST_MISS, CRIT_NO_ACNE, make_acne, 1 },
     { "acne-0", "the same with tmin = 0: shows what the epsilon e is for", STRESS_MUST_MISS, CRIT_BASE, make_acne, 0 },
-    { "long-short-d", "a sphere 10^4 away, |d| = 10^-3 (t ~ 10^7)", 0, CRIT_AGREE, make_long, 1e-3 },
-    { "long-long-d", "the same with |d| = 10^3 (t ~ 10)", 0, CRIT_AGREE, make_long, 1e3 },
+    { "long-short-d", "a sphere 10^4 away, direction length 10^-3 (t ~ 10^7)", 0, CRIT_AGREE, make_long, 1e-3 },
+    { "long-long-d", "the same with direction length 10^3 (t ~ 10)", 0, CRIT_AGREE, make_long, 1e3 },
     { "nan-rays", "rays with NaN/+-Inf in origin, direction, tmin or tmax", 0, CRIT_BASE, make_nan_rays, 0 },
     { "nan-geometry", "the sphere with a NaN and an Inf vertex (their triangles must be dropped)", 0, CRIT_DROPPED, make_nan_geometry, 0 },
 };
