@@ -19,6 +19,7 @@
 
 #include "f24_fast.h"
 #include "memimage.h"
+#include "rgs.h"
 #include "scene.h"
 #include "scenes.h"
 #include "isect_unit.h"
@@ -271,9 +272,80 @@ static void rays_in_split_planes(void **state)
     scene_free(&s);
 }
 
+/* One packet with the given TRACE_* flags, step by step as trace_packet runs it; the number of
+ * operations it took (TRACE_STEP_LIMIT would mean a walk that never ends). */
+static uint32_t trace_with(const uint32_t *mem, const ray_packet *rp, uint32_t flags, hit_record h[], trace_counters *c)
+{
+    trace_state st;
+    unit_op op;
+    uint32_t n = 0;
+    trace_begin(rp, flags, &st);
+    while (n < TRACE_STEP_LIMIT && trace_step(mem, &st, &op, c))
+        n++;
+    memcpy(h, st.hits, sizeof st.hits);
+    return n;
+}
+
+/* The traversal algorithms (short stack, kd-restart, push-down) find the stack's surfaces on the
+ * primary rays of scenes with deep trees and overlapping instances (hits may differ by ulps where a
+ * triangle's rounded distance lies just outside its cell, which the walk order decides), every
+ * walk ends, and the stackless ones take more traversal steps. */
+static void traversal_algorithms_agree(void **state)
+{
+    (void)state;
+    static const char *const names[] = { "room", "terrain" };
+    for (size_t sc = 0; sc < 2; sc++) {
+        scene s;
+        char err[256];
+        const scene_gen_params gp = { 1, 0 };
+        assert_int_equal(scene_generator_find(names[sc])->build(&s, &gp, err, sizeof err), 0);
+        assert_int_equal(scene_evaluate(&s, 0, 0), 0);
+        mi_params p;
+        mi_params_default(&p);
+        p.width = 96;
+        p.height = 72;
+        mi_builder *b = mi_build(&s, &p, err, sizeof err);
+        assert_non_null(b);
+        uint32_t nw;
+        const uint32_t *mem = mi_words(b, &nw);
+        trace_counters c[TRAV_KINDS];
+        memset(c, 0, sizeof c);
+        uint32_t differ = 0, ulps = 0, longest = 0;
+        for (uint32_t y = 0; y < p.height; y += 2)
+            for (uint32_t x = 0; x < p.width; x += 2) {
+                ray_packet rp;
+                rgs_primary(mem, x, y, &rp);
+                hit_record ref[TRACE_PACKET], h[TRACE_PACKET];
+                trace_with(mem, &rp, TRAV_STACK << TRACE_TRAV_SHIFT, ref, &c[TRAV_STACK]);
+                for (uint32_t a = TRAV_SHORT_STACK; a < TRAV_KINDS; a++) {
+                    const uint32_t n = trace_with(mem, &rp, a << TRACE_TRAV_SHIFT, h, &c[a]);
+                    longest = n > longest ? n : longest;
+                    for (int i = 0; i < TRACE_PACKET; i++) {
+                        /* a surface lost or found: the distances differ beyond rounding */
+                        const double t = D(h[i].t), tr = D(ref[i].t);
+                        differ += (h[i].instance == TRACE_NO_HIT) != (ref[i].instance == TRACE_NO_HIT) ||
+                                  fabs(t - tr) > 1e-4 * tr;
+                        ulps += h[i].t != ref[i].t;
+                    }
+                }
+            }
+        print_message("%s: traversal steps stack %llu, short stack %llu, restart %llu, push-down %llu; longest walk %u "
+                      "operations; %u surfaces lost or found, %u hits a few ulps apart\n", names[sc], (unsigned long long)c[0].traversal_steps,
+                      (unsigned long long)c[1].traversal_steps, (unsigned long long)c[2].traversal_steps,
+                      (unsigned long long)c[3].traversal_steps, longest, differ, ulps);
+        assert_int_equal(differ, 0);
+        assert_true(longest < 100000);
+        assert_true(c[TRAV_RESTART].traversal_steps > c[TRAV_STACK].traversal_steps);
+        assert_true(c[TRAV_PUSH_DOWN].traversal_steps <= c[TRAV_RESTART].traversal_steps);
+        mi_free(b);
+        scene_free(&s);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(traversal_algorithms_agree),
         cmocka_unit_test(cornell), cmocka_unit_test(room), cmocka_unit_test(animated),
         cmocka_unit_test(zero_components_and_disagreeing_packets), cmocka_unit_test(rays_in_split_planes),
     };

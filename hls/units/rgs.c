@@ -384,7 +384,7 @@ static void op_shadow_gen(rgs_block *b, unit_op *op, rgs_counters *c)
 {
     op_set(op, UNIT_XFORM, count_rays(b->shadow.active) + 1u, 0, c);
     c->rays[RAY_SHADOW] += count_rays(b->shadow.active);
-    trace_begin(&b->shadow, trace_flags_of(b->profile, 1), &b->trace);
+    trace_begin(&b->shadow, trace_flags_of(b->profile, 1) | b->trav_flags, &b->trace);
     b->phase = RB_SHADOW_TRACE;
 }
 
@@ -545,7 +545,7 @@ static void next_packet(rgs_block *b)
     }
     b->cur = b->stack[--b->sp];
     b->packets++;
-    trace_begin(&b->cur.rays, trace_flags_of(b->profile, 0), &b->trace);
+    trace_begin(&b->cur.rays, trace_flags_of(b->profile, 0) | b->trav_flags, &b->trace);
     b->phase = RB_TRACE;
 }
 
@@ -555,6 +555,7 @@ route:
     for (int guard = 0; guard < 4; guard++) { /* transitions without a unit operation, then one operation */
         switch (b->phase) {
         case RB_GEN: /* transformation unit: primary rays T_init, n + 1 steps (shared origin); camera block */
+            b->trav_flags = cfg->traversal << TRACE_TRAV_SHIFT;
             op_set(op, UNIT_XFORM, TRACE_PACKET + 1, 16, c);
             b->phase = RB_NEXT;
             return 1;

@@ -44,6 +44,7 @@ enum { RAY_PRIMARY, RAY_SHADOW, RAY_REFLECTION, RAY_TRANSMISSION, RAY_KINDS };
 typedef struct {
     uint32_t max_depth; /* secondary levels below the primary rays, 0 .. RGS_MAX_DEPTH */
     uint32_t shadows;   /* 0: every light is visible (no shadow rays) */
+    uint32_t traversal; /* TRAV_* algorithm of the traversal unit (0: the paper's stack) */
 } rgs_config;
 
 typedef struct {
@@ -81,6 +82,7 @@ typedef struct {
     f24_t eps;                      /* ray offset e (docs/shading.md) */
     uint32_t phase, n_lights, light, children;
     uint32_t profile;               /* the image's PROFILE_* skip bits (trace.h) */
+    uint32_t trav_flags;            /* the traversal algorithm as trace flags (rgs_config.traversal) */
     surface sf[TRACE_PACKET];       /* the surfaces of cur */
     uint32_t k_of[TRACE_PACKET];    /* their highlight exponents */
     uint32_t diffuse[TRACE_PACKET][3], highlight[TRACE_PACKET][3]; /* light gathered so far */

@@ -82,7 +82,8 @@ clip_axes:
 
 /* ---- traversal unit ------------------------------------------------------------------------ */
 
-static void walker_start(trav_walker *w, uint32_t nodes, uint32_t lists, uint32_t mask, const f24_t tn[], const f24_t tf[])
+static void walker_start(trav_walker *w, uint32_t nodes, uint32_t lists, uint32_t mask, const f24_t tn[], const f24_t tf[],
+                         uint32_t algo)
 {
     w->nodes = nodes;
     w->lists = lists;
@@ -91,15 +92,49 @@ static void walker_start(trav_walker *w, uint32_t nodes, uint32_t lists, uint32_
     w->cur.node = 0;
     w->cur.mask = mask;
     w->leaf_count = w->k = 0;
+    w->algo = algo;
+    w->cap = algo == TRAV_STACK ? TRACE_STACK : algo == TRAV_SHORT_STACK ? TRACE_SHORT_STACK : 0;
+    w->push_down = algo == TRAV_SHORT_STACK || algo == TRAV_PUSH_DOWN;
+    w->lost = w->pass = 0;
 walker_copy:
     for (int i = 0; i < TRACE_PACKET; i++) {
         w->cur.tn[i] = tn[i];
         w->cur.tf[i] = tf[i];
+        w->t_exit[i] = tn[i];
     }
+    w->root = w->cur;
+}
+
+/* Pushes the far child; a full stack drops its oldest entry (a restart will cover it). */
+static void walker_push(trav_walker *w, const trav_entry *far)
+{
+    if (w->cap == 0) {
+        w->lost = 1;
+        return;
+    }
+    if (w->sp == w->cap) {
+    stack_shift:
+        for (uint32_t i = 0; i + 1 < TRACE_STACK; i++)
+            if (i + 1 < w->sp)
+                w->stack[i] = w->stack[i + 1];
+        w->sp--;
+        w->lost = 1;
+    }
+    w->stack[w->sp++] = *far;
+}
+
+/* After a restart, a cell that ends where a ray's last leaf ended was visited already. */
+static void drop_done_cells(const trav_walker *w, trav_entry *e)
+{
+done_cells:
+    for (int i = 0; i < TRACE_PACKET; i++)
+        if (w->pass && bit(e->mask, i) && f24_le(e->tf[i], w->t_exit[i]))
+            e->mask &= ~(1u << i);
 }
 
 /* An inner node: both children for the rays that need them (trav_node_split); the far side of
- * the packet's first ray waits on the stack. */
+ * the packet's first ray waits on the stack. With push-down, a node that the whole packet
+ * passes through on one side only becomes the new restart point while nothing waits. */
 static void walker_split(trav_walker *w, uint32_t w0, f24_t split, const f24_vec3 o[], const f24_vec3 d[])
 {
     const uint32_t axis = w0 & 3u, child = w0 >> 2;
@@ -108,22 +143,52 @@ static void walker_split(trav_walker *w, uint32_t w0, f24_t split, const f24_vec
     trav_node_split(&w->cur, axis, split, o, d, &l, &r, &near_left);
     l.node = child;
     r.node = child + 1;
+    drop_done_cells(w, &l);
+    drop_done_cells(w, &r);
+    /* the packet follows its first ray, near side first; after a restart, the first ray that
+     * still needs a child, into the child it needs (so that it advances every pass) */
+    const uint32_t lead = w->pass ? l.mask | r.mask : w->cur.mask;
     int first = 0;
 first_ray:
-    while (first < TRACE_PACKET - 1 && !bit(w->cur.mask, first))
+    while (first < TRACE_PACKET - 1 && !bit(lead, first))
         first++;
-    const uint32_t first_near_left = bit(near_left, first);
-    if (l.mask && r.mask && w->sp < TRACE_STACK) {
-        w->stack[w->sp++] = first_near_left ? r : l;
+    uint32_t first_near_left = bit(near_left, first);
+    if (w->pass && !bit(first_near_left ? l.mask : r.mask, first))
+        first_near_left = !first_near_left;
+    if (l.mask && r.mask) {
+        walker_push(w, first_near_left ? &r : &l);
         w->cur = first_near_left ? l : r;
     } else {
-        w->cur = l.mask ? l : r; /* (a full stack cannot occur: depth <= 64 = TRACE_STACK) */
+        w->cur = l.mask ? l : r;
+        if (w->push_down && w->sp == 0 && !w->lost)
+            w->root = w->cur;
     }
+}
+
+/* The stack ran dry after dropping entries: walk down again from the restart point with every
+ * ray's interval from where its last leaf ended. A ray is done for good when nothing is left of
+ * its interval or its closest hit lies before the rest. */
+static void walker_restart(trav_walker *w, const f24_t best_t[])
+{
+    trav_entry e = w->root;
+    w->lost = 0;
+    w->pass++;
+restart_rays:
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        e.tn[i] = f24_max(e.tn[i], w->t_exit[i]);
+        w->t_exit[i] = e.tn[i]; /* before the restart point's cell the ray has nothing left */
+        if (bit(e.mask, i) && (!f24_lt(e.tn[i], e.tf[i]) || f24_lt(best_t[i], e.tn[i])))
+            e.mask &= ~(1u << i);
+    }
+    w->root.mask = e.mask;
+    w->cur = e;
+    w->have_cur = e.mask != 0;
 }
 
 /* One kd-tree entry: prune the rays whose closest hit lies before it, then read the node and
  * split, or report a leaf (its list range). Afterwards, if the entry is used up, the next one is
- * popped; !w->have_cur then means the tree is done. Returns 1 at a leaf with entries. */
+ * popped (or, the stack empty after a drop, the walk restarts); !w->have_cur then means the tree
+ * is done. Returns 1 at a leaf with entries. */
 static int walker_step(trav_walker *w, const uint32_t *mem, const f24_vec3 o[], const f24_vec3 d[], const f24_t best_t[],
                        uint32_t alive, unit_op *op, trace_counters *c)
 {
@@ -131,6 +196,7 @@ static int walker_step(trav_walker *w, const uint32_t *mem, const f24_vec3 o[], 
     int leaf = 0;
     op_set(op, UNIT_TRAV, 1);
     e->mask &= alive; /* rays done (any hit found) leave the packet */
+    w->root.mask &= alive;
 prune:
     for (int i = 0; i < TRACE_PACKET; i++)
         if (bit(e->mask, i) && f24_lt(best_t[i], e->tn[i]))
@@ -148,6 +214,11 @@ prune:
             w->k = 0;
             c->leaves++;
             leaf = w->leaf_count != 0;
+        leaf_exit: /* only a leaf that continues a ray's covered segment extends it: in a packet a
+                     ray may meet its cells in another order than the first ray */
+            for (int i = 0; i < TRACE_PACKET; i++)
+                if (bit(e->mask, i) && f24_le(e->tn[i], w->t_exit[i]))
+                    w->t_exit[i] = f24_max(w->t_exit[i], e->tf[i]);
         } else {
             c->traversal_steps++;
             walker_split(w, w0, w1, o, d);
@@ -156,6 +227,8 @@ prune:
     if (!w->have_cur && w->sp > 0) {
         w->cur = w->stack[--w->sp];
         w->have_cur = 1;
+    } else if (!w->have_cur && w->lost) {
+        walker_restart(w, best_t);
     }
     return leaf;
 }
@@ -277,7 +350,8 @@ scene_rays:
         enter_single_object(mem, s, mask, op, c);
         return;
     }
-    walker_start(&s->walk[0], region_start(mem, R_TOP_NODES), region_start(mem, R_TOP_LISTS), mask, tn, tf);
+    walker_start(&s->walk[0], region_start(mem, R_TOP_NODES), region_start(mem, R_TOP_LISTS), mask, tn, tf,
+                 s->flags >> TRACE_TRAV_SHIFT & 3u);
     s->phase = TP_WALK;
 }
 
@@ -357,7 +431,8 @@ object_rays:
         return;
     }
     s->tris = mem[s->obj + O_TRIANGLES];
-    walker_start(&s->walk[1], mem[s->obj + O_NODES], mem[s->obj + O_LISTS], mask, tn, tf);
+    walker_start(&s->walk[1], mem[s->obj + O_NODES], mem[s->obj + O_LISTS], mask, tn, tf,
+                 s->flags >> TRACE_TRAV_SHIFT & 3u);
     s->level = 1;
     s->phase = TP_WALK;
 }

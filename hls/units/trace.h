@@ -84,6 +84,15 @@ typedef struct {
     f24_t tn[TRACE_PACKET], tf[TRACE_PACKET];
 } trav_entry;
 
+/* Traversal algorithms of the traversal unit (docs/traversal.md; make bench-peers compares them):
+ * the paper's stack of TRACE_STACK entries; a short stack of TRACE_SHORT_STACK entries that drops
+ * its oldest entry when full and restarts when it runs dry after a drop, with push-down (Horn
+ * et al. 2007); kd-restart without a stack (Foley and Sugerman 2005); push-down without a stack.
+ * A restart walks down again from the root (or the push-down node) with each ray's interval
+ * starting where its last leaf ended, excluding cells that end there. */
+enum { TRAV_STACK, TRAV_SHORT_STACK, TRAV_RESTART, TRAV_PUSH_DOWN, TRAV_KINDS };
+#define TRACE_SHORT_STACK 4
+
 typedef struct {
     uint32_t nodes, lists; /* word addresses of the tree */
     trav_entry stack[TRACE_STACK];
@@ -91,6 +100,10 @@ typedef struct {
     trav_entry cur;
     uint32_t have_cur;
     uint32_t leaf_first, leaf_count, leaf_mask, k; /* the current leaf: list range, its rays, next entry */
+    /* restart state (TRAV_SHORT_STACK, _RESTART, _PUSH_DOWN) */
+    uint32_t algo, cap, lost, pass, push_down; /* cap: stack entries; lost: an entry was dropped */
+    trav_entry root;                           /* where a restart begins: root or push-down node */
+    f24_t t_exit[TRACE_PACKET];                /* where each ray's last leaf ended */
 } trav_walker;
 
 typedef struct {
@@ -114,6 +127,7 @@ enum {
 /* How a packet is traced: the closest hit, or any hit (a ray is done at its first hit, and the
  * packet drops it); TRACE_SKIP_TOP and TRACE_IDENTITY as PROFILE_SINGLE_OBJECT and _IDENTITY. */
 enum { TRACE_SKIP_TOP = 1, TRACE_ANY_HIT = 2, TRACE_IDENTITY = 4 };
+#define TRACE_TRAV_SHIFT 4 /* flags bits 4..5: the traversal algorithm (TRAV_*) */
 
 typedef struct {
     ray_packet rays;

@@ -152,6 +152,9 @@ static int usage(void)
            "                     prints cycles, fps, unit usage, cache hit rates, bandwidth, stalls)\n"
            "  --max-depth D      levels of secondary rays, 0..%u (default %u; 0: primary rays only)\n"
            "  --no-shadows       lights are not occluded (no shadow rays)\n"
+           "  --traversal A      the traversal unit's algorithm (docs/traversal.md): stack (default, the\n"
+           "                     paper's 64-entry stack), short-stack (4 entries + push-down restarts),\n"
+           "                     restart (kd-restart, no stack) or push-down (no stack)\n"
            "  --precision P      number format of the units: fp24 (e7m16, default), fp32 (e8m23), or\n"
            "                     any built format eEmM (make widths); runs build/w/<format>/saarcor\n"
            "  --aov FILE.exr     per-pixel primary hits as float channels t, N.X N.Y N.Z (world geometric\n"
@@ -430,14 +433,14 @@ int cmd_render(int argc, char **argv)
         { "stats", required_argument, NULL, 's' }, { "frames", required_argument, NULL, 'F' },
         { "fps", required_argument, NULL, 'r' }, { "frame", required_argument, NULL, 'f' }, { "aov", required_argument, NULL, 'a' },
         { "max-depth", required_argument, NULL, 'd' }, { "no-shadows", no_argument, NULL, 'S' },
-        { "precision", required_argument, NULL, 'p' }, { "mode", required_argument, NULL, 'm' },
+        { "traversal", required_argument, NULL, 'T' }, { "precision", required_argument, NULL, 'p' }, { "mode", required_argument, NULL, 'm' },
         { "capture-unit-io", required_argument, NULL, 'C' }, { "capture-limit", required_argument, NULL, 'L' },
         CYCLE_LONG_OPTIONS, { "help", no_argument, NULL, 'h' }, { 0, 0, 0, 0 }
     };
     scene_opts o;
     const long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
     render_opts ro = { "render.png", NULL, NULL, ncpu > 0 && ncpu < 256 ? (uint32_t)ncpu : 1, 0, 0, 0, 0, 30.0,
-                       { SHADE_DEFAULT_DEPTH, 1 }, 0, { 0 }, NULL, NULL, 100000 };
+                       { SHADE_DEFAULT_DEPTH, 1, TRAV_STACK }, 0, { 0 }, NULL, NULL, 100000 };
     int c, prec_e = F24_EXP_BITS, prec_m = F24_MAN_BITS;
     scene_opts_default(&o);
     cycle_config_default(&ro.cc);
@@ -480,6 +483,16 @@ int cmd_render(int argc, char **argv)
             ro.cfg.max_depth = (uint32_t)v;
             break;
         case 'S': ro.cfg.shadows = 0; break;
+        case 'T': {
+            static const char *const names[TRAV_KINDS] = { "stack", "short-stack", "restart", "push-down" };
+            uint32_t k = 0;
+            while (k < TRAV_KINDS && strcmp(optarg, names[k]) != 0)
+                k++;
+            if (k == TRAV_KINDS)
+                return cli_usage_error("render", "bad --traversal '%s' (stack, short-stack, restart or push-down)", optarg);
+            ro.cfg.traversal = k;
+            break;
+        }
         case 'C': ro.capture = optarg; break;
         case 'L':
             if (!cli_parse_u64(optarg, 1, 100000000, &v))
