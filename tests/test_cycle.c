@@ -97,7 +97,7 @@ static void assert_same_frame(const frame *a, const frame *b)
     assert_memory_equal(&a->c, &b->c, sizeof a->c);
 }
 
-static const rgs_config full = { 2, 1 };
+static const rgs_config full = { 2, 1, TRAV_STACK };
 
 /* Every scene, T in {1, 5, 64}, P in {1, 3}: the functional mode's bits and counters. */
 static void same_bits_as_functional(void **state)

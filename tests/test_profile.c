@@ -107,7 +107,7 @@ static uint32_t check_same(const char *name, int variant, const rgs_config *rc, 
 }
 
 static frame gen_f, spec_f;
-static const rgs_config full = { 3, 1 };
+static const rgs_config full = { 3, 1, TRAV_STACK };
 
 static void generated_scenes_same_image(void **state)
 {
@@ -123,7 +123,7 @@ static void generated_scenes_same_image(void **state)
 static void any_hit_shadows_save_work(void **state)
 {
     (void)state;
-    const rgs_config shadows_only = { 0, 1 };
+    const rgs_config shadows_only = { 0, 1, TRAV_STACK };
     check_same("room", 0, &shadows_only, &gen_f, &spec_f);
     assert_true(spec_f.c.rays[RAY_SHADOW] > 0);
     assert_true(spec_f.c.trace.intersections < gen_f.c.trace.intersections);

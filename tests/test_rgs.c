@@ -72,7 +72,7 @@ static void primary_rays(void **state)
     scene_free(&s);
 }
 
-static const rgs_config full = { 3, 1 };
+static const rgs_config full = { 3, 1, TRAV_STACK };
 
 static void render_block(const uint32_t *mem, const rgs_config *cfg, uint32_t x, uint32_t y, uint32_t rgb[],
                          hit_record h[], rgs_counters *c)
@@ -95,7 +95,7 @@ static void shading(void **state)
     assert_true(c.rays[RAY_SHADOW] > 0); /* shadow rays towards the scene's light were traced */
     assert_int_equal(c.rays[RAY_PRIMARY], 4);
     render_block(mem, &full, 2, 2, again, h, &c2);
-    const rgs_config no_shadows = { 0, 0 };
+    const rgs_config no_shadows = { 0, 0, TRAV_STACK };
     rgs_counters c3;
     render_block(mem, &no_shadows, 2, 2, flat, h, &c3);
     assert_int_equal(c3.rays[RAY_SHADOW] + c3.rays[RAY_REFLECTION] + c3.rays[RAY_TRANSMISSION], 0);
@@ -256,7 +256,7 @@ static void bilinear_texture(void **state)
     hit_record h[TRACE_PACKET];
     uint32_t rgb[TRACE_PACKET];
     rgs_counters c;
-    const rgs_config primary_only = { 0, 1 };
+    const rgs_config primary_only = { 0, 1, TRAV_STACK };
     render_block(mem, &primary_only, 31, 31, rgb, h, &c); /* pixels 31..32: around the texture centre */
     for (int i = 0; i < TRACE_PACKET; i++) {
         assert_true(h[i].instance != TRACE_NO_HIT);
@@ -331,7 +331,7 @@ static uint32_t centre_colour(const scene *s, uint32_t max_depth, rgs_counters *
     assert_non_null(b);
     uint32_t n, rgb[TRACE_PACKET];
     hit_record h[TRACE_PACKET];
-    const rgs_config cfg = { max_depth, 1 };
+    const rgs_config cfg = { max_depth, 1, TRAV_STACK };
     render_block(mi_words(b, &n), &cfg, 7, 7, rgb, h, c);
     for (int i = 1; i < TRACE_PACKET; i++)
         assert_int_equal(rgb[i], rgb[0]);

@@ -21,7 +21,7 @@ void dynrtc_top(const uint32_t mem[HLS_MEM_WORDS], uint32_t fb[HLS_FB_WORDS], ui
 #pragma HLS INTERFACE mode=s_axilite port=return
     uint32_t w, h;
     rgs_image_size(mem, &w, &h);
-    const rgs_config cfg = { max_depth, shadows };
+    const rgs_config cfg = { max_depth, shadows, TRAV_STACK };
     rgs_counters c = { 0 };
 tile_rows:
     for (uint32_t by = 0; by < HLS_TILE; by += 2)

@@ -82,7 +82,7 @@ static double render_ours(const uint32_t *mem, uint32_t max_depth)
 {
     rgs_counters c;
     memset(&c, 0, sizeof c);
-    const rgs_config cfg = { max_depth, 1 };
+    const rgs_config cfg = { max_depth, 1, TRAV_STACK };
     uint32_t sink = 0;
     const double t0 = now();
     for (uint32_t y = 0; y < H; y += 2)
