@@ -58,7 +58,8 @@ TB_FP := $(sort $(wildcard tb/fp/*.c))
 CLI := $(sort $(wildcard tb/cli/*.c))
 HOST_CXX := $(sort $(wildcard host/*/*.cpp))
 HOST_C := $(sort $(filter-out host/memimage/%,$(wildcard host/*/*.c scenes/*.c)))
-# the double-precision reference renderer (tb/ref) calls the memory image only for the camera
+# the double-precision reference renderer (tb/ref) calls the memory image only for the camera;
+# tb/ref/ref_units.c is the brute-force closest hit with the units' arithmetic (tests, stress)
 REF := $(sort $(wildcard tb/ref/*.c))
 MEMIMAGE := $(sort $(wildcard host/memimage/*.c))
 HLS_UNITS := $(sort $(wildcard hls/units/*.c))
@@ -178,7 +179,7 @@ HLS_CONFIGS := $(patsubst hls/config_%.h,%,$(wildcard hls/config_*.h))
 hls-check:
 	@python3 scripts/hls_summary.py $(if $(CONFIG),$(CONFIG),default $(HLS_CONFIGS))
 
-# test vectors for hls/vitis/run.tcl (the ones tests/test_hls.sh makes): captured unit
+# test vectors for tb/vitis/run.tcl (the ones tests/test_hls.sh makes): captured unit
 # transactions of the room, and the cornell memory image with the simulator's image of it
 hls-vectors: $(BUILD)/saarcor
 	@mkdir -p $(BUILD)/hls-vectors

@@ -2,7 +2,7 @@
 # HLS readiness and scene specialization in make test: `make hls-check` is clean for the general
 # design and every hls/config_*.h; each of its checks catches a mutant (malloc, recursion, float,
 # VLA, unbounded loops, function pointers); the unit top functions (hls/top) replay captured
-# transactions bit for bit (hls/vitis/tb_units.c, the csim testbench); dynrtc_top renders a
+# transactions bit for bit (tb/vitis/tb_units.c, the csim testbench); dynrtc_top renders a
 # scene pixel for pixel like the simulator, in the general design and in a reduced
 # configuration, and the testbench fails when the configuration does not fit the render;
 # render with the scene profile draws the same image as --general; saarcor profile errors.
@@ -13,15 +13,10 @@ B=${BUILD:-build}
 BIN=$B/saarcor
 T=$(mktemp -d /tmp/saarcor-test-hls-XXXXXX)
 trap 'rm -rf "$T"' EXIT
-fails=0
 HLS_CFLAGS=(-std=c11 -O2 -Wall -Wextra -Werror -Wno-unknown-pragmas -Wno-unused-label -Ihls -Ihls/fp24 -Ihls/units -Ihls/top)
 
-run_case() { # name, function
-  echo "[ RUN      ] $1"
-  ( set -e; "$2" ) >"$T/case.log" 2>&1
-  if [[ $? -eq 0 ]]; then tail -1 "$T/case.log"; echo "[       OK ] $1"
-  else cat "$T/case.log"; echo "[  FAILED  ] $1"; fails=$((fails + 1)); fi
-}
+# shellcheck source=case_lib.sh
+source tests/case_lib.sh
 
 t_hls_check() {
   make --no-print-directory hls-check
@@ -60,7 +55,7 @@ uint32_t f(uint32_t (*op)(uint32_t), uint32_t x) { return op(x); }' "indirect ca
 }
 
 t_unit_tops_replay_capture() {
-  gcc "${HLS_CFLAGS[@]}" hls/fp24/*.c hls/units/*.c hls/top/*.c hls/vitis/tb_units.c -o "$T/tb_units"
+  gcc "${HLS_CFLAGS[@]}" hls/fp24/*.c hls/units/*.c hls/top/*.c tb/vitis/tb_units.c -o "$T/tb_units"
   "$BIN" render room --width 64 --height 48 --capture-unit-io "$T/cap" --capture-limit 20000 -o "$T/room.png" >/dev/null
   "$T/tb_units" "$T/cap"
 }
@@ -70,9 +65,9 @@ t_dynrtc_top_general_and_reduced() {
   "$BIN" info cornell "${size[@]}" --image "$T/cornell.bin" >/dev/null
   "$BIN" render cornell "${size[@]}" -o "$T/full.ppm" >/dev/null
   "$BIN" render cornell "${size[@]}" --max-depth 0 --no-shadows -o "$T/primary.ppm" >/dev/null
-  gcc "${HLS_CFLAGS[@]}" hls/fp24/*.c hls/units/*.c hls/top/*.c hls/vitis/tb_dynrtc.c -o "$T/tb_general"
+  gcc "${HLS_CFLAGS[@]}" hls/fp24/*.c hls/units/*.c hls/top/*.c tb/vitis/tb_dynrtc.c -o "$T/tb_general"
   gcc -include hls/config_cornell_primary.h "${HLS_CFLAGS[@]}" hls/fp24/*.c hls/units/*.c hls/top/*.c \
-    hls/vitis/tb_dynrtc.c -o "$T/tb_reduced"
+    tb/vitis/tb_dynrtc.c -o "$T/tb_reduced"
   "$T/tb_general" "$T/cornell.bin" "$T/full.ppm" 3 1
   "$T/tb_general" "$T/cornell.bin" "$T/primary.ppm" 0 0
   "$T/tb_reduced" "$T/cornell.bin" "$T/primary.ppm" 0 0

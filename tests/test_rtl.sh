@@ -10,14 +10,9 @@ B=${BUILD:-build}
 BIN=$B/saarcor
 T=$(mktemp -d /tmp/saarcor-test-rtl-XXXXXX)
 trap 'rm -rf "$T"' EXIT
-fails=0
 
-run_case() { # name, function
-  echo "[ RUN      ] $1"
-  ( set -e; "$2" ) >"$T/case.log" 2>&1
-  if [[ $? -eq 0 ]]; then tail -1 "$T/case.log"; echo "[       OK ] $1"
-  else cat "$T/case.log"; echo "[  FAILED  ] $1"; fails=$((fails + 1)); fi
-}
+# shellcheck source=case_lib.sh
+source tests/case_lib.sh
 
 t_lint() {
   for f in rtl/*.sv; do

@@ -11,15 +11,10 @@ cd "$(dirname "$0")/.."
 B=${BUILD:-build}
 T=$(mktemp -d /tmp/saarcor-test-stress-XXXXXX)
 trap 'rm -rf "$T"' EXIT
-fails=0
 CLAIMED=inside-sphere,far-1e2,far-1e3,far-1e4,scale,sliver,coplanar,inst-,split-planes,face-planes,grazing,long-,nan-
 
-run_case() { # name, function
-  echo "[ RUN      ] $1"
-  ( set -e; "$2" ) >"$T/case.log" 2>&1
-  if [[ $? -eq 0 ]]; then tail -1 "$T/case.log"; echo "[       OK ] $1"
-  else cat "$T/case.log"; echo "[  FAILED  ] $1"; fails=$((fails + 1)); fi
-}
+# shellcheck source=case_lib.sh
+source tests/case_lib.sh
 
 t_claimed() {
   $B/saarcor stress --rays 2000 --case "$CLAIMED" --check --json "$T/s.json"
@@ -52,4 +47,4 @@ run_case stress_claimed_cases_pass t_claimed
 run_case stress_exact_bounds_leak_at_edges t_exact_leaks
 run_case stress_robust_option_closes_leaks t_robust_closes_leaks
 run_case stress_bad_options t_bad_options
-exit $((fails > 0))
+exit $((fails != 0))

@@ -19,6 +19,7 @@
 
 #include "f24_fast.h"
 #include "memimage.h"
+#include "ref_units.h"
 #include "rgs.h"
 #include "scene.h"
 #include "scenes.h"
@@ -67,21 +68,31 @@ static double brute_force(const scene *s, const double o[3], const double d[3])
     return best;
 }
 
-static void check_scene(const char *name, double time)
+/* The generated scene `name` evaluated at `time` and its memory image for a width x height camera
+ * (asserts that both build). */
+static mi_builder *generated_image(const char *name, double time, uint32_t width, uint32_t height, scene *s)
 {
     const scene_generator *g = scene_generator_find(name);
     assert_non_null(g);
-    scene s;
     char err[256];
     const scene_gen_params gp = { 1, 0 };
-    assert_int_equal(g->build(&s, &gp, err, sizeof err), 0);
-    assert_int_equal(scene_evaluate(&s, time, 1), 0);
+    assert_int_equal(g->build(s, &gp, err, sizeof err), 0);
+    assert_int_equal(scene_evaluate(s, time, 1), 0);
     mi_params p;
     mi_params_default(&p);
-    p.width = 64;
-    p.height = 48;
-    mi_builder *b = mi_build(&s, &p, err, sizeof err);
+    p.width = width;
+    p.height = height;
+    mi_builder *b = mi_build(s, &p, err, sizeof err);
     assert_non_null(b);
+    return b;
+}
+
+static void check_scene(const char *name, double time)
+{
+    enum { W = 64, H = 48 };
+    scene s;
+    char err[256];
+    mi_builder *b = generated_image(name, time, W, H, &s);
     uint32_t n;
     const uint32_t *mem = mi_words(b, &n);
     assert_int_equal(mi_validate(mem, n, err, sizeof err), 0);
@@ -89,8 +100,8 @@ static void check_scene(const char *name, double time)
     trace_counters c;
     memset(&c, 0, sizeof c);
     uint32_t rays = 0, hit_agree = 0, t_close = 0, both_hit = 0;
-    for (uint32_t y = 0; y < p.height; y += 2) {
-        for (uint32_t x = 0; x < p.width; x += 2) {
+    for (uint32_t y = 0; y < H; y += 2) {
+        for (uint32_t x = 0; x < W; x += 2) {
             ray_packet rp = { .active = 0xF };
             for (int i = 0; i < TRACE_PACKET; i++) {
                 const double px = x + (i & 1) + 0.5, py = y + (i >> 1) + 0.5;
@@ -140,15 +151,8 @@ static void animated(void **state) { (void)state; check_scene("animated", 1.3); 
 static void zero_components_and_disagreeing_packets(void **state)
 {
     (void)state;
-    const scene_generator *g = scene_generator_find("cornell");
     scene s;
-    char err[256];
-    const scene_gen_params gp = { 1, 0 };
-    assert_int_equal(g->build(&s, &gp, err, sizeof err), 0);
-    assert_int_equal(scene_evaluate(&s, 0, 0), 0);
-    mi_params p;
-    mi_params_default(&p);
-    mi_builder *b = mi_build(&s, &p, err, sizeof err);
+    mi_builder *b = generated_image("cornell", 0, 512, 384, &s);
     uint32_t n;
     const uint32_t *mem = mi_words(b, &n);
     const uint32_t *bounds = mem + MI_H_SCENE_BOUNDS;
@@ -191,28 +195,6 @@ static void zero_components_and_disagreeing_packets(void **state)
     scene_free(&s);
 }
 
-/* Closest hit over every instance and triangle of the image with the units' own arithmetic
- * (world-to-object and triangle transformation, unit-triangle test): what a complete traversal
- * must find, bit for bit. */
-static f24_t brute_force_units(const uint32_t *mem, f24_vec3 o, f24_vec3 d)
-{
-    const uint32_t *inst = mem + mem[MI_H_REGION_TABLE + 2 * MI_R_INSTANCES];
-    const uint32_t *objs = mem + mem[MI_H_REGION_TABLE + 2 * MI_R_OBJECTS];
-    f24_t best = F24_POS_INF;
-    for (uint32_t i = 0; i < mem[MI_H_INSTANCES]; i++) {
-        const f24_affine w2o = f24_affine_load(mem, (uint32_t)(inst - mem) + MI_INSTANCE_WORDS * i);
-        const uint32_t *obj = objs + MI_OBJECT_WORDS * inst[MI_INSTANCE_WORDS * i + 12];
-        const f24_vec3 oo = xform_point(&w2o, o), od = xform_vector(&w2o, d);
-        for (uint32_t t = 0; t < obj[6]; t++) {
-            const f24_affine tx = f24_affine_load(mem, obj[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * t);
-            const isect_result r = isect_unit_triangle(xform_point(&tx, oo), xform_vector(&tx, od), 0, best);
-            if (r.hit)
-                best = r.t;
-        }
-    }
-    return best;
-}
-
 /* Rays lying in the split planes of the top-level tree (origin on the plane, direction
  * component along the split axis +0 or -0) in the room scene: the traversal must send them to
  * both children or the correct one: their closest hits equal, bit for bit, brute force over all
@@ -222,14 +204,7 @@ static void rays_in_split_planes(void **state)
 {
     (void)state;
     scene s;
-    char err[256];
-    const scene_gen_params gp = { 1, 0 };
-    assert_int_equal(scene_generator_find("room")->build(&s, &gp, err, sizeof err), 0);
-    assert_int_equal(scene_evaluate(&s, 0, 0), 0);
-    mi_params p;
-    mi_params_default(&p);
-    mi_builder *b = mi_build(&s, &p, err, sizeof err);
-    assert_non_null(b);
+    mi_builder *b = generated_image("room", 0, 512, 384, &s);
     uint32_t n;
     const uint32_t *mem = mi_words(b, &n);
     const uint32_t *nodes = mem + mem[MI_H_REGION_TABLE + 2 * MI_R_TOP_NODES], *bounds = mem + MI_H_SCENE_BOUNDS;
@@ -260,7 +235,7 @@ static void rays_in_split_planes(void **state)
         hit_record h[TRACE_PACKET];
         trace_packet(mem, &rp, h, &c);
         for (int i = 0; i < TRACE_PACKET; i++) {
-            const f24_t ref = brute_force_units(mem, rp.o[i], rp.d[i]);
+            const f24_t ref = ref_units_closest(mem, rp.o[i], rp.d[i], 0, F24_POS_INF);
             rays++;
             agree += h[i].instance == TRACE_NO_HIT ? ref == F24_POS_INF : h[i].t == ref;
         }
@@ -295,24 +270,16 @@ static void traversal_algorithms_agree(void **state)
     (void)state;
     static const char *const names[] = { "room", "terrain" };
     for (size_t sc = 0; sc < 2; sc++) {
+        enum { W = 96, H = 72 };
         scene s;
-        char err[256];
-        const scene_gen_params gp = { 1, 0 };
-        assert_int_equal(scene_generator_find(names[sc])->build(&s, &gp, err, sizeof err), 0);
-        assert_int_equal(scene_evaluate(&s, 0, 0), 0);
-        mi_params p;
-        mi_params_default(&p);
-        p.width = 96;
-        p.height = 72;
-        mi_builder *b = mi_build(&s, &p, err, sizeof err);
-        assert_non_null(b);
+        mi_builder *b = generated_image(names[sc], 0, W, H, &s);
         uint32_t nw;
         const uint32_t *mem = mi_words(b, &nw);
         trace_counters c[TRAV_KINDS];
         memset(c, 0, sizeof c);
         uint32_t differ = 0, ulps = 0, longest = 0;
-        for (uint32_t y = 0; y < p.height; y += 2)
-            for (uint32_t x = 0; x < p.width; x += 2) {
+        for (uint32_t y = 0; y < H; y += 2)
+            for (uint32_t x = 0; x < W; x += 2) {
                 ray_packet rp;
                 rgs_primary(mem, x, y, &rp);
                 hit_record ref[TRACE_PACKET], h[TRACE_PACKET];

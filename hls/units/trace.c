@@ -126,9 +126,11 @@ static void walker_push(trav_walker *w, const trav_entry *far)
 /* After a restart, a cell that ends where a ray's last leaf ended was visited already. */
 static void drop_done_cells(const trav_walker *w, trav_entry *e)
 {
+    if (!w->pass)
+        return;
 done_cells:
     for (int i = 0; i < TRACE_PACKET; i++)
-        if (w->pass && bit(e->mask, i) && f24_le(e->tf[i], w->t_exit[i]))
+        if (bit(e->mask, i) && f24_le(e->tf[i], w->t_exit[i]))
             e->mask &= ~(1u << i);
 }
 
@@ -216,7 +218,7 @@ prune:
             leaf = w->leaf_count != 0;
         leaf_exit: /* only a leaf that continues a ray's covered segment extends it: in a packet a
                      ray may meet its cells in another order than the first ray */
-            for (int i = 0; i < TRACE_PACKET; i++)
+            for (int i = 0; i < TRACE_PACKET && w->cap < TRACE_STACK; i++) /* the stack never restarts */
                 if (bit(e->mask, i) && f24_le(e->tn[i], w->t_exit[i]))
                     w->t_exit[i] = f24_max(w->t_exit[i], e->tf[i]);
         } else {

@@ -98,15 +98,16 @@ int cmd_stress(int argc, char **argv)
     if (optind != argc)
         return cli_usage_error("stress", "unexpected argument '%s'", argv[optind]);
     static stress_result r[MAX_CASES];
-    const int n = stress_run(filter, list ? 4 : (uint32_t)rays, shared, r, MAX_CASES);
-    if (n < 0) {
-        cli_error("stress", "out of memory");
-        return SAARCOR_EXIT_INTERNAL;
-    }
     if (list) {
+        const int n = stress_describe(r, MAX_CASES);
         for (int i = 0; i < n; i++)
             printf("%-14s %s\n%-14s criterion: %s\n", r[i].name, r[i].what, "", r[i].criterion);
         return SAARCOR_EXIT_OK;
+    }
+    const int n = stress_run(filter, (uint32_t)rays, shared, r, MAX_CASES);
+    if (n < 0) {
+        cli_error("stress", "out of memory");
+        return SAARCOR_EXIT_INTERNAL;
     }
     if (n == 0)
         return cli_usage_error("stress", "no case matches '%s'", filter ? filter : "");

@@ -11,6 +11,7 @@
 #include "isect_unit.h"
 #include "memimage.h"
 #include "ref_bvh.h"
+#include "ref_units.h"
 #include "scenes.h"
 #include "trace.h"
 #include "xform_unit.h"
@@ -70,9 +71,14 @@ static void aim(stress_ray *ry, const double o[3], const double p[3])
 
 /* ---- scenes -------------------------------------------------------------------------------- */
 
-/* One mesh (moved out of m) placed by each of the n matrices. */
+/* One mesh (moved out of m) placed by each of the n matrices (place NULL: once, untransformed). */
 static int scene_of(geom_mesh *m, const affine *place, int n, scene *out)
 {
+    const affine id = affine_identity();
+    if (!place) {
+        place = &id;
+        n = 1;
+    }
     geom_scene g;
     char err[128];
     geom_scene_begin(&g, out);
@@ -164,8 +170,7 @@ static void edge_rays(const world *w, geom_rng *rng, double dist, stress_ray *ra
 static int make_inside(const case_def *c, const char *shared, geom_rng *rng, world *w, stress_ray *rays, uint32_t n)
 {
     (void)c, (void)shared;
-    const affine id = affine_identity();
-    if (sphere_scene(w, rng, &id, 0.02) != 0)
+    if (sphere_scene(w, rng, NULL, 0.02) != 0)
         return 0;
     for (uint32_t i = 0; i < n; i++) {
         double o[3], d[3];
@@ -185,8 +190,7 @@ static int make_edges_ico(const case_def *c, const char *shared, geom_rng *rng, 
     (void)shared;
     geom_mesh m;
     jittered_sphere(&m, (uint32_t)c->param, 0.05, rng);
-    const affine id = affine_identity();
-    if (scene_of(&m, &id, 1, &w->s) != 0)
+    if (scene_of(&m, NULL, 0, &w->s) != 0)
         return 0;
     edge_rays(w, rng, 2.0, rays, n);
     return (int)n;
@@ -206,8 +210,7 @@ static int make_edges_lathe(const case_def *c, const char *shared, geom_rng *rng
     geom_mesh_init(&m);
     const affine xf = geom_trs(0.3, -0.2, 0.1, 1, 1, 0, 0.4, 1, 1, 1);
     geom_lathe(&m, &xf, (const double(*)[2])profile, RINGS, 48, 0);
-    const affine id = affine_identity();
-    if (scene_of(&m, &id, 1, &w->s) != 0)
+    if (scene_of(&m, NULL, 0, &w->s) != 0)
         return 0;
     edge_rays(w, rng, 2.0, rays, n);
     return (int)n;
@@ -244,8 +247,7 @@ static int make_scale(const case_def *c, const char *shared, geom_rng *rng, worl
     jittered_sphere(&m, 3, 0.02, rng);
     for (uint32_t v = 0; v < 3 * m.nv; v++)
         m.pos[v] = (float)(m.pos[v] * c->param);
-    const affine id = affine_identity();
-    if (scene_of(&m, &id, 1, &w->s) != 0)
+    if (scene_of(&m, NULL, 0, &w->s) != 0)
         return 0;
     const double s = c->param;
     view_rays(rng, (const double[3]){ 0.3 * s, 0.2 * s, 4 * s }, (const double[3]){ 0, 0, 0 }, 1.2 * s, rays, n);
@@ -269,8 +271,7 @@ static int make_sliver(const case_def *c, const char *shared, geom_rng *rng, wor
     } else {
         geom_tri(&m, va, vb, geom_vertex(&m, apex, NULL, 0, 0), 0);
     }
-    const affine id = affine_identity();
-    if (scene_of(&m, &id, 1, &w->s) != 0)
+    if (scene_of(&m, NULL, 0, &w->s) != 0)
         return 0;
     for (uint32_t i = 0; i < n; i++) {
         /* a point strictly inside (for the cap: below the line from the base to the apex) */
@@ -291,8 +292,7 @@ static int make_coplanar(const case_def *c, const char *shared, geom_rng *rng, w
     const affine s1 = geom_trs(0, 0, 0, 1, 0, 0, M_PI / 2, 2, 1, 2), s2 = geom_trs(0.3, 0.1, 0, 1, 0, 0, M_PI / 2, 2, 1, 2);
     geom_grid(&m, &s1, 1, 1, NULL, 0, NULL, NULL);
     geom_grid(&m, &s2, 1, 1, NULL, 0, NULL, NULL);
-    const affine id = affine_identity();
-    if (scene_of(&m, &id, 1, &w->s) != 0)
+    if (scene_of(&m, NULL, 0, &w->s) != 0)
         return 0;
     for (uint32_t i = 0; i < n; i++) {
         const double p[3] = { geom_range(rng, -0.6, 0.9), geom_range(rng, -0.8, 0.9), 0 }, o[3] = { p[0], p[1], 2 };
@@ -373,8 +373,7 @@ static int make_face_planes(const case_def *c, const char *shared, geom_rng *rng
     geom_mesh m;
     geom_mesh_init(&m);
     geom_box(&m, NULL, 0);
-    const affine id = affine_identity();
-    if (scene_of(&m, &id, 1, &w->s) != 0)
+    if (scene_of(&m, NULL, 0, &w->s) != 0)
         return 0;
     for (uint32_t i = 0; i < n; i++) {
         const uint32_t axis = i % 3;
@@ -396,8 +395,7 @@ static int make_grazing(const case_def *c, const char *shared, geom_rng *rng, wo
     geom_mesh m;
     geom_mesh_init(&m);
     geom_sphere(&m, NULL, 5, 0);
-    const affine id = affine_identity();
-    if (scene_of(&m, &id, 1, &w->s) != 0)
+    if (scene_of(&m, NULL, 0, &w->s) != 0)
         return 0;
     for (uint32_t i = 0; i < n; i++) {
         const double a = geom_range(rng, 0, 2 * M_PI), r = 1 + geom_range(rng, -c->param, c->param);
@@ -413,8 +411,7 @@ static int make_grazing(const case_def *c, const char *shared, geom_rng *rng, wo
 static int make_acne(const case_def *c, const char *shared, geom_rng *rng, world *w, stress_ray *rays, uint32_t n)
 {
     (void)shared;
-    const affine id = affine_identity();
-    if (sphere_scene(w, rng, &id, 0) != 0) /* convex: nothing can be hit on the way out */
+    if (sphere_scene(w, rng, NULL, 0) != 0) /* convex: nothing can be hit on the way out */
         return 0;
     char err[128];
     mi_params p;
@@ -491,8 +488,7 @@ static int make_long(const case_def *c, const char *shared, geom_rng *rng, world
 static int make_nan_rays(const case_def *c, const char *shared, geom_rng *rng, world *w, stress_ray *rays, uint32_t n)
 {
     (void)c, (void)shared;
-    const affine id = affine_identity();
-    if (sphere_scene(w, rng, &id, 0.02) != 0)
+    if (sphere_scene(w, rng, NULL, 0.02) != 0)
         return 0;
     view_rays(rng, (const double[3]){ 0.3, 0.2, 4 }, (const double[3]){ 0, 0, 0 }, 1.2, rays, n);
     const double bad[3] = { NAN, INFINITY, -INFINITY };
@@ -518,8 +514,7 @@ static int make_nan_geometry(const case_def *c, const char *shared, geom_rng *rn
     jittered_sphere(&m, 3, 0.02, rng);
     m.pos[0] = NAN;
     m.pos[3 * 7 + 1] = INFINITY;
-    const affine id = affine_identity();
-    if (scene_of(&m, &id, 1, &w->s) != 0)
+    if (scene_of(&m, NULL, 0, &w->s) != 0)
         return 0;
     view_rays(rng, (const double[3]){ 0.3, 0.2, 4 }, (const double[3]){ 0, 0, 0 }, 1.2, rays, n);
     return (int)n;
@@ -639,26 +634,6 @@ static uint32_t accepting(const world *w, const ray_packet *rp, int k, uint32_t 
     return n;
 }
 
-/* Closest hit over every instance and triangle with the units' arithmetic: what a complete
- * traversal must find, bit for bit. */
-static f24_t brute_force(const uint32_t *mem, const ray_packet *rp, int k)
-{
-    const uint32_t ia = mem[MI_H_REGION_TABLE + 2 * MI_R_INSTANCES], oa = mem[MI_H_REGION_TABLE + 2 * MI_R_OBJECTS];
-    f24_t best = rp->tmax[k];
-    for (uint32_t i = 0; i < mem[MI_H_INSTANCES]; i++) {
-        const f24_affine w2o = f24_affine_load(mem, ia + MI_INSTANCE_WORDS * i);
-        const uint32_t *od = mem + oa + MI_OBJECT_WORDS * mem[ia + MI_INSTANCE_WORDS * i + 12];
-        const f24_vec3 o = xform_point(&w2o, rp->o[k]), d = xform_vector(&w2o, rp->d[k]);
-        for (uint32_t t = 0; t < od[MI_O_N_TRIANGLES]; t++) {
-            const f24_affine tx = f24_affine_load(mem, od[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * t);
-            const isect_result r = isect_unit_transformed(&tx, o, d, rp->tmin[k], best);
-            if (r.hit)
-                best = r.t;
-        }
-    }
-    return best;
-}
-
 static int finite_hit(const hit_record *h, double tmin, double tmax)
 {
     const double t = D(h->t);
@@ -690,7 +665,7 @@ static void judge(const world *w, const ray_packet *rp, int k, const hit_record 
     if (flags & STRESS_MUST_MISS)
         r->acne += uh;
     if (flags & STRESS_BRUTE) {
-        const f24_t b = brute_force(w->mem, rp, k);
+        const f24_t b = ref_units_closest(w->mem, rp->o[k], rp->d[k], rp->tmin[k], rp->tmax[k]);
         /* the traversal lost a surface: it missed, or its hit lies clearly behind the closest */
         const int bh = b != rp->tmax[k];
         r->traversal += bh && (!uh || D(h->t) > D(b) * (1 + 1e-3));
@@ -777,6 +752,24 @@ static int selected(const char *name, const char *filter)
     return 0;
 }
 
+/* The description fields of a result. */
+static void describe(const case_def *c, stress_result *r)
+{
+    memset(r, 0, sizeof *r);
+    r->name = c->name;
+    r->what = c->what;
+    r->criterion = criterion_text(c->criterion);
+    r->flags = c->flags;
+}
+
+int stress_describe(stress_result *results, int max)
+{
+    int n = 0;
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0] && n < max; i++)
+        describe(&cases[i], &results[n++]);
+    return n;
+}
+
 int stress_run(const char *filter, uint32_t rays, const char *shared, stress_result *results, int max)
 {
     int count = 0;
@@ -788,11 +781,7 @@ int stress_run(const char *filter, uint32_t rays, const char *shared, stress_res
         if (!selected(c->name, filter))
             continue;
         stress_result *r = &results[count];
-        memset(r, 0, sizeof *r);
-        r->name = c->name;
-        r->what = c->what;
-        r->criterion = criterion_text(c->criterion);
-        r->flags = c->flags;
+        describe(c, r);
         world w;
         memset(&w, 0, sizeof w);
         geom_rng rng;

@@ -46,4 +46,7 @@ typedef struct {
  * is the folder of the shared scenes (cases that need one are skipped if it is missing). */
 int stress_run(const char *filter, uint32_t rays, const char *shared, stress_result *results, int max);
 
+/* The names, descriptions and criteria of every case, without running any; returns the count. */
+int stress_describe(stress_result *results, int max);
+
 #endif

@@ -21,10 +21,6 @@
 #include "scenes.h"
 #include "trace.h"
 
-#ifndef SAARCOR_SRC_DIR
-#define SAARCOR_SRC_DIR "."
-#endif
-
 enum { W = 512, H = 384, N_RAYS = W * H, MAX_N = 16 };
 
 typedef struct {
@@ -141,22 +137,12 @@ static double timed(job base, int threads)
     return now() - t0;
 }
 
-static int load(const char *name, scene *s)
-{
-    char err[512], path[512];
-    if (!strchr(name, '.')) {
-        const scene_gen_params gp = { 1, 0 };
-        return scene_generator_find(name)->build(s, &gp, err, sizeof err);
-    }
-    snprintf(path, sizeof path, SAARCOR_SRC_DIR "/../shared/scenes/%s", name);
-    return scene_load_gltf(path, s, err, sizeof err);
-}
-
 static void bench_scene(const char *name, FILE *json, int *first_row)
 {
     scene s;
-    if (load(name, &s) != 0 || scene_evaluate(&s, 0, 0) != 0) {
-        fprintf(stderr, "bench-peers: %s: skipped (cannot load)\n", name);
+    char err[512] = "cannot evaluate the scene";
+    if (bench_scene_load(name, &s, err, sizeof err) != 0 || scene_evaluate(&s, 0, 0) != 0) {
+        fprintf(stderr, "bench-peers: %s: skipped (%s)\n", name, err);
         return;
     }
     mi_params p;
@@ -164,7 +150,6 @@ static void bench_scene(const char *name, FILE *json, int *first_row)
     p.memory_bytes = 1u << 30;
     p.width = W;
     p.height = H;
-    char err[512];
     mi_builder *b = mi_build(&s, &p, err, sizeof err);
     fray *rays = malloc(N_RAYS * sizeof *rays);
     ray_packet *packets = malloc(N_RAYS / TRACE_PACKET * sizeof *packets);
@@ -228,8 +213,6 @@ done:
 int main(int argc, char **argv)
 {
     const char *out = argc > 2 && !strcmp(argv[1], "--out") ? argv[2] : "build/bench";
-    static const char *const scenes[] = { "cornell", "room", "plants", "terrain", "teapot.glb", "bunny.glb",
-                                          "CesiumMilkTruck.glb", "gallery_ccby_503k.glb" };
     char path[512];
     snprintf(path, sizeof path, "%s/peers_rays.json", out);
     FILE *json = fopen(path, "w");
@@ -239,8 +222,8 @@ int main(int argc, char **argv)
     }
     int first = 1;
     fprintf(json, "[\n");
-    for (size_t i = 0; i < sizeof scenes / sizeof scenes[0]; i++)
-        bench_scene(scenes[i], json, &first);
+    for (size_t i = 0; i < BENCH_SCENES; i++)
+        bench_scene(bench_scene_names[i], json, &first);
     fprintf(json, "\n]\n");
     return fclose(json) != 0 ? 3 : 0;
 }

@@ -23,14 +23,7 @@
 #include "shading_model.h"
 #include "trace.h"
 
-#ifndef SAARCOR_SRC_DIR
-#define SAARCOR_SRC_DIR "."
-#endif
-
 enum { W = 1024, H = 768 };
-
-static const char *const scene_names[] = { "cornell", "room", "plants", "terrain", "teapot.glb", "bunny.glb",
-                                           "CesiumMilkTruck.glb", "gallery_ccby_503k.glb" };
 
 typedef struct {
     char name[64];
@@ -45,17 +38,6 @@ static double now(void)
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int load(const char *name, scene *s, char *err, size_t n)
-{
-    if (!strchr(name, '.')) {
-        const scene_gen_params gp = { 1, 0 };
-        return scene_generator_find(name)->build(s, &gp, err, n);
-    }
-    char path[512];
-    snprintf(path, sizeof path, SAARCOR_SRC_DIR "/../shared/scenes/%s", name);
-    return scene_load_gltf(path, s, err, n);
 }
 
 /* Our primary rays, one thread: t per pixel (INFINITY for a miss) and the trace time. */
@@ -157,7 +139,7 @@ static void bench_one(const char *name, result *r)
     scene s;
     char err[512];
     fprintf(stderr, "bench-render: %s ...", name);
-    if (load(name, &s, err, sizeof err) != 0 || scene_evaluate(&s, 0, 0) != 0) {
+    if (bench_scene_load(name, &s, err, sizeof err) != 0 || scene_evaluate(&s, 0, 0) != 0) {
         fprintf(stderr, " skipped (%s)\n", err);
         return;
     }
@@ -187,11 +169,11 @@ static void bench_one(const char *name, result *r)
 int main(int argc, char **argv)
 {
     const char *out = argc > 2 && !strcmp(argv[1], "--out") ? argv[2] : "build/bench";
-    enum { N = sizeof scene_names / sizeof scene_names[0] };
+    enum { N = BENCH_SCENES };
     result r[N];
     memset(r, 0, sizeof r);
     for (int i = 0; i < N; i++)
-        bench_one(scene_names[i], &r[i]);
+        bench_one(bench_scene_names[i], &r[i]);
     char path[512];
     snprintf(path, sizeof path, "%s/render.md", out);
     FILE *md = fopen(path, "w");

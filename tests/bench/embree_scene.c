@@ -1,7 +1,28 @@
 /* Embree two-level scene of the benchmarks: see embree_scene.h. */
 #include "embree_scene.h"
 
+#include <stdio.h>
 #include <string.h>
+
+#include "scenes.h"
+
+#ifndef SAARCOR_SRC_DIR
+#define SAARCOR_SRC_DIR "."
+#endif
+
+const char *const bench_scene_names[BENCH_SCENES] = { "cornell", "room", "plants", "terrain", "teapot.glb", "bunny.glb",
+                                                      "CesiumMilkTruck.glb", "gallery_ccby_503k.glb" };
+
+int bench_scene_load(const char *name, scene *s, char *err, size_t n)
+{
+    if (!strchr(name, '.')) {
+        const scene_gen_params gp = { 1, 0 };
+        return scene_generator_find(name)->build(s, &gp, err, n);
+    }
+    char path[512];
+    snprintf(path, sizeof path, SAARCOR_SRC_DIR "/../shared/scenes/%s", name);
+    return scene_load_gltf(path, s, err, n);
+}
 
 /* One RTCScene holding the mesh's triangles (uncommitted), or NULL for an empty mesh. */
 RTCScene embree_mesh_scene(RTCDevice dev, const scene_mesh *m, enum RTCBuildQuality q)

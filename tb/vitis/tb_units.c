@@ -3,7 +3,7 @@
  * is never synthesized; make hls-check covers hls/fp24, hls/units and hls/top only.
  *
  * Testbench of the datapath top functions xform_top, isect_top and trav_top (C simulation with GCC
- * in `make test`, csim and cosim in Vitis HLS, hls/vitis/run.tcl): replays the transactions that
+ * in `make test`, csim and cosim in Vitis HLS, tb/vitis/run.tcl): replays the transactions that
  * `saarcor render --capture-unit-io DIR` recorded (the vectors rtl/tb replays against the RTL) in
  * batches of HLS_BATCH and diffs every result word against the recording. Returns 0 if all
  * match, 1 on a mismatch (printing the first ones), 2 on bad input.

@@ -3,7 +3,7 @@
  * is never synthesized; make hls-check covers hls/fp24, hls/units and hls/top only.
  *
  * Testbench of dynrtc_top (C simulation with GCC in `make test`, csim and cosim in Vitis HLS,
- * hls/vitis/run.tcl): renders every tile of a memory image through the top function and diffs
+ * tb/vitis/run.tcl): renders every tile of a memory image through the top function and diffs
  * the frame buffer against the simulator's image of the same scene (a binary PPM written by
  * `saarcor render`). Returns 0 if every pixel matches, 1 otherwise (printing the first
  * mismatches), 2 on bad input.

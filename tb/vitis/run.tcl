@@ -1,10 +1,10 @@
 # Vitis HLS flow for the saarcor top functions (docs/hls.md): C simulation, C synthesis and C/RTL
 # co-simulation of xform_top, isect_top, trav_top and dynrtc_top, with the testbenches and vectors
-# of `make test` (hls/vitis/tb_units.c on captured unit transactions, hls/vitis/tb_dynrtc.c on a
+# of `make test` (tb/vitis/tb_units.c on captured unit transactions, tb/vitis/tb_dynrtc.c on a
 # memory image and the simulator's image of it).
 #
 #   make hls-vectors                                 # writes build/hls-vectors/ (needs build/saarcor)
-#   vitis_hls -f hls/vitis/run.tcl [-tclargs PART [CONFIG [STEPS]]]
+#   vitis_hls -f tb/vitis/run.tcl [-tclargs PART [CONFIG [STEPS]]]
 #
 # PART    the FPGA part (default xcvu9p-flga2104-2-i, any part Vitis knows)
 # CONFIG  a hls/config_NAME.h scene configuration, or "default" for the general design
@@ -41,7 +41,7 @@ dict for {top spec} $tops {
     open_project -reset "build/vitis/$top"
     set_top $top
     foreach src $sources { add_files $src -cflags $cflags }
-    add_files -tb "$root/hls/vitis/$tb" -cflags $cflags
+    add_files -tb "$root/tb/vitis/$tb" -cflags $cflags
     open_solution -reset "solution_$config" -flow_target vivado
     set_part $part
     create_clock -period 11.1 -name default
