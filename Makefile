@@ -306,7 +306,7 @@ bench-precision: deps
 	python3 tests/bench/bench_precision.py --out $(BUILD)/bench
 
 # peers on the same primary rays: Embree single rays and packets (1, 2 threads), our functional
-# and cycle modes (traversal-algorithm variants: not yet) -> build/bench/peers.md
+# and cycle modes, the traversal unit's algorithms (render --traversal) -> build/bench/peers.md
 bench-peers: deps
 	@$(MAKE) --no-print-directory all $(BUILD)/bench_peers
 	@mkdir -p $(BUILD)/bench
