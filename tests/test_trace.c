@@ -70,7 +70,8 @@ static double brute_force(const scene *s, const double o[3], const double d[3])
 
 /* The generated scene `name` evaluated at `time` and its memory image for a width x height camera
  * (asserts that both build). */
-static mi_builder *generated_image(const char *name, double time, uint32_t width, uint32_t height, scene *s)
+static mi_builder *generated_image_with(const char *name, double time, uint32_t width, uint32_t height, uint32_t accel,
+                                       scene *s)
 {
     const scene_generator *g = scene_generator_find(name);
     assert_non_null(g);
@@ -82,9 +83,17 @@ static mi_builder *generated_image(const char *name, double time, uint32_t width
     mi_params_default(&p);
     p.width = width;
     p.height = height;
+    p.accel = accel;
+    if (accel)
+        p.memory_bytes = 64u << 20; /* every accelerator at once: more than the prototype's 24 MB */
     mi_builder *b = mi_build(s, &p, err, sizeof err);
     assert_non_null(b);
     return b;
+}
+
+static mi_builder *generated_image(const char *name, double time, uint32_t width, uint32_t height, scene *s)
+{
+    return generated_image_with(name, time, width, height, 0, s);
 }
 
 static void check_scene(const char *name, double time)
@@ -261,29 +270,36 @@ static uint32_t trace_with(const uint32_t *mem, const ray_packet *rp, uint32_t f
     return n;
 }
 
-/* The traversal algorithms (short stack, kd-restart, push-down) find the stack's surfaces on the
- * primary rays of scenes with deep trees and overlapping instances (hits may differ by ulps where a
- * triangle's rounded distance lies just outside its cell, which the walk order decides), every
- * walk ends, and the stackless ones take more traversal steps. */
+/* The traversal algorithms (short stack, kd-restart, push-down, ropes, grids) find the stack's
+ * surfaces on the primary rays of scenes with deep trees and overlapping instances (hits may
+ * differ by ulps where a triangle's rounded distance lies just outside its cell, which the walk
+ * order decides), every walk ends, the stackless ones take more traversal steps and the ropes
+ * fewer; the accelerators in the image change none of the stack's bits. */
 static void traversal_algorithms_agree(void **state)
 {
     (void)state;
     static const char *const names[] = { "room", "terrain" };
     for (size_t sc = 0; sc < 2; sc++) {
         enum { W = 96, H = 72 };
-        scene s;
-        mi_builder *b = generated_image(names[sc], 0, W, H, &s);
-        uint32_t nw;
-        const uint32_t *mem = mi_words(b, &nw);
-        trace_counters c[TRAV_KINDS];
+        scene s, s_plain;
+        char err[256];
+        mi_builder *b = generated_image_with(names[sc], 0, W, H, MI_ACCEL_ALL, &s);
+        mi_builder *plain = generated_image(names[sc], 0, W, H, &s_plain);
+        uint32_t nw, np;
+        const uint32_t *mem = mi_words(b, &nw), *mem_plain = mi_words(plain, &np);
+        assert_int_equal(mi_validate(mem, nw, err, sizeof err), 0);
+        trace_counters c[TRAV_KINDS], c_plain;
         memset(c, 0, sizeof c);
-        uint32_t differ = 0, ulps = 0, longest = 0;
+        memset(&c_plain, 0, sizeof c_plain);
+        uint32_t differ = 0, ulps = 0, longest = 0, plain_differ = 0;
         for (uint32_t y = 0; y < H; y += 2)
             for (uint32_t x = 0; x < W; x += 2) {
                 ray_packet rp;
                 rgs_primary(mem, x, y, &rp);
                 hit_record ref[TRACE_PACKET], h[TRACE_PACKET];
                 trace_with(mem, &rp, TRAV_STACK << TRACE_TRAV_SHIFT, ref, &c[TRAV_STACK]);
+                trace_with(mem_plain, &rp, TRAV_STACK << TRACE_TRAV_SHIFT, h, &c_plain);
+                plain_differ += memcmp(h, ref, sizeof h) != 0;
                 for (uint32_t a = TRAV_SHORT_STACK; a < TRAV_KINDS; a++) {
                     const uint32_t n = trace_with(mem, &rp, a << TRACE_TRAV_SHIFT, h, &c[a]);
                     longest = n > longest ? n : longest;
@@ -296,16 +312,28 @@ static void traversal_algorithms_agree(void **state)
                     }
                 }
             }
-        print_message("%s: traversal steps stack %llu, short stack %llu, restart %llu, push-down %llu; longest walk %u "
-                      "operations; %u surfaces lost or found, %u hits a few ulps apart\n", names[sc], (unsigned long long)c[0].traversal_steps,
-                      (unsigned long long)c[1].traversal_steps, (unsigned long long)c[2].traversal_steps,
-                      (unsigned long long)c[3].traversal_steps, longest, differ, ulps);
+        print_message("%s: traversal steps / leaves or cells: stack %llu/%llu, short stack %llu/%llu, restart %llu/%llu, "
+                      "push-down %llu/%llu, ropes %llu/%llu, grid %llu/%llu, grid2 %llu/%llu; longest walk %u operations; "
+                      "%u surfaces lost or found, %u hits a few ulps apart\n", names[sc],
+                      (unsigned long long)c[0].traversal_steps, (unsigned long long)c[0].leaves,
+                      (unsigned long long)c[1].traversal_steps, (unsigned long long)c[1].leaves,
+                      (unsigned long long)c[2].traversal_steps, (unsigned long long)c[2].leaves,
+                      (unsigned long long)c[3].traversal_steps, (unsigned long long)c[3].leaves,
+                      (unsigned long long)c[4].traversal_steps, (unsigned long long)c[4].leaves,
+                      (unsigned long long)c[5].traversal_steps, (unsigned long long)c[5].leaves,
+                      (unsigned long long)c[6].traversal_steps, (unsigned long long)c[6].leaves, longest, differ, ulps);
+        assert_int_equal(plain_differ, 0);
+        assert_int_equal(c_plain.traversal_steps, c[TRAV_STACK].traversal_steps);
         assert_int_equal(differ, 0);
         assert_true(longest < 100000);
         assert_true(c[TRAV_RESTART].traversal_steps > c[TRAV_STACK].traversal_steps);
         assert_true(c[TRAV_PUSH_DOWN].traversal_steps <= c[TRAV_RESTART].traversal_steps);
+        assert_true(c[TRAV_ROPES].traversal_steps < c[TRAV_STACK].traversal_steps);
+        assert_int_equal(c[TRAV_GRID2].traversal_steps, 0); /* no kd-tree left to walk */
         mi_free(b);
+        mi_free(plain);
         scene_free(&s);
+        scene_free(&s_plain);
     }
 }
 

@@ -2,6 +2,8 @@
 #include "trace.h"
 
 #include "isect_unit.h"
+#include "trace_ops.h"
+#include "trav_cursor.h"
 #include "trav_node.h"
 #include "xform_unit.h"
 
@@ -9,9 +11,9 @@
 
 /* Memory-image layout constants used by the core (docs/memory-image.md). */
 enum {
-    H_OBJECTS = 6, H_INSTANCES = 7, H_TOP_NODES = 11, H_SCENE_BOUNDS = 12, H_REGIONS = 18,
-    R_OBJECTS = 5, R_CAMERA = 6, R_INSTANCES = 8, R_TOP_NODES = 9, R_TOP_LISTS = 10, CAM_PROFILE = 3,
-    OBJ_WORDS = 16, O_NODES = 0, O_LISTS = 1, O_TRIANGLES = 2, O_BOUNDS = 8,
+    H_FORMAT = 2, H_OBJECTS = 6, H_INSTANCES = 7, H_TOP_NODES = 11, H_SCENE_BOUNDS = 12, H_REGIONS = 18,
+    R_OBJECTS = 5, R_CAMERA = 6, R_INSTANCES = 8, R_TOP_NODES = 9, R_TOP_LISTS = 10, R_TOP_GRID = 11,
+    CAM_PROFILE = 3, OBJ_WORDS = 16, O_NODES = 0, O_LISTS = 1, O_TRIANGLES = 2, O_BOUNDS = 8, O_GRID = 14,
     INST_WORDS = 16, INST_READ = 13, OBJ_READ = 14, TRI_WORDS = 12,
 };
 
@@ -20,27 +22,13 @@ enum { TP_SCENE_CLIP, TP_WALK, TP_LIST, TP_INST_XFORM, TP_INST_CLIP, TP_TRI_XFOR
 
 static uint32_t region_start(const uint32_t *mem, uint32_t r) { return mem[H_REGIONS + 2 * r]; }
 
-static f24_t axis_of(f24_vec3 v, uint32_t k) { return k == 0 ? v.x : k == 1 ? v.y : v.z; }
+static uint32_t trav_algo(uint32_t flags) { return flags >> TRACE_TRAV_SHIFT & TRACE_TRAV_MASK; }
 
-static uint32_t bit(uint32_t mask, int i) { return mask >> i & 1u; }
+/* Words of an object descriptor the transformation unit reads: with a grid algorithm, also the
+ * grid's address. */
+static uint32_t obj_read(uint32_t flags) { return OBJ_READ + (trav_algo(flags) >= TRAV_GRID ? 1u : 0u); }
 
 static uint32_t count_rays(uint32_t mask) { return bit(mask, 0) + bit(mask, 1) + bit(mask, 2) + bit(mask, 3); }
-
-static void op_set(unit_op *op, uint32_t unit, uint32_t slots)
-{
-    op->unit = unit;
-    op->slots = slots;
-    op->n_reads = 0;
-}
-
-static void op_read(unit_op *op, trace_counters *c, uint32_t kind, uint32_t addr, uint32_t words)
-{
-    op->read[op->n_reads].kind = kind;
-    op->read[op->n_reads].addr = addr;
-    op->read[op->n_reads].words = words;
-    op->n_reads++;
-    c->words[kind] += words;
-}
 
 static void mailbox_clear(trace_mailbox *m)
 {
@@ -235,6 +223,23 @@ prune:
     return leaf;
 }
 
+/* Starts the walk of a level (tree at nodes/lists, or the grid header at grid, TRACE_NO_HIT for
+ * none) with the algorithm asked for where the image holds its structure, else the stack. */
+static void level_start(const uint32_t *mem, trav_walker *w, uint32_t flags, uint32_t nodes, uint32_t lists, uint32_t grid,
+                        uint32_t mask, const f24_t tn[], const f24_t tf[], const f24_vec3 o[], const f24_vec3 d[],
+                        unit_op *op, trace_counters *c)
+{
+    const uint32_t asked = trav_algo(flags), accel = mem[H_FORMAT] >> ACCEL_SHIFT;
+    uint32_t algo = asked < TRAV_ROPES ? asked : TRAV_STACK;
+    if (asked == TRAV_ROPES && (accel & ACCEL_ROPES))
+        algo = TRAV_ROPES;
+    if (asked >= TRAV_GRID && grid != TRACE_NO_HIT)
+        algo = TRAV_GRID;
+    walker_start(w, nodes, lists, mask, tn, tf, algo);
+    if (algo >= TRAV_ROPES)
+        cursor_start(w, mem, grid, o, d, op, c);
+}
+
 /* ---- routing between the units (paths b..f) -------------------------------------------------- */
 
 /* Where a packet goes after a list entry of the given level, or after its walk found no leaf:
@@ -320,7 +325,7 @@ static void enter_single_object(const uint32_t *mem, trace_state *s, uint32_t ma
     const f24_affine w2o = f24_affine_load(mem, ia + INST_WORDS * s->inst);
     s->obj = region_start(mem, R_OBJECTS) + OBJ_WORDS * mem[ia + INST_WORDS * s->inst + 12];
     op_read(op, c, MEM_MATRICES, ia + INST_WORDS * s->inst, INST_READ); /* the signs of its zeros */
-    op_read(op, c, MEM_MATRICES, s->obj, OBJ_READ);
+    op_read(op, c, MEM_MATRICES, s->obj, obj_read(s->flags));
 identity_rays:
     for (int i = 0; i < TRACE_PACKET; i++) {
         s->o[i] = xform_identity(&w2o, s->rays.o[i], 1);
@@ -352,8 +357,9 @@ scene_rays:
         enter_single_object(mem, s, mask, op, c);
         return;
     }
-    walker_start(&s->walk[0], region_start(mem, R_TOP_NODES), region_start(mem, R_TOP_LISTS), mask, tn, tf,
-                 s->flags >> TRACE_TRAV_SHIFT & 3u);
+    const int top_grid = trav_algo(s->flags) == TRAV_GRID2 && (mem[H_FORMAT] >> ACCEL_SHIFT & ACCEL_TOP_GRID);
+    level_start(mem, &s->walk[0], s->flags, region_start(mem, R_TOP_NODES), region_start(mem, R_TOP_LISTS),
+                top_grid ? region_start(mem, R_TOP_GRID) : TRACE_NO_HIT, mask, tn, tf, s->rays.o, s->rays.d, op, c);
     s->phase = TP_WALK;
 }
 
@@ -362,7 +368,10 @@ static void op_walk(const uint32_t *mem, trace_state *s, unit_op *op, trace_coun
 {
     const int top = s->level == 0;
     trav_walker *w = &s->walk[s->level];
-    walker_step(w, mem, top ? s->rays.o : s->o, top ? s->rays.d : s->d, s->best_t, s->alive, op, c);
+    if (w->algo >= TRAV_ROPES)
+        cursor_step(w, mem, top ? s->rays.o : s->o, top ? s->rays.d : s->d, s->best_t, s->alive, op, c);
+    else
+        walker_step(w, mem, top ? s->rays.o : s->o, top ? s->rays.d : s->d, s->best_t, s->alive, op, c);
     route_after_list(s);
 }
 
@@ -397,7 +406,7 @@ static void op_inst_xform(const uint32_t *mem, trace_state *s, unit_op *op, trac
     s->obj = region_start(mem, R_OBJECTS) + OBJ_WORDS * mem[ia + 12];
     op_set(op, UNIT_XFORM, xform_slots(s->rays.o, s->need));
     op_read(op, c, MEM_MATRICES, ia, INST_READ);  /* matrix and object index */
-    op_read(op, c, MEM_MATRICES, s->obj, OBJ_READ); /* object descriptor: tree, triangles, bounds */
+    op_read(op, c, MEM_MATRICES, s->obj, obj_read(s->flags)); /* object descriptor: tree, triangles, bounds */
     c->transformations += op->slots;
 to_object_space:
     for (int i = 0; i < TRACE_PACKET; i++) {
@@ -410,7 +419,7 @@ to_object_space:
 }
 
 /* Traversal unit: clip the object-space rays to the object's bounds and start its tree (path b). */
-static void op_inst_clip(const uint32_t *mem, trace_state *s, unit_op *op)
+static void op_inst_clip(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
 {
     f24_t tn[TRACE_PACKET], tf[TRACE_PACKET];
     uint32_t mask = s->need;
@@ -433,8 +442,9 @@ object_rays:
         return;
     }
     s->tris = mem[s->obj + O_TRIANGLES];
-    walker_start(&s->walk[1], mem[s->obj + O_NODES], mem[s->obj + O_LISTS], mask, tn, tf,
-                 s->flags >> TRACE_TRAV_SHIFT & 3u);
+    const int grid = mem[H_FORMAT] >> ACCEL_SHIFT & ACCEL_GRID;
+    level_start(mem, &s->walk[1], s->flags, mem[s->obj + O_NODES], mem[s->obj + O_LISTS],
+                grid ? mem[s->obj + O_GRID] : TRACE_NO_HIT, mask, tn, tf, s->o, s->d, op, c);
     s->level = 1;
     s->phase = TP_WALK;
 }
@@ -504,7 +514,7 @@ int trace_step(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters 
     case TP_WALK: op_walk(mem, s, op, c); return 1;
     case TP_LIST: op_list(mem, s, op, c); return 1;
     case TP_INST_XFORM: op_inst_xform(mem, s, op, c); return 1;
-    case TP_INST_CLIP: op_inst_clip(mem, s, op); return 1;
+    case TP_INST_CLIP: op_inst_clip(mem, s, op, c); return 1;
     case TP_TRI_XFORM: op_tri_xform(mem, s, op, c); return 1;
     case TP_TRI_ISECT: op_tri_isect(s, op, c); return 1;
     default: return 0;

@@ -89,8 +89,12 @@ typedef struct {
  * its oldest entry when full and restarts when it runs dry after a drop, with push-down (Horn
  * et al. 2007); kd-restart without a stack (Foley and Sugerman 2005); push-down without a stack.
  * A restart walks down again from the root (or the push-down node) with each ray's interval
- * starting where its last leaf ended, excluding cells that end there. */
-enum { TRAV_STACK, TRAV_SHORT_STACK, TRAV_RESTART, TRAV_PUSH_DOWN, TRAV_KINDS };
+ * starting where its last leaf ended, excluding cells that end there. The cursor walkers
+ * (trav_cursor.h) keep a position per ray instead: kd-trees with ropes (Popov et al. 2007); a
+ * uniform grid per object with 3D-DDA (Purcell et al. 2002) under the top-level kd-tree; grids at
+ * both levels (a two-level grid over the instances, Adinetz and Berezin). A level whose structure
+ * the image does not hold (docs/memory-image.md, accelerator bits) is walked with the stack. */
+enum { TRAV_STACK, TRAV_SHORT_STACK, TRAV_RESTART, TRAV_PUSH_DOWN, TRAV_ROPES, TRAV_GRID, TRAV_GRID2, TRAV_KINDS };
 #define TRACE_SHORT_STACK 4
 
 typedef struct {
@@ -104,6 +108,10 @@ typedef struct {
     uint32_t algo, cap, lost, pass, push_down; /* cap: stack entries; lost: an entry was dropped */
     trav_entry root;                           /* where a restart begins: root or push-down node */
     f24_t t_exit[TRACE_PACKET];                /* where each ray's last leaf ended */
+    /* cursor walkers (TRAV_ROPES, TRAV_GRID): each ray's node or cell (x | y << 10 | z << 20) */
+    uint32_t at[TRACE_PACKET];
+    f24_t grid_lo[3], grid_size[3], grid_inv[3]; /* grid: origin, cell size and its inverse */
+    uint32_t grid_n[3];                          /* grid: cells per axis */
 } trav_walker;
 
 typedef struct {
@@ -127,7 +135,8 @@ enum {
 /* How a packet is traced: the closest hit, or any hit (a ray is done at its first hit, and the
  * packet drops it); TRACE_SKIP_TOP and TRACE_IDENTITY as PROFILE_SINGLE_OBJECT and _IDENTITY. */
 enum { TRACE_SKIP_TOP = 1, TRACE_ANY_HIT = 2, TRACE_IDENTITY = 4 };
-#define TRACE_TRAV_SHIFT 4 /* flags bits 4..5: the traversal algorithm (TRAV_*) */
+#define TRACE_TRAV_SHIFT 4 /* flags bits 4..6: the traversal algorithm (TRAV_*) */
+#define TRACE_TRAV_MASK 7u
 
 typedef struct {
     ray_packet rays;

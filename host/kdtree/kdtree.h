@@ -84,6 +84,18 @@ void kd_free(kd_tree *t);
  * bounds of the clipped polygon; 0 if nothing is left. For kd_source.clip of triangle meshes. */
 int kd_clip_triangle(const double a[3], const double b[3], const double c[3], const aabb *box, aabb *out);
 
+/* Ropes (Popov et al. 2007): per leaf its box and, per face -x +x -y +y -z +z, the smallest
+ * node beyond that face covering all of it, or KD_NO_ROPE on the root box's boundary. */
+#define KD_NO_ROPE 0xFFFFFFFFu
+typedef struct {
+    aabb box;
+    uint32_t rope[6];
+} kd_rope;
+
+/* Fills out[n] for every leaf n of t (out has t->n_nodes entries; inner nodes' are untouched),
+ * with root as the root node's box. */
+void kd_ropes(const kd_tree *t, const aabb *root, kd_rope *out);
+
 /* SAH cost of any tree under p (used to compare against baselines in tests). */
 double kd_sah_cost(const kd_tree *t, const kd_params *p);
 

@@ -10,6 +10,7 @@
 #include "mi_profile.h"
 #include "trace.h"
 #include "shading_model.h"
+#include "ugrid.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -28,6 +29,8 @@ typedef struct {
     affine *xf;         /* triangle transformations of the image triangles */
     uint32_t n_valid;
     float *weights_seen;
+    kd_rope *ropes;     /* per node (leaves only), with MI_ACCEL_ROPES */
+    ugrid grid;         /* with MI_ACCEL_GRID */
     uint32_t base, words; /* geometry block in the image */
 } mi_object;
 
@@ -42,12 +45,14 @@ struct mi_builder {
     uint32_t n_inst;
     uint32_t frame;
     kd_tree top;
+    kd_rope *top_ropes;        /* with MI_ACCEL_ROPES */
+    ugrid top_grid;            /* with MI_ACCEL_TOP_GRID */
     mi_stats st;
 };
 
 static const char *region_names[MI_REGION_COUNT] = {
     "HEADER", "MATERIALS", "TEXTURES", "STATIC_GEOMETRY", "DYNAMIC_GEOMETRY", "OBJECTS",
-    "CAMERA", "LIGHTS", "INSTANCES", "TOP_NODES", "TOP_LISTS",
+    "CAMERA", "LIGHTS", "INSTANCES", "TOP_NODES", "TOP_LISTS", "TOP_GRID",
 };
 
 const char *mi_region_name(mi_region r) { return r < MI_REGION_COUNT ? region_names[r] : "?"; }
@@ -68,6 +73,14 @@ void mi_params_default(mi_params *p)
     p->top.quantize = quantize;
     p->max_condition = 16777216.0; /* 2^24 */
     p->skip = PROFILE_ALL;
+}
+
+uint32_t mi_accel_for(uint32_t traversal)
+{
+    return traversal == TRAV_ROPES ? MI_ACCEL_ROPES
+         : traversal == TRAV_GRID  ? MI_ACCEL_GRID
+         : traversal == TRAV_GRID2 ? MI_ACCEL_GRID | MI_ACCEL_TOP_GRID
+                                   : 0u;
 }
 
 static double seconds(void)
@@ -184,11 +197,88 @@ static int tri_clip(const void *user, uint32_t i, const aabb *box, aabb *out)
 static void object_release(mi_object *o)
 {
     kd_free(&o->tree);
+    free(o->ropes);
+    o->ropes = NULL;
+    ugrid_free(&o->grid);
     free(o->valid);
     free(o->xf);
     o->valid = NULL;
     o->xf = NULL;
     o->n_valid = 0;
+}
+
+/* ---- accelerators beside the kd-trees: ropes and uniform grids (docs/traversal.md) -------- */
+
+/* The box the device clips a tree's rays to, as the doubles its fp24 words hold. */
+static aabb device_box(const aabb *b, int margin_ulps)
+{
+    uint32_t w[6];
+    put_bounds(w, b, margin_ulps);
+    aabb r;
+    for (int k = 0; k < 3; k++) {
+        r.lo[k] = f24_fast_decode(w[k]);
+        r.hi[k] = f24_fast_decode(w[3 + k]);
+    }
+    return r;
+}
+
+/* Cell sizes rounded up to fp24. */
+static double quantize_up(double x) { return f24_fast_decode(f24_outward(x, +1)); }
+
+/* Ropes of tree t (NULL if not asked for or out of memory: *fail set). */
+static kd_rope *build_ropes(const mi_builder *b, const kd_tree *t, const aabb *root, int *fail)
+{
+    if (!(b->p.accel & MI_ACCEL_ROPES))
+        return NULL;
+    kd_rope *r = calloc((size_t)t->n_nodes + 1, sizeof *r);
+    if (!r)
+        *fail = 1;
+    else
+        kd_ropes(t, root, r);
+    return r;
+}
+
+/* A grid over box: cells widened by 8 ulps of the largest coordinate, as the device's rounded
+ * cell planes may move by a few ulps. */
+static int build_grid(const kd_source *src, const aabb *box, ugrid *g)
+{
+    const ugrid_params gp = { 2.0, ldexp(1.0, 3 - F24_MAN_BITS), quantize_up };
+    return ugrid_build(src, box, &gp, g);
+}
+
+static uint32_t grid_words(const ugrid *g) { return g->n[0] ? MI_GRID_WORDS + 2 * ugrid_cells(g) + g->n_prims : 0; }
+
+static void put_grid(uint32_t *w, const ugrid *g, uint32_t addr)
+{
+    const uint32_t cells = ugrid_cells(g);
+    for (int k = 0; k < 3; k++) {
+        w[MI_G_LO + k] = f24w(g->lo[k]);
+        w[MI_G_SIZE + k] = f24w(g->size[k]);
+        w[MI_G_INV + k] = f24w(1.0 / g->size[k]);
+        w[MI_G_N + k] = g->n[k];
+    }
+    w[MI_G_CELLS] = addr + MI_GRID_WORDS;
+    w[MI_G_LISTS] = addr + MI_GRID_WORDS + 2 * cells;
+    w[MI_G_N_LIST] = g->n_prims;
+    for (uint32_t c = 0; c < cells; c++) {
+        w[MI_GRID_WORDS + 2 * c] = g->first[c];
+        w[MI_GRID_WORDS + 2 * c + 1] = g->count[c];
+    }
+    memcpy(w + MI_GRID_WORDS + 2 * cells, g->prims, g->n_prims * sizeof *w);
+}
+
+static uint32_t leaf_count(const kd_tree *t)
+{
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < t->n_nodes; i++)
+        n += t->nodes[i].axis == KD_LEAF;
+    return n;
+}
+
+/* Words of a tree's leaf lists in the image: with ropes, a record before every leaf's entries. */
+static uint32_t list_words(const kd_tree *t, const kd_rope *ropes)
+{
+    return t->n_prims + (ropes ? MI_ROPE_WORDS * leaf_count(t) : 0u);
 }
 
 /* Triangle transformations and the bottom-level tree of one mesh. */
@@ -216,6 +306,11 @@ static int object_prepare(mi_builder *b, const scene_mesh *m, mi_object *o)
     const kd_source ks = { o->n_valid, &src, tri_bounds, tri_clip };
     if (kd_build(&ks, &b->p.bottom, &o->tree) != 0)
         return -1;
+    const aabb root = device_box(&o->tree.bounds, OBJECT_BOUNDS_MARGIN_ULPS);
+    int fail = 0;
+    o->ropes = build_ropes(b, &o->tree, &root, &fail);
+    if (fail || ((b->p.accel & MI_ACCEL_GRID) && build_grid(&ks, &root, &o->grid) != 0))
+        return -1;
     b->st.bottom_build_seconds += seconds() - t1;
     if (o->dynamic) {
         free(o->weights_seen);
@@ -224,18 +319,51 @@ static int object_prepare(mi_builder *b, const scene_mesh *m, mi_object *o)
             return -1;
         memcpy(o->weights_seen, m->weights, m->n_targets * sizeof(float));
     }
-    o->words = MI_NODE_WORDS * o->tree.n_nodes + o->tree.n_prims + (MI_TRIANGLE_WORDS + MI_SHADING_WORDS) * o->n_valid;
+    o->words = MI_NODE_WORDS * o->tree.n_nodes + list_words(&o->tree, o->ropes) +
+               (MI_TRIANGLE_WORDS + MI_SHADING_WORDS) * o->n_valid + grid_words(&o->grid);
     return 0;
 }
 
-static void put_node(uint32_t *w, const kd_node *n)
+static void put_node(uint32_t *w, const kd_node *n, uint32_t first)
 {
     if (n->axis == KD_LEAF) {
         w[0] = mi_node_word0(MI_NODE_LEAF, n->count);
-        w[1] = n->first;
+        w[1] = first;
     } else {
         w[0] = mi_node_word0(n->axis, n->child);
         w[1] = f24w(n->split); /* already an fp24 value (quantized split) */
+    }
+}
+
+static void put_rope_record(uint32_t *w, const kd_rope *r)
+{
+    for (int k = 0; k < 3; k++) {
+        w[k] = f24w(r->box.lo[k]); /* split planes and the device box: fp24 values already */
+        w[3 + k] = f24w(r->box.hi[k]);
+    }
+    for (int f = 0; f < 6; f++)
+        w[6 + f] = r->rope[f] == KD_NO_ROPE ? MI_NONE : r->rope[f];
+}
+
+/* A tree's nodes and leaf lists; with ropes, each leaf's entries follow its rope record. */
+static void put_tree(uint32_t *nodes, uint32_t *lists, const kd_tree *t, const kd_rope *ropes)
+{
+    if (!ropes) {
+        for (uint32_t i = 0; i < t->n_nodes; i++)
+            put_node(nodes + MI_NODE_WORDS * i, &t->nodes[i], t->nodes[i].first);
+        memcpy(lists, t->prims, t->n_prims * sizeof *lists);
+        return;
+    }
+    uint32_t at = 0;
+    for (uint32_t i = 0; i < t->n_nodes; i++) {
+        const kd_node *n = &t->nodes[i];
+        if (n->axis == KD_LEAF) {
+            put_rope_record(lists + at, &ropes[i]);
+            at += MI_ROPE_WORDS;
+            memcpy(lists + at, t->prims + n->first, n->count * sizeof *lists);
+        }
+        put_node(nodes + MI_NODE_WORDS * i, n, at);
+        at += n->axis == KD_LEAF ? n->count : 0;
     }
 }
 
@@ -256,14 +384,14 @@ static void object_write(mi_builder *b, const scene *s, const mi_object *o)
 {
     const scene_mesh *m = &s->meshes[o->mesh];
     uint32_t *w = b->words + o->base;
-    for (uint32_t i = 0; i < o->tree.n_nodes; i++, w += MI_NODE_WORDS)
-        put_node(w, &o->tree.nodes[i]);
-    memcpy(w, o->tree.prims, o->tree.n_prims * sizeof *w);
-    w += o->tree.n_prims;
+    put_tree(w, w + MI_NODE_WORDS * o->tree.n_nodes, &o->tree, o->ropes);
+    w += MI_NODE_WORDS * o->tree.n_nodes + list_words(&o->tree, o->ropes);
     for (uint32_t i = 0; i < o->n_valid; i++, w += MI_TRIANGLE_WORDS)
         put_affine(w, &o->xf[i]);
     for (uint32_t i = 0; i < o->n_valid; i++, w += MI_SHADING_WORDS)
         write_shading(w, m, o->valid[i]);
+    if (o->grid.n[0])
+        put_grid(w, &o->grid, (uint32_t)(w - b->words));
 }
 
 static void object_describe(uint32_t *w, const mi_object *o, const scene_mesh *m)
@@ -271,14 +399,15 @@ static void object_describe(uint32_t *w, const mi_object *o, const scene_mesh *m
     memset(w, 0, MI_OBJECT_WORDS * sizeof *w);
     w[MI_O_NODES] = o->base;
     w[MI_O_LISTS] = o->base + MI_NODE_WORDS * o->tree.n_nodes;
-    w[MI_O_TRIANGLES] = w[MI_O_LISTS] + o->tree.n_prims;
+    w[MI_O_TRIANGLES] = w[MI_O_LISTS] + list_words(&o->tree, o->ropes);
     w[MI_O_SHADING] = w[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * o->n_valid;
     w[MI_O_N_NODES] = o->tree.n_nodes;
-    w[MI_O_N_LIST] = o->tree.n_prims;
+    w[MI_O_N_LIST] = list_words(&o->tree, o->ropes);
     w[MI_O_N_TRIANGLES] = o->n_valid;
     w[MI_O_FLAGS] = (m->normals ? MI_OBJECT_HAS_NORMALS : 0u) | (m->texcoords ? MI_OBJECT_HAS_TEXCOORDS : 0u) |
                     (o->dynamic ? MI_OBJECT_DYNAMIC : 0u);
     put_bounds(&w[MI_O_BOUNDS], &o->tree.bounds, OBJECT_BOUNDS_MARGIN_ULPS);
+    w[MI_O_GRID] = o->grid.n[0] ? w[MI_O_SHADING] + MI_SHADING_WORDS * o->n_valid : MI_NONE;
 }
 
 /* ---- per-frame content: instances, top level, camera, lights ------------------------------ */
@@ -577,6 +706,13 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
     const kd_source ks = { b->n_inst, &is, instance_bounds, NULL };
     if (kd_build(&ks, &b->p.top, &b->top) != 0)
         goto oom;
+    const aabb scene_box = device_box(&b->top.bounds, 0);
+    int fail = 0;
+    free(b->top_ropes);
+    b->top_ropes = build_ropes(b, &b->top, &scene_box, &fail);
+    ugrid_free(&b->top_grid);
+    if (fail || ((b->p.accel & MI_ACCEL_TOP_GRID) && b->n_inst && build_grid(&ks, &scene_box, &b->top_grid) != 0))
+        goto oom;
     b->st.top_build_seconds = seconds() - t0;
 
     uint64_t len[MI_REGION_COUNT] = { 0 };
@@ -590,7 +726,8 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
     len[MI_R_LIGHTS] = (uint64_t)MI_LIGHT_WORDS * light_count(s);
     len[MI_R_INSTANCES] = (uint64_t)MI_INSTANCE_WORDS * b->n_inst;
     len[MI_R_TOP_NODES] = (uint64_t)MI_NODE_WORDS * b->top.n_nodes;
-    len[MI_R_TOP_LISTS] = b->top.n_prims;
+    len[MI_R_TOP_LISTS] = list_words(&b->top, b->top_ropes);
+    len[MI_R_TOP_GRID] = grid_words(&b->top_grid);
     uint32_t off[MI_REGION_COUNT];
     if (place_regions(b, len, off, err, errlen) != 0)
         return -1;
@@ -624,14 +761,16 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
     write_camera(b, s, w + off[MI_R_CAMERA]);
     write_lights(b, s, w + off[MI_R_LIGHTS]);
     write_instances(b, s, w + off[MI_R_INSTANCES]);
-    for (uint32_t i = 0; i < b->top.n_nodes; i++)
-        put_node(w + off[MI_R_TOP_NODES] + MI_NODE_WORDS * i, &b->top.nodes[i]);
-    memcpy(w + off[MI_R_TOP_LISTS], b->top.prims, b->top.n_prims * sizeof *w);
+    put_tree(w + off[MI_R_TOP_NODES], w + off[MI_R_TOP_LISTS], &b->top, b->top_ropes);
+    if (b->top_grid.n[0])
+        put_grid(w + off[MI_R_TOP_GRID], &b->top_grid, off[MI_R_TOP_GRID]);
     written[MI_R_HEADER] = written[MI_R_CAMERA] = written[MI_R_LIGHTS] = written[MI_R_INSTANCES] = 1;
-    written[MI_R_TOP_NODES] = written[MI_R_TOP_LISTS] = 1;
+    written[MI_R_TOP_NODES] = written[MI_R_TOP_LISTS] = written[MI_R_TOP_GRID] = 1;
 
     /* header */
-    const uint32_t head[MI_H_SCENE_BOUNDS] = { MI_MAGIC, MI_VERSION, (uint32_t)(F24_EXP_BITS << 8 | F24_MAN_BITS),
+    const uint32_t accel = b->p.accel & MI_ACCEL_ALL & ~(b->top_grid.n[0] ? 0u : (uint32_t)MI_ACCEL_TOP_GRID);
+    const uint32_t head[MI_H_SCENE_BOUNDS] = { MI_MAGIC, MI_VERSION,
+                                                (uint32_t)(accel << MI_ACCEL_SHIFT | F24_EXP_BITS << 8 | F24_MAN_BITS),
                                                 (uint32_t)(b->p.memory_bytes / 4), total, b->frame,
                                                 b->n_objects, b->n_inst, s->n_materials, b->n_textures, light_count(s),
                                                 b->top.n_nodes };
@@ -779,6 +918,8 @@ void mi_free(mi_builder *b)
         free(b->obj[i].weights_seen);
     }
     kd_free(&b->top);
+    free(b->top_ropes);
+    ugrid_free(&b->top_grid);
     free(b->obj);
     free(b->texture_map);
     free(b->inst_mesh);

@@ -18,7 +18,7 @@
 #include "scene.h"
 
 #define MI_MAGIC 0x524F4353u /* "SCOR" in little-endian bytes */
-#define MI_VERSION 1u
+#define MI_VERSION 2u
 #define MI_NONE 0xFFFFFFFFu
 #define MI_DEFAULT_BYTES (24u << 20) /* the prototype's six 4 MB banks */
 
@@ -35,6 +35,7 @@ enum {
 typedef enum {
     MI_R_HEADER, MI_R_MATERIALS, MI_R_TEXTURES, MI_R_STATIC_GEOMETRY, MI_R_DYNAMIC_GEOMETRY,
     MI_R_OBJECTS, MI_R_CAMERA, MI_R_LIGHTS, MI_R_INSTANCES, MI_R_TOP_NODES, MI_R_TOP_LISTS,
+    MI_R_TOP_GRID, /* the grid over the instances (accelerator MI_ACCEL_TOP_GRID; else empty) */
     MI_REGION_COUNT
 } mi_region;
 
@@ -59,8 +60,19 @@ enum {
 /* Object descriptor words. */
 enum {
     MI_O_NODES = 0, MI_O_LISTS, MI_O_TRIANGLES, MI_O_SHADING, MI_O_N_NODES, MI_O_N_LIST,
-    MI_O_N_TRIANGLES, MI_O_FLAGS, MI_O_BOUNDS /* 6 fp24 words */
+    MI_O_N_TRIANGLES, MI_O_FLAGS, MI_O_BOUNDS /* 6 fp24 words */, MI_O_GRID = 14 /* grid or MI_NONE */
 };
+
+/* Accelerators beside the kd-trees (header format word bits 16..; docs/memory-image.md and
+ * docs/traversal.md): ropes (a record before each leaf's list entries, both levels), a uniform
+ * grid per object (MI_O_GRID), a grid over the instances (region MI_R_TOP_GRID). */
+enum { MI_ACCEL_ROPES = 1, MI_ACCEL_GRID = 2, MI_ACCEL_TOP_GRID = 4, MI_ACCEL_ALL = 7 };
+#define MI_ACCEL_SHIFT 16
+#define MI_ROPE_WORDS 12 /* leaf box lo xyz hi xyz (fp24), ropes -x +x -y +y -z +z (node or MI_NONE) */
+/* Grid header: lo xyz, cell size xyz, 1 / size xyz (fp24), cells per axis xyz, cell table
+ * address (2 words per cell, x fastest: first entry, count), list address, list length. */
+enum { MI_G_LO = 0, MI_G_SIZE = 3, MI_G_INV = 6, MI_G_N = 9, MI_G_CELLS = 12, MI_G_LISTS = 13, MI_G_N_LIST = 14,
+       MI_GRID_WORDS = 15 };
 #define MI_OBJECT_HAS_NORMALS 1u
 #define MI_OBJECT_HAS_TEXCOORDS 2u
 #define MI_OBJECT_DYNAMIC 4u
@@ -82,9 +94,13 @@ typedef struct {
     double max_condition;      /* triangles whose matrix condition number exceeds this are dropped */
     uint32_t skip;             /* PROFILE_* bits the device may use where the scene profile allows
                                   them (default all; 0: the general pipeline, render --general) */
+    uint32_t accel;            /* MI_ACCEL_* structures to build beside the kd-trees (default 0) */
 } mi_params;
 
 void mi_params_default(mi_params *p);
+
+/* The MI_ACCEL_* structures traversal algorithm TRAV_* (hls/units/trace.h) walks. */
+uint32_t mi_accel_for(uint32_t traversal);
 
 typedef struct {
     uint32_t objects, instances, triangles, degenerate_triangles;

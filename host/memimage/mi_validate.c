@@ -13,7 +13,7 @@
 
 typedef struct {
     const uint32_t *w;
-    uint32_t n;
+    uint32_t n, accel; /* MI_ACCEL_* bits of the header */
     uint32_t off[MI_REGION_COUNT], len[MI_REGION_COUNT];
     char *err;
     size_t errlen;
@@ -56,9 +56,12 @@ static int check_header(checker *c)
         return bad(c, "bad magic 0x%08X", w[MI_H_MAGIC]);
     if (w[MI_H_VERSION] != MI_VERSION)
         return bad(c, "version %u, this build reads version %u", w[MI_H_VERSION], MI_VERSION);
-    if (w[MI_H_FORMAT] != (uint32_t)(F24_EXP_BITS << 8 | F24_MAN_BITS))
-        return bad(c, "number format e%um%u, this build is e%dm%d", w[MI_H_FORMAT] >> 8, w[MI_H_FORMAT] & 0xFF,
+    if ((w[MI_H_FORMAT] & 0xFFFFu) != (uint32_t)(F24_EXP_BITS << 8 | F24_MAN_BITS))
+        return bad(c, "number format e%um%u, this build is e%dm%d", w[MI_H_FORMAT] >> 8 & 0xFF, w[MI_H_FORMAT] & 0xFF,
                    F24_EXP_BITS, F24_MAN_BITS);
+    c->accel = w[MI_H_FORMAT] >> MI_ACCEL_SHIFT;
+    if (c->accel & ~(uint32_t)MI_ACCEL_ALL)
+        return bad(c, "unknown accelerator bits 0x%x", c->accel);
     if (w[MI_H_USED_WORDS] != c->n || w[MI_H_MEMORY_WORDS] < c->n)
         return bad(c, "size fields (used %u, memory %u) disagree with the %u words present", w[MI_H_USED_WORDS],
                    w[MI_H_MEMORY_WORDS], c->n);
@@ -91,8 +94,33 @@ static int check_header(checker *c)
     return 0;
 }
 
-/* A kd-tree: inner nodes' children after the node and in range, leaves' lists in range,
- * finite split planes, list entries naming existing items. */
+/* List entries [first, first + count) of a list of n_list words name existing items. */
+static int check_entries(checker *c, const char *what, uint32_t lists, uint32_t n_list, uint32_t first,
+                         uint32_t count, uint32_t n_items)
+{
+    if ((uint64_t)first + count > n_list)
+        return bad(c, "%s: list [%u, +%u) exceeds the %u list words", what, first, count, n_list);
+    for (uint32_t i = first; i < first + count; i++)
+        if (c->w[lists + i] >= n_items)
+            return bad(c, "%s: list entry %u names item %u of %u", what, i, c->w[lists + i], n_items);
+    return 0;
+}
+
+/* A leaf's rope record (before its entries): finite box, ropes naming nodes or MI_NONE. */
+static int check_ropes(checker *c, const char *what, uint32_t lists, uint32_t first, uint32_t n_nodes)
+{
+    if (first < MI_ROPE_WORDS || !finite_words(c, lists + first - MI_ROPE_WORDS, 6))
+        return bad(c, "%s: leaf list at %u has no rope record or a non-finite leaf box", what, first);
+    for (uint32_t f = 0; f < 6; f++) {
+        const uint32_t r = c->w[lists + first - MI_ROPE_WORDS + 6 + f];
+        if (r != MI_NONE && r >= n_nodes)
+            return bad(c, "%s: rope to node %u of %u", what, r, n_nodes);
+    }
+    return 0;
+}
+
+/* A kd-tree: inner nodes' children after the node and in range, finite split planes, leaves'
+ * lists in range naming existing items, and with ropes each leaf's rope record. */
 static int check_tree(checker *c, const char *what, uint32_t nodes, uint32_t n_nodes, uint32_t lists,
                       uint32_t n_list, uint32_t n_items)
 {
@@ -101,17 +129,38 @@ static int check_tree(checker *c, const char *what, uint32_t nodes, uint32_t n_n
     for (uint32_t i = 0; i < n_nodes; i++) {
         const uint32_t w0 = c->w[nodes + 2 * i], w1 = c->w[nodes + 2 * i + 1], hi = w0 >> 2;
         if ((w0 & 3u) == MI_NODE_LEAF) {
-            if ((uint64_t)w1 + hi > n_list)
-                return bad(c, "%s: leaf %u list [%u, +%u) exceeds the %u list entries", what, i, w1, hi, n_list);
+            if (check_entries(c, what, lists, n_list, w1, hi, n_items) != 0 ||
+                ((c->accel & MI_ACCEL_ROPES) && check_ropes(c, what, lists, w1, n_nodes) != 0))
+                return -1;
         } else if (hi <= i || (uint64_t)hi + 1 >= n_nodes) {
             return bad(c, "%s: node %u child index %u is not after the node or out of range", what, i, hi);
         } else if (!finite_f24(w1)) {
             return bad(c, "%s: node %u split plane 0x%X is not a finite fp24 value", what, i, w1);
         }
     }
-    for (uint32_t i = 0; i < n_list; i++)
-        if (c->w[lists + i] >= n_items)
-            return bad(c, "%s: list entry %u names item %u of %u", what, i, c->w[lists + i], n_items);
+    return 0;
+}
+
+/* A uniform grid at addr inside region r: header, cell table and lists in the region, 1..1023
+ * cells per axis, finite numbers, every cell's entries in its list naming existing items. */
+static int check_grid(checker *c, const char *what, mi_region r, uint32_t addr, uint32_t n_items)
+{
+    if (!in_region(c, r, addr, 1, MI_GRID_WORDS) || !finite_words(c, addr, 9))
+        return bad(c, "%s: grid header at %u outside region %s or not finite", what, addr, mi_region_name(r));
+    const uint32_t *g = c->w + addr;
+    uint64_t cells = 1;
+    for (int k = 0; k < 3; k++) {
+        if (g[MI_G_N + k] == 0 || g[MI_G_N + k] > 1023)
+            return bad(c, "%s: grid has %u cells on axis %d (1..1023)", what, g[MI_G_N + k], k);
+        cells *= g[MI_G_N + k];
+    }
+    if (!in_region(c, r, g[MI_G_CELLS], cells, 2) || !in_region(c, r, g[MI_G_LISTS], g[MI_G_N_LIST], 1))
+        return bad(c, "%s: grid cells or lists outside region %s", what, mi_region_name(r));
+    for (uint64_t i = 0; i < cells; i++) {
+        const uint32_t *cell = c->w + g[MI_G_CELLS] + 2 * i;
+        if (check_entries(c, what, g[MI_G_LISTS], g[MI_G_N_LIST], cell[0], cell[1], n_items) != 0)
+            return -1;
+    }
     return 0;
 }
 
@@ -131,7 +180,8 @@ static int check_objects(checker *c)
             return bad(c, "%s: geometry outside region %s", what, mi_region_name(r));
         if (!finite_words(c, c->off[MI_R_OBJECTS] + MI_OBJECT_WORDS * o + MI_O_BOUNDS, 6))
             return bad(c, "%s: bounds are not finite", what);
-        if (check_tree(c, what, d[MI_O_NODES], d[MI_O_N_NODES], d[MI_O_LISTS], d[MI_O_N_LIST], nt) != 0)
+        if (check_tree(c, what, d[MI_O_NODES], d[MI_O_N_NODES], d[MI_O_LISTS], d[MI_O_N_LIST], nt) != 0 ||
+            ((c->accel & MI_ACCEL_GRID) && check_grid(c, what, r, d[MI_O_GRID], nt) != 0))
             return -1;
         if (!finite_words(c, d[MI_O_TRIANGLES], nt * MI_TRIANGLE_WORDS))
             return bad(c, "%s: a triangle transformation is not finite", what);
@@ -170,7 +220,9 @@ static int check_records(checker *c)
         w[cam + 2] > 65536 || !finite_words(c, cam + 4, 12))
         return bad(c, "camera: bad kind, size or non-finite vectors");
     if (check_tree(c, "top level", c->off[MI_R_TOP_NODES], w[MI_H_TOP_NODES], c->off[MI_R_TOP_LISTS],
-                   c->len[MI_R_TOP_LISTS], w[MI_H_INSTANCES]) != 0)
+                   c->len[MI_R_TOP_LISTS], w[MI_H_INSTANCES]) != 0 ||
+        ((c->accel & MI_ACCEL_TOP_GRID) &&
+         check_grid(c, "top level", MI_R_TOP_GRID, c->off[MI_R_TOP_GRID], w[MI_H_INSTANCES]) != 0))
         return -1;
     mi_profile prof;
     mi_profile_derive(w, &prof);

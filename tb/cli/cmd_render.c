@@ -154,7 +154,9 @@ static int usage(void)
            "  --no-shadows       lights are not occluded (no shadow rays)\n"
            "  --traversal A      the traversal unit's algorithm (docs/traversal.md): stack (default, the\n"
            "                     paper's 64-entry stack), short-stack (4 entries + push-down restarts),\n"
-           "                     restart (kd-restart, no stack) or push-down (no stack)\n"
+           "                     restart (kd-restart, no stack), push-down (no stack), ropes (kd-tree\n"
+           "                     with ropes), grid (a uniform grid per object, 3D-DDA) or grid2 (grids\n"
+           "                     at both levels: a two-level grid over the instances)\n"
            "  --precision P      number format of the units: fp24 (e7m16, default), fp32 (e8m23), or\n"
            "                     any built format eEmM (make widths); runs build/w/<format>/saarcor\n"
            "  --aov FILE.exr     per-pixel primary hits as float channels t, N.X N.Y N.Z (world geometric\n"
@@ -484,13 +486,16 @@ int cmd_render(int argc, char **argv)
             break;
         case 'S': ro.cfg.shadows = 0; break;
         case 'T': {
-            static const char *const names[TRAV_KINDS] = { "stack", "short-stack", "restart", "push-down" };
+            static const char *const names[TRAV_KINDS] = { "stack", "short-stack", "restart", "push-down",
+                                                           "ropes", "grid", "grid2" };
             uint32_t k = 0;
             while (k < TRAV_KINDS && strcmp(optarg, names[k]) != 0)
                 k++;
             if (k == TRAV_KINDS)
-                return cli_usage_error("render", "bad --traversal '%s' (stack, short-stack, restart or push-down)", optarg);
+                return cli_usage_error("render", "bad --traversal '%s' (stack, short-stack, restart, push-down, ropes, "
+                                       "grid or grid2)", optarg);
             ro.cfg.traversal = k;
+            o.mi.accel = mi_accel_for(k);
             break;
         }
         case 'C': ro.capture = optarg; break;
