@@ -32,6 +32,7 @@
 #include <string.h>
 
 #include "kdtree.h"
+#include "ugrid.h"
 
 /* ---- inputs ------------------------------------------------------------------------------- */
 
@@ -1195,6 +1196,117 @@ static void clip_triangle_random(void **state)
     }
 }
 
+/* ---- ropes and uniform grids ---------------------------------------------------------------- */
+
+/* Every node's box, from the root box down. */
+static void node_boxes(const kd_tree *t, uint32_t n, const aabb *box, aabb *out)
+{
+    out[n] = *box;
+    const kd_node *nd = &t->nodes[n];
+    if (nd->axis == KD_LEAF)
+        return;
+    aabb lo = *box, hi = *box;
+    lo.hi[nd->axis] = hi.lo[nd->axis] = nd->split;
+    node_boxes(t, nd->child, &lo, out);
+    node_boxes(t, nd->child + 1, &hi, out);
+}
+
+/* Every leaf's rope record holds its box; a face on the root box has no rope; any other face's
+ * rope names a node that starts at the face and covers all of it, and that cannot be pushed
+ * further down (its split, if any, cuts through the face). */
+static void ropes_cover_faces(void **state)
+{
+    (void)state;
+    soup s = random_soup(3000, 17);
+    const kd_source src = tri_source(&s);
+    const kd_params p = params(0, grid8);
+    kd_tree t;
+    assert_int_equal(kd_build(&src, &p, &t), 0);
+    aabb *box = calloc(t.n_nodes, sizeof *box);
+    kd_rope *r = calloc(t.n_nodes, sizeof *r);
+    assert_non_null(box);
+    assert_non_null(r);
+    node_boxes(&t, 0, &t.bounds, box);
+    kd_ropes(&t, &t.bounds, r);
+    uint32_t faces = 0, inner_targets = 0;
+    for (uint32_t n = 0; n < t.n_nodes; n++) {
+        if (t.nodes[n].axis != KD_LEAF)
+            continue;
+        assert_memory_equal(&r[n].box, &box[n], sizeof(aabb));
+        for (int f = 0; f < 6; f++) {
+            const int k = f / 2, up = f & 1;
+            const double plane = up ? box[n].hi[k] : box[n].lo[k];
+            const uint32_t q = r[n].rope[f];
+            if (plane == (up ? t.bounds.hi[k] : t.bounds.lo[k])) {
+                assert_int_equal(q, KD_NO_ROPE);
+                continue;
+            }
+            assert_true(q < t.n_nodes);
+            faces++;
+            assert_true((up ? box[q].lo[k] : box[q].hi[k]) == plane);
+            for (int j = 0; j < 3; j++)
+                if (j != k)
+                    assert_true(box[q].lo[j] <= box[n].lo[j] && box[n].hi[j] <= box[q].hi[j]);
+            if (t.nodes[q].axis != KD_LEAF) {
+                const uint32_t a = t.nodes[q].axis;
+                inner_targets++;
+                assert_true(a != (uint32_t)k && box[n].lo[a] < t.nodes[q].split && t.nodes[q].split < box[n].hi[a]);
+            }
+        }
+    }
+    print_message("ropes: %u leaves' inner faces, %u ropes to inner nodes\n", faces, inner_targets);
+    assert_true(faces > 1000);
+    free(box);
+    free(r);
+    kd_free(&t);
+    free(s.t);
+}
+
+/* A grid lists every triangle in every cell its part inside the cell touches (checked against
+ * clipping each triangle to each cell), and only triangles that touch the widened cell; it has
+ * about density cells per triangle and covers the box. */
+static void grid_lists_overlapping_cells(void **state)
+{
+    (void)state;
+    soup s = random_soup(400, 23);
+    const kd_source src = tri_source(&s);
+    const aabb box = { { -0.5, -0.5, -0.5 }, { 1.5, 1.5, 1.5 } };
+    const ugrid_params gp = { 2.0, 1e-6, NULL };
+    ugrid g;
+    assert_int_equal(ugrid_build(&src, &box, &gp, &g), 0);
+    const uint32_t cells = ugrid_cells(&g);
+    assert_true(cells >= 400 && cells <= 4 * 2 * 400);
+    uint64_t listed = 0;
+    for (int k = 0; k < 3; k++)
+        assert_true(g.lo[k] + g.n[k] * g.size[k] >= box.hi[k]);
+    for (uint32_t z = 0; z < g.n[2]; z++)
+        for (uint32_t y = 0; y < g.n[1]; y++)
+            for (uint32_t x = 0; x < g.n[0]; x++) {
+                const uint32_t c = x + g.n[0] * (y + g.n[1] * z), xyz[3] = { x, y, z };
+                aabb cell, wide, part;
+                for (int k = 0; k < 3; k++) {
+                    cell.lo[k] = g.lo[k] + xyz[k] * g.size[k];
+                    cell.hi[k] = cell.lo[k] + g.size[k];
+                    wide.lo[k] = cell.lo[k] - 2 * gp.widen * 1.5;
+                    wide.hi[k] = cell.hi[k] + 2 * gp.widen * 1.5;
+                }
+                for (uint32_t i = 0; i < s.n; i++) {
+                    int in = 0;
+                    for (uint32_t e = 0; e < g.count[c]; e++)
+                        in |= g.prims[g.first[c] + e] == i;
+                    if (kd_clip_triangle(s.t[i].v[0], s.t[i].v[1], s.t[i].v[2], &cell, &part))
+                        assert_true(in);
+                    if (in)
+                        assert_true(kd_clip_triangle(s.t[i].v[0], s.t[i].v[1], s.t[i].v[2], &wide, &part));
+                }
+                listed += g.count[c];
+            }
+    assert_int_equal(listed, g.n_prims);
+    print_message("grid: %ux%ux%u cells, %u references for %u triangles\n", g.n[0], g.n[1], g.n[2], g.n_prims, s.n);
+    ugrid_free(&g);
+    free(s.t);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1222,6 +1334,8 @@ int main(void)
         cmocka_unit_test(two_boxes_by_hand),
         cmocka_unit_test(clip_triangle_cases),
         cmocka_unit_test(clip_triangle_random),
+        cmocka_unit_test(ropes_cover_faces),
+        cmocka_unit_test(grid_lists_overlapping_cells),
     };
     return cmocka_run_group_tests_name("kdtree", tests, NULL, NULL);
 }

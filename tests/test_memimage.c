@@ -20,6 +20,8 @@
 #include "f24.h"
 #include "f24_fast.h"
 #include "memimage.h"
+#include "rgs.h"
+#include "trace.h"
 #include "scene.h"
 
 static double f24d(uint32_t w) { return f24_fast_decode(w); }
@@ -151,10 +153,11 @@ static void make_scene(scene *s, uint32_t copies, int morph)
     assert_int_equal(scene_evaluate(s, 0, 0), 0);
 }
 
-static mi_builder *build(const scene *s, uint64_t mem)
+static mi_builder *build_with(const scene *s, uint64_t mem, uint32_t accel)
 {
     mi_params p;
     mi_params_default(&p);
+    p.accel = accel;
     if (mem)
         p.memory_bytes = mem;
     char err[256];
@@ -163,6 +166,8 @@ static mi_builder *build(const scene *s, uint64_t mem)
         fail_msg("mi_build: %s", err);
     return b;
 }
+
+static mi_builder *build(const scene *s, uint64_t mem) { return build_with(s, mem, 0); }
 
 static void layout_and_validate(void **state)
 {
@@ -356,13 +361,95 @@ static void corruption(void **state)
     scene_free(&s);
 }
 
+/* Primary packets of a 16x12 image traced with every traversal algorithm: with a validated
+ * image every read stays inside it (AddressSanitizer watches the heap copy). */
+static void trace_all_algorithms(const uint32_t *w)
+{
+    for (uint32_t y = 0; y < 12; y += 2)
+        for (uint32_t x = 0; x < 16; x += 2)
+            for (uint32_t a = 0; a < TRAV_KINDS; a++) {
+                ray_packet rp;
+                rgs_primary(w, x, y, &rp);
+                trace_state st;
+                unit_op op;
+                trace_counters c = { 0 };
+                trace_begin(&rp, a << TRACE_TRAV_SHIFT, &st);
+                for (uint32_t k = 0; k < 100000 && trace_step(w, &st, &op, &c); k++)
+                    ;
+            }
+}
+
+/* Set word at of a copy of good to v: the validator must reject it. */
+static void rejects(const uint32_t *good, uint32_t n, uint32_t at, uint32_t v, const char *what)
+{
+    uint32_t *w = malloc(n * sizeof *w);
+    assert_non_null(w);
+    memcpy(w, good, n * sizeof *w);
+    w[at] = v;
+    char err[256];
+    if (mi_validate(w, n, err, sizeof err) == 0)
+        fail_msg("a corrupted %s was accepted", what);
+    free(w);
+}
+
+/* An image with ropes and grids at both levels validates; ropes out of range, missing rope
+ * records, bad grid sizes and cell lists are rejected; random corruption either fails
+ * validation or traces safely with every traversal algorithm. */
+static void accelerators(void **state)
+{
+    (void)state;
+    scene s;
+    make_scene(&s, 5, 1);
+    mi_builder *b = build_with(&s, 0, MI_ACCEL_ALL);
+    uint32_t n;
+    const uint32_t *good = mi_words(b, &n);
+    char err[256];
+    if (mi_validate(good, n, err, sizeof err) != 0)
+        fail_msg("%s", err);
+    assert_int_equal(good[MI_H_FORMAT] >> MI_ACCEL_SHIFT, MI_ACCEL_ALL);
+    trace_all_algorithms(good);
+    const uint32_t *obj = good + good[MI_H_REGION_TABLE + 2 * MI_R_OBJECTS];
+    const uint32_t grid = obj[MI_O_GRID], top_grid = good[MI_H_REGION_TABLE + 2 * MI_R_TOP_GRID];
+    const uint32_t top_nodes = good[MI_H_REGION_TABLE + 2 * MI_R_TOP_NODES];
+    uint32_t leaf = 0;
+    while ((good[obj[MI_O_NODES] + 2 * leaf] & 3u) != MI_NODE_LEAF)
+        leaf++;
+    const uint32_t record = obj[MI_O_LISTS] + good[obj[MI_O_NODES] + 2 * leaf + 1] - MI_ROPE_WORDS;
+    rejects(good, n, record + 7, obj[MI_O_N_NODES], "rope");
+    rejects(good, n, record + 1, F24_POS_INF, "leaf box");
+    rejects(good, n, obj[MI_O_NODES] + 2 * leaf + 1, 0, "leaf without rope record");
+    rejects(good, n, grid + MI_G_N + 1, 0, "grid size");
+    rejects(good, n, grid + MI_G_N, 1024, "grid size");
+    rejects(good, n, good[grid + MI_G_CELLS] + 1, good[grid + MI_G_N_LIST] + 1, "grid cell");
+    rejects(good, n, top_grid + MI_G_LISTS, n, "top-level grid");
+    rejects(good, n, top_nodes + 1, 0x7FFFFFFFu, "top-level split");
+    rejects(good, n, MI_H_FORMAT, good[MI_H_FORMAT] | 8u << MI_ACCEL_SHIFT, "accelerator bits");
+    uint32_t *w = malloc(n * sizeof *w), rejected = 0;
+    assert_non_null(w);
+    const uint32_t from = good[MI_H_REGION_TABLE + 2 * MI_R_STATIC_GEOMETRY];
+    for (int trial = 0; trial < 400; trial++) {
+        memcpy(w, good, n * sizeof *w);
+        const uint32_t at = from + (uint32_t)(urand() * (n - from));
+        w[at] = urand() < 0.5 ? w[at] ^ (1u << (int)(urand() * 32)) : (uint32_t)(urand() * 4294967295.0);
+        if (mi_validate(w, n, err, sizeof err) != 0)
+            rejected++;
+        else
+            trace_all_algorithms(w);
+    }
+    print_message("accelerators: %u of 400 corrupted images rejected, the rest traced safely\n", rejected);
+    assert_true(rejected > 0 && rejected < 400);
+    free(w);
+    mi_free(b);
+    scene_free(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(transform_maps_vertices), cmocka_unit_test(degenerate_triangles),
         cmocka_unit_test(layout_and_validate), cmocka_unit_test(instancing_end_to_end),
         cmocka_unit_test(too_small_memory), cmocka_unit_test(frames_upload_only_what_changed),
-        cmocka_unit_test(corruption),
+        cmocka_unit_test(corruption), cmocka_unit_test(accelerators),
     };
     return cmocka_run_group_tests_name("memimage", tests, NULL, NULL);
 }
