@@ -228,6 +228,22 @@ and c['units']['trav']['latency'] == 5 and c['memory']['kd_nodes']['cache_bytes'
   done
 }
 
+# the traversal algorithms: ropes and grids add their structures to the image, find the same
+# surfaces (functional and cycle mode, with an animated frame and its rebuilt top level)
+t_render_traversal() {
+  expect 0 "$BIN" render animated -o "$T/stk.png" --width 48 --height 36 --frame 20
+  for a in short-stack restart push-down ropes grid grid2; do
+    expect 0 "$BIN" render animated -o "$T/$a.png" --width 48 --height 36 --frame 20 --traversal $a --stats "$T/$a.json"
+    cmp "$T/stk.png" "$T/$a.png"
+  done
+  python3 -c "import json; d=json.load(open('$T/grid2.json')); assert d['traversal_steps'] == 0 and d['leaves'] > 0, d"
+  expect 0 "$BIN" render room -o "$T/ropes_cy.png" --width 32 --height 24 --traversal ropes --mode cycle --pipes 2
+  expect 0 "$BIN" render room -o "$T/ropes_fn.png" --width 32 --height 24 --traversal ropes
+  cmp "$T/ropes_cy.png" "$T/ropes_fn.png"
+  expect 2 "$BIN" render room --traversal octree; one_line_error
+  has 'ropes, grid or grid2' "$T/err"
+}
+
 # the double-precision reference and the per-ray hit comparison
 t_reference() {
   expect 0 "$BIN" reference --help; has usage "$T/out"
@@ -261,5 +277,6 @@ run_case cli_info t_info
 run_case cli_render t_render
 run_case cli_render_rays t_render_rays
 run_case cli_render_cycle t_render_cycle
+run_case cli_render_traversal t_render_traversal
 run_case cli_reference t_reference
 exit $((fails != 0))

@@ -29,8 +29,11 @@ def cycle_row(scene, out):
             "modeled_rays_per_second": s["cycle"]["rays_per_second"], "hit_agreement_with_units": None}
 
 
-ALGORITHMS = [("stack", 64), ("short-stack", 4), ("restart", 0), ("push-down", 0)]
+# name, stack entries of the top and the bottom level, cursor walker levels (a node or cell per ray)
+ALGORITHMS = [("stack", 64, 64, 0), ("short-stack", 4, 4, 0), ("restart", 0, 0, 0), ("push-down", 0, 0, 0),
+              ("ropes", 0, 0, 2), ("grid", 64, 0, 1), ("grid2", 0, 0, 2)]
 ENTRY_BITS = 32 + 4 + 2 * 4 * 24  # node, ray mask, tn and tf of 4 rays (fp24)
+CURSOR_BITS = 4 * 32  # a node or cell index per ray
 
 
 def traversal_rows(scene, out):
@@ -39,7 +42,7 @@ def traversal_rows(scene, out):
     path = scene if "." not in scene else os.path.join(SHARED, scene)
     key = re.sub(r"\W+", "_", scene)
     rows = []
-    for algo, entries in ALGORITHMS:
+    for algo, top, bottom, cursors in ALGORITHMS:
         st, png = os.path.join(out, f"peers_{key}_{algo}.json"), os.path.join(out, f"peers_{key}_{algo}.png")
         r = subprocess.run([BIN, "render", path, "--mode", "cycle", "--max-depth", "0", "--no-shadows", "--width", "512",
                             "--height", "384", "--threads", "1", "--mem-mb", "1024", "--traversal", algo, "-o", png,
@@ -48,12 +51,14 @@ def traversal_rows(scene, out):
             return rows
         s = json.load(open(st))
         n = s["rays"]
+        upload = re.search(r"upload ([0-9.]+) KB", r.stdout)
         same = subprocess.run([BIN, "compare", png, os.path.join(out, f"peers_{key}_stack.png")], capture_output=True,
                               text=True).stdout
         diff = float(re.search(r"\(([0-9.]+)%\)", same).group(1)) if same else None
-        rows.append({"scene": scene, "algorithm": algo, "stack entries": entries,
-                     "stack bits per thread": 2 * entries * ENTRY_BITS,
-                     "node visits per ray": s["traversal_steps"] / n, "leaves per ray": s["leaves"] / n,
+        rows.append({"scene": scene, "algorithm": algo, "stack entries": f"{top}/{bottom}",
+                     "walker bits per thread": (top + bottom) * ENTRY_BITS + cursors * CURSOR_BITS,
+                     "image MB": float(upload.group(1)) / 1024 if upload else None,
+                     "node visits per ray": s["traversal_steps"] / n, "leaves or cells per ray": s["leaves"] / n,
                      "intersections per ray": s["intersections"] / n, "words per ray": s["words_read"] / n,
                      "cycles per ray": s["cycle"]["cycles"] / n, "pixels differing from stack %": diff,
                      "machine_command_date": None})
@@ -89,18 +94,20 @@ def main():
             rel = f"{r['rays_per_second'] / base:.3f}" if base else "-"
             md.append(f"| {sc} | {r['tracer']} | {r['threads']} | {r['rays_per_second'] / 1e6:.3f} M | {rel} | {mod} | {ag} |")
     md += ["", "## Traversal algorithms of the traversal unit (same trees, same fp24 units; docs/traversal.md)", "",
-           "Primary rays, cycle mode, 1 DynRTP at 90 MHz with the default caches. *stack bits per thread*: the "
-           "traversal stacks of both levels for one packet (node, mask, tn/tf of 4 rays per entry).", "",
-           "| scene | algorithm | stack entries | stack bits per thread | node visits per ray | leaves per ray | "
-           "intersections per ray | words per ray | cycles per ray | pixels differing from stack |",
-           "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+           "Primary rays, cycle mode, 1 DynRTP at 90 MHz with the default caches. *stack entries*: top/bottom "
+           "level. *walker bits per thread*: the traversal stacks of both levels for one packet (node, mask, tn/tf "
+           "of 4 rays per entry) plus, for the cursor walkers, a node or cell index per ray and level. *image MB*: "
+           "the whole memory image with the structures the algorithm walks (kd-trees always; rope records; grids). "
+           "*node visits*: inner kd nodes; *leaves or cells*: kd leaves or grid cells visited.", "",
+           "| scene | algorithm | stack entries | walker bits per thread | image MB | node visits per ray | "
+           "leaves or cells per ray | intersections per ray | words per ray | cycles per ray | pixels differing from stack |",
+           "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for t in trav:
         d = f"{t['pixels differing from stack %']:.4f}%" if t["pixels differing from stack %"] is not None else "-"
-        md.append(f"| {t['scene']} | {t['algorithm']} | {t['stack entries']} | {t['stack bits per thread']} | "
-                  f"{t['node visits per ray']:.2f} | {t['leaves per ray']:.2f} | {t['intersections per ray']:.2f} | "
+        mb = f"{t['image MB']:.2f}" if t["image MB"] is not None else "-"
+        md.append(f"| {t['scene']} | {t['algorithm']} | {t['stack entries']} | {t['walker bits per thread']} | {mb} | "
+                  f"{t['node visits per ray']:.2f} | {t['leaves or cells per ray']:.2f} | {t['intersections per ray']:.2f} | "
                   f"{t['words per ray']:.1f} | {t['cycles per ray']:.1f} | {d} |")
-    md += ["", "Not yet implemented: ropes (Popov et al. 2007), a uniform grid with 3D-DDA (Purcell et al. 2002) and "
-           "a two-level grid over instances (Adinetz and Berezin) need new data structures in the memory image."]
     open(os.path.join(out, "peers.md"), "w").write("\n".join(md) + "\n")
     print("\n".join(md))
 
