@@ -373,7 +373,7 @@ static void trace_all_algorithms(const uint32_t *w)
                 trace_state st;
                 unit_op op;
                 trace_counters c = { 0 };
-                trace_begin(&rp, a << TRACE_TRAV_SHIFT, &st);
+                trace_begin(&rp, trace_flags_of(trace_profile(w), 0) | a << TRACE_TRAV_SHIFT, &st);
                 for (uint32_t k = 0; k < 100000 && trace_step(w, &st, &op, &c); k++)
                     ;
             }
@@ -443,6 +443,44 @@ static void accelerators(void **state)
     scene_free(&s);
 }
 
+/* A scene of one object (the profile skips the top level): with the accelerators, the instance
+ * comes from the top-level leaf's list after its rope record, and every algorithm hits it. */
+static void single_object_accelerators(void **state)
+{
+    (void)state;
+    scene s;
+    make_scene(&s, 1, 0);
+    s.nodes[0].translation[0] = 2.5; /* scene bounds away from 0: a rope record word is no instance index */
+    s.nodes[0].translation[1] = 1.5;
+    assert_int_equal(scene_evaluate(&s, 0, 0), 0);
+    mi_builder *b = build_with(&s, 0, MI_ACCEL_ALL);
+    uint32_t n, hits = 0;
+    const uint32_t *w = mi_words(b, &n);
+    char err[256];
+    if (mi_validate(w, n, err, sizeof err) != 0)
+        fail_msg("%s", err);
+    assert_true(trace_profile(w) & PROFILE_SINGLE_OBJECT);
+    for (uint32_t y = 0; y < 384; y += 24) /* the default 512x384 view of the scene */
+        for (uint32_t x = 0; x < 512; x += 32)
+            for (uint32_t a = 0; a < TRAV_KINDS; a++) {
+                ray_packet rp;
+                rgs_primary(w, x, y, &rp);
+                trace_state st;
+                unit_op op;
+                trace_counters c = { 0 };
+                trace_begin(&rp, trace_flags_of(trace_profile(w), 0) | a << TRACE_TRAV_SHIFT, &st);
+                for (uint32_t k = 0; k < 100000 && trace_step(w, &st, &op, &c); k++)
+                    ;
+                for (int i = 0; i < TRACE_PACKET; i++) {
+                    assert_true(st.hits[i].instance == 0 || st.hits[i].instance == TRACE_NO_HIT);
+                    hits += st.hits[i].instance == 0;
+                }
+            }
+    assert_true(hits > 0);
+    mi_free(b);
+    scene_free(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -450,6 +488,7 @@ int main(void)
         cmocka_unit_test(layout_and_validate), cmocka_unit_test(instancing_end_to_end),
         cmocka_unit_test(too_small_memory), cmocka_unit_test(frames_upload_only_what_changed),
         cmocka_unit_test(corruption), cmocka_unit_test(accelerators),
+        cmocka_unit_test(single_object_accelerators),
     };
     return cmocka_run_group_tests_name("memimage", tests, NULL, NULL);
 }

@@ -315,7 +315,7 @@ same_origin:
 static void enter_single_object(const uint32_t *mem, trace_state *s, uint32_t mask, unit_op *op, trace_counters *c)
 {
     const uint32_t ia = region_start(mem, R_INSTANCES);
-    s->inst = mem[region_start(mem, R_TOP_LISTS)];
+    s->inst = mem[region_start(mem, R_TOP_LISTS) + mem[region_start(mem, R_TOP_NODES) + 1]]; /* its one-leaf list */
     s->need = mask;
     s->walk[0].leaf_count = s->walk[0].k = 0;
     if (!(s->flags & TRACE_IDENTITY)) {
