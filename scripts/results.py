@@ -5,7 +5,9 @@ Collects every report the bench targets wrote (fp, build, render, accuracy, cycl
 precision, peers), in that order, and appends to each table row a `run` column naming the
 machine, the command that made it and the date of the report file, so every number says where it
 comes from. Plots (SVG) referenced by a report are copied to docs/results/. Reports that do not
-exist are listed with the command that makes them.
+exist in build/bench/ keep their section from the previous docs/results.md (each section is
+marked `<!-- report: NAME -->`, so its run column still names the run that made it); reports
+never run are listed with the command that makes them.
 """
 import datetime, os, re, shutil, socket
 
@@ -33,6 +35,15 @@ def with_run_column(text, run):
     return "\n".join(out)
 
 
+def previous_sections(path):
+    """The marked report sections of an existing docs/results.md, by report name."""
+    if not os.path.exists(path):
+        return {}
+    text = open(path).read()
+    return {m.group(1): m.group(0) for m in
+            re.finditer(r"<!-- report: (\w+) -->\n.*?<!-- end report: \1 -->", text, flags=re.S)}
+
+
 def main():
     os.makedirs(os.path.join(DOCS, "results"), exist_ok=True)
     host = f"{socket.gethostname()} ({os.cpu_count()} cores)"
@@ -41,10 +52,14 @@ def main():
           "`make results` to refresh; speed figures are single runs on a small shared machine unless a "
           "report says otherwise.", ""]
     missing = []
+    previous = previous_sections(os.path.join(DOCS, "results.md"))
     for name, cmd in REPORTS:
         path = os.path.join(BENCH, f"{name}.md")
         if not os.path.exists(path):
-            missing.append(f"`{cmd}`")
+            if name in previous:
+                md += [previous[name], ""]
+            else:
+                missing.append(f"`{cmd}`")
             continue
         date = datetime.date.fromtimestamp(os.path.getmtime(path)).isoformat()
         text = open(path).read()
@@ -54,7 +69,8 @@ def main():
                 shutil.copy(src, os.path.join(DOCS, "results", os.path.basename(svg)))
             text = text.replace(f"]({svg})", f"](results/{os.path.basename(svg)})")
         text = re.sub(r"^(#+) ", r"#\1 ", text, flags=re.M)  # each report becomes a section
-        md += [with_run_column(text, f"{host}, `{cmd}`, {date}"), ""]
+        md += [f"<!-- report: {name} -->", with_run_column(text, f"{host}, `{cmd}`, {date}").rstrip(),
+               f"<!-- end report: {name} -->", ""]
     if missing:
         md += ["## Not yet run here", "", "Reports missing from build/bench/: " + ", ".join(missing) + "."]
     open(os.path.join(DOCS, "results.md"), "w").write("\n".join(md) + "\n")
