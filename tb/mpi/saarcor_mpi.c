@@ -117,7 +117,7 @@ int saarcor_mpi_run(int abi, const saarcor_mpi_work *w, saarcor_mpi_report *rep,
     MPI_Comm_rank(MPI_COMM_WORLD, &rep->rank);
     MPI_Comm_size(MPI_COMM_WORLD, &rep->ranks);
     if (rep->ranks < 2) {
-        snprintf(err, n, "--mpi needs at least 2 ranks (rank 0 hands out work, the others do it): run it under "
+        snprintf(err, n, "needs at least 2 ranks (rank 0 hands out work, the others do it): run it under "
                          "mpirun -np N with N >= 2");
         MPI_Finalize();
         return -1;
