@@ -327,6 +327,12 @@ $(BUILD)/bench_peers: $(BUILD)/obj/host/tests/bench/bench_peers.o $(BUILD)/obj/h
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(LDLIBS) -lembree3 -lpthread
 
+# render --mpi from 1 to 2 worker ranks on localhost: wall time, speedup, communication -> build/bench/mpi.md
+bench-mpi: deps
+	@$(MAKE) --no-print-directory all mpi
+	@mkdir -p $(BUILD)/bench
+	python3 tests/bench/bench_mpi.py --out $(BUILD)/bench
+
 # docs/results.md from the reports in build/bench/ (each row with machine, command, date)
 results:
 	python3 scripts/results.py
