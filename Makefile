@@ -14,6 +14,8 @@
 #   make synth      Yosys synthesis figures -> docs/synth.md
 #   make bench-precision  every format against the binary64 reference: time, cycles, PSNR, plots
 #   make results    docs/results.md from build/bench/ (run after make bench)
+#   make mpi        build/libsaarcor_mpi.so, the MPI distributor render --mpi and jobs --mpi load
+#   make bench-mpi  render --mpi with 1 and 2 worker ranks on localhost -> build/bench/mpi.md, mpi.json
 #   make stress     numerical stability stress suite at every width and with the robust edge option
 #                   (make robust) -> build/bench/stress.md, stress.json
 # Variables: BUILD (output folder), SAN=1 (sanitizers), V=1 (show commands), VERIFY_N,
