@@ -43,6 +43,56 @@ t_render_functional() {
   echo "2 and 3 ranks: the single-process image and counters"
 }
 
+# every board holds the whole memory image: boards x the single-process upload of the frame
+t_image_traffic() {
+  $B/saarcor render room "${SIZE[@]}" -o "$T/one.png" >"$T/one.out"
+  $B/saarcor info room --json "$T/info.json" >/dev/null
+  for n in 2 3; do
+    mpi $n $B/saarcor render room "${SIZE[@]}" --mpi --mpi-tile 32 -o "$T/mpi$n.png" --stats "$T/mpi$n.json" >"$T/out$n"
+    python3 - "$T/one.out" "$T/info.json" "$T/mpi$n.json" "$T/out$n" <<'PY'
+import json, re, sys
+one_kb = float(re.search(r"upload ([0-9.]+) KB", open(sys.argv[1]).read()).group(1))
+image = 4 * sum(json.load(open(sys.argv[2]))["regions"].values())  # the whole memory image, bytes
+m = json.load(open(sys.argv[3]))["mpi"]
+assert m["image_bytes_per_board"] == image and f"{image / 1024:.1f}" == f"{one_kb:.1f}", (m, image, one_kb)
+assert m["image_upload_bytes_total"] == m["boards"] * image, m
+assert f"memory image {one_kb:.1f} KB per board, {m['boards'] * image / 1024:.1f} KB uploaded" in open(sys.argv[4]).read()
+PY
+  done
+  # frames: each board loads the first frame's image, then uploads the changes of its frames
+  $B/saarcor gen animated -o "$T/anim.glb" >/dev/null
+  mpi 3 $B/saarcor render "$T/anim.glb" --width 48 --height 32 --threads 1 --frames 1:5 --mpi -o "$T/f.png" >"$T/fr"
+  python3 - "$T/fr" <<'PY'
+import re, sys
+out = open(sys.argv[1]).read()
+up = {int(f): float(kb) for kb, f in re.findall(r"upload ([0-9.]+) KB -> \S*f_000(\d)\.png", out)}
+per, total = map(float, re.search(r"memory image ([0-9.]+) KB per board, ([0-9.]+) KB uploaded", out).groups())
+assert per == up[1] and abs(total - (2 * per + sum(up[f] for f in (2, 3, 4, 5)))) < 0.5, (per, total, up)
+PY
+  echo "image $(python3 -c "import json; m = json.load(open('$T/mpi3.json'))['mpi']; print(m['image_bytes_per_board'], 'bytes per board,', m['image_upload_bytes_total'], 'to 2 boards')"); frames: + the per-frame changes"
+}
+
+# bench_precision.py --mpi 2: its renders as jobs across ranks, the same error columns as one process
+t_bench_precision() {
+  for f in e7m16 e8m23; do
+    [[ -x build/w/$f/saarcor ]] || { echo "build/w/$f/saarcor missing (make build/w/$f/saarcor)"; return 1; }
+  done
+  local args=(--scenes cornell --formats e7m16,e8m23 --size 32x24)
+  python3 tests/bench/bench_precision.py "${args[@]}" --out "$T/p1" >/dev/null 2>"$T/p1.err" || { cat "$T/p1.err"; return 1; }
+  python3 tests/bench/bench_precision.py "${args[@]}" --out "$T/p2" --mpi 2 >/dev/null 2>"$T/p2.err" || { cat "$T/p2.err"; return 1; }
+  grep -c "render\|reference\|compare-hits" "$T/p2/precision/jobs.txt" | grep -qx 7
+  python3 - "$T/p1/precision.json" "$T/p2/precision.json" <<'PY'
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+for rows in (a, b):
+    for r in rows:
+        r.pop("functional_s"); r.pop("cycle_s")  # timings differ
+assert len(a) == 2 and a == b, (a, b)
+print("bench_precision --mpi 2 (cornell, e7m16 + e8m23, 32x24): 7 jobs, rows equal one process's:",
+      ", ".join(f"{r['format']} {r['psnr_db']:.2f} dB" for r in a))
+PY
+}
+
 t_render_cycle() {
   $B/saarcor render room "${SIZE[@]}" --mode cycle -o "$T/one.png" --stats "$T/one.json" >/dev/null
   for n in 2 3; do
@@ -126,14 +176,16 @@ t_no_libmpi_in_program() {
 run_case mpi_errors t_errors
 run_case mpi_program_free_of_libmpi t_no_libmpi_in_program
 if ! command -v mpirun >/dev/null 2>&1; then
-  for c in mpi_render_functional mpi_render_cycle mpi_frames mpi_jobs mpi_rank_death; do
+  for c in mpi_render_functional mpi_image_traffic mpi_render_cycle mpi_frames mpi_jobs mpi_bench_precision mpi_rank_death; do
     echo "[ RUN      ] $c"; echo "mpirun not found (install openmpi-bin: make deps)"; echo "[  SKIPPED ] $c"
   done
   exit $((fails != 0))
 fi
 run_case mpi_render_functional t_render_functional
+run_case mpi_image_traffic t_image_traffic
 run_case mpi_render_cycle t_render_cycle
 run_case mpi_frames t_frames
 run_case mpi_jobs t_jobs
+run_case mpi_bench_precision t_bench_precision
 run_case mpi_rank_death t_rank_death
 exit $((fails != 0))

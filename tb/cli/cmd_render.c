@@ -240,10 +240,12 @@ static int write_stats(const char *path, const render_opts *ro, const cycle_conf
     if (fr->mpi)
         fprintf(f, ", \"mpi\": {\"ranks\": %d, \"boards\": %u, \"items\": %u, \"bytes_to_workers\": %llu, "
                    "\"bytes_from_workers\": %llu, \"messages\": %llu, \"wall_seconds\": %.6f, \"work_seconds\": %.6f, "
-                   "\"comm_seconds\": %.6f, \"comm_seconds_max\": %.6f}",
+                   "\"comm_seconds\": %.6f, \"comm_seconds_max\": %.6f, \"image_bytes_per_board\": %llu, "
+                   "\"image_upload_bytes_total\": %llu}",
                 fr->mpi->ranks, fr->boards, fr->items, (unsigned long long)fr->mpi->bytes_to_workers,
                 (unsigned long long)fr->mpi->bytes_from_workers, (unsigned long long)fr->mpi->messages,
-                fr->mpi->wall_seconds, fr->mpi->work_seconds, fr->mpi->comm_seconds, fr->mpi->comm_seconds_max);
+                fr->mpi->wall_seconds, fr->mpi->work_seconds, fr->mpi->comm_seconds, fr->mpi->comm_seconds_max,
+                (unsigned long long)fr->image_bytes_per_board, (unsigned long long)fr->image_upload_bytes_total);
     fprintf(f, "}\n");
     return fclose(f);
 }
@@ -328,10 +330,12 @@ static void print_mpi(const frame_result *fr)
 {
     const saarcor_mpi_report *m = fr->mpi;
     printf("mpi: %d ranks (%u worker boards), %u item%s, %.1f KB to workers, %.1f KB from workers, %llu messages; "
+           "memory image %.1f KB per board, %.1f KB uploaded to the boards; "
            "wall %.3f s, worker time working %.3f s, communicating %.3f s (max %.3f s on one worker)\n",
            m->ranks, fr->boards, fr->items, fr->items == 1 ? "" : "s", (double)m->bytes_to_workers / 1024.0,
-           (double)m->bytes_from_workers / 1024.0, (unsigned long long)m->messages, m->wall_seconds, m->work_seconds,
-           m->comm_seconds, m->comm_seconds_max);
+           (double)m->bytes_from_workers / 1024.0, (unsigned long long)m->messages,
+           (double)fr->image_bytes_per_board / 1024.0, (double)fr->image_upload_bytes_total / 1024.0, m->wall_seconds,
+           m->work_seconds, m->comm_seconds, m->comm_seconds_max);
 }
 
 int render_frame_output(const render_opts *ro, const mi_builder *b, const scene *s, uint32_t frame,

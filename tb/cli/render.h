@@ -38,6 +38,8 @@ typedef struct {
     uint64_t upload_bytes;    /* memory image words changed for this frame, in bytes */
     uint32_t boards;          /* MPI: worker ranks (each a board of --pipes pipes); 0: one process */
     uint32_t items;           /* MPI: work items of this frame (tiles, or 1 for a whole frame) */
+    uint64_t image_bytes_per_board;    /* MPI, one frame in tiles: the memory image every board holds */
+    uint64_t image_upload_bytes_total; /* ... uploaded to all boards: boards x image_bytes_per_board */
     const saarcor_mpi_report *mpi;
 } frame_result;
 

@@ -15,6 +15,7 @@ typedef struct {
     cycle_stats cs;
     double secs;
     uint64_t upload_bytes;
+    uint64_t moved_bytes; /* frames: memory image bytes this board uploaded for the item (0: it held the frame) */
 } item_head;
 
 typedef struct {
@@ -28,6 +29,7 @@ typedef struct {
     frame_result total;    /* one frame: the combined numbers */
     uint64_t *tile_cycles; /* one frame, cycle mode: cycles of each tile on its board */
     int rc;                /* the first failed frame's exit code (frames) */
+    uint64_t moved_bytes;  /* frames: sum of the items' moved_bytes */
 } mpi_render;
 
 static double now(void)
@@ -148,9 +150,11 @@ static long frame_work(void *ctx, uint32_t item, void *result)
     mpi_render *m = ctx;
     const uint32_t f = m->ro->first + item, all[4] = { 0, 0, m->w, m->h };
     item_head hd = { .upload_bytes = 0 };
+    const int moved = f != m->current;
     if (move_to(m, f) != 0 || render_validate(m->b) != SAARCOR_EXIT_OK)
         return -1;
     hd.upload_bytes = mi_get_stats(m->b)->frame_upload_bytes;
+    hd.moved_bytes = moved ? hd.upload_bytes : 0;
     if (render_part(m, all, &hd) != 0) {
         cli_error("render", "--mpi: out of memory rendering frame %u", f);
         return -1;
@@ -171,8 +175,10 @@ static int frame_take(void *ctx, uint32_t item, const void *result, size_t size,
         return -1;
     }
     memcpy(&hd, result, sizeof hd);
+    m->moved_bytes += hd.moved_bytes;
     memcpy(m->pixels, (const char *)result + sizeof hd, size - sizeof hd);
-    const frame_result fr = { hd.sum, hd.cs, hd.secs, hd.upload_bytes, 1, 1, NULL };
+    const frame_result fr = { .sum = hd.sum, .cs = hd.cs, .secs = hd.secs, .upload_bytes = hd.upload_bytes, .boards = 1,
+                              .items = 1 };
     const int rc = render_frame_output(m->ro, NULL, NULL, m->ro->first + item, m->scene_name, m->w, m->h, m->pixels,
                                        NULL, &fr);
     if (rc != SAARCOR_EXIT_OK && m->rc == SAARCOR_EXIT_OK)
@@ -180,13 +186,15 @@ static int frame_take(void *ctx, uint32_t item, const void *result, size_t size,
     return 0;
 }
 
-static void print_sequence_mpi(const saarcor_mpi_report *rep, uint32_t frames)
+static void print_sequence_mpi(const saarcor_mpi_report *rep, uint32_t frames, uint64_t image, uint64_t image_total)
 {
     printf("mpi: %d ranks (%d worker boards), %u frames, %.1f KB to workers, %.1f KB from workers, %llu messages; "
+           "memory image %.1f KB per board, %.1f KB uploaded to the boards (with the per-frame changes); "
            "wall %.3f s, worker time working %.3f s, communicating %.3f s (max %.3f s on one worker)\n",
            rep->ranks, rep->ranks - 1, frames, (double)rep->bytes_to_workers / 1024.0,
-           (double)rep->bytes_from_workers / 1024.0, (unsigned long long)rep->messages, rep->wall_seconds,
-           rep->work_seconds, rep->comm_seconds, rep->comm_seconds_max);
+           (double)rep->bytes_from_workers / 1024.0, (unsigned long long)rep->messages, (double)image / 1024.0,
+           (double)image_total / 1024.0, rep->wall_seconds, rep->work_seconds, rep->comm_seconds,
+           rep->comm_seconds_max);
 }
 
 int render_mpi(render_opts *ro, saarcor_mpi_run_fn run, mi_builder *b, scene *s, const char *scene_name)
@@ -218,13 +226,18 @@ int render_mpi(render_opts *ro, saarcor_mpi_run_fn run, mi_builder *b, scene *s,
         cli_error("render", "--mpi: %s", err);
         rc = SAARCOR_EXIT_USAGE;
     } else if (rep.rank == 0 && ro->sequence) {
-        print_sequence_mpi(&rep, w.n_items);
+        /* every board is loaded with the image of the first frame, then uploads each of its
+         * frames' changes (rank 0 never moves its image: its stats are the first frame's build) */
+        const uint64_t image = mi_get_stats(b)->frame_upload_bytes, boards = (uint64_t)rep.ranks - 1;
+        print_sequence_mpi(&rep, w.n_items, image, boards * image + m.moved_bytes);
         rc = m.rc;
     } else if (rep.rank == 0) {
         schedule(&m, (uint32_t)rep.ranks - 1);
         m.total.secs = rep.wall_seconds;
         m.total.upload_bytes = mi_get_stats(b)->frame_upload_bytes;
         m.total.boards = (uint32_t)rep.ranks - 1;
+        m.total.image_bytes_per_board = m.total.upload_bytes; /* every board holds the whole image */
+        m.total.image_upload_bytes_total = m.total.upload_bytes * m.total.boards;
         m.total.items = m.n_tiles;
         m.total.mpi = &rep;
         rc = render_frame_output(ro, b, s, ro->first, scene_name, m.w, m.h, m.pixels, NULL, &m.total);
