@@ -14,6 +14,8 @@
 #   make synth      Yosys synthesis figures -> docs/synth.md
 #   make bench-precision  every format against the binary64 reference: time, cycles, PSNR, plots
 #   make results    docs/results.md from build/bench/ (run after make bench)
+#   make mpi        build/libsaarcor_mpi.so, the MPI distributor render --mpi and jobs --mpi load
+#   make bench-mpi  render --mpi with 1 and 2 worker ranks on localhost -> build/bench/mpi.md, mpi.json
 #   make stress     numerical stability stress suite at every width and with the robust edge option
 #                   (make robust) -> build/bench/stress.md, stress.json
 # Variables: BUILD (output folder), SAN=1 (sanitizers), V=1 (show commands), VERIFY_N,
@@ -26,6 +28,7 @@ SHELL := /bin/bash
 .SECONDARY:
 
 BUILD ?= build
+MPICC := $(shell command -v mpicc 2>/dev/null)
 CC := gcc
 CXX := g++
 SAN ?= 0
@@ -48,8 +51,8 @@ SANFLAGS := $(if $(filter 1,$(SAN)),$(SAN_ON))
 CFG_FLAGS ?=
 CFLAGS := -std=c11 $(WARN) $(OPT) -ffp-contract=off -fno-math-errno $(SANFLAGS) $(CFG_FLAGS) -MMD -MP
 CXXFLAGS := -std=c++17 $(WARN) $(OPT) $(SANFLAGS) -MMD -MP
-INCLUDES := -Ihls -Ihls/fp24 -Ihls/units -Itb/fp -Itb/ref -Itb/cycle -Itb/cli -Ihost/image -Ihost/scene -Ihost/kdtree -Ihost/memimage -Iscenes
-LDLIBS := -lmpfr -lgmp -ltinygltf -lOpenImageIO -lOpenImageIO_Util -lstdc++ -lm
+INCLUDES := -Ihls -Ihls/fp24 -Ihls/units -Itb/fp -Itb/ref -Itb/cycle -Itb/cli -Ihost/image -Ihost/scene -Ihost/kdtree -Ihost/memimage -Iscenes -Itb/mpi
+LDLIBS := -lmpfr -lgmp -ltinygltf -lOpenImageIO -lOpenImageIO_Util -lstdc++ -lm -ldl
 TEST_LDLIBS := -lcmocka $(LDLIBS)
 
 # ---- sources -------------------------------------------------------------------------------
@@ -138,8 +141,17 @@ $(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS) $(call fmt_objs,$
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
 
-.PHONY: all widths deps run test unit-tests test-programs asan verify-fp hls-check hls-vectors bench bench-skip bench-fp bench-build bench-render bench-accuracy bench-cycle bench-precision bench-peers results robust stress rtl-lint rtl-test synth clean
-all: $(BUILD)/saarcor $(BUILD)/w/e8m23/saarcor
+
+.PHONY: all mpi bench-mpi widths deps run test unit-tests test-programs asan verify-fp hls-check hls-vectors bench bench-skip bench-fp bench-build bench-render bench-accuracy bench-cycle bench-precision bench-peers results robust stress rtl-lint rtl-test synth clean
+all: $(BUILD)/saarcor $(BUILD)/w/e8m23/saarcor $(if $(MPICC),$(BUILD)/libsaarcor_mpi.so)
+
+# ---- MPI: the work distributor that `render --mpi` and `jobs --mpi` dlopen (docs/mpi.md) -------
+# the only part linked with libmpi; build/saarcor runs without Open MPI installed
+mpi: $(BUILD)/libsaarcor_mpi.so
+$(BUILD)/libsaarcor_mpi.so: tb/mpi/saarcor_mpi.c tb/mpi/saarcor_mpi.h
+	@mkdir -p $(@D)
+	@echo "  MPICC $@"
+	$(Q)$(if $(MPICC),mpicc,$(error make mpi needs mpicc: install libopenmpi-dev (make deps))) -std=c11 $(WARN) $(OPT) $(SANFLAGS) -fPIC -shared -Itb/mpi $< -o $@
 widths: $(foreach f,$(FORMATS),$(BUILD)/w/$(f)/saarcor)
 
 deps:
@@ -165,13 +177,13 @@ asan:
 	@$(MAKE) --no-print-directory BUILD=build/asan SAN=1 unit-tests
 
 test: deps
-	@$(MAKE) --no-print-directory -j$$(nproc) test-programs
+	@$(MAKE) --no-print-directory -j$$(nproc) test-programs mpi
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(BUILD)/hw SIM_ARITH=hw $(BUILD)/hw/saarcor
 	@$(MAKE) --no-print-directory $(BUILD)/rtl/$(DEFAULT_FMT)/tb_f24_ops $(BUILD)/rtl/$(DEFAULT_FMT)/tb_units
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 test-programs
 	@$(MAKE) --no-print-directory -j$$(nproc) robust
 	@bash tests/run.sh --report $(BUILD)/test-report.txt \
-	  $(UNIT_TESTS) tests/test_cli.sh tests/test_golden.sh tests/test_rtl.sh tests/test_hls.sh tests/test_stress.sh $(patsubst $(BUILD)/%,build/asan/%,$(UNIT_TESTS))
+	  $(UNIT_TESTS) tests/test_cli.sh tests/test_golden.sh tests/test_rtl.sh tests/test_hls.sh tests/test_stress.sh tests/test_mpi.sh $(patsubst $(BUILD)/%,build/asan/%,$(UNIT_TESTS))
 
 # ---- HLS readiness: hls/ alone in the synthesizable subset, per configuration -------------------
 # make hls-check: the general design and every hls/config_NAME.h; CONFIG=NAME: that one only
@@ -316,6 +328,12 @@ bench-peers: deps
 $(BUILD)/bench_peers: $(BUILD)/obj/host/tests/bench/bench_peers.o $(BUILD)/obj/host/tests/bench/embree_scene.o $(HOST_OBJS) $(call fmt_objs,$(DEFAULT_FMT))
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(LDLIBS) -lembree3 -lpthread
+
+# render --mpi from 1 to 2 worker ranks on localhost: wall time, speedup, communication -> build/bench/mpi.md
+bench-mpi: deps
+	@$(MAKE) --no-print-directory all mpi
+	@mkdir -p $(BUILD)/bench
+	python3 tests/bench/bench_mpi.py --out $(BUILD)/bench
 
 # docs/results.md from the reports in build/bench/ (each row with machine, command, date)
 results:

@@ -33,6 +33,7 @@ int cmd_reference(int argc, char **argv);
 int cmd_compare_hits(int argc, char **argv);
 int cmd_profile(int argc, char **argv);
 int cmd_stress(int argc, char **argv);
+int cmd_jobs(int argc, char **argv);
 
 /* Prints "saarcor CMD: error: ..." on one line to stderr and returns SAARCOR_EXIT_USAGE. */
 int cli_usage_error(const char *cmd, const char *fmt, ...) __attribute__((format(printf, 2, 3)));

@@ -21,6 +21,9 @@
 #include "cycle_opts.h"
 #include "f24_fast.h"
 #include "img.h"
+#include "mpi_load.h"
+#include "render.h"
+#include "render_mpi.h"
 #include "rgs.h"
 #include "scene_opts.h"
 #include "shading_model.h"
@@ -29,7 +32,8 @@
 typedef struct {
     const uint32_t *mem;
     const rgs_config *cfg;
-    uint32_t width, height, thread, threads;
+    uint32_t x0, y0, x1, y1, stride; /* the region rendered (even x0, y0), the image's width */
+    uint32_t thread, threads;
     uint32_t *pixels;
     rgs_counters counters;
     atomic_uint *rows_done; /* block rows finished by all threads, for the progress line */
@@ -45,7 +49,7 @@ static void progress(const render_job *j, double *last)
     if (j->thread != 0 || !isatty(2) || t - *last < 0.5)
         return;
     *last = t;
-    const unsigned rows = (j->height + 1) / 2;
+    const unsigned rows = (j->y1 - j->y0 + 1) / 2;
     fprintf(stderr, "\rrender: %3u%%", 100u * atomic_load(j->rows_done) / (rows ? rows : 1));
 }
 
@@ -53,18 +57,18 @@ static void *render_rows(void *arg)
 {
     render_job *j = arg;
     double last = now();
-    for (uint32_t y = 2 * j->thread; y < j->height; y += 2 * j->threads) {
-        for (uint32_t x = 0; x < j->width; x += 2) {
+    for (uint32_t y = j->y0 + 2 * j->thread; y < j->y1; y += 2 * j->threads) {
+        for (uint32_t x = j->x0; x < j->x1; x += 2) {
             hit_record h[TRACE_PACKET];
             uint32_t rgb[TRACE_PACKET];
             rgs_render_block(j->mem, j->cfg, x, y, rgb, h, &j->counters);
             for (int i = 0; i < TRACE_PACKET; i++) {
                 const uint32_t px = x + (uint32_t)(i & 1), py = y + (uint32_t)(i >> 1);
-                if (px >= j->width || py >= j->height)
+                if (px >= j->x1 || py >= j->y1)
                     continue;
-                j->pixels[(size_t)py * j->width + px] = rgb[i];
+                j->pixels[(size_t)py * j->stride + px] = rgb[i];
                 if (j->hits)
-                    j->hits[(size_t)py * j->width + px] = h[i];
+                    j->hits[(size_t)py * j->stride + px] = h[i];
             }
         }
         atomic_fetch_add(j->rows_done, 1u);
@@ -82,12 +86,12 @@ static double now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* Renders with `threads` host threads; fills pixels and the summed counters. */
-static int render(const uint32_t *mem, const rgs_config *cfg, uint32_t threads, uint32_t *pixels, hit_record *hits,
-                  rgs_counters *sum)
+int render_region(const uint32_t *mem, const rgs_config *cfg, uint32_t threads, const uint32_t region[4],
+                  uint32_t *pixels, hit_record *hits, rgs_counters *sum)
 {
     uint32_t w, h;
     rgs_image_size(mem, &w, &h);
+    const uint32_t x1 = region[2] < w ? region[2] : w, y1 = region[3] < h ? region[3] : h;
     atomic_uint rows_done = 0;
     render_job *jobs = calloc(threads, sizeof *jobs);
     pthread_t *tid = calloc(threads, sizeof *tid);
@@ -97,7 +101,7 @@ static int render(const uint32_t *mem, const rgs_config *cfg, uint32_t threads, 
         return -1;
     }
     for (uint32_t t = 0; t < threads; t++) {
-        jobs[t] = (render_job){ mem, cfg, w, h, t, threads, pixels, { { 0 }, { 0 }, 0 }, &rows_done, hits };
+        jobs[t] = (render_job){ mem, cfg, region[0], region[1], x1, y1, w, t, threads, pixels, { { 0 }, { 0 }, 0 }, &rows_done, hits };
         if (t > 0 && pthread_create(&tid[t], NULL, render_rows, &jobs[t]) != 0)
             jobs[t].threads = 0; /* could not start: done below in this thread */
     }
@@ -139,7 +143,7 @@ static int usage(void)
 {
     printf("usage: saarcor render SCENE [-o out.png] [--mode functional|cycle] [--max-depth D] [--no-shadows]\n"
            "                      [--precision P] [--aov FILE.exr] [--frame N | --frames A:B] [--fps F]\n"
-           "                      [--threads N]\n"
+           "                      [--threads N] [--mpi [--mpi-tile N]]\n"
            "                      [--stats FILE] [cycle mode options] [scene options]\n\n"
            "Renders the scene through the hardware units: RGS, traversal, list, transformation and\n"
            "intersection units reading the memory image. Shading (docs/shading.md): Phong-like with\n"
@@ -171,23 +175,15 @@ static int usage(void)
            "                     isect.hex, trav.hex; at most --capture-limit N per unit, default 100000)\n"
            "  --frame N          frame N of the animation at --fps (time N / fps), to -o\n"
            "  --frames A:B       frames A..B of the animation at --fps (default 30) to OUT_NNNN.png (and\n"
-           "                     AOV/stats files numbered alike), rebuilding per frame only what changed\n\n%s\n%s",
+           "                     AOV/stats files numbered alike), rebuilding per frame only what changed\n"
+           "  --mpi              under mpirun -np N (N >= 2): rank 0 hands out tiles of the frame (or whole\n"
+           "                     frames with --frames) to ranks 1..N-1, each a board of --pipes pipes;\n"
+           "                     the same files and bits as one process (docs/mpi.md)\n"
+           "  --mpi-tile N       edge in pixels of the tiles handed out with --mpi (default 64)\n\n%s\n%s",
            RGS_MAX_DEPTH, SHADE_DEFAULT_DEPTH, CYCLE_OPTIONS_HELP, SCENE_OPTIONS_HELP);
     return SAARCOR_EXIT_OK;
 }
 
-typedef struct {
-    const char *out, *stats, *aov;
-    uint32_t threads, first, last;
-    int sequence, one_frame; /* --frames A:B, --frame N */
-    double fps;
-    rgs_config cfg;
-    int cycle;       /* --mode cycle */
-    cycle_config cc;
-    cycle_sim *sim;  /* kept across the frames of a sequence (warm caches) */
-    const char *capture; /* --capture-unit-io DIR */
-    uint64_t capture_limit;
-} render_opts;
 
 /* out.png -> out_0007.png for frame sequences. */
 static void frame_path(const render_opts *ro, uint32_t frame, char *buf, size_t n)
@@ -217,9 +213,11 @@ static uint64_t all_rays(const rgs_counters *c)
 }
 
 /* Counters of one frame as JSON: rays by kind, work of the units, memory words read. */
-static int write_stats(const char *path, const render_opts *ro, uint32_t frame, double secs, const rgs_counters *c,
-                       const cycle_stats *cs)
+static int write_stats(const char *path, const render_opts *ro, const cycle_config *cc, uint32_t frame,
+                       const frame_result *fr)
 {
+    const double secs = fr->secs;
+    const rgs_counters *c = &fr->sum;
     FILE *f = fopen(path, "w");
     if (!f)
         return -1;
@@ -237,10 +235,19 @@ static int write_stats(const char *path, const render_opts *ro, uint32_t frame, 
             (unsigned long long)t->words[MEM_NODES], (unsigned long long)t->words[MEM_LISTS],
             (unsigned long long)t->words[MEM_MATRICES], (unsigned long long)t->words[MEM_SHADING],
             (unsigned long long)c->dropped);
-    if (cs) {
+    if (ro->cycle) {
         fprintf(f, ", \"cycle\": ");
-        cycle_report_json(f, &ro->cc, cs, all_rays(c));
+        cycle_report_json(f, cc, &fr->cs, all_rays(c));
     }
+    if (fr->mpi)
+        fprintf(f, ", \"mpi\": {\"ranks\": %d, \"boards\": %u, \"items\": %u, \"bytes_to_workers\": %llu, "
+                   "\"bytes_from_workers\": %llu, \"messages\": %llu, \"wall_seconds\": %.6f, \"work_seconds\": %.6f, "
+                   "\"comm_seconds\": %.6f, \"comm_seconds_max\": %.6f, \"image_bytes_per_board\": %llu, "
+                   "\"image_upload_bytes_total\": %llu}",
+                fr->mpi->ranks, fr->boards, fr->items, (unsigned long long)fr->mpi->bytes_to_workers,
+                (unsigned long long)fr->mpi->bytes_from_workers, (unsigned long long)fr->mpi->messages,
+                fr->mpi->wall_seconds, fr->mpi->work_seconds, fr->mpi->comm_seconds, fr->mpi->comm_seconds_max,
+                (unsigned long long)fr->image_bytes_per_board, (unsigned long long)fr->image_upload_bytes_total);
     fprintf(f, "}\n");
     return fclose(f);
 }
@@ -308,34 +315,36 @@ static void cycle_progress(uint64_t done, uint64_t all, void *arg)
     fprintf(stderr, "\rrender: %3u%%", (unsigned)(100 * done / (all ? all : 1)));
 }
 
-/* Renders one frame of the current image and writes it. */
-static int render_frame(const mi_builder *b, const scene *s, const render_opts *ro, uint32_t frame, const char *scene_name)
+int render_validate(const mi_builder *b)
 {
-    char err[512], path[1024];
-    uint32_t n, w, h;
+    char err[512];
+    uint32_t n;
     const uint32_t *mem = mi_words(b, &n);
     if (mi_validate(mem, n, err, sizeof err) != 0) {
         cli_error("render", "%s", err);
         return SAARCOR_EXIT_INTERNAL;
     }
-    rgs_image_size(mem, &w, &h);
-    uint32_t *pixels = calloc((size_t)w * h, sizeof *pixels);
-    hit_record *hits = ro->aov ? calloc((size_t)w * h, sizeof *hits) : NULL;
-    rgs_counters sum;
-    cycle_stats cs;
-    const double t0 = now();
-    const int failed = !pixels || (ro->aov && !hits) ||
-                       (ro->cycle ? cycle_render(ro->sim, mem, &ro->cfg, pixels, hits, &sum, &cs, cycle_progress, NULL)
-                                  : render(mem, &ro->cfg, ro->threads, pixels, hits, &sum)) != 0;
-    if (isatty(2) && ro->cycle)
-        fprintf(stderr, "\r%*s\r", 14, "");
-    if (failed) {
-        free(pixels);
-        free(hits);
-        cli_error("render", "out of memory");
-        return SAARCOR_EXIT_INTERNAL;
-    }
-    const double secs = now() - t0;
+    return SAARCOR_EXIT_OK;
+}
+
+/* The MPI line of the report: how the frame was distributed and what it cost to move. */
+static void print_mpi(const frame_result *fr)
+{
+    const saarcor_mpi_report *m = fr->mpi;
+    printf("mpi: %d ranks (%u worker boards), %u item%s, %.1f KB to workers, %.1f KB from workers, %llu messages; "
+           "memory image %.1f KB per board, %.1f KB uploaded to the boards; "
+           "wall %.3f s, worker time working %.3f s, communicating %.3f s (max %.3f s on one worker)\n",
+           m->ranks, fr->boards, fr->items, fr->items == 1 ? "" : "s", (double)m->bytes_to_workers / 1024.0,
+           (double)m->bytes_from_workers / 1024.0, (unsigned long long)m->messages,
+           (double)fr->image_bytes_per_board / 1024.0, (double)fr->image_upload_bytes_total / 1024.0, m->wall_seconds,
+           m->work_seconds, m->comm_seconds, m->comm_seconds_max);
+}
+
+int render_frame_output(const render_opts *ro, const mi_builder *b, const scene *s, uint32_t frame,
+                        const char *scene_name, uint32_t w, uint32_t h, const uint32_t *pixels, const hit_record *hits,
+                        const frame_result *fr)
+{
+    char path[1024];
     frame_path(ro, frame, path, sizeof path);
     int wrc = write_png(path, pixels, w, h);
     if (wrc == 0 && ro->aov) {
@@ -345,23 +354,27 @@ static int render_frame(const mi_builder *b, const scene *s, const render_opts *
         frame_path(&aov, frame, aov_path, sizeof aov_path);
         wrc = write_aov(aov_path, b, s, hits, w, h);
     }
-    free(pixels);
-    free(hits);
     if (wrc != 0)
         return SAARCOR_EXIT_INPUT;
-    const uint64_t rays = all_rays(&sum), primary = sum.rays[RAY_PRIMARY] ? sum.rays[RAY_PRIMARY] : 1;
-    const trace_counters *t = &sum.trace;
+    const rgs_counters *sum = &fr->sum;
+    const uint64_t rays = all_rays(sum), primary = sum->rays[RAY_PRIMARY] ? sum->rays[RAY_PRIMARY] : 1;
+    const trace_counters *t = &sum->trace;
     printf("rendered %s: %ux%u, %llu rays (%llu primary, %llu shadow, %llu reflection, %llu transmission) in %.3f s "
            "(%u threads), upload %.1f KB -> %s\n", scene_name, w, h, (unsigned long long)rays,
-           (unsigned long long)sum.rays[RAY_PRIMARY], (unsigned long long)sum.rays[RAY_SHADOW],
-           (unsigned long long)sum.rays[RAY_REFLECTION], (unsigned long long)sum.rays[RAY_TRANSMISSION], secs,
-           ro->threads, (double)mi_get_stats(b)->frame_upload_bytes / 1024.0, path);
+           (unsigned long long)sum->rays[RAY_PRIMARY], (unsigned long long)sum->rays[RAY_SHADOW],
+           (unsigned long long)sum->rays[RAY_REFLECTION], (unsigned long long)sum->rays[RAY_TRANSMISSION], fr->secs,
+           ro->threads, (double)fr->upload_bytes / 1024.0, path);
     printf("per primary ray (secondary rays included): %.2f traversal steps, %.2f leaves, %.2f list entries, "
            "%.2f mailbox skips, %.2f intersections, %.1f words read\n", (double)t->traversal_steps / primary,
            (double)t->leaves / primary, (double)t->list_entries / primary, (double)t->mailbox_skips / primary,
            (double)t->intersections / primary, (double)words_total(t) / primary);
+    cycle_config cc = ro->cc; /* a frame split over boards is reported as all their pipes on one chip */
+    if (fr->boards && !ro->sequence)
+        cc.pipes *= fr->boards;
     if (ro->cycle)
-        cycle_report(stdout, &ro->cc, &cs, rays);
+        cycle_report(stdout, &cc, &fr->cs, rays);
+    if (fr->mpi)
+        print_mpi(fr);
     fflush(stdout);
     char stats_path[1024];
     if (ro->stats) {
@@ -369,11 +382,37 @@ static int render_frame(const mi_builder *b, const scene *s, const render_opts *
         st.out = ro->stats;
         frame_path(&st, frame, stats_path, sizeof stats_path);
     }
-    if (ro->stats && write_stats(stats_path, ro, frame, secs, &sum, ro->cycle ? &cs : NULL) != 0) {
+    if (ro->stats && write_stats(stats_path, ro, &cc, frame, fr) != 0) {
         cli_error("render", "cannot write '%s'", stats_path);
         return SAARCOR_EXIT_INPUT;
     }
     return SAARCOR_EXIT_OK;
+}
+
+/* Renders one frame of the current image and writes it. */
+static int render_frame(const mi_builder *b, const scene *s, const render_opts *ro, uint32_t frame, const char *scene_name)
+{
+    uint32_t n, w, h;
+    const uint32_t *mem = mi_words(b, &n);
+    if (render_validate(b) != SAARCOR_EXIT_OK)
+        return SAARCOR_EXIT_INTERNAL;
+    rgs_image_size(mem, &w, &h);
+    uint32_t *pixels = calloc((size_t)w * h, sizeof *pixels);
+    hit_record *hits = ro->aov ? calloc((size_t)w * h, sizeof *hits) : NULL;
+    frame_result fr = { .upload_bytes = mi_get_stats(b)->frame_upload_bytes };
+    static const uint32_t all[4] = { 0, 0, UINT32_MAX, UINT32_MAX };
+    const double t0 = now();
+    const int failed = !pixels || (ro->aov && !hits) ||
+                       (ro->cycle ? cycle_render(ro->sim, mem, &ro->cfg, pixels, hits, &fr.sum, &fr.cs, cycle_progress, NULL)
+                                  : render_region(mem, &ro->cfg, ro->threads, all, pixels, hits, &fr.sum)) != 0;
+    if (isatty(2) && ro->cycle)
+        fprintf(stderr, "\r%*s\r", 14, "");
+    fr.secs = now() - t0;
+    const int rc = failed ? (cli_error("render", "out of memory"), SAARCOR_EXIT_INTERNAL)
+                          : render_frame_output(ro, b, s, frame, scene_name, w, h, pixels, hits, &fr);
+    free(pixels);
+    free(hits);
+    return rc;
 }
 
 static int parse_frames(const char *arg, render_opts *ro)
@@ -437,12 +476,13 @@ int cmd_render(int argc, char **argv)
         { "max-depth", required_argument, NULL, 'd' }, { "no-shadows", no_argument, NULL, 'S' },
         { "traversal", required_argument, NULL, 'T' }, { "precision", required_argument, NULL, 'p' }, { "mode", required_argument, NULL, 'm' },
         { "capture-unit-io", required_argument, NULL, 'C' }, { "capture-limit", required_argument, NULL, 'L' },
+        { "mpi", no_argument, NULL, 'M' }, { "mpi-tile", required_argument, NULL, 'X' },
         CYCLE_LONG_OPTIONS, { "help", no_argument, NULL, 'h' }, { 0, 0, 0, 0 }
     };
     scene_opts o;
     const long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
     render_opts ro = { "render.png", NULL, NULL, ncpu > 0 && ncpu < 256 ? (uint32_t)ncpu : 1, 0, 0, 0, 0, 30.0,
-                       { SHADE_DEFAULT_DEPTH, 1, TRAV_STACK }, 0, { 0 }, NULL, NULL, 100000 };
+                       { SHADE_DEFAULT_DEPTH, 1, TRAV_STACK }, 0, { 0 }, NULL, NULL, 100000, 0, 64 };
     int c, prec_e = F24_EXP_BITS, prec_m = F24_MAN_BITS;
     scene_opts_default(&o);
     cycle_config_default(&ro.cc);
@@ -499,6 +539,12 @@ int cmd_render(int argc, char **argv)
             break;
         }
         case 'C': ro.capture = optarg; break;
+        case 'M': ro.mpi = 1; break;
+        case 'X':
+            if (!cli_parse_u64(optarg, 2, 4096, &v) || v % 2)
+                return cli_usage_error("render", "bad --mpi-tile '%s' (even, 2..4096)", optarg);
+            ro.mpi_tile = (uint32_t)v;
+            break;
         case 'L':
             if (!cli_parse_u64(optarg, 1, 100000000, &v))
                 return cli_usage_error("render", "bad --capture-limit '%s' (1..1e8)", optarg);
@@ -527,6 +573,14 @@ int cmd_render(int argc, char **argv)
     o.scene = argv[optind];
     if (ro.sequence && ro.one_frame)
         return cli_usage_error("render", "--frame and --frames exclude each other");
+    if (ro.mpi && (ro.aov || ro.capture))
+        return cli_usage_error("render", "--mpi does not write --aov or --capture-unit-io (render those in one process)");
+    if (ro.mpi && ro.cycle && ro.mpi_tile % ro.cc.tile)
+        return cli_usage_error("render", "--mpi-tile %u must be a multiple of the cycle model's --tile %u", ro.mpi_tile,
+                               ro.cc.tile);
+    saarcor_mpi_run_fn mpi_run = ro.mpi ? mpi_load("render") : NULL;
+    if (ro.mpi && !mpi_run)
+        return SAARCOR_EXIT_INTERNAL;
     if (ro.sequence || ro.one_frame)
         o.time = ro.first / ro.fps;
     scene s;
@@ -553,8 +607,8 @@ int cmd_render(int argc, char **argv)
         scene_free(&s);
         return SAARCOR_EXIT_INTERNAL;
     }
-    rc = render_frame(b, &s, &ro, ro.first, o.scene);
-    for (uint32_t f = ro.first + 1; rc == SAARCOR_EXIT_OK && f <= ro.last; f++) {
+    rc = mpi_run ? render_mpi(&ro, mpi_run, b, &s, o.scene) : render_frame(b, &s, &ro, ro.first, o.scene);
+    for (uint32_t f = ro.first + 1; !mpi_run && rc == SAARCOR_EXIT_OK && f <= ro.last; f++) {
         if (scene_evaluate(&s, f / ro.fps, 1) != 0) {
             cli_error("render", "frame %u: out of memory", f);
             rc = SAARCOR_EXIT_INTERNAL;

@@ -24,6 +24,7 @@ static const saarcor_cmd commands[] = {
     { "render", "render a scene through the hardware units (functional mode)", cmd_render },
     { "reference", "render a scene with the double-precision reference (own BVH, binary64)", cmd_reference },
     { "compare-hits", "per primary ray: the units' hits against the reference's", cmd_compare_hits },
+    { "jobs", "run the shell commands of a file, across MPI ranks with --mpi (docs/mpi.md)", cmd_jobs },
     { "gen", "write a generated scene as glTF: saarcor gen NAME -o FILE (gen --list)", cmd_gen },
 };
 #define N_COMMANDS (sizeof commands / sizeof commands[0])

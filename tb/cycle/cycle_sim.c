@@ -69,6 +69,7 @@ typedef struct {
     const rgs_config *rcfg;
     const cycle_config *cfg;
     uint32_t width, height, *pixels;
+    uint32_t rx0, ry0, rx1, ry1; /* the region rendered: tiles are numbered within it */
     hit_record *hits;
     thread *th;
     fifo queue[UNIT_KINDS];
@@ -147,7 +148,7 @@ static void leave_state(pipe_state *p, thread *t)
 /* The next 2x2 block of the pipe's tiles, 0 if it has none now. */
 static int next_block(pipe_state *p, uint32_t *x0, uint32_t *y0)
 {
-    const uint32_t tile = p->cfg->tile, per_row = tile / 2, tiles_x = (p->width + tile - 1) / tile;
+    const uint32_t tile = p->cfg->tile, per_row = tile / 2, tiles_x = (p->rx1 - p->rx0 + tile - 1) / tile;
 tile_blocks:
     for (;;) {
         if (!p->have_tile) {
@@ -164,10 +165,10 @@ tile_blocks:
             continue;
         }
         const uint32_t tx = p->cur_tile % tiles_x, ty = p->cur_tile / tiles_x, b = p->tile_block++;
-        *x0 = tx * tile + 2 * (b % per_row);
-        *y0 = ty * tile + 2 * (b / per_row);
-        if (*x0 < p->width && *y0 < p->height)
-            return 1; /* (blocks beyond the image edge are skipped) */
+        *x0 = p->rx0 + tx * tile + 2 * (b % per_row);
+        *y0 = p->ry0 + ty * tile + 2 * (b / per_row);
+        if (*x0 < p->rx1 && *y0 < p->ry1)
+            return 1; /* (blocks beyond the region's edge are skipped) */
     }
 }
 
@@ -413,11 +414,16 @@ static void controller_refill(cycle_sim *s, uint32_t *next_tile, uint32_t n_tile
     }
 }
 
-static void pipe_reset(pipe_state *p, const uint32_t *mem, const rgs_config *rcfg, uint32_t *pixels, hit_record *hits)
+static void pipe_reset(pipe_state *p, const uint32_t *mem, const rgs_config *rcfg, const uint32_t region[4],
+                       uint32_t *pixels, hit_record *hits)
 {
     p->mem = mem;
     p->rcfg = rcfg;
     rgs_image_size(mem, &p->width, &p->height);
+    p->rx0 = region[0];
+    p->ry0 = region[1];
+    p->rx1 = region[2] < p->width ? region[2] : p->width;
+    p->ry1 = region[3] < p->height ? region[3] : p->height;
     p->pixels = pixels;
     p->hits = hits;
     for (uint32_t i = 0; i < p->cfg->threads_per_pipe; i++)
@@ -431,6 +437,26 @@ static void pipe_reset(pipe_state *p, const uint32_t *mem, const rgs_config *rcf
     memset(&p->counters, 0, sizeof p->counters);
     memset(&p->st, 0, sizeof p->st);
     mem_iface_new_frame(&p->mi);
+}
+
+void cycle_stats_add(cycle_stats *sum, const cycle_stats *s)
+{
+    for (int u = 0; u < UNIT_KINDS; u++) {
+        sum->busy[u] += s->busy[u];
+        sum->ops[u] += s->ops[u];
+        sum->wait_unit[u] += s->wait_unit[u];
+    }
+    for (int k = 0; k < ST_KINDS; k++)
+        sum->thread_cycles[k] += s->thread_cycles[k];
+    for (int k = 0; k < MEM_KINDS; k++) {
+        sum->wait_mem[k] += s->wait_mem[k];
+        sum->mem.lookups[k] += s->mem.lookups[k];
+        sum->mem.hits[k] += s->mem.hits[k];
+        sum->mem.bytes[k] += s->mem.bytes[k];
+        sum->mem.requests[k] += s->mem.requests[k];
+    }
+    sum->blocks += s->blocks;
+    sum->tiles += s->tiles;
 }
 
 static void collect(cycle_sim *s, rgs_counters *counters, cycle_stats *st)
@@ -448,22 +474,9 @@ static void collect(cycle_sim *s, rgs_counters *counters, cycle_stats *st)
         rgs_counters_add(counters, &p->counters);
         st->pipe_cycles_max = end > st->pipe_cycles_max ? end : st->pipe_cycles_max;
         st->pipe_cycles_min = end < st->pipe_cycles_min ? end : st->pipe_cycles_min;
-        for (int u = 0; u < UNIT_KINDS; u++) {
-            st->busy[u] += p->st.busy[u];
-            st->ops[u] += p->st.ops[u];
-            st->wait_unit[u] += p->st.wait_unit[u];
-        }
-        for (int k = 0; k < ST_KINDS; k++)
-            st->thread_cycles[k] += p->st.thread_cycles[k];
-        for (int k = 0; k < MEM_KINDS; k++) {
-            st->wait_mem[k] += p->st.wait_mem[k];
-            st->mem.lookups[k] += p->mi.stats.lookups[k];
-            st->mem.hits[k] += p->mi.stats.hits[k];
-            st->mem.bytes[k] += p->mi.stats.bytes[k];
-            st->mem.requests[k] += p->mi.stats.requests[k];
-        }
-        st->blocks += p->st.blocks;
-        st->tiles += p->st.tiles;
+        cycle_stats pipe = p->st;
+        pipe.mem = p->mi.stats; /* the pipe's memory interface keeps its own books */
+        cycle_stats_add(st, &pipe);
     }
     st->cycles = st->pipe_cycles_max;
 }
@@ -471,12 +484,20 @@ static void collect(cycle_sim *s, rgs_counters *counters, cycle_stats *st)
 int cycle_render(cycle_sim *s, const uint32_t *mem, const rgs_config *rcfg, uint32_t *pixels, hit_record *hits,
                  rgs_counters *counters, cycle_stats *stats, cycle_progress_fn progress, void *arg)
 {
-    uint32_t width, height;
-    rgs_image_size(mem, &width, &height);
+    const uint32_t all[4] = { 0, 0, UINT32_MAX, UINT32_MAX };
+    return cycle_render_region(s, mem, rcfg, all, pixels, hits, counters, stats, progress, arg);
+}
+
+int cycle_render_region(cycle_sim *s, const uint32_t *mem, const rgs_config *rcfg, const uint32_t region[4],
+                        uint32_t *pixels, hit_record *hits, rgs_counters *counters, cycle_stats *stats,
+                        cycle_progress_fn progress, void *arg)
+{
+    for (uint32_t i = 0; i < s->cfg.pipes; i++)
+        pipe_reset(&s->pipes[i], mem, rcfg, region, pixels, hits);
+    const pipe_state *p0 = &s->pipes[0];
+    const uint32_t width = p0->rx1 > p0->rx0 ? p0->rx1 - p0->rx0 : 0, height = p0->ry1 > p0->ry0 ? p0->ry1 - p0->ry0 : 0;
     const uint32_t tile = s->cfg.tile, n_tiles = ((width + tile - 1) / tile) * ((height + tile - 1) / tile);
     const uint64_t all_blocks = (uint64_t)((width + 1) / 2) * ((height + 1) / 2);
-    for (uint32_t i = 0; i < s->cfg.pipes; i++)
-        pipe_reset(&s->pipes[i], mem, rcfg, pixels, hits);
     const uint32_t want = s->cfg.host_threads < s->cfg.pipes ? s->cfg.host_threads : s->cfg.pipes;
     pthread_t *tid = calloc(want ? want : 1, sizeof *tid);
     worker_arg *wa = calloc(want ? want : 1, sizeof *wa);

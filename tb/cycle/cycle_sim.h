@@ -76,6 +76,16 @@ typedef void (*cycle_progress_fn)(uint64_t done, uint64_t all, void *arg);
 int cycle_render(cycle_sim *s, const uint32_t *mem, const rgs_config *rcfg, uint32_t *pixels, hit_record *hits,
                  rgs_counters *counters, cycle_stats *stats, cycle_progress_fn progress, void *arg);
 
+/* The same for the pixels of region {x0, y0, x1, y1} only (clipped to the image; the controller
+ * numbers tiles within it, tiles of the whole image if the region starts at a multiple of the
+ * tile edge). The work of each 2x2 block is the same as in cycle_render, so its pixels are too. */
+int cycle_render_region(cycle_sim *s, const uint32_t *mem, const rgs_config *rcfg, const uint32_t region[4],
+                        uint32_t *pixels, hit_record *hits, rgs_counters *counters, cycle_stats *stats,
+                        cycle_progress_fn progress, void *arg);
+
+/* sum += s for everything but the frame's cycles (busy, operations, thread time, memory, blocks) */
+void cycle_stats_add(cycle_stats *sum, const cycle_stats *s);
+
 /* sum += c */
 void rgs_counters_add(rgs_counters *sum, const rgs_counters *c);
 

@@ -12,13 +12,19 @@ hit agreement (saarcor compare-hits), the edge leak rate of the stress suite at 
 synth.json, make synth). Names the knee of each curve and says whether M = 16 suffices.
 Writes OUT/precision.md, precision.json (one object per row) and precision_<scene>.svg (gnuplot).
 
+Options: --out DIR, --size WxH (256x192), --scenes a,b (names of the tables), --formats eEmM,...
+(all of the list), --mpi N. The renders (every scene x format x mode, compare-hits, the references)
+are independent jobs run first, two at a time, or across N MPI ranks with --mpi N (mpi_jobs.py,
+`saarcor jobs --mpi`), each writing its files and a log; the comparisons and tables follow here.
+
 An fp64 build of the units is not possible: the memory image is 32-bit words and the units'
 numbers are 32-bit f24_t (docs/memory-image.md); the binary64 reference stands in as the fp64 row.
 """
-import concurrent.futures as cf, json, os, re, subprocess, sys
+import json, os, re, subprocess, sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from bench_accuracy import SCENES, SHARED  # noqa: E402  (the same scenes and options)
+from mpi_jobs import run_all  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 BUILD = os.path.join(ROOT, "build")
@@ -33,25 +39,35 @@ def run(binary, args):
     return r.stdout
 
 
-def seconds(out):
-    return float(re.search(r" in ([0-9.]+) s", out).group(1))
+def seconds(log):
+    return float(re.search(r"^rendered .* in ([0-9.]+) s", open(log).read(), re.M).group(1))
 
 
-def one(scene, opts, fmt, stem, ref_png):
-    b = os.path.join(BUILD, "w", fmt, "saarcor")
-    f = run(b, ["render", scene, "-o", f"{stem}_{fmt}.png", "--threads", "1", "--stats", f"{stem}_{fmt}.json"] + opts)
-    c = run(b, ["render", scene, "--mode", "cycle", "-o", f"{stem}_{fmt}_cycle.png", "--threads", "1", "--stats",
-                f"{stem}_{fmt}_cycle.json"] + opts)
-    cmp = run(b, ["compare", f"{stem}_{fmt}.png", ref_png, "--threshold", "0.0157"])
-    run(b, ["compare-hits", scene, "--json", f"{stem}_{fmt}_hits.json"] + opts)
-    hits = json.load(open(f"{stem}_{fmt}_hits.json"))
-    same = open(f"{stem}_{fmt}.png", "rb").read() == open(f"{stem}_{fmt}_cycle.png", "rb").read()
-    return {"format": fmt, "functional_s": seconds(f), "cycle_s": seconds(c),
-            "cycles": json.load(open(f"{stem}_{fmt}_cycle.json"))["cycle"]["cycles"],
+def jobs(scene, opts, fmts, stem):
+    """The expensive, independent commands of one scene: the reference, and per format the renders
+    in both modes and compare-hits; (argv, log) each, stdout and stderr to the log (mpi_jobs.py)."""
+    js = [([os.path.join(BUILD, "saarcor"), "reference", scene, "-o", stem + "_ref.exr", "--png", stem + "_ref.png",
+            "--threads", "1"] + opts, stem + "_ref.log")]
+    for fmt in fmts:
+        b, s = os.path.join(BUILD, "w", fmt, "saarcor"), f"{stem}_{fmt}"
+        js += [([b, "render", scene, "-o", s + ".png", "--threads", "1", "--stats", s + ".json"] + opts, s + ".log"),
+               ([b, "render", scene, "--mode", "cycle", "-o", s + "_cycle.png", "--threads", "1", "--stats",
+                 s + "_cycle.json"] + opts, s + "_cycle.log"),
+               ([b, "compare-hits", scene, "--json", s + "_hits.json"] + opts, s + "_hits.log")]
+    return js
+
+
+def one(fmt, stem):
+    """One row from the files the jobs wrote, and the image compared with the reference."""
+    s = f"{stem}_{fmt}"
+    cmp = run(os.path.join(BUILD, "w", fmt, "saarcor"), ["compare", s + ".png", stem + "_ref.png", "--threshold", "0.0157"])
+    same = open(s + ".png", "rb").read() == open(s + "_cycle.png", "rb").read()
+    return {"format": fmt, "functional_s": seconds(s + ".log"), "cycle_s": seconds(s + "_cycle.log"),
+            "cycles": json.load(open(s + "_cycle.json"))["cycle"]["cycles"],
             "psnr_db": float(re.search(r"psnr_db (\S+)", cmp).group(1)),
             "max_error": float(re.search(r"max_abs_error (\S+)", cmp).group(1)),
             "differing_pct": float(re.search(r"\(([0-9.]+)%\)", cmp).group(1)),
-            "hit_agreement": hits["agreement"], "modes_identical": same}
+            "hit_agreement": json.load(open(s + "_hits.json"))["agreement"], "modes_identical": same}
 
 
 def side_tables():
@@ -103,30 +119,42 @@ def plot(out, name, rows):
     return os.path.basename(svg)
 
 
+def arg(name, default):
+    return sys.argv[sys.argv.index(name) + 1] if name in sys.argv else default
+
+
 def main():
-    out = sys.argv[sys.argv.index("--out") + 1] if "--out" in sys.argv else os.path.join(BUILD, "bench")
-    size = (sys.argv[sys.argv.index("--size") + 1] if "--size" in sys.argv else "256x192").split("x")
+    out = arg("--out", os.path.join(BUILD, "bench"))
+    size = arg("--size", "256x192").split("x")
+    ranks = int(arg("--mpi", "0"))
+    fmts = arg("--formats", ",".join(f for f, _ in FORMATS)).split(",")
+    names = arg("--scenes", ",".join(n for n, *_ in SCENES)).split(",")
     os.makedirs(os.path.join(out, "precision"), exist_ok=True)
     leaks, area = side_tables()
     all_rows, md = [], ["# Run time against error across number formats (generated by `make bench-precision`)", "",
                         f"Machine: {os.uname().nodename}, {os.cpu_count()} cores; command: `make bench-precision`; "
-                        f"{size[0]}x{size[1]}, ray depth 3 with shadows; 1 host thread per render, two renders at a time. "
+                        f"{size[0]}x{size[1]}, ray depth 3 with shadows; 1 host thread per render, " +
+                        (f"{ranks - 1} renders at a time ({ranks} MPI ranks). " if ranks else "two renders at a time. ") +
                         "Truth: the binary64 reference (tb/ref; an fp64 build of the units is impossible with 32-bit memory "
                         "words). *leaks*: edge leak rate of the stress suite at that width (make stress); *area*: LUTs of "
                         "one f24 add + mul + div + cmp / of isect_unit (make synth, E = 7). e8m23 is the binary32 layout "
                         "(fp32, subnormals flushed).", ""]
+    scenes = []
     for name, scene, opts, _ in SCENES:
+        if name not in names:
+            continue
         if scene.startswith(SHARED) and not os.path.exists(scene):
             print(f"bench-precision: {name}: skipped ({scene} absent)", file=sys.stderr)
             continue
-        print(f"bench-precision: {name} ...", file=sys.stderr, flush=True)
-        o = opts + ["--width", size[0], "--height", size[1]]
         key = re.sub(r"\W+", "_", name)
-        stem = os.path.join(out, "precision", key)
-        run(os.path.join(BUILD, "saarcor"), ["reference", scene, "-o", stem + "_ref.exr", "--png", stem + "_ref.png",
-                                              "--threads", "1"] + o)
-        with cf.ThreadPoolExecutor(max_workers=2) as pool:
-            rows = list(pool.map(lambda f: one(scene, o, f[0], stem, stem + "_ref.png"), FORMATS))
+        scenes.append((name, scene, opts + ["--width", size[0], "--height", size[1]], key,
+                       os.path.join(out, "precision", key)))
+    # every render first, as one set of independent jobs (across MPI ranks with --mpi N)
+    print(f"bench-precision: {', '.join(n for n, *_ in scenes)}: {len(fmts)} formats ...", file=sys.stderr, flush=True)
+    run_all(os.path.join(BUILD, "saarcor"), [j for _, scene, o, _, stem in scenes for j in jobs(scene, o, fmts, stem)],
+            ranks, os.path.join(out, "precision", "jobs.txt"))
+    for name, scene, o, key, stem in scenes:
+        rows = [one(f, stem) for f in fmts]
         k = knee(rows)
         verdict = ("no width reaches the quality bar" if k is None else
                    f"knee at M = {k}: " + ("16 bits are the right choice" if k == 16 else

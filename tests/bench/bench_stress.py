@@ -2,6 +2,7 @@
 """make stress: the numerical stability stress suite (saarcor stress, docs/stress.md) at every
 built width and with the robust edge option; writes OUT/stress.md and OUT/stress.json.
 
+--mpi N runs the builds as independent jobs of `mpirun -np N saarcor jobs --mpi` (docs/mpi.md).
 For each format eEmM in build/w/ runs `saarcor stress --json` (the same rays in every build), then
 tabulates per case and width: PASS/FAIL with the figure that decides it (leaks, acne, hit
 agreement, brute-force mismatches). The robust edge option (make robust: e7m16 with
@@ -16,14 +17,30 @@ FORMATS = ["e7m8", "e7m10", "e7m12", "e7m14", "e7m16", "e7m18", "e7m20", "e7m23"
 RAYS = "10000"
 
 
-def stress(binary, out, tag):
-    path = os.path.join(out, f"stress_{tag}.json")
-    r = subprocess.run([binary, "stress", "--rays", RAYS, "--json", path, "--shared", os.path.join(ROOT, "..", "shared", "scenes")],
-                       capture_output=True, text=True)
-    if r.returncode != 0:
-        raise RuntimeError(f"{binary} stress: {r.stderr.strip()}")
-    print(f"bench-stress: {tag}: {r.stdout.strip().splitlines()[-1]}", file=sys.stderr, flush=True)
-    return json.load(open(path))
+def stress_argv(binary, out, tag):
+    return [binary, "stress", "--rays", RAYS, "--json", os.path.join(out, f"stress_{tag}.json"), "--shared",
+            os.path.join(ROOT, "..", "shared", "scenes")]
+
+
+def stress(binary, out, tag, done=False):
+    """One build's suite; done: already run by --mpi (its output in stress_TAG.log)."""
+    if done:
+        last = open(os.path.join(out, f"stress_{tag}.log")).read()
+    else:
+        r = subprocess.run(stress_argv(binary, out, tag), capture_output=True, text=True)
+        if r.returncode != 0:
+            raise RuntimeError(f"{binary} stress: {r.stderr.strip()}")
+        last = r.stdout
+    print(f"bench-stress: {tag}: {last.strip().splitlines()[-1]}", file=sys.stderr, flush=True)
+    return json.load(open(os.path.join(out, f"stress_{tag}.json")))
+
+
+def run_mpi(builds, out, ranks):
+    """--mpi N: every build's suite as one job of saarcor jobs --mpi on N ranks (N - 1 workers)."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from mpi_jobs import run_jobs
+    run_jobs(os.path.join(BUILD, "saarcor"), [(stress_argv(b, out, t), os.path.join(out, f"stress_{t}.log"))
+                                             for b, t in builds], ranks, os.path.join(out, "stress_jobs.txt"))
 
 
 def cell(row):
@@ -61,10 +78,13 @@ def cycles(binary, out, tag):
 def main():
     out = sys.argv[sys.argv.index("--out") + 1] if "--out" in sys.argv else os.path.join(BUILD, "bench")
     os.makedirs(out, exist_ok=True)
-    res = {f: stress(os.path.join(BUILD, "w", f, "saarcor"), out, f) for f in FORMATS
-           if os.path.exists(os.path.join(BUILD, "w", f, "saarcor"))}
+    ranks = int(sys.argv[sys.argv.index("--mpi") + 1]) if "--mpi" in sys.argv else 0
     robust_bin = os.path.join(BUILD, "robust", "saarcor")
-    robust = stress(robust_bin, out, "e7m16_robust")
+    fmts = [f for f in FORMATS if os.path.exists(os.path.join(BUILD, "w", f, "saarcor"))]
+    if ranks:
+        run_mpi([(os.path.join(BUILD, "w", f, "saarcor"), f) for f in fmts] + [(robust_bin, "e7m16_robust")], out, ranks)
+    res = {f: stress(os.path.join(BUILD, "w", f, "saarcor"), out, f, ranks > 0) for f in fmts}
+    robust = stress(robust_bin, out, "e7m16_robust", ranks > 0)
     rows = [dict(r, build=f) for f, rs in res.items() for r in rs] + [dict(r, build="e7m16 robust") for r in robust]
     json.dump(rows, open(os.path.join(out, "stress.json"), "w"), indent=1)
     cyc_exact, cyc_robust = cycles(os.path.join(BUILD, "w", "e7m16", "saarcor"), out, "exact"), cycles(robust_bin, out, "robust")

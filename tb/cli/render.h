@@ -1,0 +1,61 @@
+/*
+ * What `saarcor render` shares between its single-process path (cmd_render.c) and its MPI path
+ * (render_mpi.c): the options, rendering a region of the image, and writing one frame's outputs.
+ * Why: the distributed render must give the same bits and the same files as the single-process
+ * one, so both call the same functions and only the work distribution differs.
+ */
+#ifndef SAARCOR_RENDER_H
+#define SAARCOR_RENDER_H
+
+#include <stdint.h>
+
+#include "cycle_sim.h"
+#include "memimage.h"
+#include "rgs.h"
+#include "saarcor_mpi.h"
+#include "scene.h"
+
+typedef struct {
+    const char *out, *stats, *aov;
+    uint32_t threads, first, last;
+    int sequence, one_frame; /* --frames A:B, --frame N */
+    double fps;
+    rgs_config cfg;
+    int cycle;       /* --mode cycle */
+    cycle_config cc;
+    cycle_sim *sim;  /* kept across the frames of a sequence (warm caches) */
+    const char *capture; /* --capture-unit-io DIR */
+    uint64_t capture_limit;
+    int mpi;           /* --mpi: distributed over MPI ranks (render_mpi.h) */
+    uint32_t mpi_tile; /* --mpi-tile: edge in pixels of a work item of one frame */
+} render_opts;
+
+/* One frame's numbers, however it was rendered. */
+typedef struct {
+    rgs_counters sum;
+    cycle_stats cs;           /* cycle mode */
+    double secs;              /* wall time of the render */
+    uint64_t upload_bytes;    /* memory image words changed for this frame, in bytes */
+    uint32_t boards;          /* MPI: worker ranks (each a board of --pipes pipes); 0: one process */
+    uint32_t items;           /* MPI: work items of this frame (tiles, or 1 for a whole frame) */
+    uint64_t image_bytes_per_board;    /* MPI, one frame in tiles: the memory image every board holds */
+    uint64_t image_upload_bytes_total; /* ... uploaded to all boards: boards x image_bytes_per_board */
+    const saarcor_mpi_report *mpi;
+} frame_result;
+
+/* Renders the pixels of region {x0, y0, x1, y1} (x0, y0 even; clipped to the image) with
+ * `threads` host threads into the full-size pixels (and hits, may be NULL); sum = the counters
+ * of that work. 0, or -1 if out of memory. */
+int render_region(const uint32_t *mem, const rgs_config *cfg, uint32_t threads, const uint32_t region[4],
+                  uint32_t *pixels, hit_record *hits, rgs_counters *sum);
+
+/* Writes the frame's image (and AOV, stats file) and prints its report lines; b and s are needed
+ * for --aov only (may be NULL otherwise). A saarcor exit code. */
+int render_frame_output(const render_opts *ro, const mi_builder *b, const scene *s, uint32_t frame,
+                        const char *scene_name, uint32_t w, uint32_t h, const uint32_t *pixels, const hit_record *hits,
+                        const frame_result *fr);
+
+/* Validates the memory image; a saarcor exit code, with a one-line error. */
+int render_validate(const mi_builder *b);
+
+#endif
