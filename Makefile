@@ -164,14 +164,26 @@ unit-tests: test-programs
 asan:
 	@$(MAKE) --no-print-directory BUILD=build/asan SAN=1 unit-tests
 
+# tests/test_memcheck.sh: on CPUs without RDTSCP, valgrind needs this preload (see the source)
+$(BUILD)/valgrind/hwy_timer_shim.so: tests/valgrind/hwy_timer_shim.c
+	@mkdir -p $(@D)
+	@echo "  CC    $@"
+	$(Q)$(CC) -shared -fPIC -O2 $(WARN) $< -o $@
+
+# tests/test_determinism.sh compares the program built with -O0 (only the program: a small cost)
+O0_BUILD := $(BUILD)/O0
+
 test: deps
-	@$(MAKE) --no-print-directory -j$$(nproc) test-programs
+	@$(MAKE) --no-print-directory -j$$(nproc) test-programs $(BUILD)/valgrind/hwy_timer_shim.so
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(BUILD)/hw SIM_ARITH=hw $(BUILD)/hw/saarcor
+	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(O0_BUILD) OPT='-O0 -g' $(O0_BUILD)/saarcor
 	@$(MAKE) --no-print-directory $(BUILD)/rtl/$(DEFAULT_FMT)/tb_f24_ops $(BUILD)/rtl/$(DEFAULT_FMT)/tb_units
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 test-programs
 	@$(MAKE) --no-print-directory -j$$(nproc) robust
 	@bash tests/run.sh --report $(BUILD)/test-report.txt \
-	  $(UNIT_TESTS) tests/test_cli.sh tests/test_golden.sh tests/test_rtl.sh tests/test_hls.sh tests/test_stress.sh $(patsubst $(BUILD)/%,build/asan/%,$(UNIT_TESTS))
+	  $(UNIT_TESTS) tests/test_cli.sh tests/test_golden.sh tests/test_rtl.sh tests/test_hls.sh tests/test_stress.sh \
+	  tests/test_determinism.sh tests/test_interrupt.sh tests/test_longrun.sh tests/test_memcheck.sh \
+	  $(patsubst $(BUILD)/%,build/asan/%,$(UNIT_TESTS)) tests/test_golden_asan.sh
 
 # ---- HLS readiness: hls/ alone in the synthesizable subset, per configuration -------------------
 # make hls-check: the general design and every hls/config_NAME.h; CONFIG=NAME: that one only

@@ -4,6 +4,9 @@
  * rows in a fixed interleaved order and write disjoint pixels, so the image is bit-identical for
  * any thread count. Cycle mode (--mode cycle): the same unit steps timed by the DynRTC model of
  * tb/cycle, with the paper-style report. The device reads only the validated memory image.
+ * Ctrl-C/SIGTERM (interrupt.h): the threads stop at the next block row (functional) or epoch
+ * (cycle), the unfinished frame is dropped, the frames written so far stay (each file is written
+ * under a temporary name and renamed when complete) and the exit code is 128 + the signal.
  */
 #define _GNU_SOURCE
 #include <getopt.h>
@@ -21,6 +24,8 @@
 #include "cycle_opts.h"
 #include "f24_fast.h"
 #include "img.h"
+#include "interrupt.h"
+#include "proc_mem.h"
 #include "rgs.h"
 #include "scene_opts.h"
 #include "shading_model.h"
@@ -53,7 +58,7 @@ static void *render_rows(void *arg)
 {
     render_job *j = arg;
     double last = now();
-    for (uint32_t y = 2 * j->thread; y < j->height; y += 2 * j->threads) {
+    for (uint32_t y = 2 * j->thread; y < j->height && !interrupt_signal(); y += 2 * j->threads) {
         for (uint32_t x = 0; x < j->width; x += 2) {
             hit_record h[TRACE_PACKET];
             uint32_t rgb[TRACE_PACKET];
@@ -82,7 +87,8 @@ static double now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* Renders with `threads` host threads; fills pixels and the summed counters. */
+/* Renders with `threads` host threads; fills pixels and the summed counters. 0, -1 if out of
+ * memory, 1 if a signal stopped the threads (the image is incomplete). */
 static int render(const uint32_t *mem, const rgs_config *cfg, uint32_t threads, uint32_t *pixels, hit_record *hits,
                   rgs_counters *sum)
 {
@@ -114,7 +120,7 @@ static int render(const uint32_t *mem, const rgs_config *cfg, uint32_t threads, 
     }
     free(jobs);
     free(tid);
-    return 0;
+    return interrupt_signal() ? 1 : 0;
 }
 
 static int write_png(const char *path, const uint32_t *pixels, uint32_t w, uint32_t h)
@@ -218,7 +224,9 @@ static uint64_t all_rays(const rgs_counters *c)
 static int write_stats(const char *path, const render_opts *ro, uint32_t frame, double secs, const rgs_counters *c,
                        const cycle_stats *cs)
 {
-    FILE *f = fopen(path, "w");
+    char tmp[1100]; /* complete files only: written under path.tmp, renamed when closed */
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    FILE *f = fopen(tmp, "w");
     if (!f)
         return -1;
     const trace_counters *t = &c->trace;
@@ -235,12 +243,19 @@ static int write_stats(const char *path, const render_opts *ro, uint32_t frame, 
             (unsigned long long)t->words[MEM_NODES], (unsigned long long)t->words[MEM_LISTS],
             (unsigned long long)t->words[MEM_MATRICES], (unsigned long long)t->words[MEM_SHADING],
             (unsigned long long)c->dropped);
+    proc_mem pm;
+    proc_mem_read(&pm); /* after the frame: what a long run must keep constant */
+    fprintf(f, ", \"host_rss_kb\": %ld, \"host_peak_rss_kb\": %ld", pm.rss_kb, pm.peak_rss_kb);
     if (cs) {
         fprintf(f, ", \"cycle\": ");
         cycle_report_json(f, &ro->cc, cs, all_rays(c));
     }
     fprintf(f, "}\n");
-    return fclose(f);
+    if (fclose(f) != 0 || rename(tmp, path) != 0) {
+        remove(tmp);
+        return -1;
+    }
+    return 0;
 }
 
 static double f24d(uint32_t w) { return (double)f24_fast_decode(w); }
@@ -294,16 +309,20 @@ static int write_aov(const char *path, const mi_builder *b, const scene *s, cons
     return rc;
 }
 
-/* Progress of the cycle mode on stderr (a terminal, at most every half second). */
-static void cycle_progress(uint64_t done, uint64_t all, void *arg)
+/* Progress of the cycle mode on stderr (a terminal, at most every half second); called between
+ * epochs, so it is also where a signal stops the cycle model. */
+static int cycle_progress(uint64_t done, uint64_t all, void *arg)
 {
     static double last;
-    const double t = now();
     (void)arg;
-    if (!isatty(2) || t - last < 0.5)
-        return;
+    if (interrupt_signal())
+        return 1;
+    const double t = now();
+    if (t - last < 0.5 || !isatty(2))
+        return 0;
     last = t;
     fprintf(stderr, "\rrender: %3u%%", (unsigned)(100 * done / (all ? all : 1)));
+    return 0;
 }
 
 /* Renders one frame of the current image and writes it. */
@@ -322,11 +341,16 @@ static int render_frame(const mi_builder *b, const scene *s, const render_opts *
     rgs_counters sum;
     cycle_stats cs;
     const double t0 = now();
-    const int failed = !pixels || (ro->aov && !hits) ||
-                       (ro->cycle ? cycle_render(ro->sim, mem, &ro->cfg, pixels, hits, &sum, &cs, cycle_progress, NULL)
-                                  : render(mem, &ro->cfg, ro->threads, pixels, hits, &sum)) != 0;
+    const int failed = !pixels || (ro->aov && !hits) ? -1
+                       : ro->cycle ? cycle_render(ro->sim, mem, &ro->cfg, pixels, hits, &sum, &cs, cycle_progress, NULL)
+                                   : render(mem, &ro->cfg, ro->threads, pixels, hits, &sum);
     if (isatty(2) && ro->cycle)
         fprintf(stderr, "\r%*s\r", 14, "");
+    if (failed > 0) { /* stopped by a signal: this frame is not written */
+        free(pixels);
+        free(hits);
+        return 128 + interrupt_signal();
+    }
     if (failed) {
         free(pixels);
         free(hits);
@@ -372,6 +396,18 @@ static int render_frame(const mi_builder *b, const scene *s, const render_opts *
         return SAARCOR_EXIT_INPUT;
     }
     return SAARCOR_EXIT_OK;
+}
+
+/* The one line of a stopped render: the signal and the frames that are on disk. */
+static void report_interrupt(const render_opts *ro, uint32_t written)
+{
+    char first[1024], last[1024] = "";
+    frame_path(ro, ro->first, first, sizeof first);
+    if (written > 0)
+        frame_path(ro, ro->first + written - 1, last, sizeof last);
+    fprintf(stderr, "saarcor render: interrupted by %s: %u frame%s written%s%s%s%s%s\n",
+            interrupt_name(interrupt_signal()), written, written == 1 ? "" : "s", written ? " (" : "",
+            written ? first : "", written > 1 ? " .. " : "", written > 1 ? last : "", written ? ")" : "");
 }
 
 static int parse_frames(const char *arg, render_opts *ro)
@@ -522,6 +558,10 @@ int cmd_render(int argc, char **argv)
     o.scene = argv[optind];
     if (ro.sequence && ro.one_frame)
         return cli_usage_error("render", "--frame and --frames exclude each other");
+    /* from here on a signal stops at the next safe point (a long scene load is not one: the
+     * render stops at its first block row) */
+    if (interrupt_catch() != 0)
+        cli_error("render", "cannot catch SIGINT/SIGTERM: Ctrl-C will not stop cleanly");
     if (ro.sequence || ro.one_frame)
         o.time = ro.first / ro.fps;
     scene s;
@@ -548,8 +588,14 @@ int cmd_render(int argc, char **argv)
         scene_free(&s);
         return SAARCOR_EXIT_INTERNAL;
     }
+    uint32_t written = 0;
     rc = render_frame(b, &s, &ro, ro.first, o.scene);
+    written += rc == SAARCOR_EXIT_OK;
     for (uint32_t f = ro.first + 1; rc == SAARCOR_EXIT_OK && f <= ro.last; f++) {
+        if (interrupt_signal()) { /* between frames: the safest point of all */
+            rc = 128 + interrupt_signal();
+            break;
+        }
         if (scene_evaluate(&s, f / ro.fps, 1) != 0) {
             cli_error("render", "frame %u: out of memory", f);
             rc = SAARCOR_EXIT_INTERNAL;
@@ -562,7 +608,10 @@ int cmd_render(int argc, char **argv)
         if (ro.sim)
             cycle_flush(ro.sim); /* the image changed */
         rc = render_frame(b, &s, &ro, f, o.scene);
+        written += rc == SAARCOR_EXIT_OK;
     }
+    if (rc > 128)
+        report_interrupt(&ro, written);
     cycle_free(ro.sim);
     if (ro.capture) {
         uint64_t n[3];
