@@ -7,7 +7,8 @@
 #   make bench      all benchmarks -> build/bench/ (bench-fp: fp24 throughput; bench-build: kd-tree and
 #                   memory-image build against Embree; bench-render: primary rays against Embree;
 #                   bench-accuracy: fp24 images and hits against the double-precision reference;
-#                   bench-cycle: the cycle model beside the paper's Tables 3 and 4, sweeps, simulator speed)
+#                   bench-cycle: the cycle model beside the paper's Tables 3 and 4, sweeps, simulator speed;
+#                   bench-longrun: peak RSS over 1,000 frames of the animated scene)
 #   make widths     build build/w/<format>/saarcor for every tested fp24 format
 #   make rtl-test   Verilator co-simulation of rtl/ against the C model (operators at 6 formats with
 #                   10^6 vectors each, units on random and captured vectors), lint
@@ -138,7 +139,7 @@ $(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS) $(call fmt_objs,$
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
 
-.PHONY: all widths deps run test unit-tests test-programs asan verify-fp hls-check hls-vectors bench bench-skip bench-fp bench-build bench-render bench-accuracy bench-cycle bench-precision bench-peers results robust stress rtl-lint rtl-test synth clean
+.PHONY: all widths deps run test unit-tests test-programs asan verify-fp hls-check hls-vectors bench bench-skip bench-longrun bench-fp bench-build bench-render bench-accuracy bench-cycle bench-precision bench-peers results robust stress rtl-lint rtl-test synth clean
 all: $(BUILD)/saarcor $(BUILD)/w/e8m23/saarcor
 widths: $(foreach f,$(FORMATS),$(BUILD)/w/$(f)/saarcor)
 
@@ -329,11 +330,18 @@ $(BUILD)/bench_peers: $(BUILD)/obj/host/tests/bench/bench_peers.o $(BUILD)/obj/h
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(LDLIBS) -lembree3 -lpthread
 
+# memory over 1,000 frames of the animated scene, functional and cycle mode: RSS and peak RSS
+# after frames 10 and 1000 -> build/bench/longrun.md, longrun.json
+bench-longrun: deps
+	@$(MAKE) --no-print-directory $(BUILD)/saarcor
+	@mkdir -p $(BUILD)/bench
+	python3 tests/bench/bench_longrun.py --out $(BUILD)/bench
+
 # docs/results.md from the reports in build/bench/ (each row with machine, command, date)
 results:
 	python3 scripts/results.py
 
-bench: bench-fp bench-build bench-render bench-accuracy bench-cycle bench-skip stress bench-precision bench-peers
+bench: bench-fp bench-build bench-render bench-accuracy bench-cycle bench-skip stress bench-precision bench-peers bench-longrun
 	@$(MAKE) --no-print-directory results
 
 $(BUILD)/bench_fp: $(BUILD)/obj/$(DEFAULT_FMT)/tests/bench/bench_fp.o $(call fp_objs,$(DEFAULT_FMT))
