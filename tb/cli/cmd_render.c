@@ -169,13 +169,16 @@ static int usage(void)
            "                     t = inf, -1 indices\n"
            "  --stats FILE       counters as JSON: rays by kind, traversal steps, leaves, list entries,\n"
            "                     mailbox skips, transformations, intersections, memory words read; in\n"
-           "                     cycle mode also the timing (\"cycle\": cycles, fps, usage, caches, ...)\n"
+           "                     cycle mode also the timing (\"cycle\": cycles, fps, usage, caches, ...);\n"
+           "                     host_rss_kb, host_peak_rss_kb: this program's memory after the frame\n"
            "  --capture-unit-io DIR  record the transformation, intersection and traversal-node\n"
            "                     transactions as hex vectors for the RTL co-simulation (DIR/xform.hex,\n"
            "                     isect.hex, trav.hex; at most --capture-limit N per unit, default 100000)\n"
            "  --frame N          frame N of the animation at --fps (time N / fps), to -o\n"
            "  --frames A:B       frames A..B of the animation at --fps (default 30) to OUT_NNNN.png (and\n"
-           "                     AOV/stats files numbered alike), rebuilding per frame only what changed\n\n%s\n%s",
+           "                     AOV/stats files numbered alike), rebuilding per frame only what changed\n"
+           "Ctrl-C (SIGINT) or SIGTERM stops at the next block row or cycle-model epoch: the frames done\n"
+           "so far are kept (files appear only when complete), exit 130 (SIGINT) or 143 (SIGTERM).\n\n%s\n%s",
            RGS_MAX_DEPTH, SHADE_DEFAULT_DEPTH, CYCLE_OPTIONS_HELP, SCENE_OPTIONS_HELP);
     return SAARCOR_EXIT_OK;
 }
