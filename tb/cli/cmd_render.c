@@ -88,7 +88,8 @@ static double now(void)
 }
 
 /* Renders with `threads` host threads; fills pixels and the summed counters. 0, -1 if out of
- * memory, 1 if a signal stopped the threads (the image is incomplete). */
+ * memory, 1 if a signal stopped the threads before the last row (the image is incomplete; a
+ * signal after it leaves a whole frame, which is written). */
 static int render(const uint32_t *mem, const rgs_config *cfg, uint32_t threads, uint32_t *pixels, hit_record *hits,
                   rgs_counters *sum)
 {
@@ -120,7 +121,7 @@ static int render(const uint32_t *mem, const rgs_config *cfg, uint32_t threads, 
     }
     free(jobs);
     free(tid);
-    return interrupt_signal() ? 1 : 0;
+    return atomic_load(&rows_done) < (h + 1) / 2 ? 1 : 0; /* rows left out: stopped by a signal */
 }
 
 static int write_png(const char *path, const uint32_t *pixels, uint32_t w, uint32_t h)
