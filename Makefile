@@ -7,7 +7,8 @@
 #   make bench      all benchmarks -> build/bench/ (bench-fp: fp24 throughput; bench-build: kd-tree and
 #                   memory-image build against Embree; bench-render: primary rays against Embree;
 #                   bench-accuracy: fp24 images and hits against the double-precision reference;
-#                   bench-cycle: the cycle model beside the paper's Tables 3 and 4, sweeps, simulator speed)
+#                   bench-cycle: the cycle model beside the paper's Tables 3 and 4, sweeps, simulator speed;
+#                   bench-longrun: peak RSS over 1,000 frames of the animated scene)
 #   make widths     build build/w/<format>/saarcor for every tested fp24 format
 #   make rtl-test   Verilator co-simulation of rtl/ against the C model (operators at 6 formats with
 #                   10^6 vectors each, units on random and captured vectors), lint
@@ -142,7 +143,7 @@ $(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS) $(call fmt_objs,$
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
 
 
-.PHONY: all mpi bench-mpi widths deps run test unit-tests test-programs asan verify-fp hls-check hls-vectors bench bench-skip bench-fp bench-build bench-render bench-accuracy bench-cycle bench-precision bench-peers results robust stress rtl-lint rtl-test synth clean
+.PHONY: all mpi bench-mpi widths deps run test unit-tests test-programs asan verify-fp hls-check hls-vectors bench bench-skip bench-longrun bench-fp bench-build bench-render bench-accuracy bench-cycle bench-precision bench-peers results robust stress rtl-lint rtl-test synth clean
 all: $(BUILD)/saarcor $(BUILD)/w/e8m23/saarcor $(if $(MPICC),$(BUILD)/libsaarcor_mpi.so)
 
 # ---- MPI: the work distributor that `render --mpi` and `jobs --mpi` dlopen (docs/mpi.md) -------
@@ -176,14 +177,26 @@ unit-tests: test-programs
 asan:
 	@$(MAKE) --no-print-directory BUILD=build/asan SAN=1 unit-tests
 
+# tests/test_memcheck.sh: on CPUs without RDTSCP, valgrind needs this preload (see the source)
+$(BUILD)/valgrind/hwy_timer_shim.so: tests/valgrind/hwy_timer_shim.c
+	@mkdir -p $(@D)
+	@echo "  CC    $@"
+	$(Q)$(CC) -shared -fPIC -O2 $(WARN) $< -o $@
+
+# tests/test_determinism.sh compares the program built with -O0 (only the program: a small cost)
+O0_BUILD := $(BUILD)/O0
+
 test: deps
-	@$(MAKE) --no-print-directory -j$$(nproc) test-programs mpi
+	@$(MAKE) --no-print-directory -j$$(nproc) test-programs mpi $(BUILD)/valgrind/hwy_timer_shim.so
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(BUILD)/hw SIM_ARITH=hw $(BUILD)/hw/saarcor
+	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(O0_BUILD) OPT='-O0 -g' $(O0_BUILD)/saarcor
 	@$(MAKE) --no-print-directory $(BUILD)/rtl/$(DEFAULT_FMT)/tb_f24_ops $(BUILD)/rtl/$(DEFAULT_FMT)/tb_units
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 test-programs
 	@$(MAKE) --no-print-directory -j$$(nproc) robust
 	@bash tests/run.sh --report $(BUILD)/test-report.txt \
-	  $(UNIT_TESTS) tests/test_cli.sh tests/test_golden.sh tests/test_rtl.sh tests/test_hls.sh tests/test_stress.sh tests/test_mpi.sh $(patsubst $(BUILD)/%,build/asan/%,$(UNIT_TESTS))
+	  $(UNIT_TESTS) tests/test_cli.sh tests/test_golden.sh tests/test_rtl.sh tests/test_hls.sh tests/test_stress.sh tests/test_mpi.sh \
+	  tests/test_determinism.sh tests/test_interrupt.sh tests/test_longrun.sh tests/test_memcheck.sh \
+	  $(patsubst $(BUILD)/%,build/asan/%,$(UNIT_TESTS)) tests/test_golden_asan.sh
 
 # ---- HLS readiness: hls/ alone in the synthesizable subset, per configuration -------------------
 # make hls-check: the general design and every hls/config_NAME.h; CONFIG=NAME: that one only
@@ -335,11 +348,18 @@ bench-mpi: deps
 	@mkdir -p $(BUILD)/bench
 	python3 tests/bench/bench_mpi.py --out $(BUILD)/bench
 
+# memory over 1,000 frames of the animated scene, functional and cycle mode: RSS and peak RSS
+# after frames 10 and 1000 -> build/bench/longrun.md, longrun.json
+bench-longrun: deps
+	@$(MAKE) --no-print-directory $(BUILD)/saarcor
+	@mkdir -p $(BUILD)/bench
+	python3 tests/bench/bench_longrun.py --out $(BUILD)/bench
+
 # docs/results.md from the reports in build/bench/ (each row with machine, command, date)
 results:
 	python3 scripts/results.py
 
-bench: bench-fp bench-build bench-render bench-accuracy bench-cycle bench-skip stress bench-precision bench-peers
+bench: bench-fp bench-build bench-render bench-accuracy bench-cycle bench-skip stress bench-precision bench-peers bench-longrun bench-mpi
 	@$(MAKE) --no-print-directory results
 
 $(BUILD)/bench_fp: $(BUILD)/obj/$(DEFAULT_FMT)/tests/bench/bench_fp.o $(call fp_objs,$(DEFAULT_FMT))

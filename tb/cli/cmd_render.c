@@ -4,6 +4,9 @@
  * rows in a fixed interleaved order and write disjoint pixels, so the image is bit-identical for
  * any thread count. Cycle mode (--mode cycle): the same unit steps timed by the DynRTC model of
  * tb/cycle, with the paper-style report. The device reads only the validated memory image.
+ * Ctrl-C/SIGTERM (interrupt.h): the threads stop at the next block row (functional) or epoch
+ * (cycle), the unfinished frame is dropped, the frames written so far stay (each file is written
+ * under a temporary name and renamed when complete) and the exit code is 128 + the signal.
  */
 #define _GNU_SOURCE
 #include <getopt.h>
@@ -21,7 +24,9 @@
 #include "cycle_opts.h"
 #include "f24_fast.h"
 #include "img.h"
+#include "interrupt.h"
 #include "mpi_load.h"
+#include "proc_mem.h"
 #include "render.h"
 #include "render_mpi.h"
 #include "rgs.h"
@@ -57,7 +62,7 @@ static void *render_rows(void *arg)
 {
     render_job *j = arg;
     double last = now();
-    for (uint32_t y = j->y0 + 2 * j->thread; y < j->y1; y += 2 * j->threads) {
+    for (uint32_t y = j->y0 + 2 * j->thread; y < j->y1 && !interrupt_signal(); y += 2 * j->threads) {
         for (uint32_t x = j->x0; x < j->x1; x += 2) {
             hit_record h[TRACE_PACKET];
             uint32_t rgb[TRACE_PACKET];
@@ -118,7 +123,7 @@ int render_region(const uint32_t *mem, const rgs_config *cfg, uint32_t threads, 
     }
     free(jobs);
     free(tid);
-    return 0;
+    return atomic_load(&rows_done) < (y1 - region[1] + 1) / 2 ? 1 : 0; /* rows left out: stopped by a signal */
 }
 
 static int write_png(const char *path, const uint32_t *pixels, uint32_t w, uint32_t h)
@@ -169,7 +174,8 @@ static int usage(void)
            "                     t = inf, -1 indices\n"
            "  --stats FILE       counters as JSON: rays by kind, traversal steps, leaves, list entries,\n"
            "                     mailbox skips, transformations, intersections, memory words read; in\n"
-           "                     cycle mode also the timing (\"cycle\": cycles, fps, usage, caches, ...)\n"
+           "                     cycle mode also the timing (\"cycle\": cycles, fps, usage, caches, ...);\n"
+           "                     host_rss_kb, host_peak_rss_kb: this program's memory after the frame\n"
            "  --capture-unit-io DIR  record the transformation, intersection and traversal-node\n"
            "                     transactions as hex vectors for the RTL co-simulation (DIR/xform.hex,\n"
            "                     isect.hex, trav.hex; at most --capture-limit N per unit, default 100000)\n"
@@ -179,7 +185,9 @@ static int usage(void)
            "  --mpi              under mpirun -np N (N >= 2): rank 0 hands out tiles of the frame (or whole\n"
            "                     frames with --frames) to ranks 1..N-1, each a board of --pipes pipes;\n"
            "                     the same files and bits as one process (docs/mpi.md)\n"
-           "  --mpi-tile N       edge in pixels of the tiles handed out with --mpi (default 64)\n\n%s\n%s",
+           "  --mpi-tile N       edge in pixels of the tiles handed out with --mpi (default 64)\n"
+           "Ctrl-C (SIGINT) or SIGTERM stops at the next block row or cycle-model epoch: the frames done\n"
+           "so far are kept (files appear only when complete), exit 130 (SIGINT) or 143 (SIGTERM).\n\n%s\n%s",
            RGS_MAX_DEPTH, SHADE_DEFAULT_DEPTH, CYCLE_OPTIONS_HELP, SCENE_OPTIONS_HELP);
     return SAARCOR_EXIT_OK;
 }
@@ -218,7 +226,9 @@ static int write_stats(const char *path, const render_opts *ro, const cycle_conf
 {
     const double secs = fr->secs;
     const rgs_counters *c = &fr->sum;
-    FILE *f = fopen(path, "w");
+    char tmp[1100]; /* complete files only: written under path.tmp, renamed when closed */
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    FILE *f = fopen(tmp, "w");
     if (!f)
         return -1;
     const trace_counters *t = &c->trace;
@@ -235,6 +245,9 @@ static int write_stats(const char *path, const render_opts *ro, const cycle_conf
             (unsigned long long)t->words[MEM_NODES], (unsigned long long)t->words[MEM_LISTS],
             (unsigned long long)t->words[MEM_MATRICES], (unsigned long long)t->words[MEM_SHADING],
             (unsigned long long)c->dropped);
+    proc_mem pm;
+    proc_mem_read(&pm); /* after the frame: what a long run must keep constant */
+    fprintf(f, ", \"host_rss_kb\": %ld, \"host_peak_rss_kb\": %ld", pm.rss_kb, pm.peak_rss_kb);
     if (ro->cycle) {
         fprintf(f, ", \"cycle\": ");
         cycle_report_json(f, cc, &fr->cs, all_rays(c));
@@ -249,7 +262,11 @@ static int write_stats(const char *path, const render_opts *ro, const cycle_conf
                 fr->mpi->wall_seconds, fr->mpi->work_seconds, fr->mpi->comm_seconds, fr->mpi->comm_seconds_max,
                 (unsigned long long)fr->image_bytes_per_board, (unsigned long long)fr->image_upload_bytes_total);
     fprintf(f, "}\n");
-    return fclose(f);
+    if (fclose(f) != 0 || rename(tmp, path) != 0) {
+        remove(tmp);
+        return -1;
+    }
+    return 0;
 }
 
 static double f24d(uint32_t w) { return (double)f24_fast_decode(w); }
@@ -303,16 +320,20 @@ static int write_aov(const char *path, const mi_builder *b, const scene *s, cons
     return rc;
 }
 
-/* Progress of the cycle mode on stderr (a terminal, at most every half second). */
-static void cycle_progress(uint64_t done, uint64_t all, void *arg)
+/* Progress of the cycle mode on stderr (a terminal, at most every half second); called between
+ * epochs, so it is also where a signal stops the cycle model. */
+static int cycle_progress(uint64_t done, uint64_t all, void *arg)
 {
     static double last;
-    const double t = now();
     (void)arg;
-    if (!isatty(2) || t - last < 0.5)
-        return;
+    if (interrupt_signal())
+        return 1;
+    const double t = now();
+    if (t - last < 0.5 || !isatty(2))
+        return 0;
     last = t;
     fprintf(stderr, "\rrender: %3u%%", (unsigned)(100 * done / (all ? all : 1)));
+    return 0;
 }
 
 int render_validate(const mi_builder *b)
@@ -402,17 +423,30 @@ static int render_frame(const mi_builder *b, const scene *s, const render_opts *
     frame_result fr = { .upload_bytes = mi_get_stats(b)->frame_upload_bytes };
     static const uint32_t all[4] = { 0, 0, UINT32_MAX, UINT32_MAX };
     const double t0 = now();
-    const int failed = !pixels || (ro->aov && !hits) ||
-                       (ro->cycle ? cycle_render(ro->sim, mem, &ro->cfg, pixels, hits, &fr.sum, &fr.cs, cycle_progress, NULL)
-                                  : render_region(mem, &ro->cfg, ro->threads, all, pixels, hits, &fr.sum)) != 0;
+    const int failed = !pixels || (ro->aov && !hits) ? -1
+                       : ro->cycle ? cycle_render(ro->sim, mem, &ro->cfg, pixels, hits, &fr.sum, &fr.cs, cycle_progress, NULL)
+                                   : render_region(mem, &ro->cfg, ro->threads, all, pixels, hits, &fr.sum);
     if (isatty(2) && ro->cycle)
         fprintf(stderr, "\r%*s\r", 14, "");
     fr.secs = now() - t0;
-    const int rc = failed ? (cli_error("render", "out of memory"), SAARCOR_EXIT_INTERNAL)
+    const int rc = failed > 0 ? 128 + interrupt_signal() /* stopped by a signal: this frame is not written */
+                 : failed ? (cli_error("render", "out of memory"), SAARCOR_EXIT_INTERNAL)
                           : render_frame_output(ro, b, s, frame, scene_name, w, h, pixels, hits, &fr);
     free(pixels);
     free(hits);
     return rc;
+}
+
+/* The one line of a stopped render: the signal and the frames that are on disk. */
+static void report_interrupt(const render_opts *ro, uint32_t written)
+{
+    char first[1024], last[1024] = "";
+    frame_path(ro, ro->first, first, sizeof first);
+    if (written > 0)
+        frame_path(ro, ro->first + written - 1, last, sizeof last);
+    fprintf(stderr, "saarcor render: interrupted by %s: %u frame%s written%s%s%s%s%s\n",
+            interrupt_name(interrupt_signal()), written, written == 1 ? "" : "s", written ? " (" : "",
+            written ? first : "", written > 1 ? " .. " : "", written > 1 ? last : "", written ? ")" : "");
 }
 
 static int parse_frames(const char *arg, render_opts *ro)
@@ -573,6 +607,10 @@ int cmd_render(int argc, char **argv)
     o.scene = argv[optind];
     if (ro.sequence && ro.one_frame)
         return cli_usage_error("render", "--frame and --frames exclude each other");
+    /* from here on a signal stops at the next safe point (a long scene load is not one: the
+     * render stops at its first block row) */
+    if (interrupt_catch() != 0)
+        cli_error("render", "cannot catch SIGINT/SIGTERM: Ctrl-C will not stop cleanly");
     if (ro.mpi && (ro.aov || ro.capture))
         return cli_usage_error("render", "--mpi does not write --aov or --capture-unit-io (render those in one process)");
     if (ro.mpi && ro.cycle && ro.mpi_tile % ro.cc.tile)
@@ -608,7 +646,12 @@ int cmd_render(int argc, char **argv)
         return SAARCOR_EXIT_INTERNAL;
     }
     rc = mpi_run ? render_mpi(&ro, mpi_run, b, &s, o.scene) : render_frame(b, &s, &ro, ro.first, o.scene);
+    uint32_t written = rc == SAARCOR_EXIT_OK;
     for (uint32_t f = ro.first + 1; !mpi_run && rc == SAARCOR_EXIT_OK && f <= ro.last; f++) {
+        if (interrupt_signal()) { /* between frames: the safest point of all */
+            rc = 128 + interrupt_signal();
+            break;
+        }
         if (scene_evaluate(&s, f / ro.fps, 1) != 0) {
             cli_error("render", "frame %u: out of memory", f);
             rc = SAARCOR_EXIT_INTERNAL;
@@ -621,7 +664,10 @@ int cmd_render(int argc, char **argv)
         if (ro.sim)
             cycle_flush(ro.sim); /* the image changed */
         rc = render_frame(b, &s, &ro, f, o.scene);
+        written += rc == SAARCOR_EXIT_OK;
     }
+    if (rc > 128 && !mpi_run)
+        report_interrupt(&ro, written);
     cycle_free(ro.sim);
     if (ro.capture) {
         uint64_t n[3];

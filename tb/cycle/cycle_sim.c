@@ -522,8 +522,9 @@ int cycle_render_region(cycle_sim *s, const uint32_t *mem, const rgs_config *rcf
     pthread_cond_broadcast(&h.gate);
     pthread_mutex_unlock(&h.lock);
     uint32_t next_tile = 0;
+    int stopped = 0;
 epochs:
-    for (uint64_t epoch = 0;; epoch++) {
+    for (;;) {
         controller_refill(s, &next_tile, n_tiles);
         int busy = 0;
         uint64_t blocks = 0;
@@ -533,8 +534,8 @@ epochs:
         }
         if (!busy)
             break;
-        if (progress && epoch % 64 == 0)
-            progress(blocks, all_blocks, arg);
+        if (progress && (stopped = progress(blocks, all_blocks, arg)) != 0)
+            break; /* the host threads wait at the start barrier: released below with stop */
         h.until += s->cfg.epoch;
         pthread_barrier_wait(&h.start);
         run_share(s, 0, h.workers, h.until);
@@ -550,6 +551,8 @@ epochs:
     pthread_mutex_destroy(&h.lock);
     free(tid);
     free(wa);
+    if (stopped)
+        return 1;
     collect(s, counters, stats);
     return 0;
 }

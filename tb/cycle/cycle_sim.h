@@ -66,13 +66,14 @@ void cycle_free(cycle_sim *s);
 /* Empties the caches: the memory image changed. */
 void cycle_flush(cycle_sim *s);
 
-/* progress(done blocks, all blocks) is called now and then from the controller (may be NULL). */
-typedef void (*cycle_progress_fn)(uint64_t done, uint64_t all, void *arg);
+/* progress(done blocks, all blocks) is called by the controller between epochs (may be NULL);
+ * a non-zero return stops the frame there (Ctrl-C: the caller's threads must not run on). */
+typedef int (*cycle_progress_fn)(uint64_t done, uint64_t all, void *arg);
 
 /* Renders one frame of the memory image: pixels (0xRRGGBB, width x height of the camera block),
  * primary hits per pixel (may be NULL), the work counters (summed) and the timing. The caches
- * keep their contents from the previous frame unless cycle_flush was called. 0, or -1 if out
- * of memory. */
+ * keep their contents from the previous frame unless cycle_flush was called. 0, -1 if out
+ * of memory, 1 if progress asked to stop (pixels, counters and stats incomplete). */
 int cycle_render(cycle_sim *s, const uint32_t *mem, const rgs_config *rcfg, uint32_t *pixels, hit_record *hits,
                  rgs_counters *counters, cycle_stats *stats, cycle_progress_fn progress, void *arg);
 

@@ -1,0 +1,21 @@
+/*
+ * Ctrl-C and SIGTERM for long renders. interrupt_catch installs handlers that only record the
+ * signal (an async-signal-safe store); the render loops poll interrupt_signal() at safe points
+ * (between block rows, between cycle-model epochs, between frames), stop their host threads
+ * there, keep the frames already written and exit with 128 + the signal number. The handlers
+ * reset themselves (SA_RESETHAND): a second Ctrl-C kills the program at once, the usual escape
+ * when something does not stop.
+ */
+#ifndef SAARCOR_INTERRUPT_H
+#define SAARCOR_INTERRUPT_H
+
+/* Installs the handlers for SIGINT and SIGTERM; 0, or -1 if sigaction failed. */
+int interrupt_catch(void);
+
+/* The signal caught so far (SIGINT or SIGTERM), 0 if none. Safe from any thread. */
+int interrupt_signal(void);
+
+/* "SIGINT" or "SIGTERM" for a caught signal. */
+const char *interrupt_name(int sig);
+
+#endif

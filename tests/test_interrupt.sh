@@ -1,0 +1,83 @@
+#!/usr/bin/env bash
+# Ctrl-C and SIGTERM during `saarcor render` (docs/cli.md, exit codes): a frame sequence stopped
+# after its first frames keeps the frames done so far as complete images, says in one line how
+# many were written, exits with 130 (SIGINT) or 143 (SIGTERM) and leaves no temporary file; a
+# single long frame (functional with two threads, and the cycle model) stops at the next block
+# row / epoch within seconds and writes nothing. Prints cmocka-style lines for tests/run.sh.
+set -u
+cd "$(dirname "$0")/.."
+BIN=${SAARCOR_BIN:-build/saarcor}
+T=$(mktemp -d /tmp/saarcor-interrupt-XXXXXX)
+trap 'rm -rf "$T"' EXIT
+source tests/case_lib.sh
+
+wait_for() { # file, seconds: true once file exists
+  local i
+  for ((i = 0; i < $2 * 20; i++)); do [[ -e $1 ]] && return 0; sleep 0.05; done
+  echo "timed out after $2 s waiting for $1"; return 1
+}
+
+# stop_after SIGNAL FILE ARGS...: starts render ARGS in the background, sends SIGNAL once FILE
+# exists, waits (at most 60 s) and leaves the exit code in $T/rc, stderr in $T/err
+stop_after() {
+  local sig=$1 file=$2; shift 2
+  "$BIN" render "$@" >"$T/out" 2>"$T/err" &
+  local pid=$! rc
+  wait_for "$file" 60 || { kill -KILL $pid; return 1; }
+  kill -"$sig" $pid
+  local i
+  for ((i = 0; i < 600 && $(kill -0 $pid 2>/dev/null && echo 1 || echo 0); i++)); do sleep 0.1; done
+  kill -0 $pid 2>/dev/null && { kill -KILL $pid; echo "render did not stop within 60 s of SIG$sig"; return 1; }
+  rc=0; wait $pid || rc=$?
+  echo $rc >"$T/rc"
+}
+
+check_sequence() { # signal, expected exit code, output stem
+  local sig=$1 want=$2 stem=$3
+  stop_after "$sig" "$T/${stem}_0002.png" animated --width 160 --height 120 --threads 2 --frames 0:100000 \
+    --stats "$T/$stem.json" -o "$T/$stem.png"
+  [[ $(cat "$T/rc") == "$want" ]] || { echo "exit $(cat "$T/rc"), expected $want"; cat "$T/err"; return 1; }
+  [[ $(wc -l <"$T/err") == 1 ]] || { echo "expected one line on stderr:"; cat "$T/err"; return 1; }
+  local n
+  n=$(sed -n "s/^saarcor render: interrupted by SIG$sig: \([0-9]*\) frames written (.*)$/\1/p" "$T/err")
+  [[ -n $n ]] || { echo "unexpected message: $(cat "$T/err")"; return 1; }
+  local files
+  files=$(ls "$T" | grep -c "^${stem}_[0-9]*\.png$")
+  [[ $files == "$n" ]] || { echo "message says $n frames, $files files on disk"; return 1; }
+  [[ $(ls "$T" | grep -c "^${stem}_[0-9]*\.json$") == "$n" ]] || { echo "stats files differ from $n"; return 1; }
+  if ls "$T" | grep -q '\.tmp$'; then echo "temporary files left: $(ls "$T" | grep '\.tmp$')"; return 1; fi
+  local f
+  for f in "$T/${stem}"_*.png; do # every frame is a whole image: compare reads it completely
+    "$BIN" compare "$f" "$f" >/dev/null || { echo "$f is not a valid image"; return 1; }
+  done
+  echo "SIG$sig after $n frames: exit $want, $n complete PNG and stats files, no temporary files"
+}
+
+t_sigint_sequence() { check_sequence INT 130 seq; }
+t_sigterm_sequence() { check_sequence TERM 143 term; }
+
+check_long_frame() { # mode
+  # the output file of the previous frame-less run cannot exist: wait on the scene load instead
+  "$BIN" render room --width 4000 --height 3000 --threads 2 --mode "$1" -o "$T/long.png" >"$T/out" 2>"$T/err" &
+  local pid=$! i
+  sleep 2
+  local t0=$SECONDS
+  kill -INT $pid
+  for ((i = 0; i < 300 && $(kill -0 $pid 2>/dev/null && echo 1 || echo 0); i++)); do sleep 0.1; done
+  kill -0 $pid 2>/dev/null && { kill -KILL $pid; echo "$1: a long frame did not stop within 30 s"; return 1; }
+  local rc=0; wait $pid || rc=$?
+  [[ $rc == 130 ]] || { echo "$1: exit $rc, expected 130"; cat "$T/err"; return 1; }
+  grep -qx 'saarcor render: interrupted by SIGINT: 0 frames written' "$T/err" ||
+    { echo "$1: unexpected message: $(cat "$T/err")"; return 1; }
+  [[ ! -e $T/long.png && ! -e $T/long.png.tmp ]] || { echo "$1: an unfinished frame was written"; return 1; }
+  echo "$1 mode: a 4000x3000 frame stopped $((SECONDS - t0)) s after SIGINT, nothing written"
+}
+
+t_long_frame_functional() { check_long_frame functional; }
+t_long_frame_cycle() { check_long_frame cycle; }
+
+run_case interrupt_sequence_sigint t_sigint_sequence
+run_case interrupt_sequence_sigterm t_sigterm_sequence
+run_case interrupt_long_frame_functional t_long_frame_functional
+run_case interrupt_long_frame_cycle t_long_frame_cycle
+exit $((fails != 0))
