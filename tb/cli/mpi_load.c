@@ -46,7 +46,7 @@ saarcor_mpi_run_fn mpi_load(const char *cmd)
         saarcor_mpi_run_fn run = (saarcor_mpi_run_fn)(uintptr_t)dlsym(lib, "saarcor_mpi_run");
         if (run)
             return run;
-        snprintf(why, sizeof why, "%s has no saarcor_mpi_run", paths[i]);
+        snprintf(why, sizeof why, "%.400s has no saarcor_mpi_run", paths[i]);
         break;
     }
     cli_error(cmd, "--mpi: cannot load libsaarcor_mpi.so (build it with 'make mpi'; needs Open MPI, "
