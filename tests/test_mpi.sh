@@ -27,7 +27,8 @@ same_counters() {
 import json, sys
 a, b = (json.load(open(p)) for p in sys.argv[1:3])
 for d in (a, b):
-    d.pop("seconds"); d.pop("mpi", None); d.pop("cycle", None)
+    for k in ("seconds", "mpi", "cycle", "host_rss_kb", "host_peak_rss_kb"):  # time and host memory differ
+        d.pop(k, None)
 assert a == b, (a, b)
 PY
 }
@@ -123,7 +124,10 @@ t_frames() {
     python3 -c "
 import json, sys
 a, b = (json.load(open(p)) for p in sys.argv[1:3])
-a.pop('seconds'); b.pop('seconds'); a['cycle'].pop('seconds', None); b['cycle'].pop('seconds', None)
+for d in (a, b):
+    for k in ('seconds', 'host_rss_kb', 'host_peak_rss_kb'):
+        d.pop(k, None)
+    d['cycle'].pop('seconds', None)
 assert a == b" "$T/s/st_000$f.json" "$T/m/st_000$f.json"
   done
   echo "frames 1..5 on 2 workers: same images and statistics (cycles included)"
