@@ -13,6 +13,7 @@ PACKAGES=(
   libembree-dev                      # reference ray tracer (accuracy baseline)
   verilator iverilog yosys nextpnr-ice40 fpga-icestorm  # RTL simulation and synthesis
   valgrind gnuplot-nox               # instruction-count benchmarks, plots
+  clang libclang-rt-14-dev           # libFuzzer harnesses (make fuzz, tests/test_fuzz.sh)
 )
 
 missing=()
