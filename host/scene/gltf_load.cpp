@@ -626,6 +626,40 @@ class Loader {
 
 
 
+// Files a glTF may read: the file itself and files inside its own directory. tinygltf reads the
+// main file and every external buffer and image through these callbacks; a reference that
+// resolves (after "..", absolute paths and symlinks, realpath) outside the directory is refused,
+// so a hostile scene cannot make the loader read /etc/passwd or a sibling project's files.
+struct sandbox {
+    std::string dir;  // realpath of the glTF's directory, with a trailing '/'
+    std::string self; // realpath of the glTF file
+    std::string refused;
+};
+
+std::string real_path(const std::string &p)
+{
+    char *r = realpath(p.c_str(), nullptr);
+    std::string out = r ? r : "";
+    std::free(r);
+    return out;
+}
+
+bool sandboxed_read(std::vector<unsigned char> *out, std::string *err, const std::string &file, void *user)
+{
+    sandbox *sb = static_cast<sandbox *>(user);
+    const std::string real = real_path(file);
+    if (!real.empty() && real != sb->self && real.compare(0, sb->dir.size(), sb->dir) != 0) {
+        sb->refused = file;
+        if (err)
+            *err += "refers to '" + file + "' outside its directory (refused)\n";
+        return false;
+    }
+    return tinygltf::ReadWholeFile(out, err, file, nullptr);
+}
+
+// No '~' or $VARIABLE expansion of URIs (tinygltf's default runs wordexp on them).
+std::string no_expansion(const std::string &path, void *) { return path; }
+
 } // namespace
 
 extern "C" int scene_load_gltf(const char *path, scene *out, char *err, size_t errlen)
@@ -636,8 +670,17 @@ extern "C" int scene_load_gltf(const char *path, scene *out, char *err, size_t e
         tinygltf::Model model;
         std::string e, w;
         const std::string p(path);
+        const size_t slash = p.rfind('/');
+        sandbox sb{ real_path(slash == std::string::npos ? "." : p.substr(0, slash + 1)), real_path(p), "" };
+        if (sb.dir.empty() || sb.dir.back() != '/')
+            sb.dir += '/';
+        loader.SetFsCallbacks({ tinygltf::FileExists, no_expansion, sandboxed_read, tinygltf::WriteWholeFile, &sb });
         const bool ok = ends_with(p, ".glb") ? loader.LoadBinaryFromFile(&model, &e, &w, p)
                                              : loader.LoadASCIIFromFile(&model, &e, &w, p);
+        if (!ok && !sb.refused.empty()) {
+            set_error(err, errlen, p + ": refers to '" + sb.refused + "' outside its directory (refused)");
+            return -1;
+        }
         if (!ok) {
             set_error(err, errlen, p + ": " + (e.empty() ? "cannot load glTF" : first_line(e)));
             return -1;
