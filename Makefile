@@ -174,7 +174,7 @@ test: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) robust
 	@$(MAKE) --no-print-directory -j$$(nproc) fuzz-build
 	@bash tests/run.sh --report $(BUILD)/test-report.txt \
-	  $(UNIT_TESTS) tests/test_cli.sh tests/test_fuzz.sh tests/test_golden.sh tests/test_rtl.sh tests/test_hls.sh tests/test_stress.sh $(patsubst $(BUILD)/%,build/asan/%,$(UNIT_TESTS))
+	  $(UNIT_TESTS) tests/test_cli.sh tests/test_limits.sh tests/test_fuzz.sh tests/test_golden.sh tests/test_rtl.sh tests/test_hls.sh tests/test_stress.sh $(patsubst $(BUILD)/%,build/asan/%,$(UNIT_TESTS))
 
 # ---- fuzzing: libFuzzer harnesses of tests/fuzz/ (tests/fuzz/README.md) ----------------------------
 # Everything is compiled again with clang, ASan, UBSan and the fuzzer's coverage instrumentation

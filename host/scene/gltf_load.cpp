@@ -633,6 +633,7 @@ class Loader {
 struct sandbox {
     std::string dir;  // realpath of the glTF's directory, with a trailing '/'
     std::string self; // realpath of the glTF file
+    std::string base; // the directory as tinygltf joins it with a URI (its GetBaseDir)
     std::string refused;
 };
 
@@ -657,6 +658,18 @@ bool sandboxed_read(std::vector<unsigned char> *out, std::string *err, const std
     return tinygltf::ReadWholeFile(out, err, file, nullptr);
 }
 
+// tinygltf joins an absolute URI to the directory ("dir" + "/" + "/abs/x.bin"): refuse it by name.
+bool sandboxed_exists(const std::string &file, void *user)
+{
+    sandbox *sb = static_cast<sandbox *>(user);
+    const std::string joined = sb->base.empty() ? "" : sb->base + "/";
+    if (file.size() > joined.size() && file.compare(0, joined.size(), joined) == 0 && file[joined.size()] == '/') {
+        sb->refused = file.substr(joined.size());
+        return false;
+    }
+    return tinygltf::FileExists(file, nullptr);
+}
+
 // No '~' or $VARIABLE expansion of URIs (tinygltf's default runs wordexp on them).
 std::string no_expansion(const std::string &path, void *) { return path; }
 
@@ -671,10 +684,11 @@ extern "C" int scene_load_gltf(const char *path, scene *out, char *err, size_t e
         std::string e, w;
         const std::string p(path);
         const size_t slash = p.rfind('/');
-        sandbox sb{ real_path(slash == std::string::npos ? "." : p.substr(0, slash + 1)), real_path(p), "" };
+        sandbox sb{ real_path(slash == std::string::npos ? "." : p.substr(0, slash + 1)), real_path(p),
+                    slash == std::string::npos ? "" : p.substr(0, slash), "" };
         if (sb.dir.empty() || sb.dir.back() != '/')
             sb.dir += '/';
-        loader.SetFsCallbacks({ tinygltf::FileExists, no_expansion, sandboxed_read, tinygltf::WriteWholeFile, &sb });
+        loader.SetFsCallbacks({ sandboxed_exists, no_expansion, sandboxed_read, tinygltf::WriteWholeFile, &sb });
         const bool ok = ends_with(p, ".glb") ? loader.LoadBinaryFromFile(&model, &e, &w, p)
                                              : loader.LoadASCIIFromFile(&model, &e, &w, p);
         if (!ok && !sb.refused.empty()) {
