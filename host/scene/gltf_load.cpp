@@ -551,7 +551,9 @@ class Loader {
             const tinygltf::Animation &ga = m_.animations[ai];
             scene_animation &a = s_->animations[ai];
             std::snprintf(a.name, sizeof a.name, "%s", ga.name.c_str());
-            std::vector<scene_channel> chans;
+            // channels go straight into the scene, which owns their keys from then on: a later
+            // channel that fails leaves nothing behind that scene_free would not free
+            a.channels = alloc_array<scene_channel>(ga.channels.size());
             for (size_t ci = 0; ci < ga.channels.size(); ci++) {
                 const tinygltf::AnimationChannel &gc = ga.channels[ci];
                 const std::string what = "animation " + std::to_string(ai) + " channel " + std::to_string(ci);
@@ -588,17 +590,15 @@ class Loader {
                     if (!(t[k] > t[k - 1]))
                         fail(what + ": key times must increase");
                 c.n_keys = (uint32_t)t.size();
-                c.times = alloc_array<float>(t.size());
-                c.values = alloc_array<float>(v.size());
+                scene_channel &dst = a.channels[a.n_channels++] = c;
+                dst.times = alloc_array<float>(t.size());
+                dst.values = alloc_array<float>(v.size());
                 for (size_t k = 0; k < t.size(); k++)
-                    c.times[k] = (float)t[k];
+                    dst.times[k] = (float)t[k];
                 for (size_t k = 0; k < v.size(); k++)
-                    c.values[k] = (float)v[k];
-                a.duration = std::max(a.duration, c.times[c.n_keys - 1]);
-                chans.push_back(c);
+                    dst.values[k] = (float)v[k];
+                a.duration = std::max(a.duration, dst.times[dst.n_keys - 1]);
             }
-            a.n_channels = (uint32_t)chans.size();
-            a.channels = copy_array(chans);
         }
     }
 
