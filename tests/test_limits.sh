@@ -40,6 +40,27 @@ case_texture_size() {
   limit 5 texture-size info room --limit texture-size=63
   "$BIN" info room --limit texture-size=64 >/dev/null
 }
+# bomb.py IN.gltf OUT.gltf: OUT's first PNG announces 40000x40000 texels in its header
+cat >bomb.py <<'PY'
+import base64, json, struct, sys
+doc = json.load(open(sys.argv[1]))
+buf = doc["buffers"][0]
+head, data = buf["uri"].split(",", 1)
+raw = bytearray(base64.b64decode(data))
+at = doc["bufferViews"][doc["images"][0]["bufferView"]].get("byteOffset", 0)
+assert raw[at + 1:at + 4] == b"PNG"
+raw[at + 16:at + 24] = struct.pack(">II", 40000, 40000)
+buf["uri"] = head + "," + base64.b64encode(bytes(raw)).decode()
+json.dump(doc, open(sys.argv[2], "w"))
+PY
+case_texture_bomb() { # refused from the PNG header, before decoding (exit 3)
+  "$BIN" gen room -o room.gltf >/dev/null && python3 bomb.py room.gltf bomb.gltf
+  local got=0
+  "$BIN" info bomb.gltf >out 2>err || got=$?
+  [[ $got -eq 3 && $(wc -l <err) -eq 1 ]] && grep -q '40000x40000 texels, more than 16384 a side (not decoded)' err \
+    || { echo "exit $got:"; cat err; return 1; }
+  cat err
+}
 case_ray_depth() {
   limit 5 ray-depth render cornell --max-depth 9 -o x.png && grep -q 'at most 8 in this build' err
   limit 5 ray-depth reference cornell --max-depth 9 -o x.exr
@@ -95,7 +116,7 @@ case_path_outside() {
   refused a/link.gltf
 }
 
-for c in triangles instances kd_nodes kd_depth texture_size ray_depth image_size frames memory_image bad_limit path_outside; do
+for c in triangles instances kd_nodes kd_depth texture_size texture_bomb ray_depth image_size frames memory_image bad_limit path_outside; do
   run_case "limit_$c" "case_$c"
 done
 exit $((fails != 0))

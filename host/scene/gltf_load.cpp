@@ -670,6 +670,47 @@ bool sandboxed_exists(const std::string &file, void *user)
     return tinygltf::FileExists(file, nullptr);
 }
 
+// Texture dimensions from a PNG (IHDR) or JPEG (SOFn) header, read before anything is decoded.
+bool image_header_size(const unsigned char *b, int n, uint32_t *w, uint32_t *h)
+{
+    auto be = [b](int at, int bytes) {
+        uint32_t v = 0;
+        for (int i = 0; i < bytes; i++)
+            v = v << 8 | b[at + i];
+        return v;
+    };
+    if (n >= 24 && std::memcmp(b, "\x89PNG\r\n\x1a\n", 8) == 0 && std::memcmp(b + 12, "IHDR", 4) == 0) {
+        *w = be(16, 4), *h = be(20, 4);
+        return true;
+    }
+    if (n < 4 || b[0] != 0xFF || b[1] != 0xD8)
+        return false;
+    for (int at = 2; at + 9 <= n && b[at] == 0xFF;) { // JPEG segments up to the frame header
+        const int marker = b[at + 1];
+        if (marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC) {
+            *h = be(at + 5, 2), *w = be(at + 7, 2);
+            return true;
+        }
+        at += 2 + (int)be(at + 2, 2);
+    }
+    return false;
+}
+
+// Decodes an image (tinygltf's stb_image) only if its header announces at most
+// SCENE_MAX_TEXTURE_SIDE texels a side: a few bytes of PNG must not allocate gigabytes.
+bool bounded_image_loader(tinygltf::Image *image, const int index, std::string *err, std::string *warn, int req_w,
+                          int req_h, const unsigned char *bytes, int size, void *user)
+{
+    uint32_t w = 0, h = 0;
+    if (image_header_size(bytes, size, &w, &h) && (w > SCENE_MAX_TEXTURE_SIDE || h > SCENE_MAX_TEXTURE_SIDE)) {
+        if (err)
+            *err += "image " + std::to_string(index) + " is " + std::to_string(w) + "x" + std::to_string(h) +
+                    " texels, more than " + std::to_string(SCENE_MAX_TEXTURE_SIDE) + " a side (not decoded)\n";
+        return false;
+    }
+    return tinygltf::LoadImageData(image, index, err, warn, req_w, req_h, bytes, size, user);
+}
+
 // No '~' or $VARIABLE expansion of URIs (tinygltf's default runs wordexp on them).
 std::string no_expansion(const std::string &path, void *) { return path; }
 
@@ -688,6 +729,7 @@ extern "C" int scene_load_gltf(const char *path, scene *out, char *err, size_t e
                     slash == std::string::npos ? "" : p.substr(0, slash), "" };
         if (sb.dir.empty() || sb.dir.back() != '/')
             sb.dir += '/';
+        loader.SetImageLoader(bounded_image_loader, nullptr);
         loader.SetFsCallbacks({ sandboxed_exists, no_expansion, sandboxed_read, tinygltf::WriteWholeFile, &sb });
         const bool ok = ends_with(p, ".glb") ? loader.LoadBinaryFromFile(&model, &e, &w, p)
                                              : loader.LoadASCIIFromFile(&model, &e, &w, p);
