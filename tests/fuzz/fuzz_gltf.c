@@ -69,12 +69,15 @@ static size_t unpack(const uint8_t *data, size_t size)
     return scene_len;
 }
 
+static void remove_sandbox(void) { rmdir(sandbox); } /* its files are removed after each input */
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     if (!sandbox[0]) {
         snprintf(sandbox, sizeof sandbox, "/tmp/saarcor-fuzz-gltf-XXXXXX");
         if (!mkdtemp(sandbox))
             abort();
+        atexit(remove_sandbox);
     }
     n_written = 0;
     const size_t scene_len = unpack(data, size);
