@@ -17,6 +17,8 @@
 #   make results    docs/results.md from build/bench/ (run after make bench)
 #   make mpi        build/libsaarcor_mpi.so, the MPI distributor render --mpi and jobs --mpi load
 #   make bench-mpi  render --mpi with 1 and 2 worker ranks on localhost -> build/bench/mpi.md, mpi.json
+#   make fuzz       libFuzzer harnesses of tests/fuzz/ (glTF loader, memory image + device model, command
+#                   line), FUZZ_SECONDS (default 60) each -> build/fuzz/ (crashes in build/fuzz/crashes/)
 #   make stress     numerical stability stress suite at every width and with the robust edge option
 #                   (make robust) -> build/bench/stress.md, stress.json
 # Variables: BUILD (output folder), SAN=1 (sanitizers), V=1 (show commands), VERIFY_N,
@@ -143,7 +145,7 @@ $(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS) $(call fmt_objs,$
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
 
 
-.PHONY: all mpi bench-mpi widths deps run test unit-tests test-programs asan verify-fp hls-check hls-vectors bench bench-skip bench-longrun bench-fp bench-build bench-render bench-accuracy bench-cycle bench-precision bench-peers results robust stress rtl-lint rtl-test synth clean
+.PHONY: fuzz fuzz-build all mpi bench-mpi widths deps run test unit-tests test-programs asan verify-fp hls-check hls-vectors bench bench-skip bench-longrun bench-fp bench-build bench-render bench-accuracy bench-cycle bench-precision bench-peers results robust stress rtl-lint rtl-test synth clean
 all: $(BUILD)/saarcor $(BUILD)/w/e8m23/saarcor $(if $(MPICC),$(BUILD)/libsaarcor_mpi.so)
 
 # ---- MPI: the work distributor that `render --mpi` and `jobs --mpi` dlopen (docs/mpi.md) -------
@@ -193,10 +195,52 @@ test: deps
 	@$(MAKE) --no-print-directory $(BUILD)/rtl/$(DEFAULT_FMT)/tb_f24_ops $(BUILD)/rtl/$(DEFAULT_FMT)/tb_units
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 test-programs
 	@$(MAKE) --no-print-directory -j$$(nproc) robust
+	@$(MAKE) --no-print-directory -j$$(nproc) fuzz-build
 	@bash tests/run.sh --report $(BUILD)/test-report.txt \
-	  $(UNIT_TESTS) tests/test_cli.sh tests/test_golden.sh tests/test_rtl.sh tests/test_hls.sh tests/test_stress.sh tests/test_mpi.sh \
+	  $(UNIT_TESTS) tests/test_cli.sh tests/test_limits.sh tests/test_fuzz.sh tests/test_golden.sh tests/test_rtl.sh tests/test_hls.sh tests/test_stress.sh tests/test_mpi.sh \
 	  tests/test_determinism.sh tests/test_interrupt.sh tests/test_longrun.sh tests/test_memcheck.sh \
 	  $(patsubst $(BUILD)/%,build/asan/%,$(UNIT_TESTS)) tests/test_golden_asan.sh
+
+# ---- fuzzing: libFuzzer harnesses of tests/fuzz/ (tests/fuzz/README.md) ----------------------------
+# Everything is compiled again with clang, ASan, UBSan and the fuzzer's coverage instrumentation
+# into build/fuzz/ (tb/cli/main.c with main renamed, for fuzz_cli). make fuzz runs each harness
+# for FUZZ_SECONDS from the seed corpus (build/fuzz/corpus/, made by tests/fuzz/corpus.sh) and the
+# regression inputs (tests/fuzz/regress/); make test runs those inputs once (tests/test_fuzz.sh).
+FUZZ_DIR := $(BUILD)/fuzz
+FUZZ_SECONDS ?= 60
+FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+FUZZ_CFLAGS := -O1 -g -Wall -Wextra -Werror -Wno-unused-label $(FUZZ_SAN) -fsanitize=fuzzer-no-link -ffp-contract=off \
+  $(call fmt_flags,$(DEFAULT_FMT)) $(INCLUDES) -Itests -I$(BUILD) -MMD -MP
+FUZZ_TARGETS := $(patsubst tests/fuzz/%.c,$(FUZZ_DIR)/%,$(wildcard tests/fuzz/fuzz_*.c))
+FUZZ_OBJS := $(patsubst %.c,$(FUZZ_DIR)/obj/%.o,$(HLS_FP24) $(TB_FP) $(SIM_SRCS) $(HOST_C)) \
+  $(patsubst %.cpp,$(FUZZ_DIR)/obj/%.o,$(HOST_CXX))
+$(patsubst %.c,$(FUZZ_DIR)/obj/%.o,$(SIM_SRCS)): FUZZ_EXTRA := $(SIM_FLAGS)
+$(FUZZ_DIR)/obj/tb/cli/main.o: FUZZ_EXTRA += -Dmain=saarcor_main
+$(FUZZ_DIR)/obj/tb/cli/cmd_version.o: $(BUILD)/version.h
+
+$(FUZZ_DIR)/obj/%.o: %.c
+	@mkdir -p $(@D)
+	@echo "  FUZZCC $@"
+	$(Q)clang -std=c11 $(FUZZ_CFLAGS) $(FUZZ_EXTRA) -c $< -o $@
+
+$(FUZZ_DIR)/obj/%.o: %.cpp
+	@mkdir -p $(@D)
+	@echo "  FUZZCXX $@"
+	$(Q)clang++ -std=c++17 $(FUZZ_CFLAGS) -c $< -o $@
+
+$(FUZZ_TARGETS): $(FUZZ_DIR)/%: $(FUZZ_DIR)/obj/tests/fuzz/%.o $(FUZZ_OBJS)
+	@echo "  LD    $@"
+	$(Q)clang++ $(FUZZ_SAN) -fsanitize=fuzzer $^ -o $@ $(CAPTURE_WRAP) $(LDLIBS) -lpthread
+
+$(FUZZ_DIR)/corpus/.stamp: $(BUILD)/saarcor tests/fuzz/corpus.sh tests/fuzz/bundle.py tests/fuzz/cli_seeds.txt
+	@bash tests/fuzz/corpus.sh $(BUILD)/saarcor $(FUZZ_DIR)/corpus
+	@touch $@
+
+fuzz-build: $(FUZZ_TARGETS) $(FUZZ_DIR)/corpus/.stamp
+
+fuzz: deps
+	@$(MAKE) --no-print-directory -j$$(nproc) fuzz-build
+	@bash tests/fuzz/run.sh $(FUZZ_DIR) $(FUZZ_SECONDS)
 
 # ---- HLS readiness: hls/ alone in the synthesizable subset, per configuration -------------------
 # make hls-check: the general design and every hls/config_NAME.h; CONFIG=NAME: that one only
@@ -369,4 +413,4 @@ $(BUILD)/bench_fp: $(BUILD)/obj/$(DEFAULT_FMT)/tests/bench/bench_fp.o $(call fp_
 clean:
 	rm -rf build
 
--include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)
+-include $(shell find $(BUILD)/obj $(FUZZ_DIR)/obj -name '*.d' 2>/dev/null)

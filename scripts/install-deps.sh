@@ -14,6 +14,7 @@ PACKAGES=(
   verilator iverilog yosys nextpnr-ice40 fpga-icestorm  # RTL simulation and synthesis
   valgrind gnuplot-nox               # instruction-count benchmarks, plots
   libopenmpi-dev openmpi-bin         # distributed render and sweeps (make mpi, render --mpi)
+  clang libclang-rt-14-dev           # libFuzzer harnesses (make fuzz, tests/test_fuzz.sh)
 )
 
 missing=()

@@ -203,7 +203,7 @@ t_render_rays() {
   expect 0 "$BIN" render animated -o "$T/t15.png" --width 32 --height 24 --time 1.5
   cmp "$T/f45.png" "$T/t15.png"                       # frame 45 at 30 fps is t = 1.5 s
   expect 2 "$BIN" render animated --frame 3 --frames 1:2; one_line_error
-  expect 2 "$BIN" render room --max-depth 9; one_line_error
+  expect 5 "$BIN" render room --max-depth 9; one_line_error; has "limit ray-depth exceeded" "$T/err" # docs/limits.md
   expect 2 "$BIN" render room --precision fp64; one_line_error
   expect 2 "$BIN" render room --precision e9m40; one_line_error
   expect 2 "$BIN" render room --ground=1; one_line_error
@@ -257,7 +257,7 @@ t_reference() {
   expect 0 "$BIN" compare-hits room --width 64 --height 48 --json "$T/hits.json"
   has 'agreement (same triangle or both miss)' "$T/out"
   python3 -c "import json; d=json.load(open('$T/hits.json')); assert d['rays']==3072 and d['agreement']>0.99, d"
-  expect 2 "$BIN" reference room --max-depth 99; one_line_error
+  expect 5 "$BIN" reference room --max-depth 99; one_line_error; has "limit ray-depth exceeded" "$T/err"
   expect 2 "$BIN" reference room --bogus; one_line_error
   expect 2 "$BIN" compare-hits; one_line_error
   expect 3 "$BIN" reference "$T/missing.glb"; one_line_error

@@ -172,8 +172,8 @@ static void texel_axis(f24_t s, uint32_t n, uint32_t *i0, uint32_t *i1, uint32_t
 {
     const f24_t x = f24_sub(f24_mul(s, f24_from_i32((int32_t)n)), ratio(1, 2));
     int32_t i = f24_to_i32(x);
-    if (f24_lt(x, f24_from_i32(i)))
-        i -= 1; /* to_i32 rounds toward zero; this is floor */
+    if (f24_lt(x, f24_from_i32(i)) && i != INT32_MIN)
+        i -= 1; /* to_i32 rounds toward zero; this is floor (a saturated coordinate stays) */
     const f24_t f = f24_sub(x, f24_from_i32(i));
     const int32_t q = f24_to_i32(f24_add(f24_mul(f, f24_from_i32(256)), ratio(1, 2)));
     const int32_t m = i % (int32_t)n;

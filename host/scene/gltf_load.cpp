@@ -551,7 +551,9 @@ class Loader {
             const tinygltf::Animation &ga = m_.animations[ai];
             scene_animation &a = s_->animations[ai];
             std::snprintf(a.name, sizeof a.name, "%s", ga.name.c_str());
-            std::vector<scene_channel> chans;
+            // channels go straight into the scene, which owns their keys from then on: a later
+            // channel that fails leaves nothing behind that scene_free would not free
+            a.channels = alloc_array<scene_channel>(ga.channels.size());
             for (size_t ci = 0; ci < ga.channels.size(); ci++) {
                 const tinygltf::AnimationChannel &gc = ga.channels[ci];
                 const std::string what = "animation " + std::to_string(ai) + " channel " + std::to_string(ci);
@@ -588,17 +590,15 @@ class Loader {
                     if (!(t[k] > t[k - 1]))
                         fail(what + ": key times must increase");
                 c.n_keys = (uint32_t)t.size();
-                c.times = alloc_array<float>(t.size());
-                c.values = alloc_array<float>(v.size());
+                scene_channel &dst = a.channels[a.n_channels++] = c;
+                dst.times = alloc_array<float>(t.size());
+                dst.values = alloc_array<float>(v.size());
                 for (size_t k = 0; k < t.size(); k++)
-                    c.times[k] = (float)t[k];
+                    dst.times[k] = (float)t[k];
                 for (size_t k = 0; k < v.size(); k++)
-                    c.values[k] = (float)v[k];
-                a.duration = std::max(a.duration, c.times[c.n_keys - 1]);
-                chans.push_back(c);
+                    dst.values[k] = (float)v[k];
+                a.duration = std::max(a.duration, dst.times[dst.n_keys - 1]);
             }
-            a.n_channels = (uint32_t)chans.size();
-            a.channels = copy_array(chans);
         }
     }
 
@@ -626,6 +626,94 @@ class Loader {
 
 
 
+// Files a glTF may read: the file itself and files inside its own directory. tinygltf reads the
+// main file and every external buffer and image through these callbacks; a reference that
+// resolves (after "..", absolute paths and symlinks, realpath) outside the directory is refused,
+// so a hostile scene cannot make the loader read /etc/passwd or a sibling project's files.
+struct sandbox {
+    std::string dir;  // realpath of the glTF's directory, with a trailing '/'
+    std::string self; // realpath of the glTF file
+    std::string base; // the directory as tinygltf joins it with a URI (its GetBaseDir)
+    std::string refused;
+};
+
+std::string real_path(const std::string &p)
+{
+    char *r = realpath(p.c_str(), nullptr);
+    std::string out = r ? r : "";
+    std::free(r);
+    return out;
+}
+
+bool sandboxed_read(std::vector<unsigned char> *out, std::string *err, const std::string &file, void *user)
+{
+    sandbox *sb = static_cast<sandbox *>(user);
+    const std::string real = real_path(file);
+    if (!real.empty() && real != sb->self && real.compare(0, sb->dir.size(), sb->dir) != 0) {
+        sb->refused = file;
+        if (err)
+            *err += "refers to '" + file + "' outside its directory (refused)\n";
+        return false;
+    }
+    return tinygltf::ReadWholeFile(out, err, file, nullptr);
+}
+
+// tinygltf joins an absolute URI to the directory ("dir" + "/" + "/abs/x.bin"): refuse it by name.
+bool sandboxed_exists(const std::string &file, void *user)
+{
+    sandbox *sb = static_cast<sandbox *>(user);
+    const std::string joined = sb->base.empty() ? "" : sb->base + "/";
+    if (file.size() > joined.size() && file.compare(0, joined.size(), joined) == 0 && file[joined.size()] == '/') {
+        sb->refused = file.substr(joined.size());
+        return false;
+    }
+    return tinygltf::FileExists(file, nullptr);
+}
+
+// Texture dimensions from a PNG (IHDR) or JPEG (SOFn) header, read before anything is decoded.
+bool image_header_size(const unsigned char *b, int n, uint32_t *w, uint32_t *h)
+{
+    auto be = [b](int at, int bytes) {
+        uint32_t v = 0;
+        for (int i = 0; i < bytes; i++)
+            v = v << 8 | b[at + i];
+        return v;
+    };
+    if (n >= 24 && std::memcmp(b, "\x89PNG\r\n\x1a\n", 8) == 0 && std::memcmp(b + 12, "IHDR", 4) == 0) {
+        *w = be(16, 4), *h = be(20, 4);
+        return true;
+    }
+    if (n < 4 || b[0] != 0xFF || b[1] != 0xD8)
+        return false;
+    for (int at = 2; at + 9 <= n && b[at] == 0xFF;) { // JPEG segments up to the frame header
+        const int marker = b[at + 1];
+        if (marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC) {
+            *h = be(at + 5, 2), *w = be(at + 7, 2);
+            return true;
+        }
+        at += 2 + (int)be(at + 2, 2);
+    }
+    return false;
+}
+
+// Decodes an image (tinygltf's stb_image) only if its header announces at most
+// SCENE_MAX_TEXTURE_SIDE texels a side: a few bytes of PNG must not allocate gigabytes.
+bool bounded_image_loader(tinygltf::Image *image, const int index, std::string *err, std::string *warn, int req_w,
+                          int req_h, const unsigned char *bytes, int size, void *user)
+{
+    uint32_t w = 0, h = 0;
+    if (image_header_size(bytes, size, &w, &h) && (w > SCENE_MAX_TEXTURE_SIDE || h > SCENE_MAX_TEXTURE_SIDE)) {
+        if (err)
+            *err += "image " + std::to_string(index) + " is " + std::to_string(w) + "x" + std::to_string(h) +
+                    " texels, more than " + std::to_string(SCENE_MAX_TEXTURE_SIDE) + " a side (not decoded)\n";
+        return false;
+    }
+    return tinygltf::LoadImageData(image, index, err, warn, req_w, req_h, bytes, size, user);
+}
+
+// No '~' or $VARIABLE expansion of URIs (tinygltf's default runs wordexp on them).
+std::string no_expansion(const std::string &path, void *) { return path; }
+
 } // namespace
 
 extern "C" int scene_load_gltf(const char *path, scene *out, char *err, size_t errlen)
@@ -636,8 +724,19 @@ extern "C" int scene_load_gltf(const char *path, scene *out, char *err, size_t e
         tinygltf::Model model;
         std::string e, w;
         const std::string p(path);
+        const size_t slash = p.rfind('/');
+        sandbox sb{ real_path(slash == std::string::npos ? "." : p.substr(0, slash + 1)), real_path(p),
+                    slash == std::string::npos ? "" : p.substr(0, slash), "" };
+        if (sb.dir.empty() || sb.dir.back() != '/')
+            sb.dir += '/';
+        loader.SetImageLoader(bounded_image_loader, nullptr);
+        loader.SetFsCallbacks({ sandboxed_exists, no_expansion, sandboxed_read, tinygltf::WriteWholeFile, &sb });
         const bool ok = ends_with(p, ".glb") ? loader.LoadBinaryFromFile(&model, &e, &w, p)
                                              : loader.LoadASCIIFromFile(&model, &e, &w, p);
+        if (!ok && !sb.refused.empty()) {
+            set_error(err, errlen, p + ": refers to '" + sb.refused + "' outside its directory (refused)");
+            return -1;
+        }
         if (!ok) {
             set_error(err, errlen, p + ": " + (e.empty() ? "cannot load glTF" : first_line(e)));
             return -1;

@@ -141,6 +141,10 @@ typedef struct {
     uint32_t warnings;           /* unsupported features skipped while loading */
 } scene;
 
+/* The loader decodes no texture larger than this a side (16384^2 RGBA texels are 1 GB); the
+ * command line's texture-size limit (docs/limits.md) is at most this. */
+#define SCENE_MAX_TEXTURE_SIDE 16384u
+
 /* Loads a .gltf or .glb file and evaluates it at time 0. On failure returns -1 with a one-line
  * message in err (the scene is left empty). Unsupported features are skipped with a one-line
  * warning each on stderr (counted in scene.warnings). */

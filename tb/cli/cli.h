@@ -13,6 +13,7 @@ enum {
     SAARCOR_EXIT_USAGE = 2,    /* bad command line */
     SAARCOR_EXIT_INPUT = 3,    /* unreadable or invalid input, or an output that cannot be written */
     SAARCOR_EXIT_INTERNAL = 4, /* out of memory or another internal error */
+    SAARCOR_EXIT_LIMIT = 5,    /* a hard limit was exceeded (docs/limits.md; --limit NAME=N raises it) */
 };
 
 typedef struct {
@@ -34,6 +35,10 @@ int cmd_compare_hits(int argc, char **argv);
 int cmd_profile(int argc, char **argv);
 int cmd_stress(int argc, char **argv);
 int cmd_jobs(int argc, char **argv);
+
+/* Set only by the command-line fuzzer (tests/fuzz/fuzz_cli.c): every command returns right after
+ * parsing and checking its arguments, before it reads or writes a file or runs anything long. */
+extern int cli_parse_only;
 
 /* Prints "saarcor CMD: error: ..." on one line to stderr and returns SAARCOR_EXIT_USAGE. */
 int cli_usage_error(const char *cmd, const char *fmt, ...) __attribute__((format(printf, 2, 3)));

@@ -43,6 +43,8 @@ int cmd_compare(int argc, char **argv)
     }
     if (argc - optind != 2)
         return cli_usage_error("compare", "expected two images");
+    if (cli_parse_only)
+        return SAARCOR_EXIT_OK;
     img_compare_result r;
     char err[512];
     if (img_compare(argv[optind], argv[optind + 1], threshold, diff, &r, err, sizeof err) != 0) {

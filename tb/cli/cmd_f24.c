@@ -150,6 +150,8 @@ int cmd_f24gen(int argc, char **argv)
         return SAARCOR_EXIT_USAGE;
     if (!cli_parse_u64(argv[optind + 1], 0, 1ull << 40, &n))
         return cli_usage_error("f24gen", "bad vector count '%s'", argv[optind + 1]);
+    if (cli_parse_only)
+        return SAARCOR_EXIT_OK;
     FILE *out = path ? fopen(path, "w") : stdout;
     if (!out) {
         cli_error("f24gen", "cannot write '%s'", path);
@@ -242,6 +244,8 @@ int cmd_f24verify(int argc, char **argv)
     }
     if (optind != argc)
         return cli_usage_error("f24verify", "unexpected argument '%s'", argv[optind]);
+    if (cli_parse_only)
+        return SAARCOR_EXIT_OK;
 
     verify_row rows[2 * F24_OP_COUNT];
     int nrows = 0;

@@ -62,11 +62,15 @@ int cmd_gen(int argc, char **argv)
     if (list) {
         if (optind != argc)
             return cli_usage_error("gen", "unexpected argument '%s'", argv[optind]);
+        if (cli_parse_only)
+            return SAARCOR_EXIT_OK;
         list_generators(stdout);
         return SAARCOR_EXIT_OK;
     }
     if (argc - optind != 1)
         return cli_usage_error("gen", argc - optind ? "expected one generator name" : "missing generator name");
+    if (cli_parse_only)
+        return SAARCOR_EXIT_OK;
     const char *name = argv[optind];
     const scene_generator *g = scene_generator_find(name);
     if (!g) {

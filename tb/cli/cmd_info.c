@@ -146,7 +146,7 @@ int cmd_info(int argc, char **argv)
             continue;
         switch (c) {
         case 'f':
-            if (!cli_parse_u64(optarg, 1, 100000, &v))
+            if (!cli_parse_u64(optarg, 1, 1u << 30, &v)) /* limit frames: after the options */
                 return cli_usage_error("info", "bad --frames '%s'", optarg);
             io.frames = (uint32_t)v;
             break;
@@ -163,6 +163,10 @@ int cmd_info(int argc, char **argv)
     }
     if (argc - optind != 1)
         return cli_usage_error("info", "expected one SCENE");
+    if (limit_check(&o.lim, "info", LIMIT_FRAMES, io.frames, "--frames") != SAARCOR_EXIT_OK)
+        return SAARCOR_EXIT_LIMIT;
+    if (cli_parse_only)
+        return SAARCOR_EXIT_OK;
     o.scene = argv[optind];
 
     scene s;
@@ -170,11 +174,10 @@ int cmd_info(int argc, char **argv)
     if (rc != SAARCOR_EXIT_OK)
         return rc;
     char err[512];
-    mi_builder *b = mi_build(&s, &o.mi, err, sizeof err);
+    mi_builder *b = scene_opts_build(&o, "info", &s, &rc);
     if (!b) {
-        cli_error("info", "%s", err);
         scene_free(&s);
-        return SAARCOR_EXIT_INPUT;
+        return rc;
     }
     print_report(&s, b, &o);
     uint32_t n_words;

@@ -138,17 +138,17 @@ int cmd_profile(int argc, char **argv)
     }
     if (argc - optind != 1)
         return cli_usage_error("profile", "expected one SCENE");
+    if (cli_parse_only)
+        return SAARCOR_EXIT_OK;
     o.scene = argv[optind];
     scene s;
     int rc = scene_opts_load(&o, "profile", &s);
     if (rc != SAARCOR_EXIT_OK)
         return rc;
-    char err[512];
-    mi_builder *b = mi_build(&s, &o.mi, err, sizeof err);
+    mi_builder *b = scene_opts_build(&o, "profile", &s, &rc);
     if (!b) {
-        cli_error("profile", "%s", err);
         scene_free(&s);
-        return SAARCOR_EXIT_INPUT;
+        return rc;
     }
     uint32_t n_words;
     mi_profile p;

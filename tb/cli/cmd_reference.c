@@ -98,15 +98,15 @@ static double now(void)
 
 int ref_setup(const char *cmd, const scene_opts *o, scene *s, mi_builder **b, ref_scene *r)
 {
-    char err[512];
+    if (cli_parse_only) /* the command line fuzzer: stop before loading (callers return this code) */
+        return SAARCOR_EXIT_USAGE;
     int rc = scene_opts_load(o, cmd, s);
     if (rc != SAARCOR_EXIT_OK)
         return rc;
-    *b = mi_build(s, &o->mi, err, sizeof err); /* for the camera and the default light */
+    *b = scene_opts_build(o, cmd, s, &rc); /* for the camera and the default light */
     if (!*b) {
-        cli_error(cmd, "%s", err);
         scene_free(s);
-        return SAARCOR_EXIT_INPUT;
+        return rc;
     }
     if (ref_scene_build(r, s) != 0) {
         cli_error(cmd, "out of memory");
@@ -146,8 +146,8 @@ int cmd_reference(int argc, char **argv)
         case 'a': aov = optarg; break;
         case 'S': shadows = 0; break;
         case 'd':
-            if (!cli_parse_u64(optarg, 0, SHADE_MAX_DEPTH, &v))
-                return cli_usage_error("reference", "bad --max-depth '%s' (0..%u)", optarg, SHADE_MAX_DEPTH);
+            if (!cli_parse_u64(optarg, 0, 1000000, &v)) /* limit ray-depth: after the options */
+                return cli_usage_error("reference", "bad --max-depth '%s'", optarg);
             depth = (uint32_t)v;
             break;
         case 't':
@@ -161,6 +161,8 @@ int cmd_reference(int argc, char **argv)
     }
     if (argc - optind != 1)
         return cli_usage_error("reference", "expected one SCENE");
+    if (limit_check(&o.lim, "reference", LIMIT_RAY_DEPTH, depth, "--max-depth") != SAARCOR_EXIT_OK)
+        return SAARCOR_EXIT_LIMIT;
     o.scene = argv[optind];
     scene s;
     mi_builder *b;

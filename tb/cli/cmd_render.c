@@ -554,8 +554,8 @@ int cmd_render(int argc, char **argv)
                 return cli_usage_error("render", "bad --fps '%s'", optarg);
             break;
         case 'd':
-            if (!cli_parse_u64(optarg, 0, RGS_MAX_DEPTH, &v))
-                return cli_usage_error("render", "bad --max-depth '%s' (0..%u)", optarg, RGS_MAX_DEPTH);
+            if (!cli_parse_u64(optarg, 0, 1000000, &v)) /* limit ray-depth: after the options */
+                return cli_usage_error("render", "bad --max-depth '%s'", optarg);
             ro.cfg.max_depth = (uint32_t)v;
             break;
         case 'S': ro.cfg.shadows = 0; break;
@@ -602,6 +602,13 @@ int cmd_render(int argc, char **argv)
     }
     if (argc - optind != 1)
         return cli_usage_error("render", "expected one SCENE");
+    int rc = limit_check(&o.lim, "render", LIMIT_RAY_DEPTH, ro.cfg.max_depth, "--max-depth");
+    if (rc == SAARCOR_EXIT_OK)
+        rc = limit_check(&o.lim, "render", LIMIT_FRAMES, ro.last - ro.first + 1ull, "the frame count of --frames");
+    if (rc != SAARCOR_EXIT_OK)
+        return rc;
+    if (cli_parse_only)
+        return SAARCOR_EXIT_OK;
     if (prec_e != F24_EXP_BITS || prec_m != F24_MAN_BITS)
         return run_format(prec_e, prec_m, argv - 1);
     o.scene = argv[optind];
@@ -622,15 +629,14 @@ int cmd_render(int argc, char **argv)
     if (ro.sequence || ro.one_frame)
         o.time = ro.first / ro.fps;
     scene s;
-    int rc = scene_opts_load(&o, "render", &s);
+    rc = scene_opts_load(&o, "render", &s);
     if (rc != SAARCOR_EXIT_OK)
         return rc;
     char err[512];
-    mi_builder *b = mi_build(&s, &o.mi, err, sizeof err);
+    mi_builder *b = scene_opts_build(&o, "render", &s, &rc);
     if (!b) {
-        cli_error("render", "%s", err);
         scene_free(&s);
-        return SAARCOR_EXIT_INPUT;
+        return rc;
     }
     ro.cc.host_threads = ro.threads;
     if (ro.capture && capture_start(ro.capture, ro.capture_limit, err, sizeof err) != 0) {

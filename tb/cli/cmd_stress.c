@@ -97,6 +97,8 @@ int cmd_stress(int argc, char **argv)
     }
     if (optind != argc)
         return cli_usage_error("stress", "unexpected argument '%s'", argv[optind]);
+    if (cli_parse_only)
+        return SAARCOR_EXIT_OK;
     static stress_result r[MAX_CASES];
     if (list) {
         const int n = stress_describe(r, MAX_CASES);

@@ -29,6 +29,8 @@ static const saarcor_cmd commands[] = {
 };
 #define N_COMMANDS (sizeof commands / sizeof commands[0])
 
+int cli_parse_only;
+
 static void usage(FILE *out)
 {
     fprintf(out, "usage: saarcor [--help] COMMAND [ARGS]\n\n"

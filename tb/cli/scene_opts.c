@@ -14,6 +14,7 @@ void scene_opts_default(scene_opts *o)
 {
     memset(o, 0, sizeof *o);
     mi_params_default(&o->mi);
+    limits_default(&o->lim);
     o->mi.up[1] = 1.0;
     o->mi.fov_degrees = 45.0;
 }
@@ -78,7 +79,7 @@ int scene_opts_parse(scene_opts *o, const char *cmd, int c, const char *arg)
             o->mi.bottom.empty_bonus = o->mi.top.empty_bonus = d;
         return r;
     case 4:
-        if ((r = count(cmd, "kd-max-depth", arg, 0, 64, &u)) > 0)
+        if ((r = count(cmd, "kd-max-depth", arg, 0, 1000, &u)) > 0) /* limit kd-depth: scene_opts_load */
             o->mi.bottom.max_depth = o->mi.top.max_depth = u;
         return r;
     case 5:
@@ -86,8 +87,8 @@ int scene_opts_parse(scene_opts *o, const char *cmd, int c, const char *arg)
             o->mi.bottom.leaf_size = o->mi.top.leaf_size = u;
         return r;
     case 6: return count(cmd, "top-bins", arg, 2, 1024, &o->mi.top.bins);
-    case 7: return count(cmd, "width", arg, 1, 16384, &o->mi.width);
-    case 8: return count(cmd, "height", arg, 1, 16384, &o->mi.height);
+    case 7: return count(cmd, "width", arg, 1, 1u << 30, &o->mi.width); /* limits: scene_opts_load */
+    case 8: return count(cmd, "height", arg, 1, 1u << 30, &o->mi.height);
     case 9: return number(cmd, "time", arg, 0, 1e9, &o->time);
     case 10:
         if ((r = number(cmd, "max-condition", arg, 1, 1e30, &d)) > 0)
@@ -100,6 +101,7 @@ int scene_opts_parse(scene_opts *o, const char *cmd, int c, const char *arg)
     case 15: return number(cmd, "fov", arg, 1, 179, &o->mi.fov_degrees);
     case 16: o->ground = 1; return 1;
     case 17: o->mi.skip = 0; return 1;
+    case 18: return limits_parse(&o->lim, cmd, arg) ? 1 : -1;
     default: return 0;
     }
 }
@@ -108,6 +110,9 @@ int scene_opts_load(const scene_opts *o, const char *cmd, scene *s)
 {
     char err[512];
     memset(s, 0, sizeof *s);
+    int rc = limits_check_params(&o->lim, cmd, &o->mi);
+    if (rc != SAARCOR_EXIT_OK)
+        return rc;
     const scene_generator *g = access(o->scene, F_OK) != 0 ? scene_generator_find(o->scene) : NULL;
     if (g) {
         const scene_gen_params gp = { 1, 0 };
@@ -126,5 +131,23 @@ int scene_opts_load(const scene_opts *o, const char *cmd, scene *s)
         scene_free(s);
         return SAARCOR_EXIT_INTERNAL;
     }
-    return SAARCOR_EXIT_OK;
+    if ((rc = limits_check_scene(&o->lim, cmd, s)) != SAARCOR_EXIT_OK)
+        scene_free(s);
+    return rc;
+}
+
+mi_builder *scene_opts_build(const scene_opts *o, const char *cmd, const scene *s, int *rc)
+{
+    char err[512];
+    mi_builder *b = mi_build(s, &o->mi, err, sizeof err);
+    if (!b) {
+        cli_error(cmd, "%s", err);
+        *rc = SAARCOR_EXIT_INPUT;
+        return NULL;
+    }
+    if ((*rc = limits_check_build(&o->lim, cmd, mi_get_stats(b))) != SAARCOR_EXIT_OK) {
+        mi_free(b);
+        return NULL;
+    }
+    return b;
 }

@@ -8,6 +8,7 @@
 
 #include <getopt.h>
 
+#include "cli_limits.h"
 #include "memimage.h"
 #include "scene.h"
 
@@ -22,7 +23,8 @@
     { "max-condition", required_argument, NULL, SCENE_OPT_BASE + 10 }, { "camera", required_argument, NULL, SCENE_OPT_BASE + 11 }, \
     { "eye", required_argument, NULL, SCENE_OPT_BASE + 12 }, { "at", required_argument, NULL, SCENE_OPT_BASE + 13 }, \
     { "up", required_argument, NULL, SCENE_OPT_BASE + 14 }, { "fov", required_argument, NULL, SCENE_OPT_BASE + 15 }, \
-    { "ground", no_argument, NULL, SCENE_OPT_BASE + 16 }, { "general", no_argument, NULL, SCENE_OPT_BASE + 17 }
+    { "ground", no_argument, NULL, SCENE_OPT_BASE + 16 }, { "general", no_argument, NULL, SCENE_OPT_BASE + 17 }, \
+    { "limit", required_argument, NULL, SCENE_OPT_BASE + 18 }
 
 /* `info` also accepts the kd-tree depth as --max-depth (render and reference use that name for
  * the ray depth). */
@@ -45,6 +47,8 @@
     "  --leaf-size L         never split nodes with at most L primitives (default 1)\n"               \
     "  --top-bins N          bins of the top-level SAH (default 32)\n"                                 \
     "  --max-condition K     drop triangles whose shape condition number exceeds K (default 2^24)\n" \
+    "  --limit NAME=N        raise (or lower) a hard limit: triangles, instances, kd-nodes, kd-depth,\n" \
+    "                        texture-size, ray-depth, width, height, frames (docs/limits.md)\n"     \
     "  --general             the general pipeline: ignore the scene profile (no any-hit shadow rays,\n" \
     "                        no single-object shortcut, ...; same image, more work; saarcor profile)\n"
 
@@ -53,6 +57,7 @@ typedef struct {
     double time;
     int ground;          /* --ground: add scene_add_ground's plane */
     mi_params mi;
+    limits lim;          /* --limit */
 } scene_opts;
 
 void scene_opts_default(scene_opts *o);
@@ -61,8 +66,13 @@ void scene_opts_default(scene_opts *o);
  * option, -1 after printing a usage error (the command then exits with SAARCOR_EXIT_USAGE). */
 int scene_opts_parse(scene_opts *o, const char *cmd, int c, const char *arg);
 
-/* Loads (or generates) the scene and evaluates it at o->time. Returns a SAARCOR_EXIT_* code;
- * errors are printed as one line. */
+/* Loads (or generates) the scene and evaluates it at o->time, checking the hard limits of the
+ * options (image size, kd depth) before and of the scene (triangles, instances, textures) after.
+ * Returns a SAARCOR_EXIT_* code; errors are printed as one line. */
 int scene_opts_load(const scene_opts *o, const char *cmd, scene *s);
+
+/* mi_build with o->mi, then the limits of the result (kd nodes, depth). NULL after printing the
+ * error, with the exit code in *rc. */
+mi_builder *scene_opts_build(const scene_opts *o, const char *cmd, const scene *s, int *rc);
 
 #endif

@@ -421,6 +421,10 @@ static int make_acne(const case_def *c, const char *shared, geom_rng *rng, world
         return 0;
     uint32_t nw, k = 0;
     const uint32_t *mem = mi_words(b, &nw);
+    if (mi_validate(mem, nw, err, sizeof err) != 0) { /* the device model reads only validated images */
+        mi_free(b);
+        return 0;
+    }
     const double eps = 2.0 / 1024 * c->param;
     trace_counters tc;
     memset(&tc, 0, sizeof tc);
@@ -569,6 +573,8 @@ static int world_build(world *w, uint32_t flags)
         return -1;
     uint32_t n;
     w->mem = mi_words(w->b, &n);
+    if (mi_validate(w->mem, n, err, sizeof err) != 0) /* the device model reads only validated images */
+        return -1;
     if (ref_scene_build(&w->ref, &w->s) != 0)
         return -1;
     if (!(flags & STRESS_MULTI))
