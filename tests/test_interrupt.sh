@@ -34,7 +34,7 @@ stop_after() {
 
 check_sequence() { # signal, expected exit code, output stem
   local sig=$1 want=$2 stem=$3
-  stop_after "$sig" "$T/${stem}_0002.png" animated --width 160 --height 120 --threads 2 --frames 0:100000 \
+  stop_after "$sig" "$T/${stem}_0002.png" animated --width 160 --height 120 --threads 2 --frames 0:99999 \
     --stats "$T/$stem.json" -o "$T/$stem.png"
   [[ $(cat "$T/rc") == "$want" ]] || { echo "exit $(cat "$T/rc"), expected $want"; cat "$T/err"; return 1; }
   [[ $(wc -l <"$T/err") == 1 ]] || { echo "expected one line on stderr:"; cat "$T/err"; return 1; }
