@@ -1,7 +1,8 @@
 # saarcor top-level Makefile.
 #   make            build build/saarcor (fp24 format e7m16)
 #   make run        install missing Debian packages, build, run the default job
-#   make test       install missing packages, build, run all tests (+ sanitizer build of the unit tests)
+#   make test       install missing packages, build, run all tests (+ sanitizer build of the unit tests),
+#                   the longest first, as many at a time as there are cores (tests/run.sh)
 #   make asan       build and run the unit tests with AddressSanitizer + UndefinedBehaviorSanitizer
 #   make verify-fp  fp24 verification against MPFR: 10^7 random vectors per op and width, exhaustive unary
 #   make bench      all benchmarks -> build/bench/ (bench-fp: fp24 throughput; bench-build: kd-tree and
@@ -197,9 +198,10 @@ test: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) robust
 	@$(MAKE) --no-print-directory -j$$(nproc) fuzz-build
 	@bash tests/run.sh --report $(BUILD)/test-report.txt \
-	  $(UNIT_TESTS) tests/test_cli.sh tests/test_limits.sh tests/test_fuzz.sh tests/test_golden.sh tests/test_rtl.sh tests/test_hls.sh tests/test_stress.sh tests/test_mpi.sh \
-	  tests/test_determinism.sh tests/test_interrupt.sh tests/test_longrun.sh tests/test_memcheck.sh \
-	  $(patsubst $(BUILD)/%,build/asan/%,$(UNIT_TESTS)) tests/test_golden_asan.sh
+	  tests/test_cli.sh tests/test_golden_asan.sh tests/test_golden.sh tests/test_mpi.sh tests/test_hls.sh \
+	  tests/test_determinism.sh tests/test_memcheck.sh tests/test_limits.sh tests/test_rtl.sh tests/test_longrun.sh \
+	  tests/test_interrupt.sh tests/test_fuzz.sh tests/test_stress.sh \
+	  $(UNIT_TESTS) $(patsubst $(BUILD)/%,build/asan/%,$(UNIT_TESTS))
 
 # ---- fuzzing: libFuzzer harnesses of tests/fuzz/ (tests/fuzz/README.md) ----------------------------
 # Everything is compiled again with clang, ASan, UBSan and the fuzzer's coverage instrumentation
