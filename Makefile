@@ -146,7 +146,7 @@ $(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS) $(call fmt_objs,$
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
 
 
-.PHONY: fuzz fuzz-build all mpi bench-mpi widths deps run test unit-tests test-programs asan verify-fp hls-check hls-vectors bench bench-skip bench-longrun bench-fp bench-build bench-render bench-accuracy bench-cycle bench-precision bench-peers results robust stress rtl-lint rtl-test synth clean
+.PHONY: fuzz fuzz-build fuzz-replay all mpi bench-mpi widths deps run test unit-tests test-programs asan verify-fp hls-check hls-vectors bench bench-skip bench-longrun bench-fp bench-build bench-render bench-accuracy bench-cycle bench-precision bench-peers results robust stress rtl-lint rtl-test synth clean
 all: $(BUILD)/saarcor $(BUILD)/w/e8m23/saarcor $(if $(MPICC),$(BUILD)/libsaarcor_mpi.so)
 
 # ---- MPI: the work distributor that `render --mpi` and `jobs --mpi` dlopen (docs/mpi.md) -------
@@ -196,7 +196,7 @@ test: deps
 	@$(MAKE) --no-print-directory $(BUILD)/rtl/$(DEFAULT_FMT)/tb_f24_ops $(BUILD)/rtl/$(DEFAULT_FMT)/tb_units
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 test-programs
 	@$(MAKE) --no-print-directory -j$$(nproc) robust
-	@$(MAKE) --no-print-directory -j$$(nproc) fuzz-build
+	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 fuzz-replay
 	@bash tests/run.sh --report $(BUILD)/test-report.txt \
 	  tests/test_cli.sh tests/test_golden_asan.sh tests/test_golden.sh tests/test_mpi.sh tests/test_hls.sh \
 	  tests/test_determinism.sh tests/test_memcheck.sh tests/test_limits.sh tests/test_rtl.sh tests/test_longrun.sh \
@@ -239,6 +239,28 @@ $(FUZZ_DIR)/corpus/.stamp: $(BUILD)/saarcor tests/fuzz/corpus.sh tests/fuzz/bund
 	@touch $@
 
 fuzz-build: $(FUZZ_TARGETS) $(FUZZ_DIR)/corpus/.stamp
+
+# make test's regression run of the same harnesses (tests/test_fuzz.sh): linked with a main that
+# replays input files (tests/fuzz/replay_main.c) and this build's objects (build/asan: ASan+UBSan),
+# so no clang build of everything is needed; the seed corpus as for make fuzz
+REPLAY_DIR := $(BUILD)/fuzz-replay
+REPLAY_TARGETS := $(patsubst tests/fuzz/%.c,$(REPLAY_DIR)/%,$(wildcard tests/fuzz/fuzz_*.c))
+REPLAY_CLI := $(filter-out $(BUILD)/obj/$(DEFAULT_FMT)/tb/cli/main.o,$(patsubst %.c,$(BUILD)/obj/$(DEFAULT_FMT)/%.o,$(CLI)))
+$(BUILD)/obj/host/tests/fuzz/%.o: CFLAGS += -Itests
+$(REPLAY_DIR)/cli_main.o: tb/cli/main.c $(BUILD)/version.h
+	@mkdir -p $(@D)
+	@echo "  CC    $@"
+	$(Q)$(CC) $(CFLAGS) $(SIM_FLAGS) $(INCLUDES) -I$(BUILD) -Dmain=saarcor_main -c $< -o $@
+$(REPLAY_DIR)/fuzz_cli: $(REPLAY_DIR)/cli_main.o $(REPLAY_CLI)
+$(REPLAY_DIR)/fuzz_cli: REPLAY_WRAP := $(CAPTURE_WRAP)
+$(REPLAY_TARGETS): $(REPLAY_DIR)/%: $(BUILD)/obj/host/tests/fuzz/%.o $(BUILD)/obj/host/tests/fuzz/replay_main.o $(HOST_OBJS) $(call fmt_objs,$(DEFAULT_FMT))
+	@mkdir -p $(@D)
+	@echo "  LD    $@"
+	$(Q)$(CXX) $(SANFLAGS) $^ -o $@ $(REPLAY_WRAP) $(LDLIBS) -lpthread
+$(REPLAY_DIR)/corpus/.stamp: $(BUILD)/saarcor tests/fuzz/corpus.sh tests/fuzz/bundle.py tests/fuzz/cli_seeds.txt
+	@bash tests/fuzz/corpus.sh $(BUILD)/saarcor $(REPLAY_DIR)/corpus
+	@touch $@
+fuzz-replay: $(REPLAY_TARGETS) $(REPLAY_DIR)/corpus/.stamp
 
 fuzz: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) fuzz-build

@@ -25,7 +25,7 @@
 #include "memimage.h"
 #include "scenes.h"
 
-enum { VARIANTS = 3000 };
+enum { VARIANTS = 1500 };
 
 static uint64_t rng;
 static uint32_t next32(void)

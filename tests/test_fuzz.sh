@@ -6,7 +6,7 @@
 # or leak fails the case. Prints cmocka-style lines for tests/run.sh.
 set -u
 cd "$(dirname "$0")/.."
-F=${SAARCOR_FUZZ_DIR:-build/fuzz}
+F=${SAARCOR_FUZZ_DIR:-build/asan/fuzz-replay} # make fuzz-build: SAARCOR_FUZZ_DIR=build/fuzz
 T=$(mktemp -d /tmp/saarcor-test-fuzz-XXXXXX)
 trap 'rm -rf "$T"' EXIT
 source tests/case_lib.sh
@@ -23,13 +23,13 @@ run_inputs() {
 
 corpus_case() { # target
   local files=("$F/corpus/$1"/*)
-  [[ -e ${files[0]} ]] || { echo "no seed corpus in $F/corpus/$1 (make fuzz-build)"; return 1; }
+  [[ -e ${files[0]} ]] || { echo "no seed corpus in $F/corpus/$1 (BUILD=build/asan SAN=1 make fuzz-replay)"; return 1; }
   run_inputs "$1" "${files[@]}"
 }
 
 for bin in "$F"/fuzz_gltf "$F"/fuzz_memimage "$F"/fuzz_cli; do
   if [[ ! -x $bin ]]; then
-    echo "[ RUN      ] $(basename "$bin")"; echo "[  SKIPPED ] $(basename "$bin"): not built (make fuzz-build needs clang)"
+    echo "[ RUN      ] $(basename "$bin")"; echo "[  SKIPPED ] $(basename "$bin"): not built (make test builds it: BUILD=build/asan SAN=1 fuzz-replay)"
     continue
   fi
   target=${bin##*/fuzz_}
