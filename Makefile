@@ -85,17 +85,24 @@ CAPTURE_WRAP := $(addprefix -Wl$(comma)--wrap=,xform_point xform_vector isect_un
 # per-format objects: everything that depends on the fp24 parameters
 fp_objs = $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(HLS_FP24) $(TB_FP))
 fmt_objs = $(call fp_objs,$(1)) $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(MEMIMAGE) $(HLS_UNITS) $(CYCLE) $(REF))
-HOST_OBJS := $(patsubst %.cpp,$(BUILD)/obj/host/%.o,$(HOST_CXX)) $(patsubst %.c,$(BUILD)/obj/host/%.o,$(HOST_C))
+# HOST_BUILD: where the host objects (loader, kd-trees, images; neither number format nor
+# SIM_ARITH nor CFG_FLAGS changes them) are taken from; make test's hw and robust builds share
+# those of the main build instead of compiling the C++ loader again
+HOST_BUILD ?= $(BUILD)
+HOST_OBJS := $(patsubst %.cpp,$(HOST_BUILD)/obj/host/%.o,$(HOST_CXX)) $(patsubst %.c,$(HOST_BUILD)/obj/host/%.o,$(HOST_C))
 
-$(BUILD)/obj/host/%.o: %.cpp
-	@mkdir -p $(@D)
-	@echo "  CXX   $@"
-	$(Q)$(CXX) $(CXXFLAGS) $(INCLUDES) -c $< -o $@
+define HOST_RULES
+$(1)/obj/host/%.o: %.cpp
+	@mkdir -p $$(@D)
+	@echo "  CXX   $$@"
+	$(Q)$$(CXX) $$(CXXFLAGS) $$(INCLUDES) -c $$< -o $$@
 
-$(BUILD)/obj/host/%.o: %.c
-	@mkdir -p $(@D)
-	@echo "  CC    $@"
-	$(Q)$(CC) $(CFLAGS) $(INCLUDES) -c $< -o $@
+$(1)/obj/host/%.o: %.c
+	@mkdir -p $$(@D)
+	@echo "  CC    $$@"
+	$(Q)$$(CC) $$(CFLAGS) $$(INCLUDES) -c $$< -o $$@
+endef
+$(foreach d,$(sort $(BUILD) $(HOST_BUILD)),$(eval $(call HOST_RULES,$(d))))
 
 define FORMAT_RULES
 $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(SIM_SRCS)): CFLAGS += $(SIM_FLAGS)
@@ -191,7 +198,7 @@ O0_BUILD := $(BUILD)/O0
 
 test: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) test-programs mpi $(BUILD)/valgrind/hwy_timer_shim.so
-	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(BUILD)/hw SIM_ARITH=hw $(BUILD)/hw/saarcor
+	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(BUILD)/hw HOST_BUILD=$(BUILD) SIM_ARITH=hw $(BUILD)/hw/saarcor
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(O0_BUILD) OPT='-O0 -g' $(O0_BUILD)/saarcor
 	@$(MAKE) --no-print-directory $(BUILD)/rtl/$(DEFAULT_FMT)/tb_f24_ops $(BUILD)/rtl/$(DEFAULT_FMT)/tb_units
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 test-programs
@@ -385,7 +392,7 @@ bench-skip: deps
 # the robust edge option (hls/config.h SAARCOR_CFG_EDGE_EPS, docs/stress.md) in its own build folder
 ROBUST_EDGE_EPS := 8
 robust:
-	@$(MAKE) --no-print-directory BUILD=$(BUILD)/robust CFG_FLAGS=-DSAARCOR_CFG_EDGE_EPS=$(ROBUST_EDGE_EPS) $(BUILD)/robust/saarcor
+	@$(MAKE) --no-print-directory BUILD=$(BUILD)/robust HOST_BUILD=$(BUILD) CFG_FLAGS=-DSAARCOR_CFG_EDGE_EPS=$(ROBUST_EDGE_EPS) $(BUILD)/robust/saarcor
 
 # the numerical stability stress suite at every width and with the robust option -> build/bench/stress.md
 stress: deps
