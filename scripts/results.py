@@ -17,7 +17,7 @@ DOCS = os.path.join(ROOT, "docs")
 REPORTS = [("fp", "make bench-fp"), ("build", "make bench-build"), ("render", "make bench-render"),
            ("accuracy", "make bench-accuracy"), ("cycle", "make bench-cycle"), ("skip", "make bench-skip"),
            ("stress", "make stress"), ("precision", "make bench-precision"), ("peers", "make bench-peers"),
-           ("longrun", "make bench-longrun")]
+           ("longrun", "make bench-longrun"), ("mpi", "make bench-mpi")]
 
 
 def with_run_column(text, run):
