@@ -2,7 +2,7 @@
 """make results: docs/results.md from the benchmark reports in build/bench/ (generated, do not edit).
 
 Collects every report the bench targets wrote (fp, build, render, accuracy, cycle, skip, stress,
-precision, peers, longrun), in that order, and appends to each table row a `run` column naming the
+precision, peers, longrun, mpi), in that order, and appends to each table row a `run` column naming the
 machine, the command that made it and the date of the report file, so every number says where it
 comes from. Plots (SVG) referenced by a report are copied to docs/results/. Reports that do not
 exist in build/bench/ keep their section from the previous docs/results.md (each section is
