@@ -19,6 +19,7 @@
 
 #include "f24.h"
 #include "f24_fast.h"
+#include "image_probe.h"
 #include "memimage.h"
 #include "rgs.h"
 #include "trace.h"
@@ -361,24 +362,6 @@ static void corruption(void **state)
     scene_free(&s);
 }
 
-/* Primary packets of a 16x12 image traced with every traversal algorithm: with a validated
- * image every read stays inside it (AddressSanitizer watches the heap copy). */
-static void trace_all_algorithms(const uint32_t *w)
-{
-    for (uint32_t y = 0; y < 12; y += 2)
-        for (uint32_t x = 0; x < 16; x += 2)
-            for (uint32_t a = 0; a < TRAV_KINDS; a++) {
-                ray_packet rp;
-                rgs_primary(w, x, y, &rp);
-                trace_state st;
-                unit_op op;
-                trace_counters c = { 0 };
-                trace_begin(&rp, trace_flags_of(trace_profile(w), 0) | a << TRACE_TRAV_SHIFT, &st);
-                for (uint32_t k = 0; k < 100000 && trace_step(w, &st, &op, &c); k++)
-                    ;
-            }
-}
-
 /* Set word at of a copy of good to v: the validator must reject it. */
 static void rejects(const uint32_t *good, uint32_t n, uint32_t at, uint32_t v, const char *what)
 {
@@ -394,7 +377,7 @@ static void rejects(const uint32_t *good, uint32_t n, uint32_t at, uint32_t v, c
 
 /* An image with ropes and grids at both levels validates; ropes out of range, missing rope
  * records, bad grid sizes and cell lists are rejected; random corruption either fails
- * validation or traces safely with every traversal algorithm. */
+ * validation or renders safely with every traversal algorithm (image_probe.h). */
 static void accelerators(void **state)
 {
     (void)state;
@@ -407,7 +390,7 @@ static void accelerators(void **state)
     if (mi_validate(good, n, err, sizeof err) != 0)
         fail_msg("%s", err);
     assert_int_equal(good[MI_H_FORMAT] >> MI_ACCEL_SHIFT, MI_ACCEL_ALL);
-    trace_all_algorithms(good);
+    image_probe(good, 4); /* every traversal algorithm over the image */
     const uint32_t *obj = good + good[MI_H_REGION_TABLE + 2 * MI_R_OBJECTS];
     const uint32_t grid = obj[MI_O_GRID], top_grid = good[MI_H_REGION_TABLE + 2 * MI_R_TOP_GRID];
     const uint32_t top_nodes = good[MI_H_REGION_TABLE + 2 * MI_R_TOP_NODES];
@@ -434,7 +417,7 @@ static void accelerators(void **state)
         if (mi_validate(w, n, err, sizeof err) != 0)
             rejected++;
         else
-            trace_all_algorithms(w);
+            image_probe(w, 4);
     }
     print_message("accelerators: %u of 400 corrupted images rejected, the rest traced safely\n", rejected);
     assert_true(rejected > 0 && rejected < 400);
