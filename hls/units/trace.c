@@ -14,7 +14,7 @@ enum {
     H_FORMAT = 2, H_OBJECTS = 6, H_INSTANCES = 7, H_TOP_NODES = 11, H_SCENE_BOUNDS = 12, H_REGIONS = 18,
     R_OBJECTS = 5, R_CAMERA = 6, R_INSTANCES = 8, R_TOP_NODES = 9, R_TOP_LISTS = 10, R_TOP_GRID = 11,
     CAM_PROFILE = 3, OBJ_WORDS = 16, O_NODES = 0, O_LISTS = 1, O_TRIANGLES = 2, O_BOUNDS = 8, O_GRID = 14,
-    INST_WORDS = 16, INST_READ = 13, OBJ_READ = 14, TRI_WORDS = 12,
+    INST_WORDS = 16, INST_READ = 14, INST_FLAGS = 13, INST_IDENTITY = 1, OBJ_READ = 14, TRI_WORDS = 12,
 };
 
 /* Next operation of a packet. */
@@ -398,32 +398,45 @@ static void op_list(const uint32_t *mem, trace_state *s, unit_op *op, trace_coun
     }
 }
 
-/* Transformation unit: the rays that need an instance into its object space (path d). */
+static void inst_clip(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c);
+
+/* Transformation unit: the rays that need an instance into its object space (path d). An
+ * instance flagged as the identity (static geometry the host merged into world space) needs no
+ * transformation: its rays pass through as wiring (xform_identity, the bits the transformation
+ * would give), and the traversal unit clips them to the object at once, in the same operation. */
 static void op_inst_xform(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
 {
     const uint32_t ia = region_start(mem, R_INSTANCES) + INST_WORDS * s->inst;
     const f24_affine w2o = f24_affine_load(mem, ia);
+    const int identity = mem[ia + INST_FLAGS] & INST_IDENTITY;
     s->obj = region_start(mem, R_OBJECTS) + OBJ_WORDS * mem[ia + 12];
-    op_set(op, UNIT_XFORM, xform_slots(s->rays.o, s->need));
-    op_read(op, c, MEM_MATRICES, ia, INST_READ);  /* matrix and object index */
+    op_set(op, identity ? UNIT_TRAV : UNIT_XFORM, identity ? 1u : xform_slots(s->rays.o, s->need));
+    op_read(op, c, MEM_MATRICES, ia, INST_READ);  /* matrix, object index and flags */
     op_read(op, c, MEM_MATRICES, s->obj, obj_read(s->flags)); /* object descriptor: tree, triangles, bounds */
-    c->transformations += op->slots;
+    c->transformations += identity ? 0u : op->slots;
 to_object_space:
     for (int i = 0; i < TRACE_PACKET; i++) {
         if (!bit(s->need, i))
             continue;
-        s->o[i] = xform_point(&w2o, s->rays.o[i]);
-        s->d[i] = xform_vector(&w2o, s->rays.d[i]);
+        s->o[i] = identity ? xform_identity(&w2o, s->rays.o[i], 1) : xform_point(&w2o, s->rays.o[i]);
+        s->d[i] = identity ? xform_identity(&w2o, s->rays.d[i], 0) : xform_vector(&w2o, s->rays.d[i]);
     }
     s->phase = TP_INST_CLIP;
+    if (identity)
+        inst_clip(mem, s, op, c);
 }
 
 /* Traversal unit: clip the object-space rays to the object's bounds and start its tree (path b). */
 static void op_inst_clip(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
 {
+    op_set(op, UNIT_TRAV, 1);
+    inst_clip(mem, s, op, c);
+}
+
+static void inst_clip(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
+{
     f24_t tn[TRACE_PACKET], tf[TRACE_PACKET];
     uint32_t mask = s->need;
-    op_set(op, UNIT_TRAV, 1);
 object_rays:
     for (int i = 0; i < TRACE_PACKET; i++) {
         tn[i] = F24_POS_INF;

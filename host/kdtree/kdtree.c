@@ -7,7 +7,8 @@
  * leaf cost C_i * n. A node also becomes a leaf if n <= leaf_size or it is at max_depth (root:
  * depth 0; automatic: round(8 + 1.3 log2(count)), at most 64). A box of zero area (a segment) uses
  * length ratios instead, the limit of thin boxes. Every split lies strictly inside its node box,
- * so no input can loop: recursion ends at max_depth at the latest.
+ * except a split on a face of the box that separates the primitives lying flat in that face
+ * (consider_face), so no input can loop: recursion ends at max_depth at the latest.
  *
  * Exact mode (bins == 0), after Wald & Havran, "On building fast kd-trees for ray tracing, and
  * on doing that in O(N log N)" (2006). Each primitive contributes per axis a start and an end
@@ -235,6 +236,24 @@ static void consider(const axis_terms *t, double q, uint32_t nl, uint32_t np, ui
         *best = (split){ c, t->axis, q, left <= right };
 }
 
+/* A plane on a face of the node box that np of its n primitives lie in (walls, floors and table
+ * tops at the edge of their node): the flat cell on the face takes those, the rest keeps the
+ * whole box. Rays then meet the flat primitives only where they reach the face, instead of in
+ * every leaf along the face; a strictly interior plane can never separate them. The flat side
+ * has no volume, so it is never split again on this axis, and the other side holds fewer
+ * primitives than the node (none if all lie in the face: an empty cell the rays skip): the
+ * recursion still ends (at max_depth at the latest). */
+static void consider_face(const axis_terms *t, double q, uint32_t np, uint32_t n, split *best)
+{
+    if (np == 0)
+        return;
+    const int at_lo = q == t->lo;
+    const double flat = t->base * t->inv, whole = 1.0;
+    const double c = split_cost(t, at_lo ? flat : whole, at_lo ? whole : flat, at_lo ? np : n - np, at_lo ? n - np : np);
+    if (c < best->cost)
+        *best = (split){ c, t->axis, q, at_lo };
+}
+
 /* consider() for the candidates q[0..m) in order, m <= CHUNK, with counts nl, np, nr: the same
  * arithmetic, but the costs of all candidates first, without branches (an empty side scales the
  * cost by 1 - empty_bonus, a non-empty one by 1, which is exact), so that they pipeline. */
@@ -395,7 +414,8 @@ static void sweep_axis(const builder *b, const prim_set *s, const aabb *box, uin
         if (i > 0 && ev[i].pos == ev[i - 1].pos)
             continue;
         const double q = snap(b, ev[i].pos);
-        if (!(q > last) || !strictly_inside(box, k, q))
+        const int face = box->hi[k] > box->lo[k] && (q == box->lo[k] || q == box->hi[k]);
+        if (!(q > last) || !(strictly_inside(box, k, q) || face))
             continue;
         last = q;
         while (j < m && ev[j].pos < q)
@@ -405,7 +425,10 @@ static void sweep_axis(const builder *b, const prim_set *s, const aabb *box, uin
             at[ev[j++].type]++;
         const uint32_t nl = below[EV_START] + below[EV_PLANAR];
         const uint32_t nr = s->n - below[EV_END] - below[EV_PLANAR] - at[EV_END] - at[EV_PLANAR];
-        consider(&t, q, nl, at[EV_PLANAR], nr, best);
+        if (face)
+            consider_face(&t, q, at[EV_PLANAR], s->n, best);
+        else
+            consider(&t, q, nl, at[EV_PLANAR], nr, best);
         for (int e = 0; e < EV_TYPES; e++)
             below[e] += at[e];
     }

@@ -7,6 +7,7 @@
  */
 #define _GNU_SOURCE /* clock_gettime, M_PI */
 #include "memimage.h"
+#include "mi_merge.h"
 #include "mi_profile.h"
 #include "trace.h"
 #include "shading_model.h"
@@ -22,7 +23,8 @@
 #include "f24_fast.h"
 
 typedef struct {
-    uint32_t mesh;
+    uint32_t mesh;      /* scene mesh, or with merged set the merged mesh (mi_merge) */
+    int merged;
     int dynamic;
     kd_tree tree;       /* leaf entries index valid[] = the object's triangles in the image */
     uint32_t *valid;    /* mesh triangle of each image triangle */
@@ -41,8 +43,11 @@ struct mi_builder {
     mi_object *obj;
     uint32_t n_textures;       /* textures stored (scene textures used as base colour) */
     uint32_t *texture_map;     /* scene texture -> image texture or MI_NONE */
-    uint32_t *inst_mesh;       /* per image instance: scene instance index */
+    uint32_t *inst_scene;      /* per image instance: scene instance index (MI_NONE: a merged object) */
+    uint32_t *inst_obj;        /* per image instance: image object */
     uint32_t n_inst;
+    mi_merge merge;            /* static geometry baked into world space */
+    uint32_t *mesh_obj;        /* per scene mesh: its image object, MI_NONE if not stored */
     uint32_t frame;
     kd_tree top;
     kd_rope *top_ropes;        /* with MI_ACCEL_ROPES */
@@ -73,6 +78,7 @@ void mi_params_default(mi_params *p)
     p->top.quantize = quantize;
     p->max_condition = 16777216.0; /* 2^24 */
     p->skip = PROFILE_ALL;
+    p->merge = 1;
 }
 
 uint32_t mi_accel_for(uint32_t traversal)
@@ -205,6 +211,12 @@ static void object_release(mi_object *o)
     o->valid = NULL;
     o->xf = NULL;
     o->n_valid = 0;
+}
+
+/* The geometry of an object: a scene mesh, or a merged world-space mesh. */
+static const scene_mesh *obj_mesh(const mi_builder *b, const scene *s, const mi_object *o)
+{
+    return o->merged ? &b->merge.meshes[o->mesh] : &s->meshes[o->mesh];
 }
 
 /* ---- accelerators beside the kd-trees: ropes and uniform grids (docs/traversal.md) -------- */
@@ -382,7 +394,7 @@ static void write_shading(uint32_t *w, const scene_mesh *m, uint32_t tri)
 /* Geometry block: nodes, leaf lists, triangle transformations, shading records. */
 static void object_write(mi_builder *b, const scene *s, const mi_object *o)
 {
-    const scene_mesh *m = &s->meshes[o->mesh];
+    const scene_mesh *m = obj_mesh(b, s, o);
     uint32_t *w = b->words + o->base;
     put_tree(w, w + MI_NODE_WORDS * o->tree.n_nodes, &o->tree, o->ropes);
     w += MI_NODE_WORDS * o->tree.n_nodes + list_words(&o->tree, o->ropes);
@@ -417,16 +429,23 @@ typedef struct {
     const mi_builder *b;
 } inst_source;
 
+/* The object-to-world map of image instance i: its scene instance's, or the identity of a
+ * merged object. */
+static affine instance_world(const mi_builder *b, const scene *s, uint32_t i)
+{
+    return b->inst_scene[i] == MI_NONE ? affine_identity() : s->instances[b->inst_scene[i]].world;
+}
+
 static aabb instance_bounds(const void *user, uint32_t i)
 {
     const inst_source *is = user;
-    const scene_instance *in = &is->s->instances[is->b->inst_mesh[i]];
-    const aabb *ob = &is->b->obj[in->mesh].tree.bounds;
+    const affine world = instance_world(is->b, is->s, i);
+    const aabb *ob = &is->b->obj[is->b->inst_obj[i]].tree.bounds;
     aabb r;
     for (int c = 0; c < 8; c++) {
         const double p[3] = { c & 1 ? ob->hi[0] : ob->lo[0], c & 2 ? ob->hi[1] : ob->lo[1], c & 4 ? ob->hi[2] : ob->lo[2] };
         double q[3];
-        affine_apply_point(&in->world, p, q);
+        affine_apply_point(&world, p, q);
         for (int k = 0; k < 3; k++) {
             r.lo[k] = c ? fmin(r.lo[k], q[k]) : q[k];
             r.hi[k] = c ? fmax(r.hi[k], q[k]) : q[k];
@@ -435,33 +454,57 @@ static aabb instance_bounds(const void *user, uint32_t i)
     return r;
 }
 
-/* Instances whose object has triangles and whose transformation is invertible in fp24. */
+static void add_instance(mi_builder *b, uint32_t scene_inst, uint32_t obj)
+{
+    b->inst_scene[b->n_inst] = scene_inst;
+    b->inst_obj[b->n_inst++] = obj;
+}
+
+/* Instances whose object has triangles and whose transformation is invertible in fp24, then one
+ * identity instance per merged object (the scene instances baked into it are not instances). */
 static int select_instances(mi_builder *b, const scene *s)
 {
-    free(b->inst_mesh);
-    b->inst_mesh = malloc(((size_t)s->n_instances + 1) * sizeof *b->inst_mesh);
-    if (!b->inst_mesh)
+    free(b->inst_scene);
+    free(b->inst_obj);
+    b->inst_scene = malloc(((size_t)s->n_instances + b->n_objects + 1) * sizeof *b->inst_scene);
+    b->inst_obj = malloc(((size_t)s->n_instances + b->n_objects + 1) * sizeof *b->inst_obj);
+    if (!b->inst_scene || !b->inst_obj)
         return -1;
     b->n_inst = 0;
     for (uint32_t i = 0; i < s->n_instances; i++) {
+        const uint32_t obj = b->mesh_obj[s->instances[i].mesh];
         affine inv;
-        if (b->obj[s->instances[i].mesh].n_valid == 0 || !affine_invert(&s->instances[i].world, &inv) ||
-            !affine_fits_f24(&inv))
+        if (b->merge.baked_node[s->instances[i].node] || obj == MI_NONE || b->obj[obj].n_valid == 0 ||
+            !affine_invert(&s->instances[i].world, &inv) || !affine_fits_f24(&inv))
             continue;
-        b->inst_mesh[b->n_inst++] = i;
+        add_instance(b, i, obj);
     }
+    for (uint32_t o = 0; o < b->n_objects; o++)
+        if (b->obj[o].merged && b->obj[o].n_valid)
+            add_instance(b, MI_NONE, o);
     return 0;
+}
+
+/* 1 if every entry of a is exactly that of the identity: the device may skip it. */
+static int affine_is_identity(const affine *a)
+{
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 4; j++)
+            if (a->m[i][j] != (i == j ? 1.0 : 0.0))
+                return 0;
+    return 1;
 }
 
 static void write_instances(mi_builder *b, const scene *s, uint32_t *w)
 {
     for (uint32_t i = 0; i < b->n_inst; i++, w += MI_INSTANCE_WORDS) {
-        const scene_instance *in = &s->instances[b->inst_mesh[i]];
+        const affine world = instance_world(b, s, i);
         affine inv;
-        affine_invert(&in->world, &inv);
+        affine_invert(&world, &inv);
         memset(w, 0, MI_INSTANCE_WORDS * sizeof *w);
         put_affine(w, &inv);
-        w[12] = in->mesh;
+        w[MI_I_OBJECT] = b->inst_obj[i];
+        w[MI_I_FLAGS] = affine_is_identity(&inv) ? MI_INST_IDENTITY : 0u;
     }
 }
 
@@ -755,7 +798,7 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
     }
     if (full || dynamic_changed) {
         for (uint32_t i = 0; i < b->n_objects; i++)
-            object_describe(w + off[MI_R_OBJECTS] + MI_OBJECT_WORDS * i, &b->obj[i], &s->meshes[b->obj[i].mesh]);
+            object_describe(w + off[MI_R_OBJECTS] + MI_OBJECT_WORDS * i, &b->obj[i], obj_mesh(b, s, &b->obj[i]));
         written[MI_R_DYNAMIC_GEOMETRY] = written[MI_R_OBJECTS] = 1;
     }
     write_camera(b, s, w + off[MI_R_CAMERA]);
@@ -799,12 +842,20 @@ static void collect_stats(mi_builder *b, const scene *s)
     st->objects = b->n_objects;
     st->instances = b->n_inst;
     st->triangles = 0;
+    for (uint32_t i = 0; i < s->n_meshes; i++) /* unique triangles as authored, merged or not */
+        st->triangles += s->meshes[i].n_triangles;
+    st->merged_objects = b->merge.n_meshes;
+    st->merged_instances = b->merge.baked_instances;
+    st->merged_copy_triangles = b->merge.baked_copy_triangles;
+    st->kept_animated = b->merge.animated_instances;
+    st->kept_morphing = b->merge.morphing_instances;
+    st->kept_mirrored = b->merge.mirrored_instances;
+    st->kept_instanced = b->merge.instanced_kept;
     st->bottom_nodes = st->bottom_leaves = st->bottom_empty_leaves = st->bottom_depth = 0;
     st->bottom_references = 0;
     st->bottom_sah = 0;
     for (uint32_t i = 0; i < b->n_objects; i++) {
         const kd_tree *t = &b->obj[i].tree;
-        st->triangles += s->meshes[i].n_triangles;
         st->bottom_nodes += t->n_nodes;
         st->bottom_leaves += t->stats.n_leaves;
         st->bottom_empty_leaves += t->stats.n_empty_leaves;
@@ -820,6 +871,25 @@ static void collect_stats(mi_builder *b, const scene *s)
     st->top_sah = b->top.stats.sah_cost;
 }
 
+/* The image's objects: every scene mesh that some instance not baked into world space uses, in
+ * mesh order, then the merged world-space objects. */
+static void choose_objects(mi_builder *b, const scene *s)
+{
+    for (uint32_t k = 0; k < s->n_meshes; k++)
+        b->mesh_obj[k] = MI_NONE;
+    for (uint32_t i = 0; i < s->n_instances; i++)
+        if (!b->merge.baked_node[s->instances[i].node])
+            b->mesh_obj[s->instances[i].mesh] = 0;
+    b->n_objects = 0;
+    for (uint32_t k = 0; k < s->n_meshes; k++)
+        if (b->mesh_obj[k] != MI_NONE) {
+            b->obj[b->n_objects] = (mi_object){ .mesh = k, .dynamic = s->meshes[k].n_targets > 0 };
+            b->mesh_obj[k] = b->n_objects++;
+        }
+    for (uint32_t k = 0; k < b->merge.n_meshes; k++)
+        b->obj[b->n_objects++] = (mi_object){ .mesh = k, .merged = 1 };
+}
+
 mi_builder *mi_build(const scene *s, const mi_params *p, char *err, size_t errlen)
 {
     mi_builder *b = calloc(1, sizeof *b);
@@ -828,17 +898,18 @@ mi_builder *mi_build(const scene *s, const mi_params *p, char *err, size_t errle
         return NULL;
     }
     b->p = *p;
-    b->n_objects = s->n_meshes;
-    b->obj = calloc((size_t)s->n_meshes + 1, sizeof *b->obj);
+    b->obj = calloc((size_t)s->n_meshes + MI_MERGE_CLASSES + 1, sizeof *b->obj);
+    b->mesh_obj = malloc(((size_t)s->n_meshes + 1) * sizeof *b->mesh_obj);
     b->texture_map = calloc((size_t)s->n_textures + 1, sizeof *b->texture_map);
-    if (!b->obj || !b->texture_map) {
+    if (!b->obj || !b->mesh_obj || !b->texture_map || mi_merge_build(s, p->merge, &b->merge) != 0) {
         snprintf(err, errlen, "out of memory");
         mi_free(b);
         return NULL;
     }
+    choose_objects(b, s);
     uint64_t floor_words = 0; /* what the triangles need before any tree: fail early on hopeless scenes */
-    for (uint32_t i = 0; i < s->n_meshes; i++)
-        floor_words += (uint64_t)(MI_TRIANGLE_WORDS + MI_SHADING_WORDS) * s->meshes[i].n_triangles;
+    for (uint32_t i = 0; i < b->n_objects; i++)
+        floor_words += (uint64_t)(MI_TRIANGLE_WORDS + MI_SHADING_WORDS) * obj_mesh(b, s, &b->obj[i])->n_triangles;
     if (floor_words > p->memory_bytes / 4) {
         char need[32], have[32];
         format_mb(need, sizeof need, floor_words);
@@ -848,11 +919,10 @@ mi_builder *mi_build(const scene *s, const mi_params *p, char *err, size_t errle
         mi_free(b);
         return NULL;
     }
-    for (uint32_t i = 0; i < s->n_meshes; i++) {
-        b->obj[i].mesh = i;
-        b->obj[i].dynamic = s->meshes[i].n_targets > 0;
-        if (object_prepare(b, &s->meshes[i], &b->obj[i]) != 0) {
-            snprintf(err, errlen, "out of memory while building the tree of mesh '%s'", s->meshes[i].name);
+    for (uint32_t i = 0; i < b->n_objects; i++) {
+        const scene_mesh *m = obj_mesh(b, s, &b->obj[i]);
+        if (object_prepare(b, m, &b->obj[i]) != 0) {
+            snprintf(err, errlen, "out of memory while building the tree of mesh '%s'", m->name);
             mi_free(b);
             return NULL;
         }
@@ -873,7 +943,7 @@ int mi_update(mi_builder *b, const scene *s, char *err, size_t errlen)
     b->st.bottom_build_seconds = b->st.transform_seconds = 0; /* figures of this update only */
     for (uint32_t i = 0; i < b->n_objects; i++) {
         mi_object *o = &b->obj[i];
-        const scene_mesh *m = &s->meshes[i];
+        const scene_mesh *m = obj_mesh(b, s, o);
         if (!o->dynamic || memcmp(o->weights_seen, m->weights, m->n_targets * sizeof(float)) == 0)
             continue;
         b->st.degenerate_triangles -= m->n_triangles - o->n_valid;
@@ -898,15 +968,18 @@ const uint32_t *mi_words(const mi_builder *b, uint32_t *n_words)
 
 const mi_stats *mi_get_stats(const mi_builder *b) { return &b->st; }
 
-uint32_t mi_scene_instance(const mi_builder *b, uint32_t image_instance)
+void mi_hit_source(const mi_builder *b, uint32_t image_instance, uint32_t image_triangle, uint32_t *scene_inst,
+                   uint32_t *mesh_triangle)
 {
-    return image_instance < b->n_inst ? b->inst_mesh[image_instance] : MI_NONE;
-}
-
-uint32_t mi_mesh_triangle(const mi_builder *b, uint32_t object, uint32_t image_triangle)
-{
-    return object < b->n_objects && image_triangle < b->obj[object].n_valid ? b->obj[object].valid[image_triangle]
-                                                                             : MI_NONE;
+    *scene_inst = *mesh_triangle = MI_NONE;
+    if (image_instance >= b->n_inst)
+        return;
+    const mi_object *o = &b->obj[b->inst_obj[image_instance]];
+    if (image_triangle >= o->n_valid)
+        return;
+    const uint32_t t = o->valid[image_triangle]; /* the triangle of the object's mesh */
+    *scene_inst = o->merged ? b->merge.src_instance[o->mesh][t] : b->inst_scene[image_instance];
+    *mesh_triangle = o->merged ? b->merge.src_triangle[o->mesh][t] : t;
 }
 
 void mi_free(mi_builder *b)
@@ -922,7 +995,10 @@ void mi_free(mi_builder *b)
     ugrid_free(&b->top_grid);
     free(b->obj);
     free(b->texture_map);
-    free(b->inst_mesh);
+    free(b->inst_scene);
+    free(b->inst_obj);
+    free(b->mesh_obj);
+    mi_merge_free(&b->merge);
     free(b->words);
     free(b);
 }

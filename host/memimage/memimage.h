@@ -47,12 +47,18 @@ enum {
     MI_TRIANGLE_WORDS = 12, /* affine 3x4, rows (m0 m1 m2 t): world/object -> unit triangle */
     MI_SHADING_WORDS = 16,  /* normals A B C (9), texcoords A B C (6), material (1) */
     MI_OBJECT_WORDS = 16,   /* see mi_object word offsets */
-    MI_INSTANCE_WORDS = 16, /* world-to-object 3x4 (12), object (1), reserved (3) */
+    MI_INSTANCE_WORDS = 16, /* world-to-object 3x4 (12), object (1), flags (1), reserved (2) */
     MI_MATERIAL_WORDS = 16,
     MI_TEXTURE_WORDS = 4,   /* width, height, texel address, reserved; texels follow the table */
     MI_CAMERA_WORDS = 16,
     MI_LIGHT_WORDS = 16,
 };
+
+/* Instance words after the matrix: the object index and flags. MI_INST_IDENTITY: the matrix is
+ * exactly the identity (1 and +0), so the device passes the rays through without a
+ * transformation (hls/units/trace.c); set for the objects mi_merge.h bakes into world space. */
+enum { MI_I_OBJECT = 12, MI_I_FLAGS = 13 };
+#define MI_INST_IDENTITY 1u
 
 /* Camera word 3: the scene profile's skip bits (PROFILE_* in hls/units/trace.h, mi_profile.h). */
 #define MI_CAM_PROFILE 3
@@ -95,6 +101,8 @@ typedef struct {
     uint32_t skip;             /* PROFILE_* bits the device may use where the scene profile allows
                                   them (default all; 0: the general pipeline, render --general) */
     uint32_t accel;            /* MI_ACCEL_* structures to build beside the kd-trees (default 0) */
+    int merge;                 /* 1: bake static geometry into world-space objects (mi_merge.h;
+                                  default 1; render --no-merge: 0) */
 } mi_params;
 
 void mi_params_default(mi_params *p);
@@ -114,6 +122,11 @@ typedef struct {
     uint32_t region_words[MI_REGION_COUNT];
     uint64_t frame_upload_bytes;  /* bytes rewritten by the last mi_build/mi_update */
     uint32_t rebuilt_objects;     /* morphing objects rebuilt by the last update */
+    /* static geometry baked into world space (mi_merge.h): merged objects, the scene instances
+     * baked into them, the triangles baked copies of instanced meshes add, and the instances
+     * kept, by reason */
+    uint32_t merged_objects, merged_instances, kept_animated, kept_morphing, kept_mirrored, kept_instanced;
+    uint64_t merged_copy_triangles;
 } mi_stats;
 
 /* Host-side state kept across frames: bottom-level trees, dropped triangles, the image. */
@@ -130,11 +143,13 @@ int mi_update(mi_builder *b, const scene *s, char *err, size_t errlen);
 const uint32_t *mi_words(const mi_builder *b, uint32_t *n_words);
 const mi_stats *mi_get_stats(const mi_builder *b);
 
-/* Host-side provenance of device indices (for AOVs and hit comparisons): the scene instance of
- * an image instance, and the mesh triangle (primitives concatenated in file order) of an image
- * triangle of an object (degenerate triangles are not in the image). MI_NONE if out of range. */
-uint32_t mi_scene_instance(const mi_builder *b, uint32_t image_instance);
-uint32_t mi_mesh_triangle(const mi_builder *b, uint32_t object, uint32_t image_triangle);
+/* Host-side provenance of a device hit (for AOVs and hit comparisons): the scene instance and
+ * the triangle of its mesh (primitives concatenated in file order) that image triangle
+ * image_triangle of image instance image_instance came from (degenerate triangles are not in the
+ * image; a merged object's triangles come from several scene instances). Both MI_NONE if out of
+ * range. */
+void mi_hit_source(const mi_builder *b, uint32_t image_instance, uint32_t image_triangle, uint32_t *scene_inst,
+                   uint32_t *mesh_triangle);
 void mi_free(mi_builder *b);
 
 /* The camera of the image in double precision, before rounding to fp24 (the camera block). */

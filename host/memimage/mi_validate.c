@@ -10,6 +10,7 @@
 #include "f24.h"
 #include "memimage.h"
 #include "mi_profile.h"
+#include "xform_unit.h"
 
 typedef struct {
     const uint32_t *w;
@@ -195,13 +196,26 @@ static int check_objects(checker *c)
     return 0;
 }
 
+/* The instance matrix at w is the identity up to the signs of its zeros: the device may pass the
+ * rays through (xform_identity gives the bits the transformation would). */
+static int identity_matrix(const uint32_t *w)
+{
+    const f24_affine m = f24_affine_load(w, 0);
+    return xform_is_identity(&m);
+}
+
 static int check_records(checker *c)
 {
     const uint32_t *w = c->w;
     for (uint32_t i = 0; i < w[MI_H_INSTANCES]; i++) {
         const uint32_t at = c->off[MI_R_INSTANCES] + MI_INSTANCE_WORDS * i;
-        if (!finite_words(c, at, 12) || w[at + 12] >= w[MI_H_OBJECTS])
-            return bad(c, "instance %u: non-finite transformation or object %u of %u", i, w[at + 12], w[MI_H_OBJECTS]);
+        if (!finite_words(c, at, 12) || w[at + MI_I_OBJECT] >= w[MI_H_OBJECTS])
+            return bad(c, "instance %u: non-finite transformation or object %u of %u", i, w[at + MI_I_OBJECT],
+                       w[MI_H_OBJECTS]);
+        if ((w[at + MI_I_FLAGS] & ~MI_INST_IDENTITY) ||
+            ((w[at + MI_I_FLAGS] & MI_INST_IDENTITY) && !identity_matrix(w + at)))
+            return bad(c, "instance %u: bad flags 0x%x (identity flag on a matrix that is not the identity)", i,
+                       w[at + MI_I_FLAGS]);
     }
     for (uint32_t i = 0; i < w[MI_H_MATERIALS]; i++) {
         const uint32_t at = c->off[MI_R_MATERIALS] + MI_MATERIAL_WORDS * i;

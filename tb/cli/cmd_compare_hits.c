@@ -36,7 +36,7 @@ static double quantile(const double *v, uint64_t n, double q)
 }
 
 /* One pixel: the units' hit h (image indices) against the reference's. */
-static void tally(const mi_builder *b, const uint32_t *mem, const hit_record *h, const ref_hit *r,
+static void tally(const mi_builder *b, const hit_record *h, const ref_hit *r,
                   hit_stats *st)
 {
     st->rays++;
@@ -47,8 +47,8 @@ static void tally(const mi_builder *b, const uint32_t *mem, const hit_record *h,
         st->ref_only += rh && !uh;
         return;
     }
-    const uint32_t ia = mem[MI_H_REGION_TABLE + 2 * MI_R_INSTANCES] + MI_INSTANCE_WORDS * h->instance;
-    const uint32_t si = mi_scene_instance(b, h->instance), tri = mi_mesh_triangle(b, mem[ia + 12], h->triangle);
+    uint32_t si, tri;
+    mi_hit_source(b, h->instance, h->triangle, &si, &tri);
     if (si != r->instance || tri != r->triangle) {
         st->different++;
         return;
@@ -84,7 +84,7 @@ static int compare(const mi_builder *b, const ref_scene *r, const ref_params *p,
                 ref_hit rh;
                 ref_primary(&p->cam, x + (uint32_t)(i & 1), y + (uint32_t)(i >> 1), o, d);
                 ref_intersect(r, o, d, 0, INFINITY, &rh);
-                tally(b, mem, &h[i], &rh, st);
+                tally(b, &h[i], &rh, st);
             }
         }
     return SAARCOR_EXIT_OK;

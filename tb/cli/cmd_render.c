@@ -303,12 +303,13 @@ static int write_aov(const char *path, const mi_builder *b, const scene *s, cons
             len += nw[j] * nw[j];
         }
         len = len > 0 ? sqrt(len) : 1;
-        const uint32_t si = mi_scene_instance(b, hr->instance);
+        uint32_t si, mt;
+        mi_hit_source(b, hr->instance, hr->triangle, &si, &mt);
         o[0] = (float)f24d(hr->t);
         for (int k = 0; k < 3; k++)
             o[1 + k] = (float)(nw[k] / len);
         o[4] = si < s->n_instances ? (float)s->instances[si].node : -1.0f;
-        o[5] = (float)(int64_t)mi_mesh_triangle(b, object, hr->triangle);
+        o[5] = (float)(int64_t)mt;
         o[6] = (float)f24d(hr->u);
         o[7] = (float)f24d(hr->v);
     }

@@ -447,7 +447,8 @@ static int make_acne(const case_def *c, const char *shared, geom_rng *rng, world
         const f24_vec3 q = { f24_add(rp.o[0].x, f24_mul(h[0].t, rp.d[0].x)), f24_add(rp.o[0].y, f24_mul(h[0].t, rp.d[0].y)),
                              f24_add(rp.o[0].z, f24_mul(h[0].t, rp.d[0].z)) };
         const scene_mesh *sm = &w->s.meshes[0];
-        const uint32_t mt = mi_mesh_triangle(b, 0, h[0].triangle);
+        uint32_t si, mt;
+        mi_hit_source(b, h[0].instance, h[0].triangle, &si, &mt);
         double v[3][3], nrm[3], dir[3];
         for (int j = 0; j < 3; j++)
             ref_vertex(sm, mt, j, v[j]);
@@ -601,7 +602,8 @@ static int world_build(world *w, uint32_t flags)
         w->image_of[t] = UINT32_MAX;
     const uint32_t *od = w->mem + w->mem[MI_H_REGION_TABLE + 2 * MI_R_OBJECTS] + MI_OBJECT_WORDS * obj;
     for (uint32_t t = 0; t < od[MI_O_N_TRIANGLES]; t++) {
-        const uint32_t mt = mi_mesh_triangle(w->b, obj, t);
+        uint32_t si, mt;
+        mi_hit_source(w->b, 0, t, &si, &mt); /* image instance 0 is the mesh's only one */
         if (mt < m->n_triangles)
             w->image_of[mt] = t;
     }
