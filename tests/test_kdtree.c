@@ -632,7 +632,8 @@ static double brute_force_best(const box_set *bs, const kd_params *p, const aabb
             const aabb *b = &bs->b[c / 2];
             double q = own ? (c % 2 ? b->hi[axis] : b->lo[axis]) : root->lo[axis] + (c + 1) * w;
             q = p->quantize ? p->quantize(q) : q;
-            if (!(q > root->lo[axis] && q < root->hi[axis]))
+            const int face = p->bins == 0 && root->lo[axis] < root->hi[axis] && (q == root->lo[axis] || q == root->hi[axis]);
+            if (!(q > root->lo[axis] && q < root->hi[axis]) && !face)
                 continue;
             uint32_t nl = 0, np = 0, nr = 0;
             for (uint32_t i = 0; i < bs->n; i++) {
@@ -640,6 +641,12 @@ static double brute_force_best(const box_set *bs, const kd_params *p, const aabb
                 nl += lo < q;
                 nr += hi > q;
                 np += lo == q && hi == q;
+            }
+            if (face) { /* exact mode: the primitives lying in a face of the root may get a flat cell */
+                if (np)
+                    best = fmin(best, q == root->lo[axis] ? cost_of(p, root, axis, q, np, bs->n - np)
+                                                          : cost_of(p, root, axis, q, bs->n - np, np));
+                continue;
             }
             best = fmin(best, cost_of(p, root, axis, q, nl + np, nr));
             best = fmin(best, cost_of(p, root, axis, q, nl, nr + np));

@@ -49,11 +49,14 @@ typedef struct {
     uint32_t profile;
 } frame;
 
+static int merge_static; /* mi_params.merge of render(): off, so that scenes keep their instances */
+
 static void render(const scene *s, uint32_t skip, const rgs_config *rc, frame *f)
 {
     char err[256];
     mi_params p;
     mi_params_default(&p);
+    p.merge = merge_static;
     p.width = W;
     p.height = H;
     p.skip = skip;
@@ -134,13 +137,35 @@ static void single_object_identity_and_scaled(void **state)
     (void)state;
     uint32_t p = check_same("room", 1, &full, &gen_f, &spec_f);
     assert_int_equal(p & (PROFILE_SINGLE_OBJECT | PROFILE_IDENTITY), PROFILE_SINGLE_OBJECT | PROFILE_IDENTITY);
-    assert_true(spec_f.c.trace.transformations < gen_f.c.trace.transformations); /* no instance steps */
+    assert_true(spec_f.c.trace.transformations <= gen_f.c.trace.transformations); /* identity: no slots anyway */
     assert_true(spec_f.c.trace.leaves < gen_f.c.trace.leaves);                   /* no top-level leaf */
     p = check_same("room", 2, &full, &gen_f, &spec_f);
     assert_int_equal(p & (PROFILE_SINGLE_OBJECT | PROFILE_IDENTITY), PROFILE_SINGLE_OBJECT);
     assert_true(spec_f.c.trace.leaves < gen_f.c.trace.leaves);
     p = check_same("cornell", 1, &full, &gen_f, &spec_f);
     assert_true(p & PROFILE_IDENTITY);
+}
+
+/* The static room merged into world space (mi_merge.h) is one object under an identity instance:
+ * the profile skips the top level and the instance transformation, the general pipeline passes
+ * the identity instance without transformation slots, and both give the same bits. */
+static void merged_static_scene(void **state)
+{
+    (void)state;
+    frame *kept = malloc(sizeof *kept);
+    assert_non_null(kept);
+    merge_static = 0;
+    check_same("room", 0, &full, kept, &spec_f);
+    merge_static = 1;
+    const uint32_t p = check_same("room", 0, &full, &gen_f, &spec_f);
+    merge_static = 0;
+    assert_int_equal(p & (PROFILE_SINGLE_OBJECT | PROFILE_IDENTITY), PROFILE_SINGLE_OBJECT | PROFILE_IDENTITY);
+    print_message("room merged: transformations %llu -> %llu, intersections %llu -> %llu\n",
+                  (unsigned long long)kept->c.trace.transformations, (unsigned long long)gen_f.c.trace.transformations,
+                  (unsigned long long)kept->c.trace.intersections, (unsigned long long)spec_f.c.trace.intersections);
+    assert_true(gen_f.c.trace.transformations < kept->c.trace.transformations); /* identity instance: no slots */
+    assert_true(spec_f.c.trace.intersections < kept->c.trace.intersections);   /* one tree, no overlaps */
+    free(kept);
 }
 
 static void profile_contents(void **state)
@@ -151,6 +176,7 @@ static void profile_contents(void **state)
     scene_make(&s, "room", 0);
     mi_params p;
     mi_params_default(&p);
+    p.merge = 0;
     mi_builder *b = mi_build(&s, &p, err, sizeof err);
     assert_non_null(b);
     uint32_t n;
@@ -181,7 +207,8 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(generated_scenes_same_image), cmocka_unit_test(any_hit_shadows_save_work),
-        cmocka_unit_test(single_object_identity_and_scaled), cmocka_unit_test(profile_contents),
+        cmocka_unit_test(single_object_identity_and_scaled), cmocka_unit_test(merged_static_scene),
+        cmocka_unit_test(profile_contents),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
