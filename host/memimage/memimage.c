@@ -78,7 +78,7 @@ void mi_params_default(mi_params *p)
     p->top.quantize = quantize;
     p->max_condition = 16777216.0; /* 2^24 */
     p->skip = PROFILE_ALL;
-    p->merge = 1;
+    p->merge = 0; /* measured: per-object trees with flat face cells beat the merged tree (mi_merge.h) */
 }
 
 uint32_t mi_accel_for(uint32_t traversal)
@@ -850,6 +850,7 @@ static void collect_stats(mi_builder *b, const scene *s)
     st->kept_animated = b->merge.animated_instances;
     st->kept_morphing = b->merge.morphing_instances;
     st->kept_mirrored = b->merge.mirrored_instances;
+    st->kept_turned = b->merge.turned_instances;
     st->kept_instanced = b->merge.instanced_kept;
     st->bottom_nodes = st->bottom_leaves = st->bottom_empty_leaves = st->bottom_depth = 0;
     st->bottom_references = 0;

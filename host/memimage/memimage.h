@@ -102,7 +102,7 @@ typedef struct {
                                   them (default all; 0: the general pipeline, render --general) */
     uint32_t accel;            /* MI_ACCEL_* structures to build beside the kd-trees (default 0) */
     int merge;                 /* 1: bake static geometry into world-space objects (mi_merge.h;
-                                  default 1; render --no-merge: 0) */
+                                  default 0; --merge: 1) */
 } mi_params;
 
 void mi_params_default(mi_params *p);
@@ -125,7 +125,7 @@ typedef struct {
     /* static geometry baked into world space (mi_merge.h): merged objects, the scene instances
      * baked into them, the triangles baked copies of instanced meshes add, and the instances
      * kept, by reason */
-    uint32_t merged_objects, merged_instances, kept_animated, kept_morphing, kept_mirrored, kept_instanced;
+    uint32_t merged_objects, merged_instances, kept_animated, kept_morphing, kept_mirrored, kept_turned, kept_instanced;
     uint64_t merged_copy_triangles;
 } mi_stats;
 

@@ -38,6 +38,26 @@ static double det3(const affine *a)
            m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
 }
 
+/* The linear part maps the axes onto the axes (scales, mirror-free 90-degree turns): the mesh's
+ * axis-aligned planes stay axis-aligned in world space, so a world-space tree separates its
+ * triangles as well as its own tree does. A turned instance keeps its object-space tree: baking
+ * it would cut slanted faces with axis-aligned planes (the cornell boxes: 10 triangles per leaf
+ * in world space, 2 in their own space). */
+static int axis_aligned(const affine *a)
+{
+    for (int r = 0; r < 3; r++) {
+        int nonzero = 0;
+        double big = 0;
+        for (int c = 0; c < 3; c++)
+            big = fmax(big, fabs(a->m[r][c]));
+        for (int c = 0; c < 3; c++)
+            nonzero += fabs(a->m[r][c]) > 1e-12 * big;
+        if (nonzero != 1)
+            return 0;
+    }
+    return 1;
+}
+
 typedef struct {
     uint32_t mesh, copies; /* an instanced mesh and its static copies */
 } copy_candidate;
@@ -66,7 +86,8 @@ static int plan(const scene *s, uint8_t *bake, mi_merge *m)
         m->morphing_instances += !animated[in->node] && me->n_targets > 0;
         const int static_ok = !animated[in->node] && me->n_targets == 0 && me->n_triangles > 0;
         m->mirrored_instances += static_ok && !(det3(&in->world) > 0);
-        bake[i] = static_ok && det3(&in->world) > 0;
+        m->turned_instances += static_ok && det3(&in->world) > 0 && !axis_aligned(&in->world);
+        bake[i] = static_ok && det3(&in->world) > 0 && axis_aligned(&in->world);
         eligible[in->mesh] += bake[i];
     }
     /* instanced meshes: copies of the smallest first, within the budget of the unique triangles */

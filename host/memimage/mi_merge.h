@@ -11,6 +11,9 @@
  *   - a morphing mesh keeps its object (its geometry is rebuilt when its weights change);
  *   - a mirrored instance (negative determinant) keeps its instance: baking it would flip the
  *     side its triangles face, which the shading's entering/leaving decision reads;
+ *   - a turned instance (its linear part does not map the axes onto the axes) keeps its
+ *     instance: the mesh's own tree is built in the space where its faces are axis-aligned, and
+ *     a world-space tree over slanted faces needs several times the ray-triangle tests;
  *   - an instanced mesh (several static instances) is baked copy by copy only while the copies
  *     fit the memory budget: merging always saves the instance entries the SAH charges (two
  *     transformation slots per ray entering a copy), but costs the copies' triangles in memory.
@@ -35,7 +38,8 @@ typedef struct {
     uint32_t **src_triangle;  /* ... and its triangle in that instance's mesh */
     uint8_t *baked_node;      /* per scene node: 1 if its instance is baked */
     /* what `saarcor info` reports */
-    uint32_t baked_instances, animated_instances, morphing_instances, mirrored_instances, instanced_kept;
+    uint32_t baked_instances, animated_instances, morphing_instances, mirrored_instances, turned_instances,
+        instanced_kept;
     uint64_t baked_copy_triangles; /* triangles added by baking copies of instanced meshes */
 } mi_merge;
 

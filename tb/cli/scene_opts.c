@@ -102,7 +102,7 @@ int scene_opts_parse(scene_opts *o, const char *cmd, int c, const char *arg)
     case 16: o->ground = 1; return 1;
     case 17: o->mi.skip = 0; return 1;
     case 18: return limits_parse(&o->lim, cmd, arg) ? 1 : -1;
-    case 19: o->mi.merge = 0; return 1;
+    case 19: o->mi.merge = 1; return 1;
     default: return 0;
     }
 }

@@ -24,7 +24,7 @@
     { "eye", required_argument, NULL, SCENE_OPT_BASE + 12 }, { "at", required_argument, NULL, SCENE_OPT_BASE + 13 }, \
     { "up", required_argument, NULL, SCENE_OPT_BASE + 14 }, { "fov", required_argument, NULL, SCENE_OPT_BASE + 15 }, \
     { "ground", no_argument, NULL, SCENE_OPT_BASE + 16 }, { "general", no_argument, NULL, SCENE_OPT_BASE + 17 }, \
-    { "limit", required_argument, NULL, SCENE_OPT_BASE + 18 }, { "no-merge", no_argument, NULL, SCENE_OPT_BASE + 19 }
+    { "limit", required_argument, NULL, SCENE_OPT_BASE + 18 }, { "merge", no_argument, NULL, SCENE_OPT_BASE + 19 }
 
 /* `info` also accepts the kd-tree depth as --max-depth (render and reference use that name for
  * the ray depth). */
@@ -51,8 +51,8 @@
     "                        texture-size, ray-depth, width, height, frames (docs/limits.md)\n"     \
     "  --general             the general pipeline: ignore the scene profile (no any-hit shadow rays,\n" \
     "                        no single-object shortcut, ...; same image, more work; saarcor profile)\n" \
-    "  --no-merge            keep every mesh instance as its own object (default: geometry that\n"     \
-    "                        neither moves nor morphs is merged into one world-space object)\n"
+    "  --merge               merge static, axis-aligned instances into one world-space object\n"     \
+    "                        (default: every mesh instance keeps its own object; docs/memory-image.md)\n"
 
 typedef struct {
     const char *scene;   /* path or generator name */
