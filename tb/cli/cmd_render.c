@@ -152,7 +152,8 @@ _Static_assert(RGS_MAX_DEPTH == SHADE_MAX_DEPTH, "the shading model and the RGS 
 static int usage(void)
 {
     printf("usage: saarcor render SCENE [-o out.png] [--mode functional|cycle] [--max-depth D] [--no-shadows]\n"
-           "                      [--precision P] [--aov FILE.exr] [--frame N | --frames A:B] [--fps F]\n"
+           "                      [--precision P] [--aov FILE.exr] [--heatmap FILE.png [--heatmap-of NAME]]\n"
+           "                      [--frame N | --frames A:B] [--fps F]\n"
            "                      [--threads N] [--mpi [--mpi-tile N]]\n"
            "                      [--stats FILE] [cycle mode options] [scene options]\n\n"
            "Renders the scene through the hardware units: RGS, traversal, list, transformation and\n"
@@ -176,7 +177,13 @@ static int usage(void)
            "  --aov FILE.exr     per-pixel primary hits as float channels t, N.X N.Y N.Z (world geometric\n"
            "                     normal), node (glTF node of the instance), triangle (index in its glTF\n"
            "                     mesh, primitives in file order), u, v (barycentrics of A and B); misses:\n"
-           "                     t = inf, -1 indices\n"
+           "                     t = inf, -1 indices; and the cost of each pixel (its primary ray and all rays\n"
+           "                     spawned from it; docs/cli.md): traversal_steps, list_entries, intersections,\n"
+           "                     transformations (issue slots), cycles (cycle mode only); they sum to --stats\n"
+           "  --heatmap FILE.png false-colour picture (viridis) of one cost channel with a scale bar below\n"
+           "                     the image (width x height+%u)\n"
+           "  --heatmap-of NAME  its channel: one of the cost channels above (default transformations,\n"
+           "                     cycles in cycle mode)\n"
            "  --stats FILE       counters as JSON: rays by kind, traversal steps, leaves, list entries,\n"
            "                     mailbox skips, transformations, intersections, memory words read; in\n"
            "                     cycle mode also the timing (\"cycle\": cycles, fps, usage, caches, ...);\n"
@@ -193,7 +200,7 @@ static int usage(void)
            "  --mpi-tile N       edge in pixels of the tiles handed out with --mpi (default 64)\n"
            "Ctrl-C (SIGINT) or SIGTERM stops at the next block row or cycle-model epoch: the frames done\n"
            "so far are kept (files appear only when complete), exit 130 (SIGINT) or 143 (SIGTERM).\n\n%s\n%s",
-           RGS_MAX_DEPTH, SHADE_DEFAULT_DEPTH, CYCLE_OPTIONS_HELP, SCENE_OPTIONS_HELP);
+           RGS_MAX_DEPTH, SHADE_DEFAULT_DEPTH, HEATMAP_BAR, CYCLE_OPTIONS_HELP, SCENE_OPTIONS_HELP);
     return SAARCOR_EXIT_OK;
 }
 
