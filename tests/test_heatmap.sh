@@ -39,8 +39,9 @@ twelfths() {
   oiiotool --dumpdata "$T/ch.exr" | awk -F': ' '/Pixel/ { s += int($2 * 12 + 0.5) } END { printf "%d\n", s }'
 }
 
-# render MODE NAME: room with shadows and secondary rays into $T/NAME.{png,exr,json}
+# render MODE NAME: room with shadows and secondary rays into $T/NAME.{png,exr,json} (once)
 render() {
+  [[ -s "$T/$2.json" ]] && return 0
   "$BIN" render room "${SIZE[@]}" --mode "$1" -o "$T/$2.png" --aov "$T/$2.exr" --stats "$T/$2.json" >/dev/null
 }
 

@@ -1,8 +1,9 @@
 /*
  * saarcor render SCENE: rendering through the hardware units (hls/units). Functional mode: every
- * 2x2 pixel block runs its ray tree to completion (rgs_render_block); host threads take block
- * rows in a fixed interleaved order and write disjoint pixels, so the image is bit-identical for
- * any thread count. Cycle mode (--mode cycle): the same unit steps timed by the DynRTC model of
+ * 2x2 pixel block runs its ray tree to completion (the steps of rgs_render_block, through
+ * pc_render_block, which also attributes the work to pixels for --aov/--heatmap); host threads
+ * take block rows in a fixed interleaved order and write disjoint pixels, so the image is
+ * bit-identical for any thread count. Cycle mode (--mode cycle): the same unit steps timed by the DynRTC model of
  * tb/cycle, with the paper-style report. The device reads only the validated memory image.
  * Ctrl-C/SIGTERM (interrupt.h): the threads stop at the next block row (functional) or epoch
  * (cycle), the unfinished frame is dropped, the frames written so far stay (each file is written
