@@ -1,8 +1,9 @@
 /*
  * saarcor render SCENE: rendering through the hardware units (hls/units). Functional mode: every
- * 2x2 pixel block runs its ray tree to completion (rgs_render_block); host threads take block
- * rows in a fixed interleaved order and write disjoint pixels, so the image is bit-identical for
- * any thread count. Cycle mode (--mode cycle): the same unit steps timed by the DynRTC model of
+ * 2x2 pixel block runs its ray tree to completion (the steps of rgs_render_block, through
+ * pc_render_block, which also attributes the work to pixels for --aov/--heatmap); host threads
+ * take block rows in a fixed interleaved order and write disjoint pixels, so the image is
+ * bit-identical for any thread count. Cycle mode (--mode cycle): the same unit steps timed by the DynRTC model of
  * tb/cycle, with the paper-style report. The device reads only the validated memory image.
  * Ctrl-C/SIGTERM (interrupt.h): the threads stop at the next block row (functional) or epoch
  * (cycle), the unfinished frame is dropped, the frames written so far stay (each file is written
@@ -23,6 +24,7 @@
 #include "cli.h"
 #include "cycle_opts.h"
 #include "f24_fast.h"
+#include "heatmap.h"
 #include "img.h"
 #include "interrupt.h"
 #include "mpi_load.h"
@@ -43,6 +45,7 @@ typedef struct {
     rgs_counters counters;
     atomic_uint *rows_done; /* block rows finished by all threads, for the progress line */
     hit_record *hits;       /* per pixel primary hit, for --aov (NULL: not kept) */
+    pixel_cost *costs;      /* per pixel cost, for --aov and --heatmap (NULL: not kept) */
 } render_job;
 
 static double now(void);
@@ -66,7 +69,10 @@ static void *render_rows(void *arg)
         for (uint32_t x = j->x0; x < j->x1; x += 2) {
             hit_record h[TRACE_PACKET];
             uint32_t rgb[TRACE_PACKET];
-            rgs_render_block(j->mem, j->cfg, x, y, rgb, h, &j->counters);
+            pixel_cost cost[TRACE_PACKET];
+            pc_render_block(j->mem, j->cfg, x, y, rgb, h, &j->counters, j->costs ? cost : NULL);
+            if (j->costs)
+                pc_store_block(j->costs, cost, x, y, j->stride, j->y1);
             for (int i = 0; i < TRACE_PACKET; i++) {
                 const uint32_t px = x + (uint32_t)(i & 1), py = y + (uint32_t)(i >> 1);
                 if (px >= j->x1 || py >= j->y1)
@@ -92,7 +98,7 @@ static double now(void)
 }
 
 int render_region(const uint32_t *mem, const rgs_config *cfg, uint32_t threads, const uint32_t region[4],
-                  uint32_t *pixels, hit_record *hits, rgs_counters *sum)
+                  uint32_t *pixels, hit_record *hits, pixel_cost *costs, rgs_counters *sum)
 {
     uint32_t w, h;
     rgs_image_size(mem, &w, &h);
@@ -106,7 +112,7 @@ int render_region(const uint32_t *mem, const rgs_config *cfg, uint32_t threads, 
         return -1;
     }
     for (uint32_t t = 0; t < threads; t++) {
-        jobs[t] = (render_job){ mem, cfg, region[0], region[1], x1, y1, w, t, threads, pixels, { { 0 }, { 0 }, 0 }, &rows_done, hits };
+        jobs[t] = (render_job){ mem, cfg, region[0], region[1], x1, y1, w, t, threads, pixels, { { 0 }, { 0 }, 0 }, &rows_done, hits, costs };
         if (t > 0 && pthread_create(&tid[t], NULL, render_rows, &jobs[t]) != 0)
             jobs[t].threads = 0; /* could not start: done below in this thread */
     }
@@ -147,7 +153,8 @@ _Static_assert(RGS_MAX_DEPTH == SHADE_MAX_DEPTH, "the shading model and the RGS 
 static int usage(void)
 {
     printf("usage: saarcor render SCENE [-o out.png] [--mode functional|cycle] [--max-depth D] [--no-shadows]\n"
-           "                      [--precision P] [--aov FILE.exr] [--frame N | --frames A:B] [--fps F]\n"
+           "                      [--precision P] [--aov FILE.exr] [--heatmap FILE.png [--heatmap-of NAME]]\n"
+           "                      [--frame N | --frames A:B] [--fps F]\n"
            "                      [--threads N] [--mpi [--mpi-tile N]]\n"
            "                      [--stats FILE] [cycle mode options] [scene options]\n\n"
            "Renders the scene through the hardware units: RGS, traversal, list, transformation and\n"
@@ -171,7 +178,13 @@ static int usage(void)
            "  --aov FILE.exr     per-pixel primary hits as float channels t, N.X N.Y N.Z (world geometric\n"
            "                     normal), node (glTF node of the instance), triangle (index in its glTF\n"
            "                     mesh, primitives in file order), u, v (barycentrics of A and B); misses:\n"
-           "                     t = inf, -1 indices\n"
+           "                     t = inf, -1 indices; and the cost of each pixel (its primary ray and all rays\n"
+           "                     spawned from it; docs/cli.md): traversal_steps, list_entries, intersections,\n"
+           "                     transformations (issue slots), cycles (cycle mode only); they sum to --stats\n"
+           "  --heatmap FILE.png false-colour picture (viridis) of one cost channel with a scale bar below\n"
+           "                     the image (width x height+%u)\n"
+           "  --heatmap-of NAME  its channel: one of the cost channels above (default transformations,\n"
+           "                     cycles in cycle mode)\n"
            "  --stats FILE       counters as JSON: rays by kind, traversal steps, leaves, list entries,\n"
            "                     mailbox skips, transformations, intersections, memory words read; in\n"
            "                     cycle mode also the timing (\"cycle\": cycles, fps, usage, caches, ...);\n"
@@ -188,7 +201,7 @@ static int usage(void)
            "  --mpi-tile N       edge in pixels of the tiles handed out with --mpi (default 64)\n"
            "Ctrl-C (SIGINT) or SIGTERM stops at the next block row or cycle-model epoch: the frames done\n"
            "so far are kept (files appear only when complete), exit 130 (SIGINT) or 143 (SIGTERM).\n\n%s\n%s",
-           RGS_MAX_DEPTH, SHADE_DEFAULT_DEPTH, CYCLE_OPTIONS_HELP, SCENE_OPTIONS_HELP);
+           RGS_MAX_DEPTH, SHADE_DEFAULT_DEPTH, HEATMAP_BAR, CYCLE_OPTIONS_HELP, SCENE_OPTIONS_HELP);
     return SAARCOR_EXIT_OK;
 }
 
@@ -274,19 +287,26 @@ static double f24d(uint32_t w) { return (double)f24_fast_decode(w); }
 /* Per-pixel primary-hit data as named float channels: t, world geometric normal (unit, in the
  * triangle's A B C orientation), glTF node of the instance, triangle index within its glTF mesh
  * (primitives concatenated in file order), barycentrics u (of A) and v (of B). Misses: t = +inf,
- * node = triangle = -1. */
-static int write_aov(const char *path, const mi_builder *b, const scene *s, const hit_record *hits, uint32_t w, uint32_t h)
+ * node = triangle = -1. Then the per-pixel costs (pixel_cost.h) under their names, cycles only in
+ * cycle mode: multiples of 1/12, exact in float up to 2^24 / 12. */
+static int write_aov(const char *path, const mi_builder *b, const scene *s, const hit_record *hits,
+                     const pixel_cost *costs, int cycle, uint32_t w, uint32_t h)
 {
-    static const char *const names[] = { "t", "N.X", "N.Y", "N.Z", "node", "triangle", "u", "v" };
-    enum { NCH = 8 };
+    enum { HITS = 8 };
+    const char *names[HITS + PC_KINDS] = { "t", "N.X", "N.Y", "N.Z", "node", "triangle", "u", "v" };
+    const int ncost = cycle ? PC_KINDS : PC_CYCLES, nch = HITS + ncost;
+    for (int k = 0; k < ncost; k++)
+        names[HITS + k] = pc_names[k];
     uint32_t n;
     const uint32_t *mem = mi_words(b, &n);
-    img_t img = { (int)w, (int)h, NCH, calloc((size_t)w * h * NCH, sizeof(float)) };
+    img_t img = { (int)w, (int)h, nch, calloc((size_t)w * h * (size_t)nch, sizeof(float)) };
     if (!img.pixels)
         return -1;
     for (size_t p = 0; p < (size_t)w * h; p++) {
-        float *o = &img.pixels[NCH * p];
+        float *o = &img.pixels[(size_t)nch * p];
         const hit_record *hr = &hits[p];
+        for (int k = 0; k < ncost; k++)
+            o[HITS + k] = (float)((double)costs[p].v[k] / PC_UNIT);
         if (hr->instance == TRACE_NO_HIT) {
             o[0] = INFINITY;
             o[4] = o[5] = -1.0f;
@@ -362,6 +382,20 @@ static void print_mpi(const frame_result *fr)
            m->work_seconds, m->comm_seconds, m->comm_seconds_max);
 }
 
+/* The frame's --heatmap file (numbered like -o in a sequence). */
+static int write_heatmap(const render_opts *ro, uint32_t frame, uint32_t w, uint32_t h, const pixel_cost *costs)
+{
+    char path[1024], err[512];
+    render_opts hm = *ro;
+    hm.out = ro->heatmap;
+    frame_path(&hm, frame, path, sizeof path);
+    const int kind = ro->heatmap_of >= 0 ? ro->heatmap_of : ro->cycle ? PC_CYCLES : PC_TRANSFORMATIONS;
+    const int rc = heatmap_write(path, costs, w, h, kind, err, sizeof err);
+    if (rc != 0)
+        cli_error("render", "%s", err);
+    return rc;
+}
+
 int render_frame_output(const render_opts *ro, const mi_builder *b, const scene *s, uint32_t frame,
                         const char *scene_name, uint32_t w, uint32_t h, const uint32_t *pixels, const hit_record *hits,
                         const frame_result *fr)
@@ -374,8 +408,10 @@ int render_frame_output(const render_opts *ro, const mi_builder *b, const scene 
         render_opts aov = *ro;
         aov.out = ro->aov;
         frame_path(&aov, frame, aov_path, sizeof aov_path);
-        wrc = write_aov(aov_path, b, s, hits, w, h);
+        wrc = write_aov(aov_path, b, s, hits, fr->costs, ro->cycle, w, h);
     }
+    if (wrc == 0 && ro->heatmap)
+        wrc = write_heatmap(ro, frame, w, h, fr->costs);
     if (wrc != 0)
         return SAARCOR_EXIT_INPUT;
     const rgs_counters *sum = &fr->sum;
@@ -421,12 +457,16 @@ static int render_frame(const mi_builder *b, const scene *s, const render_opts *
     rgs_image_size(mem, &w, &h);
     uint32_t *pixels = calloc((size_t)w * h, sizeof *pixels);
     hit_record *hits = ro->aov ? calloc((size_t)w * h, sizeof *hits) : NULL;
-    frame_result fr = { .upload_bytes = mi_get_stats(b)->frame_upload_bytes };
+    const int want_costs = ro->aov || ro->heatmap;
+    pixel_cost *costs = want_costs ? calloc((size_t)w * h, sizeof *costs) : NULL;
+    frame_result fr = { .upload_bytes = mi_get_stats(b)->frame_upload_bytes, .costs = costs };
     static const uint32_t all[4] = { 0, 0, UINT32_MAX, UINT32_MAX };
     const double t0 = now();
-    const int failed = !pixels || (ro->aov && !hits) ? -1
+    if (ro->sim)
+        cycle_set_costs(ro->sim, costs);
+    const int failed = !pixels || (ro->aov && !hits) || (want_costs && !costs) ? -1
                        : ro->cycle ? cycle_render(ro->sim, mem, &ro->cfg, pixels, hits, &fr.sum, &fr.cs, cycle_progress, NULL)
-                                   : render_region(mem, &ro->cfg, ro->threads, all, pixels, hits, &fr.sum);
+                                   : render_region(mem, &ro->cfg, ro->threads, all, pixels, hits, costs, &fr.sum);
     if (isatty(2) && ro->cycle)
         fprintf(stderr, "\r%*s\r", 14, "");
     fr.secs = now() - t0;
@@ -435,6 +475,7 @@ static int render_frame(const mi_builder *b, const scene *s, const render_opts *
                           : render_frame_output(ro, b, s, frame, scene_name, w, h, pixels, hits, &fr);
     free(pixels);
     free(hits);
+    free(costs);
     return rc;
 }
 
@@ -508,6 +549,7 @@ int cmd_render(int argc, char **argv)
         SCENE_LONG_OPTIONS, { "output", required_argument, NULL, 'o' }, { "threads", required_argument, NULL, 't' },
         { "stats", required_argument, NULL, 's' }, { "frames", required_argument, NULL, 'F' },
         { "fps", required_argument, NULL, 'r' }, { "frame", required_argument, NULL, 'f' }, { "aov", required_argument, NULL, 'a' },
+        { "heatmap", required_argument, NULL, 'H' }, { "heatmap-of", required_argument, NULL, 'O' },
         { "max-depth", required_argument, NULL, 'd' }, { "no-shadows", no_argument, NULL, 'S' },
         { "traversal", required_argument, NULL, 'T' }, { "precision", required_argument, NULL, 'p' }, { "mode", required_argument, NULL, 'm' },
         { "capture-unit-io", required_argument, NULL, 'C' }, { "capture-limit", required_argument, NULL, 'L' },
@@ -516,8 +558,8 @@ int cmd_render(int argc, char **argv)
     };
     scene_opts o;
     const long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
-    render_opts ro = { "render.png", NULL, NULL, ncpu > 0 && ncpu < 256 ? (uint32_t)ncpu : 1, 0, 0, 0, 0, 30.0,
-                       { SHADE_DEFAULT_DEPTH, 1, TRAV_STACK }, 0, { 0 }, NULL, NULL, 100000, 0, 64 };
+    render_opts ro = { .out = "render.png", .heatmap_of = -1, .threads = ncpu > 0 && ncpu < 256 ? (uint32_t)ncpu : 1,
+                       .fps = 30.0, .cfg = { SHADE_DEFAULT_DEPTH, 1, TRAV_STACK }, .capture_limit = 100000, .mpi_tile = 64 };
     int c, prec_e = F24_EXP_BITS, prec_m = F24_MAN_BITS;
     scene_opts_default(&o);
     cycle_config_default(&ro.cc);
@@ -540,6 +582,12 @@ int cmd_render(int argc, char **argv)
             break;
         case 's': ro.stats = optarg; break;
         case 'a': ro.aov = optarg; break;
+        case 'H': ro.heatmap = optarg; break;
+        case 'O':
+            if ((ro.heatmap_of = heatmap_channel(optarg)) < 0)
+                return cli_usage_error("render", "bad --heatmap-of '%s' (traversal_steps, list_entries, intersections, "
+                                       "transformations or cycles)", optarg);
+            break;
         case 'F':
             if (!parse_frames(optarg, &ro))
                 return cli_usage_error("render", "bad --frames '%s' (expected A:B with A <= B)", optarg);
@@ -603,6 +651,10 @@ int cmd_render(int argc, char **argv)
     }
     if (argc - optind != 1)
         return cli_usage_error("render", "expected one SCENE");
+    if (ro.heatmap_of == PC_CYCLES && !ro.cycle)
+        return cli_usage_error("render", "--heatmap-of cycles needs --mode cycle");
+    if (ro.heatmap_of >= 0 && !ro.heatmap)
+        return cli_usage_error("render", "--heatmap-of needs --heatmap FILE.png");
     int rc = limit_check(&o.lim, "render", LIMIT_RAY_DEPTH, ro.cfg.max_depth, "--max-depth");
     if (rc == SAARCOR_EXIT_OK)
         rc = limit_check(&o.lim, "render", LIMIT_FRAMES, ro.last - ro.first + 1ull, "the frame count of --frames");
@@ -619,8 +671,9 @@ int cmd_render(int argc, char **argv)
      * render stops at its first block row) */
     if (interrupt_catch() != 0)
         cli_error("render", "cannot catch SIGINT/SIGTERM: Ctrl-C will not stop cleanly");
-    if (ro.mpi && (ro.aov || ro.capture))
-        return cli_usage_error("render", "--mpi does not write --aov or --capture-unit-io (render those in one process)");
+    if (ro.mpi && (ro.aov || ro.heatmap || ro.capture))
+        return cli_usage_error("render", "--mpi does not write --aov, --heatmap or --capture-unit-io (render those in one "
+                                         "process)");
     if (ro.mpi && ro.cycle && ro.mpi_tile % ro.cc.tile)
         return cli_usage_error("render", "--mpi-tile %u must be a multiple of the cycle model's --tile %u", ro.mpi_tile,
                                ro.cc.tile);

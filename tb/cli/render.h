@@ -11,12 +11,15 @@
 
 #include "cycle_sim.h"
 #include "memimage.h"
+#include "pixel_cost.h"
 #include "rgs.h"
 #include "saarcor_mpi.h"
 #include "scene.h"
 
 typedef struct {
     const char *out, *stats, *aov;
+    const char *heatmap; /* --heatmap FILE.png */
+    int heatmap_of;      /* --heatmap-of: a PC_* channel; -1: transformations, cycles in cycle mode */
     uint32_t threads, first, last;
     int sequence, one_frame; /* --frames A:B, --frame N */
     double fps;
@@ -41,13 +44,14 @@ typedef struct {
     uint64_t image_bytes_per_board;    /* MPI, one frame in tiles: the memory image every board holds */
     uint64_t image_upload_bytes_total; /* ... uploaded to all boards: boards x image_bytes_per_board */
     const saarcor_mpi_report *mpi;
+    const pixel_cost *costs;  /* per pixel, for --aov and --heatmap (NULL: not kept) */
 } frame_result;
 
 /* Renders the pixels of region {x0, y0, x1, y1} (x0, y0 even; clipped to the image) with
- * `threads` host threads into the full-size pixels (and hits, may be NULL); sum = the counters
+ * `threads` host threads into the full-size pixels (and hits, costs, may be NULL); sum = the counters
  * of that work. 0, or -1 if out of memory. */
 int render_region(const uint32_t *mem, const rgs_config *cfg, uint32_t threads, const uint32_t region[4],
-                  uint32_t *pixels, hit_record *hits, rgs_counters *sum);
+                  uint32_t *pixels, hit_record *hits, pixel_cost *costs, rgs_counters *sum);
 
 /* Writes the frame's image (and AOV, stats file) and prints its report lines; b and s are needed
  * for --aov only (may be NULL otherwise). A saarcor exit code. */

@@ -50,7 +50,7 @@ static int render_part(mpi_render *m, const uint32_t r[4], item_head *hd)
         cycle_flush(m->ro->sim); /* the item's cycles must not depend on what this board did before */
         rc = cycle_render_region(m->ro->sim, mem, &m->ro->cfg, r, m->pixels, NULL, &hd->sum, &hd->cs, NULL, NULL);
     } else {
-        rc = render_region(mem, &m->ro->cfg, m->ro->threads, r, m->pixels, NULL, &hd->sum);
+        rc = render_region(mem, &m->ro->cfg, m->ro->threads, r, m->pixels, NULL, NULL, &hd->sum);
     }
     hd->secs = now() - t0;
     return rc;

@@ -1,6 +1,7 @@
 /* Cycle-level model of the DynRTC: see cycle_sim.h and docs/cycle-model.md. */
 #define _GNU_SOURCE
 #include "cycle_sim.h"
+#include "pixel_cost.h"
 
 #include <pthread.h>
 #include <stdlib.h>
@@ -56,6 +57,8 @@ typedef struct {
     unit_op op;
     uint32_t state, x0, y0, wait_kind;
     uint64_t since; /* cycle the current state began */
+    uint64_t began; /* cycle it took its block (per-pixel cycles) */
+    pixel_cost cost[TRACE_PACKET]; /* its block's per-pixel cost so far (if kept) */
 } thread;
 
 typedef struct {
@@ -71,6 +74,7 @@ typedef struct {
     uint32_t width, height, *pixels;
     uint32_t rx0, ry0, rx1, ry1; /* the region rendered: tiles are numbered within it */
     hit_record *hits;
+    pixel_cost *costs; /* per pixel (NULL: not kept) */
     thread *th;
     fifo queue[UNIT_KINDS];
     uint64_t free_at[UNIT_KINDS];
@@ -184,6 +188,10 @@ static void finish_block(pipe_state *p, thread *t)
         if (p->hits)
             p->hits[(size_t)y * p->width + x] = t->blk.primary_hits[i];
     }
+    if (p->costs) {
+        pc_split_block(t->cost, PC_CYCLES, p->now - t->began, t->x0, t->y0, p->width, p->height);
+        pc_store_block(p->costs, t->cost, t->x0, t->y0, p->width, p->height);
+    }
     p->st.blocks++;
 }
 
@@ -194,7 +202,7 @@ static void advance(pipe_state *p, uint32_t id)
     thread *t = &p->th[id];
     leave_state(p, t);
 next_op:
-    while (t->state == TH_IDLE || !rgs_step(p->mem, p->rcfg, &t->blk, &t->op, &p->counters)) {
+    while (t->state == TH_IDLE || !pc_step(p->mem, p->rcfg, &t->blk, &t->op, &p->counters, p->costs ? t->cost : NULL)) {
         if (t->state != TH_IDLE) { /* the block is done */
             finish_block(p, t);
             p->active--;
@@ -203,6 +211,8 @@ next_op:
         if (!next_block(p, &t->x0, &t->y0))
             return;
         rgs_block_begin(p->mem, t->x0, t->y0, &t->blk);
+        memset(t->cost, 0, sizeof t->cost);
+        t->began = p->now;
         p->active++;
         t->state = TH_QUEUED; /* holds a block from here on */
     }
@@ -313,7 +323,10 @@ static int pipe_busy(const pipe_state *p) { return p->active || p->n_tiles || p-
 struct cycle_sim {
     cycle_config cfg;
     pipe_state *pipes;
+    pixel_cost *costs;
 };
+
+void cycle_set_costs(cycle_sim *s, pixel_cost *costs) { s->costs = costs; }
 
 cycle_sim *cycle_create(const cycle_config *cfg)
 {
@@ -415,7 +428,7 @@ static void controller_refill(cycle_sim *s, uint32_t *next_tile, uint32_t n_tile
 }
 
 static void pipe_reset(pipe_state *p, const uint32_t *mem, const rgs_config *rcfg, const uint32_t region[4],
-                       uint32_t *pixels, hit_record *hits)
+                       uint32_t *pixels, hit_record *hits, pixel_cost *costs)
 {
     p->mem = mem;
     p->rcfg = rcfg;
@@ -426,6 +439,7 @@ static void pipe_reset(pipe_state *p, const uint32_t *mem, const rgs_config *rcf
     p->ry1 = region[3] < p->height ? region[3] : p->height;
     p->pixels = pixels;
     p->hits = hits;
+    p->costs = costs;
     for (uint32_t i = 0; i < p->cfg->threads_per_pipe; i++)
         p->th[i] = (thread){ .state = TH_IDLE };
     for (int u = 0; u < UNIT_KINDS; u++) {
@@ -493,7 +507,7 @@ int cycle_render_region(cycle_sim *s, const uint32_t *mem, const rgs_config *rcf
                         cycle_progress_fn progress, void *arg)
 {
     for (uint32_t i = 0; i < s->cfg.pipes; i++)
-        pipe_reset(&s->pipes[i], mem, rcfg, region, pixels, hits);
+        pipe_reset(&s->pipes[i], mem, rcfg, region, pixels, hits, s->costs);
     const pipe_state *p0 = &s->pipes[0];
     const uint32_t width = p0->rx1 > p0->rx0 ? p0->rx1 - p0->rx0 : 0, height = p0->ry1 > p0->ry0 ? p0->ry1 - p0->ry0 : 0;
     const uint32_t tile = s->cfg.tile, n_tiles = ((width + tile - 1) / tile) * ((height + tile - 1) / tile);

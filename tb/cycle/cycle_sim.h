@@ -27,6 +27,7 @@
 #include <stdint.h>
 
 #include "mem_iface.h"
+#include "pixel_cost.h"
 #include "rgs.h"
 
 typedef struct {
@@ -62,6 +63,10 @@ typedef struct cycle_sim cycle_sim;
 /* NULL if out of memory. */
 cycle_sim *cycle_create(const cycle_config *cfg);
 void cycle_free(cycle_sim *s);
+
+/* Per-pixel costs of the following renders (pixel_cost.h; width x height of the camera block,
+ * pixels outside the region rendered untouched), NULL (the default): not kept. */
+void cycle_set_costs(cycle_sim *s, pixel_cost *costs);
 
 /* Empties the caches: the memory image changed. */
 void cycle_flush(cycle_sim *s);
