@@ -414,7 +414,7 @@ static void sweep_axis(const builder *b, const prim_set *s, const aabb *box, uin
         if (i > 0 && ev[i].pos == ev[i - 1].pos)
             continue;
         const double q = snap(b, ev[i].pos);
-        const int face = box->hi[k] > box->lo[k] && (q == box->lo[k] || q == box->hi[k]);
+        const int face = b->p.face_splits && box->hi[k] > box->lo[k] && (q == box->lo[k] || q == box->hi[k]);
         if (!(q > last) || !(strictly_inside(box, k, q) || face))
             continue;
         last = q;
@@ -1478,6 +1478,7 @@ void kd_params_default(kd_params *p)
     p->cost_intersection = 1.5;
     p->empty_bonus = 0.2;
     p->leaf_size = 1;
+    p->face_splits = 1;
 }
 
 static double now(void)

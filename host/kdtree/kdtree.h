@@ -44,6 +44,8 @@ typedef struct {
      * Must be a pure function: binned builds without a clip function use all cores and call it
      * from several threads (the tree is the same as a single-threaded build, bit for bit). */
     double (*quantize)(double split);
+    int face_splits;           /* exact mode: flat cells for primitives lying in a face of their node
+                                  (default 1); the restarting and rope walkers need 0 (docs/traversal.md) */
 } kd_params;
 
 typedef struct {

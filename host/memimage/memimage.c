@@ -89,6 +89,12 @@ uint32_t mi_accel_for(uint32_t traversal)
                                    : 0u;
 }
 
+int mi_face_splits_for(uint32_t traversal)
+{
+    return traversal != TRAV_SHORT_STACK && traversal != TRAV_RESTART && traversal != TRAV_PUSH_DOWN &&
+           traversal != TRAV_ROPES;
+}
+
 static double seconds(void)
 {
     struct timespec ts;

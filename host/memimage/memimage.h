@@ -110,6 +110,10 @@ void mi_params_default(mi_params *p);
 /* The MI_ACCEL_* structures traversal algorithm TRAV_* (hls/units/trace.h) walks. */
 uint32_t mi_accel_for(uint32_t traversal);
 
+/* kd_params.face_splits for traversal algorithm TRAV_*: the walkers that restart or follow ropes
+ * skip a flat cell lying exactly where a ray's last cell ended, so their trees have none. */
+int mi_face_splits_for(uint32_t traversal);
+
 typedef struct {
     uint32_t objects, instances, triangles, degenerate_triangles;
     uint32_t bottom_nodes, bottom_leaves, bottom_empty_leaves, bottom_depth;
