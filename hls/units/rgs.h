@@ -69,7 +69,6 @@ typedef struct {
     uint32_t mat;       /* address of the material record */
     uint32_t base[3];   /* Q12 base colour: factor x bilinear texture sample */
     uint32_t tint[3];   /* Q12 colour of reflection and highlight: 1 + metallic (base - 1) */
-    uint32_t words;     /* memory words read for it */
 } surface;
 
 /* A 2x2 pixel block's thread: its ray tree, the packet in flight and its shading state. */
