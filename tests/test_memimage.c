@@ -376,9 +376,9 @@ static void rejects(const uint32_t *good, uint32_t n, uint32_t at, uint32_t v, c
     free(w);
 }
 
-/* Shading records (hls/units/shade_rec.h): 1 word per triangle for a bare mesh, 8 with normals
+/* Shading records (hls/units/shade_rec.h): 1 word per triangle for a bare mesh, 9 with normals
  * and texture coordinates, decoding to what the mesh holds; the validator rejects non-zero
- * padding, a normal half at -32768, a material out of range and a non-finite texture coordinate. */
+ * padding, a malformed missing-normal mark, a material out of range and a non-finite texture coordinate. */
 static void shading_records(void **state)
 {
     (void)state;
@@ -403,20 +403,21 @@ static void shading_records(void **state)
     if (mi_validate(w, n, err, sizeof err) != 0)
         fail_msg("%s", err);
     assert_int_equal(obj[MI_O_FLAGS] & 3u, MI_OBJECT_HAS_NORMALS | MI_OBJECT_HAS_TEXCOORDS);
-    const uint32_t stride = shade_rec_words(obj[MI_O_FLAGS]), tail = 3;
-    assert_int_equal(stride, F24_WIDTH == 24 ? 8 : stride);
+    const uint32_t stride = shade_rec_words(obj[MI_O_FLAGS]), tail = SHADE_NORMAL_WORDS;
+    assert_int_equal(stride, F24_WIDTH == 24 ? 9 : stride);
     for (uint32_t t = 0; t < obj[MI_O_N_TRIANGLES]; t++) { /* triangle t is the mesh's triangle t (the degenerate one is last) */
         const uint32_t *rec = w + obj[MI_O_SHADING] + stride * t;
         for (uint32_t k = 0; k < 3; k++) {
             const uint32_t v = s.meshes[0].indices[3 * t + k];
-            const f24_vec3 d = shade_rec_normal(rec[k]);
-            assert_true(fabs(f24d(d.x) - nrm[3 * v]) + fabs(f24d(d.y) - nrm[3 * v + 1]) + fabs(f24d(d.z) - nrm[3 * v + 2]) < 1e-3);
+            const f24_vec3 d = shade_rec_normal(rec, k);
+            assert_true(fabs(f24d(d.x) - nrm[3 * v]) + fabs(f24d(d.y) - nrm[3 * v + 1]) + fabs(f24d(d.z) - nrm[3 * v + 2]) < 1e-4);
             for (uint32_t i = 0; i < 2; i++)
                 assert_true(f24d(shade_rec_texcoord(rec + tail, 2 * k + i)) == uv[2 * v + i]);
         }
     }
     const uint32_t rec = obj[MI_O_SHADING];
-    rejects(w, n, rec, 0x80000000u, "normal");
+    rejects(w, n, rec, 1u << 20 | 1u << 21, "normal"); /* x = -2^20 (missing) with y != 0 */
+    rejects(w, n, rec + SHADE_NORMAL_WORDS - 1, w[rec + SHADE_NORMAL_WORDS - 1] | 1u << 31, "normal padding");
     rejects(w, n, rec + tail, w[rec + tail] | 1u, "material");
     uint32_t t2[SHADE_MAX_WORDS];
     memcpy(t2, w + rec + tail, (stride - tail) * sizeof *t2);

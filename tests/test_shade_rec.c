@@ -1,7 +1,8 @@
 /*
  * Tests of the compact shading record (hls/units/shade_rec.h, host/memimage/shade_encode.c):
  * octahedral normals round-trip through the device's decoder within SHADE_OCT_MAX_ERR_URAD of
- * angle (random directions, the axes, the fold's edges) and decode to unit length; missing
+ * angle (random directions, the axes, the fold's edges) and decode to unit length; neighbouring
+ * fields of a block do not disturb each other; missing
  * normals (zero, non-finite) decode to zero; texture coordinates and the material index come back
  * bit for bit; the record's stride follows the object's flags.
  */
@@ -28,7 +29,9 @@ static double urand(void) /* [-1, 1) */
  * distance from 1 in len_err. */
 static double round_trip_urad(const double n[3], double *len_err)
 {
-    const f24_vec3 d = shade_rec_normal(shade_encode_normal(n));
+    uint32_t block[SHADE_NORMAL_WORDS] = { 0 };
+    shade_encode_set_normal(block, 1, shade_encode_normal(n)); /* normal B: straddles words 1 and 2 */
+    const f24_vec3 d = shade_rec_normal(block, 1);
     const double v[3] = { f24_fast_decode(d.x), f24_fast_decode(d.y), f24_fast_decode(d.z) };
     const double lv = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     const double cr[3] = { n[1] * v[2] - n[2] * v[1], n[2] * v[0] - n[0] * v[2], n[0] * v[1] - n[1] * v[0] };
@@ -70,8 +73,12 @@ static void missing_normals(void **state)
     assert_int_equal(shade_encode_normal(zero), SHADE_NO_NORMAL);
     assert_int_equal(shade_encode_normal(inf), SHADE_NO_NORMAL);
     assert_int_equal(shade_encode_normal(nan3), SHADE_NO_NORMAL);
-    const f24_vec3 d = shade_rec_normal(SHADE_NO_NORMAL);
-    assert_true(f24_is_zero(d.x) && f24_is_zero(d.y) && f24_is_zero(d.z));
+    uint32_t block[SHADE_NORMAL_WORDS] = { 0 };
+    for (uint32_t k = 0; k < 3; k++) {
+        shade_encode_set_normal(block, k, SHADE_NO_NORMAL);
+        const f24_vec3 d = shade_rec_normal(block, k);
+        assert_true(f24_is_zero(d.x) && f24_is_zero(d.y) && f24_is_zero(d.z));
+    }
 }
 
 /* A record with every part: normals, texture coordinates (fp24 bits exact, including huge and
@@ -91,21 +98,25 @@ static void record_round_trip(void **state)
         assert_int_equal(shade_rec_material(tail), 4321);
         for (uint32_t i = 0; (flags & SHADE_HAS_TEXCOORDS) && i < 6; i++)
             assert_int_equal(shade_rec_texcoord(tail, i), f24_fast_encode(texcoords[i / 2][i % 2]));
-        for (int k = 0; (flags & SHADE_HAS_NORMALS) && k < 3; k++) {
+        for (uint32_t k = 0; (flags & SHADE_HAS_NORMALS) && k < 3; k++) {
             const double n[3] = { normals[k][0], normals[k][1], normals[k][2] };
-            assert_int_equal(w[k], shade_encode_normal(n));
+            uint32_t one[SHADE_NORMAL_WORDS] = { 0 };
+            shade_encode_set_normal(one, 0, shade_encode_normal(n));
+            for (uint32_t c = 0; c < 2; c++)
+                assert_int_equal(shade_rec_oct(w, k, c), shade_rec_oct(one, 0, c));
         }
     }
-    if (F24_WIDTH == 24) { /* 4, 8, 1, 5 words: 16, 32, 4, 20 bytes per triangle */
-        assert_int_equal(shade_rec_words(SHADE_HAS_NORMALS), 4);
-        assert_int_equal(shade_rec_words(SHADE_HAS_NORMALS | SHADE_HAS_TEXCOORDS), 8);
+    if (F24_WIDTH == 24) { /* 5, 9, 1, 5 words: 20, 36, 4, 20 bytes per triangle */
+        assert_int_equal(shade_rec_words(SHADE_HAS_NORMALS), 5);
+        assert_int_equal(shade_rec_words(SHADE_HAS_NORMALS | SHADE_HAS_TEXCOORDS), 9);
         assert_int_equal(shade_rec_words(0), 1);
         assert_int_equal(shade_rec_words(SHADE_HAS_TEXCOORDS), 5);
     }
 }
 
-/* Setting one texture coordinate leaves its neighbours and the material alone. */
-static void texcoord_fields_independent(void **state)
+/* Setting one field leaves its neighbours alone: texture coordinates beside the material, the
+ * components of three normals (negative ones included: sign extension). */
+static void fields_independent(void **state)
 {
     (void)state;
     uint32_t tail[SHADE_MAX_WORDS];
@@ -116,6 +127,15 @@ static void texcoord_fields_independent(void **state)
     for (uint32_t i = 0; i < 6; i++)
         assert_int_equal(shade_rec_texcoord(tail, i), i + 1);
     assert_int_equal(shade_rec_material(tail), 7);
+    uint32_t normals[SHADE_NORMAL_WORDS];
+    memset(normals, 0xFF, sizeof normals);
+    const int32_t v[3][2] = { { -SHADE_OCT_ONE, 5 }, { 123456, -654321 }, { SHADE_OCT_ONE, -1 } };
+    const uint32_t field = (1u << SHADE_OCT_BITS) - 1u;
+    for (uint32_t k = 0; k < 3; k++)
+        shade_encode_set_normal(normals, k, ((uint32_t)v[k][0] & field) | (uint64_t)((uint32_t)v[k][1] & field) << SHADE_OCT_BITS);
+    for (uint32_t k = 0; k < 3; k++)
+        for (uint32_t c = 0; c < 2; c++)
+            assert_int_equal(shade_rec_oct(normals, k, c), v[k][c]);
 }
 
 int main(void)
@@ -124,7 +144,7 @@ int main(void)
         cmocka_unit_test(normals_within_bound),
         cmocka_unit_test(missing_normals),
         cmocka_unit_test(record_round_trip),
-        cmocka_unit_test(texcoord_fields_independent),
+        cmocka_unit_test(fields_independent),
     };
     return cmocka_run_group_tests_name("shading record (hls/units/shade_rec.h, host/memimage/shade_encode.c)", tests,
                                        NULL, NULL);

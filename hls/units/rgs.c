@@ -145,8 +145,8 @@ static f24_vec3 hit_normal(const uint32_t *mem, const hit_record *h, uint32_t ob
 {
     f24_vec3 n = { 0, 0, 0 };
     if (mem[obj + O_FLAGS] & SHADE_HAS_NORMALS) {
-        const f24_vec3 a = shade_rec_normal(mem[shade]), b = shade_rec_normal(mem[shade + 1]),
-                       cc = shade_rec_normal(mem[shade + 2]);
+        const f24_vec3 a = shade_rec_normal(&mem[shade], 0), b = shade_rec_normal(&mem[shade], 1),
+                       cc = shade_rec_normal(&mem[shade], 2);
         n = (f24_vec3){ lerp(a.x, b.x, cc.x, h->u, h->v), lerp(a.y, b.y, cc.y, h->u, h->v),
                         lerp(a.z, b.z, cc.z, h->u, h->v) };
     }

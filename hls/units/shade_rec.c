@@ -1,22 +1,17 @@
 /* Compact shading record decoding: see shade_rec.h. */
 #include "shade_rec.h"
 
-f24_t shade_rec_texcoord(const uint32_t *tail, uint32_t i)
+int32_t shade_rec_oct(const uint32_t *normals, uint32_t k, uint32_t c)
 {
-    const uint32_t at = SHADE_MATERIAL_BITS + F24_WIDTH * i, w = at / 32u, shift = at % 32u;
-    uint64_t bits = tail[w] >> shift;
-    if (shift + F24_WIDTH > 32u) /* the field continues in the next word */
-        bits |= (uint64_t)tail[w + 1] << (32u - shift);
-    return (f24_t)bits & F24_MASK;
+    const uint32_t v = shade_rec_bits(normals, 2u * SHADE_OCT_BITS * k + SHADE_OCT_BITS * c, SHADE_OCT_BITS);
+    return (int32_t)(v ^ 1u << (SHADE_OCT_BITS - 1)) - (1 << (SHADE_OCT_BITS - 1)); /* sign extension */
 }
 
-static int32_t oct_component(uint32_t half) { return (int32_t)(int16_t)(uint16_t)half; }
-
-f24_vec3 shade_rec_normal(uint32_t word)
+f24_vec3 shade_rec_normal(const uint32_t *normals, uint32_t k)
 {
-    if ((word & 0xFFFFu) == SHADE_NO_NORMAL)
-        return (f24_vec3){ 0, 0, 0 };
-    const int32_t x = oct_component(word & 0xFFFFu), y = oct_component(word >> 16);
+    const int32_t x = shade_rec_oct(normals, k, 0), y = shade_rec_oct(normals, k, 1);
+    if (x < -SHADE_OCT_ONE)
+        return (f24_vec3){ 0, 0, 0 }; /* missing */
     const int32_t ax = x < 0 ? -x : x, ay = y < 0 ? -y : y, z = SHADE_OCT_ONE - ax - ay;
     int32_t fx = x, fy = y;
     if (z < 0) { /* lower hemisphere: folded over the diagonals */

@@ -165,10 +165,11 @@ static int check_grid(checker *c, const char *what, mi_region r, uint32_t addr, 
     return 0;
 }
 
-/* An octahedral normal word: both halves in [-32767, 32767], or exactly the missing-normal mark. */
-static int oct_ok(uint32_t w)
+/* Octahedral normal k of a normal block: both components in range, or exactly the missing mark. */
+static int oct_ok(const uint32_t *normals, uint32_t k)
 {
-    return w == SHADE_NO_NORMAL || ((w & 0xFFFFu) != SHADE_NO_NORMAL && (w >> 16) != SHADE_NO_NORMAL);
+    const int32_t x = shade_rec_oct(normals, k, 0), y = shade_rec_oct(normals, k, 1);
+    return (x >= -SHADE_OCT_ONE && y >= -SHADE_OCT_ONE) || (x < -SHADE_OCT_ONE && y == 0);
 }
 
 /* A shading record (hls/units/shade_rec.h): normals, material in range, finite texture
@@ -176,9 +177,11 @@ static int oct_ok(uint32_t w)
 static int shading_record_ok(const checker *c, uint32_t at, uint32_t flags, uint32_t n_mat)
 {
     const uint32_t *tail = c->w + at + shade_rec_tail(flags), tail_words = shade_rec_words(flags) - shade_rec_tail(flags);
-    for (uint32_t k = 0; k < shade_rec_tail(flags); k++)
-        if (!oct_ok(c->w[at + k]))
+    for (uint32_t k = 0; (flags & SHADE_HAS_NORMALS) && k < 3; k++)
+        if (!oct_ok(c->w + at, k))
             return 0;
+    if ((flags & SHADE_HAS_NORMALS) && c->w[at + SHADE_NORMAL_WORDS - 1] >> (6 * SHADE_OCT_BITS - 96))
+        return 0; /* the normal block's last two bits */
     if (shade_rec_material(tail) >= n_mat)
         return 0;
     const uint32_t used = SHADE_MATERIAL_BITS + ((flags & SHADE_HAS_TEXCOORDS) ? 6u * F24_WIDTH : 0u);

@@ -9,8 +9,12 @@
 
 #include "shade_rec.h"
 
-/* Octahedral word of direction n (any length); SHADE_NO_NORMAL if n is zero or not finite. */
-uint32_t shade_encode_normal(const double n[3]);
+/* The 42-bit octahedral code (x | y << 21) of direction n (any length); SHADE_NO_NORMAL if n is
+ * zero or not finite. */
+uint64_t shade_encode_normal(const double n[3]);
+
+/* Sets normal k of a normal block to a code of shade_encode_normal. */
+void shade_encode_set_normal(uint32_t *normals, uint32_t k, uint64_t code);
 
 /* Sets texture coordinate i (sA tA sB tB sC tC) of a tail with texture coordinates to fp24 value. */
 void shade_encode_texcoord(uint32_t *tail, uint32_t i, uint32_t value);
