@@ -150,7 +150,8 @@ def write(res):
            "16 add, 11 mul, 5 div, 13 cmp (our traversal decision counts min/max and both interval tests of 4 rays "
            "as 16 comparisons).", "",
            "Not included: the list unit (no floating point), the traversal stack and thread state (Table 2: 44.5 KB), "
-           "the caches (15.6 KB), the RGS/shader and the control. The prototype's whole pipeline with 64 threads "
+           "the caches (Table 2: 15.6 KB for kd nodes, lists and matrices; the cycle model adds a 4 KB shading cache, "
+           "so its cache data is 4 + 2 + 6 + 4 = 16 KB per pipe), the RGS/shader and the control. The prototype's whole pipeline with 64 threads "
            "used 56% of a Virtex-II 6000's logic (about 37,800 of its 67,584 LUT4s) and 78% of its memory. "
            f"In LUT4 terms (iCE40 mapping of the operators x their counts) our datapaths need about "
            f"{ops[0] * res[('i', 'f24_add', 16)]['lut4'] + ops[1] * res[('i', 'f24_mul', 16)]['lut4'] + ops[2] * res[('i', 'f24_div', 16)]['lut4'] + ops[3] * res[('i', 'f24_cmp', 16)]['lut4']} "

@@ -24,6 +24,7 @@
 #include "image_probe.h"
 #include "memimage.h"
 #include "scenes.h"
+#include "shade_encode.h"
 
 enum { VARIANTS = 1500 };
 
@@ -130,8 +131,9 @@ static void huge_texcoords(void **state)
         for (uint32_t o = 0; o < w[MI_H_OBJECTS]; o++) {
             const uint32_t *d = w + w[MI_H_REGION_TABLE + 2 * MI_R_OBJECTS] + MI_OBJECT_WORDS * o;
             for (uint32_t t = 0; (d[MI_O_FLAGS] & MI_OBJECT_HAS_TEXCOORDS) && t < d[MI_O_N_TRIANGLES]; t++, patched++)
-                for (uint32_t k = 9; k < 15; k++)
-                    w[d[MI_O_SHADING] + MI_SHADING_WORDS * t + k] = huge;
+                for (uint32_t k = 0; k < 6; k++)
+                    shade_encode_texcoord(&w[d[MI_O_SHADING] + shade_rec_words(d[MI_O_FLAGS]) * t +
+                                             shade_rec_tail(d[MI_O_FLAGS])], k, huge);
         }
         char err[256];
         assert_int_equal(mi_validate(w, n, err, sizeof err), 0);

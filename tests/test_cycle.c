@@ -3,7 +3,8 @@
  * equal the functional mode's bit for bit for several scenes, thread counts and pipe counts; the
  * cycle count is deterministic (repeated runs, host thread counts, units stepped in reverse
  * order); caches: a second identical frame hits 100% when the cache holds the whole image, a
- * tiny cache misses, and the bytes over the port equal the misses times the line size; more
+ * tiny cache misses, and the bytes over the port equal the misses times the line size (every kind,
+ * shading too; an uncached kind moves exactly its words); the shading cache on a known pattern; more
  * threads per pipe hide latency (fewer cycles), and a slower memory costs cycles.
  */
 #define _POSIX_C_SOURCE 200809L
@@ -191,8 +192,38 @@ static void caches(void **state)
         assert_int_equal(cold.mem.bytes[k], misses * 16);
         assert_int_equal(cold.mem.requests[k], misses);
     }
-    assert_int_equal(cold.mem.bytes[MEM_SHADING], 4 * f.c.trace.words[MEM_SHADING]); /* uncached */
+    cfg.mem.cache[MEM_SHADING].size_bytes = 0; /* uncached: every word read goes over the port */
+    cycle_with(&cfg, im.mem, &full, &f, &cold);
+    assert_int_equal(cold.mem.bytes[MEM_SHADING], 4 * f.c.trace.words[MEM_SHADING]);
+    assert_int_equal(cold.mem.lookups[MEM_SHADING], 0);
     image_free(&im);
+}
+
+/* The shading cache on a known pattern (64 bytes, 16-byte lines: 4 lines, word w in line w / 4
+ * at index (w / 4) % 4): misses fill whole lines, a read spanning two lines looks up both, a line
+ * 64 bytes further evicts, and a hit while the line is in flight waits for its arrival. */
+static void shading_cache_pattern(void **state)
+{
+    (void)state;
+    mem_config cfg = { .latency = 10, .mbps = 1000, .clock_mhz = 90 };
+    cfg.cache[MEM_SHADING] = (cache_config){ 64, 16 };
+    mem_iface m;
+    assert_int_equal(mem_iface_init(&m, &cfg), 0);
+    const uint64_t fill = mem_iface_read(&m, MEM_SHADING, 0, 4, 0); /* line 0: miss */
+    assert_true(fill > 10);
+    assert_int_equal(mem_iface_read(&m, MEM_SHADING, 1, 2, 0), fill); /* in flight: waits for it */
+    const uint64_t second = mem_iface_read(&m, MEM_SHADING, 3, 2, fill); /* lines 0 (hit) and 1 (miss) */
+    assert_true(second > fill);
+    assert_int_equal(mem_iface_read(&m, MEM_SHADING, 4, 1, fill), second); /* line 1 in flight */
+    assert_int_equal(mem_iface_read(&m, MEM_SHADING, 2, 1, 1000), 1000); /* arrived: a hit costs nothing */
+    mem_iface_read(&m, MEM_SHADING, 16, 1, 1000); /* line 4 evicts line 0 */
+    mem_iface_read(&m, MEM_SHADING, 0, 1, 1000);  /* miss again */
+    assert_int_equal(m.stats.lookups[MEM_SHADING], 8);
+    assert_int_equal(m.stats.hits[MEM_SHADING], 4);
+    assert_int_equal(m.stats.requests[MEM_SHADING], 4);
+    assert_int_equal(m.stats.bytes[MEM_SHADING], 4 * 16);
+    assert_int_equal(m.stats.lookups[MEM_NODES], 0); /* the other kinds are untouched */
+    mem_iface_free(&m);
 }
 
 /* Latency hiding: 32 threads take far fewer cycles than 1; a slow memory port costs cycles;
@@ -225,6 +256,7 @@ int main(void)
         cmocka_unit_test(same_bits_as_functional),
         cmocka_unit_test(deterministic),
         cmocka_unit_test(caches),
+        cmocka_unit_test(shading_cache_pattern),
         cmocka_unit_test(threads_hide_latency),
     };
     return cmocka_run_group_tests_name("cycle model (tb/cycle)", tests, NULL, NULL);

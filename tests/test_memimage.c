@@ -18,6 +18,7 @@
 #include <string.h>
 
 #include "f24.h"
+#include "shade_encode.h"
 #include "f24_fast.h"
 #include "image_probe.h"
 #include "memimage.h"
@@ -375,6 +376,57 @@ static void rejects(const uint32_t *good, uint32_t n, uint32_t at, uint32_t v, c
     free(w);
 }
 
+/* Shading records (hls/units/shade_rec.h): 1 word per triangle for a bare mesh, 9 with normals
+ * and texture coordinates, decoding to what the mesh holds; the validator rejects non-zero
+ * padding, a malformed missing-normal mark, a material out of range and a non-finite texture coordinate. */
+static void shading_records(void **state)
+{
+    (void)state;
+    scene s;
+    make_scene(&s, 1, 0);
+    uint32_t n;
+    mi_builder *b = build(&s, 0);
+    const uint32_t *w = mi_words(b, &n);
+    const uint32_t *obj = w + w[MI_H_REGION_TABLE + 2 * MI_R_OBJECTS];
+    assert_int_equal(shade_rec_words(obj[MI_O_FLAGS]), 1);
+    rejects(w, n, obj[MI_O_SHADING] + 1, 1u << 16, "record padding");
+    mi_free(b);
+
+    static const float nrm[] = { 0, 0, 1, 0.6f, 0.8f, 0, -1, 0, 0, 0, -0.28f, -0.96f };
+    static const float uv[] = { 0.5f, 0.25f, -2, 3, 1e4f, 0, 0.125f, 1 };
+    s.meshes[0].normals = floats(nrm, 12);
+    s.meshes[0].texcoords = floats(uv, 8);
+    b = build(&s, 0);
+    w = mi_words(b, &n);
+    obj = w + w[MI_H_REGION_TABLE + 2 * MI_R_OBJECTS];
+    char err[256];
+    if (mi_validate(w, n, err, sizeof err) != 0)
+        fail_msg("%s", err);
+    assert_int_equal(obj[MI_O_FLAGS] & 3u, MI_OBJECT_HAS_NORMALS | MI_OBJECT_HAS_TEXCOORDS);
+    const uint32_t stride = shade_rec_words(obj[MI_O_FLAGS]), tail = SHADE_NORMAL_WORDS;
+    assert_int_equal(stride, F24_WIDTH == 24 ? 9 : stride);
+    for (uint32_t t = 0; t < obj[MI_O_N_TRIANGLES]; t++) { /* triangle t is the mesh's triangle t (the degenerate one is last) */
+        const uint32_t *rec = w + obj[MI_O_SHADING] + stride * t;
+        for (uint32_t k = 0; k < 3; k++) {
+            const uint32_t v = s.meshes[0].indices[3 * t + k];
+            const f24_vec3 d = shade_rec_normal(rec, k);
+            assert_true(fabs(f24d(d.x) - nrm[3 * v]) + fabs(f24d(d.y) - nrm[3 * v + 1]) + fabs(f24d(d.z) - nrm[3 * v + 2]) < 1e-4);
+            for (uint32_t i = 0; i < 2; i++)
+                assert_true(f24d(shade_rec_texcoord(rec + tail, 2 * k + i)) == uv[2 * v + i]);
+        }
+    }
+    const uint32_t rec = obj[MI_O_SHADING];
+    rejects(w, n, rec, 1u << 20 | 1u << 21, "normal"); /* x = -2^20 (missing) with y != 0 */
+    rejects(w, n, rec + SHADE_NORMAL_WORDS - 1, w[rec + SHADE_NORMAL_WORDS - 1] | 1u << 31, "normal padding");
+    rejects(w, n, rec + tail, w[rec + tail] | 1u, "material");
+    uint32_t t2[SHADE_MAX_WORDS];
+    memcpy(t2, w + rec + tail, (stride - tail) * sizeof *t2);
+    shade_encode_texcoord(t2, 2, F24_POS_INF); /* bits 64..87: word 2 alone */
+    rejects(w, n, rec + tail + 2, t2[2], "texture coordinate");
+    mi_free(b);
+    scene_free(&s);
+}
+
 /* An image with ropes and grids at both levels validates; ropes out of range, missing rope
  * records, bad grid sizes and cell lists are rejected; random corruption either fails
  * validation or renders safely with every traversal algorithm (image_probe.h). */
@@ -471,7 +523,7 @@ int main(void)
         cmocka_unit_test(layout_and_validate), cmocka_unit_test(instancing_end_to_end),
         cmocka_unit_test(too_small_memory), cmocka_unit_test(frames_upload_only_what_changed),
         cmocka_unit_test(corruption), cmocka_unit_test(accelerators),
-        cmocka_unit_test(single_object_accelerators),
+        cmocka_unit_test(single_object_accelerators), cmocka_unit_test(shading_records),
     };
     return cmocka_run_group_tests_name("memimage", tests, NULL, NULL);
 }

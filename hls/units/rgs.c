@@ -1,14 +1,16 @@
 /* Ray generation and shading unit: see rgs.h and docs/shading.md. */
 #include "rgs.h"
 
+#include "shade_rec.h"
+#include "trace_ops.h"
 #include "xform_unit.h"
 
 enum {
     H_LIGHTS = 10, H_TEXTURES = 9, H_SCENE_BOUNDS = 12, H_REGIONS = 18,
     R_MATERIALS = 1, R_TEXTURES = 2, R_OBJECTS = 5, R_CAMERA = 6, R_LIGHTS = 7, R_INSTANCES = 8,
     TEX_WORDS = 4, LIGHT_WORDS = 16, MAX_LIGHTS = 64,
-    OBJ_WORDS = 16, O_TRIANGLES = 2, O_SHADING = 3, O_FLAGS = 7, HAS_NORMALS = 1, HAS_TEXCOORDS = 2,
-    INST_WORDS = 16, TRI_WORDS = 12, SHADE_WORDS = 16, MAT_WORDS = 16,
+    OBJ_WORDS = 16, O_TRIANGLES = 2, O_SHADING = 3, O_FLAGS = 7,
+    INST_WORDS = 16, TRI_WORDS = 12, MAT_WORDS = 16, CAM_WORDS = 16,
     M_EMISSIVE = 4, M_TEXTURE = 7, M_METALLIC = 10, M_ETA = 13, M_SHADER0 = 14, M_SHADER1 = 15,
 };
 
@@ -123,48 +125,58 @@ block_pixels:
 /* ---- the surface at a hit ------------------------------------------------------------------- */
 
 
-static f24_vec3 lerp3(const uint32_t *w, f24_t u, f24_t v)
+/* u A + v B + (1 - u - v) C. */
+static f24_t lerp(f24_t a, f24_t b, f24_t c, f24_t u, f24_t v)
 {
-    const f24_t c = f24_sub(f24_sub(F24_ONE, u), v); /* weight of vertex C */
-    f24_vec3 n;
-    f24_t *out = &n.x;
-interpolate:
-    for (int k = 0; k < 3; k++)
-        out[k] = f24_add(f24_add(f24_mul(u, w[k]), f24_mul(v, w[3 + k])), f24_mul(c, w[6 + k]));
-    return n;
+    return f24_add(f24_add(f24_mul(u, a), f24_mul(v, b)), f24_mul(f24_sub(f24_sub(F24_ONE, u), v), c));
 }
 
-/* World-space shading normal at the hit (not normalized): interpolated vertex normal, or the
- * geometric normal (row 2 of the triangle transformation), through the transposed
- * world-to-object matrix. */
-static f24_vec3 hit_normal(const uint32_t *mem, const hit_record *h, uint32_t obj, uint32_t inst, uint32_t *words)
+/* Notes a shading read in op (the shading cache's view) and counts it. */
+static void shade_read(unit_op *op, trace_counters *c, uint32_t addr, uint32_t words)
 {
-    const uint32_t shade = mem[obj + O_SHADING] + SHADE_WORDS * h->triangle;
+    op_read(op, c, MEM_SHADING, addr, words);
+}
+
+/* World-space shading normal at the hit (not normalized): the interpolated decoded vertex
+ * normals, or the geometric normal (row 2 of the triangle transformation), through the
+ * transposed world-to-object matrix. */
+static f24_vec3 hit_normal(const uint32_t *mem, const hit_record *h, uint32_t obj, uint32_t shade, unit_op *op,
+                           trace_counters *c)
+{
     f24_vec3 n = { 0, 0, 0 };
-    if (mem[obj + O_FLAGS] & HAS_NORMALS)
-        n = lerp3(&mem[shade], h->u, h->v);
+    if (mem[obj + O_FLAGS] & SHADE_HAS_NORMALS) {
+        const f24_vec3 a = shade_rec_normal(&mem[shade], 0), b = shade_rec_normal(&mem[shade], 1),
+                       cc = shade_rec_normal(&mem[shade], 2);
+        n = (f24_vec3){ lerp(a.x, b.x, cc.x, h->u, h->v), lerp(a.y, b.y, cc.y, h->u, h->v),
+                        lerp(a.z, b.z, cc.z, h->u, h->v) };
+    }
     if (f24_is_zero(dot3(n, n))) {
         const uint32_t tri = mem[obj + O_TRIANGLES] + TRI_WORDS * h->triangle;
         n = (f24_vec3){ mem[tri + 8], mem[tri + 9], mem[tri + 10] };
-        *words += 3;
+        shade_read(op, c, tri + 8, 3);
     }
-    const f24_affine w2o = f24_affine_load(mem, region_start(mem, R_INSTANCES) + INST_WORDS * inst);
+    const f24_affine w2o = f24_affine_load(mem, region_start(mem, R_INSTANCES) + INST_WORDS * h->instance);
     f24_affine tr;
 transpose:
     for (int r = 0; r < 3; r++) {
-        for (int c = 0; c < 3; c++)
-            tr.m[r][c] = w2o.m[c][r];
+        for (int k = 0; k < 3; k++)
+            tr.m[r][k] = w2o.m[k][r];
         tr.m[r][3] = 0;
     }
     return xform_vector(&tr, n);
 }
 
 #if SAARCOR_CFG_TEXTURES
-/* Texel channel k of texture entry tex at wrapped coordinates, as Q12. */
-static uint32_t texel(const uint32_t *mem, const uint32_t *tex, uint32_t x, uint32_t y, int k)
+/* The texel word of texture entry tex at wrapped coordinates (one shading read). */
+static uint32_t texel(const uint32_t *mem, const uint32_t *tex, uint32_t x, uint32_t y, unit_op *op, trace_counters *c)
 {
-    return q_byte(mem[tex[2] + y * tex[0] + x] >> (8 * k) & 0xFFu);
+    const uint32_t at = tex[2] + y * tex[0] + x;
+    shade_read(op, c, at, 1);
+    return mem[at];
 }
+
+/* Channel k of a texel word, as Q12. */
+static uint32_t channel(uint32_t texel_word, int k) { return q_byte(texel_word >> (8 * k) & 0xFFu); }
 
 /* Texel coordinate of texture coordinate s over n texels (centres at +1/2): the wrapped integer
  * part i0, its right neighbour i1 and the fraction in Q8 (0..256). */
@@ -183,59 +195,71 @@ static void texel_axis(f24_t s, uint32_t n, uint32_t *i0, uint32_t *i1, uint32_t
 }
 
 /* Bilinear sample (Q12) of texture entry tex at (s, t), in integers: weights in Q8. */
-static void sample_bilinear(const uint32_t *mem, const uint32_t *tex, f24_t s, f24_t t, uint32_t out[3])
+static void sample_bilinear(const uint32_t *mem, const uint32_t *tex, f24_t s, f24_t t, uint32_t out[3], unit_op *op,
+                            trace_counters *c)
 {
     uint32_t x0, x1, fx, y0, y1, fy;
     texel_axis(s, tex[0], &x0, &x1, &fx);
     texel_axis(t, tex[1], &y0, &y1, &fy);
+    const uint32_t t00 = texel(mem, tex, x0, y0, op, c), t10 = texel(mem, tex, x1, y0, op, c);
+    const uint32_t t01 = texel(mem, tex, x0, y1, op, c), t11 = texel(mem, tex, x1, y1, op, c);
 bilinear:
     for (int k = 0; k < 3; k++) {
-        const uint32_t top = texel(mem, tex, x0, y0, k) * (256u - fx) + texel(mem, tex, x1, y0, k) * fx;
-        const uint32_t bottom = texel(mem, tex, x0, y1, k) * (256u - fx) + texel(mem, tex, x1, y1, k) * fx;
+        const uint32_t top = channel(t00, k) * (256u - fx) + channel(t10, k) * fx;
+        const uint32_t bottom = channel(t01, k) * (256u - fx) + channel(t11, k) * fx;
         out[k] = (top * (256u - fy) + bottom * fy + 32768u) >> 16;
     }
 }
 #endif
 
 /* Base colour at the hit: the material factor, times the texture if the material has one and
- * the object has texture coordinates. */
-static void base_colour(const uint32_t *mem, uint32_t mat, uint32_t obj, const uint32_t *shade, const hit_record *h,
-                        uint32_t out[3], uint32_t *words)
+ * the object has texture coordinates (tail: the shading record's tail). */
+static void base_colour(const uint32_t *mem, uint32_t mat, uint32_t obj, const uint32_t *tail, const hit_record *h,
+                        uint32_t out[3], unit_op *op, trace_counters *c)
 {
     const uint32_t t = mem[mat + M_TEXTURE];
 base_factor:
     for (int k = 0; k < 3; k++)
         out[k] = q_of(mem[mat + (uint32_t)k]);
 #if SAARCOR_CFG_TEXTURES
-    if (t >= mem[H_TEXTURES] || !(mem[obj + O_FLAGS] & HAS_TEXCOORDS))
+    if (t >= mem[H_TEXTURES] || !(mem[obj + O_FLAGS] & SHADE_HAS_TEXCOORDS))
         return;
-    const f24_t c = f24_sub(f24_sub(F24_ONE, h->u), h->v);
-    const f24_t s = f24_add(f24_add(f24_mul(h->u, shade[9]), f24_mul(h->v, shade[11])), f24_mul(c, shade[13]));
-    const f24_t tt = f24_add(f24_add(f24_mul(h->u, shade[10]), f24_mul(h->v, shade[12])), f24_mul(c, shade[14]));
+    f24_t st[2];
+texcoords:
+    for (uint32_t k = 0; k < 2; k++)
+        st[k] = lerp(shade_rec_texcoord(tail, k), shade_rec_texcoord(tail, 2 + k), shade_rec_texcoord(tail, 4 + k),
+                     h->u, h->v);
+    const uint32_t entry = region_start(mem, R_TEXTURES) + TEX_WORDS * t;
     uint32_t tex[3];
-    *words += TEX_WORDS + 4; /* texture entry, four texels */
-    sample_bilinear(mem, &mem[region_start(mem, R_TEXTURES) + TEX_WORDS * t], s, tt, tex);
+    shade_read(op, c, entry, TEX_WORDS);
+    sample_bilinear(mem, &mem[entry], st[0], st[1], tex, op, c);
 texture_modulate:
     for (int k = 0; k < 3; k++)
         out[k] = q_mul(out[k], tex[k]);
 #else
-    (void)t, (void)obj, (void)shade, (void)h, (void)words;
+    (void)t, (void)obj, (void)tail, (void)h, (void)op, (void)c;
 #endif
 }
 
-static surface surface_at(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h)
+/* The surface of ray i at hit h; its reads are noted in op: instance, object descriptor
+ * (words 2..7), shading record, geometric normal if needed, material, texture entry, 4 texels. */
+static surface surface_at(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h, unit_op *op,
+                          trace_counters *c)
 {
     surface sf = { 0 };
     if (h->instance == TRACE_NO_HIT || !(rp->active >> i & 1u))
         return sf;
     const uint32_t ia = region_start(mem, R_INSTANCES) + INST_WORDS * h->instance;
-    const uint32_t obj = region_start(mem, R_OBJECTS) + OBJ_WORDS * mem[ia + 12];
-    const uint32_t shade = mem[obj + O_SHADING] + SHADE_WORDS * h->triangle;
+    const uint32_t obj = region_start(mem, R_OBJECTS) + OBJ_WORDS * mem[ia + 12], flags = mem[obj + O_FLAGS];
+    const uint32_t shade = mem[obj + O_SHADING] + shade_rec_words(flags) * h->triangle;
+    const uint32_t *tail = &mem[shade + shade_rec_tail(flags)];
+    shade_read(op, c, ia, 13);
+    shade_read(op, c, obj + O_TRIANGLES, O_FLAGS - O_TRIANGLES + 1);
+    shade_read(op, c, shade, shade_rec_words(flags));
     const f24_t dlen = length3(rp->d[i]);
     sf.valid = 1;
     sf.d = scale3(rp->d[i], f24_div(F24_ONE, dlen));
-    sf.words = 13 + 4 + SHADE_WORDS + MAT_WORDS; /* instance, object descriptor, shading record, material */
-    f24_vec3 n = hit_normal(mem, h, obj, h->instance, &sf.words);
+    f24_vec3 n = hit_normal(mem, h, obj, shade, op, c);
     if (!f24_sign(dot3(n, sf.d)))
         n = neg3(n); /* towards the ray: both faces are front faces */
     sf.n = scale3(n, f24_div(F24_ONE, length3(n)));
@@ -243,8 +267,9 @@ static surface surface_at(const uint32_t *mem, const ray_packet *rp, int i, cons
     sf.t_hat = f24_mul(h->t, dlen);
     sf.tr = t_r(rp->o[i], sf.d, sf.n);
     sf.p = xform_point(&sf.tr, (f24_vec3){ 0, 0, sf.t_hat });
-    sf.mat = region_start(mem, R_MATERIALS) + MAT_WORDS * mem[shade + 15];
-    base_colour(mem, sf.mat, obj, &mem[shade], h, sf.base, &sf.words);
+    sf.mat = region_start(mem, R_MATERIALS) + MAT_WORDS * shade_rec_material(tail);
+    shade_read(op, c, sf.mat, MAT_WORDS);
+    base_colour(mem, sf.mat, obj, tail, h, sf.base, op, c);
     const uint32_t metal = q_of(mem[sf.mat + M_METALLIC]);
 tint:
     for (int k = 0; k < 3; k++) /* 1 + m (b - 1) = (1 - m) + m b */
@@ -315,38 +340,22 @@ static uint32_t at_least_one(uint32_t n) { return n ? n : 1u; }
 /* Next operation of a block (rgs_step). */
 enum { RB_GEN, RB_NEXT, RB_TRACE, RB_SURFACES, RB_LIGHT, RB_SHADOW_GEN, RB_SHADOW_TRACE, RB_ACCUM, RB_CHILD_GEN, RB_DONE };
 
-static void op_set(unit_op *op, uint32_t unit, uint32_t slots, uint32_t shading_words, rgs_counters *c)
-{
-    op->unit = unit;
-    op->slots = slots;
-    op->n_reads = 0;
-    if (shading_words) { /* uncached: only the amount matters */
-        op->read[0].kind = MEM_SHADING;
-        op->read[0].addr = 0;
-        op->read[0].words = shading_words;
-        op->n_reads = 1;
-        c->trace.words[MEM_SHADING] += shading_words;
-    }
-}
-
 /* ---- shading steps ---------------------------------------------------------------------------- */
 
 /* RGS: the surfaces of the traced packet (normals, texture samples, T_R); ambient light. */
 static void op_surfaces(const uint32_t *mem, rgs_block *b, unit_op *op, rgs_counters *c)
 {
-    uint32_t words = 0;
     c->rays[b->cur.kind] += count_rays(b->cur.rays.active);
+    op_set(op, UNIT_RGS, at_least_one(count_rays(b->cur.rays.active)));
 surfaces:
     for (int i = 0; i < TRACE_PACKET; i++) {
-        b->sf[i] = surface_at(mem, &b->cur.rays, i, &b->trace.hits[i]);
-        words += b->sf[i].valid ? b->sf[i].words : 0u;
+        b->sf[i] = surface_at(mem, &b->cur.rays, i, &b->trace.hits[i], op, &c->trace);
         b->k_of[i] = b->sf[i].valid ? mat_k(&mem[b->sf[i].mat]) : 0u;
         for (int k = 0; k < 3; k++) {
             b->diffuse[i][k] = Q12_AMBIENT;
             b->highlight[i][k] = 0;
         }
     }
-    op_set(op, UNIT_RGS, at_least_one(count_rays(b->cur.rays.active)), words, c);
     b->light = 0;
     b->phase = RB_LIGHT;
 }
@@ -366,10 +375,12 @@ add_light_rays:
 /* RGS: the next light's weights and its shadow packet; unoccluded light is added at once. */
 static void op_light(const uint32_t *mem, const rgs_config *cfg, rgs_block *b, unit_op *op, rgs_counters *c)
 {
-    const uint32_t *l = &mem[region_start(mem, R_LIGHTS) + LIGHT_WORDS * b->light];
+    const uint32_t at = region_start(mem, R_LIGHTS) + LIGHT_WORDS * b->light;
+    const uint32_t *l = &mem[at];
     light_packet(l, b->sf, b->eps, &b->shadow, b->diff, b->spec, b->k_of);
     light_colour(l, b->colour);
-    op_set(op, UNIT_RGS, at_least_one(count_rays(b->shadow.active)), LIGHT_WORDS, c);
+    op_set(op, UNIT_RGS, at_least_one(count_rays(b->shadow.active)));
+    shade_read(op, &c->trace, at, LIGHT_WORDS);
     if (SAARCOR_CFG_SHADOWS && cfg->shadows && b->shadow.active) {
         b->phase = RB_SHADOW_GEN;
         return;
@@ -382,7 +393,7 @@ static void op_light(const uint32_t *mem, const rgs_config *cfg, rgs_block *b, u
 /* Transformation unit: shadow rays generated (T_shadow), n + 1 steps: they share the light. */
 static void op_shadow_gen(rgs_block *b, unit_op *op, rgs_counters *c)
 {
-    op_set(op, UNIT_XFORM, count_rays(b->shadow.active) + 1u, 0, c);
+    op_set(op, UNIT_XFORM, count_rays(b->shadow.active) + 1u);
     c->rays[RAY_SHADOW] += count_rays(b->shadow.active);
     trace_begin(&b->shadow, trace_flags_of(b->profile, 1) | b->trav_flags, &b->trace);
     b->phase = RB_SHADOW_TRACE;
@@ -506,7 +517,7 @@ static void op_accumulate(const uint32_t *mem, const rgs_config *cfg, rgs_block 
     (void)children; /* unused when the configuration has no secondary rays */
     task_init(&refl, depth, RAY_REFLECTION);
     task_init(&trans, depth, RAY_TRANSMISSION);
-    op_set(op, UNIT_RGS, at_least_one(count_rays(b->cur.rays.active)), 0, c);
+    op_set(op, UNIT_RGS, at_least_one(count_rays(b->cur.rays.active)));
     b->children = 0;
 accumulate:
     for (int i = 0; i < TRACE_PACKET; i++) {
@@ -556,7 +567,8 @@ route:
         switch (b->phase) {
         case RB_GEN: /* transformation unit: primary rays T_init, n + 1 steps (shared origin); camera block */
             b->trav_flags = cfg->traversal << TRACE_TRAV_SHIFT;
-            op_set(op, UNIT_XFORM, TRACE_PACKET + 1, 16, c);
+            op_set(op, UNIT_XFORM, TRACE_PACKET + 1);
+            shade_read(op, &c->trace, region_start(mem, R_CAMERA), CAM_WORDS);
             b->phase = RB_NEXT;
             return 1;
         case RB_NEXT: next_packet(b); break;
@@ -586,7 +598,7 @@ route:
 #endif
         case RB_ACCUM: op_accumulate(mem, cfg, b, op, c); return 1;
         case RB_CHILD_GEN: /* transformation unit: T_R steps for the back, ahead and mirror vectors */
-            op_set(op, UNIT_XFORM, 3 * b->children, 0, c);
+            op_set(op, UNIT_XFORM, 3 * b->children);
             b->phase = RB_NEXT;
             return 1;
         default: return 0;

@@ -22,8 +22,9 @@
  * rgs_render_block runs a block's steps back to back; the cycle model (tb/cycle) times the same
  * steps, so both give the same bits.
  *
- * fp24 operators per shaded ray (datapath, shared across the steps): normalization of D and N
- * (2 sqrt, 2 div), T_R steps on the transformation unit, per light 2 dot products (diffuse and
+ * fp24 operators per shaded ray (datapath, shared across the steps): decoding the 3 vertex
+ * normals of the compact shading record (shade_rec.h: per normal 3 int-to-fp24, 6 mul, 2 add,
+ * 1 sqrt, 1 div), normalization of D and N (2 sqrt, 2 div), T_R steps on the transformation unit, per light 2 dot products (diffuse and
  * highlight cosines), the spot factor (1 div) and the float-to-Q12 converters. Latency and
  * throughput: a cycle-model parameter (docs/cycle-model.md once it exists).
  */
@@ -69,7 +70,6 @@ typedef struct {
     uint32_t mat;       /* address of the material record */
     uint32_t base[3];   /* Q12 base colour: factor x bilinear texture sample */
     uint32_t tint[3];   /* Q12 colour of reflection and highlight: 1 + metallic (base - 1) */
-    uint32_t words;     /* memory words read for it */
 } surface;
 
 /* A 2x2 pixel block's thread: its ray tree, the packet in flight and its shading state. */

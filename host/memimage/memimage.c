@@ -10,6 +10,7 @@
 #include "mi_merge.h"
 #include "mi_profile.h"
 #include "trace.h"
+#include "shade_encode.h"
 #include "shading_model.h"
 #include "ugrid.h"
 
@@ -299,6 +300,12 @@ static uint32_t list_words(const kd_tree *t, const kd_rope *ropes)
     return t->n_prims + (ropes ? MI_ROPE_WORDS * leaf_count(t) : 0u);
 }
 
+/* Shading record flags of a mesh (the object descriptor's flags 1 and 2). */
+static uint32_t shading_flags(const scene_mesh *m)
+{
+    return (m->normals ? MI_OBJECT_HAS_NORMALS : 0u) | (m->texcoords ? MI_OBJECT_HAS_TEXCOORDS : 0u);
+}
+
 /* Triangle transformations and the bottom-level tree of one mesh. */
 static int object_prepare(mi_builder *b, const scene_mesh *m, mi_object *o)
 {
@@ -338,7 +345,7 @@ static int object_prepare(mi_builder *b, const scene_mesh *m, mi_object *o)
         memcpy(o->weights_seen, m->weights, m->n_targets * sizeof(float));
     }
     o->words = MI_NODE_WORDS * o->tree.n_nodes + list_words(&o->tree, o->ropes) +
-               (MI_TRIANGLE_WORDS + MI_SHADING_WORDS) * o->n_valid + grid_words(&o->grid);
+               (MI_TRIANGLE_WORDS + shade_rec_words(shading_flags(m))) * o->n_valid + grid_words(&o->grid);
     return 0;
 }
 
@@ -387,14 +394,13 @@ static void put_tree(uint32_t *nodes, uint32_t *lists, const kd_tree *t, const k
 
 static void write_shading(uint32_t *w, const scene_mesh *m, uint32_t tri)
 {
+    const float *normals[3] = { 0 }, *texcoords[3] = { 0 };
     for (int k = 0; k < 3; k++) {
         const size_t v = m->indices[3 * (size_t)tri + (size_t)k];
-        for (int i = 0; i < 3; i++)
-            w[3 * k + i] = m->normals ? f24w(m->normals[3 * v + (size_t)i]) : 0u;
-        for (int i = 0; i < 2; i++)
-            w[9 + 2 * k + i] = m->texcoords ? f24w(m->texcoords[2 * v + (size_t)i]) : 0u;
+        normals[k] = m->normals ? &m->normals[3 * v] : NULL;
+        texcoords[k] = m->texcoords ? &m->texcoords[2 * v] : NULL;
     }
-    w[15] = m->material[tri];
+    shade_encode_record(w, shading_flags(m), normals, texcoords, m->material[tri]);
 }
 
 /* Geometry block: nodes, leaf lists, triangle transformations, shading records. */
@@ -406,7 +412,7 @@ static void object_write(mi_builder *b, const scene *s, const mi_object *o)
     w += MI_NODE_WORDS * o->tree.n_nodes + list_words(&o->tree, o->ropes);
     for (uint32_t i = 0; i < o->n_valid; i++, w += MI_TRIANGLE_WORDS)
         put_affine(w, &o->xf[i]);
-    for (uint32_t i = 0; i < o->n_valid; i++, w += MI_SHADING_WORDS)
+    for (uint32_t i = 0; i < o->n_valid; i++, w += shade_rec_words(shading_flags(m)))
         write_shading(w, m, o->valid[i]);
     if (o->grid.n[0])
         put_grid(w, &o->grid, (uint32_t)(w - b->words));
@@ -422,10 +428,9 @@ static void object_describe(uint32_t *w, const mi_object *o, const scene_mesh *m
     w[MI_O_N_NODES] = o->tree.n_nodes;
     w[MI_O_N_LIST] = list_words(&o->tree, o->ropes);
     w[MI_O_N_TRIANGLES] = o->n_valid;
-    w[MI_O_FLAGS] = (m->normals ? MI_OBJECT_HAS_NORMALS : 0u) | (m->texcoords ? MI_OBJECT_HAS_TEXCOORDS : 0u) |
-                    (o->dynamic ? MI_OBJECT_DYNAMIC : 0u);
+    w[MI_O_FLAGS] = shading_flags(m) | (o->dynamic ? MI_OBJECT_DYNAMIC : 0u);
     put_bounds(&w[MI_O_BOUNDS], &o->tree.bounds, OBJECT_BOUNDS_MARGIN_ULPS);
-    w[MI_O_GRID] = o->grid.n[0] ? w[MI_O_SHADING] + MI_SHADING_WORDS * o->n_valid : MI_NONE;
+    w[MI_O_GRID] = o->grid.n[0] ? w[MI_O_SHADING] + shade_rec_words(shading_flags(m)) * o->n_valid : MI_NONE;
 }
 
 /* ---- per-frame content: instances, top level, camera, lights ------------------------------ */
@@ -913,10 +918,18 @@ mi_builder *mi_build(const scene *s, const mi_params *p, char *err, size_t errle
         mi_free(b);
         return NULL;
     }
+    if (s->n_materials > 1u << SHADE_MATERIAL_BITS) {
+        snprintf(err, errlen, "scene has %u materials; a shading record names at most %u", s->n_materials,
+                 1u << SHADE_MATERIAL_BITS);
+        mi_free(b);
+        return NULL;
+    }
     choose_objects(b, s);
     uint64_t floor_words = 0; /* what the triangles need before any tree: fail early on hopeless scenes */
-    for (uint32_t i = 0; i < b->n_objects; i++)
-        floor_words += (uint64_t)(MI_TRIANGLE_WORDS + MI_SHADING_WORDS) * obj_mesh(b, s, &b->obj[i])->n_triangles;
+    for (uint32_t i = 0; i < b->n_objects; i++) {
+        const scene_mesh *m = obj_mesh(b, s, &b->obj[i]);
+        floor_words += (uint64_t)(MI_TRIANGLE_WORDS + shade_rec_words(shading_flags(m))) * m->n_triangles;
+    }
     if (floor_words > p->memory_bytes / 4) {
         char need[32], have[32];
         format_mb(need, sizeof need, floor_words);

@@ -11,6 +11,7 @@
 #include "memimage.h"
 #include "mi_profile.h"
 #include "xform_unit.h"
+#include "shade_rec.h"
 
 typedef struct {
     const uint32_t *w;
@@ -165,6 +166,34 @@ static int check_grid(checker *c, const char *what, mi_region r, uint32_t addr, 
     return 0;
 }
 
+/* Octahedral normal k of a normal block: both components in range, or exactly the missing mark. */
+static int oct_ok(const uint32_t *normals, uint32_t k)
+{
+    const int32_t x = shade_rec_oct(normals, k, 0), y = shade_rec_oct(normals, k, 1);
+    return (x >= -SHADE_OCT_ONE && y >= -SHADE_OCT_ONE) || (x < -SHADE_OCT_ONE && y == 0);
+}
+
+/* A shading record (hls/units/shade_rec.h): normals, material in range, finite texture
+ * coordinates, the tail's unused bits zero. */
+static int shading_record_ok(const checker *c, uint32_t at, uint32_t flags, uint32_t n_mat)
+{
+    const uint32_t *tail = c->w + at + shade_rec_tail(flags), tail_words = shade_rec_words(flags) - shade_rec_tail(flags);
+    for (uint32_t k = 0; (flags & SHADE_HAS_NORMALS) && k < 3; k++)
+        if (!oct_ok(c->w + at, k))
+            return 0;
+    if ((flags & SHADE_HAS_NORMALS) && c->w[at + SHADE_NORMAL_WORDS - 1] >> (6 * SHADE_OCT_BITS - 96))
+        return 0; /* the normal block's last two bits */
+    if (shade_rec_material(tail) >= n_mat)
+        return 0;
+    const uint32_t used = SHADE_MATERIAL_BITS + ((flags & SHADE_HAS_TEXCOORDS) ? 6u * F24_WIDTH : 0u);
+    if (used % 32u && tail[tail_words - 1] >> (used % 32u))
+        return 0;
+    for (uint32_t i = 0; (flags & SHADE_HAS_TEXCOORDS) && i < 6; i++)
+        if (!finite_f24(shade_rec_texcoord(tail, i)))
+            return 0;
+    return 1;
+}
+
 static int check_objects(checker *c)
 {
     const uint32_t n_mat = c->w[MI_H_MATERIALS];
@@ -177,7 +206,7 @@ static int check_objects(checker *c)
         if (!in_region(c, r, d[MI_O_NODES], d[MI_O_N_NODES], MI_NODE_WORDS) ||
             !in_region(c, r, d[MI_O_LISTS], d[MI_O_N_LIST], 1) ||
             !in_region(c, r, d[MI_O_TRIANGLES], nt, MI_TRIANGLE_WORDS) ||
-            !in_region(c, r, d[MI_O_SHADING], nt, MI_SHADING_WORDS))
+            !in_region(c, r, d[MI_O_SHADING], nt, shade_rec_words(d[MI_O_FLAGS])))
             return bad(c, "%s: geometry outside region %s", what, mi_region_name(r));
         if (!finite_words(c, c->off[MI_R_OBJECTS] + MI_OBJECT_WORDS * o + MI_O_BOUNDS, 6))
             return bad(c, "%s: bounds are not finite", what);
@@ -186,12 +215,10 @@ static int check_objects(checker *c)
             return -1;
         if (!finite_words(c, d[MI_O_TRIANGLES], nt * MI_TRIANGLE_WORDS))
             return bad(c, "%s: a triangle transformation is not finite", what);
-        for (uint32_t t = 0; t < nt; t++) {
-            const uint32_t s = d[MI_O_SHADING] + MI_SHADING_WORDS * t;
-            if (!finite_words(c, s, 15) || c->w[s + 15] >= n_mat)
-                return bad(c, "%s: shading record %u has non-finite data or material %u of %u", what, t,
-                           c->w[s + 15], n_mat);
-        }
+        for (uint32_t t = 0; t < nt; t++)
+            if (!shading_record_ok(c, d[MI_O_SHADING] + shade_rec_words(d[MI_O_FLAGS]) * t, d[MI_O_FLAGS], n_mat))
+                return bad(c, "%s: shading record %u is malformed (normal out of range, material not below %u, "
+                              "non-finite texture coordinate or non-zero padding)", what, t, n_mat);
     }
     return 0;
 }

@@ -12,8 +12,9 @@ const char CYCLE_OPTIONS_HELP[] =
     "  --pipes P             DynRTPs fed by the tile controller (default 1)\n"
     "  --threads-per-pipe T  threads (2x2 pixel blocks in flight) per pipe (default 32, up to 1024)\n"
     "  --clock-mhz F         core clock for fps, rays/s and bandwidth (default 90)\n"
-    "  --cache-kb N,L,M      cache sizes for kd nodes, lists, matrices in KB (default 4,2,6; 0: uncached)\n"
-    "  --line-bytes N,L,M    their line sizes (default 16,16,48)\n"
+    "  --cache-kb N,L,M[,S]  cache sizes for kd nodes, lists, matrices, shading in KB (default 4,2,6,4;\n"
+    "                        0: uncached; without S the shading cache keeps its size)\n"
+    "  --line-bytes N,L,M[,S] their line sizes (default 16,16,48,16)\n"
     "  --mem-latency C       memory latency in cycles after a transfer (default 10)\n"
     "  --mem-mbps B          memory port bandwidth per pipe in MB/s (default 1000)\n"
     "  --unit-latency LIST   unit pipeline latencies, e.g. rgs=12,xform=12,trav=11,list=3,isect=16\n"
@@ -21,16 +22,17 @@ const char CYCLE_OPTIONS_HELP[] =
 
 static const char *const unit_keys[UNIT_KINDS] = { "rgs", "xform", "trav", "list", "isect" };
 
-/* "a,b,c" -> three values in [lo, hi]. */
-static int parse3(const char *arg, double lo, double hi, double out[3])
+/* "a,b,c" or "a,b,c,d" -> the number of values (3 or 4) in [lo, hi], else 0. */
+static int parse_kinds(const char *arg, double lo, double hi, double out[MEM_KINDS])
 {
     char tail;
-    if (sscanf(arg, "%lf,%lf,%lf%c", &out[0], &out[1], &out[2], &tail) != 3)
+    const int n = sscanf(arg, "%lf,%lf,%lf,%lf%c", &out[0], &out[1], &out[2], &out[3], &tail);
+    if (n != 3 && n != 4)
         return 0;
-    for (int k = 0; k < 3; k++)
+    for (int k = 0; k < n; k++)
         if (!(out[k] >= lo && out[k] <= hi))
             return 0;
-    return 1;
+    return n;
 }
 
 static int parse_latencies(cycle_config *cfg, const char *arg)
@@ -57,7 +59,8 @@ static int parse_latencies(cycle_config *cfg, const char *arg)
 int cycle_opts_parse(cycle_config *cfg, const char *cmd, int c, const char *arg)
 {
     uint64_t v;
-    double d, t[3];
+    double d, t[MEM_KINDS];
+    int n;
     switch (c - CYCLE_OPT_BASE) {
     case 0:
         if (!cli_parse_u64(arg, 1, 64, &v))
@@ -75,15 +78,16 @@ int cycle_opts_parse(cycle_config *cfg, const char *cmd, int c, const char *arg)
         cfg->mem.clock_mhz = d;
         return 1;
     case 3:
-        if (!parse3(arg, 0, 65536, t))
-            return cli_usage_error(cmd, "bad --cache-kb '%s' (three sizes N,L,M in KB, 0..65536)", arg), -1;
-        for (int k = 0; k < 3; k++)
+        if (!(n = parse_kinds(arg, 0, 65536, t)))
+            return cli_usage_error(cmd, "bad --cache-kb '%s' (sizes N,L,M or N,L,M,S in KB, 0..65536)", arg), -1;
+        for (int k = 0; k < n; k++)
             cfg->mem.cache[k].size_bytes = (uint32_t)(t[k] * 1024.0);
         return 1;
     case 4:
-        if (!parse3(arg, 4, 4096, t))
-            return cli_usage_error(cmd, "bad --line-bytes '%s' (three sizes N,L,M, multiples of 4 in 4..4096)", arg), -1;
-        for (int k = 0; k < 3; k++) {
+        if (!(n = parse_kinds(arg, 4, 4096, t)))
+            return cli_usage_error(cmd, "bad --line-bytes '%s' (sizes N,L,M or N,L,M,S, multiples of 4 in 4..4096)",
+                                   arg), -1;
+        for (int k = 0; k < n; k++) {
             if ((uint32_t)t[k] % 4 || t[k] != (double)(uint32_t)t[k])
                 return cli_usage_error(cmd, "bad --line-bytes '%s' (multiples of 4)", arg), -1;
             cfg->mem.cache[k].line_bytes = (uint32_t)t[k];
@@ -146,21 +150,23 @@ void cycle_report(FILE *f, const cycle_config *cfg, const cycle_stats *st, uint6
     uint64_t all = 0;
     for (int k = 0; k < ST_KINDS; k++)
         all += st->thread_cycles[k];
-    fprintf(f, "cycle model: %u pipe%s x %u threads at %.0f MHz; caches %.1f/%.1f/%.1f KB (kd nodes/lists/matrices), "
-               "memory %.0f MB/s per pipe, latency %u\n",
+    fprintf(f, "cycle model: %u pipe%s x %u threads at %.0f MHz; caches %.1f/%.1f/%.1f/%.1f KB (kd nodes/lists/"
+               "matrices/shading), memory %.0f MB/s per pipe, latency %u\n",
             cfg->pipes, cfg->pipes == 1 ? "" : "s", cfg->threads_per_pipe, cfg->mem.clock_mhz,
             cfg->mem.cache[0].size_bytes / 1024.0, cfg->mem.cache[1].size_bytes / 1024.0,
-            cfg->mem.cache[2].size_bytes / 1024.0, cfg->mem.mbps, cfg->mem.latency);
+            cfg->mem.cache[2].size_bytes / 1024.0, cfg->mem.cache[3].size_bytes / 1024.0, cfg->mem.mbps,
+            cfg->mem.latency);
     fprintf(f, "frame: %llu cycles = %.3f ms -> %.1f fps, %.2f M rays/s\n", (unsigned long long)st->cycles,
             1e3 * d.seconds, d.fps, (double)rays * d.fps / 1e6);
-    fprintf(f, "%-10s | %-35s | %-22s | %s\n", "", "usage rate [%]", "cache hit rate [%]", "ext. bandwidth [MB/s]");
-    fprintf(f, "%-10s | %6s %6s %6s %6s %6s | %6s %6s %6s | %8s %8s %8s\n", "", "Trav", "List", "Transf", "Int", "RGS",
-            "Trav", "List", "Transf", "DynRTC", "Shading", "Total");
-    fprintf(f, "%-10s | %6.0f %6.0f %6.0f %6.0f %6.0f | %6.1f %6.1f %6.1f | %8.1f %8.1f %8.1f\n", "this frame",
+    fprintf(f, "%-10s | %-35s | %-29s | %s\n", "", "usage rate [%]", "cache hit rate [%]", "ext. bandwidth [MB/s]");
+    fprintf(f, "%-10s | %6s %6s %6s %6s %6s | %6s %6s %6s %6s | %8s %8s %8s\n", "", "Trav", "List", "Transf", "Int",
+            "RGS", "Trav", "List", "Transf", "Shade", "DynRTC", "Shading", "Total");
+    fprintf(f, "%-10s | %6.0f %6.0f %6.0f %6.0f %6.0f | %6.1f %6.1f %6.1f %6.1f | %8.1f %8.1f %8.1f\n", "this frame",
             usage(cfg, st, UNIT_TRAV), usage(cfg, st, UNIT_LIST), usage(cfg, st, UNIT_XFORM), usage(cfg, st, UNIT_ISECT),
             usage(cfg, st, UNIT_RGS), pct(st->mem.hits[MEM_NODES], st->mem.lookups[MEM_NODES]),
             pct(st->mem.hits[MEM_LISTS], st->mem.lookups[MEM_LISTS]),
-            pct(st->mem.hits[MEM_MATRICES], st->mem.lookups[MEM_MATRICES]), d.dynrtc_mbps, d.mbps[MEM_SHADING],
+            pct(st->mem.hits[MEM_MATRICES], st->mem.lookups[MEM_MATRICES]),
+            pct(st->mem.hits[MEM_SHADING], st->mem.lookups[MEM_SHADING]), d.dynrtc_mbps, d.mbps[MEM_SHADING],
             d.total_mbps);
     fprintf(f, "bandwidth by type [MB/s]: kd nodes %.1f, lists %.1f, matrices %.1f, shading %.1f\n", d.mbps[MEM_NODES],
             d.mbps[MEM_LISTS], d.mbps[MEM_MATRICES], d.mbps[MEM_SHADING]);

@@ -28,6 +28,7 @@ void cycle_config_default(cycle_config *c)
     c->mem.cache[MEM_NODES] = (cache_config){ 4096, 16 };
     c->mem.cache[MEM_LISTS] = (cache_config){ 2048, 16 };
     c->mem.cache[MEM_MATRICES] = (cache_config){ 6144, 48 };
+    c->mem.cache[MEM_SHADING] = (cache_config){ 4096, 16 };
     c->mem.latency = 10;
     c->mem.mbps = 1000.0;
     c->mem.clock_mhz = 90.0;

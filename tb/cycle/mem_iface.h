@@ -1,6 +1,7 @@
 /*
  * Memory interface of one DynRTP (paper section 3, "Memory interface"): one direct-mapped cache
- * per data type (kd nodes, leaf lists, matrices), uncached shading reads, and one memory port
+ * per data type (kd nodes, leaf lists, matrices, and shading data: the RGS's camera, light,
+ * instance, object, shading record, material, texture entry and texel reads), and one memory port
  * shared by all of them with a fixed latency and a bandwidth.
  *
  * Timing: a request that misses occupies the port for line_bytes / bandwidth (tracked in 1/65536
@@ -17,7 +18,7 @@
 
 #include "trace.h"
 
-#define MI_CACHED_KINDS 3 /* MEM_NODES, MEM_LISTS, MEM_MATRICES have caches; MEM_SHADING does not */
+#define MI_CACHED_KINDS MEM_KINDS /* every kind has its cache (size 0: uncached) */
 
 typedef struct {
     uint32_t size_bytes, line_bytes; /* size 0: uncached */
@@ -39,7 +40,7 @@ typedef struct {
 typedef struct {
     uint64_t lookups[MEM_KINDS], hits[MEM_KINDS]; /* line lookups (cached kinds) */
     uint64_t bytes[MEM_KINDS];                    /* bytes transferred over the port */
-    uint64_t requests[MEM_KINDS];                 /* transfers (line fills, shading reads) */
+    uint64_t requests[MEM_KINDS];                 /* transfers (line fills, uncached reads) */
 } mem_stats;
 
 typedef struct {

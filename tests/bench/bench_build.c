@@ -50,6 +50,7 @@
 #include "memimage.h"
 #include "scene.h"
 #include "scenes.h"
+#include "shade_rec.h"
 
 #ifndef SAARCOR_SRC_DIR
 #define SAARCOR_SRC_DIR "."
@@ -201,11 +202,15 @@ static void ours_describe(const scene *s, const mi_builder *b, ours_result *r)
 {
     const mi_stats *st = mi_get_stats(b);
     uint32_t n_words;
-    mi_words(b, &n_words);
+    const uint32_t *w = mi_words(b, &n_words);
     const double tris = st->triangles ? (double)st->triangles : 1.0;
     const double geom_bytes = 4.0 * ((double)st->region_words[MI_R_STATIC_GEOMETRY] +
                                      (double)st->region_words[MI_R_DYNAMIC_GEOMETRY]);
-    const double shading_bytes = 4.0 * MI_SHADING_WORDS * (double)(st->triangles - st->degenerate_triangles);
+    double shading_bytes = 0; /* the objects' shading records (their stride depends on the object) */
+    for (uint32_t o = 0; o < w[MI_H_OBJECTS]; o++) {
+        const uint32_t *d = w + w[MI_H_REGION_TABLE + 2 * MI_R_OBJECTS] + MI_OBJECT_WORDS * o;
+        shading_bytes += 4.0 * shade_rec_words(d[MI_O_FLAGS]) * d[MI_O_N_TRIANGLES];
+    }
     r->unique_tris = unique_triangles(s);
     r->instanced_tris = instanced_triangles(s);
     r->objects = st->objects;

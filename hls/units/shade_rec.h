@@ -1,0 +1,73 @@
+/*
+ * The compact shading record (docs/memory-image.md), one per triangle, read by the RGS at a hit:
+ *
+ *   normals  4 words if the object has vertex normals (object flag 1): the vertex normals of A,
+ *            B, C as octahedral unit vectors of 2 x 21 bits each (normal k at bits 42k: x, then
+ *            y, signed over [-SHADE_OCT_ONE, SHADE_OCT_ONE]; bits 126, 127 zero); x = -2^20,
+ *            y = 0 (SHADE_NO_NORMAL) marks a missing normal.
+ *   tail     bits 0..15 the material index; with texture coordinates (object flag 2) bits 16 on
+ *            hold sA tA sB tB sC tC as fp24 fields of F24_WIDTH bits each (24-bit fp24: 160 bits =
+ *            5 words). Unused bits are zero.
+ *
+ * Fields are packed low bit first across the words. The stride is a function of the object's
+ * flags (shade_rec_words): 24-bit fp24 gives 5 words with normals only, 9 with normals and
+ * texture coordinates, 1 with neither. Texture coordinates keep their fp24 bits, so texture
+ * sampling is unchanged. Normals: 21 bits per component put the quantization (about 4
+ * microradians) below fp24's own rounding of a unit vector's components (about 8); the decoded
+ * normal is at most SHADE_OCT_MAX_ERR_URAD off the file's (tests/test_shade_rec.c).
+ *
+ * Decoding a vertex normal (shade_rec_normal): 21-bit integers |x|, |y|, z = 2^20 - 1 - |x| - |y|
+ * and the fold of the lower hemisphere (4 adders, 2 sign muxes), 3 int-to-fp24 converters, then
+ * normalization: 3 multipliers + 2 adders (squared length), 1 square root, 1 divider, 3
+ * multipliers. A hit decodes 3 normals; texture coordinates and material are bit slices.
+ */
+#ifndef SAARCOR_SHADE_REC_H
+#define SAARCOR_SHADE_REC_H
+
+#include <stdint.h>
+
+#include "vec3.h"
+
+enum { SHADE_HAS_NORMALS = 1, SHADE_HAS_TEXCOORDS = 2 }; /* object descriptor flags (word 7) */
+#define SHADE_OCT_BITS 21
+#define SHADE_OCT_ONE ((1 << (SHADE_OCT_BITS - 1)) - 1)
+#define SHADE_NO_NORMAL (1ull << (SHADE_OCT_BITS - 1)) /* the 42-bit code x = -2^20, y = 0 */
+#define SHADE_NORMAL_WORDS 4                           /* 3 x 42 bits */
+#define SHADE_MATERIAL_BITS 16
+#define SHADE_MAX_WORDS 11 /* normals (4) and the widest tail: 16 + 6 x 32 bits (7) */
+#define SHADE_OCT_MAX_ERR_URAD 20 /* angle between a unit normal and its decoded encoding, microradians */
+
+/* Words of a record of an object with these flags. */
+static inline uint32_t shade_rec_words(uint32_t flags)
+{
+    const uint32_t tail_bits = SHADE_MATERIAL_BITS + ((flags & SHADE_HAS_TEXCOORDS) ? 6u * F24_WIDTH : 0u);
+    return ((flags & SHADE_HAS_NORMALS) ? SHADE_NORMAL_WORDS : 0u) + (tail_bits + 31u) / 32u;
+}
+
+/* Offset of the tail in a record. */
+static inline uint32_t shade_rec_tail(uint32_t flags) { return (flags & SHADE_HAS_NORMALS) ? SHADE_NORMAL_WORDS : 0u; }
+
+/* The width (1..32) bits of w from bit at on: a slice of one word or of two neighbours. */
+static inline uint32_t shade_rec_bits(const uint32_t *w, uint32_t at, uint32_t width)
+{
+    uint64_t bits = w[at / 32u] >> (at % 32u);
+    if (at % 32u + width > 32u)
+        bits |= (uint64_t)w[at / 32u + 1] << (32u - at % 32u);
+    return (uint32_t)(bits & ((1ull << width) - 1u));
+}
+
+static inline uint32_t shade_rec_material(const uint32_t *tail) { return tail[0] & 0xFFFFu; }
+
+/* Texture coordinate i (sA tA sB tB sC tC) of a tail with texture coordinates. */
+static inline f24_t shade_rec_texcoord(const uint32_t *tail, uint32_t i)
+{
+    return shade_rec_bits(tail, SHADE_MATERIAL_BITS + F24_WIDTH * i, F24_WIDTH);
+}
+
+/* The octahedral components x (c = 0) and y (c = 1) of normal k of a normal block. */
+int32_t shade_rec_oct(const uint32_t *normals, uint32_t k, uint32_t c);
+
+/* Unit vertex normal k (A, B, C) of a normal block; (0, 0, 0) for a missing normal. */
+f24_vec3 shade_rec_normal(const uint32_t *normals, uint32_t k);
+
+#endif
