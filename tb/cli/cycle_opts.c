@@ -13,7 +13,7 @@ const char CYCLE_OPTIONS_HELP[] =
     "  --threads-per-pipe T  threads (2x2 pixel blocks in flight) per pipe (default 32, up to 1024)\n"
     "  --clock-mhz F         core clock for fps, rays/s and bandwidth (default 90)\n"
     "  --cache-kb N,L,M      cache sizes for kd nodes, lists, matrices in KB (default 4,2,6; 0: uncached)\n"
-    "  --line-bytes N,L,M    their line sizes (default 16,16,48)\n"
+    "  --line-bytes N,L,M    their line sizes (default 8,4 and one triangle transformation)\n"
     "  --mem-latency C       memory latency in cycles after a transfer (default 10)\n"
     "  --mem-mbps B          memory port bandwidth per pipe in MB/s (default 1000)\n"
     "  --unit-latency LIST   unit pipeline latencies, e.g. rgs=12,xform=12,trav=11,list=3,isect=16\n"
