@@ -104,6 +104,9 @@ $(1)/obj/host/%.o: %.c
 endef
 $(foreach d,$(sort $(BUILD) $(HOST_BUILD)),$(eval $(call HOST_RULES,$(d))))
 
+# tests built and run at every number format
+FORMAT_TESTS := test_f24 test_f24_select test_f24_record
+
 define FORMAT_RULES
 $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(SIM_SRCS)): CFLAGS += $(SIM_FLAGS)
 
@@ -117,12 +120,7 @@ $(BUILD)/w/$(1)/saarcor: $(call fmt_objs,$(1)) $(patsubst %.c,$(BUILD)/obj/$(1)/
 	@echo "  LD    $$@"
 	$(Q)$$(CC) $$(SANFLAGS) $$^ -o $$@ $$(CAPTURE_WRAP) $$(LDLIBS)
 
-$(BUILD)/w/$(1)/test_f24: $(BUILD)/obj/$(1)/tests/test_f24.o $(call fp_objs,$(1))
-	@mkdir -p $$(@D)
-	@echo "  LD    $$@"
-	$(Q)$$(CC) $$(SANFLAGS) $$^ -o $$@ $$(TEST_LDLIBS)
-
-$(BUILD)/w/$(1)/test_f24_select: $(BUILD)/obj/$(1)/tests/test_f24_select.o $(call fp_objs,$(1))
+$(foreach t,$(FORMAT_TESTS),$(BUILD)/w/$(1)/$(t)): $(BUILD)/w/$(1)/%: $(BUILD)/obj/$(1)/tests/%.o $(call fp_objs,$(1))
 	@mkdir -p $$(@D)
 	@echo "  LD    $$@"
 	$(Q)$$(CC) $$(SANFLAGS) $$^ -o $$@ $$(TEST_LDLIBS)
@@ -147,7 +145,7 @@ $(BUILD)/saarcor: $(BUILD)/w/$(DEFAULT_FMT)/saarcor
 	cp $< $@
 
 # host module tests: tests/test_<module>.c linked with all host objects (default fp24 format)
-HOST_TESTS := $(patsubst tests/%.c,$(BUILD)/%,$(filter-out tests/test_f24.c tests/test_f24_select.c,$(wildcard tests/test_*.c)))
+HOST_TESTS := $(patsubst tests/%.c,$(BUILD)/%,$(filter-out $(patsubst %,tests/%.c,$(FORMAT_TESTS)),$(wildcard tests/test_*.c)))
 $(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS) $(call fmt_objs,$(DEFAULT_FMT))
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
@@ -177,7 +175,7 @@ run: deps
 	$(BUILD)/saarcor render $(BUILD)/$(DEFAULT_SCENE).glb -o $(BUILD)/$(DEFAULT_SCENE).png --width 1024 --height 768
 
 # ---- tests ---------------------------------------------------------------------------------
-UNIT_TESTS := $(foreach f,$(FORMATS),$(BUILD)/w/$(f)/test_f24 $(BUILD)/w/$(f)/test_f24_select) $(HOST_TESTS)
+UNIT_TESTS := $(foreach f,$(FORMATS),$(addprefix $(BUILD)/w/$(f)/,$(FORMAT_TESTS))) $(HOST_TESTS)
 test-programs: $(UNIT_TESTS) $(BUILD)/saarcor $(BUILD)/w/e8m23/saarcor
 
 # unit tests of this build folder (used with BUILD=build/asan SAN=1 by `make asan`)

@@ -143,6 +143,15 @@ t_info() {
   has '^validate     ok' "$T/out"
   has '^objects      3 (meshes), instances 4' "$T/out"
   python3 -c "import json; d=json.load(open('$T/i.json')); assert d['instances']==4 and d['triangles']==24"
+  # bytes per triangle: all regions in the total, the record types add up to the geometry regions
+  python3 -c "
+import json; d=json.load(open('$T/i.json')); r=d['regions']; b=d['bytes_per_triangle']
+assert abs(b['total'] - 4*sum(r.values())/d['triangles']) < 1e-3, b
+geo = 4*(r['STATIC_GEOMETRY'] + r['DYNAMIC_GEOMETRY'])/d['triangles']
+assert abs(sum(v for k, v in b.items() if k != 'total') - geo) < 1e-3, b
+assert all(b[k] > 0 for k in ('kd_nodes', 'lists', 'triangle_transformations', 'shading_records')), b"
+  has 'bytes per unique triangle (all regions)' "$T/out"
+  has '^geometry by record type, bytes per unique triangle: kd_nodes [0-9.]*, lists' "$T/out"
   expect 0 "$BIN" info animated --frames 4
   has '^frames       4 at 30 fps' "$T/out"
   expect 0 "$BIN" info room --ct 2 --ci 1 --max-depth 12 --leaf-size 2
@@ -150,6 +159,14 @@ t_info() {
   printf '{"asset":{"version":"2.0"},"meshes":[' >"$T/bad.gltf"
   expect 3 "$BIN" info "$T/bad.gltf"; one_line_error
   expect 3 "$BIN" info terrain --mem-mb 1; one_line_error; has 'does not fit' "$T/err"
+  # the --mem-mb the message names (a lower bound before the trees are built, then the size) fits
+  local mb=1 i
+  for i in 1 2 3; do
+    "$BIN" info terrain --mem-mb $mb >/dev/null 2>"$T/err" && break
+    mb=$(sed -n 's/.*pass --mem-mb \([0-9]*\).*/\1/p' "$T/err")
+    [[ -n $mb ]] || { echo "no --mem-mb in: $(cat "$T/err")"; return 1; }
+  done
+  "$BIN" info terrain --mem-mb $mb >/dev/null || { echo "--mem-mb $mb, as the message said, does not fit"; return 1; }
   expect 2 "$BIN" info cornell --mem-mb 0; one_line_error
   expect 2 "$BIN" info cornell --empty-bonus 2; one_line_error
   expect 2 "$BIN" info; one_line_error

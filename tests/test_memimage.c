@@ -218,10 +218,10 @@ static void instancing_end_to_end(void **state)
                 w2o.m[r][c] = f24d(in[4 * r + c]);
         const scene_instance *si = &s.instances[i];
         for (uint32_t t = 0; t < obj[MI_O_N_TRIANGLES]; t++) {
-            const uint32_t *tw = w + obj[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * t;
+            const uint32_t tw = obj[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * t;
             for (int r = 0; r < 3; r++)
                 for (int c = 0; c < 4; c++)
-                    tri.m[r][c] = f24d(tw[4 * r + c]);
+                    tri.m[r][c] = f24d(f24_record_get(w, tw, (uint32_t)(4 * r + c)));
             const scene_mesh *m = &s.meshes[0];
             for (int k = 0; k < 3; k++) { /* image triangle t is mesh triangle t (the degenerate one is last) */
                 const float *p = &m->positions[3 * m->indices[3 * t + (uint32_t)k]];
@@ -427,6 +427,44 @@ static void shading_records(void **state)
     scene_free(&s);
 }
 
+/* Triangle transformations are packed records at multiples of their size; the validator rejects
+ * one with a non-finite value (every slot, including the ones that straddle two words) or with
+ * padding bits set (formats whose 12 values do not fill the last word). */
+static void packed_triangle_records(void **state)
+{
+    (void)state;
+    scene s;
+    make_scene(&s, 1, 0);
+    mi_builder *b = build(&s, 0);
+    uint32_t n;
+    const uint32_t *good = mi_words(b, &n);
+    const uint32_t *obj = good + good[MI_H_REGION_TABLE + 2 * MI_R_OBJECTS];
+    const uint32_t tri = obj[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * (obj[MI_O_N_TRIANGLES] - 1);
+    assert_int_equal(obj[MI_O_TRIANGLES] % MI_TRIANGLE_WORDS, 0);
+    uint32_t *w = malloc(n * sizeof *w);
+    assert_non_null(w);
+    char err[256];
+    for (uint32_t i = 0; i < 12; i++) {
+        memcpy(w, good, n * sizeof *w);
+        f24_t v[12];
+        for (uint32_t k = 0; k < 12; k++)
+            v[k] = f24_record_get(w, tri, k);
+        v[i] = i % 2 ? F24_POS_INF : F24_DEFAULT_NAN;
+        f24_record_put(w + tri, v, 12);
+        if (mi_validate(w, n, err, sizeof err) == 0)
+            fail_msg("a non-finite value %u of a triangle transformation was accepted", i);
+        assert_non_null(strstr(err, "triangle transformation"));
+    }
+    if (12 * F24_WIDTH % 32) {
+        memcpy(w, good, n * sizeof *w);
+        w[tri + MI_TRIANGLE_WORDS - 1] |= 0x80000000u;
+        assert_int_not_equal(mi_validate(w, n, err, sizeof err), 0);
+    }
+    free(w);
+    mi_free(b);
+    scene_free(&s);
+}
+
 /* An image with ropes and grids at both levels validates; ropes out of range, missing rope
  * records, bad grid sizes and cell lists are rejected; random corruption either fails
  * validation or renders safely with every traversal algorithm (image_probe.h). */
@@ -524,6 +562,7 @@ int main(void)
         cmocka_unit_test(too_small_memory), cmocka_unit_test(frames_upload_only_what_changed),
         cmocka_unit_test(corruption), cmocka_unit_test(accelerators),
         cmocka_unit_test(single_object_accelerators), cmocka_unit_test(shading_records),
+        cmocka_unit_test(packed_triangle_records),
     };
     return cmocka_run_group_tests_name("memimage", tests, NULL, NULL);
 }

@@ -10,7 +10,7 @@ enum {
     R_MATERIALS = 1, R_TEXTURES = 2, R_OBJECTS = 5, R_CAMERA = 6, R_LIGHTS = 7, R_INSTANCES = 8,
     TEX_WORDS = 4, LIGHT_WORDS = 16, MAX_LIGHTS = 64,
     OBJ_WORDS = 16, O_TRIANGLES = 2, O_SHADING = 3, O_FLAGS = 7,
-    INST_WORDS = 16, TRI_WORDS = 12, MAT_WORDS = 16, CAM_WORDS = 16,
+    INST_WORDS = 16, TRI_WORDS = F24_AFFINE_RECORD_WORDS, MAT_WORDS = 16, CAM_WORDS = 16,
     M_EMISSIVE = 4, M_TEXTURE = 7, M_METALLIC = 10, M_ETA = 13, M_SHADER0 = 14, M_SHADER1 = 15,
 };
 
@@ -152,8 +152,8 @@ static f24_vec3 hit_normal(const uint32_t *mem, const hit_record *h, uint32_t ob
     }
     if (f24_is_zero(dot3(n, n))) {
         const uint32_t tri = mem[obj + O_TRIANGLES] + TRI_WORDS * h->triangle;
-        n = (f24_vec3){ mem[tri + 8], mem[tri + 9], mem[tri + 10] };
-        shade_read(op, c, tri + 8, 3);
+        n = (f24_vec3){ f24_record_get(mem, tri, 8), f24_record_get(mem, tri, 9), f24_record_get(mem, tri, 10) };
+        shade_read(op, c, tri + 8 * F24_WIDTH / 32, F24_RECORD_SPAN(8, 3));
     }
     const f24_affine w2o = f24_affine_load(mem, region_start(mem, R_INSTANCES) + INST_WORDS * h->instance);
     f24_affine tr;

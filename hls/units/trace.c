@@ -14,7 +14,8 @@ enum {
     H_FORMAT = 2, H_OBJECTS = 6, H_INSTANCES = 7, H_TOP_NODES = 11, H_SCENE_BOUNDS = 12, H_REGIONS = 18,
     R_OBJECTS = 5, R_CAMERA = 6, R_INSTANCES = 8, R_TOP_NODES = 9, R_TOP_LISTS = 10, R_TOP_GRID = 11,
     CAM_PROFILE = 3, OBJ_WORDS = 16, O_NODES = 0, O_LISTS = 1, O_TRIANGLES = 2, O_BOUNDS = 8, O_GRID = 14,
-    INST_WORDS = 16, INST_READ = 14, INST_FLAGS = 13, INST_IDENTITY = 1, OBJ_READ = 14, TRI_WORDS = 12,
+    INST_WORDS = 16, INST_READ = 14, INST_FLAGS = 13, INST_IDENTITY = 1, OBJ_READ = 14,
+    TRI_WORDS = F24_AFFINE_RECORD_WORDS,
 };
 
 /* Next operation of a packet. */
@@ -467,7 +468,7 @@ object_rays:
 static void op_tri_xform(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
 {
     const uint32_t a = s->tris + TRI_WORDS * s->tri;
-    s->tx = f24_affine_load(mem, a);
+    s->tx = f24_affine_load_record(mem, a);
     op_set(op, UNIT_XFORM, xform_slots(s->o, s->need));
     op_read(op, c, MEM_MATRICES, a, TRI_WORDS);
     c->transformations += op->slots;

@@ -344,7 +344,7 @@ static int object_prepare(mi_builder *b, const scene_mesh *m, mi_object *o)
             return -1;
         memcpy(o->weights_seen, m->weights, m->n_targets * sizeof(float));
     }
-    o->words = MI_NODE_WORDS * o->tree.n_nodes + list_words(&o->tree, o->ropes) +
+    o->words = MI_NODE_WORDS * o->tree.n_nodes + list_words(&o->tree, o->ropes) + MI_TRIANGLE_WORDS - 1 +
                (MI_TRIANGLE_WORDS + shade_rec_words(shading_flags(m))) * o->n_valid + grid_words(&o->grid);
     return 0;
 }
@@ -403,15 +403,33 @@ static void write_shading(uint32_t *w, const scene_mesh *m, uint32_t tri)
     shade_encode_record(w, shading_flags(m), normals, texcoords, m->material[tri]);
 }
 
-/* Geometry block: nodes, leaf lists, triangle transformations, shading records. */
+/* Address of the triangle transformations: after the lists, padded to a multiple of the record
+ * size, so that with cache lines of one record every record is one line. */
+static uint32_t triangles_at(const mi_object *o)
+{
+    const uint32_t end = o->base + MI_NODE_WORDS * o->tree.n_nodes + list_words(&o->tree, o->ropes);
+    return (end + MI_TRIANGLE_WORDS - 1) / MI_TRIANGLE_WORDS * MI_TRIANGLE_WORDS;
+}
+
+static void put_triangle(uint32_t *w, const affine *a)
+{
+    f24_t v[12];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 4; j++)
+            v[i * 4 + j] = f24w(a->m[i][j]);
+    f24_record_put(w, v, 12);
+}
+
+/* Geometry block: nodes, leaf lists, padding, triangle transformations, shading records. */
 static void object_write(mi_builder *b, const scene *s, const mi_object *o)
 {
     const scene_mesh *m = obj_mesh(b, s, o);
     uint32_t *w = b->words + o->base;
+    memset(w, 0, o->words * sizeof *w); /* the padding, deterministic */
     put_tree(w, w + MI_NODE_WORDS * o->tree.n_nodes, &o->tree, o->ropes);
-    w += MI_NODE_WORDS * o->tree.n_nodes + list_words(&o->tree, o->ropes);
+    w = b->words + triangles_at(o);
     for (uint32_t i = 0; i < o->n_valid; i++, w += MI_TRIANGLE_WORDS)
-        put_affine(w, &o->xf[i]);
+        put_triangle(w, &o->xf[i]);
     for (uint32_t i = 0; i < o->n_valid; i++, w += shade_rec_words(shading_flags(m)))
         write_shading(w, m, o->valid[i]);
     if (o->grid.n[0])
@@ -423,7 +441,7 @@ static void object_describe(uint32_t *w, const mi_object *o, const scene_mesh *m
     memset(w, 0, MI_OBJECT_WORDS * sizeof *w);
     w[MI_O_NODES] = o->base;
     w[MI_O_LISTS] = o->base + MI_NODE_WORDS * o->tree.n_nodes;
-    w[MI_O_TRIANGLES] = w[MI_O_LISTS] + list_words(&o->tree, o->ropes);
+    w[MI_O_TRIANGLES] = triangles_at(o);
     w[MI_O_SHADING] = w[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * o->n_valid;
     w[MI_O_N_NODES] = o->tree.n_nodes;
     w[MI_O_N_LIST] = list_words(&o->tree, o->ropes);
@@ -724,6 +742,9 @@ static void format_mb(char *buf, size_t n, uint64_t words)
     snprintf(buf, n, "%.2f MB", (double)words * 4.0 / (1024.0 * 1024.0));
 }
 
+/* The --mem-mb value that holds an image of this many words. */
+static uint32_t mem_mb_for(uint64_t words) { return (uint32_t)((words * 4 + (1u << 20) - 1) >> 20); }
+
 /* Places the regions with the given lengths; fails if the image exceeds the memory size. */
 static int place_regions(mi_builder *b, const uint64_t len[MI_REGION_COUNT], uint32_t off[MI_REGION_COUNT],
                          char *err, size_t errlen)
@@ -744,7 +765,7 @@ static int place_regions(mi_builder *b, const uint64_t len[MI_REGION_COUNT], uin
         format_mb(have, sizeof have, cap);
         format_mb(region, sizeof region, len[big]);
         snprintf(err, errlen, "scene does not fit the %s device memory: the image needs %s, largest region %s "
-                 "is %s (raise --mem-mb)", have, need, region_names[big], region);
+                 "is %s (pass --mem-mb %u)", have, need, region_names[big], region, mem_mb_for(at));
         return -1;
     }
     return 0;
@@ -935,7 +956,8 @@ mi_builder *mi_build(const scene *s, const mi_params *p, char *err, size_t errle
         format_mb(need, sizeof need, floor_words);
         format_mb(have, sizeof have, p->memory_bytes / 4);
         snprintf(err, errlen, "scene does not fit the %s device memory: the triangle transformations and shading "
-                 "records of region STATIC_GEOMETRY alone need %s (raise --mem-mb)", have, need);
+                 "records of region STATIC_GEOMETRY alone need %s (pass --mem-mb %u or more)", have, need,
+                 mem_mb_for(floor_words));
         mi_free(b);
         return NULL;
     }

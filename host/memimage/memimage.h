@@ -14,6 +14,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "f24_record.h"
 #include "kdtree.h"
 #include "scene.h"
 
@@ -44,7 +45,9 @@ typedef enum {
 /* Record sizes in words. */
 enum {
     MI_NODE_WORDS = 2,      /* kd node: {child<<2 | axis, split} or {count<<2 | 3, first} */
-    MI_TRIANGLE_WORDS = 12, /* affine 3x4, rows (m0 m1 m2 t): world/object -> unit triangle */
+    /* affine 3x4, rows (m0 m1 m2 t): object -> unit triangle, a packed record (f24_record.h) that
+     * starts at a multiple of its size (one cache line) */
+    MI_TRIANGLE_WORDS = F24_AFFINE_RECORD_WORDS,
     MI_OBJECT_WORDS = 16,   /* see mi_object word offsets */
     MI_INSTANCE_WORDS = 16, /* world-to-object 3x4 (12), object (1), flags (1), reserved (2) */
     MI_MATERIAL_WORDS = 16,

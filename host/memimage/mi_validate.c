@@ -49,6 +49,16 @@ static int finite_words(const checker *c, uint32_t at, uint32_t n)
     return 1;
 }
 
+/* A packed record of n values (f24_record.h): every value finite, the bits after the last zero. */
+static int finite_record(const checker *c, uint32_t at, uint32_t n)
+{
+    for (uint32_t i = 0; i < n; i++)
+        if (!finite_f24(f24_record_get(c->w, at, i)))
+            return 0;
+    const uint32_t used = n * F24_WIDTH % 32;
+    return used == 0 || c->w[at + F24_RECORD_WORDS(n) - 1] >> used == 0;
+}
+
 static int check_header(checker *c)
 {
     const uint32_t *w = c->w;
@@ -213,8 +223,9 @@ static int check_objects(checker *c)
         if (check_tree(c, what, d[MI_O_NODES], d[MI_O_N_NODES], d[MI_O_LISTS], d[MI_O_N_LIST], nt) != 0 ||
             ((c->accel & MI_ACCEL_GRID) && check_grid(c, what, r, d[MI_O_GRID], nt) != 0))
             return -1;
-        if (!finite_words(c, d[MI_O_TRIANGLES], nt * MI_TRIANGLE_WORDS))
-            return bad(c, "%s: a triangle transformation is not finite", what);
+        for (uint32_t t = 0; t < nt; t++)
+            if (!finite_record(c, d[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * t, 12))
+                return bad(c, "%s: triangle transformation %u is not finite or has nonzero padding bits", what, t);
         for (uint32_t t = 0; t < nt; t++)
             if (!shading_record_ok(c, d[MI_O_SHADING] + shade_rec_words(d[MI_O_FLAGS]) * t, d[MI_O_FLAGS], n_mat))
                 return bad(c, "%s: shading record %u is malformed (normal out of range, material not below %u, "

@@ -11,6 +11,7 @@
 
 #include "cli.h"
 #include "scene_opts.h"
+#include "shade_rec.h"
 
 typedef struct {
     uint32_t frames;
@@ -26,6 +27,29 @@ static void print_tree(const char *name, uint32_t nodes, uint32_t leaves, uint32
            "SAH cost %.2f\n", name, nodes, leaves, empty, depth, (unsigned long long)refs,
            full ? (double)refs / full : 0.0, sah);
 }
+
+/* Words of the geometry regions by record type, summed over the object descriptors. */
+enum { REC_NODES, REC_LISTS, REC_TRIANGLES, REC_SHADING, REC_OTHER, REC_KINDS };
+static const char *const rec_names[REC_KINDS] = { "kd_nodes", "lists", "triangle_transformations", "shading_records",
+                                                  "other_geometry" };
+
+static void record_words(const uint32_t *w, const mi_stats *st, uint64_t words[REC_KINDS])
+{
+    const uint32_t *od = w + w[MI_H_REGION_TABLE + 2 * MI_R_OBJECTS];
+    for (int k = 0; k < REC_KINDS; k++)
+        words[k] = 0;
+    for (uint32_t i = 0; i < w[MI_H_OBJECTS]; i++, od += MI_OBJECT_WORDS) {
+        words[REC_NODES] += (uint64_t)MI_NODE_WORDS * od[MI_O_N_NODES];
+        words[REC_LISTS] += od[MI_O_N_LIST];
+        words[REC_TRIANGLES] += (uint64_t)MI_TRIANGLE_WORDS * od[MI_O_N_TRIANGLES];
+        words[REC_SHADING] += (uint64_t)shade_rec_words(od[MI_O_FLAGS]) * od[MI_O_N_TRIANGLES];
+    }
+    /* grids and the padding before each object's triangle transformations */
+    words[REC_OTHER] = (uint64_t)st->region_words[MI_R_STATIC_GEOMETRY] + st->region_words[MI_R_DYNAMIC_GEOMETRY] -
+                       words[REC_NODES] - words[REC_LISTS] - words[REC_TRIANGLES] - words[REC_SHADING];
+}
+
+static double per_triangle(const mi_stats *st, uint64_t words) { return st->triangles ? 4.0 * (double)words / st->triangles : 0.0; }
 
 static void print_report(const scene *s, const mi_builder *b, const scene_opts *o)
 {
@@ -45,18 +69,27 @@ static void print_report(const scene *s, const mi_builder *b, const scene_opts *
     printf("build        triangle transformations %.3f s, bottom-level trees %.3f s, top-level tree %.3f ms\n",
            st->transform_seconds, st->bottom_build_seconds, 1e3 * st->top_build_seconds);
     uint32_t n_words;
-    mi_words(b, &n_words);
-    printf("memory image %.3f MB of %.1f MB (%.1f%%), %.1f bytes per triangle\n", n_words * 4.0 / 1048576.0,
-           (double)o->mi.memory_bytes / 1048576.0, 100.0 * n_words * 4.0 / (double)o->mi.memory_bytes,
-           st->triangles ? 4.0 * (st->region_words[MI_R_STATIC_GEOMETRY] + st->region_words[MI_R_DYNAMIC_GEOMETRY]) /
-                               st->triangles : 0.0);
+    const uint32_t *w = mi_words(b, &n_words);
+    printf("memory image %.3f MB of %.1f MB (%.1f%%), %.1f bytes per unique triangle (all regions)\n",
+           n_words * 4.0 / 1048576.0, (double)o->mi.memory_bytes / 1048576.0,
+           100.0 * n_words * 4.0 / (double)o->mi.memory_bytes, per_triangle(st, n_words));
     for (int r = 0; r < MI_REGION_COUNT; r++)
-        printf("  %-17s %10u words %10.1f KB\n", mi_region_name((mi_region)r), st->region_words[r],
-               st->region_words[r] * 4.0 / 1024.0);
+        printf("  %-17s %10u words %10.1f KB %8.1f B/triangle\n", mi_region_name((mi_region)r), st->region_words[r],
+               st->region_words[r] * 4.0 / 1024.0, per_triangle(st, st->region_words[r]));
+    uint64_t rec[REC_KINDS];
+    record_words(w, st, rec);
+    printf("geometry by record type, bytes per unique triangle:");
+    for (int k = 0; k < REC_KINDS; k++)
+        printf("%s %s %.1f", k ? "," : "", rec_names[k], per_triangle(st, rec[k]));
+    printf("\n");
 }
 
-static int write_json(const char *path, const scene_opts *o, const mi_stats *st, const double *upload, uint32_t frames)
+static int write_json(const char *path, const scene_opts *o, const mi_builder *b, const double *upload, uint32_t frames)
 {
+    const mi_stats *st = mi_get_stats(b);
+    uint32_t n_words;
+    uint64_t rec[REC_KINDS];
+    record_words(mi_words(b, &n_words), st, rec);
     FILE *f = fopen(path, "w");
     if (!f)
         return -1;
@@ -71,6 +104,9 @@ static int write_json(const char *path, const scene_opts *o, const mi_stats *st,
     fprintf(f, "  \"transform_seconds\": %.6f,\n  \"regions\": {", st->transform_seconds);
     for (int r = 0; r < MI_REGION_COUNT; r++)
         fprintf(f, "%s\"%s\": %u", r ? ", " : "", mi_region_name((mi_region)r), st->region_words[r]);
+    fprintf(f, "},\n  \"bytes_per_triangle\": {\"total\": %.4f", per_triangle(st, n_words));
+    for (int k = 0; k < REC_KINDS; k++)
+        fprintf(f, ", \"%s\": %.4f", rec_names[k], per_triangle(st, rec[k]));
     fprintf(f, "},\n  \"frame_upload_bytes\": [");
     for (uint32_t i = 0; i < frames; i++)
         fprintf(f, "%s%.0f", i ? ", " : "", upload[i]);
@@ -202,7 +238,7 @@ int cmd_info(int argc, char **argv)
         rc = SAARCOR_EXIT_INTERNAL;
     if (rc == SAARCOR_EXIT_OK && io.frames)
         rc = run_frames(&s, b, &o, &io, upload);
-    if (rc == SAARCOR_EXIT_OK && io.json && write_json(io.json, &o, mi_get_stats(b), upload, io.frames) != 0) {
+    if (rc == SAARCOR_EXIT_OK && io.json && write_json(io.json, &o, b, upload, io.frames) != 0) {
         cli_error("info", "cannot write '%s'", io.json);
         rc = SAARCOR_EXIT_INPUT;
     }

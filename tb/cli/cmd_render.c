@@ -315,11 +315,11 @@ static int write_aov(const char *path, const mi_builder *b, const scene *s, cons
         const uint32_t ia = mem[MI_H_REGION_TABLE + 2 * MI_R_INSTANCES] + MI_INSTANCE_WORDS * hr->instance;
         const uint32_t object = mem[ia + 12];
         const uint32_t *od = mem + mem[MI_H_REGION_TABLE + 2 * MI_R_OBJECTS] + MI_OBJECT_WORDS * object;
-        const uint32_t *tri = mem + od[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * hr->triangle;
+        const uint32_t tri = od[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * hr->triangle;
         double nw[3] = { 0, 0, 0 }, len = 0;
         for (int j = 0; j < 3; j++) { /* n_world = (world-to-object)^T n_object, n_object = row 2 of T */
             for (int i = 0; i < 3; i++)
-                nw[j] += f24d(mem[ia + 4 * i + j]) * f24d(tri[8 + i]);
+                nw[j] += f24d(mem[ia + 4 * i + j]) * f24d(f24_record_get(mem, tri, 8 + (uint32_t)i));
             len += nw[j] * nw[j];
         }
         len = len > 0 ? sqrt(len) : 1;

@@ -14,7 +14,7 @@ const char CYCLE_OPTIONS_HELP[] =
     "  --clock-mhz F         core clock for fps, rays/s and bandwidth (default 90)\n"
     "  --cache-kb N,L,M[,S]  cache sizes for kd nodes, lists, matrices, shading in KB (default 4,2,6,4;\n"
     "                        0: uncached; without S the shading cache keeps its size)\n"
-    "  --line-bytes N,L,M[,S] their line sizes (default 16,16,48,16)\n"
+    "  --line-bytes N,L,M[,S] their line sizes (default 8,4, one triangle transformation, 16)\n"
     "  --mem-latency C       memory latency in cycles after a transfer (default 10)\n"
     "  --mem-mbps B          memory port bandwidth per pipe in MB/s (default 1000)\n"
     "  --unit-latency LIST   unit pipeline latencies, e.g. rgs=12,xform=12,trav=11,list=3,isect=16\n"

@@ -635,7 +635,7 @@ static uint32_t accepting(const world *w, const ray_packet *rp, int k, uint32_t 
         const uint32_t t = w->image_of[w->adj[j]];
         if (t == UINT32_MAX)
             continue;
-        const f24_affine tx = f24_affine_load(mem, od[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * t);
+        const f24_affine tx = f24_affine_load_record(mem, od[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * t);
         const isect_result r = isect_unit_transformed(&tx, o, d, 0, F24_POS_INF);
         n += r.hit && fabs(D(r.t) - 1) < 1e-2;
     }

@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "f24_record.h"
+
 const char *const unit_names[UNIT_KINDS] = { "RGS", "transformation", "traversal", "list", "intersection" };
 const char *const mem_kind_names[MEM_KINDS] = { "kd_nodes", "lists", "matrices", "shading" };
 
@@ -25,9 +27,10 @@ void cycle_config_default(cycle_config *c)
     c->tile = 16;
     c->epoch = 256;
     c->host_threads = 1;
-    c->mem.cache[MEM_NODES] = (cache_config){ 4096, 16 };
-    c->mem.cache[MEM_LISTS] = (cache_config){ 2048, 16 };
-    c->mem.cache[MEM_MATRICES] = (cache_config){ 6144, 48 };
+    /* lines of one record: wider lines fetch neighbours a packet rarely visits next (docs/cycle-model.md) */
+    c->mem.cache[MEM_NODES] = (cache_config){ 4096, 8 }; /* one kd node */
+    c->mem.cache[MEM_LISTS] = (cache_config){ 2048, 4 }; /* one list entry */
+    c->mem.cache[MEM_MATRICES] = (cache_config){ 6144, 4 * F24_AFFINE_RECORD_WORDS }; /* one line per triangle */
     c->mem.cache[MEM_SHADING] = (cache_config){ 4096, 16 };
     c->mem.latency = 10;
     c->mem.mbps = 1000.0;

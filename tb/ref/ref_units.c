@@ -14,7 +14,7 @@ f24_t ref_units_closest(const uint32_t *mem, f24_vec3 o, f24_vec3 d, f24_t tmin,
         const uint32_t *od = mem + oa + MI_OBJECT_WORDS * mem[ia + MI_INSTANCE_WORDS * i + 12];
         const f24_vec3 oo = xform_point(&w2o, o), od_dir = xform_vector(&w2o, d);
         for (uint32_t t = 0; t < od[MI_O_N_TRIANGLES]; t++) {
-            const f24_affine tx = f24_affine_load(mem, od[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * t);
+            const f24_affine tx = f24_affine_load_record(mem, od[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * t);
             const isect_result r = isect_unit_transformed(&tx, oo, od_dir, tmin, best);
             if (r.hit)
                 best = r.t;
