@@ -316,9 +316,11 @@ static uint64_t walk_tree(const uint32_t *w, uint32_t n, uint32_t nodes, uint32_
                 assert_true(lists + w1 + k < n);
                 sum += w[lists + w1 + k];
             }
-        } else if (sp + 2 <= 128) {
-            stack[sp++] = w0 >> 2;
-            stack[sp++] = (w0 >> 2) + 1;
+        } else if (sp + 2 <= 128) { /* the stored children: one if a side is an empty leaf */
+            const uint32_t child = w0 >> MI_NODE_CHILD_SHIFT;
+            stack[sp++] = child;
+            if (!(w0 >> 2 & 3u))
+                stack[sp++] = child + 1;
         }
     }
     return sum;

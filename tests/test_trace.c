@@ -70,7 +70,7 @@ static double brute_force(const scene *s, const double o[3], const double d[3])
 
 /* The generated scene `name` evaluated at `time` and its memory image for a width x height camera
  * (asserts that both build). */
-static int face_splits = 1; /* kd_params.face_splits of the images built here */
+static uint32_t walked_with = TRAV_STACK; /* mi_params.traversal of the images built here */
 
 static mi_builder *generated_image_with(const char *name, double time, uint32_t width, uint32_t height, uint32_t accel,
                                        scene *s)
@@ -86,7 +86,7 @@ static mi_builder *generated_image_with(const char *name, double time, uint32_t 
     p.width = width;
     p.height = height;
     p.accel = accel;
-    p.bottom.face_splits = face_splits;
+    p.traversal = walked_with;
     if (accel)
         p.memory_bytes = 64u << 20; /* every accelerator at once: more than the prototype's 24 MB */
     mi_builder *b = mi_build(s, &p, err, sizeof err);
@@ -282,7 +282,7 @@ static void traversal_algorithms_agree(void **state)
 {
     (void)state;
     static const char *const names[] = { "room", "terrain", "cornell" }; /* cornell: one object, no top level */
-    face_splits = 0; /* the trees the restarting and rope walkers are built with (mi_face_splits_for) */
+    walked_with = TRAV_RESTART; /* the trees every walker can walk (mi_compact_trees) */
     for (size_t sc = 0; sc < 3; sc++) {
         enum { W = 96, H = 72 };
         scene s, s_plain;
@@ -342,7 +342,7 @@ static void traversal_algorithms_agree(void **state)
         scene_free(&s);
         scene_free(&s_plain);
     }
-    face_splits = 1;
+    walked_with = TRAV_STACK;
 }
 
 int main(void)

@@ -7,7 +7,9 @@
 #include "trav_node.h"
 #include "xform_unit.h"
 
-#define MI_NODE_LEAF 3u /* docs/memory-image.md: kd node word 0 = child << 2 | axis, or count << 2 | 3 */
+/* docs/memory-image.md: kd node word 0 = count << 2 | 3 (leaf), or child << 4 | empty << 2 | axis */
+#define MI_NODE_LEAF 3u
+#define NODE_CHILD_SHIFT 4
 
 /* Memory-image layout constants used by the core (docs/memory-image.md). */
 enum {
@@ -128,12 +130,15 @@ done_cells:
  * passes through on one side only becomes the new restart point while nothing waits. */
 static void walker_split(trav_walker *w, uint32_t w0, f24_t split, const f24_vec3 o[], const f24_vec3 d[])
 {
-    const uint32_t axis = w0 & 3u, child = w0 >> 2;
+    const uint32_t axis = w0 & 3u, child = w0 >> NODE_CHILD_SHIFT, empty = w0 >> 2 & 3u;
     trav_entry l, r;
     uint32_t near_left;
     trav_node_split(&w->cur, axis, split, o, d, &l, &r, &near_left);
+    /* a side that is an empty leaf is not stored: no ray goes there (no step for an empty cell) */
+    l.mask &= bit(empty, 0) ? 0u : 0xFu;
+    r.mask &= bit(empty, 1) ? 0u : 0xFu;
     l.node = child;
-    r.node = child + 1;
+    r.node = child + (bit(empty, 0) ? 0u : 1u);
     drop_done_cells(w, &l);
     drop_done_cells(w, &r);
     /* the packet follows its first ray, near side first; after a restart, the first ray that

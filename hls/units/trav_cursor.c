@@ -99,7 +99,7 @@ start_rays:
  * plane goes the way it points). */
 static void ropes_inner(trav_walker *w, uint32_t group, uint32_t w0, f24_t split, const f24_vec3 o[], const f24_vec3 d[])
 {
-    const uint32_t axis = w0 & 3u, child = w0 >> 2;
+    const uint32_t axis = w0 & 3u, child = w0 >> 4; /* ropes images store every node: no empty bits */
 descend_rays:
     for (int i = 0; i < TRACE_PACKET; i++) {
         if (!bit(group, i))

@@ -33,6 +33,7 @@ typedef struct {
     uint32_t n_valid;
     float *weights_seen;
     kd_rope *ropes;     /* per node (leaves only), with MI_ACCEL_ROPES */
+    uint32_t *slot, n_slots; /* image slot of each tree node (tree_slots), nodes stored */
     ugrid grid;         /* with MI_ACCEL_GRID */
     uint32_t base, words; /* geometry block in the image */
 } mi_object;
@@ -52,6 +53,7 @@ struct mi_builder {
     uint32_t frame;
     kd_tree top;
     kd_rope *top_ropes;        /* with MI_ACCEL_ROPES */
+    uint32_t *top_slot, n_top_slots; /* image slots of the top-level nodes (tree_slots) */
     ugrid top_grid;            /* with MI_ACCEL_TOP_GRID */
     mi_stats st;
 };
@@ -90,10 +92,25 @@ uint32_t mi_accel_for(uint32_t traversal)
                                    : 0u;
 }
 
-int mi_face_splits_for(uint32_t traversal)
+int mi_compact_trees(uint32_t traversal)
 {
-    return traversal != TRAV_SHORT_STACK && traversal != TRAV_RESTART && traversal != TRAV_PUSH_DOWN &&
-           traversal != TRAV_ROPES;
+    return traversal == TRAV_STACK || traversal == TRAV_GRID || traversal == TRAV_GRID2;
+}
+
+/* Image slots of a tree's nodes: in a compact tree empty leaves (but the root) are not stored
+ * (MI_NONE), the others keep their order, so children still follow their parents. Returns the
+ * number stored, with *slot allocated; 0 if memory ran out. */
+static uint32_t tree_slots(const kd_tree *t, int compact, uint32_t **slot)
+{
+    *slot = malloc(((size_t)t->n_nodes + 1) * sizeof **slot);
+    if (!*slot)
+        return 0;
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < t->n_nodes; i++) {
+        const int empty_leaf = t->nodes[i].axis == KD_LEAF && t->nodes[i].count == 0;
+        (*slot)[i] = compact && i && empty_leaf ? MI_NONE : n++;
+    }
+    return n;
 }
 
 static double seconds(void)
@@ -211,7 +228,9 @@ static void object_release(mi_object *o)
 {
     kd_free(&o->tree);
     free(o->ropes);
+    free(o->slot);
     o->ropes = NULL;
+    o->slot = NULL;
     ugrid_free(&o->grid);
     free(o->valid);
     free(o->xf);
@@ -344,18 +363,23 @@ static int object_prepare(mi_builder *b, const scene_mesh *m, mi_object *o)
             return -1;
         memcpy(o->weights_seen, m->weights, m->n_targets * sizeof(float));
     }
-    o->words = MI_NODE_WORDS * o->tree.n_nodes + list_words(&o->tree, o->ropes) + MI_TRIANGLE_WORDS - 1 +
+    o->n_slots = tree_slots(&o->tree, mi_compact_trees(b->p.traversal) && !o->ropes, &o->slot);
+    if (!o->n_slots)
+        return -1;
+    o->words = MI_NODE_WORDS * o->n_slots + list_words(&o->tree, o->ropes) + MI_TRIANGLE_WORDS - 1 +
                (MI_TRIANGLE_WORDS + shade_rec_words(shading_flags(m))) * o->n_valid + grid_words(&o->grid);
     return 0;
 }
 
-static void put_node(uint32_t *w, const kd_node *n, uint32_t first)
+static void put_node(uint32_t *w, const kd_node *n, uint32_t first, const uint32_t *slot)
 {
     if (n->axis == KD_LEAF) {
-        w[0] = mi_node_word0(MI_NODE_LEAF, n->count);
+        w[0] = mi_node_leaf(n->count);
         w[1] = first;
     } else {
-        w[0] = mi_node_word0(n->axis, n->child);
+        const uint32_t lo = slot[n->child], hi = slot[n->child + 1];
+        const uint32_t empty = (lo == MI_NONE ? MI_NODE_EMPTY_LO : 0u) | (hi == MI_NONE ? MI_NODE_EMPTY_HI : 0u);
+        w[0] = mi_node_inner(n->axis, lo == MI_NONE ? hi : lo, empty);
         w[1] = f24w(n->split); /* already an fp24 value (quantized split) */
     }
 }
@@ -370,12 +394,14 @@ static void put_rope_record(uint32_t *w, const kd_rope *r)
         w[6 + f] = r->rope[f] == KD_NO_ROPE ? MI_NONE : r->rope[f];
 }
 
-/* A tree's nodes and leaf lists; with ropes, each leaf's entries follow its rope record. */
-static void put_tree(uint32_t *nodes, uint32_t *lists, const kd_tree *t, const kd_rope *ropes)
+/* A tree's nodes at their slots and its leaf lists; with ropes (every node stored), each leaf's
+ * entries follow its rope record. */
+static void put_tree(uint32_t *nodes, uint32_t *lists, const kd_tree *t, const kd_rope *ropes, const uint32_t *slot)
 {
     if (!ropes) {
         for (uint32_t i = 0; i < t->n_nodes; i++)
-            put_node(nodes + MI_NODE_WORDS * i, &t->nodes[i], t->nodes[i].first);
+            if (slot[i] != MI_NONE)
+                put_node(nodes + MI_NODE_WORDS * slot[i], &t->nodes[i], t->nodes[i].first, slot);
         memcpy(lists, t->prims, t->n_prims * sizeof *lists);
         return;
     }
@@ -387,7 +413,7 @@ static void put_tree(uint32_t *nodes, uint32_t *lists, const kd_tree *t, const k
             at += MI_ROPE_WORDS;
             memcpy(lists + at, t->prims + n->first, n->count * sizeof *lists);
         }
-        put_node(nodes + MI_NODE_WORDS * i, n, at);
+        put_node(nodes + MI_NODE_WORDS * i, n, at, slot);
         at += n->axis == KD_LEAF ? n->count : 0;
     }
 }
@@ -407,7 +433,7 @@ static void write_shading(uint32_t *w, const scene_mesh *m, uint32_t tri)
  * size, so that with cache lines of one record every record is one line. */
 static uint32_t triangles_at(const mi_object *o)
 {
-    const uint32_t end = o->base + MI_NODE_WORDS * o->tree.n_nodes + list_words(&o->tree, o->ropes);
+    const uint32_t end = o->base + MI_NODE_WORDS * o->n_slots + list_words(&o->tree, o->ropes);
     return (end + MI_TRIANGLE_WORDS - 1) / MI_TRIANGLE_WORDS * MI_TRIANGLE_WORDS;
 }
 
@@ -426,7 +452,7 @@ static void object_write(mi_builder *b, const scene *s, const mi_object *o)
     const scene_mesh *m = obj_mesh(b, s, o);
     uint32_t *w = b->words + o->base;
     memset(w, 0, o->words * sizeof *w); /* the padding, deterministic */
-    put_tree(w, w + MI_NODE_WORDS * o->tree.n_nodes, &o->tree, o->ropes);
+    put_tree(w, w + MI_NODE_WORDS * o->n_slots, &o->tree, o->ropes, o->slot);
     w = b->words + triangles_at(o);
     for (uint32_t i = 0; i < o->n_valid; i++, w += MI_TRIANGLE_WORDS)
         put_triangle(w, &o->xf[i]);
@@ -440,10 +466,10 @@ static void object_describe(uint32_t *w, const mi_object *o, const scene_mesh *m
 {
     memset(w, 0, MI_OBJECT_WORDS * sizeof *w);
     w[MI_O_NODES] = o->base;
-    w[MI_O_LISTS] = o->base + MI_NODE_WORDS * o->tree.n_nodes;
+    w[MI_O_LISTS] = o->base + MI_NODE_WORDS * o->n_slots;
     w[MI_O_TRIANGLES] = triangles_at(o);
     w[MI_O_SHADING] = w[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * o->n_valid;
-    w[MI_O_N_NODES] = o->tree.n_nodes;
+    w[MI_O_N_NODES] = o->n_slots;
     w[MI_O_N_LIST] = list_words(&o->tree, o->ropes);
     w[MI_O_N_TRIANGLES] = o->n_valid;
     w[MI_O_FLAGS] = shading_flags(m) | (o->dynamic ? MI_OBJECT_DYNAMIC : 0u);
@@ -800,7 +826,11 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
     len[MI_R_CAMERA] = MI_CAMERA_WORDS;
     len[MI_R_LIGHTS] = (uint64_t)MI_LIGHT_WORDS * light_count(s);
     len[MI_R_INSTANCES] = (uint64_t)MI_INSTANCE_WORDS * b->n_inst;
-    len[MI_R_TOP_NODES] = (uint64_t)MI_NODE_WORDS * b->top.n_nodes;
+    free(b->top_slot);
+    b->n_top_slots = tree_slots(&b->top, mi_compact_trees(b->p.traversal) && !b->top_ropes, &b->top_slot);
+    if (!b->n_top_slots)
+        goto oom;
+    len[MI_R_TOP_NODES] = (uint64_t)MI_NODE_WORDS * b->n_top_slots;
     len[MI_R_TOP_LISTS] = list_words(&b->top, b->top_ropes);
     len[MI_R_TOP_GRID] = grid_words(&b->top_grid);
     uint32_t off[MI_REGION_COUNT];
@@ -836,7 +866,7 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
     write_camera(b, s, w + off[MI_R_CAMERA]);
     write_lights(b, s, w + off[MI_R_LIGHTS]);
     write_instances(b, s, w + off[MI_R_INSTANCES]);
-    put_tree(w + off[MI_R_TOP_NODES], w + off[MI_R_TOP_LISTS], &b->top, b->top_ropes);
+    put_tree(w + off[MI_R_TOP_NODES], w + off[MI_R_TOP_LISTS], &b->top, b->top_ropes, b->top_slot);
     if (b->top_grid.n[0])
         put_grid(w + off[MI_R_TOP_GRID], &b->top_grid, off[MI_R_TOP_GRID]);
     written[MI_R_HEADER] = written[MI_R_CAMERA] = written[MI_R_LIGHTS] = written[MI_R_INSTANCES] = 1;
@@ -848,7 +878,7 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
                                                 (uint32_t)(accel << MI_ACCEL_SHIFT | F24_EXP_BITS << 8 | F24_MAN_BITS),
                                                 (uint32_t)(b->p.memory_bytes / 4), total, b->frame,
                                                 b->n_objects, b->n_inst, s->n_materials, b->n_textures, light_count(s),
-                                                b->top.n_nodes };
+                                                b->n_top_slots };
     memcpy(w, head, sizeof head);
     put_bounds(w + MI_H_SCENE_BOUNDS, &b->top.bounds, 0);
     uint64_t upload = 0;
@@ -931,6 +961,8 @@ mi_builder *mi_build(const scene *s, const mi_params *p, char *err, size_t errle
         return NULL;
     }
     b->p = *p;
+    if (!mi_compact_trees(p->traversal))
+        b->p.bottom.face_splits = 0;
     b->obj = calloc((size_t)s->n_meshes + MI_MERGE_CLASSES + 1, sizeof *b->obj);
     b->mesh_obj = malloc(((size_t)s->n_meshes + 1) * sizeof *b->mesh_obj);
     b->texture_map = calloc((size_t)s->n_textures + 1, sizeof *b->texture_map);
@@ -1034,6 +1066,7 @@ void mi_free(mi_builder *b)
     }
     kd_free(&b->top);
     free(b->top_ropes);
+    free(b->top_slot);
     ugrid_free(&b->top_grid);
     free(b->obj);
     free(b->texture_map);

@@ -85,11 +85,17 @@ enum { MI_G_LO = 0, MI_G_SIZE = 3, MI_G_INV = 6, MI_G_N = 9, MI_G_CELLS = 12, MI
 #define MI_OBJECT_HAS_TEXCOORDS 2u
 #define MI_OBJECT_DYNAMIC 4u
 
-/* Node word 0. */
+/* Node word 0: a leaf count << 2 | 3; an inner node child << 4 | empty << 2 | axis, where empty
+ * bit 0 (1) says the side below the split is an empty leaf that is not stored, bit 1 (2) the
+ * side above it; child is the first stored child (the one above at child + 1 if both are). */
 #define MI_NODE_LEAF 3u
-static inline uint32_t mi_node_word0(uint32_t axis_or_leaf, uint32_t child_or_count)
+#define MI_NODE_CHILD_SHIFT 4
+#define MI_NODE_EMPTY_LO 1u
+#define MI_NODE_EMPTY_HI 2u
+static inline uint32_t mi_node_leaf(uint32_t count) { return count << 2 | MI_NODE_LEAF; }
+static inline uint32_t mi_node_inner(uint32_t axis, uint32_t child, uint32_t empty)
 {
-    return (child_or_count << 2) | axis_or_leaf;
+    return child << MI_NODE_CHILD_SHIFT | empty << 2 | axis;
 }
 
 typedef struct {
@@ -103,6 +109,7 @@ typedef struct {
     uint32_t skip;             /* PROFILE_* bits the device may use where the scene profile allows
                                   them (default all; 0: the general pipeline, render --general) */
     uint32_t accel;            /* MI_ACCEL_* structures to build beside the kd-trees (default 0) */
+    uint32_t traversal;        /* TRAV_* the image is walked with (default TRAV_STACK): mi_compact_trees */
     int merge;                 /* 1: bake static geometry into world-space objects (mi_merge.h;
                                   default 0; --merge: 1) */
 } mi_params;
@@ -112,9 +119,11 @@ void mi_params_default(mi_params *p);
 /* The MI_ACCEL_* structures traversal algorithm TRAV_* (hls/units/trace.h) walks. */
 uint32_t mi_accel_for(uint32_t traversal);
 
-/* kd_params.face_splits for traversal algorithm TRAV_*: the walkers that restart or follow ropes
- * skip a flat cell lying exactly where a ray's last cell ended, so their trees have none. */
-int mi_face_splits_for(uint32_t traversal);
+/* 1 if traversal algorithm TRAV_* walks compact trees: flat cells on node faces (kdtree.c
+ * consider_face) and no stored empty leaves (their parent marks the side empty). The walkers
+ * that restart or follow ropes need every cell explicit: they measure a ray's progress by the
+ * cells it left, and would skip a flat cell lying exactly where the last one ended. */
+int mi_compact_trees(uint32_t traversal);
 
 typedef struct {
     uint32_t objects, instances, triangles, degenerate_triangles;

@@ -131,6 +131,19 @@ static int check_ropes(checker *c, const char *what, uint32_t lists, uint32_t fi
     return 0;
 }
 
+/* An inner node: its stored children after it and in range; at most one side an empty leaf that
+ * is not stored, and none with ropes (their records name every leaf). */
+static int check_inner(checker *c, const char *what, uint32_t i, uint32_t w0, uint32_t n_nodes)
+{
+    const uint32_t child = w0 >> MI_NODE_CHILD_SHIFT, empty = w0 >> 2 & 3u;
+    const uint32_t stored = empty ? 1u : 2u;
+    if (empty == (MI_NODE_EMPTY_LO | MI_NODE_EMPTY_HI) || (empty && (c->accel & MI_ACCEL_ROPES)))
+        return bad(c, "%s: node %u marks both sides or, with ropes, a side as empty (0x%X)", what, i, w0);
+    if (child <= i || (uint64_t)child + stored > n_nodes)
+        return bad(c, "%s: node %u child index %u is not after the node or out of range", what, i, child);
+    return 0;
+}
+
 /* A kd-tree: inner nodes' children after the node and in range, finite split planes, leaves'
  * lists in range naming existing items, and with ropes each leaf's rope record. */
 static int check_tree(checker *c, const char *what, uint32_t nodes, uint32_t n_nodes, uint32_t lists,
@@ -144,8 +157,8 @@ static int check_tree(checker *c, const char *what, uint32_t nodes, uint32_t n_n
             if (check_entries(c, what, lists, n_list, w1, hi, n_items) != 0 ||
                 ((c->accel & MI_ACCEL_ROPES) && check_ropes(c, what, lists, w1, n_nodes) != 0))
                 return -1;
-        } else if (hi <= i || (uint64_t)hi + 1 >= n_nodes) {
-            return bad(c, "%s: node %u child index %u is not after the node or out of range", what, i, hi);
+        } else if (check_inner(c, what, i, w0, n_nodes) != 0) {
+            return -1;
         } else if (!finite_f24(w1)) {
             return bad(c, "%s: node %u split plane 0x%X is not a finite fp24 value", what, i, w1);
         }

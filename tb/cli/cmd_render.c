@@ -619,7 +619,7 @@ int cmd_render(int argc, char **argv)
                                        "grid or grid2)", optarg);
             ro.cfg.traversal = k;
             o.mi.accel = mi_accel_for(k);
-            o.mi.bottom.face_splits = mi_face_splits_for(k);
+            o.mi.traversal = k;
             break;
         }
         case 'C': ro.capture = optarg; break;
