@@ -198,7 +198,8 @@ static uint32_t expected_max_depth(const kd_source *src, const kd_params *p)
 {
     if (p->max_depth)
         return p->max_depth;
-    const double d = src->count > 1 ? 8.0 + 1.3 * log2((double)src->count) : 8.0;
+    const int shallow = p->shallow_from && src->count >= p->shallow_from;
+    const double d = src->count > 1 ? (shallow ? 5.0 : 8.0) + (shallow ? 1.0 : 1.3) * log2((double)src->count) : 8.0;
     return d >= 64 ? 64 : (uint32_t)lround(d);
 }
 
@@ -838,8 +839,8 @@ static void zero_area_triangles(void **state)
     }
     const kd_source src = tri_source(&so);
     for (uint32_t bins = 0; bins <= 32; bins += 32) {
-        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, NULL, 1 });
-        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, grid8, 1 });
+        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, NULL, 1, 0 });
+        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, grid8, 1, 0 });
     }
     free(so.t);
 }

@@ -5,7 +5,8 @@
  *     C_t + C_i * (SA(L) / SA(B) * n_L + SA(R) / SA(B) * n_R),
  * times (1 - empty_bonus) if a side is empty; the split is made only if that is cheaper than the
  * leaf cost C_i * n. A node also becomes a leaf if n <= leaf_size or it is at max_depth (root:
- * depth 0; automatic: round(8 + 1.3 log2(count)), at most 64). A box of zero area (a segment) uses
+ * depth 0; automatic: round(8 + 1.3 log2(count)), or 5 + log2(count) from shallow_from
+ * primitives on, at most 64). A box of zero area (a segment) uses
  * length ratios instead, the limit of thin boxes. Every split lies strictly inside its node box,
  * except a split on a face of the box that separates the primitives lying flat in that face
  * (consider_face), so no input can loop: recursion ends at max_depth at the latest.
@@ -1488,9 +1489,10 @@ static double now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-static uint32_t auto_depth(uint32_t count)
+static uint32_t auto_depth(const kd_params *p, uint32_t count)
 {
-    const double d = count > 1 ? 8.0 + 1.3 * log2((double)count) : 8.0;
+    const int shallow = p->shallow_from && count >= p->shallow_from;
+    const double d = count > 1 ? (shallow ? 5.0 + log2((double)count) : 8.0 + 1.3 * log2((double)count)) : 8.0;
     return d >= 64.0 ? 64u : (uint32_t)lround(d);
 }
 
@@ -1530,7 +1532,7 @@ int kd_build(const kd_source *src, const kd_params *p, kd_tree *out)
     const double t0 = now();
     memset(out, 0, sizeof *out);
     builder b = { .src = src, .p = *p };
-    b.max_depth = p->max_depth ? p->max_depth : auto_depth(src->count);
+    b.max_depth = p->max_depth ? p->max_depth : auto_depth(p, src->count);
     prim_set s = { 0 };
     aabb root;
     int rc = start(&b, &s, &root);

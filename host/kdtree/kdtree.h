@@ -37,7 +37,8 @@ typedef struct {
     double cost_traversal;     /* C_t: cost of one traversal step, default 1.0 */
     double cost_intersection;  /* C_i: cost of one primitive test, default 1.5 */
     double empty_bonus;        /* a split with an empty side costs (1 - empty_bonus) x, default 0.2 */
-    uint32_t max_depth;        /* 0: automatic, 8 + 1.3 log2(count), at most 64 */
+    uint32_t max_depth;        /* 0: automatic, 8 + 1.3 log2(count) (pbrt's), at most 64; for at least
+                                  shallow_from primitives 5 + log2(count) */
     uint32_t leaf_size;        /* never split a node with at most this many primitives, default 1 */
     uint32_t bins;             /* 0: exact SAH over all events; n > 0: binned SAH with n bins per axis */
     /* Snaps a candidate split position to a representable device value (NULL: no snapping).
@@ -46,6 +47,7 @@ typedef struct {
     double (*quantize)(double split);
     int face_splits;           /* exact mode: flat cells for primitives lying in a face of their node
                                   (default 1); the restarting and rope walkers need 0 (docs/traversal.md) */
+    uint32_t shallow_from;     /* see max_depth; 0 (default): never */
 } kd_params;
 
 typedef struct {
