@@ -378,9 +378,11 @@ static void rejects(const uint32_t *good, uint32_t n, uint32_t at, uint32_t v, c
     free(w);
 }
 
-/* Shading records (hls/units/shade_rec.h): 1 word per triangle for a bare mesh, 9 with normals
- * and texture coordinates, decoding to what the mesh holds; the validator rejects non-zero
- * padding, a malformed missing-normal mark, a material out of range and a non-finite texture coordinate. */
+/* Shading records (hls/units/shade_rec.h): none for a bare mesh of one material (the object
+ * names it), 1 word per triangle for a bare mesh of several, 9 with normals and texture
+ * coordinates, decoding to what the mesh holds; the validator rejects an object material out of
+ * range, non-zero padding, a malformed missing-normal mark, a material out of range and a
+ * non-finite texture coordinate. */
 static void shading_records(void **state)
 {
     (void)state;
@@ -390,6 +392,22 @@ static void shading_records(void **state)
     mi_builder *b = build(&s, 0);
     const uint32_t *w = mi_words(b, &n);
     const uint32_t *obj = w + w[MI_H_REGION_TABLE + 2 * MI_R_OBJECTS];
+    const uint32_t flags_at = (uint32_t)(obj - w) + MI_O_FLAGS;
+    assert_int_equal(obj[MI_O_FLAGS], SHADE_ONE_MATERIAL); /* material 0 */
+    assert_int_equal(shade_rec_words(obj[MI_O_FLAGS]), 0);
+    rejects(w, n, flags_at, SHADE_ONE_MATERIAL | 1u << SHADE_OBJ_MATERIAL_SHIFT, "object material");
+    rejects(w, n, flags_at, 1u << SHADE_OBJ_MATERIAL_SHIFT, "material bits without the flag");
+    mi_free(b);
+
+    scene_material *two = realloc(s.materials, 2 * sizeof *two);
+    assert_non_null(two);
+    two[1] = two[0];
+    s.materials = two;
+    s.n_materials = 2;
+    s.meshes[0].material[1] = 1;
+    b = build(&s, 0);
+    w = mi_words(b, &n);
+    obj = w + w[MI_H_REGION_TABLE + 2 * MI_R_OBJECTS];
     assert_int_equal(shade_rec_words(obj[MI_O_FLAGS]), 1);
     rejects(w, n, obj[MI_O_SHADING] + 1, 1u << 16, "record padding");
     mi_free(b);
@@ -414,16 +432,16 @@ static void shading_records(void **state)
             const f24_vec3 d = shade_rec_normal(rec, k);
             assert_true(fabs(f24d(d.x) - nrm[3 * v]) + fabs(f24d(d.y) - nrm[3 * v + 1]) + fabs(f24d(d.z) - nrm[3 * v + 2]) < 1e-4);
             for (uint32_t i = 0; i < 2; i++)
-                assert_true(f24d(shade_rec_texcoord(rec + tail, 2 * k + i)) == uv[2 * v + i]);
+                assert_true(f24d(shade_rec_texcoord(obj[MI_O_FLAGS], rec + tail, 2 * k + i)) == uv[2 * v + i]);
         }
     }
     const uint32_t rec = obj[MI_O_SHADING];
     rejects(w, n, rec, 1u << 20 | 1u << 21, "normal"); /* x = -2^20 (missing) with y != 0 */
     rejects(w, n, rec + SHADE_NORMAL_WORDS - 1, w[rec + SHADE_NORMAL_WORDS - 1] | 1u << 31, "normal padding");
-    rejects(w, n, rec + tail, w[rec + tail] | 1u, "material");
+    rejects(w, n, rec + tail, w[rec + tail] | 3u, "material");
     uint32_t t2[SHADE_MAX_WORDS];
     memcpy(t2, w + rec + tail, (stride - tail) * sizeof *t2);
-    shade_encode_texcoord(t2, 2, F24_POS_INF); /* bits 64..87: word 2 alone */
+    shade_encode_texcoord(t2, obj[MI_O_FLAGS], 2, F24_POS_INF); /* bits 64..87: word 2 alone */
     rejects(w, n, rec + tail + 2, t2[2], "texture coordinate");
     mi_free(b);
     scene_free(&s);

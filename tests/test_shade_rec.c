@@ -82,22 +82,24 @@ static void missing_normals(void **state)
 }
 
 /* A record with every part: normals, texture coordinates (fp24 bits exact, including huge and
- * negative values), material; and the strides of the four flag combinations. */
+ * negative values), material (in the record, or the object's: SHADE_ONE_MATERIAL); and the
+ * strides of the eight flag combinations. */
 static void record_round_trip(void **state)
 {
     (void)state;
     const float na[3] = { 0, 0, 1 }, nb[3] = { 0.6f, -0.8f, 0 }, nc[3] = { -1, -1, -1 };
     const float ta[2] = { 0.25f, -3.5f }, tb[2] = { 1e6f, 0.999f }, tc[2] = { -7e-5f, 8191.5f / 8192 };
     const float *const normals[3] = { na, nb, nc }, *const texcoords[3] = { ta, tb, tc };
-    for (uint32_t flags = 0; flags < 4; flags++) {
+    for (uint32_t combo = 0; combo < 8; combo++) {
+        const uint32_t flags = (combo & 3u) | (combo & 4u ? SHADE_ONE_MATERIAL | 4321u << SHADE_OBJ_MATERIAL_SHIFT : 0u);
         uint32_t w[SHADE_MAX_WORDS + 1];
         w[shade_rec_words(flags)] = 0xDEADBEEFu; /* guard: the record stays within its stride */
         shade_encode_record(w, flags, normals, texcoords, 4321);
         assert_int_equal(w[shade_rec_words(flags)], 0xDEADBEEFu);
         const uint32_t *tail = w + shade_rec_tail(flags);
-        assert_int_equal(shade_rec_material(tail), 4321);
+        assert_int_equal(shade_rec_material(flags, tail), 4321);
         for (uint32_t i = 0; (flags & SHADE_HAS_TEXCOORDS) && i < 6; i++)
-            assert_int_equal(shade_rec_texcoord(tail, i), f24_fast_encode(texcoords[i / 2][i % 2]));
+            assert_int_equal(shade_rec_texcoord(flags, tail, i), f24_fast_encode(texcoords[i / 2][i % 2]));
         for (uint32_t k = 0; (flags & SHADE_HAS_NORMALS) && k < 3; k++) {
             const double n[3] = { normals[k][0], normals[k][1], normals[k][2] };
             uint32_t one[SHADE_NORMAL_WORDS] = { 0 };
@@ -111,6 +113,11 @@ static void record_round_trip(void **state)
         assert_int_equal(shade_rec_words(SHADE_HAS_NORMALS | SHADE_HAS_TEXCOORDS), 9);
         assert_int_equal(shade_rec_words(0), 1);
         assert_int_equal(shade_rec_words(SHADE_HAS_TEXCOORDS), 5);
+        /* one material per object: 4, 9, 0, 5 words */
+        assert_int_equal(shade_rec_words(SHADE_ONE_MATERIAL | SHADE_HAS_NORMALS), 4);
+        assert_int_equal(shade_rec_words(SHADE_ONE_MATERIAL | SHADE_HAS_NORMALS | SHADE_HAS_TEXCOORDS), 9);
+        assert_int_equal(shade_rec_words(SHADE_ONE_MATERIAL), 0);
+        assert_int_equal(shade_rec_words(SHADE_ONE_MATERIAL | SHADE_HAS_TEXCOORDS), 5);
     }
 }
 
@@ -123,10 +130,10 @@ static void fields_independent(void **state)
     memset(tail, 0xFF, sizeof tail);
     tail[0] = 0xFFFF0007u;
     for (uint32_t i = 0; i < 6; i++)
-        shade_encode_texcoord(tail, i, i + 1);
+        shade_encode_texcoord(tail, SHADE_HAS_TEXCOORDS, i, i + 1);
     for (uint32_t i = 0; i < 6; i++)
-        assert_int_equal(shade_rec_texcoord(tail, i), i + 1);
-    assert_int_equal(shade_rec_material(tail), 7);
+        assert_int_equal(shade_rec_texcoord(SHADE_HAS_TEXCOORDS, tail, i), i + 1);
+    assert_int_equal(shade_rec_material(SHADE_HAS_TEXCOORDS, tail), 7);
     uint32_t normals[SHADE_NORMAL_WORDS];
     memset(normals, 0xFF, sizeof normals);
     const int32_t v[3][2] = { { -SHADE_OCT_ONE, 5 }, { 123456, -654321 }, { SHADE_OCT_ONE, -1 } };

@@ -222,12 +222,14 @@ base_factor:
     for (int k = 0; k < 3; k++)
         out[k] = q_of(mem[mat + (uint32_t)k]);
 #if SAARCOR_CFG_TEXTURES
-    if (t >= mem[H_TEXTURES] || !(mem[obj + O_FLAGS] & SHADE_HAS_TEXCOORDS))
+    const uint32_t flags = mem[obj + O_FLAGS];
+    if (t >= mem[H_TEXTURES] || !(flags & SHADE_HAS_TEXCOORDS))
         return;
     f24_t st[2];
 texcoords:
     for (uint32_t k = 0; k < 2; k++)
-        st[k] = lerp(shade_rec_texcoord(tail, k), shade_rec_texcoord(tail, 2 + k), shade_rec_texcoord(tail, 4 + k),
+        st[k] = lerp(shade_rec_texcoord(flags, tail, k), shade_rec_texcoord(flags, tail, 2 + k),
+                     shade_rec_texcoord(flags, tail, 4 + k),
                      h->u, h->v);
     const uint32_t entry = region_start(mem, R_TEXTURES) + TEX_WORDS * t;
     uint32_t tex[3];
@@ -267,7 +269,7 @@ static surface surface_at(const uint32_t *mem, const ray_packet *rp, int i, cons
     sf.t_hat = f24_mul(h->t, dlen);
     sf.tr = t_r(rp->o[i], sf.d, sf.n);
     sf.p = xform_point(&sf.tr, (f24_vec3){ 0, 0, sf.t_hat });
-    sf.mat = region_start(mem, R_MATERIALS) + MAT_WORDS * shade_rec_material(tail);
+    sf.mat = region_start(mem, R_MATERIALS) + MAT_WORDS * shade_rec_material(flags, tail);
     shade_read(op, c, sf.mat, MAT_WORDS);
     base_colour(mem, sf.mat, obj, tail, h, sf.base, op, c);
     const uint32_t metal = q_of(mem[sf.mat + M_METALLIC]);

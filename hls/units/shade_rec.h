@@ -5,13 +5,15 @@
  *            B, C as octahedral unit vectors of 2 x 21 bits each (normal k at bits 42k: x, then
  *            y, signed over [-SHADE_OCT_ONE, SHADE_OCT_ONE]; bits 126, 127 zero); x = -2^20,
  *            y = 0 (SHADE_NO_NORMAL) marks a missing normal.
- *   tail     bits 0..15 the material index; with texture coordinates (object flag 2) bits 16 on
- *            hold sA tA sB tB sC tC as fp24 fields of F24_WIDTH bits each (24-bit fp24: 160 bits =
- *            5 words). Unused bits are zero.
+ *   tail     bits 0..15 the material index, unless every triangle of the object has the same
+ *            one (object flag 8: it is in the object's flags word, bits 16..31, and the records
+ *            have none); then, with texture coordinates (object flag 2), sA tA sB tB sC tC as fp24
+ *            fields of F24_WIDTH bits each (24-bit fp24: 160 bits = 5 words). Unused bits are zero.
  *
  * Fields are packed low bit first across the words. The stride is a function of the object's
  * flags (shade_rec_words): 24-bit fp24 gives 5 words with normals only, 9 with normals and
- * texture coordinates, 1 with neither. Texture coordinates keep their fp24 bits, so texture
+ * texture coordinates, 1 with neither; one word less for normals only or neither when the object
+ * has one material (4 and 0 words). Texture coordinates keep their fp24 bits, so texture
  * sampling is unchanged. Normals: 21 bits per component put the quantization (about 4
  * microradians) below fp24's own rounding of a unit vector's components (about 8); the decoded
  * normal is at most SHADE_OCT_MAX_ERR_URAD off the file's (tests/test_shade_rec.c).
@@ -28,7 +30,10 @@
 
 #include "vec3.h"
 
-enum { SHADE_HAS_NORMALS = 1, SHADE_HAS_TEXCOORDS = 2 }; /* object descriptor flags (word 7) */
+/* object descriptor flags (word 7; bit 4 is MI_OBJECT_DYNAMIC); with SHADE_ONE_MATERIAL the
+ * word's bits 16..31 are the material of every triangle */
+enum { SHADE_HAS_NORMALS = 1, SHADE_HAS_TEXCOORDS = 2, SHADE_ONE_MATERIAL = 8 };
+#define SHADE_OBJ_MATERIAL_SHIFT 16
 #define SHADE_OCT_BITS 21
 #define SHADE_OCT_ONE ((1 << (SHADE_OCT_BITS - 1)) - 1)
 #define SHADE_NO_NORMAL (1ull << (SHADE_OCT_BITS - 1)) /* the 42-bit code x = -2^20, y = 0 */
@@ -37,10 +42,16 @@ enum { SHADE_HAS_NORMALS = 1, SHADE_HAS_TEXCOORDS = 2 }; /* object descriptor fl
 #define SHADE_MAX_WORDS 11 /* normals (4) and the widest tail: 16 + 6 x 32 bits (7) */
 #define SHADE_OCT_MAX_ERR_URAD 20 /* angle between a unit normal and its decoded encoding, microradians */
 
+/* Bits of the material index in a record of an object with these flags. */
+static inline uint32_t shade_rec_material_bits(uint32_t flags)
+{
+    return (flags & SHADE_ONE_MATERIAL) ? 0u : SHADE_MATERIAL_BITS;
+}
+
 /* Words of a record of an object with these flags. */
 static inline uint32_t shade_rec_words(uint32_t flags)
 {
-    const uint32_t tail_bits = SHADE_MATERIAL_BITS + ((flags & SHADE_HAS_TEXCOORDS) ? 6u * F24_WIDTH : 0u);
+    const uint32_t tail_bits = shade_rec_material_bits(flags) + ((flags & SHADE_HAS_TEXCOORDS) ? 6u * F24_WIDTH : 0u);
     return ((flags & SHADE_HAS_NORMALS) ? SHADE_NORMAL_WORDS : 0u) + (tail_bits + 31u) / 32u;
 }
 
@@ -56,12 +67,16 @@ static inline uint32_t shade_rec_bits(const uint32_t *w, uint32_t at, uint32_t w
     return (uint32_t)(bits & ((1ull << width) - 1u));
 }
 
-static inline uint32_t shade_rec_material(const uint32_t *tail) { return tail[0] & 0xFFFFu; }
+/* The material of a triangle: the object's (flags: its descriptor's flags word), or its tail's. */
+static inline uint32_t shade_rec_material(uint32_t flags, const uint32_t *tail)
+{
+    return (flags & SHADE_ONE_MATERIAL) ? flags >> SHADE_OBJ_MATERIAL_SHIFT : tail[0] & 0xFFFFu;
+}
 
 /* Texture coordinate i (sA tA sB tB sC tC) of a tail with texture coordinates. */
-static inline f24_t shade_rec_texcoord(const uint32_t *tail, uint32_t i)
+static inline f24_t shade_rec_texcoord(uint32_t flags, const uint32_t *tail, uint32_t i)
 {
-    return shade_rec_bits(tail, SHADE_MATERIAL_BITS + F24_WIDTH * i, F24_WIDTH);
+    return shade_rec_bits(tail, shade_rec_material_bits(flags) + F24_WIDTH * i, F24_WIDTH);
 }
 
 /* The octahedral components x (c = 0) and y (c = 1) of normal k of a normal block. */

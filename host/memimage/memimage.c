@@ -34,6 +34,7 @@ typedef struct {
     float *weights_seen;
     kd_rope *ropes;     /* per node (leaves only), with MI_ACCEL_ROPES */
     uint32_t *slot, n_slots; /* image slot of each tree node (tree_slots), nodes stored */
+    uint32_t shade_flags;    /* the descriptor's flags word but MI_OBJECT_DYNAMIC (object_shading_flags) */
     ugrid grid;         /* with MI_ACCEL_GRID */
     uint32_t base, words; /* geometry block in the image */
 } mi_object;
@@ -330,6 +331,16 @@ static uint32_t shading_flags(const scene_mesh *m)
     return (m->normals ? MI_OBJECT_HAS_NORMALS : 0u) | (m->texcoords ? MI_OBJECT_HAS_TEXCOORDS : 0u);
 }
 
+/* The object's shading flags: those of its mesh, and the one material of all its triangles if
+ * they share it (then their records carry none: hls/units/shade_rec.h). */
+static uint32_t object_shading_flags(const scene_mesh *m, const mi_object *o)
+{
+    uint32_t same = o->n_valid > 0;
+    for (uint32_t i = 1; same && i < o->n_valid; i++)
+        same = m->material[o->valid[i]] == m->material[o->valid[0]];
+    return shading_flags(m) | (same ? SHADE_ONE_MATERIAL | m->material[o->valid[0]] << SHADE_OBJ_MATERIAL_SHIFT : 0u);
+}
+
 /* Triangle transformations and the bottom-level tree of one mesh. */
 static int object_prepare(mi_builder *b, const scene_mesh *m, mi_object *o)
 {
@@ -371,8 +382,9 @@ static int object_prepare(mi_builder *b, const scene_mesh *m, mi_object *o)
     o->n_slots = tree_slots(&o->tree, mi_compact_trees(b->p.traversal) && !o->ropes, &o->slot);
     if (!o->n_slots)
         return -1;
+    o->shade_flags = object_shading_flags(m, o);
     o->words = MI_NODE_WORDS * o->n_slots + list_words(&o->tree, o->ropes) + MI_TRIANGLE_WORDS - 1 +
-               (MI_TRIANGLE_WORDS + shade_rec_words(shading_flags(m))) * o->n_valid + grid_words(&o->grid);
+               (MI_TRIANGLE_WORDS + shade_rec_words(o->shade_flags)) * o->n_valid + grid_words(&o->grid);
     return 0;
 }
 
@@ -423,7 +435,7 @@ static void put_tree(uint32_t *nodes, uint32_t *lists, const kd_tree *t, const k
     }
 }
 
-static void write_shading(uint32_t *w, const scene_mesh *m, uint32_t tri)
+static void write_shading(uint32_t *w, const scene_mesh *m, uint32_t flags, uint32_t tri)
 {
     const float *normals[3] = { 0 }, *texcoords[3] = { 0 };
     for (int k = 0; k < 3; k++) {
@@ -431,7 +443,7 @@ static void write_shading(uint32_t *w, const scene_mesh *m, uint32_t tri)
         normals[k] = m->normals ? &m->normals[3 * v] : NULL;
         texcoords[k] = m->texcoords ? &m->texcoords[2 * v] : NULL;
     }
-    shade_encode_record(w, shading_flags(m), normals, texcoords, m->material[tri]);
+    shade_encode_record(w, flags, normals, texcoords, m->material[tri]);
 }
 
 /* Address of the triangle transformations: after the lists, padded to a multiple of the record
@@ -461,13 +473,13 @@ static void object_write(mi_builder *b, const scene *s, const mi_object *o)
     w = b->words + triangles_at(o);
     for (uint32_t i = 0; i < o->n_valid; i++, w += MI_TRIANGLE_WORDS)
         put_triangle(w, &o->xf[i]);
-    for (uint32_t i = 0; i < o->n_valid; i++, w += shade_rec_words(shading_flags(m)))
-        write_shading(w, m, o->valid[i]);
+    for (uint32_t i = 0; i < o->n_valid; i++, w += shade_rec_words(o->shade_flags))
+        write_shading(w, m, o->shade_flags, o->valid[i]);
     if (o->grid.n[0])
         put_grid(w, &o->grid, (uint32_t)(w - b->words));
 }
 
-static void object_describe(uint32_t *w, const mi_object *o, const scene_mesh *m)
+static void object_describe(uint32_t *w, const mi_object *o)
 {
     memset(w, 0, MI_OBJECT_WORDS * sizeof *w);
     w[MI_O_NODES] = o->base;
@@ -477,9 +489,9 @@ static void object_describe(uint32_t *w, const mi_object *o, const scene_mesh *m
     w[MI_O_N_NODES] = o->n_slots;
     w[MI_O_N_LIST] = list_words(&o->tree, o->ropes);
     w[MI_O_N_TRIANGLES] = o->n_valid;
-    w[MI_O_FLAGS] = shading_flags(m) | (o->dynamic ? MI_OBJECT_DYNAMIC : 0u);
+    w[MI_O_FLAGS] = o->shade_flags | (o->dynamic ? MI_OBJECT_DYNAMIC : 0u);
     put_bounds(&w[MI_O_BOUNDS], &o->tree.bounds, OBJECT_BOUNDS_MARGIN_ULPS);
-    w[MI_O_GRID] = o->grid.n[0] ? w[MI_O_SHADING] + shade_rec_words(shading_flags(m)) * o->n_valid : MI_NONE;
+    w[MI_O_GRID] = o->grid.n[0] ? w[MI_O_SHADING] + shade_rec_words(o->shade_flags) * o->n_valid : MI_NONE;
 }
 
 /* ---- per-frame content: instances, top level, camera, lights ------------------------------ */
@@ -865,7 +877,7 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
     }
     if (full || dynamic_changed) {
         for (uint32_t i = 0; i < b->n_objects; i++)
-            object_describe(w + off[MI_R_OBJECTS] + MI_OBJECT_WORDS * i, &b->obj[i], obj_mesh(b, s, &b->obj[i]));
+            object_describe(w + off[MI_R_OBJECTS] + MI_OBJECT_WORDS * i, &b->obj[i]);
         written[MI_R_DYNAMIC_GEOMETRY] = written[MI_R_OBJECTS] = 1;
     }
     write_camera(b, s, w + off[MI_R_CAMERA]);

@@ -206,13 +206,13 @@ static int shading_record_ok(const checker *c, uint32_t at, uint32_t flags, uint
             return 0;
     if ((flags & SHADE_HAS_NORMALS) && c->w[at + SHADE_NORMAL_WORDS - 1] >> (6 * SHADE_OCT_BITS - 96))
         return 0; /* the normal block's last two bits */
-    if (shade_rec_material(tail) >= n_mat)
+    if (shade_rec_material(flags, tail) >= n_mat)
         return 0;
-    const uint32_t used = SHADE_MATERIAL_BITS + ((flags & SHADE_HAS_TEXCOORDS) ? 6u * F24_WIDTH : 0u);
+    const uint32_t used = shade_rec_material_bits(flags) + ((flags & SHADE_HAS_TEXCOORDS) ? 6u * F24_WIDTH : 0u);
     if (used % 32u && tail[tail_words - 1] >> (used % 32u))
         return 0;
     for (uint32_t i = 0; (flags & SHADE_HAS_TEXCOORDS) && i < 6; i++)
-        if (!finite_f24(shade_rec_texcoord(tail, i)))
+        if (!finite_f24(shade_rec_texcoord(flags, tail, i)))
             return 0;
     return 1;
 }
@@ -233,6 +233,11 @@ static int check_objects(checker *c)
             return bad(c, "%s: geometry outside region %s", what, mi_region_name(r));
         if (!finite_words(c, c->off[MI_R_OBJECTS] + MI_OBJECT_WORDS * o + MI_O_BOUNDS, 6))
             return bad(c, "%s: bounds are not finite", what);
+        const uint32_t known = SHADE_HAS_NORMALS | SHADE_HAS_TEXCOORDS | MI_OBJECT_DYNAMIC | SHADE_ONE_MATERIAL;
+        if ((d[MI_O_FLAGS] & 0xFFFFu & ~known) ||
+            ((d[MI_O_FLAGS] & SHADE_ONE_MATERIAL) ? shade_rec_material(d[MI_O_FLAGS], NULL) >= n_mat
+                                                  : d[MI_O_FLAGS] >> SHADE_OBJ_MATERIAL_SHIFT != 0))
+            return bad(c, "%s: bad flags word 0x%X (unknown flags, or material not below %u)", what, d[MI_O_FLAGS], n_mat);
         if (check_tree(c, what, d[MI_O_NODES], d[MI_O_N_NODES], d[MI_O_LISTS], d[MI_O_N_LIST], nt) != 0 ||
             ((c->accel & MI_ACCEL_GRID) && check_grid(c, what, r, d[MI_O_GRID], nt) != 0))
             return -1;

@@ -22,9 +22,9 @@ void shade_encode_set_normal(uint32_t *normals, uint32_t k, uint64_t code)
     put_bits(normals, 2u * SHADE_OCT_BITS * k + SHADE_OCT_BITS, SHADE_OCT_BITS, (uint32_t)(code >> SHADE_OCT_BITS) & field);
 }
 
-void shade_encode_texcoord(uint32_t *tail, uint32_t i, uint32_t value)
+void shade_encode_texcoord(uint32_t *tail, uint32_t flags, uint32_t i, uint32_t value)
 {
-    put_bits(tail, SHADE_MATERIAL_BITS + F24_WIDTH * i, F24_WIDTH, value);
+    put_bits(tail, shade_rec_material_bits(flags) + F24_WIDTH * i, F24_WIDTH, value);
 }
 
 /* Cosine between n (length len) and what the device decodes from code (a unit vector). */
@@ -78,7 +78,8 @@ void shade_encode_record(uint32_t *w, uint32_t flags, const float *const normals
         shade_encode_set_normal(w, k, shade_encode_normal(n));
     }
     uint32_t *tail = w + shade_rec_tail(flags);
-    tail[0] = material;
+    if (!(flags & SHADE_ONE_MATERIAL))
+        tail[0] = material;
     for (uint32_t i = 0; (flags & SHADE_HAS_TEXCOORDS) && i < 6; i++)
-        shade_encode_texcoord(tail, i, f24_fast_encode(texcoords[i / 2][i % 2]));
+        shade_encode_texcoord(tail, flags, i, f24_fast_encode(texcoords[i / 2][i % 2]));
 }
