@@ -13,9 +13,17 @@
    mode rays per host second, simulated cycles per host second, cycle/functional ratio (target
    >= 25%), and functional against Embree rtcIntersect1 (target >= 1/3), Embree measured in the
    same run by build/bench_render.
+4. Per primary ray at 512x384 (issue 17, "at least as efficient as the 2004 prototype"): cycles,
+   ray-triangle tests, transformation slots, shading and DynRTC bytes (after the caches), image
+   bytes per unique triangle, the busiest unit's usage and the threads' memory wait, beside the
+   paper's figure for the comparable scene, the issue's target, and the same figures before the
+   issue (tests/bench/cycle_before.json: measured on commit c08d62e with this script's
+   --record-before BIN, machine, command and date in the file).
 Writes OUT/cycle.md, OUT/cycle.json and OUT/cycle_threads.svg (gnuplot, if installed).
+Options: --quick (512x384 only, no sweeps' Embree), --record-before BIN (measure the per-ray
+figures with another build, e.g. of the commit before a change, into cycle_before.json).
 """
-import json, os, re, shutil, subprocess, sys
+import datetime, json, os, platform, re, shutil, subprocess, sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 BIN = os.path.join(ROOT, "build", "saarcor")
@@ -32,7 +40,16 @@ SCENES = [  # table name, scene, extra options, paper scene, name in render.json
     ("CesiumMilkTruck", os.path.join(SHARED, "CesiumMilkTruck.glb"), [], None, "CesiumMilkTruck.glb"),
     ("gallery_ccby_503k", os.path.join(SHARED, "gallery_ccby_503k.glb"), ["--mem-mb", "256"], "Conference",
      "gallery_ccby_503k.glb"),
+    ("subpass", os.path.join(SHARED, "subpass_scene_opaque.glb"), [], None, None),
 ]
+BEFORE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "cycle_before.json")
+# The prototype per primary ray (paper Tables 3 and 4 at 90 MHz; the issue's reading of them):
+# cycles per ray, shading bytes per ray (28 with bilinear textures), DynRTC bytes per ray.
+PAPER_RAY = {"Scene6": (7.5, 28, None), "SunCOR": (14.3, 28, 75), "Terrain": (28.8, 28, 86),
+             "Conference": (20.7, 29, 30)}
+# The issue's targets: cycles per ray, DynRTC bytes per ray, bytes per triangle (shading <= 40 everywhere).
+TARGET = {"cornell": (7.5, 30, None), "room": (10, 30, None), "subpass": (5, 30, None), "terrain": (29, 172, None),
+          "plants": (14.3, 150, None), "bunny": (None, None, 90), "gallery_ccby_503k": (None, None, 90)}
 # The paper: Table 3 (fps at 512x384) and Table 4 (1024x768: fps, usage Trav/List/Transf/Int [%],
 # hit rates Trav/List/Transf [%], bandwidth DynRTC/Shading/Total [MB/s]).
 PAPER = {
@@ -63,6 +80,45 @@ def render(scene, opts, w, h, mode, extra, tmp):
     return s
 
 
+def per_ray(binary, scene, opts, tmp):
+    """The per-primary-ray figures of one scene at 512x384 with the given saarcor binary."""
+    stats, info = os.path.join(tmp, "ray.json"), os.path.join(tmp, "info.json")
+    one = ["--threads", "1", "--threads-per-pipe", "64", "--pipes", "1", "--clock-mhz", "90"]
+    for args in (["render", scene, "-o", os.path.join(tmp, "ray.png"), "--mode", "cycle", "--width", "512",
+                  "--height", "384", "--stats", stats] + PRIMARY + opts + one,
+                 ["info", scene, "--json", info] + opts):
+        r = subprocess.run([binary] + args, capture_output=True, text=True)
+        if r.returncode != 0:
+            raise RuntimeError(" ".join(args) + ": " + r.stderr.strip())
+    s, i = json.load(open(stats)), json.load(open(info))
+    c, rays = s["cycle"], s["rays"]
+    m, t = c["memory"], c["thread_cycles"]
+    return {"cycles": c["cycles"] / rays, "tests": s["intersections"] / rays,
+            "xform": s["transformations"] / rays, "shading": m["shading"]["bytes"] / rays,
+            "dynrtc": sum(m[k]["bytes"] for k in ("kd_nodes", "lists", "matrices")) / rays,
+            "bytes_per_triangle": 4.0 * sum(i["regions"].values()) / max(1, i["triangles"]),
+            "busiest": 100 * max(u["usage"] for u in c["units"].values()),
+            "memory_wait": 100 * t["memory"] / max(1, sum(t.values()))}
+
+
+def record_before(binary, out):
+    """--record-before BIN: the per-ray figures of BIN into cycle_before.json."""
+    tmp = os.path.join(out, "cycle_tmp")
+    os.makedirs(tmp, exist_ok=True)
+    rows = {}
+    for name, scene, opts, _, _ in SCENES:
+        if scene.startswith(SHARED) and not os.path.exists(scene):
+            continue
+        print(f"bench-cycle: before: {name} ...", file=sys.stderr, flush=True)
+        rows[name] = per_ray(binary, scene, opts, tmp)
+    commit = subprocess.run(["git", "-C", os.path.dirname(os.path.abspath(binary)), "rev-parse", "--short", "HEAD"],
+                            capture_output=True, text=True).stdout.strip()
+    json.dump({"machine": platform.node() + ", " + platform.machine() + f", {os.cpu_count()} cores",
+               "command": "python3 tests/bench/bench_cycle.py --record-before " + binary, "commit": commit,
+               "date": datetime.date.today().isoformat(), "scenes": rows}, open(BEFORE, "w"), indent=1)
+    print(f"bench-cycle: wrote {BEFORE}", file=sys.stderr)
+
+
 def cycle_row(s):
     c = s["cycle"]
     u, m = c["units"], c["memory"]
@@ -80,6 +136,9 @@ def main():
     out = sys.argv[sys.argv.index("--out") + 1] if "--out" in sys.argv else os.path.join(ROOT, "build", "bench")
     quick = "--quick" in sys.argv
     os.makedirs(out, exist_ok=True)
+    if "--record-before" in sys.argv:
+        record_before(os.path.abspath(sys.argv[sys.argv.index("--record-before") + 1]), out)
+        return
     tmp = os.path.join(out, "cycle_tmp")
     os.makedirs(tmp, exist_ok=True)
     one = ["--threads", "1", "--threads-per-pipe", "64", "--pipes", "1", "--clock-mhz", "90"]
@@ -89,7 +148,7 @@ def main():
             print(f"bench-cycle: {name}: skipped ({scene} absent)", file=sys.stderr)
             continue
         print(f"bench-cycle: {name} ...", file=sys.stderr, flush=True)
-        r = {"scene": name, "paper": paper, "render_json": ename}
+        r = {"scene": name, "paper": paper, "render_json": ename, "per_ray": per_ray(BIN, scene, opts, tmp)}
         for w, h in ((512, 384),) if quick else ((512, 384), (1024, 768)):
             r[f"{w}"] = cycle_row(render(scene, opts, w, h, "cycle", one, tmp))
         f = render(scene, opts, 512, 384, "functional", ["--threads", "1"], tmp)
@@ -124,6 +183,32 @@ def main():
     print(open(os.path.join(out, "cycle.md")).read())
 
 
+def per_ray_table(md, rows):
+    """Issue 17's table: the hardware's work per primary ray now, before the issue, the paper, the target."""
+    before = json.load(open(BEFORE)) if os.path.exists(BEFORE) else {"scenes": {}}
+    f = lambda x, d=1: "-" if x is None else f"{x:.{d}f}"
+    md.write("## Per primary ray (512x384, issue 17: at least as efficient as the prototype)\n\n"
+             "Now / before the issue (`tests/bench/cycle_before.json`: commit "
+             f"{before.get('commit', '?')}, {before.get('date', '?')}, {before.get('machine', '?')}). "
+             "DynRTC bytes are kd nodes, lists and matrices after the caches; shading bytes after the "
+             "shading cache; bytes per triangle over all regions of the image and the scene's unique "
+             "triangles. Paper: the prototype on the comparable scene (Tables 3 and 4). Target: the issue's.\n\n"
+             "| scene | cycles/ray | tests/ray | transf. slots/ray | shading B/ray | DynRTC B/ray | B/triangle "
+             "| busiest unit % | memory wait % | paper cycles / shading / DynRTC | target cycles / DynRTC / B/tri |\n"
+             "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---|\n")
+    for r in rows:
+        n, b = r["per_ray"], before["scenes"].get(r["scene"])
+        pair = lambda k, d=1: f(n[k], d) + (f" / {f(b[k], d)}" if b else "")
+        p = PAPER_RAY.get(r["paper"], (None, None, None))
+        t = TARGET.get(r["scene"], (None, None, None))
+        md.write(f"| {r['scene']} | {pair('cycles')} | {pair('tests')} | {pair('xform')} | {pair('shading', 0)} | "
+                 f"{pair('dynrtc', 0)} | {pair('bytes_per_triangle', 0)} | {f(n['busiest'], 0)} | "
+                 f"{f(n['memory_wait'], 0)} | {r['paper'] or '-'}: {f(p[0])} / {f(p[1], 0)} / {f(p[2], 0)} | "
+                 f"{f(t[0])} / {f(t[1], 0)} / {f(t[2], 0)} |\n")
+    md.write("\nShading target: at most 40 bytes per primary ray on every scene; busiest unit at least 70% "
+             "and memory wait at most 30% on cornell and room.\n\n")
+
+
 def write_markdown(out, rows, sweep_t, sweep_p, embree, quick):
     f = lambda x, d=1: f"{x:.{d}f}"
     with open(os.path.join(out, "cycle.md"), "w") as md:
@@ -132,6 +217,7 @@ def write_markdown(out, rows, sweep_t, sweep_p, embree, quick):
                  "caches 4/2/6 KB, memory 1 GB/s with 10 cycles latency, default unit latencies "
                  "(docs/cycle-model.md). Paper rows: the SaarCOR prototype on the scene that corresponds "
                  "(different geometry; the comparison is of magnitudes, not of equal work).\n\n")
+        per_ray_table(md, rows)
         md.write("## 512x384 (Table 3)\n\n| scene | fps | paper scene | paper fps | M rays/s | isect/ray |\n"
                  "|---|---:|---|---:|---:|---:|\n")
         for r in rows:
