@@ -152,6 +152,12 @@ assert abs(sum(v for k, v in b.items() if k != 'total') - geo) < 1e-3, b
 assert all(b[k] > 0 for k in ('kd_nodes', 'lists', 'triangle_transformations', 'shading_records')), b"
   has 'bytes per unique triangle (all regions)' "$T/out"
   has '^geometry by record type, bytes per unique triangle: kd_nodes [0-9.]*, lists' "$T/out"
+  has '^merged       nothing' "$T/out"
+  # --merge: the room's static axis-aligned instances in one world-space object, the turned chairs kept
+  expect 0 "$BIN" info room --merge --json "$T/m.json"
+  has '^merged       8 instances into 1 world-space object(s) .*7 turned' "$T/out"
+  python3 -c "import json; m=json.load(open('$T/m.json'))['merged']; assert m['instances']==8 and m['kept_turned']==7, m"
+  expect 0 "$BIN" render room --merge --width 64 --height 48 -o "$T/m.png"
   expect 0 "$BIN" info animated --frames 4
   has '^frames       4 at 30 fps' "$T/out"
   expect 0 "$BIN" info room --ct 2 --ci 1 --max-depth 12 --leaf-size 2

@@ -51,6 +51,20 @@ static void record_words(const uint32_t *w, const mi_stats *st, uint64_t words[R
 
 static double per_triangle(const mi_stats *st, uint64_t words) { return st->triangles ? 4.0 * (double)words / st->triangles : 0.0; }
 
+/* What the host merged into world-space objects (--merge, host/memimage/mi_merge.h) and why the
+ * other instances kept their own object. */
+static void print_merge(const mi_stats *st, int merge)
+{
+    if (!merge) {
+        printf("merged       nothing (every mesh instance is its own object; --merge bakes static, axis-aligned ones)\n");
+        return;
+    }
+    printf("merged       %u instances into %u world-space object(s) (%llu triangles of baked copies); kept: "
+           "%u animated, %u morphing, %u mirrored, %u turned, %u instanced copies beyond the memory budget\n",
+           st->merged_instances, st->merged_objects, (unsigned long long)st->merged_copy_triangles, st->kept_animated,
+           st->kept_morphing, st->kept_mirrored, st->kept_turned, st->kept_instanced);
+}
+
 static void print_report(const scene *s, const mi_builder *b, const scene_opts *o)
 {
     const mi_stats *st = mi_get_stats(b);
@@ -62,6 +76,7 @@ static void print_report(const scene *s, const mi_builder *b, const scene_opts *
            st->objects, st->instances, st->triangles, (unsigned long long)inst_tris, st->degenerate_triangles);
     printf("content      %u materials, %u textures, %u cameras, %u lights, %u animations, %u nodes, %u warnings\n",
            s->n_materials, s->n_textures, s->n_cameras, s->n_lights, s->n_animations, s->n_nodes, s->warnings);
+    print_merge(st, o->mi.merge);
     print_tree("bottom level", st->bottom_nodes, st->bottom_leaves, st->bottom_empty_leaves, st->bottom_depth,
                st->bottom_references, st->triangles ? st->bottom_sah / st->triangles : 0.0);
     print_tree("top level", st->top_nodes, st->top_leaves, st->top_empty_leaves, st->top_depth, st->top_references,
@@ -101,6 +116,10 @@ static int write_json(const char *path, const scene_opts *o, const mi_builder *b
     fprintf(f, "  \"top\": {\"nodes\": %u, \"leaves\": %u, \"empty_leaves\": %u, \"depth\": %u, \"references\": %llu, "
                "\"sah\": %.4f, \"build_seconds\": %.6f},\n", st->top_nodes, st->top_leaves, st->top_empty_leaves,
             st->top_depth, (unsigned long long)st->top_references, st->top_sah, st->top_build_seconds);
+    fprintf(f, "  \"merged\": {\"objects\": %u, \"instances\": %u, \"copy_triangles\": %llu, \"kept_animated\": %u, "
+               "\"kept_morphing\": %u, \"kept_mirrored\": %u, \"kept_turned\": %u, \"kept_instanced\": %u},\n",
+            st->merged_objects, st->merged_instances, (unsigned long long)st->merged_copy_triangles, st->kept_animated,
+            st->kept_morphing, st->kept_mirrored, st->kept_turned, st->kept_instanced);
     fprintf(f, "  \"transform_seconds\": %.6f,\n  \"regions\": {", st->transform_seconds);
     for (int r = 0; r < MI_REGION_COUNT; r++)
         fprintf(f, "%s\"%s\": %u", r ? ", " : "", mi_region_name((mi_region)r), st->region_words[r]);
