@@ -77,7 +77,7 @@ case_frames() {
 case_memory_image() { # the existing limit of the device memory: --mem-mb
   local got=0
   "$BIN" info terrain --mem-mb 1 >out 2>err || got=$?
-  [[ $got -eq 3 && $(wc -l <err) -eq 1 ]] && grep -q 'does not fit.*raise --mem-mb' err && cat err
+  [[ $got -eq 3 && $(wc -l <err) -eq 1 ]] && grep -q 'does not fit.*pass --mem-mb [0-9]' err && cat err
 }
 case_bad_limit() {
   local got=0

@@ -6,10 +6,12 @@
  */
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "f24.h"
 #include "memimage.h"
 #include "mi_profile.h"
+#include "trace.h"
 #include "xform_unit.h"
 #include "shade_rec.h"
 
@@ -144,8 +146,35 @@ static int check_inner(checker *c, const char *what, uint32_t i, uint32_t w0, ui
     return 0;
 }
 
-/* A kd-tree: inner nodes' children after the node and in range, finite split planes, leaves'
- * lists in range naming existing items, and with ropes each leaf's rope record. */
+/* Every node but the root has exactly one parent, and no path is deeper than the traversal
+ * stack: the nodes form a tree that a walk visits at most once per packet. Children after their
+ * parents already rule out cycles, but a corrupted image could share subtrees (a walk of such a
+ * graph can take exponentially long) or chain nodes deeper than the stack holds (the stack walker
+ * would drop entries and never finish). Parents come before children, so one pass in index order
+ * knows each parent's depth before its children's. */
+static int check_tree_shape(checker *c, const char *what, uint32_t nodes, uint32_t n_nodes)
+{
+    uint8_t *parents = calloc(n_nodes, 1), *depth = calloc(n_nodes, 1);
+    int rc = parents && depth ? 0 : bad(c, "%s: out of memory checking %u nodes", what, n_nodes);
+    for (uint32_t i = 0; i < n_nodes && rc == 0; i++) {
+        const uint32_t w0 = c->w[nodes + 2 * i], child = w0 >> MI_NODE_CHILD_SHIFT;
+        if (i > 0 && parents[i] != 1)
+            rc = bad(c, "%s: node %u has %u parents (a tree node has one)", what, i, parents[i]);
+        else if (depth[i] > TRACE_STACK - 1)
+            rc = bad(c, "%s: node %u lies deeper than the traversal stack (%d levels)", what, i, TRACE_STACK);
+        for (uint32_t k = 0; rc == 0 && (w0 & 3u) != MI_NODE_LEAF && k < ((w0 >> 2 & 3u) ? 1u : 2u); k++) {
+            parents[child + k] += parents[child + k] < 255;
+            depth[child + k] = (uint8_t)(depth[i] + 1);
+        }
+    }
+    free(parents);
+    free(depth);
+    return rc;
+}
+
+/* A kd-tree: inner nodes' children after the node and in range, each node but the root the child
+ * of one node, finite split planes, leaves' lists in range naming existing items, and with ropes
+ * each leaf's rope record. */
 static int check_tree(checker *c, const char *what, uint32_t nodes, uint32_t n_nodes, uint32_t lists,
                       uint32_t n_list, uint32_t n_items)
 {
@@ -163,7 +192,7 @@ static int check_tree(checker *c, const char *what, uint32_t nodes, uint32_t n_n
             return bad(c, "%s: node %u split plane 0x%X is not a finite fp24 value", what, i, w1);
         }
     }
-    return 0;
+    return check_tree_shape(c, what, nodes, n_nodes);
 }
 
 /* A uniform grid at addr inside region r: header, cell table and lists in the region, 1..1023
