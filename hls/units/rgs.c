@@ -335,8 +335,6 @@ shadow_rays:
     }
 }
 
-static uint32_t count_rays(uint32_t mask) { return (mask & 1u) + (mask >> 1 & 1u) + (mask >> 2 & 1u) + (mask >> 3 & 1u); }
-
 static uint32_t at_least_one(uint32_t n) { return n ? n : 1u; }
 
 /* Next operation of a block (rgs_step). */

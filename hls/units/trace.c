@@ -1,15 +1,21 @@
-/* The ray tracing core for one packet, as a state machine of unit operations: see trace.h. */
+/*
+ * The ray tracing core for one packet (see trace.h): the router that moves a packet between the
+ * units along the paper's paths b..f, one unit operation per trace_step. The units' work is in
+ * their own files: the traversal unit in trav_unit.c (scene and object clips, the walk; its
+ * algorithms behind trav_algo.h, its per-node datapath trav_node.c), the mailboxed list unit in
+ * list_unit.c, the transformation unit's datapath in xform_unit.c and the intersection unit's in
+ * isect_unit.c. This file decides which operation comes next, reads the memory image's
+ * descriptors (instances, objects, triangle transformations) for them, and holds the core's
+ * transformation and intersection operations (op_inst_xform, op_tri_xform, op_tri_isect), which
+ * apply those stateless datapaths to the rays that need them.
+ */
 #include "trace.h"
 
 #include "isect_unit.h"
+#include "list_unit.h"
 #include "trace_ops.h"
-#include "trav_cursor.h"
-#include "trav_node.h"
+#include "trav_unit.h"
 #include "xform_unit.h"
-
-/* docs/memory-image.md: kd node word 0 = count << 2 | 3 (leaf), or child << 4 | empty << 2 | axis */
-#define MI_NODE_LEAF 3u
-#define NODE_CHILD_SHIFT 4
 
 /* Memory-image layout constants used by the core (docs/memory-image.md). */
 enum {
@@ -31,220 +37,7 @@ static uint32_t trav_algo(uint32_t flags) { return flags >> TRACE_TRAV_SHIFT & T
  * grid's address. */
 static uint32_t obj_read(uint32_t flags) { return OBJ_READ + (trav_algo(flags) >= TRAV_GRID ? 1u : 0u); }
 
-static uint32_t count_rays(uint32_t mask) { return bit(mask, 0) + bit(mask, 1) + bit(mask, 2) + bit(mask, 3); }
-
-static void mailbox_clear(trace_mailbox *m)
-{
-mailbox_clear_loop:
-    for (int i = 0; i < TRACE_MAILBOX; i++)
-        m->key[i] = TRACE_NO_HIT;
-    m->next = 0;
-}
-
-/* 1 if key was seen (skip it), else remembers it (round robin) and returns 0. */
-static int mailbox_seen(trace_mailbox *m, uint32_t key)
-{
-mailbox_search:
-    for (int i = 0; i < TRACE_MAILBOX; i++)
-        if (m->key[i] == key)
-            return 1;
-    m->key[m->next] = key;
-    m->next = (m->next + 1) % TRACE_MAILBOX;
-    return 0;
-}
-
-/* Slab test of ray (o, d) against a box of 6 fp24 words: narrows [tn, tf]. The sign bit of d
- * orders the slab distances, so that d = -0 behaves like a negative direction. */
-static void clip_box(const uint32_t *box, f24_vec3 o, f24_vec3 d, f24_t *tn, f24_t *tf)
-{
-clip_axes:
-    for (uint32_t k = 0; k < 3; k++) {
-        const f24_t ok = axis_of(o, k), dk = axis_of(d, k);
-        f24_t t0 = f24_div(f24_sub(box[k], ok), dk), t1 = f24_div(f24_sub(box[3 + k], ok), dk);
-        if (f24_sign(dk)) {
-            const f24_t s = t0;
-            t0 = t1;
-            t1 = s;
-        }
-        *tn = f24_max(*tn, t0);
-        *tf = f24_min(*tf, t1);
-    }
-}
-
-/* ---- traversal unit ------------------------------------------------------------------------ */
-
-static void walker_start(trav_walker *w, uint32_t nodes, uint32_t lists, uint32_t mask, const f24_t tn[], const f24_t tf[],
-                         uint32_t algo)
-{
-    w->nodes = nodes;
-    w->lists = lists;
-    w->sp = 0;
-    w->have_cur = 1;
-    w->cur.node = 0;
-    w->cur.mask = mask;
-    w->leaf_count = w->k = 0;
-    w->algo = algo;
-    w->cap = algo == TRAV_STACK ? TRACE_STACK : algo == TRAV_SHORT_STACK ? TRACE_SHORT_STACK : 0;
-    w->push_down = algo == TRAV_SHORT_STACK || algo == TRAV_PUSH_DOWN;
-    w->lost = w->pass = 0;
-walker_copy:
-    for (int i = 0; i < TRACE_PACKET; i++) {
-        w->cur.tn[i] = tn[i];
-        w->cur.tf[i] = tf[i];
-        w->t_exit[i] = tn[i];
-    }
-    w->root = w->cur;
-}
-
-/* Pushes the far child; a full stack drops its oldest entry (a restart will cover it). */
-static void walker_push(trav_walker *w, const trav_entry *far)
-{
-    if (w->cap == 0) {
-        w->lost = 1;
-        return;
-    }
-    if (w->sp == w->cap) {
-    stack_shift:
-        for (uint32_t i = 0; i + 1 < TRACE_STACK; i++)
-            if (i + 1 < w->sp)
-                w->stack[i] = w->stack[i + 1];
-        w->sp--;
-        w->lost = 1;
-    }
-    w->stack[w->sp++] = *far;
-}
-
-/* After a restart, a cell that ends where a ray's last leaf ended was visited already. */
-static void drop_done_cells(const trav_walker *w, trav_entry *e)
-{
-    if (!w->pass)
-        return;
-done_cells:
-    for (int i = 0; i < TRACE_PACKET; i++)
-        if (bit(e->mask, i) && f24_le(e->tf[i], w->t_exit[i]))
-            e->mask &= ~(1u << i);
-}
-
-/* An inner node: both children for the rays that need them (trav_node_split); the far side of
- * the packet's first ray waits on the stack. With push-down, a node that the whole packet
- * passes through on one side only becomes the new restart point while nothing waits. */
-static void walker_split(trav_walker *w, uint32_t w0, f24_t split, const f24_vec3 o[], const f24_vec3 d[])
-{
-    const uint32_t axis = w0 & 3u, child = w0 >> NODE_CHILD_SHIFT, empty = w0 >> 2 & 3u;
-    trav_entry l, r;
-    uint32_t near_left;
-    trav_node_split(&w->cur, axis, split, o, d, &l, &r, &near_left);
-    /* a side that is an empty leaf is not stored: no ray goes there (no step for an empty cell) */
-    l.mask &= bit(empty, 0) ? 0u : 0xFu;
-    r.mask &= bit(empty, 1) ? 0u : 0xFu;
-    l.node = child;
-    r.node = child + (bit(empty, 0) ? 0u : 1u);
-    drop_done_cells(w, &l);
-    drop_done_cells(w, &r);
-    /* the packet follows its first ray, near side first; after a restart, the first ray that
-     * still needs a child, into the child it needs (so that it advances every pass) */
-    const uint32_t lead = w->pass ? l.mask | r.mask : w->cur.mask;
-    int first = 0;
-first_ray:
-    while (first < TRACE_PACKET - 1 && !bit(lead, first))
-        first++;
-    uint32_t first_near_left = bit(near_left, first);
-    if (w->pass && !bit(first_near_left ? l.mask : r.mask, first))
-        first_near_left = !first_near_left;
-    if (l.mask && r.mask) {
-        walker_push(w, first_near_left ? &r : &l);
-        w->cur = first_near_left ? l : r;
-    } else {
-        w->cur = l.mask ? l : r;
-        if (w->push_down && w->sp == 0 && !w->lost)
-            w->root = w->cur;
-    }
-}
-
-/* The stack ran dry after dropping entries: walk down again from the restart point with every
- * ray's interval from where its last leaf ended. A ray is done for good when nothing is left of
- * its interval or its closest hit lies before the rest. */
-static void walker_restart(trav_walker *w, const f24_t best_t[])
-{
-    trav_entry e = w->root;
-    w->lost = 0;
-    w->pass++;
-restart_rays:
-    for (int i = 0; i < TRACE_PACKET; i++) {
-        e.tn[i] = f24_max(e.tn[i], w->t_exit[i]);
-        w->t_exit[i] = e.tn[i]; /* before the restart point's cell the ray has nothing left */
-        if (bit(e.mask, i) && (!f24_lt(e.tn[i], e.tf[i]) || f24_lt(best_t[i], e.tn[i])))
-            e.mask &= ~(1u << i);
-    }
-    w->root.mask = e.mask;
-    w->cur = e;
-    w->have_cur = e.mask != 0;
-}
-
-/* One kd-tree entry: prune the rays whose closest hit lies before it, then read the node and
- * split, or report a leaf (its list range). Afterwards, if the entry is used up, the next one is
- * popped (or, the stack empty after a drop, the walk restarts); !w->have_cur then means the tree
- * is done. Returns 1 at a leaf with entries. */
-static int walker_step(trav_walker *w, const uint32_t *mem, const f24_vec3 o[], const f24_vec3 d[], const f24_t best_t[],
-                       uint32_t alive, unit_op *op, trace_counters *c)
-{
-    trav_entry *e = &w->cur;
-    int leaf = 0;
-    op_set(op, UNIT_TRAV, 1);
-    e->mask &= alive; /* rays done (any hit found) leave the packet */
-    w->root.mask &= alive;
-prune:
-    for (int i = 0; i < TRACE_PACKET; i++)
-        if (bit(e->mask, i) && f24_lt(best_t[i], e->tn[i]))
-            e->mask &= ~(1u << i);
-    if (!e->mask) {
-        w->have_cur = 0;
-    } else {
-        const uint32_t a = w->nodes + 2 * e->node, w0 = mem[a], w1 = mem[a + 1];
-        op_read(op, c, MEM_NODES, a, 2);
-        if ((w0 & 3u) == MI_NODE_LEAF) {
-            w->have_cur = 0;
-            w->leaf_first = w1;
-            w->leaf_count = w0 >> 2;
-            w->leaf_mask = e->mask;
-            w->k = 0;
-            c->leaves++;
-            leaf = w->leaf_count != 0;
-        leaf_exit: /* only a leaf that continues a ray's covered segment extends it: in a packet a
-                     ray may meet its cells in another order than the first ray */
-            for (int i = 0; i < TRACE_PACKET && w->cap < TRACE_STACK; i++) /* the stack never restarts */
-                if (bit(e->mask, i) && f24_le(e->tn[i], w->t_exit[i]))
-                    w->t_exit[i] = f24_max(w->t_exit[i], e->tf[i]);
-        } else {
-            c->traversal_steps++;
-            walker_split(w, w0, w1, o, d);
-        }
-    }
-    if (!w->have_cur && w->sp > 0) {
-        w->cur = w->stack[--w->sp];
-        w->have_cur = 1;
-    } else if (!w->have_cur && w->lost) {
-        walker_restart(w, best_t);
-    }
-    return leaf;
-}
-
-/* Starts the walk of a level (tree at nodes/lists, or the grid header at grid, TRACE_NO_HIT for
- * none) with the algorithm asked for where the image holds its structure, else the stack. */
-static void level_start(const uint32_t *mem, trav_walker *w, uint32_t flags, uint32_t nodes, uint32_t lists, uint32_t grid,
-                        uint32_t mask, const f24_t tn[], const f24_t tf[], const f24_vec3 o[], const f24_vec3 d[],
-                        unit_op *op, trace_counters *c)
-{
-    const uint32_t asked = trav_algo(flags), accel = mem[H_FORMAT] >> ACCEL_SHIFT;
-    uint32_t algo = asked < TRAV_ROPES ? asked : TRAV_STACK;
-    if (asked == TRAV_ROPES && (accel & ACCEL_ROPES))
-        algo = TRAV_ROPES;
-    if (asked >= TRAV_GRID && grid != TRACE_NO_HIT)
-        algo = TRAV_GRID;
-    walker_start(w, nodes, lists, mask, tn, tf, algo);
-    if (algo >= TRAV_ROPES)
-        cursor_start(w, mem, grid, o, d, op, c);
-}
+static uint32_t accel_of(const uint32_t *mem) { return mem[H_FORMAT] >> ACCEL_SHIFT; }
 
 /* ---- routing between the units (paths b..f) -------------------------------------------------- */
 
@@ -273,23 +66,6 @@ route_levels:
         }
         s->level = 0; /* the object is done: back to the top-level list */
     }
-}
-
-/* The rays of the current leaf that a list entry still needs: each ray's mailbox of that level
- * (at the top level, an instance already visited gave the ray its closest hit in it). */
-static uint32_t list_need(trace_state *s, uint32_t key, trace_counters *c)
-{
-    uint32_t need = 0;
-mailbox_rays:
-    for (int i = 0; i < TRACE_PACKET; i++) {
-        if (!bit(s->walk[s->level].leaf_mask & s->alive, i))
-            continue;
-        if (mailbox_seen(&s->box[s->level][i], key))
-            c->mailbox_skips++;
-        else
-            need |= 1u << i;
-    }
-    return need;
 }
 
 /* Issue slots of the transformation unit for the rays in mask: origin and direction each, or one
@@ -344,17 +120,8 @@ identity_rays:
 static void op_scene_clip(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
 {
     f24_t tn[TRACE_PACKET], tf[TRACE_PACKET];
-    uint32_t mask = s->rays.active;
     op_set(op, UNIT_TRAV, 1);
-scene_rays:
-    for (int i = 0; i < TRACE_PACKET; i++) {
-        tn[i] = s->rays.tmin[i];
-        tf[i] = s->rays.tmax[i];
-        if (bit(mask, i))
-            clip_box(&mem[H_SCENE_BOUNDS], s->rays.o[i], s->rays.d[i], &tn[i], &tf[i]);
-        if (!f24_le(tn[i], tf[i]))
-            mask &= ~(1u << i);
-    }
+    const uint32_t mask = trav_scene_clip(&mem[H_SCENE_BOUNDS], &s->rays, tn, tf);
     if (!mask || mem[H_INSTANCES] == 0) {
         s->phase = TP_DONE;
         return;
@@ -363,9 +130,10 @@ scene_rays:
         enter_single_object(mem, s, mask, op, c);
         return;
     }
-    const int top_grid = trav_algo(s->flags) == TRAV_GRID2 && (mem[H_FORMAT] >> ACCEL_SHIFT & ACCEL_TOP_GRID);
-    level_start(mem, &s->walk[0], s->flags, region_start(mem, R_TOP_NODES), region_start(mem, R_TOP_LISTS),
-                top_grid ? region_start(mem, R_TOP_GRID) : TRACE_NO_HIT, mask, tn, tf, s->rays.o, s->rays.d, op, c);
+    const int top_grid = trav_algo(s->flags) == TRAV_GRID2 && (accel_of(mem) & ACCEL_TOP_GRID);
+    trav_start(&s->walk[0], mem, trav_algo(s->flags), accel_of(mem), region_start(mem, R_TOP_NODES),
+               region_start(mem, R_TOP_LISTS), top_grid ? region_start(mem, R_TOP_GRID) : TRACE_NO_HIT, mask, tn, tf,
+               s->rays.o, s->rays.d, op, c);
     s->phase = TP_WALK;
 }
 
@@ -373,24 +141,15 @@ scene_rays:
 static void op_walk(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
 {
     const int top = s->level == 0;
-    trav_walker *w = &s->walk[s->level];
-    if (w->algo >= TRAV_ROPES)
-        cursor_step(w, mem, top ? s->rays.o : s->o, top ? s->rays.d : s->d, s->best_t, s->alive, op, c);
-    else
-        walker_step(w, mem, top ? s->rays.o : s->o, top ? s->rays.d : s->d, s->best_t, s->alive, op, c);
+    trav_walk(&s->walk[s->level], mem, top ? s->rays.o : s->o, top ? s->rays.d : s->d, s->best_t, s->alive, op, c);
     route_after_list(s);
 }
 
 /* List unit: one entry of the current leaf (an instance at the top level, a triangle below). */
 static void op_list(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
 {
-    trav_walker *w = &s->walk[s->level];
-    const uint32_t a = w->lists + w->leaf_first + w->k, key = mem[a];
-    op_set(op, UNIT_LIST, 1);
-    op_read(op, c, MEM_LISTS, a, 1);
-    c->list_entries++;
-    w->k++;
-    s->need = list_need(s, key, c);
+    uint32_t key;
+    s->need = list_unit_entry(mem, &s->walk[s->level], s->box[s->level], s->alive, &key, op, c);
     if (!s->need) {
         route_after_list(s);
         return;
@@ -442,28 +201,16 @@ static void op_inst_clip(const uint32_t *mem, trace_state *s, unit_op *op, trace
 static void inst_clip(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
 {
     f24_t tn[TRACE_PACKET], tf[TRACE_PACKET];
-    uint32_t mask = s->need;
-object_rays:
-    for (int i = 0; i < TRACE_PACKET; i++) {
-        tn[i] = F24_POS_INF;
-        tf[i] = 0;
-        mailbox_clear(&s->box[1][i]);
-        if (!bit(mask, i))
-            continue;
-        tn[i] = s->rays.tmin[i];
-        tf[i] = s->best_t[i];
-        clip_box(&mem[s->obj + O_BOUNDS], s->o[i], s->d[i], &tn[i], &tf[i]);
-        if (!f24_le(tn[i], tf[i]))
-            mask &= ~(1u << i);
-    }
+    list_mailboxes_clear(s->box[1]); /* a new visit of an instance: its triangles anew */
+    const uint32_t mask = trav_object_clip(&mem[s->obj + O_BOUNDS], s->o, s->d, s->rays.tmin, s->best_t, s->need, tn, tf);
     if (!mask) {
         route_after_list(s);
         return;
     }
     s->tris = mem[s->obj + O_TRIANGLES];
-    const int grid = mem[H_FORMAT] >> ACCEL_SHIFT & ACCEL_GRID;
-    level_start(mem, &s->walk[1], s->flags, mem[s->obj + O_NODES], mem[s->obj + O_LISTS],
-                grid ? mem[s->obj + O_GRID] : TRACE_NO_HIT, mask, tn, tf, s->o, s->d, op, c);
+    const int grid = accel_of(mem) & ACCEL_GRID;
+    trav_start(&s->walk[1], mem, trav_algo(s->flags), accel_of(mem), mem[s->obj + O_NODES], mem[s->obj + O_LISTS],
+               grid ? mem[s->obj + O_GRID] : TRACE_NO_HIT, mask, tn, tf, s->o, s->d, op, c);
     s->level = 1;
     s->phase = TP_WALK;
 }
@@ -522,8 +269,8 @@ init_rays:
     for (int i = 0; i < TRACE_PACKET; i++) {
         s->hits[i] = (hit_record){ TRACE_NO_HIT, TRACE_NO_HIT, F24_POS_INF, 0, 0, 0 };
         s->best_t[i] = rays->tmax[i];
-        mailbox_clear(&s->box[0][i]);
     }
+    list_mailboxes_clear(s->box[0]);
 }
 
 int trace_step(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)

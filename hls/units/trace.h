@@ -23,6 +23,8 @@
  *   transformation    an instance's world-to-object map or a triangle's transformation applied to
  *                     the rays that need it (2 steps per ray, n + 1 if all share their origin);
  *   intersection      the rays that need a triangle, one per issue slot.
+ * The units' files: trav_unit.h (with its algorithms behind trav_algo.h and the per-node datapath
+ * trav_node.h), list_unit.h, xform_unit.h, isect_unit.h; trace.c routes a packet between them.
  *
  * Traversal unit datapath (Table 2: 4 adders, 4 dividers, 13 comparators): per inner node and
  * ray, t_split = (split - O_axis) / D_axis; the near child is chosen by the sign bit of D_axis
@@ -91,7 +93,7 @@ typedef struct {
  * et al. 2007); kd-restart without a stack (Foley and Sugerman 2005); push-down without a stack.
  * A restart walks down again from the root (or the push-down node) with each ray's interval
  * starting where its last leaf ended, excluding cells that end there. The cursor walkers
- * (trav_cursor.h) keep a position per ray instead: kd-trees with ropes (Popov et al. 2007); a
+ * (trav_algo.h, trav_cursor.h) keep a position per ray instead: kd-trees with ropes (Popov et al. 2007); a
  * uniform grid per object with 3D-DDA (Purcell et al. 2002) under the top-level kd-tree; grids at
  * both levels (a two-level grid over the instances, Adinetz and Berezin). A level whose structure
  * the image does not hold (docs/memory-image.md, accelerator bits) is walked with the stack. */

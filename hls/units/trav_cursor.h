@@ -1,8 +1,10 @@
 /*
- * Cursor walkers of the traversal unit (docs/traversal.md): instead of a stack of pending
- * subtrees, every ray of the packet keeps its own position and the packet does one node or
- * cell per step for the rays that share its first walking ray's position (coherent rays move
- * together; rays that part are served in turn, so no stack is needed at all).
+ * Traversal unit, what the cursor walkers share (docs/traversal.md; the walkers: trav_ropes.c,
+ * trav_grid.c behind trav_algo.h). Instead of a stack of pending subtrees, every ray of the
+ * packet keeps its own position (w->at: a kd node or a grid cell, and w->cur.tn, the distance
+ * where it enters it) and the packet does one node or cell per step for the rays that share its
+ * first walking ray's position (coherent rays move together; rays that part are served in turn,
+ * so no stack is needed at all).
  *
  *   ropes (Popov et al. 2007)   a kd-tree whose leaves carry their box and, per face, a rope to
  *                               the smallest node beyond it. A ray descends from its node to the
@@ -19,34 +21,30 @@
  * stack walker does, and prune a ray when its closest hit lies before its next cell. Memory (all
  * checked by mi_validate): rope records of ROPE_WORDS before each leaf's list entries; a grid
  * header of GRID_WORDS words, cells of 2 words {first, count} into the grid's own lists.
- * Latency and throughput as the stack walker: one node or cell per step and packet.
+ * Latency and throughput as the stack walker (trav_unit.h): one node or cell per step and packet.
  */
 #ifndef SAARCOR_TRAV_CURSOR_H
 #define SAARCOR_TRAV_CURSOR_H
 
 #include "trace.h"
 
-/* Accelerator bits of the image (header word 2, bits 16..; docs/memory-image.md). */
-enum { ACCEL_ROPES = 1, ACCEL_GRID = 2, ACCEL_TOP_GRID = 4 };
-#define ACCEL_SHIFT 16
+/* The ray's coordinate on axis k at distance t (1 mul, 1 add). */
+f24_t cursor_point_on(f24_vec3 o, f24_vec3 d, f24_t t, uint32_t k);
 
-/* Rope record: leaf box lo xyz, hi xyz (fp24), ropes -x +x -y +y -z +z (node or TRACE_NO_HIT). */
-#define ROPE_WORDS 12
-/* Grid header: lo xyz, cell size xyz, 1 / size xyz (fp24), cells per axis (3), cells, lists,
- * list length (read by the validator only). */
-enum { G_LO = 0, G_SIZE = 3, G_INV = 6, G_N = 9, G_CELLS = 12, G_LISTS = 13, GRID_WORDS = 14 };
-#define GRID_AXIS_BITS 10 /* cell index x | y << 10 | z << 20: at most 1023 cells per axis */
-#define GRID_MAX_AXIS ((1u << GRID_AXIS_BITS) - 1u)
+/* The start of a cursor step: the rays done (alive) or whose closest hit lies before their
+ * position leave the walk; returns the rays at the position of the packet's first walking ray
+ * (its index in *lead), 0 if none is left. */
+uint32_t cursor_group(trav_walker *w, const f24_t best_t[], uint32_t alive, int *lead);
 
-/* Starts the cursor walk of w (after walker_start set its rays and intervals): ropes at the
- * root; grid (header at word grid): reads the header and puts each ray into the cell of its
- * entry point. */
-void cursor_start(trav_walker *w, const uint32_t *mem, uint32_t grid, const f24_vec3 o[], const f24_vec3 d[],
-                  unit_op *op, trace_counters *c);
+/* Where a ray leaves a cell whose planes in the ray's direction are far[]: the distance and the
+ * axis (3: it never leaves, a zero or NaN direction). */
+uint32_t cursor_cell_exit(const f24_t far[3], f24_vec3 o, f24_vec3 d, f24_t *t);
 
-/* One node or cell for the rays at the first walking ray's position; returns 1 at a leaf or cell
- * with entries (w->leaf_*), !w->have_cur when every ray is done. */
-int cursor_step(trav_walker *w, const uint32_t *mem, const f24_vec3 o[], const f24_vec3 d[], const f24_t best_t[],
-                uint32_t alive, unit_op *op, trace_counters *c);
+/* Moves ray i on to its next position at distance t, or ends its walk (no next position, or its
+ * interval ends there). */
+void cursor_advance(trav_walker *w, int i, uint32_t next, int has_next, f24_t t);
+
+/* The group's list (leaf or cell) for the list unit; returns 1 if it has entries. */
+int cursor_list(trav_walker *w, uint32_t group, uint32_t first, uint32_t count, trace_counters *c);
 
 #endif

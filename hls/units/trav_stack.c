@@ -1,0 +1,119 @@
+/*
+ * Traversal unit, stack family (docs/traversal.md; interface trav_algo.h): the packet walks the
+ * kd-tree as a whole, near child first (by the packet's first ray), the far child of a split that
+ * both sides need waiting on a stack of w->cap entries: the paper's stack (TRACE_STACK = 64, paper
+ * section 3; the prototype kept 64 per thread), the short stack (TRACE_SHORT_STACK = 4, Horn et
+ * al. 2007), kd-restart and push-down (no stack). A full stack drops its oldest entry, and a
+ * stack that runs dry after a drop restarts (trav_restart.c); with push-down (short stack,
+ * push-down) a node that the whole packet passes on one side only becomes the restart point while
+ * nothing waits.
+ *
+ * Per step one kd-tree entry: the prune (4 comparators), the node read (2 words), and at an inner
+ * node the per-node datapath (trav_node.h: 4 sub, 4 div, per ray min, max, 2 compares); latency
+ * and throughput those of the traversal unit (trav_unit.h: 11 cycles, one entry per cycle).
+ * State per level: TRACE_STACK entries of a node index, mask and 4 intervals.
+ */
+#include "trace_ops.h"
+#include "trav_algo.h"
+#include "trav_node.h"
+
+/* docs/memory-image.md: kd node word 0 = count << 2 | 3 (leaf), or child << 4 | empty << 2 | axis */
+#define MI_NODE_LEAF 3u
+#define NODE_CHILD_SHIFT 4
+
+/* Pushes the far child; a full stack drops its oldest entry (a restart will cover it). */
+static void walker_push(trav_walker *w, const trav_entry *far)
+{
+    if (w->cap == 0) {
+        w->lost = 1;
+        return;
+    }
+    if (w->sp == w->cap) {
+    stack_shift:
+        for (uint32_t i = 0; i + 1 < TRACE_STACK; i++)
+            if (i + 1 < w->sp)
+                w->stack[i] = w->stack[i + 1];
+        w->sp--;
+        w->lost = 1;
+    }
+    w->stack[w->sp++] = *far;
+}
+
+/* An inner node: both children for the rays that need them (trav_node_split); the far side of
+ * the packet's first ray waits on the stack. With push-down, a node that the whole packet
+ * passes through on one side only becomes the new restart point while nothing waits. */
+static void walker_split(trav_walker *w, uint32_t w0, f24_t split, const f24_vec3 o[], const f24_vec3 d[])
+{
+    const uint32_t axis = w0 & 3u, child = w0 >> NODE_CHILD_SHIFT, empty = w0 >> 2 & 3u;
+    trav_entry l, r;
+    uint32_t near_left;
+    trav_node_split(&w->cur, axis, split, o, d, &l, &r, &near_left);
+    /* a side that is an empty leaf is not stored: no ray goes there (no step for an empty cell) */
+    l.mask &= bit(empty, 0) ? 0u : 0xFu;
+    r.mask &= bit(empty, 1) ? 0u : 0xFu;
+    l.node = child;
+    r.node = child + (bit(empty, 0) ? 0u : 1u);
+    trav_restart_drop_done(w, &l);
+    trav_restart_drop_done(w, &r);
+    /* the packet follows its first ray, near side first; after a restart, the first ray that
+     * still needs a child, into the child it needs (so that it advances every pass) */
+    const uint32_t lead = w->pass ? l.mask | r.mask : w->cur.mask;
+    int first = 0;
+first_ray:
+    while (first < TRACE_PACKET - 1 && !bit(lead, first))
+        first++;
+    uint32_t first_near_left = bit(near_left, first);
+    if (w->pass && !bit(first_near_left ? l.mask : r.mask, first))
+        first_near_left = !first_near_left;
+    if (l.mask && r.mask) {
+        walker_push(w, first_near_left ? &r : &l);
+        w->cur = first_near_left ? l : r;
+    } else {
+        w->cur = l.mask ? l : r;
+        if (w->push_down && w->sp == 0 && !w->lost)
+            w->root = w->cur;
+    }
+}
+
+/* One kd-tree entry: prune the rays whose closest hit lies before it, then read the node and
+ * split, or report a leaf (its list range). Afterwards, if the entry is used up, the next one is
+ * popped (or, the stack empty after a drop, the walk restarts); !w->have_cur then means the tree
+ * is done. Returns 1 at a leaf with entries. */
+int trav_stack_step(trav_walker *w, const uint32_t *mem, const f24_vec3 o[], const f24_vec3 d[], const f24_t best_t[],
+                    uint32_t alive, unit_op *op, trace_counters *c)
+{
+    trav_entry *e = &w->cur;
+    int leaf = 0;
+    e->mask &= alive; /* rays done (any hit found) leave the packet */
+    w->root.mask &= alive;
+prune:
+    for (int i = 0; i < TRACE_PACKET; i++)
+        if (bit(e->mask, i) && f24_lt(best_t[i], e->tn[i]))
+            e->mask &= ~(1u << i);
+    if (!e->mask) {
+        w->have_cur = 0;
+    } else {
+        const uint32_t a = w->nodes + 2 * e->node, w0 = mem[a], w1 = mem[a + 1];
+        op_read(op, c, MEM_NODES, a, 2);
+        if ((w0 & 3u) == MI_NODE_LEAF) {
+            w->have_cur = 0;
+            w->leaf_first = w1;
+            w->leaf_count = w0 >> 2;
+            w->leaf_mask = e->mask;
+            w->k = 0;
+            c->leaves++;
+            leaf = w->leaf_count != 0;
+            trav_restart_leaf(w, e);
+        } else {
+            c->traversal_steps++;
+            walker_split(w, w0, w1, o, d);
+        }
+    }
+    if (!w->have_cur && w->sp > 0) {
+        w->cur = w->stack[--w->sp];
+        w->have_cur = 1;
+    } else if (!w->have_cur && w->lost) {
+        trav_restart(w, best_t);
+    }
+    return leaf;
+}

@@ -1,0 +1,109 @@
+/* Traversal unit: clip operations, walk start and dispatch to the algorithms; see trav_unit.h. */
+#include "trav_unit.h"
+
+#include "trace_ops.h"
+#include "trav_algo.h"
+
+/* Slab test of ray (o, d) against a box of 6 fp24 words: narrows [tn, tf]. The sign bit of d
+ * orders the slab distances, so that d = -0 behaves like a negative direction. */
+static void clip_box(const uint32_t *box, f24_vec3 o, f24_vec3 d, f24_t *tn, f24_t *tf)
+{
+clip_axes:
+    for (uint32_t k = 0; k < 3; k++) {
+        const f24_t ok = axis_of(o, k), dk = axis_of(d, k);
+        f24_t t0 = f24_div(f24_sub(box[k], ok), dk), t1 = f24_div(f24_sub(box[3 + k], ok), dk);
+        if (f24_sign(dk)) {
+            const f24_t s = t0;
+            t0 = t1;
+            t1 = s;
+        }
+        *tn = f24_max(*tn, t0);
+        *tf = f24_min(*tf, t1);
+    }
+}
+
+uint32_t trav_scene_clip(const uint32_t *bounds, const ray_packet *rays, f24_t tn[TRACE_PACKET], f24_t tf[TRACE_PACKET])
+{
+    uint32_t mask = rays->active;
+scene_rays:
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        tn[i] = rays->tmin[i];
+        tf[i] = rays->tmax[i];
+        if (bit(mask, i))
+            clip_box(bounds, rays->o[i], rays->d[i], &tn[i], &tf[i]);
+        if (!f24_le(tn[i], tf[i]))
+            mask &= ~(1u << i);
+    }
+    return mask;
+}
+
+uint32_t trav_object_clip(const uint32_t *bounds, const f24_vec3 o[], const f24_vec3 d[], const f24_t tmin[],
+                          const f24_t best_t[], uint32_t need, f24_t tn[TRACE_PACKET], f24_t tf[TRACE_PACKET])
+{
+    uint32_t mask = need;
+object_rays:
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        tn[i] = F24_POS_INF;
+        tf[i] = 0;
+        if (!bit(mask, i))
+            continue;
+        tn[i] = tmin[i];
+        tf[i] = best_t[i];
+        clip_box(bounds, o[i], d[i], &tn[i], &tf[i]);
+        if (!f24_le(tn[i], tf[i]))
+            mask &= ~(1u << i);
+    }
+    return mask;
+}
+
+/* The walker's state for every algorithm: the rays and their intervals at the root, the stack
+ * (its capacity by algorithm: 0 for the stackless ones) and the restart state. */
+static void walker_init(trav_walker *w, uint32_t nodes, uint32_t lists, uint32_t mask, const f24_t tn[], const f24_t tf[],
+                        uint32_t algo)
+{
+    w->nodes = nodes;
+    w->lists = lists;
+    w->sp = 0;
+    w->have_cur = 1;
+    w->cur.node = 0;
+    w->cur.mask = mask;
+    w->leaf_count = w->k = 0;
+    w->algo = algo;
+    w->cap = algo == TRAV_STACK ? TRACE_STACK : algo == TRAV_SHORT_STACK ? TRACE_SHORT_STACK : 0;
+    w->push_down = algo == TRAV_SHORT_STACK || algo == TRAV_PUSH_DOWN;
+    w->lost = w->pass = 0;
+walker_copy:
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        w->cur.tn[i] = tn[i];
+        w->cur.tf[i] = tf[i];
+        w->t_exit[i] = tn[i];
+    }
+    w->root = w->cur;
+}
+
+void trav_start(trav_walker *w, const uint32_t *mem, uint32_t asked, uint32_t accel, uint32_t nodes, uint32_t lists,
+                uint32_t grid, uint32_t mask, const f24_t tn[], const f24_t tf[], const f24_vec3 o[], const f24_vec3 d[],
+                unit_op *op, trace_counters *c)
+{
+    uint32_t algo = asked < TRAV_ROPES ? asked : TRAV_STACK;
+    if (asked == TRAV_ROPES && (accel & ACCEL_ROPES))
+        algo = TRAV_ROPES;
+    if (asked >= TRAV_GRID && grid != TRACE_NO_HIT)
+        algo = TRAV_GRID;
+    walker_init(w, nodes, lists, mask, tn, tf, algo);
+    if (algo == TRAV_ROPES)
+        trav_ropes_start(w);
+    else if (algo == TRAV_GRID)
+        trav_grid_start(w, mem, grid, o, d, op, c);
+}
+
+int trav_walk(trav_walker *w, const uint32_t *mem, const f24_vec3 o[], const f24_vec3 d[], const f24_t best_t[],
+              uint32_t alive, unit_op *op, trace_counters *c)
+{
+    op_set(op, UNIT_TRAV, 1);
+    if (w->algo == TRAV_ROPES)
+        return trav_ropes_step(w, mem, o, d, best_t, alive, op, c);
+    if (w->algo == TRAV_GRID)
+        return trav_grid_step(w, mem, o, d, best_t, alive, op, c);
+    return trav_stack_step(w, mem, o, d, best_t, alive, op, c);
+}
