@@ -85,8 +85,8 @@ void trav_start(trav_walker *w, const uint32_t *mem, uint32_t asked, uint32_t ac
                 uint32_t grid, uint32_t mask, const f24_t tn[], const f24_t tf[], const f24_vec3 o[], const f24_vec3 d[],
                 unit_op *op, trace_counters *c)
 {
-    uint32_t algo = asked < TRAV_ROPES ? asked : TRAV_STACK;
-    if (asked == TRAV_ROPES && (accel & ACCEL_ROPES))
+    uint32_t algo = asked < TRAV_ROPES && !(accel & ACCEL_COMPACT) ? asked : TRAV_STACK;
+    if (asked == TRAV_ROPES && (accel & ACCEL_ROPES) && !(accel & ACCEL_COMPACT))
         algo = TRAV_ROPES;
     if (asked >= TRAV_GRID && grid != TRACE_NO_HIT)
         algo = TRAV_GRID;

@@ -30,8 +30,10 @@
 #include "trace.h"
 
 /* Accelerator bits of the image (header word 2, bits 16..; docs/memory-image.md): which
- * structures besides the kd-trees it holds. */
-enum { ACCEL_ROPES = 1, ACCEL_GRID = 2, ACCEL_TOP_GRID = 4 };
+ * structures besides the kd-trees it holds, and whether its kd-trees are compact (flat cells, no
+ * stored empty leaves), which the restarting walkers cannot walk: they measure a ray's progress by
+ * the cells it leaves. */
+enum { ACCEL_ROPES = 1, ACCEL_GRID = 2, ACCEL_TOP_GRID = 4, ACCEL_COMPACT = 8 };
 #define ACCEL_SHIFT 16
 
 /* Scene clip: each ray's [tmin, tmax] against the scene bounds (6 fp24 words) into [tn, tf];
@@ -46,7 +48,8 @@ uint32_t trav_object_clip(const uint32_t *bounds, const f24_vec3 o[], const f24_
 
 /* Starts the walk of a level for the rays in mask with their intervals: the kd-tree at
  * nodes/lists, or the grid whose header is at grid (TRACE_NO_HIT: none), with algorithm asked
- * (TRAV_*) where the image's accelerator bits accel (ACCEL_*) hold its structure, else the stack.
+ * (TRAV_*) where the image's accelerator bits accel (ACCEL_*) hold its structure, else the stack
+ * (also for a restarting walker on compact trees).
  * A grid start reads the grid's header (op). */
 void trav_start(trav_walker *w, const uint32_t *mem, uint32_t asked, uint32_t accel, uint32_t nodes, uint32_t lists,
                 uint32_t grid, uint32_t mask, const f24_t tn[], const f24_t tf[], const f24_vec3 o[], const f24_vec3 d[],

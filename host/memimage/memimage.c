@@ -103,6 +103,10 @@ int mi_compact_trees(uint32_t traversal)
     return traversal == TRAV_STACK || traversal == TRAV_GRID || traversal == TRAV_GRID2;
 }
 
+/* The image's trees are compact: for the walkers that can walk them, and without ropes (whose
+ * records name every leaf). */
+static int trees_compact(const mi_params *p) { return mi_compact_trees(p->traversal) && !(p->accel & MI_ACCEL_ROPES); }
+
 /* Image slots of a tree's nodes: in a compact tree empty leaves (but the root) are not stored
  * (MI_NONE), the others keep their order, so children still follow their parents. Returns the
  * number stored, with *slot allocated; 0 if memory ran out. */
@@ -379,7 +383,7 @@ static int object_prepare(mi_builder *b, const scene_mesh *m, mi_object *o)
             return -1;
         memcpy(o->weights_seen, m->weights, m->n_targets * sizeof(float));
     }
-    o->n_slots = tree_slots(&o->tree, mi_compact_trees(b->p.traversal) && !o->ropes, &o->slot);
+    o->n_slots = tree_slots(&o->tree, trees_compact(&b->p), &o->slot);
     if (!o->n_slots)
         return -1;
     o->shade_flags = object_shading_flags(m, o);
@@ -844,7 +848,7 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
     len[MI_R_LIGHTS] = (uint64_t)MI_LIGHT_WORDS * light_count(s);
     len[MI_R_INSTANCES] = (uint64_t)MI_INSTANCE_WORDS * b->n_inst;
     free(b->top_slot);
-    b->n_top_slots = tree_slots(&b->top, mi_compact_trees(b->p.traversal) && !b->top_ropes, &b->top_slot);
+    b->n_top_slots = tree_slots(&b->top, trees_compact(&b->p), &b->top_slot);
     if (!b->n_top_slots)
         goto oom;
     len[MI_R_TOP_NODES] = (uint64_t)MI_NODE_WORDS * b->n_top_slots;
@@ -890,7 +894,8 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
     written[MI_R_TOP_NODES] = written[MI_R_TOP_LISTS] = written[MI_R_TOP_GRID] = 1;
 
     /* header */
-    const uint32_t accel = b->p.accel & MI_ACCEL_ALL & ~(b->top_grid.n[0] ? 0u : (uint32_t)MI_ACCEL_TOP_GRID);
+    const uint32_t accel = (b->p.accel & MI_ACCEL_ALL & ~(b->top_grid.n[0] ? 0u : (uint32_t)MI_ACCEL_TOP_GRID)) |
+                           (trees_compact(&b->p) ? MI_TREES_COMPACT : 0u);
     const uint32_t head[MI_H_SCENE_BOUNDS] = { MI_MAGIC, MI_VERSION,
                                                 (uint32_t)(accel << MI_ACCEL_SHIFT | F24_EXP_BITS << 8 | F24_MAN_BITS),
                                                 (uint32_t)(b->p.memory_bytes / 4), total, b->frame,
@@ -978,7 +983,7 @@ mi_builder *mi_build(const scene *s, const mi_params *p, char *err, size_t errle
         return NULL;
     }
     b->p = *p;
-    if (!mi_compact_trees(p->traversal))
+    if (!trees_compact(p))
         b->p.bottom.face_splits = 0;
     b->obj = calloc((size_t)s->n_meshes + MI_MERGE_CLASSES + 1, sizeof *b->obj);
     b->mesh_obj = malloc(((size_t)s->n_meshes + 1) * sizeof *b->mesh_obj);

@@ -75,6 +75,9 @@ enum {
  * docs/traversal.md): ropes (a record before each leaf's list entries, both levels), a uniform
  * grid per object (MI_O_GRID), a grid over the instances (region MI_R_TOP_GRID). */
 enum { MI_ACCEL_ROPES = 1, MI_ACCEL_GRID = 2, MI_ACCEL_TOP_GRID = 4, MI_ACCEL_ALL = 7 };
+/* Header word 2 bit 16 + 3: the kd-trees are compact (mi_compact_trees); the device walks them
+ * with the stack whatever it is asked for, but the grids. */
+#define MI_TREES_COMPACT 8u
 #define MI_ACCEL_SHIFT 16
 #define MI_ROPE_WORDS 12 /* leaf box lo xyz hi xyz (fp24), ropes -x +x -y +y -z +z (node or MI_NONE) */
 /* Grid header: lo xyz, cell size xyz, 1 / size xyz (fp24), cells per axis xyz, cell table

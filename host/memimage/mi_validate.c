@@ -74,8 +74,9 @@ static int check_header(checker *c)
         return bad(c, "number format e%um%u, this build is e%dm%d", w[MI_H_FORMAT] >> 8 & 0xFF, w[MI_H_FORMAT] & 0xFF,
                    F24_EXP_BITS, F24_MAN_BITS);
     c->accel = w[MI_H_FORMAT] >> MI_ACCEL_SHIFT;
-    if (c->accel & ~(uint32_t)MI_ACCEL_ALL)
-        return bad(c, "unknown accelerator bits 0x%x", c->accel);
+    if ((c->accel & ~(uint32_t)(MI_ACCEL_ALL | MI_TREES_COMPACT)) ||
+        ((c->accel & MI_TREES_COMPACT) && (c->accel & MI_ACCEL_ROPES)))
+        return bad(c, "unknown accelerator bits 0x%x, or compact trees with ropes", c->accel);
     if (w[MI_H_USED_WORDS] != c->n || w[MI_H_MEMORY_WORDS] < c->n)
         return bad(c, "size fields (used %u, memory %u) disagree with the %u words present", w[MI_H_USED_WORDS],
                    w[MI_H_MEMORY_WORDS], c->n);
@@ -139,8 +140,9 @@ static int check_inner(checker *c, const char *what, uint32_t i, uint32_t w0, ui
 {
     const uint32_t child = w0 >> MI_NODE_CHILD_SHIFT, empty = w0 >> 2 & 3u;
     const uint32_t stored = empty ? 1u : 2u;
-    if (empty == (MI_NODE_EMPTY_LO | MI_NODE_EMPTY_HI) || (empty && (c->accel & MI_ACCEL_ROPES)))
-        return bad(c, "%s: node %u marks both sides or, with ropes, a side as empty (0x%X)", what, i, w0);
+    if (empty == (MI_NODE_EMPTY_LO | MI_NODE_EMPTY_HI) || (empty && !(c->accel & MI_TREES_COMPACT)))
+        return bad(c, "%s: node %u marks both sides or, in trees that are not compact, a side as empty (0x%X)", what,
+                   i, w0);
     if (child <= i || (uint64_t)child + stored > n_nodes)
         return bad(c, "%s: node %u child index %u is not after the node or out of range", what, i, child);
     return 0;
