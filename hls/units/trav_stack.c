@@ -79,17 +79,31 @@ first_ray:
  * split, or report a leaf (its list range). Afterwards, if the entry is used up, the next one is
  * popped (or, the stack empty after a drop, the walk restarts); !w->have_cur then means the tree
  * is done. Returns 1 at a leaf with entries. */
+/* The rays of entry e still alive whose closest hit does not lie before it (4 comparators). */
+static uint32_t entry_rays(const trav_entry *e, const f24_t best_t[], uint32_t alive)
+{
+    uint32_t mask = e->mask & alive;
+entry_prune:
+    for (int i = 0; i < TRACE_PACKET; i++)
+        if (bit(mask, i) && f24_lt(best_t[i], e->tn[i]))
+            mask &= ~(1u << i);
+    return mask;
+}
+
 int trav_stack_step(trav_walker *w, const uint32_t *mem, const f24_vec3 o[], const f24_vec3 d[], const f24_t best_t[],
                     uint32_t alive, unit_op *op, trace_counters *c)
 {
     trav_entry *e = &w->cur;
     int leaf = 0;
-    e->mask &= alive; /* rays done (any hit found) leave the packet */
+    e->mask = entry_rays(e, best_t, alive); /* rays done (any hit found) leave the packet */
+    if (!e->mask && w->sp > 0) {
+        /* an entry all of whose rays found their hit before it is dropped and the next one taken
+         * in the same step (a second read port of the stack memory): the walk is the same, the
+         * step that would only find it done is saved */
+        *e = w->stack[--w->sp];
+        e->mask = entry_rays(e, best_t, alive);
+    }
     w->root.mask &= alive;
-prune:
-    for (int i = 0; i < TRACE_PACKET; i++)
-        if (bit(e->mask, i) && f24_lt(best_t[i], e->tn[i]))
-            e->mask &= ~(1u << i);
     if (!e->mask) {
         w->have_cur = 0;
     } else {
