@@ -8,22 +8,10 @@ cd "$(dirname "$0")/.."
 BIN=${SAARCOR_BIN:-build/saarcor}
 T=$(mktemp -d /tmp/saarcor-test-heatmap-XXXXXX)
 trap 'rm -rf "$T"' EXIT
-fails=0
+# shellcheck source=case_lib.sh
+source tests/case_lib.sh
 SIZE=(--width 64 --height 48 --threads 2)
 COUNTS="traversal_steps list_entries intersections transformations"
-
-run_case() { # name, function
-  echo "[ RUN      ] $1"
-  ( set -e; "$2" ) >"$T/case.log" 2>&1
-  local rc=$?
-  if [[ $rc -eq 0 ]]; then
-    echo "[       OK ] $1"
-  else
-    cat "$T/case.log"
-    echo "[  FAILED  ] $1"
-    fails=$((fails + 1))
-  fi
-}
 
 one_line_error() { # CODE CMD...: exits with CODE and says so in one stderr line
   local want=$1 got=0; shift
