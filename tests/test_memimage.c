@@ -447,6 +447,29 @@ static void shading_records(void **state)
     scene_free(&s);
 }
 
+/* The instance table starts at a multiple of the triangle record size (one matrices cache line
+ * each) and its records take whole lines; the lights' region is padded with zeros to get there,
+ * and the validator rejects padding that is not zero or too long. */
+static void instance_table_on_lines(void **state)
+{
+    (void)state;
+    scene s;
+    make_scene(&s, 2, 0);
+    mi_builder *b = build(&s, 0);
+    uint32_t n;
+    const uint32_t *w = mi_words(b, &n);
+    const uint32_t lights = w[MI_H_REGION_TABLE + 2 * MI_R_LIGHTS], n_lights = w[MI_H_REGION_TABLE + 2 * MI_R_LIGHTS + 1];
+    assert_int_equal(w[MI_H_REGION_TABLE + 2 * MI_R_INSTANCES] % MI_TRIANGLE_WORDS, 0);
+    assert_int_equal(MI_INSTANCE_WORDS % MI_TRIANGLE_WORDS, 0);
+    assert_true(MI_INSTANCE_WORDS >= 14);
+    const uint32_t records = MI_LIGHT_WORDS * w[MI_H_LIGHTS];
+    assert_true(n_lights >= records && n_lights - records < MI_TRIANGLE_WORDS);
+    if (n_lights > records)
+        rejects(w, n, lights + n_lights - 1, 1, "lights padding");
+    mi_free(b);
+    scene_free(&s);
+}
+
 /* Triangle transformations are packed records at multiples of their size; the validator rejects
  * one with a non-finite value (every slot, including the ones that straddle two words) or with
  * padding bits set (formats whose 12 values do not fill the last word). */
@@ -582,7 +605,7 @@ int main(void)
         cmocka_unit_test(too_small_memory), cmocka_unit_test(frames_upload_only_what_changed),
         cmocka_unit_test(corruption), cmocka_unit_test(accelerators),
         cmocka_unit_test(single_object_accelerators), cmocka_unit_test(shading_records),
-        cmocka_unit_test(packed_triangle_records),
+        cmocka_unit_test(packed_triangle_records), cmocka_unit_test(instance_table_on_lines),
     };
     return cmocka_run_group_tests_name("memimage", tests, NULL, NULL);
 }

@@ -852,6 +852,10 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
     len[MI_R_OBJECTS] = (uint64_t)MI_OBJECT_WORDS * b->n_objects;
     len[MI_R_CAMERA] = MI_CAMERA_WORDS;
     len[MI_R_LIGHTS] = (uint64_t)MI_LIGHT_WORDS * light_count(s);
+    uint64_t before_instances = 0; /* the lights end with zeros to a multiple of the triangle record */
+    for (int r = 0; r < MI_R_INSTANCES; r++) /* size: the instance table starts on a matrices line */
+        before_instances += len[r];
+    len[MI_R_LIGHTS] += (MI_TRIANGLE_WORDS - before_instances % MI_TRIANGLE_WORDS) % MI_TRIANGLE_WORDS;
     len[MI_R_INSTANCES] = (uint64_t)MI_INSTANCE_WORDS * b->n_inst;
     free(b->top_slot);
     b->n_top_slots = tree_slots(&b->top, trees_compact(&b->p), &b->top_slot);
@@ -891,6 +895,7 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
         written[MI_R_DYNAMIC_GEOMETRY] = written[MI_R_OBJECTS] = 1;
     }
     write_camera(b, s, w + off[MI_R_CAMERA]);
+    memset(w + off[MI_R_LIGHTS], 0, len[MI_R_LIGHTS] * sizeof *w); /* with the padding */
     write_lights(b, s, w + off[MI_R_LIGHTS]);
     write_instances(b, s, w + off[MI_R_INSTANCES]);
     put_tree(w + off[MI_R_TOP_NODES], w + off[MI_R_TOP_LISTS], &b->top, b->top_ropes, b->top_slot);

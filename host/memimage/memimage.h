@@ -49,7 +49,8 @@ enum {
      * starts at a multiple of its size (one cache line) */
     MI_TRIANGLE_WORDS = F24_AFFINE_RECORD_WORDS,
     MI_OBJECT_WORDS = 16,   /* see mi_object word offsets */
-    MI_INSTANCE_WORDS = 16, /* world-to-object 3x4 (12), object (1), flags (1), reserved (2) */
+    MI_INSTANCE_WORDS = F24_INSTANCE_RECORD_WORDS, /* world-to-object 3x4 (12), object (1), flags (1),
+                                                      zeros to whole triangle records (f24_record.h) */
     MI_MATERIAL_WORDS = 16,
     MI_TEXTURE_WORDS = 4,   /* width, height, texel address, reserved; texels follow the table */
     MI_CAMERA_WORDS = 16,

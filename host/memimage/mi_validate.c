@@ -93,13 +93,22 @@ static int check_header(checker *c)
         return bad(c, "regions do not cover the image exactly");
     const struct { mi_region r; uint32_t count; uint32_t words; } sized[] = {
         { MI_R_OBJECTS, w[MI_H_OBJECTS], MI_OBJECT_WORDS }, { MI_R_INSTANCES, w[MI_H_INSTANCES], MI_INSTANCE_WORDS },
-        { MI_R_MATERIALS, w[MI_H_MATERIALS], MI_MATERIAL_WORDS }, { MI_R_LIGHTS, w[MI_H_LIGHTS], MI_LIGHT_WORDS },
+        { MI_R_MATERIALS, w[MI_H_MATERIALS], MI_MATERIAL_WORDS },
         { MI_R_TOP_NODES, w[MI_H_TOP_NODES], MI_NODE_WORDS }, { MI_R_CAMERA, 1, MI_CAMERA_WORDS },
     };
     for (size_t i = 0; i < sizeof sized / sizeof sized[0]; i++)
         if ((uint64_t)sized[i].count * sized[i].words != c->len[sized[i].r])
             return bad(c, "region %s has %u words for %u records", mi_region_name(sized[i].r), c->len[sized[i].r],
                        sized[i].count);
+    /* the lights, then zeros up to a multiple of the triangle record size (the instance table
+     * starts on a matrices cache line) */
+    const uint64_t lights = (uint64_t)w[MI_H_LIGHTS] * MI_LIGHT_WORDS;
+    if (c->len[MI_R_LIGHTS] < lights || c->len[MI_R_LIGHTS] - lights >= MI_TRIANGLE_WORDS)
+        return bad(c, "region %s has %u words for %u records", mi_region_name(MI_R_LIGHTS), c->len[MI_R_LIGHTS],
+                   w[MI_H_LIGHTS]);
+    for (uint64_t k = lights; k < c->len[MI_R_LIGHTS]; k++)
+        if (w[c->off[MI_R_LIGHTS] + k] != 0)
+            return bad(c, "region %s: padding word %llu is not zero", mi_region_name(MI_R_LIGHTS), (unsigned long long)k);
     if ((uint64_t)w[MI_H_TEXTURES] * MI_TEXTURE_WORDS > c->len[MI_R_TEXTURES])
         return bad(c, "texture table larger than its region");
     if (w[MI_H_MATERIALS] == 0 || w[MI_H_TOP_NODES] == 0)
