@@ -162,6 +162,8 @@ assert all(b[k] > 0 for k in ('kd_nodes', 'lists', 'triangle_transformations', '
   has '^frames       4 at 30 fps' "$T/out"
   expect 0 "$BIN" info room --ct 2 --ci 1 --max-depth 12 --leaf-size 2
   expect 3 "$BIN" info "$T/missing.glb"; one_line_error
+  mkdir -p "$T/dir.glb"
+  expect 3 "$BIN" render "$T/dir.glb" -o "$T/d.png"; one_line_error; has 'is a directory' "$T/err"
   printf '{"asset":{"version":"2.0"},"meshes":[' >"$T/bad.gltf"
   expect 3 "$BIN" info "$T/bad.gltf"; one_line_error
   expect 3 "$BIN" info terrain --mem-mb 1; one_line_error; has 'does not fit' "$T/err"

@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "cli.h"
@@ -114,6 +115,11 @@ int scene_opts_load(const scene_opts *o, const char *cmd, scene *s)
     int rc = limits_check_params(&o->lim, cmd, &o->mi);
     if (rc != SAARCOR_EXIT_OK)
         return rc;
+    struct stat st;
+    if (stat(o->scene, &st) == 0 && S_ISDIR(st.st_mode)) { /* the loader would read it as an empty file */
+        cli_error(cmd, "%s: is a directory, not a .gltf/.glb file", o->scene);
+        return SAARCOR_EXIT_INPUT;
+    }
     const scene_generator *g = access(o->scene, F_OK) != 0 ? scene_generator_find(o->scene) : NULL;
     if (g) {
         const scene_gen_params gp = { 1, 0 };
