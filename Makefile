@@ -55,7 +55,7 @@ SANFLAGS := $(if $(filter 1,$(SAN)),$(SAN_ON))
 CFG_FLAGS ?=
 CFLAGS := -std=c11 $(WARN) $(OPT) -ffp-contract=off -fno-math-errno $(SANFLAGS) $(CFG_FLAGS) -MMD -MP
 CXXFLAGS := -std=c++17 $(WARN) $(OPT) $(SANFLAGS) -MMD -MP
-INCLUDES := -Ihls -Ihls/fp24 -Ihls/units -Itb/fp -Itb/ref -Itb/cycle -Itb/cli -Ihost/image -Ihost/scene -Ihost/kdtree -Ihost/memimage -Iscenes -Itb/mpi
+INCLUDES := -Ihls -Ihls/fp24 -Ihls/units -Ihost/fp24 -Itb/fp -Itb/ref -Itb/cycle -Itb/cli -Ihost/image -Ihost/scene -Ihost/kdtree -Ihost/memimage -Iscenes -Itb/mpi
 LDLIBS := -lmpfr -lgmp -ltinygltf -lOpenImageIO -lOpenImageIO_Util -lstdc++ -lm -ldl
 TEST_LDLIBS := -lcmocka $(LDLIBS)
 
@@ -75,7 +75,10 @@ CYCLE := $(sort $(wildcard tb/cycle/*.c))
 # the simulator (units, memory image, reference, command line) computes fp24 with the host fast
 # path unless SIM_ARITH=hw; hls/fp24 and tb/fp always hold the integer reference
 SIM_ARITH ?= fast
-SIM_FLAGS := $(if $(filter fast,$(SIM_ARITH)),-DF24_FAST_SIM,$(if $(filter hw,$(SIM_ARITH)),,$(error SIM_ARITH must be fast or hw)))
+# the fast path's header is named by the build (hls/ names nothing of tb/): tb/fp/f24_fast.h maps
+# f24_add ... onto it
+FAST_SIM_FLAGS := -DF24_FAST_SIM -DF24_SIM_HEADER='"f24_fast.h"'
+SIM_FLAGS := $(if $(filter fast,$(SIM_ARITH)),$(FAST_SIM_FLAGS),$(if $(filter hw,$(SIM_ARITH)),,$(error SIM_ARITH must be fast or hw)))
 SIM_SRCS = $(MEMIMAGE) $(HLS_UNITS) $(CYCLE) $(REF) $(CLI)
 
 # render --capture-unit-io records the units' calls through linker wrappers (tb/cli/capture.c)
@@ -131,7 +134,7 @@ $(foreach f,$(FORMATS),$(eval $(call FORMAT_RULES,$(f))))
 $(BUILD)/obj/%/tests/test_f24.o $(BUILD)/obj/host/tests/%.o: CFLAGS += -DSAARCOR_SRC_DIR='"$(CURDIR)"'
 
 # the selection test is compiled with the build-time switch that maps f24_* onto the fast path
-$(BUILD)/obj/%/tests/test_f24_select.o: CFLAGS += -DF24_FAST_SIM
+$(BUILD)/obj/%/tests/test_f24_select.o: CFLAGS += $(FAST_SIM_FLAGS)
 
 # the version string lives in a generated header that changes only when the version does
 $(BUILD)/version.h: FORCE
@@ -302,7 +305,7 @@ $(BUILD)/rtl/$(1)/tb_%: rtl/tb/tb_%.sv rtl/tb/tb_%.cpp $(RTL) $(call rtl_c_objs,
 	$(Q)verilator $(VERILATOR_FLAGS) -GE=$(call fmt_e,$(1)) -GM=$(call fmt_m,$(1)) --top-module tb_$$* \
 	  -Mdir $(BUILD)/rtl/$(1)/obj_$$* -o $(CURDIR)/$$@ $(addprefix $(CURDIR)/,$(RTL)) \
 	  $(CURDIR)/rtl/tb/tb_$$*.sv $(CURDIR)/rtl/tb/tb_$$*.cpp \
-	  -CFLAGS "$(call fmt_flags,$(1)) $(addprefix -I$(CURDIR)/,hls hls/fp24 hls/units tb/fp)" \
+	  -CFLAGS "$(call fmt_flags,$(1)) $(addprefix -I$(CURDIR)/,hls hls/fp24 hls/units host/fp24 tb/fp)" \
 	  -LDFLAGS "$(addprefix $(CURDIR)/,$(call rtl_c_objs,$(1))) -lmpfr -lgmp -lm" >$(BUILD)/rtl/$(1)/build_$$*.log 2>&1 \
 	  || { tail -30 $(BUILD)/rtl/$(1)/build_$$*.log; exit 1; }
 endef

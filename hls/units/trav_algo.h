@@ -24,6 +24,12 @@
 
 #include "trace.h"
 
+/* kd node word 0 (docs/memory-image.md): count << 2 | 3 for a leaf, or child << 4 | empty << 2 |
+ * axis for an inner node (empty bits 1, 2: the side below / above the split is an empty leaf
+ * that is not stored; only in compact trees, never with ropes). */
+#define TRAV_NODE_LEAF 3u
+#define TRAV_NODE_CHILD_SHIFT 4
+
 /* ---- stack family (TRAV_STACK, TRAV_SHORT_STACK, TRAV_RESTART, TRAV_PUSH_DOWN): trav_stack.c */
 
 /* One kd-tree entry: prune the rays whose closest hit lies before it, then read the node and

@@ -12,8 +12,6 @@
 #include "trav_algo.h"
 #include "trav_cursor.h"
 
-#define NODE_LEAF 3u
-
 /* Rope record: leaf box lo xyz, hi xyz (fp24), ropes -x +x -y +y -z +z (node or TRACE_NO_HIT). */
 #define ROPE_WORDS 12
 
@@ -28,7 +26,7 @@ start_rays:
  * plane goes the way it points). */
 static void ropes_inner(trav_walker *w, uint32_t group, uint32_t w0, f24_t split, const f24_vec3 o[], const f24_vec3 d[])
 {
-    const uint32_t axis = w0 & 3u, child = w0 >> 4; /* ropes images store every node: no empty bits */
+    const uint32_t axis = w0 & 3u, child = w0 >> TRAV_NODE_CHILD_SHIFT; /* ropes images store every node */
 descend_rays:
     for (int i = 0; i < TRACE_PACKET; i++) {
         if (!bit(group, i))
@@ -65,7 +63,7 @@ int trav_ropes_step(trav_walker *w, const uint32_t *mem, const f24_vec3 o[], con
     if (group) {
         const uint32_t a = w->nodes + 2 * w->at[lead], w0 = mem[a], w1 = mem[a + 1];
         op_read(op, c, MEM_NODES, a, 2);
-        if ((w0 & 3u) == NODE_LEAF) {
+        if ((w0 & 3u) == TRAV_NODE_LEAF) {
             op_read(op, c, MEM_NODES, w->lists + w1 - ROPE_WORDS, ROPE_WORDS);
             leaf = cursor_list(w, group, w1, w0 >> 2, c);
             ropes_leaf(w, mem, group, w->lists + w1 - ROPE_WORDS, o, d);

@@ -17,10 +17,6 @@
 #include "trav_algo.h"
 #include "trav_node.h"
 
-/* docs/memory-image.md: kd node word 0 = count << 2 | 3 (leaf), or child << 4 | empty << 2 | axis */
-#define MI_NODE_LEAF 3u
-#define NODE_CHILD_SHIFT 4
-
 /* Pushes the far child; a full stack drops its oldest entry (a restart will cover it). */
 static void walker_push(trav_walker *w, const trav_entry *far)
 {
@@ -44,7 +40,7 @@ static void walker_push(trav_walker *w, const trav_entry *far)
  * passes through on one side only becomes the new restart point while nothing waits. */
 static void walker_split(trav_walker *w, uint32_t w0, f24_t split, const f24_vec3 o[], const f24_vec3 d[])
 {
-    const uint32_t axis = w0 & 3u, child = w0 >> NODE_CHILD_SHIFT, empty = w0 >> 2 & 3u;
+    const uint32_t axis = w0 & 3u, child = w0 >> TRAV_NODE_CHILD_SHIFT, empty = w0 >> 2 & 3u;
     trav_entry l, r;
     uint32_t near_left;
     trav_node_split(&w->cur, axis, split, o, d, &l, &r, &near_left);
@@ -109,7 +105,7 @@ int trav_stack_step(trav_walker *w, const uint32_t *mem, const f24_vec3 o[], con
     } else {
         const uint32_t a = w->nodes + 2 * e->node, w0 = mem[a], w1 = mem[a + 1];
         op_read(op, c, MEM_NODES, a, 2);
-        if ((w0 & 3u) == MI_NODE_LEAF) {
+        if ((w0 & 3u) == TRAV_NODE_LEAF) {
             w->have_cur = 0;
             w->leaf_first = w1;
             w->leaf_count = w0 >> 2;

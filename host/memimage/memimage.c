@@ -21,7 +21,7 @@
 #include <time.h>
 
 #include "f24.h"
-#include "f24_fast.h"
+#include "f24_double.h"
 
 typedef struct {
     uint32_t mesh;      /* scene mesh, or with merged set the merged mesh (mi_merge) */

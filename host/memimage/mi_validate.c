@@ -143,12 +143,15 @@ static int check_ropes(checker *c, const char *what, uint32_t lists, uint32_t fi
     return 0;
 }
 
+/* Children an inner node stores: one if a side is an empty leaf (compact trees), else two. */
+static uint32_t stored_children(uint32_t w0) { return (w0 >> 2 & 3u) ? 1u : 2u; }
+
 /* An inner node: its stored children after it and in range; at most one side an empty leaf that
  * is not stored, and none with ropes (their records name every leaf). */
 static int check_inner(checker *c, const char *what, uint32_t i, uint32_t w0, uint32_t n_nodes)
 {
     const uint32_t child = w0 >> MI_NODE_CHILD_SHIFT, empty = w0 >> 2 & 3u;
-    const uint32_t stored = empty ? 1u : 2u;
+    const uint32_t stored = stored_children(w0);
     if (empty == (MI_NODE_EMPTY_LO | MI_NODE_EMPTY_HI) || (empty && !(c->accel & MI_TREES_COMPACT)))
         return bad(c, "%s: node %u marks both sides or, in trees that are not compact, a side as empty (0x%X)", what,
                    i, w0);
@@ -173,7 +176,7 @@ static int check_tree_shape(checker *c, const char *what, uint32_t nodes, uint32
             rc = bad(c, "%s: node %u has %u parents (a tree node has one)", what, i, parents[i]);
         else if (depth[i] > TRACE_STACK - 1)
             rc = bad(c, "%s: node %u lies deeper than the traversal stack (%d levels)", what, i, TRACE_STACK);
-        for (uint32_t k = 0; rc == 0 && (w0 & 3u) != MI_NODE_LEAF && k < ((w0 >> 2 & 3u) ? 1u : 2u); k++) {
+        for (uint32_t k = 0; rc == 0 && (w0 & 3u) != MI_NODE_LEAF && k < stored_children(w0); k++) {
             parents[child + k] += parents[child + k] < 255;
             depth[child + k] = (uint8_t)(depth[i] + 1);
         }

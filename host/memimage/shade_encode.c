@@ -4,7 +4,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "f24_fast.h"
+#include "f24_double.h"
 
 /* Sets the width (1..32) bits of w from bit at on (the counterpart of shade_rec_bits). */
 static void put_bits(uint32_t *w, uint32_t at, uint32_t width, uint32_t value)

@@ -11,61 +11,18 @@
  * the integer path and MPFR at every tested width instead of relying on the argument.
  *
  * Build with -ffp-contract=off (no fused multiply-add) and without -ffast-math.
- * With -DF24_FAST_SIM, f24.h maps f24_add ... f24_from_f32, the comparisons lt/le/eq and min/max
- * onto these functions; the sign operations and conversions to integers stay the integer ones.
+ * The simulation build names this header to hls/fp24/f24.h (-DF24_SIM_HEADER='"f24_fast.h"' with
+ * -DF24_FAST_SIM, the Makefile's SIM_FLAGS), which then maps f24_add ... f24_from_f32, the
+ * comparisons lt/le/eq and min/max onto these functions, so that hls/ names nothing of tb/; the
+ * sign operations and conversions to integers stay the integer ones.
  */
 #ifndef SAARCOR_F24_FAST_H
 #define SAARCOR_F24_FAST_H
 
-#include <math.h>
 #include <stdint.h>
-#include <string.h>
 
 #include "f24.h"
-
-/* binary64 exponent field minus fp24 bias, in the fp24 exponent position */
-#define F24_FAST_REBIAS ((uint64_t)(1023 - F24_BIAS) << F24_MAN_BITS)
-
-static inline double f24_fast_decode(f24_t a)
-{
-    const uint64_t sign = (uint64_t)f24_sign(a) << 63;
-    const uint64_t mag = a & F24_ABS_MASK;
-    uint64_t bits;
-    if (mag - F24_MIN_NORMAL < (uint64_t)(F24_POS_INF - F24_MIN_NORMAL)) /* normal: one range check */
-        bits = sign | ((mag + F24_FAST_REBIAS) << (52 - F24_MAN_BITS));
-    else if (mag < F24_MIN_NORMAL)
-        bits = sign; /* zero or subnormal encoding */
-    else
-        bits = sign | 0x7FF0000000000000ull | ((uint64_t)(mag != F24_POS_INF) << 51);
-    double d;
-    memcpy(&d, &bits, sizeof d);
-    return d;
-}
-
-/* Rare results of f24_fast_encode: zero, flushed, overflowed, Inf and NaN. */
-static inline f24_t f24_fast_encode_special(uint32_t sign, uint64_t mag52, uint64_t rebiased)
-{
-    if (mag52 > 0x7FF0000000000000ull)
-        return F24_DEFAULT_NAN;
-    if ((int64_t)rebiased >= (int64_t)F24_POS_INF)
-        return f24_pack(sign, F24_EXP_MAX, 0u); /* Inf, or overflow after rounding */
-    return f24_pack(sign, 0u, 0u);              /* zero, or tiny after rounding (negative): flush */
-}
-
-static inline f24_t f24_fast_encode(double d)
-{
-    enum { SHIFT = 52 - F24_MAN_BITS };
-    uint64_t bits;
-    memcpy(&bits, &d, sizeof bits);
-    const uint32_t sign = (uint32_t)(bits >> 63);
-    const uint64_t mag52 = bits & 0x7FFFFFFFFFFFFFFFull;
-    /* round to nearest even on the magnitude; a carry moves into the exponent field */
-    const uint64_t mag = (mag52 + ((1ull << (SHIFT - 1)) - 1u) + ((mag52 >> SHIFT) & 1u)) >> SHIFT;
-    const uint64_t rebiased = mag - F24_FAST_REBIAS; /* fp24 exponent and fraction fields */
-    if (rebiased - F24_MIN_NORMAL < (uint64_t)(F24_POS_INF - F24_MIN_NORMAL)) /* normal result */
-        return (sign << (F24_EXP_BITS + F24_MAN_BITS)) | (uint32_t)rebiased;
-    return f24_fast_encode_special(sign, mag52, rebiased);
-}
+#include "f24_double.h" /* host/fp24: f24_fast_decode, f24_fast_encode */
 
 static inline f24_t f24_fast_add(f24_t a, f24_t b) { return f24_fast_encode(f24_fast_decode(a) + f24_fast_decode(b)); }
 static inline f24_t f24_fast_sub(f24_t a, f24_t b) { return f24_fast_encode(f24_fast_decode(a) - f24_fast_decode(b)); }
