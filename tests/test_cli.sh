@@ -161,6 +161,10 @@ assert all(b[k] > 0 for k in ('kd_nodes', 'lists', 'triangle_transformations', '
   expect 0 "$BIN" info animated --frames 4
   has '^frames       4 at 30 fps' "$T/out"
   expect 0 "$BIN" info room --ct 2 --ci 1 --max-depth 12 --leaf-size 2
+  expect 0 "$BIN" info room --top-ci 6 --json "$T/t6.json"
+  expect 0 "$BIN" info room --json "$T/t3.json"
+  python3 -c "import json; a, b = (json.load(open(f))['top']['nodes'] for f in ('$T/t6.json', '$T/t3.json')); assert a != b, (a, b)"
+  expect 2 "$BIN" info room --top-ci 0; one_line_error
   expect 3 "$BIN" info "$T/missing.glb"; one_line_error
   mkdir -p "$T/dir.glb"
   expect 3 "$BIN" render "$T/dir.glb" -o "$T/d.png"; one_line_error; has 'is a directory' "$T/err"

@@ -80,9 +80,9 @@ void mi_params_default(mi_params *p)
     p->top.bins = 32;
     /* the top level's "intersection" is an instance entry: the packet's transformation (up to 8
      * slots), a clip and a list entry, against one traversal step per node: C_i 3 measured best
-     * (cycles per primary ray at the paper's set-up, C_i 1.5 / 3 / 6: room 10.6 / 10.4 / 10.6,
-     * terrain 27.1 / 24.9 / 24.1, plants 51.5 / 49.8 / 49.3; DynRTC bytes per ray on terrain
-     * 194 / 168 / 160) */
+     * (cycles per primary ray at the paper's set-up, render --top-ci 1.5 / 3 / 6: room 10.6 /
+     * 10.4 / 10.6, terrain 27.1 / 24.9 / 24.1, plants 51.5 / 49.8 / 49.3; DynRTC bytes per ray
+     * on terrain 194 / 168 / 160; before the instance records were put on cache lines) */
     p->top.cost_intersection = 3.0;
     p->bottom.quantize = quantize;
     /* large meshes at most log2(N) + 5 deep: below that the SAH's levels hold most of the nodes

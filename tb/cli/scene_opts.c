@@ -104,6 +104,7 @@ int scene_opts_parse(scene_opts *o, const char *cmd, int c, const char *arg)
     case 17: o->mi.skip = 0; return 1;
     case 18: return limits_parse(&o->lim, cmd, arg) ? 1 : -1;
     case 19: o->mi.merge = 1; return 1;
+    case 20: return number(cmd, "top-ci", arg, 1e-6, 1e6, &o->mi.top.cost_intersection);
     default: return 0;
     }
 }

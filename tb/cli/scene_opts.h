@@ -24,7 +24,8 @@
     { "eye", required_argument, NULL, SCENE_OPT_BASE + 12 }, { "at", required_argument, NULL, SCENE_OPT_BASE + 13 }, \
     { "up", required_argument, NULL, SCENE_OPT_BASE + 14 }, { "fov", required_argument, NULL, SCENE_OPT_BASE + 15 }, \
     { "ground", no_argument, NULL, SCENE_OPT_BASE + 16 }, { "general", no_argument, NULL, SCENE_OPT_BASE + 17 }, \
-    { "limit", required_argument, NULL, SCENE_OPT_BASE + 18 }, { "merge", no_argument, NULL, SCENE_OPT_BASE + 19 }
+    { "limit", required_argument, NULL, SCENE_OPT_BASE + 18 }, { "merge", no_argument, NULL, SCENE_OPT_BASE + 19 }, \
+    { "top-ci", required_argument, NULL, SCENE_OPT_BASE + 20 }
 
 /* `info` also accepts the kd-tree depth as --max-depth (render and reference use that name for
  * the ray depth). */
@@ -41,7 +42,9 @@
     "                        shadows and reflections show\n"                                         \
     "  --width W --height H  image size for the camera set-up (default 512 x 384)\n"                   \
     "  --mem-mb N            device memory size in MB (default 24, as the prototype)\n"                \
-    "  --ct X --ci Y         SAH traversal and intersection costs (default 1, 1.5)\n"                  \
+    "  --ct X --ci Y         SAH traversal and intersection costs of both levels (default 1, 1.5;\n"  \
+    "                        the top level's C_i 3, an instance entry)\n"                           \
+    "  --top-ci Y            the top level's C_i alone (after --ci)\n"                                \
     "  --empty-bonus B       SAH bonus for cutting off empty space, 0..1 (default 0.2)\n"              \
     "  --kd-max-depth D      kd-tree depth limit (default 0: 8 + 1.3 log2 N)\n"                        \
     "  --leaf-size L         never split nodes with at most L primitives (default 1)\n"               \
