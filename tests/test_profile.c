@@ -146,6 +146,19 @@ static void single_object_identity_and_scaled(void **state)
     assert_true(p & PROFILE_IDENTITY);
 }
 
+/* The room's memory image with default parameters but mi_params.merge. */
+static mi_builder *room_image(scene *s, int merge)
+{
+    char err[256];
+    scene_make(s, "room", 0);
+    mi_params p;
+    mi_params_default(&p);
+    p.merge = merge;
+    mi_builder *b = mi_build(s, &p, err, sizeof err);
+    assert_non_null(b);
+    return b;
+}
+
 /* mi_params.merge: the static, axis-aligned instances of the room baked into one world-space
  * object under an identity instance (mi_merge.h); the turned chairs keep theirs. The general
  * pipeline and the specialized one give the same bits on it, and the identity instance is
@@ -156,13 +169,7 @@ static void merged_static_scene(void **state)
     merge_static = 1;
     check_same("room", 0, &full, &gen_f, &spec_f);
     scene s;
-    char err[256];
-    scene_make(&s, "room", 0);
-    mi_params p;
-    mi_params_default(&p);
-    p.merge = 1;
-    mi_builder *b = mi_build(&s, &p, err, sizeof err);
-    assert_non_null(b);
+    mi_builder *b = room_image(&s, 1);
     const mi_stats *st = mi_get_stats(b);
     assert_true(st->merged_objects >= 1 && st->merged_instances > 0 && st->kept_turned > 0);
     assert_int_equal(st->instances, s.n_instances - st->merged_instances + st->merged_objects);
@@ -181,12 +188,7 @@ static void profile_contents(void **state)
     (void)state;
     scene s;
     char err[256];
-    scene_make(&s, "room", 0);
-    mi_params p;
-    mi_params_default(&p);
-    p.merge = 0;
-    mi_builder *b = mi_build(&s, &p, err, sizeof err);
-    assert_non_null(b);
+    mi_builder *b = room_image(&s, 0);
     uint32_t n;
     const uint32_t *mem = mi_words(b, &n);
     mi_profile prof;
