@@ -30,7 +30,9 @@ static void size_is_the_bits_rounded_up_to_words(void **state)
         assert_true(32u * F24_RECORD_WORDS(n) >= n * F24_WIDTH);
         assert_true(32u * F24_RECORD_WORDS(n) < n * F24_WIDTH + 32u);
     }
-    assert_int_equal(F24_AFFINE_RECORD_WORDS, F24_RECORD_WORDS(12));
+    assert_int_equal(F24_TRIANGLE_RECORD_WORDS, F24_RECORD_WORDS(F24_TRIANGLE_VALUES));
+    assert_int_equal(F24_INSTANCE_RECORD_WORDS % F24_TRIANGLE_RECORD_WORDS, 0);
+    assert_true(F24_INSTANCE_RECORD_WORDS >= 17);
 }
 
 /* Random values (with junk above the format's width, which the writer must drop) round-trip;
@@ -63,32 +65,35 @@ static void round_trip(void **state)
 static void values_have_disjoint_slices(void **state)
 {
     (void)state;
-    for (uint32_t j = 0; j < 12; j++) {
-        f24_t v[12] = { 0 };
-        uint32_t w[12];
+    for (uint32_t j = 0; j < F24_TRIANGLE_VALUES; j++) {
+        f24_t v[F24_TRIANGLE_VALUES] = { 0 };
+        uint32_t w[F24_TRIANGLE_VALUES];
         v[j] = F24_MASK;
-        f24_record_put(w, v, 12);
+        f24_record_put(w, v, F24_TRIANGLE_VALUES);
         uint32_t nonzero = 0;
-        for (uint32_t k = 0; k < F24_AFFINE_RECORD_WORDS; k++)
+        for (uint32_t k = 0; k < F24_TRIANGLE_RECORD_WORDS; k++)
             nonzero += w[k] != 0;
         assert_int_equal(nonzero, F24_RECORD_SPAN(j, 1));
-        for (uint32_t i = 0; i < 12; i++)
+        for (uint32_t i = 0; i < F24_TRIANGLE_VALUES; i++)
             assert_int_equal(f24_record_get(w, 0, i), i == j ? F24_MASK : 0u);
     }
 }
 
-static void affine_loads_rows_in_order(void **state)
+static void triangle_loads_rows_then_low_words(void **state)
 {
     (void)state;
-    f24_t v[12];
-    uint32_t w[12];
-    for (uint32_t i = 0; i < 12; i++)
+    f24_t v[F24_TRIANGLE_VALUES];
+    uint32_t w[F24_TRIANGLE_VALUES];
+    for (uint32_t i = 0; i < F24_TRIANGLE_VALUES; i++)
         v[i] = (F24_ONE + 977u * i) & F24_MASK;
-    f24_record_put(w, v, 12);
-    const f24_affine a = f24_affine_load_record(w, 0);
+    f24_record_put(w, v, F24_TRIANGLE_VALUES);
+    const f24_triangle t = f24_triangle_load(w, 0);
     for (int r = 0; r < 3; r++)
         for (int c = 0; c < 4; c++)
-            assert_int_equal(a.m[r][c], v[4 * r + c]);
+            assert_int_equal(t.m.m[r][c], v[4 * r + c]);
+    assert_int_equal(t.c_lo.x, v[12]);
+    assert_int_equal(t.c_lo.y, v[13]);
+    assert_int_equal(t.c_lo.z, v[14]);
 }
 
 int main(void)
@@ -97,7 +102,7 @@ int main(void)
         cmocka_unit_test(size_is_the_bits_rounded_up_to_words),
         cmocka_unit_test(round_trip),
         cmocka_unit_test(values_have_disjoint_slices),
-        cmocka_unit_test(affine_loads_rows_in_order),
+        cmocka_unit_test(triangle_loads_rows_then_low_words),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -3,7 +3,8 @@
  * edges and vertices, parallel rays, the t interval, an origin on the plane; and end to end in
  * fp24 (triangle transformation from the host, transformation unit, intersection unit) against
  * a double-precision Moller-Trumbore test on random well-shaped triangles and non-grazing rays:
- * the hit decisions agree except close to edges, and t agrees to fp24 accuracy.
+ * the hit decisions agree except close to edges, and t agrees to fp24 accuracy; and small
+ * triangles seen from far away, with the origin rebased as at a leaf (rebase_unit).
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -16,6 +17,7 @@
 #include "f24_fast.h"
 #include "isect_unit.h"
 #include "memimage.h"
+#include "rebase_unit.h"
 #include "xform_unit.h"
 
 static f24_t F(double x) { return f24_fast_encode(x); }
@@ -31,7 +33,7 @@ static double urand(void)
     return (double)(rng >> 11) / 9007199254740992.0;
 }
 
-static isect_result shoot(f24_vec3 o, f24_vec3 d) { return isect_unit_triangle(o, d, F(0), F24_POS_INF); }
+static isect_result shoot(f24_vec3 o, f24_vec3 d) { return isect_unit_triangle(o, d, 0, F(0), F24_POS_INF); }
 
 static void hand_cases(void **state)
 {
@@ -68,18 +70,18 @@ static void parallel_and_interval(void **state)
     assert_true(f24_is_nan(r.t));
     /* the interval is [tmin, tmax) */
     const f24_vec3 o = V(0.25, 0.25, 3), d = V(0, 0, -1);
-    assert_false(isect_unit_triangle(o, d, F(0), F(3)).hit);
-    assert_true(isect_unit_triangle(o, d, F(3), F(4)).hit);
-    assert_false(isect_unit_triangle(o, d, F(3.01), F(4)).hit);
+    assert_false(isect_unit_triangle(o, d, 0, F(0), F(3)).hit);
+    assert_true(isect_unit_triangle(o, d, 0, F(3), F(4)).hit);
+    assert_false(isect_unit_triangle(o, d, 0, F(3.01), F(4)).hit);
     /* origin on the plane: t = +-0, a hit only if tmin <= 0 (secondary rays start at tmin > 0) */
-    r = isect_unit_triangle(V(0.25, 0.25, 0), d, F(0), F24_POS_INF);
+    r = isect_unit_triangle(V(0.25, 0.25, 0), d, 0, F(0), F24_POS_INF);
     assert_true(r.hit && f24_is_zero(r.t));
-    assert_false(isect_unit_triangle(V(0.25, 0.25, 0), d, F(1e-4), F24_POS_INF).hit);
+    assert_false(isect_unit_triangle(V(0.25, 0.25, 0), d, 0, F(1e-4), F24_POS_INF).hit);
 }
 
 /* Moller-Trumbore in double: returns 1 and t, (u, v) weights of a and b, edge distance margin. */
-static int mt(const double o[3], const double d[3], const double a[3], const double b[3], const double c[3],
-              double *t, double *margin)
+static int mt_uv(const double o[3], const double d[3], const double a[3], const double b[3], const double c[3],
+                 double *t, double *uu, double *vv, double *margin)
 {
     double e1[3], e2[3], p[3], s[3], q[3];
     for (int k = 0; k < 3; k++) {
@@ -100,7 +102,34 @@ static int mt(const double o[3], const double d[3], const double a[3], const dou
     const double v = (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]) / det;
     *t = (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) / det;
     *margin = fmin(fmin(fabs(u), fabs(v)), fabs(1 - u - v));
+    *uu = u;
+    *vv = v;
     return u >= 0 && v >= 0 && u + v <= 1 && *t >= 0;
+}
+
+static int mt(const double o[3], const double d[3], const double a[3], const double b[3], const double c[3],
+              double *t, double *margin)
+{
+    double u, v;
+    return mt_uv(o, d, a, b, c, t, &u, &v, margin);
+}
+
+/* The record the host writes for a triangle transformation: M^-1 rounded, C in two words. */
+static f24_triangle record_of(const affine *tx)
+{
+    f24_triangle t;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 4; j++)
+            t.m.m[i][j] = F(tx->m[i][j]);
+    t.c_lo = V(tx->m[0][3] - D(t.m.m[0][3]), tx->m[1][3] - D(t.m.m[1][3]), tx->m[2][3] - D(t.m.m[2][3]));
+    return t;
+}
+
+/* The origin o moved to distance te along d, as the rebase unit moves it at a leaf. */
+static f24_vec3x2 rebased(f24_vec3 o, f24_vec3 d, f24_t te)
+{
+    const f24_vec3 zero = { 0, 0, 0 };
+    return rebase_origin((f24_vec3x2){ o, zero }, (f24_vec3x2){ d, zero }, te);
 }
 
 static void against_double_precision(void **state)
@@ -132,12 +161,9 @@ static void against_double_precision(void **state)
                               (sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]) * sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
         if (fabs(cosang) < 0.1)
             continue;
-        f24_affine t24;
-        for (int i = 0; i < 3; i++)
-            for (int j = 0; j < 4; j++)
-                t24.m[i][j] = F(tx.m[i][j]);
+        const f24_triangle t24 = record_of(&tx);
         const f24_vec3 o24 = V(o[0], o[1], o[2]), d24 = V(d[0], d[1], d[2]);
-        const isect_result r = isect_unit_triangle(xform_point(&t24, o24), xform_vector(&t24, d24), F(0), F24_POS_INF);
+        const isect_result r = isect_unit_rebased(&t24, rebased(o24, d24, F(0.9)), F(0.9), d24, F(0), F24_POS_INF);
         /* reference on the fp24-rounded ray, so that only the units' arithmetic differs */
         const double ro[3] = { D(o24.x), D(o24.y), D(o24.z) }, rd[3] = { D(d24.x), D(d24.y), D(d24.z) };
         double t = 0, margin = 0;
@@ -159,11 +185,61 @@ static void against_double_precision(void **state)
     assert_true(agree > tested * 0.99);
 }
 
+/* Triangles of size 2^-10 seen from 2^4 away (a ratio of 2^14: unrebased, u = O'x + t D'x would
+ * cancel 14 of fp24's 17 bits): with the origin moved to the last fp24 distance before the
+ * triangle, as the traversal's leaf entry moves it, the barycentrics stay within 1e-3 of the exact
+ * ones on the same fp24 ray, and the distance within 1e-4; from the unmoved origin they do not. */
+static void small_and_far(void **state)
+{
+    (void)state;
+    double worst = 0, worst_unmoved = 0;
+    int hits = 0;
+    for (int n = 0; n < 5000; n++) {
+        const double s = 0x1p-10, far = 0x1p4;
+        double a[3], b[3], c[3], o[3], d[3];
+        for (int k = 0; k < 3; k++) {
+            c[k] = 1 + urand();
+            a[k] = c[k] + s * (urand() - 0.5);
+            b[k] = c[k] + s * (urand() - 0.5);
+        }
+        a[0] += s;
+        b[1] += s;
+        const double w0 = 0.9 * urand() + 0.05, w1 = (0.95 - w0) * urand() + 0.025;
+        for (int k = 0; k < 3; k++) {
+            const double target = w0 * a[k] + w1 * b[k] + (1 - w0 - w1) * c[k];
+            d[k] = urand() - 0.5 + (k == 2);
+            o[k] = target - far * d[k];
+        }
+        affine tx;
+        if (!mi_triangle_transform(a, b, c, 16, &tx))
+            continue;
+        const f24_triangle t24 = record_of(&tx);
+        const f24_vec3 o24 = V(o[0], o[1], o[2]), d24 = V(d[0], d[1], d[2]);
+        const f24_t te = F(far) - 1u; /* the fp24 number before 16 */
+        const isect_result r = isect_unit_rebased(&t24, rebased(o24, d24, te), te, d24, F(0), F24_POS_INF);
+        const isect_result r0 = isect_unit_rebased(&t24, rebased(o24, d24, 0), 0, d24, F(0), F24_POS_INF);
+        const double ro[3] = { D(o24.x), D(o24.y), D(o24.z) }, rd[3] = { D(d24.x), D(d24.y), D(d24.z) };
+        double t = 0, margin = 0, u, v;
+        if (!mt_uv(ro, rd, a, b, c, &t, &u, &v, &margin) || margin < 1e-3)
+            continue;
+        assert_true(r.hit);
+        hits++;
+        worst = fmax(worst, fmax(fabs(D(r.u) - u), fabs(D(r.v) - v)));
+        worst_unmoved = fmax(worst_unmoved, fmax(fabs(D(r0.u) - u), fabs(D(r0.v) - v)));
+        assert_true(fabs(D(r.t) - t) <= 1e-4 * t);
+    }
+    print_message("small and far: %d hits, worst barycentric error %.2e rebased, %.2e from the origin\n", hits, worst,
+                  worst_unmoved);
+    assert_true(hits > 3000);
+    assert_true(worst < 1e-3);
+    assert_true(worst_unmoved > 1e-2);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(hand_cases), cmocka_unit_test(parallel_and_interval),
-        cmocka_unit_test(against_double_precision),
+        cmocka_unit_test(against_double_precision), cmocka_unit_test(small_and_far),
     };
     return cmocka_run_group_tests_name("isect_unit", tests, NULL, NULL);
 }

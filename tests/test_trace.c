@@ -209,9 +209,10 @@ static void zero_components_and_disagreeing_packets(void **state)
 
 /* Rays lying in the split planes of the top-level tree (origin on the plane, direction
  * component along the split axis +0 or -0) in the room scene: the traversal must send them to
- * both children or the correct one: their closest hits equal, bit for bit, brute force over all
- * triangles with the same units (brute force in double may differ where such a ray grazes an
- * edge that lies in the plane, within fp24 precision). */
+ * both children or the correct one: their closest hits equal brute force over all triangles with
+ * the same units, up to where each moved the ray's origin (1e-4 of the distance; brute force in
+ * double may differ where such a ray grazes an edge that lies in the plane, within fp24
+ * precision). */
 static void rays_in_split_planes(void **state)
 {
     (void)state;
@@ -249,7 +250,8 @@ static void rays_in_split_planes(void **state)
         for (int i = 0; i < TRACE_PACKET; i++) {
             const f24_t ref = ref_units_closest(mem, rp.o[i], rp.d[i], 0, F24_POS_INF);
             rays++;
-            agree += h[i].instance == TRACE_NO_HIT ? ref == F24_POS_INF : h[i].t == ref;
+            /* the same distance up to the rounding of where each moved the origin (ref_units.h) */
+            agree += h[i].instance == TRACE_NO_HIT ? ref == F24_POS_INF : fabs(D(h[i].t) - D(ref)) <= 1e-4 * D(ref);
         }
     }
     print_message("split planes: %u planes, %u rays, %u agree with brute force\n", planes, rays, agree);

@@ -71,6 +71,13 @@ f24_t f24_mul(f24_t a, f24_t b);
 f24_t f24_div(f24_t a, f24_t b);
 f24_t f24_sqrt(f24_t a);
 
+/* Double words (f24_sum_exact.c): hi + lo with |lo| <= ulp(hi) / 2, about 2(M+1) significant
+ * bits, for the positions of rays where one fp24 would cancel (docs/fp24.md). */
+typedef struct { f24_t hi, lo; } f24x2;
+#define F24_SUM_TERMS 12
+/* hi + lo = a[0]*b[0] + ... + a[n-1]*b[n-1] (n <= F24_SUM_TERMS), from exact products. */
+f24x2 f24_sum_exact(const f24_t a[], const f24_t b[], uint32_t n);
+
 /* Comparisons: 1 or 0. lt/le/eq are false when either operand is NaN; -0 == +0. */
 int f24_lt(f24_t a, f24_t b);
 int f24_le(f24_t a, f24_t b);

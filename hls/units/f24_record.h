@@ -18,11 +18,13 @@
 #define F24_RECORD_WORDS(n) (((n) * F24_WIDTH + 31) / 32)
 /* Words from the one holding value first to the one holding value first + n - 1. */
 #define F24_RECORD_SPAN(first, n) (((first + n) * F24_WIDTH - 1) / 32 - (first) * F24_WIDTH / 32 + 1)
-#define F24_AFFINE_RECORD_WORDS F24_RECORD_WORDS(12)
-/* An instance record (a 12-word matrix, the object index and flags: 14 words read) takes whole
- * triangle records, so that with cache lines of one triangle record each instance starts on a
- * line and costs 2 of them (18 words at e7m16, 24 at e8m23). */
-#define F24_INSTANCE_RECORD_WORDS (F24_AFFINE_RECORD_WORDS * ((14 + F24_AFFINE_RECORD_WORDS - 1) / F24_AFFINE_RECORD_WORDS))
+/* A triangle record: M^-1 and the vertex C as a 3x4 matrix (12 values), then C's low words (3). */
+#define F24_TRIANGLE_VALUES 15
+#define F24_TRIANGLE_RECORD_WORDS F24_RECORD_WORDS(F24_TRIANGLE_VALUES)
+/* An instance record (a 12-word matrix, the object index, flags and the translation's 3 low
+ * words: 17 words read) takes whole triangle records, so that with cache lines of one triangle
+ * record each instance starts on a line and costs 2 of them (24 words at e7m16 and e8m23). */
+#define F24_INSTANCE_RECORD_WORDS (F24_TRIANGLE_RECORD_WORDS * ((17 + F24_TRIANGLE_RECORD_WORDS - 1) / F24_TRIANGLE_RECORD_WORDS))
 
 /* Value i of the record at word address addr. */
 static inline f24_t f24_record_get(const uint32_t *mem, uint32_t addr, uint32_t i)

@@ -19,25 +19,59 @@
 #define ISECT_HI F24_ONE
 #endif
 
-isect_result isect_unit_triangle(f24_vec3 o, f24_vec3 d, f24_t tmin, f24_t tmax)
+isect_result isect_unit_triangle(f24_vec3 o, f24_vec3 d, f24_t te, f24_t tmin, f24_t tmax)
 {
     isect_result r;
     r.cos_n = d.z;
-    r.t = f24_div(f24_neg(o.z), d.z);
-    r.u = f24_add(o.x, f24_mul(r.t, d.x));
-    r.v = f24_add(o.y, f24_mul(r.t, d.y));
+    const f24_t tl = f24_div(f24_neg(o.z), d.z); /* from the rebased origin */
+    r.t = f24_add(te, tl);
+    r.u = f24_add(o.x, f24_mul(tl, d.x));
+    r.v = f24_add(o.y, f24_mul(tl, d.y));
     const f24_t uv = f24_add(r.u, r.v);
     r.hit = f24_le(ISECT_LO, r.u) && f24_le(ISECT_LO, r.v) && f24_le(uv, ISECT_HI) && f24_le(tmin, r.t) &&
             f24_lt(r.t, tmax);
     return r;
 }
 
-isect_result isect_unit_transformed(const f24_affine *m, f24_vec3 o, f24_vec3 d, f24_t tmin, f24_t tmax)
+/* The rebased origin p relative to the vertex C, per component (hi - c_hi) + (lo - c_lo): hi -
+ * c_hi is exact or as small as the leaf, and lo - c_lo tiny. */
+static f24_vec3 offset_from_vertex(const f24_triangle *tri, f24_vec3x2 p, f24_vec3 *lo)
 {
-    const f24_t oz = xform_row(m->m[2], o, 1), dz = xform_row(m->m[2], d, 0);
-    const f24_t t = f24_div(f24_neg(oz), dz);
+    const f24_affine *m = &tri->m;
+    *lo = (f24_vec3){ f24_sub(p.lo.x, tri->c_lo.x), f24_sub(p.lo.y, tri->c_lo.y), f24_sub(p.lo.z, tri->c_lo.z) };
+    const f24_vec3 c = { f24_add(f24_sub(p.hi.x, m->m[0][3]), lo->x), f24_add(f24_sub(p.hi.y, m->m[1][3]), lo->y),
+                         f24_add(f24_sub(p.hi.z, m->m[2][3]), lo->z) };
+    return c;
+}
+
+/* Row 2 of M^-1 is the unit normal n: O'z = n.p.hi - n.C.hi + n.(p.lo - C.lo) from exact products
+ * with one rounding, the origin's distance from the plane to fp24's precision however far the
+ * origin lies from C along a large triangle (a rounded offset would carry |p - C| 2^-(M+1)). */
+static f24_t plane_distance(const f24_triangle *tri, f24_vec3x2 p, f24_vec3 lo)
+{
+    const f24_t *n = tri->m.m[2];
+    const f24_t a[9] = { n[0], n[1], n[2], n[0], n[1], n[2], n[0], n[1], n[2] };
+    const f24_t b[9] = { p.hi.x, p.hi.y, p.hi.z, f24_neg(tri->m.m[0][3]), f24_neg(tri->m.m[1][3]), f24_neg(tri->m.m[2][3]),
+                         lo.x, lo.y, lo.z };
+    return f24_sum_exact(a, b, 9).hi;
+}
+
+f24_vec3 isect_origin(const f24_triangle *tri, f24_vec3x2 p)
+{
+    f24_vec3 lo;
+    const f24_vec3 c = offset_from_vertex(tri, p, &lo);
+    const f24_vec3 o = { xform_row(tri->m.m[0], c, 0), xform_row(tri->m.m[1], c, 0), plane_distance(tri, p, lo) };
+    return o;
+}
+
+isect_result isect_unit_rebased(const f24_triangle *tri, f24_vec3x2 p, f24_t te, f24_vec3 d, f24_t tmin, f24_t tmax)
+{
+    f24_vec3 lo;
+    offset_from_vertex(tri, p, &lo);
+    const f24_t oz = plane_distance(tri, p, lo), dz = xform_row(tri->m.m[2], d, 0);
+    const f24_t t = f24_add(te, f24_div(f24_neg(oz), dz));
     if (f24_le(tmin, t) && f24_lt(t, tmax))
-        return isect_unit_triangle(xform_point(m, o), xform_vector(m, d), tmin, tmax);
+        return isect_unit_triangle(isect_origin(tri, p), xform_vector(&tri->m, d), te, tmin, tmax);
     const isect_result miss = { 0, t, F24_ZERO, F24_ZERO, dz };
     return miss;
 }

@@ -31,13 +31,25 @@ typedef struct {
     f24_t cos_n; /* D'z */
 } isect_result;
 
-isect_result isect_unit_triangle(f24_vec3 o, f24_vec3 d, f24_t tmin, f24_t tmax);
+/* The test on a ray in unit-triangle space whose origin o lies at distance te along the ray (the
+ * rebase unit moved it there): t' = -O'z / D'z from o, and the hit distance t = te + t'. */
+isect_result isect_unit_triangle(f24_vec3 o, f24_vec3 d, f24_t te, f24_t tmin, f24_t tmax);
 
-/* The transformation unit and this unit back to back on one ray in object space (path e), with
- * the triangle's transformation m. A ray whose distance lies outside [tmin, tmax) misses whatever
- * u and v are, so only the z row is transformed for it: the hit flag, and for hits every field,
- * equal those of isect_unit_triangle(xform_point(m, o), xform_vector(m, d), tmin, tmax) at about a
- * third of the arithmetic (the simulator's saving; a hardware unit may gate its x/y rows alike). */
-isect_result isect_unit_transformed(const f24_affine *m, f24_vec3 o, f24_vec3 d, f24_t tmin, f24_t tmax);
+/* The ray origin p (double words, object space, rebased to a leaf) in unit-triangle space: the
+ * offset from the triangle's vertex C (double words in the triangle record, docs/memory-image.md),
+ * (p.hi - C.hi) + (p.lo - C.lo) per component, through rows 0 and 1 of M^-1; row 2, the unit
+ * normal, from exact products summed once (f24_sum_exact of 9 terms), so that O'z is the origin's
+ * distance from the plane to fp24's precision even where the origin is far from C on a large
+ * triangle. p.hi and C.hi lie within a leaf of each other or C lies on a triangle as large as the
+ * offset, so u and v keep their bits. */
+f24_vec3 isect_origin(const f24_triangle *tri, f24_vec3x2 p);
+
+/* A triangle's whole test (path e) on one ray: the origin p (rebased to entry distance te, in
+ * double words) through isect_origin,
+ * the direction d through M^-1 (the transformation unit's part), then isect_unit_triangle. A ray
+ * whose distance lies outside [tmin, tmax) misses whatever u and v are, so only the z rows are
+ * computed for it: the hit flag, and for hits every field, equal those of the full test at about
+ * a third of the arithmetic (the simulator's saving; a hardware unit may gate its x/y rows alike). */
+isect_result isect_unit_rebased(const f24_triangle *tri, f24_vec3x2 p, f24_t te, f24_vec3 d, f24_t tmin, f24_t tmax);
 
 #endif

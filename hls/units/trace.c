@@ -13,6 +13,7 @@
 
 #include "isect_unit.h"
 #include "list_unit.h"
+#include "rebase_unit.h"
 #include "trace_ops.h"
 #include "trav_unit.h"
 #include "xform_unit.h"
@@ -22,8 +23,8 @@ enum {
     H_FORMAT = 2, H_OBJECTS = 6, H_INSTANCES = 7, H_TOP_NODES = 11, H_SCENE_BOUNDS = 12, H_REGIONS = 18,
     R_OBJECTS = 5, R_CAMERA = 6, R_INSTANCES = 8, R_TOP_NODES = 9, R_TOP_LISTS = 10, R_TOP_GRID = 11,
     CAM_PROFILE = 3, OBJ_WORDS = 16, O_NODES = 0, O_LISTS = 1, O_TRIANGLES = 2, O_BOUNDS = 8, O_GRID = 14,
-    INST_WORDS = F24_INSTANCE_RECORD_WORDS, INST_READ = 14, INST_FLAGS = 13, INST_IDENTITY = 1, OBJ_READ = 14,
-    TRI_WORDS = F24_AFFINE_RECORD_WORDS,
+    INST_WORDS = F24_INSTANCE_RECORD_WORDS, INST_READ = 17, INST_FLAGS = 13, INST_IDENTITY = 1, INST_T_LO = 14, OBJ_READ = 14,
+    TRI_WORDS = F24_TRIANGLE_RECORD_WORDS,
 };
 
 /* Next operation of a packet. */
@@ -112,6 +113,7 @@ identity_rays:
     for (int i = 0; i < TRACE_PACKET; i++) {
         s->o[i] = xform_identity(&w2o, s->rays.o[i], 1);
         s->d[i] = xform_identity(&w2o, s->rays.d[i], 0);
+        s->o_lo[i] = s->d_lo[i] = (f24_vec3){ 0, 0, 0 };
     }
     s->phase = TP_INST_CLIP;
 }
@@ -145,11 +147,31 @@ static void op_walk(const uint32_t *mem, trace_state *s, unit_op *op, trace_coun
     route_after_list(s);
 }
 
+/* Rebase unit, as the list unit opens a bottom-level leaf: each ray of the leaf gets its origin
+ * moved to where it enters the leaf (rebase_unit.h), one issue slot per ray. */
+static void rebase_leaf(trace_state *s, unit_op *op)
+{
+    const trav_walker *w = &s->walk[1];
+    const uint32_t rays = w->leaf_mask & s->alive;
+    op->slots += count_rays(rays);
+rebase_rays:
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        if (!bit(rays, i))
+            continue;
+        const f24_vec3x2 o = { s->o[i], s->o_lo[i] }, d = { s->d[i], s->d_lo[i] };
+        s->p[i] = rebase_origin(o, d, w->leaf_tn[i]);
+        s->te[i] = rebase_distance(w->leaf_tn[i]);
+    }
+}
+
 /* List unit: one entry of the current leaf (an instance at the top level, a triangle below). */
 static void op_list(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
 {
     uint32_t key;
+    const int opens = s->level == 1 && s->walk[1].k == 0;
     s->need = list_unit_entry(mem, &s->walk[s->level], s->box[s->level], s->alive, &key, op, c);
+    if (opens)
+        rebase_leaf(s, op);
     if (!s->need) {
         route_after_list(s);
         return;
@@ -179,12 +201,23 @@ static void op_inst_xform(const uint32_t *mem, trace_state *s, unit_op *op, trac
     op_read(op, c, MEM_MATRICES, ia, INST_READ);  /* matrix, object index and flags */
     op_read(op, c, MEM_MATRICES, s->obj, obj_read(s->flags)); /* object descriptor: tree, triangles, bounds */
     c->transformations += identity ? 0u : op->slots;
+    const f24_vec3 t_lo = { mem[ia + INST_T_LO] & F24_MASK, mem[ia + INST_T_LO + 1] & F24_MASK,
+                            mem[ia + INST_T_LO + 2] & F24_MASK };
 to_object_space:
     for (int i = 0; i < TRACE_PACKET; i++) {
         if (!bit(s->need, i))
             continue;
-        s->o[i] = identity ? xform_identity(&w2o, s->rays.o[i], 1) : xform_point(&w2o, s->rays.o[i]);
-        s->d[i] = identity ? xform_identity(&w2o, s->rays.d[i], 0) : xform_vector(&w2o, s->rays.d[i]);
+        if (identity) {
+            s->o[i] = xform_identity(&w2o, s->rays.o[i], 1);
+            s->d[i] = xform_identity(&w2o, s->rays.d[i], 0);
+            s->o_lo[i] = s->d_lo[i] = (f24_vec3){ 0, 0, 0 };
+            continue;
+        }
+        const f24_vec3x2 o = xform_point_wide(&w2o, t_lo, s->rays.o[i]), d = xform_vector_wide(&w2o, s->rays.d[i]);
+        s->o[i] = o.hi;
+        s->o_lo[i] = o.lo;
+        s->d[i] = d.hi;
+        s->d_lo[i] = d.lo;
     }
     s->phase = TP_INST_CLIP;
     if (identity)
@@ -215,13 +248,15 @@ static void inst_clip(const uint32_t *mem, trace_state *s, unit_op *op, trace_co
     s->phase = TP_WALK;
 }
 
-/* Transformation unit: the rays that need a triangle into its unit-triangle space (path e). The
- * transformed rays are computed with the intersection below, which needs them only then. */
+/* Transformation unit: the directions of the rays that need a triangle into its unit-triangle
+ * space (path e), one step per ray; their rebased origins go through the triangle's matrix in the
+ * intersection unit (isect_unit.h), since no two rays of a packet share one. The transformed rays
+ * are computed with the intersection below, which needs them only then. */
 static void op_tri_xform(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
 {
     const uint32_t a = s->tris + TRI_WORDS * s->tri;
-    s->tx = f24_affine_load_record(mem, a);
-    op_set(op, UNIT_XFORM, xform_slots(s->o, s->need));
+    s->tx = f24_triangle_load(mem, a);
+    op_set(op, UNIT_XFORM, count_rays(s->need));
     op_read(op, c, MEM_MATRICES, a, TRI_WORDS);
     c->transformations += op->slots;
     s->phase = TP_TRI_ISECT;
@@ -235,7 +270,7 @@ isect_rays:
     for (int i = 0; i < TRACE_PACKET; i++) {
         if (!bit(s->need, i))
             continue;
-        const isect_result r = isect_unit_transformed(&s->tx, s->o[i], s->d[i], s->rays.tmin[i], s->best_t[i]);
+        const isect_result r = isect_unit_rebased(&s->tx, s->p[i], s->te[i], s->d[i], s->rays.tmin[i], s->best_t[i]);
         c->intersections++;
         if (r.hit) {
             s->best_t[i] = r.t;

@@ -107,6 +107,7 @@ typedef struct {
     trav_entry cur;
     uint32_t have_cur;
     uint32_t leaf_first, leaf_count, leaf_mask, k; /* the current leaf: list range, its rays, next entry */
+    f24_t leaf_tn[TRACE_PACKET];               /* where each ray of the current leaf enters it */
     /* restart state (TRAV_SHORT_STACK, _RESTART, _PUSH_DOWN) */
     uint32_t algo, cap, lost, pass, push_down; /* cap: stack entries; lost: an entry was dropped */
     trav_entry root;                           /* where a restart begins: root or push-down node */
@@ -150,8 +151,11 @@ typedef struct {
     trav_walker walk[2];
     trace_mailbox box[2][TRACE_PACKET]; /* instances per ray; triangles per ray and instance visit */
     uint32_t inst, obj, tris, tri, need; /* current instance, its object, triangle, rays needing it */
-    f24_vec3 o[TRACE_PACKET], d[TRACE_PACKET]; /* the rays in the current object's space */
-    f24_affine tx;                     /* the current triangle's transformation */
+    f24_vec3 o[TRACE_PACKET], d[TRACE_PACKET]; /* the rays in the current object's space (high words) */
+    f24_vec3 o_lo[TRACE_PACKET], d_lo[TRACE_PACKET]; /* their low words (the wide transformation) */
+    f24_vec3x2 p[TRACE_PACKET];        /* origins rebased to the current leaf (rebase_unit.h) */
+    f24_t te[TRACE_PACKET];            /* the distance they were moved by */
+    f24_triangle tx;                   /* the current triangle's record */
 } trace_state;
 
 /* The profile word of the memory image. */

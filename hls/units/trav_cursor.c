@@ -58,6 +58,9 @@ int cursor_list(trav_walker *w, uint32_t group, uint32_t first, uint32_t count, 
     w->leaf_count = count;
     w->leaf_mask = group;
     w->k = 0;
+cell_entry:
+    for (int i = 0; i < TRACE_PACKET; i++)
+        w->leaf_tn[i] = w->cur.tn[i];
     c->leaves++;
     return count != 0;
 }

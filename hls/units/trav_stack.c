@@ -111,6 +111,9 @@ int trav_stack_step(trav_walker *w, const uint32_t *mem, const f24_vec3 o[], con
             w->leaf_count = w0 >> 2;
             w->leaf_mask = e->mask;
             w->k = 0;
+leaf_entry:
+            for (int i = 0; i < TRACE_PACKET; i++)
+                w->leaf_tn[i] = e->tn[i];
             c->leaves++;
             leaf = w->leaf_count != 0;
             trav_restart_leaf(w, e);

@@ -1,7 +1,7 @@
 /*
  * fp24 vectors and affine matrices as the units see them, and their layout in the memory image
  * (docs/memory-image.md: a matrix is 12 values, rows m0 m1 m2 t; an instance's are 12 words, a
- * triangle transformation's a packed record, f24_record.h).
+ * triangle's a packed record with its vertex, f24_record.h).
  */
 #ifndef SAARCOR_VEC3_H
 #define SAARCOR_VEC3_H
@@ -12,6 +12,10 @@
 #include "f24_record.h"
 
 typedef struct { f24_t x, y, z; } f24_vec3;
+
+/* A vector of double words (f24.h): ray positions and directions in object space, where one fp24
+ * would lose the bits that tell small neighbouring triangles apart (docs/numerics.md). */
+typedef struct { f24_vec3 hi, lo; } f24_vec3x2;
 
 typedef struct { f24_t m[3][4]; } f24_affine; /* x' = m0 x + m1 y + m2 z + t, per row */
 
@@ -26,15 +30,25 @@ load_rows:
     return a;
 }
 
-/* Reads a matrix packed as a record of F24_AFFINE_RECORD_WORDS words (triangle transformations). */
-static inline f24_affine f24_affine_load_record(const uint32_t *mem, uint32_t addr)
+/* A triangle as the intersection path sees it: M^-1 in columns 0..2 of m, its vertex C in column 3
+ * (high words) and c_lo (low words): the record of F24_TRIANGLE_RECORD_WORDS words
+ * (docs/memory-image.md). */
+typedef struct {
+    f24_affine m;
+    f24_vec3 c_lo;
+} f24_triangle;
+
+static inline f24_triangle f24_triangle_load(const uint32_t *mem, uint32_t addr)
 {
-    f24_affine a;
+    f24_triangle t;
 load_record:
     for (uint32_t i = 0; i < 3; i++)
         for (uint32_t j = 0; j < 4; j++)
-            a.m[i][j] = f24_record_get(mem, addr, 4 * i + j);
-    return a;
+            t.m.m[i][j] = f24_record_get(mem, addr, 4 * i + j);
+    t.c_lo.x = f24_record_get(mem, addr, 12);
+    t.c_lo.y = f24_record_get(mem, addr, 13);
+    t.c_lo.z = f24_record_get(mem, addr, 14);
+    return t;
 }
 
 #endif

@@ -19,6 +19,31 @@ f24_vec3 xform_point(const f24_affine *m, f24_vec3 p) { return xform_step(m, p, 
 
 f24_vec3 xform_vector(const f24_affine *m, f24_vec3 v) { return xform_step(m, v, 0); }
 
+/* One row in the wide mode: m0 x + m1 y + m2 z (+ t + tlo), one rounding into a double word. */
+static f24x2 xform_row_wide(const f24_t row[4], f24_t tlo, f24_vec3 p, int with_translation)
+{
+    const f24_t a[5] = { row[0], row[1], row[2], row[3], tlo };
+    const f24_t b[5] = { p.x, p.y, p.z, F24_ONE, F24_ONE };
+    return f24_sum_exact(a, b, with_translation ? 5u : 3u);
+}
+
+static f24_vec3x2 xform_step_wide(const f24_affine *m, f24_vec3 tlo, f24_vec3 p, int with_translation)
+{
+    const f24x2 x = xform_row_wide(m->m[0], tlo.x, p, with_translation),
+                y = xform_row_wide(m->m[1], tlo.y, p, with_translation),
+                z = xform_row_wide(m->m[2], tlo.z, p, with_translation);
+    const f24_vec3x2 r = { { x.hi, y.hi, z.hi }, { x.lo, y.lo, z.lo } };
+    return r;
+}
+
+f24_vec3x2 xform_point_wide(const f24_affine *m, f24_vec3 tlo, f24_vec3 p) { return xform_step_wide(m, tlo, p, 1); }
+
+f24_vec3x2 xform_vector_wide(const f24_affine *m, f24_vec3 v)
+{
+    const f24_vec3 none = { 0, 0, 0 };
+    return xform_step_wide(m, none, v, 0);
+}
+
 f24_vec3 xform_identity(const f24_affine *m, f24_vec3 v, int point)
 {
     const f24_t c[3] = { v.x, v.y, v.z };

@@ -37,6 +37,7 @@ typedef struct {
     uint32_t shade_flags;    /* the descriptor's flags word but MI_OBJECT_DYNAMIC (object_shading_flags) */
     ugrid grid;         /* with MI_ACCEL_GRID */
     uint32_t base, words; /* geometry block in the image */
+    double centre[3];   /* the object's space is the mesh's moved by -centre (choose_centres) */
 } mi_object;
 
 struct mi_builder {
@@ -206,13 +207,15 @@ static int affine_fits_f24(const affine *a)
 typedef struct {
     const scene_mesh *m;
     const uint32_t *valid;
+    const double *centre;
 } tri_source;
 
-static void tri_vertex(const scene_mesh *m, uint32_t tri, int k, double out[3])
+/* Vertex k of mesh triangle tri in the space of an object centred at centre. */
+static void tri_vertex(const scene_mesh *m, const double centre[3], uint32_t tri, int k, double out[3])
 {
     const float *p = &m->positions[3 * (size_t)m->indices[3 * (size_t)tri + (size_t)k]];
     for (int i = 0; i < 3; i++)
-        out[i] = p[i];
+        out[i] = p[i] - centre[i];
 }
 
 static aabb tri_bounds(const void *user, uint32_t i)
@@ -221,7 +224,7 @@ static aabb tri_bounds(const void *user, uint32_t i)
     aabb b;
     for (int k = 0; k < 3; k++) {
         double v[3];
-        tri_vertex(s->m, s->valid[i], k, v);
+        tri_vertex(s->m, s->centre, s->valid[i], k, v);
         for (int a = 0; a < 3; a++) {
             b.lo[a] = k ? fmin(b.lo[a], v[a]) : v[a];
             b.hi[a] = k ? fmax(b.hi[a], v[a]) : v[a];
@@ -234,9 +237,9 @@ static int tri_clip(const void *user, uint32_t i, const aabb *box, aabb *out)
 {
     const tri_source *s = user;
     double a[3], b[3], c[3];
-    tri_vertex(s->m, s->valid[i], 0, a);
-    tri_vertex(s->m, s->valid[i], 1, b);
-    tri_vertex(s->m, s->valid[i], 2, c);
+    tri_vertex(s->m, s->centre, s->valid[i], 0, a);
+    tri_vertex(s->m, s->centre, s->valid[i], 1, b);
+    tri_vertex(s->m, s->centre, s->valid[i], 2, c);
     return kd_clip_triangle(a, b, c, box, out);
 }
 
@@ -362,9 +365,9 @@ static int object_prepare(mi_builder *b, const scene_mesh *m, mi_object *o)
     const double t0 = seconds();
     for (uint32_t t = 0; t < m->n_triangles; t++) {
         double a[3], bb[3], c[3];
-        tri_vertex(m, t, 0, a);
-        tri_vertex(m, t, 1, bb);
-        tri_vertex(m, t, 2, c);
+        tri_vertex(m, o->centre, t, 0, a);
+        tri_vertex(m, o->centre, t, 1, bb);
+        tri_vertex(m, o->centre, t, 2, c);
         if (mi_triangle_transform(a, bb, c, b->p.max_condition, &o->xf[o->n_valid]) &&
             affine_fits_f24(&o->xf[o->n_valid]))
             o->valid[o->n_valid++] = t;
@@ -372,7 +375,7 @@ static int object_prepare(mi_builder *b, const scene_mesh *m, mi_object *o)
     const double t1 = seconds();
     b->st.transform_seconds += t1 - t0;
     b->st.degenerate_triangles += m->n_triangles - o->n_valid;
-    const tri_source src = { m, o->valid };
+    const tri_source src = { m, o->valid, o->centre };
     const kd_source ks = { o->n_valid, &src, tri_bounds, tri_clip };
     if (kd_build(&ks, &b->p.bottom, &o->tree) != 0)
         return -1;
@@ -464,13 +467,16 @@ static uint32_t triangles_at(const mi_object *o)
     return (end + MI_TRIANGLE_WORDS - 1) / MI_TRIANGLE_WORDS * MI_TRIANGLE_WORDS;
 }
 
+/* M^-1 rounded, the vertex C (column 3) in a high and a low word (a binary32 vertex exactly). */
 static void put_triangle(uint32_t *w, const affine *a)
 {
-    f24_t v[12];
-    for (int i = 0; i < 3; i++)
+    f24_t v[F24_TRIANGLE_VALUES];
+    for (int i = 0; i < 3; i++) {
         for (int j = 0; j < 4; j++)
             v[i * 4 + j] = f24w(a->m[i][j]);
-    f24_record_put(w, v, 12);
+        v[12 + i] = f24w(a->m[i][3] - f24_fast_decode(v[i * 4 + 3]));
+    }
+    f24_record_put(w, v, F24_TRIANGLE_VALUES);
 }
 
 /* Geometry block: nodes, leaf lists, padding, triangle transformations, shading records. */
@@ -515,7 +521,13 @@ typedef struct {
  * merged object. */
 static affine instance_world(const mi_builder *b, const scene *s, uint32_t i)
 {
-    return b->inst_scene[i] == MI_NONE ? affine_identity() : s->instances[b->inst_scene[i]].world;
+    if (b->inst_scene[i] == MI_NONE)
+        return affine_identity();
+    affine w = s->instances[b->inst_scene[i]].world; /* composed with the move to the object's centre */
+    const double *c = b->obj[b->inst_obj[i]].centre;
+    for (int r = 0; r < 3; r++)
+        w.m[r][3] += w.m[r][0] * c[0] + w.m[r][1] * c[1] + w.m[r][2] * c[2];
+    return w;
 }
 
 static aabb instance_bounds(const void *user, uint32_t i)
@@ -577,13 +589,32 @@ static int affine_is_identity(const affine *a)
     return 1;
 }
 
+/* The world-to-object map of an instance as the device holds it: the inverse's 3x3 rounded to fp24
+ * (inv), and the translation -A^-1 c of that rounded 3x3, so that the object lands where the scene
+ * puts it to double-word precision (the rounding of A^-1 then only scales and turns the object about
+ * its own origin), split into fp24 high words (inv's column 3) and low words (t_lo). */
+static void device_inverse(const affine *world, affine *inv, uint32_t t_lo[3])
+{
+    affine_invert(world, inv);
+    for (int i = 0; i < 3; i++) {
+        double t = 0;
+        for (int j = 0; j < 3; j++) {
+            inv->m[i][j] = f24_fast_decode(f24w(inv->m[i][j]));
+            t -= inv->m[i][j] * world->m[j][3];
+        }
+        const uint32_t hi = f24w(t);
+        inv->m[i][3] = t;
+        t_lo[i] = f24_is_inf(hi) ? 0u : f24w(t - f24_fast_decode(hi));
+    }
+}
+
 static void write_instances(mi_builder *b, const scene *s, uint32_t *w)
 {
     for (uint32_t i = 0; i < b->n_inst; i++, w += MI_INSTANCE_WORDS) {
         const affine world = instance_world(b, s, i);
         affine inv;
-        affine_invert(&world, &inv);
         memset(w, 0, MI_INSTANCE_WORDS * sizeof *w);
+        device_inverse(&world, &inv, &w[MI_I_T_LO]);
         put_affine(w, &inv);
         w[MI_I_OBJECT] = b->inst_obj[i];
         w[MI_I_FLAGS] = affine_is_identity(&inv) ? MI_INST_IDENTITY : 0u;
@@ -969,6 +1000,39 @@ static void collect_stats(mi_builder *b, const scene *s)
 
 /* The image's objects: every scene mesh that some instance not baked into world space uses, in
  * mesh order, then the merged world-space objects. */
+/* 1 if some scene instance shows mesh m untransformed. */
+static int mesh_has_identity_instance(const scene *s, uint32_t m)
+{
+    for (uint32_t i = 0; i < s->n_instances; i++)
+        if (s->instances[i].mesh == m && affine_is_identity(&s->instances[i].world))
+            return 1;
+    return 0;
+}
+
+/* Objects whose instances all transform them get their space centred on their bounds: the device
+ * then holds vertices and rays as offsets no larger than the object, and the rounding of an
+ * instance's matrix (a relative error of the fp24 format) moves the object's points by that much
+ * less (docs/numerics.md). Objects shown untransformed somewhere keep the mesh's space, so that
+ * their instances stay identities the device skips. */
+static void choose_centres(mi_builder *b, const scene *s)
+{
+    for (uint32_t i = 0; i < b->n_objects; i++) {
+        mi_object *o = &b->obj[i];
+        const scene_mesh *m = obj_mesh(b, s, o);
+        o->centre[0] = o->centre[1] = o->centre[2] = 0;
+        if (o->merged || m->n_vertices == 0 || mesh_has_identity_instance(s, o->mesh))
+            continue;
+        for (int k = 0; k < 3; k++) {
+            double lo = m->positions[k], hi = lo;
+            for (uint32_t v = 1; v < m->n_vertices; v++) {
+                lo = fmin(lo, m->positions[3 * (size_t)v + (size_t)k]);
+                hi = fmax(hi, m->positions[3 * (size_t)v + (size_t)k]);
+            }
+            o->centre[k] = f24_fast_decode(f24w(0.5 * (lo + hi)));
+        }
+    }
+}
+
 static void choose_objects(mi_builder *b, const scene *s)
 {
     for (uint32_t k = 0; k < s->n_meshes; k++)
@@ -1011,6 +1075,7 @@ mi_builder *mi_build(const scene *s, const mi_params *p, char *err, size_t errle
         return NULL;
     }
     choose_objects(b, s);
+    choose_centres(b, s);
     uint64_t floor_words = 0; /* what the triangles need before any tree: fail early on hopeless scenes */
     for (uint32_t i = 0; i < b->n_objects; i++) {
         const scene_mesh *m = obj_mesh(b, s, &b->obj[i]);

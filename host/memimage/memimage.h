@@ -45,22 +45,26 @@ typedef enum {
 /* Record sizes in words. */
 enum {
     MI_NODE_WORDS = 2,      /* kd node: {child<<2 | axis, split} or {count<<2 | 3, first} */
-    /* affine 3x4, rows (m0 m1 m2 t): object -> unit triangle, a packed record (f24_record.h) that
-     * starts at a multiple of its size (one cache line) */
-    MI_TRIANGLE_WORDS = F24_AFFINE_RECORD_WORDS,
+    /* 3x4, rows (m0 m1 m2 c): M^-1 (object -> unit triangle, columns 0..2) and the triangle's vertex
+     * C (column 3), a packed record (f24_record.h) that starts at a multiple of its size (one cache
+     * line) */
+    MI_TRIANGLE_WORDS = F24_TRIANGLE_RECORD_WORDS,
     MI_OBJECT_WORDS = 16,   /* see mi_object word offsets */
     MI_INSTANCE_WORDS = F24_INSTANCE_RECORD_WORDS, /* world-to-object 3x4 (12), object (1), flags (1),
-                                                      zeros to whole triangle records (f24_record.h) */
+                                                      the translation's low words (3), zeros to whole
+                                                      triangle records (f24_record.h) */
     MI_MATERIAL_WORDS = 16,
     MI_TEXTURE_WORDS = 4,   /* width, height, texel address, reserved; texels follow the table */
     MI_CAMERA_WORDS = 16,
     MI_LIGHT_WORDS = 16,
 };
 
-/* Instance words after the matrix: the object index and flags. MI_INST_IDENTITY: the matrix is
- * exactly the identity (1 and +0), so the device passes the rays through without a
- * transformation (hls/units/trace.c); set for the objects mi_merge.h bakes into world space. */
-enum { MI_I_OBJECT = 12, MI_I_FLAGS = 13 };
+/* Instance words after the matrix: the object index, flags, and the low words of the translation
+ * (column 3 + low words = -A^-1 c in two words, with A^-1 the stored, rounded 3x3: the transformation
+ * unit's wide mode, docs/numerics.md). MI_INST_IDENTITY: the matrix is exactly the identity (1 and
+ * +0), so the device passes the rays through without a transformation (hls/units/trace.c); set for
+ * the objects mi_merge.h bakes into world space. */
+enum { MI_I_OBJECT = 12, MI_I_FLAGS = 13, MI_I_T_LO = 14 };
 #define MI_INST_IDENTITY 1u
 
 /* Camera word 3: the scene profile's skip bits (PROFILE_* in hls/units/trace.h, mi_profile.h). */

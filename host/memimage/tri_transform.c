@@ -1,10 +1,12 @@
 /*
  * Triangle transformations (paper section 2.1). For triangle (A, B, C) with unit normal N, the
  * matrix M = [A-C | B-C | N] (columns) with translation C maps the unit triangle (1,0,0),
- * (0,1,0), (0,0,0) onto the triangle and (0,0,1) onto N; the device stores T = M^-1 (affine:
- * T p = M^-1 (p - C)). After transforming a ray with T, the intersection unit needs only
- * t = -O'z / D'z, u = O'x + t D'x, v = O'y + t D'y, and D'z is the cosine with the normal.
- * Computed in double precision; the caller rounds to fp24.
+ * (0,1,0), (0,0,0) onto the triangle and (0,0,1) onto N; the device stores M^-1 and C (columns
+ * 0..2 and 3 of the result: T p = M^-1 (p - C), with p - C taken from the rebased ray origin in
+ * the intersection unit, docs/numerics.md). After transforming a ray with T, the intersection
+ * unit needs only t = -O'z / D'z, u = O'x + t D'x, v = O'y + t D'y, and D'z is the cosine with
+ * the normal. Computed in double precision; the caller rounds M^-1 to fp24 and C to two fp24
+ * words (exact for binary32 vertices).
  *
  * Degeneracy criterion (documented in docs/memory-image.md): the triangle is dropped if twice
  * its area is zero or not finite, or if the shape condition number ||S||_inf ||S^-1||_inf of
@@ -67,5 +69,7 @@ int mi_triangle_transform(const double a[3], const double b[3], const double c[3
     if (!(row_norm_inf(s3) * row_norm_inf(si3) <= max_condition))
         return 0;
     *t = inv;
+    for (int i = 0; i < 3; i++)
+        t->m[i][3] = c[i];
     return 1;
 }

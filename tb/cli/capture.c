@@ -89,12 +89,12 @@ static void end(FILE *f)
 
 f24_vec3 __real_xform_point(const f24_affine *m, f24_vec3 p);
 f24_vec3 __real_xform_vector(const f24_affine *m, f24_vec3 v);
-isect_result __real_isect_unit_transformed(const f24_affine *m, f24_vec3 o, f24_vec3 d, f24_t tmin, f24_t tmax);
+isect_result __real_isect_unit_rebased(const f24_triangle *m, f24_vec3x2 p, f24_t te, f24_vec3 d, f24_t tmin, f24_t tmax);
 void __real_trav_node_split(const trav_entry *e, uint32_t axis, f24_t split, const f24_vec3 o[], const f24_vec3 d[],
                             trav_entry *l, trav_entry *r, uint32_t *near_left);
 f24_vec3 __wrap_xform_point(const f24_affine *m, f24_vec3 p);
 f24_vec3 __wrap_xform_vector(const f24_affine *m, f24_vec3 v);
-isect_result __wrap_isect_unit_transformed(const f24_affine *m, f24_vec3 o, f24_vec3 d, f24_t tmin, f24_t tmax);
+isect_result __wrap_isect_unit_rebased(const f24_triangle *m, f24_vec3x2 p, f24_t te, f24_vec3 d, f24_t tmin, f24_t tmax);
 void __wrap_trav_node_split(const trav_entry *e, uint32_t axis, f24_t split, const f24_vec3 o[], const f24_vec3 d[],
                             trav_entry *l, trav_entry *r, uint32_t *near_left);
 
@@ -126,21 +126,23 @@ f24_vec3 __wrap_xform_vector(const f24_affine *m, f24_vec3 v)
     return r;
 }
 
-/* The intersection unit sees the ray after the triangle's transformation: recorded here with
- * the full (not early-out) test, whose hit flag equals the one returned. */
-isect_result __wrap_isect_unit_transformed(const f24_affine *m, f24_vec3 o, f24_vec3 d, f24_t tmin, f24_t tmax)
+/* The intersection unit's datapath sees the ray after the triangle's matrix: the origin from the
+ * rebased origin (isect_origin), the direction from the transformation unit (recorded as its
+ * transaction), then the test, recorded in full (not early-out), whose hit flag equals the one
+ * returned. */
+isect_result __wrap_isect_unit_rebased(const f24_triangle *m, f24_vec3x2 p, f24_t te, f24_vec3 d, f24_t tmin, f24_t tmax)
 {
-    const isect_result r = __real_isect_unit_transformed(m, o, d, tmin, tmax);
+    const isect_result r = __real_isect_unit_rebased(m, p, te, d, tmin, tmax);
     if (!cap.on)
         return r;
-    const f24_vec3 ot = __wrap_xform_point(m, o), dt = __wrap_xform_vector(m, d);
-    const isect_result full = isect_unit_triangle(ot, dt, tmin, tmax);
+    const f24_vec3 ot = isect_origin(m, p), dt = __wrap_xform_vector(&m->m, d);
+    const isect_result full = isect_unit_triangle(ot, dt, te, tmin, tmax);
     FILE *f = begin(CAP_ISECT);
     if (!f)
         return r;
-    const uint32_t w[13] = { ot.x, ot.y, ot.z, dt.x, dt.y, dt.z, tmin, tmax, (uint32_t)full.hit, full.t, full.u, full.v,
+    const uint32_t w[14] = { ot.x, ot.y, ot.z, dt.x, dt.y, dt.z, te, tmin, tmax, (uint32_t)full.hit, full.t, full.u, full.v,
                              full.cos_n };
-    words(f, w, 13);
+    words(f, w, 14);
     end(f);
     return r;
 }

@@ -10,6 +10,7 @@
 #include "geom.h"
 #include "isect_unit.h"
 #include "memimage.h"
+#include "rebase_unit.h"
 #include "ref_bvh.h"
 #include "ref_units.h"
 #include "scenes.h"
@@ -628,15 +629,16 @@ static uint32_t accepting(const world *w, const ray_packet *rp, int k, uint32_t 
 {
     const uint32_t *mem = w->mem, ia = mem[MI_H_REGION_TABLE + 2 * MI_R_INSTANCES];
     const uint32_t *od = mem + mem[MI_H_REGION_TABLE + 2 * MI_R_OBJECTS] + MI_OBJECT_WORDS * mem[ia + 12];
-    const f24_affine w2o = f24_affine_load(mem, ia);
-    const f24_vec3 o = xform_point(&w2o, rp->o[k]), d = xform_vector(&w2o, rp->d[k]);
+    f24_vec3x2 o, d;
+    ref_units_to_object(mem, ia, rp->o[k], rp->d[k], &o, &d);
+    const f24_vec3x2 p = rebase_origin(o, d, F24_ONE); /* where a leaf around the vertex would move it */
     uint32_t n = 0;
     for (uint32_t j = w->adj_first[vertex]; j < w->adj_first[vertex + 1]; j++) {
         const uint32_t t = w->image_of[w->adj[j]];
         if (t == UINT32_MAX)
             continue;
-        const f24_affine tx = f24_affine_load_record(mem, od[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * t);
-        const isect_result r = isect_unit_transformed(&tx, o, d, 0, F24_POS_INF);
+        const f24_triangle tx = f24_triangle_load(mem, od[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * t);
+        const isect_result r = isect_unit_rebased(&tx, p, F24_ONE, d.hi, 0, F24_POS_INF);
         n += r.hit && fabs(D(r.t) - 1) < 1e-2;
     }
     return n;

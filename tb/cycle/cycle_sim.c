@@ -30,7 +30,7 @@ void cycle_config_default(cycle_config *c)
     /* lines of one record: wider lines fetch neighbours a packet rarely visits next (docs/cycle-model.md) */
     c->mem.cache[MEM_NODES] = (cache_config){ 4096, 8 }; /* one kd node */
     c->mem.cache[MEM_LISTS] = (cache_config){ 2048, 4 }; /* one list entry */
-    c->mem.cache[MEM_MATRICES] = (cache_config){ 6144, 4 * F24_AFFINE_RECORD_WORDS }; /* one line per triangle */
+    c->mem.cache[MEM_MATRICES] = (cache_config){ 6144, 4 * F24_TRIANGLE_RECORD_WORDS }; /* one line per triangle */
     c->mem.cache[MEM_SHADING] = (cache_config){ 4096, 16 };
     c->mem.latency = 10;
     c->mem.mbps = 1000.0;

@@ -1,8 +1,10 @@
 /*
  * Brute force with the hardware units' own arithmetic: the closest hit over every instance and
  * triangle of a memory image (world-to-object and triangle transformations, unit-triangle test,
- * no traversal). What a complete traversal must find, bit for bit, up to the walk order where a
- * triangle's rounded distance lies outside its cell. Used by tests/test_trace.c and the stress
+ * no traversal). Where the traversal moves each ray's origin to the leaf it enters (rebase_unit.h),
+ * the brute force has no leaves: it tests each triangle from the ray's origin for where the ray
+ * meets its plane, then again with the origin moved there, so that its answer has the precision of
+ * the traversal's (equal distances up to the rounding of the two rebase distances). Used by tests/test_trace.c and the stress
  * suite (tb/cli/stress.c) to judge the traversal; not a renderer.
  */
 #ifndef SAARCOR_REF_UNITS_H
@@ -11,6 +13,10 @@
 #include <stdint.h>
 
 #include "vec3.h"
+
+/* The object-space ray (o, d) of the instance record at word ia, as the transformation unit's
+ * wide mode gives it (double words). */
+void ref_units_to_object(const uint32_t *mem, uint32_t ia, f24_vec3 o, f24_vec3 d, f24_vec3x2 *oo, f24_vec3x2 *dd);
 
 /* The smallest t in [tmin, tmax) of any triangle the units accept, or tmax if none. */
 f24_t ref_units_closest(const uint32_t *mem, f24_vec3 o, f24_vec3 d, f24_t tmin, f24_t tmax);

@@ -1,0 +1,32 @@
+/*
+ * Rebase unit: moves each ray's object-space origin to where it enters the current leaf, before
+ * the leaf's triangles are tested (saarcor's accuracy datapath; the paper has none, docs/numerics.md).
+ *
+ * Why: the intersection unit works in each triangle's unit-triangle space, where a triangle of
+ * size s is 1 and a ray origin at distance d is d/s away. u = O'x + t D'x then cancels log2(d/s)
+ * of fp24's M+1 bits: small triangles seen from afar (dense meshes, small instances) lose their
+ * barycentrics and let rays through closed meshes. Moved to the leaf entry, the origin is about a
+ * leaf (a few triangles) away from every triangle it meets, and the hit distance is
+ * t = t_entry + t' with t' as short as the leaf.
+ * The origin moves in double words, exactly: p = o + t_entry d with o and d the object-space ray
+ * in double words (the transformation unit's wide mode) and each component one f24_sum_exact of
+ * four terms (o.hi, o.lo, t d.hi, t d.lo). The intersection unit takes p in double words
+ * (isect_unit.h).
+ * Datapath: per component 2 multipliers whose products are not rounded and one 4-term exact
+ * accumulator: 6 multipliers, 3 accumulators. One ray per cycle, when the list unit opens a leaf
+ * (one issue slot per ray of the leaf on the list unit, trace.c). Latency 8 cycles (multiplier 3,
+ * accumulator 4, round 1; the cycle model's list latency covers it, docs/cycle-model.md).
+ */
+#ifndef SAARCOR_REBASE_UNIT_H
+#define SAARCOR_REBASE_UNIT_H
+
+#include "vec3.h"
+
+/* o + t d per component, exact up to the double word's rounding. A t that is not finite (a ray
+ * with no entry distance) moves nothing: t = 0. */
+f24_vec3x2 rebase_origin(f24_vec3x2 o, f24_vec3x2 d, f24_t t);
+
+/* The distance rebase_origin moved by for entry distance t (0 for t not finite). */
+f24_t rebase_distance(f24_t t);
+
+#endif
