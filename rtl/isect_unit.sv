@@ -1,9 +1,11 @@
 // isect_unit: the unit-triangle intersection unit (paper section 2.1; hls/units/isect_unit.c).
-// On a ray already in unit-triangle space: t = -O'z / D'z, u = O'x + t D'x, v = O'y + t D'y,
-// hit when u >= 0, v >= 0, u + v <= 1 and tmin <= t < tmax; D'z is the cosine output.
-// Datapath: 1 divider, 2 multipliers, 3 adders (Table 2), 5 comparators. Latency LATENCY
-// (default: divider 6 + multiplier 3 + adder 3 + adder 3 + comparator 1 = 16), one ray per
-// cycle (II = 1). Handshake: valid/ready.
+// On a ray already in unit-triangle space whose origin the rebase unit moved to distance te:
+// t' = -O'z / D'z, t = te + t', u = O'x + t' D'x, v = O'y + t' D'y, hit when u >= 0, v >= 0,
+// u + v <= 1 and tmin <= t < tmax; D'z is the cosine output.
+// Datapath: 1 divider, 2 multipliers, 4 adders (Table 2's 3 and the rebase's t), 5 comparators.
+// Latency LATENCY (default: divider 6 + multiplier 3 + adder 3 + adder 3 + comparator 1 = 16;
+// te + t' runs beside the multiplier and first adder), one ray per cycle (II = 1). Handshake:
+// valid/ready.
 // EDGE_EPS = k > 0: the robust edge option (SAARCOR_CFG_EDGE_EPS, docs/stress.md): the bounds
 // become u, v >= -2^-k and u + v <= 1 + 2^-k; only the comparators' constants change.
 module isect_unit #(
@@ -18,6 +20,7 @@ module isect_unit #(
   output logic                 ready_o,
   input  logic [3*(E+M+1)-1:0] o_i,
   input  logic [3*(E+M+1)-1:0] d_i,
+  input  logic [E+M:0]         te_i,
   input  logic [E+M:0]         tmin_i,
   input  logic [E+M:0]         tmax_i,
   output logic                 valid_o,
@@ -38,13 +41,14 @@ module isect_unit #(
   localparam logic [W-1:0] ONE = {1'b0, E'(BIAS), {M{1'b0}}};
   localparam logic [W-1:0] LO = EDGE_EPS > 0 ? {1'b1, E'(BIAS - EDGE_EPS), {M{1'b0}}} : '0;
   localparam logic [W-1:0] HI = EDGE_EPS > 0 ? ONE | W'(1 << (M - EDGE_EPS)) : ONE;
-  logic [W-1:0] oz_neg, t, tdx, tdy, u, v, uv;
+  logic [W-1:0] oz_neg, tl, t, tdx, tdy, u, v, uv;
   logic hit;
 
   assign oz_neg = o_i[2*W +: W] ^ {1'b1, {(W-1){1'b0}}};
-  f24_div_core #(.E(E), .M(M)) u_t (.a_i(oz_neg), .b_i(d_i[2*W +: W]), .res_o(t));
-  f24_mul_core #(.E(E), .M(M)) u_mx (.a_i(t), .b_i(d_i[0 +: W]), .res_o(tdx));
-  f24_mul_core #(.E(E), .M(M)) u_my (.a_i(t), .b_i(d_i[W +: W]), .res_o(tdy));
+  f24_div_core #(.E(E), .M(M)) u_t (.a_i(oz_neg), .b_i(d_i[2*W +: W]), .res_o(tl));
+  f24_add_core #(.E(E), .M(M)) u_te (.a_i(te_i), .b_i(tl), .sub_i(1'b0), .res_o(t));
+  f24_mul_core #(.E(E), .M(M)) u_mx (.a_i(tl), .b_i(d_i[0 +: W]), .res_o(tdx));
+  f24_mul_core #(.E(E), .M(M)) u_my (.a_i(tl), .b_i(d_i[W +: W]), .res_o(tdy));
   f24_add_core #(.E(E), .M(M)) u_u (.a_i(o_i[0 +: W]), .b_i(tdx), .sub_i(1'b0), .res_o(u));
   f24_add_core #(.E(E), .M(M)) u_v (.a_i(o_i[W +: W]), .b_i(tdy), .sub_i(1'b0), .res_o(v));
   f24_add_core #(.E(E), .M(M)) u_uv (.a_i(u), .b_i(v), .sub_i(1'b0), .res_o(uv));

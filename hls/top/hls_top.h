@@ -35,10 +35,11 @@ typedef struct {
     uint32_t point;
 } xform_txn;
 
-/* Intersection unit: the ray in unit-triangle space and its interval. */
+/* Intersection unit: the ray in unit-triangle space, the distance its origin was moved by (the
+ * rebase unit's te) and its interval. */
 typedef struct {
     f24_vec3 o, d;
-    f24_t tmin, tmax;
+    f24_t te, tmin, tmax;
 } isect_txn;
 
 /* Traversal unit, one inner node for a 4-ray packet: the entry (mask, intervals), the node's

@@ -1,5 +1,5 @@
 /* Unit-triangle intersection unit top function (paper section 2.1, Table 2: 3 add, 2 mul,
- * 1 div): see hls_top.h. */
+ * 1 div; one more add for the rebased distance te + t'): see hls_top.h. */
 #include "hls_top.h"
 
 void isect_top(const isect_txn in[HLS_BATCH], isect_result out[HLS_BATCH], uint32_t n)
@@ -13,6 +13,6 @@ isect_stream:
 #pragma HLS PIPELINE II=1
         if (i >= n)
             break;
-        out[i] = isect_unit_triangle(in[i].o, in[i].d, in[i].tmin, in[i].tmax);
+        out[i] = isect_unit_triangle(in[i].o, in[i].d, in[i].te, in[i].tmin, in[i].tmax);
     }
 }
