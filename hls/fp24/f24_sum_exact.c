@@ -82,7 +82,9 @@ f24x2 f24_sum_exact(const f24_t a[], const f24_t b[], uint32_t n)
     int32_t emax = -1;
     uint32_t inf = 0, inf_sign = 0, zero_sign = 1;
 scan_terms:
-    for (uint32_t k = 0; k < n && k < F24_SUM_TERMS; k++) {
+    for (uint32_t k = 0; k < F24_SUM_TERMS; k++) {
+        if (k >= n)
+            break;
         const int32_t ea = f24_exp(a[k]), eb = f24_exp(b[k]);
         const uint32_t sign = f24_sign(a[k]) ^ f24_sign(b[k]);
         zero_sign &= sign;
@@ -105,8 +107,8 @@ scan_terms:
     const uint32_t top = 127 - F24_SUM_HEAD - (2 * F24_MAN_BITS + 1); /* where the largest product's LSB sits */
     f24_u128 acc = { 0, 0 };
 accumulate:
-    for (uint32_t k = 0; k < n && k < F24_SUM_TERMS; k++) {
-        const int32_t ea = f24_exp(a[k]), eb = f24_exp(b[k]);
+    for (uint32_t k = 0; k < F24_SUM_TERMS; k++) {
+        const int32_t ea = k < n ? f24_exp(a[k]) : 0, eb = k < n ? f24_exp(b[k]) : 0;
         if (ea == 0 || eb == 0)
             continue;
         const uint64_t prod = (uint64_t)f24_sig(a[k]) * f24_sig(b[k]);

@@ -69,24 +69,6 @@ route_levels:
     }
 }
 
-/* Issue slots of the transformation unit for the rays in mask: origin and direction each, or one
- * shared origin step if all their origins are equal. */
-static uint32_t xform_slots(const f24_vec3 o[], uint32_t mask)
-{
-    int first = -1, shared = 1;
-same_origin:
-    for (int i = 0; i < TRACE_PACKET; i++) {
-        if (!bit(mask, i))
-            continue;
-        if (first < 0)
-            first = i;
-        else if (o[i].x != o[first].x || o[i].y != o[first].y || o[i].z != o[first].z)
-            shared = 0;
-    }
-    const uint32_t n = count_rays(mask);
-    return shared ? n + 1 : 2 * n;
-}
-
 /* ---- the operations ------------------------------------------------------------------------ */
 
 /* The one object of a PROFILE_SINGLE_OBJECT scene: the packet goes straight to its
@@ -95,12 +77,16 @@ same_origin:
  * identity whose zeros may be signed), the instance and object descriptor are read with the
  * scene clip, and the packet goes on to the object's bounds (path b). The top level holds no further entries, so the packet is done when
  * the object is. */
-static void enter_single_object(const uint32_t *mem, trace_state *s, uint32_t mask, unit_op *op, trace_counters *c)
+static void enter_single_object(const uint32_t *mem, trace_state *s, uint32_t mask, const f24_t tn[], unit_op *op,
+                                trace_counters *c)
 {
     const uint32_t ia = region_start(mem, R_INSTANCES);
     s->inst = mem[region_start(mem, R_TOP_LISTS) + mem[region_start(mem, R_TOP_NODES) + 1]]; /* its one-leaf list */
     s->need = mask;
     s->walk[0].leaf_count = s->walk[0].k = 0;
+scene_entry:
+    for (int i = 0; i < TRACE_PACKET; i++)
+        s->walk[0].leaf_tn[i] = tn[i]; /* where the instance's rays enter, as a top-level leaf would say */
     if (!(s->flags & TRACE_IDENTITY)) {
         s->phase = TP_INST_XFORM;
         return;
@@ -114,6 +100,7 @@ identity_rays:
         s->o[i] = xform_identity(&w2o, s->rays.o[i], 1);
         s->d[i] = xform_identity(&w2o, s->rays.d[i], 0);
         s->o_lo[i] = s->d_lo[i] = (f24_vec3){ 0, 0, 0 };
+        s->t0[i] = 0;
     }
     s->phase = TP_INST_CLIP;
 }
@@ -129,7 +116,7 @@ static void op_scene_clip(const uint32_t *mem, trace_state *s, unit_op *op, trac
         return;
     }
     if (!SAARCOR_CFG_TOP_LEVEL || (s->flags & TRACE_SKIP_TOP)) {
-        enter_single_object(mem, s, mask, op, c);
+        enter_single_object(mem, s, mask, tn, op, c);
         return;
     }
     const int top_grid = trav_algo(s->flags) == TRAV_GRID2 && (accel_of(mem) & ACCEL_TOP_GRID);
@@ -143,7 +130,8 @@ static void op_scene_clip(const uint32_t *mem, trace_state *s, unit_op *op, trac
 static void op_walk(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
 {
     const int top = s->level == 0;
-    trav_walk(&s->walk[s->level], mem, top ? s->rays.o : s->o, top ? s->rays.d : s->d, s->best_t, s->alive, op, c);
+    trav_walk(&s->walk[s->level], mem, top ? s->rays.o : s->o, top ? s->rays.d : s->d, top ? s->best_t : s->best_rel,
+              s->alive, op, c);
     route_after_list(s);
 }
 
@@ -190,15 +178,19 @@ static void inst_clip(const uint32_t *mem, trace_state *s, unit_op *op, trace_co
 /* Transformation unit: the rays that need an instance into its object space (path d). An
  * instance flagged as the identity (static geometry the host merged into world space) needs no
  * transformation: its rays pass through as wiring (xform_identity, the bits the transformation
- * would give), and the traversal unit clips them to the object at once, in the same operation. */
+ * would give), and the traversal unit clips them to the object at once, in the same operation.
+ * Any other moves each ray's origin to where it enters the top-level leaf (the rebase unit, in
+ * front of this one) and maps it in the wide mode: the object-space ray in double words whose
+ * high words the traversal walks with are then the exact ray to about the object's size times
+ * 2^-(M+1), not the distance's (docs/numerics.md). Rebased origins differ per ray: two steps each. */
 static void op_inst_xform(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
 {
     const uint32_t ia = region_start(mem, R_INSTANCES) + INST_WORDS * s->inst;
     const f24_affine w2o = f24_affine_load(mem, ia);
     const int identity = mem[ia + INST_FLAGS] & INST_IDENTITY;
     s->obj = region_start(mem, R_OBJECTS) + OBJ_WORDS * mem[ia + 12];
-    op_set(op, identity ? UNIT_TRAV : UNIT_XFORM, identity ? 1u : xform_slots(s->rays.o, s->need));
-    op_read(op, c, MEM_MATRICES, ia, INST_READ);  /* matrix, object index and flags */
+    op_set(op, identity ? UNIT_TRAV : UNIT_XFORM, identity ? 1u : 2u * count_rays(s->need));
+    op_read(op, c, MEM_MATRICES, ia, INST_READ);  /* matrix, object index, flags, translation low words */
     op_read(op, c, MEM_MATRICES, s->obj, obj_read(s->flags)); /* object descriptor: tree, triangles, bounds */
     c->transformations += identity ? 0u : op->slots;
     const f24_vec3 t_lo = { mem[ia + INST_T_LO] & F24_MASK, mem[ia + INST_T_LO + 1] & F24_MASK,
@@ -211,13 +203,18 @@ to_object_space:
             s->o[i] = xform_identity(&w2o, s->rays.o[i], 1);
             s->d[i] = xform_identity(&w2o, s->rays.d[i], 0);
             s->o_lo[i] = s->d_lo[i] = (f24_vec3){ 0, 0, 0 };
+            s->t0[i] = 0;
             continue;
         }
-        const f24_vec3x2 o = xform_point_wide(&w2o, t_lo, s->rays.o[i]), d = xform_vector_wide(&w2o, s->rays.d[i]);
+        const f24_vec3 none = { 0, 0, 0 };
+        const f24_t t0 = rebase_distance(s->walk[0].leaf_tn[i]);
+        const f24_vec3x2 pw = rebase_origin((f24_vec3x2){ s->rays.o[i], none }, (f24_vec3x2){ s->rays.d[i], none }, t0);
+        const f24_vec3x2 o = xform_point_wide(&w2o, t_lo, pw), d = xform_vector_wide(&w2o, s->rays.d[i]);
         s->o[i] = o.hi;
         s->o_lo[i] = o.lo;
         s->d[i] = d.hi;
         s->d_lo[i] = d.lo;
+        s->t0[i] = t0;
     }
     s->phase = TP_INST_CLIP;
     if (identity)
@@ -235,7 +232,12 @@ static void inst_clip(const uint32_t *mem, trace_state *s, unit_op *op, trace_co
 {
     f24_t tn[TRACE_PACKET], tf[TRACE_PACKET];
     list_mailboxes_clear(s->box[1]); /* a new visit of an instance: its triangles anew */
-    const uint32_t mask = trav_object_clip(&mem[s->obj + O_BOUNDS], s->o, s->d, s->rays.tmin, s->best_t, s->need, tn, tf);
+relative_distances:
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        s->best_rel[i] = f24_sub(s->best_t[i], s->t0[i]);
+        s->tmin_rel[i] = f24_sub(s->rays.tmin[i], s->t0[i]);
+    }
+    const uint32_t mask = trav_object_clip(&mem[s->obj + O_BOUNDS], s->o, s->d, s->tmin_rel, s->best_rel, s->need, tn, tf);
     if (!mask) {
         route_after_list(s);
         return;
@@ -270,11 +272,12 @@ isect_rays:
     for (int i = 0; i < TRACE_PACKET; i++) {
         if (!bit(s->need, i))
             continue;
-        const isect_result r = isect_unit_rebased(&s->tx, s->p[i], s->te[i], s->d[i], s->rays.tmin[i], s->best_t[i]);
+        const isect_result r = isect_unit_rebased(&s->tx, s->p[i], s->te[i], s->d[i], s->tmin_rel[i], s->best_rel[i]);
         c->intersections++;
         if (r.hit) {
-            s->best_t[i] = r.t;
-            s->hits[i] = (hit_record){ s->inst, s->tri, r.t, r.u, r.v, r.cos_n };
+            s->best_rel[i] = r.t;
+            s->best_t[i] = f24_add(s->t0[i], r.t); /* back to the distance from the ray's origin */
+            s->hits[i] = (hit_record){ s->inst, s->tri, s->best_t[i], r.u, r.v, r.cos_n };
             if (s->flags & TRACE_ANY_HIT)
                 s->alive &= ~(1u << i);
         }

@@ -151,8 +151,12 @@ typedef struct {
     trav_walker walk[2];
     trace_mailbox box[2][TRACE_PACKET]; /* instances per ray; triangles per ray and instance visit */
     uint32_t inst, obj, tris, tri, need; /* current instance, its object, triangle, rays needing it */
-    f24_vec3 o[TRACE_PACKET], d[TRACE_PACKET]; /* the rays in the current object's space (high words) */
-    f24_vec3 o_lo[TRACE_PACKET], d_lo[TRACE_PACKET]; /* their low words (the wide transformation) */
+    /* the rays in the current object's space: origins moved to t0 along the ray when it entered the
+     * instance, in double words (high words in o, what the traversal walks with), distances at this
+     * level from there (best_rel, tmin_rel: best_t and tmin less t0) */
+    f24_vec3 o[TRACE_PACKET], d[TRACE_PACKET];
+    f24_vec3 o_lo[TRACE_PACKET], d_lo[TRACE_PACKET];
+    f24_t t0[TRACE_PACKET], best_rel[TRACE_PACKET], tmin_rel[TRACE_PACKET];
     f24_vec3x2 p[TRACE_PACKET];        /* origins rebased to the current leaf (rebase_unit.h) */
     f24_t te[TRACE_PACKET];            /* the distance they were moved by */
     f24_triangle tx;                   /* the current triangle's record */

@@ -19,15 +19,17 @@ f24_vec3 xform_point(const f24_affine *m, f24_vec3 p) { return xform_step(m, p, 
 
 f24_vec3 xform_vector(const f24_affine *m, f24_vec3 v) { return xform_step(m, v, 0); }
 
-/* One row in the wide mode: m0 x + m1 y + m2 z (+ t + tlo), one rounding into a double word. */
-static f24x2 xform_row_wide(const f24_t row[4], f24_t tlo, f24_vec3 p, int with_translation)
+/* One row in the wide mode, one rounding into a double word: a point's m0 x + m1 y + m2 z + t + tlo
+ * for x, y, z in double words, a vector's m0 x + m1 y + m2 z of their high words (directions come
+ * in single words). */
+static f24x2 xform_row_wide(const f24_t row[4], f24_t tlo, f24_vec3x2 p, int with_translation)
 {
-    const f24_t a[5] = { row[0], row[1], row[2], row[3], tlo };
-    const f24_t b[5] = { p.x, p.y, p.z, F24_ONE, F24_ONE };
-    return f24_sum_exact(a, b, with_translation ? 5u : 3u);
+    const f24_t a[8] = { row[0], row[1], row[2], row[0], row[1], row[2], row[3], tlo };
+    const f24_t b[8] = { p.hi.x, p.hi.y, p.hi.z, p.lo.x, p.lo.y, p.lo.z, F24_ONE, F24_ONE };
+    return f24_sum_exact(a, b, with_translation ? 8u : 3u);
 }
 
-static f24_vec3x2 xform_step_wide(const f24_affine *m, f24_vec3 tlo, f24_vec3 p, int with_translation)
+static f24_vec3x2 xform_step_wide(const f24_affine *m, f24_vec3 tlo, f24_vec3x2 p, int with_translation)
 {
     const f24x2 x = xform_row_wide(m->m[0], tlo.x, p, with_translation),
                 y = xform_row_wide(m->m[1], tlo.y, p, with_translation),
@@ -36,12 +38,13 @@ static f24_vec3x2 xform_step_wide(const f24_affine *m, f24_vec3 tlo, f24_vec3 p,
     return r;
 }
 
-f24_vec3x2 xform_point_wide(const f24_affine *m, f24_vec3 tlo, f24_vec3 p) { return xform_step_wide(m, tlo, p, 1); }
+f24_vec3x2 xform_point_wide(const f24_affine *m, f24_vec3 tlo, f24_vec3x2 p) { return xform_step_wide(m, tlo, p, 1); }
 
 f24_vec3x2 xform_vector_wide(const f24_affine *m, f24_vec3 v)
 {
     const f24_vec3 none = { 0, 0, 0 };
-    return xform_step_wide(m, none, v, 0);
+    const f24_vec3x2 w = { v, none };
+    return xform_step_wide(m, none, w, 0);
 }
 
 f24_vec3 xform_identity(const f24_affine *m, f24_vec3 v, int point)

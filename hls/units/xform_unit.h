@@ -26,11 +26,12 @@ f24_vec3 xform_point(const f24_affine *m, f24_vec3 p);
 f24_vec3 xform_vector(const f24_affine *m, f24_vec3 v);
 
 /* The wide mode (instances, path d): each row's products exact and summed once into a double word
- * (f24_sum_exact), so that object-space rays keep about 2(M+1) bits wherever they go: a point with
- * the translation in two words, m's column 3 and tlo (the instance record's low words), a vector
- * without. Hardware: the same 9 multipliers, whose products skip rounding, and per row one
- * 128-bit accumulator in place of the three adders (docs/numerics.md). */
-f24_vec3x2 xform_point_wide(const f24_affine *m, f24_vec3 tlo, f24_vec3 p);
+ * (f24_sum_exact), so that object-space rays keep about 2(M+1) bits wherever they go: a point p in
+ * double words with the translation in two words, m's column 3 and tlo (the instance record's low
+ * words), a vector without. Hardware: the multipliers skip rounding and per row one 128-bit
+ * accumulator of 8 terms takes the place of the three adders; a point in double words takes the
+ * unit's 9 multipliers twice (docs/numerics.md). */
+f24_vec3x2 xform_point_wide(const f24_affine *m, f24_vec3 tlo, f24_vec3x2 p);
 f24_vec3x2 xform_vector_wide(const f24_affine *m, f24_vec3 v);
 
 /* What xform_point (point != 0) or xform_vector compute, bit for bit, for a map m that is the

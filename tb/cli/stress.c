@@ -256,7 +256,8 @@ static int make_scale(const case_def *c, const char *shared, geom_rng *rng, worl
 }
 
 /* Two triangles of a 1 x param strip (a needle of aspect 1/param), or (param < 0) one cap
- * triangle whose apex lies |param| above its base: rays aimed at interior points. */
+ * triangle whose apex lies |param| above its base: rays aimed at interior points, at the same
+ * height as their origin so that the fp24 ray meets the point it was aimed at. */
 static int make_sliver(const case_def *c, const char *shared, geom_rng *rng, world *w, stress_ray *rays, uint32_t n)
 {
     (void)shared;
@@ -278,7 +279,9 @@ static int make_sliver(const case_def *c, const char *shared, geom_rng *rng, wor
         /* a point strictly inside (for the cap: below the line from the base to the apex) */
         const double x = geom_range(rng, -0.45, 0.45), fy = geom_range(rng, 0.1, 0.9);
         const double top = c->param > 0 ? h : h * (x < 0.1 ? (x + 0.5) / 0.6 : (0.5 - x) / 0.4);
-        const double p[3] = { x, fy * top, 0 }, o[3] = { x + 0.3, p[1] + 0.2, 1 };
+        /* slanted in x only: a slant across the strip would be rounded in fp24 by more than the
+         * strip's height (2^-18 of it, 8e-7 at 0.2) and meet every ray at one edge of it */
+        const double p[3] = { x, fy * top, 0 }, o[3] = { x + 0.3, p[1], 1 };
         aim(&rays[i], o, p);
     }
     return (int)n;
@@ -328,6 +331,24 @@ static int make_instance(const case_def *c, const char *shared, geom_rng *rng, w
         aim(&rays[i], o, p);
         rays[i].target = INFINITY;
     }
+    return (int)n;
+}
+
+/* Small triangles seen from far away (issue 18, docs/numerics.md): a closed jittered icosphere of
+ * 5120 triangles (edges about 0.06 of its radius) as an instance scaled by param and moved by
+ * 3 param (1, 2, 3) (param 0: the mesh itself, untransformed), with rays aimed at its edges and
+ * vertices from 10^4 of its radii: a triangle then measures about 2^-18 of the distance to the
+ * ray's origin, beyond fp24's 17 bits, so every ray relies on the rebased origin. */
+static int make_small_far(const case_def *c, const char *shared, geom_rng *rng, world *w, stress_ray *rays, uint32_t n)
+{
+    (void)shared;
+    const double s = c->param == 0 ? 1 : c->param;
+    const affine place = diag(s, s, s, 3 * s, 6 * s, 9 * s);
+    geom_mesh m;
+    jittered_sphere(&m, 4, 0.02, rng);
+    if (scene_of(&m, c->param == 0 ? NULL : &place, c->param == 0 ? 0 : 1, &w->s) != 0)
+        return 0;
+    edge_rays(w, rng, 1e4 * s, rays, n);
     return (int)n;
 }
 
@@ -550,6 +571,10 @@ static const case_def cases[] = {
     { "inst-scale", "sphere instance scaled 10^-4, 1, 10^4 along x, y, z", 0, CRIT_AGREE, make_instance, 0 },
     { "inst-shear", "sphere instance sheared (factors 8 and -5)", 0, CRIT_AGREE, make_instance, 1 },
     { "inst-mirror", "sphere instance mirrored (determinant -1)", 0, CRIT_AGREE, make_instance, 2 },
+    { "small-far", "a closed icosphere of 5120 triangles, its edges and vertices aimed at from 10^4 radii away", WT | STRESS_MULTI, CRIT_WATERTIGHT, make_small_far, 0 },
+    { "small-inst-1e-3", "the same as an instance scaled by 10^-3 (and moved), aimed at from 10^4 of its radii", WT | STRESS_MULTI, CRIT_WATERTIGHT, make_small_far, 1e-3 },
+    { "small-inst-1", "... an instance of scale 1 (moved)", WT | STRESS_MULTI, CRIT_WATERTIGHT, make_small_far, 1 },
+    { "small-inst-1e3", "... an instance scaled by 10^3", WT | STRESS_MULTI, CRIT_WATERTIGHT, make_small_far, 1e3 },
     { "split-planes", "room: origins in top-level split planes, direction +-0 along the axis (against brute force)", STRESS_BRUTE, CRIT_TRAVERSAL, make_split_planes, 0 },
     { "face-planes", "cube: rays lying in the planes of its faces", 0, CRIT_BASE, make_face_planes, 0 },
     { "grazing", "rays passing a fine sphere's silhouette within +-10^-3 of its radius", 0, CRIT_BASE, make_grazing, 1e-3 },

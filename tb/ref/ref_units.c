@@ -10,7 +10,8 @@ void ref_units_to_object(const uint32_t *mem, uint32_t ia, f24_vec3 o, f24_vec3 
 {
     const f24_affine w2o = f24_affine_load(mem, ia);
     const f24_vec3 t_lo = { mem[ia + MI_I_T_LO], mem[ia + MI_I_T_LO + 1], mem[ia + MI_I_T_LO + 2] };
-    *oo = xform_point_wide(&w2o, t_lo, o);
+    const f24_vec3x2 ow = { o, { 0, 0, 0 } };
+    *oo = xform_point_wide(&w2o, t_lo, ow);
     *dd = xform_vector_wide(&w2o, d);
 }
 
