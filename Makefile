@@ -201,7 +201,7 @@ test: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) test-programs mpi $(BUILD)/valgrind/hwy_timer_shim.so
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(BUILD)/hw HOST_BUILD=$(BUILD) SIM_ARITH=hw $(BUILD)/hw/saarcor
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(O0_BUILD) OPT='-O0 -g' $(O0_BUILD)/saarcor
-	@$(MAKE) --no-print-directory $(BUILD)/rtl/$(DEFAULT_FMT)/tb_f24_ops $(BUILD)/rtl/$(DEFAULT_FMT)/tb_units
+	@$(MAKE) --no-print-directory $(BUILD)/rtl/$(DEFAULT_FMT)/tb_f24_ops $(BUILD)/rtl/$(DEFAULT_FMT)/tb_units $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sum
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 test-programs
 	@$(MAKE) --no-print-directory -j$$(nproc) robust
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 fuzz-replay
@@ -318,7 +318,7 @@ rtl-lint:
 
 # every operator at every format: edge set + RTL_N random vectors per operation class (+ golden hex)
 rtl-test: deps rtl-lint
-	@$(MAKE) --no-print-directory all $(foreach f,$(RTL_FORMATS),$(BUILD)/rtl/$(f)/tb_f24_ops $(BUILD)/rtl/$(f)/tb_units)
+	@$(MAKE) --no-print-directory all $(foreach f,$(RTL_FORMATS),$(BUILD)/rtl/$(f)/tb_f24_ops $(BUILD)/rtl/$(f)/tb_units $(BUILD)/rtl/$(f)/tb_sum)
 	@mkdir -p $(BUILD)/rtl/capture
 	@set -o pipefail; for f in $(RTL_FORMATS); do \
 	  extra=; [ $$f = $(DEFAULT_FMT) ] && extra=$$(ls tests/golden/f24/{add,sub,mul,div,lt,le,eq,min,max}.hex); \
@@ -329,6 +329,8 @@ rtl-test: deps rtl-lint
 	      --capture-unit-io $(BUILD)/rtl/capture/$$s.$$f --capture-limit 200000 >/dev/null || exit 1; \
 	    $(BUILD)/rtl/$$f/tb_units -n 0 --capture $(BUILD)/rtl/capture/$$s.$$f || exit 1; done; done | tee $(BUILD)/rtl/units.log
 	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_units -n $(RTL_N) || exit 1; done \
+	  | tee -a $(BUILD)/rtl/units.log
+	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_sum -n $(RTL_N) || exit 1; done \
 	  | tee -a $(BUILD)/rtl/units.log
 
 # Yosys synthesis of every module (synth_xilinx; synth_ice40 + nextpnr-ice40 for the operators;

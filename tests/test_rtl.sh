@@ -2,8 +2,9 @@
 # RTL tests in make test (the short form of make rtl-test): verilator --lint-only -Wall is clean
 # for every module in rtl/; the fp24 operators match the C model bit for bit on the edge sets,
 # 10^5 random vectors and the golden hex vectors; the datapath units match on random vectors and
-# on transactions captured while rendering the room (saarcor render --capture-unit-io); the
-# benches catch a mutant (a rounder that never rounds ties to even). Prints cmocka-style lines.
+# on transactions captured while rendering the room (saarcor render --capture-unit-io); the exact
+# dot product (rtl/f24_sum_exact.sv) matches hls/fp24/f24_sum_exact.c on 10^5 sets; the benches
+# catch a mutant (a rounder that never rounds ties to even). Prints cmocka-style lines.
 set -u
 cd "$(dirname "$0")/.."
 B=${BUILD:-build}
@@ -30,6 +31,10 @@ t_units() {
   "$B/rtl/e7m16/tb_units" -n 20000 --capture "$T/cap"
 }
 
+t_exact_sum() {
+  "$B/rtl/e7m16/tb_sum" -n 100000
+}
+
 t_mutant_caught() { # the bench must fail on a wrong rounder
   mkdir -p "$T/mut"
   sed "s/kept_even = tie ? {kept\[M+1:1\], 1'b0} : kept;/kept_even = kept;/" rtl/f24_round_pack.sv >"$T/mut/f24_round_pack.sv"
@@ -47,5 +52,6 @@ t_mutant_caught() { # the bench must fail on a wrong rounder
 run_case rtl_lint_clean t_lint
 run_case rtl_operators_match_c_model t_operators
 run_case rtl_units_match_c_model_and_capture t_units
+run_case rtl_exact_sum_matches_c_model t_exact_sum
 run_case rtl_bench_catches_mutant t_mutant_caught
 exit $((fails != 0))

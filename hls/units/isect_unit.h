@@ -1,10 +1,12 @@
 /*
  * Unit-triangle intersection unit (paper section 2.1, Figure 2: path e, results back on path f;
- * Table 2: 3 adders, 2 multipliers, 1 divider).
+ * Table 2: 3 adders, 2 multipliers, 1 divider; saarcor adds the origin path below).
  *
- * The ray has already been transformed by the triangle's transformation (xform_unit) into the
- * space where the triangle is (1,0,0), (0,1,0), (0,0,0) and its normal is (0,0,1):
- *   t = -O'z / D'z,  u = O'x + t D'x,  v = O'y + t D'y,
+ * The ray is taken into the space where the triangle is (1,0,0), (0,1,0), (0,0,0) and its normal
+ * is (0,0,1): its direction by the transformation unit (xform_unit), its origin here, from the
+ * origin the rebase unit moved to the leaf entry te (double words, rebase_unit.h) and the
+ * triangle's vertex C (isect_origin; docs/numerics.md says why). Then
+ *   t' = -O'z / D'z,  t = te + t',  u = O'x + t' D'x,  v = O'y + t' D'y,
  *   hit when u >= 0, v >= 0, u + v <= 1 and tmin <= t < tmax.
  * u is the barycentric weight of vertex A, v of B; D'z is the cosine between the ray direction
  * and the normal (times the direction's length) for shading, for free.
@@ -13,12 +15,14 @@
  * edges and vertices (u = 0, v = 0 or u + v = 1 exactly) are hits, so neighbouring triangles
  * sharing an edge cannot both miss a ray that meets the edge in exact arithmetic; an origin on
  * the plane gives t = +-0, a hit if tmin <= 0 (secondary rays use tmin > 0 against acne).
- * Datapath: negation is a sign flip, 1 divider, 2 multipliers, 3 adders (u, v, u+v), 5
- * comparators; rays are intersected one at a time.
- * Latency 16 cycles (rtl/isect_unit.sv: divider 6 + multiplier 3 + two adders 3 + comparator 1;
- * the cycle model's default, docs/cycle-model.md), throughput one ray per cycle (one issue slot
- * per ray); docs/synth.md: 3252 LUTs, 2 DSP at e7m16. The core's operation on it is op_tri_isect
- * in trace.c (closest hits per ray, any-hit for shadow packets).
+ * Datapath: the test is 1 divider, 2 multipliers, 4 adders (u, v, u+v, te + t'), 5 comparators
+ * (rtl/isect_unit.sv); the origin path 9 adders (the offset from C in double words), 6
+ * multipliers and 4 adders (rows 0 and 1 of M^-1), 9 unrounded products into one exact
+ * accumulator (row 2); rays are intersected one at a time.
+ * Latency 16 cycles for the test (rtl/isect_unit.sv: divider 6 + multiplier 3 + two adders 3 +
+ * comparator 1; the cycle model's default, docs/cycle-model.md), throughput one ray per cycle (one
+ * issue slot per ray); docs/synth.md has the test's area. The core's operation on it is
+ * op_tri_isect in trace.c (closest hits per ray, any-hit for shadow packets).
  */
 #ifndef SAARCOR_ISECT_UNIT_H
 #define SAARCOR_ISECT_UNIT_H

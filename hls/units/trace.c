@@ -234,6 +234,8 @@ static void inst_clip(const uint32_t *mem, trace_state *s, unit_op *op, trace_co
     list_mailboxes_clear(s->box[1]); /* a new visit of an instance: its triangles anew */
 relative_distances:
     for (int i = 0; i < TRACE_PACKET; i++) {
+        if (!bit(s->need, i))
+            continue;
         s->best_rel[i] = f24_sub(s->best_t[i], s->t0[i]);
         s->tmin_rel[i] = f24_sub(s->rays.tmin[i], s->t0[i]);
     }
@@ -306,7 +308,9 @@ void trace_begin(const ray_packet *rays, uint32_t flags, trace_state *s)
 init_rays:
     for (int i = 0; i < TRACE_PACKET; i++) {
         s->hits[i] = (hit_record){ TRACE_NO_HIT, TRACE_NO_HIT, F24_POS_INF, 0, 0, 0 };
-        s->best_t[i] = rays->tmax[i];
+        s->best_t[i] = s->best_rel[i] = rays->tmax[i];
+        s->tmin_rel[i] = rays->tmin[i];
+        s->t0[i] = 0;
     }
     list_mailboxes_clear(s->box[0]);
 }

@@ -7,12 +7,14 @@
  * not fed with zero, so that a -0 result keeps its sign. The summation order is fixed and part
  * of the contract with the RTL: ((m0*x + m1*y) + m2*z) + t.
  * Datapath: 9 fp24 multipliers, 6 adders for the dot products and 3 for the translation;
- * pipelined, one step per cycle. A ray takes two steps (origin, direction); rays that share an
- * origin (a packet of primary rays, shadow rays towards one light) share the origin step.
+ * pipelined, one step per cycle. A ray entering an instance takes two steps (its rebased origin,
+ * its direction: rebased origins are per ray, so a packet's rays no longer share the origin step);
+ * a ray meeting a triangle takes one (its direction; the intersection unit transforms the origin).
  * Latency 12 cycles (rtl/xform_unit.sv: multiplier 3 + three adders 3; the cycle model's default,
  * docs/cycle-model.md), throughput one step per cycle; docs/synth.md: 6653 LUTs, 9 DSP at e7m16.
- * Its users: the core's operations op_inst_xform (an instance, path d) and op_tri_xform (a
- * triangle, path e) in trace.c, the RGS's ray generation (rgs.c, path a).
+ * Its users: the core's operations op_inst_xform (an instance, path d, in the wide mode below)
+ * and op_tri_xform (a triangle's directions, path e) in trace.c, the RGS's ray generation (rgs.c,
+ * path a).
  */
 #ifndef SAARCOR_XFORM_UNIT_H
 #define SAARCOR_XFORM_UNIT_H
