@@ -11,6 +11,10 @@
    (E = 7), for hardware cost against image error (docs/synth.md, build/synth/synth.json, read
    by make bench-precision), and the intersection unit with the robust edge option
    (EDGE_EPS = 8, docs/stress.md) beside the exact one.
+4. The accuracy datapath (docs/numerics.md): the exact dot product f24_sum_exact with the term
+   counts its users need (4: rebase unit, 8: the transformation unit's wide mode, 9: the
+   intersection unit's plane distance) at e7m16, and with 9 terms at M = 12 and 20, and the area
+   of the whole fix composed from it and the operators.
 Runs two Yosys processes at a time; logs in build/synth/.
 """
 import concurrent.futures as cf, json, os, re, subprocess, sys, tempfile
@@ -24,7 +28,13 @@ WIDTHS = [8, 10, 12, 14, 16, 18, 20, 23]
 ROBUST_EDGE_EPS = 8
 LATENCY = {"f24_add": 3, "f24_mul": 3, "f24_div": 6, "f24_cmp": 1, "xform_unit": 12, "isect_unit": 16, "trav_node": 11}
 FP_UNITS = {  # fp24 operators in each datapath: add/sub, mul, div, comparisons (min/max/compare)
-    "xform_unit": (9, 9, 0, 0), "isect_unit": (3, 2, 1, 5), "trav_node": (4, 0, 4, 16)}
+    "xform_unit": (9, 9, 0, 0), "isect_unit": (4, 2, 1, 5), "trav_node": (4, 0, 4, 16)}
+SUM_TERMS = [4, 8, 9]           # f24_sum_exact instances of the accuracy datapath at e7m16
+SUM_WIDTHS = [12, 16, 20]       # ... and its 9-term form across widths
+# the fix, per unit: (exact sums by term count, extra adders, extra multipliers) beside the paper's units
+FIX = {"transformation unit (wide mode, 3 rows)": ({8: 3}, 0, 0),
+       "rebase unit (3 components)": ({4: 3}, 0, 0),
+       "intersection unit (origin path, te + t')": ({9: 1}, 9 + 4 + 1, 6)}
 
 
 def yosys(script, log):
@@ -43,14 +53,14 @@ def cells(log):
     return out
 
 
-def xilinx(top, e, m, edge_eps=0):
-    log = os.path.join(OUT, f"{top}_e{e}m{m}{f'_edge{edge_eps}' if edge_eps else ''}_xilinx.log")
+def xilinx(top, e, m, edge_eps=0, terms=0):
+    log = os.path.join(OUT, f"{top}_e{e}m{m}{f'_edge{edge_eps}' if edge_eps else ''}{f'_n{terms}' if terms else ''}_xilinx.log")
     reads = " ".join(f"read_verilog -sv {f};" for f in RTL)
     # synth_xilinx without its SAT-based `share` pass, which takes tens of minutes on the
     # transformation unit's 9 multiply-add chains and finds nothing to share in these datapaths
     flow = (f"synth_xilinx -top {top} -flatten -run :coarse; techmap -map +/cmp2lut.v -map +/cmp2lcu.v -D LUT_WIDTH=6; "
             f"alumacc; opt; memory -nomap; opt_clean; synth_xilinx -top {top} -flatten -run map_memory:")
-    extra = f" -set EDGE_EPS {edge_eps}" if edge_eps else ""
+    extra = (f" -set EDGE_EPS {edge_eps}" if edge_eps else "") + (f" -set N {terms}" if terms else "")
     c = cells(yosys(f"{reads} chparam -set E {e} -set M {m}{extra} {top}; {flow}; stat", log))
     luts = sum(v for k, v in c.items() if re.fullmatch(r"LUT\d", k))
     srl = sum(v for k, v in c.items() if k.startswith("SRL"))
@@ -116,6 +126,11 @@ def main():
             for top in OPERATORS + ["isect_unit"]:
                 jobs[("x", top, m)] = pool.submit(xilinx, top, 7, m)
         jobs[("x", "isect_unit", f"16:edge{ROBUST_EDGE_EPS}")] = pool.submit(xilinx, "isect_unit", 7, 16, ROBUST_EDGE_EPS)
+        for n in SUM_TERMS:
+            jobs[("x", "f24_sum_exact", f"16:n{n}")] = pool.submit(xilinx, "f24_sum_exact", 7, 16, 0, n)
+        for m in SUM_WIDTHS:
+            if m != 16:
+                jobs[("x", "f24_sum_exact", f"{m}:n9")] = pool.submit(xilinx, "f24_sum_exact", 7, m, 0, 9)
         res = {}
         for k, f in jobs.items():
             res[k] = f.result()
@@ -169,8 +184,40 @@ def write(res):
            f"isect_unit at e7m16 with EDGE_EPS = {ROBUST_EDGE_EPS} (u, v >= -2^-{ROBUST_EDGE_EPS}, u + v <= 1 + 2^-{ROBUST_EDGE_EPS}): "
            f"{robust['luts']} LUTs / {robust['dsp']} DSP against {exact['luts']} / {exact['dsp']} for the exact bounds "
            f"({robust['luts'] - exact['luts']:+d} LUTs); the latency and issue rate are unchanged."]
+    md += accuracy_section(res)
     open(os.path.join(ROOT, "docs", "synth.md"), "w").write("\n".join(md) + "\n")
     print("\n".join(md))
+
+
+def accuracy_section(res):
+    """The exact dot product and the area of the accuracy datapath (docs/numerics.md)."""
+    add, mul = res[("x", "f24_add", 16)], res[("x", "f24_mul", 16)]
+    md = ["", "## Accuracy datapath (docs/numerics.md)", "",
+          "The exact dot product `f24_sum_exact` (rtl/f24_sum_exact.sv: N exact products, a 128-bit window, a "
+          "double-word result; its N multipliers included), at e7m16 by term count and with 9 terms across widths:", "",
+          "| module | LUTs | DSP48E1 | CARRY4 |", "|---|---:|---:|---:|"]
+    for n in SUM_TERMS:
+        x = res[("x", "f24_sum_exact", f"16:n{n}")]
+        md.append(f"| f24_sum_exact, e7m16, {n} terms | {x['luts']} | {x['dsp']} | {x['carry4']} |")
+    for m in SUM_WIDTHS:
+        if m != 16:
+            x = res[("x", "f24_sum_exact", f"{m}:n9")]
+            md.append(f"| f24_sum_exact, e7m{m}, 9 terms | {x['luts']} | {x['dsp']} | {x['carry4']} |")
+    md += ["", "The fix composed from them and the operators above (e7m16; an exact sum's own multipliers "
+           "counted, although the transformation unit's wide mode would reuse its 9):", "",
+           "| unit | exact sums | extra add / mul | LUTs | DSP48E1 |", "|---|---|---:|---:|---:|"]
+    total_l = total_d = 0
+    for unit, (sums, adds, muls) in FIX.items():
+        luts = sum(k * res[("x", "f24_sum_exact", f"16:n{n}")]["luts"] for n, k in sums.items()) + adds * add["luts"] + muls * mul["luts"]
+        dsp = sum(k * res[("x", "f24_sum_exact", f"16:n{n}")]["dsp"] for n, k in sums.items()) + adds * add["dsp"] + muls * mul["dsp"]
+        total_l, total_d = total_l + luts, total_d + dsp
+        md.append(f"| {unit} | " + ", ".join(f"{k} x {n} terms" for n, k in sums.items()) +
+                  f" | {adds} / {muls} | {luts} | {dsp} |")
+    base = sum(res[("x", u, 16)]["luts"] for u in UNITS)
+    md.append(f"| **total** | | | **{total_l}** | **{total_d}** |")
+    md += ["", f"Against the three datapaths above ({base} LUTs) the fix adds {100 * total_l / max(1, base):.0f}% of their "
+           "LUTs; the intersection unit's test itself gains one adder (t = te + t', in rtl/isect_unit.sv)."]
+    return md
 
 
 if __name__ == "__main__":
