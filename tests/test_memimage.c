@@ -226,10 +226,12 @@ static void instancing_end_to_end(void **state)
         const scene_instance *si = &s.instances[i];
         for (uint32_t t = 0; t < obj[MI_O_N_TRIANGLES]; t++) {
             const uint32_t tw = obj[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * t;
+            const f24_triangle rec = f24_triangle_load(w, tw);
+            const f24_t c_lo[3] = { rec.c_lo.x, rec.c_lo.y, rec.c_lo.z };
             for (int r = 0; r < 3; r++) {
                 for (int c = 0; c < 4; c++)
-                    tri.m[r][c] = f24d(f24_record_get(w, tw, (uint32_t)(4 * r + c)));
-                tri.m[r][3] += f24d(f24_record_get(w, tw, 12u + (uint32_t)r)); /* C's low word */
+                    tri.m[r][c] = f24d(rec.m.m[r][c]);
+                tri.m[r][3] += f24d(c_lo[r]); /* C's low part */
             }
             const scene_mesh *m = &s.meshes[0];
             for (int k = 0; k < 3; k++) { /* image triangle t is mesh triangle t (the degenerate one is last) */

@@ -31,8 +31,8 @@ load_rows:
 }
 
 /* A triangle as the intersection path sees it: M^-1 in columns 0..2 of m, its vertex C in column 3
- * (high words) and c_lo (low words): the record of F24_TRIANGLE_RECORD_WORDS words
- * (docs/memory-image.md). */
+ * (high words) and c_lo (low words, decoded from the record's fields): the record of
+ * F24_TRIANGLE_RECORD_WORDS words (docs/memory-image.md). */
 typedef struct {
     f24_affine m;
     f24_vec3 c_lo;
@@ -45,9 +45,10 @@ load_record:
     for (uint32_t i = 0; i < 3; i++)
         for (uint32_t j = 0; j < 4; j++)
             t.m.m[i][j] = f24_record_get(mem, addr, 4 * i + j);
-    t.c_lo.x = f24_record_get(mem, addr, 12);
-    t.c_lo.y = f24_record_get(mem, addr, 13);
-    t.c_lo.z = f24_record_get(mem, addr, 14);
+    const uint32_t lo = F24_TRIANGLE_VALUES * F24_WIDTH;
+    t.c_lo.x = f24_vertex_lo(f24_record_field(mem, addr, lo, F24_VERTEX_LO_BITS), t.m.m[0][3]);
+    t.c_lo.y = f24_vertex_lo(f24_record_field(mem, addr, lo + F24_VERTEX_LO_BITS, F24_VERTEX_LO_BITS), t.m.m[1][3]);
+    t.c_lo.z = f24_vertex_lo(f24_record_field(mem, addr, lo + 2 * F24_VERTEX_LO_BITS, F24_VERTEX_LO_BITS), t.m.m[2][3]);
     return t;
 }
 

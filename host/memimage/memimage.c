@@ -467,16 +467,29 @@ static uint32_t triangles_at(const mi_object *o)
     return (end + MI_TRIANGLE_WORDS - 1) / MI_TRIANGLE_WORDS * MI_TRIANGLE_WORDS;
 }
 
-/* M^-1 rounded, the vertex C (column 3) in a high and a low word (a binary32 vertex exactly). */
+/* The record field of C - hi for a vertex component C with high word hi: the multiple k of
+ * 2^-8 ulp(hi) nearest to it (f24_vertex_lo decodes; exact for a binary32 vertex). */
+static uint32_t vertex_lo_field(double c, f24_t hi)
+{
+    if (f24_exp(hi) == 0 || f24_exp(hi) == F24_EXP_MAX)
+        return 0;
+    const double unit = ldexp(1.0, (int)f24_exp(hi) - F24_BIAS - F24_MAN_BITS - F24_VERTEX_LO_SHIFT);
+    const double k = fmin(fmax(nearbyint((c - f24_fast_decode(hi)) / unit), -256), 255);
+    return (uint32_t)(int32_t)k;
+}
+
+/* M^-1 rounded, the vertex C (column 3) in a high word and the low part's field. */
 static void put_triangle(uint32_t *w, const affine *a)
 {
     f24_t v[F24_TRIANGLE_VALUES];
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < 3; i++)
         for (int j = 0; j < 4; j++)
             v[i * 4 + j] = f24w(a->m[i][j]);
-        v[12 + i] = f24w(a->m[i][3] - f24_fast_decode(v[i * 4 + 3]));
-    }
+    memset(w, 0, MI_TRIANGLE_WORDS * sizeof *w);
     f24_record_put(w, v, F24_TRIANGLE_VALUES);
+    for (int i = 0; i < 3; i++)
+        f24_record_put_field(w, F24_TRIANGLE_VALUES * F24_WIDTH + (uint32_t)i * F24_VERTEX_LO_BITS, F24_VERTEX_LO_BITS,
+                             vertex_lo_field(a->m[i][3], v[i * 4 + 3]));
 }
 
 /* Geometry block: nodes, leaf lists, padding, triangle transformations, shading records. */
