@@ -62,12 +62,14 @@ def one(fmt, stem):
     s = f"{stem}_{fmt}"
     cmp = run(os.path.join(BUILD, "w", fmt, "saarcor"), ["compare", s + ".png", stem + "_ref.png", "--threshold", "0.0157"])
     same = open(s + ".png", "rb").read() == open(s + "_cycle.png", "rb").read()
+    hits = json.load(open(s + "_hits.json"))
     return {"format": fmt, "functional_s": seconds(s + ".log"), "cycle_s": seconds(s + "_cycle.log"),
             "cycles": json.load(open(s + "_cycle.json"))["cycle"]["cycles"],
             "psnr_db": float(re.search(r"psnr_db (\S+)", cmp).group(1)),
             "max_error": float(re.search(r"max_abs_error (\S+)", cmp).group(1)),
             "differing_pct": float(re.search(r"\(([0-9.]+)%\)", cmp).group(1)),
-            "hit_agreement": json.load(open(s + "_hits.json"))["agreement"], "modes_identical": same}
+            "hit_agreement": hits["agreement"], "hit_agreement_unambiguous": hits.get("agreement_unambiguous"),
+            "uv_p99": hits["uv_error"]["p99"], "modes_identical": same}
 
 
 def side_tables():
@@ -82,8 +84,9 @@ def side_tables():
     try:
         syn = json.load(open(os.path.join(BUILD, "synth", "synth.json")))
         for fmt, m in FORMATS[:-1]:
+            sum9 = syn.get(f"x:f24_sum_exact:e7m{m}:n9", {}).get("luts")
             area[fmt] = (sum(syn[f"x:{op}:e7m{m}"]["luts"] for op in ("f24_add", "f24_mul", "f24_div", "f24_cmp")),
-                         syn[f"x:isect_unit:e7m{m}"]["luts"])
+                         syn[f"x:isect_unit:e7m{m}"]["luts"], sum9)
     except (OSError, ValueError, KeyError):
         pass
     return {k: l / n for k, (n, l) in leaks.items()}, area
@@ -137,7 +140,10 @@ def main():
                         (f"{ranks - 1} renders at a time ({ranks} MPI ranks). " if ranks else "two renders at a time. ") +
                         "Truth: the binary64 reference (tb/ref; an fp64 build of the units is impossible with 32-bit memory "
                         "words). *leaks*: edge leak rate of the stress suite at that width (make stress); *area*: LUTs of "
-                        "one f24 add + mul + div + cmp / of isect_unit (make synth, E = 7). e8m23 is the binary32 layout "
+                        "one f24 add + mul + div + cmp / of isect_unit / of the accuracy datapath's 9-term exact dot "
+                        "product f24_sum_exact where synthesized (make synth, E = 7; docs/numerics.md). *unambiguous*: "
+                        "primary-hit agreement over the rays whose answers are not ambiguous, *uv p99*: barycentric error "
+                        "(saarcor compare-hits on the units' rays). e8m23 is the binary32 layout "
                         "(fp32, subnormals flushed).", ""]
     scenes = []
     for name, scene, opts, _ in SCENES:
@@ -162,15 +168,18 @@ def main():
         md += [f"## {name}", "", f"![{name}]({plot(out, key, rows)})", "", f"**{verdict}** (knee: the smallest M from "
                "which on every wider format has at most 0.1% of pixels off by more than 4/255 and at least 99.9% "
                "primary hit agreement with the binary64 reference).", "",
-               "| format | functional s | cycle s | Mcycles/frame | PSNR dB | max error | pixels > 4/255 | hit agreement | modes identical | edge leaks | area ops / isect LUTs |",
-               "|---|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|"]
+               "| format | functional s | cycle s | Mcycles/frame | PSNR dB | max error | pixels > 4/255 | hit agreement | unambiguous | uv p99 | modes identical | edge leaks | area ops / isect / exact sum LUTs |",
+               "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|"]
         for r in rows:
             r.update(scene=name, knee_m=k, edge_leak_rate=leaks.get(r["format"]), area_luts=area.get(r["format"]))
             lk = f"{100 * r['edge_leak_rate']:.2f}%" if r["edge_leak_rate"] is not None else "-"
-            ar = f"{r['area_luts'][0]} / {r['area_luts'][1]}" if r["area_luts"] else "-"
+            ar = (f"{r['area_luts'][0]} / {r['area_luts'][1]} / {r['area_luts'][2] if r['area_luts'][2] else '-'}"
+                  if r["area_luts"] else "-")
+            ua = r["hit_agreement_unambiguous"]
             label = r["format"] + (" (fp32)" if r["format"] == "e8m23" else "")
             md.append(f"| {label} | {r['functional_s']:.2f} | {r['cycle_s']:.2f} | {r['cycles'] / 1e6:.2f} | {r['psnr_db']:.2f} | "
                       f"{r['max_error']:.3f} | {r['differing_pct']:.3f}% | {100 * r['hit_agreement']:.3f}% | "
+                      f"{f'{100 * ua:.3f}%' if ua is not None else '-'} | {r['uv_p99']:.1e} | "
                       f"{'yes' if r['modes_identical'] else '**no**'} | {lk} | {ar} |")
         md.append("")
         all_rows += rows
