@@ -52,13 +52,14 @@ static int finite_words(const checker *c, uint32_t at, uint32_t n)
 }
 
 /* A packed record of n values (f24_record.h): every value finite, the bits after the last zero. */
-static int finite_record(const checker *c, uint32_t at, uint32_t n)
+/* n finite values, then fields up to bit `bits` of the record, then zero padding bits. */
+static int finite_record(const checker *c, uint32_t at, uint32_t n, uint32_t bits)
 {
     for (uint32_t i = 0; i < n; i++)
         if (!finite_f24(f24_record_get(c->w, at, i)))
             return 0;
-    const uint32_t used = n * F24_WIDTH % 32;
-    return used == 0 || c->w[at + F24_RECORD_WORDS(n) - 1] >> used == 0;
+    const uint32_t used = bits % 32;
+    return used == 0 || c->w[at + (bits + 31) / 32 - 1] >> used == 0;
 }
 
 static int check_header(checker *c)
@@ -285,7 +286,7 @@ static int check_objects(checker *c)
             ((c->accel & MI_ACCEL_GRID) && check_grid(c, what, r, d[MI_O_GRID], nt) != 0))
             return -1;
         for (uint32_t t = 0; t < nt; t++)
-            if (!finite_record(c, d[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * t, 12))
+            if (!finite_record(c, d[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * t, F24_TRIANGLE_VALUES, F24_TRIANGLE_BITS))
                 return bad(c, "%s: triangle transformation %u is not finite or has nonzero padding bits", what, t);
         for (uint32_t t = 0; t < nt; t++)
             if (!shading_record_ok(c, d[MI_O_SHADING] + shade_rec_words(d[MI_O_FLAGS]) * t, d[MI_O_FLAGS], n_mat))
