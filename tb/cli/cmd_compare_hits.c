@@ -27,6 +27,7 @@
 typedef struct {
     uint64_t rays, both_miss, same, different, units_only, ref_only, ambiguous;
     double *t_err, *uv_err; /* per same-triangle hit */
+    FILE *classes;          /* --classes: one line per pixel whose answers differ */
 } hit_stats;
 
 static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -98,9 +99,9 @@ static double quantile(const double *v, uint64_t n, double q)
     return n ? v[(uint64_t)fmin((double)n - 1, floor(q * (double)n))] : NAN;
 }
 
-/* One ray (o, d): the units' hit h (image indices) against the reference's. */
-static void tally(const mi_builder *b, const ref_scene *rs, const double o[3], const double d[3], const hit_record *h,
-                  const ref_hit *r, hit_stats *st)
+/* One ray (o, d) of pixel (x, y): the units' hit h (image indices) against the reference's. */
+static void tally(const mi_builder *b, const ref_scene *rs, const double o[3], const double d[3], uint32_t x, uint32_t y,
+                  const hit_record *h, const ref_hit *r, hit_stats *st)
 {
     st->rays++;
     const int uh = h->instance != TRACE_NO_HIT, rh = r->instance != UINT32_MAX;
@@ -112,7 +113,10 @@ static void tally(const mi_builder *b, const ref_scene *rs, const double o[3], c
         st->units_only += uh && !rh;
         st->ref_only += rh && !uh;
         st->different += uh && rh;
-        st->ambiguous += (uh || rh) && ambiguous(rs, o, d, uh, si, tri, r);
+        const int amb = (uh || rh) && ambiguous(rs, o, d, uh, si, tri, r);
+        st->ambiguous += amb;
+        if (st->classes && (uh || rh))
+            fprintf(st->classes, "%u %u %s\n", x, y, amb ? "ambiguous" : "disagree");
         return;
     }
     const double t = f24_fast_decode(h->t), du = f24_fast_decode(h->u) - r->u, dv = f24_fast_decode(h->v) - r->v;
@@ -154,7 +158,7 @@ static int compare(const mi_builder *b, const ref_scene *r, const ref_params *p,
                     }
                 }
                 ref_intersect(r, o, d, 0, INFINITY, &rh);
-                tally(b, r, o, d, &h[i], &rh, st);
+                tally(b, r, o, d, x + (uint32_t)(i & 1), y + (uint32_t)(i >> 1), &h[i], &rh, st);
             }
         }
     return SAARCOR_EXIT_OK;
@@ -203,9 +207,10 @@ int cmd_compare_hits(int argc, char **argv)
 {
     static const struct option opts[] = { SCENE_LONG_OPTIONS, { "json", required_argument, NULL, 'j' },
                                           { "camera-rays", no_argument, NULL, 'c' },
+                                          { "classes", required_argument, NULL, 'C' },
                                           { "help", no_argument, NULL, 'h' }, { 0, 0, 0, 0 } };
     scene_opts o;
-    const char *json_path = NULL;
+    const char *json_path = NULL, *classes_path = NULL;
     int c, camera_rays = 0;
     scene_opts_default(&o);
     optind = 0;
@@ -219,8 +224,9 @@ int cmd_compare_hits(int argc, char **argv)
         switch (c) {
         case 'j': json_path = optarg; break;
         case 'c': camera_rays = 1; break;
+        case 'C': classes_path = optarg; break;
         case 'h':
-            printf("usage: saarcor compare-hits SCENE [--json FILE] [--camera-rays] [scene options]\n\n"
+            printf("usage: saarcor compare-hits SCENE [--json FILE] [--camera-rays] [--classes FILE] [scene options]\n\n"
                    "Traces every pixel's primary ray through the hardware units (fp24) and with the\n"
                    "double-precision reference (own BVH, watertight test) and reports the agreement of\n"
                    "the hit triangle (same instance and mesh triangle, or both miss), also over the rays\n"
@@ -228,7 +234,8 @@ int cmd_compare_hits(int argc, char **argv)
                    "barycentric 1e-3: shared edges, coplanar overlaps, grazes), the rays only one side\n"
                    "hits, and the relative t error and barycentric error (max |du|, |dv|) over the rays\n"
                    "that hit the same triangle (median, p90, p99, max). Both trace the units' fp24 ray;\n"
-                   "--camera-rays gives the reference its own binary64 ray through the pixel.\n"
+                   "--camera-rays gives the reference its own binary64 ray through the pixel. --classes\n"
+                   "writes a line 'x y ambiguous|disagree' for every pixel whose answers differ.\n"
                    "--json writes the same.\n\n%s",
                    SCENE_OPTIONS_HELP);
             return SAARCOR_EXIT_OK;
@@ -246,11 +253,15 @@ int cmd_compare_hits(int argc, char **argv)
         return rc;
     ref_params p;
     const size_t n = (size_t)o.mi.width * o.mi.height;
-    hit_stats st = { 0, 0, 0, 0, 0, 0, 0, malloc(n * sizeof(double)), malloc(n * sizeof(double)) };
+    hit_stats st = { 0, 0, 0, 0, 0, 0, 0, malloc(n * sizeof(double)), malloc(n * sizeof(double)), NULL };
     FILE *json = NULL;
     if (!st.t_err || !st.uv_err || ref_params_init(&p, b, &r, 0, 0) != 0) {
         cli_error("compare-hits", "out of memory");
         rc = SAARCOR_EXIT_INTERNAL;
+    } else if (classes_path && !(st.classes = fopen(classes_path, "w"))) {
+        cli_error("compare-hits", "cannot write '%s'", classes_path);
+        rc = SAARCOR_EXIT_INPUT;
+        ref_params_free(&p);
     } else {
         rc = compare(b, &r, &p, camera_rays, &st);
         if (rc == SAARCOR_EXIT_OK && json_path && !(json = fopen(json_path, "w"))) {
@@ -261,6 +272,10 @@ int cmd_compare_hits(int argc, char **argv)
             report(o.scene, &st, json);
         if (json && fclose(json) != 0) {
             cli_error("compare-hits", "cannot write '%s'", json_path);
+            rc = SAARCOR_EXIT_INPUT;
+        }
+        if (st.classes && fclose(st.classes) != 0) {
+            cli_error("compare-hits", "cannot write '%s'", classes_path);
             rc = SAARCOR_EXIT_INPUT;
         }
         ref_params_free(&p);

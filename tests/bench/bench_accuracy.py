@@ -9,8 +9,18 @@ t error and barycentric error (`saarcor compare-hits`). Both renderers run with 
 their times are wall-clock seconds of one run (including nothing but the frame). Writes
 OUT/accuracy.md and OUT/accuracy.json; if OUT/render.json (make bench-render) exists, its Embree
 primary-ray times are put beside ours.
+
+Then the golden scenes (tests/golden/images/cases.txt, at their sizes), per pixel: every pixel
+whose fp24 image differs from the reference's by more than 4/255 is classified by its primary
+hit (`compare-hits --classes`, on the units' fp24 ray and with --camera-rays on the reference's
+binary64 one): a clear disagreement on the same fp24 ray (an error of the intersection path), an
+ambiguous answer on it (both hits right within the tolerances: a shared edge, a coplanar overlap,
+a graze; docs/numerics.md), a sub-ulp ray (the answers agree on the fp24 ray and differ only
+with the binary64 camera ray: the RGS's rounding of the primary ray), or the same hit (the
+difference then comes from shading or secondary rays); and the PSNR over the pixels that are
+neither ambiguous nor sub-ulp. `--golden-only` runs this table alone (OUT/accuracy_golden.md).
 """
-import json, os, re, subprocess, sys
+import json, math, os, re, subprocess, sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 BIN = os.path.join(ROOT, "build", "saarcor")
@@ -58,9 +68,100 @@ def bench(name, scene, opts, out):
     }
 
 
+def read_ppm(path):
+    """Width, height and bytes of a binary PPM (P6, 8 bits), as `saarcor compare --diff X.ppm` writes."""
+    data = open(path, "rb").read()
+    fields, pos = [], 0
+    while len(fields) < 4:
+        while data[pos:pos + 1].isspace():
+            pos += 1
+        if data[pos:pos + 1] == b"#":
+            pos = data.index(b"\n", pos)
+            continue
+        end = pos
+        while not data[end:end + 1].isspace():
+            end += 1
+        fields.append(data[pos:end])
+        pos = end
+    return int(fields[1]), int(fields[2]), data[pos + 1:]
+
+
+def golden_case(name, scene, opts, out):
+    """One golden case: differing pixels by the class of their primary hit, PSNR with and without the ambiguous ones."""
+    stem = os.path.join(out, "accuracy_golden", name)
+    os.makedirs(os.path.dirname(stem), exist_ok=True)
+    run(["render", scene, "-o", stem + ".png", "--threads", "2"] + opts)
+    run(["reference", scene, "-o", stem + ".ref.exr", "--png", stem + ".ref.png", "--threads", "2"] + opts)
+    cmp = run(["compare", stem + ".png", stem + ".ref.png", "--threshold", "0.0157", "--diff", stem + ".diff.ppm"])
+    run(["compare-hits", scene, "--classes", stem + ".classes"] + opts)
+    run(["compare-hits", scene, "--camera-rays", "--classes", stem + ".camera.classes"] + opts)
+    w, h, px = read_ppm(stem + ".diff.ppm")
+    cls = {}
+    for path, on_camera_ray in ((stem + ".camera.classes", True), (stem + ".classes", False)):
+        for line in open(path):
+            x, y, c = line.split()
+            cls[(int(x), int(y))] = "sub-ulp" if on_camera_ray else c  # the fp24 ray's verdict wins
+    count = {"ambiguous": 0, "disagree": 0, "sub-ulp": 0, "same": 0}
+    sq_all = sq_clear = 0.0
+    clear = 0
+    for y in range(h):
+        for x in range(w):
+            d = px[3 * (y * w + x):3 * (y * w + x) + 3]
+            sq = sum((v / 255) ** 2 for v in d)
+            c = cls.get((x, y), "same")
+            sq_all += sq
+            if c not in ("ambiguous", "sub-ulp"):
+                sq_clear += sq
+                clear += 1
+            if max(d) >= 5:  # more than 4/255
+                count[c] += 1
+    psnr = lambda s, n: 10 * math.log10(3 * n / s) if s > 0 else math.inf
+    return {"case": name, "psnr_db": float(re.search(r"psnr_db (\S+)", cmp).group(1)),
+            "psnr_unambiguous_db": psnr(sq_clear, clear), "differing": sum(count.values()),
+            "differing_ambiguous": count["ambiguous"], "differing_disagree": count["disagree"],
+            "differing_sub_ulp": count["sub-ulp"], "differing_same_hit": count["same"],
+            "ambiguous_or_sub_ulp_pixels": sum(1 for c in cls.values() if c != "disagree")}
+
+
+def golden_table(out):
+    cases = os.path.join(ROOT, "tests", "golden", "images", "cases.txt")
+    rows = []
+    for line in open(cases):
+        if not line.strip() or line.startswith("#"):
+            continue
+        name, scene, opts = (f.strip() for f in line.split("|")[:3])
+        if scene.startswith("../shared/") and not os.path.exists(os.path.join(ROOT, scene)):
+            print(f"bench-accuracy: golden {name}: skipped ({scene} absent)", file=sys.stderr)
+            continue
+        print(f"bench-accuracy: golden {name} ...", file=sys.stderr, flush=True)
+        rows.append(golden_case(name, os.path.join(ROOT, scene) if scene.startswith("..") else scene, opts.split(), out))
+    md = ["## Golden scenes, per pixel", "",
+          "The cases of tests/golden/images/cases.txt at their sizes: fp24 image against the binary64 reference. Each "
+          "pixel differing by more than 4/255 is classified by its primary hit (`saarcor compare-hits --classes`, on "
+          "the units' fp24 ray, and with `--camera-rays` on the reference's binary64 ray through the pixel): *clear "
+          "disagreement* on the same fp24 ray (an error of the intersection path), *ambiguous* on it (both answers "
+          "right within distance 1e-4 (t + |o|) and barycentric 1e-3: a shared edge, a coplanar overlap, a graze), "
+          "*sub-ulp ray* (the answers agree on the fp24 ray and differ only with the binary64 one: the rounding of "
+          "the primary ray itself), or *same hit* (shading or secondary rays). *PSNR unambiguous*: over the pixels "
+          "that are neither ambiguous nor sub-ulp.", "",
+          "| case | PSNR dB | PSNR unambiguous dB | pixels > 4/255 | ambiguous | sub-ulp ray | clear disagreement | same hit |",
+          "|---|---:|---:|---:|---:|---:|---:|---:|"]
+    for r in rows:
+        md.append(f"| {r['case']} | {r['psnr_db']:.2f} | {r['psnr_unambiguous_db']:.2f} | {r['differing']} | "
+                  f"{r['differing_ambiguous']} | {r['differing_sub_ulp']} | {r['differing_disagree']} | "
+                  f"{r['differing_same_hit']} |")
+    return rows, md
+
+
 def main():
     out = sys.argv[sys.argv.index("--out") + 1] if "--out" in sys.argv else os.path.join(ROOT, "build", "bench")
     os.makedirs(out, exist_ok=True)
+    golden_rows, golden_md = golden_table(out)
+    if "--golden-only" in sys.argv:
+        json.dump(golden_rows, open(os.path.join(out, "accuracy_golden.json"), "w"), indent=1)
+        open(os.path.join(out, "accuracy_golden.md"), "w").write("\n".join(golden_md) + "\n")
+        print("\n".join(golden_md))
+        return
     embree = {}
     try:
         embree = {s["scene"]: s for s in json.load(open(os.path.join(out, "render.json")))["scenes"]}
@@ -77,7 +178,8 @@ def main():
         r["embree_primary_seconds"] = e["embree_s"] if e else None
         r["units_primary_seconds_1thread"] = e["units_trace_s"] if e else None
         rows.append(r)
-    json.dump({"width": 1024, "height": 768, "scenes": rows}, open(os.path.join(out, "accuracy.json"), "w"), indent=1)
+    json.dump({"width": 1024, "height": 768, "scenes": rows, "golden": golden_rows},
+              open(os.path.join(out, "accuracy.json"), "w"), indent=1)
     with open(os.path.join(out, "accuracy.md"), "w") as md:
         md.write("# fp24 units against the double-precision reference, 1024x768\n\n"
                  "Ray depth 3 with shadows (docs/shading.md); `--ground` for the teapot, bunny and truck. "
@@ -96,6 +198,7 @@ def main():
                      f"{r['uv_error']['median']:.1e} / {r['uv_error']['max']:.1e} | {r['units_seconds']:.2f} | "
                      f"{r['reference_seconds']:.2f} | {fmt(r['units_primary_seconds_1thread'])} | "
                      f"{fmt(r['embree_primary_seconds'])} |\n")
+        md.write("\n" + "\n".join(golden_md) + "\n")
     print(open(os.path.join(out, "accuracy.md")).read())
 
 
