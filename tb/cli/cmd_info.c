@@ -65,7 +65,14 @@ static void print_merge(const mi_stats *st, int merge)
            st->kept_morphing, st->kept_mirrored, st->kept_turned, st->kept_instanced);
 }
 
-static void print_report(const scene *s, const mi_builder *b, const scene_opts *o)
+/* The line of a scene whose image is larger than the device memory (built in the largest one). */
+static void print_fit(const scene_opts *o, uint32_t n_words)
+{
+    printf("fits         no: the image needs %.2f MB, more than the %.2f MB device memory; render it with --mem-mb %u\n",
+           n_words * 4.0 / 1048576.0, (double)o->mi.memory_bytes / 1048576.0, scene_mem_mb_for(n_words));
+}
+
+static void print_report(const scene *s, const mi_builder *b, const scene_opts *o, int fits)
 {
     const mi_stats *st = mi_get_stats(b);
     uint64_t inst_tris = 0;
@@ -88,6 +95,8 @@ static void print_report(const scene *s, const mi_builder *b, const scene_opts *
     printf("memory image %.3f MB of %.1f MB (%.1f%%), %.1f bytes per unique triangle (all regions)\n",
            n_words * 4.0 / 1048576.0, (double)o->mi.memory_bytes / 1048576.0,
            100.0 * n_words * 4.0 / (double)o->mi.memory_bytes, per_triangle(st, n_words));
+    if (!fits)
+        print_fit(o, n_words);
     for (int r = 0; r < MI_REGION_COUNT; r++)
         printf("  %-17s %10u words %10.1f KB %8.1f B/triangle\n", mi_region_name((mi_region)r), st->region_words[r],
                st->region_words[r] * 4.0 / 1024.0, per_triangle(st, st->region_words[r]));
@@ -123,7 +132,10 @@ static int write_json(const char *path, const scene_opts *o, const mi_builder *b
     fprintf(f, "  \"transform_seconds\": %.6f,\n  \"regions\": {", st->transform_seconds);
     for (int r = 0; r < MI_REGION_COUNT; r++)
         fprintf(f, "%s\"%s\": %u", r ? ", " : "", mi_region_name((mi_region)r), st->region_words[r]);
-    fprintf(f, "},\n  \"bytes_per_triangle\": {\"total\": %.4f", per_triangle(st, n_words));
+    fprintf(f, "},\n  \"image_bytes\": %llu, \"device_memory_bytes\": %llu, \"fits\": %s, \"mem_mb_needed\": %u,",
+            4ull * n_words, (unsigned long long)o->mi.memory_bytes, 4ull * n_words <= o->mi.memory_bytes ? "true" : "false",
+            scene_mem_mb_for(n_words));
+    fprintf(f, "\n  \"bytes_per_triangle\": {\"total\": %.4f", per_triangle(st, n_words));
     for (int k = 0; k < REC_KINDS; k++)
         fprintf(f, ", \"%s\": %.4f", rec_names[k], per_triangle(st, rec[k]));
     fprintf(f, "},\n  \"frame_upload_bytes\": [");
@@ -229,12 +241,13 @@ int cmd_info(int argc, char **argv)
     if (rc != SAARCOR_EXIT_OK)
         return rc;
     char err[512];
-    mi_builder *b = scene_opts_build(&o, "info", &s, &rc);
+    int fits;
+    mi_builder *b = scene_opts_build(&o, "info", &s, &fits, &rc); /* one too large for the device: reported */
     if (!b) {
         scene_free(&s);
         return rc;
     }
-    print_report(&s, b, &o);
+    print_report(&s, b, &o, fits);
     uint32_t n_words;
     const uint32_t *w = mi_words(b, &n_words);
     if (validate) {

@@ -767,11 +767,12 @@ int cmd_render(int argc, char **argv)
     if (rc != SAARCOR_EXIT_OK)
         return rc;
     char err[512];
-    mi_builder *b = scene_opts_build(&o, "render", &s, &rc);
+    mi_builder *b = scene_opts_build(&o, "render", &s, NULL, &rc);
     if (!b) {
         scene_free(&s);
         return rc;
     }
+    scene_opts_warn_dropped(&o, "render", &s);
     ro.cc.host_threads = ro.threads;
     if (ro.capture && capture_start(ro.capture, ro.capture_limit, err, sizeof err) != 0) {
         cli_error("render", "--capture-unit-io: %s", err);

@@ -18,4 +18,8 @@ int interrupt_signal(void);
 /* "SIGINT" or "SIGTERM" for a caught signal. */
 const char *interrupt_name(int sig);
 
+/* For a command stopped by the caught signal that keeps no output: prints
+ * "saarcor CMD: interrupted by SIGINT: <what>" on stderr and returns its exit code, 128 + the signal. */
+int interrupt_exit(const char *cmd, const char *what);
+
 #endif
