@@ -10,6 +10,7 @@
 #include <stdlib.h>
 
 #include "cli.h"
+#include "interrupt.h"
 #include "scene_opts.h"
 #include "shade_rec.h"
 
@@ -157,6 +158,8 @@ static int run_frames(scene *s, mi_builder *b, const scene_opts *o, const info_o
     char err[512];
     uint32_t rebuilt = 0;
     for (uint32_t f = 0; f < io->frames; f++) {
+        if (interrupt_signal()) /* Ctrl-C: between frames, before the report and --json */
+            return interrupt_exit("info", "frames not reported");
         if (scene_evaluate(s, o->time + (f + 1) / io->fps, 1) != 0 || mi_update(b, s, err, sizeof err) != 0) {
             cli_error("info", "frame %u: %s", f + 1, err);
             return SAARCOR_EXIT_INTERNAL;
@@ -235,6 +238,8 @@ int cmd_info(int argc, char **argv)
     if (cli_parse_only)
         return SAARCOR_EXIT_OK;
     o.scene = argv[optind];
+    if (io.frames && interrupt_catch() != 0)
+        cli_error("info", "cannot catch SIGINT/SIGTERM: Ctrl-C will not stop cleanly");
 
     scene s;
     int rc = scene_opts_load(&o, "info", &s);
