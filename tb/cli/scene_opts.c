@@ -135,15 +135,17 @@ int scene_opts_load(const scene_opts *o, const char *cmd, scene *s)
         cli_error(cmd, "%s", err);
         return SAARCOR_EXIT_INPUT;
     }
+    if ((rc = limits_check_scene(&o->lim, cmd, s, (uint32_t)o->ground)) != SAARCOR_EXIT_OK) {
+        scene_free(s);
+        return rc;
+    }
     if (scene_evaluate(s, o->time, 1) != 0 ||
         (o->ground && (scene_add_ground(s) != 0 || scene_evaluate(s, o->time, 1) != 0))) {
         cli_error(cmd, "out of memory");
         scene_free(s);
         return SAARCOR_EXIT_INTERNAL;
     }
-    if ((rc = limits_check_scene(&o->lim, cmd, s)) != SAARCOR_EXIT_OK)
-        scene_free(s);
-    return rc;
+    return SAARCOR_EXIT_OK;
 }
 
 uint32_t scene_mem_mb_for(uint64_t n_words) { return (uint32_t)((n_words * 4 + (1u << 20) - 1) >> 20); }
@@ -162,6 +164,8 @@ static mi_builder *build_unbound(const scene_opts *o, const scene *s, char *err,
 mi_builder *scene_opts_build(const scene_opts *o, const char *cmd, const scene *s, int *fits, int *rc)
 {
     char err[512], err2[512];
+    if ((*rc = limits_check_depth(&o->lim, cmd, &o->mi, s)) != SAARCOR_EXIT_OK)
+        return NULL;
     mi_builder *b = mi_build(s, &o->mi, err, sizeof err);
     if (fits)
         *fits = b != NULL;
