@@ -190,7 +190,9 @@ static int usage(void)
            "  --fps F         frame rate for --frames (default 30)\n"
            "  --validate      check the memory image with the validator\n"
            "  --json FILE     write the figures as JSON\n"
-           "  --image FILE    write the memory image (little-endian 32-bit words)\n\n%s", SCENE_OPTIONS_HELP);
+           "  --image FILE    write the memory image (little-endian 32-bit words)\n"
+           "  --traversal A   the image for render --traversal A (ropes, grid and grid2 add their\n"
+           "                  structures; default stack)\n\n%s", SCENE_OPTIONS_HELP);
     return SAARCOR_EXIT_OK;
 }
 
@@ -199,7 +201,8 @@ int cmd_info(int argc, char **argv)
     static const struct option opts[] = {
         SCENE_LONG_OPTIONS, SCENE_KD_DEPTH_ALIAS, { "frames", required_argument, NULL, 'f' }, { "fps", required_argument, NULL, 'r' },
         { "validate", no_argument, NULL, 'v' }, { "json", required_argument, NULL, 'j' },
-        { "image", required_argument, NULL, 'i' }, { "help", no_argument, NULL, 'h' }, { 0, 0, 0, 0 }
+        { "image", required_argument, NULL, 'i' }, { "traversal", required_argument, NULL, 'T' },
+        { "help", no_argument, NULL, 'h' }, { 0, 0, 0, 0 }
     };
     scene_opts o;
     info_opts io = { 0, 30.0, NULL, NULL };
@@ -227,6 +230,10 @@ int cmd_info(int argc, char **argv)
         case 'v': validate = 1; break;
         case 'j': io.json = optarg; break;
         case 'i': io.image_out = optarg; break;
+        case 'T':
+            if (scene_opts_traversal(&o, "info", optarg) < 0)
+                return SAARCOR_EXIT_USAGE;
+            break;
         case 'h': return usage();
         default: return cli_bad_option("info", argc, argv);
         }

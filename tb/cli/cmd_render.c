@@ -679,17 +679,10 @@ int cmd_render(int argc, char **argv)
             break;
         case 'S': ro.cfg.shadows = 0; break;
         case 'T': {
-            static const char *const names[TRAV_KINDS] = { "stack", "short-stack", "restart", "push-down",
-                                                           "ropes", "grid", "grid2" };
-            uint32_t k = 0;
-            while (k < TRAV_KINDS && strcmp(optarg, names[k]) != 0)
-                k++;
-            if (k == TRAV_KINDS)
-                return cli_usage_error("render", "bad --traversal '%s' (stack, short-stack, restart, push-down, ropes, "
-                                       "grid or grid2)", optarg);
-            ro.cfg.traversal = k;
-            o.mi.accel = mi_accel_for(k);
-            o.mi.traversal = k;
+            const int k = scene_opts_traversal(&o, "render", optarg);
+            if (k < 0)
+                return SAARCOR_EXIT_USAGE;
+            ro.cfg.traversal = (uint32_t)k;
             break;
         }
         case 'C': ro.capture = optarg; break;

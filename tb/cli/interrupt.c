@@ -31,6 +31,11 @@ int interrupt_catch(void)
     return 0;
 }
 
+void interrupt_set(int sig)
+{
+    atomic_store(&caught, sig);
+}
+
 int interrupt_signal(void)
 {
     return atomic_load(&caught);

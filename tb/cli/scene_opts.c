@@ -12,6 +12,7 @@
 #include "cli.h"
 #include "f24_double.h"
 #include "scenes.h"
+#include "trace.h"
 
 void scene_opts_default(scene_opts *o)
 {
@@ -233,4 +234,18 @@ void scene_opts_warn_dropped(const scene_opts *o, const char *cmd, const scene *
                         "transformation beyond its range, %llu over the condition limit %g (--max-condition)\n", cmd,
                 (unsigned long long)(condition + range), (unsigned long long)range, (unsigned long long)condition,
                 o->mi.max_condition);
+}
+
+int scene_opts_traversal(scene_opts *o, const char *cmd, const char *arg)
+{
+    static const char *const names[TRAV_KINDS] = { "stack", "short-stack", "restart", "push-down", "ropes", "grid",
+                                                   "grid2" };
+    for (uint32_t k = 0; k < TRAV_KINDS; k++)
+        if (strcmp(arg, names[k]) == 0) {
+            o->mi.accel = mi_accel_for(k);
+            o->mi.traversal = k;
+            return (int)k;
+        }
+    cli_usage_error(cmd, "bad --traversal '%s' (stack, short-stack, restart, push-down, ropes, grid or grid2)", arg);
+    return -1;
 }

@@ -89,6 +89,10 @@ uint32_t scene_mem_mb_for(uint64_t n_words);
  * (info reports on it). NULL after printing the error, with the exit code in *rc. */
 mi_builder *scene_opts_build(const scene_opts *o, const char *cmd, const scene *s, int *fits, int *rc);
 
+/* --traversal NAME (render, info): the traversal unit's algorithm (a TRAV_* value) and the
+ * structures it needs in the memory image set in o->mi. -1 after printing a usage error. */
+int scene_opts_traversal(scene_opts *o, const char *cmd, const char *arg);
+
 /* One warning line on stderr if the scene's meshes have triangles the device cannot hold (fp24
  * range or the condition limit; they are dropped from the image), with the counts by reason. */
 void scene_opts_warn_dropped(const scene_opts *o, const char *cmd, const scene *s);
