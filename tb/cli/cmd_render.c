@@ -520,6 +520,8 @@ static int render_frame(const mi_builder *b, const scene *s, const render_opts *
     const int failed = !pixels || (ro->aov && !hits) || (want_costs && !costs) ? -1
                        : ro->cycle ? cycle_render(ro->sim, mem, &ro->cfg, pixels, hits, &fr.sum, &fr.cs, cycle_progress, NULL)
                                    : render_region(mem, &ro->cfg, ro->threads, all, pixels, hits, costs, &fr.sum);
+    if (ro->sim)
+        cycle_set_trace(ro->sim, NULL); /* tr is closed below */
     if (isatty(2) && ro->cycle)
         fprintf(stderr, "\r%*s\r", 14, "");
     fr.secs = now() - t0;

@@ -18,6 +18,7 @@ enum { S_LOOKUPS, S_MISSES, S_FILLS, SIG_PER_CACHE };
 #define NEVER UINT64_MAX
 #define VAL_X UINT64_MAX /* an undefined value: thread_id while the unit is idle */
 #define DEAD UINT32_MAX  /* an event undone by a later change in the same cycle */
+#define CLOCK_ID "!"      /* the clock's identifier: number 0 of sig_id */
 
 typedef struct {
     uint64_t val;          /* the value from the last change on */
@@ -288,14 +289,18 @@ static uint32_t sig_width(const cycle_trace *tr, uint32_t s)
     }
 }
 
-/* VCD identifier of signal s of pipe p (0 is the clock): printable characters, base 94. */
+/* VCD identifier of signal s of pipe p (0 is the clock): printable characters but '#' and '$',
+ * which some readers take for a timestamp or a keyword at the start of a token. */
 static void sig_id(uint32_t p, uint32_t s, char id[8])
 {
+    static const char digits[] = "!\"%&'()*+,-./0123456789:;<=>?@ABCDEFGHIJKLMNOPQRSTUVWXYZ[\\]^_`"
+                                 "abcdefghijklmnopqrstuvwxyz{|}~";
+    const uint64_t base = sizeof digits - 1;
     uint64_t n = (uint64_t)p * SIGS + s + 1;
     int k = 0;
     do {
-        id[k++] = (char)('!' + n % 94);
-        n /= 94;
+        id[k++] = digits[n % base];
+        n /= base;
     } while (n && k < 7);
     id[k] = 0;
 }
@@ -335,7 +340,7 @@ static void write_header(cycle_trace *tr)
                "cycles %llu to %llu $end\n",
             tr->cfg.pipes, tr->cfg.threads_per_pipe, tr->cfg.mem.clock_mhz, (unsigned long long)(2 * tr->half_ps),
             (unsigned long long)tr->from, (unsigned long long)tr->to - 1);
-    fprintf(f, "$timescale 1ps $end\n$scope module dynrtc $end\n$var wire 1 ! clk $end\n");
+    fprintf(f, "$timescale 1ps $end\n$scope module dynrtc $end\n$var wire 1 %s clk $end\n", CLOCK_ID);
     for (uint32_t p = 0; p < tr->cfg.pipes; p++) {
         fprintf(f, "$scope module pipe%u $end\n", p);
         for (uint32_t u = 0; u < UNIT_KINDS; u++) {
@@ -362,7 +367,7 @@ static void write_header(cycle_trace *tr)
 /* The values at the window's first cycle. */
 static void write_start(cycle_trace *tr)
 {
-    fprintf(tr->vcd, "#%llu\n$dumpvars\n1!\n", (unsigned long long)(tr->from * 2 * tr->half_ps));
+    fprintf(tr->vcd, "#%llu\n$dumpvars\n1%s\n", (unsigned long long)(tr->from * 2 * tr->half_ps), CLOCK_ID);
     for (uint32_t p = 0; p < tr->cfg.pipes; p++)
         for (uint32_t s = 0; s < SIGS; s++) {
             char id[8];
@@ -380,11 +385,11 @@ static void time_to(cycle_trace *tr, uint64_t c)
     const uint64_t cycle_ps = 2 * tr->half_ps;
     for (uint64_t k = tr->cur; k < c; k++) {
         if (k != tr->cur)
-            fprintf(tr->vcd, "#%llu\n1!\n", (unsigned long long)(k * cycle_ps));
-        fprintf(tr->vcd, "#%llu\n0!\n", (unsigned long long)(k * cycle_ps + tr->half_ps));
+            fprintf(tr->vcd, "#%llu\n1%s\n", (unsigned long long)(k * cycle_ps), CLOCK_ID);
+        fprintf(tr->vcd, "#%llu\n0%s\n", (unsigned long long)(k * cycle_ps + tr->half_ps), CLOCK_ID);
     }
     if (c != tr->cur)
-        fprintf(tr->vcd, "#%llu\n1!\n", (unsigned long long)(c * cycle_ps));
+        fprintf(tr->vcd, "#%llu\n1%s\n", (unsigned long long)(c * cycle_ps), CLOCK_ID);
     tr->cur = c;
 }
 
