@@ -170,15 +170,14 @@ assert all(b[k] > 0 for k in ('kd_nodes', 'lists', 'triangle_transformations', '
   expect 3 "$BIN" render "$T/dir.glb" -o "$T/d.png"; one_line_error; has 'is a directory' "$T/err"
   printf '{"asset":{"version":"2.0"},"meshes":[' >"$T/bad.gltf"
   expect 3 "$BIN" info "$T/bad.gltf"; one_line_error
-  expect 3 "$BIN" info terrain --mem-mb 1; one_line_error; has 'does not fit' "$T/err"
-  # the --mem-mb the message names (a lower bound before the trees are built, then the size) fits
-  local mb=1 i
-  for i in 1 2 3; do
-    "$BIN" info terrain --mem-mb $mb >/dev/null 2>"$T/err" && break
-    mb=$(sed -n 's/.*pass --mem-mb \([0-9]*\).*/\1/p' "$T/err")
-    [[ -n $mb ]] || { echo "no --mem-mb in: $(cat "$T/err")"; return 1; }
-  done
-  "$BIN" info terrain --mem-mb $mb >/dev/null || { echo "--mem-mb $mb, as the message said, does not fit"; return 1; }
+  expect 3 "$BIN" render terrain --mem-mb 1 --width 8 --height 8 -o "$T/t.png"; one_line_error
+  has 'does not fit' "$T/err"
+  # the --mem-mb the message names (the size of the image built in the largest memory) fits at once
+  local mb
+  mb=$(sed -n 's/.*(pass --mem-mb \([0-9]*\))$/\1/p' "$T/err")
+  [[ -n $mb ]] || { echo "no --mem-mb in: $(cat "$T/err")"; return 1; }
+  "$BIN" render terrain --mem-mb "$mb" --width 8 --height 8 -o "$T/t.png" >/dev/null ||
+    { echo "--mem-mb $mb, as the message said, does not fit"; return 1; }
   expect 2 "$BIN" info cornell --mem-mb 0; one_line_error
   expect 2 "$BIN" info cornell --empty-bonus 2; one_line_error
   expect 2 "$BIN" info; one_line_error
