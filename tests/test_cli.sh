@@ -170,15 +170,14 @@ assert all(b[k] > 0 for k in ('kd_nodes', 'lists', 'triangle_transformations', '
   expect 3 "$BIN" render "$T/dir.glb" -o "$T/d.png"; one_line_error; has 'is a directory' "$T/err"
   printf '{"asset":{"version":"2.0"},"meshes":[' >"$T/bad.gltf"
   expect 3 "$BIN" info "$T/bad.gltf"; one_line_error
-  expect 3 "$BIN" info terrain --mem-mb 1; one_line_error; has 'does not fit' "$T/err"
-  # the --mem-mb the message names (a lower bound before the trees are built, then the size) fits
-  local mb=1 i
-  for i in 1 2 3; do
-    "$BIN" info terrain --mem-mb $mb >/dev/null 2>"$T/err" && break
-    mb=$(sed -n 's/.*pass --mem-mb \([0-9]*\).*/\1/p' "$T/err")
-    [[ -n $mb ]] || { echo "no --mem-mb in: $(cat "$T/err")"; return 1; }
-  done
-  "$BIN" info terrain --mem-mb $mb >/dev/null || { echo "--mem-mb $mb, as the message said, does not fit"; return 1; }
+  expect 3 "$BIN" render terrain --mem-mb 1 --width 8 --height 8 -o "$T/t.png"; one_line_error
+  has 'does not fit' "$T/err"
+  # the --mem-mb the message names (the size of the image built in the largest memory) fits at once
+  local mb
+  mb=$(sed -n 's/.*(pass --mem-mb \([0-9]*\))$/\1/p' "$T/err")
+  [[ -n $mb ]] || { echo "no --mem-mb in: $(cat "$T/err")"; return 1; }
+  "$BIN" render terrain --mem-mb "$mb" --width 8 --height 8 -o "$T/t.png" >/dev/null ||
+    { echo "--mem-mb $mb, as the message said, does not fit"; return 1; }
   expect 2 "$BIN" info cornell --mem-mb 0; one_line_error
   expect 2 "$BIN" info cornell --empty-bonus 2; one_line_error
   expect 2 "$BIN" info; one_line_error
@@ -294,6 +293,50 @@ t_reference() {
   expect 3 "$BIN" reference room -o /nonexistent-dir/x.exr --width 8 --height 8; one_line_error
 }
 
+# a scene larger than the device memory: info reports it all and the --mem-mb to pass, render
+# names that value, the reference is not bound by it
+t_mem_mb() {
+  expect 0 "$BIN" info plants --mem-mb 3 --json "$T/p.json"
+  has '^memory image' "$T/out"; has '^bottom level' "$T/out"
+  has '^fits         no: the image needs 3.75 MB, more than the 3.00 MB device memory; render it with --mem-mb 4$' "$T/out"
+  python3 -c "import json; j=json.load(open('$T/p.json')); assert not j['fits'] and j['mem_mb_needed'] == 4, j"
+  expect 3 "$BIN" render plants --mem-mb 3 --width 32 --height 24 -o "$T/p.png"; one_line_error
+  has 'the image needs 3.75 MB (pass --mem-mb 4)$' "$T/err"
+  expect 3 "$BIN" render plants --mem-mb 1 --width 32 --height 24 -o "$T/p.png"; one_line_error
+  has '(pass --mem-mb 4)$' "$T/err"
+  expect 0 "$BIN" render plants --mem-mb 4 --width 32 --height 24 -o "$T/p.png"
+  expect 0 "$BIN" reference plants --mem-mb 1 --width 32 --height 24 -o "$T/p.exr"
+  expect 0 "$BIN" info plants --json "$T/f.json"
+  python3 -c "import json; j=json.load(open('$T/f.json')); assert j['fits'], j"
+}
+
+# triangles the device cannot hold: one warning line with the count and the reasons
+t_dropped_warning() {
+  python3 - "$T/d.gltf" <<'PY'
+import base64, json, struct, sys
+# an ordinary triangle; a tiny one (its transformation overflows fp24); a sliver over the condition
+# limit; one without area (skipped without a word)
+tris = [[(0, 0, 0), (1, 0, 0), (0, 1, 0)], [(0, 0, 3), (1e-20, 0, 3), (0, 1e-20, 3)],
+        [(0, 0, 1), (1, 0, 1), (0.5, 1e-9, 1)], [(0, 0, 2), (1, 0, 2), (2, 0, 2)]]
+pos = [c for t in tris for v in t for c in v]
+data = struct.pack('<%df' % len(pos), *pos)
+g = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+     "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+     "accessors": [{"bufferView": 0, "componentType": 5126, "count": len(pos) // 3, "type": "VEC3",
+                    "min": [min(pos[i::3]) for i in range(3)], "max": [max(pos[i::3]) for i in range(3)]}],
+     "bufferViews": [{"buffer": 0, "byteLength": len(data)}],
+     "buffers": [{"byteLength": len(data), "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}]}
+json.dump(g, open(sys.argv[1], "w"))
+PY
+  expect 0 "$BIN" render "$T/d.gltf" --width 16 --height 16 -o "$T/d.png"
+  [[ $(wc -l <"$T/err") -eq 1 ]]
+  has 'warning: 2 triangles dropped, fp24 cannot hold them: 1 with a transformation beyond its range, 1 over the condition limit' "$T/err"
+  expect 0 "$BIN" render "$T/d.gltf" --width 16 --height 16 -o "$T/d.png" --max-condition 1e30
+  has 'warning: 1 triangles dropped, fp24 cannot hold them: 1 with a transformation beyond its range, 0 over' "$T/err"
+  expect 0 "$BIN" render cornell --width 16 --height 16 -o "$T/c.png"
+  [[ ! -s $T/err ]] || { echo "unexpected stderr:"; cat "$T/err"; return 1; }
+}
+
 run_case cli_help t_help
 run_case cli_bad_usage_exit_2_one_line t_bad_usage
 run_case cli_version t_version
@@ -308,4 +351,6 @@ run_case cli_render_rays t_render_rays
 run_case cli_render_cycle t_render_cycle
 run_case cli_render_traversal t_render_traversal
 run_case cli_reference t_reference
+run_case cli_mem_mb t_mem_mb
+run_case cli_dropped_warning t_dropped_warning
 exit $((fails != 0))

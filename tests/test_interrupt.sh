@@ -3,7 +3,9 @@
 # after its first frames keeps the frames done so far as complete images, says in one line how
 # many were written, exits with 130 (SIGINT) or 143 (SIGTERM) and leaves no temporary file; a
 # single long frame (functional with two threads, and the cycle model) stops at the next block
-# row / epoch within seconds and writes nothing. Prints cmocka-style lines for tests/run.sh.
+# row / epoch within seconds and writes nothing; reference, compare-hits, info --frames, f24verify,
+# stress and jobs stop at their next safe point with 130 and one line. Prints cmocka-style lines
+# for tests/run.sh.
 set -u
 cd "$(dirname "$0")/.."
 BIN=${SAARCOR_BIN:-build/saarcor}
@@ -76,8 +78,41 @@ check_long_frame() { # mode
 t_long_frame_functional() { check_long_frame functional; }
 t_long_frame_cycle() { check_long_frame cycle; }
 
+# check_command MESSAGE OUTPUT ARGS...: saarcor ARGS started in its own process group (as a
+# terminal's foreground job) gets SIGINT after 2 s; it must stop within 30 s with exit 130, the
+# one line "saarcor MESSAGE" on stderr and no OUTPUT file (- for none)
+check_command() {
+  local msg=$1 out=$2; shift 2
+  setsid "$BIN" "$@" >"$T/out" 2>"$T/err" &
+  local pid=$! i rc=0
+  sleep 2
+  kill -INT -- -$pid
+  for ((i = 0; i < 300 && $(kill -0 $pid 2>/dev/null && echo 1 || echo 0); i++)); do sleep 0.1; done
+  kill -0 $pid 2>/dev/null && { kill -KILL -- -$pid; echo "$1: did not stop within 30 s"; return 1; }
+  wait $pid || rc=$?
+  [[ $rc == 130 ]] || { echo "$*: exit $rc, expected 130"; cat "$T/err"; return 1; }
+  [[ $(cat "$T/err") == "saarcor $msg" ]] || { echo "$*: unexpected stderr: $(cat "$T/err")"; return 1; }
+  [[ $out == - || ! -e $out ]] || { echo "$*: $out was written"; return 1; }
+  echo "$1: stopped by SIGINT, exit 130"
+}
+
+t_other_commands() {
+  check_command "reference: interrupted by SIGINT: nothing written" "$T/ref.exr" \
+    reference room --width 3000 --height 2000 -o "$T/ref.exr"
+  check_command "compare-hits: interrupted by SIGINT: nothing written" "$T/h.json" \
+    compare-hits room --width 3000 --height 2000 --json "$T/h.json"
+  check_command "info: interrupted by SIGINT: frames not reported" "$T/i.json" \
+    info animated --frames 100000 --json "$T/i.json"
+  check_command "f24verify: interrupted by SIGINT: the operations above were checked, --json not written" \
+    "$T/v.json" f24verify -n 1e8 --json "$T/v.json"
+  check_command "stress: interrupted by SIGINT: nothing written" "$T/s.json" stress --json "$T/s.json"
+  printf 'sleep 0.5\nsleep 30\nsleep 30\n' >"$T/jobs.txt"
+  check_command "jobs: interrupted by SIGINT: 2 of 3 jobs run" - jobs "$T/jobs.txt"
+}
+
 run_case interrupt_sequence_sigint t_sigint_sequence
 run_case interrupt_sequence_sigterm t_sigterm_sequence
 run_case interrupt_long_frame_functional t_long_frame_functional
 run_case interrupt_long_frame_cycle t_long_frame_cycle
+run_case interrupt_other_commands t_other_commands
 exit $((fails != 0))

@@ -26,15 +26,17 @@ case_triangles() {
   limit 5 triangles info cornell --limit triangles=23 && grep -q -- '--limit triangles=N' err
   "$BIN" info cornell --limit triangles=24 >/dev/null
 }
-case_instances() {
+case_instances() { # counted before the scene is evaluated (its instances allocated), with the ground
   limit 5 instances info room --limit instances=14
   "$BIN" info room --limit instances=15 >/dev/null
+  limit 5 instances info room --limit instances=15 --ground && grep -q 'count is 16,' err
 }
 case_kd_nodes() { limit 5 kd-nodes info room --limit kd-nodes=100; }
 case_kd_depth() {
   limit 5 kd-depth info cornell --kd-max-depth 50       # over the default of 48
   "$BIN" info cornell --kd-max-depth 50 --limit kd-depth=50 >/dev/null
-  limit 5 kd-depth info room --limit kd-depth=3          # the built trees are deeper
+  limit 5 kd-depth info room --limit kd-depth=3          # the trees may get deeper: refused before the build
+  grep -q 'the depth the kd-tree builder may reach .* is 20,' err
 }
 case_texture_size() {
   limit 5 texture-size info room --limit texture-size=63
@@ -74,10 +76,11 @@ case_frames() {
   limit 5 frames render animated --frames 0:100000 -o x.png   # 100001 frames
   limit 5 frames info animated --frames 11 --limit frames=10
 }
-case_memory_image() { # the existing limit of the device memory: --mem-mb
+case_memory_image() { # the existing limit of the device memory: --mem-mb (info reports such a scene)
   local got=0
-  "$BIN" info terrain --mem-mb 1 >out 2>err || got=$?
-  [[ $got -eq 3 && $(wc -l <err) -eq 1 ]] && grep -q 'does not fit.*pass --mem-mb [0-9]' err && cat err
+  "$BIN" render terrain --mem-mb 1 --width 8 --height 8 -o t.png >out 2>err || got=$?
+  [[ $got -eq 3 && $(wc -l <err) -eq 1 ]] && grep -q 'does not fit.*(pass --mem-mb [0-9]*)$' err && cat err
+  "$BIN" info terrain --mem-mb 1 >out && grep -q '^fits         no: .* render it with --mem-mb [0-9]' out
 }
 case_bad_limit() {
   local got=0

@@ -114,6 +114,7 @@ typedef struct {
     f24_t t_exit[TRACE_PACKET];                /* where each ray's last leaf ended */
     /* cursor walkers (TRAV_ROPES, TRAV_GRID): each ray's node or cell (x | y << 10 | z << 20) */
     uint32_t at[TRACE_PACKET];
+    uint32_t stalls[TRACE_PACKET]; /* ropes: leaves left in a row without moving on along the ray */
     f24_t grid_lo[3], grid_size[3], grid_inv[3]; /* grid: origin, cell size and its inverse */
     uint32_t grid_n[3];                          /* grid: cells per axis */
 } trav_walker;

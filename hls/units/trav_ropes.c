@@ -15,11 +15,18 @@
 /* Rope record: leaf box lo xyz, hi xyz (fp24), ropes -x +x -y +y -z +z (node or TRACE_NO_HIT). */
 #define ROPE_WORDS 12
 
+/* A ray that leaves this many leaves in a row without moving on (exit t not beyond its entry) is
+ * done. Why: ropes and boxes that the validator accepts but that lead a ray in a circle (a fuzzed
+ * image: tests/fuzz/regress/memimage/rope-cycle.bin) would otherwise hold the unit for
+ * TRACE_STEP_LIMIT steps; in a consistent tree only the cells around an edge or corner the ray
+ * passes exactly through (at most 8) are left without moving on. */
+#define ROPE_STALL_LIMIT 16
+
 void trav_ropes_start(trav_walker *w)
 {
 start_rays:
     for (int i = 0; i < TRACE_PACKET; i++)
-        w->at[i] = 0;
+        w->at[i] = w->stalls[i] = 0;
 }
 
 /* An inner node: each ray of the group moves to the child holding its entry point (a ray in the
@@ -51,7 +58,8 @@ leave_rays:
             far[k] = mem[rec + (f24_sign(axis_of(d[i], k)) ? k : 3 + k)] & F24_MASK;
         const uint32_t axis = cursor_cell_exit(far, o[i], d[i], &t);
         const uint32_t rope = axis < 3 ? mem[rec + 6 + 2 * axis + (f24_sign(axis_of(d[i], axis)) ? 0u : 1u)] : TRACE_NO_HIT;
-        cursor_advance(w, i, rope, rope != TRACE_NO_HIT, t);
+        w->stalls[i] = f24_lt(w->cur.tn[i], t) ? 0u : w->stalls[i] + 1u;
+        cursor_advance(w, i, rope, rope != TRACE_NO_HIT && w->stalls[i] <= ROPE_STALL_LIMIT, t);
     }
 }
 

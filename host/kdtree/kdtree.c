@@ -1496,6 +1496,8 @@ static uint32_t auto_depth(const kd_params *p, uint32_t count)
     return d >= 64.0 ? 64u : (uint32_t)lround(d);
 }
 
+uint32_t kd_depth_bound(const kd_params *p, uint32_t count) { return p->max_depth ? p->max_depth : auto_depth(p, count); }
+
 /* p without the spare capacity of doubling; a failed shrink keeps p as it is. */
 static void *shrink(void *p, size_t bytes)
 {
@@ -1532,7 +1534,7 @@ int kd_build(const kd_source *src, const kd_params *p, kd_tree *out)
     const double t0 = now();
     memset(out, 0, sizeof *out);
     builder b = { .src = src, .p = *p };
-    b.max_depth = p->max_depth ? p->max_depth : auto_depth(p, src->count);
+    b.max_depth = kd_depth_bound(p, src->count);
     prim_set s = { 0 };
     aabb root;
     int rc = start(&b, &s, &root);

@@ -79,6 +79,10 @@ typedef struct {
 
 void kd_params_default(kd_params *p);
 
+/* The deepest tree kd_build makes for count primitives with p: p->max_depth, or the automatic
+ * depth (the kd-depth limit is checked against it before building, tb/cli/cli_limits.h). */
+uint32_t kd_depth_bound(const kd_params *p, uint32_t count);
+
 /* Builds a tree; 0 on success, -1 if memory ran out (out is then empty). count may be 0. */
 int kd_build(const kd_source *src, const kd_params *p, kd_tree *out);
 

@@ -229,6 +229,20 @@ static int node_displayed(const scene *s, uint32_t i)
     return 0;
 }
 
+static int is_instance(const scene *s, uint32_t i)
+{
+    const scene_node *nd = &s->nodes[i];
+    return nd->mesh != SCENE_NONE && nd->mesh < s->n_meshes && node_displayed(s, i);
+}
+
+uint32_t scene_count_instances(const scene *s)
+{
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < s->n_nodes; i++)
+        n += (uint32_t)is_instance(s, i);
+    return n;
+}
+
 int scene_evaluate(scene *s, double t, int loop)
 {
     if (!s->instances && s->n_nodes) {
@@ -256,7 +270,7 @@ int scene_evaluate(scene *s, double t, int loop)
     uint32_t n = 0;
     for (uint32_t i = 0; i < s->n_nodes; i++) {
         const scene_node *nd = &s->nodes[i];
-        if (nd->mesh == SCENE_NONE || nd->mesh >= s->n_meshes || !node_displayed(s, i))
+        if (!is_instance(s, i))
             continue;
         scene_mesh *m = &s->meshes[nd->mesh];
         if (m->n_targets > 0 && nd->weights && nd->n_weights == m->n_targets)

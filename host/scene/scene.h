@@ -158,6 +158,10 @@ int scene_write_gltf(const scene *s, const char *path, char *err, size_t errlen)
  * of the roots), camera and light placement. Returns 0, or -1 if memory ran out. */
 int scene_evaluate(scene *s, double t, int loop);
 
+/* The instances scene_evaluate makes (nodes with a mesh under one of the roots), counted without
+ * allocating: the instance limit is checked before (tb/cli/cli_limits.h). */
+uint32_t scene_count_instances(const scene *s);
+
 void scene_free(scene *s);
 
 /* The view of a scene without cameras: looking down -Z at the centre of the box [lo, hi] from

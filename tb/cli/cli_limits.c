@@ -66,14 +66,15 @@ int limit_check(const limits *l, const char *cmd, limit_id id, uint64_t value, c
     return SAARCOR_EXIT_LIMIT;
 }
 
-int limits_check_scene(const limits *l, const char *cmd, const scene *s)
+int limits_check_scene(const limits *l, const char *cmd, const scene *s, uint32_t extra)
 {
     uint64_t triangles = 0;
     for (uint32_t i = 0; i < s->n_meshes; i++)
         triangles += s->meshes[i].n_triangles;
     int rc = limit_check(l, cmd, LIMIT_TRIANGLES, triangles, "the scene's triangle count");
     if (rc == SAARCOR_EXIT_OK)
-        rc = limit_check(l, cmd, LIMIT_INSTANCES, s->n_instances, "the scene's instance count");
+        rc = limit_check(l, cmd, LIMIT_INSTANCES, (uint64_t)scene_count_instances(s) + extra,
+                         "the scene's instance count");
     for (uint32_t i = 0; i < s->n_textures && rc == SAARCOR_EXIT_OK; i++) {
         const scene_texture *t = &s->textures[i];
         const uint64_t side = (uint64_t)(t->width > t->height ? t->width : t->height);
@@ -90,6 +91,21 @@ int limits_check_params(const limits *l, const char *cmd, const mi_params *p)
     if (rc == SAARCOR_EXIT_OK)
         rc = limit_check(l, cmd, LIMIT_KD_DEPTH, p->bottom.max_depth, "--kd-max-depth");
     return rc;
+}
+
+int limits_check_depth(const limits *l, const char *cmd, const mi_params *p, const scene *s)
+{
+    uint64_t largest = 0, all = 0;
+    for (uint32_t i = 0; i < s->n_instances; i++) {
+        const uint64_t n = s->meshes[s->instances[i].mesh].n_triangles;
+        largest = n > largest ? n : largest;
+        all += n;
+    }
+    const uint64_t objects = p->merge ? all : largest; /* a merged object holds the copies of many */
+    const uint32_t bottom = kd_depth_bound(&p->bottom, objects > UINT32_MAX ? UINT32_MAX : (uint32_t)objects);
+    const uint32_t top = kd_depth_bound(&p->top, s->n_instances);
+    return limit_check(l, cmd, LIMIT_KD_DEPTH, bottom > top ? bottom : top,
+                       "the depth the kd-tree builder may reach (--kd-max-depth, or automatic: 8 + 1.3 log2 N)");
 }
 
 int limits_check_build(const limits *l, const char *cmd, const mi_stats *st)

@@ -41,12 +41,20 @@ int limits_parse(limits *l, const char *cmd, const char *arg);
  * SAARCOR_EXIT_OK, or prints the one-line error and returns SAARCOR_EXIT_LIMIT. */
 int limit_check(const limits *l, const char *cmd, limit_id id, uint64_t value, const char *what);
 
-/* The scene as loaded and evaluated: triangles, instances, texture sizes. */
-int limits_check_scene(const limits *l, const char *cmd, const scene *s);
+/* The scene as loaded, before scene_evaluate allocates its instances: triangles, instances (with
+ * `extra` more to come, the --ground plane), texture sizes. */
+int limits_check_scene(const limits *l, const char *cmd, const scene *s, uint32_t extra);
 
 /* The tree parameters and image size of a build before it starts (explicit --kd-max-depth,
- * --width, --height), and its result after (nodes, depth of both levels). */
+ * --width, --height). */
 int limits_check_params(const limits *l, const char *cmd, const mi_params *p);
+
+/* Before the build of the evaluated scene s: the deepest tree the builder may make (kd_depth_bound
+ * of the largest object, or of all instanced triangles when merging, and of the top level). */
+int limits_check_depth(const limits *l, const char *cmd, const mi_params *p, const scene *s);
+
+/* After the build: the kd nodes of both levels (only the build knows them) and, as a net for
+ * trees built with other parameters, their depth. */
 int limits_check_build(const limits *l, const char *cmd, const mi_stats *st);
 
 #endif

@@ -20,6 +20,7 @@
 #include "cli.h"
 #include "f24_fast.h"
 #include "ref_render.h"
+#include "interrupt.h"
 #include "ref_setup.h"
 #include "rgs.h"
 #include "shading_model.h"
@@ -137,7 +138,9 @@ static int compare(const mi_builder *b, const ref_scene *r, const ref_params *p,
     const uint32_t w = p->cam.width, hgt = p->cam.height;
     trace_counters c;
     memset(&c, 0, sizeof c);
-    for (uint32_t y = 0; y < hgt; y += 2)
+    for (uint32_t y = 0; y < hgt; y += 2) {
+        if (interrupt_signal()) /* Ctrl-C: at the next block row */
+            return interrupt_exit("compare-hits", "nothing written");
         for (uint32_t x = 0; x < w; x += 2) {
             ray_packet rp;
             hit_record h[TRACE_PACKET];
@@ -161,6 +164,7 @@ static int compare(const mi_builder *b, const ref_scene *r, const ref_params *p,
                 tally(b, r, o, d, x + (uint32_t)(i & 1), y + (uint32_t)(i >> 1), &h[i], &rh, st);
             }
         }
+    }
     return SAARCOR_EXIT_OK;
 }
 
@@ -245,6 +249,8 @@ int cmd_compare_hits(int argc, char **argv)
     if (argc - optind != 1)
         return cli_usage_error("compare-hits", "expected one SCENE");
     o.scene = argv[optind];
+    if (!cli_parse_only && interrupt_catch() != 0)
+        cli_error("compare-hits", "cannot catch SIGINT/SIGTERM: Ctrl-C will not stop cleanly");
     scene s;
     mi_builder *b;
     ref_scene r;

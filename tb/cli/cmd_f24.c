@@ -13,6 +13,7 @@
 #include "f24.h"
 #include "f24_check.h"
 #include "f24_ops.h"
+#include "interrupt.h"
 
 static void list_ops(FILE *out)
 {
@@ -247,6 +248,9 @@ int cmd_f24verify(int argc, char **argv)
     if (cli_parse_only)
         return SAARCOR_EXIT_OK;
 
+    if (interrupt_catch() != 0)
+        cli_error("f24verify", "cannot catch SIGINT/SIGTERM: Ctrl-C will not stop cleanly");
+    f24_check_stop = interrupt_signal;
     verify_row rows[2 * F24_OP_COUNT];
     int nrows = 0;
     uint64_t bad = 0;
@@ -268,6 +272,8 @@ int cmd_f24verify(int argc, char **argv)
             r->st = pass ? f24_check_exhaustive(op, stdout, (int)max_log)
                          : f24_check_op(op, n, seed + (uint64_t)i, stdout, (int)max_log);
             r->seconds = now_seconds() - t0;
+            if (interrupt_signal()) /* Ctrl-C: the operation in progress is not reported, nor --json */
+                return interrupt_exit("f24verify", "the operations above were checked, --json not written");
             bad += r->st.hw_mismatches + r->st.fast_mismatches;
             printf("%-10s %-10s %12llu %12llu %12llu %9.2f\n", f24_ops[i].name, r->kind,
                    (unsigned long long)r->st.vectors, (unsigned long long)r->st.hw_mismatches,

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 
 #include "cli.h"
+#include "interrupt.h"
 #include "scene_opts.h"
 #include "shade_rec.h"
 
@@ -65,7 +66,14 @@ static void print_merge(const mi_stats *st, int merge)
            st->kept_morphing, st->kept_mirrored, st->kept_turned, st->kept_instanced);
 }
 
-static void print_report(const scene *s, const mi_builder *b, const scene_opts *o)
+/* The line of a scene whose image is larger than the device memory (built in the largest one). */
+static void print_fit(const scene_opts *o, uint32_t n_words)
+{
+    printf("fits         no: the image needs %.2f MB, more than the %.2f MB device memory; render it with --mem-mb %u\n",
+           n_words * 4.0 / 1048576.0, (double)o->mi.memory_bytes / 1048576.0, scene_mem_mb_for(n_words));
+}
+
+static void print_report(const scene *s, const mi_builder *b, const scene_opts *o, int fits)
 {
     const mi_stats *st = mi_get_stats(b);
     uint64_t inst_tris = 0;
@@ -88,6 +96,8 @@ static void print_report(const scene *s, const mi_builder *b, const scene_opts *
     printf("memory image %.3f MB of %.1f MB (%.1f%%), %.1f bytes per unique triangle (all regions)\n",
            n_words * 4.0 / 1048576.0, (double)o->mi.memory_bytes / 1048576.0,
            100.0 * n_words * 4.0 / (double)o->mi.memory_bytes, per_triangle(st, n_words));
+    if (!fits)
+        print_fit(o, n_words);
     for (int r = 0; r < MI_REGION_COUNT; r++)
         printf("  %-17s %10u words %10.1f KB %8.1f B/triangle\n", mi_region_name((mi_region)r), st->region_words[r],
                st->region_words[r] * 4.0 / 1024.0, per_triangle(st, st->region_words[r]));
@@ -123,7 +133,10 @@ static int write_json(const char *path, const scene_opts *o, const mi_builder *b
     fprintf(f, "  \"transform_seconds\": %.6f,\n  \"regions\": {", st->transform_seconds);
     for (int r = 0; r < MI_REGION_COUNT; r++)
         fprintf(f, "%s\"%s\": %u", r ? ", " : "", mi_region_name((mi_region)r), st->region_words[r]);
-    fprintf(f, "},\n  \"bytes_per_triangle\": {\"total\": %.4f", per_triangle(st, n_words));
+    fprintf(f, "},\n  \"image_bytes\": %llu, \"device_memory_bytes\": %llu, \"fits\": %s, \"mem_mb_needed\": %u,",
+            4ull * n_words, (unsigned long long)o->mi.memory_bytes, 4ull * n_words <= o->mi.memory_bytes ? "true" : "false",
+            scene_mem_mb_for(n_words));
+    fprintf(f, "\n  \"bytes_per_triangle\": {\"total\": %.4f", per_triangle(st, n_words));
     for (int k = 0; k < REC_KINDS; k++)
         fprintf(f, ", \"%s\": %.4f", rec_names[k], per_triangle(st, rec[k]));
     fprintf(f, "},\n  \"frame_upload_bytes\": [");
@@ -145,6 +158,8 @@ static int run_frames(scene *s, mi_builder *b, const scene_opts *o, const info_o
     char err[512];
     uint32_t rebuilt = 0;
     for (uint32_t f = 0; f < io->frames; f++) {
+        if (interrupt_signal()) /* Ctrl-C: between frames, before the report and --json */
+            return interrupt_exit("info", "frames not reported");
         if (scene_evaluate(s, o->time + (f + 1) / io->fps, 1) != 0 || mi_update(b, s, err, sizeof err) != 0) {
             cli_error("info", "frame %u: %s", f + 1, err);
             return SAARCOR_EXIT_INTERNAL;
@@ -175,7 +190,9 @@ static int usage(void)
            "  --fps F         frame rate for --frames (default 30)\n"
            "  --validate      check the memory image with the validator\n"
            "  --json FILE     write the figures as JSON\n"
-           "  --image FILE    write the memory image (little-endian 32-bit words)\n\n%s", SCENE_OPTIONS_HELP);
+           "  --image FILE    write the memory image (little-endian 32-bit words)\n"
+           "  --traversal A   the image for render --traversal A (ropes, grid and grid2 add their\n"
+           "                  structures; default stack)\n\n%s", SCENE_OPTIONS_HELP);
     return SAARCOR_EXIT_OK;
 }
 
@@ -184,7 +201,8 @@ int cmd_info(int argc, char **argv)
     static const struct option opts[] = {
         SCENE_LONG_OPTIONS, SCENE_KD_DEPTH_ALIAS, { "frames", required_argument, NULL, 'f' }, { "fps", required_argument, NULL, 'r' },
         { "validate", no_argument, NULL, 'v' }, { "json", required_argument, NULL, 'j' },
-        { "image", required_argument, NULL, 'i' }, { "help", no_argument, NULL, 'h' }, { 0, 0, 0, 0 }
+        { "image", required_argument, NULL, 'i' }, { "traversal", required_argument, NULL, 'T' },
+        { "help", no_argument, NULL, 'h' }, { 0, 0, 0, 0 }
     };
     scene_opts o;
     info_opts io = { 0, 30.0, NULL, NULL };
@@ -212,6 +230,10 @@ int cmd_info(int argc, char **argv)
         case 'v': validate = 1; break;
         case 'j': io.json = optarg; break;
         case 'i': io.image_out = optarg; break;
+        case 'T':
+            if (scene_opts_traversal(&o, "info", optarg) < 0)
+                return SAARCOR_EXIT_USAGE;
+            break;
         case 'h': return usage();
         default: return cli_bad_option("info", argc, argv);
         }
@@ -223,18 +245,21 @@ int cmd_info(int argc, char **argv)
     if (cli_parse_only)
         return SAARCOR_EXIT_OK;
     o.scene = argv[optind];
+    if (io.frames && interrupt_catch() != 0)
+        cli_error("info", "cannot catch SIGINT/SIGTERM: Ctrl-C will not stop cleanly");
 
     scene s;
     int rc = scene_opts_load(&o, "info", &s);
     if (rc != SAARCOR_EXIT_OK)
         return rc;
     char err[512];
-    mi_builder *b = scene_opts_build(&o, "info", &s, &rc);
+    int fits;
+    mi_builder *b = scene_opts_build(&o, "info", &s, &fits, &rc); /* one too large for the device: reported */
     if (!b) {
         scene_free(&s);
         return rc;
     }
-    print_report(&s, b, &o);
+    print_report(&s, b, &o, fits);
     uint32_t n_words;
     const uint32_t *w = mi_words(b, &n_words);
     if (validate) {

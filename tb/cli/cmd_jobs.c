@@ -9,6 +9,7 @@
  */
 #define _GNU_SOURCE
 #include <getopt.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,11 +17,13 @@
 #include <time.h>
 
 #include "cli.h"
+#include "interrupt.h"
 #include "mpi_load.h"
 
 typedef struct {
     char **cmd; /* the job lines */
-    uint32_t n, failed;
+    uint32_t n, failed, done;
+    int stop_sig; /* a job died of SIGINT/SIGTERM (Ctrl-C reaches the job, not us: system() ignores it) */
 } job_list;
 
 static int read_jobs(const char *path, job_list *j)
@@ -72,8 +75,13 @@ static int job_take(void *ctx, uint32_t item, const void *result, size_t size, i
         return -1;
     }
     memcpy(&code, result, sizeof code);
+    j->done++;
+    j->failed += code != 0;
+    if (code == 128 + SIGINT || code == 128 + SIGTERM) {
+        j->stop_sig = code - 128; /* the interrupt line says it */
+        return 0;
+    }
     if (code != 0) {
-        j->failed++;
         fprintf(stderr, "saarcor jobs: job %u failed with exit status %d (rank %d): %s\n", item + 1, code, rank,
                 j->cmd[item]);
     }
@@ -118,7 +126,7 @@ int cmd_jobs(int argc, char **argv)
     saarcor_mpi_run_fn run = mpi ? mpi_load("jobs") : NULL;
     if (mpi && !run)
         return SAARCOR_EXIT_INTERNAL;
-    job_list j = { NULL, 0, 0 };
+    job_list j = { NULL, 0, 0, 0, 0 };
     if (read_jobs(argv[optind], &j) != 0)
         return SAARCOR_EXIT_INPUT;
     const saarcor_mpi_work w = { j.n, sizeof(int32_t), &j, job_work, job_take };
@@ -128,9 +136,15 @@ int cmd_jobs(int argc, char **argv)
     const double t0 = now();
     if (run && run(SAARCOR_MPI_ABI, &w, &rep, err, sizeof err) != 0)
         rc = (cli_error("jobs", "--mpi: %s", err), SAARCOR_EXIT_USAGE);
-    for (uint32_t i = 0; !run && i < j.n; i++)
+    if (!run && interrupt_catch() != 0)
+        cli_error("jobs", "cannot catch SIGINT/SIGTERM: Ctrl-C will not stop cleanly");
+    for (uint32_t i = 0; !run && i < j.n && !j.stop_sig && !interrupt_signal(); i++)
         job_take(&j, i, result, (size_t)job_work(&j, i, result), 0);
-    if (rc == SAARCOR_EXIT_OK && rep.rank == 0) {
+    const int sig = run ? 0 : interrupt_signal() ? interrupt_signal() : j.stop_sig;
+    if (sig) { /* no more jobs after Ctrl-C */
+        fprintf(stderr, "saarcor jobs: interrupted by %s: %u of %u jobs run\n", interrupt_name(sig), j.done, j.n);
+        rc = 128 + sig;
+    } else if (rc == SAARCOR_EXIT_OK && rep.rank == 0) {
         printf("jobs: %u run, %u failed, %d worker%s, %.3f s\n", j.n, j.failed, run ? rep.ranks - 1 : 1,
                run && rep.ranks == 2 ? "" : run ? "s" : "", now() - t0);
         rc = j.failed ? SAARCOR_EXIT_FAIL : SAARCOR_EXIT_OK;

@@ -145,7 +145,7 @@ int cmd_profile(int argc, char **argv)
     int rc = scene_opts_load(&o, "profile", &s);
     if (rc != SAARCOR_EXIT_OK)
         return rc;
-    mi_builder *b = scene_opts_build(&o, "profile", &s, &rc);
+    mi_builder *b = scene_opts_build(&o, "profile", &s, NULL, &rc);
     if (!b) {
         scene_free(&s);
         return rc;

@@ -16,6 +16,7 @@
 
 #include "cli.h"
 #include "img.h"
+#include "interrupt.h"
 #include "ref_render.h"
 #include "ref_setup.h"
 #include "scene_opts.h"
@@ -103,7 +104,7 @@ int ref_setup(const char *cmd, const scene_opts *o, scene *s, mi_builder **b, re
     int rc = scene_opts_load(o, cmd, s);
     if (rc != SAARCOR_EXIT_OK)
         return rc;
-    *b = scene_opts_build(o, cmd, s, &rc); /* for the camera and the default light */
+    *b = scene_opts_build(o, cmd, s, NULL, &rc); /* for the camera and the default light */
     if (!*b) {
         scene_free(s);
         return rc;
@@ -164,6 +165,9 @@ int cmd_reference(int argc, char **argv)
     if (limit_check(&o.lim, "reference", LIMIT_RAY_DEPTH, depth, "--max-depth") != SAARCOR_EXIT_OK)
         return SAARCOR_EXIT_LIMIT;
     o.scene = argv[optind];
+    o.mi.memory_bytes = SCENE_MAX_MEM_BYTES; /* binary64 on the host: not bound by the device's memory */
+    if (!cli_parse_only && interrupt_catch() != 0)
+        cli_error("reference", "cannot catch SIGINT/SIGTERM: Ctrl-C will not stop cleanly");
     scene s;
     mi_builder *b;
     ref_scene r;
@@ -175,20 +179,25 @@ int cmd_reference(int argc, char **argv)
     float *rgb = malloc((size_t)w * h * 3 * sizeof *rgb);
     ref_hit *hits = aov ? malloc((size_t)w * h * sizeof *hits) : NULL;
     const double t0 = now();
-    if (!rgb || (aov && !hits) || ref_params_init(&p, b, &r, depth, shadows) != 0 ||
-        ref_render_image(&r, &p, threads, rgb, hits) != 0) {
+    const int ready = rgb && (!aov || hits) && ref_params_init(&p, b, &r, depth, shadows) == 0;
+    if (ready)
+        p.stop = interrupt_signal; /* Ctrl-C: stop at the next row, write nothing */
+    const int st = ready ? ref_render_image(&r, &p, threads, rgb, hits) : -1;
+    const double secs = now() - t0;
+    if (st < 0) {
         cli_error("reference", "out of memory");
         rc = SAARCOR_EXIT_INTERNAL;
+    } else if (st > 0) {
+        rc = interrupt_exit("reference", "nothing written");
+    } else if (write_rgb(out, rgb, w, h, 0) != 0 || (png && write_rgb(png, rgb, w, h, 1) != 0) ||
+               (aov && write_ref_aov(aov, &r, &p, hits) != 0)) {
+        rc = SAARCOR_EXIT_INPUT;
     } else {
-        const double secs = now() - t0;
-        if (write_rgb(out, rgb, w, h, 0) != 0 || (png && write_rgb(png, rgb, w, h, 1) != 0) ||
-            (aov && write_ref_aov(aov, &r, &p, hits) != 0))
-            rc = SAARCOR_EXIT_INPUT;
-        else
-            printf("reference %s: %ux%u in %.3f s (%u threads, binary64, max depth %u%s) -> %s\n", o.scene, w, h, secs,
-                   threads, depth, shadows ? "" : ", no shadows", out);
-        ref_params_free(&p);
+        printf("reference %s: %ux%u in %.3f s (%u threads, binary64, max depth %u%s) -> %s\n", o.scene, w, h, secs,
+               threads, depth, shadows ? "" : ", no shadows", out);
     }
+    if (ready)
+        ref_params_free(&p);
     free(rgb);
     free(hits);
     ref_scene_free(&r);

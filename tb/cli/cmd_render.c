@@ -23,6 +23,7 @@
 #include "capture.h"
 #include "cli.h"
 #include "cycle_opts.h"
+#include "cycle_trace.h"
 #include "f24_fast.h"
 #include "heatmap.h"
 #include "img.h"
@@ -35,6 +36,7 @@
 #include "scene_opts.h"
 #include "shading_model.h"
 #include "trace.h"
+#include "usage_plot.h"
 
 typedef struct {
     const uint32_t *mem;
@@ -156,7 +158,8 @@ static int usage(void)
            "                      [--precision P] [--aov FILE.exr] [--heatmap FILE.png [--heatmap-of NAME]]\n"
            "                      [--frame N | --frames A:B] [--fps F]\n"
            "                      [--threads N] [--mpi [--mpi-tile N]]\n"
-           "                      [--stats FILE] [cycle mode options] [scene options]\n\n"
+           "                      [--stats FILE] [--vcd FILE.vcd [--vcd-cycles A:B]] [--usage-plot FILE.svg]\n"
+           "                      [cycle mode options] [scene options]\n\n"
            "Renders the scene through the hardware units: RGS, traversal, list, transformation and\n"
            "intersection units reading the memory image. Shading (docs/shading.md): Phong-like with\n"
            "interpolated normals, bilinear textures, the scene's lights with shadow rays (a default light\n"
@@ -189,6 +192,11 @@ static int usage(void)
            "                     mailbox skips, transformations, intersections, memory words read; in\n"
            "                     cycle mode also the timing (\"cycle\": cycles, fps, usage, caches, ...);\n"
            "                     host_rss_kb, host_peak_rss_kb: this program's memory after the frame\n"
+           "  --vcd FILE.vcd     cycle mode: waveforms of the model (IEEE 1364 VCD, e.g. for GTKWave): per pipe\n"
+           "                     and unit busy, issue, queue_depth, thread_id; per cache lookups, misses, fills;\n"
+           "                     the memory port's outstanding transfers; threads in flight (docs/cycle-model.md)\n"
+           "  --vcd-cycles A:B   the cycles written: A up to but not including B (default 0:20000)\n"
+           "  --usage-plot FILE.svg  cycle mode: each unit's utilisation per epoch as an SVG chart\n"
            "  --capture-unit-io DIR  record the transformation, intersection and traversal-node\n"
            "                     transactions as hex vectors for the RTL co-simulation (DIR/xform.hex,\n"
            "                     isect.hex, trav.hex; at most --capture-limit N per unit, default 100000)\n"
@@ -447,6 +455,45 @@ int render_frame_output(const render_opts *ro, const mi_builder *b, const scene 
     return SAARCOR_EXIT_OK;
 }
 
+/* The frame's recorder for --vcd and --usage-plot (numbered like -o in a sequence), NULL if
+ * neither is asked for or it could not be made (*rc says which). */
+static cycle_trace *waveform_begin(const render_opts *ro, uint32_t frame, int *rc)
+{
+    char path[1024], err[512];
+    render_opts v = *ro;
+    *rc = SAARCOR_EXIT_OK;
+    if (!ro->cycle || (!ro->vcd && !ro->usage_plot))
+        return NULL;
+    v.out = ro->vcd;
+    if (ro->vcd)
+        frame_path(&v, frame, path, sizeof path);
+    cycle_trace *tr = cycle_trace_open(ro->vcd ? path : NULL, ro->vcd_from, ro->vcd_to, &ro->cc, err, sizeof err);
+    if (!tr) {
+        cli_error("render", "%s", err);
+        *rc = SAARCOR_EXIT_INPUT;
+    }
+    return tr;
+}
+
+/* Writes the frame's --usage-plot and completes its --vcd file. */
+static int waveform_end(const render_opts *ro, cycle_trace *tr, uint32_t frame, uint64_t cycles)
+{
+    char path[1024], err[512];
+    render_opts v = *ro;
+    int bad = 0;
+    v.out = ro->usage_plot;
+    if (ro->usage_plot) {
+        frame_path(&v, frame, path, sizeof path);
+        if ((bad = usage_plot_write(path, tr, &ro->cc, cycles, err, sizeof err) != 0))
+            cli_error("render", "%s", err);
+    }
+    if (cycle_trace_close(tr, cycles, err, sizeof err) != 0 && !bad) {
+        cli_error("render", "%s", err);
+        bad = 1;
+    }
+    return bad ? SAARCOR_EXIT_INPUT : SAARCOR_EXIT_OK;
+}
+
 /* Renders one frame of the current image and writes it. */
 static int render_frame(const mi_builder *b, const scene *s, const render_opts *ro, uint32_t frame, const char *scene_name)
 {
@@ -455,6 +502,10 @@ static int render_frame(const mi_builder *b, const scene *s, const render_opts *
     if (render_validate(b) != SAARCOR_EXIT_OK)
         return SAARCOR_EXIT_INTERNAL;
     rgs_image_size(mem, &w, &h);
+    int trc;
+    cycle_trace *tr = waveform_begin(ro, frame, &trc);
+    if (trc != SAARCOR_EXIT_OK)
+        return trc;
     uint32_t *pixels = calloc((size_t)w * h, sizeof *pixels);
     hit_record *hits = ro->aov ? calloc((size_t)w * h, sizeof *hits) : NULL;
     const int want_costs = ro->aov || ro->heatmap;
@@ -462,17 +513,25 @@ static int render_frame(const mi_builder *b, const scene *s, const render_opts *
     frame_result fr = { .upload_bytes = mi_get_stats(b)->frame_upload_bytes, .costs = costs };
     static const uint32_t all[4] = { 0, 0, UINT32_MAX, UINT32_MAX };
     const double t0 = now();
-    if (ro->sim)
+    if (ro->sim) {
         cycle_set_costs(ro->sim, costs);
+        cycle_set_trace(ro->sim, tr);
+    }
     const int failed = !pixels || (ro->aov && !hits) || (want_costs && !costs) ? -1
                        : ro->cycle ? cycle_render(ro->sim, mem, &ro->cfg, pixels, hits, &fr.sum, &fr.cs, cycle_progress, NULL)
                                    : render_region(mem, &ro->cfg, ro->threads, all, pixels, hits, costs, &fr.sum);
+    if (ro->sim)
+        cycle_set_trace(ro->sim, NULL); /* tr is closed below */
     if (isatty(2) && ro->cycle)
         fprintf(stderr, "\r%*s\r", 14, "");
     fr.secs = now() - t0;
-    const int rc = failed > 0 ? 128 + interrupt_signal() /* stopped by a signal: this frame is not written */
-                 : failed ? (cli_error("render", "out of memory"), SAARCOR_EXIT_INTERNAL)
-                          : render_frame_output(ro, b, s, frame, scene_name, w, h, pixels, hits, &fr);
+    int rc = failed > 0 ? 128 + interrupt_signal() /* stopped by a signal: this frame is not written */
+           : failed ? (cli_error("render", "out of memory"), SAARCOR_EXIT_INTERNAL)
+                    : render_frame_output(ro, b, s, frame, scene_name, w, h, pixels, hits, &fr);
+    if (tr && rc == SAARCOR_EXIT_OK)
+        rc = waveform_end(ro, tr, frame, fr.cs.cycles);
+    else
+        cycle_trace_abort(tr);
     free(pixels);
     free(hits);
     free(costs);
@@ -505,6 +564,17 @@ static int parse_frames(const char *arg, render_opts *ro)
     ro->last = (uint32_t)b;
     ro->sequence = 1;
     return 1;
+}
+
+/* --vcd-cycles A:B -> the window [A, B); 0 if malformed or empty. */
+static int parse_window(const char *arg, uint64_t *from, uint64_t *to)
+{
+    char first[32];
+    const char *colon = strchr(arg, ':');
+    if (!colon || colon - arg >= (long)sizeof first)
+        return 0;
+    snprintf(first, sizeof first, "%.*s", (int)(colon - arg), arg);
+    return cli_parse_u64(first, 0, UINT64_MAX / 4, from) && cli_parse_u64(colon + 1, 1, UINT64_MAX / 4, to) && *from < *to;
 }
 
 /* --precision: fp24, fp32 or eEmM -> exponent and fraction bits; 0 if malformed. */
@@ -554,12 +624,14 @@ int cmd_render(int argc, char **argv)
         { "traversal", required_argument, NULL, 'T' }, { "precision", required_argument, NULL, 'p' }, { "mode", required_argument, NULL, 'm' },
         { "capture-unit-io", required_argument, NULL, 'C' }, { "capture-limit", required_argument, NULL, 'L' },
         { "mpi", no_argument, NULL, 'M' }, { "mpi-tile", required_argument, NULL, 'X' },
-        CYCLE_LONG_OPTIONS, { "help", no_argument, NULL, 'h' }, { 0, 0, 0, 0 }
+        { "vcd", required_argument, NULL, 'V' }, { "vcd-cycles", required_argument, NULL, 'W' },
+        { "usage-plot", required_argument, NULL, 'U' }, CYCLE_LONG_OPTIONS, { "help", no_argument, NULL, 'h' }, { 0, 0, 0, 0 }
     };
     scene_opts o;
     const long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
     render_opts ro = { .out = "render.png", .heatmap_of = -1, .threads = ncpu > 0 && ncpu < 256 ? (uint32_t)ncpu : 1,
-                       .fps = 30.0, .cfg = { SHADE_DEFAULT_DEPTH, 1, TRAV_STACK }, .capture_limit = 100000, .mpi_tile = 64 };
+                       .fps = 30.0, .cfg = { SHADE_DEFAULT_DEPTH, 1, TRAV_STACK }, .capture_limit = 100000, .mpi_tile = 64,
+                       .vcd_to = 20000 };
     int c, prec_e = F24_EXP_BITS, prec_m = F24_MAN_BITS;
     scene_opts_default(&o);
     cycle_config_default(&ro.cc);
@@ -609,20 +681,20 @@ int cmd_render(int argc, char **argv)
             break;
         case 'S': ro.cfg.shadows = 0; break;
         case 'T': {
-            static const char *const names[TRAV_KINDS] = { "stack", "short-stack", "restart", "push-down",
-                                                           "ropes", "grid", "grid2" };
-            uint32_t k = 0;
-            while (k < TRAV_KINDS && strcmp(optarg, names[k]) != 0)
-                k++;
-            if (k == TRAV_KINDS)
-                return cli_usage_error("render", "bad --traversal '%s' (stack, short-stack, restart, push-down, ropes, "
-                                       "grid or grid2)", optarg);
-            ro.cfg.traversal = k;
-            o.mi.accel = mi_accel_for(k);
-            o.mi.traversal = k;
+            const int k = scene_opts_traversal(&o, "render", optarg);
+            if (k < 0)
+                return SAARCOR_EXIT_USAGE;
+            ro.cfg.traversal = (uint32_t)k;
             break;
         }
         case 'C': ro.capture = optarg; break;
+        case 'V': ro.vcd = optarg; break;
+        case 'U': ro.usage_plot = optarg; break;
+        case 'W':
+            if (!parse_window(optarg, &ro.vcd_from, &ro.vcd_to))
+                return cli_usage_error("render", "bad --vcd-cycles '%s' (expected A:B with A < B, cycles A up to B)",
+                                       optarg);
+            break;
         case 'M': ro.mpi = 1; break;
         case 'X':
             if (!cli_parse_u64(optarg, 2, 4096, &v) || v % 2)
@@ -654,6 +726,8 @@ int cmd_render(int argc, char **argv)
         return cli_usage_error("render", "expected one SCENE");
     if (ro.heatmap_of == PC_CYCLES && !ro.cycle)
         return cli_usage_error("render", "--heatmap-of cycles needs --mode cycle");
+    if ((ro.vcd || ro.usage_plot) && !ro.cycle)
+        return cli_usage_error("render", "--vcd and --usage-plot need --mode cycle");
     if (ro.heatmap_of >= 0 && !ro.heatmap)
         return cli_usage_error("render", "--heatmap-of needs --heatmap FILE.png");
     int rc = limit_check(&o.lim, "render", LIMIT_RAY_DEPTH, ro.cfg.max_depth, "--max-depth");
@@ -672,9 +746,9 @@ int cmd_render(int argc, char **argv)
      * render stops at its first block row) */
     if (interrupt_catch() != 0)
         cli_error("render", "cannot catch SIGINT/SIGTERM: Ctrl-C will not stop cleanly");
-    if (ro.mpi && (ro.aov || ro.heatmap || ro.capture))
-        return cli_usage_error("render", "--mpi does not write --aov, --heatmap or --capture-unit-io (render those in one "
-                                         "process)");
+    if (ro.mpi && (ro.aov || ro.heatmap || ro.capture || ro.vcd || ro.usage_plot))
+        return cli_usage_error("render", "--mpi does not write --aov, --heatmap, --capture-unit-io, --vcd or --usage-plot "
+                                         "(render those in one process)");
     if (ro.mpi && ro.cycle && ro.mpi_tile % ro.cc.tile)
         return cli_usage_error("render", "--mpi-tile %u must be a multiple of the cycle model's --tile %u", ro.mpi_tile,
                                ro.cc.tile);
@@ -688,11 +762,12 @@ int cmd_render(int argc, char **argv)
     if (rc != SAARCOR_EXIT_OK)
         return rc;
     char err[512];
-    mi_builder *b = scene_opts_build(&o, "render", &s, &rc);
+    mi_builder *b = scene_opts_build(&o, "render", &s, NULL, &rc);
     if (!b) {
         scene_free(&s);
         return rc;
     }
+    scene_opts_warn_dropped(&o, "render", &s);
     ro.cc.host_threads = ro.threads;
     if (ro.capture && capture_start(ro.capture, ro.capture_limit, err, sizeof err) != 0) {
         cli_error("render", "--capture-unit-io: %s", err);

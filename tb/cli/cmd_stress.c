@@ -6,6 +6,7 @@
 
 #include "cli.h"
 #include "f24.h"
+#include "interrupt.h"
 #include "stress.h"
 
 enum { MAX_CASES = 64 };
@@ -106,7 +107,11 @@ int cmd_stress(int argc, char **argv)
             printf("%-14s %s\n%-14s criterion: %s\n", r[i].name, r[i].what, "", r[i].criterion);
         return SAARCOR_EXIT_OK;
     }
+    if (interrupt_catch() != 0)
+        cli_error("stress", "cannot catch SIGINT/SIGTERM: Ctrl-C will not stop cleanly");
     const int n = stress_run(filter, (uint32_t)rays, shared, r, MAX_CASES);
+    if (interrupt_signal())
+        return interrupt_exit("stress", "nothing written");
     if (n < 0) {
         cli_error("stress", "out of memory");
         return SAARCOR_EXIT_INTERNAL;

@@ -7,6 +7,7 @@
 
 #include <signal.h>
 #include <stdatomic.h>
+#include <stdio.h>
 #include <string.h>
 
 _Static_assert(ATOMIC_INT_LOCK_FREE == 2, "the signal flag must be lock-free to be set from a handler");
@@ -30,6 +31,11 @@ int interrupt_catch(void)
     return 0;
 }
 
+void interrupt_set(int sig)
+{
+    atomic_store(&caught, sig);
+}
+
 int interrupt_signal(void)
 {
     return atomic_load(&caught);
@@ -38,4 +44,11 @@ int interrupt_signal(void)
 const char *interrupt_name(int sig)
 {
     return sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a signal";
+}
+
+int interrupt_exit(const char *cmd, const char *what)
+{
+    const int sig = interrupt_signal();
+    fprintf(stderr, "saarcor %s: interrupted by %s: %s\n", cmd, interrupt_name(sig), what);
+    return 128 + sig;
 }

@@ -18,4 +18,12 @@ int interrupt_signal(void);
 /* "SIGINT" or "SIGTERM" for a caught signal. */
 const char *interrupt_name(int sig);
 
+/* Sets the caught signal to sig, 0 forgets it. For the command-line fuzzer (tests/fuzz/fuzz_cli.c),
+ * which runs many commands in one process, each with a time bound that stops it as Ctrl-C would. */
+void interrupt_set(int sig);
+
+/* For a command stopped by the caught signal that keeps no output: prints
+ * "saarcor CMD: interrupted by SIGINT: <what>" on stderr and returns its exit code, 128 + the signal. */
+int interrupt_exit(const char *cmd, const char *what);
+
 #endif

@@ -29,6 +29,8 @@ typedef struct {
     cycle_sim *sim;  /* kept across the frames of a sequence (warm caches) */
     const char *capture; /* --capture-unit-io DIR */
     uint64_t capture_limit;
+    const char *vcd, *usage_plot; /* --vcd FILE.vcd, --usage-plot FILE.svg (cycle mode) */
+    uint64_t vcd_from, vcd_to;    /* --vcd-cycles A:B: cycles [A, B) */
     int mpi;           /* --mpi: distributed over MPI ranks (render_mpi.h) */
     uint32_t mpi_tile; /* --mpi-tile: edge in pixels of a work item of one frame */
 } render_opts;

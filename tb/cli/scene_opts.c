@@ -4,12 +4,15 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include "cli.h"
+#include "f24_double.h"
 #include "scenes.h"
+#include "trace.h"
 
 void scene_opts_default(scene_opts *o)
 {
@@ -133,21 +136,49 @@ int scene_opts_load(const scene_opts *o, const char *cmd, scene *s)
         cli_error(cmd, "%s", err);
         return SAARCOR_EXIT_INPUT;
     }
+    if ((rc = limits_check_scene(&o->lim, cmd, s, (uint32_t)o->ground)) != SAARCOR_EXIT_OK) {
+        scene_free(s);
+        return rc;
+    }
     if (scene_evaluate(s, o->time, 1) != 0 ||
         (o->ground && (scene_add_ground(s) != 0 || scene_evaluate(s, o->time, 1) != 0))) {
         cli_error(cmd, "out of memory");
         scene_free(s);
         return SAARCOR_EXIT_INTERNAL;
     }
-    if ((rc = limits_check_scene(&o->lim, cmd, s)) != SAARCOR_EXIT_OK)
-        scene_free(s);
-    return rc;
+    return SAARCOR_EXIT_OK;
 }
 
-mi_builder *scene_opts_build(const scene_opts *o, const char *cmd, const scene *s, int *rc)
+uint32_t scene_mem_mb_for(uint64_t n_words) { return (uint32_t)((n_words * 4 + (1u << 20) - 1) >> 20); }
+
+/* The image of a scene that did not fit o's device memory, in the largest one (NULL if it does not
+ * fit there either: err then says why). */
+static mi_builder *build_unbound(const scene_opts *o, const scene *s, char *err, size_t errlen)
 {
-    char err[512];
+    mi_params p = o->mi;
+    if (p.memory_bytes >= SCENE_MAX_MEM_BYTES)
+        return NULL;
+    p.memory_bytes = SCENE_MAX_MEM_BYTES;
+    return mi_build(s, &p, err, errlen);
+}
+
+mi_builder *scene_opts_build(const scene_opts *o, const char *cmd, const scene *s, int *fits, int *rc)
+{
+    char err[512], err2[512];
+    if ((*rc = limits_check_depth(&o->lim, cmd, &o->mi, s)) != SAARCOR_EXIT_OK)
+        return NULL;
     mi_builder *b = mi_build(s, &o->mi, err, sizeof err);
+    if (fits)
+        *fits = b != NULL;
+    if (!b && (b = build_unbound(o, s, err2, sizeof err2)) != NULL && !fits) {
+        uint32_t n;
+        mi_words(b, &n);
+        cli_error(cmd, "scene does not fit the %.2f MB device memory: the image needs %.2f MB (pass --mem-mb %u)",
+                  (double)o->mi.memory_bytes / 1048576.0, n * 4.0 / 1048576.0, scene_mem_mb_for(n));
+        mi_free(b);
+        *rc = SAARCOR_EXIT_INPUT;
+        return NULL;
+    }
     if (!b) {
         cli_error(cmd, "%s", err);
         *rc = SAARCOR_EXIT_INPUT;
@@ -158,4 +189,63 @@ mi_builder *scene_opts_build(const scene_opts *o, const char *cmd, const scene *
         return NULL;
     }
     return b;
+}
+
+/* Triangles of one mesh the builder drops although they have an area: over the condition limit,
+ * or a transformation entry beyond the fp24 range (the builder's rule, memimage.c object_prepare). */
+static void count_drops(const scene_mesh *m, double max_condition, uint64_t *condition, uint64_t *range)
+{
+    for (uint32_t t = 0; t < m->n_triangles; t++) {
+        double v[3][3];
+        affine x;
+        for (int k = 0; k < 3; k++)
+            for (int i = 0; i < 3; i++)
+                v[k][i] = m->positions[3 * (size_t)m->indices[3 * (size_t)t + (size_t)k] + (size_t)i];
+        if (!mi_triangle_transform(v[0], v[1], v[2], INFINITY, &x))
+            continue; /* no area: nothing to draw */
+        if (!mi_triangle_transform(v[0], v[1], v[2], max_condition, &x)) {
+            (*condition)++;
+            continue;
+        }
+        int fits = 1;
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 4; j++)
+                fits &= isfinite(x.m[i][j]) && !f24_is_inf(f24_fast_encode(x.m[i][j]));
+        *range += (uint64_t)!fits;
+    }
+}
+
+void scene_opts_warn_dropped(const scene_opts *o, const char *cmd, const scene *s)
+{
+    uint64_t condition = 0, range = 0;
+    char *seen = calloc(s->n_meshes + 1, 1);
+    if (!seen)
+        return; /* only a warning */
+    for (uint32_t i = 0; i < s->n_instances; i++) {
+        const uint32_t m = s->instances[i].mesh;
+        if (m < s->n_meshes && !seen[m]) {
+            seen[m] = 1;
+            count_drops(&s->meshes[m], o->mi.max_condition, &condition, &range);
+        }
+    }
+    free(seen);
+    if (condition + range)
+        fprintf(stderr, "saarcor %s: warning: %llu triangles dropped, fp24 cannot hold them: %llu with a "
+                        "transformation beyond its range, %llu over the condition limit %g (--max-condition)\n", cmd,
+                (unsigned long long)(condition + range), (unsigned long long)range, (unsigned long long)condition,
+                o->mi.max_condition);
+}
+
+int scene_opts_traversal(scene_opts *o, const char *cmd, const char *arg)
+{
+    static const char *const names[TRAV_KINDS] = { "stack", "short-stack", "restart", "push-down", "ropes", "grid",
+                                                   "grid2" };
+    for (uint32_t k = 0; k < TRAV_KINDS; k++)
+        if (strcmp(arg, names[k]) == 0) {
+            o->mi.accel = mi_accel_for(k);
+            o->mi.traversal = k;
+            return (int)k;
+        }
+    cli_usage_error(cmd, "bad --traversal '%s' (stack, short-stack, restart, push-down, ropes, grid or grid2)", arg);
+    return -1;
 }

@@ -76,8 +76,25 @@ int scene_opts_parse(scene_opts *o, const char *cmd, int c, const char *arg);
  * Returns a SAARCOR_EXIT_* code; errors are printed as one line. */
 int scene_opts_load(const scene_opts *o, const char *cmd, scene *s);
 
-/* mi_build with o->mi, then the limits of the result (kd nodes, depth). NULL after printing the
- * error, with the exit code in *rc. */
-mi_builder *scene_opts_build(const scene_opts *o, const char *cmd, const scene *s, int *rc);
+/* The largest device memory, --mem-mb 2047: where a scene that does not fit is built to learn its
+ * size, and what the binary64 reference (not bound by the device) builds in. */
+#define SCENE_MAX_MEM_BYTES ((uint64_t)2047 << 20)
+
+/* The --mem-mb value that holds an image of n_words 32-bit words. */
+uint32_t scene_mem_mb_for(uint64_t n_words);
+
+/* mi_build with o->mi, then the limits of the result (kd nodes, depth). A scene that does not fit
+ * the device memory is built again in SCENE_MAX_MEM_BYTES to learn how much it needs: with fits
+ * NULL the error names the --mem-mb to pass; with fits, that image is returned and *fits = 0
+ * (info reports on it). NULL after printing the error, with the exit code in *rc. */
+mi_builder *scene_opts_build(const scene_opts *o, const char *cmd, const scene *s, int *fits, int *rc);
+
+/* --traversal NAME (render, info): the traversal unit's algorithm (a TRAV_* value) and the
+ * structures it needs in the memory image set in o->mi. -1 after printing a usage error. */
+int scene_opts_traversal(scene_opts *o, const char *cmd, const char *arg);
+
+/* One warning line on stderr if the scene's meshes have triangles the device cannot hold (fp24
+ * range or the condition limit; they are dropped from the image), with the counts by reason. */
+void scene_opts_warn_dropped(const scene_opts *o, const char *cmd, const scene *s);
 
 #endif

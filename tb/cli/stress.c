@@ -8,6 +8,7 @@
 
 #include "f24_fast.h"
 #include "geom.h"
+#include "interrupt.h"
 #include "isect_unit.h"
 #include "memimage.h"
 #include "rebase_unit.h"
@@ -811,7 +812,7 @@ int stress_run(const char *filter, uint32_t rays, const char *shared, stress_res
     stress_ray *buf = malloc((size_t)rays * sizeof *buf);
     if (!buf)
         return -1;
-    for (size_t i = 0; i < sizeof cases / sizeof cases[0] && count < max; i++) {
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0] && count < max && !interrupt_signal(); i++) {
         const case_def *c = &cases[i];
         if (!selected(c->name, filter))
             continue;

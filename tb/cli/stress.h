@@ -43,7 +43,8 @@ typedef struct {
 
 /* Runs every case whose name contains one of the comma-separated parts of `filter` (NULL: all) with about `rays` rays each;
  * results[] gets at most max entries; returns the number run, or -1 (out of memory). `shared`
- * is the folder of the shared scenes (cases that need one are skipped if it is missing). */
+ * is the folder of the shared scenes (cases that need one are skipped if it is missing). A caught
+ * Ctrl-C (interrupt.h) stops it before the next case. */
 int stress_run(const char *filter, uint32_t rays, const char *shared, stress_result *results, int max);
 
 /* The names, descriptions and criteria of every case, without running any; returns the count. */

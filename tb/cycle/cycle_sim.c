@@ -1,6 +1,7 @@
 /* Cycle-level model of the DynRTC: see cycle_sim.h and docs/cycle-model.md. */
 #define _GNU_SOURCE
 #include "cycle_sim.h"
+#include "cycle_trace.h"
 #include "pixel_cost.h"
 
 #include <pthread.h>
@@ -92,6 +93,7 @@ typedef struct {
     mem_iface mi;
     rgs_counters counters;
     cycle_stats st;
+    trace_pipe *tp; /* waveform recorder (NULL: none) */
 } pipe_state;
 
 static void heap_push(pipe_state *p, uint64_t cycle, uint32_t t)
@@ -132,6 +134,14 @@ static uint32_t fifo_pop(fifo *f, uint32_t cap)
     f->head = (f->head + 1) % cap;
     f->count--;
     return id;
+}
+
+/* Thread id joins unit u's queue. */
+static void enqueue(pipe_state *p, int u, uint32_t id)
+{
+    fifo_push(&p->queue[u], p->cfg->threads_per_pipe, id);
+    if (p->tp)
+        trace_queue(p->tp, u, p->now, p->queue[u].count);
 }
 
 /* Thread-cycles of the state being left. */
@@ -201,7 +211,7 @@ static void finish_block(pipe_state *p, thread *t)
 
 /* A thread's result has arrived (or it is idle): it decides its next operation, reads that
  * operation's memory blocks, and waits for them or joins the unit's queue. */
-static void advance(pipe_state *p, uint32_t id)
+static void advance_thread(pipe_state *p, uint32_t id)
 {
     thread *t = &p->th[id];
     leave_state(p, t);
@@ -233,8 +243,16 @@ next_op:
         heap_push(p, ready, id);
     } else {
         t->state = TH_QUEUED;
-        fifo_push(&p->queue[t->op.unit], p->cfg->threads_per_pipe, id);
+        enqueue(p, (int)t->op.unit, id);
     }
+}
+
+/* advance_thread, and the threads in flight it may have changed for the waveform. */
+static void advance(pipe_state *p, uint32_t id)
+{
+    advance_thread(p, id);
+    if (p->tp)
+        trace_threads(p->tp, p->now, p->active);
 }
 
 static int cmp_u32(const void *a, const void *b)
@@ -265,6 +283,10 @@ static void pipe_cycle(pipe_state *p)
         p->st.busy[u] += t->op.slots;
         p->st.ops[u]++;
         heap_push(p, p->now + t->op.slots - 1 + p->cfg->latency[u], issue[u]);
+        if (p->tp) {
+            trace_issue(p->tp, u, p->now, issue[u], t->op.slots);
+            trace_queue(p->tp, u, p->now, p->queue[u].count);
+        }
     }
     qsort(p->arrived, p->n_arrived, sizeof *p->arrived, cmp_u32);
     for (uint32_t i = 0; i < p->n_arrived; i++) {
@@ -272,7 +294,7 @@ static void pipe_cycle(pipe_state *p)
         if (t->state == TH_MEMORY) { /* data is here: join the unit's queue */
             leave_state(p, t);
             t->state = TH_QUEUED;
-            fifo_push(&p->queue[t->op.unit], cap, p->arrived[i]);
+            enqueue(p, (int)t->op.unit, p->arrived[i]);
         } else {
             advance(p, p->arrived[i]);
         }
@@ -328,9 +350,21 @@ struct cycle_sim {
     cycle_config cfg;
     pipe_state *pipes;
     pixel_cost *costs;
+    cycle_trace *trace;
 };
 
 void cycle_set_costs(cycle_sim *s, pixel_cost *costs) { s->costs = costs; }
+
+void cycle_set_trace(cycle_sim *s, cycle_trace *tr)
+{
+    s->trace = tr;
+    for (uint32_t i = 0; i < s->cfg.pipes; i++) {
+        pipe_state *p = &s->pipes[i];
+        p->tp = tr ? cycle_trace_pipe(tr, i) : NULL;
+        p->mi.probe = tr ? trace_mem : NULL;
+        p->mi.probe_arg = p->tp;
+    }
+}
 
 cycle_sim *cycle_create(const cycle_config *cfg)
 {
@@ -558,6 +592,8 @@ epochs:
         pthread_barrier_wait(&h.start);
         run_share(s, 0, h.workers, h.until);
         pthread_barrier_wait(&h.done);
+        if (s->trace)
+            cycle_trace_epoch(s->trace, h.until);
     }
     h.stop = 1;
     pthread_barrier_wait(&h.start);
@@ -571,6 +607,8 @@ epochs:
     free(wa);
     if (stopped)
         return 1;
+    if (s->trace)
+        cycle_trace_epoch(s->trace, UINT64_MAX);
     collect(s, counters, stats);
     return 0;
 }

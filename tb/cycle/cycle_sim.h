@@ -59,6 +59,7 @@ typedef struct {
 } cycle_stats;
 
 typedef struct cycle_sim cycle_sim;
+typedef struct cycle_trace cycle_trace; /* cycle_trace.h */
 
 /* NULL if out of memory. */
 cycle_sim *cycle_create(const cycle_config *cfg);
@@ -67,6 +68,9 @@ void cycle_free(cycle_sim *s);
 /* Per-pixel costs of the following renders (pixel_cost.h; width x height of the camera block,
  * pixels outside the region rendered untouched), NULL (the default): not kept. */
 void cycle_set_costs(cycle_sim *s, pixel_cost *costs);
+
+/* Records the following render's signals into tr (cycle_trace.h; made for this config), NULL: none. */
+void cycle_set_trace(cycle_sim *s, cycle_trace *tr);
 
 /* Empties the caches: the memory image changed. */
 void cycle_flush(cycle_sim *s);

@@ -66,23 +66,27 @@ static uint64_t port_transfer(mem_iface *m, uint32_t kind, uint64_t bytes, uint6
 
 uint64_t mem_iface_read(mem_iface *m, uint32_t kind, uint32_t word_addr, uint32_t words, uint64_t now)
 {
-    if (kind >= MI_CACHED_KINDS || !m->cache[kind].lines)
-        return port_transfer(m, kind, 4ull * words, now);
+    if (kind >= MI_CACHED_KINDS || !m->cache[kind].lines) {
+        const uint64_t at = port_transfer(m, kind, 4ull * words, now);
+        if (m->probe)
+            m->probe(m->probe_arg, kind, MI_UNCACHED, now, at);
+        return at;
+    }
     dm_cache *c = &m->cache[kind];
     const uint64_t first = 4ull * word_addr / c->line_bytes, last = (4ull * (word_addr + words) - 1) / c->line_bytes;
     uint64_t ready = now;
     for (uint64_t line = first; line <= last; line++) {
         const uint32_t i = (uint32_t)(line % c->lines);
-        uint64_t at;
+        const int hit = c->tag[i] == line + 1;
         m->stats.lookups[kind]++;
-        if (c->tag[i] == line + 1) {
-            m->stats.hits[kind]++;
-            at = c->valid_at[i] > now ? c->valid_at[i] : now;
-        } else {
-            at = port_transfer(m, kind, c->line_bytes, now);
+        m->stats.hits[kind] += (uint64_t)hit;
+        if (!hit) {
             c->tag[i] = line + 1;
-            c->valid_at[i] = at;
+            c->valid_at[i] = port_transfer(m, kind, c->line_bytes, now);
         }
+        const uint64_t at = c->valid_at[i] > now ? c->valid_at[i] : now;
+        if (m->probe)
+            m->probe(m->probe_arg, kind, hit ? MI_HIT : MI_MISS, now, at);
         ready = at > ready ? at : ready;
     }
     return ready;

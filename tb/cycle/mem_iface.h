@@ -43,12 +43,19 @@ typedef struct {
     uint64_t requests[MEM_KINDS];                 /* transfers (line fills, uncached reads) */
 } mem_stats;
 
+/* What a read did per line (the waveform's probe, cycle_trace.h): a cache hit, a miss that fills
+ * the line, or an uncached transfer; arrive is the cycle the transfer's data is at the unit. */
+enum { MI_HIT, MI_MISS, MI_UNCACHED };
+typedef void (*mem_probe_fn)(void *arg, uint32_t kind, int what, uint64_t now, uint64_t arrive);
+
 typedef struct {
     mem_config cfg;
     dm_cache cache[MI_CACHED_KINDS];
     uint64_t port_free;     /* cycle the port is free, x 65536 */
     uint64_t fx_per_byte;   /* port occupancy per byte, x 65536 cycles */
     mem_stats stats;
+    mem_probe_fn probe; /* NULL: none */
+    void *probe_arg;
 } mem_iface;
 
 /* 0 on success, -1 out of memory (cfg checked by the caller). */

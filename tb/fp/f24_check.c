@@ -42,6 +42,11 @@ int f24_check_vector(f24_op op, f24_pair v, f24_check_stats *st, FILE *log, int 
     return 1;
 }
 
+int (*f24_check_stop)(void);
+
+/* True when vector i is a polling point and the caller asked to stop. */
+static int stopped(uint64_t i) { return (i & 4095) == 4095 && f24_check_stop && f24_check_stop(); }
+
 f24_check_stats f24_check_op(f24_op op, uint64_t n_random, uint64_t seed, FILE *log, int max_log)
 {
     f24_check_stats st = { 0, 0, 0 };
@@ -53,7 +58,7 @@ f24_check_stats f24_check_op(f24_op op, uint64_t n_random, uint64_t seed, FILE *
 
     f24_rng rng;
     f24_rng_seed(&rng, seed);
-    for (uint64_t i = 0; i < n_random; i++)
+    for (uint64_t i = 0; i < n_random && !stopped(i); i++)
         f24_check_vector(op, f24_vec_random(op, &rng), &st, log, &budget);
     return st;
 }
@@ -63,7 +68,7 @@ f24_check_stats f24_check_exhaustive(f24_op op, FILE *log, int max_log)
     f24_check_stats st = { 0, 0, 0 };
     int budget = max_log;
     const uint64_t n = 1ull << F24_WIDTH;
-    for (uint64_t a = 0; a < n; a++)
+    for (uint64_t a = 0; a < n && !stopped(a); a++)
         f24_check_vector(op, (f24_pair){ (uint32_t)a, 0 }, &st, log, &budget);
     return st;
 }

@@ -22,6 +22,10 @@ typedef struct {
  * *budget > 0 (log may be NULL). */
 int f24_check_vector(f24_op op, f24_pair v, f24_check_stats *st, FILE *log, int *budget);
 
+/* Polled every 4096 vectors by the checks below: non-zero stops them early, with the counts so far
+ * (f24verify's Ctrl-C). NULL: never. */
+extern int (*f24_check_stop)(void);
+
 /* Edge set, then n_random random vectors from seed. */
 f24_check_stats f24_check_op(f24_op op, uint64_t n_random, uint64_t seed, FILE *log, int max_log);
 

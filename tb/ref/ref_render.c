@@ -291,7 +291,7 @@ static void *ref_rows(void *arg)
 {
     const ref_job *j = arg;
     const uint32_t w = j->p->cam.width, h = j->p->cam.height;
-    for (uint32_t y = j->thread; y < h; y += j->threads)
+    for (uint32_t y = j->thread; y < h && !(j->p->stop && j->p->stop()); y += j->threads)
         for (uint32_t x = 0; x < w; x++) {
             double c[3];
             ref_hit hit;
@@ -329,6 +329,6 @@ int ref_render_image(const ref_scene *r, const ref_params *p, uint32_t threads, 
     }
     free(jobs);
     free(tid);
-    return 0;
+    return p->stop && p->stop() ? 1 : 0;
 }
 

@@ -19,6 +19,7 @@ typedef struct {
     scene_light *lights;  /* the scene's lights, or the memory image's default light */
     uint32_t n_lights;
     double eps;           /* ray offset e */
+    int (*stop)(void);    /* polled before each row: non-zero stops the image (Ctrl-C); NULL: never */
 } ref_params;
 
 /* Camera, lights and ray offset as the device sees them (b: the scene's memory-image builder,
@@ -33,7 +34,8 @@ void ref_primary(const mi_camera *c, uint32_t x, uint32_t y, double o[3], double
 void ref_pixel(const ref_scene *r, const ref_params *p, uint32_t x, uint32_t y, double rgb[3], ref_hit *hit);
 
 /* The whole image with `threads` host threads (interleaved rows; the result does not depend on
- * their number): clamped RGB (3 floats per pixel) and, if hits is not NULL, the primary hits. */
+ * their number): clamped RGB (3 floats per pixel) and, if hits is not NULL, the primary hits.
+ * 0, -1 if out of memory, 1 if p->stop stopped it (the image is incomplete). */
 int ref_render_image(const ref_scene *r, const ref_params *p, uint32_t threads, float *rgb, ref_hit *hits);
 
 /* Unit world geometric normal of a hit, A-B-C orientation through the transposed

@@ -2,7 +2,8 @@
 # Seed corpus of the fuzzers (tests/fuzz/README.md), generated at build time into OUT:
 #   OUT/gltf      the generated scenes as .glb, as .gltf with embedded (data: URI) buffers and
 #                 images, and as .gltf bundles with external .bin/.png files (fuzz_gltf's format)
-#   OUT/memimage  valid memory images of the generated scenes (saarcor info --image)
+#   OUT/memimage  valid memory images of the generated scenes (saarcor info --image), and of
+#                 cornell with rope and grid data (info --traversal ropes, grid, grid2)
 #   OUT/cli       the command lines of tests/fuzz/cli_seeds.txt, one argument per line
 # Usage: tests/fuzz/corpus.sh SAARCOR OUT
 set -euo pipefail
@@ -15,6 +16,9 @@ for s in cornell room animated; do
   "$saarcor" gen "$s" -o "$out/gltf/$s.gltf" >/dev/null
   python3 "$here/bundle.py" "$out/gltf/$s.gltf" "$out/gltf/$s.external"
   "$saarcor" info "$s" --width 64 --height 48 --image "$out/memimage/$s.bin" >/dev/null
+done
+for t in ropes grid grid2; do # the traversal structures beside the kd-trees (docs/traversal.md)
+  "$saarcor" info cornell --width 64 --height 48 --traversal $t --image "$out/memimage/cornell-$t.bin" >/dev/null
 done
 n=0
 grep -v '^#' "$here/cli_seeds.txt" | while read -r line; do

@@ -6,7 +6,8 @@
 # coverage, crashes) and a summary in FUZZ_DIR/fuzz-report.txt. Exit 1 if anything crashed.
 # Usage: tests/fuzz/run.sh FUZZ_DIR SECONDS
 set -u
-dir=$1 secs=$2
+mkdir -p "$1"
+dir=$(cd "$1" && pwd) secs=$2 # absolute: fuzz_cli runs each input in its own directory
 here=$(cd "$(dirname "$0")" && pwd)
 mkdir -p "$dir/crashes" "$dir/logs"
 report=$dir/fuzz-report.txt
