@@ -248,7 +248,7 @@ static void rays_in_split_planes(void **state)
         hit_record h[TRACE_PACKET];
         trace_packet(mem, &rp, h, &c);
         for (int i = 0; i < TRACE_PACKET; i++) {
-            const f24_t ref = ref_units_closest(mem, rp.o[i], rp.d[i], 0, F24_POS_INF);
+            const f24_t ref = ref_units_closest(mem, rp.o[i], rp.d[i], 0, F24_POS_INF, NULL);
             rays++;
             /* the same distance up to the rounding of where each moved the origin (ref_units.h) */
             agree += h[i].instance == TRACE_NO_HIT ? ref == F24_POS_INF : fabs(D(h[i].t) - D(ref)) <= 1e-4 * D(ref);

@@ -670,6 +670,12 @@ static uint32_t accepting(const world *w, const ray_packet *rp, int k, uint32_t 
     return n;
 }
 
+/* How far a hit lies inside its triangle: the smallest of u, v and 1 - u - v. */
+static double graze_margin(const isect_result *r)
+{
+    return fmin(fmin(D(r->u), D(r->v)), 1 - D(r->u) - D(r->v));
+}
+
 static int finite_hit(const hit_record *h, double tmin, double tmax)
 {
     const double t = D(h->t);
@@ -701,9 +707,13 @@ static void judge(const world *w, const ray_packet *rp, int k, const hit_record 
     if (flags & STRESS_MUST_MISS)
         r->acne += uh;
     if (flags & STRESS_BRUTE) {
-        const f24_t b = ref_units_closest(w->mem, rp->o[k], rp->d[k], rp->tmin[k], rp->tmax[k]);
-        /* the traversal lost a surface: it missed, or its hit lies clearly behind the closest */
-        const int bh = b != rp->tmax[k];
+        isect_result bf;
+        const f24_t b = ref_units_closest(w->mem, rp->o[k], rp->d[k], rp->tmin[k], rp->tmax[k], &bf);
+        /* the traversal lost a surface: it missed, or its hit lies clearly behind the closest,
+         * one that brute force meets off its edges: where it grazes an edge, whether the units
+         * accept it depends on the point the origin was moved to, a leaf's entry for the
+         * traversal and the plane for brute force (ref_units.h) */
+        const int bh = b != rp->tmax[k] && graze_margin(&bf) > ldexp(1.0, -F24_MAN_BITS / 2);
         r->traversal += bh && (!uh || D(h->t) > D(b) * (1 + 1e-3));
     }
     if ((flags & STRESS_MULTI) && ry->vertex != UINT32_MAX)

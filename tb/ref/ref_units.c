@@ -24,7 +24,7 @@ static isect_result test_near(const f24_triangle *tri, f24_vec3x2 o, f24_vec3x2 
     return isect_unit_rebased(tri, rebase_origin(o, d, te), te, d.hi, tmin, tmax);
 }
 
-f24_t ref_units_closest(const uint32_t *mem, f24_vec3 o, f24_vec3 d, f24_t tmin, f24_t tmax)
+f24_t ref_units_closest(const uint32_t *mem, f24_vec3 o, f24_vec3 d, f24_t tmin, f24_t tmax, isect_result *hit)
 {
     const uint32_t ia = mem[MI_H_REGION_TABLE + 2 * MI_R_INSTANCES], oa = mem[MI_H_REGION_TABLE + 2 * MI_R_OBJECTS];
     f24_t best = tmax;
@@ -35,8 +35,11 @@ f24_t ref_units_closest(const uint32_t *mem, f24_vec3 o, f24_vec3 d, f24_t tmin,
         for (uint32_t t = 0; t < od[MI_O_N_TRIANGLES]; t++) {
             const f24_triangle tx = f24_triangle_load(mem, od[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * t);
             const isect_result r = test_near(&tx, oo, dd, tmin, best);
-            if (r.hit)
-                best = r.t;
+            if (!r.hit)
+                continue;
+            best = r.t;
+            if (hit)
+                *hit = r;
         }
     }
     return best;

@@ -12,13 +12,14 @@
 
 #include <stdint.h>
 
-#include "vec3.h"
+#include "isect_unit.h"
 
 /* The object-space ray (o, d) of the instance record at word ia, as the transformation unit's
  * wide mode gives it (double words). */
 void ref_units_to_object(const uint32_t *mem, uint32_t ia, f24_vec3 o, f24_vec3 d, f24_vec3x2 *oo, f24_vec3x2 *dd);
 
-/* The smallest t in [tmin, tmax) of any triangle the units accept, or tmax if none. */
-f24_t ref_units_closest(const uint32_t *mem, f24_vec3 o, f24_vec3 d, f24_t tmin, f24_t tmax);
+/* The smallest t in [tmin, tmax) of any triangle the units accept, or tmax if none; that
+ * triangle's result in *hit if hit is not NULL and there is one. */
+f24_t ref_units_closest(const uint32_t *mem, f24_vec3 o, f24_vec3 d, f24_t tmin, f24_t tmax, isect_result *hit);
 
 #endif
