@@ -17,7 +17,7 @@
    ray-triangle tests, transformation slots, shading and DynRTC bytes (after the caches), image
    bytes per unique triangle, the busiest unit's usage and the threads' memory wait, beside the
    paper's figure for the comparable scene, the issue's target, and the same figures before the
-   issue (tests/bench/cycle_before.json: measured on commit c08d62e with this script's
+   issue (tests/bench/cycle_before.json: measured on the commit before the last change measured with this script's
    --record-before BIN, machine, command and date in the file).
 Writes OUT/cycle.md, OUT/cycle.json and OUT/cycle_threads.svg (gnuplot, if installed).
 Options: --quick (512x384 only, no sweeps' Embree), --record-before BIN (measure the per-ray
