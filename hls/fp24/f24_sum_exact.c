@@ -113,10 +113,10 @@ accumulate:
             continue;
         const uint64_t prod = (uint64_t)f24_sig(a[k]) * f24_sig(b[k]);
         const uint32_t down = (uint32_t)(emax - ea - eb);
-        const f24_u128 term = down <= top ? u128_shl(prod, top - down)
-                                          : (f24_u128){ 0, down - top >= 64 ? prod != 0
-                                                                            : (prod >> (down - top)) |
-                                                                                  ((prod << (64 - (down - top))) != 0) };
+        const uint32_t below = down > top ? down - top : 0; /* bits of prod under the window's last */
+        const uint64_t lost = below == 0 ? 0 : below >= 64 ? prod : prod << (64 - below);
+        const f24_u128 term = below == 0 ? u128_shl(prod, top - down)
+                                         : (f24_u128){ 0, (below >= 64 ? 0 : prod >> below) | (lost != 0) };
         acc = u128_add(acc, f24_sign(a[k]) ^ f24_sign(b[k]) ? u128_neg(term) : term);
     }
     const uint32_t sign = (uint32_t)(acc.hi >> 63);

@@ -30,7 +30,8 @@
 /* An instance record (a 12-word matrix, the object index, flags and the translation's 3 low
  * words: 17 words read) takes whole triangle records, so that with cache lines of one triangle
  * record each instance starts on a line and costs 2 of them (24 words at e7m16 and e8m23). */
-#define F24_INSTANCE_RECORD_WORDS (F24_TRIANGLE_RECORD_WORDS * ((17 + F24_TRIANGLE_RECORD_WORDS - 1) / F24_TRIANGLE_RECORD_WORDS))
+#define F24_INSTANCE_RECORD_WORDS \
+    (F24_TRIANGLE_RECORD_WORDS * ((17 + F24_TRIANGLE_RECORD_WORDS - 1) / F24_TRIANGLE_RECORD_WORDS))
 
 /* Bits [bit, bit + n) of the record at word address addr (n <= 32 - bit % 32 + 32). */
 static inline uint32_t f24_record_field(const uint32_t *mem, uint32_t addr, uint32_t bit, uint32_t n)

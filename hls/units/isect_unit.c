@@ -51,7 +51,8 @@ static f24_t plane_distance(const f24_triangle *tri, f24_vec3x2 p, f24_vec3 lo)
 {
     const f24_t *n = tri->m.m[2];
     const f24_t a[9] = { n[0], n[1], n[2], n[0], n[1], n[2], n[0], n[1], n[2] };
-    const f24_t b[9] = { p.hi.x, p.hi.y, p.hi.z, f24_neg(tri->m.m[0][3]), f24_neg(tri->m.m[1][3]), f24_neg(tri->m.m[2][3]),
+    const f24_t b[9] = { p.hi.x, p.hi.y, p.hi.z,
+                         f24_neg(tri->m.m[0][3]), f24_neg(tri->m.m[1][3]), f24_neg(tri->m.m[2][3]),
                          lo.x, lo.y, lo.z };
     return f24_sum_exact(a, b, 9).hi;
 }

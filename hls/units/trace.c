@@ -23,7 +23,8 @@ enum {
     H_FORMAT = 2, H_OBJECTS = 6, H_INSTANCES = 7, H_TOP_NODES = 11, H_SCENE_BOUNDS = 12, H_REGIONS = 18,
     R_OBJECTS = 5, R_CAMERA = 6, R_INSTANCES = 8, R_TOP_NODES = 9, R_TOP_LISTS = 10, R_TOP_GRID = 11,
     CAM_PROFILE = 3, OBJ_WORDS = 16, O_NODES = 0, O_LISTS = 1, O_TRIANGLES = 2, O_BOUNDS = 8, O_GRID = 14,
-    INST_WORDS = F24_INSTANCE_RECORD_WORDS, INST_READ = 17, INST_FLAGS = 13, INST_IDENTITY = 1, INST_T_LO = 14, OBJ_READ = 14,
+    INST_WORDS = F24_INSTANCE_RECORD_WORDS, INST_READ = 17, INST_FLAGS = 13, INST_IDENTITY = 1, INST_T_LO = 14,
+    OBJ_READ = 14,
     TRI_WORDS = F24_TRIANGLE_RECORD_WORDS,
 };
 
@@ -239,7 +240,8 @@ relative_distances:
         s->best_rel[i] = f24_sub(s->best_t[i], s->t0[i]);
         s->tmin_rel[i] = f24_sub(s->rays.tmin[i], s->t0[i]);
     }
-    const uint32_t mask = trav_object_clip(&mem[s->obj + O_BOUNDS], s->o, s->d, s->tmin_rel, s->best_rel, s->need, tn, tf);
+    const uint32_t mask =
+        trav_object_clip(&mem[s->obj + O_BOUNDS], s->o, s->d, s->tmin_rel, s->best_rel, s->need, tn, tf);
     if (!mask) {
         route_after_list(s);
         return;
