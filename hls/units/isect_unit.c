@@ -57,22 +57,28 @@ static f24_t plane_distance(const f24_triangle *tri, f24_vec3x2 p, f24_vec3 lo)
     return f24_sum_exact(a, b, 9).hi;
 }
 
+/* O' from the offset c to the vertex and the plane distance oz: rows 0 and 1 of M^-1, then oz. */
+static f24_vec3 origin_from(const f24_triangle *tri, f24_vec3 c, f24_t oz)
+{
+    const f24_vec3 o = { xform_row(tri->m.m[0], c, 0), xform_row(tri->m.m[1], c, 0), oz };
+    return o;
+}
+
 f24_vec3 isect_origin(const f24_triangle *tri, f24_vec3x2 p)
 {
     f24_vec3 lo;
     const f24_vec3 c = offset_from_vertex(tri, p, &lo);
-    const f24_vec3 o = { xform_row(tri->m.m[0], c, 0), xform_row(tri->m.m[1], c, 0), plane_distance(tri, p, lo) };
-    return o;
+    return origin_from(tri, c, plane_distance(tri, p, lo));
 }
 
 isect_result isect_unit_rebased(const f24_triangle *tri, f24_vec3x2 p, f24_t te, f24_vec3 d, f24_t tmin, f24_t tmax)
 {
     f24_vec3 lo;
-    offset_from_vertex(tri, p, &lo);
+    const f24_vec3 c = offset_from_vertex(tri, p, &lo);
     const f24_t oz = plane_distance(tri, p, lo), dz = xform_row(tri->m.m[2], d, 0);
     const f24_t t = f24_add(te, f24_div(f24_neg(oz), dz));
     if (f24_le(tmin, t) && f24_lt(t, tmax))
-        return isect_unit_triangle(isect_origin(tri, p), xform_vector(&tri->m, d), te, tmin, tmax);
+        return isect_unit_triangle(origin_from(tri, c, oz), xform_vector(&tri->m, d), te, tmin, tmax);
     const isect_result miss = { 0, t, F24_ZERO, F24_ZERO, dz };
     return miss;
 }
