@@ -246,7 +246,7 @@ static void consider(const axis_terms *t, double q, uint32_t nl, uint32_t np, ui
  * recursion still ends (at max_depth at the latest). */
 static void consider_face(const axis_terms *t, double q, uint32_t np, uint32_t n, split *best)
 {
-    if (np == 0 || getenv("NOFACE"))
+    if (np == 0)
         return;
     const int at_lo = q == t->lo;
     const double flat = t->base * t->inv, whole = 1.0;
