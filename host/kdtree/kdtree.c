@@ -152,6 +152,8 @@ typedef struct {
     uint32_t *prims;
     uint32_t n_prims, cap_prims;
     uint8_t *side;    /* exact mode: SIDE_* of each primitive of the node being split */
+    event *scratch;   /* exact mode: the straddlers' events (clip_straddlers) */
+    uint32_t cap_scratch;
     double *cand;     /* binned mode: candidate planes of one axis */
     uint32_t *counts; /* binned mode: 3 x (bins + 1) counters */
     measure_kind kind;   /* of SAH weights: measure(kind, node box) / root_measure */
@@ -356,50 +358,65 @@ static uint32_t *new_leaf(builder *b, uint32_t node, uint32_t n)
 
 /* ---- exact mode: event lists ---------------------------------------------------------------- */
 
+/* Events at the same position are ordered by type, then primitive: one 64-bit comparison. */
+static uint64_t event_key(const event *e) { return (uint64_t)e->type << 32 | e->prim; }
+
 static int event_less(const event *a, const event *b)
 {
-    if (a->pos != b->pos)
-        return a->pos < b->pos;
-    if (a->type != b->type)
-        return a->type < b->type;
-    return a->prim < b->prim;
+    return a->pos < b->pos || (a->pos == b->pos && event_key(a) < event_key(b));
 }
 
-static int cmp_event(const void *x, const void *y)
+/* Sorts e[0..n) by event_less: merge sort, insertion sort below 16 events; tmp has room for n / 2
+ * events. (No two events are equal: a primitive has at most one event of each type per axis.) */
+static void sort_events(event *e, uint32_t n, event *tmp)
 {
-    const event *a = x, *b = y;
-    return event_less(b, a) - event_less(a, b);
+    if (n <= 16) {
+        for (uint32_t i = 1; i < n; i++) {
+            const event x = e[i];
+            uint32_t j = i;
+            for (; j > 0 && event_less(&x, &e[j - 1]); j--)
+                e[j] = e[j - 1];
+            e[j] = x;
+        }
+        return;
+    }
+    const uint32_t h = n / 2;
+    sort_events(e, h, tmp);
+    sort_events(e + h, n - h, tmp);
+    if (!event_less(&e[h], &e[h - 1]))
+        return; /* already in order: common for the clipped parts of a few straddlers */
+    memcpy(tmp, e, h * sizeof *e);
+    uint32_t i = 0, j = h, o = 0; /* o < j: the merge never overtakes the right half it reads */
+    while (i < h && j < n)
+        e[o++] = event_less(&e[j], &tmp[i]) ? e[j++] : tmp[i++];
+    memcpy(e + o, tmp + i, (h - i) * sizeof *e);
 }
 
-/* Room for per_axis events on each axis (one spare, so that no size is 0). */
+/* Room for per_axis events on each axis, in one block at ev[0] (one spare, so that no size is 0). */
 static int events_alloc(prim_set *s, size_t per_axis)
 {
-    for (int a = 0; a < 3; a++)
-        if (!(s->ev[a] = malloc((per_axis + 1) * sizeof(event))))
-            return -1;
+    if (!(s->ev[0] = malloc(3 * (per_axis + 1) * sizeof(event))))
+        return -1;
+    s->ev[1] = s->ev[0] + per_axis + 1;
+    s->ev[2] = s->ev[1] + per_axis + 1;
     return 0;
 }
 
-static void add_events(prim_set *s, uint32_t id, const aabb *part)
+/* Appends the events of a primitive whose part in the node has bounds `part`, to ev[0..2] at
+ * n[0..2] (advanced). */
+static void put_events(event *const ev[3], uint32_t n[3], uint32_t id, const aabb *part)
 {
     for (int a = 0; a < 3; a++) {
-        event *e = s->ev[a] + s->n_ev[a];
+        event *e = ev[a] + n[a];
         if (part->lo[a] == part->hi[a]) {
             e[0] = (event){ part->lo[a], id, EV_PLANAR };
-            s->n_ev[a] += 1;
+            n[a] += 1;
         } else {
             e[0] = (event){ part->lo[a], id, EV_START };
             e[1] = (event){ part->hi[a], id, EV_END };
-            s->n_ev[a] += 2;
+            n[a] += 2;
         }
     }
-    s->n++;
-}
-
-static void events_sort(prim_set *s)
-{
-    for (int a = 0; a < 3; a++)
-        qsort(s->ev[a], s->n_ev[a], sizeof(event), cmp_event);
 }
 
 /* Sweeps the events of axis k; candidates are the snapped event positions, and the counts at a
@@ -435,108 +452,144 @@ static void sweep_axis(const builder *b, const prim_set *s, const aabb *box, uin
     }
 }
 
-/* Sets b->side for the primitives of s from their events on the split axis: an end at or below
- * the plane means left only, a start at or above it right only, the rest straddles. */
-static void classify(builder *b, const prim_set *s, const split *sp)
+/* Primitives of a node by where they go. */
+typedef struct {
+    uint32_t left, right, both;
+} side_counts;
+
+/* Sets b->side for the primitives of s from their events on the split axis (a primitive's start
+ * comes before its end): a start at or above the plane means right only, an end at or below it
+ * left only, the rest straddles. */
+static side_counts classify(builder *b, const prim_set *s, const split *sp)
 {
     const event *ev = s->ev[sp->axis];
     const uint32_t m = s->n_ev[sp->axis];
-    for (uint32_t i = 0; i < m; i++)
-        b->side[ev[i].prim] = SIDE_BOTH;
+    side_counts c = { 0, 0, 0 };
     for (uint32_t i = 0; i < m; i++) {
         const event *e = &ev[i];
-        if (e->type == EV_PLANAR)
-            b->side[e->prim] = (uint8_t)side_of(e->pos, e->pos, sp);
-        else if (e->type == EV_END && e->pos <= sp->pos)
-            b->side[e->prim] = SIDE_LEFT;
-        else if (e->type == EV_START && e->pos >= sp->pos)
-            b->side[e->prim] = SIDE_RIGHT;
-    }
-}
-
-/* Starts the children l and r with the sorted events of the straddling primitives, clipped to
- * the child boxes (a straddler has exactly one start event on the split axis). */
-static int clip_straddlers(const builder *b, const prim_set *s, const split *sp, const aabb *lb, const aabb *rb,
-                           prim_set *l, prim_set *r)
-{
-    const event *ev = s->ev[sp->axis];
-    const uint32_t m = s->n_ev[sp->axis];
-    size_t nb = 0;
-    for (uint32_t i = 0; i < m; i++)
-        nb += ev[i].type == EV_START && b->side[ev[i].prim] == SIDE_BOTH;
-    if (events_alloc(l, 2 * nb) || events_alloc(r, 2 * nb))
-        return -1;
-    for (uint32_t i = 0; i < m; i++) {
-        if (ev[i].type != EV_START || b->side[ev[i].prim] != SIDE_BOTH)
-            continue;
-        aabb part;
-        if (part_in_box(b, ev[i].prim, NULL, lb, &part))
-            add_events(l, ev[i].prim, &part);
-        if (part_in_box(b, ev[i].prim, NULL, rb, &part))
-            add_events(r, ev[i].prim, &part);
-    }
-    events_sort(l);
-    events_sort(r);
-    return 0;
-}
-
-/* Merges sorted add[0..k) into sorted dst[0..m), which has room for m + k events. */
-static void merge_events(event *dst, size_t m, const event *add, size_t k)
-{
-    size_t i = m, j = k, o = m + k;
-    while (j > 0) {
-        if (i > 0 && event_less(&add[j - 1], &dst[i - 1]))
-            dst[--o] = dst[--i];
-        else
-            dst[--o] = add[--j];
-    }
-}
-
-/* Adds to child c the events of the primitives of s that go only to side `want`. */
-static int merge_side(const builder *b, const prim_set *s, int want, prim_set *c)
-{
-    for (int a = 0; a < 3; a++) {
-        const event *src = s->ev[a];
-        size_t keep = 0, m = 0;
-        for (uint32_t i = 0; i < s->n_ev[a]; i++)
-            keep += b->side[src[i].prim] == want;
-        event *dst = malloc((keep + c->n_ev[a] + 1) * sizeof *dst);
-        if (!dst)
-            return -1;
-        for (uint32_t i = 0; i < s->n_ev[a]; i++) {
-            if (b->side[src[i].prim] != want)
-                continue;
-            dst[m++] = src[i];
-            c->n += a == 0 && src[i].type != EV_END; /* one start or planar event per primitive */
+        uint8_t *side = &b->side[e->prim];
+        if (e->type == EV_PLANAR) {
+            *side = (uint8_t)side_of(e->pos, e->pos, sp);
+            c.left += *side == SIDE_LEFT;
+            c.right += *side == SIDE_RIGHT;
+        } else if (e->type == EV_START) {
+            *side = e->pos >= sp->pos ? SIDE_RIGHT : SIDE_BOTH;
+            c.right += *side == SIDE_RIGHT;
+        } else if (e->pos <= sp->pos) {
+            *side = SIDE_LEFT;
+            c.left++;
         }
-        merge_events(dst, m, c->ev[a], c->n_ev[a]);
-        free(c->ev[a]);
-        c->ev[a] = dst;
-        c->n_ev[a] += (uint32_t)keep;
     }
+    c.both = s->n - c.left - c.right;
+    return c;
+}
+
+/* Where the straddlers' events for child c on axis a go in b->scratch (nb straddlers). */
+static event *clipped_events(const builder *b, uint32_t nb, int c, int a)
+{
+    return b->scratch + (3 * (size_t)c + (size_t)a) * 2 * nb;
+}
+
+/* The events of the nb straddlers' parts in the child boxes cb[0..1], sorted, at
+ * clipped_events(b, nb, c, a), k[c][a] of them; kept[c]: straddlers with a part in child c. */
+static int clip_straddlers(builder *b, const prim_set *s, const split *sp, const aabb *const cb[2], uint32_t nb,
+                           uint32_t k[2][3], uint32_t kept[2])
+{
+    /* 2 nb events per child and axis, and nb to sort with */
+    event *scratch = reserve(b->scratch, &b->cap_scratch, 13 * (uint64_t)nb + 1, sizeof *scratch);
+    if (!scratch)
+        return -1;
+    b->scratch = scratch;
+    event *ev[2][3];
+    for (int c = 0; c < 2; c++)
+        for (int a = 0; a < 3; a++)
+            ev[c][a] = clipped_events(b, nb, c, a);
+    const event *split_ev = s->ev[sp->axis];
+    for (uint32_t i = 0; i < s->n_ev[sp->axis]; i++) {
+        if (split_ev[i].type != EV_START || b->side[split_ev[i].prim] != SIDE_BOTH)
+            continue;
+        for (int c = 0; c < 2; c++) {
+            aabb part;
+            if (part_in_box(b, split_ev[i].prim, NULL, cb[c], &part)) {
+                put_events(ev[c], k[c], split_ev[i].prim, &part);
+                kept[c]++;
+            }
+        }
+    }
+    for (int c = 0; c < 2; c++)
+        for (int a = 0; a < 3; a++)
+            sort_events(ev[c][a], k[c][a], scratch + 12 * (size_t)nb);
     return 0;
+}
+
+/* The events of one axis for both children in one pass: the one-sided events of ev[0..n) in
+ * their order, each child's merged with its sorted straddler events add[c][0..k[c]), into out[c]
+ * (m[c] events). */
+static void distribute(const builder *b, const event *ev, uint32_t n, event *const add[2], const uint32_t k[2],
+                       event *const out[2], uint32_t m[2])
+{
+    uint32_t j[2] = { 0, 0 }, o[2] = { 0, 0 };
+    for (uint32_t i = 0; i < n; i++) {
+        const int side = b->side[ev[i].prim];
+        if (side == SIDE_BOTH)
+            continue;
+        const int c = side == SIDE_RIGHT;
+        while (j[c] < k[c] && event_less(&add[c][j[c]], &ev[i]))
+            out[c][o[c]++] = add[c][j[c]++];
+        out[c][o[c]++] = ev[i];
+    }
+    for (int c = 0; c < 2; c++) {
+        memcpy(out[c] + o[c], add[c] + j[c], (k[c] - j[c]) * sizeof(event));
+        m[c] = o[c] + k[c] - j[c];
+    }
 }
 
 static int split_events(builder *b, const prim_set *s, const split *sp, const aabb *lb, const aabb *rb,
                         prim_set *l, prim_set *r)
 {
-    classify(b, s, sp);
-    if (clip_straddlers(b, s, sp, lb, rb, l, r))
+    const side_counts n = classify(b, s, sp);
+    const aabb *const cb[2] = { lb, rb };
+    uint32_t k[2][3] = { { 0, 0, 0 }, { 0, 0, 0 } }, kept[2] = { 0, 0 };
+    if (clip_straddlers(b, s, sp, cb, n.both, k, kept))
         return -1;
-    return merge_side(b, s, SIDE_LEFT, l) || merge_side(b, s, SIDE_RIGHT, r) ? -1 : 0;
+    prim_set *const child[2] = { l, r };
+    const uint32_t one_sided[2] = { n.left, n.right };
+    for (int c = 0; c < 2; c++) {
+        const uint32_t most = k[c][0] > k[c][1] ? (k[c][0] > k[c][2] ? k[c][0] : k[c][2]) : (k[c][1] > k[c][2] ? k[c][1] : k[c][2]);
+        if (events_alloc(child[c], 2 * (size_t)one_sided[c] + most))
+            return -1;
+        child[c]->n = one_sided[c] + kept[c];
+    }
+    for (int a = 0; a < 3; a++) {
+        event *const add[2] = { clipped_events(b, n.both, 0, a), clipped_events(b, n.both, 1, a) };
+        event *const out[2] = { l->ev[a], r->ev[a] };
+        const uint32_t ka[2] = { k[0][a], k[1][a] };
+        uint32_t m[2];
+        distribute(b, s->ev[a], s->n_ev[a], add, ka, out, m);
+        l->n_ev[a] = m[0];
+        r->n_ev[a] = m[1];
+    }
+    return 0;
 }
 
 /* Root set: bounds of every primitive (no clipping needed: they lie in the root box). */
 static int root_events(const builder *b, prim_set *s, aabb *root)
 {
-    if (events_alloc(s, 2 * (size_t)b->src->count))
+    const uint32_t n = b->src->count;
+    event *tmp = malloc(((size_t)n + 1) * sizeof *tmp); /* half of an axis's 2n events */
+    if (!tmp || events_alloc(s, 2 * (size_t)n)) {
+        free(tmp);
         return -1;
-    for (uint32_t i = 0; i < b->src->count; i++) {
+    }
+    for (uint32_t i = 0; i < n; i++) {
         const aabb bx = b->src->bounds(b->src->user, i);
-        add_events(s, i, &bx);
+        put_events(s->ev, s->n_ev, i, &bx);
         box_union(root, &bx);
     }
-    events_sort(s);
+    s->n = n;
+    for (int a = 0; a < 3; a++)
+        sort_events(s->ev[a], s->n_ev[a], tmp);
+    free(tmp);
     return 0;
 }
 
@@ -751,8 +804,7 @@ static int leaf_from_refs(builder *b, uint32_t node, const prim_set *s)
 
 static void set_free(prim_set *s)
 {
-    for (int a = 0; a < 3; a++)
-        free(s->ev[a]);
+    free(s->ev[0]); /* the block of all three axes (events_alloc) */
     free(s->ref);
     memset(s, 0, sizeof *s);
 }
@@ -1549,6 +1601,7 @@ int kd_build(const kd_source *src, const kd_params *p, kd_tree *out)
         rc = build_node(&b, 0, &root, &s, 0, &sum); /* frees s */
     set_free(&s);
     free(b.side);
+    free(b.scratch);
     free(b.cand);
     free(b.counts);
     if (rc != 0) {
@@ -1621,6 +1674,15 @@ static void clip_plane(const polygon *src, int axis, double d, int keep_above, p
     }
 }
 
+/* Whether every vertex of p lies on the kept side of the plane (clip_plane keeps p as it is). */
+static int all_inside(const polygon *p, int axis, double d, int keep_above)
+{
+    int in = 1;
+    for (int i = 0; i < p->n; i++)
+        in &= keep_above ? p->v[i][axis] >= d : p->v[i][axis] <= d;
+    return in;
+}
+
 int kd_clip_triangle(const double a[3], const double b[3], const double c[3], const aabb *box, aabb *out)
 {
     polygon p[2];
@@ -1631,7 +1693,10 @@ int kd_clip_triangle(const double a[3], const double b[3], const double c[3], co
     int cur = 0;
     for (int plane = 0; plane < 6 && p[cur].n > 0; plane++) {
         const int axis = plane / 2, above = plane % 2 == 0;
-        clip_plane(&p[cur], axis, above ? box->lo[axis] : box->hi[axis], above, &p[1 - cur]);
+        const double d = above ? box->lo[axis] : box->hi[axis];
+        if (all_inside(&p[cur], axis, d, above))
+            continue; /* most planes of a node box miss the part: clip_plane would copy it */
+        clip_plane(&p[cur], axis, d, above, &p[1 - cur]);
         cur = 1 - cur;
     }
     if (p[cur].n == 0)
