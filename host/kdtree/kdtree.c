@@ -25,8 +25,17 @@
  * Binned mode (bins > 0, the per-frame top level): candidates are the bins - 1 evenly spaced
  * planes per axis. Every primitive is ranked against them exactly (its bin, checked against the
  * neighbouring planes), so the counts are exact at the candidate planes: O(n + bins) per node,
- * O(N log N) total. Small nodes (at most SMALL_NODE primitives, fewer bounds than planes) use
- * their primitives' own bounds as candidates, counted directly: exact SAH, and cheaper there.
+ * O(N log N) total. With a clip function, the primitives straddling the chosen plane are
+ * clipped to the child boxes, as in exact mode. Small nodes (at most SMALL_NODE primitives, fewer
+ * bounds than planes) use their primitives' own bounds as candidates, counted directly: exact
+ * SAH, and cheaper there.
+ *
+ * Binned with exact subtrees (bins > 0, exact_max > 0, the bottom level): a node of at most
+ * exact_max primitives turns its references into sorted events (their clipped bounds) and its
+ * subtree is built in exact mode. The bins place the few planes near the root, where the nodes
+ * are large and a plane's exact position matters little; the perfect splits and face cells near
+ * the leaves, where most nodes and most of the SAH cost are. The sorted event lists are thus
+ * only ever as long as exact_max primitives make them.
  *
  * Quantization: each candidate is snapped with params.quantize before it is evaluated, counts are
  * taken against the snapped plane, and candidates not strictly inside the node box after snapping
@@ -34,13 +43,12 @@
  * for the planes it stores. quantize should be monotone (any rounding is); exact mode skips a
  * snapped candidate that would move the sweep backwards.
  *
- * Threads: binned mode without a clip function (the top level) builds sources of at least
- * PAR_MIN_COUNT primitives on all CPUs (at most PAR_MAX_THREADS): subtrees are built concurrently
- * into separate arrays, which are then merged in a fixed order into exactly the layout of the
- * single-threaded build, so the tree is the same bit for bit, whatever the thread timing. After
- * the root, such a build calls only quantize, from several threads at a time: it must be a pure
- * function (thread-safe). If no thread can be started, the calling thread builds alone. Exact mode
- * (which calls clip) and binned mode with a clip function stay single-threaded.
+ * Threads: sources of at least PAR_MIN_COUNT primitives are built on all CPUs (at most
+ * PAR_MAX_THREADS), in every mode: subtrees are built concurrently into separate arrays, which are
+ * then merged in a fixed order into exactly the layout of the single-threaded build, so the tree
+ * is the same bit for bit, whatever the thread timing. Such a build calls bounds, clip and
+ * quantize from several threads at a time: they must be pure functions (thread-safe). If no
+ * thread can be started, the calling thread builds alone.
  *
  * Statistics are gathered while building; the SAH cost sums every subtree as its node's term plus
  * (left sum + right sum), so that subtrees built in different threads give the same bits as
@@ -811,15 +819,41 @@ static void set_free(prim_set *s)
 
 static int binned(const builder *b) { return b->p.bins > 0; }
 
+/* Whether the builder may meet nodes in exact mode's representation (events). */
+static int sweeps(const builder *b) { return b->p.bins == 0 || b->p.exact_max > 0; }
+
+/* Whether s holds binned mode's representation (primitive references) rather than events. */
+static int has_refs(const prim_set *s) { return s->ref != NULL; }
+
+/* Turns the references of s into exact mode's sorted events (binned mode, at most exact_max
+ * primitives: the subtree from here on is built as in exact mode). */
+static int refs_to_events(builder *b, prim_set *s)
+{
+    prim_set e = { .n = s->n };
+    event *tmp = reserve(b->scratch, &b->cap_scratch, (uint64_t)s->n + 1, sizeof *tmp); /* half of 2n */
+    if (!tmp)
+        return -1;
+    b->scratch = tmp;
+    if (events_alloc(&e, 2 * (size_t)s->n))
+        return -1;
+    for (uint32_t i = 0; i < s->n; i++)
+        put_events(e.ev, e.n_ev, s->ref[i].id, &s->ref[i].b);
+    for (int a = 0; a < 3; a++)
+        sort_events(e.ev[a], e.n_ev[a], tmp);
+    set_free(s);
+    *s = e;
+    return 0;
+}
+
 static int find_split_parallel(const builder *b, const prim_set *s, const aabb *box, split *best);
 
 static void find_split(const builder *b, const prim_set *s, const aabb *box, split *best)
 {
     /* large binned nodes (never small ones) in parts on several threads, unless memory ran out */
-    if (b->pool && binned(b) && s->n >= PAR_SPLIT_MIN && find_split_parallel(b, s, box, best) == 0)
+    if (b->pool && has_refs(s) && s->n >= PAR_SPLIT_MIN && find_split_parallel(b, s, box, best) == 0)
         return;
     for (uint32_t k = 0; k < 3; k++) {
-        if (!binned(b))
+        if (!has_refs(s))
             sweep_axis(b, s, box, k, best);
         else if (s->n <= SMALL_NODE && 2 * s->n < b->p.bins - 1)
             small_axis(b, s, box, k, best);
@@ -830,14 +864,15 @@ static void find_split(const builder *b, const prim_set *s, const aabb *box, spl
 
 /* ---- parallel build: handing subtrees to other threads --------------------------------------- *
  *
- * Binned mode without a clip function calls nothing after the root but quantize (assumed pure),
- * so subtrees can be built concurrently. Every thread of a pool runs tasks: a task builds one
- * subtree into its own builder (nodes, leaf lists, scratch). A builder splitting a node while a
+ * The source's functions and quantize are pure (kdtree.h), so subtrees can be built
+ * concurrently. Every thread of a pool runs tasks: a task builds one subtree into its own builder
+ * (nodes, leaf lists; scratch while it runs). A builder splitting a node while a
  * thread of the pool waits for work hands the larger child (at least PAR_GRAIN primitives) to a
  * new task and leaves a hole there. Afterwards layout() and copy_nodes() merge the outputs of all
  * tasks into the layout of the single-threaded build, so the tree does not depend on the number
  * of threads or their timing: it is bit-identical to the single-threaded one. Large nodes (the
- * root) are counted and split by several threads in parts (pool_for), again with the same result. */
+ * root) of binned mode are counted and split by several threads in parts (pool_for), again with
+ * the same result. */
 
 /* Node marking a hole while a builder runs; child is the task. */
 #define KD_HOLE 4u
@@ -1082,13 +1117,9 @@ static uint32_t offload(builder *b, const aabb *box, prim_set *s, uint32_t depth
     if (t) {
         t->b = (builder){ .src = b->src, .p = b->p, .max_depth = b->max_depth, .kind = b->kind,
                           .root_measure = b->root_measure, .pool = pl };
-        t->b.cand = malloc((size_t)b->p.bins * sizeof *t->b.cand);
-        t->b.counts = malloc(3 * ((size_t)b->p.bins + 1) * sizeof *t->b.counts);
         t->b.prims = reserve(NULL, &t->b.cap_prims, (uint64_t)s->n + 1, sizeof *t->b.prims); /* never NULL after */
         uint32_t root;
-        if (!t->b.cand || !t->b.counts || !t->b.prims || add_nodes(&t->b, 1, &root) != 0) {
-            free(t->b.cand);
-            free(t->b.counts);
+        if (!t->b.prims || add_nodes(&t->b, 1, &root) != 0) {
             free(t->b.prims);
             free(t->b.nodes);
             free(t);
@@ -1158,7 +1189,12 @@ static int build_node(builder *b, uint32_t node, const aabb *box, prim_set *s, u
     split best = { INFINITY, 0, 0.0, 0 };
     if (depth > b->st.depth)
         b->st.depth = depth;
-    if (s->n > b->p.leaf_size && depth < b->max_depth)
+    const int try_split = s->n > b->p.leaf_size && depth < b->max_depth;
+    if (try_split && has_refs(s) && s->n <= b->p.exact_max && refs_to_events(b, s) != 0) {
+        set_free(s);
+        return -1;
+    }
+    if (try_split)
         find_split(b, s, box, &best);
     if (!(best.cost < b->p.cost_intersection * s->n)) {
         const uint32_t n = s->n;
@@ -1168,7 +1204,7 @@ static int build_node(builder *b, uint32_t node, const aabb *box, prim_set *s, u
         if (n > b->st.max_leaf_count)
             b->st.max_leaf_count = n;
         *sum = (subtree_sum){ b->p.cost_intersection * n * weight, 0 };
-        const int rc = binned(b) ? leaf_from_refs(b, node, s) : leaf_from_events(b, node, s);
+        const int rc = has_refs(s) ? leaf_from_refs(b, node, s) : leaf_from_events(b, node, s);
         set_free(s);
         return rc;
     }
@@ -1176,7 +1212,7 @@ static int build_node(builder *b, uint32_t node, const aabb *box, prim_set *s, u
     lb.hi[best.axis] = rb.lo[best.axis] = best.pos;
     prim_set l = { 0 }, r = { 0 };
     uint32_t child = 0;
-    int rc = binned(b) ? split_refs(b, s, &best, &lb, &rb, &l, &r) : split_events(b, s, &best, &lb, &rb, &l, &r);
+    int rc = has_refs(s) ? split_refs(b, s, &best, &lb, &rb, &l, &r) : split_events(b, s, &best, &lb, &rb, &l, &r);
     set_free(s); /* before recursing: the parent's lists are the largest */
     if (rc == 0)
         rc = add_nodes(b, 2, &child);
@@ -1206,13 +1242,40 @@ static int build_node(builder *b, uint32_t node, const aabb *box, prim_set *s, u
 
 /* ---- parallel build: threads and merging --------------------------------------------------- */
 
+/* The scratch arrays of the modes b may meet: bin planes and counters, each primitive's side and
+ * the straddlers' events (these grow on demand). 0, or -1 if memory ran out. */
+static int scratch_alloc(builder *b)
+{
+    if (binned(b)) {
+        b->cand = malloc((size_t)b->p.bins * sizeof *b->cand);
+        b->counts = malloc(3 * ((size_t)b->p.bins + 1) * sizeof *b->counts);
+        if (!b->cand || !b->counts)
+            return -1;
+    }
+    if (sweeps(b) && !(b->side = malloc((size_t)b->src->count + 1)))
+        return -1;
+    return 0;
+}
+
+static void scratch_free(builder *b)
+{
+    free(b->cand);
+    free(b->counts);
+    free(b->side);
+    free(b->scratch);
+    b->cand = NULL;
+    b->counts = NULL;
+    b->side = NULL;
+    b->scratch = NULL;
+    b->cap_scratch = 0;
+}
+
 static void task_free(task *t)
 {
     set_free(&t->s);
     free(t->b.nodes);
     free(t->b.prims);
-    free(t->b.cand);
-    free(t->b.counts);
+    scratch_free(&t->b);
     free(t->b.holes);
     free(t->b.pend);
     memset(&t->b, 0, sizeof t->b);
@@ -1232,8 +1295,10 @@ static void work(pool *pl, int caller)
             task *t = pl->tasks[pl->next++];
             const int skip = pl->failed;
             pthread_mutex_unlock(&pl->mu);
-            const int rc = skip ? -1 : build_node(&t->b, 0, &t->box, &t->s, t->depth, &t->sum); /* frees t->s */
+            /* scratch only while the task runs: one set per thread, not per task */
+            const int rc = skip || scratch_alloc(&t->b) ? -1 : build_node(&t->b, 0, &t->box, &t->s, t->depth, &t->sum);
             set_free(&t->s);
+            scratch_free(&t->b);
             pthread_mutex_lock(&pl->mu);
             pl->failed |= rc != 0;
             if (--pl->unfinished == 0)
@@ -1469,7 +1534,9 @@ static int build_parallel(builder *b, const aabb *box, prim_set *s, uint32_t thr
     free(root.b.holes);
     free(root.b.pend);
     b->st = root.b.st;
-    b->nodes = out.nodes; /* b's scratch stays the caller's to free */
+    b->scratch = root.b.scratch; /* b's scratch (perhaps grown) stays the caller's to free */
+    b->cap_scratch = root.b.cap_scratch;
+    b->nodes = out.nodes;
     b->n_nodes = b->cap_nodes = out.n_nodes;
     b->prims = out.prims;
     b->n_prims = b->cap_prims = out.n_prims;
@@ -1562,18 +1629,10 @@ static int start(builder *b, prim_set *s, aabb *root)
 {
     const aabb empty = { { INFINITY, INFINITY, INFINITY }, { -INFINITY, -INFINITY, -INFINITY } };
     *root = empty;
-    if (binned(b)) {
-        b->cand = malloc((size_t)b->p.bins * sizeof *b->cand);
-        b->counts = malloc(3 * ((size_t)b->p.bins + 1) * sizeof *b->counts);
-        if (!b->cand || !b->counts || root_refs(b, s, root))
-            return -1;
-    } else {
-        if (b->src->count > UINT32_MAX / 2)
-            return -1; /* 2 events per primitive and axis must fit in 32 bits */
-        b->side = malloc((size_t)b->src->count + 1);
-        if (!b->side || root_events(b, s, root))
-            return -1;
-    }
+    if (!binned(b) && b->src->count > UINT32_MAX / 2)
+        return -1; /* 2 events per primitive and axis must fit in 32 bits */
+    if (scratch_alloc(b) || (binned(b) ? root_refs(b, s, root) : root_events(b, s, root)))
+        return -1;
     if (b->src->count == 0)
         *root = (aabb){ { 0, 0, 0 }, { 0, 0, 0 } }; /* no primitives: a point at the origin */
     b->prims = reserve(NULL, &b->cap_prims, (uint64_t)b->src->count + 1, sizeof *b->prims);
@@ -1592,18 +1651,14 @@ int kd_build(const kd_source *src, const kd_params *p, kd_tree *out)
     int rc = start(&b, &s, &root);
     b.kind = measure_of(&root);
     b.root_measure = measure(b.kind, &root);
-    /* threads only where nothing but quantize is called after the root (see offload) */
-    const uint32_t threads = binned(&b) && !src->clip && src->count >= PAR_MIN_COUNT ? thread_count() : 1;
+    const uint32_t threads = src->count >= PAR_MIN_COUNT ? thread_count() : 1;
     subtree_sum sum = { 0.0, 0 };
     if (rc == 0 && threads > 1)
         rc = build_parallel(&b, &root, &s, threads, &sum.sum); /* frees s */
     else if (rc == 0)
         rc = build_node(&b, 0, &root, &s, 0, &sum); /* frees s */
     set_free(&s);
-    free(b.side);
-    free(b.scratch);
-    free(b.cand);
-    free(b.counts);
+    scratch_free(&b);
     if (rc != 0) {
         free(b.nodes);
         free(b.prims);
