@@ -90,11 +90,14 @@ static void record_round_trip(void **state)
     const float na[3] = { 0, 0, 1 }, nb[3] = { 0.6f, -0.8f, 0 }, nc[3] = { -1, -1, -1 };
     const float ta[2] = { 0.25f, -3.5f }, tb[2] = { 1e6f, 0.999f }, tc[2] = { -7e-5f, 8191.5f / 8192 };
     const float *const normals[3] = { na, nb, nc }, *const texcoords[3] = { ta, tb, tc };
+    uint64_t codes[3];
+    for (int k = 0; k < 3; k++)
+        codes[k] = shade_encode_normal((const double[3]){ normals[k][0], normals[k][1], normals[k][2] });
     for (uint32_t combo = 0; combo < 8; combo++) {
         const uint32_t flags = (combo & 3u) | (combo & 4u ? SHADE_ONE_MATERIAL | 4321u << SHADE_OBJ_MATERIAL_SHIFT : 0u);
         uint32_t w[SHADE_MAX_WORDS + 1];
         w[shade_rec_words(flags)] = 0xDEADBEEFu; /* guard: the record stays within its stride */
-        shade_encode_record(w, flags, normals, texcoords, 4321);
+        shade_encode_record(w, flags, codes, texcoords, 4321);
         assert_int_equal(w[shade_rec_words(flags)], 0xDEADBEEFu);
         const uint32_t *tail = w + shade_rec_tail(flags);
         assert_int_equal(shade_rec_material(flags, tail), 4321);

@@ -448,12 +448,26 @@ static void put_tree(uint32_t *nodes, uint32_t *lists, const kd_tree *t, const k
     }
 }
 
-static void write_shading(uint32_t *w, const scene_mesh *m, uint32_t flags, uint32_t tri)
+/* The octahedral codes of the mesh's vertex normals, each vertex encoded once (a vertex is shared
+ * by about six triangles, and an encoding decodes four candidates); NULL if memory ran out. */
+static uint64_t *normal_codes(const scene_mesh *m)
 {
-    const float *normals[3] = { 0 }, *texcoords[3] = { 0 };
+    uint64_t *codes = malloc(((size_t)m->n_vertices + 1) * sizeof *codes);
+    for (uint32_t v = 0; codes && v < m->n_vertices; v++) {
+        const float *n = &m->normals[3 * (size_t)v];
+        codes[v] = shade_encode_normal((const double[3]){ n[0], n[1], n[2] });
+    }
+    return codes;
+}
+
+/* codes: normal_codes(m), or NULL if the mesh has no normals. */
+static void write_shading(uint32_t *w, const scene_mesh *m, const uint64_t *codes, uint32_t flags, uint32_t tri)
+{
+    uint64_t normals[3] = { 0 };
+    const float *texcoords[3] = { 0 };
     for (int k = 0; k < 3; k++) {
         const size_t v = m->indices[3 * (size_t)tri + (size_t)k];
-        normals[k] = m->normals ? &m->normals[3 * v] : NULL;
+        normals[k] = codes ? codes[v] : 0;
         texcoords[k] = m->texcoords ? &m->texcoords[2 * v] : NULL;
     }
     shade_encode_record(w, flags, normals, texcoords, m->material[tri]);
@@ -492,10 +506,14 @@ static void put_triangle(uint32_t *w, const affine *a)
                              vertex_lo_field(a->m[i][3], v[i * 4 + 3]));
 }
 
-/* Geometry block: nodes, leaf lists, padding, triangle transformations, shading records. */
-static void object_write(mi_builder *b, const scene *s, const mi_object *o)
+/* Geometry block: nodes, leaf lists, padding, triangle transformations, shading records. 0, or
+ * -1 if memory ran out. */
+static int object_write(mi_builder *b, const scene *s, const mi_object *o)
 {
     const scene_mesh *m = obj_mesh(b, s, o);
+    uint64_t *codes = m->normals ? normal_codes(m) : NULL; /* the object has normals if its mesh has */
+    if (m->normals && !codes)
+        return -1;
     uint32_t *w = b->words + o->base;
     memset(w, 0, o->words * sizeof *w); /* the padding, deterministic */
     put_tree(w, w + MI_NODE_WORDS * o->n_slots, &o->tree, o->ropes, o->slot);
@@ -503,9 +521,11 @@ static void object_write(mi_builder *b, const scene *s, const mi_object *o)
     for (uint32_t i = 0; i < o->n_valid; i++, w += MI_TRIANGLE_WORDS)
         put_triangle(w, &o->xf[i]);
     for (uint32_t i = 0; i < o->n_valid; i++, w += shade_rec_words(o->shade_flags))
-        write_shading(w, m, o->shade_flags, o->valid[i]);
+        write_shading(w, m, codes, o->shade_flags, o->valid[i]);
+    free(codes);
     if (o->grid.n[0])
         put_grid(w, &o->grid, (uint32_t)(w - b->words));
+    return 0;
 }
 
 static void object_describe(uint32_t *w, const mi_object *o)
@@ -924,8 +944,8 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
         mi_object *o = &b->obj[i];
         o->base = at[o->dynamic];
         at[o->dynamic] += o->words;
-        if (full || (o->dynamic && dynamic_changed))
-            object_write(b, s, o);
+        if ((full || (o->dynamic && dynamic_changed)) && object_write(b, s, o) != 0)
+            goto oom;
     }
     int written[MI_REGION_COUNT] = { 0 };
     if (full) {

@@ -69,14 +69,12 @@ uint64_t shade_encode_normal(const double n[3])
     return best;
 }
 
-void shade_encode_record(uint32_t *w, uint32_t flags, const float *const normals[3], const float *const texcoords[3],
+void shade_encode_record(uint32_t *w, uint32_t flags, const uint64_t normals[3], const float *const texcoords[3],
                          uint32_t material)
 {
     memset(w, 0, shade_rec_words(flags) * sizeof *w);
-    for (uint32_t k = 0; (flags & SHADE_HAS_NORMALS) && k < 3; k++) {
-        const double n[3] = { normals[k][0], normals[k][1], normals[k][2] };
-        shade_encode_set_normal(w, k, shade_encode_normal(n));
-    }
+    for (uint32_t k = 0; (flags & SHADE_HAS_NORMALS) && k < 3; k++)
+        shade_encode_set_normal(w, k, normals[k]);
     uint32_t *tail = w + shade_rec_tail(flags);
     if (!(flags & SHADE_ONE_MATERIAL))
         tail[0] = material;

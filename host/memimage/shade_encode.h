@@ -20,10 +20,11 @@ void shade_encode_set_normal(uint32_t *normals, uint32_t k, uint64_t code);
  * with these flags) to fp24 value. */
 void shade_encode_texcoord(uint32_t *tail, uint32_t flags, uint32_t i, uint32_t value);
 
-/* The record (shade_rec_words(flags) words) of a triangle: normals[k] (3 floats) and
- * texcoords[k] (2 floats) of vertex k, each used only if flags has them, and the material
- * unless flags has SHADE_ONE_MATERIAL. */
-void shade_encode_record(uint32_t *w, uint32_t flags, const float *const normals[3], const float *const texcoords[3],
+/* The record (shade_rec_words(flags) words) of a triangle: normals[k] (the shade_encode_normal
+ * code of vertex k's normal: a mesh encodes each vertex once) and texcoords[k] (2 floats) of
+ * vertex k, each used only if flags has them, and the material unless flags has
+ * SHADE_ONE_MATERIAL. */
+void shade_encode_record(uint32_t *w, uint32_t flags, const uint64_t normals[3], const float *const texcoords[3],
                          uint32_t material);
 
 #endif
