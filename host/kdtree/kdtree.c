@@ -563,7 +563,9 @@ static int split_events(builder *b, const prim_set *s, const split *sp, const aa
     prim_set *const child[2] = { l, r };
     const uint32_t one_sided[2] = { n.left, n.right };
     for (int c = 0; c < 2; c++) {
-        const uint32_t most = k[c][0] > k[c][1] ? (k[c][0] > k[c][2] ? k[c][0] : k[c][2]) : (k[c][1] > k[c][2] ? k[c][1] : k[c][2]);
+        uint32_t most = 0; /* straddler events on any axis */
+        for (int a = 0; a < 3; a++)
+            most = k[c][a] > most ? k[c][a] : most;
         if (events_alloc(child[c], 2 * (size_t)one_sided[c] + most))
             return -1;
         child[c]->n = one_sided[c] + kept[c];

@@ -800,18 +800,18 @@ static void md_scenes(FILE *f, const report *rp)
     fprintf(f, "## Our build (mi_build, default parameters, %d CPUs)\n\n"
                "| scene | unique tris | instanced tris | objects | instances | degenerate | bottom ms | top ms | "
                "nodes/tri | leaves/tri | refs/tri | geometry B/tri | excl. shading B/tri | image MB | SAH | "
-               "exact-sweep SAH | SAH change | exact-sweep bottom ms | runs |\n"
-               "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n", cpus_all);
+               "exact-sweep SAH | SAH change | exact-sweep bottom ms | runs |\n|---|---:|---:|---:|---:|---:|---:|---:|"
+               "---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n", cpus_all);
     for (int i = 0; i < rp->n_scenes; i++) {
         const scene_result *r = &rp->scenes[i];
         const ours_result *o = &r->ours[CPU_ALL];
-        fprintf(f, "| %s | %llu | %llu | %u | %u | %u | %.2f | %.3f | %.2f | %.2f | %.2f | %.1f | %.1f | %.2f%s | %.3f | "
-                   "%.3f | %+.2f%% | %.2f | %d |\n",
+        const double change = r->exact_sah > 0 ? 100 * (o->sah / r->exact_sah - 1) : 0;
+        fprintf(f, "| %s | %llu | %llu | %u | %u | %u | %.2f | %.3f | %.2f | %.2f | %.2f | %.1f | %.1f | %.2f%s | "
+                   "%.3f | %.3f | %+.2f%% | %.2f | %d |\n",
                 r->name, (unsigned long long)o->unique_tris, (unsigned long long)o->instanced_tris,
                 o->objects, o->instances, o->degenerate, o->bottom_ms, o->top_ms, o->nodes_per_tri, o->leaves_per_tri,
                 o->refs_per_tri, o->geom_bytes_per_tri, o->geom_noshade_bytes_per_tri, o->image_mb,
-                o->big_memory ? " (1 GB)" : "", o->sah, r->exact_sah, r->exact_sah > 0 ? 100 * (o->sah / r->exact_sah - 1) : 0,
-                r->exact_ms, o->runs);
+                o->big_memory ? " (1 GB)" : "", o->sah, r->exact_sah, change, r->exact_ms, o->runs);
     }
 }
 
@@ -828,8 +828,8 @@ static void md_embree(FILE *f, const report *rp)
             const ours_result *o = &r->ours[c];
             const embree_result *m = &r->emb[c][EMB_MEDIUM], *h = &r->emb[c][EMB_HIGH];
             const uint64_t t = o->unique_tris;
-            fprintf(f, "| %s | %d | %.2f | %.2f | %.2f | %.1f | %.3f | %.3f | %.3f | %.1f | %.1f | %.1f | %.1f | %.1f | "
-                       "%d/%d/%d |\n", r->name, cpus_of(c), o->bottom_ms, m->bottom_ms, h->bottom_ms,
+            fprintf(f, "| %s | %d | %.2f | %.2f | %.2f | %.1f | %.3f | %.3f | %.3f | %.1f | %.1f | %.1f | %.1f | "
+                       "%.1f | %d/%d/%d |\n", r->name, cpus_of(c), o->bottom_ms, m->bottom_ms, h->bottom_ms,
                     m->bottom_ms > 0 ? o->bottom_ms / m->bottom_ms : 0, o->top_ms, m->top_ms, h->top_ms,
                     o->geom_bytes_per_tri, o->geom_noshade_bytes_per_tri, per_tri(m->bvh_bytes, t),
                     per_tri(h->bvh_bytes, t), per_tri(m->buffer_bytes, t), o->runs, m->runs, h->runs);
@@ -889,7 +889,8 @@ static void write_markdown(const char *path, const report *rp)
                "*top* = top-level tree (mi_stats). *SAH* is the bottom-level trees' SAH cost under the builder's own "
                "cost model (kd_stats.sah_cost, relative to each root box), averaged over the objects weighted by their "
                "triangles; *exact-sweep* is the same build with the exact event sweep throughout (`bottom.bins = 0`, "
-               "one run on all CPUs): its SAH and its bottom time. Per-triangle figures divide by the unique triangles (before "
+               "one run on all CPUs): its SAH and its bottom time. Per-triangle figures divide by the unique "
+               "triangles (before "
                "dropping degenerate ones); *geometry B/tri* is the STATIC+DYNAMIC_GEOMETRY regions (nodes, lists, "
                "12-word triangle transformations, 16-word shading records), *excl. shading* leaves out the shading "
                "records. The anchor is Embree 3 building the same two levels (one scene per mesh, one instance per "
@@ -898,7 +899,8 @@ static void write_markdown(const char *path, const report *rp)
                "vertex/index buffers. Both sides get the same CPUs: each measurement runs in a forked child process "
                "bound to 1 CPU, and again to all %d (our builders use the CPUs they may run on; Embree gets a "
                "`threads=N` device for N CPUs); *ours / medium* divides the bottom times. The table of our build shows "
-               "the run on all CPUs. Times are medians of %d runs (1 run where a run took more than %.0f s; see *runs*); "
+               "the run on all CPUs. Times are medians of %d runs (1 run where a run took more than %.0f s; see "
+               "*runs*); "
                "the machine is noisy. Top-level rebuilds are medians of %d `kd_build` calls; per-frame updates are "
                "medians over %d frames. The last table times `saarcor info` on the 500k-triangle scene as a command "
                "(process start-up included) and, in this process, its load (glTF + evaluation) and its `mi_build` "
