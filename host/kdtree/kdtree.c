@@ -1446,8 +1446,7 @@ static void stats_add(kd_stats *a, const kd_stats *b)
         a->max_leaf_count = b->max_leaf_count;
 }
 
-/* Threads to use: the CPUs this thread may run on, at most PAR_MAX_THREADS. */
-static uint32_t thread_count(void)
+uint32_t kd_thread_count(void)
 {
     cpu_set_t set;
     long n = 0;
@@ -1653,7 +1652,7 @@ int kd_build(const kd_source *src, const kd_params *p, kd_tree *out)
     int rc = start(&b, &s, &root);
     b.kind = measure_of(&root);
     b.root_measure = measure(b.kind, &root);
-    const uint32_t threads = src->count >= PAR_MIN_COUNT ? thread_count() : 1;
+    const uint32_t threads = src->count >= PAR_MIN_COUNT ? kd_thread_count() : 1;
     subtree_sum sum = { 0.0, 0 };
     if (rc == 0 && threads > 1)
         rc = build_parallel(&b, &root, &s, threads, &sum.sum); /* frees s */

@@ -89,6 +89,10 @@ void kd_params_default(kd_params *p);
  * depth (the kd-depth limit is checked against it before building, tb/cli/cli_limits.h). */
 uint32_t kd_depth_bound(const kd_params *p, uint32_t count);
 
+/* Threads kd_build uses for a large source: the CPUs the calling thread may run on, at most 8
+ * (the host's other parallel stages use the same budget). */
+uint32_t kd_thread_count(void);
+
 /* Builds a tree; 0 on success, -1 if memory ran out (out is then empty). count may be 0. */
 int kd_build(const kd_source *src, const kd_params *p, kd_tree *out);
 

@@ -15,6 +15,7 @@
 #include "ugrid.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -68,6 +69,48 @@ static const char *region_names[MI_REGION_COUNT] = {
 const char *mi_region_name(mi_region r) { return r < MI_REGION_COUNT ? region_names[r] : "?"; }
 
 static double quantize(double x) { return f24_fast_decode(f24_fast_encode(x)); }
+
+/* ---- loops over triangles and vertices on all CPUs ------------------------------------------ */
+
+/* A range of a loop for one thread of for_parts. */
+typedef struct {
+    void (*fn)(void *ctx, uint32_t from, uint32_t to);
+    void *ctx;
+    uint32_t from, to;
+} loop_part;
+
+static void *run_part(void *arg)
+{
+    const loop_part *p = arg;
+    p->fn(p->ctx, p->from, p->to);
+    return NULL;
+}
+
+/* fn(ctx, from, to) over [0, n) in consecutive ranges of at least PART_MIN items, one per CPU of
+ * the tree builder's budget (kd_thread_count); a range whose thread cannot start runs on this one.
+ * fn writes only what belongs to its range, so the result does not depend on the split. */
+enum { PART_MIN = 4096, PART_MAX = 8 };
+static void for_parts(uint32_t n, void (*fn)(void *ctx, uint32_t from, uint32_t to), void *ctx)
+{
+    uint32_t k = kd_thread_count();
+    k = k < PART_MAX ? k : PART_MAX;
+    k = k < n / PART_MIN ? k : n / PART_MIN;
+    k = k ? k : 1;
+    loop_part p[PART_MAX];
+    pthread_t tid[PART_MAX];
+    int started[PART_MAX] = { 0 };
+    for (uint32_t i = 0; i < k; i++)
+        p[i] = (loop_part){ fn, ctx, (uint32_t)((uint64_t)n * i / k), (uint32_t)((uint64_t)n * (i + 1) / k) };
+    for (uint32_t i = 1; i < k; i++)
+        started[i] = pthread_create(&tid[i], NULL, run_part, &p[i]) == 0;
+    run_part(&p[0]);
+    for (uint32_t i = 1; i < k; i++) {
+        if (started[i])
+            pthread_join(tid[i], NULL);
+        else
+            run_part(&p[i]);
+    }
+}
 
 void mi_params_default(mi_params *p)
 {
@@ -360,24 +403,46 @@ static uint32_t object_shading_flags(const scene_mesh *m, const mi_object *o)
     return shading_flags(m) | (same ? SHADE_ONE_MATERIAL | m->material[o->valid[0]] << SHADE_OBJ_MATERIAL_SHIFT : 0u);
 }
 
+typedef struct {
+    const scene_mesh *m;
+    mi_object *o;
+    double max_condition;
+    uint8_t *ok; /* per mesh triangle: its transformation is kept */
+} transform_job;
+
+/* The transformations of mesh triangles [from, to), each at its own index of o->xf. */
+static void transform_part(void *ctx, uint32_t from, uint32_t to)
+{
+    const transform_job *j = ctx;
+    for (uint32_t t = from; t < to; t++) {
+        double a[3], bb[3], c[3];
+        tri_vertex(j->m, j->o->centre, t, 0, a);
+        tri_vertex(j->m, j->o->centre, t, 1, bb);
+        tri_vertex(j->m, j->o->centre, t, 2, c);
+        j->ok[t] = mi_triangle_transform(a, bb, c, j->max_condition, &j->o->xf[t]) && affine_fits_f24(&j->o->xf[t]);
+    }
+}
+
 /* Triangle transformations and the bottom-level tree of one mesh. */
 static int object_prepare(mi_builder *b, const scene_mesh *m, mi_object *o)
 {
     object_release(o);
     o->valid = malloc(((size_t)m->n_triangles + 1) * sizeof *o->valid);
     o->xf = malloc(((size_t)m->n_triangles + 1) * sizeof *o->xf);
-    if (!o->valid || !o->xf)
+    uint8_t *ok = malloc((size_t)m->n_triangles + 1);
+    if (!o->valid || !o->xf || !ok) {
+        free(ok);
         return -1;
-    const double t0 = seconds();
-    for (uint32_t t = 0; t < m->n_triangles; t++) {
-        double a[3], bb[3], c[3];
-        tri_vertex(m, o->centre, t, 0, a);
-        tri_vertex(m, o->centre, t, 1, bb);
-        tri_vertex(m, o->centre, t, 2, c);
-        if (mi_triangle_transform(a, bb, c, b->p.max_condition, &o->xf[o->n_valid]) &&
-            affine_fits_f24(&o->xf[o->n_valid]))
-            o->valid[o->n_valid++] = t;
     }
+    const double t0 = seconds();
+    transform_job job = { m, o, b->p.max_condition, ok };
+    for_parts(m->n_triangles, transform_part, &job);
+    for (uint32_t t = 0; t < m->n_triangles; t++) /* the kept ones, in order */
+        if (ok[t]) {
+            o->xf[o->n_valid] = o->xf[t];
+            o->valid[o->n_valid++] = t;
+        }
+    free(ok);
     const double t1 = seconds();
     b->st.transform_seconds += t1 - t0;
     b->st.degenerate_triangles += m->n_triangles - o->n_valid;
@@ -456,14 +521,26 @@ static void put_tree(uint32_t *nodes, uint32_t *lists, const kd_tree *t, const k
 
 /* The octahedral codes of the mesh's vertex normals, each vertex encoded once (a vertex is shared
  * by about six triangles, and an encoding decodes four candidates); NULL if memory ran out. */
+typedef struct {
+    const scene_mesh *m;
+    uint64_t *codes;
+} normals_job;
+
+static void normals_part(void *ctx, uint32_t from, uint32_t to)
+{
+    const normals_job *j = ctx;
+    for (uint32_t v = from; v < to; v++) {
+        const float *n = &j->m->normals[3 * (size_t)v];
+        j->codes[v] = shade_encode_normal((const double[3]){ n[0], n[1], n[2] });
+    }
+}
+
 static uint64_t *normal_codes(const scene_mesh *m)
 {
-    uint64_t *codes = malloc(((size_t)m->n_vertices + 1) * sizeof *codes);
-    for (uint32_t v = 0; codes && v < m->n_vertices; v++) {
-        const float *n = &m->normals[3 * (size_t)v];
-        codes[v] = shade_encode_normal((const double[3]){ n[0], n[1], n[2] });
-    }
-    return codes;
+    normals_job job = { m, malloc(((size_t)m->n_vertices + 1) * sizeof *job.codes) };
+    if (job.codes)
+        for_parts(m->n_vertices, normals_part, &job);
+    return job.codes;
 }
 
 /* codes: normal_codes(m), or NULL if the mesh has no normals. */
@@ -512,6 +589,24 @@ static void put_triangle(uint32_t *w, const affine *a)
                              vertex_lo_field(a->m[i][3], v[i * 4 + 3]));
 }
 
+typedef struct {
+    const scene_mesh *m;
+    const mi_object *o;
+    const uint64_t *codes;      /* normal_codes(m), or NULL */
+    uint32_t *triangles, *shading; /* the object's records in the image */
+} records_job;
+
+/* The triangle transformations and shading records of image triangles [from, to). */
+static void records_part(void *ctx, uint32_t from, uint32_t to)
+{
+    const records_job *j = ctx;
+    const uint32_t stride = shade_rec_words(j->o->shade_flags);
+    for (uint32_t i = from; i < to; i++) {
+        put_triangle(j->triangles + (size_t)MI_TRIANGLE_WORDS * i, &j->o->xf[i]);
+        write_shading(j->shading + (size_t)stride * i, j->m, j->codes, j->o->shade_flags, j->o->valid[i]);
+    }
+}
+
 /* Geometry block: nodes, leaf lists, padding, triangle transformations, shading records. 0, or
  * -1 if memory ran out. */
 static int object_write(mi_builder *b, const scene *s, const mi_object *o)
@@ -524,11 +619,10 @@ static int object_write(mi_builder *b, const scene *s, const mi_object *o)
     memset(w, 0, o->words * sizeof *w); /* the padding, deterministic */
     put_tree(w, w + MI_NODE_WORDS * o->n_slots, &o->tree, o->ropes, o->slot);
     w = b->words + triangles_at(o);
-    for (uint32_t i = 0; i < o->n_valid; i++, w += MI_TRIANGLE_WORDS)
-        put_triangle(w, &o->xf[i]);
-    for (uint32_t i = 0; i < o->n_valid; i++, w += shade_rec_words(o->shade_flags))
-        write_shading(w, m, codes, o->shade_flags, o->valid[i]);
+    records_job job = { m, o, codes, w, w + (size_t)MI_TRIANGLE_WORDS * o->n_valid };
+    for_parts(o->n_valid, records_part, &job);
     free(codes);
+    w = job.shading + (size_t)shade_rec_words(o->shade_flags) * o->n_valid;
     if (o->grid.n[0])
         put_grid(w, &o->grid, (uint32_t)(w - b->words));
     return 0;
