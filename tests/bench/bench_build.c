@@ -766,7 +766,9 @@ static void bench_load(const char *dir, const char *saarcor, load_result *r)
     char *argv[] = { (char *)saarcor, "info", path, NULL };
     memset(r, 0, sizeof *r);
     r->have_command = saarcor != NULL;
-    snprintf(r->command, sizeof r->command, "%s info %s", saarcor ? saarcor : "saarcor", path);
+    const size_t src = strlen(SAARCOR_SRC_DIR "/"); /* make runs the command from the source tree */
+    const char *shown = strncmp(path, SAARCOR_SRC_DIR "/", src) == 0 ? path + src : path;
+    snprintf(r->command, sizeof r->command, "%s info %s", saarcor ? saarcor : "saarcor", shown);
     progress("bench-build: loading and building %s ...", load_scene_name);
     for (; r->runs < REPS; r->runs++) {
         cmd[r->runs] = r->have_command ? run_command(argv) : 0;
