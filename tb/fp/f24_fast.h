@@ -13,8 +13,8 @@
  * Build with -ffp-contract=off (no fused multiply-add) and without -ffast-math.
  * The simulation build names this header to hls/fp24/f24.h (-DF24_SIM_HEADER='"f24_fast.h"' with
  * -DF24_FAST_SIM, the Makefile's SIM_FLAGS), which then maps f24_add ... f24_from_f32, the
- * comparisons lt/le/eq and min/max onto these functions, so that hls/ names nothing of tb/; the
- * sign operations and conversions to integers stay the integer ones.
+ * comparisons lt/le/eq, min/max and the exact dot product onto these functions, so that hls/
+ * names nothing of tb/; the sign operations and conversions to integers stay the integer ones.
  */
 #ifndef SAARCOR_F24_FAST_H
 #define SAARCOR_F24_FAST_H
@@ -57,6 +57,9 @@ static inline f24_t f24_fast_minmax(f24_t a, f24_t b, int want_max)
     const int x_first = x < y || (x == y && __builtin_signbit(x)); /* -0 before +0 */
     return f24_fast_encode(x_first != want_max ? x : y);
 }
+/* f24_sum_exact from exact binary64 products and double-doubles (tb/fp/f24_fast_sum.c). */
+f24x2 f24_fast_sum_exact(const f24_t a[], const f24_t b[], uint32_t n);
+
 static inline f24_t f24_fast_min(f24_t a, f24_t b) { return f24_fast_minmax(a, b, 0); }
 static inline f24_t f24_fast_max(f24_t a, f24_t b) { return f24_fast_minmax(a, b, 1); }
 
@@ -71,6 +74,7 @@ static inline f24_t f24_fast_max(f24_t a, f24_t b) { return f24_fast_minmax(a, b
 #define f24_mul f24_fast_mul
 #define f24_div f24_fast_div
 #define f24_sqrt f24_fast_sqrt
+#define f24_sum_exact f24_fast_sum_exact
 #define f24_from_i32 f24_fast_from_i32
 #define f24_from_f32 f24_fast_from_f32
 #endif
