@@ -4,8 +4,9 @@
 /* The translation goes through a mux, not an add of zero, so a -0 sum keeps its sign. */
 f24_t xform_row(const f24_t row[4], f24_vec3 p, int with_translation)
 {
-    const f24_t s = f24_add(f24_add(f24_mul(row[0], p.x), f24_mul(row[1], p.y)), f24_mul(row[2], p.z));
-    return with_translation ? f24_add(s, row[3]) : s;
+    const f24w s = f24w_add(f24w_add(f24w_mul(f24w_of(row[0]), f24w_of(p.x)), f24w_mul(f24w_of(row[1]), f24w_of(p.y))),
+                            f24w_mul(f24w_of(row[2]), f24w_of(p.z)));
+    return f24w_bits(with_translation ? f24w_add(s, f24w_of(row[3])) : s);
 }
 
 static f24_vec3 xform_step(const f24_affine *m, f24_vec3 p, int with_translation)

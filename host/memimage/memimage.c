@@ -139,7 +139,7 @@ static double seconds(void)
 
 /* ---- fp24 words --------------------------------------------------------------------------- */
 
-static uint32_t f24w(double x) { return f24_fast_encode(x); }
+static uint32_t fp24_word(double x) { return f24_fast_encode(x); }
 
 /* fp24 value <= x (dir < 0) or >= x (dir > 0): conservative bounds. */
 static uint32_t f24_outward(double x, int dir)
@@ -162,7 +162,7 @@ static void put_affine(uint32_t *w, const affine *a)
 {
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 4; j++)
-            w[i * 4 + j] = f24w(a->m[i][j]);
+            w[i * 4 + j] = fp24_word(a->m[i][j]);
 }
 
 /* Object bounds margin in ulps of the box's largest coordinate: the unit-triangle test accepts rays
@@ -197,7 +197,7 @@ static int affine_fits_f24(const affine *a)
 {
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 4; j++)
-            if (!isfinite(a->m[i][j]) || f24_is_inf(f24w(a->m[i][j])))
+            if (!isfinite(a->m[i][j]) || f24_is_inf(fp24_word(a->m[i][j])))
                 return 0;
     return 1;
 }
@@ -309,9 +309,9 @@ static void put_grid(uint32_t *w, const ugrid *g, uint32_t addr)
 {
     const uint32_t cells = ugrid_cells(g);
     for (int k = 0; k < 3; k++) {
-        w[MI_G_LO + k] = f24w(g->lo[k]);
-        w[MI_G_SIZE + k] = f24w(g->size[k]);
-        w[MI_G_INV + k] = f24w(1.0 / g->size[k]);
+        w[MI_G_LO + k] = fp24_word(g->lo[k]);
+        w[MI_G_SIZE + k] = fp24_word(g->size[k]);
+        w[MI_G_INV + k] = fp24_word(1.0 / g->size[k]);
         w[MI_G_N + k] = g->n[k];
     }
     w[MI_G_CELLS] = addr + MI_GRID_WORDS;
@@ -410,15 +410,15 @@ static void put_node(uint32_t *w, const kd_node *n, uint32_t first, const uint32
         const uint32_t lo = slot[n->child], hi = slot[n->child + 1];
         const uint32_t empty = (lo == MI_NONE ? MI_NODE_EMPTY_LO : 0u) | (hi == MI_NONE ? MI_NODE_EMPTY_HI : 0u);
         w[0] = mi_node_inner(n->axis, lo == MI_NONE ? hi : lo, empty);
-        w[1] = f24w(n->split); /* already an fp24 value (quantized split) */
+        w[1] = fp24_word(n->split); /* already an fp24 value (quantized split) */
     }
 }
 
 static void put_rope_record(uint32_t *w, const kd_rope *r)
 {
     for (int k = 0; k < 3; k++) {
-        w[k] = f24w(r->box.lo[k]); /* split planes and the device box: fp24 values already */
-        w[3 + k] = f24w(r->box.hi[k]);
+        w[k] = fp24_word(r->box.lo[k]); /* split planes and the device box: fp24 values already */
+        w[3 + k] = fp24_word(r->box.hi[k]);
     }
     for (int f = 0; f < 6; f++)
         w[6 + f] = r->rope[f] == KD_NO_ROPE ? MI_NONE : r->rope[f];
@@ -484,7 +484,7 @@ static void put_triangle(uint32_t *w, const affine *a)
     f24_t v[F24_TRIANGLE_VALUES];
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 4; j++)
-            v[i * 4 + j] = f24w(a->m[i][j]);
+            v[i * 4 + j] = fp24_word(a->m[i][j]);
     memset(w, 0, MI_TRIANGLE_WORDS * sizeof *w);
     f24_record_put(w, v, F24_TRIANGLE_VALUES);
     for (int i = 0; i < 3; i++)
@@ -612,12 +612,12 @@ static void device_inverse(const affine *world, affine *inv, uint32_t t_lo[3])
     for (int i = 0; i < 3; i++) {
         double t = 0;
         for (int j = 0; j < 3; j++) {
-            inv->m[i][j] = f24_fast_decode(f24w(inv->m[i][j]));
+            inv->m[i][j] = f24_fast_decode(fp24_word(inv->m[i][j]));
             t -= inv->m[i][j] * world->m[j][3];
         }
-        const uint32_t hi = f24w(t);
+        const uint32_t hi = fp24_word(t);
         inv->m[i][3] = t;
-        t_lo[i] = f24_is_inf(hi) ? 0u : f24w(t - f24_fast_decode(hi));
+        t_lo[i] = f24_is_inf(hi) ? 0u : fp24_word(t - f24_fast_decode(hi));
     }
 }
 
@@ -706,10 +706,10 @@ static void write_camera(const mi_builder *b, const scene *s, uint32_t *w)
     w[1] = b->p.width;
     w[2] = b->p.height;
     for (int k = 0; k < 3; k++) {
-        w[4 + k] = f24w(o[k]);
-        w[7 + k] = f24w(u[k]);
-        w[10 + k] = f24w(v[k]);
-        w[13 + k] = f24w(d[k]);
+        w[4 + k] = fp24_word(o[k]);
+        w[7 + k] = fp24_word(u[k]);
+        w[10 + k] = fp24_word(v[k]);
+        w[13 + k] = fp24_word(d[k]);
     }
 }
 
@@ -746,13 +746,13 @@ static void write_light(const scene_light *l, uint32_t *w)
     memset(w, 0, MI_LIGHT_WORDS * sizeof *w);
     w[0] = l->kind;
     for (int k = 0; k < 3; k++) {
-        w[1 + k] = f24w((double)l->color[k] * l->intensity);
-        w[4 + k] = f24w(l->position[k]);
-        w[7 + k] = f24w(l->direction[k]);
+        w[1 + k] = fp24_word((double)l->color[k] * l->intensity);
+        w[4 + k] = fp24_word(l->position[k]);
+        w[7 + k] = fp24_word(l->direction[k]);
     }
-    w[10] = f24w(l->range);
-    w[11] = f24w(cos(l->inner_cone));
-    w[12] = f24w(cos(l->outer_cone));
+    w[10] = fp24_word(l->range);
+    w[11] = fp24_word(cos(l->inner_cone));
+    w[12] = fp24_word(cos(l->outer_cone));
 }
 
 static void write_lights(const mi_builder *b, const scene *s, uint32_t *w)
@@ -775,18 +775,18 @@ static void write_materials(const mi_builder *b, const scene *s, uint32_t *w)
         const scene_material *m = &s->materials[i];
         memset(w, 0, MI_MATERIAL_WORDS * sizeof *w);
         for (int k = 0; k < 4; k++)
-            w[k] = f24w(m->base_color[k]);
+            w[k] = fp24_word(m->base_color[k]);
         for (int k = 0; k < 3; k++)
-            w[4 + k] = f24w(m->emissive[k]);
+            w[4 + k] = fp24_word(m->emissive[k]);
         w[7] = m->base_color_texture < s->n_textures ? b->texture_map[m->base_color_texture] : MI_NONE;
         w[8] = (uint32_t)m->alpha | (m->double_sided ? 4u : 0u);
-        w[9] = f24w(m->alpha_cutoff);
-        w[10] = f24w(m->metallic);
-        w[11] = f24w(m->roughness);
-        w[12] = f24w(m->transmission);
+        w[9] = fp24_word(m->alpha_cutoff);
+        w[10] = fp24_word(m->metallic);
+        w[11] = fp24_word(m->roughness);
+        w[12] = fp24_word(m->transmission);
         shading_params sp;
         shading_params_of(m, &sp);
-        w[13] = f24w(sp.eta);
+        w[13] = fp24_word(sp.eta);
         w[14] = q12(sp.kd) | q12(sp.kr) << 13 | sp.exp_shift << 26;
         w[15] = q12(sp.kt) | q12(sp.ks) << 13;
     }
@@ -1041,7 +1041,7 @@ static void choose_centres(mi_builder *b, const scene *s)
                 lo = fmin(lo, m->positions[3 * (size_t)v + (size_t)k]);
                 hi = fmax(hi, m->positions[3 * (size_t)v + (size_t)k]);
             }
-            o->centre[k] = f24_fast_decode(f24w(0.5 * (lo + hi)));
+            o->centre[k] = f24_fast_decode(fp24_word(0.5 * (lo + hi)));
         }
     }
 }

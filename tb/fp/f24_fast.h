@@ -21,6 +21,9 @@
 
 #include <stdint.h>
 
+#ifdef F24_FAST_SIM
+#define F24_SIM_WORKING /* f24.h then leaves the working values to this header */
+#endif
 #include "f24.h"
 #include "f24_double.h" /* host/fp24: f24_fast_decode, f24_fast_encode */
 
@@ -47,23 +50,50 @@ static inline int f24_fast_lt(f24_t a, f24_t b) { return f24_fast_decode(a) < f2
 static inline int f24_fast_le(f24_t a, f24_t b) { return f24_fast_decode(a) <= f24_fast_decode(b); }
 static inline int f24_fast_eq(f24_t a, f24_t b) { return f24_fast_decode(a) == f24_fast_decode(b); }
 
-static inline f24_t f24_fast_minmax(f24_t a, f24_t b, int want_max)
-{
-    const double x = f24_fast_decode(a), y = f24_fast_decode(b);
-    if (x != x)
-        return y != y ? F24_DEFAULT_NAN : f24_fast_encode(y);
-    if (y != y)
-        return f24_fast_encode(x);
-    const int x_first = x < y || (x == y && __builtin_signbit(x)); /* -0 before +0 */
-    return f24_fast_encode(x_first != want_max ? x : y);
-}
 /* f24_sum_exact from exact binary64 products and double-doubles (tb/fp/f24_fast_sum.c). */
 f24x2 f24_fast_sum_exact(const f24_t a[], const f24_t b[], uint32_t n);
 
-static inline f24_t f24_fast_min(f24_t a, f24_t b) { return f24_fast_minmax(a, b, 0); }
-static inline f24_t f24_fast_max(f24_t a, f24_t b) { return f24_fast_minmax(a, b, 1); }
+/* The working values of hls/fp24/f24.h held decoded: each operation rounds its binary64 result
+ * with f24_fast_round and stays binary64, the comparisons and minimum/maximum are those above on
+ * decoded values; f24w_bits encodes (exactly: every working value is an fp24 value) and keeps the
+ * sign of a NaN that f24w_neg gave, as the integer f24_neg does. */
+static inline double f24_fast_minmax_w(double x, double y, int want_max)
+{
+    if (x != x)
+        return y != y ? f24_fast_decode(F24_DEFAULT_NAN) : y;
+    if (y != y)
+        return x;
+    const int x_first = x < y || (x == y && __builtin_signbit(x)); /* -0 before +0 */
+    return x_first != want_max ? x : y;
+}
+
+static inline f24_t f24_fast_min(f24_t a, f24_t b)
+{
+    return f24_fast_encode(f24_fast_minmax_w(f24_fast_decode(a), f24_fast_decode(b), 0));
+}
+static inline f24_t f24_fast_max(f24_t a, f24_t b)
+{
+    return f24_fast_encode(f24_fast_minmax_w(f24_fast_decode(a), f24_fast_decode(b), 1));
+}
 
 #ifdef F24_FAST_SIM
+typedef double f24w;
+static inline f24w f24w_of(f24_t a) { return f24_fast_decode(a); }
+static inline f24_t f24w_bits(f24w a)
+{
+    return f24_fast_encode(a) | (a != a && __builtin_signbit(a) ? F24_SIGN_BIT : 0u);
+}
+static inline f24w f24w_add(f24w a, f24w b) { return f24_fast_round(a + b); }
+static inline f24w f24w_sub(f24w a, f24w b) { return f24_fast_round(a - b); }
+static inline f24w f24w_mul(f24w a, f24w b) { return f24_fast_round(a * b); }
+static inline f24w f24w_div(f24w a, f24w b) { return f24_fast_round(a / b); }
+static inline f24w f24w_min(f24w a, f24w b) { return f24_fast_minmax_w(a, b, 0); }
+static inline f24w f24w_max(f24w a, f24w b) { return f24_fast_minmax_w(a, b, 1); }
+static inline f24w f24w_neg(f24w a) { return -a; }
+static inline int f24w_lt(f24w a, f24w b) { return a < b; }
+static inline int f24w_le(f24w a, f24w b) { return a <= b; }
+static inline uint32_t f24w_sign(f24w a) { return __builtin_signbit(a) != 0; }
+
 #define f24_lt f24_fast_lt
 #define f24_le f24_fast_le
 #define f24_eq f24_fast_eq

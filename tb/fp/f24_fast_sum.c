@@ -42,23 +42,22 @@ static f24_t round_dd(double r, double rr)
     return f24_fast_encode(r);
 }
 
-/* The products a[k]*b[k] into p; 0 if an operand is Inf or NaN or the nonzero products span
- * more than the window holds exactly (the integer operator decides those). */
+/* The products a[k]*b[k] into p; 0 if the nonzero ones may span more than the window holds
+ * exactly (the integer operator decides those). Products of significands in [1, 2) lie in
+ * [2^e, 2^(e+2)) for the sum e of the exponents, so a magnitude ratio below 2^(window - 2)
+ * keeps e within the window's reach; the rare spreads between the two bounds go the slow way.
+ * Inf and NaN operands show up as a non-finite sum later. */
 static int exact_products(const f24_t a[], const f24_t b[], uint32_t n, double p[])
 {
-    const int32_t window = 127 - 5 - (2 * F24_MAN_BITS + 1); /* f24_sum_exact.c: top */
-    int32_t emax = -1, emin = 4 * F24_EXP_MAX;
+    const double reach = __builtin_ldexp(1.0, 127 - 5 - (2 * F24_MAN_BITS + 1) - 2); /* f24_sum_exact.c: top - 2 */
+    double largest = 0, smallest = __builtin_inf();
     for (uint32_t k = 0; k < n; k++) {
-        const int32_t ea = f24_exp(a[k]), eb = f24_exp(b[k]);
-        if (ea == F24_EXP_MAX || eb == F24_EXP_MAX)
-            return 0;
-        if (ea != 0 && eb != 0) {
-            emax = ea + eb > emax ? ea + eb : emax;
-            emin = ea + eb < emin ? ea + eb : emin;
-        }
         p[k] = f24_fast_decode(a[k]) * f24_fast_decode(b[k]);
+        const double m = __builtin_fabs(p[k]);
+        largest = m > largest ? m : largest;
+        smallest = m != 0 && m < smallest ? m : smallest;
     }
-    return emax < 0 || emax - emin <= window;
+    return largest < smallest * reach || largest == __builtin_inf();
 }
 
 f24x2 f24_fast_sum_exact(const f24_t a[], const f24_t b[], uint32_t n)
@@ -75,7 +74,7 @@ f24x2 f24_fast_sum_exact(const f24_t a[], const f24_t b[], uint32_t n)
         e = u.s;
         exact &= u.e == 0;
     }
-    if (!exact)
+    if (!exact || s - s != 0) /* or an Inf or NaN operand */
         return f24_sum_exact(a, b, n);
     const f24_dd sum = two_sum(s, e);
     if (sum.s == 0) /* all products zero (signed zero) or an exact cancellation (+0) */
