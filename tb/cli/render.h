@@ -49,9 +49,9 @@ typedef struct {
     const pixel_cost *costs;  /* per pixel, for --aov and --heatmap (NULL: not kept) */
 } frame_result;
 
-/* Renders the pixels of region {x0, y0, x1, y1} (x0, y0 even; clipped to the image) with
- * `threads` host threads into the full-size pixels (and hits, costs, may be NULL); sum = the counters
- * of that work. 0, or -1 if out of memory. */
+/* Functional mode (render_region.c): renders the pixels of region {x0, y0, x1, y1} (x0, y0 even;
+ * clipped to the image) with `threads` host threads into the full-size pixels (and hits, costs,
+ * may be NULL); sum = the counters of that work. 0, or -1 if out of memory. */
 int render_region(const uint32_t *mem, const rgs_config *cfg, uint32_t threads, const uint32_t region[4],
                   uint32_t *pixels, hit_record *hits, pixel_cost *costs, rgs_counters *sum);
 
