@@ -367,7 +367,9 @@ class Loader {
     {
         if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
             p.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-            ignore(p.mode == TINYGLTF_MODE_POINTS ? "points" : "lines");
+            ignore(p.mode == TINYGLTF_MODE_POINTS ? "points"
+                   : p.mode >= TINYGLTF_MODE_LINE && p.mode <= TINYGLTF_MODE_LINE_STRIP ? "lines"
+                   : "primitive mode " + std::to_string(p.mode));
             return;
         }
         if (p.extensions.count("KHR_draco_mesh_compression")) {
