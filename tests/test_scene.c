@@ -179,9 +179,10 @@ static void base64(const unsigned char *in, size_t n, char *out)
     out[o] = '\0';
 }
 
-/* One triangle: 3 float positions then 3 uint16 indices; the caller may break any part. */
-static const char *write_gltf(const char *name, const float pos[9], const uint16_t idx[3], const char *pos_type,
-                              const char *extra_nodes)
+/* One triangle: 3 float positions then 3 uint16 indices; the caller may break any part, add to
+ * the node (extra_nodes) and add top-level members (extra_top: "\"key\":value,"). */
+static const char *write_gltf_top(const char *name, const float pos[9], const uint16_t idx[3], const char *pos_type,
+                                  const char *extra_nodes, const char *extra_top)
 {
     unsigned char buf[44] = { 0 };
     memcpy(buf, pos, 36);
@@ -192,16 +193,22 @@ static const char *write_gltf(const char *name, const float pos[9], const uint16
     snprintf(path, sizeof path, "%s/%s", test_dir, name);
     FILE *f = fopen(path, "w");
     fprintf(f,
-            "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],"
+            "{%s\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],"
             "\"nodes\":[{\"mesh\":0%s}],"
             "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}],"
             "\"buffers\":[{\"byteLength\":42,\"uri\":\"data:application/octet-stream;base64,%s\"}],"
             "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":36},{\"buffer\":0,\"byteOffset\":36,\"byteLength\":6}],"
             "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"%s\",\"max\":[1,1,0],\"min\":[0,0,0]},"
             "{\"bufferView\":1,\"componentType\":5123,\"count\":3,\"type\":\"SCALAR\"}]}",
-            extra_nodes, b64, pos_type);
+            extra_top, extra_nodes, b64, pos_type);
     fclose(f);
     return path;
+}
+
+static const char *write_gltf(const char *name, const float pos[9], const uint16_t idx[3], const char *pos_type,
+                              const char *extra_nodes)
+{
+    return write_gltf_top(name, pos, idx, pos_type, extra_nodes, "");
 }
 
 static void expect_load_error(const char *path, const char *needle)
@@ -275,12 +282,139 @@ static void truncated_glb(void **state)
 }
 
 
+/* ---- extensions, ignored features, GPU instancing, default camera ------------------------- */
+
+static const float tri_pos[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 };
+static const uint16_t tri_idx[3] = { 0, 1, 2 };
+
+/* A required extension the loader lacks is refused with one line naming it; required ones it
+ * implements load. */
+static void required_extensions(void **state)
+{
+    (void)state;
+    expect_load_error(write_gltf_top("req.gltf", tri_pos, tri_idx, "VEC3", "",
+                                     "\"extensionsUsed\":[\"KHR_lights_punctual\",\"EXT_foo\"],"
+                                     "\"extensionsRequired\":[\"KHR_lights_punctual\",\"EXT_foo\"],"),
+                      "requires extension EXT_foo, which saarcor does not implement");
+    scene s;
+    char err[512];
+    const char *ok = write_gltf_top("req_ok.gltf", tri_pos, tri_idx, "VEC3", "",
+                                    "\"extensionsUsed\":[\"KHR_mesh_quantization\",\"EXT_mesh_gpu_instancing\"],"
+                                    "\"extensionsRequired\":[\"KHR_mesh_quantization\",\"EXT_mesh_gpu_instancing\"],");
+    if (scene_load_gltf(ok, &s, err, sizeof err) != 0)
+        fail_msg("%s", err);
+    assert_int_equal(s.n_ignored, 0);
+    scene_free(&s);
+}
+
+/* Each unimplemented feature is listed (and warned) once, however many materials use it. */
+static void ignored_features(void **state)
+{
+    (void)state;
+    const char *path = write_gltf_top(
+        "ignored.gltf", tri_pos, tri_idx, "VEC3", "",
+        "\"extensionsUsed\":[\"KHR_materials_clearcoat\",\"KHR_lights_punctual\"],\"textures\":[{}],"
+        "\"materials\":[{\"normalTexture\":{\"index\":0}},{\"normalTexture\":{\"index\":0},"
+        "\"occlusionTexture\":{\"index\":0}}],");
+    scene s;
+    char err[512];
+    if (scene_load_gltf(path, &s, err, sizeof err) != 0)
+        fail_msg("%s", err);
+    assert_int_equal(s.n_ignored, 3);
+    assert_string_equal(s.ignored[0], "KHR_materials_clearcoat");
+    assert_string_equal(s.ignored[1], "normalTexture");
+    assert_string_equal(s.ignored[2], "occlusionTexture");
+    assert_int_equal(s.warnings, 3);
+    scene_free(&s);
+}
+
+/* One triangle drawn by a node (translation 0,1,0, scale 2) with n EXT_mesh_gpu_instancing rows:
+ * row i translates by (3i, 0, 0) and turns 90 degrees about y. */
+static const char *write_instanced(const char *name, uint32_t n)
+{
+    unsigned char buf[44 + 28 * 8] = { 0 };
+    const float q[4] = { 0, (float)sqrt(0.5), 0, (float)sqrt(0.5) };
+    memcpy(buf, tri_pos, 36);
+    memcpy(buf + 36, tri_idx, 6);
+    for (uint32_t i = 0; i < n; i++) {
+        const float t[3] = { 3.0f * (float)i, 0, 0 };
+        memcpy(buf + 44 + 12 * i, t, 12);
+        memcpy(buf + 44 + 12 * n + 16 * i, q, 16);
+    }
+    const size_t len = 44 + 28 * (size_t)n;
+    char b64[sizeof buf * 4 / 3 + 8];
+    base64(buf, len, b64);
+    static char path[128];
+    snprintf(path, sizeof path, "%s/%s", test_dir, name);
+    FILE *f = fopen(path, "w");
+    fprintf(f,
+            "{\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"EXT_mesh_gpu_instancing\"],\"scenes\":[{\"nodes\":[0]}],"
+            "\"nodes\":[{\"mesh\":0,\"translation\":[0,1,0],\"scale\":[2,2,2],\"extensions\":{\"EXT_mesh_gpu_instancing\":"
+            "{\"attributes\":{\"TRANSLATION\":2,\"ROTATION\":3}}}}],"
+            "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}],"
+            "\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;base64,%s\"}],"
+            "\"bufferViews\":[{\"buffer\":0,\"byteLength\":36},{\"buffer\":0,\"byteOffset\":36,\"byteLength\":6},"
+            "{\"buffer\":0,\"byteOffset\":44,\"byteLength\":%u},{\"buffer\":0,\"byteOffset\":%u,\"byteLength\":%u}],"
+            "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\",\"max\":[1,1,0],\"min\":[0,0,0]},"
+            "{\"bufferView\":1,\"componentType\":5123,\"count\":3,\"type\":\"SCALAR\"},"
+            "{\"bufferView\":2,\"componentType\":5126,\"count\":%u,\"type\":\"VEC3\"},"
+            "{\"bufferView\":3,\"componentType\":5126,\"count\":%u,\"type\":\"VEC4\"}]}",
+            len, b64, 12 * n, 44 + 12 * n, 16 * n, n, n);
+    fclose(f);
+    return path;
+}
+
+/* N rows are N instances at node world x row (the rows are in the node's local space). */
+static void gpu_instancing(void **state)
+{
+    (void)state;
+    for (uint32_t n = 1; n <= 8; n += 7) {
+        scene s;
+        char err[512];
+        if (scene_load_gltf(write_instanced("inst.gltf", n), &s, err, sizeof err) != 0)
+            fail_msg("%s", err);
+        assert_int_equal(s.n_instances, n);
+        assert_int_equal(scene_count_instances(&s), n);
+        for (uint32_t i = 0; i < n; i++) {
+            const affine *w = &s.instances[i].world;
+            assert_true(fabs(w->m[0][3] - 6.0 * i) < 1e-9 && fabs(w->m[1][3] - 1.0) < 1e-9 && fabs(w->m[2][3]) < 1e-9);
+            assert_true(fabs(w->m[0][2] - 2.0) < 1e-6 && fabs(w->m[2][0] + 2.0) < 1e-6); /* scale 2, then turned */
+        }
+        scene_free(&s);
+    }
+    if (!have_shared())
+        skip();
+    scene s;
+    char err[512];
+    if (scene_load_gltf(SHARED "SimpleInstancing.glb", &s, err, sizeof err) != 0)
+        fail_msg("%s", err);
+    assert_int_equal(s.n_instances, 125);
+    assert_int_equal(s.warnings, 0);
+    scene_free(&s);
+}
+
+/* Without a camera the view is raised and turned: it looks down at a plane at y = 0 (the old
+ * view along -Z saw it edge-on) and its forward axis points at the box centre. */
+static void default_camera(void **state)
+{
+    (void)state;
+    const double lo[3] = { -1, 0, -1 }, hi[3] = { 1, 0, 1 };
+    const scene_camera c = scene_default_camera(lo, hi);
+    const double fwd[3] = { -c.world.m[0][2], -c.world.m[1][2], -c.world.m[2][2] };
+    assert_true(fwd[1] < -0.3 && fwd[1] > -0.6); /* slightly elevated */
+    assert_true(fwd[0] < -0.2 && fwd[2] < -0.5);  /* from the front right */
+    for (int k = 0; k < 3; k++) /* eye + distance x forward = centre */
+        assert_true(fabs(c.world.m[k][3] + 1.2 * sqrt(8.0) * fwd[k]) < 1e-9);
+    assert_true(c.world.m[1][3] > 0);
+}
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(shared_scene_counts), cmocka_unit_test(instancing), cmocka_unit_test(animation),
         cmocka_unit_test(affine_algebra), cmocka_unit_test(malformed_files), cmocka_unit_test(truncated_glb),
+        cmocka_unit_test(required_extensions), cmocka_unit_test(ignored_features), cmocka_unit_test(gpu_instancing),
+        cmocka_unit_test(default_camera),
     };
     return cmocka_run_group_tests_name("scene", tests, test_tmpdir_setup, test_tmpdir_teardown);
 }

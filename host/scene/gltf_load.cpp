@@ -6,10 +6,13 @@
 
 #include <tiny_gltf.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -23,6 +26,30 @@ using gltf_util::set_error;
 struct load_error : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
+
+// The extensions the loader implements: a file may require them.
+const char *const implemented_extensions[] = { "KHR_lights_punctual", "KHR_materials_transmission",
+                                               "KHR_materials_ior", "KHR_materials_emissive_strength",
+                                               "KHR_mesh_quantization", "EXT_mesh_gpu_instancing" };
+// Extensions whose support is being added (issue 22): files that require them still load, with
+// the "not supported" warning, and they are not listed as ignored features.
+const char *const pending_extensions[] = { "KHR_texture_transform", "KHR_materials_unlit" };
+
+template <size_t N> bool listed(const char *const (&list)[N], const std::string &name)
+{
+    for (const char *x : list)
+        if (name == x)
+            return true;
+    return false;
+}
+
+// The glTF specification: a loader must refuse a file that requires an extension it lacks.
+void check_required(const std::vector<std::string> &required)
+{
+    for (const std::string &e : required)
+        if (!listed(implemented_extensions, e) && !listed(pending_extensions, e))
+            throw load_error("requires extension " + e + ", which saarcor does not implement");
+}
 
 
 template <typename T> T *alloc_array(size_t n)
@@ -49,7 +76,8 @@ class Loader {
 
     void run()
     {
-        check_required_extensions();
+        check_extensions();
+        note_ignored_textures();
         load_materials();
         load_textures();
         load_meshes();
@@ -57,6 +85,7 @@ class Loader {
         load_nodes();
         load_animations();
         load_roots();
+        keep_ignored();
         if (scene_evaluate(s_, 0.0, 0) != 0)
             throw std::bad_alloc();
     }
@@ -66,6 +95,8 @@ class Loader {
     std::string path_;
     scene *s_;
     std::vector<uint32_t> image_to_texture_;
+    std::vector<std::string> ignored_;
+    size_t instance_rows_ = 0; // EXT_mesh_gpu_instancing rows of all nodes so far
 
     void warn(const std::string &msg)
     {
@@ -75,22 +106,48 @@ class Loader {
 
     [[noreturn]] void fail(const std::string &msg) { throw load_error(msg); }
 
-    void check_required_extensions()
+    // A feature of the file that changes its appearance and is not implemented: one warning and
+    // one entry of scene.ignored however often it occurs.
+    void ignore(const std::string &feature)
     {
-        static const char *supported[] = { "KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
-                                           "KHR_materials_emissive_strength" };
+        for (const std::string &f : ignored_)
+            if (f == feature)
+                return;
+        ignored_.push_back(feature);
+        warn(feature + " is not supported and is ignored");
+    }
+
+    void keep_ignored()
+    {
+        s_->ignored = alloc_array<char[64]>(ignored_.size());
+        for (const std::string &f : ignored_)
+            std::snprintf(s_->ignored[s_->n_ignored++], sizeof s_->ignored[0], "%s", f.c_str());
+    }
+
+    void check_extensions()
+    {
+        check_required(m_.extensionsRequired); // scene_load_gltf checked the JSON already: a safety net
         for (const std::string &e : m_.extensionsUsed) {
-            bool ok = false;
-            for (const char *x : supported)
-                ok = ok || e == x;
-            if (!ok)
+            if (listed(pending_extensions, e))
                 warn("extension " + e + " is not supported and is ignored");
+            else if (!listed(implemented_extensions, e))
+                ignore(e);
         }
-        for (const std::string &e : m_.extensionsRequired)
-            if (e == "KHR_draco_mesh_compression" || e == "EXT_meshopt_compression" || e == "KHR_texture_basisu")
-                warn("required extension " + e + " is not supported: affected primitives/textures are skipped");
         if (!m_.skins.empty())
             warn("skins are not supported: skinned meshes are drawn in their bind pose");
+    }
+
+    // The material textures the shader does not sample (emission: being added, issue 22).
+    void note_ignored_textures()
+    {
+        for (const tinygltf::Material &g : m_.materials) {
+            if (g.normalTexture.index >= 0)
+                ignore("normalTexture");
+            if (g.occlusionTexture.index >= 0)
+                ignore("occlusionTexture");
+            if (g.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0)
+                ignore("metallicRoughnessTexture");
+        }
     }
 
     // ---- accessors ----------------------------------------------------------------------
@@ -310,7 +367,9 @@ class Loader {
     {
         if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
             p.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-            warn(what + ": mode " + std::to_string(p.mode) + " (points/lines) is not supported, skipped");
+            ignore(p.mode == TINYGLTF_MODE_POINTS ? "points"
+                   : p.mode >= TINYGLTF_MODE_LINE && p.mode <= TINYGLTF_MODE_LINE_STRIP ? "lines"
+                   : "primitive mode " + std::to_string(p.mode));
             return;
         }
         if (p.extensions.count("KHR_draco_mesh_compression")) {
@@ -479,6 +538,43 @@ class Loader {
         return true;
     }
 
+    // EXT_mesh_gpu_instancing: one instance per row of the TRANSLATION, ROTATION and SCALE
+    // accessors (each optional, all of one count), a transformation in the node's local space.
+    void load_gpu_instances(const tinygltf::Node &g, scene_node &d, const std::string &what)
+    {
+        auto ext = g.extensions.find("EXT_mesh_gpu_instancing");
+        if (ext == g.extensions.end() || d.mesh == SCENE_NONE || !ext->second.Get("attributes").IsObject())
+            return;
+        const tinygltf::Value &attributes = ext->second.Get("attributes");
+        static const char *const names[3] = { "TRANSLATION", "ROTATION", "SCALE" };
+        int index[3] = { -1, -1, -1 };
+        size_t rows = 0;
+        for (int k = 0; k < 3; k++) {
+            if (!attributes.Has(names[k]))
+                continue;
+            index[k] = attributes.Get(names[k]).GetNumberAsInt();
+            const size_t count = accessor(index[k], (what + " " + names[k]).c_str()).count;
+            if (rows && count != rows)
+                fail(what + ": EXT_mesh_gpu_instancing attributes differ in count");
+            rows = count;
+        }
+        // rows may share one accessor between nodes: bound the total before reading any
+        if (rows > SCENE_MAX_INSTANCES - instance_rows_)
+            fail(what + ": more than " + std::to_string(SCENE_MAX_INSTANCES) + " instances (EXT_mesh_gpu_instancing)");
+        instance_rows_ += rows;
+        std::vector<double> trs[3];
+        for (int k = 0; k < 3; k++)
+            if (index[k] >= 0)
+                trs[k] = read_finite(index[k], k == 1 ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3, what + " " + names[k]);
+        d.rows = alloc_array<affine>(rows);
+        d.n_rows = (uint32_t)rows;
+        for (size_t r = 0; r < rows; r++) {
+            const double t0[3] = { 0, 0, 0 }, q0[4] = { 0, 0, 0, 1 }, s0[3] = { 1, 1, 1 };
+            d.rows[r] = affine_from_trs(trs[0].empty() ? t0 : &trs[0][3 * r], trs[1].empty() ? q0 : &trs[1][4 * r],
+                                        trs[2].empty() ? s0 : &trs[2][3 * r]);
+        }
+    }
+
     void load_nodes()
     {
         s_->n_nodes = (uint32_t)m_.nodes.size();
@@ -505,6 +601,7 @@ class Loader {
             }
             if (d.camera != SCENE_NONE)
                 s_->cameras[d.camera].node = (uint32_t)i;
+            load_gpu_instances(g, d, what);
             if (!all_finite(g.matrix) || !all_finite(g.translation) || !all_finite(g.rotation) || !all_finite(g.scale))
                 fail(what + ": non-finite transformation");
             d.has_matrix = g.matrix.size() == 16;
@@ -711,6 +808,115 @@ bool bounded_image_loader(tinygltf::Image *image, const int index, std::string *
     return tinygltf::LoadImageData(image, index, err, warn, req_w, req_h, bytes, size, user);
 }
 
+// Just enough JSON to read the top-level "extensionsRequired" before tinygltf decodes anything:
+// it fails on Draco or KTX2 data with messages that do not name the extension. Malformed JSON
+// gives nothing here; tinygltf then reports it.
+class required_scan {
+  public:
+    explicit required_scan(const std::string &text) : t_(text) {}
+
+    std::vector<std::string> run()
+    {
+        std::vector<std::string> out;
+        if (!eat('{') || eat('}'))
+            return out;
+        do {
+            std::string key;
+            if (!string(&key) || !eat(':'))
+                return {};
+            if (key != "extensionsRequired" ? !value(0) : !names(&out))
+                return {};
+        } while (eat(','));
+        return out;
+    }
+
+  private:
+    const std::string &t_;
+    size_t i_ = 0;
+
+    bool next_is(char c)
+    {
+        while (i_ < t_.size() && std::isspace((unsigned char)t_[i_]))
+            i_++;
+        return i_ < t_.size() && t_[i_] == c;
+    }
+
+    bool eat(char c) { return next_is(c) && ++i_; }
+
+    bool string(std::string *out)
+    {
+        if (!eat('"'))
+            return false;
+        for (; i_ < t_.size() && t_[i_] != '"'; i_++) {
+            if (t_[i_] == '\\')
+                i_++; // an escaped character is taken as it is: extension names have none
+            if (out && i_ < t_.size())
+                out->push_back(t_[i_]);
+        }
+        return eat('"');
+    }
+
+    bool names(std::vector<std::string> *out)
+    {
+        if (!eat('['))
+            return false;
+        if (eat(']'))
+            return true;
+        do {
+            out->emplace_back();
+            if (!string(&out->back()))
+                return false;
+        } while (eat(','));
+        return eat(']');
+    }
+
+    // Skips one value; nesting is bounded so that a hostile file cannot exhaust the stack.
+    bool value(int depth)
+    {
+        if (depth > 256)
+            return false;
+        if (next_is('"'))
+            return string(nullptr);
+        const bool object = eat('{');
+        if (object || eat('[')) {
+            const char close = object ? '}' : ']';
+            if (eat(close))
+                return true;
+            do
+                if ((object && !(string(nullptr) && eat(':'))) || !value(depth + 1))
+                    return false;
+            while (eat(','));
+            return eat(close);
+        }
+        const size_t start = i_; // number, true, false or null
+        while (i_ < t_.size() && (std::isalnum((unsigned char)t_[i_]) || std::strchr("+-.", t_[i_])))
+            i_++;
+        return i_ > start;
+    }
+};
+
+// The extensionsRequired of a .gltf, or of the JSON chunk of a .glb (empty if unreadable).
+std::vector<std::string> required_extensions(const std::string &path)
+{
+    std::ifstream f(path, std::ios::binary);
+    std::string text;
+    if (ends_with(path, ".glb")) {
+        unsigned char head[20];
+        if (!f.read(reinterpret_cast<char *>(head), sizeof head) || std::memcmp(head + 16, "JSON", 4) != 0)
+            return {};
+        const uint32_t n = head[12] | head[13] << 8 | head[14] << 16 | (uint32_t)head[15] << 24;
+        f.seekg(0, std::ios::end);
+        if (!f || (uint64_t)n + sizeof head > (uint64_t)f.tellg()) // a truncated file: tinygltf says so
+            return {};
+        text.resize(n);
+        f.seekg(sizeof head);
+        f.read(&text[0], n);
+    } else {
+        text.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+    }
+    return required_scan(text).run();
+}
+
 // No '~' or $VARIABLE expansion of URIs (tinygltf's default runs wordexp on them).
 std::string no_expansion(const std::string &path, void *) { return path; }
 
@@ -729,6 +935,7 @@ extern "C" int scene_load_gltf(const char *path, scene *out, char *err, size_t e
                     slash == std::string::npos ? "" : p.substr(0, slash), "" };
         if (sb.dir.empty() || sb.dir.back() != '/')
             sb.dir += '/';
+        check_required(required_extensions(p));
         loader.SetImageLoader(bounded_image_loader, nullptr);
         loader.SetFsCallbacks({ sandboxed_exists, no_expansion, sandboxed_read, tinygltf::WriteWholeFile, &sb });
         const bool ok = ends_with(p, ".glb") ? loader.LoadBinaryFromFile(&model, &e, &w, p)

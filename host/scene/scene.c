@@ -235,18 +235,25 @@ static int is_instance(const scene *s, uint32_t i)
     return nd->mesh != SCENE_NONE && nd->mesh < s->n_meshes && node_displayed(s, i);
 }
 
+/* The instances node i draws: one per EXT_mesh_gpu_instancing row, else one. */
+static uint32_t node_instances(const scene *s, uint32_t i)
+{
+    return is_instance(s, i) ? (s->nodes[i].rows ? s->nodes[i].n_rows : 1) : 0;
+}
+
 uint32_t scene_count_instances(const scene *s)
 {
     uint32_t n = 0;
     for (uint32_t i = 0; i < s->n_nodes; i++)
-        n += (uint32_t)is_instance(s, i);
+        n += node_instances(s, i);
     return n;
 }
 
 int scene_evaluate(scene *s, double t, int loop)
 {
-    if (!s->instances && s->n_nodes) {
-        s->instances = calloc(s->n_nodes, sizeof *s->instances);
+    const uint32_t n_instances = scene_count_instances(s); /* the same for every t */
+    if (!s->instances && n_instances) {
+        s->instances = calloc(n_instances, sizeof *s->instances);
         if (!s->instances)
             return -1;
     }
@@ -275,7 +282,10 @@ int scene_evaluate(scene *s, double t, int loop)
         scene_mesh *m = &s->meshes[nd->mesh];
         if (m->n_targets > 0 && nd->weights && nd->n_weights == m->n_targets)
             morph_mesh(m, nd->weights);
-        s->instances[n++] = (scene_instance){ nd->mesh, i, nd->world };
+        if (!nd->rows)
+            s->instances[n++] = (scene_instance){ nd->mesh, i, nd->world };
+        for (uint32_t r = 0; nd->rows && r < nd->n_rows; r++)
+            s->instances[n++] = (scene_instance){ nd->mesh, i, affine_mul(&nd->world, &nd->rows[r]) };
     }
     s->n_instances = n;
     for (uint32_t i = 0; i < s->n_cameras; i++)
@@ -310,8 +320,10 @@ void scene_free(scene *s)
         free(m->target_deltas);
         free(m->weights);
     }
-    for (uint32_t i = 0; i < s->n_nodes; i++)
+    for (uint32_t i = 0; i < s->n_nodes; i++) {
         free(s->nodes[i].weights);
+        free(s->nodes[i].rows);
+    }
     for (uint32_t i = 0; i < s->n_textures; i++)
         free(s->textures[i].rgba);
     for (uint32_t i = 0; i < s->n_animations; i++) {
@@ -330,6 +342,7 @@ void scene_free(scene *s)
     free(s->animations);
     free(s->roots);
     free(s->instances);
+    free(s->ignored);
     memset(s, 0, sizeof *s);
 }
 
@@ -424,19 +437,26 @@ int scene_add_ground(scene *s)
 
 scene_camera scene_default_camera(const double lo[3], const double hi[3])
 {
+    /* from the front, turned right and raised, as model viewers open a file: a plane at y = 0
+     * (or any flat model along an axis) is seen from above, not edge-on */
+    const double deg = 3.14159265358979323846 / 180.0, azimuth = 30.0 * deg, elevation = 25.0 * deg;
+    const double back[3] = { sin(azimuth) * cos(elevation), sin(elevation), cos(azimuth) * cos(elevation) };
+    const double right[3] = { cos(azimuth), 0, -sin(azimuth) }; /* (0,1,0) x back, normalized */
+    const double up[3] = { back[1] * right[2] - back[2] * right[1], back[2] * right[0] - back[0] * right[2],
+                           back[0] * right[1] - back[1] * right[0] };
     scene_camera c = { 0 };
     c.kind = CAMERA_PERSPECTIVE;
-    c.yfov = 45.0 * 3.14159265358979323846 / 180.0;
+    c.yfov = 45.0 * deg;
     c.node = SCENE_NONE;
-    double ctr[3], diag = 0;
-    for (int k = 0; k < 3; k++) {
-        ctr[k] = 0.5 * (lo[k] + hi[k]);
+    double diag = 0;
+    for (int k = 0; k < 3; k++)
         diag += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    const double dist = diag > 0 ? 1.2 * sqrt(diag) : 1.0;
+    for (int k = 0; k < 3; k++) { /* camera-to-world: columns right, up, back (it looks down -Z) */
+        c.world.m[k][0] = right[k];
+        c.world.m[k][1] = up[k];
+        c.world.m[k][2] = back[k];
+        c.world.m[k][3] = 0.5 * (lo[k] + hi[k]) + dist * back[k];
     }
-    diag = sqrt(diag);
-    c.world = affine_identity(); /* looks down -Z from in front of the box */
-    c.world.m[0][3] = ctr[0];
-    c.world.m[1][3] = ctr[1];
-    c.world.m[2][3] = ctr[2] + (diag > 0 ? 1.2 * diag : 1.0);
     return c;
 }

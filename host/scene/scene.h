@@ -95,6 +95,10 @@ typedef struct {
     double translation[3], rotation[4] /* x y z w */, scale[3];
     double *weights;         /* morph weights of the node's mesh instance (NULL: mesh defaults) */
     uint32_t n_weights;
+    /* EXT_mesh_gpu_instancing: the node draws its mesh once per row, at node world x row (the
+     * rows are in the node's local space); NULL (0 rows): once, at the node's world transform */
+    uint32_t n_rows;
+    affine *rows;
     affine world;            /* evaluated by scene_evaluate */
 } scene_node;
 
@@ -139,15 +143,26 @@ typedef struct {
     uint32_t n_instances;
     scene_instance *instances;
     uint32_t warnings;           /* unsupported features skipped while loading */
+    /* the glTF features present in the file that change its appearance and are not implemented
+     * (extension names, "normalTexture", "points", ...), each once */
+    uint32_t n_ignored;
+    char (*ignored)[64];
 } scene;
 
 /* The loader decodes no texture larger than this a side (16384^2 RGBA texels are 1 GB); the
  * command line's texture-size limit (docs/limits.md) is at most this. */
 #define SCENE_MAX_TEXTURE_SIDE 16384u
 
+/* The loader refuses a file with more instances than this (EXT_mesh_gpu_instancing rows can share
+ * one accessor, so a small file could otherwise ask for billions); the command line's instance
+ * limit (docs/limits.md) is at most this. */
+#define SCENE_MAX_INSTANCES (1u << 26)
+
 /* Loads a .gltf or .glb file and evaluates it at time 0. On failure returns -1 with a one-line
- * message in err (the scene is left empty). Unsupported features are skipped with a one-line
- * warning each on stderr (counted in scene.warnings). */
+ * message in err (the scene is left empty); a file whose extensionsRequired names an extension
+ * the loader does not implement fails with a message naming it, before any data is decoded.
+ * Unsupported features are skipped with a one-line warning each on stderr (counted in
+ * scene.warnings); those that change the appearance are listed once each in scene.ignored. */
 int scene_load_gltf(const char *path, scene *out, char *err, size_t errlen);
 
 /* Writes a scene as glTF 2.0 (.glb or .gltf by extension). Returns 0 or -1 with err. */
@@ -164,8 +179,10 @@ uint32_t scene_count_instances(const scene *s);
 
 void scene_free(scene *s);
 
-/* The view of a scene without cameras: looking down -Z at the centre of the box [lo, hi] from
- * 1.2 diagonals away, vertical field of view 45 degrees. */
+/* The view of a scene without cameras, as model viewers frame one: looking at the centre of the
+ * box [lo, hi] from 1.2 diagonals away, from the front (+Z) turned 30 degrees to the right (+X)
+ * and raised 25 degrees (+Y up), vertical field of view 45 degrees; so a flat model is never seen
+ * edge-on. */
 scene_camera scene_default_camera(const double lo[3], const double hi[3]);
 
 /* Adds a ground plane under the evaluated scene (+Y up, as glTF): a polished metal square

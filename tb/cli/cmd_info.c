@@ -109,7 +109,17 @@ static void print_report(const scene *s, const mi_builder *b, const scene_opts *
     printf("\n");
 }
 
-static int write_json(const char *path, const scene_opts *o, const mi_builder *b, const double *upload, uint32_t frames)
+/* A JSON string: the names come from the file and may hold anything. */
+static void json_string(FILE *f, const char *str)
+{
+    fputc('"', f);
+    for (const unsigned char *c = (const unsigned char *)str; *c; c++)
+        fprintf(f, *c == '"' || *c == '\\' ? "\\%c" : *c < 0x20 ? "\\u%04x" : "%c", *c);
+    fputc('"', f);
+}
+
+static int write_json(const char *path, const scene_opts *o, const scene *s, const mi_builder *b,
+                      const double *upload, uint32_t frames)
 {
     const mi_stats *st = mi_get_stats(b);
     uint32_t n_words;
@@ -139,7 +149,12 @@ static int write_json(const char *path, const scene_opts *o, const mi_builder *b
     fprintf(f, "\n  \"bytes_per_triangle\": {\"total\": %.4f", per_triangle(st, n_words));
     for (int k = 0; k < REC_KINDS; k++)
         fprintf(f, ", \"%s\": %.4f", rec_names[k], per_triangle(st, rec[k]));
-    fprintf(f, "},\n  \"frame_upload_bytes\": [");
+    fprintf(f, "},\n  \"ignored_features\": [");
+    for (uint32_t i = 0; i < s->n_ignored; i++) {
+        fputs(i ? ", " : "", f);
+        json_string(f, s->ignored[i]);
+    }
+    fprintf(f, "],\n  \"frame_upload_bytes\": [");
     for (uint32_t i = 0; i < frames; i++)
         fprintf(f, "%s%.0f", i ? ", " : "", upload[i]);
     fprintf(f, "]\n}\n");
@@ -282,7 +297,7 @@ int cmd_info(int argc, char **argv)
         rc = SAARCOR_EXIT_INTERNAL;
     if (rc == SAARCOR_EXIT_OK && io.frames)
         rc = run_frames(&s, b, &o, &io, upload);
-    if (rc == SAARCOR_EXIT_OK && io.json && write_json(io.json, &o, b, upload, io.frames) != 0) {
+    if (rc == SAARCOR_EXIT_OK && io.json && write_json(io.json, &o, &s, b, upload, io.frames) != 0) {
         cli_error("info", "cannot write '%s'", io.json);
         rc = SAARCOR_EXIT_INPUT;
     }
