@@ -549,7 +549,7 @@ scene_material geom_material(float r, float g, float b, float metallic, float ro
     m.base_color[1] = g;
     m.base_color[2] = b;
     m.base_color[3] = 1.0f;
-    m.base_color_texture = SCENE_NONE;
+    m.base_color_texture = m.emissive_texture = SCENE_NONE;
     m.alpha = ALPHA_OPAQUE;
     m.alpha_cutoff = 0.5f;
     m.metallic = metallic;
