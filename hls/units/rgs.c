@@ -242,8 +242,8 @@ static void modulate_colours(uint32_t flags, const uint32_t *tail, const hit_rec
     const uint32_t wa = q_of(h->u), wb = q_of(h->v), wc = wa + wb < RGS_Q12_ONE ? RGS_Q12_ONE - wa - wb : 0u;
 vertex_colours:
     for (uint32_t k = 0; k < 3; k++) {
-        const uint32_t sum = wa * q_byte(shade_rec_colour(flags, tail, 0, k)) + wb * q_byte(shade_rec_colour(flags, tail, 1, k)) +
-                             wc * q_byte(shade_rec_colour(flags, tail, 2, k));
+        const uint32_t sum = wa * q_byte(shade_rec_colour(flags, tail, 0, k)) +
+                             wb * q_byte(shade_rec_colour(flags, tail, 1, k)) + wc * q_byte(shade_rec_colour(flags, tail, 2, k));
         out[k] = q_mul(out[k], (sum + 2048u) >> 12);
     }
 }

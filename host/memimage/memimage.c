@@ -360,11 +360,8 @@ static int same_uv_map(const scene_uv_map *a, const scene_uv_map *b)
 {
     if (!a->set || !b->set)
         return a->set == b->set;
-    for (int r = 0; r < 2; r++)
-        for (int c = 0; c < 3; c++)
-            if (a->m[r][c] != b->m[r][c])
-                return 0;
-    return 1;
+    return a->offset[0] == b->offset[0] && a->offset[1] == b->offset[1] && a->rotation == b->rotation &&
+           a->scale[0] == b->scale[0] && a->scale[1] == b->scale[1];
 }
 
 /* The material samples its two textures through different coordinates: its records need set 1. */

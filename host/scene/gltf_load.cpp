@@ -253,17 +253,15 @@ class Loader {
         return x.IsNumber() ? x.GetNumberAsDouble() : fallback;
     }
 
-    // The TEXCOORD_n set (0 or 1) and KHR_texture_transform of a texture reference: uv gets
-    // translation x rotation x scale of the extension's ratified definition.
+    // The TEXCOORD_n set (0 or 1) and KHR_texture_transform of a texture reference (whose
+    // texCoord overrides the reference's).
     uint32_t texture_mapping(int texcoord, const tinygltf::ExtensionMap &ext, const std::string &what, scene_uv_map &uv)
     {
         auto tt = ext.find("KHR_texture_transform");
         if (tt != ext.end()) {
             const tinygltf::Value &v = tt->second;
-            const double r = number(v, "rotation", -1, 0), c = std::cos(r), s = std::sin(r);
-            const double sx = number(v, "scale", 0, 1), sy = number(v, "scale", 1, 1);
-            uv = scene_uv_map{ 1, { { c * sx, s * sy, number(v, "offset", 0, 0) },
-                                    { -s * sx, c * sy, number(v, "offset", 1, 0) } } };
+            uv = scene_uv_map{ 1, { number(v, "offset", 0, 0), number(v, "offset", 1, 0) }, number(v, "rotation", -1, 0),
+                               { number(v, "scale", 0, 1), number(v, "scale", 1, 1) } };
             texcoord = (int)number(v, "texCoord", -1, texcoord);
         }
         if (texcoord < 0 || texcoord > 1) {

@@ -303,9 +303,13 @@ int scene_texcoord(const scene_mesh *m, uint32_t set, const scene_uv_map *uv, ui
     st[0] = st[1] = 0;
     if (!tc)
         return 0;
-    const double s0 = tc[2 * (size_t)v], t0 = tc[2 * (size_t)v + 1];
-    st[0] = uv->set ? uv->m[0][0] * s0 + uv->m[0][1] * t0 + uv->m[0][2] : s0;
-    st[1] = uv->set ? uv->m[1][0] * s0 + uv->m[1][1] * t0 + uv->m[1][2] : t0;
+    st[0] = tc[2 * (size_t)v];
+    st[1] = tc[2 * (size_t)v + 1];
+    if (uv->set) { /* translation x rotation x scale, the extension's ratified matrix */
+        const double c = cos(uv->rotation), s = sin(uv->rotation), x = uv->scale[0] * st[0], y = uv->scale[1] * st[1];
+        st[0] = c * x + s * y + uv->offset[0];
+        st[1] = -s * x + c * y + uv->offset[1];
+    }
     return 1;
 }
 

@@ -25,11 +25,11 @@ typedef struct { double m[3][4]; } affine;
 
 typedef enum { ALPHA_OPAQUE = 0, ALPHA_MASK = 1, ALPHA_BLEND = 2 } alpha_mode;
 
-/* KHR_texture_transform of a texture reference: (s', t') = m (s, t, 1), rows (m00 m01 m02),
- * (m10 m11 m12); applies only if set, so that a zero-initialized material has the identity. */
+/* KHR_texture_transform of a texture reference, as the file gives it (scene_texcoord applies
+ * it); only if set, so that a zero-initialized material has none. */
 typedef struct {
     int set;
-    double m[2][3];
+    double offset[2], rotation, scale[2];
 } scene_uv_map;
 
 typedef struct {
