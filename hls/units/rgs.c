@@ -270,7 +270,8 @@ material_factors:
 }
 
 /* The surface of ray i at hit h; its reads are noted in op: instance, object descriptor
- * (words 2..7), shading record, geometric normal if needed, material, texture entry, 4 texels. */
+ * (words 2..7), shading record, geometric normal if needed, material, and per texture sampled
+ * (base colour, emissive) its entry and 4 texels: at most 15 (UNIT_OP_READS). */
 static surface surface_at(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h, unit_op *op,
                           trace_counters *c)
 {
