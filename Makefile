@@ -208,7 +208,7 @@ test: deps
 	@bash tests/run.sh --report $(BUILD)/test-report.txt \
 	  tests/test_cli.sh tests/test_golden_asan.sh tests/test_golden.sh tests/test_mpi.sh tests/test_hls.sh \
 	  tests/test_determinism.sh tests/test_memcheck.sh tests/test_limits.sh tests/test_rtl.sh tests/test_longrun.sh \
-	  tests/test_interrupt.sh tests/test_fuzz.sh tests/test_stress.sh tests/test_heatmap.sh tests/test_hits.sh tests/test_vcd.sh tests/test_sim_arith.sh \
+	  tests/test_interrupt.sh tests/test_fuzz.sh tests/test_stress.sh tests/test_heatmap.sh tests/test_hits.sh tests/test_vcd.sh tests/test_sim_arith.sh tests/test_shading.sh \
 	  $(UNIT_TESTS) $(patsubst $(BUILD)/%,build/asan/%,$(UNIT_TESTS))
 
 # ---- fuzzing: libFuzzer harnesses of tests/fuzz/ (tests/fuzz/README.md) ----------------------------

@@ -128,7 +128,7 @@ t_compare() {
 
 t_gen() {
   expect 0 "$BIN" gen --list
-  [[ $(grep -cE '^(cornell|room|plants|terrain|animated) ' "$T/out") -eq 5 ]]
+  [[ $(grep -cE '^(cornell|room|plants|terrain|animated|emissive|vertex_colours|uv_transform|unlit) ' "$T/out") -eq 9 ]]
   expect 0 "$BIN" gen cornell -o "$T/c.glb"
   [[ -s "$T/c.glb" ]]
   expect 0 "$BIN" gen plants --detail 10 --seed 3 -o "$T/p.gltf"

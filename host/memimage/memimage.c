@@ -45,7 +45,7 @@ struct mi_builder {
     uint32_t *words, n_words;
     uint32_t n_objects;
     mi_object *obj;
-    uint32_t n_textures;       /* textures stored (scene textures used as base colour) */
+    uint32_t n_textures;       /* textures stored (scene textures used as base colour or emission) */
     uint32_t *texture_map;     /* scene texture -> image texture or MI_NONE */
     uint32_t *inst_scene;      /* per image instance: scene instance index (MI_NONE: a merged object) */
     uint32_t *inst_obj;        /* per image instance: image object */
@@ -338,24 +338,59 @@ static uint32_t list_words(const kd_tree *t, const kd_rope *ropes)
     return t->n_prims + (ropes ? MI_ROPE_WORDS * leaf_count(t) : 0u);
 }
 
-/* Shading record flags of a mesh (the object descriptor's flags 1 and 2). */
+/* Shading record flags of a mesh (the object descriptor's flags 1, 2 and 16). */
 static uint32_t shading_flags(const scene_mesh *m)
 {
-    return (m->normals ? MI_OBJECT_HAS_NORMALS : 0u) | (m->texcoords ? MI_OBJECT_HAS_TEXCOORDS : 0u);
+    return (m->normals ? MI_OBJECT_HAS_NORMALS : 0u) |
+           (m->texcoords || m->texcoords1 ? MI_OBJECT_HAS_TEXCOORDS : 0u) | (m->colours ? SHADE_HAS_COLOURS : 0u);
 }
 
-/* The object's shading flags: those of its mesh, and the one material of all its triangles if
- * they share it (then their records carry none: hls/units/shade_rec.h). */
-static uint32_t object_shading_flags(const scene_mesh *m, const mi_object *o)
+/* The texture mapping (TEXCOORD_n and KHR_texture_transform) of coordinate set uv of a record
+ * of a triangle with material mat: set 0 serves the base colour texture, or the emissive one if
+ * the material has no base colour texture; set 1 the emissive texture. */
+static void record_mapping(const scene *s, const scene_material *mat, uint32_t uv, uint32_t *set,
+                           const scene_uv_map **map)
 {
-    uint32_t same = o->n_valid > 0;
+    const int emissive = uv == 1 || mat->base_color_texture >= s->n_textures;
+    *set = emissive ? mat->emissive_texcoord : mat->texcoord_set;
+    *map = emissive ? &mat->emissive_uv : &mat->base_uv;
+}
+
+static int same_uv_map(const scene_uv_map *a, const scene_uv_map *b)
+{
+    if (!a->set || !b->set)
+        return a->set == b->set;
+    return a->offset[0] == b->offset[0] && a->offset[1] == b->offset[1] && a->rotation == b->rotation &&
+           a->scale[0] == b->scale[0] && a->scale[1] == b->scale[1];
+}
+
+/* The material samples its two textures through different coordinates: its records need set 1. */
+static int needs_emissive_uv(const scene *s, const scene_material *mat)
+{
+    uint32_t set[2];
+    const scene_uv_map *map[2];
+    for (uint32_t uv = 0; uv < 2; uv++)
+        record_mapping(s, mat, uv, &set[uv], &map[uv]);
+    return mat->base_color_texture < s->n_textures && mat->emissive_texture < s->n_textures &&
+           (set[0] != set[1] || !same_uv_map(map[0], map[1]));
+}
+
+/* The object's shading flags: those of its mesh, the emissive coordinates if a material needs
+ * them, and the one material of all its triangles if they share it (then their records carry
+ * none: hls/units/shade_rec.h). */
+static uint32_t object_shading_flags(const scene *s, const scene_mesh *m, const mi_object *o)
+{
+    uint32_t same = o->n_valid > 0, flags = shading_flags(m);
     for (uint32_t i = 1; same && i < o->n_valid; i++)
         same = m->material[o->valid[i]] == m->material[o->valid[0]];
-    return shading_flags(m) | (same ? SHADE_ONE_MATERIAL | m->material[o->valid[0]] << SHADE_OBJ_MATERIAL_SHIFT : 0u);
+    for (uint32_t i = 0; (flags & MI_OBJECT_HAS_TEXCOORDS) && i < o->n_valid; i++)
+        if (needs_emissive_uv(s, &s->materials[m->material[o->valid[i]]]))
+            flags |= SHADE_HAS_EMISSIVE_UV;
+    return flags | (same ? SHADE_ONE_MATERIAL | m->material[o->valid[0]] << SHADE_OBJ_MATERIAL_SHIFT : 0u);
 }
 
 /* Triangle transformations and the bottom-level tree of one mesh. */
-static int object_prepare(mi_builder *b, const scene_mesh *m, mi_object *o)
+static int object_prepare(mi_builder *b, const scene *s, const scene_mesh *m, mi_object *o)
 {
     object_release(o);
     o->valid = malloc(((size_t)m->n_triangles + 1) * sizeof *o->valid);
@@ -395,7 +430,7 @@ static int object_prepare(mi_builder *b, const scene_mesh *m, mi_object *o)
     o->n_slots = tree_slots(&o->tree, trees_compact(&b->p), &o->slot);
     if (!o->n_slots)
         return -1;
-    o->shade_flags = object_shading_flags(m, o);
+    o->shade_flags = object_shading_flags(s, m, o);
     o->words = MI_NODE_WORDS * o->n_slots + list_words(&o->tree, o->ropes) + MI_TRIANGLE_WORDS - 1 +
                (MI_TRIANGLE_WORDS + shade_rec_words(o->shade_flags)) * o->n_valid + grid_words(&o->grid);
     return 0;
@@ -448,15 +483,21 @@ static void put_tree(uint32_t *nodes, uint32_t *lists, const kd_tree *t, const k
     }
 }
 
-static void write_shading(uint32_t *w, const scene_mesh *m, uint32_t flags, uint32_t tri)
+static void write_shading(uint32_t *w, const scene *s, const scene_mesh *m, uint32_t flags, uint32_t tri)
 {
-    const float *normals[3] = { 0 }, *texcoords[3] = { 0 };
-    for (int k = 0; k < 3; k++) {
-        const size_t v = m->indices[3 * (size_t)tri + (size_t)k];
-        normals[k] = m->normals ? &m->normals[3 * v] : NULL;
-        texcoords[k] = m->texcoords ? &m->texcoords[2 * v] : NULL;
+    shade_triangle t = { .material = m->material[tri] };
+    for (uint32_t k = 0; k < 3; k++) {
+        const uint32_t v = m->indices[3 * (size_t)tri + k];
+        t.normal[k] = m->normals ? &m->normals[3 * (size_t)v] : NULL;
+        t.colour[k] = m->colours ? &m->colours[3 * (size_t)v] : NULL;
+        for (uint32_t uv = 0; uv < 2; uv++) {
+            uint32_t set;
+            const scene_uv_map *map;
+            record_mapping(s, &s->materials[t.material], uv, &set, &map);
+            scene_texcoord(m, set, map, v, t.uv[uv][k]);
+        }
     }
-    shade_encode_record(w, flags, normals, texcoords, m->material[tri]);
+    shade_encode_record(w, flags, &t);
 }
 
 /* Address of the triangle transformations: after the lists, padded to a multiple of the record
@@ -503,7 +544,7 @@ static void object_write(mi_builder *b, const scene *s, const mi_object *o)
     for (uint32_t i = 0; i < o->n_valid; i++, w += MI_TRIANGLE_WORDS)
         put_triangle(w, &o->xf[i]);
     for (uint32_t i = 0; i < o->n_valid; i++, w += shade_rec_words(o->shade_flags))
-        write_shading(w, m, o->shade_flags, o->valid[i]);
+        write_shading(w, s, m, o->shade_flags, o->valid[i]);
     if (o->grid.n[0])
         put_grid(w, &o->grid, (uint32_t)(w - b->words));
 }
@@ -769,6 +810,12 @@ static void write_lights(const mi_builder *b, const scene *s, uint32_t *w)
 /* A shader weight in [0, 1] as Q12 (docs/shading.md). */
 static uint32_t q12(double x) { return (uint32_t)lround(4096.0 * (x > 0 ? (x < 1 ? x : 1) : 0)); }
 
+/* The image's index of scene texture t, or MI_NONE. */
+static uint32_t image_texture(const mi_builder *b, const scene *s, uint32_t t)
+{
+    return t < s->n_textures ? b->texture_map[t] : MI_NONE;
+}
+
 static void write_materials(const mi_builder *b, const scene *s, uint32_t *w)
 {
     for (uint32_t i = 0; i < s->n_materials; i++, w += MI_MATERIAL_WORDS) {
@@ -778,21 +825,21 @@ static void write_materials(const mi_builder *b, const scene *s, uint32_t *w)
             w[k] = fp24_word(m->base_color[k]);
         for (int k = 0; k < 3; k++)
             w[4 + k] = fp24_word(m->emissive[k]);
-        w[7] = m->base_color_texture < s->n_textures ? b->texture_map[m->base_color_texture] : MI_NONE;
-        w[8] = (uint32_t)m->alpha | (m->double_sided ? 4u : 0u);
+        shading_params sp;
+        shading_params_of(m, &sp);
+        w[7] = image_texture(b, s, m->base_color_texture);
+        w[SHADE_M_FLAGS] = (uint32_t)m->alpha | (m->double_sided ? 4u : 0u) | (sp.unlit ? SHADE_MAT_UNLIT : 0u);
         w[9] = fp24_word(m->alpha_cutoff);
         w[10] = fp24_word(m->metallic);
         w[11] = fp24_word(m->roughness);
-        w[12] = fp24_word(m->transmission);
-        shading_params sp;
-        shading_params_of(m, &sp);
+        w[SHADE_M_EMISSIVE_TEXTURE] = image_texture(b, s, m->emissive_texture);
         w[13] = fp24_word(sp.eta);
         w[14] = q12(sp.kd) | q12(sp.kr) << 13 | sp.exp_shift << 26;
         w[15] = q12(sp.kt) | q12(sp.ks) << 13;
     }
 }
 
-/* Only textures that some material uses as base colour are stored. */
+/* Only textures that some material uses as base colour or emission are stored. */
 static uint32_t texture_words(mi_builder *b, const scene *s)
 {
     uint32_t words = 0;
@@ -800,7 +847,7 @@ static uint32_t texture_words(mi_builder *b, const scene *s)
     for (uint32_t t = 0; t < s->n_textures; t++) {
         b->texture_map[t] = MI_NONE;
         for (uint32_t m = 0; m < s->n_materials; m++)
-            if (s->materials[m].base_color_texture == t) {
+            if (s->materials[m].base_color_texture == t || s->materials[m].emissive_texture == t) {
                 b->texture_map[t] = b->n_textures++;
                 words += (uint32_t)s->textures[t].width * (uint32_t)s->textures[t].height;
                 break;
@@ -1106,7 +1153,7 @@ mi_builder *mi_build(const scene *s, const mi_params *p, char *err, size_t errle
     }
     for (uint32_t i = 0; i < b->n_objects; i++) {
         const scene_mesh *m = obj_mesh(b, s, &b->obj[i]);
-        if (object_prepare(b, m, &b->obj[i]) != 0) {
+        if (object_prepare(b, s, m, &b->obj[i]) != 0) {
             snprintf(err, errlen, "out of memory while building the tree of mesh '%s'", m->name);
             mi_free(b);
             return NULL;
@@ -1132,7 +1179,7 @@ int mi_update(mi_builder *b, const scene *s, char *err, size_t errlen)
         if (!o->dynamic || memcmp(o->weights_seen, m->weights, m->n_targets * sizeof(float)) == 0)
             continue;
         b->st.degenerate_triangles -= m->n_triangles - o->n_valid;
-        if (object_prepare(b, m, o) != 0) {
+        if (object_prepare(b, s, m, o) != 0) {
             snprintf(err, errlen, "out of memory while rebuilding the tree of mesh '%s'", m->name);
             return -1;
         }

@@ -19,7 +19,7 @@
 #include "scene.h"
 
 #define MI_MAGIC 0x524F4353u /* "SCOR" in little-endian bytes */
-#define MI_VERSION 4u
+#define MI_VERSION 5u
 #define MI_NONE 0xFFFFFFFFu
 #define MI_DEFAULT_BYTES (24u << 20) /* the prototype's six 4 MB banks */
 

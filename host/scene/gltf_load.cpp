@@ -28,12 +28,10 @@ struct load_error : std::runtime_error {
 };
 
 // The extensions the loader implements: a file may require them.
-const char *const implemented_extensions[] = { "KHR_lights_punctual", "KHR_materials_transmission",
-                                               "KHR_materials_ior", "KHR_materials_emissive_strength",
-                                               "KHR_mesh_quantization", "EXT_mesh_gpu_instancing" };
-// Extensions whose support is being added (issue 22): files that require them still load, with
-// the "not supported" warning, and they are not listed as ignored features.
-const char *const pending_extensions[] = { "KHR_texture_transform", "KHR_materials_unlit" };
+const char *const implemented_extensions[] = { "KHR_lights_punctual",     "KHR_materials_transmission",
+                                               "KHR_materials_ior",       "KHR_materials_emissive_strength",
+                                               "KHR_mesh_quantization",   "EXT_mesh_gpu_instancing",
+                                               "KHR_texture_transform",   "KHR_materials_unlit" };
 
 template <size_t N> bool listed(const char *const (&list)[N], const std::string &name)
 {
@@ -47,7 +45,7 @@ template <size_t N> bool listed(const char *const (&list)[N], const std::string 
 void check_required(const std::vector<std::string> &required)
 {
     for (const std::string &e : required)
-        if (!listed(implemented_extensions, e) && !listed(pending_extensions, e))
+        if (!listed(implemented_extensions, e))
             throw load_error("requires extension " + e + ", which saarcor does not implement");
 }
 
@@ -128,16 +126,14 @@ class Loader {
     {
         check_required(m_.extensionsRequired); // scene_load_gltf checked the JSON already: a safety net
         for (const std::string &e : m_.extensionsUsed) {
-            if (listed(pending_extensions, e))
-                warn("extension " + e + " is not supported and is ignored");
-            else if (!listed(implemented_extensions, e))
+            if (!listed(implemented_extensions, e))
                 ignore(e);
         }
         if (!m_.skins.empty())
             warn("skins are not supported: skinned meshes are drawn in their bind pose");
     }
 
-    // The material textures the shader does not sample (emission: being added, issue 22).
+    // The material textures the shader does not sample.
     void note_ignored_textures()
     {
         for (const tinygltf::Material &g : m_.materials) {
@@ -262,7 +258,7 @@ class Loader {
             d = scene_material{};
             for (int c = 0; c < 4; c++)
                 d.base_color[c] = c < 3 ? 0.8f : 1.0f;
-            d.base_color_texture = SCENE_NONE;
+            d.base_color_texture = d.emissive_texture = SCENE_NONE;
             d.alpha_cutoff = 0.5f;
             d.metallic = 0.0f;
             d.roughness = 1.0f;
@@ -275,11 +271,14 @@ class Loader {
                 d.base_color[c] = (float)pbr.baseColorFactor[(size_t)c];
             d.metallic = (float)pbr.metallicFactor;
             d.roughness = (float)pbr.roughnessFactor;
-            d.base_color_texture = pbr.baseColorTexture.index; // resolved in load_textures
-            d.texcoord_set = (uint32_t)std::max(0, pbr.baseColorTexture.texCoord);
-            if (d.texcoord_set != 0)
-                warn("material " + std::to_string(i - 1) + " uses TEXCOORD_" + std::to_string(d.texcoord_set) +
-                     ": only TEXCOORD_0 is loaded");
+            const std::string what = "material " + std::to_string(i - 1);
+            d.base_color_texture = (uint32_t)pbr.baseColorTexture.index; // resolved in load_textures
+            d.texcoord_set = texture_mapping(pbr.baseColorTexture.texCoord, pbr.baseColorTexture.extensions,
+                                             what + " base colour texture", d.base_uv);
+            d.emissive_texture = (uint32_t)g.emissiveTexture.index;
+            d.emissive_texcoord = texture_mapping(g.emissiveTexture.texCoord, g.emissiveTexture.extensions,
+                                                  what + " emissive texture", d.emissive_uv);
+            d.unlit = g.extensions.count("KHR_materials_unlit") != 0;
             d.alpha = g.alphaMode == "MASK" ? ALPHA_MASK : g.alphaMode == "BLEND" ? ALPHA_BLEND : ALPHA_OPAQUE;
             d.alpha_cutoff = (float)g.alphaCutoff;
             for (int c = 0; c < 3 && c < (int)g.emissiveFactor.size(); c++)
@@ -296,6 +295,44 @@ class Loader {
             if (ior != g.extensions.end() && ior->second.Has("ior"))
                 d.ior = (float)ior->second.Get("ior").GetNumberAsDouble();
         }
+    }
+
+    static double number(const tinygltf::Value &v, const char *key, int i, double fallback)
+    {
+        if (!v.Has(key))
+            return fallback;
+        const tinygltf::Value &x = i < 0 ? v.Get(key) : v.Get(key).Get(i);
+        return x.IsNumber() ? x.GetNumberAsDouble() : fallback;
+    }
+
+    // The TEXCOORD_n set (0 or 1) and KHR_texture_transform of a texture reference (whose
+    // texCoord overrides the reference's).
+    uint32_t texture_mapping(int texcoord, const tinygltf::ExtensionMap &ext, const std::string &what, scene_uv_map &uv)
+    {
+        auto tt = ext.find("KHR_texture_transform");
+        if (tt != ext.end()) {
+            const tinygltf::Value &v = tt->second;
+            uv = scene_uv_map{ 1, { number(v, "offset", 0, 0), number(v, "offset", 1, 0) }, number(v, "rotation", -1, 0),
+                               { number(v, "scale", 0, 1), number(v, "scale", 1, 1) } };
+            texcoord = (int)number(v, "texCoord", -1, texcoord);
+        }
+        if (texcoord < 0 || texcoord > 1) {
+            warn(what + " uses TEXCOORD_" + std::to_string(texcoord) + ": only TEXCOORD_0 and TEXCOORD_1 are loaded");
+            return 0;
+        }
+        return (uint32_t)texcoord;
+    }
+
+    // The scene texture of glTF texture index ti (SCENE_NONE if none or unusable).
+    uint32_t resolve_texture(uint32_t ti)
+    {
+        if (ti >= m_.textures.size())
+            return SCENE_NONE;
+        const int src = m_.textures[ti].source;
+        if (src >= 0 && (size_t)src < image_to_texture_.size())
+            return image_to_texture_[(size_t)src];
+        warn("texture " + std::to_string(ti) + " has no usable image (KTX2/BasisU?) and is skipped");
+        return SCENE_NONE;
     }
 
     void load_textures()
@@ -326,24 +363,17 @@ class Loader {
         s_->textures = copy_array(tex);
         for (uint32_t i = 1; i < s_->n_materials; i++) {
             scene_material &d = s_->materials[i];
-            const int ti = (int)d.base_color_texture;
-            d.base_color_texture = SCENE_NONE;
-            if (ti < 0 || (size_t)ti >= m_.textures.size())
-                continue;
-            const int src = m_.textures[(size_t)ti].source;
-            if (src >= 0 && (size_t)src < image_to_texture_.size())
-                d.base_color_texture = image_to_texture_[(size_t)src];
-            else
-                warn("texture " + std::to_string(ti) + " has no usable image (KTX2/BasisU?) and is skipped");
+            d.base_color_texture = resolve_texture(d.base_color_texture);
+            d.emissive_texture = resolve_texture(d.emissive_texture);
         }
     }
 
     // ---- meshes --------------------------------------------------------------------------
 
     struct mesh_build {
-        std::vector<float> pos, nrm, uv;
+        std::vector<float> pos, nrm, uv, uv1, rgb;
         std::vector<uint32_t> idx, mat;
-        bool any_normals = false, any_uv = false;
+        bool any_normals = false, any_uv = false, any_uv1 = false, any_rgb = false;
         uint32_t n_targets = 0;
         std::vector<std::pair<uint32_t, std::vector<std::vector<double>>>> prim_targets; // first vertex, deltas
     };
@@ -407,6 +437,8 @@ class Loader {
         };
         fill("NORMAL", TINYGLTF_TYPE_VEC3, 3, b.nrm, b.any_normals);
         fill("TEXCOORD_0", TINYGLTF_TYPE_VEC2, 2, b.uv, b.any_uv);
+        fill("TEXCOORD_1", TINYGLTF_TYPE_VEC2, 2, b.uv1, b.any_uv1);
+        add_colours(b, p, nv, what);
 
         std::vector<uint32_t> idx;
         if (p.indices >= 0) {
@@ -446,6 +478,31 @@ class Loader {
         b.prim_targets.emplace_back(base, std::move(deltas));
     }
 
+    // COLOR_0 (RGB or RGBA, float or normalized integers) as RGB clamped to [0, 1]; white for a
+    // primitive without it, as the specification's default.
+    void add_colours(mesh_build &b, const tinygltf::Primitive &p, size_t nv, const std::string &what)
+    {
+        b.rgb.resize((b.pos.size() / 3 - nv) * 3, 1.0f);
+        auto it = p.attributes.find("COLOR_0");
+        if (it == p.attributes.end()) {
+            b.rgb.resize(b.pos.size(), 1.0f);
+            return;
+        }
+        const int type = accessor(it->second, (what + " COLOR_0").c_str()).type;
+        if (type != TINYGLTF_TYPE_VEC3 && type != TINYGLTF_TYPE_VEC4)
+            fail(what + ": COLOR_0 must be VEC3 or VEC4");
+        const int nc = components(type);
+        const std::vector<double> v = read(it->second, type, what + " COLOR_0");
+        if (v.size() != nv * (size_t)nc)
+            fail(what + ": COLOR_0 count differs from POSITION count");
+        for (size_t i = 0; i < nv; i++)
+            for (int c = 0; c < 3; c++) {
+                const double x = v[i * (size_t)nc + (size_t)c];
+                b.rgb.push_back(x > 0 ? (x < 1 ? (float)x : 1.0f) : 0.0f); // NaN -> 0
+            }
+        b.any_rgb = true;
+    }
+
     void load_meshes()
     {
         s_->n_meshes = (uint32_t)m_.meshes.size();
@@ -462,6 +519,8 @@ class Loader {
             sm.positions = copy_array(b.pos);
             sm.normals = b.any_normals ? copy_array(b.nrm) : nullptr;
             sm.texcoords = b.any_uv ? copy_array(b.uv) : nullptr;
+            sm.texcoords1 = b.any_uv1 ? copy_array(b.uv1) : nullptr;
+            sm.colours = b.any_rgb ? copy_array(b.rgb) : nullptr;
             sm.indices = copy_array(b.idx);
             sm.material = copy_array(b.mat);
             if (b.n_targets == 0)

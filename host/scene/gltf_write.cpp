@@ -210,6 +210,26 @@ class Writer {
         }
     }
 
+    // A material's texture reference: index, TEXCOORD_n and KHR_texture_transform.
+    void texture_info(uint32_t texture, uint32_t texcoord, const scene_uv_map &uv, const std::string &what,
+                      tinygltf::TextureInfo &out)
+    {
+        if (texture == SCENE_NONE)
+            return;
+        if (texture >= s_.n_textures)
+            throw write_error(what + ": texture index out of range");
+        out.index = (int)texture;
+        out.texCoord = (int)texcoord;
+        if (!uv.set)
+            return;
+        tinygltf::Value::Object o;
+        o["offset"] = tinygltf::Value(tinygltf::Value::Array{ tinygltf::Value(uv.offset[0]), tinygltf::Value(uv.offset[1]) });
+        o["rotation"] = tinygltf::Value(uv.rotation);
+        o["scale"] = tinygltf::Value(tinygltf::Value::Array{ tinygltf::Value(uv.scale[0]), tinygltf::Value(uv.scale[1]) });
+        out.extensions["KHR_texture_transform"] = tinygltf::Value(std::move(o));
+        use_ext("KHR_texture_transform");
+    }
+
     void write_materials()
     {
         for (uint32_t i = 1; i < s_.n_materials; i++) {
@@ -219,11 +239,11 @@ class Writer {
             pbr.baseColorFactor.assign(d.base_color, d.base_color + 4);
             pbr.metallicFactor = d.metallic;
             pbr.roughnessFactor = d.roughness;
-            if (d.base_color_texture != SCENE_NONE) {
-                if (d.base_color_texture >= s_.n_textures)
-                    throw write_error("material " + num(i) + ": texture index out of range");
-                pbr.baseColorTexture.index = (int)d.base_color_texture;
-                pbr.baseColorTexture.texCoord = (int)d.texcoord_set;
+            texture_info(d.base_color_texture, d.texcoord_set, d.base_uv, "material " + num(i), pbr.baseColorTexture);
+            texture_info(d.emissive_texture, d.emissive_texcoord, d.emissive_uv, "material " + num(i), g.emissiveTexture);
+            if (d.unlit) {
+                g.extensions["KHR_materials_unlit"] = tinygltf::Value(tinygltf::Value::Object());
+                use_ext("KHR_materials_unlit");
             }
             g.alphaMode = d.alpha == ALPHA_MASK ? "MASK" : d.alpha == ALPHA_BLEND ? "BLEND" : "OPAQUE";
             g.alphaCutoff = d.alpha_cutoff;
@@ -335,6 +355,10 @@ class Writer {
                 prim.attributes["NORMAL"] = add_floats(gather(sm.normals, 3), 3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
             if (sm.texcoords)
                 prim.attributes["TEXCOORD_0"] = add_floats(gather(sm.texcoords, 2), 2, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+            if (sm.texcoords1)
+                prim.attributes["TEXCOORD_1"] = add_floats(gather(sm.texcoords1, 2), 2, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+            if (sm.colours)
+                prim.attributes["COLOR_0"] = add_floats(gather(sm.colours, 3), 3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
             prim.indices = add_indices(idx);
             for (uint32_t t = 0; t < sm.n_targets; t++) {
                 const float *d = sm.target_deltas + (size_t)t * 3 * nv;

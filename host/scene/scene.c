@@ -307,6 +307,22 @@ int scene_evaluate(scene *s, double t, int loop)
     return 0;
 }
 
+int scene_texcoord(const scene_mesh *m, uint32_t set, const scene_uv_map *uv, uint32_t v, double st[2])
+{
+    const float *tc = set == 0 ? m->texcoords : set == 1 ? m->texcoords1 : NULL;
+    st[0] = st[1] = 0;
+    if (!tc)
+        return 0;
+    st[0] = tc[2 * (size_t)v];
+    st[1] = tc[2 * (size_t)v + 1];
+    if (uv->set) { /* translation x rotation x scale, the extension's ratified matrix */
+        const double c = cos(uv->rotation), s = sin(uv->rotation), x = uv->scale[0] * st[0], y = uv->scale[1] * st[1];
+        st[0] = c * x + s * y + uv->offset[0];
+        st[1] = -s * x + c * y + uv->offset[1];
+    }
+    return 1;
+}
+
 void scene_free(scene *s)
 {
     for (uint32_t i = 0; i < s->n_meshes; i++) {
@@ -314,6 +330,8 @@ void scene_free(scene *s)
         free(m->positions);
         free(m->normals);
         free(m->texcoords);
+        free(m->texcoords1);
+        free(m->colours);
         free(m->indices);
         free(m->material);
         free(m->base_positions);
@@ -385,7 +403,7 @@ int scene_add_ground(scene *s)
     const double ext = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
     const double cx = 0.5 * (lo[0] + hi[0]), cz = 0.5 * (lo[2] + hi[2]), y = lo[1] - 1e-3 * ext, r = 2 * ext;
     scene_material mat = { .base_color = { 0.6f, 0.6f, 0.62f, 1 }, .base_color_texture = SCENE_NONE,
-                           .metallic = 1, .roughness = 0.2f, .ior = 1.5f };
+                           .emissive_texture = SCENE_NONE, .metallic = 1, .roughness = 0.2f, .ior = 1.5f };
     scene_mesh mesh = { .name = "ground", .n_vertices = 4, .n_triangles = 2 };
     mesh.positions = malloc(12 * sizeof(float));
     mesh.normals = malloc(12 * sizeof(float));

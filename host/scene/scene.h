@@ -25,14 +25,26 @@ typedef struct { double m[3][4]; } affine;
 
 typedef enum { ALPHA_OPAQUE = 0, ALPHA_MASK = 1, ALPHA_BLEND = 2 } alpha_mode;
 
+/* KHR_texture_transform of a texture reference, as the file gives it (scene_texcoord applies
+ * it); only if set, so that a zero-initialized material has none. */
+typedef struct {
+    int set;
+    double offset[2], rotation, scale[2];
+} scene_uv_map;
+
 typedef struct {
     float base_color[4];        /* linear RGBA factor */
     uint32_t base_color_texture; /* index into scene.textures or SCENE_NONE */
-    uint32_t texcoord_set;       /* TEXCOORD_n used by the texture (only 0 is loaded) */
+    uint32_t texcoord_set;       /* TEXCOORD_n used by the texture (0 or 1) */
+    scene_uv_map base_uv;        /* its KHR_texture_transform */
     alpha_mode alpha;
     float alpha_cutoff;
     float metallic, roughness;
-    float emissive[3];
+    float emissive[3];           /* emissiveFactor x KHR_materials_emissive_strength */
+    uint32_t emissive_texture;   /* index into scene.textures or SCENE_NONE (texels used as stored) */
+    uint32_t emissive_texcoord;  /* TEXCOORD_n of the emissive texture (0 or 1) */
+    scene_uv_map emissive_uv;
+    int unlit;                   /* KHR_materials_unlit: the base colour alone */
     float transmission;          /* KHR_materials_transmission factor, 0 if absent */
     float ior;                   /* KHR_materials_ior, 1.5 if absent */
     int double_sided;
@@ -49,7 +61,9 @@ typedef struct {
     uint32_t n_vertices, n_triangles;
     float *positions;   /* 3 * n_vertices (current geometry: base + weighted morph targets) */
     float *normals;     /* 3 * n_vertices, or NULL */
-    float *texcoords;   /* 2 * n_vertices, or NULL */
+    float *texcoords;   /* 2 * n_vertices (TEXCOORD_0), or NULL */
+    float *texcoords1;  /* 2 * n_vertices (TEXCOORD_1), or NULL */
+    float *colours;     /* 3 * n_vertices (COLOR_0, RGB in [0, 1]; alpha is not used), or NULL */
     uint32_t *indices;  /* 3 * n_triangles, every index < n_vertices */
     uint32_t *material; /* n_triangles: index into scene.materials (a default material exists) */
     /* morph targets (position deltas only are applied to the geometry) */
@@ -191,6 +205,10 @@ scene_camera scene_default_camera(const double lo[3], const double hi[3]);
  * its default view of the scene without the ground. Call scene_evaluate after it.
  * Returns 0 (also for an empty scene, which gets none), -1 if memory ran out. */
 int scene_add_ground(scene *s);
+
+/* Texture coordinates (s, t) of vertex v of mesh m for a texture read through TEXCOORD_set with
+ * map uv; 0 and (0, 0) if the mesh lacks that set. */
+int scene_texcoord(const scene_mesh *m, uint32_t set, const scene_uv_map *uv, uint32_t v, double st[2]);
 
 /* Affine helpers. */
 affine affine_identity(void);
