@@ -417,6 +417,35 @@ int scene_evaluate(scene *s, double t, int loop)
     return 0;
 }
 
+static void free_animation(scene_animation *a)
+{
+    for (uint32_t c = 0; c < a->n_channels; c++) {
+        free(a->channels[c].times);
+        free(a->channels[c].values);
+    }
+    free(a->channels);
+}
+
+int scene_select_animation(scene *s, const char *which)
+{
+    char *end;
+    const unsigned long index = strtoul(which, &end, 10);
+    uint32_t keep = s->n_animations;
+    for (uint32_t i = 0; i < s->n_animations && keep == s->n_animations; i++)
+        if (strcmp(s->animations[i].name, which) == 0)
+            keep = i;
+    if (keep == s->n_animations && *which && !*end && index < s->n_animations)
+        keep = (uint32_t)index;
+    if (keep == s->n_animations)
+        return -1;
+    for (uint32_t i = 0; i < s->n_animations; i++)
+        if (i != keep)
+            free_animation(&s->animations[i]);
+    s->animations[0] = s->animations[keep];
+    s->n_animations = 1;
+    return 0;
+}
+
 void scene_free(scene *s)
 {
     for (uint32_t i = 0; i < s->n_meshes; i++) {
@@ -442,13 +471,8 @@ void scene_free(scene *s)
         free(s->nodes[i].weights);
     for (uint32_t i = 0; i < s->n_textures; i++)
         free(s->textures[i].rgba);
-    for (uint32_t i = 0; i < s->n_animations; i++) {
-        for (uint32_t c = 0; c < s->animations[i].n_channels; c++) {
-            free(s->animations[i].channels[c].times);
-            free(s->animations[i].channels[c].values);
-        }
-        free(s->animations[i].channels);
-    }
+    for (uint32_t i = 0; i < s->n_animations; i++)
+        free_animation(&s->animations[i]);
     free(s->meshes);
     free(s->nodes);
     free(s->materials);

@@ -180,6 +180,11 @@ int scene_write_gltf(const scene *s, const char *path, char *err, size_t errlen)
  * under one of the roots), camera and light placement. Returns 0, or -1 if memory ran out. */
 int scene_evaluate(scene *s, double t, int loop);
 
+/* Keeps only the animation named `which` (or with that index; a name wins) and frees the others:
+ * scene_evaluate plays every animation at once, and clips of one character (a fox's "Walk" and
+ * "Run") drive the same nodes. 0, or -1 if no animation matches (the scene is unchanged). */
+int scene_select_animation(scene *s, const char *which);
+
 /* 1 if the mesh's geometry can change from frame to frame (morph targets or a skin). */
 int scene_mesh_deforms(const scene_mesh *m);
 
