@@ -276,11 +276,12 @@ static int add_accessor(gltf_buf *g, const void *bytes, size_t size, int ctype, 
  * 1 up); vertex 0 follows joint 0, vertex 1 joint 1, vertex 2 both by halves. The animation moves
  * joint 0 by (0,0,2) and turns joint 1 by 90 degrees about z over one second. The mesh's node is
  * at (100,0,0), which glTF says must not move a skinned mesh. With small, the influences are
- * unsigned bytes (weights normalized), else unsigned shorts and floats. */
-static const char *write_skinned_gltf(const char *name, int small)
+ * unsigned bytes (weights normalized), else unsigned shorts and floats; bad_joint names a joint the
+ * skin does not have. */
+static const char *write_skinned_gltf(const char *name, int small, int bad_joint)
 {
     const float pos[9] = { 1, 0, 0, 1, 2, 0, 2, 1, 0 }, nrm[9] = { 1, 0, 0, 1, 0, 0, 0, 0, 1 };
-    const uint8_t j8[12] = { 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0 }, w8[12] = { 255, 0, 0, 0, 255, 0, 0, 0, 128, 128, 0, 0 };
+    const uint8_t j8[12] = { 0, 0, 0, 0, bad_joint ? 5 : 1, 0, 0, 0, 0, 1, 0, 0 }, w8[12] = { 255, 0, 0, 0, 255, 0, 0, 0, 128, 128, 0, 0 };
     const uint16_t j16[12] = { 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0 };
     const float wf[12] = { 1, 0, 0, 0, 1, 0, 0, 0, 0.5f, 0.5f, 0, 0 };
     const float ibm[32] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -1, 0, 0, 1,    /* column-major: T(-1,0,0) */
@@ -334,7 +335,7 @@ static void skinning(void **state)
     for (int small = 0; small < 2; small++) {
         scene s;
         char err[512];
-        const char *path = write_skinned_gltf(small ? "skin8.gltf" : "skin16.gltf", small);
+        const char *path = write_skinned_gltf(small ? "skin8.gltf" : "skin16.gltf", small, 0);
         if (scene_load_gltf(path, &s, err, sizeof err) != 0)
             fail_msg("%s", err);
         assert_int_equal(s.warnings, 0);
@@ -359,8 +360,19 @@ static void skinning(void **state)
         const uint32_t rev_half = m->revision;
         assert_int_equal(scene_evaluate(&s, 0.5, 0), 0); /* the same pose: nothing to rebuild */
         assert_int_equal(m->revision, rev_half);
+        /* written back (rest pose, influences, skin) and loaded again: the same pose */
+        char again[128];
+        snprintf(again, sizeof again, "%s/skin_again.glb", test_dir);
+        if (scene_write_gltf(&s, again, err, sizeof err) != 0)
+            fail_msg("%s", err);
+        scene_free(&s);
+        assert_int_equal(scene_load_gltf(again, &s, err, sizeof err), 0);
+        assert_int_equal(scene_evaluate(&s, 1.0, 0), 0);
+        expect_vertex(&s.meshes[0].positions[3], 0, 1, 2);
+        expect_vertex(&s.meshes[0].positions[6], 1.5, 1.5, 2);
         scene_free(&s);
     }
+    expect_load_error(write_skinned_gltf("badjoint.gltf", 1, 1), "JOINTS_0 names joint 5");
 }
 
 /* The shared Fox.glb at two times: its skinned vertices (and their bounds) move. */
