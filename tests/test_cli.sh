@@ -460,6 +460,39 @@ t_gpu_instancing() {
   fi
 }
 
+# skinned animation on the shared Fox.glb: the pose changes, only the skinned object's geometry
+# (and the per-frame regions) is uploaded after the first frame, the reference draws the same pose
+t_render_skinned() {
+  local fox=../shared/scenes/Fox.glb view="--eye 250,80,0 --at 0,50,0 --width 96 --height 72"
+  expect 0 "$BIN" render $fox --frames 0:3 -o "$T/fox.png" --stats "$T/fox.json" $view
+  [[ ! -s $T/err ]] || { echo "unexpected stderr (a skin warning?):"; cat "$T/err"; return 1; }
+  has '^rendered .*Fox.glb: .*host [0-9.]* ms, rebuilt 1 (geometry [0-9.]* KB), upload [0-9.]* KB -> ' "$T/out"
+  if cmp -s "$T/fox_0000.png" "$T/fox_0003.png"; then echo "the fox does not move"; return 1; fi
+  python3 - "$T" <<'PY'
+import json, sys
+first = json.load(open(f"{sys.argv[1]}/fox_0000.json"))
+for f in (1, 2, 3):
+    d = json.load(open(f"{sys.argv[1]}/fox_{f:04d}.json"))["host"]
+    assert d["rebuilt_objects"] == 1 and d["geometry_upload_bytes"] > 0 and d["seconds"] > 0, d
+    # the rest of a frame's upload is the camera, lights, instances and top level: a few hundred bytes
+    assert 0 < d["upload_bytes"] - d["geometry_upload_bytes"] < 1024, d
+    assert d["upload_bytes"] < first["host"]["upload_bytes"] / 10, (d, first["host"])
+PY
+  expect 0 "$BIN" render cornell --frames 0:1 -o "$T/c.png" --width 16 --height 16 --stats "$T/c.json"
+  python3 -c "import json; d=json.load(open('$T/c_0001.json'))['host']; assert d['geometry_upload_bytes'] == 0 and d['rebuilt_objects'] == 0, d"
+  expect 0 "$BIN" render $fox --animation Walk --frame 10 -o "$T/walk.png" $view
+  expect 0 "$BIN" reference $fox --animation Walk --time 0.3333333333333333 -o "$T/walk_ref.png" $view
+  "$BIN" compare "$T/walk.png" "$T/walk_ref.png" --psnr-min 35 >/dev/null
+  expect 2 "$BIN" render $fox --animation Nope; one_line_error
+}
+
+run_skinned() {
+  if [[ -e ../shared/scenes/Fox.glb ]]; then run_case cli_render_skinned t_render_skinned; return; fi
+  echo "[ RUN      ] cli_render_skinned"
+  echo "cli_render_skinned: skipped, ../shared/scenes/Fox.glb is absent"
+  echo "[  SKIPPED ] cli_render_skinned"
+}
+
 run_case cli_help t_help
 run_case cli_bad_usage_exit_2_one_line t_bad_usage
 run_case cli_version t_version
@@ -480,4 +513,5 @@ run_case cli_required_extension t_required_extension
 run_case cli_ignored_features t_ignored_features
 run_case cli_default_camera t_default_camera
 run_case cli_gpu_instancing t_gpu_instancing
+run_skinned
 exit $((fails != 0))

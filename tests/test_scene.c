@@ -1,6 +1,7 @@
 /*
  * Tests of the glTF loader and the scene model (host/scene): counts of the shared real scenes
- * (../shared/scenes, skipped with a message when absent), instancing, animation evaluation, and
+ * (../shared/scenes, skipped with a message when absent), instancing, animation evaluation,
+ * skinning (a generated two-joint file against hand-computed vertices, the shared fox), and
  * malformed files (truncated, wrong accessor types, out-of-range indices, NaN positions, broken
  * hierarchies), which must give a one-line error and an empty scene, never a crash.
  */
@@ -255,6 +256,166 @@ static void malformed_files(void **state)
     expect_load_error(path, "garbage.gltf");
 }
 
+/* ---- skinning ------------------------------------------------------------------------------ */
+
+typedef struct {
+    unsigned char data[512];
+    size_t n;
+    char views[1024], accessors[1024]; /* JSON array bodies */
+    int count;                         /* views = accessors so far */
+} gltf_buf;
+
+/* Appends bytes as a new buffer view with an accessor over it; returns the accessor index. */
+static int add_accessor(gltf_buf *g, const void *bytes, size_t size, int ctype, int normalized, int count,
+                        const char *type)
+{
+    memcpy(g->data + g->n, bytes, size);
+    snprintf(g->views + strlen(g->views), sizeof g->views - strlen(g->views), "%s{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu}",
+             g->count ? "," : "", g->n, size);
+    snprintf(g->accessors + strlen(g->accessors), sizeof g->accessors - strlen(g->accessors),
+             "%s{\"bufferView\":%d,\"componentType\":%d,\"normalized\":%s,\"count\":%d,\"type\":\"%s\"}", g->count ? "," : "",
+             g->count, ctype, normalized ? "true" : "false", count, type);
+    g->n += (size + 3) & ~(size_t)3;
+    return g->count++;
+}
+
+/* A triangle skinned to two joints: joint 0 (node 1, at (1,0,0)) and its child joint 1 (node 2,
+ * 1 up); vertex 0 follows joint 0, vertex 1 joint 1, vertex 2 both by halves. The animation moves
+ * joint 0 by (0,0,2) and turns joint 1 by 90 degrees about z over one second. The mesh's node is
+ * at (100,0,0), which glTF says must not move a skinned mesh. With small, the influences are
+ * unsigned bytes (weights normalized), else unsigned shorts and floats; bad_joint names a joint the
+ * skin does not have. */
+static const char *write_skinned_gltf(const char *name, int small, int bad_joint)
+{
+    const float pos[9] = { 1, 0, 0, 1, 2, 0, 2, 1, 0 }, nrm[9] = { 1, 0, 0, 1, 0, 0, 0, 0, 1 };
+    const uint8_t j8[12] = { 0, 0, 0, 0, bad_joint ? 5 : 1, 0, 0, 0, 0, 1, 0, 0 }, w8[12] = { 255, 0, 0, 0, 255, 0, 0, 0, 128, 128, 0, 0 };
+    const uint16_t j16[12] = { 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0 };
+    const float wf[12] = { 1, 0, 0, 0, 1, 0, 0, 0, 0.5f, 0.5f, 0, 0 };
+    const float ibm[32] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -1, 0, 0, 1,    /* column-major: T(-1,0,0) */
+                            1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -1, -1, 0, 1 }; /* T(-1,-1,0) */
+    const float times[2] = { 0, 1 }, moves[6] = { 1, 0, 0, 1, 0, 2 }, turns[8] = { 0, 0, 0, 1, 0, 0, 0.70710678f, 0.70710678f };
+    gltf_buf g = { .n = 0 };
+    const int ap = add_accessor(&g, pos, sizeof pos, 5126, 0, 3, "VEC3");
+    const int an = add_accessor(&g, nrm, sizeof nrm, 5126, 0, 3, "VEC3");
+    const int aj = small ? add_accessor(&g, j8, sizeof j8, 5121, 0, 3, "VEC4") : add_accessor(&g, j16, sizeof j16, 5123, 0, 3, "VEC4");
+    const int aw = small ? add_accessor(&g, w8, sizeof w8, 5121, 1, 3, "VEC4") : add_accessor(&g, wf, sizeof wf, 5126, 0, 3, "VEC4");
+    const int ai = add_accessor(&g, ibm, sizeof ibm, 5126, 0, 2, "MAT4");
+    const int at = add_accessor(&g, times, sizeof times, 5126, 0, 2, "SCALAR");
+    const int am = add_accessor(&g, moves, sizeof moves, 5126, 0, 2, "VEC3");
+    const int ar = add_accessor(&g, turns, sizeof turns, 5126, 0, 2, "VEC4");
+    char b64[700];
+    base64(g.data, g.n, b64);
+    static char path[128];
+    snprintf(path, sizeof path, "%s/%s", test_dir, name);
+    FILE *f = fopen(path, "w");
+    fprintf(f,
+            "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0,1]}],"
+            "\"nodes\":[{\"mesh\":0,\"skin\":0,\"translation\":[100,0,0]},{\"translation\":[1,0,0],\"children\":[2]},"
+            "{\"translation\":[0,1,0]}],"
+            "\"skins\":[{\"joints\":[1,2],\"inverseBindMatrices\":%d}],"
+            "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":%d,\"NORMAL\":%d,\"JOINTS_0\":%d,\"WEIGHTS_0\":%d}}]}],"
+            "\"animations\":[{\"name\":\"bend\",\"channels\":[{\"sampler\":0,\"target\":{\"node\":1,\"path\":\"translation\"}},"
+            "{\"sampler\":1,\"target\":{\"node\":2,\"path\":\"rotation\"}}],"
+            "\"samplers\":[{\"input\":%d,\"output\":%d},{\"input\":%d,\"output\":%d}]}],"
+            "\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;base64,%s\"}],"
+            "\"bufferViews\":[%s],\"accessors\":[%s]}",
+            ai, ap, an, aj, aw, at, am, at, ar, g.n, b64, g.views, g.accessors);
+    fclose(f);
+    return path;
+}
+
+static void expect_vertex(const float *p, double x, double y, double z)
+{
+    assert_float_equal(p[0], x, 1e-5);
+    assert_float_equal(p[1], y, 1e-5);
+    assert_float_equal(p[2], z, 1e-5);
+}
+
+/* Hand-computed: at t = 1 joint 0 is T(1,0,2), so jointMatrix 0 = T(0,0,2); joint 1 turns 90
+ * degrees about z at (1,1,2), jointMatrix 1 = T(1,1,2) Rz(90) T(-1,-1,0). Vertex 0 (1,0,0) ->
+ * (1,0,2); vertex 1 (1,2,0) -> (1,1,2) + Rz(90)(0,1,0) = (0,1,2); vertex 2 (2,1,0) -> half of
+ * (2,1,2) and (1,2,2). At t = 0.5 (z 1, 45 degrees) vertex 1 is (1 - r, 1 + r, 1), r = 1/sqrt 2. */
+static void skinning(void **state)
+{
+    (void)state;
+    const double r = sqrt(0.5);
+    for (int small = 0; small < 2; small++) {
+        scene s;
+        char err[512];
+        const char *path = write_skinned_gltf(small ? "skin8.gltf" : "skin16.gltf", small, 0);
+        if (scene_load_gltf(path, &s, err, sizeof err) != 0)
+            fail_msg("%s", err);
+        assert_int_equal(s.warnings, 0);
+        assert_int_equal(s.n_skins, 1);
+        assert_int_equal(s.n_instances, 1);
+        const scene_mesh *m = &s.meshes[0];
+        assert_non_null(m->joints);
+        assert_true(scene_mesh_deforms(m));
+        expect_vertex(&m->positions[3], 1, 2, 0); /* t = 0: the bind pose, not moved by its node */
+        for (int k = 0; k < 12; k++)
+            assert_true(s.instances[0].world.m[k / 4][k % 4] == (k % 5 == 0)); /* the identity */
+        const uint32_t rev = m->revision;
+        assert_int_equal(scene_evaluate(&s, 1.0, 0), 0);
+        assert_int_not_equal(m->revision, rev);
+        expect_vertex(&m->positions[0], 1, 0, 2);
+        expect_vertex(&m->positions[3], 0, 1, 2);
+        expect_vertex(&m->positions[6], 1.5, 1.5, 2);
+        expect_vertex(&m->normals[0], 1, 0, 0);
+        expect_vertex(&m->normals[3], 0, 1, 0); /* turned with joint 1 */
+        assert_int_equal(scene_evaluate(&s, 0.5, 0), 0);
+        expect_vertex(&m->positions[3], 1 - r, 1 + r, 1);
+        const uint32_t rev_half = m->revision;
+        assert_int_equal(scene_evaluate(&s, 0.5, 0), 0); /* the same pose: nothing to rebuild */
+        assert_int_equal(m->revision, rev_half);
+        /* written back (rest pose, influences, skin) and loaded again: the same pose */
+        char again[128];
+        snprintf(again, sizeof again, "%s/skin_again.glb", test_dir);
+        if (scene_write_gltf(&s, again, err, sizeof err) != 0)
+            fail_msg("%s", err);
+        scene_free(&s);
+        assert_int_equal(scene_load_gltf(again, &s, err, sizeof err), 0);
+        assert_int_equal(scene_evaluate(&s, 1.0, 0), 0);
+        expect_vertex(&s.meshes[0].positions[3], 0, 1, 2);
+        expect_vertex(&s.meshes[0].positions[6], 1.5, 1.5, 2);
+        scene_free(&s);
+    }
+    expect_load_error(write_skinned_gltf("badjoint.gltf", 1, 1), "JOINTS_0 names joint 5");
+}
+
+/* The shared Fox.glb at two times: its skinned vertices (and their bounds) move. */
+static void skinned_fox(void **state)
+{
+    (void)state;
+    if (!have_shared())
+        skip();
+    scene s;
+    char err[512];
+    assert_int_equal(scene_load_gltf(SHARED "Fox.glb", &s, err, sizeof err), 0);
+    assert_int_equal(s.warnings, 0); /* no "drawn in bind pose" */
+    assert_int_equal(scene_select_animation(&s, "Run"), 0);
+    assert_int_equal(s.n_animations, 1);
+    double box[2][6];
+    for (int i = 0; i < 2; i++) {
+        assert_int_equal(scene_evaluate(&s, 0.1 + 0.25 * i, 1), 0);
+        const scene_mesh *m = &s.meshes[s.instances[0].mesh];
+        assert_non_null(m->joints);
+        for (int k = 0; k < 3; k++) {
+            box[i][k] = INFINITY;
+            box[i][3 + k] = -INFINITY;
+            for (uint32_t v = 0; v < m->n_vertices; v++) {
+                box[i][k] = fmin(box[i][k], m->positions[3 * v + (uint32_t)k]);
+                box[i][3 + k] = fmax(box[i][3 + k], m->positions[3 * v + (uint32_t)k]);
+            }
+        }
+    }
+    double moved = 0;
+    for (int k = 0; k < 6; k++)
+        moved = fmax(moved, fabs(box[1][k] - box[0][k]));
+    assert_true(moved > 1.0); /* the fox is about 150 units long */
+    assert_int_equal(scene_select_animation(&s, "Nope"), -1);
+    scene_free(&s);
+}
+
 /* Every truncation of a valid .glb is refused cleanly (or, if it happens to still parse, loads). */
 static void truncated_glb(void **state)
 {
@@ -415,6 +576,7 @@ int main(void)
         cmocka_unit_test(affine_algebra), cmocka_unit_test(malformed_files), cmocka_unit_test(truncated_glb),
         cmocka_unit_test(required_extensions), cmocka_unit_test(ignored_features), cmocka_unit_test(gpu_instancing),
         cmocka_unit_test(default_camera),
+        cmocka_unit_test(skinning), cmocka_unit_test(skinned_fox),
     };
     return cmocka_run_group_tests_name("scene", tests, test_tmpdir_setup, test_tmpdir_teardown);
 }

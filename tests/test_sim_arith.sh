@@ -24,6 +24,7 @@ import json, sys
 s = json.load(open(sys.argv[1]))
 for k in ("seconds", "host_rss_kb", "host_peak_rss_kb"):
     s.pop(k, None)
+s.get("host", {}).pop("seconds", None)
 print(json.dumps(s, indent=0, sort_keys=True))
 PY
 }

@@ -1,8 +1,8 @@
 /*
  * Memory-image builder (layout: docs/memory-image.md). Prepares every object once (triangle
  * transformations, bottom-level kd-tree over the non-degenerate triangles), then writes the
- * regions; mi_update rewrites only the per-frame regions and the geometry of morphing objects
- * whose weights changed. All device numbers are rounded from double to fp24 here, bounds
+ * regions; mi_update rewrites only the per-frame regions and the geometry of deforming objects
+ * (morph targets, skins) whose geometry changed. All device numbers are rounded from double to fp24 here, bounds
  * outward so that they stay conservative.
  */
 #define _GNU_SOURCE /* clock_gettime, M_PI */
@@ -31,7 +31,7 @@ typedef struct {
     uint32_t *valid;    /* mesh triangle of each image triangle */
     affine *xf;         /* triangle transformations of the image triangles */
     uint32_t n_valid;
-    float *weights_seen;
+    uint32_t revision_seen; /* the mesh's revision the geometry was built from (dynamic objects) */
     kd_rope *ropes;     /* per node (leaves only), with MI_ACCEL_ROPES */
     uint32_t *slot, n_slots; /* image slot of each tree node (tree_slots), nodes stored */
     uint32_t shade_flags;    /* the descriptor's flags word but MI_OBJECT_DYNAMIC (object_shading_flags) */
@@ -420,13 +420,7 @@ static int object_prepare(mi_builder *b, const scene *s, const scene_mesh *m, mi
     if (fail || ((b->p.accel & MI_ACCEL_GRID) && build_grid(&ks, &root, &o->grid) != 0))
         return -1;
     b->st.bottom_build_seconds += seconds() - t1;
-    if (o->dynamic) {
-        free(o->weights_seen);
-        o->weights_seen = malloc(m->n_targets * sizeof(float));
-        if (!o->weights_seen)
-            return -1;
-        memcpy(o->weights_seen, m->weights, m->n_targets * sizeof(float));
-    }
+    o->revision_seen = m->revision;
     o->n_slots = tree_slots(&o->tree, trees_compact(&b->p), &o->slot);
     if (!o->n_slots)
         return -1;
@@ -1016,6 +1010,7 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
     mi_profile_derive(w, &prof);
     w[off[MI_R_CAMERA] + MI_CAM_PROFILE] = prof.skip & b->p.skip;
     b->st.frame_upload_bytes = upload;
+    b->st.frame_geometry_bytes = written[MI_R_DYNAMIC_GEOMETRY] ? 4 * (len[MI_R_DYNAMIC_GEOMETRY] + len[MI_R_OBJECTS]) : 0;
     return 0;
 oom:
     snprintf(err, errlen, "out of memory while building the memory image");
@@ -1103,7 +1098,7 @@ static void choose_objects(mi_builder *b, const scene *s)
     b->n_objects = 0;
     for (uint32_t k = 0; k < s->n_meshes; k++)
         if (b->mesh_obj[k] != MI_NONE) {
-            b->obj[b->n_objects] = (mi_object){ .mesh = k, .dynamic = s->meshes[k].n_targets > 0 };
+            b->obj[b->n_objects] = (mi_object){ .mesh = k, .dynamic = scene_mesh_deforms(&s->meshes[k]) };
             b->mesh_obj[k] = b->n_objects++;
         }
     for (uint32_t k = 0; k < b->merge.n_meshes; k++)
@@ -1176,7 +1171,7 @@ int mi_update(mi_builder *b, const scene *s, char *err, size_t errlen)
     for (uint32_t i = 0; i < b->n_objects; i++) {
         mi_object *o = &b->obj[i];
         const scene_mesh *m = obj_mesh(b, s, o);
-        if (!o->dynamic || memcmp(o->weights_seen, m->weights, m->n_targets * sizeof(float)) == 0)
+        if (!o->dynamic || o->revision_seen == m->revision)
             continue;
         b->st.degenerate_triangles -= m->n_triangles - o->n_valid;
         if (object_prepare(b, s, m, o) != 0) {
@@ -1218,10 +1213,8 @@ void mi_free(mi_builder *b)
 {
     if (!b)
         return;
-    for (uint32_t i = 0; i < b->n_objects && b->obj; i++) {
+    for (uint32_t i = 0; i < b->n_objects && b->obj; i++)
         object_release(&b->obj[i]);
-        free(b->obj[i].weights_seen);
-    }
     kd_free(&b->top);
     free(b->top_ropes);
     free(b->top_slot);

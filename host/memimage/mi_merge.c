@@ -83,8 +83,8 @@ static int plan(const scene *s, uint8_t *bake, mi_merge *m)
         const scene_mesh *me = &s->meshes[in->mesh];
         uses[in->mesh]++;
         m->animated_instances += animated[in->node] != 0;
-        m->morphing_instances += !animated[in->node] && me->n_targets > 0;
-        const int static_ok = !animated[in->node] && me->n_targets == 0 && me->n_triangles > 0;
+        m->morphing_instances += !animated[in->node] && scene_mesh_deforms(me);
+        const int static_ok = !animated[in->node] && !scene_mesh_deforms(me) && me->n_triangles > 0;
         m->mirrored_instances += static_ok && !(det3(&in->world) > 0);
         m->turned_instances += static_ok && det3(&in->world) > 0 && !axis_aligned(&in->world);
         bake[i] = static_ok && det3(&in->world) > 0 && axis_aligned(&in->world);

@@ -1,6 +1,6 @@
 // glTF 2.0 loader behind scene.h (tinygltf from Debian, route A: header + -ltinygltf).
 // Every accessor read is bounds-checked; malformed files give one-line errors, unsupported
-// features (skins, Draco, meshopt, KTX2, points and lines) one-line warnings, never a crash.
+// features (Draco, meshopt, KTX2, points and lines) one-line warnings, never a crash.
 #include "scene.h"
 #include "gltf_util.h"
 
@@ -81,6 +81,7 @@ class Loader {
         load_meshes();
         load_cameras_and_lights();
         load_nodes();
+        load_skins();
         load_animations();
         load_roots();
         keep_ignored();
@@ -129,8 +130,6 @@ class Loader {
             if (!listed(implemented_extensions, e))
                 ignore(e);
         }
-        if (!m_.skins.empty())
-            warn("skins are not supported: skinned meshes are drawn in their bind pose");
     }
 
     // The material textures the shader does not sample.
@@ -373,7 +372,9 @@ class Loader {
     struct mesh_build {
         std::vector<float> pos, nrm, uv, uv1, rgb;
         std::vector<uint32_t> idx, mat;
-        bool any_normals = false, any_uv = false, any_uv1 = false, any_rgb = false;
+        std::vector<uint16_t> joints;  // 4 per vertex (JOINTS_0)
+        std::vector<float> weights;    // 4 per vertex (WEIGHTS_0)
+        bool any_normals = false, any_uv = false, any_uv1 = false, any_rgb = false, any_skin = false;
         uint32_t n_targets = 0;
         std::vector<std::pair<uint32_t, std::vector<std::vector<double>>>> prim_targets; // first vertex, deltas
     };
@@ -391,6 +392,32 @@ class Loader {
                 t.insert(t.end(), { v[0], v[i - 1], v[i] });
         }
         return t;
+    }
+
+    // JOINTS_0 / WEIGHTS_0 of a primitive (zero weights where absent: such vertices are not
+    // skinned). The joints are checked against the skin in load_skins, which knows it.
+    void add_influences(mesh_build &b, const tinygltf::Primitive &p, size_t nv, const std::string &what)
+    {
+        auto j = p.attributes.find("JOINTS_0"), w = p.attributes.find("WEIGHTS_0");
+        if (j == p.attributes.end() || w == p.attributes.end()) {
+            b.joints.resize(b.pos.size() / 3 * 4, 0);
+            b.weights.resize(b.pos.size() / 3 * 4, 0.0f);
+            return;
+        }
+        if (p.attributes.count("JOINTS_1"))
+            warn(what + ": JOINTS_1/WEIGHTS_1 (more than 4 influences per vertex) are ignored");
+        const int jt = accessor(j->second, (what + " JOINTS_0").c_str()).componentType;
+        if (jt != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && jt != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)
+            fail(what + ": JOINTS_0 must be unsigned bytes or shorts");
+        const std::vector<double> jv = read_finite(j->second, TINYGLTF_TYPE_VEC4, what + " JOINTS_0");
+        const std::vector<double> wv = read_finite(w->second, TINYGLTF_TYPE_VEC4, what + " WEIGHTS_0");
+        if (jv.size() != nv * 4 || wv.size() != nv * 4)
+            fail(what + ": JOINTS_0/WEIGHTS_0 count differs from POSITION count");
+        for (size_t i = 0; i < jv.size(); i++) {
+            b.joints.push_back((uint16_t)jv[i]);
+            b.weights.push_back((float)std::fmax(wv[i], 0.0)); // negative weights are invalid glTF
+        }
+        b.any_skin = true;
     }
 
     void add_primitive(mesh_build &b, const tinygltf::Primitive &p, const std::string &what)
@@ -439,6 +466,7 @@ class Loader {
         fill("TEXCOORD_0", TINYGLTF_TYPE_VEC2, 2, b.uv, b.any_uv);
         fill("TEXCOORD_1", TINYGLTF_TYPE_VEC2, 2, b.uv1, b.any_uv1);
         add_colours(b, p, nv, what);
+        add_influences(b, p, nv, what);
 
         std::vector<uint32_t> idx;
         if (p.indices >= 0) {
@@ -523,10 +551,18 @@ class Loader {
             sm.colours = b.any_rgb ? copy_array(b.rgb) : nullptr;
             sm.indices = copy_array(b.idx);
             sm.material = copy_array(b.mat);
+            sm.skin = SCENE_NONE; // set by load_skins for a mesh a skinned node shows
+            if (b.any_skin) {
+                sm.joints = copy_array(b.joints);
+                sm.joint_weights = copy_array(b.weights);
+                sm.bind_normals = b.any_normals ? copy_array(b.nrm) : nullptr;
+                sm.base_positions = copy_array(b.pos);
+            }
             if (b.n_targets == 0)
                 continue;
             sm.n_targets = b.n_targets;
-            sm.base_positions = copy_array(b.pos);
+            if (!sm.base_positions)
+                sm.base_positions = copy_array(b.pos);
             sm.target_deltas = alloc_array<float>((size_t)b.n_targets * b.pos.size());
             for (auto &pt : b.prim_targets)
                 for (size_t t = 0; t < pt.second.size(); t++)
@@ -695,6 +731,92 @@ class Loader {
                 if (++steps > s_->n_nodes)
                     fail("the node hierarchy has a cycle");
         }
+    }
+
+    // ---- skins ---------------------------------------------------------------------------
+
+    void load_skins()
+    {
+        s_->skins = alloc_array<scene_skin>(m_.skins.size());
+        s_->n_skins = (uint32_t)m_.skins.size(); // zeroed: scene_free frees what a failure leaves
+        for (size_t i = 0; i < m_.skins.size(); i++)
+            load_skin(m_.skins[i], "skin " + std::to_string(i), s_->skins[i]);
+        for (size_t i = 0; i < m_.nodes.size(); i++)
+            attach_skin((uint32_t)i, m_.nodes[i].skin);
+        for (size_t i = 0; i < m_.nodes.size(); i++) {
+            const uint32_t mesh = s_->nodes[i].mesh;
+            if (m_.nodes[i].skin < 0 && mesh != SCENE_NONE && s_->meshes[mesh].skin != SCENE_NONE)
+                warn("node " + std::to_string(i) + ": shows skinned mesh '" + s_->meshes[mesh].name +
+                     "' without a skin: drawn skinned");
+        }
+        for (uint32_t i = 0; i < s_->n_meshes; i++)
+            check_influences(s_->meshes[i], "mesh " + std::to_string(i));
+    }
+
+    void load_skin(const tinygltf::Skin &g, const std::string &what, scene_skin &d)
+    {
+        d.joints = alloc_array<uint32_t>(g.joints.size());
+        d.inverse_bind = alloc_array<affine>(g.joints.size());
+        d.n_joints = (uint32_t)g.joints.size();
+        std::vector<double> ibm;
+        if (g.inverseBindMatrices >= 0)
+            ibm = read_finite(g.inverseBindMatrices, TINYGLTF_TYPE_MAT4, what + " inverseBindMatrices");
+        if (!ibm.empty() && ibm.size() != g.joints.size() * 16)
+            fail(what + ": inverseBindMatrices count differs from the joint count");
+        for (size_t j = 0; j < g.joints.size(); j++) {
+            if (g.joints[j] < 0 || (size_t)g.joints[j] >= m_.nodes.size())
+                fail(what + ": joint node index out of range");
+            d.joints[j] = (uint32_t)g.joints[j];
+            d.inverse_bind[j] = affine_identity();
+            for (int r = 0; r < 3 && !ibm.empty(); r++)
+                for (int c = 0; c < 4; c++)
+                    d.inverse_bind[j].m[r][c] = ibm[j * 16 + (size_t)c * 4 + (size_t)r]; // column-major
+        }
+    }
+
+    // The skin of node i goes to its mesh: the scene model keeps one deformed copy of a mesh.
+    void attach_skin(uint32_t i, int skin)
+    {
+        const std::string what = "node " + std::to_string(i);
+        if (skin < 0)
+            return;
+        if ((size_t)skin >= m_.skins.size())
+            fail(what + ": skin index out of range");
+        if (s_->nodes[i].mesh == SCENE_NONE)
+            return;
+        scene_mesh &m = s_->meshes[s_->nodes[i].mesh];
+        if (!m.joints)
+            warn(what + ": skin " + std::to_string(skin) + " on a mesh without JOINTS_0/WEIGHTS_0, drawn unskinned");
+        else if (m.skin != SCENE_NONE && m.skin != (uint32_t)skin)
+            warn(what + ": mesh '" + m.name + "' is shown with several skins: every instance is drawn with skin " +
+                 std::to_string(m.skin));
+        else
+            m.skin = (uint32_t)skin;
+    }
+
+    // Influences of a skinned mesh name joints of its skin; a mesh no skinned node shows drops them.
+    void check_influences(scene_mesh &m, const std::string &what)
+    {
+        if (!m.joints)
+            return;
+        if (m.skin == SCENE_NONE) {
+            std::free(m.joints);
+            std::free(m.joint_weights);
+            std::free(m.bind_normals);
+            m.joints = nullptr;
+            m.joint_weights = nullptr;
+            m.bind_normals = nullptr;
+            if (m.n_targets == 0) {
+                std::free(m.base_positions);
+                m.base_positions = nullptr;
+            }
+            return;
+        }
+        const uint32_t n = s_->skins[m.skin].n_joints;
+        for (size_t k = 0; k < 4 * (size_t)m.n_vertices; k++)
+            if (m.joint_weights[k] > 0 && m.joints[k] >= n)
+                fail(what + ": JOINTS_0 names joint " + std::to_string(m.joints[k]) + " of a skin of " +
+                     std::to_string(n) + " joints");
     }
 
     // ---- animations ----------------------------------------------------------------------

@@ -6,7 +6,9 @@
  * Mapping from glTF: each glTF mesh (all its TRIANGLES primitives) is one OBJECT with its own
  * bottom-level tree; each node that references a mesh is one INSTANCE of that object with the
  * node's world transformation. Nodes, animations and morph weights are kept so that the scene
- * can be evaluated at any time (scene_evaluate).
+ * can be evaluated at any time (scene_evaluate). A skinned mesh (glTF skins) is deformed on the
+ * host by linear blend skinning: its positions and normals become world-space ones, and its
+ * instance's transformation the identity, as the glTF specification ignores the node's own.
  */
 #ifndef SAARCOR_SCENE_H
 #define SAARCOR_SCENE_H
@@ -68,9 +70,20 @@ typedef struct {
     uint32_t *material; /* n_triangles: index into scene.materials (a default material exists) */
     /* morph targets (position deltas only are applied to the geometry) */
     uint32_t n_targets;
-    float *base_positions;  /* 3 * n_vertices, the positions without morphing (n_targets > 0) */
+    float *base_positions;  /* 3 * n_vertices, the positions without morphing and skinning (n_targets > 0
+                               or joints) */
     float *target_deltas;   /* n_targets * 3 * n_vertices */
     float *weights;         /* n_targets current weights */
+    /* skinning (JOINTS_0 / WEIGHTS_0): up to 4 influences per vertex, the joint an index into the
+     * joints of scene.skins[skin]; the rest pose (base_positions, morphed) and bind_normals are
+     * deformed into positions and normals by scene_evaluate */
+    uint16_t *joints;       /* 4 * n_vertices, or NULL: the mesh is not skinned */
+    float *joint_weights;   /* 4 * n_vertices */
+    float *bind_normals;    /* 3 * n_vertices, the normals before skinning (if normals) */
+    uint32_t skin;
+    /* bumped whenever scene_evaluate changes positions (morphing, skinning): mi_update rebuilds
+     * the object's tree and uploads its geometry when this differs from what it built */
+    uint32_t revision;
 } scene_mesh;
 
 typedef enum { CAMERA_PERSPECTIVE = 0, CAMERA_ORTHOGRAPHIC = 1 } camera_kind;
@@ -136,6 +149,14 @@ typedef struct {
     float duration;          /* last key time over all channels */
 } scene_animation;
 
+/* A glTF skin: the nodes of its joints and their inverse bind matrices. A vertex influenced by
+ * joint j moves with jointMatrix(j) = world(joints[j]) * inverse_bind[j]. */
+typedef struct {
+    uint32_t n_joints;
+    uint32_t *joints;        /* node indices */
+    affine *inverse_bind;    /* n_joints (the identity where the file gives none) */
+} scene_skin;
+
 typedef struct {
     uint32_t mesh;           /* object */
     uint32_t node;
@@ -143,7 +164,7 @@ typedef struct {
 } scene_instance;
 
 typedef struct {
-    uint32_t n_meshes, n_nodes, n_materials, n_textures, n_cameras, n_lights, n_animations;
+    uint32_t n_meshes, n_nodes, n_materials, n_textures, n_cameras, n_lights, n_animations, n_skins;
     scene_mesh *meshes;
     scene_node *nodes;
     scene_material *materials;   /* materials[0] is the default material */
@@ -151,6 +172,7 @@ typedef struct {
     scene_camera *cameras;
     scene_light *lights;
     scene_animation *animations;
+    scene_skin *skins;
     uint32_t *roots;             /* root nodes of the displayed scene */
     uint32_t n_roots;
     /* evaluated by scene_evaluate */
@@ -183,9 +205,17 @@ int scene_load_gltf(const char *path, scene *out, char *err, size_t errlen);
 int scene_write_gltf(const scene *s, const char *path, char *err, size_t errlen);
 
 /* Applies the animations at time t (seconds; looped by each animation's duration when loop is
- * set), recomputes world transforms, morphed positions, instances (nodes with a mesh under one
- * of the roots), camera and light placement. Returns 0, or -1 if memory ran out. */
+ * set), recomputes world transforms, morphed and skinned positions, instances (nodes with a mesh
+ * under one of the roots), camera and light placement. Returns 0, or -1 if memory ran out. */
 int scene_evaluate(scene *s, double t, int loop);
+
+/* Keeps only the animation named `which` (or with that index; a name wins) and frees the others:
+ * scene_evaluate plays every animation at once, and clips of one character (a fox's "Walk" and
+ * "Run") drive the same nodes. 0, or -1 if no animation matches (the scene is unchanged). */
+int scene_select_animation(scene *s, const char *which);
+
+/* 1 if the mesh's geometry can change from frame to frame (morph targets or a skin). */
+int scene_mesh_deforms(const scene_mesh *m);
 
 /* The instances scene_evaluate makes (nodes with a mesh under one of the roots), counted without
  * allocating: the instance limit is checked before (tb/cli/cli_limits.h). */

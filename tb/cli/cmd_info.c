@@ -61,7 +61,7 @@ static void print_merge(const mi_stats *st, int merge)
         return;
     }
     printf("merged       %u instances into %u world-space object(s) (%llu triangles of baked copies); kept: "
-           "%u animated, %u morphing, %u mirrored, %u turned, %u instanced copies beyond the memory budget\n",
+           "%u animated, %u deforming (morphed, skinned), %u mirrored, %u turned, %u instanced copies beyond the memory budget\n",
            st->merged_instances, st->merged_objects, (unsigned long long)st->merged_copy_triangles, st->kept_animated,
            st->kept_morphing, st->kept_mirrored, st->kept_turned, st->kept_instanced);
 }
@@ -82,8 +82,8 @@ static void print_report(const scene *s, const mi_builder *b, const scene_opts *
     printf("scene        %s\n", o->scene);
     printf("objects      %u (meshes), instances %u, triangles %u unique / %llu instanced, degenerate dropped %u\n",
            st->objects, st->instances, st->triangles, (unsigned long long)inst_tris, st->degenerate_triangles);
-    printf("content      %u materials, %u textures, %u cameras, %u lights, %u animations, %u nodes, %u warnings\n",
-           s->n_materials, s->n_textures, s->n_cameras, s->n_lights, s->n_animations, s->n_nodes, s->warnings);
+    printf("content      %u materials, %u textures, %u cameras, %u lights, %u animations, %u skins, %u nodes, %u warnings\n",
+           s->n_materials, s->n_textures, s->n_cameras, s->n_lights, s->n_animations, s->n_skins, s->n_nodes, s->warnings);
     print_merge(st, o->mi.merge);
     print_tree("bottom level", st->bottom_nodes, st->bottom_leaves, st->bottom_empty_leaves, st->bottom_depth,
                st->bottom_references, st->triangles ? st->bottom_sah / st->triangles : 0.0);
@@ -189,7 +189,7 @@ static int run_frames(scene *s, mi_builder *b, const scene_opts *o, const info_o
         sorted[f] = upload[f];
     qsort(sorted, io->frames, sizeof *sorted, cmp_double);
     printf("frames       %u at %.0f fps: upload per frame min %.1f KB, median %.1f KB, max %.1f KB; "
-           "morphing objects rebuilt %u times\n", io->frames, io->fps, sorted[0] / 1024.0,
+           "deforming (morphed, skinned) objects rebuilt %u times\n", io->frames, io->fps, sorted[0] / 1024.0,
            sorted[io->frames / 2] / 1024.0, sorted[io->frames - 1] / 1024.0, rebuilt);
     free(sorted);
     return SAARCOR_EXIT_OK;

@@ -101,7 +101,9 @@ static int usage(void)
            "  --stats FILE       counters as JSON: rays by kind, traversal steps, leaves, list entries,\n"
            "                     mailbox skips, transformations, intersections, memory words read; in\n"
            "                     cycle mode also the timing (\"cycle\": cycles, fps, usage, caches, ...);\n"
-           "                     host_rss_kb, host_peak_rss_kb: this program's memory after the frame\n"
+           "                     host_rss_kb, host_peak_rss_kb: this program's memory after the frame;\n"
+           "                     \"host\": upload_bytes, geometry_upload_bytes (of deforming objects),\n"
+           "                     rebuilt_objects, seconds: what bringing the image to the frame cost the host\n"
            "  --vcd FILE.vcd     cycle mode: waveforms of the model (IEEE 1364 VCD, e.g. for GTKWave): per pipe\n"
            "                     and unit busy, issue, queue_depth, thread_id; per cache lookups, misses, fills;\n"
            "                     the memory port's outstanding transfers; threads in flight (docs/cycle-model.md)\n"
@@ -179,6 +181,11 @@ static int write_stats(const char *path, const render_opts *ro, const cycle_conf
     proc_mem pm;
     proc_mem_read(&pm); /* after the frame: what a long run must keep constant */
     fprintf(f, ", \"host_rss_kb\": %ld, \"host_peak_rss_kb\": %ld", pm.rss_kb, pm.peak_rss_kb);
+    /* one object: its time varies from run to run, and with --mpi --frames its bytes with what a
+     * board held before, so comparisons of the device's counters leave it out whole */
+    fprintf(f, ", \"host\": {\"upload_bytes\": %llu, \"geometry_upload_bytes\": %llu, \"rebuilt_objects\": %u, "
+               "\"seconds\": %.6f}", (unsigned long long)fr->host.upload_bytes, (unsigned long long)fr->host.geometry_bytes,
+            fr->host.rebuilt, fr->host.secs);
     if (ro->cycle) {
         fprintf(f, ", \"cycle\": ");
         cycle_report_json(f, cc, &fr->cs, all_rays(c));
@@ -336,10 +343,11 @@ int render_frame_output(const render_opts *ro, const mi_builder *b, const scene 
     const uint64_t rays = all_rays(sum), primary = sum->rays[RAY_PRIMARY] ? sum->rays[RAY_PRIMARY] : 1;
     const trace_counters *t = &sum->trace;
     printf("rendered %s: %ux%u, %llu rays (%llu primary, %llu shadow, %llu reflection, %llu transmission) in %.3f s "
-           "(%u threads), upload %.1f KB -> %s\n", scene_name, w, h, (unsigned long long)rays,
-           (unsigned long long)sum->rays[RAY_PRIMARY], (unsigned long long)sum->rays[RAY_SHADOW],
-           (unsigned long long)sum->rays[RAY_REFLECTION], (unsigned long long)sum->rays[RAY_TRANSMISSION], fr->secs,
-           ro->threads, (double)fr->upload_bytes / 1024.0, path);
+           "(%u threads), host %.2f ms, rebuilt %u (geometry %.1f KB), upload %.1f KB -> %s\n", scene_name, w, h,
+           (unsigned long long)rays, (unsigned long long)sum->rays[RAY_PRIMARY],
+           (unsigned long long)sum->rays[RAY_SHADOW], (unsigned long long)sum->rays[RAY_REFLECTION],
+           (unsigned long long)sum->rays[RAY_TRANSMISSION], fr->secs, ro->threads, 1e3 * fr->host.secs, fr->host.rebuilt,
+           (double)fr->host.geometry_bytes / 1024.0, (double)fr->host.upload_bytes / 1024.0, path);
     printf("per primary ray (secondary rays included): %.2f traversal steps, %.2f leaves, %.2f list entries, "
            "%.2f mailbox skips, %.2f intersections, %.1f words read\n", (double)t->traversal_steps / primary,
            (double)t->leaves / primary, (double)t->list_entries / primary, (double)t->mailbox_skips / primary,
@@ -404,8 +412,28 @@ static int waveform_end(const render_opts *ro, cycle_trace *tr, uint32_t frame, 
     return bad ? SAARCOR_EXIT_INPUT : SAARCOR_EXIT_OK;
 }
 
-/* Renders one frame of the current image and writes it. */
-static int render_frame(const mi_builder *b, const scene *s, const render_opts *ro, uint32_t frame, const char *scene_name)
+frame_host render_host(const mi_builder *b, double secs)
+{
+    const mi_stats *st = mi_get_stats(b);
+    return (frame_host){ st->frame_upload_bytes, st->frame_geometry_bytes, st->rebuilt_objects, secs };
+}
+
+int render_advance(scene *s, mi_builder *b, uint32_t f, double fps, frame_host *h, char *err, size_t errlen)
+{
+    const double t0 = now();
+    if (scene_evaluate(s, f / fps, 1) != 0) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    if (mi_update(b, s, err, errlen) != 0)
+        return -1;
+    *h = render_host(b, now() - t0);
+    return 0;
+}
+
+/* Renders one frame of the current image (host: what bringing it to this frame cost) and writes it. */
+static int render_frame(const mi_builder *b, const scene *s, const render_opts *ro, uint32_t frame,
+                        const char *scene_name, frame_host host)
 {
     uint32_t n, w, h;
     const uint32_t *mem = mi_words(b, &n);
@@ -420,7 +448,7 @@ static int render_frame(const mi_builder *b, const scene *s, const render_opts *
     hit_record *hits = ro->aov ? calloc((size_t)w * h, sizeof *hits) : NULL;
     const int want_costs = ro->aov || ro->heatmap;
     pixel_cost *costs = want_costs ? calloc((size_t)w * h, sizeof *costs) : NULL;
-    frame_result fr = { .upload_bytes = mi_get_stats(b)->frame_upload_bytes, .costs = costs };
+    frame_result fr = { .host = host, .costs = costs };
     static const uint32_t all[4] = { 0, 0, UINT32_MAX, UINT32_MAX };
     const double t0 = now();
     if (ro->sim) {
@@ -672,7 +700,9 @@ int cmd_render(int argc, char **argv)
     if (rc != SAARCOR_EXIT_OK)
         return rc;
     char err[512];
+    const double build_t0 = now();
     mi_builder *b = scene_opts_build(&o, "render", &s, NULL, &rc);
+    ro.build_secs = now() - build_t0;
     if (!b) {
         scene_free(&s);
         return rc;
@@ -691,25 +721,23 @@ int cmd_render(int argc, char **argv)
         scene_free(&s);
         return SAARCOR_EXIT_INTERNAL;
     }
-    rc = mpi_run ? render_mpi(&ro, mpi_run, b, &s, o.scene) : render_frame(b, &s, &ro, ro.first, o.scene);
+    rc = mpi_run ? render_mpi(&ro, mpi_run, b, &s, o.scene)
+                 : render_frame(b, &s, &ro, ro.first, o.scene, render_host(b, ro.build_secs));
     uint32_t written = rc == SAARCOR_EXIT_OK;
     for (uint32_t f = ro.first + 1; !mpi_run && rc == SAARCOR_EXIT_OK && f <= ro.last; f++) {
         if (interrupt_signal()) { /* between frames: the safest point of all */
             rc = 128 + interrupt_signal();
             break;
         }
-        if (scene_evaluate(&s, f / ro.fps, 1) != 0) {
-            cli_error("render", "frame %u: out of memory", f);
-            rc = SAARCOR_EXIT_INTERNAL;
-        } else if (mi_update(b, &s, err, sizeof err) != 0) {
+        frame_host host;
+        if (render_advance(&s, b, f, ro.fps, &host, err, sizeof err) != 0) {
             cli_error("render", "frame %u: %s", f, err);
             rc = SAARCOR_EXIT_INTERNAL;
-        }
-        if (rc != SAARCOR_EXIT_OK)
             break;
+        }
         if (ro.sim)
             cycle_flush(ro.sim); /* the image changed */
-        rc = render_frame(b, &s, &ro, f, o.scene);
+        rc = render_frame(b, &s, &ro, f, o.scene, host);
         written += rc == SAARCOR_EXIT_OK;
     }
     if (rc > 128 && !mpi_run)
