@@ -208,7 +208,7 @@ test: deps
 	@bash tests/run.sh --report $(BUILD)/test-report.txt \
 	  tests/test_cli.sh tests/test_golden_asan.sh tests/test_golden.sh tests/test_mpi.sh tests/test_hls.sh \
 	  tests/test_determinism.sh tests/test_memcheck.sh tests/test_limits.sh tests/test_rtl.sh tests/test_longrun.sh \
-	  tests/test_interrupt.sh tests/test_fuzz.sh tests/test_stress.sh tests/test_heatmap.sh tests/test_hits.sh tests/test_vcd.sh \
+	  tests/test_interrupt.sh tests/test_fuzz.sh tests/test_stress.sh tests/test_heatmap.sh tests/test_hits.sh tests/test_vcd.sh tests/test_sim_arith.sh tests/test_shading.sh \
 	  $(UNIT_TESTS) $(patsubst $(BUILD)/%,build/asan/%,$(UNIT_TESTS))
 
 # ---- fuzzing: libFuzzer harnesses of tests/fuzz/ (tests/fuzz/README.md) ----------------------------
@@ -364,6 +364,11 @@ $(BUILD)/bench_build: $(BUILD)/obj/host/tests/bench/bench_build.o $(BUILD)/obj/h
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(LDLIBS) -lembree3
 
+# the Embree harness and our side's timing, shared by bench-render and bench-peers (one meaning of
+# "ours / Embree"); our frame is the render command's own render_region
+BENCH_HARNESS := $(addprefix $(BUILD)/obj/host/tests/bench/,embree_scene.o bench_units.o) \
+	$(addprefix $(BUILD)/obj/$(DEFAULT_FMT)/tb/cli/,render_region.o interrupt.o)
+
 # primary rays at 1024x768: the units (functional) against Embree on the same rays
 bench-render: deps
 	@$(MAKE) --no-print-directory $(BUILD)/bench_render
@@ -371,7 +376,7 @@ bench-render: deps
 	$(BUILD)/bench_render --out $(BUILD)/bench
 	@cat $(BUILD)/bench/render.md
 
-$(BUILD)/bench_render: $(BUILD)/obj/host/tests/bench/bench_render.o $(BUILD)/obj/host/tests/bench/embree_scene.o $(HOST_OBJS) $(call fmt_objs,$(DEFAULT_FMT))
+$(BUILD)/bench_render: $(BUILD)/obj/host/tests/bench/bench_render.o $(BENCH_HARNESS) $(HOST_OBJS) $(call fmt_objs,$(DEFAULT_FMT))
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(LDLIBS) -lembree3
 
@@ -409,14 +414,15 @@ bench-precision: deps
 	python3 tests/bench/bench_precision.py --out $(BUILD)/bench
 
 # peers on the same primary rays: Embree single rays and packets (1, 2 threads), our functional
-# and cycle modes, the traversal unit's algorithms (render --traversal) -> build/bench/peers.md
+# mode trace only (1, 2 threads) and with shading (render_region, 1 thread), our cycle mode, the
+# traversal unit's algorithms (render --traversal) -> build/bench/peers.md
 bench-peers: deps
 	@$(MAKE) --no-print-directory all $(BUILD)/bench_peers
 	@mkdir -p $(BUILD)/bench
 	$(BUILD)/bench_peers --out $(BUILD)/bench
 	python3 tests/bench/bench_peers.py --out $(BUILD)/bench
 
-$(BUILD)/bench_peers: $(BUILD)/obj/host/tests/bench/bench_peers.o $(BUILD)/obj/host/tests/bench/embree_scene.o $(HOST_OBJS) $(call fmt_objs,$(DEFAULT_FMT))
+$(BUILD)/bench_peers: $(BUILD)/obj/host/tests/bench/bench_peers.o $(BENCH_HARNESS) $(HOST_OBJS) $(call fmt_objs,$(DEFAULT_FMT))
 	@echo "  LD    $@"
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(LDLIBS) -lembree3 -lpthread
 

@@ -549,7 +549,7 @@ scene_material geom_material(float r, float g, float b, float metallic, float ro
     m.base_color[1] = g;
     m.base_color[2] = b;
     m.base_color[3] = 1.0f;
-    m.base_color_texture = SCENE_NONE;
+    m.base_color_texture = m.emissive_texture = SCENE_NONE;
     m.alpha = ALPHA_OPAQUE;
     m.alpha_cutoff = 0.5f;
     m.metallic = metallic;
@@ -632,7 +632,8 @@ uint32_t geom_add_mesh(geom_scene *g, geom_mesh *m, const char *name)
     d->normals = fit(m->nrm, 3 * (size_t)m->nv, sizeof(float));
     int textured = 0; /* texture coordinates only where a material samples a texture */
     for (uint32_t t = 0; t < m->nt && !textured; t++)
-        textured = m->mat[t] < g->s->n_materials && g->s->materials[m->mat[t]].base_color_texture != SCENE_NONE;
+        textured = m->mat[t] < g->s->n_materials && (g->s->materials[m->mat[t]].base_color_texture != SCENE_NONE ||
+                                                     g->s->materials[m->mat[t]].emissive_texture != SCENE_NONE);
     if (textured) {
         d->texcoords = fit(m->uv, 2 * (size_t)m->nv, sizeof(float));
     } else {

@@ -111,7 +111,8 @@ uint32_t geom_add_material(geom_scene *g, const scene_material *m);
 /* Copies width*height*4 RGBA8 bytes. */
 uint32_t geom_add_texture(geom_scene *g, int width, int height, const uint8_t *rgba);
 /* Moves the builder's arrays into a new scene mesh (the builder is left empty); texture
- * coordinates are kept only if one of the mesh's materials has a texture. */
+ * coordinates are kept only if one of the mesh's materials has a texture (base colour or
+ * emissive). */
 uint32_t geom_add_mesh(geom_scene *g, geom_mesh *m, const char *name);
 /* Morph targets: deltas (n_targets * 3 * n_vertices floats) are copied; weights start at 0. */
 void geom_set_morph(geom_scene *g, uint32_t mesh, uint32_t n_targets, const float *deltas);

@@ -14,6 +14,13 @@ const scene_generator scene_generators[] = {
       scene_gen_terrain },
     { "animated", "LINEAR/STEP/CUBICSPLINE node animations (4 s) and a mesh with two animated morph targets",
       scene_gen_animated },
+    { "emissive", "emissive textures (own KHR_texture_transform too) under emissiveFactor 1 and strength 3",
+      scene_gen_emissive },
+    { "vertex_colours", "COLOR_0 vertex colours on a plain sphere and multiplying a textured box", scene_gen_vertex_colours },
+    { "uv_transform", "KHR_texture_transform offset, rotation, scale, and TEXCOORD_1 on four textured quads",
+      scene_gen_uv_transform },
+    { "unlit", "KHR_materials_unlit: unlit sphere beside its lit twin, textured poster, alpha-blended pane",
+      scene_gen_unlit },
 };
 
 const unsigned scene_generator_count = sizeof scene_generators / sizeof scene_generators[0];

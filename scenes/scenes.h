@@ -37,5 +37,10 @@ int scene_gen_room(scene *out, const scene_gen_params *p, char *err, size_t errl
 int scene_gen_plants(scene *out, const scene_gen_params *p, char *err, size_t errlen);
 int scene_gen_terrain(scene *out, const scene_gen_params *p, char *err, size_t errlen);
 int scene_gen_animated(scene *out, const scene_gen_params *p, char *err, size_t errlen);
+/* scenes/shading.c: one scene per optional shading feature */
+int scene_gen_emissive(scene *out, const scene_gen_params *p, char *err, size_t errlen);
+int scene_gen_vertex_colours(scene *out, const scene_gen_params *p, char *err, size_t errlen);
+int scene_gen_uv_transform(scene *out, const scene_gen_params *p, char *err, size_t errlen);
+int scene_gen_unlit(scene *out, const scene_gen_params *p, char *err, size_t errlen);
 
 #endif

@@ -133,7 +133,7 @@ static void huge_texcoords(void **state)
             for (uint32_t t = 0; (d[MI_O_FLAGS] & MI_OBJECT_HAS_TEXCOORDS) && t < d[MI_O_N_TRIANGLES]; t++, patched++)
                 for (uint32_t k = 0; k < 6; k++)
                     shade_encode_texcoord(&w[d[MI_O_SHADING] + shade_rec_words(d[MI_O_FLAGS]) * t +
-                                             shade_rec_tail(d[MI_O_FLAGS])], d[MI_O_FLAGS], k, huge);
+                                             shade_rec_tail(d[MI_O_FLAGS])], d[MI_O_FLAGS], 0, k, huge);
         }
         char err[256];
         assert_int_equal(mi_validate(w, n, err, sizeof err), 0);

@@ -1,7 +1,11 @@
 /*
  * Tests of f24_sum_exact (hls/fp24/f24_sum_exact.c), the exact dot product with a double-word
  * result, against MPFR: hi is the exact sum rounded to fp24 and lo the exact remainder rounded,
- * on random terms, on terms built to cancel, and on the special values.
+ * on random terms, on terms built to cancel, and on the special values; and the simulator's fast
+ * path f24_fast_sum_exact (tb/fp/f24_fast_sum.c) against it, bit for bit, on the same kinds of
+ * terms plus the ones its shortcuts must hand back or decide with care: fp24 ties broken below
+ * binary64's precision, products too far apart for the window, zeros of either sign, results
+ * that flush or overflow.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
@@ -113,12 +117,124 @@ static void special_values(void **state)
     assert_int_equal(f24_sum_exact(ones, ones, 0).hi, 0); /* the empty sum */
 }
 
+/* One random term of the fast-path comparison: mostly ordinary values, some of every kind the
+ * fast path must get right or hand back. */
+static f24_t tricky_value(unsigned *seed)
+{
+    switch (rand_r(seed) % 16) {
+    case 0: return f24_pack((uint32_t)rand_r(seed) & 1u, 0, (uint32_t)rand_r(seed) & 1u); /* zero, subnormal */
+    case 1: return F24_ONE;
+    case 2: return f24_neg(F24_ONE);
+    case 3: return random_value(seed, F24_BIAS - 1);                           /* any exponent */
+    case 4: return f24_from_i32(rand_r(seed) % 64 - 32);                     /* small integers */
+    case 5: return f24_pack(0, F24_BIAS - (uint32_t)(rand_r(seed) % 8), 1u << (F24_MAN_BITS - 1)); /* 1.5 * 2^-k */
+    case 6: return rand_r(seed) % 64 ? random_value(seed, 3) : F24_POS_INF;
+    case 7: return f24_pack((uint32_t)rand_r(seed) & 1u, F24_EXP_MAX - 1u - (uint32_t)(rand_r(seed) % 2), (uint32_t)rand_r(seed) & F24_FRAC_MASK);
+    case 8: return f24_pack((uint32_t)rand_r(seed) & 1u, 1u + (uint32_t)(rand_r(seed) % 2), (uint32_t)rand_r(seed) & F24_FRAC_MASK);
+    case 9:
+    case 10: return random_value(seed, F24_BIAS / 3); /* products nearly as far apart as the window holds */
+    default: return random_value(seed, 6);
+    }
+}
+
+static int same_as_integer(const f24_t a[], const f24_t b[], uint32_t n)
+{
+    const f24x2 fast = f24_fast_sum_exact(a, b, n), ref = f24_sum_exact(a, b, n);
+    if (fast.hi == ref.hi && fast.lo == ref.lo)
+        return 1;
+    print_message("n %u: fast %06x %06x, integer %06x %06x\n", n, fast.hi, fast.lo, ref.hi, ref.lo);
+    return 0;
+}
+
+/* Ties: x + y*2^-k where x + y lands on or next to an fp24 midpoint, with a third term far below
+ * that only binary64's second word sees. */
+static void fast_path_ties(void **state)
+{
+    (void)state;
+    unsigned seed = 4;
+    int bad = 0;
+    for (int i = 0; i < 200000 && bad < 5; i++) {
+        const f24_t x = random_value(&seed, 4);
+        const int32_t ex = f24_exp(x);
+        const uint32_t below = 1u + (uint32_t)(rand_r(&seed) % (2 * F24_MAN_BITS + 8));
+        const f24_t half_ulp = f24_pack(rand_r(&seed) & 1u, (uint32_t)(ex - F24_MAN_BITS - 1), 0);
+        const f24_t tiny = ex > (int32_t)below + F24_MAN_BITS + 1
+                               ? f24_pack(rand_r(&seed) & 1u, (uint32_t)ex - below - F24_MAN_BITS - 1u, (uint32_t)rand_r(&seed) & F24_FRAC_MASK)
+                               : 0;
+        const f24_t a[4] = { x, half_ulp, tiny, tricky_value(&seed) }, b[4] = { F24_ONE, F24_ONE, F24_ONE, rand_r(&seed) % 4 ? 0 : F24_ONE };
+        bad += !same_as_integer(a, b, 3 + (uint32_t)(i & 1));
+    }
+    assert_int_equal(bad, 0);
+}
+
+/* 2^e as a product of two fp24 values with random significands of the product's first factor. */
+static void spread_term(unsigned *seed, int32_t e, f24_t *a, f24_t *b)
+{
+    *a = f24_pack((uint32_t)rand_r(seed) & 1u, (uint32_t)(F24_BIAS + e / 2), (uint32_t)rand_r(seed) & F24_FRAC_MASK);
+    *b = f24_pack(0, (uint32_t)(F24_BIAS + e - e / 2), (uint32_t)rand_r(seed) & F24_FRAC_MASK);
+}
+
+/* Products spread over the whole window: the rounding errors of the large ones and the small
+ * products themselves are then too far apart for one binary64, the case the fast path checks. */
+static void fast_path_spread(void **state)
+{
+    (void)state;
+    const int32_t window = 127 - 5 - (2 * F24_MAN_BITS + 1), reach = window < 2 * F24_BIAS - 4 ? window : 2 * F24_BIAS - 4;
+    unsigned seed = 7;
+    int bad = 0;
+    for (int i = 0; i < 100000 && bad < 5; i++) {
+        f24_t a[F24_SUM_TERMS], b[F24_SUM_TERMS];
+        const uint32_t n = 3 + (uint32_t)rand_r(&seed) % (F24_SUM_TERMS - 2);
+        for (uint32_t k = 0; k < n; k++)
+            spread_term(&seed, k == 0 ? 0 : -(int32_t)(rand_r(&seed) % (uint32_t)(reach + 1)), &a[k], &b[k]);
+        bad += !same_as_integer(a, b, n);
+    }
+    assert_int_equal(bad, 0);
+}
+
+/* Random terms of every kind, every count. */
+static void fast_path_random(void **state)
+{
+    (void)state;
+    unsigned seed = 5;
+    int bad = 0;
+    for (int i = 0; i < 300000 && bad < 5; i++) {
+        f24_t a[F24_SUM_TERMS], b[F24_SUM_TERMS];
+        const uint32_t n = (uint32_t)rand_r(&seed) % (F24_SUM_TERMS + 1);
+        for (uint32_t k = 0; k < n; k++) {
+            a[k] = tricky_value(&seed);
+            b[k] = rand_r(&seed) % 2 ? tricky_value(&seed) : F24_ONE;
+        }
+        bad += !same_as_integer(a, b, n);
+    }
+    assert_int_equal(bad, 0);
+}
+
+/* The cancelling terms of cancelling_terms, and exact cancellation, through the fast path. */
+static void fast_path_cancelling(void **state)
+{
+    (void)state;
+    unsigned seed = 6;
+    int bad = 0;
+    for (int i = 0; i < 100000 && bad < 5; i++) {
+        const f24_t t = random_value(&seed, 8), d = random_value(&seed, 8);
+        const f24_t o = f24_neg(f24_mul(t, d));
+        const f24_t x = tricky_value(&seed), a[5] = { o, t, x, f24_neg(x), o }, b[5] = { F24_ONE, d, F24_ONE, F24_ONE, 0 };
+        bad += !same_as_integer(a, b, 2 + (uint32_t)(i % 4));
+    }
+    assert_int_equal(bad, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(random_terms),
         cmocka_unit_test(cancelling_terms),
         cmocka_unit_test(special_values),
+        cmocka_unit_test(fast_path_ties),
+        cmocka_unit_test(fast_path_random),
+        cmocka_unit_test(fast_path_spread),
+        cmocka_unit_test(fast_path_cancelling),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

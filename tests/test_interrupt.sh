@@ -4,7 +4,7 @@
 # many were written, exits with 130 (SIGINT) or 143 (SIGTERM) and leaves no temporary file; a
 # single long frame (functional with two threads, and the cycle model) stops at the next block
 # row / epoch within seconds and writes nothing; reference, compare-hits, info --frames, f24verify,
-# stress and jobs stop at their next safe point with 130 and one line. Prints cmocka-style lines
+# f24gen, profile, stress and jobs stop at their next safe point with 130 and one line. Prints cmocka-style lines
 # for tests/run.sh.
 set -u
 cd "$(dirname "$0")/.."
@@ -106,6 +106,12 @@ t_other_commands() {
   check_command "f24verify: interrupted by SIGINT: the operations above were checked, --json not written" \
     "$T/v.json" f24verify -n 1e8 --json "$T/v.json"
   check_command "stress: interrupted by SIGINT: nothing written" "$T/s.json" stress --json "$T/s.json"
+  check_command "f24gen: interrupted by SIGINT: the vectors written so far are kept" - \
+    f24gen add 1000000000000 -o "$T/g.txt"
+  # a scene whose load and kd-tree builds take several seconds: profile stops after them
+  "$BIN" gen terrain --detail 1000 -o "$T/big.glb" >/dev/null || { echo "gen terrain failed"; return 1; }
+  check_command "profile: interrupted by SIGINT: nothing written" "$T/p.h" \
+    profile "$T/big.glb" --mem-mb 1024 -o "$T/p.h"
   printf 'sleep 0.5\nsleep 30\nsleep 30\n' >"$T/jobs.txt"
   check_command "jobs: interrupted by SIGINT: 2 of 3 jobs run" - jobs "$T/jobs.txt"
 }

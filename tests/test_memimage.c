@@ -138,7 +138,7 @@ static void make_scene(scene *s, uint32_t copies, int morph)
     s->n_materials = 1;
     s->materials = calloc(1, sizeof *s->materials);
     s->materials[0].base_color[0] = 0.8f;
-    s->materials[0].base_color_texture = SCENE_NONE;
+    s->materials[0].base_color_texture = s->materials[0].emissive_texture = SCENE_NONE;
     s->n_nodes = copies + (morph ? 1 : 0);
     s->nodes = calloc(s->n_nodes, sizeof *s->nodes);
     s->roots = calloc(s->n_nodes, sizeof *s->roots);
@@ -444,7 +444,7 @@ static void shading_records(void **state)
             const f24_vec3 d = shade_rec_normal(rec, k);
             assert_true(fabs(f24d(d.x) - nrm[3 * v]) + fabs(f24d(d.y) - nrm[3 * v + 1]) + fabs(f24d(d.z) - nrm[3 * v + 2]) < 1e-4);
             for (uint32_t i = 0; i < 2; i++)
-                assert_true(f24d(shade_rec_texcoord(obj[MI_O_FLAGS], rec + tail, 2 * k + i)) == uv[2 * v + i]);
+                assert_true(f24d(shade_rec_texcoord(obj[MI_O_FLAGS], rec + tail, 0, 2 * k + i)) == uv[2 * v + i]);
         }
     }
     const uint32_t rec = obj[MI_O_SHADING];
@@ -453,7 +453,7 @@ static void shading_records(void **state)
     rejects(w, n, rec + tail, w[rec + tail] | 3u, "material");
     uint32_t t2[SHADE_MAX_WORDS];
     memcpy(t2, w + rec + tail, (stride - tail) * sizeof *t2);
-    shade_encode_texcoord(t2, obj[MI_O_FLAGS], 2, F24_POS_INF); /* bits 64..87: word 2 alone */
+    shade_encode_texcoord(t2, obj[MI_O_FLAGS], 0, 2, F24_POS_INF); /* bits 64..87: word 2 alone */
     rejects(w, n, rec + tail + 2, t2[2], "texture coordinate");
     mi_free(b);
     scene_free(&s);

@@ -27,7 +27,7 @@ same_counters() {
 import json, sys
 a, b = (json.load(open(p)) for p in sys.argv[1:3])
 for d in (a, b):
-    for k in ("seconds", "mpi", "cycle", "host_rss_kb", "host_peak_rss_kb"):  # time and host memory differ
+    for k in ("seconds", "mpi", "cycle", "host_rss_kb", "host_peak_rss_kb", "host"):  # time and host memory differ
         d.pop(k, None)
 assert a == b, (a, b)
 PY
@@ -125,7 +125,7 @@ t_frames() {
 import json, sys
 a, b = (json.load(open(p)) for p in sys.argv[1:3])
 for d in (a, b):
-    for k in ('seconds', 'host_rss_kb', 'host_peak_rss_kb'):
+    for k in ('seconds', 'host_rss_kb', 'host_peak_rss_kb', 'host'):  # host: what this board's image held before
         d.pop(k, None)
     d['cycle'].pop('seconds', None)
 assert a == b" "$T/s/st_000$f.json" "$T/m/st_000$f.json"

@@ -228,6 +228,7 @@ static void bilinear_texture(void **state)
     for (int k = 0; k < 4; k++)
         s.materials[0].base_color[k] = 1.0f;
     s.materials[0].base_color_texture = 0;
+    s.materials[0].emissive_texture = SCENE_NONE;
     s.materials[0].roughness = 1.0f; /* the glTF default: diffuse only, no highlight or reflection */
     s.n_textures = 1;
     s.textures = calloc(1, sizeof *s.textures);
@@ -300,7 +301,7 @@ static void square_scene(scene *s, const square *q, uint32_t n)
         m->material = malloc(2 * sizeof *m->material);
         m->material[0] = m->material[1] = k;
         s->materials[k] = q[k].m;
-        s->materials[k].base_color_texture = SCENE_NONE;
+        s->materials[k].base_color_texture = s->materials[k].emissive_texture = SCENE_NONE;
         s->nodes[k] = (scene_node){ .parent = -1, .mesh = k, .camera = SCENE_NONE, .light = SCENE_NONE,
                                     .rotation = { 0, 0, 0, 1 }, .scale = { 1, 1, 1 } };
         s->roots[k] = k;

@@ -1,6 +1,7 @@
 /*
  * Tests of the glTF loader and the scene model (host/scene): counts of the shared real scenes
- * (../shared/scenes, skipped with a message when absent), instancing, animation evaluation, and
+ * (../shared/scenes, skipped with a message when absent), instancing, animation evaluation,
+ * skinning (a generated two-joint file against hand-computed vertices, the shared fox), and
  * malformed files (truncated, wrong accessor types, out-of-range indices, NaN positions, broken
  * hierarchies), which must give a one-line error and an empty scene, never a crash.
  */
@@ -179,9 +180,10 @@ static void base64(const unsigned char *in, size_t n, char *out)
     out[o] = '\0';
 }
 
-/* One triangle: 3 float positions then 3 uint16 indices; the caller may break any part. */
-static const char *write_gltf(const char *name, const float pos[9], const uint16_t idx[3], const char *pos_type,
-                              const char *extra_nodes)
+/* One triangle: 3 float positions then 3 uint16 indices; the caller may break any part, add to
+ * the node (extra_nodes) and add top-level members (extra_top: "\"key\":value,"). */
+static const char *write_gltf_top(const char *name, const float pos[9], const uint16_t idx[3], const char *pos_type,
+                                  const char *extra_nodes, const char *extra_top)
 {
     unsigned char buf[44] = { 0 };
     memcpy(buf, pos, 36);
@@ -192,16 +194,22 @@ static const char *write_gltf(const char *name, const float pos[9], const uint16
     snprintf(path, sizeof path, "%s/%s", test_dir, name);
     FILE *f = fopen(path, "w");
     fprintf(f,
-            "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],"
+            "{%s\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],"
             "\"nodes\":[{\"mesh\":0%s}],"
             "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}],"
             "\"buffers\":[{\"byteLength\":42,\"uri\":\"data:application/octet-stream;base64,%s\"}],"
             "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":36},{\"buffer\":0,\"byteOffset\":36,\"byteLength\":6}],"
             "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"%s\",\"max\":[1,1,0],\"min\":[0,0,0]},"
             "{\"bufferView\":1,\"componentType\":5123,\"count\":3,\"type\":\"SCALAR\"}]}",
-            extra_nodes, b64, pos_type);
+            extra_top, extra_nodes, b64, pos_type);
     fclose(f);
     return path;
+}
+
+static const char *write_gltf(const char *name, const float pos[9], const uint16_t idx[3], const char *pos_type,
+                              const char *extra_nodes)
+{
+    return write_gltf_top(name, pos, idx, pos_type, extra_nodes, "");
 }
 
 static void expect_load_error(const char *path, const char *needle)
@@ -248,6 +256,166 @@ static void malformed_files(void **state)
     expect_load_error(path, "garbage.gltf");
 }
 
+/* ---- skinning ------------------------------------------------------------------------------ */
+
+typedef struct {
+    unsigned char data[512];
+    size_t n;
+    char views[1024], accessors[1024]; /* JSON array bodies */
+    int count;                         /* views = accessors so far */
+} gltf_buf;
+
+/* Appends bytes as a new buffer view with an accessor over it; returns the accessor index. */
+static int add_accessor(gltf_buf *g, const void *bytes, size_t size, int ctype, int normalized, int count,
+                        const char *type)
+{
+    memcpy(g->data + g->n, bytes, size);
+    snprintf(g->views + strlen(g->views), sizeof g->views - strlen(g->views), "%s{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu}",
+             g->count ? "," : "", g->n, size);
+    snprintf(g->accessors + strlen(g->accessors), sizeof g->accessors - strlen(g->accessors),
+             "%s{\"bufferView\":%d,\"componentType\":%d,\"normalized\":%s,\"count\":%d,\"type\":\"%s\"}", g->count ? "," : "",
+             g->count, ctype, normalized ? "true" : "false", count, type);
+    g->n += (size + 3) & ~(size_t)3;
+    return g->count++;
+}
+
+/* A triangle skinned to two joints: joint 0 (node 1, at (1,0,0)) and its child joint 1 (node 2,
+ * 1 up); vertex 0 follows joint 0, vertex 1 joint 1, vertex 2 both by halves. The animation moves
+ * joint 0 by (0,0,2) and turns joint 1 by 90 degrees about z over one second. The mesh's node is
+ * at (100,0,0), which glTF says must not move a skinned mesh. With small, the influences are
+ * unsigned bytes (weights normalized), else unsigned shorts and floats; bad_joint names a joint the
+ * skin does not have. */
+static const char *write_skinned_gltf(const char *name, int small, int bad_joint)
+{
+    const float pos[9] = { 1, 0, 0, 1, 2, 0, 2, 1, 0 }, nrm[9] = { 1, 0, 0, 1, 0, 0, 0, 0, 1 };
+    const uint8_t j8[12] = { 0, 0, 0, 0, bad_joint ? 5 : 1, 0, 0, 0, 0, 1, 0, 0 }, w8[12] = { 255, 0, 0, 0, 255, 0, 0, 0, 128, 128, 0, 0 };
+    const uint16_t j16[12] = { 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0 };
+    const float wf[12] = { 1, 0, 0, 0, 1, 0, 0, 0, 0.5f, 0.5f, 0, 0 };
+    const float ibm[32] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -1, 0, 0, 1,    /* column-major: T(-1,0,0) */
+                            1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -1, -1, 0, 1 }; /* T(-1,-1,0) */
+    const float times[2] = { 0, 1 }, moves[6] = { 1, 0, 0, 1, 0, 2 }, turns[8] = { 0, 0, 0, 1, 0, 0, 0.70710678f, 0.70710678f };
+    gltf_buf g = { .n = 0 };
+    const int ap = add_accessor(&g, pos, sizeof pos, 5126, 0, 3, "VEC3");
+    const int an = add_accessor(&g, nrm, sizeof nrm, 5126, 0, 3, "VEC3");
+    const int aj = small ? add_accessor(&g, j8, sizeof j8, 5121, 0, 3, "VEC4") : add_accessor(&g, j16, sizeof j16, 5123, 0, 3, "VEC4");
+    const int aw = small ? add_accessor(&g, w8, sizeof w8, 5121, 1, 3, "VEC4") : add_accessor(&g, wf, sizeof wf, 5126, 0, 3, "VEC4");
+    const int ai = add_accessor(&g, ibm, sizeof ibm, 5126, 0, 2, "MAT4");
+    const int at = add_accessor(&g, times, sizeof times, 5126, 0, 2, "SCALAR");
+    const int am = add_accessor(&g, moves, sizeof moves, 5126, 0, 2, "VEC3");
+    const int ar = add_accessor(&g, turns, sizeof turns, 5126, 0, 2, "VEC4");
+    char b64[700];
+    base64(g.data, g.n, b64);
+    static char path[128];
+    snprintf(path, sizeof path, "%s/%s", test_dir, name);
+    FILE *f = fopen(path, "w");
+    fprintf(f,
+            "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0,1]}],"
+            "\"nodes\":[{\"mesh\":0,\"skin\":0,\"translation\":[100,0,0]},{\"translation\":[1,0,0],\"children\":[2]},"
+            "{\"translation\":[0,1,0]}],"
+            "\"skins\":[{\"joints\":[1,2],\"inverseBindMatrices\":%d}],"
+            "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":%d,\"NORMAL\":%d,\"JOINTS_0\":%d,\"WEIGHTS_0\":%d}}]}],"
+            "\"animations\":[{\"name\":\"bend\",\"channels\":[{\"sampler\":0,\"target\":{\"node\":1,\"path\":\"translation\"}},"
+            "{\"sampler\":1,\"target\":{\"node\":2,\"path\":\"rotation\"}}],"
+            "\"samplers\":[{\"input\":%d,\"output\":%d},{\"input\":%d,\"output\":%d}]}],"
+            "\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;base64,%s\"}],"
+            "\"bufferViews\":[%s],\"accessors\":[%s]}",
+            ai, ap, an, aj, aw, at, am, at, ar, g.n, b64, g.views, g.accessors);
+    fclose(f);
+    return path;
+}
+
+static void expect_vertex(const float *p, double x, double y, double z)
+{
+    assert_float_equal(p[0], x, 1e-5);
+    assert_float_equal(p[1], y, 1e-5);
+    assert_float_equal(p[2], z, 1e-5);
+}
+
+/* Hand-computed: at t = 1 joint 0 is T(1,0,2), so jointMatrix 0 = T(0,0,2); joint 1 turns 90
+ * degrees about z at (1,1,2), jointMatrix 1 = T(1,1,2) Rz(90) T(-1,-1,0). Vertex 0 (1,0,0) ->
+ * (1,0,2); vertex 1 (1,2,0) -> (1,1,2) + Rz(90)(0,1,0) = (0,1,2); vertex 2 (2,1,0) -> half of
+ * (2,1,2) and (1,2,2). At t = 0.5 (z 1, 45 degrees) vertex 1 is (1 - r, 1 + r, 1), r = 1/sqrt 2. */
+static void skinning(void **state)
+{
+    (void)state;
+    const double r = sqrt(0.5);
+    for (int small = 0; small < 2; small++) {
+        scene s;
+        char err[512];
+        const char *path = write_skinned_gltf(small ? "skin8.gltf" : "skin16.gltf", small, 0);
+        if (scene_load_gltf(path, &s, err, sizeof err) != 0)
+            fail_msg("%s", err);
+        assert_int_equal(s.warnings, 0);
+        assert_int_equal(s.n_skins, 1);
+        assert_int_equal(s.n_instances, 1);
+        const scene_mesh *m = &s.meshes[0];
+        assert_non_null(m->joints);
+        assert_true(scene_mesh_deforms(m));
+        expect_vertex(&m->positions[3], 1, 2, 0); /* t = 0: the bind pose, not moved by its node */
+        for (int k = 0; k < 12; k++)
+            assert_true(s.instances[0].world.m[k / 4][k % 4] == (k % 5 == 0)); /* the identity */
+        const uint32_t rev = m->revision;
+        assert_int_equal(scene_evaluate(&s, 1.0, 0), 0);
+        assert_int_not_equal(m->revision, rev);
+        expect_vertex(&m->positions[0], 1, 0, 2);
+        expect_vertex(&m->positions[3], 0, 1, 2);
+        expect_vertex(&m->positions[6], 1.5, 1.5, 2);
+        expect_vertex(&m->normals[0], 1, 0, 0);
+        expect_vertex(&m->normals[3], 0, 1, 0); /* turned with joint 1 */
+        assert_int_equal(scene_evaluate(&s, 0.5, 0), 0);
+        expect_vertex(&m->positions[3], 1 - r, 1 + r, 1);
+        const uint32_t rev_half = m->revision;
+        assert_int_equal(scene_evaluate(&s, 0.5, 0), 0); /* the same pose: nothing to rebuild */
+        assert_int_equal(m->revision, rev_half);
+        /* written back (rest pose, influences, skin) and loaded again: the same pose */
+        char again[128];
+        snprintf(again, sizeof again, "%s/skin_again.glb", test_dir);
+        if (scene_write_gltf(&s, again, err, sizeof err) != 0)
+            fail_msg("%s", err);
+        scene_free(&s);
+        assert_int_equal(scene_load_gltf(again, &s, err, sizeof err), 0);
+        assert_int_equal(scene_evaluate(&s, 1.0, 0), 0);
+        expect_vertex(&s.meshes[0].positions[3], 0, 1, 2);
+        expect_vertex(&s.meshes[0].positions[6], 1.5, 1.5, 2);
+        scene_free(&s);
+    }
+    expect_load_error(write_skinned_gltf("badjoint.gltf", 1, 1), "JOINTS_0 names joint 5");
+}
+
+/* The shared Fox.glb at two times: its skinned vertices (and their bounds) move. */
+static void skinned_fox(void **state)
+{
+    (void)state;
+    if (!have_shared())
+        skip();
+    scene s;
+    char err[512];
+    assert_int_equal(scene_load_gltf(SHARED "Fox.glb", &s, err, sizeof err), 0);
+    assert_int_equal(s.warnings, 0); /* no "drawn in bind pose" */
+    assert_int_equal(scene_select_animation(&s, "Run"), 0);
+    assert_int_equal(s.n_animations, 1);
+    double box[2][6];
+    for (int i = 0; i < 2; i++) {
+        assert_int_equal(scene_evaluate(&s, 0.1 + 0.25 * i, 1), 0);
+        const scene_mesh *m = &s.meshes[s.instances[0].mesh];
+        assert_non_null(m->joints);
+        for (int k = 0; k < 3; k++) {
+            box[i][k] = INFINITY;
+            box[i][3 + k] = -INFINITY;
+            for (uint32_t v = 0; v < m->n_vertices; v++) {
+                box[i][k] = fmin(box[i][k], m->positions[3 * v + (uint32_t)k]);
+                box[i][3 + k] = fmax(box[i][3 + k], m->positions[3 * v + (uint32_t)k]);
+            }
+        }
+    }
+    double moved = 0;
+    for (int k = 0; k < 6; k++)
+        moved = fmax(moved, fabs(box[1][k] - box[0][k]));
+    assert_true(moved > 1.0); /* the fox is about 150 units long */
+    assert_int_equal(scene_select_animation(&s, "Nope"), -1);
+    scene_free(&s);
+}
+
 /* Every truncation of a valid .glb is refused cleanly (or, if it happens to still parse, loads). */
 static void truncated_glb(void **state)
 {
@@ -275,12 +443,140 @@ static void truncated_glb(void **state)
 }
 
 
+/* ---- extensions, ignored features, GPU instancing, default camera ------------------------- */
+
+static const float tri_pos[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 };
+static const uint16_t tri_idx[3] = { 0, 1, 2 };
+
+/* A required extension the loader lacks is refused with one line naming it; required ones it
+ * implements load. */
+static void required_extensions(void **state)
+{
+    (void)state;
+    expect_load_error(write_gltf_top("req.gltf", tri_pos, tri_idx, "VEC3", "",
+                                     "\"extensionsUsed\":[\"KHR_lights_punctual\",\"EXT_foo\"],"
+                                     "\"extensionsRequired\":[\"KHR_lights_punctual\",\"EXT_foo\"],"),
+                      "requires extension EXT_foo, which saarcor does not implement");
+    scene s;
+    char err[512];
+    const char *ok = write_gltf_top("req_ok.gltf", tri_pos, tri_idx, "VEC3", "",
+                                    "\"extensionsUsed\":[\"KHR_mesh_quantization\",\"EXT_mesh_gpu_instancing\"],"
+                                    "\"extensionsRequired\":[\"KHR_mesh_quantization\",\"EXT_mesh_gpu_instancing\"],");
+    if (scene_load_gltf(ok, &s, err, sizeof err) != 0)
+        fail_msg("%s", err);
+    assert_int_equal(s.n_ignored, 0);
+    scene_free(&s);
+}
+
+/* Each unimplemented feature is listed (and warned) once, however many materials use it. */
+static void ignored_features(void **state)
+{
+    (void)state;
+    const char *path = write_gltf_top(
+        "ignored.gltf", tri_pos, tri_idx, "VEC3", "",
+        "\"extensionsUsed\":[\"KHR_materials_clearcoat\",\"KHR_lights_punctual\"],\"textures\":[{}],"
+        "\"materials\":[{\"normalTexture\":{\"index\":0}},{\"normalTexture\":{\"index\":0},"
+        "\"occlusionTexture\":{\"index\":0}}],");
+    scene s;
+    char err[512];
+    if (scene_load_gltf(path, &s, err, sizeof err) != 0)
+        fail_msg("%s", err);
+    assert_int_equal(s.n_ignored, 3);
+    assert_string_equal(s.ignored[0], "KHR_materials_clearcoat");
+    assert_string_equal(s.ignored[1], "normalTexture");
+    assert_string_equal(s.ignored[2], "occlusionTexture");
+    assert_int_equal(s.warnings, 3);
+    scene_free(&s);
+}
+
+/* One triangle drawn by a node (translation 0,1,0, scale 2) with n EXT_mesh_gpu_instancing rows:
+ * row i translates by (3i, 0, 0) and turns 90 degrees about y. */
+static const char *write_instanced(const char *name, uint32_t n)
+{
+    unsigned char buf[44 + 28 * 8] = { 0 };
+    const float q[4] = { 0, (float)sqrt(0.5), 0, (float)sqrt(0.5) };
+    memcpy(buf, tri_pos, 36);
+    memcpy(buf + 36, tri_idx, 6);
+    for (uint32_t i = 0; i < n; i++) {
+        const float t[3] = { 3.0f * (float)i, 0, 0 };
+        memcpy(buf + 44 + 12 * i, t, 12);
+        memcpy(buf + 44 + 12 * n + 16 * i, q, 16);
+    }
+    const size_t len = 44 + 28 * (size_t)n;
+    char b64[sizeof buf * 4 / 3 + 8];
+    base64(buf, len, b64);
+    static char path[128];
+    snprintf(path, sizeof path, "%s/%s", test_dir, name);
+    FILE *f = fopen(path, "w");
+    fprintf(f,
+            "{\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"EXT_mesh_gpu_instancing\"],\"scenes\":[{\"nodes\":[0]}],"
+            "\"nodes\":[{\"mesh\":0,\"translation\":[0,1,0],\"scale\":[2,2,2],\"extensions\":{\"EXT_mesh_gpu_instancing\":"
+            "{\"attributes\":{\"TRANSLATION\":2,\"ROTATION\":3}}}}],"
+            "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}],"
+            "\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;base64,%s\"}],"
+            "\"bufferViews\":[{\"buffer\":0,\"byteLength\":36},{\"buffer\":0,\"byteOffset\":36,\"byteLength\":6},"
+            "{\"buffer\":0,\"byteOffset\":44,\"byteLength\":%u},{\"buffer\":0,\"byteOffset\":%u,\"byteLength\":%u}],"
+            "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\",\"max\":[1,1,0],\"min\":[0,0,0]},"
+            "{\"bufferView\":1,\"componentType\":5123,\"count\":3,\"type\":\"SCALAR\"},"
+            "{\"bufferView\":2,\"componentType\":5126,\"count\":%u,\"type\":\"VEC3\"},"
+            "{\"bufferView\":3,\"componentType\":5126,\"count\":%u,\"type\":\"VEC4\"}]}",
+            len, b64, 12 * n, 44 + 12 * n, 16 * n, n, n);
+    fclose(f);
+    return path;
+}
+
+/* N rows are N instances at node world x row (the rows are in the node's local space). */
+static void gpu_instancing(void **state)
+{
+    (void)state;
+    for (uint32_t n = 1; n <= 8; n += 7) {
+        scene s;
+        char err[512];
+        if (scene_load_gltf(write_instanced("inst.gltf", n), &s, err, sizeof err) != 0)
+            fail_msg("%s", err);
+        assert_int_equal(s.n_instances, n);
+        assert_int_equal(scene_count_instances(&s), n);
+        for (uint32_t i = 0; i < n; i++) {
+            const affine *w = &s.instances[i].world;
+            assert_true(fabs(w->m[0][3] - 6.0 * i) < 1e-9 && fabs(w->m[1][3] - 1.0) < 1e-9 && fabs(w->m[2][3]) < 1e-9);
+            assert_true(fabs(w->m[0][2] - 2.0) < 1e-6 && fabs(w->m[2][0] + 2.0) < 1e-6); /* scale 2, then turned */
+        }
+        scene_free(&s);
+    }
+    if (!have_shared())
+        skip();
+    scene s;
+    char err[512];
+    if (scene_load_gltf(SHARED "SimpleInstancing.glb", &s, err, sizeof err) != 0)
+        fail_msg("%s", err);
+    assert_int_equal(s.n_instances, 125);
+    assert_int_equal(s.warnings, 0);
+    scene_free(&s);
+}
+
+/* Without a camera the view is raised and turned: it looks down at a plane at y = 0 (the old
+ * view along -Z saw it edge-on) and its forward axis points at the box centre. */
+static void default_camera(void **state)
+{
+    (void)state;
+    const double lo[3] = { -1, 0, -1 }, hi[3] = { 1, 0, 1 };
+    const scene_camera c = scene_default_camera(lo, hi);
+    const double fwd[3] = { -c.world.m[0][2], -c.world.m[1][2], -c.world.m[2][2] };
+    assert_true(fwd[1] < -0.3 && fwd[1] > -0.6); /* slightly elevated */
+    assert_true(fwd[0] < -0.2 && fwd[2] < -0.5);  /* from the front right */
+    for (int k = 0; k < 3; k++) /* eye + distance x forward = centre */
+        assert_true(fabs(c.world.m[k][3] + 1.2 * sqrt(8.0) * fwd[k]) < 1e-9);
+    assert_true(c.world.m[1][3] > 0);
+}
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(shared_scene_counts), cmocka_unit_test(instancing), cmocka_unit_test(animation),
         cmocka_unit_test(affine_algebra), cmocka_unit_test(malformed_files), cmocka_unit_test(truncated_glb),
+        cmocka_unit_test(required_extensions), cmocka_unit_test(ignored_features), cmocka_unit_test(gpu_instancing),
+        cmocka_unit_test(default_camera),
+        cmocka_unit_test(skinning), cmocka_unit_test(skinned_fox),
     };
     return cmocka_run_group_tests_name("scene", tests, test_tmpdir_setup, test_tmpdir_teardown);
 }

@@ -435,6 +435,18 @@ static void compare_world(const scene *a, const scene *b, const char *what)
     free(order);
 }
 
+/* KHR_texture_transform survives writing and loading. */
+static void same_uv_map(const scene_uv_map *a, const scene_uv_map *b)
+{
+    assert_int_equal(a->set, b->set);
+    if (!a->set)
+        return;
+    const double x[5] = { a->offset[0], a->offset[1], a->rotation, a->scale[0], a->scale[1] };
+    const double y[5] = { b->offset[0], b->offset[1], b->rotation, b->scale[0], b->scale[1] };
+    for (int k = 0; k < 5; k++)
+        assert_true(close_rel(x[k], y[k]));
+}
+
 static void compare_scenes(const scene *a, const scene *b, const char *what)
 {
     assert_int_equal(a->n_meshes, b->n_meshes);
@@ -454,6 +466,8 @@ static void compare_scenes(const scene *a, const scene *b, const char *what)
         assert_int_equal(a->meshes[i].n_targets, b->meshes[i].n_targets);
         assert_true((a->meshes[i].normals != NULL) == (b->meshes[i].normals != NULL));
         assert_true((a->meshes[i].texcoords != NULL) == (b->meshes[i].texcoords != NULL));
+        assert_true((a->meshes[i].texcoords1 != NULL) == (b->meshes[i].texcoords1 != NULL));
+        assert_true((a->meshes[i].colours != NULL) == (b->meshes[i].colours != NULL));
     }
     for (uint32_t i = 0; i < a->n_nodes; i++) {
         assert_string_equal(a->nodes[i].name, b->nodes[i].name);
@@ -474,6 +488,12 @@ static void compare_scenes(const scene *a, const scene *b, const char *what)
         assert_float_equal(x->ior, y->ior, 1e-6);
         assert_int_equal(x->base_color_texture, y->base_color_texture);
         assert_int_equal(x->double_sided, y->double_sided);
+        assert_int_equal(x->texcoord_set, y->texcoord_set);
+        assert_int_equal(x->emissive_texture, y->emissive_texture);
+        assert_int_equal(x->emissive_texcoord, y->emissive_texcoord);
+        assert_int_equal(x->unlit, y->unlit);
+        same_uv_map(&x->base_uv, &y->base_uv);
+        same_uv_map(&x->emissive_uv, &y->emissive_uv);
     }
     for (uint32_t i = 0; i < a->n_textures; i++) {
         assert_int_equal(a->textures[i].width, b->textures[i].width);
@@ -570,6 +590,16 @@ static void round_trip_animated(void **state)
 {
     (void)state;
     round_trip("animated", 0);
+}
+
+/* Emissive textures, vertex colours, texture transforms, TEXCOORD_1 and unlit materials. */
+static void round_trip_shading(void **state)
+{
+    (void)state;
+    round_trip("emissive", 0);
+    round_trip("vertex_colours", 0);
+    round_trip("uv_transform", 0);
+    round_trip("unlit", 0);
 }
 
 /* ---- animation ---------------------------------------------------------------------------- */
@@ -682,7 +712,7 @@ int main(void)
         cmocka_unit_test(animated_counts),    cmocka_unit_test(deterministic),
         cmocka_unit_test(round_trip_cornell), cmocka_unit_test(round_trip_room),
         cmocka_unit_test(round_trip_plants),  cmocka_unit_test(round_trip_terrain),
-        cmocka_unit_test(round_trip_animated), cmocka_unit_test(animation_moves_and_morphs),
+        cmocka_unit_test(round_trip_animated), cmocka_unit_test(round_trip_shading), cmocka_unit_test(animation_moves_and_morphs),
         cmocka_unit_test(writer_errors),
     };
     return cmocka_run_group_tests_name("scenes", tests, test_tmpdir_setup, test_tmpdir_teardown);

@@ -81,32 +81,39 @@ static void missing_normals(void **state)
     }
 }
 
-/* A record with every part: normals, texture coordinates (fp24 bits exact, including huge and
- * negative values), material (in the record, or the object's: SHADE_ONE_MATERIAL); and the
- * strides of the eight flag combinations. */
+/* A record with every part: normals, texture coordinates of both sets (fp24 bits exact,
+ * including huge and negative values), vertex colours (bytes), material (in the record, or the
+ * object's: SHADE_ONE_MATERIAL); and the strides of the flag combinations. */
 static void record_round_trip(void **state)
 {
     (void)state;
     const float na[3] = { 0, 0, 1 }, nb[3] = { 0.6f, -0.8f, 0 }, nc[3] = { -1, -1, -1 };
-    const float ta[2] = { 0.25f, -3.5f }, tb[2] = { 1e6f, 0.999f }, tc[2] = { -7e-5f, 8191.5f / 8192 };
-    const float *const normals[3] = { na, nb, nc }, *const texcoords[3] = { ta, tb, tc };
-    uint64_t codes[3];
+    const float ca[3] = { 0, 0.5f, 1 }, cb[3] = { 1, 1, 1 }, cc[3] = { 0.2f, -1, 7 };
+    const float *const normals[3] = { na, nb, nc };
+    shade_triangle t = { .normal = { 0 }, .colour = { ca, cb, cc }, .material = 4321,
+                         .uv = { { { 0.25, -3.5 }, { 1e6, 0.999 }, { -7e-5, 8191.5 / 8192 } },
+                                 { { 3, 1.5 }, { -0.5, 0 }, { 1, 2 } } } };
     for (int k = 0; k < 3; k++)
-        codes[k] = shade_encode_normal((const double[3]){ normals[k][0], normals[k][1], normals[k][2] });
-    for (uint32_t combo = 0; combo < 8; combo++) {
-        const uint32_t flags = (combo & 3u) | (combo & 4u ? SHADE_ONE_MATERIAL | 4321u << SHADE_OBJ_MATERIAL_SHIFT : 0u);
+        t.normal[k] = shade_encode_normal((const double[3]){ normals[k][0], normals[k][1], normals[k][2] });
+    const uint8_t bytes[3][3] = { { 0, 128, 255 }, { 255, 255, 255 }, { 51, 0, 255 } };
+    for (uint32_t combo = 0; combo < 32; combo++) {
+        const uint32_t flags = (combo & 3u) | (combo & 4u ? SHADE_ONE_MATERIAL | 4321u << SHADE_OBJ_MATERIAL_SHIFT : 0u) |
+                               (combo & 8u ? SHADE_HAS_COLOURS : 0u) | ((combo & 16u) && (combo & 2u) ? SHADE_HAS_EMISSIVE_UV : 0u);
         uint32_t w[SHADE_MAX_WORDS + 1];
         w[shade_rec_words(flags)] = 0xDEADBEEFu; /* guard: the record stays within its stride */
-        shade_encode_record(w, flags, codes, texcoords, 4321);
+        shade_encode_record(w, flags, &t);
         assert_int_equal(w[shade_rec_words(flags)], 0xDEADBEEFu);
         const uint32_t *tail = w + shade_rec_tail(flags);
         assert_int_equal(shade_rec_material(flags, tail), 4321);
-        for (uint32_t i = 0; (flags & SHADE_HAS_TEXCOORDS) && i < 6; i++)
-            assert_int_equal(shade_rec_texcoord(flags, tail, i), f24_fast_encode(texcoords[i / 2][i % 2]));
+        const uint32_t sets = (flags & SHADE_HAS_EMISSIVE_UV) ? 2u : (flags & SHADE_HAS_TEXCOORDS) ? 1u : 0u;
+        for (uint32_t i = 0; i < 6 * sets; i++)
+            assert_int_equal(shade_rec_texcoord(flags, tail, i / 6, i % 6), f24_fast_encode(t.uv[i / 6][i % 6 / 2][i % 2]));
+        for (uint32_t v = 0; (flags & SHADE_HAS_COLOURS) && v < 3; v++)
+            for (uint32_t k = 0; k < 3; k++)
+                assert_int_equal(shade_rec_colour(flags, tail, v, k), bytes[v][k]);
         for (uint32_t k = 0; (flags & SHADE_HAS_NORMALS) && k < 3; k++) {
-            const double n[3] = { normals[k][0], normals[k][1], normals[k][2] };
             uint32_t one[SHADE_NORMAL_WORDS] = { 0 };
-            shade_encode_set_normal(one, 0, shade_encode_normal(n));
+            shade_encode_set_normal(one, 0, t.normal[k]);
             for (uint32_t c = 0; c < 2; c++)
                 assert_int_equal(shade_rec_oct(w, k, c), shade_rec_oct(one, 0, c));
         }
@@ -121,7 +128,15 @@ static void record_round_trip(void **state)
         assert_int_equal(shade_rec_words(SHADE_ONE_MATERIAL | SHADE_HAS_NORMALS | SHADE_HAS_TEXCOORDS), 9);
         assert_int_equal(shade_rec_words(SHADE_ONE_MATERIAL), 0);
         assert_int_equal(shade_rec_words(SHADE_ONE_MATERIAL | SHADE_HAS_TEXCOORDS), 5);
+        /* vertex colours: 72 bits more; emissive coordinates: 144 bits more */
+        assert_int_equal(shade_rec_words(SHADE_HAS_COLOURS), 3);
+        assert_int_equal(shade_rec_words(SHADE_ONE_MATERIAL | SHADE_HAS_COLOURS), 3);
+        assert_int_equal(shade_rec_words(SHADE_HAS_TEXCOORDS | SHADE_HAS_EMISSIVE_UV), 10);
+        assert_int_equal(shade_rec_words(SHADE_HAS_NORMALS | SHADE_HAS_TEXCOORDS | SHADE_HAS_EMISSIVE_UV | SHADE_HAS_COLOURS),
+                         4 + 12);
     }
+    assert_true(shade_rec_words(SHADE_HAS_NORMALS | SHADE_HAS_TEXCOORDS | SHADE_HAS_EMISSIVE_UV | SHADE_HAS_COLOURS) <=
+                SHADE_MAX_WORDS);
 }
 
 /* Setting one field leaves its neighbours alone: texture coordinates beside the material, the
@@ -133,9 +148,9 @@ static void fields_independent(void **state)
     memset(tail, 0xFF, sizeof tail);
     tail[0] = 0xFFFF0007u;
     for (uint32_t i = 0; i < 6; i++)
-        shade_encode_texcoord(tail, SHADE_HAS_TEXCOORDS, i, i + 1);
+        shade_encode_texcoord(tail, SHADE_HAS_TEXCOORDS, 0, i, i + 1);
     for (uint32_t i = 0; i < 6; i++)
-        assert_int_equal(shade_rec_texcoord(SHADE_HAS_TEXCOORDS, tail, i), i + 1);
+        assert_int_equal(shade_rec_texcoord(SHADE_HAS_TEXCOORDS, tail, 0, i), i + 1);
     assert_int_equal(shade_rec_material(SHADE_HAS_TEXCOORDS, tail), 7);
     uint32_t normals[SHADE_NORMAL_WORDS];
     memset(normals, 0xFF, sizeof normals);

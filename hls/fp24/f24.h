@@ -102,4 +102,27 @@ int32_t f24_to_i32(f24_t a); /* toward zero, saturating, NaN -> 0 */
 #include F24_SIM_HEADER
 #endif
 
+/* Working values. A chain of operations inside a unit (a row of a matrix, a ray against a
+ * plane) reads its fp24 inputs with f24w_of, computes with the f24w_ operations (the f24_ ones,
+ * the same roundings) and stores its results with f24w_bits. In the hardware build a working value
+ * is the fp24 word itself and these are the operations above; a simulation build may hold it
+ * decoded (its F24_SIM_HEADER defines F24_SIM_WORKING), so that a chain decodes and encodes once
+ * instead of around every operation. Only results of operations pass through f24w_bits: a value
+ * copied from one register to another stays an f24_t, so its bits are never normalized. */
+#ifndef F24_SIM_WORKING
+typedef f24_t f24w;
+static inline f24w f24w_of(f24_t a) { return a; }
+static inline f24_t f24w_bits(f24w a) { return a; }
+static inline f24w f24w_add(f24w a, f24w b) { return f24_add(a, b); }
+static inline f24w f24w_sub(f24w a, f24w b) { return f24_sub(a, b); }
+static inline f24w f24w_mul(f24w a, f24w b) { return f24_mul(a, b); }
+static inline f24w f24w_div(f24w a, f24w b) { return f24_div(a, b); }
+static inline f24w f24w_min(f24w a, f24w b) { return f24_min(a, b); }
+static inline f24w f24w_max(f24w a, f24w b) { return f24_max(a, b); }
+static inline f24w f24w_neg(f24w a) { return f24_neg(a); }
+static inline int f24w_lt(f24w a, f24w b) { return f24_lt(a, b); }
+static inline int f24w_le(f24w a, f24w b) { return f24_le(a, b); }
+static inline uint32_t f24w_sign(f24w a) { return f24_sign(a); }
+#endif
+
 #endif

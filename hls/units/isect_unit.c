@@ -21,15 +21,16 @@
 
 isect_result isect_unit_triangle(f24_vec3 o, f24_vec3 d, f24_t te, f24_t tmin, f24_t tmax)
 {
+    const f24w tl = f24w_div(f24w_neg(f24w_of(o.z)), f24w_of(d.z)); /* from the rebased origin */
+    const f24w t = f24w_add(f24w_of(te), tl), u = f24w_add(f24w_of(o.x), f24w_mul(tl, f24w_of(d.x))),
+               v = f24w_add(f24w_of(o.y), f24w_mul(tl, f24w_of(d.y))), lo = f24w_of(ISECT_LO);
     isect_result r;
     r.cos_n = d.z;
-    const f24_t tl = f24_div(f24_neg(o.z), d.z); /* from the rebased origin */
-    r.t = f24_add(te, tl);
-    r.u = f24_add(o.x, f24_mul(tl, d.x));
-    r.v = f24_add(o.y, f24_mul(tl, d.y));
-    const f24_t uv = f24_add(r.u, r.v);
-    r.hit = f24_le(ISECT_LO, r.u) && f24_le(ISECT_LO, r.v) && f24_le(uv, ISECT_HI) && f24_le(tmin, r.t) &&
-            f24_lt(r.t, tmax);
+    r.t = f24w_bits(t);
+    r.u = f24w_bits(u);
+    r.v = f24w_bits(v);
+    r.hit = f24w_le(lo, u) && f24w_le(lo, v) && f24w_le(f24w_add(u, v), f24w_of(ISECT_HI)) &&
+            f24w_le(f24w_of(tmin), t) && f24w_lt(t, f24w_of(tmax));
     return r;
 }
 
@@ -38,9 +39,12 @@ isect_result isect_unit_triangle(f24_vec3 o, f24_vec3 d, f24_t te, f24_t tmin, f
 static f24_vec3 offset_from_vertex(const f24_triangle *tri, f24_vec3x2 p, f24_vec3 *lo)
 {
     const f24_affine *m = &tri->m;
-    *lo = (f24_vec3){ f24_sub(p.lo.x, tri->c_lo.x), f24_sub(p.lo.y, tri->c_lo.y), f24_sub(p.lo.z, tri->c_lo.z) };
-    const f24_vec3 c = { f24_add(f24_sub(p.hi.x, m->m[0][3]), lo->x), f24_add(f24_sub(p.hi.y, m->m[1][3]), lo->y),
-                         f24_add(f24_sub(p.hi.z, m->m[2][3]), lo->z) };
+    const f24w lx = f24w_sub(f24w_of(p.lo.x), f24w_of(tri->c_lo.x)), ly = f24w_sub(f24w_of(p.lo.y), f24w_of(tri->c_lo.y)),
+               lz = f24w_sub(f24w_of(p.lo.z), f24w_of(tri->c_lo.z));
+    *lo = (f24_vec3){ f24w_bits(lx), f24w_bits(ly), f24w_bits(lz) };
+    const f24_vec3 c = { f24w_bits(f24w_add(f24w_sub(f24w_of(p.hi.x), f24w_of(m->m[0][3])), lx)),
+                         f24w_bits(f24w_add(f24w_sub(f24w_of(p.hi.y), f24w_of(m->m[1][3])), ly)),
+                         f24w_bits(f24w_add(f24w_sub(f24w_of(p.hi.z), f24w_of(m->m[2][3])), lz)) };
     return c;
 }
 
@@ -76,8 +80,9 @@ isect_result isect_unit_rebased(const f24_triangle *tri, f24_vec3x2 p, f24_t te,
     f24_vec3 lo;
     const f24_vec3 c = offset_from_vertex(tri, p, &lo);
     const f24_t oz = plane_distance(tri, p, lo), dz = xform_row(tri->m.m[2], d, 0);
-    const f24_t t = f24_add(te, f24_div(f24_neg(oz), dz));
-    if (f24_le(tmin, t) && f24_lt(t, tmax))
+    const f24w tw = f24w_add(f24w_of(te), f24w_div(f24w_neg(f24w_of(oz)), f24w_of(dz)));
+    const f24_t t = f24w_bits(tw);
+    if (f24w_le(f24w_of(tmin), tw) && f24w_lt(tw, f24w_of(tmax)))
         return isect_unit_triangle(origin_from(tri, c, oz), xform_vector(&tri->m, d), te, tmin, tmax);
     const isect_result miss = { 0, t, F24_ZERO, F24_ZERO, dz };
     return miss;

@@ -210,27 +210,19 @@ bilinear:
         out[k] = (top * (256u - fy) + bottom * fy + 32768u) >> 16;
     }
 }
-#endif
 
-/* Base colour at the hit: the material factor, times the texture if the material has one and
- * the object has texture coordinates (tail: the shading record's tail). */
-static void base_colour(const uint32_t *mem, uint32_t mat, uint32_t obj, const uint32_t *tail, const hit_record *h,
-                        uint32_t out[3], unit_op *op, trace_counters *c)
+/* Multiplies out (Q12) by the bilinear sample of texture t at the hit's coordinates of set uv
+ * (hls/units/shade_rec.h), if t names a texture and the object has texture coordinates. */
+static void modulate_texture(const uint32_t *mem, uint32_t t, uint32_t flags, const uint32_t *tail, uint32_t uv,
+                             const hit_record *h, uint32_t out[3], unit_op *op, trace_counters *c)
 {
-    const uint32_t t = mem[mat + M_TEXTURE];
-base_factor:
-    for (int k = 0; k < 3; k++)
-        out[k] = q_of(mem[mat + (uint32_t)k]);
-#if SAARCOR_CFG_TEXTURES
-    const uint32_t flags = mem[obj + O_FLAGS];
     if (t >= mem[H_TEXTURES] || !(flags & SHADE_HAS_TEXCOORDS))
         return;
     f24_t st[2];
 texcoords:
     for (uint32_t k = 0; k < 2; k++)
-        st[k] = lerp(shade_rec_texcoord(flags, tail, k), shade_rec_texcoord(flags, tail, 2 + k),
-                     shade_rec_texcoord(flags, tail, 4 + k),
-                     h->u, h->v);
+        st[k] = lerp(shade_rec_texcoord(flags, tail, uv, k), shade_rec_texcoord(flags, tail, uv, 2 + k),
+                     shade_rec_texcoord(flags, tail, uv, 4 + k), h->u, h->v);
     const uint32_t entry = region_start(mem, R_TEXTURES) + TEX_WORDS * t;
     uint32_t tex[3];
     shade_read(op, c, entry, TEX_WORDS);
@@ -238,13 +230,48 @@ texcoords:
 texture_modulate:
     for (int k = 0; k < 3; k++)
         out[k] = q_mul(out[k], tex[k]);
+}
+#endif
+
+/* Multiplies out (Q12) by the vertex colours interpolated at the hit, if the object has them:
+ * bytes widened as texels, weights u, v, 1 - u - v in Q12. */
+static void modulate_colours(uint32_t flags, const uint32_t *tail, const hit_record *h, uint32_t out[3])
+{
+    if (!(flags & SHADE_HAS_COLOURS))
+        return;
+    const uint32_t wa = q_of(h->u), wb = q_of(h->v), wc = wa + wb < RGS_Q12_ONE ? RGS_Q12_ONE - wa - wb : 0u;
+vertex_colours:
+    for (uint32_t k = 0; k < 3; k++) {
+        const uint32_t sum = wa * q_byte(shade_rec_colour(flags, tail, 0, k)) +
+                             wb * q_byte(shade_rec_colour(flags, tail, 1, k)) + wc * q_byte(shade_rec_colour(flags, tail, 2, k));
+        out[k] = q_mul(out[k], (sum + 2048u) >> 12);
+    }
+}
+
+/* Base colour and emission at the hit (tail: the shading record's tail): the material's
+ * factors, the base colour times the vertex colours and its texture, the emission times its
+ * texture (through the emissive coordinates if the object has them). */
+static void surface_colours(const uint32_t *mem, uint32_t mat, uint32_t flags, const uint32_t *tail,
+                            const hit_record *h, surface *sf, unit_op *op, trace_counters *c)
+{
+material_factors:
+    for (uint32_t k = 0; k < 3; k++) {
+        sf->base[k] = q_of(mem[mat + k]);
+        sf->emission[k] = q_of(mem[mat + M_EMISSIVE + k]);
+    }
+    modulate_colours(flags, tail, h, sf->base);
+#if SAARCOR_CFG_TEXTURES
+    modulate_texture(mem, mem[mat + M_TEXTURE], flags, tail, 0, h, sf->base, op, c);
+    modulate_texture(mem, mem[mat + SHADE_M_EMISSIVE_TEXTURE], flags, tail, (flags & SHADE_HAS_EMISSIVE_UV) ? 1u : 0u,
+                     h, sf->emission, op, c);
 #else
-    (void)t, (void)obj, (void)tail, (void)h, (void)op, (void)c;
+    (void)op, (void)c;
 #endif
 }
 
 /* The surface of ray i at hit h; its reads are noted in op: instance, object descriptor
- * (words 2..7), shading record, geometric normal if needed, material, texture entry, 4 texels. */
+ * (words 2..7), shading record, geometric normal if needed, material, and per texture sampled
+ * (base colour, emissive) its entry and 4 texels: at most 15 (UNIT_OP_READS). */
 static surface surface_at(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h, unit_op *op,
                           trace_counters *c)
 {
@@ -271,7 +298,8 @@ static surface surface_at(const uint32_t *mem, const ray_packet *rp, int i, cons
     sf.p = xform_point(&sf.tr, (f24_vec3){ 0, 0, sf.t_hat });
     sf.mat = region_start(mem, R_MATERIALS) + MAT_WORDS * shade_rec_material(flags, tail);
     shade_read(op, c, sf.mat, MAT_WORDS);
-    base_colour(mem, sf.mat, obj, tail, h, sf.base, op, c);
+    sf.unlit = (mem[sf.mat + SHADE_M_FLAGS] & SHADE_MAT_UNLIT) != 0;
+    surface_colours(mem, sf.mat, flags, tail, h, &sf, op, c);
     const uint32_t metal = q_of(mem[sf.mat + M_METALLIC]);
 tint:
     for (int k = 0; k < 3; k++) /* 1 + m (b - 1) = (1 - m) + m b */
@@ -308,8 +336,8 @@ shadow_rays:
         diff[i] = spec[i] = 0;
         sh->o[i] = sh->d[i] = (f24_vec3){ 0, 0, 0 };
         sh->tmin[i] = sh->tmax[i] = 0;
-        if (!sf[i].valid)
-            continue;
+        if (!sf[i].valid || sf[i].unlit)
+            continue; /* an unlit surface takes no light */
         sh->o[i] = sf[i].p;
         sh->d[i] = directional ? neg3(ldir) : sub3(lpos, sf[i].p);
         const f24_t dist = length3(sh->d[i]);
@@ -352,7 +380,7 @@ surfaces:
         b->sf[i] = surface_at(mem, &b->cur.rays, i, &b->trace.hits[i], op, &c->trace);
         b->k_of[i] = b->sf[i].valid ? mat_k(&mem[b->sf[i].mat]) : 0u;
         for (int k = 0; k < 3; k++) {
-            b->diffuse[i][k] = Q12_AMBIENT;
+            b->diffuse[i][k] = b->sf[i].unlit ? RGS_Q12_ONE : Q12_AMBIENT; /* unlit: kd B alone */
             b->highlight[i][k] = 0;
         }
     }
@@ -527,7 +555,7 @@ accumulate:
         for (int k = 0; k < 3; k++) {
             uint32_t local = q_byte(BACKGROUND >> (16 - 8 * k) & 0xFFu);
             if (sf[i].valid)
-                local = q_add(q_add(q_of(m[M_EMISSIVE + (uint32_t)k]), q_mul(q_mul(mat_kd(m), sf[i].base[k]), b->diffuse[i][k])),
+                local = q_add(q_add(sf[i].emission[k], q_mul(q_mul(mat_kd(m), sf[i].base[k]), b->diffuse[i][k])),
                               q_mul(q_mul(mat_ks(m), sf[i].tint[k]), b->highlight[i][k]));
             b->acc[i][k] = q_add(b->acc[i][k], q_mul(b->cur.weight[i][k], local));
         }

@@ -69,7 +69,9 @@ typedef struct {
     f24_t t_hat;        /* hit distance along d */
     int entering;       /* the geometric normal faces against the ray */
     uint32_t mat;       /* address of the material record */
-    uint32_t base[3];   /* Q12 base colour: factor x bilinear texture sample */
+    int unlit;          /* KHR_materials_unlit: no light, the diffuse term weighs kd B alone */
+    uint32_t base[3];   /* Q12 base colour: factor x vertex colour x bilinear texture sample */
+    uint32_t emission[3]; /* Q12 emission: factor x bilinear sample of the emissive texture */
     uint32_t tint[3];   /* Q12 colour of reflection and highlight: 1 + metallic (base - 1) */
 } surface;
 

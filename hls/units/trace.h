@@ -75,8 +75,10 @@ enum { UNIT_RGS, UNIT_XFORM, UNIT_TRAV, UNIT_LIST, UNIT_ISECT, UNIT_KINDS };
 
 /* One operation of one unit: the memory blocks it reads before it issues (word address and
  * count by data type) and the issue slots it occupies. The core's operations read at most 2
- * blocks; the RGS's surface operation up to 10 per ray (rgs.c surface_at). */
-#define UNIT_OP_READS (10 * TRACE_PACKET)
+ * blocks; the RGS's surface operation up to 15 per ray (rgs.c surface_at: instance, object,
+ * shading record, geometric normal, material, and per texture sampled, base colour and
+ * emissive, its entry and 4 texels). */
+#define UNIT_OP_READS (15 * TRACE_PACKET)
 typedef struct {
     uint32_t unit, slots, n_reads;
     struct { uint32_t kind, addr, words; } read[UNIT_OP_READS];

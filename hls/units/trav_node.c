@@ -13,18 +13,17 @@ split_rays:
         l->tn[i] = l->tf[i] = r->tn[i] = r->tf[i] = 0;
         if (!(e->mask >> i & 1u))
             continue;
-        const f24_t dk = axis_of(d[i], axis);
-        const f24_t ts = f24_div(f24_sub(split, axis_of(o[i], axis)), dk);
-        const int left = !f24_sign(dk);
+        const f24w dk = f24w_of(axis_of(d[i], axis)), tn = f24w_of(e->tn[i]), tf = f24w_of(e->tf[i]);
+        const f24w ts = f24w_div(f24w_sub(f24w_of(split), f24w_of(axis_of(o[i], axis))), dk);
+        const f24w near_tf = f24w_min(tf, ts), far_tn = f24w_max(tn, ts);
+        const int left = !f24w_sign(dk);
         trav_entry *nearc = left ? l : r, *farc = left ? r : l;
         nearc->tn[i] = e->tn[i];
-        nearc->tf[i] = f24_min(e->tf[i], ts);
-        farc->tn[i] = f24_max(e->tn[i], ts);
+        nearc->tf[i] = f24w_bits(near_tf);
+        farc->tn[i] = f24w_bits(far_tn);
         farc->tf[i] = e->tf[i];
-        if (f24_le(l->tn[i], l->tf[i]))
-            l->mask |= 1u << i;
-        if (f24_le(r->tn[i], r->tf[i]))
-            r->mask |= 1u << i;
+        nearc->mask |= (uint32_t)f24w_le(tn, near_tf) << i;
+        farc->mask |= (uint32_t)f24w_le(far_tn, tf) << i;
         *near_left |= (uint32_t)left << i;
     }
 }

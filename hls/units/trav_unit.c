@@ -8,18 +8,21 @@
  * orders the slab distances, so that d = -0 behaves like a negative direction. */
 static void clip_box(const uint32_t *box, f24_vec3 o, f24_vec3 d, f24_t *tn, f24_t *tf)
 {
+    f24w n = f24w_of(*tn), f = f24w_of(*tf);
 clip_axes:
     for (uint32_t k = 0; k < 3; k++) {
-        const f24_t ok = axis_of(o, k), dk = axis_of(d, k);
-        f24_t t0 = f24_div(f24_sub(box[k], ok), dk), t1 = f24_div(f24_sub(box[3 + k], ok), dk);
-        if (f24_sign(dk)) {
-            const f24_t s = t0;
+        const f24w ok = f24w_of(axis_of(o, k)), dk = f24w_of(axis_of(d, k));
+        f24w t0 = f24w_div(f24w_sub(f24w_of(box[k]), ok), dk), t1 = f24w_div(f24w_sub(f24w_of(box[3 + k]), ok), dk);
+        if (f24w_sign(dk)) {
+            const f24w s = t0;
             t0 = t1;
             t1 = s;
         }
-        *tn = f24_max(*tn, t0);
-        *tf = f24_min(*tf, t1);
+        n = f24w_max(n, t0);
+        f = f24w_min(f, t1);
     }
+    *tn = f24w_bits(n);
+    *tf = f24w_bits(f);
 }
 
 uint32_t trav_scene_clip(const uint32_t *bounds, const ray_packet *rays, f24_t tn[TRACE_PACKET], f24_t tf[TRACE_PACKET])

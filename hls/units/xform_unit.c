@@ -1,17 +1,24 @@
 /* Transformation unit: see xform_unit.h. */
 #include "xform_unit.h"
 
-/* The translation goes through a mux, not an add of zero, so a -0 sum keeps its sign. */
+/* One row on the working values of p. The translation goes through a mux, not an add of zero, so
+ * a -0 sum keeps its sign. */
+static f24_t row_of(const f24_t row[4], f24w x, f24w y, f24w z, int with_translation)
+{
+    const f24w s = f24w_add(f24w_add(f24w_mul(f24w_of(row[0]), x), f24w_mul(f24w_of(row[1]), y)), f24w_mul(f24w_of(row[2]), z));
+    return f24w_bits(with_translation ? f24w_add(s, f24w_of(row[3])) : s);
+}
+
 f24_t xform_row(const f24_t row[4], f24_vec3 p, int with_translation)
 {
-    const f24_t s = f24_add(f24_add(f24_mul(row[0], p.x), f24_mul(row[1], p.y)), f24_mul(row[2], p.z));
-    return with_translation ? f24_add(s, row[3]) : s;
+    return row_of(row, f24w_of(p.x), f24w_of(p.y), f24w_of(p.z), with_translation);
 }
 
 static f24_vec3 xform_step(const f24_affine *m, f24_vec3 p, int with_translation)
 {
-    const f24_vec3 r = { xform_row(m->m[0], p, with_translation), xform_row(m->m[1], p, with_translation),
-                         xform_row(m->m[2], p, with_translation) };
+    const f24w x = f24w_of(p.x), y = f24w_of(p.y), z = f24w_of(p.z);
+    const f24_vec3 r = { row_of(m->m[0], x, y, z, with_translation), row_of(m->m[1], x, y, z, with_translation),
+                         row_of(m->m[2], x, y, z, with_translation) };
     return r;
 }
 

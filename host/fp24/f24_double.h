@@ -57,4 +57,25 @@ static inline f24_t f24_fast_encode(double d)
     return f24_fast_encode_special(sign, mag52, rebiased);
 }
 
+/* d rounded to fp24 with fp24's range rules, kept as a binary64 value: the value of
+ * f24_fast_encode(d) without the trip through the fp24 bits (the simulator's working values,
+ * tb/fp/f24_fast.h). Every NaN becomes the default NaN. */
+static inline double f24_fast_round(double d)
+{
+    enum { SHIFT = 52 - F24_MAN_BITS };
+    const uint64_t min52 = (uint64_t)(1023 - F24_BIAS + 1) << 52, inf52 = (uint64_t)(1023 - F24_BIAS + F24_EXP_MAX) << 52;
+    uint64_t bits;
+    memcpy(&bits, &d, sizeof bits);
+    const uint64_t sign = bits & 0x8000000000000000ull, mag52 = bits & 0x7FFFFFFFFFFFFFFFull;
+    uint64_t r = (mag52 + ((1ull << (SHIFT - 1)) - 1u) + ((mag52 >> SHIFT) & 1u)) & ~((1ull << SHIFT) - 1u);
+    if (r - min52 >= inf52 - min52) { /* not a normal number after rounding */
+        if (mag52 > 0x7FF0000000000000ull)
+            return f24_fast_decode(F24_DEFAULT_NAN);
+        r = r >= inf52 ? 0x7FF0000000000000ull : 0; /* overflow to Inf, flush to zero */
+    }
+    bits = sign | r;
+    memcpy(&d, &bits, sizeof d);
+    return d;
+}
+
 #endif

@@ -1,8 +1,8 @@
 /*
  * Memory-image builder (layout: docs/memory-image.md). Prepares every object once (triangle
  * transformations, bottom-level kd-tree over the non-degenerate triangles), then writes the
- * regions; mi_update rewrites only the per-frame regions and the geometry of morphing objects
- * whose weights changed. All device numbers are rounded from double to fp24 here, bounds
+ * regions; mi_update rewrites only the per-frame regions and the geometry of deforming objects
+ * (morph targets, skins) whose geometry changed. All device numbers are rounded from double to fp24 here, bounds
  * outward so that they stay conservative.
  */
 #define _GNU_SOURCE /* clock_gettime, M_PI */
@@ -32,7 +32,7 @@ typedef struct {
     uint32_t *valid;    /* mesh triangle of each image triangle */
     affine *xf;         /* triangle transformations of the image triangles */
     uint32_t n_valid;
-    float *weights_seen;
+    uint32_t revision_seen; /* the mesh's revision the geometry was built from (dynamic objects) */
     kd_rope *ropes;     /* per node (leaves only), with MI_ACCEL_ROPES */
     uint32_t *slot, n_slots; /* image slot of each tree node (tree_slots), nodes stored */
     uint32_t shade_flags;    /* the descriptor's flags word but MI_OBJECT_DYNAMIC (object_shading_flags) */
@@ -46,7 +46,7 @@ struct mi_builder {
     uint32_t *words, n_words;
     uint32_t n_objects;
     mi_object *obj;
-    uint32_t n_textures;       /* textures stored (scene textures used as base colour) */
+    uint32_t n_textures;       /* textures stored (scene textures used as base colour or emission) */
     uint32_t *texture_map;     /* scene texture -> image texture or MI_NONE */
     uint32_t *inst_scene;      /* per image instance: scene instance index (MI_NONE: a merged object) */
     uint32_t *inst_obj;        /* per image instance: image object */
@@ -188,7 +188,7 @@ static double seconds(void)
 
 /* ---- fp24 words --------------------------------------------------------------------------- */
 
-static uint32_t f24w(double x) { return f24_fast_encode(x); }
+static uint32_t fp24_word(double x) { return f24_fast_encode(x); }
 
 /* fp24 value <= x (dir < 0) or >= x (dir > 0): conservative bounds. */
 static uint32_t f24_outward(double x, int dir)
@@ -211,7 +211,7 @@ static void put_affine(uint32_t *w, const affine *a)
 {
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 4; j++)
-            w[i * 4 + j] = f24w(a->m[i][j]);
+            w[i * 4 + j] = fp24_word(a->m[i][j]);
 }
 
 /* Object bounds margin in ulps of the box's largest coordinate: the unit-triangle test accepts rays
@@ -246,7 +246,7 @@ static int affine_fits_f24(const affine *a)
 {
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 4; j++)
-            if (!isfinite(a->m[i][j]) || f24_is_inf(f24w(a->m[i][j])))
+            if (!isfinite(a->m[i][j]) || f24_is_inf(fp24_word(a->m[i][j])))
                 return 0;
     return 1;
 }
@@ -358,9 +358,9 @@ static void put_grid(uint32_t *w, const ugrid *g, uint32_t addr)
 {
     const uint32_t cells = ugrid_cells(g);
     for (int k = 0; k < 3; k++) {
-        w[MI_G_LO + k] = f24w(g->lo[k]);
-        w[MI_G_SIZE + k] = f24w(g->size[k]);
-        w[MI_G_INV + k] = f24w(1.0 / g->size[k]);
+        w[MI_G_LO + k] = fp24_word(g->lo[k]);
+        w[MI_G_SIZE + k] = fp24_word(g->size[k]);
+        w[MI_G_INV + k] = fp24_word(1.0 / g->size[k]);
         w[MI_G_N + k] = g->n[k];
     }
     w[MI_G_CELLS] = addr + MI_GRID_WORDS;
@@ -387,20 +387,55 @@ static uint32_t list_words(const kd_tree *t, const kd_rope *ropes)
     return t->n_prims + (ropes ? MI_ROPE_WORDS * leaf_count(t) : 0u);
 }
 
-/* Shading record flags of a mesh (the object descriptor's flags 1 and 2). */
+/* Shading record flags of a mesh (the object descriptor's flags 1, 2 and 16). */
 static uint32_t shading_flags(const scene_mesh *m)
 {
-    return (m->normals ? MI_OBJECT_HAS_NORMALS : 0u) | (m->texcoords ? MI_OBJECT_HAS_TEXCOORDS : 0u);
+    return (m->normals ? MI_OBJECT_HAS_NORMALS : 0u) |
+           (m->texcoords || m->texcoords1 ? MI_OBJECT_HAS_TEXCOORDS : 0u) | (m->colours ? SHADE_HAS_COLOURS : 0u);
 }
 
-/* The object's shading flags: those of its mesh, and the one material of all its triangles if
- * they share it (then their records carry none: hls/units/shade_rec.h). */
-static uint32_t object_shading_flags(const scene_mesh *m, const mi_object *o)
+/* The texture mapping (TEXCOORD_n and KHR_texture_transform) of coordinate set uv of a record
+ * of a triangle with material mat: set 0 serves the base colour texture, or the emissive one if
+ * the material has no base colour texture; set 1 the emissive texture. */
+static void record_mapping(const scene *s, const scene_material *mat, uint32_t uv, uint32_t *set,
+                           const scene_uv_map **map)
 {
-    uint32_t same = o->n_valid > 0;
+    const int emissive = uv == 1 || mat->base_color_texture >= s->n_textures;
+    *set = emissive ? mat->emissive_texcoord : mat->texcoord_set;
+    *map = emissive ? &mat->emissive_uv : &mat->base_uv;
+}
+
+static int same_uv_map(const scene_uv_map *a, const scene_uv_map *b)
+{
+    if (!a->set || !b->set)
+        return a->set == b->set;
+    return a->offset[0] == b->offset[0] && a->offset[1] == b->offset[1] && a->rotation == b->rotation &&
+           a->scale[0] == b->scale[0] && a->scale[1] == b->scale[1];
+}
+
+/* The material samples its two textures through different coordinates: its records need set 1. */
+static int needs_emissive_uv(const scene *s, const scene_material *mat)
+{
+    uint32_t set[2];
+    const scene_uv_map *map[2];
+    for (uint32_t uv = 0; uv < 2; uv++)
+        record_mapping(s, mat, uv, &set[uv], &map[uv]);
+    return mat->base_color_texture < s->n_textures && mat->emissive_texture < s->n_textures &&
+           (set[0] != set[1] || !same_uv_map(map[0], map[1]));
+}
+
+/* The object's shading flags: those of its mesh, the emissive coordinates if a material needs
+ * them, and the one material of all its triangles if they share it (then their records carry
+ * none: hls/units/shade_rec.h). */
+static uint32_t object_shading_flags(const scene *s, const scene_mesh *m, const mi_object *o)
+{
+    uint32_t same = o->n_valid > 0, flags = shading_flags(m);
     for (uint32_t i = 1; same && i < o->n_valid; i++)
         same = m->material[o->valid[i]] == m->material[o->valid[0]];
-    return shading_flags(m) | (same ? SHADE_ONE_MATERIAL | m->material[o->valid[0]] << SHADE_OBJ_MATERIAL_SHIFT : 0u);
+    for (uint32_t i = 0; (flags & MI_OBJECT_HAS_TEXCOORDS) && i < o->n_valid; i++)
+        if (needs_emissive_uv(s, &s->materials[m->material[o->valid[i]]]))
+            flags |= SHADE_HAS_EMISSIVE_UV;
+    return flags | (same ? SHADE_ONE_MATERIAL | m->material[o->valid[0]] << SHADE_OBJ_MATERIAL_SHIFT : 0u);
 }
 
 typedef struct {
@@ -424,7 +459,7 @@ static void transform_part(void *ctx, uint32_t from, uint32_t to)
 }
 
 /* Triangle transformations and the bottom-level tree of one mesh. */
-static int object_prepare(mi_builder *b, const scene_mesh *m, mi_object *o)
+static int object_prepare(mi_builder *b, const scene *s, const scene_mesh *m, mi_object *o)
 {
     object_release(o);
     o->valid = malloc(((size_t)m->n_triangles + 1) * sizeof *o->valid);
@@ -456,17 +491,11 @@ static int object_prepare(mi_builder *b, const scene_mesh *m, mi_object *o)
     if (fail || ((b->p.accel & MI_ACCEL_GRID) && build_grid(&ks, &root, &o->grid) != 0))
         return -1;
     b->st.bottom_build_seconds += seconds() - t1;
-    if (o->dynamic) {
-        free(o->weights_seen);
-        o->weights_seen = malloc(m->n_targets * sizeof(float));
-        if (!o->weights_seen)
-            return -1;
-        memcpy(o->weights_seen, m->weights, m->n_targets * sizeof(float));
-    }
+    o->revision_seen = m->revision;
     o->n_slots = tree_slots(&o->tree, trees_compact(&b->p), &o->slot);
     if (!o->n_slots)
         return -1;
-    o->shade_flags = object_shading_flags(m, o);
+    o->shade_flags = object_shading_flags(s, m, o);
     o->words = MI_NODE_WORDS * o->n_slots + list_words(&o->tree, o->ropes) + MI_TRIANGLE_WORDS - 1 +
                (MI_TRIANGLE_WORDS + shade_rec_words(o->shade_flags)) * o->n_valid + grid_words(&o->grid);
     return 0;
@@ -481,15 +510,15 @@ static void put_node(uint32_t *w, const kd_node *n, uint32_t first, const uint32
         const uint32_t lo = slot[n->child], hi = slot[n->child + 1];
         const uint32_t empty = (lo == MI_NONE ? MI_NODE_EMPTY_LO : 0u) | (hi == MI_NONE ? MI_NODE_EMPTY_HI : 0u);
         w[0] = mi_node_inner(n->axis, lo == MI_NONE ? hi : lo, empty);
-        w[1] = f24w(n->split); /* already an fp24 value (quantized split) */
+        w[1] = fp24_word(n->split); /* already an fp24 value (quantized split) */
     }
 }
 
 static void put_rope_record(uint32_t *w, const kd_rope *r)
 {
     for (int k = 0; k < 3; k++) {
-        w[k] = f24w(r->box.lo[k]); /* split planes and the device box: fp24 values already */
-        w[3 + k] = f24w(r->box.hi[k]);
+        w[k] = fp24_word(r->box.lo[k]); /* split planes and the device box: fp24 values already */
+        w[3 + k] = fp24_word(r->box.hi[k]);
     }
     for (int f = 0; f < 6; f++)
         w[6 + f] = r->rope[f] == KD_NO_ROPE ? MI_NONE : r->rope[f];
@@ -544,16 +573,22 @@ static uint64_t *normal_codes(const scene_mesh *m)
 }
 
 /* codes: normal_codes(m), or NULL if the mesh has no normals. */
-static void write_shading(uint32_t *w, const scene_mesh *m, const uint64_t *codes, uint32_t flags, uint32_t tri)
+static void write_shading(uint32_t *w, const scene *s, const scene_mesh *m, const uint64_t *codes, uint32_t flags,
+                          uint32_t tri)
 {
-    uint64_t normals[3] = { 0 };
-    const float *texcoords[3] = { 0 };
-    for (int k = 0; k < 3; k++) {
-        const size_t v = m->indices[3 * (size_t)tri + (size_t)k];
-        normals[k] = codes ? codes[v] : 0;
-        texcoords[k] = m->texcoords ? &m->texcoords[2 * v] : NULL;
+    shade_triangle t = { .material = m->material[tri] };
+    for (uint32_t k = 0; k < 3; k++) {
+        const uint32_t v = m->indices[3 * (size_t)tri + k];
+        t.normal[k] = codes ? codes[v] : 0;
+        t.colour[k] = m->colours ? &m->colours[3 * (size_t)v] : NULL;
+        for (uint32_t uv = 0; uv < 2; uv++) {
+            uint32_t set;
+            const scene_uv_map *map;
+            record_mapping(s, &s->materials[t.material], uv, &set, &map);
+            scene_texcoord(m, set, map, v, t.uv[uv][k]);
+        }
     }
-    shade_encode_record(w, flags, normals, texcoords, m->material[tri]);
+    shade_encode_record(w, flags, &t);
 }
 
 /* Address of the triangle transformations: after the lists, padded to a multiple of the record
@@ -581,7 +616,7 @@ static void put_triangle(uint32_t *w, const affine *a)
     f24_t v[F24_TRIANGLE_VALUES];
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 4; j++)
-            v[i * 4 + j] = f24w(a->m[i][j]);
+            v[i * 4 + j] = fp24_word(a->m[i][j]);
     memset(w, 0, MI_TRIANGLE_WORDS * sizeof *w);
     f24_record_put(w, v, F24_TRIANGLE_VALUES);
     for (int i = 0; i < 3; i++)
@@ -592,6 +627,7 @@ static void put_triangle(uint32_t *w, const affine *a)
 typedef struct {
     const scene_mesh *m;
     const mi_object *o;
+    const scene *s;
     const uint64_t *codes;      /* normal_codes(m), or NULL */
     uint32_t *triangles, *shading; /* the object's records in the image */
 } records_job;
@@ -603,7 +639,7 @@ static void records_part(void *ctx, uint32_t from, uint32_t to)
     const uint32_t stride = shade_rec_words(j->o->shade_flags);
     for (uint32_t i = from; i < to; i++) {
         put_triangle(j->triangles + (size_t)MI_TRIANGLE_WORDS * i, &j->o->xf[i]);
-        write_shading(j->shading + (size_t)stride * i, j->m, j->codes, j->o->shade_flags, j->o->valid[i]);
+        write_shading(j->shading + (size_t)stride * i, j->s, j->m, j->codes, j->o->shade_flags, j->o->valid[i]);
     }
 }
 
@@ -619,7 +655,7 @@ static int object_write(mi_builder *b, const scene *s, const mi_object *o)
     memset(w, 0, o->words * sizeof *w); /* the padding, deterministic */
     put_tree(w, w + MI_NODE_WORDS * o->n_slots, &o->tree, o->ropes, o->slot);
     w = b->words + triangles_at(o);
-    records_job job = { m, o, codes, w, w + (size_t)MI_TRIANGLE_WORDS * o->n_valid };
+    records_job job = { m, o, s, codes, w, w + (size_t)MI_TRIANGLE_WORDS * o->n_valid };
     for_parts(o->n_valid, records_part, &job);
     free(codes);
     w = job.shading + (size_t)shade_rec_words(o->shade_flags) * o->n_valid;
@@ -732,12 +768,12 @@ static void device_inverse(const affine *world, affine *inv, uint32_t t_lo[3])
     for (int i = 0; i < 3; i++) {
         double t = 0;
         for (int j = 0; j < 3; j++) {
-            inv->m[i][j] = f24_fast_decode(f24w(inv->m[i][j]));
+            inv->m[i][j] = f24_fast_decode(fp24_word(inv->m[i][j]));
             t -= inv->m[i][j] * world->m[j][3];
         }
-        const uint32_t hi = f24w(t);
+        const uint32_t hi = fp24_word(t);
         inv->m[i][3] = t;
-        t_lo[i] = f24_is_inf(hi) ? 0u : f24w(t - f24_fast_decode(hi));
+        t_lo[i] = f24_is_inf(hi) ? 0u : fp24_word(t - f24_fast_decode(hi));
     }
 }
 
@@ -826,10 +862,10 @@ static void write_camera(const mi_builder *b, const scene *s, uint32_t *w)
     w[1] = b->p.width;
     w[2] = b->p.height;
     for (int k = 0; k < 3; k++) {
-        w[4 + k] = f24w(o[k]);
-        w[7 + k] = f24w(u[k]);
-        w[10 + k] = f24w(v[k]);
-        w[13 + k] = f24w(d[k]);
+        w[4 + k] = fp24_word(o[k]);
+        w[7 + k] = fp24_word(u[k]);
+        w[10 + k] = fp24_word(v[k]);
+        w[13 + k] = fp24_word(d[k]);
     }
 }
 
@@ -866,13 +902,13 @@ static void write_light(const scene_light *l, uint32_t *w)
     memset(w, 0, MI_LIGHT_WORDS * sizeof *w);
     w[0] = l->kind;
     for (int k = 0; k < 3; k++) {
-        w[1 + k] = f24w((double)l->color[k] * l->intensity);
-        w[4 + k] = f24w(l->position[k]);
-        w[7 + k] = f24w(l->direction[k]);
+        w[1 + k] = fp24_word((double)l->color[k] * l->intensity);
+        w[4 + k] = fp24_word(l->position[k]);
+        w[7 + k] = fp24_word(l->direction[k]);
     }
-    w[10] = f24w(l->range);
-    w[11] = f24w(cos(l->inner_cone));
-    w[12] = f24w(cos(l->outer_cone));
+    w[10] = fp24_word(l->range);
+    w[11] = fp24_word(cos(l->inner_cone));
+    w[12] = fp24_word(cos(l->outer_cone));
 }
 
 static void write_lights(const mi_builder *b, const scene *s, uint32_t *w)
@@ -889,30 +925,36 @@ static void write_lights(const mi_builder *b, const scene *s, uint32_t *w)
 /* A shader weight in [0, 1] as Q12 (docs/shading.md). */
 static uint32_t q12(double x) { return (uint32_t)lround(4096.0 * (x > 0 ? (x < 1 ? x : 1) : 0)); }
 
+/* The image's index of scene texture t, or MI_NONE. */
+static uint32_t image_texture(const mi_builder *b, const scene *s, uint32_t t)
+{
+    return t < s->n_textures ? b->texture_map[t] : MI_NONE;
+}
+
 static void write_materials(const mi_builder *b, const scene *s, uint32_t *w)
 {
     for (uint32_t i = 0; i < s->n_materials; i++, w += MI_MATERIAL_WORDS) {
         const scene_material *m = &s->materials[i];
         memset(w, 0, MI_MATERIAL_WORDS * sizeof *w);
         for (int k = 0; k < 4; k++)
-            w[k] = f24w(m->base_color[k]);
+            w[k] = fp24_word(m->base_color[k]);
         for (int k = 0; k < 3; k++)
-            w[4 + k] = f24w(m->emissive[k]);
-        w[7] = m->base_color_texture < s->n_textures ? b->texture_map[m->base_color_texture] : MI_NONE;
-        w[8] = (uint32_t)m->alpha | (m->double_sided ? 4u : 0u);
-        w[9] = f24w(m->alpha_cutoff);
-        w[10] = f24w(m->metallic);
-        w[11] = f24w(m->roughness);
-        w[12] = f24w(m->transmission);
+            w[4 + k] = fp24_word(m->emissive[k]);
         shading_params sp;
         shading_params_of(m, &sp);
-        w[13] = f24w(sp.eta);
+        w[7] = image_texture(b, s, m->base_color_texture);
+        w[SHADE_M_FLAGS] = (uint32_t)m->alpha | (m->double_sided ? 4u : 0u) | (sp.unlit ? SHADE_MAT_UNLIT : 0u);
+        w[9] = fp24_word(m->alpha_cutoff);
+        w[10] = fp24_word(m->metallic);
+        w[11] = fp24_word(m->roughness);
+        w[SHADE_M_EMISSIVE_TEXTURE] = image_texture(b, s, m->emissive_texture);
+        w[13] = fp24_word(sp.eta);
         w[14] = q12(sp.kd) | q12(sp.kr) << 13 | sp.exp_shift << 26;
         w[15] = q12(sp.kt) | q12(sp.ks) << 13;
     }
 }
 
-/* Only textures that some material uses as base colour are stored. */
+/* Only textures that some material uses as base colour or emission are stored. */
 static uint32_t texture_words(mi_builder *b, const scene *s)
 {
     uint32_t words = 0;
@@ -920,7 +962,7 @@ static uint32_t texture_words(mi_builder *b, const scene *s)
     for (uint32_t t = 0; t < s->n_textures; t++) {
         b->texture_map[t] = MI_NONE;
         for (uint32_t m = 0; m < s->n_materials; m++)
-            if (s->materials[m].base_color_texture == t) {
+            if (s->materials[m].base_color_texture == t || s->materials[m].emissive_texture == t) {
                 b->texture_map[t] = b->n_textures++;
                 words += (uint32_t)s->textures[t].width * (uint32_t)s->textures[t].height;
                 break;
@@ -1089,6 +1131,7 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
     mi_profile_derive(w, &prof);
     w[off[MI_R_CAMERA] + MI_CAM_PROFILE] = prof.skip & b->p.skip;
     b->st.frame_upload_bytes = upload;
+    b->st.frame_geometry_bytes = written[MI_R_DYNAMIC_GEOMETRY] ? 4 * (len[MI_R_DYNAMIC_GEOMETRY] + len[MI_R_OBJECTS]) : 0;
     return 0;
 oom:
     snprintf(err, errlen, "out of memory while building the memory image");
@@ -1161,7 +1204,7 @@ static void choose_centres(mi_builder *b, const scene *s)
                 lo = fmin(lo, m->positions[3 * (size_t)v + (size_t)k]);
                 hi = fmax(hi, m->positions[3 * (size_t)v + (size_t)k]);
             }
-            o->centre[k] = f24_fast_decode(f24w(0.5 * (lo + hi)));
+            o->centre[k] = f24_fast_decode(fp24_word(0.5 * (lo + hi)));
         }
     }
 }
@@ -1176,7 +1219,7 @@ static void choose_objects(mi_builder *b, const scene *s)
     b->n_objects = 0;
     for (uint32_t k = 0; k < s->n_meshes; k++)
         if (b->mesh_obj[k] != MI_NONE) {
-            b->obj[b->n_objects] = (mi_object){ .mesh = k, .dynamic = s->meshes[k].n_targets > 0 };
+            b->obj[b->n_objects] = (mi_object){ .mesh = k, .dynamic = scene_mesh_deforms(&s->meshes[k]) };
             b->mesh_obj[k] = b->n_objects++;
         }
     for (uint32_t k = 0; k < b->merge.n_meshes; k++)
@@ -1226,7 +1269,7 @@ mi_builder *mi_build(const scene *s, const mi_params *p, char *err, size_t errle
     }
     for (uint32_t i = 0; i < b->n_objects; i++) {
         const scene_mesh *m = obj_mesh(b, s, &b->obj[i]);
-        if (object_prepare(b, m, &b->obj[i]) != 0) {
+        if (object_prepare(b, s, m, &b->obj[i]) != 0) {
             snprintf(err, errlen, "out of memory while building the tree of mesh '%s'", m->name);
             mi_free(b);
             return NULL;
@@ -1249,10 +1292,10 @@ int mi_update(mi_builder *b, const scene *s, char *err, size_t errlen)
     for (uint32_t i = 0; i < b->n_objects; i++) {
         mi_object *o = &b->obj[i];
         const scene_mesh *m = obj_mesh(b, s, o);
-        if (!o->dynamic || memcmp(o->weights_seen, m->weights, m->n_targets * sizeof(float)) == 0)
+        if (!o->dynamic || o->revision_seen == m->revision)
             continue;
         b->st.degenerate_triangles -= m->n_triangles - o->n_valid;
-        if (object_prepare(b, m, o) != 0) {
+        if (object_prepare(b, s, m, o) != 0) {
             snprintf(err, errlen, "out of memory while rebuilding the tree of mesh '%s'", m->name);
             return -1;
         }
@@ -1291,10 +1334,8 @@ void mi_free(mi_builder *b)
 {
     if (!b)
         return;
-    for (uint32_t i = 0; i < b->n_objects && b->obj; i++) {
+    for (uint32_t i = 0; i < b->n_objects && b->obj; i++)
         object_release(&b->obj[i]);
-        free(b->obj[i].weights_seen);
-    }
     kd_free(&b->top);
     free(b->top_ropes);
     free(b->top_slot);

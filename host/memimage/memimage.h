@@ -5,7 +5,7 @@
  *
  * The host builds it in two parts. Static regions (materials, textures, object table, geometry
  * of rigid objects) are written once. Per-frame regions (camera, lights, instance table,
- * top-level tree, geometry of morphing objects when their weights change) are rewritten by
+ * top-level tree, geometry of deforming objects, morphed or skinned, when it changes) are rewritten by
  * mi_update, which also reports how many bytes a frame uploads.
  */
 #ifndef SAARCOR_MEMIMAGE_H
@@ -19,7 +19,7 @@
 #include "scene.h"
 
 #define MI_MAGIC 0x524F4353u /* "SCOR" in little-endian bytes */
-#define MI_VERSION 4u
+#define MI_VERSION 5u
 #define MI_NONE 0xFFFFFFFFu
 #define MI_DEFAULT_BYTES (24u << 20) /* the prototype's six 4 MB banks */
 
@@ -31,7 +31,7 @@ enum {
     MI_H_REGION_TABLE = MI_H_SCENE_BOUNDS + 6, /* MI_REGION_COUNT x {offset, length} */
 };
 
-/* Regions, in address order. Static regions come first; the geometry of morphing objects and
+/* Regions, in address order. Static regions come first; the geometry of deforming objects and
  * everything rewritten every frame follow, so a frame never moves a static region. */
 typedef enum {
     MI_R_HEADER, MI_R_MATERIALS, MI_R_TEXTURES, MI_R_STATIC_GEOMETRY, MI_R_DYNAMIC_GEOMETRY,
@@ -144,7 +144,8 @@ typedef struct {
     double bottom_build_seconds, top_build_seconds, transform_seconds; /* of the last build/update */
     uint32_t region_words[MI_REGION_COUNT];
     uint64_t frame_upload_bytes;  /* bytes rewritten by the last mi_build/mi_update */
-    uint32_t rebuilt_objects;     /* morphing objects rebuilt by the last update */
+    uint32_t rebuilt_objects;     /* deforming objects (morphed, skinned) rebuilt by the last update */
+    uint64_t frame_geometry_bytes; /* of which DYNAMIC_GEOMETRY and the object table (0: no object changed) */
     /* static geometry baked into world space (mi_merge.h): merged objects, the scene instances
      * baked into them, the triangles baked copies of instanced meshes add, and the instances
      * kept, by reason */
@@ -160,7 +161,7 @@ typedef struct mi_builder mi_builder;
 mi_builder *mi_build(const scene *s, const mi_params *p, char *err, size_t errlen);
 
 /* After scene_evaluate for a new time: rebuilds the per-frame regions (and the geometry of
- * morphing objects whose weights changed). 0, or -1 with err. */
+ * deforming objects whose mesh revision changed). 0, or -1 with err. */
 int mi_update(mi_builder *b, const scene *s, char *err, size_t errlen);
 
 const uint32_t *mi_words(const mi_builder *b, uint32_t *n_words);

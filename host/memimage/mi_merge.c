@@ -83,8 +83,8 @@ static int plan(const scene *s, uint8_t *bake, mi_merge *m)
         const scene_mesh *me = &s->meshes[in->mesh];
         uses[in->mesh]++;
         m->animated_instances += animated[in->node] != 0;
-        m->morphing_instances += !animated[in->node] && me->n_targets > 0;
-        const int static_ok = !animated[in->node] && me->n_targets == 0 && me->n_triangles > 0;
+        m->morphing_instances += !animated[in->node] && scene_mesh_deforms(me);
+        const int static_ok = !animated[in->node] && !scene_mesh_deforms(me) && me->n_triangles > 0;
         m->mirrored_instances += static_ok && !(det3(&in->world) > 0);
         m->turned_instances += static_ok && det3(&in->world) > 0 && !axis_aligned(&in->world);
         bake[i] = static_ok && det3(&in->world) > 0 && axis_aligned(&in->world);
@@ -146,6 +146,14 @@ static void bake_normal(const double nm[3][3], const float *in, float *out)
 }
 
 /* Appends scene instance i (mesh me) to merged mesh out at vertex vbase and triangle tbase. */
+/* Copies the n vertices of attribute src (dim floats each; NULL: the attribute's default fill)
+ * into the merged mesh's dst (NULL: the merged mesh has none) from vertex vbase on. */
+static void copy_attribute(float *dst, const float *src, size_t dim, uint32_t vbase, uint32_t n, float fill)
+{
+    for (size_t i = 0; dst && i < dim * n; i++)
+        dst[dim * vbase + i] = src ? src[i] : fill;
+}
+
 static void append_instance(const scene *s, uint32_t i, scene_mesh *out, uint32_t vbase, uint32_t tbase,
                             uint32_t *src_inst, uint32_t *src_tri)
 {
@@ -162,9 +170,10 @@ static void append_instance(const scene *s, uint32_t i, scene_mesh *out, uint32_
             out->positions[3 * ((size_t)vbase + v) + (size_t)k] = (float)q[k];
         if (out->normals && me->normals)
             bake_normal(nm, &me->normals[3 * (size_t)v], &out->normals[3 * ((size_t)vbase + v)]);
-        if (out->texcoords && me->texcoords)
-            memcpy(&out->texcoords[2 * ((size_t)vbase + v)], &me->texcoords[2 * (size_t)v], 2 * sizeof(float));
     }
+    copy_attribute(out->texcoords, me->texcoords, 2, vbase, me->n_vertices, 0.0f);
+    copy_attribute(out->texcoords1, me->texcoords1, 2, vbase, me->n_vertices, 0.0f);
+    copy_attribute(out->colours, me->colours, 3, vbase, me->n_vertices, 1.0f); /* glTF: no COLOR_0 is white */
     for (uint32_t t = 0; t < me->n_triangles; t++) {
         for (int k = 0; k < 3; k++)
             out->indices[3 * ((size_t)tbase + t) + (size_t)k] = vbase + me->indices[3 * (size_t)t + (size_t)k];
@@ -180,10 +189,11 @@ static void append_instance(const scene *s, uint32_t i, scene_mesh *out, uint32_
  * zeros, which the device never reads for them. */
 static int class_of(const scene *s, const scene_mesh *me)
 {
-    if (me->texcoords)
+    if (me->texcoords || me->texcoords1)
         return 0;
     for (uint32_t t = 0; t < me->n_triangles; t++)
-        if (me->material[t] < s->n_materials && s->materials[me->material[t]].base_color_texture != SCENE_NONE)
+        if (me->material[t] < s->n_materials && (s->materials[me->material[t]].base_color_texture != SCENE_NONE ||
+                                                 s->materials[me->material[t]].emissive_texture != SCENE_NONE))
             return 1;
     return 0;
 }
@@ -192,7 +202,7 @@ static int class_of(const scene *s, const scene_mesh *me)
 static int build_class(const scene *s, const uint8_t *bake, int cls, mi_merge *m)
 {
     uint64_t nv = 0, nt = 0;
-    int normals = 0, texcoords = 0;
+    int normals = 0, texcoords = 0, texcoords1 = 0, colours = 0;
     for (uint32_t i = 0; i < s->n_instances; i++) {
         const scene_mesh *me = &s->meshes[s->instances[i].mesh];
         if (!bake[i] || class_of(s, me) != cls)
@@ -201,6 +211,8 @@ static int build_class(const scene *s, const uint8_t *bake, int cls, mi_merge *m
         nt += me->n_triangles;
         normals |= me->normals != NULL;
         texcoords |= me->texcoords != NULL;
+        texcoords1 |= me->texcoords1 != NULL;
+        colours |= me->colours != NULL;
     }
     if (nt == 0)
         return 0;
@@ -214,14 +226,16 @@ static int build_class(const scene *s, const uint8_t *bake, int cls, mi_merge *m
     out->positions = malloc(3 * nv * sizeof(float) + 1);
     out->normals = normals ? calloc(3 * nv + 1, sizeof(float)) : NULL;
     out->texcoords = texcoords ? calloc(2 * nv + 1, sizeof(float)) : NULL;
+    out->texcoords1 = texcoords1 ? calloc(2 * nv + 1, sizeof(float)) : NULL;
+    out->colours = colours ? calloc(3 * nv + 1, sizeof(float)) : NULL;
     out->indices = malloc(3 * nt * sizeof(uint32_t) + 1);
     out->material = malloc(nt * sizeof(uint32_t) + 1);
     uint32_t *si = malloc(nt * sizeof *si + 1), *st = malloc(nt * sizeof *st + 1);
     m->src_instance[m->n_meshes] = si;
     m->src_triangle[m->n_meshes] = st;
     m->n_meshes++; /* owned from here on: mi_merge_free releases a partial mesh */
-    if (!out->positions || (normals && !out->normals) || (texcoords && !out->texcoords) || !out->indices || !out->material ||
-        !si || !st)
+    if (!out->positions || (normals && !out->normals) || (texcoords && !out->texcoords) ||
+        (texcoords1 && !out->texcoords1) || (colours && !out->colours) || !out->indices || !out->material || !si || !st)
         return -1;
     uint32_t vb = 0, tb = 0;
     for (uint32_t i = 0; i < s->n_instances; i++) {
@@ -261,6 +275,8 @@ void mi_merge_free(mi_merge *m)
         free(m->meshes[k].positions);
         free(m->meshes[k].normals);
         free(m->meshes[k].texcoords);
+        free(m->meshes[k].texcoords1);
+        free(m->meshes[k].colours);
         free(m->meshes[k].indices);
         free(m->meshes[k].material);
         free(m->src_instance[k]);

@@ -8,7 +8,7 @@
  * transformation. Separate objects remain where they are needed:
  *   - a node that an animation moves (it or an ancestor has a translation, rotation or scale
  *     channel) keeps its instance, rebuilt per frame in the top level;
- *   - a morphing mesh keeps its object (its geometry is rebuilt when its weights change);
+ *   - a deforming mesh (morph targets, skin) keeps its object (its geometry is rebuilt when it changes);
  *   - a mirrored instance (negative determinant) keeps its instance: baking it would flip the
  *     side its triangles face, which the shading's entering/leaving decision reads;
  *   - a turned instance (its linear part does not map the axes onto the axes) keeps its

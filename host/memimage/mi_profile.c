@@ -3,6 +3,7 @@
 
 #include "f24.h"
 #include "memimage.h"
+#include "shade_rec.h"
 #include "trace.h"
 #include "xform_unit.h"
 
@@ -27,15 +28,17 @@ static int identity_instance(const uint32_t *w)
     return xform_is_identity(&m);
 }
 
-/* Materials whose texture some object with texture coordinates may sample. */
+/* Materials whose textures (base colour, emission) some object with texture coordinates may sample. */
 static uint32_t textured(const uint32_t *w)
 {
     int coords = 0;
     for (uint32_t o = 0; o < w[MI_H_OBJECTS]; o++)
         coords |= (region(w, MI_R_OBJECTS)[MI_OBJECT_WORDS * o + MI_O_FLAGS] & MI_OBJECT_HAS_TEXCOORDS) != 0;
     uint32_t n = 0;
-    for (uint32_t m = 0; m < w[MI_H_MATERIALS]; m++)
-        n += coords && region(w, MI_R_MATERIALS)[MI_MATERIAL_WORDS * m + M_TEXTURE] < w[MI_H_TEXTURES];
+    for (uint32_t m = 0; m < w[MI_H_MATERIALS]; m++) {
+        const uint32_t *mat = region(w, MI_R_MATERIALS) + MI_MATERIAL_WORDS * m;
+        n += coords && (mat[M_TEXTURE] < w[MI_H_TEXTURES] || mat[SHADE_M_EMISSIVE_TEXTURE] < w[MI_H_TEXTURES]);
+    }
     return n;
 }
 

@@ -252,11 +252,12 @@ static int shading_record_ok(const checker *c, uint32_t at, uint32_t flags, uint
         return 0; /* the normal block's last two bits */
     if (shade_rec_material(flags, tail) >= n_mat)
         return 0;
-    const uint32_t used = shade_rec_material_bits(flags) + ((flags & SHADE_HAS_TEXCOORDS) ? 6u * F24_WIDTH : 0u);
+    const uint32_t used = shade_rec_tail_bits(flags);
     if (used % 32u && tail[tail_words - 1] >> (used % 32u))
         return 0;
-    for (uint32_t i = 0; (flags & SHADE_HAS_TEXCOORDS) && i < 6; i++)
-        if (!finite_f24(shade_rec_texcoord(flags, tail, i)))
+    const uint32_t sets = (flags & SHADE_HAS_TEXCOORDS) ? ((flags & SHADE_HAS_EMISSIVE_UV) ? 2u : 1u) : 0u;
+    for (uint32_t i = 0; i < 6 * sets; i++)
+        if (!finite_f24(shade_rec_texcoord(flags, tail, i / 6, i % 6)))
             return 0;
     return 1;
 }
@@ -277,11 +278,14 @@ static int check_objects(checker *c)
             return bad(c, "%s: geometry outside region %s", what, mi_region_name(r));
         if (!finite_words(c, c->off[MI_R_OBJECTS] + MI_OBJECT_WORDS * o + MI_O_BOUNDS, 6))
             return bad(c, "%s: bounds are not finite", what);
-        const uint32_t known = SHADE_HAS_NORMALS | SHADE_HAS_TEXCOORDS | MI_OBJECT_DYNAMIC | SHADE_ONE_MATERIAL;
+        const uint32_t known = SHADE_HAS_NORMALS | SHADE_HAS_TEXCOORDS | MI_OBJECT_DYNAMIC | SHADE_ONE_MATERIAL |
+                               SHADE_HAS_COLOURS | SHADE_HAS_EMISSIVE_UV;
         if ((d[MI_O_FLAGS] & 0xFFFFu & ~known) ||
+            ((d[MI_O_FLAGS] & SHADE_HAS_EMISSIVE_UV) && !(d[MI_O_FLAGS] & SHADE_HAS_TEXCOORDS)) ||
             ((d[MI_O_FLAGS] & SHADE_ONE_MATERIAL) ? shade_rec_material(d[MI_O_FLAGS], NULL) >= n_mat
                                                   : d[MI_O_FLAGS] >> SHADE_OBJ_MATERIAL_SHIFT != 0))
-            return bad(c, "%s: bad flags word 0x%X (unknown flags, or material not below %u)", what, d[MI_O_FLAGS], n_mat);
+            return bad(c, "%s: bad flags word 0x%X (unknown flags, emissive coordinates without texture coordinates, "
+                          "or material not below %u)", what, d[MI_O_FLAGS], n_mat);
         if (check_tree(c, what, d[MI_O_NODES], d[MI_O_N_NODES], d[MI_O_LISTS], d[MI_O_N_LIST], nt) != 0 ||
             ((c->accel & MI_ACCEL_GRID) && check_grid(c, what, r, d[MI_O_GRID], nt) != 0))
             return -1;
@@ -319,9 +323,12 @@ static int check_records(checker *c)
     }
     for (uint32_t i = 0; i < w[MI_H_MATERIALS]; i++) {
         const uint32_t at = c->off[MI_R_MATERIALS] + MI_MATERIAL_WORDS * i;
-        if (!finite_words(c, at, 7) || !finite_words(c, at + 9, 5) || (w[at + 8] & 3u) > ALPHA_BLEND ||
-            (w[at + 7] != MI_NONE && w[at + 7] >= w[MI_H_TEXTURES]))
-            return bad(c, "material %u: bad value or texture index", i);
+        const uint32_t flags = w[at + SHADE_M_FLAGS], emissive = w[at + SHADE_M_EMISSIVE_TEXTURE];
+        if (!finite_words(c, at, 7) || !finite_words(c, at + 9, 3) || !finite_words(c, at + 13, 1) ||
+            (flags & 3u) > ALPHA_BLEND || (flags & ~(7u | SHADE_MAT_UNLIT)) ||
+            (w[at + 7] != MI_NONE && w[at + 7] >= w[MI_H_TEXTURES]) ||
+            (emissive != MI_NONE && emissive >= w[MI_H_TEXTURES]))
+            return bad(c, "material %u: bad value, flags or texture index", i);
     }
     for (uint32_t i = 0; i < w[MI_H_TEXTURES]; i++) {
         const uint32_t *t = w + c->off[MI_R_TEXTURES] + MI_TEXTURE_WORDS * i;

@@ -22,10 +22,13 @@ void shade_encode_set_normal(uint32_t *normals, uint32_t k, uint64_t code)
     put_bits(normals, 2u * SHADE_OCT_BITS * k + SHADE_OCT_BITS, SHADE_OCT_BITS, (uint32_t)(code >> SHADE_OCT_BITS) & field);
 }
 
-void shade_encode_texcoord(uint32_t *tail, uint32_t flags, uint32_t i, uint32_t value)
+void shade_encode_texcoord(uint32_t *tail, uint32_t flags, uint32_t uv, uint32_t i, uint32_t value)
 {
-    put_bits(tail, shade_rec_material_bits(flags) + F24_WIDTH * i, F24_WIDTH, value);
+    put_bits(tail, shade_rec_uv_at(flags, uv) + F24_WIDTH * i, F24_WIDTH, value);
 }
+
+/* A colour channel in [0, 1] as a byte (the device widens it as a texel). */
+static uint32_t colour_byte(float c) { return (uint32_t)lround(255.0 * (c > 0 ? (c < 1 ? c : 1) : 0)); }
 
 /* Cosine between n (length len) and what the device decodes from code (a unit vector). */
 static double decoded_cos(const double n[3], double len, uint64_t code)
@@ -69,15 +72,19 @@ uint64_t shade_encode_normal(const double n[3])
     return best;
 }
 
-void shade_encode_record(uint32_t *w, uint32_t flags, const uint64_t normals[3], const float *const texcoords[3],
-                         uint32_t material)
+void shade_encode_record(uint32_t *w, uint32_t flags, const shade_triangle *t)
 {
     memset(w, 0, shade_rec_words(flags) * sizeof *w);
     for (uint32_t k = 0; (flags & SHADE_HAS_NORMALS) && k < 3; k++)
-        shade_encode_set_normal(w, k, normals[k]);
+        shade_encode_set_normal(w, k, t->normal[k]);
     uint32_t *tail = w + shade_rec_tail(flags);
     if (!(flags & SHADE_ONE_MATERIAL))
-        tail[0] = material;
-    for (uint32_t i = 0; (flags & SHADE_HAS_TEXCOORDS) && i < 6; i++)
-        shade_encode_texcoord(tail, flags, i, f24_fast_encode(texcoords[i / 2][i % 2]));
+        tail[0] = t->material;
+    const uint32_t sets = (flags & SHADE_HAS_TEXCOORDS) ? ((flags & SHADE_HAS_EMISSIVE_UV) ? 2u : 1u) : 0u;
+    for (uint32_t uv = 0; uv < sets; uv++)
+        for (uint32_t i = 0; i < 6; i++)
+            shade_encode_texcoord(tail, flags, uv, i, f24_fast_encode(t->uv[uv][i / 2][i % 2]));
+    for (uint32_t v = 0; (flags & SHADE_HAS_COLOURS) && v < 3; v++)
+        for (uint32_t k = 0; k < 3; k++)
+            put_bits(tail, shade_rec_colour_bit(flags, v, k), 8u, colour_byte(t->colour[v][k]));
 }

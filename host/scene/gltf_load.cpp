@@ -1,15 +1,18 @@
 // glTF 2.0 loader behind scene.h (tinygltf from Debian, route A: header + -ltinygltf).
 // Every accessor read is bounds-checked; malformed files give one-line errors, unsupported
-// features (skins, Draco, meshopt, KTX2, points and lines) one-line warnings, never a crash.
+// features (Draco, meshopt, KTX2, points and lines) one-line warnings, never a crash.
 #include "scene.h"
 #include "gltf_util.h"
 
 #include <tiny_gltf.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -23,6 +26,28 @@ using gltf_util::set_error;
 struct load_error : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
+
+// The extensions the loader implements: a file may require them.
+const char *const implemented_extensions[] = { "KHR_lights_punctual",     "KHR_materials_transmission",
+                                               "KHR_materials_ior",       "KHR_materials_emissive_strength",
+                                               "KHR_mesh_quantization",   "EXT_mesh_gpu_instancing",
+                                               "KHR_texture_transform",   "KHR_materials_unlit" };
+
+template <size_t N> bool listed(const char *const (&list)[N], const std::string &name)
+{
+    for (const char *x : list)
+        if (name == x)
+            return true;
+    return false;
+}
+
+// The glTF specification: a loader must refuse a file that requires an extension it lacks.
+void check_required(const std::vector<std::string> &required)
+{
+    for (const std::string &e : required)
+        if (!listed(implemented_extensions, e))
+            throw load_error("requires extension " + e + ", which saarcor does not implement");
+}
 
 
 template <typename T> T *alloc_array(size_t n)
@@ -49,14 +74,17 @@ class Loader {
 
     void run()
     {
-        check_required_extensions();
+        check_extensions();
+        note_ignored_textures();
         load_materials();
         load_textures();
         load_meshes();
         load_cameras_and_lights();
         load_nodes();
+        load_skins();
         load_animations();
         load_roots();
+        keep_ignored();
         if (scene_evaluate(s_, 0.0, 0) != 0)
             throw std::bad_alloc();
     }
@@ -66,6 +94,8 @@ class Loader {
     std::string path_;
     scene *s_;
     std::vector<uint32_t> image_to_texture_;
+    std::vector<std::string> ignored_;
+    size_t instance_rows_ = 0; // EXT_mesh_gpu_instancing rows of all nodes so far
 
     void warn(const std::string &msg)
     {
@@ -75,22 +105,44 @@ class Loader {
 
     [[noreturn]] void fail(const std::string &msg) { throw load_error(msg); }
 
-    void check_required_extensions()
+    // A feature of the file that changes its appearance and is not implemented: one warning and
+    // one entry of scene.ignored however often it occurs.
+    void ignore(const std::string &feature)
     {
-        static const char *supported[] = { "KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
-                                           "KHR_materials_emissive_strength" };
+        for (const std::string &f : ignored_)
+            if (f == feature)
+                return;
+        ignored_.push_back(feature);
+        warn(feature + " is not supported and is ignored");
+    }
+
+    void keep_ignored()
+    {
+        s_->ignored = alloc_array<char[64]>(ignored_.size());
+        for (const std::string &f : ignored_)
+            std::snprintf(s_->ignored[s_->n_ignored++], sizeof s_->ignored[0], "%s", f.c_str());
+    }
+
+    void check_extensions()
+    {
+        check_required(m_.extensionsRequired); // scene_load_gltf checked the JSON already: a safety net
         for (const std::string &e : m_.extensionsUsed) {
-            bool ok = false;
-            for (const char *x : supported)
-                ok = ok || e == x;
-            if (!ok)
-                warn("extension " + e + " is not supported and is ignored");
+            if (!listed(implemented_extensions, e))
+                ignore(e);
         }
-        for (const std::string &e : m_.extensionsRequired)
-            if (e == "KHR_draco_mesh_compression" || e == "EXT_meshopt_compression" || e == "KHR_texture_basisu")
-                warn("required extension " + e + " is not supported: affected primitives/textures are skipped");
-        if (!m_.skins.empty())
-            warn("skins are not supported: skinned meshes are drawn in their bind pose");
+    }
+
+    // The material textures the shader does not sample.
+    void note_ignored_textures()
+    {
+        for (const tinygltf::Material &g : m_.materials) {
+            if (g.normalTexture.index >= 0)
+                ignore("normalTexture");
+            if (g.occlusionTexture.index >= 0)
+                ignore("occlusionTexture");
+            if (g.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0)
+                ignore("metallicRoughnessTexture");
+        }
     }
 
     // ---- accessors ----------------------------------------------------------------------
@@ -205,7 +257,7 @@ class Loader {
             d = scene_material{};
             for (int c = 0; c < 4; c++)
                 d.base_color[c] = c < 3 ? 0.8f : 1.0f;
-            d.base_color_texture = SCENE_NONE;
+            d.base_color_texture = d.emissive_texture = SCENE_NONE;
             d.alpha_cutoff = 0.5f;
             d.metallic = 0.0f;
             d.roughness = 1.0f;
@@ -218,11 +270,14 @@ class Loader {
                 d.base_color[c] = (float)pbr.baseColorFactor[(size_t)c];
             d.metallic = (float)pbr.metallicFactor;
             d.roughness = (float)pbr.roughnessFactor;
-            d.base_color_texture = pbr.baseColorTexture.index; // resolved in load_textures
-            d.texcoord_set = (uint32_t)std::max(0, pbr.baseColorTexture.texCoord);
-            if (d.texcoord_set != 0)
-                warn("material " + std::to_string(i - 1) + " uses TEXCOORD_" + std::to_string(d.texcoord_set) +
-                     ": only TEXCOORD_0 is loaded");
+            const std::string what = "material " + std::to_string(i - 1);
+            d.base_color_texture = (uint32_t)pbr.baseColorTexture.index; // resolved in load_textures
+            d.texcoord_set = texture_mapping(pbr.baseColorTexture.texCoord, pbr.baseColorTexture.extensions,
+                                             what + " base colour texture", d.base_uv);
+            d.emissive_texture = (uint32_t)g.emissiveTexture.index;
+            d.emissive_texcoord = texture_mapping(g.emissiveTexture.texCoord, g.emissiveTexture.extensions,
+                                                  what + " emissive texture", d.emissive_uv);
+            d.unlit = g.extensions.count("KHR_materials_unlit") != 0;
             d.alpha = g.alphaMode == "MASK" ? ALPHA_MASK : g.alphaMode == "BLEND" ? ALPHA_BLEND : ALPHA_OPAQUE;
             d.alpha_cutoff = (float)g.alphaCutoff;
             for (int c = 0; c < 3 && c < (int)g.emissiveFactor.size(); c++)
@@ -239,6 +294,44 @@ class Loader {
             if (ior != g.extensions.end() && ior->second.Has("ior"))
                 d.ior = (float)ior->second.Get("ior").GetNumberAsDouble();
         }
+    }
+
+    static double number(const tinygltf::Value &v, const char *key, int i, double fallback)
+    {
+        if (!v.Has(key))
+            return fallback;
+        const tinygltf::Value &x = i < 0 ? v.Get(key) : v.Get(key).Get(i);
+        return x.IsNumber() ? x.GetNumberAsDouble() : fallback;
+    }
+
+    // The TEXCOORD_n set (0 or 1) and KHR_texture_transform of a texture reference (whose
+    // texCoord overrides the reference's).
+    uint32_t texture_mapping(int texcoord, const tinygltf::ExtensionMap &ext, const std::string &what, scene_uv_map &uv)
+    {
+        auto tt = ext.find("KHR_texture_transform");
+        if (tt != ext.end()) {
+            const tinygltf::Value &v = tt->second;
+            uv = scene_uv_map{ 1, { number(v, "offset", 0, 0), number(v, "offset", 1, 0) }, number(v, "rotation", -1, 0),
+                               { number(v, "scale", 0, 1), number(v, "scale", 1, 1) } };
+            texcoord = (int)number(v, "texCoord", -1, texcoord);
+        }
+        if (texcoord < 0 || texcoord > 1) {
+            warn(what + " uses TEXCOORD_" + std::to_string(texcoord) + ": only TEXCOORD_0 and TEXCOORD_1 are loaded");
+            return 0;
+        }
+        return (uint32_t)texcoord;
+    }
+
+    // The scene texture of glTF texture index ti (SCENE_NONE if none or unusable).
+    uint32_t resolve_texture(uint32_t ti)
+    {
+        if (ti >= m_.textures.size())
+            return SCENE_NONE;
+        const int src = m_.textures[ti].source;
+        if (src >= 0 && (size_t)src < image_to_texture_.size())
+            return image_to_texture_[(size_t)src];
+        warn("texture " + std::to_string(ti) + " has no usable image (KTX2/BasisU?) and is skipped");
+        return SCENE_NONE;
     }
 
     void load_textures()
@@ -269,24 +362,19 @@ class Loader {
         s_->textures = copy_array(tex);
         for (uint32_t i = 1; i < s_->n_materials; i++) {
             scene_material &d = s_->materials[i];
-            const int ti = (int)d.base_color_texture;
-            d.base_color_texture = SCENE_NONE;
-            if (ti < 0 || (size_t)ti >= m_.textures.size())
-                continue;
-            const int src = m_.textures[(size_t)ti].source;
-            if (src >= 0 && (size_t)src < image_to_texture_.size())
-                d.base_color_texture = image_to_texture_[(size_t)src];
-            else
-                warn("texture " + std::to_string(ti) + " has no usable image (KTX2/BasisU?) and is skipped");
+            d.base_color_texture = resolve_texture(d.base_color_texture);
+            d.emissive_texture = resolve_texture(d.emissive_texture);
         }
     }
 
     // ---- meshes --------------------------------------------------------------------------
 
     struct mesh_build {
-        std::vector<float> pos, nrm, uv;
+        std::vector<float> pos, nrm, uv, uv1, rgb;
         std::vector<uint32_t> idx, mat;
-        bool any_normals = false, any_uv = false;
+        std::vector<uint16_t> joints;  // 4 per vertex (JOINTS_0)
+        std::vector<float> weights;    // 4 per vertex (WEIGHTS_0)
+        bool any_normals = false, any_uv = false, any_uv1 = false, any_rgb = false, any_skin = false;
         uint32_t n_targets = 0;
         std::vector<std::pair<uint32_t, std::vector<std::vector<double>>>> prim_targets; // first vertex, deltas
     };
@@ -306,11 +394,39 @@ class Loader {
         return t;
     }
 
+    // JOINTS_0 / WEIGHTS_0 of a primitive (zero weights where absent: such vertices are not
+    // skinned). The joints are checked against the skin in load_skins, which knows it.
+    void add_influences(mesh_build &b, const tinygltf::Primitive &p, size_t nv, const std::string &what)
+    {
+        auto j = p.attributes.find("JOINTS_0"), w = p.attributes.find("WEIGHTS_0");
+        if (j == p.attributes.end() || w == p.attributes.end()) {
+            b.joints.resize(b.pos.size() / 3 * 4, 0);
+            b.weights.resize(b.pos.size() / 3 * 4, 0.0f);
+            return;
+        }
+        if (p.attributes.count("JOINTS_1"))
+            warn(what + ": JOINTS_1/WEIGHTS_1 (more than 4 influences per vertex) are ignored");
+        const int jt = accessor(j->second, (what + " JOINTS_0").c_str()).componentType;
+        if (jt != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && jt != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)
+            fail(what + ": JOINTS_0 must be unsigned bytes or shorts");
+        const std::vector<double> jv = read_finite(j->second, TINYGLTF_TYPE_VEC4, what + " JOINTS_0");
+        const std::vector<double> wv = read_finite(w->second, TINYGLTF_TYPE_VEC4, what + " WEIGHTS_0");
+        if (jv.size() != nv * 4 || wv.size() != nv * 4)
+            fail(what + ": JOINTS_0/WEIGHTS_0 count differs from POSITION count");
+        for (size_t i = 0; i < jv.size(); i++) {
+            b.joints.push_back((uint16_t)jv[i]);
+            b.weights.push_back((float)std::fmax(wv[i], 0.0)); // negative weights are invalid glTF
+        }
+        b.any_skin = true;
+    }
+
     void add_primitive(mesh_build &b, const tinygltf::Primitive &p, const std::string &what)
     {
         if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
             p.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-            warn(what + ": mode " + std::to_string(p.mode) + " (points/lines) is not supported, skipped");
+            ignore(p.mode == TINYGLTF_MODE_POINTS ? "points"
+                   : p.mode >= TINYGLTF_MODE_LINE && p.mode <= TINYGLTF_MODE_LINE_STRIP ? "lines"
+                   : "primitive mode " + std::to_string(p.mode));
             return;
         }
         if (p.extensions.count("KHR_draco_mesh_compression")) {
@@ -348,6 +464,9 @@ class Loader {
         };
         fill("NORMAL", TINYGLTF_TYPE_VEC3, 3, b.nrm, b.any_normals);
         fill("TEXCOORD_0", TINYGLTF_TYPE_VEC2, 2, b.uv, b.any_uv);
+        fill("TEXCOORD_1", TINYGLTF_TYPE_VEC2, 2, b.uv1, b.any_uv1);
+        add_colours(b, p, nv, what);
+        add_influences(b, p, nv, what);
 
         std::vector<uint32_t> idx;
         if (p.indices >= 0) {
@@ -387,6 +506,31 @@ class Loader {
         b.prim_targets.emplace_back(base, std::move(deltas));
     }
 
+    // COLOR_0 (RGB or RGBA, float or normalized integers) as RGB clamped to [0, 1]; white for a
+    // primitive without it, as the specification's default.
+    void add_colours(mesh_build &b, const tinygltf::Primitive &p, size_t nv, const std::string &what)
+    {
+        b.rgb.resize((b.pos.size() / 3 - nv) * 3, 1.0f);
+        auto it = p.attributes.find("COLOR_0");
+        if (it == p.attributes.end()) {
+            b.rgb.resize(b.pos.size(), 1.0f);
+            return;
+        }
+        const int type = accessor(it->second, (what + " COLOR_0").c_str()).type;
+        if (type != TINYGLTF_TYPE_VEC3 && type != TINYGLTF_TYPE_VEC4)
+            fail(what + ": COLOR_0 must be VEC3 or VEC4");
+        const int nc = components(type);
+        const std::vector<double> v = read(it->second, type, what + " COLOR_0");
+        if (v.size() != nv * (size_t)nc)
+            fail(what + ": COLOR_0 count differs from POSITION count");
+        for (size_t i = 0; i < nv; i++)
+            for (int c = 0; c < 3; c++) {
+                const double x = v[i * (size_t)nc + (size_t)c];
+                b.rgb.push_back(x > 0 ? (x < 1 ? (float)x : 1.0f) : 0.0f); // NaN -> 0
+            }
+        b.any_rgb = true;
+    }
+
     void load_meshes()
     {
         s_->n_meshes = (uint32_t)m_.meshes.size();
@@ -403,12 +547,22 @@ class Loader {
             sm.positions = copy_array(b.pos);
             sm.normals = b.any_normals ? copy_array(b.nrm) : nullptr;
             sm.texcoords = b.any_uv ? copy_array(b.uv) : nullptr;
+            sm.texcoords1 = b.any_uv1 ? copy_array(b.uv1) : nullptr;
+            sm.colours = b.any_rgb ? copy_array(b.rgb) : nullptr;
             sm.indices = copy_array(b.idx);
             sm.material = copy_array(b.mat);
+            sm.skin = SCENE_NONE; // set by load_skins for a mesh a skinned node shows
+            if (b.any_skin) {
+                sm.joints = copy_array(b.joints);
+                sm.joint_weights = copy_array(b.weights);
+                sm.bind_normals = b.any_normals ? copy_array(b.nrm) : nullptr;
+                sm.base_positions = copy_array(b.pos);
+            }
             if (b.n_targets == 0)
                 continue;
             sm.n_targets = b.n_targets;
-            sm.base_positions = copy_array(b.pos);
+            if (!sm.base_positions)
+                sm.base_positions = copy_array(b.pos);
             sm.target_deltas = alloc_array<float>((size_t)b.n_targets * b.pos.size());
             for (auto &pt : b.prim_targets)
                 for (size_t t = 0; t < pt.second.size(); t++)
@@ -479,6 +633,43 @@ class Loader {
         return true;
     }
 
+    // EXT_mesh_gpu_instancing: one instance per row of the TRANSLATION, ROTATION and SCALE
+    // accessors (each optional, all of one count), a transformation in the node's local space.
+    void load_gpu_instances(const tinygltf::Node &g, scene_node &d, const std::string &what)
+    {
+        auto ext = g.extensions.find("EXT_mesh_gpu_instancing");
+        if (ext == g.extensions.end() || d.mesh == SCENE_NONE || !ext->second.Get("attributes").IsObject())
+            return;
+        const tinygltf::Value &attributes = ext->second.Get("attributes");
+        static const char *const names[3] = { "TRANSLATION", "ROTATION", "SCALE" };
+        int index[3] = { -1, -1, -1 };
+        size_t rows = 0;
+        for (int k = 0; k < 3; k++) {
+            if (!attributes.Has(names[k]))
+                continue;
+            index[k] = attributes.Get(names[k]).GetNumberAsInt();
+            const size_t count = accessor(index[k], (what + " " + names[k]).c_str()).count;
+            if (rows && count != rows)
+                fail(what + ": EXT_mesh_gpu_instancing attributes differ in count");
+            rows = count;
+        }
+        // rows may share one accessor between nodes: bound the total before reading any
+        if (rows > SCENE_MAX_INSTANCES - instance_rows_)
+            fail(what + ": more than " + std::to_string(SCENE_MAX_INSTANCES) + " instances (EXT_mesh_gpu_instancing)");
+        instance_rows_ += rows;
+        std::vector<double> trs[3];
+        for (int k = 0; k < 3; k++)
+            if (index[k] >= 0)
+                trs[k] = read_finite(index[k], k == 1 ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3, what + " " + names[k]);
+        d.rows = alloc_array<affine>(rows);
+        d.n_rows = (uint32_t)rows;
+        for (size_t r = 0; r < rows; r++) {
+            const double t0[3] = { 0, 0, 0 }, q0[4] = { 0, 0, 0, 1 }, s0[3] = { 1, 1, 1 };
+            d.rows[r] = affine_from_trs(trs[0].empty() ? t0 : &trs[0][3 * r], trs[1].empty() ? q0 : &trs[1][4 * r],
+                                        trs[2].empty() ? s0 : &trs[2][3 * r]);
+        }
+    }
+
     void load_nodes()
     {
         s_->n_nodes = (uint32_t)m_.nodes.size();
@@ -505,6 +696,7 @@ class Loader {
             }
             if (d.camera != SCENE_NONE)
                 s_->cameras[d.camera].node = (uint32_t)i;
+            load_gpu_instances(g, d, what);
             if (!all_finite(g.matrix) || !all_finite(g.translation) || !all_finite(g.rotation) || !all_finite(g.scale))
                 fail(what + ": non-finite transformation");
             d.has_matrix = g.matrix.size() == 16;
@@ -539,6 +731,92 @@ class Loader {
                 if (++steps > s_->n_nodes)
                     fail("the node hierarchy has a cycle");
         }
+    }
+
+    // ---- skins ---------------------------------------------------------------------------
+
+    void load_skins()
+    {
+        s_->skins = alloc_array<scene_skin>(m_.skins.size());
+        s_->n_skins = (uint32_t)m_.skins.size(); // zeroed: scene_free frees what a failure leaves
+        for (size_t i = 0; i < m_.skins.size(); i++)
+            load_skin(m_.skins[i], "skin " + std::to_string(i), s_->skins[i]);
+        for (size_t i = 0; i < m_.nodes.size(); i++)
+            attach_skin((uint32_t)i, m_.nodes[i].skin);
+        for (size_t i = 0; i < m_.nodes.size(); i++) {
+            const uint32_t mesh = s_->nodes[i].mesh;
+            if (m_.nodes[i].skin < 0 && mesh != SCENE_NONE && s_->meshes[mesh].skin != SCENE_NONE)
+                warn("node " + std::to_string(i) + ": shows skinned mesh '" + s_->meshes[mesh].name +
+                     "' without a skin: drawn skinned");
+        }
+        for (uint32_t i = 0; i < s_->n_meshes; i++)
+            check_influences(s_->meshes[i], "mesh " + std::to_string(i));
+    }
+
+    void load_skin(const tinygltf::Skin &g, const std::string &what, scene_skin &d)
+    {
+        d.joints = alloc_array<uint32_t>(g.joints.size());
+        d.inverse_bind = alloc_array<affine>(g.joints.size());
+        d.n_joints = (uint32_t)g.joints.size();
+        std::vector<double> ibm;
+        if (g.inverseBindMatrices >= 0)
+            ibm = read_finite(g.inverseBindMatrices, TINYGLTF_TYPE_MAT4, what + " inverseBindMatrices");
+        if (!ibm.empty() && ibm.size() != g.joints.size() * 16)
+            fail(what + ": inverseBindMatrices count differs from the joint count");
+        for (size_t j = 0; j < g.joints.size(); j++) {
+            if (g.joints[j] < 0 || (size_t)g.joints[j] >= m_.nodes.size())
+                fail(what + ": joint node index out of range");
+            d.joints[j] = (uint32_t)g.joints[j];
+            d.inverse_bind[j] = affine_identity();
+            for (int r = 0; r < 3 && !ibm.empty(); r++)
+                for (int c = 0; c < 4; c++)
+                    d.inverse_bind[j].m[r][c] = ibm[j * 16 + (size_t)c * 4 + (size_t)r]; // column-major
+        }
+    }
+
+    // The skin of node i goes to its mesh: the scene model keeps one deformed copy of a mesh.
+    void attach_skin(uint32_t i, int skin)
+    {
+        const std::string what = "node " + std::to_string(i);
+        if (skin < 0)
+            return;
+        if ((size_t)skin >= m_.skins.size())
+            fail(what + ": skin index out of range");
+        if (s_->nodes[i].mesh == SCENE_NONE)
+            return;
+        scene_mesh &m = s_->meshes[s_->nodes[i].mesh];
+        if (!m.joints)
+            warn(what + ": skin " + std::to_string(skin) + " on a mesh without JOINTS_0/WEIGHTS_0, drawn unskinned");
+        else if (m.skin != SCENE_NONE && m.skin != (uint32_t)skin)
+            warn(what + ": mesh '" + m.name + "' is shown with several skins: every instance is drawn with skin " +
+                 std::to_string(m.skin));
+        else
+            m.skin = (uint32_t)skin;
+    }
+
+    // Influences of a skinned mesh name joints of its skin; a mesh no skinned node shows drops them.
+    void check_influences(scene_mesh &m, const std::string &what)
+    {
+        if (!m.joints)
+            return;
+        if (m.skin == SCENE_NONE) {
+            std::free(m.joints);
+            std::free(m.joint_weights);
+            std::free(m.bind_normals);
+            m.joints = nullptr;
+            m.joint_weights = nullptr;
+            m.bind_normals = nullptr;
+            if (m.n_targets == 0) {
+                std::free(m.base_positions);
+                m.base_positions = nullptr;
+            }
+            return;
+        }
+        const uint32_t n = s_->skins[m.skin].n_joints;
+        for (size_t k = 0; k < 4 * (size_t)m.n_vertices; k++)
+            if (m.joint_weights[k] > 0 && m.joints[k] >= n)
+                fail(what + ": JOINTS_0 names joint " + std::to_string(m.joints[k]) + " of a skin of " +
+                     std::to_string(n) + " joints");
     }
 
     // ---- animations ----------------------------------------------------------------------
@@ -711,6 +989,115 @@ bool bounded_image_loader(tinygltf::Image *image, const int index, std::string *
     return tinygltf::LoadImageData(image, index, err, warn, req_w, req_h, bytes, size, user);
 }
 
+// Just enough JSON to read the top-level "extensionsRequired" before tinygltf decodes anything:
+// it fails on Draco or KTX2 data with messages that do not name the extension. Malformed JSON
+// gives nothing here; tinygltf then reports it.
+class required_scan {
+  public:
+    explicit required_scan(const std::string &text) : t_(text) {}
+
+    std::vector<std::string> run()
+    {
+        std::vector<std::string> out;
+        if (!eat('{') || eat('}'))
+            return out;
+        do {
+            std::string key;
+            if (!string(&key) || !eat(':'))
+                return {};
+            if (key != "extensionsRequired" ? !value(0) : !names(&out))
+                return {};
+        } while (eat(','));
+        return out;
+    }
+
+  private:
+    const std::string &t_;
+    size_t i_ = 0;
+
+    bool next_is(char c)
+    {
+        while (i_ < t_.size() && std::isspace((unsigned char)t_[i_]))
+            i_++;
+        return i_ < t_.size() && t_[i_] == c;
+    }
+
+    bool eat(char c) { return next_is(c) && ++i_; }
+
+    bool string(std::string *out)
+    {
+        if (!eat('"'))
+            return false;
+        for (; i_ < t_.size() && t_[i_] != '"'; i_++) {
+            if (t_[i_] == '\\')
+                i_++; // an escaped character is taken as it is: extension names have none
+            if (out && i_ < t_.size())
+                out->push_back(t_[i_]);
+        }
+        return eat('"');
+    }
+
+    bool names(std::vector<std::string> *out)
+    {
+        if (!eat('['))
+            return false;
+        if (eat(']'))
+            return true;
+        do {
+            out->emplace_back();
+            if (!string(&out->back()))
+                return false;
+        } while (eat(','));
+        return eat(']');
+    }
+
+    // Skips one value; nesting is bounded so that a hostile file cannot exhaust the stack.
+    bool value(int depth)
+    {
+        if (depth > 256)
+            return false;
+        if (next_is('"'))
+            return string(nullptr);
+        const bool object = eat('{');
+        if (object || eat('[')) {
+            const char close = object ? '}' : ']';
+            if (eat(close))
+                return true;
+            do
+                if ((object && !(string(nullptr) && eat(':'))) || !value(depth + 1))
+                    return false;
+            while (eat(','));
+            return eat(close);
+        }
+        const size_t start = i_; // number, true, false or null
+        while (i_ < t_.size() && (std::isalnum((unsigned char)t_[i_]) || std::strchr("+-.", t_[i_])))
+            i_++;
+        return i_ > start;
+    }
+};
+
+// The extensionsRequired of a .gltf, or of the JSON chunk of a .glb (empty if unreadable).
+std::vector<std::string> required_extensions(const std::string &path)
+{
+    std::ifstream f(path, std::ios::binary);
+    std::string text;
+    if (ends_with(path, ".glb")) {
+        unsigned char head[20];
+        if (!f.read(reinterpret_cast<char *>(head), sizeof head) || std::memcmp(head + 16, "JSON", 4) != 0)
+            return {};
+        const uint32_t n = head[12] | head[13] << 8 | head[14] << 16 | (uint32_t)head[15] << 24;
+        f.seekg(0, std::ios::end);
+        if (!f || (uint64_t)n + sizeof head > (uint64_t)f.tellg()) // a truncated file: tinygltf says so
+            return {};
+        text.resize(n);
+        f.seekg(sizeof head);
+        f.read(&text[0], n);
+    } else {
+        text.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+    }
+    return required_scan(text).run();
+}
+
 // No '~' or $VARIABLE expansion of URIs (tinygltf's default runs wordexp on them).
 std::string no_expansion(const std::string &path, void *) { return path; }
 
@@ -729,6 +1116,7 @@ extern "C" int scene_load_gltf(const char *path, scene *out, char *err, size_t e
                     slash == std::string::npos ? "" : p.substr(0, slash), "" };
         if (sb.dir.empty() || sb.dir.back() != '/')
             sb.dir += '/';
+        check_required(required_extensions(p));
         loader.SetImageLoader(bounded_image_loader, nullptr);
         loader.SetFsCallbacks({ sandboxed_exists, no_expansion, sandboxed_read, tinygltf::WriteWholeFile, &sb });
         const bool ok = ends_with(p, ".glb") ? loader.LoadBinaryFromFile(&model, &e, &w, p)

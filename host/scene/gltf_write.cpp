@@ -18,6 +18,7 @@
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace {
@@ -47,6 +48,7 @@ class Writer {
         write_meshes();
         write_cameras_and_lights();
         write_nodes();
+        write_skins();
         write_animations();
         if (m_.buffers[0].data.empty())
             m_.buffers.clear();
@@ -93,6 +95,7 @@ class Writer {
         case 2: return TINYGLTF_TYPE_VEC2;
         case 3: return TINYGLTF_TYPE_VEC3;
         case 4: return TINYGLTF_TYPE_VEC4;
+        case 16: return TINYGLTF_TYPE_MAT4;
         default: throw write_error("internal: bad component count");
         }
     }
@@ -118,16 +121,19 @@ class Writer {
         return (int)m_.accessors.size() - 1;
     }
 
-    int add_indices(const std::vector<uint32_t> &v)
+    // Unsigned integer accessor (uint32_t: indices, uint16_t: JOINTS_0) of v.size() / ncomp elements.
+    template <typename T> int add_uints(const std::vector<T> &v, int ncomp, int target)
     {
         tinygltf::Accessor a;
-        a.bufferView = add_view(v.data(), v.size() * sizeof(uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-        a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-        a.count = v.size();
-        a.type = TINYGLTF_TYPE_SCALAR;
+        a.bufferView = add_view(v.data(), v.size() * sizeof(T), target);
+        a.componentType = sizeof(T) == 2 ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+        a.count = v.size() / (size_t)ncomp;
+        a.type = type_of(ncomp);
         m_.accessors.push_back(a);
         return (int)m_.accessors.size() - 1;
     }
+
+    int add_indices(const std::vector<uint32_t> &v) { return add_uints(v, 1, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER); }
 
     static bool finite(const float *p, size_t n)
     {
@@ -210,6 +216,26 @@ class Writer {
         }
     }
 
+    // A material's texture reference: index, TEXCOORD_n and KHR_texture_transform.
+    void texture_info(uint32_t texture, uint32_t texcoord, const scene_uv_map &uv, const std::string &what,
+                      tinygltf::TextureInfo &out)
+    {
+        if (texture == SCENE_NONE)
+            return;
+        if (texture >= s_.n_textures)
+            throw write_error(what + ": texture index out of range");
+        out.index = (int)texture;
+        out.texCoord = (int)texcoord;
+        if (!uv.set)
+            return;
+        tinygltf::Value::Object o;
+        o["offset"] = tinygltf::Value(tinygltf::Value::Array{ tinygltf::Value(uv.offset[0]), tinygltf::Value(uv.offset[1]) });
+        o["rotation"] = tinygltf::Value(uv.rotation);
+        o["scale"] = tinygltf::Value(tinygltf::Value::Array{ tinygltf::Value(uv.scale[0]), tinygltf::Value(uv.scale[1]) });
+        out.extensions["KHR_texture_transform"] = tinygltf::Value(std::move(o));
+        use_ext("KHR_texture_transform");
+    }
+
     void write_materials()
     {
         for (uint32_t i = 1; i < s_.n_materials; i++) {
@@ -219,11 +245,11 @@ class Writer {
             pbr.baseColorFactor.assign(d.base_color, d.base_color + 4);
             pbr.metallicFactor = d.metallic;
             pbr.roughnessFactor = d.roughness;
-            if (d.base_color_texture != SCENE_NONE) {
-                if (d.base_color_texture >= s_.n_textures)
-                    throw write_error("material " + num(i) + ": texture index out of range");
-                pbr.baseColorTexture.index = (int)d.base_color_texture;
-                pbr.baseColorTexture.texCoord = (int)d.texcoord_set;
+            texture_info(d.base_color_texture, d.texcoord_set, d.base_uv, "material " + num(i), pbr.baseColorTexture);
+            texture_info(d.emissive_texture, d.emissive_texcoord, d.emissive_uv, "material " + num(i), g.emissiveTexture);
+            if (d.unlit) {
+                g.extensions["KHR_materials_unlit"] = tinygltf::Value(tinygltf::Value::Object());
+                use_ext("KHR_materials_unlit");
             }
             g.alphaMode = d.alpha == ALPHA_MASK ? "MASK" : d.alpha == ALPHA_BLEND ? "BLEND" : "OPAQUE";
             g.alphaCutoff = d.alpha_cutoff;
@@ -267,8 +293,11 @@ class Writer {
         const scene_mesh &sm = s_.meshes[mi];
         const std::string what = "mesh " + num(mi);
         const uint32_t nv = sm.n_vertices, nt = sm.n_triangles;
-        const float *pos = sm.n_targets ? sm.base_positions : sm.positions;
-        if ((nv && !pos) || (nt && (!sm.indices || !sm.material)) || (sm.n_targets && (!sm.target_deltas || !sm.weights)))
+        const bool skinned = sm.joints && sm.skin < s_.n_skins; // written in its rest pose with its influences
+        const float *pos = sm.n_targets || skinned ? sm.base_positions : sm.positions;
+        const float *nrm = skinned && sm.bind_normals ? sm.bind_normals : sm.normals;
+        if ((nv && !pos) || (nt && (!sm.indices || !sm.material)) || (sm.n_targets && (!sm.target_deltas || !sm.weights)) ||
+            (skinned && !sm.joint_weights))
             throw write_error(what + ": missing arrays");
         if (!finite(pos, 3 * (size_t)nv))
             throw write_error(what + ": non-finite position");
@@ -320,8 +349,8 @@ class Writer {
                 if (sm.material[t] == mat)
                     for (int k = 0; k < 3; k++)
                         idx.push_back(remap[sm.indices[3 * (size_t)t + (size_t)k]]);
-            auto gather = [&](const float *src, int ncomp) {
-                std::vector<float> out;
+            auto gather = [&](const auto *src, int ncomp) {
+                std::vector<std::remove_const_t<std::remove_pointer_t<decltype(src)>>> out;
                 out.reserve(verts.size() * (size_t)ncomp);
                 for (uint32_t v : verts)
                     out.insert(out.end(), src + (size_t)v * (size_t)ncomp, src + ((size_t)v + 1) * (size_t)ncomp);
@@ -331,10 +360,18 @@ class Writer {
             prim.mode = TINYGLTF_MODE_TRIANGLES;
             prim.material = mat == 0 ? -1 : (int)mat - 1;
             prim.attributes["POSITION"] = add_floats(gather(pos, 3), 3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
-            if (sm.normals)
-                prim.attributes["NORMAL"] = add_floats(gather(sm.normals, 3), 3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+            if (nrm)
+                prim.attributes["NORMAL"] = add_floats(gather(nrm, 3), 3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+            if (skinned) {
+                prim.attributes["JOINTS_0"] = add_uints(gather(sm.joints, 4), 4, TINYGLTF_TARGET_ARRAY_BUFFER);
+                prim.attributes["WEIGHTS_0"] = add_floats(gather(sm.joint_weights, 4), 4, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+            }
             if (sm.texcoords)
                 prim.attributes["TEXCOORD_0"] = add_floats(gather(sm.texcoords, 2), 2, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+            if (sm.texcoords1)
+                prim.attributes["TEXCOORD_1"] = add_floats(gather(sm.texcoords1, 2), 2, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+            if (sm.colours)
+                prim.attributes["COLOR_0"] = add_floats(gather(sm.colours, 3), 3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
             prim.indices = add_indices(idx);
             for (uint32_t t = 0; t < sm.n_targets; t++) {
                 const float *d = sm.target_deltas + (size_t)t * 3 * nv;
@@ -438,6 +475,8 @@ class Writer {
             }
             if (n.mesh != SCENE_NONE)
                 g.mesh = (int)n.mesh;
+            if (n.mesh != SCENE_NONE && s_.meshes[n.mesh].joints && s_.meshes[n.mesh].skin < s_.n_skins)
+                g.skin = (int)s_.meshes[n.mesh].skin;
             if (n.camera != SCENE_NONE)
                 g.camera = (int)n.camera;
             if (n.light != SCENE_NONE) {
@@ -456,6 +495,30 @@ class Writer {
             sc.nodes.push_back((int)s_.roots[r]);
         m_.scenes.push_back(sc);
         m_.defaultScene = 0;
+    }
+
+    // ---- skins ---------------------------------------------------------------------------
+
+    void write_skins()
+    {
+        for (uint32_t i = 0; i < s_.n_skins; i++) {
+            const scene_skin &k = s_.skins[i];
+            tinygltf::Skin g;
+            std::vector<float> ibm;
+            for (uint32_t j = 0; j < k.n_joints; j++) {
+                if (k.joints[j] >= s_.n_nodes)
+                    throw write_error("skin " + num(i) + ": joint node out of range");
+                g.joints.push_back((int)k.joints[j]);
+                for (int c = 0; c < 4; c++) // column-major 4x4
+                    for (int r = 0; r < 4; r++)
+                        ibm.push_back(r < 3 ? (float)k.inverse_bind[j].m[r][c] : (float)(c == 3));
+            }
+            if (!finite(ibm.data(), ibm.size()))
+                throw write_error("skin " + num(i) + ": non-finite inverse bind matrix");
+            if (!ibm.empty())
+                g.inverseBindMatrices = add_floats(ibm, 16, -1, false);
+            m_.skins.push_back(std::move(g));
+        }
     }
 
     // ---- animations ----------------------------------------------------------------------

@@ -1,7 +1,7 @@
 /*
  * Scene model helpers: affine algebra, animation sampling (glTF LINEAR / STEP / CUBICSPLINE,
  * quaternion slerp for rotations), scene evaluation at a time (node hierarchy -> world
- * transforms, morph weights -> positions, instances, cameras, lights) and freeing.
+ * transforms, morph weights and skins -> positions, instances, cameras, lights) and freeing.
  */
 #include "scene.h"
 
@@ -197,8 +197,16 @@ static affine node_local(const scene_node *n)
     return n->has_matrix ? n->matrix : affine_from_trs(n->translation, n->rotation, n->scale);
 }
 
-/* Positions = base + sum_k w_k * delta_k. Returns 1 if the geometry changed. */
-static int morph_mesh(scene_mesh *m, const double *w)
+int scene_mesh_deforms(const scene_mesh *m) { return m->n_targets > 0 || m->joints != NULL; }
+
+/* A mesh with a usable skin: drawn with its joints' matrices. */
+static int mesh_skinned(const scene *s, const scene_mesh *m)
+{
+    return m->joints && m->joint_weights && m->base_positions && m->skin < s->n_skins;
+}
+
+/* Takes the node's morph weights; 1 if they changed. */
+static int take_weights(scene_mesh *m, const double *w)
 {
     int changed = 0;
     for (uint32_t k = 0; k < m->n_targets; k++)
@@ -206,15 +214,126 @@ static int morph_mesh(scene_mesh *m, const double *w)
             m->weights[k] = (float)w[k];
             changed = 1;
         }
-    if (!changed)
-        return 0;
-    for (uint32_t v = 0; v < 3 * m->n_vertices; v++) {
-        double p = m->base_positions[v];
+    return changed;
+}
+
+/* Rest position of vertex v: base + sum_k w_k * delta_k (the base alone without morph targets). */
+static void rest_position(const scene_mesh *m, uint32_t v, double p[3])
+{
+    const size_t n = 3 * (size_t)m->n_vertices;
+    for (int c = 0; c < 3; c++) {
+        const size_t i = 3 * (size_t)v + (size_t)c;
+        p[c] = m->base_positions[i];
         for (uint32_t k = 0; k < m->n_targets; k++)
-            p += (double)m->weights[k] * m->target_deltas[(size_t)k * 3 * m->n_vertices + v];
-        m->positions[v] = (float)p;
+            p[c] += (double)m->weights[k] * m->target_deltas[k * n + i];
     }
-    return 1;
+}
+
+/* Stores a vertex's new value; 1 if it differs from the old one. */
+static int store3(float *dst, const double v[3])
+{
+    int changed = 0;
+    for (int c = 0; c < 3; c++) {
+        changed |= dst[c] != (float)v[c];
+        dst[c] = (float)v[c];
+    }
+    return changed;
+}
+
+/* Positions = the rest positions. Returns 1 if the geometry changed. */
+static int morph_mesh(scene_mesh *m)
+{
+    int changed = 0;
+    for (uint32_t v = 0; v < m->n_vertices; v++) {
+        double p[3];
+        rest_position(m, v, p);
+        changed |= store3(&m->positions[3 * (size_t)v], p);
+    }
+    return changed;
+}
+
+/* The skin matrix of vertex v: sum_i w_i * jointMatrix(joint_i), the weights scaled to sum 1
+ * (quantized weights rarely sum to exactly 1); the identity for a vertex without weight. */
+static affine skin_matrix(const scene_mesh *m, const affine *joint, uint32_t n_joints, uint32_t v)
+{
+    affine r = { { { 0 } } };
+    double sum = 0;
+    for (int i = 0; i < 4; i++) {
+        const uint32_t j = m->joints[4 * (size_t)v + (size_t)i];
+        const double w = m->joint_weights[4 * (size_t)v + (size_t)i];
+        if (j >= n_joints || !(w > 0))
+            continue;
+        sum += w;
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 4; b++)
+                r.m[a][b] += w * joint[j].m[a][b];
+    }
+    if (!(sum > 0))
+        return affine_identity();
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 4; b++)
+            r.m[a][b] /= sum;
+    return r;
+}
+
+/* A normal moves with the inverse transpose of the skin matrix (kept if it is singular). */
+static void skin_normal(const affine *k, const float *n, double out[3])
+{
+    affine inv;
+    double len = 0;
+    for (int a = 0; a < 3; a++) {
+        out[a] = n[a];
+        len += (double)n[a] * n[a];
+    }
+    if (len == 0 || !affine_invert(k, &inv))
+        return;
+    len = 0;
+    for (int a = 0; a < 3; a++) {
+        out[a] = inv.m[0][a] * n[0] + inv.m[1][a] * n[1] + inv.m[2][a] * n[2];
+        len += out[a] * out[a];
+    }
+    for (int a = 0; a < 3 && len > 0; a++)
+        out[a] /= sqrt(len);
+}
+
+/* Linear blend skinning (glTF 2.0, skins): world-space positions and normals from the rest pose
+ * and the joints' current world transforms. 1 if the geometry changed, -1 if memory ran out. */
+static int skin_mesh(const scene *s, scene_mesh *m)
+{
+    const scene_skin *sk = &s->skins[m->skin];
+    affine *joint = malloc(((size_t)sk->n_joints + 1) * sizeof *joint);
+    if (!joint)
+        return -1;
+    for (uint32_t j = 0; j < sk->n_joints; j++)
+        joint[j] = sk->joints[j] < s->n_nodes ? affine_mul(&s->nodes[sk->joints[j]].world, &sk->inverse_bind[j])
+                                              : affine_identity();
+    int changed = 0;
+    for (uint32_t v = 0; v < m->n_vertices; v++) {
+        const affine k = skin_matrix(m, joint, sk->n_joints, v);
+        double p[3], n[3];
+        rest_position(m, v, p);
+        affine_apply_point(&k, p, p);
+        changed |= store3(&m->positions[3 * (size_t)v], p);
+        if (m->normals && m->bind_normals) {
+            skin_normal(&k, &m->bind_normals[3 * (size_t)v], n);
+            store3(&m->normals[3 * (size_t)v], n); /* normals change only with the positions */
+        }
+    }
+    free(joint);
+    return changed;
+}
+
+/* Morphs and skins the mesh of instance node nd; a changed geometry bumps its revision.
+ * 0, or -1 if memory ran out. */
+static int deform_mesh(const scene *s, const scene_node *nd, scene_mesh *m)
+{
+    const int morphed = m->n_targets > 0 && nd->weights && nd->n_weights == m->n_targets &&
+                        take_weights(m, nd->weights);
+    const int changed = mesh_skinned(s, m) ? skin_mesh(s, m) : morphed ? morph_mesh(m) : 0;
+    if (changed < 0)
+        return -1;
+    m->revision += (uint32_t)changed;
+    return 0;
 }
 
 /* A node is displayed if the root of its hierarchy is one of the scene's roots. */
@@ -235,18 +354,25 @@ static int is_instance(const scene *s, uint32_t i)
     return nd->mesh != SCENE_NONE && nd->mesh < s->n_meshes && node_displayed(s, i);
 }
 
+/* The instances node i draws: one per EXT_mesh_gpu_instancing row, else one. */
+static uint32_t node_instances(const scene *s, uint32_t i)
+{
+    return is_instance(s, i) ? (s->nodes[i].rows ? s->nodes[i].n_rows : 1) : 0;
+}
+
 uint32_t scene_count_instances(const scene *s)
 {
     uint32_t n = 0;
     for (uint32_t i = 0; i < s->n_nodes; i++)
-        n += (uint32_t)is_instance(s, i);
+        n += node_instances(s, i);
     return n;
 }
 
 int scene_evaluate(scene *s, double t, int loop)
 {
-    if (!s->instances && s->n_nodes) {
-        s->instances = calloc(s->n_nodes, sizeof *s->instances);
+    const uint32_t n_instances = scene_count_instances(s); /* the same for every t */
+    if (!s->instances && n_instances) {
+        s->instances = calloc(n_instances, sizeof *s->instances);
         if (!s->instances)
             return -1;
     }
@@ -273,9 +399,14 @@ int scene_evaluate(scene *s, double t, int loop)
         if (!is_instance(s, i))
             continue;
         scene_mesh *m = &s->meshes[nd->mesh];
-        if (m->n_targets > 0 && nd->weights && nd->n_weights == m->n_targets)
-            morph_mesh(m, nd->weights);
-        s->instances[n++] = (scene_instance){ nd->mesh, i, nd->world };
+        if (deform_mesh(s, nd, m) != 0)
+            return -1;
+        /* a skinned mesh is placed by its joints alone: the node's transformation is ignored */
+        const affine place = mesh_skinned(s, m) ? affine_identity() : nd->world;
+        if (!nd->rows)
+            s->instances[n++] = (scene_instance){ nd->mesh, i, place };
+        for (uint32_t r = 0; nd->rows && r < nd->n_rows; r++)
+            s->instances[n++] = (scene_instance){ nd->mesh, i, affine_mul(&place, &nd->rows[r]) };
     }
     s->n_instances = n;
     for (uint32_t i = 0; i < s->n_cameras; i++)
@@ -297,6 +428,51 @@ int scene_evaluate(scene *s, double t, int loop)
     return 0;
 }
 
+int scene_texcoord(const scene_mesh *m, uint32_t set, const scene_uv_map *uv, uint32_t v, double st[2])
+{
+    const float *tc = set == 0 ? m->texcoords : set == 1 ? m->texcoords1 : NULL;
+    st[0] = st[1] = 0;
+    if (!tc)
+        return 0;
+    st[0] = tc[2 * (size_t)v];
+    st[1] = tc[2 * (size_t)v + 1];
+    if (uv->set) { /* translation x rotation x scale, the extension's ratified matrix */
+        const double c = cos(uv->rotation), s = sin(uv->rotation), x = uv->scale[0] * st[0], y = uv->scale[1] * st[1];
+        st[0] = c * x + s * y + uv->offset[0];
+        st[1] = -s * x + c * y + uv->offset[1];
+    }
+    return 1;
+}
+
+static void free_animation(scene_animation *a)
+{
+    for (uint32_t c = 0; c < a->n_channels; c++) {
+        free(a->channels[c].times);
+        free(a->channels[c].values);
+    }
+    free(a->channels);
+}
+
+int scene_select_animation(scene *s, const char *which)
+{
+    char *end;
+    const unsigned long index = strtoul(which, &end, 10);
+    uint32_t keep = s->n_animations;
+    for (uint32_t i = 0; i < s->n_animations && keep == s->n_animations; i++)
+        if (strcmp(s->animations[i].name, which) == 0)
+            keep = i;
+    if (keep == s->n_animations && *which && !*end && index < s->n_animations)
+        keep = (uint32_t)index;
+    if (keep == s->n_animations)
+        return -1;
+    for (uint32_t i = 0; i < s->n_animations; i++)
+        if (i != keep)
+            free_animation(&s->animations[i]);
+    s->animations[0] = s->animations[keep];
+    s->n_animations = 1;
+    return 0;
+}
+
 void scene_free(scene *s)
 {
     for (uint32_t i = 0; i < s->n_meshes; i++) {
@@ -304,23 +480,30 @@ void scene_free(scene *s)
         free(m->positions);
         free(m->normals);
         free(m->texcoords);
+        free(m->texcoords1);
+        free(m->colours);
         free(m->indices);
         free(m->material);
         free(m->base_positions);
         free(m->target_deltas);
         free(m->weights);
+        free(m->joints);
+        free(m->joint_weights);
+        free(m->bind_normals);
     }
-    for (uint32_t i = 0; i < s->n_nodes; i++)
+    for (uint32_t i = 0; i < s->n_skins; i++) {
+        free(s->skins[i].joints);
+        free(s->skins[i].inverse_bind);
+    }
+    free(s->skins);
+    for (uint32_t i = 0; i < s->n_nodes; i++) {
         free(s->nodes[i].weights);
+        free(s->nodes[i].rows);
+    }
     for (uint32_t i = 0; i < s->n_textures; i++)
         free(s->textures[i].rgba);
-    for (uint32_t i = 0; i < s->n_animations; i++) {
-        for (uint32_t c = 0; c < s->animations[i].n_channels; c++) {
-            free(s->animations[i].channels[c].times);
-            free(s->animations[i].channels[c].values);
-        }
-        free(s->animations[i].channels);
-    }
+    for (uint32_t i = 0; i < s->n_animations; i++)
+        free_animation(&s->animations[i]);
     free(s->meshes);
     free(s->nodes);
     free(s->materials);
@@ -330,6 +513,7 @@ void scene_free(scene *s)
     free(s->animations);
     free(s->roots);
     free(s->instances);
+    free(s->ignored);
     memset(s, 0, sizeof *s);
 }
 
@@ -372,7 +556,7 @@ int scene_add_ground(scene *s)
     const double ext = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
     const double cx = 0.5 * (lo[0] + hi[0]), cz = 0.5 * (lo[2] + hi[2]), y = lo[1] - 1e-3 * ext, r = 2 * ext;
     scene_material mat = { .base_color = { 0.6f, 0.6f, 0.62f, 1 }, .base_color_texture = SCENE_NONE,
-                           .metallic = 1, .roughness = 0.2f, .ior = 1.5f };
+                           .emissive_texture = SCENE_NONE, .metallic = 1, .roughness = 0.2f, .ior = 1.5f };
     scene_mesh mesh = { .name = "ground", .n_vertices = 4, .n_triangles = 2 };
     mesh.positions = malloc(12 * sizeof(float));
     mesh.normals = malloc(12 * sizeof(float));
@@ -424,19 +608,26 @@ int scene_add_ground(scene *s)
 
 scene_camera scene_default_camera(const double lo[3], const double hi[3])
 {
+    /* from the front, turned right and raised, as model viewers open a file: a plane at y = 0
+     * (or any flat model along an axis) is seen from above, not edge-on */
+    const double deg = 3.14159265358979323846 / 180.0, azimuth = 30.0 * deg, elevation = 25.0 * deg;
+    const double back[3] = { sin(azimuth) * cos(elevation), sin(elevation), cos(azimuth) * cos(elevation) };
+    const double right[3] = { cos(azimuth), 0, -sin(azimuth) }; /* (0,1,0) x back, normalized */
+    const double up[3] = { back[1] * right[2] - back[2] * right[1], back[2] * right[0] - back[0] * right[2],
+                           back[0] * right[1] - back[1] * right[0] };
     scene_camera c = { 0 };
     c.kind = CAMERA_PERSPECTIVE;
-    c.yfov = 45.0 * 3.14159265358979323846 / 180.0;
+    c.yfov = 45.0 * deg;
     c.node = SCENE_NONE;
-    double ctr[3], diag = 0;
-    for (int k = 0; k < 3; k++) {
-        ctr[k] = 0.5 * (lo[k] + hi[k]);
+    double diag = 0;
+    for (int k = 0; k < 3; k++)
         diag += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    const double dist = diag > 0 ? 1.2 * sqrt(diag) : 1.0;
+    for (int k = 0; k < 3; k++) { /* camera-to-world: columns right, up, back (it looks down -Z) */
+        c.world.m[k][0] = right[k];
+        c.world.m[k][1] = up[k];
+        c.world.m[k][2] = back[k];
+        c.world.m[k][3] = 0.5 * (lo[k] + hi[k]) + dist * back[k];
     }
-    diag = sqrt(diag);
-    c.world = affine_identity(); /* looks down -Z from in front of the box */
-    c.world.m[0][3] = ctr[0];
-    c.world.m[1][3] = ctr[1];
-    c.world.m[2][3] = ctr[2] + (diag > 0 ? 1.2 * diag : 1.0);
     return c;
 }

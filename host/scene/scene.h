@@ -6,7 +6,9 @@
  * Mapping from glTF: each glTF mesh (all its TRIANGLES primitives) is one OBJECT with its own
  * bottom-level tree; each node that references a mesh is one INSTANCE of that object with the
  * node's world transformation. Nodes, animations and morph weights are kept so that the scene
- * can be evaluated at any time (scene_evaluate).
+ * can be evaluated at any time (scene_evaluate). A skinned mesh (glTF skins) is deformed on the
+ * host by linear blend skinning: its positions and normals become world-space ones, and its
+ * instance's transformation the identity, as the glTF specification ignores the node's own.
  */
 #ifndef SAARCOR_SCENE_H
 #define SAARCOR_SCENE_H
@@ -25,14 +27,26 @@ typedef struct { double m[3][4]; } affine;
 
 typedef enum { ALPHA_OPAQUE = 0, ALPHA_MASK = 1, ALPHA_BLEND = 2 } alpha_mode;
 
+/* KHR_texture_transform of a texture reference, as the file gives it (scene_texcoord applies
+ * it); only if set, so that a zero-initialized material has none. */
+typedef struct {
+    int set;
+    double offset[2], rotation, scale[2];
+} scene_uv_map;
+
 typedef struct {
     float base_color[4];        /* linear RGBA factor */
     uint32_t base_color_texture; /* index into scene.textures or SCENE_NONE */
-    uint32_t texcoord_set;       /* TEXCOORD_n used by the texture (only 0 is loaded) */
+    uint32_t texcoord_set;       /* TEXCOORD_n used by the texture (0 or 1) */
+    scene_uv_map base_uv;        /* its KHR_texture_transform */
     alpha_mode alpha;
     float alpha_cutoff;
     float metallic, roughness;
-    float emissive[3];
+    float emissive[3];           /* emissiveFactor x KHR_materials_emissive_strength */
+    uint32_t emissive_texture;   /* index into scene.textures or SCENE_NONE (texels used as stored) */
+    uint32_t emissive_texcoord;  /* TEXCOORD_n of the emissive texture (0 or 1) */
+    scene_uv_map emissive_uv;
+    int unlit;                   /* KHR_materials_unlit: the base colour alone */
     float transmission;          /* KHR_materials_transmission factor, 0 if absent */
     float ior;                   /* KHR_materials_ior, 1.5 if absent */
     int double_sided;
@@ -49,14 +63,27 @@ typedef struct {
     uint32_t n_vertices, n_triangles;
     float *positions;   /* 3 * n_vertices (current geometry: base + weighted morph targets) */
     float *normals;     /* 3 * n_vertices, or NULL */
-    float *texcoords;   /* 2 * n_vertices, or NULL */
+    float *texcoords;   /* 2 * n_vertices (TEXCOORD_0), or NULL */
+    float *texcoords1;  /* 2 * n_vertices (TEXCOORD_1), or NULL */
+    float *colours;     /* 3 * n_vertices (COLOR_0, RGB in [0, 1]; alpha is not used), or NULL */
     uint32_t *indices;  /* 3 * n_triangles, every index < n_vertices */
     uint32_t *material; /* n_triangles: index into scene.materials (a default material exists) */
     /* morph targets (position deltas only are applied to the geometry) */
     uint32_t n_targets;
-    float *base_positions;  /* 3 * n_vertices, the positions without morphing (n_targets > 0) */
+    float *base_positions;  /* 3 * n_vertices, the positions without morphing and skinning (n_targets > 0
+                               or joints) */
     float *target_deltas;   /* n_targets * 3 * n_vertices */
     float *weights;         /* n_targets current weights */
+    /* skinning (JOINTS_0 / WEIGHTS_0): up to 4 influences per vertex, the joint an index into the
+     * joints of scene.skins[skin]; the rest pose (base_positions, morphed) and bind_normals are
+     * deformed into positions and normals by scene_evaluate */
+    uint16_t *joints;       /* 4 * n_vertices, or NULL: the mesh is not skinned */
+    float *joint_weights;   /* 4 * n_vertices */
+    float *bind_normals;    /* 3 * n_vertices, the normals before skinning (if normals) */
+    uint32_t skin;
+    /* bumped whenever scene_evaluate changes positions (morphing, skinning): mi_update rebuilds
+     * the object's tree and uploads its geometry when this differs from what it built */
+    uint32_t revision;
 } scene_mesh;
 
 typedef enum { CAMERA_PERSPECTIVE = 0, CAMERA_ORTHOGRAPHIC = 1 } camera_kind;
@@ -95,6 +122,10 @@ typedef struct {
     double translation[3], rotation[4] /* x y z w */, scale[3];
     double *weights;         /* morph weights of the node's mesh instance (NULL: mesh defaults) */
     uint32_t n_weights;
+    /* EXT_mesh_gpu_instancing: the node draws its mesh once per row, at node world x row (the
+     * rows are in the node's local space); NULL (0 rows): once, at the node's world transform */
+    uint32_t n_rows;
+    affine *rows;
     affine world;            /* evaluated by scene_evaluate */
 } scene_node;
 
@@ -118,6 +149,14 @@ typedef struct {
     float duration;          /* last key time over all channels */
 } scene_animation;
 
+/* A glTF skin: the nodes of its joints and their inverse bind matrices. A vertex influenced by
+ * joint j moves with jointMatrix(j) = world(joints[j]) * inverse_bind[j]. */
+typedef struct {
+    uint32_t n_joints;
+    uint32_t *joints;        /* node indices */
+    affine *inverse_bind;    /* n_joints (the identity where the file gives none) */
+} scene_skin;
+
 typedef struct {
     uint32_t mesh;           /* object */
     uint32_t node;
@@ -125,7 +164,7 @@ typedef struct {
 } scene_instance;
 
 typedef struct {
-    uint32_t n_meshes, n_nodes, n_materials, n_textures, n_cameras, n_lights, n_animations;
+    uint32_t n_meshes, n_nodes, n_materials, n_textures, n_cameras, n_lights, n_animations, n_skins;
     scene_mesh *meshes;
     scene_node *nodes;
     scene_material *materials;   /* materials[0] is the default material */
@@ -133,30 +172,50 @@ typedef struct {
     scene_camera *cameras;
     scene_light *lights;
     scene_animation *animations;
+    scene_skin *skins;
     uint32_t *roots;             /* root nodes of the displayed scene */
     uint32_t n_roots;
     /* evaluated by scene_evaluate */
     uint32_t n_instances;
     scene_instance *instances;
     uint32_t warnings;           /* unsupported features skipped while loading */
+    /* the glTF features present in the file that change its appearance and are not implemented
+     * (extension names, "normalTexture", "points", ...), each once */
+    uint32_t n_ignored;
+    char (*ignored)[64];
 } scene;
 
 /* The loader decodes no texture larger than this a side (16384^2 RGBA texels are 1 GB); the
  * command line's texture-size limit (docs/limits.md) is at most this. */
 #define SCENE_MAX_TEXTURE_SIDE 16384u
 
+/* The loader refuses a file with more instances than this (EXT_mesh_gpu_instancing rows can share
+ * one accessor, so a small file could otherwise ask for billions); the command line's instance
+ * limit (docs/limits.md) is at most this. */
+#define SCENE_MAX_INSTANCES (1u << 26)
+
 /* Loads a .gltf or .glb file and evaluates it at time 0. On failure returns -1 with a one-line
- * message in err (the scene is left empty). Unsupported features are skipped with a one-line
- * warning each on stderr (counted in scene.warnings). */
+ * message in err (the scene is left empty); a file whose extensionsRequired names an extension
+ * the loader does not implement fails with a message naming it, before any data is decoded.
+ * Unsupported features are skipped with a one-line warning each on stderr (counted in
+ * scene.warnings); those that change the appearance are listed once each in scene.ignored. */
 int scene_load_gltf(const char *path, scene *out, char *err, size_t errlen);
 
 /* Writes a scene as glTF 2.0 (.glb or .gltf by extension). Returns 0 or -1 with err. */
 int scene_write_gltf(const scene *s, const char *path, char *err, size_t errlen);
 
 /* Applies the animations at time t (seconds; looped by each animation's duration when loop is
- * set), recomputes world transforms, morphed positions, instances (nodes with a mesh under one
- * of the roots), camera and light placement. Returns 0, or -1 if memory ran out. */
+ * set), recomputes world transforms, morphed and skinned positions, instances (nodes with a mesh
+ * under one of the roots), camera and light placement. Returns 0, or -1 if memory ran out. */
 int scene_evaluate(scene *s, double t, int loop);
+
+/* Keeps only the animation named `which` (or with that index; a name wins) and frees the others:
+ * scene_evaluate plays every animation at once, and clips of one character (a fox's "Walk" and
+ * "Run") drive the same nodes. 0, or -1 if no animation matches (the scene is unchanged). */
+int scene_select_animation(scene *s, const char *which);
+
+/* 1 if the mesh's geometry can change from frame to frame (morph targets or a skin). */
+int scene_mesh_deforms(const scene_mesh *m);
 
 /* The instances scene_evaluate makes (nodes with a mesh under one of the roots), counted without
  * allocating: the instance limit is checked before (tb/cli/cli_limits.h). */
@@ -164,8 +223,10 @@ uint32_t scene_count_instances(const scene *s);
 
 void scene_free(scene *s);
 
-/* The view of a scene without cameras: looking down -Z at the centre of the box [lo, hi] from
- * 1.2 diagonals away, vertical field of view 45 degrees. */
+/* The view of a scene without cameras, as model viewers frame one: looking at the centre of the
+ * box [lo, hi] from 1.2 diagonals away, from the front (+Z) turned 30 degrees to the right (+X)
+ * and raised 25 degrees (+Y up), vertical field of view 45 degrees; so a flat model is never seen
+ * edge-on. */
 scene_camera scene_default_camera(const double lo[3], const double hi[3]);
 
 /* Adds a ground plane under the evaluated scene (+Y up, as glTF): a polished metal square
@@ -174,6 +235,10 @@ scene_camera scene_default_camera(const double lo[3], const double hi[3]);
  * its default view of the scene without the ground. Call scene_evaluate after it.
  * Returns 0 (also for an empty scene, which gets none), -1 if memory ran out. */
 int scene_add_ground(scene *s);
+
+/* Texture coordinates (s, t) of vertex v of mesh m for a texture read through TEXCOORD_set with
+ * map uv; 0 and (0, 0) if the mesh lacks that set. */
+int scene_texcoord(const scene_mesh *m, uint32_t set, const scene_uv_map *uv, uint32_t v, double st[2]);
 
 /* Affine helpers. */
 affine affine_identity(void);

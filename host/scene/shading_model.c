@@ -16,11 +16,15 @@ void shading_params_of(const scene_material *m, shading_params *out)
         transmission = clamp01(1.0 - m->base_color[3]); /* alpha blending: straight transparency */
         eta = 1;
     }
-    out->metallic = metal;
-    out->kr = (0.04 + 0.96 * metal) * gloss;
-    out->kt = (1 - out->kr) * (1 - metal) * transmission;
+    /* unlit (KHR_materials_unlit): no reflection or highlight, and kd weighs the base colour
+     * without light; transparency (alpha blend, transmission) still lets the rest through */
+    const int unlit = m->unlit != 0;
+    out->unlit = unlit;
+    out->metallic = unlit ? 0 : metal;
+    out->kr = unlit ? 0 : (0.04 + 0.96 * metal) * gloss;
+    out->kt = (1 - out->kr) * (1 - out->metallic) * transmission;
     out->kd = 1 - out->kr - out->kt;
-    out->ks = 0.5 * gloss;
+    out->ks = unlit ? 0 : 0.5 * gloss;
     out->exp_shift = (uint32_t)lround(1 + 7 * gloss);
     out->eta = eta;
 }

@@ -27,6 +27,7 @@ typedef struct {
     uint32_t exp_shift; /* Phong exponent n = 2^exp_shift (1..8) */
     double eta;       /* index of refraction of the transmission; 1: straight transparency ray */
     double metallic;  /* tint of reflection and highlight: 1 + metallic (base - 1) */
+    int unlit;        /* KHR_materials_unlit: the diffuse term's light is 1, no lights, kr = ks = 0 */
 } shading_params;
 
 /* The material mapping of docs/shading.md. */

@@ -15,7 +15,7 @@ typedef struct {
 /* Defaults and ceilings: docs/limits.md says why. */
 static const limit_info info[LIMIT_COUNT] = {
     [LIMIT_TRIANGLES] = { "triangles", 1u << 24, 1u << 28 },
-    [LIMIT_INSTANCES] = { "instances", 1u << 20, 1u << 26 },
+    [LIMIT_INSTANCES] = { "instances", 1u << 20, SCENE_MAX_INSTANCES },
     [LIMIT_KD_NODES] = { "kd-nodes", 1u << 25, 1u << 28 },
     [LIMIT_KD_DEPTH] = { "kd-depth", 48, 64 },
     [LIMIT_TEXTURE_SIZE] = { "texture-size", 8192, SCENE_MAX_TEXTURE_SIDE },

@@ -158,12 +158,16 @@ int cmd_f24gen(int argc, char **argv)
         cli_error("f24gen", "cannot write '%s'", path);
         return SAARCOR_EXIT_INPUT;
     }
+    if (interrupt_catch() != 0)
+        cli_error("f24gen", "cannot catch SIGINT/SIGTERM: Ctrl-C will not stop cleanly");
+    f24_check_stop = interrupt_signal;
     f24_gen_vectors(out, op, n, seed, edges);
     if ((path ? fclose(out) : fflush(out)) != 0) {
         cli_error("f24gen", "write error on '%s'", path ? path : "stdout");
         return SAARCOR_EXIT_INPUT;
     }
-    return SAARCOR_EXIT_OK;
+    /* Ctrl-C: the vectors written so far are whole lines, kept */
+    return interrupt_signal() ? interrupt_exit("f24gen", "the vectors written so far are kept") : SAARCOR_EXIT_OK;
 }
 
 /* ---- saarcor f24verify ------------------------------------------------------------------ */

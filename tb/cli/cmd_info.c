@@ -61,7 +61,7 @@ static void print_merge(const mi_stats *st, int merge)
         return;
     }
     printf("merged       %u instances into %u world-space object(s) (%llu triangles of baked copies); kept: "
-           "%u animated, %u morphing, %u mirrored, %u turned, %u instanced copies beyond the memory budget\n",
+           "%u animated, %u deforming (morphed, skinned), %u mirrored, %u turned, %u instanced copies beyond the memory budget\n",
            st->merged_instances, st->merged_objects, (unsigned long long)st->merged_copy_triangles, st->kept_animated,
            st->kept_morphing, st->kept_mirrored, st->kept_turned, st->kept_instanced);
 }
@@ -82,8 +82,8 @@ static void print_report(const scene *s, const mi_builder *b, const scene_opts *
     printf("scene        %s\n", o->scene);
     printf("objects      %u (meshes), instances %u, triangles %u unique / %llu instanced, degenerate dropped %u\n",
            st->objects, st->instances, st->triangles, (unsigned long long)inst_tris, st->degenerate_triangles);
-    printf("content      %u materials, %u textures, %u cameras, %u lights, %u animations, %u nodes, %u warnings\n",
-           s->n_materials, s->n_textures, s->n_cameras, s->n_lights, s->n_animations, s->n_nodes, s->warnings);
+    printf("content      %u materials, %u textures, %u cameras, %u lights, %u animations, %u skins, %u nodes, %u warnings\n",
+           s->n_materials, s->n_textures, s->n_cameras, s->n_lights, s->n_animations, s->n_skins, s->n_nodes, s->warnings);
     print_merge(st, o->mi.merge);
     print_tree("bottom level", st->bottom_nodes, st->bottom_leaves, st->bottom_empty_leaves, st->bottom_depth,
                st->bottom_references, st->triangles ? st->bottom_sah / st->triangles : 0.0);
@@ -109,7 +109,17 @@ static void print_report(const scene *s, const mi_builder *b, const scene_opts *
     printf("\n");
 }
 
-static int write_json(const char *path, const scene_opts *o, const mi_builder *b, const double *upload, uint32_t frames)
+/* A JSON string: the names come from the file and may hold anything. */
+static void json_string(FILE *f, const char *str)
+{
+    fputc('"', f);
+    for (const unsigned char *c = (const unsigned char *)str; *c; c++)
+        fprintf(f, *c == '"' || *c == '\\' ? "\\%c" : *c < 0x20 ? "\\u%04x" : "%c", *c);
+    fputc('"', f);
+}
+
+static int write_json(const char *path, const scene_opts *o, const scene *s, const mi_builder *b,
+                      const double *upload, uint32_t frames)
 {
     const mi_stats *st = mi_get_stats(b);
     uint32_t n_words;
@@ -139,7 +149,12 @@ static int write_json(const char *path, const scene_opts *o, const mi_builder *b
     fprintf(f, "\n  \"bytes_per_triangle\": {\"total\": %.4f", per_triangle(st, n_words));
     for (int k = 0; k < REC_KINDS; k++)
         fprintf(f, ", \"%s\": %.4f", rec_names[k], per_triangle(st, rec[k]));
-    fprintf(f, "},\n  \"frame_upload_bytes\": [");
+    fprintf(f, "},\n  \"ignored_features\": [");
+    for (uint32_t i = 0; i < s->n_ignored; i++) {
+        fputs(i ? ", " : "", f);
+        json_string(f, s->ignored[i]);
+    }
+    fprintf(f, "],\n  \"frame_upload_bytes\": [");
     for (uint32_t i = 0; i < frames; i++)
         fprintf(f, "%s%.0f", i ? ", " : "", upload[i]);
     fprintf(f, "]\n}\n");
@@ -174,7 +189,7 @@ static int run_frames(scene *s, mi_builder *b, const scene_opts *o, const info_o
         sorted[f] = upload[f];
     qsort(sorted, io->frames, sizeof *sorted, cmp_double);
     printf("frames       %u at %.0f fps: upload per frame min %.1f KB, median %.1f KB, max %.1f KB; "
-           "morphing objects rebuilt %u times\n", io->frames, io->fps, sorted[0] / 1024.0,
+           "deforming (morphed, skinned) objects rebuilt %u times\n", io->frames, io->fps, sorted[0] / 1024.0,
            sorted[io->frames / 2] / 1024.0, sorted[io->frames - 1] / 1024.0, rebuilt);
     free(sorted);
     return SAARCOR_EXIT_OK;
@@ -282,7 +297,7 @@ int cmd_info(int argc, char **argv)
         rc = SAARCOR_EXIT_INTERNAL;
     if (rc == SAARCOR_EXIT_OK && io.frames)
         rc = run_frames(&s, b, &o, &io, upload);
-    if (rc == SAARCOR_EXIT_OK && io.json && write_json(io.json, &o, b, upload, io.frames) != 0) {
+    if (rc == SAARCOR_EXIT_OK && io.json && write_json(io.json, &o, &s, b, upload, io.frames) != 0) {
         cli_error("info", "cannot write '%s'", io.json);
         rc = SAARCOR_EXIT_INPUT;
     }

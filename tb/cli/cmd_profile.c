@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "interrupt.h"
 #include "mi_profile.h"
 #include "rgs.h"
 #include "scene_opts.h"
@@ -141,14 +142,19 @@ int cmd_profile(int argc, char **argv)
     if (cli_parse_only)
         return SAARCOR_EXIT_OK;
     o.scene = argv[optind];
+    /* Ctrl-C stops after the scene load or the build it interrupts, before anything is written */
+    if (interrupt_catch() != 0)
+        cli_error("profile", "cannot catch SIGINT/SIGTERM: Ctrl-C will not stop cleanly");
     scene s;
     int rc = scene_opts_load(&o, "profile", &s);
     if (rc != SAARCOR_EXIT_OK)
         return rc;
-    mi_builder *b = scene_opts_build(&o, "profile", &s, NULL, &rc);
-    if (!b) {
+    mi_builder *b = interrupt_signal() ? NULL : scene_opts_build(&o, "profile", &s, NULL, &rc);
+    if (!b || interrupt_signal()) {
+        if (b)
+            mi_free(b);
         scene_free(&s);
-        return rc;
+        return interrupt_signal() ? interrupt_exit("profile", "nothing written") : rc;
     }
     uint32_t n_words;
     mi_profile p;

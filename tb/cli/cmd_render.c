@@ -1,10 +1,11 @@
 /*
- * saarcor render SCENE: rendering through the hardware units (hls/units). Functional mode: every
- * 2x2 pixel block runs its ray tree to completion (the steps of rgs_render_block, through
- * pc_render_block, which also attributes the work to pixels for --aov/--heatmap); host threads
- * take block rows in a fixed interleaved order and write disjoint pixels, so the image is
- * bit-identical for any thread count. Cycle mode (--mode cycle): the same unit steps timed by the DynRTC model of
- * tb/cycle, with the paper-style report. The device reads only the validated memory image.
+ * saarcor render SCENE: rendering through the hardware units (hls/units). Functional mode
+ * (render_region, in render_region.c): every 2x2 pixel block runs its ray tree to completion (the
+ * steps of rgs_render_block, through pc_render_block, which also attributes the work to pixels
+ * for --aov/--heatmap); host threads take block rows in a fixed interleaved order and write
+ * disjoint pixels, so the image is bit-identical for any thread count. Cycle mode (--mode
+ * cycle): the same unit steps timed by the DynRTC model of tb/cycle, with the paper-style report.
+ * The device reads only the validated memory image.
  * Ctrl-C/SIGTERM (interrupt.h): the threads stop at the next block row (functional) or epoch
  * (cycle), the unfinished frame is dropped, the frames written so far stay (each file is written
  * under a temporary name and renamed when complete) and the exit code is 128 + the signal.
@@ -12,8 +13,6 @@
 #define _GNU_SOURCE
 #include <getopt.h>
 #include <math.h>
-#include <pthread.h>
-#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -38,100 +37,11 @@
 #include "trace.h"
 #include "usage_plot.h"
 
-typedef struct {
-    const uint32_t *mem;
-    const rgs_config *cfg;
-    uint32_t x0, y0, x1, y1, stride; /* the region rendered (even x0, y0), the image's width */
-    uint32_t thread, threads;
-    uint32_t *pixels;
-    rgs_counters counters;
-    atomic_uint *rows_done; /* block rows finished by all threads, for the progress line */
-    hit_record *hits;       /* per pixel primary hit, for --aov (NULL: not kept) */
-    pixel_cost *costs;      /* per pixel cost, for --aov and --heatmap (NULL: not kept) */
-} render_job;
-
-static double now(void);
-
-/* Progress on stderr (thread 0, a terminal, at most every half second). */
-static void progress(const render_job *j, double *last)
-{
-    const double t = now();
-    if (j->thread != 0 || !isatty(2) || t - *last < 0.5)
-        return;
-    *last = t;
-    const unsigned rows = (j->y1 - j->y0 + 1) / 2;
-    fprintf(stderr, "\rrender: %3u%%", 100u * atomic_load(j->rows_done) / (rows ? rows : 1));
-}
-
-static void *render_rows(void *arg)
-{
-    render_job *j = arg;
-    double last = now();
-    for (uint32_t y = j->y0 + 2 * j->thread; y < j->y1 && !interrupt_signal(); y += 2 * j->threads) {
-        for (uint32_t x = j->x0; x < j->x1; x += 2) {
-            hit_record h[TRACE_PACKET];
-            uint32_t rgb[TRACE_PACKET];
-            pixel_cost cost[TRACE_PACKET];
-            pc_render_block(j->mem, j->cfg, x, y, rgb, h, &j->counters, j->costs ? cost : NULL);
-            if (j->costs)
-                pc_store_block(j->costs, cost, x, y, j->stride, j->y1);
-            for (int i = 0; i < TRACE_PACKET; i++) {
-                const uint32_t px = x + (uint32_t)(i & 1), py = y + (uint32_t)(i >> 1);
-                if (px >= j->x1 || py >= j->y1)
-                    continue;
-                j->pixels[(size_t)py * j->stride + px] = rgb[i];
-                if (j->hits)
-                    j->hits[(size_t)py * j->stride + px] = h[i];
-            }
-        }
-        atomic_fetch_add(j->rows_done, 1u);
-        progress(j, &last);
-    }
-    if (j->thread == 0 && isatty(2))
-        fprintf(stderr, "\r%*s\r", 14, ""); /* clear the progress line */
-    return NULL;
-}
-
 static double now(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-int render_region(const uint32_t *mem, const rgs_config *cfg, uint32_t threads, const uint32_t region[4],
-                  uint32_t *pixels, hit_record *hits, pixel_cost *costs, rgs_counters *sum)
-{
-    uint32_t w, h;
-    rgs_image_size(mem, &w, &h);
-    const uint32_t x1 = region[2] < w ? region[2] : w, y1 = region[3] < h ? region[3] : h;
-    atomic_uint rows_done = 0;
-    render_job *jobs = calloc(threads, sizeof *jobs);
-    pthread_t *tid = calloc(threads, sizeof *tid);
-    if (!jobs || !tid) {
-        free(jobs);
-        free(tid);
-        return -1;
-    }
-    for (uint32_t t = 0; t < threads; t++) {
-        jobs[t] = (render_job){ mem, cfg, region[0], region[1], x1, y1, w, t, threads, pixels, { { 0 }, { 0 }, 0 }, &rows_done, hits, costs };
-        if (t > 0 && pthread_create(&tid[t], NULL, render_rows, &jobs[t]) != 0)
-            jobs[t].threads = 0; /* could not start: done below in this thread */
-    }
-    render_rows(&jobs[0]);
-    memset(sum, 0, sizeof *sum);
-    for (uint32_t t = 0; t < threads; t++) {
-        if (t > 0 && jobs[t].threads)
-            pthread_join(tid[t], NULL);
-        else if (t > 0) {
-            jobs[t].threads = threads;
-            render_rows(&jobs[t]);
-        }
-        rgs_counters_add(sum, &jobs[t].counters);
-    }
-    free(jobs);
-    free(tid);
-    return atomic_load(&rows_done) < (y1 - region[1] + 1) / 2 ? 1 : 0; /* rows left out: stopped by a signal */
 }
 
 static int write_png(const char *path, const uint32_t *pixels, uint32_t w, uint32_t h)
@@ -191,7 +101,9 @@ static int usage(void)
            "  --stats FILE       counters as JSON: rays by kind, traversal steps, leaves, list entries,\n"
            "                     mailbox skips, transformations, intersections, memory words read; in\n"
            "                     cycle mode also the timing (\"cycle\": cycles, fps, usage, caches, ...);\n"
-           "                     host_rss_kb, host_peak_rss_kb: this program's memory after the frame\n"
+           "                     host_rss_kb, host_peak_rss_kb: this program's memory after the frame;\n"
+           "                     \"host\": upload_bytes, geometry_upload_bytes (of deforming objects),\n"
+           "                     rebuilt_objects, seconds: what bringing the image to the frame cost the host\n"
            "  --vcd FILE.vcd     cycle mode: waveforms of the model (IEEE 1364 VCD, e.g. for GTKWave): per pipe\n"
            "                     and unit busy, issue, queue_depth, thread_id; per cache lookups, misses, fills;\n"
            "                     the memory port's outstanding transfers; threads in flight (docs/cycle-model.md)\n"
@@ -269,6 +181,11 @@ static int write_stats(const char *path, const render_opts *ro, const cycle_conf
     proc_mem pm;
     proc_mem_read(&pm); /* after the frame: what a long run must keep constant */
     fprintf(f, ", \"host_rss_kb\": %ld, \"host_peak_rss_kb\": %ld", pm.rss_kb, pm.peak_rss_kb);
+    /* one object: its time varies from run to run, and with --mpi --frames its bytes with what a
+     * board held before, so comparisons of the device's counters leave it out whole */
+    fprintf(f, ", \"host\": {\"upload_bytes\": %llu, \"geometry_upload_bytes\": %llu, \"rebuilt_objects\": %u, "
+               "\"seconds\": %.6f}", (unsigned long long)fr->host.upload_bytes, (unsigned long long)fr->host.geometry_bytes,
+            fr->host.rebuilt, fr->host.secs);
     if (ro->cycle) {
         fprintf(f, ", \"cycle\": ");
         cycle_report_json(f, cc, &fr->cs, all_rays(c));
@@ -426,10 +343,11 @@ int render_frame_output(const render_opts *ro, const mi_builder *b, const scene 
     const uint64_t rays = all_rays(sum), primary = sum->rays[RAY_PRIMARY] ? sum->rays[RAY_PRIMARY] : 1;
     const trace_counters *t = &sum->trace;
     printf("rendered %s: %ux%u, %llu rays (%llu primary, %llu shadow, %llu reflection, %llu transmission) in %.3f s "
-           "(%u threads), upload %.1f KB -> %s\n", scene_name, w, h, (unsigned long long)rays,
-           (unsigned long long)sum->rays[RAY_PRIMARY], (unsigned long long)sum->rays[RAY_SHADOW],
-           (unsigned long long)sum->rays[RAY_REFLECTION], (unsigned long long)sum->rays[RAY_TRANSMISSION], fr->secs,
-           ro->threads, (double)fr->upload_bytes / 1024.0, path);
+           "(%u threads), host %.2f ms, rebuilt %u (geometry %.1f KB), upload %.1f KB -> %s\n", scene_name, w, h,
+           (unsigned long long)rays, (unsigned long long)sum->rays[RAY_PRIMARY],
+           (unsigned long long)sum->rays[RAY_SHADOW], (unsigned long long)sum->rays[RAY_REFLECTION],
+           (unsigned long long)sum->rays[RAY_TRANSMISSION], fr->secs, ro->threads, 1e3 * fr->host.secs, fr->host.rebuilt,
+           (double)fr->host.geometry_bytes / 1024.0, (double)fr->host.upload_bytes / 1024.0, path);
     printf("per primary ray (secondary rays included): %.2f traversal steps, %.2f leaves, %.2f list entries, "
            "%.2f mailbox skips, %.2f intersections, %.1f words read\n", (double)t->traversal_steps / primary,
            (double)t->leaves / primary, (double)t->list_entries / primary, (double)t->mailbox_skips / primary,
@@ -494,8 +412,28 @@ static int waveform_end(const render_opts *ro, cycle_trace *tr, uint32_t frame, 
     return bad ? SAARCOR_EXIT_INPUT : SAARCOR_EXIT_OK;
 }
 
-/* Renders one frame of the current image and writes it. */
-static int render_frame(const mi_builder *b, const scene *s, const render_opts *ro, uint32_t frame, const char *scene_name)
+frame_host render_host(const mi_builder *b, double secs)
+{
+    const mi_stats *st = mi_get_stats(b);
+    return (frame_host){ st->frame_upload_bytes, st->frame_geometry_bytes, st->rebuilt_objects, secs };
+}
+
+int render_advance(scene *s, mi_builder *b, uint32_t f, double fps, frame_host *h, char *err, size_t errlen)
+{
+    const double t0 = now();
+    if (scene_evaluate(s, f / fps, 1) != 0) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    if (mi_update(b, s, err, errlen) != 0)
+        return -1;
+    *h = render_host(b, now() - t0);
+    return 0;
+}
+
+/* Renders one frame of the current image (host: what bringing it to this frame cost) and writes it. */
+static int render_frame(const mi_builder *b, const scene *s, const render_opts *ro, uint32_t frame,
+                        const char *scene_name, frame_host host)
 {
     uint32_t n, w, h;
     const uint32_t *mem = mi_words(b, &n);
@@ -510,7 +448,7 @@ static int render_frame(const mi_builder *b, const scene *s, const render_opts *
     hit_record *hits = ro->aov ? calloc((size_t)w * h, sizeof *hits) : NULL;
     const int want_costs = ro->aov || ro->heatmap;
     pixel_cost *costs = want_costs ? calloc((size_t)w * h, sizeof *costs) : NULL;
-    frame_result fr = { .upload_bytes = mi_get_stats(b)->frame_upload_bytes, .costs = costs };
+    frame_result fr = { .host = host, .costs = costs };
     static const uint32_t all[4] = { 0, 0, UINT32_MAX, UINT32_MAX };
     const double t0 = now();
     if (ro->sim) {
@@ -762,7 +700,9 @@ int cmd_render(int argc, char **argv)
     if (rc != SAARCOR_EXIT_OK)
         return rc;
     char err[512];
+    const double build_t0 = now();
     mi_builder *b = scene_opts_build(&o, "render", &s, NULL, &rc);
+    ro.build_secs = now() - build_t0;
     if (!b) {
         scene_free(&s);
         return rc;
@@ -781,25 +721,23 @@ int cmd_render(int argc, char **argv)
         scene_free(&s);
         return SAARCOR_EXIT_INTERNAL;
     }
-    rc = mpi_run ? render_mpi(&ro, mpi_run, b, &s, o.scene) : render_frame(b, &s, &ro, ro.first, o.scene);
+    rc = mpi_run ? render_mpi(&ro, mpi_run, b, &s, o.scene)
+                 : render_frame(b, &s, &ro, ro.first, o.scene, render_host(b, ro.build_secs));
     uint32_t written = rc == SAARCOR_EXIT_OK;
     for (uint32_t f = ro.first + 1; !mpi_run && rc == SAARCOR_EXIT_OK && f <= ro.last; f++) {
         if (interrupt_signal()) { /* between frames: the safest point of all */
             rc = 128 + interrupt_signal();
             break;
         }
-        if (scene_evaluate(&s, f / ro.fps, 1) != 0) {
-            cli_error("render", "frame %u: out of memory", f);
-            rc = SAARCOR_EXIT_INTERNAL;
-        } else if (mi_update(b, &s, err, sizeof err) != 0) {
+        frame_host host;
+        if (render_advance(&s, b, f, ro.fps, &host, err, sizeof err) != 0) {
             cli_error("render", "frame %u: %s", f, err);
             rc = SAARCOR_EXIT_INTERNAL;
-        }
-        if (rc != SAARCOR_EXIT_OK)
             break;
+        }
         if (ro.sim)
             cycle_flush(ro.sim); /* the image changed */
-        rc = render_frame(b, &s, &ro, f, o.scene);
+        rc = render_frame(b, &s, &ro, f, o.scene, host);
         written += rc == SAARCOR_EXIT_OK;
     }
     if (rc > 128 && !mpi_run)

@@ -31,16 +31,26 @@ typedef struct {
     uint64_t capture_limit;
     const char *vcd, *usage_plot; /* --vcd FILE.vcd, --usage-plot FILE.svg (cycle mode) */
     uint64_t vcd_from, vcd_to;    /* --vcd-cycles A:B: cycles [A, B) */
+    double build_secs; /* host time of the first frame's memory image (mi_build) */
     int mpi;           /* --mpi: distributed over MPI ranks (render_mpi.h) */
     uint32_t mpi_tile; /* --mpi-tile: edge in pixels of a work item of one frame */
 } render_opts;
+
+/* What the host did to bring the memory image to a frame: the paper's per-frame upload of the
+ * changed objects and the top level. */
+typedef struct {
+    uint64_t upload_bytes;   /* memory image words rewritten for this frame, in bytes */
+    uint64_t geometry_bytes; /* of which the geometry of deforming (morphed, skinned) objects and the object table */
+    uint32_t rebuilt;        /* deforming objects whose bottom-level tree was rebuilt */
+    double secs;             /* host time: scene_evaluate + mi_update (the first frame: mi_build) */
+} frame_host;
 
 /* One frame's numbers, however it was rendered. */
 typedef struct {
     rgs_counters sum;
     cycle_stats cs;           /* cycle mode */
     double secs;              /* wall time of the render */
-    uint64_t upload_bytes;    /* memory image words changed for this frame, in bytes */
+    frame_host host;
     uint32_t boards;          /* MPI: worker ranks (each a board of --pipes pipes); 0: one process */
     uint32_t items;           /* MPI: work items of this frame (tiles, or 1 for a whole frame) */
     uint64_t image_bytes_per_board;    /* MPI, one frame in tiles: the memory image every board holds */
@@ -49,9 +59,9 @@ typedef struct {
     const pixel_cost *costs;  /* per pixel, for --aov and --heatmap (NULL: not kept) */
 } frame_result;
 
-/* Renders the pixels of region {x0, y0, x1, y1} (x0, y0 even; clipped to the image) with
- * `threads` host threads into the full-size pixels (and hits, costs, may be NULL); sum = the counters
- * of that work. 0, or -1 if out of memory. */
+/* Functional mode (render_region.c): renders the pixels of region {x0, y0, x1, y1} (x0, y0 even;
+ * clipped to the image) with `threads` host threads into the full-size pixels (and hits, costs,
+ * may be NULL); sum = the counters of that work. 0, or -1 if out of memory. */
 int render_region(const uint32_t *mem, const rgs_config *cfg, uint32_t threads, const uint32_t region[4],
                   uint32_t *pixels, hit_record *hits, pixel_cost *costs, rgs_counters *sum);
 
@@ -60,6 +70,13 @@ int render_region(const uint32_t *mem, const rgs_config *cfg, uint32_t threads, 
 int render_frame_output(const render_opts *ro, const mi_builder *b, const scene *s, uint32_t frame,
                         const char *scene_name, uint32_t w, uint32_t h, const uint32_t *pixels, const hit_record *hits,
                         const frame_result *fr);
+
+/* The frame_host of an image just built or updated in secs of host time. */
+frame_host render_host(const mi_builder *b, double secs);
+
+/* Brings scene and image to frame f (time f / fps) and says what that cost in *h.
+ * 0, or -1 with err. */
+int render_advance(scene *s, mi_builder *b, uint32_t f, double fps, frame_host *h, char *err, size_t errlen);
 
 /* Validates the memory image; a saarcor exit code, with a one-line error. */
 int render_validate(const mi_builder *b);

@@ -14,7 +14,7 @@ typedef struct {
     rgs_counters sum;
     cycle_stats cs;
     double secs;
-    uint64_t upload_bytes;
+    frame_host host;      /* frames: what bringing the image to the item's frame cost this board */
     uint64_t moved_bytes; /* frames: memory image bytes this board uploaded for the item (0: it held the frame) */
 } item_head;
 
@@ -26,6 +26,7 @@ typedef struct {
     uint32_t w, h, tiles_x, n_tiles;
     uint32_t *pixels;      /* the whole image: a worker's scratch, the controller's result */
     uint32_t current;      /* frames: the frame the memory image holds */
+    frame_host host;       /* frames: what bringing the image to `current` cost */
     frame_result total;    /* one frame: the combined numbers */
     uint64_t *tile_cycles; /* one frame, cycle mode: cycles of each tile on its board */
     int rc;                /* the first failed frame's exit code (frames) */
@@ -79,7 +80,7 @@ static long tile_work(void *ctx, uint32_t item, void *result)
 {
     mpi_render *m = ctx;
     uint32_t r[4];
-    item_head hd = { .upload_bytes = 0 };
+    item_head hd = { .moved_bytes = 0 };
     tile_region(m, item, r);
     if (render_part(m, r, &hd) != 0) {
         cli_error("render", "--mpi: out of memory rendering tile %u", item);
@@ -137,8 +138,8 @@ static int move_to(mpi_render *m, uint32_t f)
     char err[512];
     if (f == m->current)
         return 0;
-    if (scene_evaluate(m->s, f / m->ro->fps, 1) != 0 || mi_update(m->b, m->s, err, sizeof err) != 0) {
-        cli_error("render", "frame %u: cannot update the memory image", f);
+    if (render_advance(m->s, m->b, f, m->ro->fps, &m->host, err, sizeof err) != 0) {
+        cli_error("render", "frame %u: cannot update the memory image: %s", f, err);
         return -1;
     }
     m->current = f;
@@ -149,12 +150,12 @@ static long frame_work(void *ctx, uint32_t item, void *result)
 {
     mpi_render *m = ctx;
     const uint32_t f = m->ro->first + item, all[4] = { 0, 0, m->w, m->h };
-    item_head hd = { .upload_bytes = 0 };
+    item_head hd = { .moved_bytes = 0 };
     const int moved = f != m->current;
     if (move_to(m, f) != 0 || render_validate(m->b) != SAARCOR_EXIT_OK)
         return -1;
-    hd.upload_bytes = mi_get_stats(m->b)->frame_upload_bytes;
-    hd.moved_bytes = moved ? hd.upload_bytes : 0;
+    hd.host = m->host;
+    hd.moved_bytes = moved ? hd.host.upload_bytes : 0;
     if (render_part(m, all, &hd) != 0) {
         cli_error("render", "--mpi: out of memory rendering frame %u", f);
         return -1;
@@ -177,7 +178,7 @@ static int frame_take(void *ctx, uint32_t item, const void *result, size_t size,
     memcpy(&hd, result, sizeof hd);
     m->moved_bytes += hd.moved_bytes;
     memcpy(m->pixels, (const char *)result + sizeof hd, size - sizeof hd);
-    const frame_result fr = { .sum = hd.sum, .cs = hd.cs, .secs = hd.secs, .upload_bytes = hd.upload_bytes, .boards = 1,
+    const frame_result fr = { .sum = hd.sum, .cs = hd.cs, .secs = hd.secs, .host = hd.host, .boards = 1,
                               .items = 1 };
     const int rc = render_frame_output(m->ro, NULL, NULL, m->ro->first + item, m->scene_name, m->w, m->h, m->pixels,
                                        NULL, &fr);
@@ -200,7 +201,8 @@ static void print_sequence_mpi(const saarcor_mpi_report *rep, uint32_t frames, u
 int render_mpi(render_opts *ro, saarcor_mpi_run_fn run, mi_builder *b, scene *s, const char *scene_name)
 {
     uint32_t n;
-    mpi_render m = { .ro = ro, .b = b, .s = s, .scene_name = scene_name, .current = ro->first };
+    mpi_render m = { .ro = ro, .b = b, .s = s, .scene_name = scene_name, .current = ro->first,
+                      .host = render_host(b, ro->build_secs) };
     rgs_image_size(mi_words(b, &n), &m.w, &m.h);
     if (render_validate(b) != SAARCOR_EXIT_OK)
         return SAARCOR_EXIT_INTERNAL;
@@ -234,10 +236,10 @@ int render_mpi(render_opts *ro, saarcor_mpi_run_fn run, mi_builder *b, scene *s,
     } else if (rep.rank == 0) {
         schedule(&m, (uint32_t)rep.ranks - 1);
         m.total.secs = rep.wall_seconds;
-        m.total.upload_bytes = mi_get_stats(b)->frame_upload_bytes;
+        m.total.host = render_host(b, ro->build_secs);
         m.total.boards = (uint32_t)rep.ranks - 1;
-        m.total.image_bytes_per_board = m.total.upload_bytes; /* every board holds the whole image */
-        m.total.image_upload_bytes_total = m.total.upload_bytes * m.total.boards;
+        m.total.image_bytes_per_board = m.total.host.upload_bytes; /* every board holds the whole image */
+        m.total.image_upload_bytes_total = m.total.host.upload_bytes * m.total.boards;
         m.total.items = m.n_tiles;
         m.total.mpi = &rep;
         rc = render_frame_output(ro, b, s, ro->first, scene_name, m.w, m.h, m.pixels, NULL, &m.total);

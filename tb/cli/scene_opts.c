@@ -108,6 +108,7 @@ int scene_opts_parse(scene_opts *o, const char *cmd, int c, const char *arg)
     case 18: return limits_parse(&o->lim, cmd, arg) ? 1 : -1;
     case 19: o->mi.merge = 1; return 1;
     case 20: return number(cmd, "top-ci", arg, 1e-6, 1e6, &o->mi.top.cost_intersection);
+    case 21: o->animation = arg; return 1;
     default: return 0;
     }
 }
@@ -139,6 +140,11 @@ int scene_opts_load(const scene_opts *o, const char *cmd, scene *s)
     if ((rc = limits_check_scene(&o->lim, cmd, s, (uint32_t)o->ground)) != SAARCOR_EXIT_OK) {
         scene_free(s);
         return rc;
+    }
+    if (o->animation && scene_select_animation(s, o->animation) != 0) {
+        cli_error(cmd, "%s has no animation '%s' (%u animations)", o->scene, o->animation, s->n_animations);
+        scene_free(s);
+        return SAARCOR_EXIT_USAGE;
     }
     if (scene_evaluate(s, o->time, 1) != 0 ||
         (o->ground && (scene_add_ground(s) != 0 || scene_evaluate(s, o->time, 1) != 0))) {

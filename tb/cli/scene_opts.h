@@ -25,7 +25,7 @@
     { "up", required_argument, NULL, SCENE_OPT_BASE + 14 }, { "fov", required_argument, NULL, SCENE_OPT_BASE + 15 }, \
     { "ground", no_argument, NULL, SCENE_OPT_BASE + 16 }, { "general", no_argument, NULL, SCENE_OPT_BASE + 17 }, \
     { "limit", required_argument, NULL, SCENE_OPT_BASE + 18 }, { "merge", no_argument, NULL, SCENE_OPT_BASE + 19 }, \
-    { "top-ci", required_argument, NULL, SCENE_OPT_BASE + 20 }
+    { "top-ci", required_argument, NULL, SCENE_OPT_BASE + 20 }, { "animation", required_argument, NULL, SCENE_OPT_BASE + 21 }
 
 /* `info` also accepts the kd-tree depth as --max-depth (render and reference use that name for
  * the ray depth). */
@@ -35,6 +35,7 @@
     "scene options:\n"                                                                                  \
     "  SCENE                 a .gltf/.glb file, or a generator name (saarcor gen --list)\n"            \
     "  --time T              evaluate animations at T seconds (default 0)\n"                           \
+    "  --animation A         play only the animation named A (or numbered A, from 0; default: all)\n" \
     "  --camera N            use the scene's camera N (default 0; a default view if there is none)\n" \
     "  --eye X,Y,Z --at X,Y,Z [--up X,Y,Z] [--fov DEG]  explicit perspective view instead (up 0,1,0,\n" \
     "                        vertical field of view 45 degrees; pixel centres at +1/2)\n"             \
@@ -60,6 +61,7 @@
 typedef struct {
     const char *scene;   /* path or generator name */
     double time;
+    const char *animation; /* --animation: the one animation to play, NULL: all */
     int ground;          /* --ground: add scene_add_ground's plane */
     mi_params mi;
     limits lim;          /* --limit */

@@ -96,6 +96,6 @@ void f24_gen_vectors(FILE *out, f24_op op, uint64_t n_random, uint64_t seed, int
     }
     f24_rng rng;
     f24_rng_seed(&rng, seed);
-    for (uint64_t i = 0; i < n_random; i++)
+    for (uint64_t i = 0; i < n_random && !stopped(i); i++)
         write_vector(out, info, op, f24_vec_random(op, &rng));
 }

@@ -22,8 +22,8 @@ typedef struct {
  * *budget > 0 (log may be NULL). */
 int f24_check_vector(f24_op op, f24_pair v, f24_check_stats *st, FILE *log, int *budget);
 
-/* Polled every 4096 vectors by the checks below: non-zero stops them early, with the counts so far
- * (f24verify's Ctrl-C). NULL: never. */
+/* Polled every 4096 vectors by the checks and the generator below: non-zero stops them early,
+ * with the counts or vectors so far (f24verify's and f24gen's Ctrl-C). NULL: never. */
 extern int (*f24_check_stop)(void);
 
 /* Edge set, then n_random random vectors from seed. */
@@ -32,7 +32,8 @@ f24_check_stats f24_check_op(f24_op op, uint64_t n_random, uint64_t seed, FILE *
 /* Every operand of a unary operation on fp24 inputs (2^F24_WIDTH vectors). */
 f24_check_stats f24_check_exhaustive(f24_op op, FILE *log, int max_log);
 
-/* Writes "a [b] result" hex lines (TestFloat style; result from MPFR): edges then n random. */
+/* Writes "a [b] result" hex lines (TestFloat style; result from MPFR): edges then n random (fewer
+ * if f24_check_stop stopped it). */
 void f24_gen_vectors(FILE *out, f24_op op, uint64_t n_random, uint64_t seed, int with_edges);
 
 /* Format name, e.g. "e7m16". */

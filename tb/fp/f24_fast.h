@@ -13,14 +13,17 @@
  * Build with -ffp-contract=off (no fused multiply-add) and without -ffast-math.
  * The simulation build names this header to hls/fp24/f24.h (-DF24_SIM_HEADER='"f24_fast.h"' with
  * -DF24_FAST_SIM, the Makefile's SIM_FLAGS), which then maps f24_add ... f24_from_f32, the
- * comparisons lt/le/eq and min/max onto these functions, so that hls/ names nothing of tb/; the
- * sign operations and conversions to integers stay the integer ones.
+ * comparisons lt/le/eq, min/max and the exact dot product onto these functions, so that hls/
+ * names nothing of tb/; the sign operations and conversions to integers stay the integer ones.
  */
 #ifndef SAARCOR_F24_FAST_H
 #define SAARCOR_F24_FAST_H
 
 #include <stdint.h>
 
+#ifdef F24_FAST_SIM
+#define F24_SIM_WORKING /* f24.h then leaves the working values to this header */
+#endif
 #include "f24.h"
 #include "f24_double.h" /* host/fp24: f24_fast_decode, f24_fast_encode */
 
@@ -47,20 +50,50 @@ static inline int f24_fast_lt(f24_t a, f24_t b) { return f24_fast_decode(a) < f2
 static inline int f24_fast_le(f24_t a, f24_t b) { return f24_fast_decode(a) <= f24_fast_decode(b); }
 static inline int f24_fast_eq(f24_t a, f24_t b) { return f24_fast_decode(a) == f24_fast_decode(b); }
 
-static inline f24_t f24_fast_minmax(f24_t a, f24_t b, int want_max)
+/* f24_sum_exact from exact binary64 products and double-doubles (tb/fp/f24_fast_sum.c). */
+f24x2 f24_fast_sum_exact(const f24_t a[], const f24_t b[], uint32_t n);
+
+/* The working values of hls/fp24/f24.h held decoded: each operation rounds its binary64 result
+ * with f24_fast_round and stays binary64, the comparisons and minimum/maximum are those above on
+ * decoded values; f24w_bits encodes (exactly: every working value is an fp24 value) and keeps the
+ * sign of a NaN that f24w_neg gave, as the integer f24_neg does. */
+static inline double f24_fast_minmax_w(double x, double y, int want_max)
 {
-    const double x = f24_fast_decode(a), y = f24_fast_decode(b);
     if (x != x)
-        return y != y ? F24_DEFAULT_NAN : f24_fast_encode(y);
+        return y != y ? f24_fast_decode(F24_DEFAULT_NAN) : y;
     if (y != y)
-        return f24_fast_encode(x);
+        return x;
     const int x_first = x < y || (x == y && __builtin_signbit(x)); /* -0 before +0 */
-    return f24_fast_encode(x_first != want_max ? x : y);
+    return x_first != want_max ? x : y;
 }
-static inline f24_t f24_fast_min(f24_t a, f24_t b) { return f24_fast_minmax(a, b, 0); }
-static inline f24_t f24_fast_max(f24_t a, f24_t b) { return f24_fast_minmax(a, b, 1); }
+
+static inline f24_t f24_fast_min(f24_t a, f24_t b)
+{
+    return f24_fast_encode(f24_fast_minmax_w(f24_fast_decode(a), f24_fast_decode(b), 0));
+}
+static inline f24_t f24_fast_max(f24_t a, f24_t b)
+{
+    return f24_fast_encode(f24_fast_minmax_w(f24_fast_decode(a), f24_fast_decode(b), 1));
+}
 
 #ifdef F24_FAST_SIM
+typedef double f24w;
+static inline f24w f24w_of(f24_t a) { return f24_fast_decode(a); }
+static inline f24_t f24w_bits(f24w a)
+{
+    return f24_fast_encode(a) | (a != a && __builtin_signbit(a) ? F24_SIGN_BIT : 0u);
+}
+static inline f24w f24w_add(f24w a, f24w b) { return f24_fast_round(a + b); }
+static inline f24w f24w_sub(f24w a, f24w b) { return f24_fast_round(a - b); }
+static inline f24w f24w_mul(f24w a, f24w b) { return f24_fast_round(a * b); }
+static inline f24w f24w_div(f24w a, f24w b) { return f24_fast_round(a / b); }
+static inline f24w f24w_min(f24w a, f24w b) { return f24_fast_minmax_w(a, b, 0); }
+static inline f24w f24w_max(f24w a, f24w b) { return f24_fast_minmax_w(a, b, 1); }
+static inline f24w f24w_neg(f24w a) { return -a; }
+static inline int f24w_lt(f24w a, f24w b) { return a < b; }
+static inline int f24w_le(f24w a, f24w b) { return a <= b; }
+static inline uint32_t f24w_sign(f24w a) { return __builtin_signbit(a) != 0; }
+
 #define f24_lt f24_fast_lt
 #define f24_le f24_fast_le
 #define f24_eq f24_fast_eq
@@ -71,6 +104,7 @@ static inline f24_t f24_fast_max(f24_t a, f24_t b) { return f24_fast_minmax(a, b
 #define f24_mul f24_fast_mul
 #define f24_div f24_fast_div
 #define f24_sqrt f24_fast_sqrt
+#define f24_sum_exact f24_fast_sum_exact
 #define f24_from_i32 f24_fast_from_i32
 #define f24_from_f32 f24_fast_from_f32
 #endif

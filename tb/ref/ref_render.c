@@ -122,8 +122,43 @@ typedef struct {
     int entering;
     const scene_material *mat;
     shading_params sp;
-    double base[3], tint[3];
+    double base[3], emission[3], tint[3];
 } surface;
+
+/* Multiplies c by the bilinear sample of texture t at the hit, read through TEXCOORD_set and map
+ * uv, if t is a texture and the mesh has texture coordinates (of any set: the device's rule). */
+static void modulate_texture(const ref_scene *r, const scene_mesh *m, const ref_hit *h, uint32_t t, uint32_t set,
+                             const scene_uv_map *uv, double c[3])
+{
+    if (t >= r->s->n_textures || !(m->texcoords || m->texcoords1))
+        return;
+    const double w[3] = { h->u, h->v, 1 - h->u - h->v };
+    double st[2] = { 0, 0 }, tex[3];
+    for (uint32_t j = 0; j < 3; j++) {
+        double v[2];
+        scene_texcoord(m, set, uv, m->indices[3 * h->triangle + j], v);
+        st[0] += w[j] * v[0];
+        st[1] += w[j] * v[1];
+    }
+    sample_bilinear(&r->s->textures[t], st[0], st[1], tex);
+    for (int k = 0; k < 3; k++)
+        c[k] *= tex[k];
+}
+
+/* Base colour (factor x vertex colours x texture) and emission (factor x texture) at the hit. */
+static void surface_colours(const ref_scene *r, const scene_mesh *m, const ref_hit *h, surface *sf)
+{
+    const scene_material *mat = sf->mat;
+    double rgb[3] = { 1, 1, 1 };
+    if (m->colours)
+        interpolate(m->colours, 3, m, h, rgb);
+    for (int k = 0; k < 3; k++) {
+        sf->base[k] = fmax(0, mat->base_color[k]) * rgb[k];
+        sf->emission[k] = fmax(0, mat->emissive[k]);
+    }
+    modulate_texture(r, m, h, mat->base_color_texture, mat->texcoord_set, &mat->base_uv, sf->base);
+    modulate_texture(r, m, h, mat->emissive_texture, mat->emissive_texcoord, &mat->emissive_uv, sf->emission);
+}
 
 static void surface_at(const ref_scene *r, const double o[3], const double d[3], const ref_hit *h, surface *sf)
 {
@@ -149,15 +184,7 @@ static void surface_at(const ref_scene *r, const double o[3], const double d[3],
     sf->entering = dot(wg, d) < 0;
     sf->mat = &r->s->materials[m->material[h->triangle] < r->s->n_materials ? m->material[h->triangle] : 0];
     shading_params_of(sf->mat, &sf->sp);
-    for (int k = 0; k < 3; k++)
-        sf->base[k] = fmax(0, sf->mat->base_color[k]);
-    if (sf->mat->base_color_texture < r->s->n_textures && m->texcoords) {
-        double st[2], tex[3];
-        interpolate(m->texcoords, 2, m, h, st);
-        sample_bilinear(&r->s->textures[sf->mat->base_color_texture], st[0], st[1], tex);
-        for (int k = 0; k < 3; k++)
-            sf->base[k] *= tex[k];
-    }
+    surface_colours(r, m, h, sf);
     for (int k = 0; k < 3; k++)
         sf->tint[k] = 1 + sf->sp.metallic * (sf->base[k] - 1);
 }
@@ -189,10 +216,10 @@ static void gather_light(const ref_scene *r, const ref_params *p, const surface 
     double refl[3];
     reflect(sf->d, sf->n, refl);
     for (int k = 0; k < 3; k++) {
-        diffuse[k] = SHADE_AMBIENT;
+        diffuse[k] = sf->sp.unlit ? 1 : SHADE_AMBIENT; /* unlit: kd B alone */
         highlight[k] = 0;
     }
-    for (uint32_t li = 0; li < p->n_lights; li++) {
+    for (uint32_t li = 0; li < p->n_lights && !sf->sp.unlit; li++) {
         const scene_light *l = &p->lights[li];
         const int directional = l->kind == LIGHT_DIRECTIONAL;
         double L[3], colour[3], m = 0;
@@ -243,7 +270,7 @@ static void shade_ray(const ref_scene *r, const ref_params *p, const double o[3]
     double diffuse[3], highlight[3];
     gather_light(r, p, &sf, diffuse, highlight);
     for (int k = 0; k < 3; k++)
-        acc[k] += w[k] * (fmax(0, sf.mat->emissive[k]) + sf.sp.kd * sf.base[k] * diffuse[k] +
+        acc[k] += w[k] * (sf.emission[k] + sf.sp.kd * sf.base[k] * diffuse[k] +
                           sf.sp.ks * sf.tint[k] * highlight[k]);
     if (depth + 1 > p->max_depth)
         return;

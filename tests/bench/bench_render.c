@@ -4,6 +4,11 @@
  * Embree 3 tracing the same rays (rtcIntersect1, one thread, the same two-level instancing) as
  * the anchor; plus the full render with shading and shadow rays, and the agreement of the
  * primary hits (hit/miss, relative t difference) between the fp24 units and Embree's binary32.
+ * Embree is built, fed and timed by the harness shared with bench-peers (embree_scene.h: build
+ * quality medium, scene flags none, the RGS's rays decoded before timing); our side is timed by
+ * the same bench_time. *units trace* includes the RGS's ray generation (the device generates its
+ * rays; bench-peers reports trace_packet alone too); *units render* and *full* are render_region,
+ * the render command's functional frame (bench_units.h).
  * Writes build/bench/render.md and render.json. The memory image is given 1 GB so every scene
  * fits (the 24 MB default is the prototype's; see saarcor info for the real sizes).
  */
@@ -12,9 +17,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-#include <unistd.h>
 
+#include "bench_units.h"
 #include "embree_scene.h"
 #include "f24_fast.h"
 #include "memimage.h"
@@ -23,7 +27,7 @@
 #include "shading_model.h"
 #include "trace.h"
 
-enum { W = 1024, H = 768 };
+enum { W = 1024, H = 768, N_RAYS = W * H };
 
 typedef struct {
     char name[64];
@@ -33,111 +37,76 @@ typedef struct {
     uint64_t tris;
 } result;
 
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+typedef struct {
+    const uint32_t *mem;
+    float *t; /* per ray in 2x2 block order, as bench_primary_rays orders Embree's */
+} rgs_trace_job;
 
-/* Our primary rays, one thread: t per pixel (INFINITY for a miss) and the trace time. */
-static double trace_ours(const uint32_t *mem, float *t_out)
+/* Our primary rays: the RGS generates each block's packet, trace_packet traces it. */
+static void rgs_trace_work(void *ctx, uint32_t part, uint32_t parts)
 {
+    const rgs_trace_job *j = ctx;
     trace_counters c;
     memset(&c, 0, sizeof c);
-    const double t0 = now();
-    for (uint32_t y = 0; y < H; y += 2)
-        for (uint32_t x = 0; x < W; x += 2) {
-            ray_packet rp;
-            hit_record h[TRACE_PACKET];
-            rgs_primary(mem, x, y, &rp);
-            trace_packet(mem, &rp, h, &c);
-            for (int i = 0; i < TRACE_PACKET; i++)
-                t_out[(y + (uint32_t)(i >> 1)) * W + x + (uint32_t)(i & 1)] =
-                    h[i].instance == TRACE_NO_HIT ? INFINITY : (float)f24_fast_decode(h[i].t);
-        }
-    return now() - t0;
-}
-
-/* The whole frame through the units with the given ray depth (0: primary rays and shadows). */
-static double render_ours(const uint32_t *mem, uint32_t max_depth)
-{
-    rgs_counters c;
-    memset(&c, 0, sizeof c);
-    const rgs_config cfg = { max_depth, 1, TRAV_STACK };
-    uint32_t sink = 0;
-    const double t0 = now();
-    for (uint32_t y = 0; y < H; y += 2)
-        for (uint32_t x = 0; x < W; x += 2) {
-            uint32_t rgb[TRACE_PACKET];
-            rgs_render_block(mem, &cfg, x, y, rgb, NULL, &c);
-            sink ^= rgb[0];
-        }
-    return now() - t0 + 0.0 * sink;
-}
-
-/* Embree on the same (fp24) rays; fills result agreement figures. */
-static int trace_embree(const scene *s, const uint32_t *mem, const float *ours, result *r)
-{
-    RTCDevice dev = rtcNewDevice("threads=1");
-    if (!dev)
-        return -1;
-    RTCScene *meshes = calloc(s->n_meshes + 1, sizeof *meshes);
-    for (uint32_t i = 0; i < s->n_meshes; i++) {
-        meshes[i] = embree_mesh_scene(dev, &s->meshes[i], RTC_BUILD_QUALITY_MEDIUM);
-        if (meshes[i])
-            rtcCommitScene(meshes[i]);
+    uint32_t first, count;
+    bench_split(N_RAYS / TRACE_PACKET, 1, part, parts, &first, &count);
+    for (uint32_t b = first; b < first + count; b++) {
+        ray_packet rp;
+        hit_record h[TRACE_PACKET];
+        rgs_primary(j->mem, 2 * (b % (W / 2)), 2 * (b / (W / 2)), &rp);
+        trace_packet(j->mem, &rp, h, &c);
+        for (uint32_t i = 0; i < TRACE_PACKET; i++)
+            j->t[b * TRACE_PACKET + i] = h[i].instance == TRACE_NO_HIT ? INFINITY : (float)f24_fast_decode(h[i].t);
     }
-    RTCScene top = embree_top_scene(dev, s, meshes, RTC_BUILD_QUALITY_MEDIUM);
-    rtcCommitScene(top);
-    struct RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
+}
+
+/* Hit/miss agreement and the share of common hits within 1e-3 relative distance. */
+static void agreement(const float *ours, const float *theirs, result *r)
+{
     uint64_t agree = 0, both = 0, close = 0;
-    const double t0 = now();
-    for (uint32_t y = 0; y < H; y += 2)
-        for (uint32_t x = 0; x < W; x += 2) {
-            ray_packet rp;
-            rgs_primary(mem, x, y, &rp);
-            for (int i = 0; i < TRACE_PACKET; i++) {
-                struct RTCRayHit rh;
-                memset(&rh, 0, sizeof rh);
-                rh.ray.org_x = (float)f24_fast_decode(rp.o[i].x);
-                rh.ray.org_y = (float)f24_fast_decode(rp.o[i].y);
-                rh.ray.org_z = (float)f24_fast_decode(rp.o[i].z);
-                rh.ray.dir_x = (float)f24_fast_decode(rp.d[i].x);
-                rh.ray.dir_y = (float)f24_fast_decode(rp.d[i].y);
-                rh.ray.dir_z = (float)f24_fast_decode(rp.d[i].z);
-                rh.ray.tfar = INFINITY;
-                rh.ray.mask = 0xFFFFFFFFu;
-                rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-                rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-                rtcIntersect1(top, &ctx, &rh);
-                const float ot = ours[(y + (uint32_t)(i >> 1)) * W + x + (uint32_t)(i & 1)];
-                const int ehit = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID, ohit = isfinite(ot);
-                agree += ehit == ohit;
-                if (ehit && ohit) {
-                    both++;
-                    close += fabsf(ot - rh.ray.tfar) <= 1e-3f * rh.ray.tfar;
-                }
-            }
+    for (uint32_t i = 0; i < N_RAYS; i++) {
+        const int ohit = isfinite(ours[i]), ehit = isfinite(theirs[i]);
+        agree += ohit == ehit;
+        if (ohit && ehit) {
+            both++;
+            close += fabsf(ours[i] - theirs[i]) <= 1e-3f * theirs[i];
         }
-    r->embree_trace = now() - t0;
-    r->hit_agree = (double)agree / ((double)W * H);
+    }
+    r->hit_agree = (double)agree / N_RAYS;
     r->t_close = both ? (double)close / (double)both : 1.0;
-    rtcReleaseScene(top);
-    for (uint32_t i = 0; i < s->n_meshes; i++)
-        if (meshes[i])
-            rtcReleaseScene(meshes[i]);
-    free(meshes);
-    rtcReleaseDevice(dev);
-    return 0;
+}
+
+/* Both sides on one built scene; 0, or -1 with err. */
+static int measure(const scene *s, const uint32_t *mem, result *r, char *err, size_t n)
+{
+    embree_ray *rays = malloc(N_RAYS * sizeof *rays);
+    float *ours = malloc(N_RAYS * sizeof *ours), *theirs = malloc(N_RAYS * sizeof *theirs);
+    uint32_t *pixels = malloc(N_RAYS * sizeof *pixels);
+    embree_bench e;
+    int rc = -1;
+    if (!rays || !ours || !theirs || !pixels)
+        snprintf(err, n, "out of memory");
+    else if (embree_bench_build(&e, s, err, n) == 0) {
+        bench_primary_rays(mem, W, H, NULL, rays);
+        rgs_trace_job tj = { mem, ours };
+        r->ours_trace = bench_time(rgs_trace_work, &tj, 1);
+        rgs_counters c;
+        r->ours_render = units_frame_time(mem, &(rgs_config){ 0, 1, TRAV_STACK }, 1, pixels, &c);
+        r->ours_full = units_frame_time(mem, &(rgs_config){ SHADE_DEFAULT_DEPTH, 1, TRAV_STACK }, 1, pixels, &c);
+        r->embree_trace = embree_time(&e, rays, N_RAYS, 1, 1, theirs);
+        agreement(ours, theirs, r);
+        embree_bench_free(&e);
+        rc = 0;
+    }
+    free(rays), free(ours), free(theirs), free(pixels);
+    return rc;
 }
 
 static void bench_one(const char *name, result *r)
 {
     snprintf(r->name, sizeof r->name, "%s", name);
     scene s;
-    char err[512];
+    char err[512] = "cannot evaluate the scene";
     fprintf(stderr, "bench-render: %s ...", name);
     if (bench_scene_load(name, &s, err, sizeof err) != 0 || scene_evaluate(&s, 0, 0) != 0) {
         fprintf(stderr, " skipped (%s)\n", err);
@@ -149,21 +118,57 @@ static void bench_one(const char *name, result *r)
     p.height = H;
     p.memory_bytes = 1ull << 30;
     mi_builder *b = mi_build(&s, &p, err, sizeof err);
-    float *t = malloc((size_t)W * H * sizeof *t);
-    if (b && t) {
-        uint32_t n;
-        const uint32_t *mem = mi_words(b, &n);
+    if (b) {
+        uint32_t nw;
         for (uint32_t i = 0; i < s.n_instances; i++)
             r->tris += s.meshes[s.instances[i].mesh].n_triangles;
-        r->ours_trace = trace_ours(mem, t);
-        r->ours_render = render_ours(mem, 0);
-        r->ours_full = render_ours(mem, SHADE_DEFAULT_DEPTH);
-        r->ok = trace_embree(&s, mem, t, r) == 0;
+        r->ok = measure(&s, mi_words(b, &nw), r, err, sizeof err) == 0;
     }
-    fprintf(stderr, " %s\n", r->ok ? "done" : "failed");
-    free(t);
+    if (r->ok)
+        fprintf(stderr, " done\n");
+    else
+        fprintf(stderr, " failed (%s)\n", err);
     mi_free(b);
     scene_free(&s);
+}
+
+static void write_md(FILE *md, const result *r, int n)
+{
+    fprintf(md, "# Primary rays at %dx%d: the units (functional simulation) and Embree\n\n"
+                "One thread each, the same RGS primary rays. *units trace*: RGS ray generation + trace_packet (fp24, "
+                "functional model of the traversal, list, transformation and intersection units); *units render*: "
+                "the render command's functional frame (render_region) with shading and shadow rays; *full*: plus "
+                "reflection and transmission rays to depth 3 (docs/shading.md); *Embree*: rtcIntersect1 on the "
+                "same rays (" EMBREE_BENCH_SETUP "; docs/architecture.md). *hit agreement*: share of pixels where "
+                "both hit or both miss; *t within 1e-3*: share of common hits whose distances agree to 1e-3 "
+                "relative. Every time is the median of up to 5 runs (fewer when the runs took 1 s) on a noisy "
+                "machine.\n\n"
+                "| scene | instanced tris | units trace s | units render s | full s | Embree s | Embree M rays/s | "
+                "units / Embree | hit agreement | t within 1e-3 |\n"
+                "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n", W, H);
+    for (int i = 0; i < n; i++)
+        if (r[i].ok)
+            fprintf(md, "| %s | %llu | %.2f | %.2f | %.2f | %.3f | %.2f | %.0fx | %.4f%% | %.4f%% |\n", r[i].name,
+                    (unsigned long long)r[i].tris, r[i].ours_trace, r[i].ours_render, r[i].ours_full,
+                    r[i].embree_trace, N_RAYS / r[i].embree_trace / 1e6, r[i].ours_trace / r[i].embree_trace,
+                    100 * r[i].hit_agree, 100 * r[i].t_close);
+}
+
+static void write_json(FILE *js, const result *r, int n)
+{
+    fprintf(js, "{\"width\": %d, \"height\": %d, \"embree_setup\": \"%s\", \"scenes\": [\n", W, H, EMBREE_BENCH_SETUP);
+    const char *sep = "";
+    for (int i = 0; i < n; i++) {
+        if (!r[i].ok)
+            continue;
+        fprintf(js, "%s  {\"scene\": \"%s\", \"instanced_triangles\": %llu, \"units_trace_s\": %.4f, "
+                    "\"units_render_s\": %.4f, \"units_full_s\": %.4f, \"embree_s\": %.4f, "
+                    "\"embree_rays_per_second\": %.1f, \"hit_agreement\": %.6f, \"t_close\": %.6f}",
+                sep, r[i].name, (unsigned long long)r[i].tris, r[i].ours_trace, r[i].ours_render, r[i].ours_full,
+                r[i].embree_trace, N_RAYS / r[i].embree_trace, r[i].hit_agree, r[i].t_close);
+        sep = ",\n";
+    }
+    fprintf(js, "\n]}\n");
 }
 
 int main(int argc, char **argv)
@@ -183,30 +188,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "bench_render: error: cannot write to %s\n", out);
         return 3;
     }
-    fprintf(md, "# Primary rays at %dx%d: the units (functional simulation) and Embree\n\n"
-                "One thread each. *units trace*: RGS primary rays + trace_packet (fp24, functional model of the "
-                "traversal, list, transformation and intersection units); *units render*: plus shading with shadow "
-                "rays; *full*: plus reflection and transmission rays to depth 3 (docs/shading.md); *Embree*: rtcIntersect1 on the same rays (binary32, two-level instancing, build quality "
-                "medium). *hit agreement*: share of pixels where both hit or both miss; *t within 1e-3*: share of "
-                "common hits whose distances agree to 1e-3 relative. Single runs on a noisy machine.\n\n"
-                "| scene | instanced tris | units trace s | units render s | full s | Embree s | units / Embree | hit agreement | t within 1e-3 |\n"
-                "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n", W, H);
-    fprintf(js, "{\"width\": %d, \"height\": %d, \"scenes\": [\n", W, H);
-    int first = 1;
-    for (int i = 0; i < N; i++) {
-        if (!r[i].ok)
-            continue;
-        fprintf(md, "| %s | %llu | %.2f | %.2f | %.2f | %.3f | %.0fx | %.4f%% | %.4f%% |\n", r[i].name,
-                (unsigned long long)r[i].tris, r[i].ours_trace, r[i].ours_render, r[i].ours_full, r[i].embree_trace, r[i].ours_trace / r[i].embree_trace,
-                100 * r[i].hit_agree, 100 * r[i].t_close);
-        fprintf(js, "%s  {\"scene\": \"%s\", \"instanced_triangles\": %llu, \"units_trace_s\": %.4f, \"units_render_s\": %.4f, "
-                    "\"units_full_s\": %.4f, \"embree_s\": %.4f, \"hit_agreement\": %.6f, \"t_close\": %.6f}", first ? "" : ",\n", r[i].name,
-                (unsigned long long)r[i].tris, r[i].ours_trace, r[i].ours_render, r[i].ours_full, r[i].embree_trace, r[i].hit_agree,
-                r[i].t_close);
-        first = 0;
-    }
-    fprintf(js, "\n]}\n");
-    fclose(md);
-    fclose(js);
-    return 0;
+    write_md(md, r, N);
+    write_json(js, r, N);
+    return fclose(md) != 0 || fclose(js) != 0 ? 3 : 0;
 }

@@ -1,0 +1,83 @@
+#!/usr/bin/env bash
+# One truth per computation: the simulator with the host fast path of the fp24 arithmetic
+# (build/saarcor: tb/fp/f24_fast.h, f24_fast_sum.c, the units' decoded working values) against the
+# program built with the integer hardware arithmetic (build/hw/saarcor, make SIM_ARITH=hw): the
+# image, the AOVs (EXR) and every counter of --stats (all but the host's time and memory) equal,
+# bit for bit, on every golden scene in both modes, and with every traversal algorithm on the
+# instanced room and the cornell box in both modes. Cases on ../shared scenes are skipped with a
+# message when ../shared is absent. Prints cmocka-style lines for tests/run.sh.
+set -u
+cd "$(dirname "$0")/.."
+BIN=${SAARCOR_BIN:-build/saarcor}
+HW_BIN=${SAARCOR_HW_BIN:-build/hw/saarcor}
+T=$(mktemp -d /tmp/saarcor-sim-arith-XXXXXX)
+trap 'rm -rf "$T"' EXIT
+[[ -x $HW_BIN ]] || { echo "test_sim_arith: $HW_BIN is missing (make BUILD=build/hw SIM_ARITH=hw build/hw/saarcor)"; exit 1; }
+
+# shellcheck source=case_lib.sh
+source tests/case_lib.sh
+
+# the --stats counters without the host's wall time and memory, one per line
+counters() {
+  python3 - "$1" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+for k in ("seconds", "host_rss_kb", "host_peak_rss_kb"):
+    s.pop(k, None)
+s.get("host", {}).pop("seconds", None)
+print(json.dumps(s, indent=0, sort_keys=True))
+PY
+}
+
+same() { # name scene options...: both programs, same image, AOVs and counters
+  local name=$1 scene=$2
+  shift 2
+  local b
+  for b in fast hw; do
+    local bin=$BIN
+    [[ $b == hw ]] && bin=$HW_BIN
+    "$bin" render "$scene" --width 48 --height 36 --threads 2 "$@" -o "$T/$name.$b.png" --aov "$T/$name.$b.exr" \
+      --stats "$T/$name.$b.json" >/dev/null || { echo "$name: $bin render failed"; return 1; }
+    counters "$T/$name.$b.json" >"$T/$name.$b.txt"
+  done
+  cmp -s "$T/$name.fast.png" "$T/$name.hw.png" || { echo "$name: the images differ"; return 1; }
+  # every pixel of every AOV (the files differ in their creation date)
+  idiff -fail 0 -warn 0 -a "$T/$name.fast.exr" "$T/$name.hw.exr" >"$T/$name.idiff" ||
+    { echo "$name: the AOVs differ:"; tail -5 "$T/$name.idiff"; return 1; }
+  diff "$T/$name.fast.txt" "$T/$name.hw.txt" >"$T/$name.diff" ||
+    { echo "$name: the counters differ (< fast path, > integer arithmetic):"; head -20 "$T/$name.diff"; return 1; }
+  echo "$name: image, AOVs and $(wc -l <"$T/$name.fast.txt") counter lines equal"
+}
+
+SCENES="cornell|cornell|
+room|room|
+plants|plants|
+terrain|terrain|
+animated|animated|--time 1.5
+truck|../shared/scenes/CesiumMilkTruck.glb|--ground
+bunny|../shared/scenes/bunny.glb|--ground
+gallery|../shared/scenes/gallery_ccby_503k.glb|--mem-mb 128"
+
+while IFS='|' read -r name scene opts; do
+  for mode in functional cycle; do
+    case_name="sim_arith_${name}_$mode"
+    if [[ $scene == ../shared/* && ! -f $scene ]]; then
+      echo "test_sim_arith: $scene is absent: $case_name skipped"
+      echo "[  SKIPPED ] $case_name"
+      continue
+    fi
+    eval "t_$case_name() { same $case_name $scene --mode $mode $opts; }"
+    run_case "$case_name" "t_$case_name"
+  done
+done <<<"$SCENES"
+
+for scene in room cornell; do
+  for algo in short-stack restart push-down ropes grid grid2; do
+    for mode in functional cycle; do
+      case_name="sim_arith_${scene}_${algo//-/_}_$mode"
+      eval "t_$case_name() { same $case_name $scene --mode $mode --traversal $algo; }"
+      run_case "$case_name" "t_$case_name"
+    done
+  done
+done
+exit $((fails != 0))
