@@ -109,6 +109,14 @@ int scene_opts_parse(scene_opts *o, const char *cmd, int c, const char *arg)
     case 19: o->mi.merge = 1; return 1;
     case 20: return number(cmd, "top-ci", arg, 1e-6, 1e6, &o->mi.top.cost_intersection);
     case 21: o->animation = arg; return 1;
+    case 22:
+        if ((r = count(cmd, "kd-bins", arg, 0, 1024, &u)) > 0 && u == 1) {
+            cli_usage_error(cmd, "bad --kd-bins '%s' (expected 0 or 2..1024)", arg);
+            return -1;
+        }
+        if (r > 0)
+            o->mi.bottom.bins = u;
+        return r;
     default: return 0;
     }
 }
