@@ -869,9 +869,9 @@ static void zero_area_triangles(void **state)
     }
     const kd_source src = tri_source(&so);
     for (uint32_t bins = 0; bins <= 32; bins += 32) {
-        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, NULL, 1, 0, 0 });
-        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, grid8, 1, 0, 0 });
-        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, grid8, 1, 0, 16 });
+        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, NULL, 1, 0, 0, 0 });
+        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, grid8, 1, 0, 0, 0 });
+        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, grid8, 1, 0, 16, 0 });
     }
     free(so.t);
 }
@@ -1079,6 +1079,43 @@ static void too_many_primitives(void **state)
     assert_int_equal(t.n_nodes, 0);
     assert_int_equal(t.n_prims, 0);
     kd_free(&t);
+}
+
+/* The node limit (kd_params.max_nodes) stops a build before the nodes are allocated: a budget
+ * of exactly the tree's node count builds the same tree, one node less fails with
+ * KD_TOO_MANY_NODES and an empty tree, on all CPUs and on one, in every mode. */
+static void node_limit(void **state)
+{
+    (void)state;
+    soup so = random_soup(3000, 91);
+    box_set inst = instance_boxes(5000, 92);
+    kd_params hybrid = params(32, grid8);
+    hybrid.exact_max = 64;
+    const struct {
+        kd_source src;
+        kd_params p;
+    } cases[] = { { tri_source(&so), params(0, to_float) }, { tri_source(&so), hybrid },
+                  { box_source(&inst), params(32, to_float) } };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        kd_tree free_tree, t;
+        assert_int_equal(kd_build(&cases[i].src, &cases[i].p, &free_tree), 0);
+        kd_params p = cases[i].p;
+        p.max_nodes = free_tree.n_nodes;
+        assert_int_equal(kd_build(&cases[i].src, &p, &t), 0);
+        assert_same_tree(&free_tree, &t);
+        kd_free(&t);
+        build_serial(&cases[i].src, &p, &t);
+        assert_same_tree(&free_tree, &t);
+        kd_free(&t);
+        p.max_nodes = free_tree.n_nodes - 1;
+        memset(&t, 0x5A, sizeof t);
+        assert_int_equal(kd_build(&cases[i].src, &p, &t), KD_TOO_MANY_NODES);
+        assert_null(t.nodes);
+        assert_int_equal(t.n_nodes, 0);
+        kd_free(&free_tree);
+    }
+    free(so.t);
+    free(inst.b);
 }
 
 /* ---- tests: SAH cost and stats by hand -------------------------------------------------------- */
@@ -1394,6 +1431,7 @@ int main(void)
         cmocka_unit_test(parameters),
         cmocka_unit_test(defaults),
         cmocka_unit_test(too_many_primitives),
+        cmocka_unit_test(node_limit),
         cmocka_unit_test(sah_cost_by_hand),
         cmocka_unit_test(two_boxes_by_hand),
         cmocka_unit_test(clip_triangle_cases),

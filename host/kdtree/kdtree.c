@@ -151,6 +151,12 @@ typedef struct {
 
 typedef struct pool pool;
 
+/* The nodes of one tree (all threads' builders), counted before they are allocated. */
+typedef struct {
+    atomic_uint_fast64_t used;
+    atomic_int exceeded;
+} node_budget;
+
 typedef struct {
     const kd_source *src;
     kd_params p;
@@ -170,6 +176,7 @@ typedef struct {
     pending_sum *pend;   /* parallel build: inner nodes with holes below (count - 1 indexes) */
     uint32_t n_pend, cap_pend;
     pool *pool;       /* parallel build (binned mode): where to hand subtrees; NULL: single-threaded */
+    node_budget *budget; /* shared by the tree's builders */
     hole *holes;      /* subtrees handed away, in the order they were due */
     uint32_t n_holes, cap_holes, holes_owed; /* owed: handed away, not yet due (room reserved) */
 } builder;
@@ -340,8 +347,22 @@ static void *reserve(void *p, uint32_t *cap, uint64_t need, size_t size)
     return q;
 }
 
-static int add_nodes(builder *b, uint32_t k, uint32_t *first)
+/* Counts k new nodes of the tree against p.max_nodes: 0, or -1 (and the budget marked
+ * exceeded) if they would pass it. */
+static int charge_nodes(builder *b, uint32_t k)
 {
+    if (b->p.max_nodes == 0 || atomic_fetch_add(&b->budget->used, k) + k <= b->p.max_nodes)
+        return 0;
+    atomic_store(&b->budget->exceeded, 1);
+    return -1;
+}
+
+/* k nodes at the end of the builder's array: 0, or -1 (memory, or the node budget). A handed
+ * subtree's root (charged: false) is the handing builder's node, already counted. */
+static int add_nodes(builder *b, uint32_t k, int charged, uint32_t *first)
+{
+    if (charged && charge_nodes(b, k) != 0)
+        return -1;
     kd_node *n = reserve(b->nodes, &b->cap_nodes, (uint64_t)b->n_nodes + k, sizeof *n);
     if (!n)
         return -1;
@@ -1118,10 +1139,10 @@ static uint32_t offload(builder *b, const aabb *box, prim_set *s, uint32_t depth
     task *t = calloc(1, sizeof *t);
     if (t) {
         t->b = (builder){ .src = b->src, .p = b->p, .max_depth = b->max_depth, .kind = b->kind,
-                          .root_measure = b->root_measure, .pool = pl };
+                          .root_measure = b->root_measure, .pool = pl, .budget = b->budget };
         t->b.prims = reserve(NULL, &t->b.cap_prims, (uint64_t)s->n + 1, sizeof *t->b.prims); /* never NULL after */
         uint32_t root;
-        if (!t->b.prims || add_nodes(&t->b, 1, &root) != 0) {
+        if (!t->b.prims || add_nodes(&t->b, 1, 0, &root) != 0) {
             free(t->b.prims);
             free(t->b.nodes);
             free(t);
@@ -1217,7 +1238,7 @@ static int build_node(builder *b, uint32_t node, const aabb *box, prim_set *s, u
     int rc = has_refs(s) ? split_refs(b, s, &best, &lb, &rb, &l, &r) : split_events(b, s, &best, &lb, &rb, &l, &r);
     set_free(s); /* before recursing: the parent's lists are the largest */
     if (rc == 0)
-        rc = add_nodes(b, 2, &child);
+        rc = add_nodes(b, 2, 1, &child);
     if (rc != 0) {
         set_free(&l);
         set_free(&r);
@@ -1638,14 +1659,15 @@ static int start(builder *b, prim_set *s, aabb *root)
         *root = (aabb){ { 0, 0, 0 }, { 0, 0, 0 } }; /* no primitives: a point at the origin */
     b->prims = reserve(NULL, &b->cap_prims, (uint64_t)b->src->count + 1, sizeof *b->prims);
     uint32_t first;
-    return b->prims ? add_nodes(b, 1, &first) : -1;
+    return b->prims ? add_nodes(b, 1, 1, &first) : -1;
 }
 
 int kd_build(const kd_source *src, const kd_params *p, kd_tree *out)
 {
     const double t0 = now();
     memset(out, 0, sizeof *out);
-    builder b = { .src = src, .p = *p };
+    node_budget budget = { 0, 0 };
+    builder b = { .src = src, .p = *p, .budget = &budget };
     b.max_depth = kd_depth_bound(p, src->count);
     prim_set s = { 0 };
     aabb root;
@@ -1663,7 +1685,7 @@ int kd_build(const kd_source *src, const kd_params *p, kd_tree *out)
     if (rc != 0) {
         free(b.nodes);
         free(b.prims);
-        return -1;
+        return atomic_load(&budget.exceeded) ? KD_TOO_MANY_NODES : -1;
     }
     *out = (kd_tree){ shrink(b.nodes, b.n_nodes * sizeof *b.nodes), b.n_nodes,
                       shrink(b.prims, ((size_t)b.n_prims + 1) * sizeof *b.prims), b.n_prims, root, { 0 } };

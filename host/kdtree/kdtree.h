@@ -54,6 +54,9 @@ typedef struct {
     uint32_t exact_max;        /* bins > 0: nodes of at most this many primitives are split as in exact
                                   mode (their subtrees get perfect splits and face cells); 0 (default):
                                   binned throughout */
+    uint64_t max_nodes;        /* 0 (default): no limit; else kd_build stops with KD_TOO_MANY_NODES
+                                  before the tree would grow past this many nodes (a hard limit is
+                                  checked before the memory it bounds is allocated) */
 } kd_params;
 
 typedef struct {
@@ -93,7 +96,10 @@ uint32_t kd_depth_bound(const kd_params *p, uint32_t count);
  * (the host's other parallel stages use the same budget). */
 uint32_t kd_thread_count(void);
 
-/* Builds a tree; 0 on success, -1 if memory ran out (out is then empty). count may be 0. */
+#define KD_TOO_MANY_NODES (-2)
+
+/* Builds a tree; 0 on success, -1 if memory ran out, KD_TOO_MANY_NODES if it would pass
+ * p->max_nodes (out is then empty). count may be 0. */
 int kd_build(const kd_source *src, const kd_params *p, kd_tree *out);
 
 void kd_free(kd_tree *t);

@@ -130,7 +130,7 @@ void mi_params_default(mi_params *p)
     p->top.cost_intersection = 3.0;
     p->bottom.quantize = quantize;
     /* the exact event sweep with perfect splits throughout (bins = 0). --kd-bins N bins the nodes
-     * over exact_max triangles instead: about 3x faster to build and the SAH cost of the
+     * over exact_max triangles instead: 1.5x faster to build (bunny, gallery) and the SAH cost of the
      * bench-build scenes' trees within +-2% (bunny +1.1%, gallery -0.7%, teapot -4.3%), but other
      * trees move the leaf entries the rebase unit starts from, and with them the images by a
      * rounding either way (docs/memory-image.md): the default keeps the trees the golden images
@@ -460,7 +460,32 @@ static void transform_part(void *ctx, uint32_t from, uint32_t to)
     }
 }
 
-/* Triangle transformations and the bottom-level tree of one mesh. */
+/* Tree parameters q with the node budget left for tree `own` (p.max_nodes less the nodes of
+ * every other tree of the image; none of own's): 0, or MI_FAIL_NODE_LIMIT if none is left. */
+static int tree_budget(const mi_builder *b, const kd_tree *own, const kd_params *p, kd_params *q)
+{
+    *q = *p;
+    if (!b->p.max_nodes)
+        return 0;
+    uint64_t used = own == &b->top ? 0 : b->top.n_nodes;
+    for (uint32_t i = 0; i < b->n_objects; i++)
+        used += &b->obj[i].tree == own ? 0 : b->obj[i].tree.n_nodes;
+    q->max_nodes = used < b->p.max_nodes ? b->p.max_nodes - used : 0;
+    return q->max_nodes ? 0 : MI_FAIL_NODE_LIMIT;
+}
+
+/* kd_build of tree `own` within the image's node budget: 0, or an mi_failure. */
+static int build_tree(const mi_builder *b, const kd_source *src, const kd_params *p, kd_tree *own)
+{
+    kd_params q;
+    const int rc = tree_budget(b, own, p, &q);
+    if (rc != 0)
+        return rc;
+    const int kd = kd_build(src, &q, own);
+    return kd == 0 ? 0 : kd == KD_TOO_MANY_NODES ? MI_FAIL_NODE_LIMIT : MI_FAIL_OTHER;
+}
+
+/* Triangle transformations and the bottom-level tree of one mesh: 0, or an mi_failure. */
 static int object_prepare(mi_builder *b, const scene *s, const scene_mesh *m, mi_object *o)
 {
     object_release(o);
@@ -485,8 +510,9 @@ static int object_prepare(mi_builder *b, const scene *s, const scene_mesh *m, mi
     b->st.degenerate_triangles += m->n_triangles - o->n_valid;
     const tri_source src = { m, o->valid, o->centre };
     const kd_source ks = { o->n_valid, &src, tri_bounds, tri_clip };
-    if (kd_build(&ks, &b->p.bottom, &o->tree) != 0)
-        return -1;
+    const int rc = build_tree(b, &ks, &b->p.bottom, &o->tree);
+    if (rc != 0)
+        return rc;
     const aabb root = device_box(&o->tree.bounds, OBJECT_BOUNDS_MARGIN_ULPS);
     int fail = 0;
     o->ropes = build_ropes(b, &o->tree, &root, &fail);
@@ -1032,6 +1058,27 @@ static int place_regions(mi_builder *b, const uint64_t len[MI_REGION_COUNT], uin
     return 0;
 }
 
+/* The message of a build that would pass p.max_nodes while building `what`. */
+static int node_limit_error(const mi_builder *b, const char *what, char *err, size_t errlen)
+{
+    snprintf(err, errlen, "limit kd-nodes exceeded: the kd-tree node count of the memory image, where the build "
+             "stopped (%s), is %llu, the limit is %llu (raise it with --limit kd-nodes=N)", what,
+             (unsigned long long)b->p.max_nodes + 1, (unsigned long long)b->p.max_nodes);
+    return MI_FAIL_NODE_LIMIT;
+}
+
+/* object_prepare's failure rc on mesh m as err: the node limit, or memory. */
+static int object_error(const mi_builder *b, int rc, const scene_mesh *m, const char *verb, char *err, size_t errlen)
+{
+    char what[300];
+    snprintf(what, sizeof what, "the tree of mesh '%s'", m->name);
+    if (rc == MI_FAIL_NODE_LIMIT)
+        return node_limit_error(b, what, err, errlen);
+    snprintf(err, errlen, "out of memory while %s %s", verb, what);
+    return MI_FAIL_OTHER;
+}
+
+/* 0, or an mi_failure with err. */
 static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_changed, char *err, size_t errlen)
 {
     const double t0 = seconds();
@@ -1040,7 +1087,10 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
     inst_source is = { s, b };
     kd_free(&b->top);
     const kd_source ks = { b->n_inst, &is, instance_bounds, NULL };
-    if (kd_build(&ks, &b->p.top, &b->top) != 0)
+    const int rc = build_tree(b, &ks, &b->p.top, &b->top);
+    if (rc == MI_FAIL_NODE_LIMIT)
+        return node_limit_error(b, "the top-level tree", err, errlen);
+    if (rc != 0)
         goto oom;
     const aabb scene_box = device_box(&b->top.bounds, 0);
     int fail = 0;
@@ -1137,7 +1187,7 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
     return 0;
 oom:
     snprintf(err, errlen, "out of memory while building the memory image");
-    return -1;
+    return MI_FAIL_OTHER;
 }
 
 static void collect_stats(mi_builder *b, const scene *s)
@@ -1230,6 +1280,13 @@ static void choose_objects(mi_builder *b, const scene *s)
 
 mi_builder *mi_build(const scene *s, const mi_params *p, char *err, size_t errlen)
 {
+    mi_failure why;
+    return mi_build_why(s, p, &why, err, errlen);
+}
+
+mi_builder *mi_build_why(const scene *s, const mi_params *p, mi_failure *why, char *err, size_t errlen)
+{
+    *why = MI_FAIL_OTHER;
     mi_builder *b = calloc(1, sizeof *b);
     if (!b) {
         snprintf(err, errlen, "out of memory");
@@ -1271,13 +1328,16 @@ mi_builder *mi_build(const scene *s, const mi_params *p, char *err, size_t errle
     }
     for (uint32_t i = 0; i < b->n_objects; i++) {
         const scene_mesh *m = obj_mesh(b, s, &b->obj[i]);
-        if (object_prepare(b, s, m, &b->obj[i]) != 0) {
-            snprintf(err, errlen, "out of memory while building the tree of mesh '%s'", m->name);
+        const int rc = object_prepare(b, s, m, &b->obj[i]);
+        if (rc != 0) {
+            *why = (mi_failure)object_error(b, rc, m, "building", err, errlen);
             mi_free(b);
             return NULL;
         }
     }
-    if (write_frame(b, s, 1, 1, err, errlen) != 0) {
+    const int rc = write_frame(b, s, 1, 1, err, errlen);
+    if (rc != 0) {
+        *why = (mi_failure)rc;
         mi_free(b);
         return NULL;
     }
@@ -1297,15 +1357,15 @@ int mi_update(mi_builder *b, const scene *s, char *err, size_t errlen)
         if (!o->dynamic || o->revision_seen == m->revision)
             continue;
         b->st.degenerate_triangles -= m->n_triangles - o->n_valid;
-        if (object_prepare(b, s, m, o) != 0) {
-            snprintf(err, errlen, "out of memory while rebuilding the tree of mesh '%s'", m->name);
-            return -1;
-        }
+        const int rc = object_prepare(b, s, m, o);
+        if (rc != 0)
+            return object_error(b, rc, m, "rebuilding", err, errlen);
         b->st.rebuilt_objects++;
         changed = 1;
     }
-    if (write_frame(b, s, 0, changed, err, errlen) != 0)
-        return -1;
+    const int rc = write_frame(b, s, 0, changed, err, errlen);
+    if (rc != 0)
+        return rc;
     collect_stats(b, s);
     return 0;
 }

@@ -51,7 +51,7 @@
     "  --kd-max-depth D      kd-tree depth limit (default 0: 8 + 1.3 log2 N)\n"                        \
     "  --leaf-size L         never split nodes with at most L primitives (default 1)\n"               \
     "  --top-bins N          bins of the top-level SAH (default 32)\n"                                 \
-    "  --kd-bins N           bin the objects' tree nodes over 48 triangles into N bins (about 3x faster\n" \
+    "  --kd-bins N           bin the objects' tree nodes over 48 triangles into N bins (faster\n" \
     "                        builds, other trees: images move by a rounding; default 0: the exact sweep)\n" \
     "  --max-condition K     drop triangles whose shape condition number exceeds K (default 2^24)\n" \
     "  --limit NAME=N        raise (or lower) a hard limit: triangles, instances, kd-nodes, kd-depth,\n" \
