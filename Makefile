@@ -355,9 +355,9 @@ bench-fp: deps
 
 # host build benchmark: kd-trees and memory image against Embree's BVH build
 bench-build: deps
-	@$(MAKE) --no-print-directory $(BUILD)/bench_build
+	@$(MAKE) --no-print-directory $(BUILD)/bench_build $(BUILD)/saarcor
 	@mkdir -p $(BUILD)/bench
-	$(BUILD)/bench_build --out $(BUILD)/bench
+	$(BUILD)/bench_build --out $(BUILD)/bench --saarcor $(BUILD)/saarcor
 	@cat $(BUILD)/bench/build.md
 
 $(BUILD)/bench_build: $(BUILD)/obj/host/tests/bench/bench_build.o $(BUILD)/obj/host/tests/bench/embree_scene.o $(HOST_OBJS) $(call fmt_objs,$(DEFAULT_FMT))

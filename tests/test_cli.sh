@@ -165,6 +165,11 @@ assert all(b[k] > 0 for k in ('kd_nodes', 'lists', 'triangle_transformations', '
   expect 0 "$BIN" info room --json "$T/t3.json"
   python3 -c "import json; a, b = (json.load(open(f))['top']['nodes'] for f in ('$T/t6.json', '$T/t3.json')); assert a != b, (a, b)"
   expect 2 "$BIN" info room --top-ci 0; one_line_error
+  # --kd-bins: other bottom-level trees (other leaf references), the same scene; 1 bin is refused
+  expect 0 "$BIN" info plants --kd-bins 64 --json "$T/b64.json"
+  expect 0 "$BIN" info plants --json "$T/b0.json"
+  python3 -c "import json; a, b = (json.load(open(f))['bottom']['references'] for f in ('$T/b64.json', '$T/b0.json')); assert a != b, (a, b)"
+  expect 2 "$BIN" info room --kd-bins 1; one_line_error
   expect 3 "$BIN" info "$T/missing.glb"; one_line_error
   mkdir -p "$T/dir.glb"
   expect 3 "$BIN" render "$T/dir.glb" -o "$T/d.png"; one_line_error; has 'is a directory' "$T/err"

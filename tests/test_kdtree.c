@@ -18,9 +18,11 @@
  *
  * SAH quality is compared against an object-median baseline built here with the same node
  * layout; kd_sah_cost is checked against hand-computed values, kd_clip_triangle against
- * hand-computed polygons. Large binned builds, which use threads, must repeat bit for bit and
- * equal the single-threaded build.
+ * hand-computed polygons. Large builds, which use threads, must repeat bit for bit and equal the
+ * single-threaded build.
  */
+#define _GNU_SOURCE /* sched_setaffinity */
+#include <sched.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -538,6 +540,34 @@ static void soup_binned(void **state)
     free(so.t);
 }
 
+/* Binned nodes above exact_max primitives, exact subtrees below (the bottom level's default):
+ * valid trees, with and without snapping, and an SAH cost close to exact mode's. The sphere has
+ * odd stack and slice counts: no vertex lies on the middle planes the bins put through it. (A
+ * triangle touching a bin plane only at a vertex can come out of clip() as a point in the plane,
+ * by rounding, and then sit in a flat cell on that plane that clipping to the cell itself
+ * misses: harmless, one test too many, but check_leaf's soundness is exact.) */
+static void soup_hybrid(void **state)
+{
+    (void)state;
+    soup so = random_soup(3000, 6), sp = sphere(23, 47);
+    const kd_source srcs[] = { tri_source(&so), tri_source(&sp) };
+    for (size_t i = 0; i < 2; i++)
+        for (int q = 0; q < 2; q++) {
+            kd_params p = params(64, q ? grid8 : NULL);
+            p.exact_max = 128;
+            kd_tree t, e;
+            assert_int_equal(kd_build(&srcs[i], &p, &t), 0);
+            check_tree(&srcs[i], &p, &t);
+            const kd_params exact = params(0, p.quantize);
+            assert_int_equal(kd_build(&srcs[i], &exact, &e), 0);
+            assert_true(kd_sah_cost(&t, &p) < 1.05 * kd_sah_cost(&e, &exact));
+            kd_free(&t);
+            kd_free(&e);
+        }
+    free(so.t);
+    free(sp.t);
+}
+
 /* ---- tests: quantized planes ---------------------------------------------------------------- */
 
 static void quantized(void **state)
@@ -839,8 +869,9 @@ static void zero_area_triangles(void **state)
     }
     const kd_source src = tri_source(&so);
     for (uint32_t bins = 0; bins <= 32; bins += 32) {
-        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, NULL, 1, 0 });
-        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, grid8, 1, 0 });
+        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, NULL, 1, 0, 0, 0 });
+        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, grid8, 1, 0, 0, 0 });
+        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, grid8, 1, 0, 16, 0 });
     }
     free(so.t);
 }
@@ -885,18 +916,21 @@ static box_set instance_boxes(uint32_t n, uint64_t s)
 
 static double to_float(double x) { return (double)(float)x; }
 
-/* Box intersection, what the builder does without a clip function (with the same min/max, so
- * that even the signs of zeros agree); a source with a clip function is built in one thread. */
-static int box_clip(const void *user, uint32_t i, const aabb *box, aabb *out)
+/* kd_build on one thread: the builder uses as many threads as the caller may use CPUs. */
+static void build_serial(const kd_source *src, const kd_params *p, kd_tree *t)
 {
-    const aabb b = box_bounds(user, i);
-    for (int k = 0; k < 3; k++) {
-        out->lo[k] = b.lo[k] > box->lo[k] ? b.lo[k] : box->lo[k];
-        out->hi[k] = b.hi[k] < box->hi[k] ? b.hi[k] : box->hi[k];
-        if (out->lo[k] > out->hi[k])
-            return 0;
-    }
-    return 1;
+    cpu_set_t all, one;
+    assert_int_equal(sched_getaffinity(0, sizeof all, &all), 0);
+    CPU_ZERO(&one);
+    for (int c = 0; c < CPU_SETSIZE; c++)
+        if (CPU_ISSET(c, &all)) {
+            CPU_SET(c, &one);
+            break;
+        }
+    assert_int_equal(sched_setaffinity(0, sizeof one, &one), 0);
+    const int rc = kd_build(src, p, t);
+    assert_int_equal(sched_setaffinity(0, sizeof all, &all), 0);
+    assert_int_equal(rc, 0);
 }
 
 static void assert_same_tree(const kd_tree *a, const kd_tree *b)
@@ -914,33 +948,39 @@ static void assert_same_tree(const kd_tree *a, const kd_tree *b)
     assert_memory_equal(&a->stats.sah_cost, &b->stats.sah_cost, sizeof(double)); /* to the bit */
 }
 
-/* A large binned build without a clip function runs on several threads (given several cores),
- * which build subtrees concurrently and merge them. The tree must not depend on their timing:
- * repeated builds are bit-identical, and identical to the single-threaded build. */
+/* A large build runs on several threads (given several cores), which build subtrees concurrently
+ * and merge them. The tree must not depend on their timing: repeated builds are bit-identical,
+ * and identical to the single-threaded build. Binned boxes (the top level), triangles binned with
+ * exact subtrees (the bottom level) and triangles in exact mode. */
 static void parallel_deterministic(void **state)
 {
     (void)state;
     box_set inst = instance_boxes(20000, 71), mixed = random_boxes(5000, 72); /* mixed: 10% points */
-    const box_set *sets[] = { &inst, &mixed };
-    double (*quant[])(double) = { to_float, grid8 };
-    for (int i = 0; i < 2; i++) {
-        const kd_source src = box_source(sets[i]), serial = { sets[i]->n, sets[i], box_bounds, box_clip };
-        const kd_params p = params(32, quant[i]);
+    soup so = random_soup(6000, 73);
+    kd_params hybrid = params(32, grid8), exact = params(0, to_float);
+    hybrid.exact_max = 64;
+    const struct {
+        kd_source src;
+        kd_params p;
+    } cases[] = { { box_source(&inst), params(32, to_float) }, { box_source(&mixed), params(32, grid8) },
+                  { tri_source(&so), hybrid }, { tri_source(&so), exact } };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         kd_tree first, t;
-        assert_int_equal(kd_build(&src, &p, &first), 0);
-        check_tree(&src, &p, &first);
+        assert_int_equal(kd_build(&cases[i].src, &cases[i].p, &first), 0);
+        check_tree(&cases[i].src, &cases[i].p, &first);
         for (int rep = 0; rep < 4; rep++) {
-            assert_int_equal(kd_build(&src, &p, &t), 0);
+            assert_int_equal(kd_build(&cases[i].src, &cases[i].p, &t), 0);
             assert_same_tree(&first, &t);
             kd_free(&t);
         }
-        assert_int_equal(kd_build(&serial, &p, &t), 0);
+        build_serial(&cases[i].src, &cases[i].p, &t);
         assert_same_tree(&first, &t);
         kd_free(&t);
         kd_free(&first);
     }
     free(inst.b);
     free(mixed.b);
+    free(so.t);
 }
 
 /* ---- tests: parameters ---------------------------------------------------------------------- */
@@ -1013,6 +1053,7 @@ static void defaults(void **state)
     assert_int_equal(p.leaf_size, 1);
     assert_int_equal(p.bins, 0);
     assert_null(p.quantize);
+    assert_int_equal(p.exact_max, 0);
 }
 
 /* Exact mode counts events in 32 bits: a source of 2^32 - 1 primitives is refused before anything
@@ -1038,6 +1079,43 @@ static void too_many_primitives(void **state)
     assert_int_equal(t.n_nodes, 0);
     assert_int_equal(t.n_prims, 0);
     kd_free(&t);
+}
+
+/* The node limit (kd_params.max_nodes) stops a build before the nodes are allocated: a budget
+ * of exactly the tree's node count builds the same tree, one node less fails with
+ * KD_TOO_MANY_NODES and an empty tree, on all CPUs and on one, in every mode. */
+static void node_limit(void **state)
+{
+    (void)state;
+    soup so = random_soup(3000, 91);
+    box_set inst = instance_boxes(5000, 92);
+    kd_params hybrid = params(32, grid8);
+    hybrid.exact_max = 64;
+    const struct {
+        kd_source src;
+        kd_params p;
+    } cases[] = { { tri_source(&so), params(0, to_float) }, { tri_source(&so), hybrid },
+                  { box_source(&inst), params(32, to_float) } };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        kd_tree free_tree, t;
+        assert_int_equal(kd_build(&cases[i].src, &cases[i].p, &free_tree), 0);
+        kd_params p = cases[i].p;
+        p.max_nodes = free_tree.n_nodes;
+        assert_int_equal(kd_build(&cases[i].src, &p, &t), 0);
+        assert_same_tree(&free_tree, &t);
+        kd_free(&t);
+        build_serial(&cases[i].src, &p, &t);
+        assert_same_tree(&free_tree, &t);
+        kd_free(&t);
+        p.max_nodes = free_tree.n_nodes - 1;
+        memset(&t, 0x5A, sizeof t);
+        assert_int_equal(kd_build(&cases[i].src, &p, &t), KD_TOO_MANY_NODES);
+        assert_null(t.nodes);
+        assert_int_equal(t.n_nodes, 0);
+        kd_free(&free_tree);
+    }
+    free(so.t);
+    free(inst.b);
 }
 
 /* ---- tests: SAH cost and stats by hand -------------------------------------------------------- */
@@ -1337,6 +1415,7 @@ int main(void)
         cmocka_unit_test(boxes_exact),
         cmocka_unit_test(boxes_binned),
         cmocka_unit_test(soup_binned),
+        cmocka_unit_test(soup_hybrid),
         cmocka_unit_test(quantized),
         cmocka_unit_test(non_monotone_quantize),
         cmocka_unit_test(sah_beats_median),
@@ -1352,6 +1431,7 @@ int main(void)
         cmocka_unit_test(parameters),
         cmocka_unit_test(defaults),
         cmocka_unit_test(too_many_primitives),
+        cmocka_unit_test(node_limit),
         cmocka_unit_test(sah_cost_by_hand),
         cmocka_unit_test(two_boxes_by_hand),
         cmocka_unit_test(clip_triangle_cases),

@@ -89,9 +89,12 @@ static void record_round_trip(void **state)
     (void)state;
     const float na[3] = { 0, 0, 1 }, nb[3] = { 0.6f, -0.8f, 0 }, nc[3] = { -1, -1, -1 };
     const float ca[3] = { 0, 0.5f, 1 }, cb[3] = { 1, 1, 1 }, cc[3] = { 0.2f, -1, 7 };
-    shade_triangle t = { .normal = { na, nb, nc }, .colour = { ca, cb, cc }, .material = 4321,
+    const float *const normals[3] = { na, nb, nc };
+    shade_triangle t = { .normal = { 0 }, .colour = { ca, cb, cc }, .material = 4321,
                          .uv = { { { 0.25, -3.5 }, { 1e6, 0.999 }, { -7e-5, 8191.5 / 8192 } },
                                  { { 3, 1.5 }, { -0.5, 0 }, { 1, 2 } } } };
+    for (int k = 0; k < 3; k++)
+        t.normal[k] = shade_encode_normal((const double[3]){ normals[k][0], normals[k][1], normals[k][2] });
     const uint8_t bytes[3][3] = { { 0, 128, 255 }, { 255, 255, 255 }, { 51, 0, 255 } };
     for (uint32_t combo = 0; combo < 32; combo++) {
         const uint32_t flags = (combo & 3u) | (combo & 4u ? SHADE_ONE_MATERIAL | 4321u << SHADE_OBJ_MATERIAL_SHIFT : 0u) |
@@ -109,9 +112,8 @@ static void record_round_trip(void **state)
             for (uint32_t k = 0; k < 3; k++)
                 assert_int_equal(shade_rec_colour(flags, tail, v, k), bytes[v][k]);
         for (uint32_t k = 0; (flags & SHADE_HAS_NORMALS) && k < 3; k++) {
-            const double n[3] = { t.normal[k][0], t.normal[k][1], t.normal[k][2] };
             uint32_t one[SHADE_NORMAL_WORDS] = { 0 };
-            shade_encode_set_normal(one, 0, shade_encode_normal(n));
+            shade_encode_set_normal(one, 0, t.normal[k]);
             for (uint32_t c = 0; c < 2; c++)
                 assert_int_equal(shade_rec_oct(w, k, c), shade_rec_oct(one, 0, c));
         }

@@ -25,8 +25,17 @@
  * Binned mode (bins > 0, the per-frame top level): candidates are the bins - 1 evenly spaced
  * planes per axis. Every primitive is ranked against them exactly (its bin, checked against the
  * neighbouring planes), so the counts are exact at the candidate planes: O(n + bins) per node,
- * O(N log N) total. Small nodes (at most SMALL_NODE primitives, fewer bounds than planes) use
- * their primitives' own bounds as candidates, counted directly: exact SAH, and cheaper there.
+ * O(N log N) total. With a clip function, the primitives straddling the chosen plane are
+ * clipped to the child boxes, as in exact mode. Small nodes (at most SMALL_NODE primitives, fewer
+ * bounds than planes) use their primitives' own bounds as candidates, counted directly: exact
+ * SAH, and cheaper there.
+ *
+ * Binned with exact subtrees (bins > 0, exact_max > 0, the bottom level): a node of at most
+ * exact_max primitives turns its references into sorted events (their clipped bounds) and its
+ * subtree is built in exact mode. The bins place the few planes near the root, where the nodes
+ * are large and a plane's exact position matters little; the perfect splits and face cells near
+ * the leaves, where most nodes and most of the SAH cost are. The sorted event lists are thus
+ * only ever as long as exact_max primitives make them.
  *
  * Quantization: each candidate is snapped with params.quantize before it is evaluated, counts are
  * taken against the snapped plane, and candidates not strictly inside the node box after snapping
@@ -34,13 +43,12 @@
  * for the planes it stores. quantize should be monotone (any rounding is); exact mode skips a
  * snapped candidate that would move the sweep backwards.
  *
- * Threads: binned mode without a clip function (the top level) builds sources of at least
- * PAR_MIN_COUNT primitives on all CPUs (at most PAR_MAX_THREADS): subtrees are built concurrently
- * into separate arrays, which are then merged in a fixed order into exactly the layout of the
- * single-threaded build, so the tree is the same bit for bit, whatever the thread timing. After
- * the root, such a build calls only quantize, from several threads at a time: it must be a pure
- * function (thread-safe). If no thread can be started, the calling thread builds alone. Exact mode
- * (which calls clip) and binned mode with a clip function stay single-threaded.
+ * Threads: sources of at least PAR_MIN_COUNT primitives are built on all CPUs (at most
+ * PAR_MAX_THREADS), in every mode: subtrees are built concurrently into separate arrays, which are
+ * then merged in a fixed order into exactly the layout of the single-threaded build, so the tree
+ * is the same bit for bit, whatever the thread timing. Such a build calls bounds, clip and
+ * quantize from several threads at a time: they must be pure functions (thread-safe). If no
+ * thread can be started, the calling thread builds alone.
  *
  * Statistics are gathered while building; the SAH cost sums every subtree as its node's term plus
  * (left sum + right sum), so that subtrees built in different threads give the same bits as
@@ -143,6 +151,12 @@ typedef struct {
 
 typedef struct pool pool;
 
+/* The nodes of one tree (all threads' builders), counted before they are allocated. */
+typedef struct {
+    atomic_uint_fast64_t used;
+    atomic_int exceeded;
+} node_budget;
+
 typedef struct {
     const kd_source *src;
     kd_params p;
@@ -152,6 +166,8 @@ typedef struct {
     uint32_t *prims;
     uint32_t n_prims, cap_prims;
     uint8_t *side;    /* exact mode: SIDE_* of each primitive of the node being split */
+    event *scratch;   /* exact mode: the straddlers' events (clip_straddlers) */
+    uint32_t cap_scratch;
     double *cand;     /* binned mode: candidate planes of one axis */
     uint32_t *counts; /* binned mode: 3 x (bins + 1) counters */
     measure_kind kind;   /* of SAH weights: measure(kind, node box) / root_measure */
@@ -160,6 +176,7 @@ typedef struct {
     pending_sum *pend;   /* parallel build: inner nodes with holes below (count - 1 indexes) */
     uint32_t n_pend, cap_pend;
     pool *pool;       /* parallel build (binned mode): where to hand subtrees; NULL: single-threaded */
+    node_budget *budget; /* shared by the tree's builders */
     hole *holes;      /* subtrees handed away, in the order they were due */
     uint32_t n_holes, cap_holes, holes_owed; /* owed: handed away, not yet due (room reserved) */
 } builder;
@@ -246,7 +263,7 @@ static void consider(const axis_terms *t, double q, uint32_t nl, uint32_t np, ui
  * recursion still ends (at max_depth at the latest). */
 static void consider_face(const axis_terms *t, double q, uint32_t np, uint32_t n, split *best)
 {
-    if (np == 0 || getenv("NOFACE"))
+    if (np == 0)
         return;
     const int at_lo = q == t->lo;
     const double flat = t->base * t->inv, whole = 1.0;
@@ -330,8 +347,22 @@ static void *reserve(void *p, uint32_t *cap, uint64_t need, size_t size)
     return q;
 }
 
-static int add_nodes(builder *b, uint32_t k, uint32_t *first)
+/* Counts k new nodes of the tree against p.max_nodes: 0, or -1 (and the budget marked
+ * exceeded) if they would pass it. */
+static int charge_nodes(builder *b, uint32_t k)
 {
+    if (b->p.max_nodes == 0 || atomic_fetch_add(&b->budget->used, k) + k <= b->p.max_nodes)
+        return 0;
+    atomic_store(&b->budget->exceeded, 1);
+    return -1;
+}
+
+/* k nodes at the end of the builder's array: 0, or -1 (memory, or the node budget). A handed
+ * subtree's root (charged: false) is the handing builder's node, already counted. */
+static int add_nodes(builder *b, uint32_t k, int charged, uint32_t *first)
+{
+    if (charged && charge_nodes(b, k) != 0)
+        return -1;
     kd_node *n = reserve(b->nodes, &b->cap_nodes, (uint64_t)b->n_nodes + k, sizeof *n);
     if (!n)
         return -1;
@@ -356,50 +387,65 @@ static uint32_t *new_leaf(builder *b, uint32_t node, uint32_t n)
 
 /* ---- exact mode: event lists ---------------------------------------------------------------- */
 
+/* Events at the same position are ordered by type, then primitive: one 64-bit comparison. */
+static uint64_t event_key(const event *e) { return (uint64_t)e->type << 32 | e->prim; }
+
 static int event_less(const event *a, const event *b)
 {
-    if (a->pos != b->pos)
-        return a->pos < b->pos;
-    if (a->type != b->type)
-        return a->type < b->type;
-    return a->prim < b->prim;
+    return a->pos < b->pos || (a->pos == b->pos && event_key(a) < event_key(b));
 }
 
-static int cmp_event(const void *x, const void *y)
+/* Sorts e[0..n) by event_less: merge sort, insertion sort below 16 events; tmp has room for n / 2
+ * events. (No two events are equal: a primitive has at most one event of each type per axis.) */
+static void sort_events(event *e, uint32_t n, event *tmp)
 {
-    const event *a = x, *b = y;
-    return event_less(b, a) - event_less(a, b);
+    if (n <= 16) {
+        for (uint32_t i = 1; i < n; i++) {
+            const event x = e[i];
+            uint32_t j = i;
+            for (; j > 0 && event_less(&x, &e[j - 1]); j--)
+                e[j] = e[j - 1];
+            e[j] = x;
+        }
+        return;
+    }
+    const uint32_t h = n / 2;
+    sort_events(e, h, tmp);
+    sort_events(e + h, n - h, tmp);
+    if (!event_less(&e[h], &e[h - 1]))
+        return; /* already in order: common for the clipped parts of a few straddlers */
+    memcpy(tmp, e, h * sizeof *e);
+    uint32_t i = 0, j = h, o = 0; /* o < j: the merge never overtakes the right half it reads */
+    while (i < h && j < n)
+        e[o++] = event_less(&e[j], &tmp[i]) ? e[j++] : tmp[i++];
+    memcpy(e + o, tmp + i, (h - i) * sizeof *e);
 }
 
-/* Room for per_axis events on each axis (one spare, so that no size is 0). */
+/* Room for per_axis events on each axis, in one block at ev[0] (one spare, so that no size is 0). */
 static int events_alloc(prim_set *s, size_t per_axis)
 {
-    for (int a = 0; a < 3; a++)
-        if (!(s->ev[a] = malloc((per_axis + 1) * sizeof(event))))
-            return -1;
+    if (!(s->ev[0] = malloc(3 * (per_axis + 1) * sizeof(event))))
+        return -1;
+    s->ev[1] = s->ev[0] + per_axis + 1;
+    s->ev[2] = s->ev[1] + per_axis + 1;
     return 0;
 }
 
-static void add_events(prim_set *s, uint32_t id, const aabb *part)
+/* Appends the events of a primitive whose part in the node has bounds `part`, to ev[0..2] at
+ * n[0..2] (advanced). */
+static void put_events(event *const ev[3], uint32_t n[3], uint32_t id, const aabb *part)
 {
     for (int a = 0; a < 3; a++) {
-        event *e = s->ev[a] + s->n_ev[a];
+        event *e = ev[a] + n[a];
         if (part->lo[a] == part->hi[a]) {
             e[0] = (event){ part->lo[a], id, EV_PLANAR };
-            s->n_ev[a] += 1;
+            n[a] += 1;
         } else {
             e[0] = (event){ part->lo[a], id, EV_START };
             e[1] = (event){ part->hi[a], id, EV_END };
-            s->n_ev[a] += 2;
+            n[a] += 2;
         }
     }
-    s->n++;
-}
-
-static void events_sort(prim_set *s)
-{
-    for (int a = 0; a < 3; a++)
-        qsort(s->ev[a], s->n_ev[a], sizeof(event), cmp_event);
 }
 
 /* Sweeps the events of axis k; candidates are the snapped event positions, and the counts at a
@@ -435,108 +481,146 @@ static void sweep_axis(const builder *b, const prim_set *s, const aabb *box, uin
     }
 }
 
-/* Sets b->side for the primitives of s from their events on the split axis: an end at or below
- * the plane means left only, a start at or above it right only, the rest straddles. */
-static void classify(builder *b, const prim_set *s, const split *sp)
+/* Primitives of a node by where they go. */
+typedef struct {
+    uint32_t left, right, both;
+} side_counts;
+
+/* Sets b->side for the primitives of s from their events on the split axis (a primitive's start
+ * comes before its end): a start at or above the plane means right only, an end at or below it
+ * left only, the rest straddles. */
+static side_counts classify(builder *b, const prim_set *s, const split *sp)
 {
     const event *ev = s->ev[sp->axis];
     const uint32_t m = s->n_ev[sp->axis];
-    for (uint32_t i = 0; i < m; i++)
-        b->side[ev[i].prim] = SIDE_BOTH;
+    side_counts c = { 0, 0, 0 };
     for (uint32_t i = 0; i < m; i++) {
         const event *e = &ev[i];
-        if (e->type == EV_PLANAR)
-            b->side[e->prim] = (uint8_t)side_of(e->pos, e->pos, sp);
-        else if (e->type == EV_END && e->pos <= sp->pos)
-            b->side[e->prim] = SIDE_LEFT;
-        else if (e->type == EV_START && e->pos >= sp->pos)
-            b->side[e->prim] = SIDE_RIGHT;
-    }
-}
-
-/* Starts the children l and r with the sorted events of the straddling primitives, clipped to
- * the child boxes (a straddler has exactly one start event on the split axis). */
-static int clip_straddlers(const builder *b, const prim_set *s, const split *sp, const aabb *lb, const aabb *rb,
-                           prim_set *l, prim_set *r)
-{
-    const event *ev = s->ev[sp->axis];
-    const uint32_t m = s->n_ev[sp->axis];
-    size_t nb = 0;
-    for (uint32_t i = 0; i < m; i++)
-        nb += ev[i].type == EV_START && b->side[ev[i].prim] == SIDE_BOTH;
-    if (events_alloc(l, 2 * nb) || events_alloc(r, 2 * nb))
-        return -1;
-    for (uint32_t i = 0; i < m; i++) {
-        if (ev[i].type != EV_START || b->side[ev[i].prim] != SIDE_BOTH)
-            continue;
-        aabb part;
-        if (part_in_box(b, ev[i].prim, NULL, lb, &part))
-            add_events(l, ev[i].prim, &part);
-        if (part_in_box(b, ev[i].prim, NULL, rb, &part))
-            add_events(r, ev[i].prim, &part);
-    }
-    events_sort(l);
-    events_sort(r);
-    return 0;
-}
-
-/* Merges sorted add[0..k) into sorted dst[0..m), which has room for m + k events. */
-static void merge_events(event *dst, size_t m, const event *add, size_t k)
-{
-    size_t i = m, j = k, o = m + k;
-    while (j > 0) {
-        if (i > 0 && event_less(&add[j - 1], &dst[i - 1]))
-            dst[--o] = dst[--i];
-        else
-            dst[--o] = add[--j];
-    }
-}
-
-/* Adds to child c the events of the primitives of s that go only to side `want`. */
-static int merge_side(const builder *b, const prim_set *s, int want, prim_set *c)
-{
-    for (int a = 0; a < 3; a++) {
-        const event *src = s->ev[a];
-        size_t keep = 0, m = 0;
-        for (uint32_t i = 0; i < s->n_ev[a]; i++)
-            keep += b->side[src[i].prim] == want;
-        event *dst = malloc((keep + c->n_ev[a] + 1) * sizeof *dst);
-        if (!dst)
-            return -1;
-        for (uint32_t i = 0; i < s->n_ev[a]; i++) {
-            if (b->side[src[i].prim] != want)
-                continue;
-            dst[m++] = src[i];
-            c->n += a == 0 && src[i].type != EV_END; /* one start or planar event per primitive */
+        uint8_t *side = &b->side[e->prim];
+        if (e->type == EV_PLANAR) {
+            *side = (uint8_t)side_of(e->pos, e->pos, sp);
+            c.left += *side == SIDE_LEFT;
+            c.right += *side == SIDE_RIGHT;
+        } else if (e->type == EV_START) {
+            *side = e->pos >= sp->pos ? SIDE_RIGHT : SIDE_BOTH;
+            c.right += *side == SIDE_RIGHT;
+        } else if (e->pos <= sp->pos) {
+            *side = SIDE_LEFT;
+            c.left++;
         }
-        merge_events(dst, m, c->ev[a], c->n_ev[a]);
-        free(c->ev[a]);
-        c->ev[a] = dst;
-        c->n_ev[a] += (uint32_t)keep;
     }
+    c.both = s->n - c.left - c.right;
+    return c;
+}
+
+/* Where the straddlers' events for child c on axis a go in b->scratch (nb straddlers). */
+static event *clipped_events(const builder *b, uint32_t nb, int c, int a)
+{
+    return b->scratch + (3 * (size_t)c + (size_t)a) * 2 * nb;
+}
+
+/* The events of the nb straddlers' parts in the child boxes cb[0..1], sorted, at
+ * clipped_events(b, nb, c, a), k[c][a] of them; kept[c]: straddlers with a part in child c. */
+static int clip_straddlers(builder *b, const prim_set *s, const split *sp, const aabb *const cb[2], uint32_t nb,
+                           uint32_t k[2][3], uint32_t kept[2])
+{
+    /* 2 nb events per child and axis, and nb to sort with */
+    event *scratch = reserve(b->scratch, &b->cap_scratch, 13 * (uint64_t)nb + 1, sizeof *scratch);
+    if (!scratch)
+        return -1;
+    b->scratch = scratch;
+    event *ev[2][3];
+    for (int c = 0; c < 2; c++)
+        for (int a = 0; a < 3; a++)
+            ev[c][a] = clipped_events(b, nb, c, a);
+    const event *split_ev = s->ev[sp->axis];
+    for (uint32_t i = 0; i < s->n_ev[sp->axis]; i++) {
+        if (split_ev[i].type != EV_START || b->side[split_ev[i].prim] != SIDE_BOTH)
+            continue;
+        for (int c = 0; c < 2; c++) {
+            aabb part;
+            if (part_in_box(b, split_ev[i].prim, NULL, cb[c], &part)) {
+                put_events(ev[c], k[c], split_ev[i].prim, &part);
+                kept[c]++;
+            }
+        }
+    }
+    for (int c = 0; c < 2; c++)
+        for (int a = 0; a < 3; a++)
+            sort_events(ev[c][a], k[c][a], scratch + 12 * (size_t)nb);
     return 0;
+}
+
+/* The events of one axis for both children in one pass: the one-sided events of ev[0..n) in
+ * their order, each child's merged with its sorted straddler events add[c][0..k[c]), into out[c]
+ * (m[c] events). */
+static void distribute(const builder *b, const event *ev, uint32_t n, event *const add[2], const uint32_t k[2],
+                       event *const out[2], uint32_t m[2])
+{
+    uint32_t j[2] = { 0, 0 }, o[2] = { 0, 0 };
+    for (uint32_t i = 0; i < n; i++) {
+        const int side = b->side[ev[i].prim];
+        if (side == SIDE_BOTH)
+            continue;
+        const int c = side == SIDE_RIGHT;
+        while (j[c] < k[c] && event_less(&add[c][j[c]], &ev[i]))
+            out[c][o[c]++] = add[c][j[c]++];
+        out[c][o[c]++] = ev[i];
+    }
+    for (int c = 0; c < 2; c++) {
+        memcpy(out[c] + o[c], add[c] + j[c], (k[c] - j[c]) * sizeof(event));
+        m[c] = o[c] + k[c] - j[c];
+    }
 }
 
 static int split_events(builder *b, const prim_set *s, const split *sp, const aabb *lb, const aabb *rb,
                         prim_set *l, prim_set *r)
 {
-    classify(b, s, sp);
-    if (clip_straddlers(b, s, sp, lb, rb, l, r))
+    const side_counts n = classify(b, s, sp);
+    const aabb *const cb[2] = { lb, rb };
+    uint32_t k[2][3] = { { 0, 0, 0 }, { 0, 0, 0 } }, kept[2] = { 0, 0 };
+    if (clip_straddlers(b, s, sp, cb, n.both, k, kept))
         return -1;
-    return merge_side(b, s, SIDE_LEFT, l) || merge_side(b, s, SIDE_RIGHT, r) ? -1 : 0;
+    prim_set *const child[2] = { l, r };
+    const uint32_t one_sided[2] = { n.left, n.right };
+    for (int c = 0; c < 2; c++) {
+        uint32_t most = 0; /* straddler events on any axis */
+        for (int a = 0; a < 3; a++)
+            most = k[c][a] > most ? k[c][a] : most;
+        if (events_alloc(child[c], 2 * (size_t)one_sided[c] + most))
+            return -1;
+        child[c]->n = one_sided[c] + kept[c];
+    }
+    for (int a = 0; a < 3; a++) {
+        event *const add[2] = { clipped_events(b, n.both, 0, a), clipped_events(b, n.both, 1, a) };
+        event *const out[2] = { l->ev[a], r->ev[a] };
+        const uint32_t ka[2] = { k[0][a], k[1][a] };
+        uint32_t m[2];
+        distribute(b, s->ev[a], s->n_ev[a], add, ka, out, m);
+        l->n_ev[a] = m[0];
+        r->n_ev[a] = m[1];
+    }
+    return 0;
 }
 
 /* Root set: bounds of every primitive (no clipping needed: they lie in the root box). */
 static int root_events(const builder *b, prim_set *s, aabb *root)
 {
-    if (events_alloc(s, 2 * (size_t)b->src->count))
+    const uint32_t n = b->src->count;
+    event *tmp = malloc(((size_t)n + 1) * sizeof *tmp); /* half of an axis's 2n events */
+    if (!tmp || events_alloc(s, 2 * (size_t)n)) {
+        free(tmp);
         return -1;
-    for (uint32_t i = 0; i < b->src->count; i++) {
+    }
+    for (uint32_t i = 0; i < n; i++) {
         const aabb bx = b->src->bounds(b->src->user, i);
-        add_events(s, i, &bx);
+        put_events(s->ev, s->n_ev, i, &bx);
         box_union(root, &bx);
     }
-    events_sort(s);
+    s->n = n;
+    for (int a = 0; a < 3; a++)
+        sort_events(s->ev[a], s->n_ev[a], tmp);
+    free(tmp);
     return 0;
 }
 
@@ -751,23 +835,48 @@ static int leaf_from_refs(builder *b, uint32_t node, const prim_set *s)
 
 static void set_free(prim_set *s)
 {
-    for (int a = 0; a < 3; a++)
-        free(s->ev[a]);
+    free(s->ev[0]); /* the block of all three axes (events_alloc) */
     free(s->ref);
     memset(s, 0, sizeof *s);
 }
 
 static int binned(const builder *b) { return b->p.bins > 0; }
 
+/* Whether the builder may meet nodes in exact mode's representation (events). */
+static int sweeps(const builder *b) { return b->p.bins == 0 || b->p.exact_max > 0; }
+
+/* Whether s holds binned mode's representation (primitive references) rather than events. */
+static int has_refs(const prim_set *s) { return s->ref != NULL; }
+
+/* Turns the references of s into exact mode's sorted events (binned mode, at most exact_max
+ * primitives: the subtree from here on is built as in exact mode). */
+static int refs_to_events(builder *b, prim_set *s)
+{
+    prim_set e = { .n = s->n };
+    event *tmp = reserve(b->scratch, &b->cap_scratch, (uint64_t)s->n + 1, sizeof *tmp); /* half of 2n */
+    if (!tmp)
+        return -1;
+    b->scratch = tmp;
+    if (events_alloc(&e, 2 * (size_t)s->n))
+        return -1;
+    for (uint32_t i = 0; i < s->n; i++)
+        put_events(e.ev, e.n_ev, s->ref[i].id, &s->ref[i].b);
+    for (int a = 0; a < 3; a++)
+        sort_events(e.ev[a], e.n_ev[a], tmp);
+    set_free(s);
+    *s = e;
+    return 0;
+}
+
 static int find_split_parallel(const builder *b, const prim_set *s, const aabb *box, split *best);
 
 static void find_split(const builder *b, const prim_set *s, const aabb *box, split *best)
 {
     /* large binned nodes (never small ones) in parts on several threads, unless memory ran out */
-    if (b->pool && binned(b) && s->n >= PAR_SPLIT_MIN && find_split_parallel(b, s, box, best) == 0)
+    if (b->pool && has_refs(s) && s->n >= PAR_SPLIT_MIN && find_split_parallel(b, s, box, best) == 0)
         return;
     for (uint32_t k = 0; k < 3; k++) {
-        if (!binned(b))
+        if (!has_refs(s))
             sweep_axis(b, s, box, k, best);
         else if (s->n <= SMALL_NODE && 2 * s->n < b->p.bins - 1)
             small_axis(b, s, box, k, best);
@@ -778,14 +887,15 @@ static void find_split(const builder *b, const prim_set *s, const aabb *box, spl
 
 /* ---- parallel build: handing subtrees to other threads --------------------------------------- *
  *
- * Binned mode without a clip function calls nothing after the root but quantize (assumed pure),
- * so subtrees can be built concurrently. Every thread of a pool runs tasks: a task builds one
- * subtree into its own builder (nodes, leaf lists, scratch). A builder splitting a node while a
+ * The source's functions and quantize are pure (kdtree.h), so subtrees can be built
+ * concurrently. Every thread of a pool runs tasks: a task builds one subtree into its own builder
+ * (nodes, leaf lists; scratch while it runs). A builder splitting a node while a
  * thread of the pool waits for work hands the larger child (at least PAR_GRAIN primitives) to a
  * new task and leaves a hole there. Afterwards layout() and copy_nodes() merge the outputs of all
  * tasks into the layout of the single-threaded build, so the tree does not depend on the number
  * of threads or their timing: it is bit-identical to the single-threaded one. Large nodes (the
- * root) are counted and split by several threads in parts (pool_for), again with the same result. */
+ * root) of binned mode are counted and split by several threads in parts (pool_for), again with
+ * the same result. */
 
 /* Node marking a hole while a builder runs; child is the task. */
 #define KD_HOLE 4u
@@ -1029,14 +1139,10 @@ static uint32_t offload(builder *b, const aabb *box, prim_set *s, uint32_t depth
     task *t = calloc(1, sizeof *t);
     if (t) {
         t->b = (builder){ .src = b->src, .p = b->p, .max_depth = b->max_depth, .kind = b->kind,
-                          .root_measure = b->root_measure, .pool = pl };
-        t->b.cand = malloc((size_t)b->p.bins * sizeof *t->b.cand);
-        t->b.counts = malloc(3 * ((size_t)b->p.bins + 1) * sizeof *t->b.counts);
+                          .root_measure = b->root_measure, .pool = pl, .budget = b->budget };
         t->b.prims = reserve(NULL, &t->b.cap_prims, (uint64_t)s->n + 1, sizeof *t->b.prims); /* never NULL after */
         uint32_t root;
-        if (!t->b.cand || !t->b.counts || !t->b.prims || add_nodes(&t->b, 1, &root) != 0) {
-            free(t->b.cand);
-            free(t->b.counts);
+        if (!t->b.prims || add_nodes(&t->b, 1, 0, &root) != 0) {
             free(t->b.prims);
             free(t->b.nodes);
             free(t);
@@ -1106,7 +1212,12 @@ static int build_node(builder *b, uint32_t node, const aabb *box, prim_set *s, u
     split best = { INFINITY, 0, 0.0, 0 };
     if (depth > b->st.depth)
         b->st.depth = depth;
-    if (s->n > b->p.leaf_size && depth < b->max_depth)
+    const int try_split = s->n > b->p.leaf_size && depth < b->max_depth;
+    if (try_split && has_refs(s) && s->n <= b->p.exact_max && refs_to_events(b, s) != 0) {
+        set_free(s);
+        return -1;
+    }
+    if (try_split)
         find_split(b, s, box, &best);
     if (!(best.cost < b->p.cost_intersection * s->n)) {
         const uint32_t n = s->n;
@@ -1116,7 +1227,7 @@ static int build_node(builder *b, uint32_t node, const aabb *box, prim_set *s, u
         if (n > b->st.max_leaf_count)
             b->st.max_leaf_count = n;
         *sum = (subtree_sum){ b->p.cost_intersection * n * weight, 0 };
-        const int rc = binned(b) ? leaf_from_refs(b, node, s) : leaf_from_events(b, node, s);
+        const int rc = has_refs(s) ? leaf_from_refs(b, node, s) : leaf_from_events(b, node, s);
         set_free(s);
         return rc;
     }
@@ -1124,10 +1235,10 @@ static int build_node(builder *b, uint32_t node, const aabb *box, prim_set *s, u
     lb.hi[best.axis] = rb.lo[best.axis] = best.pos;
     prim_set l = { 0 }, r = { 0 };
     uint32_t child = 0;
-    int rc = binned(b) ? split_refs(b, s, &best, &lb, &rb, &l, &r) : split_events(b, s, &best, &lb, &rb, &l, &r);
+    int rc = has_refs(s) ? split_refs(b, s, &best, &lb, &rb, &l, &r) : split_events(b, s, &best, &lb, &rb, &l, &r);
     set_free(s); /* before recursing: the parent's lists are the largest */
     if (rc == 0)
-        rc = add_nodes(b, 2, &child);
+        rc = add_nodes(b, 2, 1, &child);
     if (rc != 0) {
         set_free(&l);
         set_free(&r);
@@ -1154,13 +1265,40 @@ static int build_node(builder *b, uint32_t node, const aabb *box, prim_set *s, u
 
 /* ---- parallel build: threads and merging --------------------------------------------------- */
 
+/* The scratch arrays of the modes b may meet: bin planes and counters, each primitive's side and
+ * the straddlers' events (these grow on demand). 0, or -1 if memory ran out. */
+static int scratch_alloc(builder *b)
+{
+    if (binned(b)) {
+        b->cand = malloc((size_t)b->p.bins * sizeof *b->cand);
+        b->counts = malloc(3 * ((size_t)b->p.bins + 1) * sizeof *b->counts);
+        if (!b->cand || !b->counts)
+            return -1;
+    }
+    if (sweeps(b) && !(b->side = malloc((size_t)b->src->count + 1)))
+        return -1;
+    return 0;
+}
+
+static void scratch_free(builder *b)
+{
+    free(b->cand);
+    free(b->counts);
+    free(b->side);
+    free(b->scratch);
+    b->cand = NULL;
+    b->counts = NULL;
+    b->side = NULL;
+    b->scratch = NULL;
+    b->cap_scratch = 0;
+}
+
 static void task_free(task *t)
 {
     set_free(&t->s);
     free(t->b.nodes);
     free(t->b.prims);
-    free(t->b.cand);
-    free(t->b.counts);
+    scratch_free(&t->b);
     free(t->b.holes);
     free(t->b.pend);
     memset(&t->b, 0, sizeof t->b);
@@ -1180,8 +1318,10 @@ static void work(pool *pl, int caller)
             task *t = pl->tasks[pl->next++];
             const int skip = pl->failed;
             pthread_mutex_unlock(&pl->mu);
-            const int rc = skip ? -1 : build_node(&t->b, 0, &t->box, &t->s, t->depth, &t->sum); /* frees t->s */
+            /* scratch only while the task runs: one set per thread, not per task */
+            const int rc = skip || scratch_alloc(&t->b) ? -1 : build_node(&t->b, 0, &t->box, &t->s, t->depth, &t->sum);
             set_free(&t->s);
+            scratch_free(&t->b);
             pthread_mutex_lock(&pl->mu);
             pl->failed |= rc != 0;
             if (--pl->unfinished == 0)
@@ -1327,8 +1467,7 @@ static void stats_add(kd_stats *a, const kd_stats *b)
         a->max_leaf_count = b->max_leaf_count;
 }
 
-/* Threads to use: the CPUs this thread may run on, at most PAR_MAX_THREADS. */
-static uint32_t thread_count(void)
+uint32_t kd_thread_count(void)
 {
     cpu_set_t set;
     long n = 0;
@@ -1417,7 +1556,9 @@ static int build_parallel(builder *b, const aabb *box, prim_set *s, uint32_t thr
     free(root.b.holes);
     free(root.b.pend);
     b->st = root.b.st;
-    b->nodes = out.nodes; /* b's scratch stays the caller's to free */
+    b->scratch = root.b.scratch; /* b's scratch (perhaps grown) stays the caller's to free */
+    b->cap_scratch = root.b.cap_scratch;
+    b->nodes = out.nodes;
     b->n_nodes = b->cap_nodes = out.n_nodes;
     b->prims = out.prims;
     b->n_prims = b->cap_prims = out.n_prims;
@@ -1510,51 +1651,41 @@ static int start(builder *b, prim_set *s, aabb *root)
 {
     const aabb empty = { { INFINITY, INFINITY, INFINITY }, { -INFINITY, -INFINITY, -INFINITY } };
     *root = empty;
-    if (binned(b)) {
-        b->cand = malloc((size_t)b->p.bins * sizeof *b->cand);
-        b->counts = malloc(3 * ((size_t)b->p.bins + 1) * sizeof *b->counts);
-        if (!b->cand || !b->counts || root_refs(b, s, root))
-            return -1;
-    } else {
-        if (b->src->count > UINT32_MAX / 2)
-            return -1; /* 2 events per primitive and axis must fit in 32 bits */
-        b->side = malloc((size_t)b->src->count + 1);
-        if (!b->side || root_events(b, s, root))
-            return -1;
-    }
+    if (!binned(b) && b->src->count > UINT32_MAX / 2)
+        return -1; /* 2 events per primitive and axis must fit in 32 bits */
+    if (scratch_alloc(b) || (binned(b) ? root_refs(b, s, root) : root_events(b, s, root)))
+        return -1;
     if (b->src->count == 0)
         *root = (aabb){ { 0, 0, 0 }, { 0, 0, 0 } }; /* no primitives: a point at the origin */
     b->prims = reserve(NULL, &b->cap_prims, (uint64_t)b->src->count + 1, sizeof *b->prims);
     uint32_t first;
-    return b->prims ? add_nodes(b, 1, &first) : -1;
+    return b->prims ? add_nodes(b, 1, 1, &first) : -1;
 }
 
 int kd_build(const kd_source *src, const kd_params *p, kd_tree *out)
 {
     const double t0 = now();
     memset(out, 0, sizeof *out);
-    builder b = { .src = src, .p = *p };
+    node_budget budget = { 0, 0 };
+    builder b = { .src = src, .p = *p, .budget = &budget };
     b.max_depth = kd_depth_bound(p, src->count);
     prim_set s = { 0 };
     aabb root;
     int rc = start(&b, &s, &root);
     b.kind = measure_of(&root);
     b.root_measure = measure(b.kind, &root);
-    /* threads only where nothing but quantize is called after the root (see offload) */
-    const uint32_t threads = binned(&b) && !src->clip && src->count >= PAR_MIN_COUNT ? thread_count() : 1;
+    const uint32_t threads = src->count >= PAR_MIN_COUNT ? kd_thread_count() : 1;
     subtree_sum sum = { 0.0, 0 };
     if (rc == 0 && threads > 1)
         rc = build_parallel(&b, &root, &s, threads, &sum.sum); /* frees s */
     else if (rc == 0)
         rc = build_node(&b, 0, &root, &s, 0, &sum); /* frees s */
     set_free(&s);
-    free(b.side);
-    free(b.cand);
-    free(b.counts);
+    scratch_free(&b);
     if (rc != 0) {
         free(b.nodes);
         free(b.prims);
-        return -1;
+        return atomic_load(&budget.exceeded) ? KD_TOO_MANY_NODES : -1;
     }
     *out = (kd_tree){ shrink(b.nodes, b.n_nodes * sizeof *b.nodes), b.n_nodes,
                       shrink(b.prims, ((size_t)b.n_prims + 1) * sizeof *b.prims), b.n_prims, root, { 0 } };
@@ -1621,6 +1752,15 @@ static void clip_plane(const polygon *src, int axis, double d, int keep_above, p
     }
 }
 
+/* Whether every vertex of p lies on the kept side of the plane (clip_plane keeps p as it is). */
+static int all_inside(const polygon *p, int axis, double d, int keep_above)
+{
+    int in = 1;
+    for (int i = 0; i < p->n; i++)
+        in &= keep_above ? p->v[i][axis] >= d : p->v[i][axis] <= d;
+    return in;
+}
+
 int kd_clip_triangle(const double a[3], const double b[3], const double c[3], const aabb *box, aabb *out)
 {
     polygon p[2];
@@ -1631,7 +1771,10 @@ int kd_clip_triangle(const double a[3], const double b[3], const double c[3], co
     int cur = 0;
     for (int plane = 0; plane < 6 && p[cur].n > 0; plane++) {
         const int axis = plane / 2, above = plane % 2 == 0;
-        clip_plane(&p[cur], axis, above ? box->lo[axis] : box->hi[axis], above, &p[1 - cur]);
+        const double d = above ? box->lo[axis] : box->hi[axis];
+        if (all_inside(&p[cur], axis, d, above))
+            continue; /* most planes of a node box miss the part: clip_plane would copy it */
+        clip_plane(&p[cur], axis, d, above, &p[1 - cur]);
         cur = 1 - cur;
     }
     if (p[cur].n == 0)

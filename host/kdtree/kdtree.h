@@ -1,8 +1,9 @@
 /*
  * SAH kd-tree builder (host). One builder serves both levels of the paper's two-level scheme:
- * the bottom level over the triangles of one object (built once, exact SAH over event lists with
- * perfect splits from triangle-box clipping) and the top level over the world-space boxes of the
- * object instances (rebuilt every frame, binned SAH for speed).
+ * the bottom level over the triangles of one object (built once: binned SAH near the root, exact
+ * SAH over event lists near the leaves, with perfect splits from triangle-box clipping throughout)
+ * and the top level over the world-space boxes of the object instances (rebuilt every frame,
+ * binned SAH for speed).
  *
  * Primitives are abstract: the caller supplies their bounds and, for perfect splits, a clipping
  * function. Split planes can be snapped to the device's number format (quantize), and primitives
@@ -23,6 +24,8 @@ extern "C" {
 
 typedef struct { double lo[3], hi[3]; } aabb;
 
+/* Primitives for kd_build. Builds of at least 512 primitives (kdtree.c PAR_MIN_COUNT) call
+ * bounds and clip from several threads at a time: they must be pure functions (thread-safe). */
 typedef struct {
     uint32_t count;
     const void *user;
@@ -42,12 +45,18 @@ typedef struct {
     uint32_t leaf_size;        /* never split a node with at most this many primitives, default 1 */
     uint32_t bins;             /* 0: exact SAH over all events; n > 0: binned SAH with n bins per axis */
     /* Snaps a candidate split position to a representable device value (NULL: no snapping).
-     * Must be a pure function: binned builds without a clip function use all cores and call it
-     * from several threads (the tree is the same as a single-threaded build, bit for bit). */
+     * Must be a pure function: builds of at least 512 primitives use all cores and call it from
+     * several threads (the tree is the same as a single-threaded build, bit for bit). */
     double (*quantize)(double split);
     int face_splits;           /* exact mode: flat cells for primitives lying in a face of their node
                                   (default 1); the restarting and rope walkers need 0 (docs/traversal.md) */
     uint32_t shallow_from;     /* see max_depth; 0 (default): never */
+    uint32_t exact_max;        /* bins > 0: nodes of at most this many primitives are split as in exact
+                                  mode (their subtrees get perfect splits and face cells); 0 (default):
+                                  binned throughout */
+    uint64_t max_nodes;        /* 0 (default): no limit; else kd_build stops with KD_TOO_MANY_NODES
+                                  before the tree would grow past this many nodes (a hard limit is
+                                  checked before the memory it bounds is allocated) */
 } kd_params;
 
 typedef struct {
@@ -83,7 +92,14 @@ void kd_params_default(kd_params *p);
  * depth (the kd-depth limit is checked against it before building, tb/cli/cli_limits.h). */
 uint32_t kd_depth_bound(const kd_params *p, uint32_t count);
 
-/* Builds a tree; 0 on success, -1 if memory ran out (out is then empty). count may be 0. */
+/* Threads kd_build uses for a large source: the CPUs the calling thread may run on, at most 8
+ * (the host's other parallel stages use the same budget). */
+uint32_t kd_thread_count(void);
+
+#define KD_TOO_MANY_NODES (-2)
+
+/* Builds a tree; 0 on success, -1 if memory ran out, KD_TOO_MANY_NODES if it would pass
+ * p->max_nodes (out is then empty). count may be 0. */
 int kd_build(const kd_source *src, const kd_params *p, kd_tree *out);
 
 void kd_free(kd_tree *t);

@@ -15,6 +15,7 @@
 #include "ugrid.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -69,6 +70,48 @@ const char *mi_region_name(mi_region r) { return r < MI_REGION_COUNT ? region_na
 
 static double quantize(double x) { return f24_fast_decode(f24_fast_encode(x)); }
 
+/* ---- loops over triangles and vertices on all CPUs ------------------------------------------ */
+
+/* A range of a loop for one thread of for_parts. */
+typedef struct {
+    void (*fn)(void *ctx, uint32_t from, uint32_t to);
+    void *ctx;
+    uint32_t from, to;
+} loop_part;
+
+static void *run_part(void *arg)
+{
+    const loop_part *p = arg;
+    p->fn(p->ctx, p->from, p->to);
+    return NULL;
+}
+
+/* fn(ctx, from, to) over [0, n) in consecutive ranges of at least PART_MIN items, one per CPU of
+ * the tree builder's budget (kd_thread_count); a range whose thread cannot start runs on this one.
+ * fn writes only what belongs to its range, so the result does not depend on the split. */
+enum { PART_MIN = 4096, PART_MAX = 8 };
+static void for_parts(uint32_t n, void (*fn)(void *ctx, uint32_t from, uint32_t to), void *ctx)
+{
+    uint32_t k = kd_thread_count();
+    k = k < PART_MAX ? k : PART_MAX;
+    k = k < n / PART_MIN ? k : n / PART_MIN;
+    k = k ? k : 1;
+    loop_part p[PART_MAX];
+    pthread_t tid[PART_MAX];
+    int started[PART_MAX] = { 0 };
+    for (uint32_t i = 0; i < k; i++)
+        p[i] = (loop_part){ fn, ctx, (uint32_t)((uint64_t)n * i / k), (uint32_t)((uint64_t)n * (i + 1) / k) };
+    for (uint32_t i = 1; i < k; i++)
+        started[i] = pthread_create(&tid[i], NULL, run_part, &p[i]) == 0;
+    run_part(&p[0]);
+    for (uint32_t i = 1; i < k; i++) {
+        if (started[i])
+            pthread_join(tid[i], NULL);
+        else
+            run_part(&p[i]);
+    }
+}
+
 void mi_params_default(mi_params *p)
 {
     memset(p, 0, sizeof *p);
@@ -86,6 +129,14 @@ void mi_params_default(mi_params *p)
      * on terrain 194 / 168 / 160; before the instance records were put on cache lines) */
     p->top.cost_intersection = 3.0;
     p->bottom.quantize = quantize;
+    /* the exact event sweep with perfect splits throughout (bins = 0). --kd-bins N bins the nodes
+     * over exact_max triangles instead: 1.5x faster to build (bunny, gallery) and the SAH cost of the
+     * bench-build scenes' trees within +-2% (bunny +1.1%, gallery -0.7%, teapot -4.3%), but other
+     * trees move the leaf entries the rebase unit starts from, and with them the images by a
+     * rounding either way (docs/memory-image.md): the default keeps the trees the golden images
+     * were made with */
+    p->bottom.bins = 0;
+    p->bottom.exact_max = 48;
     /* large meshes at most log2(N) + 5 deep: below that the SAH's levels hold most of the nodes
      * but save neither cycles nor traffic in this hardware (the bunny: 29 levels, 146 bytes per
      * triangle, 6.2 cycles per ray; 22 levels, 87 bytes, 5.9 cycles); smaller meshes keep
@@ -389,31 +440,79 @@ static uint32_t object_shading_flags(const scene *s, const scene_mesh *m, const 
     return flags | (same ? SHADE_ONE_MATERIAL | m->material[o->valid[0]] << SHADE_OBJ_MATERIAL_SHIFT : 0u);
 }
 
-/* Triangle transformations and the bottom-level tree of one mesh. */
+typedef struct {
+    const scene_mesh *m;
+    mi_object *o;
+    double max_condition;
+    uint8_t *ok; /* per mesh triangle: its transformation is kept */
+} transform_job;
+
+/* The transformations of mesh triangles [from, to), each at its own index of o->xf. */
+static void transform_part(void *ctx, uint32_t from, uint32_t to)
+{
+    const transform_job *j = ctx;
+    for (uint32_t t = from; t < to; t++) {
+        double a[3], bb[3], c[3];
+        tri_vertex(j->m, j->o->centre, t, 0, a);
+        tri_vertex(j->m, j->o->centre, t, 1, bb);
+        tri_vertex(j->m, j->o->centre, t, 2, c);
+        j->ok[t] = mi_triangle_transform(a, bb, c, j->max_condition, &j->o->xf[t]) && affine_fits_f24(&j->o->xf[t]);
+    }
+}
+
+/* Tree parameters q with the node budget left for tree `own` (p.max_nodes less the nodes of
+ * every other tree of the image; none of own's): 0, or MI_FAIL_NODE_LIMIT if none is left. */
+static int tree_budget(const mi_builder *b, const kd_tree *own, const kd_params *p, kd_params *q)
+{
+    *q = *p;
+    if (!b->p.max_nodes)
+        return 0;
+    uint64_t used = own == &b->top ? 0 : b->top.n_nodes;
+    for (uint32_t i = 0; i < b->n_objects; i++)
+        used += &b->obj[i].tree == own ? 0 : b->obj[i].tree.n_nodes;
+    q->max_nodes = used < b->p.max_nodes ? b->p.max_nodes - used : 0;
+    return q->max_nodes ? 0 : MI_FAIL_NODE_LIMIT;
+}
+
+/* kd_build of tree `own` within the image's node budget: 0, or an mi_failure. */
+static int build_tree(const mi_builder *b, const kd_source *src, const kd_params *p, kd_tree *own)
+{
+    kd_params q;
+    const int rc = tree_budget(b, own, p, &q);
+    if (rc != 0)
+        return rc;
+    const int kd = kd_build(src, &q, own);
+    return kd == 0 ? 0 : kd == KD_TOO_MANY_NODES ? MI_FAIL_NODE_LIMIT : MI_FAIL_OTHER;
+}
+
+/* Triangle transformations and the bottom-level tree of one mesh: 0, or an mi_failure. */
 static int object_prepare(mi_builder *b, const scene *s, const scene_mesh *m, mi_object *o)
 {
     object_release(o);
     o->valid = malloc(((size_t)m->n_triangles + 1) * sizeof *o->valid);
     o->xf = malloc(((size_t)m->n_triangles + 1) * sizeof *o->xf);
-    if (!o->valid || !o->xf)
+    uint8_t *ok = malloc((size_t)m->n_triangles + 1);
+    if (!o->valid || !o->xf || !ok) {
+        free(ok);
         return -1;
-    const double t0 = seconds();
-    for (uint32_t t = 0; t < m->n_triangles; t++) {
-        double a[3], bb[3], c[3];
-        tri_vertex(m, o->centre, t, 0, a);
-        tri_vertex(m, o->centre, t, 1, bb);
-        tri_vertex(m, o->centre, t, 2, c);
-        if (mi_triangle_transform(a, bb, c, b->p.max_condition, &o->xf[o->n_valid]) &&
-            affine_fits_f24(&o->xf[o->n_valid]))
-            o->valid[o->n_valid++] = t;
     }
+    const double t0 = seconds();
+    transform_job job = { m, o, b->p.max_condition, ok };
+    for_parts(m->n_triangles, transform_part, &job);
+    for (uint32_t t = 0; t < m->n_triangles; t++) /* the kept ones, in order */
+        if (ok[t]) {
+            o->xf[o->n_valid] = o->xf[t];
+            o->valid[o->n_valid++] = t;
+        }
+    free(ok);
     const double t1 = seconds();
     b->st.transform_seconds += t1 - t0;
     b->st.degenerate_triangles += m->n_triangles - o->n_valid;
     const tri_source src = { m, o->valid, o->centre };
     const kd_source ks = { o->n_valid, &src, tri_bounds, tri_clip };
-    if (kd_build(&ks, &b->p.bottom, &o->tree) != 0)
-        return -1;
+    const int rc = build_tree(b, &ks, &b->p.bottom, &o->tree);
+    if (rc != 0)
+        return rc;
     const aabb root = device_box(&o->tree.bounds, OBJECT_BOUNDS_MARGIN_ULPS);
     int fail = 0;
     o->ropes = build_ropes(b, &o->tree, &root, &fail);
@@ -477,12 +576,38 @@ static void put_tree(uint32_t *nodes, uint32_t *lists, const kd_tree *t, const k
     }
 }
 
-static void write_shading(uint32_t *w, const scene *s, const scene_mesh *m, uint32_t flags, uint32_t tri)
+/* The octahedral codes of the mesh's vertex normals, each vertex encoded once (a vertex is shared
+ * by about six triangles, and an encoding decodes four candidates); NULL if memory ran out. */
+typedef struct {
+    const scene_mesh *m;
+    uint64_t *codes;
+} normals_job;
+
+static void normals_part(void *ctx, uint32_t from, uint32_t to)
+{
+    const normals_job *j = ctx;
+    for (uint32_t v = from; v < to; v++) {
+        const float *n = &j->m->normals[3 * (size_t)v];
+        j->codes[v] = shade_encode_normal((const double[3]){ n[0], n[1], n[2] });
+    }
+}
+
+static uint64_t *normal_codes(const scene_mesh *m)
+{
+    normals_job job = { m, malloc(((size_t)m->n_vertices + 1) * sizeof *job.codes) };
+    if (job.codes)
+        for_parts(m->n_vertices, normals_part, &job);
+    return job.codes;
+}
+
+/* codes: normal_codes(m), or NULL if the mesh has no normals. */
+static void write_shading(uint32_t *w, const scene *s, const scene_mesh *m, const uint64_t *codes, uint32_t flags,
+                          uint32_t tri)
 {
     shade_triangle t = { .material = m->material[tri] };
     for (uint32_t k = 0; k < 3; k++) {
         const uint32_t v = m->indices[3 * (size_t)tri + k];
-        t.normal[k] = m->normals ? &m->normals[3 * (size_t)v] : NULL;
+        t.normal[k] = codes ? codes[v] : 0;
         t.colour[k] = m->colours ? &m->colours[3 * (size_t)v] : NULL;
         for (uint32_t uv = 0; uv < 2; uv++) {
             uint32_t set;
@@ -527,20 +652,44 @@ static void put_triangle(uint32_t *w, const affine *a)
                              vertex_lo_field(a->m[i][3], v[i * 4 + 3]));
 }
 
-/* Geometry block: nodes, leaf lists, padding, triangle transformations, shading records. */
-static void object_write(mi_builder *b, const scene *s, const mi_object *o)
+typedef struct {
+    const scene_mesh *m;
+    const mi_object *o;
+    const scene *s;
+    const uint64_t *codes;      /* normal_codes(m), or NULL */
+    uint32_t *triangles, *shading; /* the object's records in the image */
+} records_job;
+
+/* The triangle transformations and shading records of image triangles [from, to). */
+static void records_part(void *ctx, uint32_t from, uint32_t to)
+{
+    const records_job *j = ctx;
+    const uint32_t stride = shade_rec_words(j->o->shade_flags);
+    for (uint32_t i = from; i < to; i++) {
+        put_triangle(j->triangles + (size_t)MI_TRIANGLE_WORDS * i, &j->o->xf[i]);
+        write_shading(j->shading + (size_t)stride * i, j->s, j->m, j->codes, j->o->shade_flags, j->o->valid[i]);
+    }
+}
+
+/* Geometry block: nodes, leaf lists, padding, triangle transformations, shading records. 0, or
+ * -1 if memory ran out. */
+static int object_write(mi_builder *b, const scene *s, const mi_object *o)
 {
     const scene_mesh *m = obj_mesh(b, s, o);
+    uint64_t *codes = m->normals ? normal_codes(m) : NULL; /* the object has normals if its mesh has */
+    if (m->normals && !codes)
+        return -1;
     uint32_t *w = b->words + o->base;
     memset(w, 0, o->words * sizeof *w); /* the padding, deterministic */
     put_tree(w, w + MI_NODE_WORDS * o->n_slots, &o->tree, o->ropes, o->slot);
     w = b->words + triangles_at(o);
-    for (uint32_t i = 0; i < o->n_valid; i++, w += MI_TRIANGLE_WORDS)
-        put_triangle(w, &o->xf[i]);
-    for (uint32_t i = 0; i < o->n_valid; i++, w += shade_rec_words(o->shade_flags))
-        write_shading(w, s, m, o->shade_flags, o->valid[i]);
+    records_job job = { m, o, s, codes, w, w + (size_t)MI_TRIANGLE_WORDS * o->n_valid };
+    for_parts(o->n_valid, records_part, &job);
+    free(codes);
+    w = job.shading + (size_t)shade_rec_words(o->shade_flags) * o->n_valid;
     if (o->grid.n[0])
         put_grid(w, &o->grid, (uint32_t)(w - b->words));
+    return 0;
 }
 
 static void object_describe(uint32_t *w, const mi_object *o)
@@ -909,6 +1058,27 @@ static int place_regions(mi_builder *b, const uint64_t len[MI_REGION_COUNT], uin
     return 0;
 }
 
+/* The message of a build that would pass p.max_nodes while building `what`. */
+static int node_limit_error(const mi_builder *b, const char *what, char *err, size_t errlen)
+{
+    snprintf(err, errlen, "limit kd-nodes exceeded: the kd-tree node count of the memory image, where the build "
+             "stopped (%s), is %llu, the limit is %llu (raise it with --limit kd-nodes=N)", what,
+             (unsigned long long)b->p.max_nodes + 1, (unsigned long long)b->p.max_nodes);
+    return MI_FAIL_NODE_LIMIT;
+}
+
+/* object_prepare's failure rc on mesh m as err: the node limit, or memory. */
+static int object_error(const mi_builder *b, int rc, const scene_mesh *m, const char *verb, char *err, size_t errlen)
+{
+    char what[300];
+    snprintf(what, sizeof what, "the tree of mesh '%s'", m->name);
+    if (rc == MI_FAIL_NODE_LIMIT)
+        return node_limit_error(b, what, err, errlen);
+    snprintf(err, errlen, "out of memory while %s %s", verb, what);
+    return MI_FAIL_OTHER;
+}
+
+/* 0, or an mi_failure with err. */
 static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_changed, char *err, size_t errlen)
 {
     const double t0 = seconds();
@@ -917,7 +1087,10 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
     inst_source is = { s, b };
     kd_free(&b->top);
     const kd_source ks = { b->n_inst, &is, instance_bounds, NULL };
-    if (kd_build(&ks, &b->p.top, &b->top) != 0)
+    const int rc = build_tree(b, &ks, &b->p.top, &b->top);
+    if (rc == MI_FAIL_NODE_LIMIT)
+        return node_limit_error(b, "the top-level tree", err, errlen);
+    if (rc != 0)
         goto oom;
     const aabb scene_box = device_box(&b->top.bounds, 0);
     int fail = 0;
@@ -965,8 +1138,8 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
         mi_object *o = &b->obj[i];
         o->base = at[o->dynamic];
         at[o->dynamic] += o->words;
-        if (full || (o->dynamic && dynamic_changed))
-            object_write(b, s, o);
+        if ((full || (o->dynamic && dynamic_changed)) && object_write(b, s, o) != 0)
+            goto oom;
     }
     int written[MI_REGION_COUNT] = { 0 };
     if (full) {
@@ -1014,7 +1187,7 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
     return 0;
 oom:
     snprintf(err, errlen, "out of memory while building the memory image");
-    return -1;
+    return MI_FAIL_OTHER;
 }
 
 static void collect_stats(mi_builder *b, const scene *s)
@@ -1107,6 +1280,13 @@ static void choose_objects(mi_builder *b, const scene *s)
 
 mi_builder *mi_build(const scene *s, const mi_params *p, char *err, size_t errlen)
 {
+    mi_failure why;
+    return mi_build_why(s, p, &why, err, errlen);
+}
+
+mi_builder *mi_build_why(const scene *s, const mi_params *p, mi_failure *why, char *err, size_t errlen)
+{
+    *why = MI_FAIL_OTHER;
     mi_builder *b = calloc(1, sizeof *b);
     if (!b) {
         snprintf(err, errlen, "out of memory");
@@ -1148,13 +1328,16 @@ mi_builder *mi_build(const scene *s, const mi_params *p, char *err, size_t errle
     }
     for (uint32_t i = 0; i < b->n_objects; i++) {
         const scene_mesh *m = obj_mesh(b, s, &b->obj[i]);
-        if (object_prepare(b, s, m, &b->obj[i]) != 0) {
-            snprintf(err, errlen, "out of memory while building the tree of mesh '%s'", m->name);
+        const int rc = object_prepare(b, s, m, &b->obj[i]);
+        if (rc != 0) {
+            *why = (mi_failure)object_error(b, rc, m, "building", err, errlen);
             mi_free(b);
             return NULL;
         }
     }
-    if (write_frame(b, s, 1, 1, err, errlen) != 0) {
+    const int rc = write_frame(b, s, 1, 1, err, errlen);
+    if (rc != 0) {
+        *why = (mi_failure)rc;
         mi_free(b);
         return NULL;
     }
@@ -1174,15 +1357,15 @@ int mi_update(mi_builder *b, const scene *s, char *err, size_t errlen)
         if (!o->dynamic || o->revision_seen == m->revision)
             continue;
         b->st.degenerate_triangles -= m->n_triangles - o->n_valid;
-        if (object_prepare(b, s, m, o) != 0) {
-            snprintf(err, errlen, "out of memory while rebuilding the tree of mesh '%s'", m->name);
-            return -1;
-        }
+        const int rc = object_prepare(b, s, m, o);
+        if (rc != 0)
+            return object_error(b, rc, m, "rebuilding", err, errlen);
         b->st.rebuilt_objects++;
         changed = 1;
     }
-    if (write_frame(b, s, 0, changed, err, errlen) != 0)
-        return -1;
+    const int rc = write_frame(b, s, 0, changed, err, errlen);
+    if (rc != 0)
+        return rc;
     collect_stats(b, s);
     return 0;
 }

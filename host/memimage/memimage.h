@@ -120,6 +120,9 @@ typedef struct {
     uint32_t traversal;        /* TRAV_* the image is walked with (default TRAV_STACK): mi_compact_trees */
     int merge;                 /* 1: bake static geometry into world-space objects (mi_merge.h;
                                   default 0; --merge: 1) */
+    uint64_t max_nodes;        /* kd-tree nodes of both levels together at most (0, the default: no
+                                  limit; --limit kd-nodes): counted as the trees grow, before their
+                                  nodes are allocated */
 } mi_params;
 
 void mi_params_default(mi_params *p);
@@ -160,8 +163,14 @@ typedef struct mi_builder mi_builder;
  * message in err (e.g. the scene does not fit, naming the region and the sizes). */
 mi_builder *mi_build(const scene *s, const mi_params *p, char *err, size_t errlen);
 
+/* Why a build or an update failed: mi_build_why's *why, mi_update's return value. */
+typedef enum { MI_FAIL_OTHER = -1, MI_FAIL_NODE_LIMIT = -2 } mi_failure;
+
+/* mi_build, and on failure *why. */
+mi_builder *mi_build_why(const scene *s, const mi_params *p, mi_failure *why, char *err, size_t errlen);
+
 /* After scene_evaluate for a new time: rebuilds the per-frame regions (and the geometry of
- * deforming objects whose mesh revision changed). 0, or -1 with err. */
+ * deforming objects whose mesh revision changed). 0, or an mi_failure with err. */
 int mi_update(mi_builder *b, const scene *s, char *err, size_t errlen);
 
 const uint32_t *mi_words(const mi_builder *b, uint32_t *n_words);

@@ -75,10 +75,8 @@ uint64_t shade_encode_normal(const double n[3])
 void shade_encode_record(uint32_t *w, uint32_t flags, const shade_triangle *t)
 {
     memset(w, 0, shade_rec_words(flags) * sizeof *w);
-    for (uint32_t k = 0; (flags & SHADE_HAS_NORMALS) && k < 3; k++) {
-        const double n[3] = { t->normal[k][0], t->normal[k][1], t->normal[k][2] };
-        shade_encode_set_normal(w, k, shade_encode_normal(n));
-    }
+    for (uint32_t k = 0; (flags & SHADE_HAS_NORMALS) && k < 3; k++)
+        shade_encode_set_normal(w, k, t->normal[k]);
     uint32_t *tail = w + shade_rec_tail(flags);
     if (!(flags & SHADE_ONE_MATERIAL))
         tail[0] = t->material;

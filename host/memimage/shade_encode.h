@@ -22,7 +22,7 @@ void shade_encode_texcoord(uint32_t *tail, uint32_t flags, uint32_t uv, uint32_t
 
 /* What a triangle's record holds, per vertex k; each part is used only if the flags have it. */
 typedef struct {
-    const float *normal[3];  /* 3 floats */
+    uint64_t normal[3];      /* shade_encode_normal codes (a mesh encodes each vertex once) */
     double uv[2][3][2];      /* coordinate sets 0 and 1 (hls/units/shade_rec.h), mapped already */
     const float *colour[3];  /* R G B in [0, 1] */
     uint32_t material;       /* unless SHADE_ONE_MATERIAL */

@@ -110,10 +110,6 @@ int limits_check_depth(const limits *l, const char *cmd, const mi_params *p, con
 
 int limits_check_build(const limits *l, const char *cmd, const mi_stats *st)
 {
-    int rc = limit_check(l, cmd, LIMIT_KD_NODES, (uint64_t)st->bottom_nodes + st->top_nodes,
-                         "the kd-tree node count of the memory image");
     const uint32_t depth = st->bottom_depth > st->top_depth ? st->bottom_depth : st->top_depth;
-    if (rc == SAARCOR_EXIT_OK)
-        rc = limit_check(l, cmd, LIMIT_KD_DEPTH, depth, "the kd-tree depth");
-    return rc;
+    return limit_check(l, cmd, LIMIT_KD_DEPTH, depth, "the kd-tree depth");
 }

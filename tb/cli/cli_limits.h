@@ -53,8 +53,8 @@ int limits_check_params(const limits *l, const char *cmd, const mi_params *p);
  * of the largest object, or of all instanced triangles when merging, and of the top level). */
 int limits_check_depth(const limits *l, const char *cmd, const mi_params *p, const scene *s);
 
-/* After the build: the kd nodes of both levels (only the build knows them) and, as a net for
- * trees built with other parameters, their depth. */
+/* After the build, as a net for trees built with other parameters: their depth. (The kd nodes of
+ * both levels are counted by the builder as the trees grow, mi_params.max_nodes.) */
 int limits_check_build(const limits *l, const char *cmd, const mi_stats *st);
 
 #endif

@@ -109,6 +109,14 @@ int scene_opts_parse(scene_opts *o, const char *cmd, int c, const char *arg)
     case 19: o->mi.merge = 1; return 1;
     case 20: return number(cmd, "top-ci", arg, 1e-6, 1e6, &o->mi.top.cost_intersection);
     case 21: o->animation = arg; return 1;
+    case 22:
+        if ((r = count(cmd, "kd-bins", arg, 0, 1024, &u)) > 0 && u == 1) {
+            cli_usage_error(cmd, "bad --kd-bins '%s' (expected 0 or 2..1024)", arg);
+            return -1;
+        }
+        if (r > 0)
+            o->mi.bottom.bins = u;
+        return r;
     default: return 0;
     }
 }
@@ -157,15 +165,15 @@ int scene_opts_load(const scene_opts *o, const char *cmd, scene *s)
 
 uint32_t scene_mem_mb_for(uint64_t n_words) { return (uint32_t)((n_words * 4 + (1u << 20) - 1) >> 20); }
 
-/* The image of a scene that did not fit o's device memory, in the largest one (NULL if it does not
+/* The image of a scene that did not fit p's device memory, in the largest one (NULL if it does not
  * fit there either: err then says why). */
-static mi_builder *build_unbound(const scene_opts *o, const scene *s, char *err, size_t errlen)
+static mi_builder *build_unbound(const mi_params *p, const scene *s, char *err, size_t errlen)
 {
-    mi_params p = o->mi;
-    if (p.memory_bytes >= SCENE_MAX_MEM_BYTES)
+    mi_params q = *p;
+    if (q.memory_bytes >= SCENE_MAX_MEM_BYTES)
         return NULL;
-    p.memory_bytes = SCENE_MAX_MEM_BYTES;
-    return mi_build(s, &p, err, errlen);
+    q.memory_bytes = SCENE_MAX_MEM_BYTES;
+    return mi_build(s, &q, err, errlen);
 }
 
 mi_builder *scene_opts_build(const scene_opts *o, const char *cmd, const scene *s, int *fits, int *rc)
@@ -173,21 +181,24 @@ mi_builder *scene_opts_build(const scene_opts *o, const char *cmd, const scene *
     char err[512], err2[512];
     if ((*rc = limits_check_depth(&o->lim, cmd, &o->mi, s)) != SAARCOR_EXIT_OK)
         return NULL;
-    mi_builder *b = mi_build(s, &o->mi, err, sizeof err);
+    mi_params p = o->mi;
+    p.max_nodes = o->lim.value[LIMIT_KD_NODES]; /* checked as the trees grow */
+    mi_failure why;
+    mi_builder *b = mi_build_why(s, &p, &why, err, sizeof err);
     if (fits)
         *fits = b != NULL;
-    if (!b && (b = build_unbound(o, s, err2, sizeof err2)) != NULL && !fits) {
+    if (!b && why != MI_FAIL_NODE_LIMIT && (b = build_unbound(&p, s, err2, sizeof err2)) != NULL && !fits) {
         uint32_t n;
         mi_words(b, &n);
         cli_error(cmd, "scene does not fit the %.2f MB device memory: the image needs %.2f MB (pass --mem-mb %u)",
-                  (double)o->mi.memory_bytes / 1048576.0, n * 4.0 / 1048576.0, scene_mem_mb_for(n));
+                  (double)p.memory_bytes / 1048576.0, n * 4.0 / 1048576.0, scene_mem_mb_for(n));
         mi_free(b);
         *rc = SAARCOR_EXIT_INPUT;
         return NULL;
     }
     if (!b) {
         cli_error(cmd, "%s", err);
-        *rc = SAARCOR_EXIT_INPUT;
+        *rc = why == MI_FAIL_NODE_LIMIT ? SAARCOR_EXIT_LIMIT : SAARCOR_EXIT_INPUT;
         return NULL;
     }
     if ((*rc = limits_check_build(&o->lim, cmd, mi_get_stats(b))) != SAARCOR_EXIT_OK) {

@@ -25,7 +25,8 @@
     { "up", required_argument, NULL, SCENE_OPT_BASE + 14 }, { "fov", required_argument, NULL, SCENE_OPT_BASE + 15 }, \
     { "ground", no_argument, NULL, SCENE_OPT_BASE + 16 }, { "general", no_argument, NULL, SCENE_OPT_BASE + 17 }, \
     { "limit", required_argument, NULL, SCENE_OPT_BASE + 18 }, { "merge", no_argument, NULL, SCENE_OPT_BASE + 19 }, \
-    { "top-ci", required_argument, NULL, SCENE_OPT_BASE + 20 }, { "animation", required_argument, NULL, SCENE_OPT_BASE + 21 }
+    { "top-ci", required_argument, NULL, SCENE_OPT_BASE + 20 }, { "animation", required_argument, NULL, SCENE_OPT_BASE + 21 }, \
+    { "kd-bins", required_argument, NULL, SCENE_OPT_BASE + 22 }
 
 /* `info` also accepts the kd-tree depth as --max-depth (render and reference use that name for
  * the ray depth). */
@@ -50,6 +51,8 @@
     "  --kd-max-depth D      kd-tree depth limit (default 0: 8 + 1.3 log2 N)\n"                        \
     "  --leaf-size L         never split nodes with at most L primitives (default 1)\n"               \
     "  --top-bins N          bins of the top-level SAH (default 32)\n"                                 \
+    "  --kd-bins N           bin the objects' tree nodes over 48 triangles into N bins (faster\n" \
+    "                        builds, other trees: images move by a rounding; default 0: the exact sweep)\n" \
     "  --max-condition K     drop triangles whose shape condition number exceeds K (default 2^24)\n" \
     "  --limit NAME=N        raise (or lower) a hard limit: triangles, instances, kd-nodes, kd-depth,\n" \
     "                        texture-size, ray-depth, width, height, frames (docs/limits.md)\n"     \

@@ -7,17 +7,21 @@
  *    unique and instanced triangles, objects, instances, dropped degenerate triangles, the
  *    bottom-level time (triangle transformations + kd-trees: mi_stats.bottom_build_seconds +
  *    transform_seconds), the top-level time, kd nodes / leaves / leaf references per unique
- *    triangle, geometry bytes per unique triangle (STATIC_GEOMETRY + DYNAMIC_GEOMETRY words x 4)
- *    and the image size. A scene that does not fit the default 24 MB image is built with 1 GB.
+ *    triangle, geometry bytes per unique triangle (STATIC_GEOMETRY + DYNAMIC_GEOMETRY words x 4),
+ *    the image size and the SAH cost of the bottom-level trees (mi_stats.bottom_sah per triangle:
+ *    each tree's cost under the builder's own cost model, weighted by its triangles), beside the
+ *    same figure and the time for trees binned above 48 triangles (render --kd-bins 64). A scene
+ *    that does not fit the default 24 MB image is built with 1 GB.
  * 2. The same scene in Embree, two-level like ours: one RTCScene per mesh, one instance geometry
  *    per scene instance (its object-to-world matrix) in a top-level scene, at build quality
  *    MEDIUM (Embree's default, binned SAH) and HIGH (spatial splits, the analogue of our perfect
  *    splits). Timed: the sum of the per-mesh rtcCommitScene calls and the top-level commit;
  *    memory: bytes the device allocated during those commits (memory monitor callback), and
- *    separately its vertex/index buffers. Embree runs on a threads=1 device in a forked child
- *    (TBB's global thread limit would otherwise leak between devices); our bottom-level builder
- *    is single-threaded, our top-level (binned) builder uses both cores. Every time is the median of 3 runs (1 run when a run takes longer
- *    than SLOW_SECONDS; the "runs" column says which).
+ *    separately its vertex/index buffers. Both sides get the same CPUs: every measurement runs in
+ *    a forked child bound to 1 CPU, and again to all CPUs this process may use (our builder uses
+ *    the CPUs it may run on; Embree gets a threads=N device for N CPUs; a fresh child per device,
+ *    as TBB's global thread limit would otherwise leak between devices). Every time is the median
+ *    of 3 runs (1 run when a run takes longer than SLOW_SECONDS; the "runs" column says which).
  * 3. Top-level rebuilds: kd_build in binned mode (mi_params_default's top parameters) over the
  *    world boxes of the plants scene's instances and over 10,000 random boxes, median of 21
  *    rebuilds; and a full mi_update per frame (scene_evaluate at successive times, 30 frames per
@@ -26,11 +30,17 @@
  *    the skin is applied in scene_evaluate, its object rebuilt in mi_update) and the (static)
  *    plants scene; the host time per frame is the median of scene_evaluate + mi_update.
  *
+ * 4. Loading and building the 500k-triangle scene as `saarcor info` does (load, evaluate, then
+ *    mi_build with the default 24 MB, again with 1 GB when it does not fit): the wall time of
+ *    the command (with --saarcor PROGRAM; process start-up included), and in this process the
+ *    load and the build separately; all CPUs, median of 3.
+ *
  * Output: --out DIR writes DIR/build.md and DIR/build.json; progress goes to stderr.
  * --scenes DIR overrides the glTF folder (default: ../shared/scenes next to the source tree).
  */
 #define _GNU_SOURCE
 #include <errno.h>
+#include <sched.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdbool.h>
@@ -69,7 +79,18 @@ static const char *const gltf_files[] = {
 };
 static const char *const generator_names[] = { "cornell", "room", "plants", "terrain", "animated" };
 /* per-frame updates: generator or glTF file */
-static const char *const frame_scenes[] = { "animated", "BoxAnimated.glb", "CesiumMilkTruck.glb", "Fox.glb", "plants" };
+static const char *const frame_scenes[] = { "animated", "BoxAnimated.glb", "CesiumMilkTruck.glb", "Fox.glb",
+                                            "plants" };
+/* section 4: the 500k-triangle scene (issue 19: loaded and built in at most 1.5 s) */
+static const char *const load_scene_name = "gallery_ccby_503k.glb";
+#define LOAD_TARGET_SECONDS 1.5
+/* the bins of the binned alternative to the default exact sweep (render --kd-bins) */
+#define BINNED_BINS 64
+
+/* CPU budgets of sections 1 and 2: one CPU, and every CPU this process may use (cpus_all) */
+enum { CPU_ONE, CPU_ALL, CPU_CONFIGS };
+static int cpus_all = 1;
+static int cpus_of(int config) { return config == CPU_ONE ? 1 : cpus_all; }
 
 #define COUNT(a) (sizeof(a) / sizeof((a)[0]))
 
@@ -172,23 +193,113 @@ static uint64_t instanced_triangles(const scene *s)
     return n;
 }
 
+static int read_all(int fd, void *buf, size_t n)
+{
+    char *p = buf;
+    while (n > 0) {
+        const ssize_t k = read(fd, p, n);
+        if (k < 0 && errno == EINTR)
+            continue;
+        if (k <= 0)
+            return -1;
+        p += k;
+        n -= (size_t)k;
+    }
+    return 0;
+}
+
+static void write_all(int fd, const void *buf, size_t n)
+{
+    const char *p = buf;
+    while (n > 0) {
+        const ssize_t k = write(fd, p, n);
+        if (k < 0 && errno == EINTR)
+            continue;
+        if (k <= 0)
+            return;
+        p += k;
+        n -= (size_t)k;
+    }
+}
+
+/* Binds this process to the first `cpus` of the CPUs it may use. */
+static void bind_cpus(int cpus)
+{
+    cpu_set_t all, use;
+    if (sched_getaffinity(0, sizeof all, &all) != 0)
+        return;
+    CPU_ZERO(&use);
+    for (int c = 0, n = 0; c < CPU_SETSIZE && n < cpus; c++)
+        if (CPU_ISSET(c, &all)) {
+            CPU_SET(c, &use);
+            n++;
+        }
+    sched_setaffinity(0, sizeof use, &use);
+}
+
+/* Runs fn(ctx, result) in a forked child bound to `cpus` CPUs and copies its result (size bytes,
+ * zeroed before) back. The child has the parent's data (the loaded scene) but its own threads:
+ * our builder's pool sizes itself to the CPUs it may use, and each Embree device starts in a
+ * fresh TBB state. */
+static int run_child(int cpus, void (*fn)(const void *ctx, void *result), const void *ctx, void *result, size_t size,
+                     char *err, size_t errlen)
+{
+    int fd[2];
+    memset(result, 0, size);
+    if (pipe(fd) != 0) {
+        snprintf(err, errlen, "pipe: %s", strerror(errno));
+        return -1;
+    }
+    fflush(NULL);
+    const pid_t pid = fork();
+    if (pid < 0) {
+        snprintf(err, errlen, "fork: %s", strerror(errno));
+        close(fd[0]);
+        close(fd[1]);
+        return -1;
+    }
+    if (pid == 0) {
+        close(fd[0]);
+        bind_cpus(cpus);
+        fn(ctx, result);
+        write_all(fd[1], result, size);
+        close(fd[1]);
+        _exit(0);
+    }
+    close(fd[1]);
+    const int got = read_all(fd[0], result, size);
+    close(fd[0]);
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
+        ;
+    if (got != 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        snprintf(err, errlen, "the child process failed (status 0x%x)", (unsigned)status);
+        return -1;
+    }
+    return 0;
+}
+
 /* ---- our builder -------------------------------------------------------------------------- */
 
 typedef struct {
-    int runs, big_memory;
+    int ok, runs, big_memory;
+    char err[512];
     uint64_t unique_tris, instanced_tris;
     uint32_t objects, instances, degenerate, bottom_depth, top_nodes;
     double bottom_ms, top_ms;   /* medians */
     double nodes_per_tri, leaves_per_tri, refs_per_tri;
     double geom_bytes_per_tri, geom_noshade_bytes_per_tri, image_mb;
+    double sah;                 /* bottom level: SAH cost per tree, weighted by triangles */
 } ours_result;
 
-/* mi_build with the default parameters, or with BIG_MEMORY if the scene does not fit (*big is
- * set then; a caller that already knows passes *big = 1 to skip the failing attempt). */
-static mi_builder *build_image(const scene *s, int *big, char *err, size_t errlen)
+/* mi_build with p (NULL: the default parameters), or with BIG_MEMORY if the scene does not fit
+ * (*big is set then; a caller that already knows passes *big = 1 to skip the failing attempt). */
+static mi_builder *build_image(const scene *s, const mi_params *params, int *big, char *err, size_t errlen)
 {
     mi_params p;
     mi_params_default(&p);
+    if (params)
+        p = *params;
     if (*big)
         p.memory_bytes = BIG_MEMORY;
     mi_builder *b = mi_build(s, &p, err, errlen);
@@ -226,6 +337,7 @@ static void ours_describe(const scene *s, const mi_builder *b, ours_result *r)
     r->geom_bytes_per_tri = geom_bytes / tris;
     r->geom_noshade_bytes_per_tri = (geom_bytes - shading_bytes) / tris;
     r->image_mb = 4.0 * n_words / (1024.0 * 1024.0);
+    r->sah = st->triangles ? st->bottom_sah / st->triangles : 0;
 }
 
 static int validate_image(const mi_builder *b, char *err, size_t errlen)
@@ -239,17 +351,19 @@ static int validate_image(const mi_builder *b, char *err, size_t errlen)
     return -1;
 }
 
-static int bench_ours(const scene *s, ours_result *r, char *err, size_t errlen)
+/* Section 1 in a child process (run_child): r->ok, or r->err says why not. */
+static void bench_ours(const void *ctx, void *result)
 {
+    const scene *s = ctx;
+    ours_result *r = result;
     double bottom[REPS], top[REPS], first = 0;
-    memset(r, 0, sizeof *r);
     while (run_again(r->runs, first)) {
-        mi_builder *b = build_image(s, &r->big_memory, err, errlen);
+        mi_builder *b = build_image(s, NULL, &r->big_memory, r->err, sizeof r->err);
         if (!b)
-            return -1;
-        if (r->runs == 0 && validate_image(b, err, errlen) != 0) {
+            return;
+        if (r->runs == 0 && validate_image(b, r->err, sizeof r->err) != 0) {
             mi_free(b);
-            return -1;
+            return;
         }
         const mi_stats *st = mi_get_stats(b);
         bottom[r->runs] = 1e3 * (st->bottom_build_seconds + st->transform_seconds);
@@ -262,10 +376,29 @@ static int bench_ours(const scene *s, ours_result *r, char *err, size_t errlen)
     }
     r->bottom_ms = median(bottom, r->runs);
     r->top_ms = median(top, r->runs);
-    return 0;
+    r->ok = 1;
 }
 
-/* ---- Embree (in a forked child) ----------------------------------------------------------- */
+/* The alternative for the SAH column: the bottom-level trees binned above exact_max triangles
+ * (render --kd-bins BINNED_BINS); *ms: the time of that build's trees (one run, all CPUs). */
+static double binned_sah(const scene *s, double *ms)
+{
+    char err[512];
+    mi_params p;
+    mi_params_default(&p);
+    p.bottom.bins = BINNED_BINS;
+    int big = 0;
+    mi_builder *b = build_image(s, &p, &big, err, sizeof err);
+    if (!b)
+        fail("binned trees: %s", err);
+    const mi_stats *st = mi_get_stats(b);
+    const double sah = st->triangles ? st->bottom_sah / st->triangles : 0;
+    *ms = 1e3 * (st->bottom_build_seconds + st->transform_seconds);
+    mi_free(b);
+    return sah;
+}
+
+/* ---- Embree ------------------------------------------------------------------------------- */
 
 typedef struct {
     int ok, runs;
@@ -331,10 +464,22 @@ static int embree_build_once(RTCDevice dev, const scene *s, enum RTCBuildQuality
     return embree_error[0] ? -1 : 0;
 }
 
-static void embree_measure(const scene *s, enum RTCBuildQuality q, embree_result *r)
+typedef struct {
+    const scene *s;
+    enum RTCBuildQuality quality;
+    int threads;
+} embree_job;
+
+/* Section 2 in a child process (run_child): r->ok, or r->err says why not. */
+static void embree_measure(const void *ctx, void *result)
 {
-    memset(r, 0, sizeof *r);
-    RTCDevice dev = rtcNewDevice("threads=1");
+    const embree_job *j = ctx;
+    const scene *s = j->s;
+    const enum RTCBuildQuality q = j->quality;
+    embree_result *r = result;
+    char config[32];
+    snprintf(config, sizeof config, "threads=%d", j->threads);
+    RTCDevice dev = rtcNewDevice(config);
     if (!dev) {
         snprintf(r->err, sizeof r->err, "rtcNewDevice failed (error %d)", (int)rtcGetDeviceError(NULL));
         return;
@@ -366,75 +511,6 @@ static void embree_measure(const scene *s, enum RTCBuildQuality q, embree_result
     r->ok = 1;
 }
 
-static int read_all(int fd, void *buf, size_t n)
-{
-    char *p = buf;
-    while (n > 0) {
-        const ssize_t k = read(fd, p, n);
-        if (k < 0 && errno == EINTR)
-            continue;
-        if (k <= 0)
-            return -1;
-        p += k;
-        n -= (size_t)k;
-    }
-    return 0;
-}
-
-static void write_all(int fd, const void *buf, size_t n)
-{
-    const char *p = buf;
-    while (n > 0) {
-        const ssize_t k = write(fd, p, n);
-        if (k < 0 && errno == EINTR)
-            continue;
-        if (k <= 0)
-            return;
-        p += k;
-        n -= (size_t)k;
-    }
-}
-
-/* Runs embree_measure in a forked child (fresh TBB state, threads=1) and reads its result. */
-static int bench_embree(const scene *s, enum RTCBuildQuality q, embree_result *r, char *err, size_t errlen)
-{
-    int fd[2];
-    if (pipe(fd) != 0) {
-        snprintf(err, errlen, "pipe: %s", strerror(errno));
-        return -1;
-    }
-    fflush(NULL);
-    const pid_t pid = fork();
-    if (pid < 0) {
-        snprintf(err, errlen, "fork: %s", strerror(errno));
-        close(fd[0]);
-        close(fd[1]);
-        return -1;
-    }
-    if (pid == 0) {
-        close(fd[0]);
-        embree_measure(s, q, r);
-        write_all(fd[1], r, sizeof *r);
-        close(fd[1]);
-        _exit(0);
-    }
-    close(fd[1]);
-    const int got = read_all(fd[0], r, sizeof *r);
-    close(fd[0]);
-    int status = 0;
-    while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
-        ;
-    if (got != 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-        snprintf(err, errlen, "the Embree child process failed (status 0x%x)", (unsigned)status);
-        return -1;
-    }
-    if (!r->ok) {
-        snprintf(err, errlen, "%s", r->err);
-        return -1;
-    }
-    return 0;
-}
-
 /* ---- section 1 + 2: one scene ------------------------------------------------------------- */
 
 enum { EMB_MEDIUM, EMB_HIGH, EMB_COUNT };
@@ -443,9 +519,30 @@ static const char *const emb_names[EMB_COUNT] = { "medium", "high" };
 
 typedef struct {
     char name[64];
-    ours_result ours;
-    embree_result emb[EMB_COUNT];
+    ours_result ours[CPU_CONFIGS];
+    embree_result emb[CPU_CONFIGS][EMB_COUNT];
+    double binned_sah, binned_ms; /* trees binned above exact_max triangles (binned_sah()) */
 } scene_result;
+
+/* Our build and Embree's on c CPUs. */
+static void bench_config(const char *name, const scene *s, int c, scene_result *r)
+{
+    char err[512];
+    if (run_child(cpus_of(c), bench_ours, s, &r->ours[c], sizeof r->ours[c], err, sizeof err) != 0)
+        fail("%s: %s", name, err);
+    if (!r->ours[c].ok)
+        fail("%s: mi_build: %s", name, r->ours[c].err);
+    progress(" %d CPU: ours %.1f ms", cpus_of(c), r->ours[c].bottom_ms + r->ours[c].top_ms);
+    for (int q = 0; q < EMB_COUNT; q++) {
+        const embree_job job = { s, emb_quality[q], cpus_of(c) };
+        embree_result *e = &r->emb[c][q];
+        if (run_child(cpus_of(c), embree_measure, &job, e, sizeof *e, err, sizeof err) != 0)
+            fail("%s: Embree: %s", name, err);
+        if (!e->ok)
+            fail("%s: Embree: %s", name, e->err);
+        progress(", Embree %s %.1f ms", emb_names[q], e->bottom_ms + e->top_ms);
+    }
+}
 
 static void bench_scene(const char *dir, const char *name, scene_result *r)
 {
@@ -456,15 +553,10 @@ static void bench_scene(const char *dir, const char *name, scene_result *r)
     if (load_scene(dir, name, &s, err, sizeof err) != 0)
         fail("%s: %s", name, err);
     progress("bench-build: %s ...", name);
-    if (bench_ours(&s, &r->ours, err, sizeof err) != 0)
-        fail("%s: mi_build: %s", name, err);
-    progress(" ours %.1f ms", r->ours.bottom_ms + r->ours.top_ms);
-    for (int q = 0; q < EMB_COUNT; q++) {
-        if (bench_embree(&s, emb_quality[q], &r->emb[q], err, sizeof err) != 0)
-            fail("%s: Embree: %s", name, err);
-        progress(", Embree %s %.1f ms", emb_names[q], r->emb[q].bottom_ms + r->emb[q].top_ms);
-    }
-    progress(" done\n");
+    for (int c = 0; c < CPU_CONFIGS; c++)
+        bench_config(name, &s, c, r);
+    r->binned_sah = binned_sah(&s, &r->binned_ms);
+    progress(", binned %.1f ms done\n", r->binned_ms);
     scene_free(&s);
 }
 
@@ -585,7 +677,7 @@ static void bench_frames(const char *dir, const char *name, frame_result *r)
     if (load_scene(dir, name, &s, err, sizeof err) != 0)
         fail("%s: %s", name, err);
     progress("bench-build: frames of %s ...", name);
-    mi_builder *b = build_image(&s, &r->big_memory, err, sizeof err);
+    mi_builder *b = build_image(&s, NULL, &r->big_memory, err, sizeof err);
     if (!b)
         fail("%s: mi_build: %s", name, err);
     r->upload_first = (double)mi_get_stats(b)->frame_upload_bytes;
@@ -616,6 +708,85 @@ static void bench_frames(const char *dir, const char *name, frame_result *r)
     progress(" %.3f ms/frame done\n", r->update_ms);
 }
 
+/* ---- section 4: loading and building the 500k-triangle scene ------------------------------ */
+
+typedef struct {
+    int runs, have_command;
+    char command[4200];
+    uint64_t triangles;
+    double command_s;             /* wall time of the command (median) */
+    double load_s, build_s, trees_s; /* in this process (medians): load + evaluate, mi_build, its trees */
+} load_result;
+
+/* Wall time of running argv with its output discarded; fails the bench if it does not exit 0. */
+static double run_command(char *const argv[])
+{
+    fflush(NULL);
+    const double t0 = now();
+    const pid_t pid = fork();
+    if (pid < 0)
+        fail("fork: %s", strerror(errno));
+    if (pid == 0) {
+        if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr))
+            _exit(127);
+        execv(argv[0], argv);
+        _exit(127);
+    }
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
+        ;
+    const double t = now() - t0;
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+        fail("%s %s %s: exit status 0x%x", argv[0], argv[1], argv[2], (unsigned)status);
+    return t;
+}
+
+/* The load and build of `saarcor info` in this process, once: load_s, build_s, trees_s, and the
+ * scene's triangles into r. */
+static void load_and_build_once(const char *dir, load_result *r, double *load_s, double *build_s, double *trees_s)
+{
+    char err[512];
+    scene s;
+    const double t0 = now();
+    if (load_scene(dir, load_scene_name, &s, err, sizeof err) != 0)
+        fail("%s: %s", load_scene_name, err);
+    const double t1 = now();
+    int big = 0; /* as scene_opts_build: the default device memory first, then a larger one */
+    mi_builder *b = build_image(&s, NULL, &big, err, sizeof err);
+    if (!b)
+        fail("%s: mi_build: %s", load_scene_name, err);
+    *load_s = t1 - t0;
+    *build_s = now() - t1;
+    const mi_stats *st = mi_get_stats(b);
+    *trees_s = st->transform_seconds + st->bottom_build_seconds + st->top_build_seconds;
+    r->triangles = unique_triangles(&s);
+    mi_free(b);
+    scene_free(&s);
+}
+
+static void bench_load(const char *dir, const char *saarcor, load_result *r)
+{
+    double cmd[REPS], load[REPS], build[REPS], trees[REPS];
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", dir, load_scene_name);
+    char *argv[] = { (char *)saarcor, "info", path, NULL };
+    memset(r, 0, sizeof *r);
+    r->have_command = saarcor != NULL;
+    const size_t src = strlen(SAARCOR_SRC_DIR "/"); /* make runs the command from the source tree */
+    const char *shown = strncmp(path, SAARCOR_SRC_DIR "/", src) == 0 ? path + src : path;
+    snprintf(r->command, sizeof r->command, "%s info %s", saarcor ? saarcor : "saarcor", shown);
+    progress("bench-build: loading and building %s ...", load_scene_name);
+    for (; r->runs < REPS; r->runs++) {
+        cmd[r->runs] = r->have_command ? run_command(argv) : 0;
+        load_and_build_once(dir, r, &load[r->runs], &build[r->runs], &trees[r->runs]);
+    }
+    r->command_s = median(cmd, REPS);
+    r->load_s = median(load, REPS);
+    r->build_s = median(build, REPS);
+    r->trees_s = median(trees, REPS);
+    progress(" %.2f s done\n", r->have_command ? r->command_s : r->load_s + r->build_s);
+}
+
 /* ---- report ------------------------------------------------------------------------------- */
 
 typedef struct {
@@ -625,6 +796,7 @@ typedef struct {
     int n_top;
     frame_result *frames;
     int n_frames;
+    load_result load;
     int have_gltf;
     const char *gltf_dir;
 } report;
@@ -633,35 +805,43 @@ static double per_tri(int64_t bytes, uint64_t tris) { return tris ? (double)byte
 
 static void md_scenes(FILE *f, const report *rp)
 {
-    fprintf(f, "## Our build (mi_build, default parameters)\n\n"
+    fprintf(f, "## Our build (mi_build, default parameters, %d CPUs)\n\n"
                "| scene | unique tris | instanced tris | objects | instances | degenerate | bottom ms | top ms | "
-               "nodes/tri | leaves/tri | refs/tri | geometry B/tri | excl. shading B/tri | image MB | runs |\n"
-               "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+               "nodes/tri | leaves/tri | refs/tri | geometry B/tri | excl. shading B/tri | image MB | SAH | "
+               "binned SAH | SAH change | binned bottom ms | runs |\n|---|---:|---:|---:|---:|---:|---:|---:|"
+               "---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n", cpus_all);
     for (int i = 0; i < rp->n_scenes; i++) {
-        const ours_result *o = &rp->scenes[i].ours;
-        fprintf(f, "| %s | %llu | %llu | %u | %u | %u | %.2f | %.3f | %.2f | %.2f | %.2f | %.1f | %.1f | %.2f%s | %d |\n",
-                rp->scenes[i].name, (unsigned long long)o->unique_tris, (unsigned long long)o->instanced_tris,
+        const scene_result *r = &rp->scenes[i];
+        const ours_result *o = &r->ours[CPU_ALL];
+        const double change = o->sah > 0 ? 100 * (r->binned_sah / o->sah - 1) : 0;
+        fprintf(f, "| %s | %llu | %llu | %u | %u | %u | %.2f | %.3f | %.2f | %.2f | %.2f | %.1f | %.1f | %.2f%s | "
+                   "%.3f | %.3f | %+.2f%% | %.2f | %d |\n",
+                r->name, (unsigned long long)o->unique_tris, (unsigned long long)o->instanced_tris,
                 o->objects, o->instances, o->degenerate, o->bottom_ms, o->top_ms, o->nodes_per_tri, o->leaves_per_tri,
                 o->refs_per_tri, o->geom_bytes_per_tri, o->geom_noshade_bytes_per_tri, o->image_mb,
-                o->big_memory ? " (1 GB)" : "", o->runs);
+                o->big_memory ? " (1 GB)" : "", o->sah, r->binned_sah, change, r->binned_ms, o->runs);
     }
 }
 
 static void md_embree(FILE *f, const report *rp)
 {
-    fprintf(f, "\n## Against Embree 3 (1 thread; medium = binned SAH, high = spatial splits)\n\n"
-               "| scene | bottom ms: ours | Embree medium | Embree high | top ms: ours | Embree medium | Embree high | "
-               "B/tri: ours geometry | ours excl. shading | Embree BVH medium | Embree BVH high | Embree buffers | runs ours/med/high |\n"
-               "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
-    for (int i = 0; i < rp->n_scenes; i++) {
-        const scene_result *r = &rp->scenes[i];
-        const embree_result *m = &r->emb[EMB_MEDIUM], *h = &r->emb[EMB_HIGH];
-        const uint64_t t = r->ours.unique_tris;
-        fprintf(f, "| %s | %.2f | %.2f | %.2f | %.3f | %.3f | %.3f | %.1f | %.1f | %.1f | %.1f | %.1f | %d/%d/%d |\n",
-                r->name, r->ours.bottom_ms, m->bottom_ms, h->bottom_ms, r->ours.top_ms, m->top_ms, h->top_ms,
-                r->ours.geom_bytes_per_tri, r->ours.geom_noshade_bytes_per_tri, per_tri(m->bvh_bytes, t),
-                per_tri(h->bvh_bytes, t), per_tri(m->buffer_bytes, t), r->ours.runs, m->runs, h->runs);
-    }
+    fprintf(f, "\n## Against Embree 3 (same CPUs for both; medium = binned SAH, high = spatial splits)\n\n"
+               "| scene | CPUs | bottom ms: ours | Embree medium | Embree high | ours / medium | top ms: ours | "
+               "Embree medium | Embree high | B/tri: ours geometry | ours excl. shading | Embree BVH medium | "
+               "Embree BVH high | Embree buffers | runs ours/med/high |\n"
+               "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+    for (int i = 0; i < rp->n_scenes; i++)
+        for (int c = 0; c < CPU_CONFIGS; c++) {
+            const scene_result *r = &rp->scenes[i];
+            const ours_result *o = &r->ours[c];
+            const embree_result *m = &r->emb[c][EMB_MEDIUM], *h = &r->emb[c][EMB_HIGH];
+            const uint64_t t = o->unique_tris;
+            fprintf(f, "| %s | %d | %.2f | %.2f | %.2f | %.1f | %.3f | %.3f | %.3f | %.1f | %.1f | %.1f | %.1f | "
+                       "%.1f | %d/%d/%d |\n", r->name, cpus_of(c), o->bottom_ms, m->bottom_ms, h->bottom_ms,
+                    m->bottom_ms > 0 ? o->bottom_ms / m->bottom_ms : 0, o->top_ms, m->top_ms, h->top_ms,
+                    o->geom_bytes_per_tri, o->geom_noshade_bytes_per_tri, per_tri(m->bvh_bytes, t),
+                    per_tri(h->bvh_bytes, t), per_tri(m->buffer_bytes, t), o->runs, m->runs, h->runs);
+        }
 }
 
 static void md_top(FILE *f, const report *rp)
@@ -690,6 +870,20 @@ static void md_frames(FILE *f, const report *rp)
     }
 }
 
+static void md_load(FILE *f, const report *rp)
+{
+    const load_result *l = &rp->load;
+    fprintf(f, "\n## Loading and building a 500k-triangle scene (target: at most %.1f s)\n\n"
+               "| scene | triangles | command | command wall s | in process: load s | mi_build s | of which trees s | "
+               "runs |\n|---|---:|---|---:|---:|---:|---:|---:|\n", LOAD_TARGET_SECONDS);
+    fprintf(f, "| %s | %llu | `%s` | ", load_scene_name, (unsigned long long)l->triangles, l->command);
+    if (l->have_command)
+        fprintf(f, "%.3f", l->command_s);
+    else
+        fprintf(f, "(no --saarcor)");
+    fprintf(f, " | %.3f | %.3f | %.3f | %d |\n", l->load_s, l->build_s, l->trees_s, l->runs);
+}
+
 static void write_markdown(const char *path, const report *rp)
 {
     FILE *f = fopen(path, "w");
@@ -697,51 +891,74 @@ static void write_markdown(const char *path, const report *rp)
         fail("cannot write %s: %s", path, strerror(errno));
     fprintf(f, "# Scene build benchmark\n\n"
                "Each scene is loaded (glTF) or generated (seed 1, default size), evaluated at t = 0 and built into the "
-               "device memory image by `mi_build` with the default parameters (exact SAH kd-trees with perfect splits "
-               "per object, binned top level over the instances, fp24-snapped planes); a scene that does not fit the "
+               "device memory image by `mi_build` with the default parameters (SAH kd-trees with perfect splits per "
+               "object, binned top level over the instances, fp24-snapped planes); a scene that does not fit the "
                "24 MB image is built with 1 GB and marked. *Bottom* = triangle transformations + bottom-level trees, "
-               "*top* = top-level tree (mi_stats). Per-triangle figures divide by the unique triangles (before "
+               "*top* = top-level tree (mi_stats). *SAH* is the bottom-level trees' SAH cost under the builder's own "
+               "cost model (kd_stats.sah_cost, relative to each root box), averaged over the objects weighted by their "
+               "triangles; *binned* is the same build with `--kd-bins 64` (nodes over 48 triangles binned, the exact "
+               "sweep below; one run on all CPUs): its SAH, its change against the default trees and its bottom time. Per-triangle figures divide by the unique "
+               "triangles (before "
                "dropping degenerate ones); *geometry B/tri* is the STATIC+DYNAMIC_GEOMETRY regions (nodes, lists, "
                "12-word triangle transformations, 16-word shading records), *excl. shading* leaves out the shading "
                "records. The anchor is Embree 3 building the same two levels (one scene per mesh, one instance per "
                "scene instance): *bottom* = sum of the per-mesh `rtcCommitScene`, *top* = the instance scene's commit, "
                "*BVH B/tri* = bytes the device allocated during the commits (memory monitor), *buffers* = its "
-               "vertex/index buffers. Bottom levels are built single-threaded on both sides (Embree on a `threads=1` "
-               "device in a forked child process); our top level (binned SAH) uses both cores, Embree's one thread. "
-               "Times are medians of %d runs (1 run where a run took more than %.0f s; see *runs*); "
+               "vertex/index buffers. Both sides get the same CPUs: each measurement runs in a forked child process "
+               "bound to 1 CPU, and again to all %d (our builders use the CPUs they may run on; Embree gets a "
+               "`threads=N` device for N CPUs); *ours / medium* divides the bottom times. The table of our build shows "
+               "the run on all CPUs. Times are medians of %d runs (1 run where a run took more than %.0f s; see "
+               "*runs*); "
                "the machine is noisy. Top-level rebuilds are medians of %d `kd_build` calls; per-frame updates are "
-               "medians over %d frames.\n\n",
-            REPS, SLOW_SECONDS, TOP_REPS, FRAMES);
+               "medians over %d frames. The last table times `saarcor info` on the 500k-triangle scene as a command "
+               "(process start-up included) and, in this process, its load (glTF + evaluation) and its `mi_build` "
+               "(default device memory first, then a larger one, as `info` does).\n\n",
+            cpus_all, REPS, SLOW_SECONDS, TOP_REPS, FRAMES);
     if (!rp->have_gltf)
         fprintf(f, "The glTF scenes were skipped: %s not found.\n\n", rp->gltf_dir);
     md_scenes(f, rp);
     md_embree(f, rp);
     md_top(f, rp);
     md_frames(f, rp);
+    if (rp->have_gltf)
+        md_load(f, rp);
     if (fclose(f) != 0)
         fail("cannot write %s", path);
 }
 
-static void json_scene(FILE *f, const scene_result *r, int last)
+/* One CPU configuration of a scene: {"cpus": N, "ours": {...}, "embree": {...}}. */
+static void json_config(FILE *f, const scene_result *r, int c)
 {
-    const ours_result *o = &r->ours;
-    fprintf(f, "    {\"name\": \"%s\", \"unique_triangles\": %llu, \"instanced_triangles\": %llu, \"objects\": %u, "
-               "\"instances\": %u, \"degenerate_triangles\": %u,\n", r->name, (unsigned long long)o->unique_tris,
-            (unsigned long long)o->instanced_tris, o->objects, o->instances, o->degenerate);
-    fprintf(f, "     \"ours\": {\"runs\": %d, \"memory_1gb\": %s, \"bottom_ms\": %.4f, \"top_ms\": %.4f, "
+    const ours_result *o = &r->ours[c];
+    fprintf(f, "{\"cpus\": %d, \"ours\": {\"runs\": %d, \"memory_1gb\": %s, \"bottom_ms\": %.4f, \"top_ms\": %.4f, "
                "\"nodes_per_tri\": %.4f, \"leaves_per_tri\": %.4f, \"refs_per_tri\": %.4f, \"bottom_depth\": %u, "
                "\"top_nodes\": %u, \"geometry_bytes_per_tri\": %.2f, \"geometry_bytes_per_tri_excl_shading\": %.2f, "
-               "\"image_mb\": %.3f},\n", o->runs, o->big_memory ? "true" : "false", o->bottom_ms, o->top_ms,
-            o->nodes_per_tri, o->leaves_per_tri, o->refs_per_tri, o->bottom_depth, o->top_nodes, o->geom_bytes_per_tri,
-            o->geom_noshade_bytes_per_tri, o->image_mb);
-    fprintf(f, "     \"embree\": {");
+               "\"image_mb\": %.3f, \"bottom_sah\": %.6f},\n       \"embree\": {", cpus_of(c), o->runs,
+            o->big_memory ? "true" : "false", o->bottom_ms, o->top_ms, o->nodes_per_tri, o->leaves_per_tri,
+            o->refs_per_tri, o->bottom_depth, o->top_nodes, o->geom_bytes_per_tri, o->geom_noshade_bytes_per_tri,
+            o->image_mb, o->sah);
     for (int q = 0; q < EMB_COUNT; q++) {
-        const embree_result *e = &r->emb[q];
+        const embree_result *e = &r->emb[c][q];
         fprintf(f, "%s\"%s\": {\"runs\": %d, \"bottom_ms\": %.4f, \"top_ms\": %.4f, \"bvh_bytes\": %lld, "
                    "\"buffer_bytes\": %lld}", q ? ", " : "", emb_names[q], e->runs, e->bottom_ms, e->top_ms,
                 (long long)e->bvh_bytes, (long long)e->buffer_bytes);
     }
-    fprintf(f, "}}%s\n", last ? "" : ",");
+    fprintf(f, "}}");
+}
+
+static void json_scene(FILE *f, const scene_result *r, int last)
+{
+    const ours_result *o = &r->ours[CPU_ALL];
+    fprintf(f, "    {\"name\": \"%s\", \"unique_triangles\": %llu, \"instanced_triangles\": %llu, \"objects\": %u, "
+               "\"instances\": %u, \"degenerate_triangles\": %u,\n", r->name, (unsigned long long)o->unique_tris,
+            (unsigned long long)o->instanced_tris, o->objects, o->instances, o->degenerate);
+    fprintf(f, "     \"binned\": {\"bins\": %d, \"bottom_sah\": %.6f, \"bottom_ms\": %.4f},\n     \"configs\": [",
+            BINNED_BINS, r->binned_sah, r->binned_ms);
+    for (int c = 0; c < CPU_CONFIGS; c++) {
+        fprintf(f, c ? ",\n      " : "");
+        json_config(f, r, c);
+    }
+    fprintf(f, "]}%s\n", last ? "" : ",");
 }
 
 static void write_json(const char *path, const report *rp)
@@ -749,8 +966,8 @@ static void write_json(const char *path, const report *rp)
     FILE *f = fopen(path, "w");
     if (!f)
         fail("cannot write %s: %s", path, strerror(errno));
-    fprintf(f, "{\n  \"threads\": 1, \"runs\": %d, \"slow_seconds\": %.1f, \"gltf_scenes\": %s,\n  \"scenes\": [\n",
-            REPS, SLOW_SECONDS, rp->have_gltf ? "true" : "false");
+    fprintf(f, "{\n  \"cpus\": [%d, %d], \"runs\": %d, \"slow_seconds\": %.1f, \"gltf_scenes\": %s,\n  \"scenes\": [\n",
+            cpus_of(CPU_ONE), cpus_of(CPU_ALL), REPS, SLOW_SECONDS, rp->have_gltf ? "true" : "false");
     for (int i = 0; i < rp->n_scenes; i++)
         json_scene(f, &rp->scenes[i], i + 1 == rp->n_scenes);
     fprintf(f, "  ],\n  \"top_level\": [\n");
@@ -769,7 +986,17 @@ static void write_json(const char *path, const report *rp)
                 r->instances, r->eval_ms, r->update_ms, r->top_ms, r->host_ms, r->upload_median, r->upload_max, r->upload_first,
                 r->big_memory ? "true" : "false", r->rebuilt, i + 1 == rp->n_frames ? "" : ",");
     }
-    fprintf(f, "  ]\n}\n");
+    const load_result *l = &rp->load;
+    char command_s[32] = "null";
+    if (l->have_command)
+        snprintf(command_s, sizeof command_s, "%.4f", l->command_s);
+    fprintf(f, "  ]");
+    if (rp->have_gltf)
+        fprintf(f, ",\n  \"load\": {\"scene\": \"%s\", \"triangles\": %llu, \"command\": \"%s\", \"command_s\": %s, "
+                   "\"load_s\": %.4f, \"build_s\": %.4f, \"trees_s\": %.4f, \"runs\": %d, \"target_s\": %.1f}",
+                load_scene_name, (unsigned long long)l->triangles, l->command, command_s, l->load_s, l->build_s,
+                l->trees_s, l->runs, LOAD_TARGET_SECONDS);
+    fprintf(f, "\n}\n");
     if (fclose(f) != 0)
         fail("cannot write %s", path);
 }
@@ -778,7 +1005,7 @@ static void write_json(const char *path, const report *rp)
 
 static void usage(void)
 {
-    fprintf(stderr, "usage: bench_build --out DIR [--scenes GLTF_DIR]\n");
+    fprintf(stderr, "usage: bench_build --out DIR [--scenes GLTF_DIR] [--saarcor PROGRAM]\n");
     exit(2);
 }
 
@@ -801,10 +1028,12 @@ static int bench_top_levels(const char *dir, top_result *top)
 
 int main(int argc, char **argv)
 {
-    const char *out = NULL, *dir = SAARCOR_SRC_DIR "/../shared/scenes";
+    const char *out = NULL, *dir = SAARCOR_SRC_DIR "/../shared/scenes", *saarcor = NULL;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--out") && i + 1 < argc)
             out = argv[++i];
+        else if (!strcmp(argv[i], "--saarcor") && i + 1 < argc)
+            saarcor = argv[++i];
         else if (!strcmp(argv[i], "--scenes") && i + 1 < argc)
             dir = argv[++i];
         else
@@ -813,6 +1042,9 @@ int main(int argc, char **argv)
     if (!out)
         usage();
     mkdir(out, 0777);
+    cpu_set_t cpus;
+    if (sched_getaffinity(0, sizeof cpus, &cpus) == 0 && CPU_COUNT(&cpus) > 0)
+        cpus_all = CPU_COUNT(&cpus);
 
     struct stat st;
     report rp = { 0 };
@@ -834,6 +1066,8 @@ int main(int argc, char **argv)
     for (size_t i = 0; i < COUNT(frame_scenes); i++)
         if (rp.have_gltf || !is_gltf(frame_scenes[i]))
             bench_frames(dir, frame_scenes[i], &rp.frames[rp.n_frames++]);
+    if (rp.have_gltf)
+        bench_load(dir, saarcor, &rp.load);
 
     char path[4096];
     snprintf(path, sizeof path, "%s/build.md", out);
