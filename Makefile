@@ -93,6 +93,18 @@ fmt_objs = $(call fp_objs,$(1)) $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(MEMIMAGE)
 # those of the main build instead of compiling the C++ loader again
 HOST_BUILD ?= $(BUILD)
 HOST_OBJS := $(patsubst %.cpp,$(HOST_BUILD)/obj/host/%.o,$(HOST_CXX)) $(patsubst %.c,$(HOST_BUILD)/obj/host/%.o,$(HOST_C))
+# The saarcor program loads OpenImageIO's shim on first use from libsaarcor_img.so next to it
+# (host/image/img.c: its ~260 libraries would cost every command ~0.2 s of start-up); the tests,
+# benchmarks and fuzzers link it in.
+IMG_OBJ := $(HOST_BUILD)/obj/host/host/image/img_oiio.o
+IMG_LIB := $(HOST_BUILD)/libsaarcor_img.so
+IMG_LIBS := -lOpenImageIO -lOpenImageIO_Util
+PROG_HOST_OBJS := $(filter-out $(IMG_OBJ),$(HOST_OBJS))
+PROG_LDLIBS := $(filter-out $(IMG_LIBS),$(LDLIBS))
+$(foreach d,$(sort $(BUILD) $(HOST_BUILD)),$(d)/obj/host/host/image/img_oiio.o): CXXFLAGS += -fPIC
+$(IMG_LIB): $(IMG_OBJ)
+	@echo "  LD    $@"
+	$(Q)$(CXX) $(SANFLAGS) -shared $< -o $@ $(IMG_LIBS)
 
 define HOST_RULES
 $(1)/obj/host/%.o: %.cpp
@@ -118,10 +130,10 @@ $(BUILD)/obj/$(1)/%.o: %.c
 	@echo "  CC    $$@"
 	$(Q)$$(CC) $$(CFLAGS) $(call fmt_flags,$(1)) $$(INCLUDES) -I$(BUILD) -c $$< -o $$@
 
-$(BUILD)/w/$(1)/saarcor: $(call fmt_objs,$(1)) $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(CLI)) $(HOST_OBJS)
+$(BUILD)/w/$(1)/saarcor: $(call fmt_objs,$(1)) $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(CLI)) $(PROG_HOST_OBJS) | $(IMG_LIB)
 	@mkdir -p $$(@D)
 	@echo "  LD    $$@"
-	$(Q)$$(CC) $$(SANFLAGS) $$^ -o $$@ $$(CAPTURE_WRAP) $$(LDLIBS)
+	$(Q)$$(CC) $$(SANFLAGS) $$^ -o $$@ $$(CAPTURE_WRAP) $$(PROG_LDLIBS)
 
 $(foreach t,$(FORMAT_TESTS),$(BUILD)/w/$(1)/$(t)): $(BUILD)/w/$(1)/%: $(BUILD)/obj/$(1)/tests/%.o $(call fp_objs,$(1))
 	@mkdir -p $$(@D)

@@ -72,6 +72,22 @@ t_version() {
   grep -q 'E=7 M=16 (24 bits' "$T/out"
 }
 
+# the program loads the image library on demand (host/image/img.c): without it, commands that
+# write no image run, those that do stop before their work with one line; SAARCOR_IMG_LIB names it
+t_image_library() {
+  local lib
+  lib=$(dirname "$(readlink -f "$BIN")")/libsaarcor_img.so
+  [[ -f $lib ]] || lib=$(dirname "$(readlink -f "$BIN")")/../libsaarcor_img.so
+  mkdir -p "$T/alone"; cp "$BIN" "$T/alone/saarcor"
+  expect 0 "$T/alone/saarcor" info cornell
+  expect 4 "$T/alone/saarcor" render cornell --width 8 --height 8 -o "$T/alone.png"; one_line_error
+  has 'libsaarcor_img.so' "$T/err"
+  [[ ! -e $T/alone.png ]]
+  expect 4 "$T/alone/saarcor" reference cornell --width 8 --height 8 -o "$T/alone.exr"; one_line_error
+  SAARCOR_IMG_LIB=$lib expect 0 "$T/alone/saarcor" render cornell --width 8 --height 8 -o "$T/alone.png"
+  expect 0 "$BIN" compare "$T/alone.png" "$T/alone.png"
+}
+
 t_f24_eval() {
   expect 0 "$BIN" f24 add 1 2;        grep -q '= 3  \[0x408000\]' "$T/out"
   expect 0 "$BIN" f24 div 1 3;        has '\[0x3D5555\]' "$T/out"
@@ -501,6 +517,7 @@ run_skinned() {
 run_case cli_help t_help
 run_case cli_bad_usage_exit_2_one_line t_bad_usage
 run_case cli_version t_version
+run_case cli_image_library t_image_library
 run_case cli_f24_eval t_f24_eval
 run_case cli_f24gen_format t_f24gen_format
 run_case cli_f24verify t_f24verify

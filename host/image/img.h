@@ -40,6 +40,10 @@ int img_compare(const char *path_a, const char *path_b, double threshold, const 
 
 const char *img_library_version(void);
 
+/* 0 if images can be read and written; else -1 with a one-line err (the saarcor program loads the
+ * image library on demand: commands that will write images check it before the long work). */
+int img_ready(char *err, size_t errlen);
+
 #ifdef __cplusplus
 }
 #endif

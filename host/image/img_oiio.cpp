@@ -1,5 +1,6 @@
-// OpenImageIO shim behind img.h: no C++ exception or OIIO type crosses into C.
-#include "img.h"
+// OpenImageIO shim behind img.h: no C++ exception or OIIO type crosses into C. Its one export,
+// img_oiio_api, is either linked in or loaded with libsaarcor_img.so (img.c says why).
+#include "img_api.h"
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
@@ -37,7 +38,7 @@ bool read_buf(const char *path, ImageBuf &buf, char *err, size_t errlen)
 
 } // namespace
 
-extern "C" int img_read(const char *path, img_t *out, char *err, size_t errlen)
+static int read_image(const char *path, img_t *out, char *err, size_t errlen)
 {
     try {
         ImageBuf buf;
@@ -113,25 +114,14 @@ static int write_pixels(const char *path, const img_t *img, const char *const *n
     return rc;
 }
 
-extern "C" int img_write(const char *path, const img_t *img, char *err, size_t errlen)
-{
-    return write_pixels(path, img, nullptr, err, errlen);
-}
-
-extern "C" int img_write_channels(const char *path, const img_t *img, const char *const *names, char *err,
-                                  size_t errlen)
-{
-    return write_pixels(path, img, names, err, errlen);
-}
-
-extern "C" void img_free(img_t *img)
+static void free_image(img_t *img)
 {
     std::free(img->pixels);
     img->pixels = nullptr;
 }
 
-extern "C" int img_compare(const char *path_a, const char *path_b, double threshold, const char *diff_path,
-                           img_compare_result *res, char *err, size_t errlen)
+static int compare_images(const char *path_a, const char *path_b, double threshold, const char *diff_path,
+                          img_compare_result *res, char *err, size_t errlen)
 {
     try {
         ImageBuf a, b;
@@ -175,7 +165,10 @@ extern "C" int img_compare(const char *path_a, const char *path_b, double thresh
     }
 }
 
-extern "C" const char *img_library_version(void)
+static const char *library_version(void) { return OIIO_VERSION_STRING; }
+
+extern "C" const img_api *img_oiio_api(void)
 {
-    return OIIO_VERSION_STRING;
+    static const img_api api = { read_image, write_pixels, free_image, compare_images, library_version };
+    return &api;
 }

@@ -171,6 +171,11 @@ int cmd_reference(int argc, char **argv)
     scene s;
     mi_builder *b;
     ref_scene r;
+    char err[600];
+    if (!cli_parse_only && img_ready(err, sizeof err) != 0) { /* before the render, not after it */
+        cli_error("reference", "%s", err);
+        return SAARCOR_EXIT_INTERNAL;
+    }
     int rc = ref_setup("reference", &o, &s, &b, &r);
     if (rc != SAARCOR_EXIT_OK)
         return rc;

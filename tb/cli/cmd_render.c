@@ -693,13 +693,17 @@ int cmd_render(int argc, char **argv)
     saarcor_mpi_run_fn mpi_run = ro.mpi ? mpi_load("render") : NULL;
     if (ro.mpi && !mpi_run)
         return SAARCOR_EXIT_INTERNAL;
+    char err[600];
+    if (img_ready(err, sizeof err) != 0) { /* before the render, not after it */
+        cli_error("render", "%s", err);
+        return SAARCOR_EXIT_INTERNAL;
+    }
     if (ro.sequence || ro.one_frame)
         o.time = ro.first / ro.fps;
     scene s;
     rc = scene_opts_load(&o, "render", &s);
     if (rc != SAARCOR_EXIT_OK)
         return rc;
-    char err[512];
     const double build_t0 = now();
     mi_builder *b = scene_opts_build(&o, "render", &s, NULL, &rc);
     ro.build_secs = now() - build_t0;

@@ -1,0 +1,100 @@
+/*
+ * img.h's API over OpenImageIO (img_oiio.cpp), which a program either links in (the tests and
+ * benchmarks) or loads on first use from libsaarcor_img.so next to it (the saarcor program).
+ * Why: OpenImageIO brings about 260 shared libraries, and binding them costs every command about
+ * 0.2 s of start-up even when it reads or writes no image (`saarcor info`, `version`, every
+ * `--json` query of a test script); loaded on demand, only the commands that write or compare
+ * images pay, once.
+ */
+#define _GNU_SOURCE
+#include "img_api.h"
+
+#include <dlfcn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+/* weak: NULL unless img_oiio.cpp is linked into the program */
+extern const img_api *img_oiio_api(void) __attribute__((weak));
+
+static const img_api *loaded;
+static char load_error[512];
+
+/* The library next to the program, or one or two folders up (build/hw/saarcor and
+ * build/w/FMT/saarcor use build/'s); SAARCOR_IMG_LIB names it explicitly. */
+static void *open_library(void)
+{
+    const char *env = getenv("SAARCOR_IMG_LIB");
+    if (env && *env)
+        return dlopen(env, RTLD_NOW | RTLD_LOCAL);
+    char self[1024], path[1200];
+    const ssize_t len = readlink("/proc/self/exe", self, sizeof self - 1);
+    if (len <= 0)
+        return NULL;
+    self[len] = 0;
+    *strrchr(self, '/') = 0;
+    static const char *const up[] = { "", "/..", "/../.." };
+    for (size_t i = 0; i < sizeof up / sizeof up[0]; i++) {
+        snprintf(path, sizeof path, "%s%s/libsaarcor_img.so", self, up[i]);
+        if (access(path, F_OK) == 0)
+            return dlopen(path, RTLD_NOW | RTLD_LOCAL);
+    }
+    snprintf(load_error, sizeof load_error, "not found next to the program");
+    return NULL;
+}
+
+/* The functions, or NULL with load_error set (the program then reports it per call). */
+static const img_api *api(void)
+{
+    if (loaded || load_error[0])
+        return loaded;
+    if (img_oiio_api)
+        return loaded = img_oiio_api();
+    void *lib = open_library();
+    const img_api *(*get)(void) = lib ? (const img_api *(*)(void))(uintptr_t)dlsym(lib, "img_oiio_api") : NULL;
+    if (get)
+        return loaded = get();
+    if (!load_error[0])
+        snprintf(load_error, sizeof load_error, "%s", lib ? "it has no img_oiio_api" : dlerror());
+    return NULL;
+}
+
+static int unavailable(char *err, size_t errlen)
+{
+    if (err && errlen)
+        snprintf(err, errlen, "cannot load libsaarcor_img.so (image input/output; build it with make): %s",
+                 load_error);
+    return -1;
+}
+
+int img_read(const char *path, img_t *out, char *err, size_t errlen)
+{
+    return api() ? loaded->read(path, out, err, errlen) : unavailable(err, errlen);
+}
+
+int img_write(const char *path, const img_t *img, char *err, size_t errlen)
+{
+    return api() ? loaded->write(path, img, NULL, err, errlen) : unavailable(err, errlen);
+}
+
+int img_write_channels(const char *path, const img_t *img, const char *const *names, char *err, size_t errlen)
+{
+    return api() ? loaded->write(path, img, names, err, errlen) : unavailable(err, errlen);
+}
+
+void img_free(img_t *img)
+{
+    if (api())
+        loaded->free_pixels(img);
+}
+
+int img_compare(const char *path_a, const char *path_b, double threshold, const char *diff_path,
+                img_compare_result *res, char *err, size_t errlen)
+{
+    return api() ? loaded->compare(path_a, path_b, threshold, diff_path, res, err, errlen) : unavailable(err, errlen);
+}
+
+int img_ready(char *err, size_t errlen) { return api() ? 0 : unavailable(err, errlen); }
+
+const char *img_library_version(void) { return api() ? loaded->version() : "(libsaarcor_img.so not loaded)"; }
