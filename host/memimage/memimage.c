@@ -30,6 +30,7 @@ typedef struct {
     kd_tree tree;       /* leaf entries index valid[] = the object's triangles in the image */
     uint32_t *valid;    /* mesh triangle of each image triangle */
     affine *xf;         /* triangle transformations of the image triangles */
+    uint8_t *shared;    /* their shared-edge flags (mi_shared_edges) */
     uint32_t n_valid;
     uint32_t revision_seen; /* the mesh's revision the geometry was built from (dynamic objects) */
     kd_rope *ropes;     /* per node (leaves only), with MI_ACCEL_ROPES */
@@ -253,8 +254,10 @@ static void object_release(mi_object *o)
     ugrid_free(&o->grid);
     free(o->valid);
     free(o->xf);
+    free(o->shared);
     o->valid = NULL;
     o->xf = NULL;
+    o->shared = NULL;
     o->n_valid = 0;
 }
 
@@ -395,7 +398,8 @@ static int object_prepare(mi_builder *b, const scene *s, const scene_mesh *m, mi
     object_release(o);
     o->valid = malloc(((size_t)m->n_triangles + 1) * sizeof *o->valid);
     o->xf = malloc(((size_t)m->n_triangles + 1) * sizeof *o->xf);
-    if (!o->valid || !o->xf)
+    o->shared = malloc((size_t)m->n_triangles + 1);
+    if (!o->valid || !o->xf || !o->shared)
         return -1;
     const double t0 = seconds();
     for (uint32_t t = 0; t < m->n_triangles; t++) {
@@ -410,6 +414,8 @@ static int object_prepare(mi_builder *b, const scene *s, const scene_mesh *m, mi
     const double t1 = seconds();
     b->st.transform_seconds += t1 - t0;
     b->st.degenerate_triangles += m->n_triangles - o->n_valid;
+    if (mi_shared_edges(m, o->valid, o->n_valid, o->shared) != 0)
+        return -1;
     const tri_source src = { m, o->valid, o->centre };
     const kd_source ks = { o->n_valid, &src, tri_bounds, tri_clip };
     if (kd_build(&ks, &b->p.bottom, &o->tree) != 0)
@@ -513,8 +519,9 @@ static uint32_t vertex_lo_field(double c, f24_t hi)
     return (uint32_t)(int32_t)k;
 }
 
-/* M^-1 rounded, the vertex C (column 3) in a high word and the low part's field. */
-static void put_triangle(uint32_t *w, const affine *a)
+/* M^-1 rounded, the vertex C (column 3) in a high word and the low part's field, the shared-edge
+ * flags. */
+static void put_triangle(uint32_t *w, const affine *a, uint32_t shared)
 {
     f24_t v[F24_TRIANGLE_VALUES];
     for (int i = 0; i < 3; i++)
@@ -525,6 +532,7 @@ static void put_triangle(uint32_t *w, const affine *a)
     for (int i = 0; i < 3; i++)
         f24_record_put_field(w, F24_TRIANGLE_VALUES * F24_WIDTH + (uint32_t)i * F24_VERTEX_LO_BITS, F24_VERTEX_LO_BITS,
                              vertex_lo_field(a->m[i][3], v[i * 4 + 3]));
+    f24_record_put_field(w, F24_EDGE_FLAG_BIT, F24_EDGE_FLAG_BITS, shared);
 }
 
 /* Geometry block: nodes, leaf lists, padding, triangle transformations, shading records. */
@@ -536,7 +544,7 @@ static void object_write(mi_builder *b, const scene *s, const mi_object *o)
     put_tree(w, w + MI_NODE_WORDS * o->n_slots, &o->tree, o->ropes, o->slot);
     w = b->words + triangles_at(o);
     for (uint32_t i = 0; i < o->n_valid; i++, w += MI_TRIANGLE_WORDS)
-        put_triangle(w, &o->xf[i]);
+        put_triangle(w, &o->xf[i], o->shared[i]);
     for (uint32_t i = 0; i < o->n_valid; i++, w += shade_rec_words(o->shade_flags))
         write_shading(w, s, m, o->shade_flags, o->valid[i]);
     if (o->grid.n[0])
