@@ -12,9 +12,11 @@
 #define ISECT_LO(k) ((k) > 0 ? F24_SIGN_BIT | (uint32_t)(F24_BIAS - (k)) << F24_MAN_BITS : F24_ZERO)
 #define ISECT_HI(k) ((k) > 0 ? F24_ONE | 1u << (F24_MAN_BITS - (k)) : F24_ONE)
 /* A shared edge takes the wider of its own margin and the robust option's (0 is no margin). */
-#define ISECT_SHARED_K                                                                                    \
-    (SAARCOR_CFG_EDGE_EPS > 0 && (SAARCOR_CFG_SHARED_EDGE_EPS == 0 || SAARCOR_CFG_EDGE_EPS < SAARCOR_CFG_SHARED_EDGE_EPS) \
-         ? SAARCOR_CFG_EDGE_EPS : SAARCOR_CFG_SHARED_EDGE_EPS)
+#define ISECT_SHARED_K                                                                                 \
+    (SAARCOR_CFG_EDGE_EPS > 0 &&                                                                       \
+             (SAARCOR_CFG_SHARED_EDGE_EPS == 0 || SAARCOR_CFG_EDGE_EPS < SAARCOR_CFG_SHARED_EDGE_EPS) \
+         ? SAARCOR_CFG_EDGE_EPS                                                                        \
+         : SAARCOR_CFG_SHARED_EDGE_EPS)
 #if SAARCOR_CFG_EDGE_EPS < 0 || SAARCOR_CFG_EDGE_EPS > F24_MAN_BITS || SAARCOR_CFG_EDGE_EPS >= F24_BIAS
 #error "SAARCOR_CFG_EDGE_EPS must be 0 or in 1 .. min(F24_MAN_BITS, bias - 1)"
 #endif
@@ -22,10 +24,10 @@
 #error "SAARCOR_CFG_SHARED_EDGE_EPS must be 0 or in 1 .. min(F24_MAN_BITS, bias - 1)"
 #endif
 
-/* Bound lo or, for a shared edge, lo_shared. */
-static f24w bound(uint32_t shared, uint32_t flag, f24_t lo, f24_t lo_shared)
+/* A bound's constant: the widened one if the triangle flags its edge as shared. */
+static f24w bound(uint32_t shared, uint32_t flag, f24_t plain, f24_t widened)
 {
-    return f24w_of(shared & flag ? lo_shared : lo);
+    return f24w_of(shared & flag ? widened : plain);
 }
 
 isect_result isect_unit_triangle(f24_vec3 o, f24_vec3 d, f24_t te, f24_t tmin, f24_t tmax, uint32_t shared)

@@ -68,10 +68,12 @@ static int shared_with(const edge_source *s, uint32_t e, uint32_t f)
     const float *p[2], *q[2];
     edge_ends(s, e, p);
     edge_ends(s, f, q);
-    return e != f && same_point(p[0], q[0]) && same_point(p[1], q[1]) &&
+    return same_point(p[0], q[0]) && same_point(p[1], q[1]) &&
            !same_point(corner(s, e, (int)(e % 3)), corner(s, f, (int)(f % 3)));
 }
 
+/* One pass: every edge is inserted at the first free slot of its probe sequence, after the
+ * edges with its position pair that came before it, so it meets each of them on the way. */
 int mi_shared_edges(const scene_mesh *m, const uint32_t *tri, uint32_t n, uint8_t *flags)
 {
     const edge_source s = { m, tri };
@@ -83,19 +85,16 @@ int mi_shared_edges(const scene_mesh *m, const uint32_t *tri, uint32_t n, uint8_
     if (!slot)
         return -1;
     memset(slot, 0xFF, size * sizeof *slot);
+    memset(flags, 0, n);
     for (uint32_t e = 0; e < edges; e++) {
         size_t i = (size_t)hash_edge(&s, e) & (size - 1);
-        while (slot[i] != UINT32_MAX)
-            i = (i + 1) & (size - 1);
-        slot[i] = e;
-    }
-    memset(flags, 0, n);
-    for (uint32_t e = 0; e < edges; e++)
-        for (size_t i = (size_t)hash_edge(&s, e) & (size - 1); slot[i] != UINT32_MAX; i = (i + 1) & (size - 1))
+        for (; slot[i] != UINT32_MAX; i = (i + 1) & (size - 1))
             if (shared_with(&s, e, slot[i])) {
                 flags[e / 3] |= (uint8_t)(1u << (e % 3));
-                break;
+                flags[slot[i] / 3] |= (uint8_t)(1u << (slot[i] % 3));
             }
+        slot[i] = e;
+    }
     free(slot);
     return 0;
 }
