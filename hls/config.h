@@ -34,6 +34,12 @@
                                       barycentric bounds by eps = 2^-k (u, v >= -eps, u + v <= 1 + eps);
                                       0: the paper's exact bounds */
 #endif
+#ifndef SAARCOR_CFG_SHARED_EDGE_EPS
+#define SAARCOR_CFG_SHARED_EDGE_EPS F24_MAN_BITS /* k > 0 widens only the bounds on edges a triangle
+                                      shares with another of its object by 2^-k (one ulp at 1 by
+                                      default: closes the cracks between them, silhouettes stay;
+                                      docs/stress.md); 0: exact */
+#endif
 #ifndef SAARCOR_CFG_MAX_DEPTH
 #define SAARCOR_CFG_MAX_DEPTH 8    /* secondary levels the ray stack holds */
 #endif

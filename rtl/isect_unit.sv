@@ -6,13 +6,19 @@
 // Latency LATENCY (default: divider 6 + multiplier 3 + adder 3 + adder 3 + comparator 1 = 16;
 // te + t' runs beside the multiplier and first adder), one ray per cycle (II = 1). Handshake:
 // valid/ready.
-// EDGE_EPS = k > 0: the robust edge option (SAARCOR_CFG_EDGE_EPS, docs/stress.md): the bounds
-// become u, v >= -2^-k and u + v <= 1 + 2^-k; only the comparators' constants change.
+// shared_i: the triangle's shared-edge flags {u + v <= 1, v >= 0, u >= 0} (TRI_SHARED_W, _V, _U
+// of hls/units/vec3.h): a flagged bound lies on an edge another triangle of the object shares and
+// is widened by 2^-SHARED_EPS (SAARCOR_CFG_SHARED_EDGE_EPS, default M: one ulp at 1), so rays
+// through the edge cannot slip between the two triangles' roundings; the others stay exact.
+// EDGE_EPS = k > 0: the robust edge option (SAARCOR_CFG_EDGE_EPS, docs/stress.md): every bound
+// becomes u, v >= -2^-k and u + v <= 1 + 2^-k (shared ones the wider of the two). Only the
+// comparators' constant inputs change, picked per bound by a flag.
 module isect_unit #(
   parameter int E = 7,
   parameter int M = 16,
   parameter int LATENCY = 16,
-  parameter int EDGE_EPS = 0
+  parameter int EDGE_EPS = 0,
+  parameter int SHARED_EPS = M
 ) (
   input  logic                 clk_i,
   input  logic                 rst_ni,
@@ -23,6 +29,7 @@ module isect_unit #(
   input  logic [E+M:0]         te_i,
   input  logic [E+M:0]         tmin_i,
   input  logic [E+M:0]         tmax_i,
+  input  logic [2:0]           shared_i,
   output logic                 valid_o,
   input  logic                 ready_i,
   output logic                 hit_o,
@@ -39,9 +46,12 @@ module isect_unit #(
   /* verilator lint_on UNUSEDSIGNAL */
   localparam int BIAS = (1 << (E - 1)) - 1;
   localparam logic [W-1:0] ONE = {1'b0, E'(BIAS), {M{1'b0}}};
+  localparam int SK = EDGE_EPS > 0 && (SHARED_EPS == 0 || EDGE_EPS < SHARED_EPS) ? EDGE_EPS : SHARED_EPS;
   localparam logic [W-1:0] LO = EDGE_EPS > 0 ? {1'b1, E'(BIAS - EDGE_EPS), {M{1'b0}}} : '0;
   localparam logic [W-1:0] HI = EDGE_EPS > 0 ? ONE | W'(1 << (M - EDGE_EPS)) : ONE;
-  logic [W-1:0] oz_neg, tl, t, tdx, tdy, u, v, uv;
+  localparam logic [W-1:0] LO_S = SK > 0 ? {1'b1, E'(BIAS - SK), {M{1'b0}}} : '0;
+  localparam logic [W-1:0] HI_S = SK > 0 ? ONE | W'(1 << (M - SK)) : ONE;
+  logic [W-1:0] oz_neg, tl, t, tdx, tdy, u, v, uv, lo_u, lo_v, hi_uv;
   logic hit;
 
   assign oz_neg = o_i[2*W +: W] ^ {1'b1, {(W-1){1'b0}}};
@@ -52,12 +62,15 @@ module isect_unit #(
   f24_add_core #(.E(E), .M(M)) u_u (.a_i(o_i[0 +: W]), .b_i(tdx), .sub_i(1'b0), .res_o(u));
   f24_add_core #(.E(E), .M(M)) u_v (.a_i(o_i[W +: W]), .b_i(tdy), .sub_i(1'b0), .res_o(v));
   f24_add_core #(.E(E), .M(M)) u_uv (.a_i(u), .b_i(v), .sub_i(1'b0), .res_o(uv));
+  assign lo_u = shared_i[0] ? LO_S : LO;
+  assign lo_v = shared_i[1] ? LO_S : LO;
+  assign hi_uv = shared_i[2] ? HI_S : HI;
   // comparator flags {unordered, eq, le, lt}
-  f24_cmp_core #(.E(E), .M(M)) u_c0 (.a_i(LO), .b_i(u), .lt_o(f_u[0]), .le_o(f_u[1]), .eq_o(f_u[2]),
+  f24_cmp_core #(.E(E), .M(M)) u_c0 (.a_i(lo_u), .b_i(u), .lt_o(f_u[0]), .le_o(f_u[1]), .eq_o(f_u[2]),
                                      .unordered_o(f_u[3]), .min_o(nc_min_o[0]), .max_o(nc_max_o[1]));
-  f24_cmp_core #(.E(E), .M(M)) u_c1 (.a_i(LO), .b_i(v), .lt_o(f_v[0]), .le_o(f_v[1]), .eq_o(f_v[2]),
+  f24_cmp_core #(.E(E), .M(M)) u_c1 (.a_i(lo_v), .b_i(v), .lt_o(f_v[0]), .le_o(f_v[1]), .eq_o(f_v[2]),
                                      .unordered_o(f_v[3]), .min_o(nc_min_o[2]), .max_o(nc_max_o[3]));
-  f24_cmp_core #(.E(E), .M(M)) u_c2 (.a_i(uv), .b_i(HI), .lt_o(f_uv[0]), .le_o(f_uv[1]), .eq_o(f_uv[2]),
+  f24_cmp_core #(.E(E), .M(M)) u_c2 (.a_i(uv), .b_i(hi_uv), .lt_o(f_uv[0]), .le_o(f_uv[1]), .eq_o(f_uv[2]),
                                      .unordered_o(f_uv[3]), .min_o(nc_min_o[4]), .max_o(nc_max_o[5]));
   f24_cmp_core #(.E(E), .M(M)) u_c3 (.a_i(tmin_i), .b_i(t), .lt_o(f_tmin[0]), .le_o(f_tmin[1]), .eq_o(f_tmin[2]),
                                      .unordered_o(f_tmin[3]), .min_o(nc_min_o[6]), .max_o(nc_max_o[7]));

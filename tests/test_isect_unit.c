@@ -33,7 +33,11 @@ static double urand(void)
     return (double)(rng >> 11) / 9007199254740992.0;
 }
 
-static isect_result shoot(f24_vec3 o, f24_vec3 d) { return isect_unit_triangle(o, d, 0, F(0), F24_POS_INF); }
+static isect_result shoot_flags(f24_vec3 o, f24_vec3 d, uint32_t shared)
+{
+    return isect_unit_triangle(o, d, 0, F(0), F24_POS_INF, shared);
+}
+static isect_result shoot(f24_vec3 o, f24_vec3 d) { return shoot_flags(o, d, 0); }
 
 static void hand_cases(void **state)
 {
@@ -70,13 +74,35 @@ static void parallel_and_interval(void **state)
     assert_true(f24_is_nan(r.t));
     /* the interval is [tmin, tmax) */
     const f24_vec3 o = V(0.25, 0.25, 3), d = V(0, 0, -1);
-    assert_false(isect_unit_triangle(o, d, 0, F(0), F(3)).hit);
-    assert_true(isect_unit_triangle(o, d, 0, F(3), F(4)).hit);
-    assert_false(isect_unit_triangle(o, d, 0, F(3.01), F(4)).hit);
+    assert_false(isect_unit_triangle(o, d, 0, F(0), F(3), 0).hit);
+    assert_true(isect_unit_triangle(o, d, 0, F(3), F(4), 0).hit);
+    assert_false(isect_unit_triangle(o, d, 0, F(3.01), F(4), 0).hit);
     /* origin on the plane: t = +-0, a hit only if tmin <= 0 (secondary rays start at tmin > 0) */
-    r = isect_unit_triangle(V(0.25, 0.25, 0), d, 0, F(0), F24_POS_INF);
+    r = isect_unit_triangle(V(0.25, 0.25, 0), d, 0, F(0), F24_POS_INF, 0);
     assert_true(r.hit && f24_is_zero(r.t));
-    assert_false(isect_unit_triangle(V(0.25, 0.25, 0), d, 0, F(1e-4), F24_POS_INF).hit);
+    assert_false(isect_unit_triangle(V(0.25, 0.25, 0), d, 0, F(1e-4), F24_POS_INF, 0).hit);
+}
+
+/* Only a flagged bound is widened, by one ulp at 1 (2^-M, SAARCOR_CFG_SHARED_EDGE_EPS default):
+ * a ray an ulp outside an edge hits when that edge is shared, and misses beyond the margin or
+ * when another edge is flagged. */
+static void shared_edges(void **state)
+{
+    (void)state;
+    const f24_vec3 down = V(0, 0, -1);
+    const double ulp = ldexp(1.0, -F24_MAN_BITS);
+    assert_false(shoot(V(-ulp, 0.5, 1), down).hit);
+    assert_true(shoot_flags(V(-ulp, 0.5, 1), down, TRI_SHARED_U).hit);
+    assert_false(shoot_flags(V(-ulp, 0.5, 1), down, TRI_SHARED_V | TRI_SHARED_W).hit);
+    assert_false(shoot_flags(V(-2 * ulp, 0.5, 1), down, TRI_SHARED_U).hit);
+    assert_false(shoot(V(0.5, -ulp, 1), down).hit);
+    assert_true(shoot_flags(V(0.5, -ulp, 1), down, TRI_SHARED_V).hit);
+    assert_false(shoot_flags(V(0.5, -ulp, 1), down, TRI_SHARED_U | TRI_SHARED_W).hit);
+    /* u + v = 1 + 2^-M, the next value above 1 */
+    assert_false(shoot(V(0.5, 0.5 + ulp, 1), down).hit);
+    assert_true(shoot_flags(V(0.5, 0.5 + ulp, 1), down, TRI_SHARED_W).hit);
+    assert_false(shoot_flags(V(0.5, 0.5 + ulp, 1), down, TRI_SHARED_U | TRI_SHARED_V).hit);
+    assert_false(shoot_flags(V(0.5, 0.5 + 2 * ulp, 1), down, TRI_SHARED_W).hit);
 }
 
 /* Moller-Trumbore in double: returns 1 and t, (u, v) weights of a and b, edge distance margin. */
@@ -122,6 +148,7 @@ static f24_triangle record_of(const affine *tx)
         for (int j = 0; j < 4; j++)
             t.m.m[i][j] = F(tx->m[i][j]);
     t.c_lo = V(tx->m[0][3] - D(t.m.m[0][3]), tx->m[1][3] - D(t.m.m[1][3]), tx->m[2][3] - D(t.m.m[2][3]));
+    t.shared = 0;
     return t;
 }
 
@@ -238,7 +265,7 @@ static void small_and_far(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(hand_cases), cmocka_unit_test(parallel_and_interval),
+        cmocka_unit_test(hand_cases), cmocka_unit_test(parallel_and_interval), cmocka_unit_test(shared_edges),
         cmocka_unit_test(against_double_precision), cmocka_unit_test(small_and_far),
     };
     return cmocka_run_group_tests_name("isect_unit", tests, NULL, NULL);

@@ -520,6 +520,37 @@ static void packed_triangle_records(void **state)
     scene_free(&s);
 }
 
+/* Shared edges are found by vertex position (a repeated vertex, -0 and +0 alike), a coincident
+ * copy of a triangle shares none with it, and the image's records carry the flags: every edge of
+ * the closed tetrahedron is shared. */
+static void shared_edge_flags(void **state)
+{
+    (void)state;
+    static const float pos[] = { 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 1, 1, -0.0f };
+    uint32_t idx[] = { 0, 1, 2, 0, 4, 3, 2, 1, 0 };
+    const uint32_t tri[] = { 0, 1, 2 };
+    const scene_mesh quad = { .n_vertices = 5, .n_triangles = 3, .positions = (float *)pos, .indices = idx };
+    uint8_t f[3];
+    assert_int_equal(mi_shared_edges(&quad, tri, 2, f), 0); /* the quad: its diagonal */
+    assert_int_equal(f[0], TRI_SHARED_V);
+    assert_int_equal(f[1], TRI_SHARED_W);
+    assert_int_equal(mi_shared_edges(&quad, tri, 3, f), 0); /* and a copy of triangle 0, reversed */
+    assert_int_equal(f[0], TRI_SHARED_V);
+    assert_int_equal(f[1], TRI_SHARED_W);
+    assert_int_equal(f[2], TRI_SHARED_V);
+    scene s;
+    make_scene(&s, 1, 0);
+    mi_builder *b = build(&s, 0);
+    uint32_t n;
+    const uint32_t *w = mi_words(b, &n);
+    const uint32_t *obj = w + w[MI_H_REGION_TABLE + 2 * MI_R_OBJECTS];
+    assert_int_equal(obj[MI_O_N_TRIANGLES], 4);
+    for (uint32_t t = 0; t < 4; t++)
+        assert_int_equal(f24_triangle_load(w, obj[MI_O_TRIANGLES] + MI_TRIANGLE_WORDS * t).shared, 7);
+    mi_free(b);
+    scene_free(&s);
+}
+
 /* An image with ropes and grids at both levels validates; ropes out of range, missing rope
  * records, bad grid sizes and cell lists are rejected; random corruption either fails
  * validation or renders safely with every traversal algorithm (image_probe.h). */
@@ -617,7 +648,7 @@ int main(void)
         cmocka_unit_test(too_small_memory), cmocka_unit_test(frames_upload_only_what_changed),
         cmocka_unit_test(corruption), cmocka_unit_test(accelerators),
         cmocka_unit_test(single_object_accelerators), cmocka_unit_test(shading_records),
-        cmocka_unit_test(packed_triangle_records), cmocka_unit_test(instance_table_on_lines),
+        cmocka_unit_test(packed_triangle_records), cmocka_unit_test(shared_edge_flags), cmocka_unit_test(instance_table_on_lines),
     };
     return cmocka_run_group_tests_name("memimage", tests, NULL, NULL);
 }

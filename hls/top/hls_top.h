@@ -36,10 +36,11 @@ typedef struct {
 } xform_txn;
 
 /* Intersection unit: the ray in unit-triangle space, the distance its origin was moved by (the
- * rebase unit's te) and its interval. */
+ * rebase unit's te), its interval and the triangle's shared-edge flags. */
 typedef struct {
     f24_vec3 o, d;
     f24_t te, tmin, tmax;
+    uint32_t shared;
 } isect_txn;
 
 /* Traversal unit, one inner node for a 4-ray packet: the entry (mask, intervals), the node's

@@ -13,6 +13,6 @@ isect_stream:
 #pragma HLS PIPELINE II=1
         if (i >= n)
             break;
-        out[i] = isect_unit_triangle(in[i].o, in[i].d, in[i].te, in[i].tmin, in[i].tmax);
+        out[i] = isect_unit_triangle(in[i].o, in[i].d, in[i].te, in[i].tmin, in[i].tmax, in[i].shared);
     }
 }

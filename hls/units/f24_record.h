@@ -21,11 +21,15 @@
 /* A triangle record: M^-1 and the high word of the vertex C as a 3x4 matrix (12 values), then per
  * component C's low part as a signed F24_VERTEX_LO_BITS-bit multiple k of 2^-8 ulp(C.hi) (fields
  * from bit 12 W on): C to 8 bits beyond fp24's, which holds a binary32 vertex exactly, in 27 bits
- * instead of three more values (10 words at e7m16 instead of 12; f24_vertex_lo decodes). */
+ * instead of three more values (10 words at e7m16 instead of 12; f24_vertex_lo decodes). Then the
+ * triangle's 3 shared-edge flags (TRI_SHARED_*, vec3.h), in what was the last word's
+ * padding at every tested format (a format without 3 spare bits gets a word more). */
 #define F24_TRIANGLE_VALUES 12
 #define F24_VERTEX_LO_BITS 9
 #define F24_VERTEX_LO_SHIFT 8
-#define F24_TRIANGLE_BITS (F24_TRIANGLE_VALUES * F24_WIDTH + 3 * F24_VERTEX_LO_BITS)
+#define F24_EDGE_FLAG_BITS 3
+#define F24_EDGE_FLAG_BIT (F24_TRIANGLE_VALUES * F24_WIDTH + 3 * F24_VERTEX_LO_BITS)
+#define F24_TRIANGLE_BITS (F24_EDGE_FLAG_BIT + F24_EDGE_FLAG_BITS)
 #define F24_TRIANGLE_RECORD_WORDS ((F24_TRIANGLE_BITS + 31) / 32)
 /* An instance record (a 12-word matrix, the object index, flags and the translation's 3 low
  * words: 17 words read) takes whole triangle records, so that with cache lines of one triangle

@@ -6,31 +6,45 @@
 
 #define F24_ZERO 0u
 
-/* The barycentric bounds: 0 and 1, or -eps and 1 + eps for the robust edge option. Constants,
- * so the option costs no operator and no cycle (only the comparators' constant inputs change). */
-#if SAARCOR_CFG_EDGE_EPS > 0
-#if SAARCOR_CFG_EDGE_EPS > F24_MAN_BITS || SAARCOR_CFG_EDGE_EPS >= F24_BIAS
-#error "SAARCOR_CFG_EDGE_EPS must be in 1 .. min(F24_MAN_BITS, bias - 1)"
+/* The barycentric bounds -eps and 1 + eps for eps = 2^-k (k = 0: 0 and 1). Constants, so the
+ * margins cost no operator and no cycle: only the comparators' constant inputs change, chosen per
+ * bound by the triangle's shared-edge flag. */
+#define ISECT_LO(k) ((k) > 0 ? F24_SIGN_BIT | (uint32_t)(F24_BIAS - (k)) << F24_MAN_BITS : F24_ZERO)
+#define ISECT_HI(k) ((k) > 0 ? F24_ONE | 1u << (F24_MAN_BITS - (k)) : F24_ONE)
+/* A shared edge takes the wider of its own margin and the robust option's (0 is no margin). */
+#define ISECT_SHARED_K                                                                                 \
+    (SAARCOR_CFG_EDGE_EPS > 0 &&                                                                       \
+             (SAARCOR_CFG_SHARED_EDGE_EPS == 0 || SAARCOR_CFG_EDGE_EPS < SAARCOR_CFG_SHARED_EDGE_EPS) \
+         ? SAARCOR_CFG_EDGE_EPS                                                                        \
+         : SAARCOR_CFG_SHARED_EDGE_EPS)
+#if SAARCOR_CFG_EDGE_EPS < 0 || SAARCOR_CFG_EDGE_EPS > F24_MAN_BITS || SAARCOR_CFG_EDGE_EPS >= F24_BIAS
+#error "SAARCOR_CFG_EDGE_EPS must be 0 or in 1 .. min(F24_MAN_BITS, bias - 1)"
 #endif
-#define ISECT_LO (F24_SIGN_BIT | ((uint32_t)(F24_BIAS - SAARCOR_CFG_EDGE_EPS) << F24_MAN_BITS))
-#define ISECT_HI (F24_ONE | (1u << (F24_MAN_BITS - SAARCOR_CFG_EDGE_EPS)))
-#else
-#define ISECT_LO F24_ZERO
-#define ISECT_HI F24_ONE
+#if SAARCOR_CFG_SHARED_EDGE_EPS < 0 || SAARCOR_CFG_SHARED_EDGE_EPS > F24_MAN_BITS || SAARCOR_CFG_SHARED_EDGE_EPS >= F24_BIAS
+#error "SAARCOR_CFG_SHARED_EDGE_EPS must be 0 or in 1 .. min(F24_MAN_BITS, bias - 1)"
 #endif
 
-isect_result isect_unit_triangle(f24_vec3 o, f24_vec3 d, f24_t te, f24_t tmin, f24_t tmax)
+/* A bound's constant: the widened one if the triangle flags its edge as shared. */
+static f24w bound(uint32_t shared, uint32_t flag, f24_t plain, f24_t widened)
+{
+    return f24w_of(shared & flag ? widened : plain);
+}
+
+isect_result isect_unit_triangle(f24_vec3 o, f24_vec3 d, f24_t te, f24_t tmin, f24_t tmax, uint32_t shared)
 {
     const f24w tl = f24w_div(f24w_neg(f24w_of(o.z)), f24w_of(d.z)); /* from the rebased origin */
     const f24w t = f24w_add(f24w_of(te), tl), u = f24w_add(f24w_of(o.x), f24w_mul(tl, f24w_of(d.x))),
-               v = f24w_add(f24w_of(o.y), f24w_mul(tl, f24w_of(d.y))), lo = f24w_of(ISECT_LO);
+               v = f24w_add(f24w_of(o.y), f24w_mul(tl, f24w_of(d.y)));
+    const f24_t lo = ISECT_LO(SAARCOR_CFG_EDGE_EPS), lo_s = ISECT_LO(ISECT_SHARED_K);
+    const f24_t hi = ISECT_HI(SAARCOR_CFG_EDGE_EPS), hi_s = ISECT_HI(ISECT_SHARED_K);
     isect_result r;
     r.cos_n = d.z;
     r.t = f24w_bits(t);
     r.u = f24w_bits(u);
     r.v = f24w_bits(v);
-    r.hit = f24w_le(lo, u) && f24w_le(lo, v) && f24w_le(f24w_add(u, v), f24w_of(ISECT_HI)) &&
-            f24w_le(f24w_of(tmin), t) && f24w_lt(t, f24w_of(tmax));
+    r.hit = f24w_le(bound(shared, TRI_SHARED_U, lo, lo_s), u) && f24w_le(bound(shared, TRI_SHARED_V, lo, lo_s), v) &&
+            f24w_le(f24w_add(u, v), bound(shared, TRI_SHARED_W, hi, hi_s)) && f24w_le(f24w_of(tmin), t) &&
+            f24w_lt(t, f24w_of(tmax));
     return r;
 }
 
@@ -83,7 +97,7 @@ isect_result isect_unit_rebased(const f24_triangle *tri, f24_vec3x2 p, f24_t te,
     const f24w tw = f24w_add(f24w_of(te), f24w_div(f24w_neg(f24w_of(oz)), f24w_of(dz)));
     const f24_t t = f24w_bits(tw);
     if (f24w_le(f24w_of(tmin), tw) && f24w_lt(tw, f24w_of(tmax)))
-        return isect_unit_triangle(origin_from(tri, c, oz), xform_vector(&tri->m, d), te, tmin, tmax);
+        return isect_unit_triangle(origin_from(tri, c, oz), xform_vector(&tri->m, d), te, tmin, tmax, tri->shared);
     const isect_result miss = { 0, t, F24_ZERO, F24_ZERO, dz };
     return miss;
 }

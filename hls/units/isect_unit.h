@@ -15,6 +15,10 @@
  * edges and vertices (u = 0, v = 0 or u + v = 1 exactly) are hits, so neighbouring triangles
  * sharing an edge cannot both miss a ray that meets the edge in exact arithmetic; an origin on
  * the plane gives t = +-0, a hit if tmin <= 0 (secondary rays use tmin > 0 against acne).
+ * In fp24 the two triangles round u and v independently, so a ray through their shared edge can
+ * miss both by an ulp: the bounds on edges the host flagged as shared (TRI_SHARED_*, vec3.h) are
+ * widened by 2^-SAARCOR_CFG_SHARED_EDGE_EPS (default one ulp at 1), the others stay exact so
+ * silhouettes do not move (the robust option SAARCOR_CFG_EDGE_EPS widens all; docs/stress.md).
  * Datapath: the test is 1 divider, 2 multipliers, 4 adders (u, v, u+v, te + t'), 5 comparators
  * (rtl/isect_unit.sv); the origin path 9 adders (the offset from C in double words), 6
  * multipliers and 4 adders (rows 0 and 1 of M^-1), 9 unrounded products into one exact
@@ -36,8 +40,9 @@ typedef struct {
 } isect_result;
 
 /* The test on a ray in unit-triangle space whose origin o lies at distance te along the ray (the
- * rebase unit moved it there): t' = -O'z / D'z from o, and the hit distance t = te + t'. */
-isect_result isect_unit_triangle(f24_vec3 o, f24_vec3 d, f24_t te, f24_t tmin, f24_t tmax);
+ * rebase unit moved it there): t' = -O'z / D'z from o, and the hit distance t = te + t'; shared:
+ * the triangle's shared-edge flags (TRI_SHARED_*). */
+isect_result isect_unit_triangle(f24_vec3 o, f24_vec3 d, f24_t te, f24_t tmin, f24_t tmax, uint32_t shared);
 
 /* The ray origin p (double words, object space, rebased to a leaf) in unit-triangle space: the
  * offset from the triangle's vertex C (double words in the triangle record, docs/memory-image.md),

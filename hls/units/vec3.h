@@ -30,12 +30,20 @@ load_rows:
     return a;
 }
 
+/* Shared-edge flags of a triangle: the bound of the unit-triangle test that lies on an edge the
+ * triangle shares with another triangle of its object (the host finds them, docs/memory-image.md);
+ * the intersection unit widens only these bounds (isect_unit.h). */
+#define TRI_SHARED_U 1u /* u >= 0: the edge B C */
+#define TRI_SHARED_V 2u /* v >= 0: the edge A C */
+#define TRI_SHARED_W 4u /* u + v <= 1: the edge A B */
+
 /* A triangle as the intersection path sees it: M^-1 in columns 0..2 of m, its vertex C in column 3
- * (high words) and c_lo (low words, decoded from the record's fields): the record of
- * F24_TRIANGLE_RECORD_WORDS words (docs/memory-image.md). */
+ * (high words) and c_lo (low words, decoded from the record's fields), its shared-edge flags: the
+ * record of F24_TRIANGLE_RECORD_WORDS words (docs/memory-image.md). */
 typedef struct {
     f24_affine m;
     f24_vec3 c_lo;
+    uint32_t shared;
 } f24_triangle;
 
 static inline f24_triangle f24_triangle_load(const uint32_t *mem, uint32_t addr)
@@ -49,6 +57,7 @@ load_record:
     t.c_lo.x = f24_vertex_lo(f24_record_field(mem, addr, lo, F24_VERTEX_LO_BITS), t.m.m[0][3]);
     t.c_lo.y = f24_vertex_lo(f24_record_field(mem, addr, lo + F24_VERTEX_LO_BITS, F24_VERTEX_LO_BITS), t.m.m[1][3]);
     t.c_lo.z = f24_vertex_lo(f24_record_field(mem, addr, lo + 2 * F24_VERTEX_LO_BITS, F24_VERTEX_LO_BITS), t.m.m[2][3]);
+    t.shared = f24_record_field(mem, addr, F24_EDGE_FLAG_BIT, F24_EDGE_FLAG_BITS);
     return t;
 }
 

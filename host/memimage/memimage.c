@@ -31,6 +31,7 @@ typedef struct {
     kd_tree tree;       /* leaf entries index valid[] = the object's triangles in the image */
     uint32_t *valid;    /* mesh triangle of each image triangle */
     affine *xf;         /* triangle transformations of the image triangles */
+    uint8_t *shared;    /* their shared-edge flags (mi_shared_edges) */
     uint32_t n_valid;
     uint32_t revision_seen; /* the mesh's revision the geometry was built from (dynamic objects) */
     kd_rope *ropes;     /* per node (leaves only), with MI_ACCEL_ROPES */
@@ -304,8 +305,10 @@ static void object_release(mi_object *o)
     ugrid_free(&o->grid);
     free(o->valid);
     free(o->xf);
+    free(o->shared);
     o->valid = NULL;
     o->xf = NULL;
+    o->shared = NULL;
     o->n_valid = 0;
 }
 
@@ -491,8 +494,9 @@ static int object_prepare(mi_builder *b, const scene *s, const scene_mesh *m, mi
     object_release(o);
     o->valid = malloc(((size_t)m->n_triangles + 1) * sizeof *o->valid);
     o->xf = malloc(((size_t)m->n_triangles + 1) * sizeof *o->xf);
+    o->shared = malloc((size_t)m->n_triangles + 1);
     uint8_t *ok = malloc((size_t)m->n_triangles + 1);
-    if (!o->valid || !o->xf || !ok) {
+    if (!o->valid || !o->xf || !o->shared || !ok) {
         free(ok);
         return -1;
     }
@@ -508,6 +512,8 @@ static int object_prepare(mi_builder *b, const scene *s, const scene_mesh *m, mi
     const double t1 = seconds();
     b->st.transform_seconds += t1 - t0;
     b->st.degenerate_triangles += m->n_triangles - o->n_valid;
+    if (mi_shared_edges(m, o->valid, o->n_valid, o->shared) != 0)
+        return -1;
     const tri_source src = { m, o->valid, o->centre };
     const kd_source ks = { o->n_valid, &src, tri_bounds, tri_clip };
     const int rc = build_tree(b, &ks, &b->p.bottom, &o->tree);
@@ -638,8 +644,9 @@ static uint32_t vertex_lo_field(double c, f24_t hi)
     return (uint32_t)(int32_t)k;
 }
 
-/* M^-1 rounded, the vertex C (column 3) in a high word and the low part's field. */
-static void put_triangle(uint32_t *w, const affine *a)
+/* M^-1 rounded, the vertex C (column 3) in a high word and the low part's field, the shared-edge
+ * flags. */
+static void put_triangle(uint32_t *w, const affine *a, uint32_t shared)
 {
     f24_t v[F24_TRIANGLE_VALUES];
     for (int i = 0; i < 3; i++)
@@ -650,6 +657,7 @@ static void put_triangle(uint32_t *w, const affine *a)
     for (int i = 0; i < 3; i++)
         f24_record_put_field(w, F24_TRIANGLE_VALUES * F24_WIDTH + (uint32_t)i * F24_VERTEX_LO_BITS, F24_VERTEX_LO_BITS,
                              vertex_lo_field(a->m[i][3], v[i * 4 + 3]));
+    f24_record_put_field(w, F24_EDGE_FLAG_BIT, F24_EDGE_FLAG_BITS, shared);
 }
 
 typedef struct {
@@ -666,7 +674,7 @@ static void records_part(void *ctx, uint32_t from, uint32_t to)
     const records_job *j = ctx;
     const uint32_t stride = shade_rec_words(j->o->shade_flags);
     for (uint32_t i = from; i < to; i++) {
-        put_triangle(j->triangles + (size_t)MI_TRIANGLE_WORDS * i, &j->o->xf[i]);
+        put_triangle(j->triangles + (size_t)MI_TRIANGLE_WORDS * i, &j->o->xf[i], j->o->shared[i]);
         write_shading(j->shading + (size_t)stride * i, j->s, j->m, j->codes, j->o->shade_flags, j->o->valid[i]);
     }
 }

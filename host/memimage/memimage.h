@@ -19,7 +19,7 @@
 #include "scene.h"
 
 #define MI_MAGIC 0x524F4353u /* "SCOR" in little-endian bytes */
-#define MI_VERSION 5u
+#define MI_VERSION 6u
 #define MI_NONE 0xFFFFFFFFu
 #define MI_DEFAULT_BYTES (24u << 20) /* the prototype's six 4 MB banks */
 
@@ -209,5 +209,10 @@ int mi_validate(const uint32_t *words, uint32_t n_words, char *err, size_t errle
  * max_condition. */
 int mi_triangle_transform(const double a[3], const double b[3], const double c[3], double max_condition,
                           affine *t);
+
+/* The shared-edge flags (TRI_SHARED_* of hls/units/vec3.h) of the n triangles tri[] of mesh m:
+ * edge k of a triangle is flagged when another of them joins the same two vertex positions and
+ * is not its coincident copy. Returns 0, or -1 out of memory. */
+int mi_shared_edges(const scene_mesh *m, const uint32_t *tri, uint32_t n, uint8_t *flags);
 
 #endif

@@ -54,7 +54,7 @@ template <typename T> uint32_t get(const T &q, int idx) { return (uint32_t)((q >
 
 // one transaction of each unit: inputs, and the outputs the C model (or the capture) gives
 struct xform_tx { uint32_t m[12], v[3], point, r[3]; };
-struct isect_tx { uint32_t o[3], d[3], te, tmin, tmax, hit, t, u, v, cos; };
+struct isect_tx { uint32_t o[3], d[3], te, tmin, tmax, shared, hit, t, u, v, cos; };
 struct trav_tx { uint32_t axis, split, mask, o[12], d[12], tn[4], tf[4], lmask, rmask, nleft, ltn[4], ltf[4], rtn[4], rtf[4]; };
 
 f24_vec3 v3(const uint32_t *w) { return f24_vec3{ w[0], w[1], w[2] }; }
@@ -71,7 +71,7 @@ void model(xform_tx &x)
 
 void model(isect_tx &x)
 {
-    const isect_result r = isect_unit_triangle(v3(x.o), v3(x.d), x.te, x.tmin, x.tmax);
+    const isect_result r = isect_unit_triangle(v3(x.o), v3(x.d), x.te, x.tmin, x.tmax, x.shared);
     x.hit = (uint32_t)r.hit, x.t = r.t, x.u = r.u, x.v = r.v, x.cos = r.cos_n;
 }
 
@@ -131,6 +131,7 @@ template <> std::vector<isect_tx> random_set(std::size_t n)
         x.te = rnd() % 2 ? 0u : rnd_f24() & ~F24_SIGN_BIT;
         x.tmin = rnd() % 4 ? 0u : rnd_f24() & ~F24_SIGN_BIT;
         x.tmax = rnd() % 2 ? F24_POS_INF : rnd_f24() & ~F24_SIGN_BIT;
+        x.shared = rnd() & 7u;
         model(x);
     }
     return v;
@@ -283,6 +284,7 @@ int main(int argc, char **argv)
             top.i_te_i = is[c].te;
             top.i_tmin_i = is[c].tmin;
             top.i_tmax_i = is[c].tmax;
+            top.i_shared_i = is[c].shared;
         }
         top.t_valid_i = c < ts.size();
         if (c < ts.size()) {
@@ -310,8 +312,8 @@ int main(int argc, char **argv)
             isect_tx got = is[qi.front()], want = got;
             got.hit = top.i_hit_o, got.t = top.i_t_o, got.u = top.i_u_o, got.v = top.i_v_o, got.cos = top.i_cos_o;
             model(want);
-            compare("isect_unit", si, want, got, 9, "C model");
-            if (qi.front() < cap_i) compare("isect_unit", si, is[qi.front()], got, 9, "capture"), si.vs_capture++;
+            compare("isect_unit", si, want, got, 10, "C model");
+            if (qi.front() < cap_i) compare("isect_unit", si, is[qi.front()], got, 10, "capture"), si.vs_capture++;
             qi.pop_front();
         }
         if (top.t_valid_o && !qt.empty()) {

@@ -19,6 +19,7 @@ module tb_units #(
   input  logic [E+M:0]            i_te_i,
   input  logic [E+M:0]            i_tmin_i,
   input  logic [E+M:0]            i_tmax_i,
+  input  logic [2:0]              i_shared_i,
   output logic                    i_valid_o,
   output logic                    i_hit_o,
   output logic [E+M:0]            i_t_o,
@@ -46,7 +47,8 @@ module tb_units #(
   xform_unit #(.E(E), .M(M)) u_x (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(x_valid_i), .ready_o(), .m_i(x_m_i),
                                   .v_i(x_v_i), .point_i(x_point_i), .valid_o(x_valid_o), .ready_i(1'b1), .r_o(x_r_o));
   isect_unit #(.E(E), .M(M)) u_i (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(i_valid_i), .ready_o(), .o_i(i_o_i),
-                                  .d_i(i_d_i), .te_i(i_te_i), .tmin_i(i_tmin_i), .tmax_i(i_tmax_i), .valid_o(i_valid_o), .ready_i(1'b1),
+                                  .d_i(i_d_i), .te_i(i_te_i), .tmin_i(i_tmin_i), .tmax_i(i_tmax_i),
+                                  .shared_i(i_shared_i), .valid_o(i_valid_o), .ready_i(1'b1),
                                   .hit_o(i_hit_o), .t_o(i_t_o), .u_o(i_u_o), .v_o(i_v_o), .cos_o(i_cos_o));
   trav_node #(.E(E), .M(M)) u_t (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(t_valid_i), .ready_o(), .axis_i(t_axis_i),
                                  .split_i(t_split_i), .mask_i(t_mask_i), .o_i(t_o_i), .d_i(t_d_i), .tn_i(t_tn_i),

@@ -136,13 +136,13 @@ isect_result __wrap_isect_unit_rebased(const f24_triangle *m, f24_vec3x2 p, f24_
     if (!cap.on)
         return r;
     const f24_vec3 ot = isect_origin(m, p), dt = __wrap_xform_vector(&m->m, d);
-    const isect_result full = isect_unit_triangle(ot, dt, te, tmin, tmax);
+    const isect_result full = isect_unit_triangle(ot, dt, te, tmin, tmax, m->shared);
     FILE *f = begin(CAP_ISECT);
     if (!f)
         return r;
-    const uint32_t w[14] = { ot.x, ot.y, ot.z, dt.x, dt.y, dt.z, te, tmin, tmax, (uint32_t)full.hit, full.t, full.u, full.v,
-                             full.cos_n };
-    words(f, w, 14);
+    const uint32_t w[15] = { ot.x,      ot.y,  ot.z,  dt.x,   dt.y,   dt.z,   te,        tmin, tmax,
+                             m->shared, (uint32_t)full.hit, full.t, full.u, full.v, full.cos_n };
+    words(f, w, 15);
     end(f);
     return r;
 }

@@ -167,6 +167,98 @@ static void edge_rays(const world *w, geom_rng *rng, double dist, stress_ray *ra
     }
 }
 
+/* Vertex k of mesh triangle t of instance 0, in world space. */
+static void world_vertex(const world *w, uint32_t t, int k, double out[3])
+{
+    const scene_mesh *m = &w->s.meshes[w->s.instances[0].mesh];
+    const float *p = &m->positions[3 * (size_t)m->indices[3 * (size_t)t + (size_t)k]];
+    affine_apply_point(&w->s.instances[0].world, (const double[3]){ p[0], p[1], p[2] }, out);
+}
+
+static void unit_normal(const double v[3][3], double n[3])
+{
+    const double e1[3] = { v[1][0] - v[0][0], v[1][1] - v[0][1], v[1][2] - v[0][2] },
+                 e2[3] = { v[2][0] - v[0][0], v[2][1] - v[0][1], v[2][2] - v[0][2] };
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    const double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int j = 0; j < 3; j++)
+        n[j] /= len;
+}
+
+/* The triangle other than t of instance 0 with an edge from a to b (UINT32_MAX: none, a border). */
+static uint32_t neighbour(const world *w, uint32_t t, const double a[3], const double b[3])
+{
+    const scene_mesh *m = &w->s.meshes[w->s.instances[0].mesh];
+    for (uint32_t s = 0; s < m->n_triangles; s++) {
+        int found = 0;
+        for (int k = 0; k < 3 && s != t; k++) {
+            double v[3];
+            world_vertex(w, s, k, v);
+            found += (v[0] == a[0] && v[1] == a[1] && v[2] == a[2]) || (v[0] == b[0] && v[1] == b[1] && v[2] == b[2]);
+        }
+        if (found == 2)
+            return s;
+    }
+    return UINT32_MAX;
+}
+
+/* Rays aimed at interior points of shared edges of instance 0 at grazing angles, from `dist`
+ * away: 0.25 .. 4 degrees below both triangles' planes and along the edge, so that the ray meets
+ * the surface first at the aimed point, at t = 1. A flat mesh is approached from either side and
+ * half of the rays turn up to 45 degrees off the edge in the plane; a closed convex one (centred
+ * at instance 0's origin) from outside, along the edge only (a turn would leave a plane of the
+ * pair). A ray that misses the flat mesh, or meets the closed one only on its far side, went
+ * through a crack between the two triangles. At 0.25 degrees the units' t on the same fp24 ray
+ * differs from the reference's by up to 5e-4 (t' = -O'z / D'z with D'z small), so a closed
+ * mesh's crossing counts by t = 1.002 (x 1.001, the criterion's own slack): a ray through a crack
+ * meets its far side beyond t = 1 + 2 sin(0.25 degrees) / dist, 1.004 from 2 radii. */
+static void crack_rays(const world *w, geom_rng *rng, double dist, int closed, stress_ray *rays, uint32_t n)
+{
+    const double *c = (const double[3]){ w->s.instances[0].world.m[0][3], w->s.instances[0].world.m[1][3],
+                                         w->s.instances[0].world.m[2][3] };
+    const scene_mesh *m = &w->s.meshes[w->s.instances[0].mesh];
+    for (uint32_t i = 0; i < n;) {
+        const uint32_t t = (uint32_t)(geom_rand(rng) * m->n_triangles), k = (uint32_t)(geom_rand(rng) * 3);
+        double v[3][3], nv[3][3], nt[3], nn[3], e[3], side[3], p[3], o[3], d[3];
+        for (int j = 0; j < 3; j++)
+            world_vertex(w, t, j, v[j]);
+        const double *a = v[k], *b = v[(k + 1) % 3];
+        const uint32_t s = neighbour(w, t, a, b);
+        if (s == UINT32_MAX)
+            continue;
+        for (int j = 0; j < 3; j++)
+            world_vertex(w, s, j, nv[j]);
+        unit_normal(v, nt);
+        unit_normal(nv, nn);
+        const double f = geom_range(rng, 0.05, 0.95), el = geom_range(rng, 0.25, 4) * M_PI / 180;
+        const double az = !closed && (i & 1) ? geom_range(rng, -M_PI / 4, M_PI / 4) : 0;
+        double en = 0, mid[3];
+        for (int j = 0; j < 3; j++) {
+            e[j] = b[j] - a[j];
+            en += e[j] * e[j];
+            p[j] = a[j] + f * e[j];
+        }
+        const double out = nt[0] * (p[0] - c[0]) + nt[1] * (p[1] - c[1]) + nt[2] * (p[2] - c[2]);
+        const double up = closed ? (out < 0 ? -1 : 1) : geom_rand(rng) < 0.5 ? 1 : -1;
+        const double same = nt[0] * nn[0] + nt[1] * nn[1] + nt[2] * nn[2] < 0 ? -1 : 1; /* the neighbour alike */
+        for (int j = 0; j < 3; j++)
+            mid[j] = nt[j] + same * nn[j];
+        en = sqrt(en);
+        const double ml = sqrt(mid[0] * mid[0] + mid[1] * mid[1] + mid[2] * mid[2]);
+        side[0] = mid[1] * e[2] - mid[2] * e[1];
+        side[1] = mid[2] * e[0] - mid[0] * e[2];
+        side[2] = mid[0] * e[1] - mid[1] * e[0];
+        for (int j = 0; j < 3; j++) /* towards the surface from the side `up` of both planes */
+            d[j] = cos(el) * (cos(az) * e[j] / en + sin(az) * side[j] / (ml * en)) - up * sin(el) * mid[j] / ml;
+        for (int j = 0; j < 3; j++)
+            o[j] = p[j] - dist * d[j];
+        aim(&rays[i], o, p);
+        rays[i++].target = closed ? 1.002 : INFINITY;
+    }
+}
+
 /* ---- the cases ----------------------------------------------------------------------------- */
 
 static int make_inside(const case_def *c, const char *shared, geom_rng *rng, world *w, stress_ray *rays, uint32_t n)
@@ -230,6 +322,38 @@ static int make_edges_file(const case_def *c, const char *shared, geom_rng *rng,
 }
 
 /* A unit sphere moved by param along (1, 0.6, -0.3), seen from 4 units away. */
+/* A flat quad of two triangles (param 0: rays at its diagonal from 2 away), a flat 32 x 32 grid
+ * of 2048 (param: the distance in its sizes), tilted and moved off the axes so that vertices
+ * round in every coordinate. */
+static int make_cracks_flat(const case_def *c, const char *shared, geom_rng *rng, world *w, stress_ray *rays, uint32_t n)
+{
+    (void)shared;
+    geom_mesh m;
+    geom_mesh_init(&m);
+    const affine xf = geom_trs(0.31, -0.17, 0.23, 1, 2, 3, 0.7, 1, 1, 1);
+    const uint32_t cells = c->param == 0 ? 1 : 32;
+    geom_grid(&m, &xf, cells, cells, NULL, 0, NULL, NULL);
+    if (scene_of(&m, NULL, 0, &w->s) != 0)
+        return 0;
+    crack_rays(w, rng, c->param == 0 ? 2 : c->param, 0, rays, n);
+    return (int)n;
+}
+
+/* A closed icosphere (5120 triangles, radius 1, convex) at the origin, seen from param radii
+ * (from far away a ray through a crack would meet the far side at about the same t: the small-far
+ * cases aim at edges from there at steeper angles). */
+static int make_cracks_sphere(const case_def *c, const char *shared, geom_rng *rng, world *w, stress_ray *rays, uint32_t n)
+{
+    (void)shared;
+    geom_mesh m;
+    geom_mesh_init(&m);
+    geom_sphere(&m, NULL, 4, 0);
+    if (scene_of(&m, NULL, 0, &w->s) != 0)
+        return 0;
+    crack_rays(w, rng, c->param, 1, rays, n);
+    return (int)n;
+}
+
 static int make_far(const case_def *c, const char *shared, geom_rng *rng, world *w, stress_ray *rays, uint32_t n)
 {
     (void)shared;
@@ -556,6 +680,10 @@ static const case_def cases[] = {
     { "edges-ico4", "the same, 4 subdivisions (5120 triangles)", WT | STRESS_MULTI, CRIT_WATERTIGHT, make_edges_ico, 4 },
     { "edges-lathe", "the same on a tessellated UV sphere (48 x 16, tilted)", WT | STRESS_MULTI, CRIT_WATERTIGHT, make_edges_lathe, 0 },
     { "edges-bunny", "the same on the shared bunny.glb (not closed: rays may pass its holes only before t = 1)", WT | STRESS_MULTI, CRIT_WATERTIGHT, make_edges_file, 0 },
+    { "cracks-quad", "a flat quad of two triangles: rays along its diagonal at 0.25 .. 4 degrees", WT, CRIT_WATERTIGHT, make_cracks_flat, 0 },
+    { "cracks-grid", "a flat 32 x 32 grid (2048 triangles): rays at its inner edges at grazing angles, from 2 sizes", WT, CRIT_WATERTIGHT, make_cracks_flat, 2 },
+    { "cracks-grid-far", "... from 10^3 of its sizes", WT, CRIT_WATERTIGHT, make_cracks_flat, 1e3 },
+    { "cracks-sphere", "a closed icosphere (5120 triangles): rays along its edges at grazing angles, from 2 radii", WT, CRIT_WATERTIGHT, make_cracks_sphere, 2 },
     { "far-1e2", "a unit sphere 10^2 from the origin, camera 4 units from it", 0, CRIT_AGREE, make_far, 1e2 },
     { "far-1e3", "... 10^3 from the origin", 0, CRIT_AGREE, make_far, 1e3 },
     { "far-1e4", "... 10^4 from the origin", 0, CRIT_AGREE, make_far, 1e4 },

@@ -82,9 +82,9 @@ static uint64_t run_isect(FILE *f)
     uint64_t total = 0;
     uint32_t w[MAX_WORDS], n = 0;
     for (int k; (k = read_words(f, w)) != 0 || n;) {
-        if (k == 14) {
-            iin[n] = (isect_txn){ { w[0], w[1], w[2] }, { w[3], w[4], w[5] }, w[6], w[7], w[8] };
-            memcpy(iwant[n++], w + 9, 5 * sizeof *w);
+        if (k == 15) {
+            iin[n] = (isect_txn){ { w[0], w[1], w[2] }, { w[3], w[4], w[5] }, w[6], w[7], w[8], w[9] };
+            memcpy(iwant[n++], w + 10, 5 * sizeof *w);
         }
         if (n == HLS_BATCH || (k == 0 && n)) {
             isect_top(iin, iout, n);
