@@ -226,7 +226,7 @@ def write(res):
            f"{ops[0]} add/sub, {ops[1]} mul, {ops[2]} div, {ops[3]} comparisons; the paper's Table 2 for one pipeline: "
            "16 add, 11 mul, 5 div, 13 cmp (our traversal decision counts min/max and both interval tests of 4 rays "
            "as 16 comparisons).", "",
-           "Not included: the list unit (no floating point), the traversal stack and thread state (Table 2: 44.5 KB), "
+           "Not included (the list unit and the caches: their own section below): the list unit (no floating point), the traversal stack and thread state (Table 2: 44.5 KB), "
            "the caches (Table 2: 15.6 KB for kd nodes, lists and matrices; the cycle model adds a 4 KB shading cache, "
            "so its cache data is 4 + 2 + 6 + 4 = 16 KB per pipe), the RGS/shader and the control. The prototype's whole pipeline with 64 threads "
            "used 56% of a Virtex-II 6000's logic (about 37,800 of its 67,584 LUT4s) and 78% of its memory. "
@@ -270,6 +270,16 @@ def control_section(res):
         md.append(f"| {name} | {lat} | {r['xilinx_luts']} | {r['xilinx_lutram_cells']} ({r['xilinx_lutram_bits']}) | "
                   f"{r['xilinx_ffs']} | {r['xilinx_bram18']} | {r['ice40_lut4']} | {r['ice40_ff']} | "
                   f"{r['ice40_bram']} ({r['ice40_bram_bits']}) |")
+    tot = {k: sum(res[control_key(n)][k] for n, t, _, _ in CONTROL if control_key(n) in res and t != "list_unit")
+           for k in ("xilinx_luts", "xilinx_ffs", "xilinx_bram18", "ice40_lut4")}
+    md += ["", f"The four caches and the port together: {tot['xilinx_luts']} LUTs, {tot['xilinx_ffs']} FFs, "
+           f"{tot['xilinx_bram18']} RAMB18 (7-series), {tot['ice40_lut4']} iCE40 LUT4s. Most of it is the caches' "
+           "request tables, which hold a whole line per outstanding request (16 x 320 bits in the matrix cache) so "
+           "that hits can pass misses and a line refilled meanwhile cannot change an answer; the matrix cache also "
+           "computes its index as the line address modulo 153 (a constant divider on the request's line address). A "
+           "table without the data (answers read from the data array, a conflicting fill held back while an answer "
+           "waits) would take a fraction of this; the list unit's mailboxes are block RAM as intended (one RAMB18 "
+           "per ray and slot; iCE40: 68 of 4 Kbit, more than an HX8K's 32)."]
     return md
 
 

@@ -1,12 +1,13 @@
 // tb_cache: test wrapper (not synthesized) of a DynRTP's memory interface: the four direct-mapped
 // caches of the cycle model's defaults (kd nodes 4 KB / 8-byte lines, lists 2 KB / 4, matrices
 // 6 KB / one packed triangle record of 4 ceil((12 (1+E+M) + 27) / 32) bytes, shading 4 KB / 16)
-// on one memory port (rtl/mem_port.sv). The C++ bench (tb_cache.cpp) is the requesters and the
+// on one memory port (rtl/mem_port.sv), each with 64 outstanding requests (the thread count: the
+// cycle model has no limit). The C++ bench (tb_cache.cpp) is the requesters and the
 // memory, and checks every response against the cycle model's caches.
 module tb_cache #(
   parameter int E = 7,
   parameter int M = 16,
-  parameter int OUTSTANDING = 16
+  parameter int OUTSTANDING = 64
 ) (
   input  logic          clk_i,
   input  logic          rst_ni,
