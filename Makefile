@@ -85,7 +85,7 @@ SIM_SRCS = $(MEMIMAGE) $(HLS_UNITS) $(CYCLE) $(REF) $(CLI)
 # render --capture-unit-io records the units' calls through linker wrappers (tb/cli/capture.c)
 comma := ,
 CAPTURE_WRAP := $(addprefix -Wl$(comma)--wrap=,xform_point xform_vector isect_unit_rebased trav_node_split \
-  list_unit_entry list_mailboxes_clear mem_iface_read)
+  list_unit_entry list_mailboxes_clear mem_iface_read mem_iface_flush mem_iface_new_frame)
 
 # per-format objects: everything that depends on the fp24 parameters
 fp_objs = $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(HLS_FP24) $(TB_FP))
@@ -341,6 +341,11 @@ rtl-test: deps rtl-lint
 	      --threads-per-pipe 64 --capture-unit-io $(BUILD)/rtl/capture/$$s.$$f.cycle --capture-limit 1000000 >/dev/null || exit 1; \
 	    $(BUILD)/rtl/$$f/tb_list -n $$(( $(RTL_N) / 10 )) --capture $(BUILD)/rtl/capture/$$s.$$f.cycle || exit 1; \
 	    $(BUILD)/rtl/$$f/tb_cache --capture $(BUILD)/rtl/capture/$$s.$$f.cycle || exit 1; done; done | tee $(BUILD)/rtl/memory.log
+	@mkdir -p $(BUILD)/rtl/animated
+	@set -o pipefail; $(BUILD)/saarcor render animated -o $(BUILD)/rtl/animated/a.png --width 128 --height 96 --mode cycle \
+	  --threads-per-pipe 64 --frames 0:3 --capture-unit-io $(BUILD)/rtl/capture/animated.cycle --capture-limit 1000000 >/dev/null \
+	  && $(BUILD)/rtl/$(DEFAULT_FMT)/tb_list -n 0 --capture $(BUILD)/rtl/capture/animated.cycle \
+	  && $(BUILD)/rtl/$(DEFAULT_FMT)/tb_cache --capture $(BUILD)/rtl/capture/animated.cycle | tee -a $(BUILD)/rtl/memory.log
 	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_sum -n $(RTL_N) || exit 1; done \
 	  | tee -a $(BUILD)/rtl/units.log
 

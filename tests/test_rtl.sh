@@ -44,6 +44,13 @@ t_list_and_cache() {
     --capture-unit-io "$T/capc" --capture-limit 200000 >/dev/null
   "$B/rtl/e7m16/tb_list" -n 50000 --capture "$T/capc"
   "$B/rtl/e7m16/tb_cache" --capture "$T/capc"
+  # three frames of the animated scene: the caches emptied between frames (flush_i)
+  mkdir -p "$T/anim"
+  "$BIN" render animated -o "$T/anim/a.png" --width 32 --height 24 --mode cycle --threads-per-pipe 64 --frames 0:2 \
+    --capture-unit-io "$T/capa" --capture-limit 200000 >/dev/null
+  "$B/rtl/e7m16/tb_list" -n 0 --capture "$T/capa"
+  "$B/rtl/e7m16/tb_cache" --capture "$T/capa" | tee "$T/capa.log"
+  grep -q "(3 frames, 2 flushes)" "$T/capa.log"
 }
 
 # builds tb_NAME with rtl/FILE replaced by the sed expression EXPR in $T/mut_NAME; runs it with ARGS

@@ -6,7 +6,8 @@
 // lines) to the cache of its kind, in the cycle the cycle model made it (later if the cache is not
 // ready), and is the memory behind the port with the cycle model's arithmetic (a transfer occupies
 // the port bytes x 65536 clock / MB/s in 1/65536 cycles after the port is free, its data is back
-// --mem-latency cycles after the transfer ends; words hold a hash of their address). Checked per
+// --mem-latency cycles after the transfer ends; words hold a hash of their address and of the
+// number of the memory image, which changes where the recording empties the caches). Checked per
 // line: the hit or miss the RTL reports against a replica of the C cache (itself checked against
 // the recorded lookups, hits and data arrival cycle of every read), the id, and the line's data;
 // reported: the cycles from the C model's arrival to the RTL's response, per kind of lookup.
@@ -30,9 +31,11 @@ constexpr int KINDS = 4;
 const char *const kind_name[KINDS] = { "kd nodes", "lists", "matrices", "shading" };
 constexpr uint64_t FX = 65536;
 
-uint32_t word_of(uint32_t a) // the memory's contents: a hash of the word address
+uint32_t g_image = 0; // memory images so far: the contents change with each emptying of the caches
+
+uint32_t word_of(uint32_t a) // the memory's contents: a hash of the word address and the image
 {
-    uint32_t x = a * 0x9E3779B1u;
+    uint32_t x = (a + g_image * 0x7F4A7C15u) * 0x9E3779B1u;
     x ^= x >> 15;
     x *= 0x85EBCA77u;
     return x ^ (x >> 13);
@@ -95,7 +98,10 @@ int main(int argc, char **argv)
                    rtl_size[KINDS] = { 4096, 2048, 6144, 4096 };
 
     c_model cm{};
-    std::deque<line_req> q[KINDS];
+    // the frames of the recording ("N"), each after an emptying of the caches or not ("F")
+    struct segment { std::deque<line_req> q[KINDS]; bool flush = false; uint64_t lookups = 0; };
+    std::vector<segment> segs(1);
+    uint64_t frames = 0, flushes = 0;
     uint64_t reads = 0, lookups[KINDS] = {}, c_hits[KINDS] = {};
     char buf[512];
     bool have_cfg = false;
@@ -124,6 +130,29 @@ int main(int argc, char **argv)
             cm.latency = v[8];
             cm.fxpb = fxpb;
             have_cfg = true;
+            continue;
+        }
+        if (buf[0] == 'F' || buf[0] == 'N') {
+            unsigned pipe;
+            if (std::sscanf(buf + 1, "%x", &pipe) != 1 || !have_cfg) {
+                std::printf("tb_cache: %s: malformed line\n", path.c_str());
+                return 2;
+            }
+            if (pipe)
+                continue;
+            if (segs.back().lookups)
+                segs.emplace_back();
+            if (buf[0] == 'F') { // mem_iface_flush: the tags
+                segs.back().flush = true;
+                flushes++;
+                for (int k = 0; k < KINDS; k++)
+                    std::fill(cm.tag[k].begin(), cm.tag[k].end(), 0);
+            } else { // mem_iface_new_frame: the port and the cycle count
+                frames++;
+                cm.port_free = 0;
+                for (int k = 0; k < KINDS; k++)
+                    std::fill(cm.valid_at[k].begin(), cm.valid_at[k].end(), 0);
+            }
             continue;
         }
         unsigned pipe, kind, addr, words;
@@ -155,7 +184,8 @@ int main(int argc, char **argv)
             r.c_kind_of_hit = !r.c_hit ? 0 : r.c_at > now ? 2 : 1;
             hits += (uint64_t)r.c_hit;
             ready = std::max<uint64_t>(ready, r.c_at);
-            q[kind].push_back(r);
+            segs.back().q[kind].push_back(r);
+            segs.back().lookups++;
         }
         c_hits[kind] += hits;
         if (nl != last - first + 1 || nh != hits || at != ready) {
@@ -174,20 +204,24 @@ int main(int argc, char **argv)
     }
 
     // reset, then wait for the caches' tag clearing
-    top.rst_ni = 0, top.clk_i = 0, top.req_valid_i = 0, top.mem_rsp_valid_i = 0;
+    top.rst_ni = 0, top.clk_i = 0, top.req_valid_i = 0, top.mem_rsp_valid_i = 0, top.flush_i = 0;
     top.eval();
     top.clk_i = 1;
     top.eval();
     top.rst_ni = 1;
-    uint64_t base = 0;
-    for (;; base++) {
-        top.clk_i = 0;
-        top.eval();
-        if (top.req_ready_o == 0xF)
-            break;
-        top.clk_i = 1;
-        top.eval();
-    }
+    uint64_t cyc = 0; // RTL cycles since reset
+    auto wait_ready = [&]() {
+        for (;; cyc++) {
+            top.clk_i = 0;
+            top.eval();
+            if (top.req_ready_o == 0xF)
+                break;
+            top.clk_i = 1;
+            top.eval();
+            top.flush_i = 0;
+        }
+    };
+    wait_ready();
     struct transfer { uint64_t at; uint32_t addr, bytes; };
     std::deque<transfer> mem_q;
     uint64_t mem_port_free = 0, transfers = 0, transfer_bytes = 0;
@@ -197,103 +231,125 @@ int main(int argc, char **argv)
     // cycles from the C model's arrival to the RTL's response, per kind of lookup (0 miss, 1 hit, 2 pending)
     std::map<int64_t, uint64_t> offset[3];
     uint64_t total = 0;
-    for (int k = 0; k < KINDS; k++)
-        total += q[k].size();
-    uint64_t finished = 0;
-    const uint64_t limit = (q[0].empty() ? 0 : q[0].back().now) + 1000000;
-    for (uint64_t cyc = 0; finished < total; cyc++) {
-        if (cyc > limit) {
-            std::printf("PROTOCOL: tb_cache: %llu of %llu lookups answered by cycle %llu\n",
-                        (unsigned long long)finished, (unsigned long long)total, (unsigned long long)cyc);
-            return 1;
+    for (const segment &sg : segs)
+        total += sg.lookups;
+    for (segment &sg : segs) {
+        if (sg.flush) { // empty the caches (all answered: nothing under way)
+            top.clk_i = 0;
+            top.flush_i = 1;
+            top.eval();
+            top.clk_i = 1;
+            top.eval();
+            top.flush_i = 0;
+            cyc++;
+            wait_ready();
+            g_image++;
         }
-        top.clk_i = 0;
-        // requests: each cache's next lookup once the C model made it
-        uint32_t valid = 0;
-        for (int k = 0; k < KINDS; k++) {
-            if (q[k].empty() || q[k].front().now > cyc || inflight[k].size() >= 256)
-                continue;
-            valid |= 1u << k;
-            top.req_id_i = (top.req_id_i & ~(0xFFu << (8 * k))) | (next_id[k] & 0xFFu) << (8 * k);
-            set_word(top.req_line_i, k, q[k].front().line);
-        }
-        top.req_valid_i = valid;
-        // memory: the oldest transfer whose data is back
-        const bool rsp = !mem_q.empty() && mem_q.front().at <= cyc;
-        top.mem_rsp_valid_i = rsp;
-        if (rsp) {
-            const transfer &t = mem_q.front();
-            for (uint32_t w = 0; w < t.bytes / 4; w++)
-                set_word(top.mem_rsp_data_i, (int)w, word_of(t.addr / 4 + w));
-        }
-        top.eval();
-        // this edge's transfers
-        for (int k = 0; k < KINDS; k++) {
-            if (!(valid >> k & 1u))
-                continue;
-            if (!(top.req_ready_o >> k & 1u))
-                refused[k]++;
-            else {
-                line_req r = q[k].front();
-                q[k].pop_front();
-                r.offered = cyc;
-                if (cyc > r.now)
-                    delayed[k]++;
-                inflight[k][next_id[k] & 0xFFu] = r;
-                next_id[k]++;
-            }
-        }
-        if (rsp)
-            mem_q.pop_front();
-        if (top.mem_req_valid_o) { // the port's request: the cycle model's port arithmetic
-            const uint64_t start = std::max(mem_port_free, cyc * FX);
-            mem_port_free = start + top.mem_req_bytes_o * cm.fxpb;
-            mem_q.push_back(transfer{ (mem_port_free + FX - 1) / FX + cm.latency, top.mem_req_addr_o,
-                                      top.mem_req_bytes_o });
-            transfers++;
-            transfer_bytes += top.mem_req_bytes_o;
-        }
-        for (int k = 0; k < KINDS; k++) {
-            if (!(top.rsp_valid_o >> k & 1u))
-                continue;
-            const uint32_t id = (top.rsp_id_o >> (8 * k)) & 0xFFu;
-            const int hit = top.rsp_hit_o >> k & 1u;
-            auto it = inflight[k].find(id);
-            if (it == inflight[k].end()) {
-                std::printf("PROTOCOL: %s cache answered id %u at cycle %llu, not in flight\n", kind_name[k], id,
-                            (unsigned long long)cyc);
+        // the frame's cycle 0: the port and the C model's cycles start again
+        const uint64_t base = cyc;
+        mem_port_free = 0;
+        std::deque<line_req> *q = sg.q;
+        uint64_t finished = 0, last_now = 0;
+        for (int k = 0; k < KINDS; k++)
+            if (!q[k].empty())
+                last_now = std::max<uint64_t>(last_now, q[k].back().now);
+        const uint64_t limit = base + last_now + 1000000;
+        for (; finished < sg.lookups; cyc++) {
+            const uint64_t rel = cyc - base;
+            if (cyc > limit) {
+                std::printf("PROTOCOL: tb_cache: %llu of %llu lookups of a frame answered by cycle %llu\n",
+                            (unsigned long long)finished, (unsigned long long)sg.lookups, (unsigned long long)rel);
                 return 1;
             }
-            const line_req r = it->second;
-            inflight[k].erase(it);
-            done[k]++, finished++;
-            rtl_hits[k] += (uint64_t)hit;
-            bool data_ok = true;
-            uint32_t got0 = 0, want0 = 0;
-            for (uint32_t w = 0; w < cm.line[k] / 4; w++) {
-                const uint32_t want = word_of(r.line * (cm.line[k] / 4) + w);
-                const uint32_t got = k == 0 ? word(top.n_data_o, (int)w)
-                                     : k == 1 ? word(top.l_data_o, (int)w)
-                                     : k == 2 ? word(top.m_data_o, (int)w)
-                                              : word(top.s_data_o, (int)w);
-                if (got != want && data_ok)
-                    data_ok = false, got0 = got, want0 = want;
+            top.clk_i = 0;
+            // requests: each cache's next lookup once the C model made it
+            uint32_t valid = 0;
+            for (int k = 0; k < KINDS; k++) {
+                if (q[k].empty() || q[k].front().now > rel || inflight[k].size() >= 256)
+                    continue;
+                valid |= 1u << k;
+                top.req_id_i = (top.req_id_i & ~(0xFFu << (8 * k))) | (next_id[k] & 0xFFu) << (8 * k);
+                set_word(top.req_line_i, k, q[k].front().line);
             }
-            if ((hit != r.c_hit || !data_ok) && g_mismatches++ < 10)
-                std::printf("MISMATCH %s cache lookup %llu (line %x, C cycle %llu) at cycle %llu: C %s, rtl %s; data %s "
-                            "(first differing word: expected %08x, rtl %08x)\n",
-                            kind_name[k], (unsigned long long)r.index, r.line, (unsigned long long)r.now,
-                            (unsigned long long)cyc, r.c_hit ? "hit" : "miss", hit ? "hit" : "miss",
-                            data_ok ? "equal" : "differs", want0, got0);
-            offset[r.c_kind_of_hit][(int64_t)cyc - (int64_t)r.c_at]++;
+            top.req_valid_i = valid;
+            // memory: the oldest transfer whose data is back
+            const bool rsp = !mem_q.empty() && mem_q.front().at <= rel;
+            top.mem_rsp_valid_i = rsp;
+            if (rsp) {
+                const transfer &t = mem_q.front();
+                for (uint32_t w = 0; w < t.bytes / 4; w++)
+                    set_word(top.mem_rsp_data_i, (int)w, word_of(t.addr / 4 + w));
+            }
+            top.eval();
+            // this edge's transfers
+            for (int k = 0; k < KINDS; k++) {
+                if (!(valid >> k & 1u))
+                    continue;
+                if (!(top.req_ready_o >> k & 1u))
+                    refused[k]++;
+                else {
+                    line_req r = q[k].front();
+                    q[k].pop_front();
+                    r.offered = rel;
+                    if (rel > r.now)
+                        delayed[k]++;
+                    inflight[k][next_id[k] & 0xFFu] = r;
+                    next_id[k]++;
+                }
+            }
+            if (rsp)
+                mem_q.pop_front();
+            if (top.mem_req_valid_o) { // the port's request: the cycle model's port arithmetic
+                const uint64_t start = std::max(mem_port_free, rel * FX);
+                mem_port_free = start + top.mem_req_bytes_o * cm.fxpb;
+                mem_q.push_back(transfer{ (mem_port_free + FX - 1) / FX + cm.latency, top.mem_req_addr_o,
+                                          top.mem_req_bytes_o });
+                transfers++;
+                transfer_bytes += top.mem_req_bytes_o;
+            }
+            for (int k = 0; k < KINDS; k++) {
+                if (!(top.rsp_valid_o >> k & 1u))
+                    continue;
+                const uint32_t id = (top.rsp_id_o >> (8 * k)) & 0xFFu;
+                const int hit = top.rsp_hit_o >> k & 1u;
+                auto it = inflight[k].find(id);
+                if (it == inflight[k].end()) {
+                    std::printf("PROTOCOL: %s cache answered id %u at cycle %llu, not in flight\n", kind_name[k], id,
+                                (unsigned long long)cyc);
+                    return 1;
+                }
+                const line_req r = it->second;
+                inflight[k].erase(it);
+                done[k]++, finished++;
+                rtl_hits[k] += (uint64_t)hit;
+                bool data_ok = true;
+                uint32_t got0 = 0, want0 = 0;
+                for (uint32_t w = 0; w < cm.line[k] / 4; w++) {
+                    const uint32_t want = word_of(r.line * (cm.line[k] / 4) + w);
+                    const uint32_t got = k == 0 ? word(top.n_data_o, (int)w)
+                                         : k == 1 ? word(top.l_data_o, (int)w)
+                                         : k == 2 ? word(top.m_data_o, (int)w)
+                                                  : word(top.s_data_o, (int)w);
+                    if (got != want && data_ok)
+                        data_ok = false, got0 = got, want0 = want;
+                }
+                if ((hit != r.c_hit || !data_ok) && g_mismatches++ < 10)
+                    std::printf("MISMATCH %s cache lookup %llu (line %x, C cycle %llu) at cycle %llu: C %s, rtl %s; data %s "
+                                "(first differing word: expected %08x, rtl %08x)\n",
+                                kind_name[k], (unsigned long long)r.index, r.line, (unsigned long long)r.now,
+                                (unsigned long long)cyc, r.c_hit ? "hit" : "miss", hit ? "hit" : "miss",
+                                data_ok ? "equal" : "differs", want0, got0);
+                offset[r.c_kind_of_hit][(int64_t)rel - (int64_t)r.c_at]++;
+            }
+            top.clk_i = 1;
+            top.eval();
         }
-        top.clk_i = 1;
-        top.eval();
     }
     top.final();
-    std::printf("tb_cache e%dm%d: %llu reads of pipe 0, %llu line lookups; %llu transfers (%llu bytes); "
-                "%llu mismatches\n",
-                F24_EXP_BITS, F24_MAN_BITS, (unsigned long long)reads, (unsigned long long)total,
+    std::printf("tb_cache e%dm%d: %llu reads of pipe 0 (%llu frames, %llu flushes), %llu line lookups; %llu transfers "
+                "(%llu bytes); %llu mismatches\n",
+                F24_EXP_BITS, F24_MAN_BITS, (unsigned long long)reads, (unsigned long long)frames,
+                (unsigned long long)flushes, (unsigned long long)total,
                 (unsigned long long)transfers, (unsigned long long)transfer_bytes, (unsigned long long)g_mismatches);
     for (int k = 0; k < KINDS; k++)
         std::printf("  %-8s cache (%u B, %u-byte lines): %llu lookups, hits C %llu rtl %llu; %llu requests taken "

@@ -11,6 +11,7 @@ module tb_cache #(
 ) (
   input  logic          clk_i,
   input  logic          rst_ni,
+  input  logic          flush_i,
   input  logic [3:0]    req_valid_i,
   output logic [3:0]    req_ready_o,
   input  logic [31:0]   req_id_i,      // 8 bits per cache
@@ -40,7 +41,7 @@ module tb_cache #(
   for (genvar c = 0; c < 4; c++) begin : g_cache
     localparam int OFF = c == 0 ? 0 : c == 1 ? 64 : c == 2 ? 96 : 96 + 8 * MB;
     cache_dm #(.LINE_BYTES(LB[c]), .SIZE_BYTES(SZ[c]), .OUTSTANDING(OUTSTANDING)) u_cache (
-      .clk_i(clk_i), .rst_ni(rst_ni), .flush_i(1'b0),
+      .clk_i(clk_i), .rst_ni(rst_ni), .flush_i(flush_i),
       .req_valid_i(req_valid_i[c]), .req_ready_o(req_ready_o[c]), .req_id_i(req_id_i[c*8 +: 8]),
       .req_line_i(req_line_i[c*32 +: 32]),
       .rsp_valid_o(rsp_valid_o[c]), .rsp_ready_i(1'b1), .rsp_id_o(rsp_id_o[c*8 +: 8]), .rsp_hit_o(rsp_hit_o[c]),

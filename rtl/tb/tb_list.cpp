@@ -1,6 +1,7 @@
 // Co-simulation of the mailboxed list unit (rtl/list_unit.sv) against the C unit
 // (hls/units/list_unit.c: list_unit_entry, list_mailboxes_clear). The bench is the unit's memory
-// (mem_rdata_i holds mem[mem_addr_o] from the cycle after mem_re_o) and keeps the C unit's
+// (mem_rdata_i holds mem[mem_addr_o] from the cycle after mem_re_o: the entry the operation read
+// while rendering, at that address only, for the image may change between frames) and keeps the C unit's
 // mailboxes per thread and level; every operation the RTL accepts is applied to the C unit in the
 // same order, and every result leaving the RTL is compared with the C unit's (thread, level, key,
 // need, skip mask, k after) and, for captured operations (saarcor render --capture-unit-io DIR:
@@ -61,6 +62,7 @@ bool model(const op &o, std::size_t index, expect &e)
         list_mailboxes_clear(g_box[o.thread][o.level]);
         return false;
     }
+    put_mem(o.lists + o.first + o.k, o.entry); // the memory image as the operation saw it
     trav_walker w{};
     w.lists = o.lists, w.leaf_first = o.first, w.k = o.k, w.leaf_mask = o.leaf_mask;
     unit_op u{};
@@ -104,8 +106,6 @@ bool read_capture(const std::string &path, std::vector<op> &out)
             std::fclose(f);
             return false;
         }
-        if (!o.clear)
-            put_mem(o.lists + o.first + o.k, o.entry);
         out.push_back(o);
         n++;
     }
@@ -133,6 +133,7 @@ void random_ops(std::size_t n, std::vector<op> &out)
             o.k = rnd() % 2048;
             o.leaf_mask = rnd() & 15u;
             o.alive = rnd() % 4 ? 15u : rnd() & 15u;
+            o.entry = mem_at(o.lists + o.first + o.k);
         }
         out.push_back(o);
     }
@@ -239,10 +240,16 @@ int main(int argc, char **argv)
         }
         const bool re = top.mem_re_o;
         const uint32_t addr = top.mem_addr_o;
+        uint32_t rdata = 0xDEADBEEFu; // the memory: the operation's entry at its address
+        if (re && offer && top.ready_o) {
+            const op &o = ops[next - 1];
+            if (addr == o.lists + o.first + o.k)
+                rdata = o.entry;
+        }
         top.clk_i = 1;
         top.eval();
         if (re) {
-            top.mem_rdata_i = mem_at(addr);
+            top.mem_rdata_i = rdata;
             top.eval();
         }
     }

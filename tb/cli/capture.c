@@ -261,6 +261,48 @@ uint32_t __wrap_list_unit_entry(const uint32_t *mem, trav_walker *w, trace_mailb
 
 uint64_t __real_mem_iface_read(mem_iface *m, uint32_t kind, uint32_t word_addr, uint32_t words, uint64_t now);
 uint64_t __wrap_mem_iface_read(mem_iface *m, uint32_t kind, uint32_t word_addr, uint32_t words, uint64_t now);
+void __real_mem_iface_flush(mem_iface *m);
+void __wrap_mem_iface_flush(mem_iface *m);
+void __real_mem_iface_new_frame(mem_iface *m);
+void __wrap_mem_iface_new_frame(mem_iface *m);
+
+/* The pipe number of m (called with the lock held); a new pipe's configuration line first. */
+static uint32_t pipe_id(FILE *f, const mem_iface *m)
+{
+    uint32_t pipe = 0;
+    while (pipe < cap_pipes && cap_pipe[pipe] != m)
+        pipe++;
+    if (pipe == cap_pipes && cap_pipes < CAP_MAX_IDS) {
+        cap_pipe[cap_pipes++] = m;
+        fprintf(f, "C %x", pipe);
+        for (int k = 0; k < MI_CACHED_KINDS; k++)
+            fprintf(f, " %x %x", m->cfg.cache[k].size_bytes, m->cfg.cache[k].line_bytes);
+        fprintf(f, " %x %llx\n", m->cfg.latency, (unsigned long long)m->fx_per_byte);
+    }
+    return pipe;
+}
+
+/* The caches emptied (a new memory image: "F pipe") and a new frame (the port and the cycle
+ * count start again: "N pipe"). */
+void __wrap_mem_iface_flush(mem_iface *m)
+{
+    __real_mem_iface_flush(m);
+    FILE *f = begin(CAP_MEM);
+    if (!f)
+        return;
+    fprintf(f, "F %x", pipe_id(f, m));
+    end(f);
+}
+
+void __wrap_mem_iface_new_frame(mem_iface *m)
+{
+    __real_mem_iface_new_frame(m);
+    FILE *f = begin(CAP_MEM);
+    if (!f)
+        return;
+    fprintf(f, "N %x", pipe_id(f, m));
+    end(f);
+}
 
 uint64_t __wrap_mem_iface_read(mem_iface *m, uint32_t kind, uint32_t word_addr, uint32_t words, uint64_t now)
 {
@@ -269,16 +311,7 @@ uint64_t __wrap_mem_iface_read(mem_iface *m, uint32_t kind, uint32_t word_addr, 
     FILE *f = begin(CAP_MEM);
     if (!f)
         return at;
-    uint32_t pipe = 0;
-    while (pipe < cap_pipes && cap_pipe[pipe] != m)
-        pipe++;
-    if (pipe == cap_pipes && cap_pipes < CAP_MAX_IDS) { /* a new pipe: its configuration first */
-        cap_pipe[cap_pipes++] = m;
-        fprintf(f, "C %x", pipe);
-        for (int k = 0; k < MI_CACHED_KINDS; k++)
-            fprintf(f, " %x %x", m->cfg.cache[k].size_bytes, m->cfg.cache[k].line_bytes);
-        fprintf(f, " %x %llx\n", m->cfg.latency, (unsigned long long)m->fx_per_byte);
-    }
+    const uint32_t pipe = pipe_id(f, m);
     fprintf(f, "%x %x %x %x %llx %llx %llx %llx", pipe, kind, word_addr, words, (unsigned long long)now,
             (unsigned long long)at, (unsigned long long)(m->stats.lookups[kind] - l0),
             (unsigned long long)(m->stats.hits[kind] - h0));
