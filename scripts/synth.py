@@ -11,11 +11,17 @@
    (E = 7), for hardware cost against image error (docs/synth.md, build/synth/synth.json, read
    by make bench-precision), and the intersection unit with the robust edge option
    (EDGE_EPS = 8, docs/stress.md) beside the exact one.
-4. The accuracy datapath (docs/numerics.md): the exact dot product f24_sum_exact with the term
+4. The memory interface and the list unit (no floating point): rtl/list_unit.sv at 64 threads,
+   rtl/cache_dm.sv as the kd-node, list, matrix and shading caches of the cycle model's defaults,
+   rtl/mem_port.sv for those four requesters, with synth_xilinx and synth_ice40 (LUTs, flip-flops,
+   block RAM and its bits).
+5. The accuracy datapath (docs/numerics.md): the exact dot product f24_sum_exact with the term
    counts its users need (4: rebase unit, 8: the transformation unit's wide mode, 9: the
    intersection unit's plane distance) at e7m16, and with 9 terms at M = 12 and 20, and the area
    of the whole fix composed from it and the operators.
 Runs two Yosys processes at a time; logs in build/synth/.
+`scripts/synth.py --only-control` synthesizes only item 4 and merges it into an existing
+build/synth/synth.json (the other modules' figures as they were) before writing docs/synth.md.
 """
 import concurrent.futures as cf, json, os, re, subprocess, sys, tempfile
 
@@ -112,10 +118,65 @@ def ice40(top, e, m):
     return res
 
 
+# memory interface and list unit: (name, module, parameters, latency)
+MB_E7M16 = 4 * ((12 * 24 + 27 + 31) // 32)  # matrix line bytes: one packed triangle record
+CONTROL = [
+    ("list_unit", "list_unit", {"THREADS": 64}, "3"),
+    ("cache_dm kd nodes 4 KB / 8 B", "cache_dm", {"LINE_BYTES": 8, "SIZE_BYTES": 4096}, "hit 2"),
+    ("cache_dm lists 2 KB / 4 B", "cache_dm", {"LINE_BYTES": 4, "SIZE_BYTES": 2048}, "hit 2"),
+    (f"cache_dm matrices 6 KB / {MB_E7M16} B", "cache_dm", {"LINE_BYTES": MB_E7M16, "SIZE_BYTES": 6144}, "hit 2"),
+    ("cache_dm shading 4 KB / 16 B", "cache_dm", {"LINE_BYTES": 16, "SIZE_BYTES": 4096}, "hit 2"),
+    ("mem_port 4 requesters", "mem_port", {"N": 4, "DW": 8 * MB_E7M16}, "0"),
+]
+
+
+def control_key(name):
+    return ("c", name, 16)
+
+
+def control(name, top, params):
+    """synth_xilinx and synth_ice40 of a module without floating point: LUTs, FFs, BRAM (and bits)."""
+    tag = re.sub(r"[^A-Za-z0-9]+", "_", name).strip("_")
+    reads = " ".join(f"read_verilog -sv {f};" for f in RTL)
+    chp = " ".join(f"-set {k} {v}" for k, v in params.items())
+    cx = cells(yosys(f"{reads} chparam {chp} {top}; synth_xilinx -top {top} -flatten; stat",
+                     os.path.join(OUT, f"ctl_{tag}_xilinx.log")))
+    ci = cells(yosys(f"{reads} chparam {chp} {top}; synth_ice40 -top {top}; stat",
+                     os.path.join(OUT, f"ctl_{tag}_ice40.log")))
+    lutram = {"RAM32M": 64 * 2, "RAM64M": 64 * 3, "RAM32X1D": 32, "RAM64X1D": 64, "RAM128X1D": 128, "RAM256X1S": 256,
+              "RAM64X1S": 64, "RAM32X1S": 32, "RAM128X1S": 128}
+    return {"xilinx_luts": sum(v for k, v in cx.items() if re.fullmatch(r"LUT\d", k)),
+            "xilinx_lutram_cells": sum(v for k, v in cx.items() if k in lutram),
+            "xilinx_lutram_bits": sum(v * lutram[k] for k, v in cx.items() if k in lutram),
+            "xilinx_ffs": sum(v for k, v in cx.items() if re.fullmatch(r"FD[RSCP]E(_1)?", k)),
+            "xilinx_bram18": cx.get("RAMB18E1", 0) + 2 * cx.get("RAMB36E1", 0),
+            "ice40_lut4": ci.get("SB_LUT4", 0), "ice40_ff": sum(v for k, v in ci.items() if k.startswith("SB_DFF")),
+            "ice40_bram": ci.get("SB_RAM40_4K", 0), "ice40_bram_bits": 4096 * ci.get("SB_RAM40_4K", 0)}
+
+
 def main():
     os.makedirs(OUT, exist_ok=True)
+    if "--only-control" in sys.argv[1:]:
+        path = os.path.join(OUT, "synth.json")
+        if not os.path.exists(path):
+            sys.exit("synth.py --only-control: no build/synth/synth.json to merge into (run make synth once)")
+        res = {}
+        for k, v in json.load(open(path)).items():
+            kind, top, rest = k.split(":", 2)
+            m = rest[3:]
+            res[(kind, top, int(m) if m.isdigit() else m)] = v
+        with cf.ThreadPoolExecutor(max_workers=2) as pool:
+            jobs = {control_key(n): pool.submit(control, n, t, p) for n, t, p, _ in CONTROL}
+            for k, f in jobs.items():
+                res[k] = f.result()
+                print(f"synth: {k[1]}: {res[k]}", file=sys.stderr, flush=True)
+        json.dump({f"{k[0]}:{k[1]}:e7m{k[2]}": v for k, v in res.items()}, open(path, "w"), indent=1)
+        write(res)
+        return
     jobs = {}
     with cf.ThreadPoolExecutor(max_workers=2) as pool:
+        for n, t, p, _ in CONTROL:
+            jobs[control_key(n)] = pool.submit(control, n, t, p)
         for top in OPERATORS + UNITS:
             jobs[("x", top, 16)] = pool.submit(xilinx, top, 7, 16)
         for top in OPERATORS:
@@ -134,7 +195,8 @@ def main():
         res = {}
         for k, f in jobs.items():
             res[k] = f.result()
-            print(f"synth: {k[1]} e7m{k[2]} {'xilinx' if k[0] == 'x' else 'ice40'}: {res[k]}", file=sys.stderr, flush=True)
+            print(f"synth: {k[1]} e7m{k[2]} {'xilinx' if k[0] == 'x' else 'ice40' if k[0] == 'i' else ''}: {res[k]}",
+                  file=sys.stderr, flush=True)
     json.dump({f"{k[0]}:{k[1]}:e7m{k[2]}": v for k, v in res.items()}, open(os.path.join(OUT, "synth.json"), "w"), indent=1)
     write(res)
 
@@ -164,7 +226,7 @@ def write(res):
            f"{ops[0]} add/sub, {ops[1]} mul, {ops[2]} div, {ops[3]} comparisons; the paper's Table 2 for one pipeline: "
            "16 add, 11 mul, 5 div, 13 cmp (our traversal decision counts min/max and both interval tests of 4 rays "
            "as 16 comparisons).", "",
-           "Not included: the list unit (no floating point), the traversal stack and thread state (Table 2: 44.5 KB), "
+           "Not included (the list unit and the caches: their own section below): the list unit (no floating point), the traversal stack and thread state (Table 2: 44.5 KB), "
            "the caches (Table 2: 15.6 KB for kd nodes, lists and matrices; the cycle model adds a 4 KB shading cache, "
            "so its cache data is 4 + 2 + 6 + 4 = 16 KB per pipe), the RGS/shader and the control. The prototype's whole pipeline with 64 threads "
            "used 56% of a Virtex-II 6000's logic (about 37,800 of its 67,584 LUT4s) and 78% of its memory. "
@@ -184,9 +246,41 @@ def write(res):
            f"isect_unit at e7m16 with EDGE_EPS = {ROBUST_EDGE_EPS} (u, v >= -2^-{ROBUST_EDGE_EPS}, u + v <= 1 + 2^-{ROBUST_EDGE_EPS}): "
            f"{robust['luts']} LUTs / {robust['dsp']} DSP against {exact['luts']} / {exact['dsp']} for the exact bounds "
            f"({robust['luts'] - exact['luts']:+d} LUTs); the latency and issue rate are unchanged."]
+    md += control_section(res)
     md += accuracy_section(res)
     open(os.path.join(ROOT, "docs", "synth.md"), "w").write("\n".join(md) + "\n")
     print("\n".join(md))
+
+
+def control_section(res):
+    """The list unit, the caches and the memory port (no floating point)."""
+    md = ["", "## List unit and memory interface (no floating point)", "",
+          "rtl/list_unit.sv at the paper's 64 threads (the mailboxes of 64 threads x 2 levels x 4 rays x 8 "
+          "entries: 131,072 key bits + the round-robin pointers), rtl/cache_dm.sv as the four caches of the cycle "
+          "model's defaults (16 outstanding requests each) and rtl/mem_port.sv with those four requesters. "
+          "Xilinx: `synth_xilinx -flatten` (LUT RAM counted apart from the LUTs, block RAM in RAMB18 units); iCE40: "
+          "`synth_ice40` (SB_RAM40_4K blocks of 4 Kbit). Memories that Yosys does not map to block RAM (the list "
+          "unit's 36 small memories, the caches' request tables) become LUT RAM or flip-flops.", "",
+          "| module | latency | LUTs | LUT RAM (bits) | FFs | RAMB18 | iCE40 LUT4 | iCE40 FFs | iCE40 BRAM (bits) |",
+          "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for name, _, _, lat in CONTROL:
+        r = res.get(control_key(name))
+        if not r:
+            continue
+        md.append(f"| {name} | {lat} | {r['xilinx_luts']} | {r['xilinx_lutram_cells']} ({r['xilinx_lutram_bits']}) | "
+                  f"{r['xilinx_ffs']} | {r['xilinx_bram18']} | {r['ice40_lut4']} | {r['ice40_ff']} | "
+                  f"{r['ice40_bram']} ({r['ice40_bram_bits']}) |")
+    tot = {k: sum(res[control_key(n)][k] for n, t, _, _ in CONTROL if control_key(n) in res and t != "list_unit")
+           for k in ("xilinx_luts", "xilinx_ffs", "xilinx_bram18", "ice40_lut4")}
+    md += ["", f"The four caches and the port together: {tot['xilinx_luts']} LUTs, {tot['xilinx_ffs']} FFs, "
+           f"{tot['xilinx_bram18']} RAMB18 (7-series), {tot['ice40_lut4']} iCE40 LUT4s. Most of it is the caches' "
+           "request tables, which hold a whole line per outstanding request (16 x 320 bits in the matrix cache) so "
+           "that hits can pass misses and a line refilled meanwhile cannot change an answer; the matrix cache also "
+           "computes its index as the line address modulo 153 (a constant divider on the request's line address). A "
+           "table without the data (answers read from the data array, a conflicting fill held back while an answer "
+           "waits) would take a fraction of this; the list unit's mailboxes are block RAM as intended (one RAMB18 "
+           "per ray and slot; iCE40: 68 of 4 Kbit, more than an HX8K's 32)."]
+    return md
 
 
 def accuracy_section(res):

@@ -3,8 +3,12 @@
 # for every module in rtl/; the fp24 operators match the C model bit for bit on the edge sets,
 # 10^5 random vectors and the golden hex vectors; the datapath units match on random vectors and
 # on transactions captured while rendering the room (saarcor render --capture-unit-io); the exact
-# dot product (rtl/f24_sum_exact.sv) matches hls/fp24/f24_sum_exact.c on 10^5 sets; the benches
-# catch a mutant (a rounder that never rounds ties to even). Prints cmocka-style lines.
+# dot product (rtl/f24_sum_exact.sv) matches hls/fp24/f24_sum_exact.c on 10^5 sets; the list unit
+# (rtl/list_unit.sv) matches hls/units/list_unit.c on the operations of a cycle-mode frame of the
+# room at 64 threads and 5 x 10^4 random ones, and the caches with the memory port
+# (rtl/cache_dm.sv, mem_port.sv) the cycle model's caches on that frame's reads; the benches catch
+# mutants (a rounder that never rounds ties to even, a mailbox that never moves on, a cache
+# without its tag forwarding). Prints cmocka-style lines.
 set -u
 cd "$(dirname "$0")/.."
 B=${BUILD:-build}
@@ -35,6 +39,46 @@ t_exact_sum() {
   "$B/rtl/e7m16/tb_sum" -n 100000
 }
 
+t_list_and_cache() {
+  "$BIN" render room -o "$T/room_cycle.png" --width 48 --height 32 --mode cycle --threads-per-pipe 64 \
+    --capture-unit-io "$T/capc" --capture-limit 200000 >/dev/null
+  "$B/rtl/e7m16/tb_list" -n 50000 --capture "$T/capc"
+  "$B/rtl/e7m16/tb_cache" --capture "$T/capc"
+  # three frames of the animated scene: the caches emptied between frames (flush_i)
+  mkdir -p "$T/anim"
+  "$BIN" render animated -o "$T/anim/a.png" --width 32 --height 24 --mode cycle --threads-per-pipe 64 --frames 0:2 \
+    --capture-unit-io "$T/capa" --capture-limit 200000 >/dev/null
+  "$B/rtl/e7m16/tb_list" -n 0 --capture "$T/capa"
+  "$B/rtl/e7m16/tb_cache" --capture "$T/capa" | tee "$T/capa.log"
+  grep -q "(3 frames, 2 flushes)" "$T/capa.log"
+}
+
+# builds tb_NAME with rtl/FILE replaced by the sed expression EXPR in $T/mut_NAME; runs it with ARGS
+# and expects it to fail
+mutant() {
+  local name=$1 file=$2 expr=$3; shift 3
+  local d="$T/mut_$name"
+  mkdir -p "$d"
+  sed "$expr" "rtl/$file" >"$d/$file"
+  ! cmp -s "rtl/$file" "$d/$file" || { echo "the mutation of $file changed nothing"; return 1; }
+  local srcs=()
+  for f in rtl/*.sv; do [[ $f == "rtl/$file" ]] || srcs+=("$PWD/$f"); done
+  verilator --cc --exe --build -j 2 -Wno-fatal -GE=7 -GM=16 --top-module "tb_$name" -Mdir "$d/obj" \
+    -o "$d/tb" "${srcs[@]}" "$d/$file" "$PWD/rtl/tb/tb_$name.sv" "$PWD/rtl/tb/tb_$name.cpp" \
+    -CFLAGS "-DF24_EXP_BITS=7 -DF24_MAN_BITS=16 -I$PWD/hls -I$PWD/hls/fp24 -I$PWD/hls/units -I$PWD/tb/fp" \
+    -LDFLAGS "$(ls "$PWD/$B"/obj/e7m16/hls/fp24/*.o "$PWD/$B"/obj/e7m16/hls/units/*.o "$PWD/$B"/obj/e7m16/tb/fp/*.o | tr '\n' ' ') -lmpfr -lgmp -lm" >/dev/null
+  if "$d/tb" "$@" >"$d/log"; then echo "the mutant $file passed tb_$name"; return 1; fi
+  grep -c MISMATCH "$d/log" | sed "s/^/mutant $file caught by tb_$name: /; s/$/ mismatch lines shown/"
+}
+
+t_list_cache_mutants_caught() {
+  [[ -f "$T/capc/list.hex" ]] || "$BIN" render room -o "$T/room_cycle.png" --width 48 --height 32 --mode cycle \
+    --threads-per-pipe 64 --capture-unit-io "$T/capc" --capture-limit 200000 >/dev/null
+  mutant list list_unit.sv "s/s2_next\[r\] + 3'd1/s2_next[r]/" -n 2000 --capture "$T/capc" &&
+    mutant cache cache_dm.sv "s/tag_eff = (p_tag_we \&\& p_tag_idx == s1_idx) ? p_tag : tag_q;/tag_eff = tag_q;/" \
+      --capture "$T/capc"
+}
+
 t_mutant_caught() { # the bench must fail on a wrong rounder
   mkdir -p "$T/mut"
   sed "s/kept_even = tie ? {kept\[M+1:1\], 1'b0} : kept;/kept_even = kept;/" rtl/f24_round_pack.sv >"$T/mut/f24_round_pack.sv"
@@ -53,5 +97,7 @@ run_case rtl_lint_clean t_lint
 run_case rtl_operators_match_c_model t_operators
 run_case rtl_units_match_c_model_and_capture t_units
 run_case rtl_exact_sum_matches_c_model t_exact_sum
+run_case rtl_list_unit_and_caches_match_c_model t_list_and_cache
+run_case rtl_list_cache_benches_catch_mutants t_list_cache_mutants_caught
 run_case rtl_bench_catches_mutant t_mutant_caught
 exit $((fails != 0))

@@ -12,8 +12,9 @@
  * and level one mailbox; a level's mailboxes start empty with the packet (top level) or with each
  * visit of an instance (bottom level).
  *
- * Latency 3 cycles (the cycle model's default, docs/cycle-model.md: an estimate, no RTL yet),
- * throughput one list entry per cycle (1 issue slot). Operators: no floating point (docs/synth.md);
+ * Latency 3 cycles (rtl/list_unit.sv: mailbox and list entry read, 32 comparators, mailbox
+ * update; the cycle model's default, docs/cycle-model.md), throughput one list entry per cycle
+ * (1 issue slot). rtl/list_unit.sv is co-simulated against this file (rtl/tb/tb_list.cpp). Operators: no floating point (docs/synth.md);
  * per ray 8 32-bit equality comparators against the mailbox entries (32 for the packet), a
  * 3-bit round-robin pointer, and the list address adder.
  */

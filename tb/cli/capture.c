@@ -7,11 +7,15 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include <stddef.h>
+
 #include "isect_unit.h"
+#include "list_unit.h"
+#include "mem_iface.h"
 #include "trav_node.h"
 #include "xform_unit.h"
 
-enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_UNITS };
+enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_UNITS };
 
 static struct {
     int on;
@@ -20,7 +24,13 @@ static struct {
     pthread_mutex_t lock;
 } cap = { .lock = PTHREAD_MUTEX_INITIALIZER };
 
-static const char *const cap_files[CAP_UNITS] = { "xform.hex", "isect.hex", "trav.hex" };
+static const char *const cap_files[CAP_UNITS] = { "xform.hex", "isect.hex", "trav.hex", "list.hex", "mem.hex" };
+
+/* The list unit's threads: trace_state addresses in the order first seen (the RTL's thread ids),
+ * and the memory interfaces (pipes) likewise. */
+#define CAP_MAX_IDS 4096
+static const void *cap_state[CAP_MAX_IDS], *cap_pipe[CAP_MAX_IDS];
+static uint32_t cap_states, cap_pipes;
 
 int capture_start(const char *dir, uint64_t limit, char *err, unsigned errlen)
 {
@@ -38,12 +48,13 @@ int capture_start(const char *dir, uint64_t limit, char *err, unsigned errlen)
         }
         cap.n[u] = 0;
     }
+    cap_states = cap_pipes = 0;
     cap.limit = limit;
     cap.on = 1;
     return 0;
 }
 
-void capture_counts(uint64_t out[3])
+void capture_counts(uint64_t out[CAPTURE_UNITS])
 {
     for (int u = 0; u < CAP_UNITS; u++)
         out[u] = cap.n[u];
@@ -173,4 +184,137 @@ void __wrap_trav_node_split(const trav_entry *e, uint32_t axis, f24_t split, con
     fputc(' ', f);
     words(f, r->tf, TRACE_PACKET);
     end(f);
+}
+
+/* ---- list unit: list_unit_entry and list_mailboxes_clear, per trace_state ---- */
+
+uint32_t __real_list_unit_entry(const uint32_t *mem, trav_walker *w, trace_mailbox box[TRACE_PACKET], uint32_t alive,
+                                uint32_t *key, unit_op *op, trace_counters *c);
+void __real_list_mailboxes_clear(trace_mailbox box[TRACE_PACKET]);
+uint32_t __wrap_list_unit_entry(const uint32_t *mem, trav_walker *w, trace_mailbox box[TRACE_PACKET], uint32_t alive,
+                                uint32_t *key, unit_op *op, trace_counters *c);
+void __wrap_list_mailboxes_clear(trace_mailbox box[TRACE_PACKET]);
+
+/* The id of the trace_state at base (called with the lock held); -1 if unknown and not to add. */
+static int state_id(const char *base, int add)
+{
+    for (uint32_t i = 0; i < cap_states; i++)
+        if (cap_state[i] == base)
+            return (int)i;
+    if (!add || cap_states >= CAP_MAX_IDS)
+        return -1;
+    cap_state[cap_states] = base;
+    return (int)cap_states++;
+}
+
+#define BOX_OFF(l) (offsetof(trace_state, box) + (size_t)(l) * TRACE_PACKET * sizeof(trace_mailbox))
+#define WALK_OFF(l) (offsetof(trace_state, walk) + (size_t)(l) * sizeof(trav_walker))
+
+static void record_list(int id, uint32_t level, const uint32_t in[7], const uint32_t out[4])
+{
+    FILE *f = cap.f[CAP_LIST];
+    fprintf(f, "%x %x", (unsigned)id, level);
+    for (int i = 0; i < 7; i++)
+        fprintf(f, " %x", in[i]);
+    for (int i = 0; i < 4; i++)
+        fprintf(f, " %x", out[i]);
+    end(f);
+}
+
+void __wrap_list_mailboxes_clear(trace_mailbox box[TRACE_PACKET])
+{
+    __real_list_mailboxes_clear(box);
+    FILE *f = begin(CAP_LIST);
+    if (!f)
+        return;
+    /* level 1 if the state it would belong to is known (its level 0 is cleared first, by
+     * trace_begin); else level 0 of a (possibly new) state */
+    const char *p = (const char *)box;
+    int id = state_id(p - BOX_OFF(1), 0);
+    uint32_t level = 1;
+    if (id < 0)
+        id = state_id(p - BOX_OFF(0), 1), level = 0;
+    const uint32_t in[7] = { 1, 0, 0, 0, 0, 0, 0 }, out[4] = { 0, 0, 0, 0 };
+    record_list(id, level, in, out);
+}
+
+uint32_t __wrap_list_unit_entry(const uint32_t *mem, trav_walker *w, trace_mailbox box[TRACE_PACKET], uint32_t alive,
+                                uint32_t *key, unit_op *op, trace_counters *c)
+{
+    const trav_walker before = *w;
+    const uint64_t skips = c->mailbox_skips;
+    const uint32_t need = __real_list_unit_entry(mem, w, box, alive, key, op, c);
+    FILE *f = begin(CAP_LIST);
+    if (!f)
+        return need;
+    const ptrdiff_t d = (const char *)box - (const char *)w;
+    const uint32_t level = d == (ptrdiff_t)(BOX_OFF(1) - WALK_OFF(1));
+    const int id = state_id((const char *)box - BOX_OFF(level), 1);
+    const uint32_t in[7] = { 0, before.lists, before.leaf_first, before.k, before.leaf_mask, alive,
+                             mem[before.lists + before.leaf_first + before.k] },
+                   out[4] = { *key, need, (uint32_t)(c->mailbox_skips - skips), w->k };
+    record_list(id, level, in, out);
+    return need;
+}
+
+/* ---- memory interface (cycle mode): every read with its timing and cache lookups ---- */
+
+uint64_t __real_mem_iface_read(mem_iface *m, uint32_t kind, uint32_t word_addr, uint32_t words, uint64_t now);
+uint64_t __wrap_mem_iface_read(mem_iface *m, uint32_t kind, uint32_t word_addr, uint32_t words, uint64_t now);
+void __real_mem_iface_flush(mem_iface *m);
+void __wrap_mem_iface_flush(mem_iface *m);
+void __real_mem_iface_new_frame(mem_iface *m);
+void __wrap_mem_iface_new_frame(mem_iface *m);
+
+/* The pipe number of m (called with the lock held); a new pipe's configuration line first. */
+static uint32_t pipe_id(FILE *f, const mem_iface *m)
+{
+    uint32_t pipe = 0;
+    while (pipe < cap_pipes && cap_pipe[pipe] != m)
+        pipe++;
+    if (pipe == cap_pipes && cap_pipes < CAP_MAX_IDS) {
+        cap_pipe[cap_pipes++] = m;
+        fprintf(f, "C %x", pipe);
+        for (int k = 0; k < MI_CACHED_KINDS; k++)
+            fprintf(f, " %x %x", m->cfg.cache[k].size_bytes, m->cfg.cache[k].line_bytes);
+        fprintf(f, " %x %llx\n", m->cfg.latency, (unsigned long long)m->fx_per_byte);
+    }
+    return pipe;
+}
+
+/* The caches emptied (a new memory image: "F pipe") and a new frame (the port and the cycle
+ * count start again: "N pipe"). */
+void __wrap_mem_iface_flush(mem_iface *m)
+{
+    __real_mem_iface_flush(m);
+    FILE *f = begin(CAP_MEM);
+    if (!f)
+        return;
+    fprintf(f, "F %x", pipe_id(f, m));
+    end(f);
+}
+
+void __wrap_mem_iface_new_frame(mem_iface *m)
+{
+    __real_mem_iface_new_frame(m);
+    FILE *f = begin(CAP_MEM);
+    if (!f)
+        return;
+    fprintf(f, "N %x", pipe_id(f, m));
+    end(f);
+}
+
+uint64_t __wrap_mem_iface_read(mem_iface *m, uint32_t kind, uint32_t word_addr, uint32_t words, uint64_t now)
+{
+    const uint64_t l0 = kind < MEM_KINDS ? m->stats.lookups[kind] : 0, h0 = kind < MEM_KINDS ? m->stats.hits[kind] : 0;
+    const uint64_t at = __real_mem_iface_read(m, kind, word_addr, words, now);
+    FILE *f = begin(CAP_MEM);
+    if (!f)
+        return at;
+    const uint32_t pipe = pipe_id(f, m);
+    fprintf(f, "%x %x %x %x %llx %llx %llx %llx", pipe, kind, word_addr, words, (unsigned long long)now,
+            (unsigned long long)at, (unsigned long long)(m->stats.lookups[kind] - l0),
+            (unsigned long long)(m->stats.hits[kind] - h0));
+    end(f);
+    return at;
 }

@@ -3,10 +3,19 @@
  * frame renders, as hex vectors for the RTL co-simulation (rtl/tb/tb_units.cpp): DIR/xform.hex
  * (12 matrix words, 3 vector words, point flag, 3 result words), DIR/isect.hex (O', D', the
  * rebase distance te, tmin, tmax; hit, t, u, v, cos), DIR/trav.hex (axis, split, mask, 4 x O, 4 x D, 4 x tn, 4 x tf; child
- * masks, near-left bits, 4 x left tn, tf, right tn, tf). The hls/ units are not touched: the
- * program is linked with --wrap for xform_point, xform_vector, isect_unit_rebased and
- * trav_node_split, and the wrappers record the calls while capturing is on (at most `limit`
- * transactions per unit; recorded in call order, which with several host threads interleaves).
+ * masks, near-left bits, 4 x left tn, tf, right tn, tf), DIR/list.hex (the list unit, for
+ * rtl/tb/tb_list.cpp: thread, level, clear, lists, leaf_first, k, leaf_mask, alive, the entry
+ * read; key, need, skip mask, k after; a clear has zeros beyond its flag; the thread is the
+ * trace_state's number in the order first seen), DIR/mem.hex (cycle mode only, for
+ * rtl/tb/tb_cache.cpp: per pipe a line "C pipe" with the cache sizes and line bytes of the four
+ * kinds, the latency and the port's occupancy per byte in 1/65536 cycles, then per read of the
+ * memory interface: pipe, kind, word address, words, cycle, the cycle its data is at the unit,
+ * lookups, hits; "N pipe" where a frame starts, "F pipe" where the caches are emptied). The hls/
+ * units are not touched: the program is linked with --wrap for xform_point, xform_vector,
+ * isect_unit_rebased, trav_node_split, list_unit_entry, list_mailboxes_clear, mem_iface_read,
+ * mem_iface_flush and mem_iface_new_frame, and the wrappers record the calls while capturing is on
+ * (at most `limit` transactions per unit; recorded in call order, which with several host threads
+ * interleaves).
  */
 #ifndef SAARCOR_CAPTURE_H
 #define SAARCOR_CAPTURE_H
@@ -16,8 +25,9 @@
 /* 0, or -1 with a message in err if DIR cannot be made or its files written. */
 int capture_start(const char *dir, uint64_t limit, char *err, unsigned errlen);
 
-/* Transactions recorded per unit: xform, isect, trav. */
-void capture_counts(uint64_t out[3]);
+/* Transactions recorded per unit: xform, isect, trav, list, mem. */
+#define CAPTURE_UNITS 5
+void capture_counts(uint64_t out[CAPTURE_UNITS]);
 
 /* Closes the files; 0, or -1 if writing failed. */
 int capture_stop(void);

@@ -109,9 +109,10 @@ static int usage(void)
            "                     the memory port's outstanding transfers; threads in flight (docs/cycle-model.md)\n"
            "  --vcd-cycles A:B   the cycles written: A up to but not including B (default 0:20000)\n"
            "  --usage-plot FILE.svg  cycle mode: each unit's utilisation per epoch as an SVG chart\n"
-           "  --capture-unit-io DIR  record the transformation, intersection and traversal-node\n"
-           "                     transactions as hex vectors for the RTL co-simulation (DIR/xform.hex,\n"
-           "                     isect.hex, trav.hex; at most --capture-limit N per unit, default 100000)\n"
+           "  --capture-unit-io DIR  record the transformation, intersection, traversal-node and list\n"
+           "                     transactions (and in cycle mode the memory reads) as hex vectors for the\n"
+           "                     RTL co-simulation (DIR/xform.hex, isect.hex, trav.hex, list.hex, mem.hex;\n"
+           "                     at most --capture-limit N per unit, default 100000)\n"
            "  --frame N          frame N of the animation at --fps (time N / fps), to -o\n"
            "  --frames A:B       frames A..B of the animation at --fps (default 30) to OUT_NNNN.png (and\n"
            "                     AOV/stats files numbered alike), rebuilding per frame only what changed\n"
@@ -748,14 +749,15 @@ int cmd_render(int argc, char **argv)
         report_interrupt(&ro, written);
     cycle_free(ro.sim);
     if (ro.capture) {
-        uint64_t n[3];
+        uint64_t n[CAPTURE_UNITS];
         capture_counts(n);
         if (capture_stop() != 0 && rc == SAARCOR_EXIT_OK) {
             cli_error("render", "--capture-unit-io: writing the vectors in '%s' failed", ro.capture);
             rc = SAARCOR_EXIT_INPUT;
         } else {
-            printf("captured unit transactions in %s: xform %llu, isect %llu, trav %llu\n", ro.capture,
-                   (unsigned long long)n[0], (unsigned long long)n[1], (unsigned long long)n[2]);
+            printf("captured unit transactions in %s: xform %llu, isect %llu, trav %llu, list %llu, mem %llu\n",
+                   ro.capture, (unsigned long long)n[0], (unsigned long long)n[1], (unsigned long long)n[2],
+                   (unsigned long long)n[3], (unsigned long long)n[4]);
         }
     }
     mi_free(b);

@@ -19,7 +19,8 @@ void cycle_config_default(cycle_config *c)
     c->pipes = 1;
     c->threads_per_pipe = 32;
     /* the RTL's latencies (rtl/xform_unit.sv 12, rtl/trav_node.sv 11, rtl/isect_unit.sv 16, from
-     * operator latencies add 3, mul 3, div 6, cmp 1); list and RGS have no RTL yet: estimates */
+     * operator latencies add 3, mul 3, div 6, cmp 1; rtl/list_unit.sv 3: read, compare, update);
+     * the RGS has no RTL yet: an estimate */
     c->latency[UNIT_RGS] = 12;
     c->latency[UNIT_XFORM] = 12;
     c->latency[UNIT_TRAV] = 11;

@@ -1,0 +1,89 @@
+// mem_port: the one memory port of a DynRTP (paper section 3, "Memory interface"; the cycle
+// model's port in tb/cycle/mem_iface.c): N requesters (the kd-node, list and matrix caches and the
+// shading reads, through the shading cache or uncached) share one request channel to memory,
+// round robin, one transfer request per cycle. A transfer is a byte address and a byte count (a
+// cache line, or the words of an uncached read); memory returns the transfers in request order
+// (the bandwidth and latency are memory's: the testbench's model has the cycle model's
+// --mem-mbps, --clock-mhz and --mem-latency arithmetic), and the port routes each response to its
+// requester through a FIFO of the requesters of the transfers under way (DEPTH entries; with it
+// full, no request is granted). Combinational between requesters and memory (latency 0 each way),
+// one request and one response per cycle.
+// Resources: the round-robin arbiter (N-bit priority rotation), an N-way mux of AW + BW bits, the
+// source FIFO DEPTH x log2 N flip-flops with its pointers; the response data is one bus of DW bits
+// to every requester (each takes its low bits).
+module mem_port #(
+  parameter int N = 4,        // requesters
+  parameter int AW = 32,      // byte address width
+  parameter int BW = 8,       // byte count width
+  parameter int DW = 320,     // response data width: the widest line
+  parameter int DEPTH = 64    // transfers under way
+) (
+  input  logic                 clk_i,
+  input  logic                 rst_ni,
+  input  logic [N-1:0]         req_valid_i,
+  output logic [N-1:0]         req_ready_o,
+  input  logic [N*AW-1:0]      req_addr_i,
+  input  logic [N*BW-1:0]      req_bytes_i,
+  output logic [N-1:0]         rsp_valid_o,
+  output logic [DW-1:0]        rsp_data_o,
+  output logic                 mem_req_valid_o,
+  input  logic                 mem_req_ready_i,
+  output logic [AW-1:0]        mem_req_addr_o,
+  output logic [BW-1:0]        mem_req_bytes_o,
+  output logic [$clog2(N)-1:0] mem_req_src_o,   // for waveforms and the testbench
+  input  logic                 mem_rsp_valid_i,
+  input  logic [DW-1:0]        mem_rsp_data_i
+);
+  localparam int SW = N > 1 ? $clog2(N) : 1;
+  localparam int PW = $clog2(DEPTH);
+
+  logic [SW-1:0] src_fifo [DEPTH];
+  logic [PW-1:0] head, tail;
+  logic [PW:0] count;
+  logic full, grant_any, fire;
+  logic [SW-1:0] last, grant;
+
+  assign full = count == (PW + 1)'(DEPTH);
+  // round robin: the first requester after the last granted one
+  always_comb begin
+    grant = '0;
+    grant_any = 1'b0;
+    for (int k = N; k >= 1; k--) begin
+      if (req_valid_i[SW'((32'(last) + k) % N)]) begin
+        grant = SW'((32'(last) + k) % N);
+        grant_any = 1'b1;
+      end
+    end
+  end
+  assign mem_req_valid_o = grant_any && !full;
+  assign mem_req_addr_o = req_addr_i[32'(grant)*AW +: AW];
+  assign mem_req_bytes_o = req_bytes_i[32'(grant)*BW +: BW];
+  assign mem_req_src_o = grant;
+  assign fire = mem_req_valid_o && mem_req_ready_i;
+  always_comb begin
+    req_ready_o = '0;
+    if (grant_any && !full) req_ready_o[grant] = mem_req_ready_i;
+    rsp_valid_o = '0;
+    if (mem_rsp_valid_i) rsp_valid_o[src_fifo[head]] = 1'b1;
+  end
+  assign rsp_data_o = mem_rsp_data_i;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      head <= '0;
+      tail <= '0;
+      count <= '0;
+      last <= SW'(N - 1);
+    end else begin
+      if (fire) begin
+        tail <= tail + 1'b1;
+        last <= grant;
+      end
+      if (mem_rsp_valid_i) head <= head + 1'b1;
+      count <= count + (PW + 1)'(fire) - (PW + 1)'(mem_rsp_valid_i);
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (fire) src_fifo[tail] <= grant;
+  end
+endmodule
