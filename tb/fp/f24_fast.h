@@ -52,6 +52,9 @@ static inline int f24_fast_eq(f24_t a, f24_t b) { return f24_fast_decode(a) == f
 
 /* f24_sum_exact from exact binary64 products and double-doubles (tb/fp/f24_fast_sum.c). */
 f24x2 f24_fast_sum_exact(const f24_t a[], const f24_t b[], uint32_t n);
+/* Its common case: r from the plain binary64 sum of the n exact products p and a bound on its
+ * error, where no fp24 rounding boundary lies within the bound of hi or lo; 0 otherwise. */
+int f24_fast_sum_filter(const double p[], uint32_t n, f24x2 *r);
 
 /* The working values of hls/fp24/f24.h held decoded: each operation rounds its binary64 result
  * with f24_fast_round and stays binary64, the comparisons and minimum/maximum are those above on
