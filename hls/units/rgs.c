@@ -42,7 +42,9 @@ static uint32_t region_start(const uint32_t *mem, uint32_t r) { return mem[H_REG
 static f24_t ratio(int32_t num, int32_t den) { return f24_div(f24_from_i32(num), f24_from_i32(den)); }
 static f24_t dot3(f24_vec3 a, f24_vec3 b)
 {
-    return f24_add(f24_add(f24_mul(a.x, b.x), f24_mul(a.y, b.y)), f24_mul(a.z, b.z));
+    const f24w x = f24w_mul(f24w_of(a.x), f24w_of(b.x)), y = f24w_mul(f24w_of(a.y), f24w_of(b.y)),
+               z = f24w_mul(f24w_of(a.z), f24w_of(b.z));
+    return f24w_bits(f24w_add(f24w_add(x, y), z));
 }
 static f24_vec3 sub3(f24_vec3 a, f24_vec3 b) { return (f24_vec3){ f24_sub(a.x, b.x), f24_sub(a.y, b.y), f24_sub(a.z, b.z) }; }
 static f24_vec3 scale3(f24_vec3 a, f24_t s) { return (f24_vec3){ f24_mul(a.x, s), f24_mul(a.y, s), f24_mul(a.z, s) }; }

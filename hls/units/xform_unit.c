@@ -1,24 +1,27 @@
 /* Transformation unit: see xform_unit.h. */
 #include "xform_unit.h"
 
-/* One row on the working values of p. The translation goes through a mux, not an add of zero, so
- * a -0 sum keeps its sign. */
-static f24_t row_of(const f24_t row[4], f24w x, f24w y, f24w z, int with_translation)
+/* One row for p = { x, y, z, 1 }: the three products side by side (the unit's multipliers; lane 3
+ * is unused), summed in the contract's order. The translation goes through a mux, not an add of
+ * zero, so a -0 sum keeps its sign. */
+static F24Q_FN f24_t row_of(const f24_t row[4], const f24_t p[4], int with_translation)
 {
-    const f24w s = f24w_add(f24w_add(f24w_mul(f24w_of(row[0]), x), f24w_mul(f24w_of(row[1]), y)), f24w_mul(f24w_of(row[2]), z));
+    const f24q m = f24q_mul(f24q_of(row), f24q_of(p));
+    const f24w s = f24w_add(f24w_add(f24q_lane(m, 0), f24q_lane(m, 1)), f24q_lane(m, 2));
     return f24w_bits(with_translation ? f24w_add(s, f24w_of(row[3])) : s);
 }
 
 f24_t xform_row(const f24_t row[4], f24_vec3 p, int with_translation)
 {
-    return row_of(row, f24w_of(p.x), f24w_of(p.y), f24w_of(p.z), with_translation);
+    const f24_t q[4] = { p.x, p.y, p.z, F24_ONE };
+    return row_of(row, q, with_translation);
 }
 
 static f24_vec3 xform_step(const f24_affine *m, f24_vec3 p, int with_translation)
 {
-    const f24w x = f24w_of(p.x), y = f24w_of(p.y), z = f24w_of(p.z);
-    const f24_vec3 r = { row_of(m->m[0], x, y, z, with_translation), row_of(m->m[1], x, y, z, with_translation),
-                         row_of(m->m[2], x, y, z, with_translation) };
+    const f24_t q[4] = { p.x, p.y, p.z, F24_ONE };
+    const f24_vec3 r = { row_of(m->m[0], q, with_translation), row_of(m->m[1], q, with_translation),
+                         row_of(m->m[2], q, with_translation) };
     return r;
 }
 

@@ -84,10 +84,11 @@ static inline int rounds_alike(double x, double w)
 /* A bound on |s - S| for the recursive binary64 sum s of the n products p and their exact sum
  * S, 0 where s is exact; NaN where the products are not finite or spread wider than the window
  * (sum|p| bounds the largest one). Every product has at most 2(M+1) significant bits, so all
- * are multiples of 2^(e - 2M - 1) for the exponent e of the smallest nonzero one, and partial sums below
- * 2^(e + 52 - 2M) are exact: mass = sum|p| < smallest 2^(50 - 2M) guarantees that with room for
- * mass's own rounding. Otherwise recursive summation errs by at most (n-1)u/(1-(n-1)u) mass
- * <= n u mass (u = 2^-53); n 2^-50 mass leaves room for the bound's own roundings. */
+ * are multiples of 2^(e - 2M - 1) for the exponent e of the smallest nonzero one, and partial
+ * sums below 2^(e + 52 - 2M) are exact: mass = sum|p| < smallest 2^(50 - 2M) guarantees that
+ * with room for mass's own rounding. Otherwise recursive summation errs by at most
+ * (n-1)u/(1-(n-1)u) mass <= n u mass (u = 2^-53); n 2^-50 mass leaves room for the bound's own
+ * roundings. */
 static double sum_error(const double p[], uint32_t n, double *s)
 {
     double sum = -0.0, mass = 0, smallest = __builtin_inf(); /* -0: -0 only if all products are -0 */
@@ -122,13 +123,36 @@ int f24_fast_sum_filter(const double p[], uint32_t n, f24x2 *r)
     return 1;
 }
 
+#ifdef F24_FAST_VECTORS
+#define F24V_PRODUCTS_FN F24V_FN
+#else
+#define F24V_PRODUCTS_FN
+#endif
+
+/* The products a[k] b[k] into p, exact in binary64 (at most 2(M+1) significant bits); four at a
+ * time where the build has the vectors of tb/fp/f24_fast.h. */
+static F24V_PRODUCTS_FN void products(const f24_t a[], const f24_t b[], uint32_t n, double p[F24_SUM_TERMS])
+{
+#ifdef F24_FAST_VECTORS
+    f24_t ap[F24_SUM_TERMS] = { 0 }, bp[F24_SUM_TERMS] = { 0 };
+    memcpy(ap, a, n * sizeof a[0]);
+    memcpy(bp, b, n * sizeof b[0]);
+    for (uint32_t k = 0; k < n; k += F24Q_LANES) {
+        const f24v v = f24v_of(ap + k) * f24v_of(bp + k); /* lanes past n: zeros, unused */
+        memcpy(p + k, &v, sizeof v);
+    }
+#else
+    for (uint32_t k = 0; k < n; k++)
+        p[k] = f24_fast_decode(a[k]) * f24_fast_decode(b[k]);
+#endif
+}
+
 f24x2 f24_fast_sum_exact(const f24_t a[], const f24_t b[], uint32_t n)
 {
     double p[F24_SUM_TERMS];
     if (n == 0 || n > F24_SUM_TERMS)
         return f24_sum_exact(a, b, n);
-    for (uint32_t k = 0; k < n; k++)
-        p[k] = f24_fast_decode(a[k]) * f24_fast_decode(b[k]); /* exact */
+    products(a, b, n, p);
     f24x2 r;
     if (f24_fast_sum_filter(p, n, &r))
         return r;
