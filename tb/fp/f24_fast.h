@@ -186,6 +186,10 @@ F24V_INLINE f24v f24v_pick(uint32_t mask, f24v a, f24v b) /* lane i of a where m
 }
 F24V_INLINE uint32_t f24v_le(f24v a, f24v b) { return f24v_mask(a <= b); }
 F24V_INLINE uint32_t f24v_sign(f24v a) { return f24v_mask((f24v_i)a < 0); }
+
+/* f24q_sum_exact (hls/fp24/f24.h) on vectors (tb/fp/f24_fast_sum.c) */
+void f24_fast_sum_exact_lanes(const f24_t a[][F24Q_LANES], const f24_t b[][F24Q_LANES], uint32_t n,
+                              f24_t hi[F24Q_LANES], f24_t lo[F24Q_LANES]);
 #endif
 
 #ifdef F24_FAST_SIM
@@ -222,6 +226,7 @@ typedef f24v f24q;
 #define f24q_select f24v_pick
 #define f24q_le f24v_le
 #define f24q_sign f24v_sign
+#define f24q_sum_exact f24_fast_sum_exact_lanes
 #endif
 
 

@@ -149,7 +149,7 @@ static F24V_PRODUCTS_FN void products(const f24_t a[], const f24_t b[], uint32_t
 
 f24x2 f24_fast_sum_exact(const f24_t a[], const f24_t b[], uint32_t n)
 {
-    double p[F24_SUM_TERMS];
+    double p[F24_SUM_TERMS] = { 0 }; /* (products writes p[0 .. n-1]: for the compiler's flow analysis) */
     if (n == 0 || n > F24_SUM_TERMS)
         return f24_sum_exact(a, b, n);
     products(a, b, n, p);
@@ -178,3 +178,59 @@ f24x2 f24_fast_sum_exact(const f24_t a[], const f24_t b[], uint32_t n)
     const f24_dd rest = two_sum(sum.s - f24_fast_decode(hi), sum.e);
     return (f24x2){ hi, rest.s == 0 ? 0 : round_dd(rest.s, rest.e) };
 }
+
+#ifdef F24_FAST_VECTORS
+static inline __attribute__((always_inline)) f24v abs_lanes(f24v x) { return (f24v)((f24v_i)x & 0x7FFFFFFFFFFFFFFFll); }
+
+/* rounds_alike per lane, as a lane mask */
+static inline __attribute__((always_inline)) f24v_i rounds_alike_lanes(f24v x, f24v w)
+{
+    enum { SHIFT = 52 - F24_MAN_BITS };
+    const f24v ax = abs_lanes(x);
+    const f24v_l key_lo = (f24v_l)f24v_round_bits((f24v_i)(ax - w)) >> SHIFT,
+                 key_hi = (f24v_l)f24v_round_bits((f24v_i)(ax + w)) >> SHIFT;
+    return (w == 0) | ((w < ax) & ((f24v_i)key_lo == (f24v_i)key_hi));
+}
+
+/* The margin of f24_fast_sum_filter around x: 2 err, and 2^-50 |x| where err != 0. */
+static inline __attribute__((always_inline)) f24v margin_lanes(f24v x, f24v err, f24v_i inexact)
+{
+    return 2 * err + (f24v)((f24v_i)(abs_lanes(x) * 0x1p-50) & inexact);
+}
+
+/* f24_fast_sum_exact of the four lanes at once (n <= F24_SUM_TERMS): f24_fast_sum_filter on
+ * vectors, the products summed in order; a lane it cannot decide goes to f24_fast_sum_exact
+ * alone. */
+F24V_FN void f24_fast_sum_exact_lanes(const f24_t a[][F24Q_LANES], const f24_t b[][F24Q_LANES], uint32_t n,
+                                      f24_t hi[F24Q_LANES], f24_t lo[F24Q_LANES])
+{
+    const f24v zero = { 0, 0, 0, 0 }, inf = zero + __builtin_inf();
+    f24v sum = -zero, mass = zero, least = inf; /* -0: -0 only if all products are -0 */
+    for (uint32_t k = 0; k < n; k++) {
+        const f24v p = f24v_of(a[k]) * f24v_of(b[k]), m = abs_lanes(p); /* exact */
+        sum += p;
+        mass += m;
+        least = (f24v)f24v_select((m != 0) & (m < least), (f24v_i)m, (f24v_i)least);
+    }
+    const f24v_i window = mass < least * window_reach, exact = mass < least * __builtin_ldexp(1.0, 50 - 2 * F24_MAN_BITS);
+    const f24v err = (f24v)((f24v_i)(mass * (double)n * 0x1p-50) & ~exact);
+    const f24v hi_d = f24v_round(sum), rest = sum - hi_d; /* exact: |s - hi| <= ulp(hi) / 2 */
+    const f24v_i hi_special = (hi_d == 0) | (abs_lanes(hi_d) == inf); /* flushed (or zero) or overflowed: lo = 0 */
+    const f24v_i ok = window & rounds_alike_lanes(sum, margin_lanes(sum, err, ~exact)) &
+                      (hi_special | rounds_alike_lanes(rest, margin_lanes(rest, err, ~exact))) & (n > 0 ? -1ll : 0);
+    f24v_bits(sum, hi);
+    f24v_bits((f24v)((f24v_i)rest & ~(hi_special | (rest == 0))), lo);
+    for (int i = 0; i < F24Q_LANES; i++) {
+        if (ok[i])
+            continue;
+        f24_t ai[F24_SUM_TERMS], bi[F24_SUM_TERMS];
+        for (uint32_t k = 0; k < n; k++) {
+            ai[k] = a[k][i];
+            bi[k] = b[k][i];
+        }
+        const f24x2 r = f24_fast_sum_exact(ai, bi, n);
+        hi[i] = r.hi;
+        lo[i] = r.lo;
+    }
+}
+#endif
