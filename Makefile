@@ -77,7 +77,11 @@ CYCLE := $(sort $(wildcard tb/cycle/*.c))
 # path unless SIM_ARITH=hw; hls/fp24 and tb/fp always hold the integer reference
 SIM_ARITH ?= fast
 # the fast path's header is named by the build (hls/ names nothing of tb/): tb/fp/f24_fast.h maps
-# f24_add ... onto it
+# f24_add ... onto it. The packet values' functions are built for AVX2 and the baseline, chosen at
+# load time; SIM_LANES=baseline builds only the baseline version (what machines without AVX2 run),
+# which tests/test_sim_arith.sh checks too
+SIM_LANES ?= clones
+CFLAGS += $(if $(filter baseline,$(SIM_LANES)),-DF24_SIM_BASELINE)
 FAST_SIM_FLAGS := -DF24_FAST_SIM -DF24_SIM_HEADER='"f24_fast.h"'
 SIM_FLAGS := $(if $(filter fast,$(SIM_ARITH)),$(FAST_SIM_FLAGS),$(if $(filter hw,$(SIM_ARITH)),,$(error SIM_ARITH must be fast or hw)))
 SIM_SRCS = $(MEMIMAGE) $(HLS_UNITS) $(CYCLE) $(REF) $(CLI)
@@ -214,6 +218,7 @@ O0_BUILD := $(BUILD)/O0
 test: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) test-programs mpi $(BUILD)/valgrind/hwy_timer_shim.so
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(BUILD)/hw HOST_BUILD=$(BUILD) SIM_ARITH=hw $(BUILD)/hw/saarcor
+	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(BUILD)/baseline HOST_BUILD=$(BUILD) SIM_LANES=baseline $(BUILD)/baseline/saarcor
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(O0_BUILD) OPT='-O0 -g' $(O0_BUILD)/saarcor
 	@$(MAKE) --no-print-directory $(BUILD)/rtl/$(DEFAULT_FMT)/tb_f24_ops $(BUILD)/rtl/$(DEFAULT_FMT)/tb_units $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sum \
 	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_list $(BUILD)/rtl/$(DEFAULT_FMT)/tb_cache

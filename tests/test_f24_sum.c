@@ -225,6 +225,88 @@ static void fast_path_cancelling(void **state)
     assert_int_equal(bad, 0);
 }
 
+/* The filter of the fast path (f24_fast_sum_filter: the plain binary64 sum and its error bound)
+ * on its edges: sums exact by the spread of their products (just inside and outside the bound
+ * that proves it), hi or lo near a rounding boundary by less or more than the error bound
+ * (a large cancelling pair makes the bound wide), and exact fp24 results. Whatever it decides
+ * must be the integer operator's result, and it must decide a good share of the sums. */
+static void fast_path_filter(void **state)
+{
+    (void)state;
+    unsigned seed = 8;
+    int bad = 0, decided = 0;
+    const int32_t exact_span = 50 - 2 * F24_MAN_BITS;
+    for (int i = 0; i < 200000 && bad < 5; i++) {
+        f24_t a[F24_SUM_TERMS], b[F24_SUM_TERMS];
+        const uint32_t n = 2 + (uint32_t)rand_r(&seed) % (F24_SUM_TERMS - 1);
+        const f24_t x = random_value(&seed, 4);
+        const int32_t ex = f24_exp(x) - F24_BIAS;
+        for (uint32_t k = 0; k < n; k++) {
+            b[k] = F24_ONE;
+            switch (k == 0 ? 0 : rand_r(&seed) % 5) {
+            case 0: a[k] = x; break;
+            case 1: spread_term(&seed, ex - exact_span + 2 - (int32_t)(rand_r(&seed) % 5), &a[k], &b[k]); break;
+            case 2: a[k] = f24_pack(rand_r(&seed) & 1u, (uint32_t)(F24_BIAS + ex - F24_MAN_BITS - 1 - (int32_t)(rand_r(&seed) % 3) * (F24_MAN_BITS + 1)), 0); break;
+            case 3: a[k] = a[k - 1]; b[k] = f24_neg(b[k - 1]); break; /* cancels the previous term */
+            default: a[k] = random_value(&seed, 4); break;
+            }
+        }
+        double p[F24_SUM_TERMS];
+        for (uint32_t k = 0; k < n; k++)
+            p[k] = f24_fast_decode(a[k]) * f24_fast_decode(b[k]);
+        f24x2 r;
+        if (f24_fast_sum_filter(p, n, &r)) {
+            const f24x2 ref = f24_sum_exact(a, b, n);
+            decided++;
+            if (r.hi != ref.hi || r.lo != ref.lo) {
+                print_message("n %u: filter %06x %06x, integer %06x %06x\n", n, r.hi, r.lo, ref.hi, ref.lo);
+                bad++;
+            }
+        }
+        bad += !same_as_integer(a, b, n);
+    }
+    assert_int_equal(bad, 0);
+    assert_true(decided > 10000); /* most at e7m16; lo's 2(M+1) bits leave binary64 less room at M = 23 */
+}
+
+#ifdef F24_FAST_VECTORS
+/* f24_fast_sum_exact_lanes (f24q_sum_exact in the simulation build): four sums side by side,
+ * lanes of every kind above mixed in one call (the vector filter decides some lanes and hands
+ * the others on), each lane bit for bit the integer operator's. */
+static void fast_path_lanes(void **state)
+{
+    (void)state;
+    unsigned seed = 9;
+    int bad = 0;
+    for (int i = 0; i < 100000 && bad < 5; i++) {
+        f24_t a[F24_SUM_TERMS][F24Q_LANES], b[F24_SUM_TERMS][F24Q_LANES], hi[F24Q_LANES], lo[F24Q_LANES];
+        const uint32_t n = 1 + (uint32_t)rand_r(&seed) % F24_SUM_TERMS;
+        for (int l = 0; l < F24Q_LANES; l++) {
+            const f24_t x = random_value(&seed, 4), half_ulp = f24_pack(0, (uint32_t)(f24_exp(x) - F24_MAN_BITS - 1), 0);
+            for (uint32_t k = 0; k < n; k++) {
+                const int kind = rand_r(&seed) % 4;
+                a[k][l] = kind == 0 ? tricky_value(&seed) : kind == 1 ? x : kind == 2 ? half_ulp : random_value(&seed, 6);
+                b[k][l] = rand_r(&seed) % 2 ? tricky_value(&seed) : F24_ONE;
+            }
+        }
+        f24_fast_sum_exact_lanes(a, b, n, hi, lo);
+        for (int l = 0; l < F24Q_LANES; l++) {
+            f24_t al[F24_SUM_TERMS], bl[F24_SUM_TERMS];
+            for (uint32_t k = 0; k < n; k++) {
+                al[k] = a[k][l];
+                bl[k] = b[k][l];
+            }
+            const f24x2 ref = f24_sum_exact(al, bl, n);
+            if (hi[l] != ref.hi || lo[l] != ref.lo) {
+                print_message("n %u lane %d: lanes %06x %06x, integer %06x %06x\n", n, l, hi[l], lo[l], ref.hi, ref.lo);
+                bad++;
+            }
+        }
+    }
+    assert_int_equal(bad, 0);
+}
+#endif
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -235,6 +317,10 @@ int main(void)
         cmocka_unit_test(fast_path_random),
         cmocka_unit_test(fast_path_spread),
         cmocka_unit_test(fast_path_cancelling),
+        cmocka_unit_test(fast_path_filter),
+#ifdef F24_FAST_VECTORS
+        cmocka_unit_test(fast_path_lanes),
+#endif
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -4,15 +4,21 @@
 # program built with the integer hardware arithmetic (build/hw/saarcor, make SIM_ARITH=hw): the
 # image, the AOVs (EXR) and every counter of --stats (all but the host's time and memory) equal,
 # bit for bit, on every golden scene in both modes, and with every traversal algorithm on the
-# instanced room and the cornell box in both modes. Cases on ../shared scenes are skipped with a
+# instanced room and the cornell box in both modes; and the build of the packet values' baseline
+# version (no AVX2) on every golden scene. Cases on ../shared scenes are skipped with a
 # message when ../shared is absent. Prints cmocka-style lines for tests/run.sh.
 set -u
 cd "$(dirname "$0")/.."
 BIN=${SAARCOR_BIN:-build/saarcor}
 HW_BIN=${SAARCOR_HW_BIN:-build/hw/saarcor}
+# the packet values' functions in their baseline version only (make SIM_LANES=baseline: what
+# machines without AVX2 run; build/saarcor picks the AVX2 one where the CPU has it)
+BASE_BIN=${SAARCOR_BASELINE_BIN:-build/baseline/saarcor}
 T=$(mktemp -d /tmp/saarcor-sim-arith-XXXXXX)
 trap 'rm -rf "$T"' EXIT
 [[ -x $HW_BIN ]] || { echo "test_sim_arith: $HW_BIN is missing (make BUILD=build/hw SIM_ARITH=hw build/hw/saarcor)"; exit 1; }
+[[ -x $BASE_BIN ]] ||
+  { echo "test_sim_arith: $BASE_BIN is missing (make BUILD=build/baseline HOST_BUILD=build SIM_LANES=baseline build/baseline/saarcor)"; exit 1; }
 
 # shellcheck source=case_lib.sh
 source tests/case_lib.sh
@@ -29,12 +35,12 @@ print(json.dumps(s, indent=0, sort_keys=True))
 PY
 }
 
-same() { # name scene options...: both programs, same image, AOVs and counters
+same() { # name scene options...: both programs ($FAST_BIN or $BIN), same image, AOVs and counters
   local name=$1 scene=$2
   shift 2
   local b
   for b in fast hw; do
-    local bin=$BIN
+    local bin=${FAST_BIN:-$BIN}
     [[ $b == hw ]] && bin=$HW_BIN
     "$bin" render "$scene" --width 48 --height 36 --threads 2 "$@" -o "$T/$name.$b.png" --aov "$T/$name.$b.exr" \
       --stats "$T/$name.$b.json" >/dev/null || { echo "$name: $bin render failed"; return 1; }
@@ -69,6 +75,10 @@ while IFS='|' read -r name scene opts; do
     eval "t_$case_name() { same $case_name $scene --mode $mode $opts; }"
     run_case "$case_name" "t_$case_name"
   done
+  [[ $scene == ../shared/* && ! -f $scene ]] && continue
+  case_name="sim_arith_${name}_baseline"
+  eval "t_$case_name() { FAST_BIN=$BASE_BIN same $case_name $scene --mode functional $opts; }"
+  run_case "$case_name" "t_$case_name"
 done <<<"$SCENES"
 
 for scene in room cornell; do

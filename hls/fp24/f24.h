@@ -95,6 +95,8 @@ uint32_t f24_to_f32(f24_t a); /* exact: every fp24 value is a binary32 value */
 f24_t f24_from_i32(int32_t i);
 int32_t f24_to_i32(f24_t a); /* toward zero, saturating, NaN -> 0 */
 
+#define F24Q_LANES 4 /* lanes of the packet values below: the rays of a packet */
+
 /* Host simulation builds may swap in a bit-identical fast path for these operations at build
  * time: the build names its header in F24_SIM_HEADER (tb/fp/f24_fast.h, Makefile SIM_FLAGS), so
  * that nothing here depends on the simulator; hardware and reference builds define none. */
@@ -123,6 +125,91 @@ static inline f24w f24w_neg(f24w a) { return f24_neg(a); }
 static inline int f24w_lt(f24w a, f24w b) { return f24_lt(a, b); }
 static inline int f24w_le(f24w a, f24w b) { return f24_le(a, b); }
 static inline uint32_t f24w_sign(f24w a) { return f24_sign(a); }
+#endif
+
+/* Packet values: the working values of the F24Q_LANES rays of a packet side by side, one lane
+ * per ray, as a unit's per-ray datapaths compute them in parallel. Comparisons and the sign give
+ * lane masks (bit i: lane i). Here each lane is an f24w and each operation the f24w one; a
+ * simulation build may hold the lanes in one vector register (its F24_SIM_HEADER defines
+ * F24_SIM_LANES) and compile the functions that use them for several instruction sets (F24Q_FN
+ * on their definitions), so that the lanes compute together; the roundings stay the same. */
+#ifndef F24_SIM_LANES
+#define F24Q_FN
+typedef struct { f24w l[F24Q_LANES]; } f24q;
+static inline f24q f24q_of(const f24_t a[F24Q_LANES])
+{
+    f24q q;
+lanes_of:
+    for (int i = 0; i < F24Q_LANES; i++)
+        q.l[i] = f24w_of(a[i]);
+    return q;
+}
+static inline f24q f24q_splat(f24_t a)
+{
+    const f24_t s[F24Q_LANES] = { a, a, a, a };
+    return f24q_of(s);
+}
+static inline void f24q_bits(f24q a, f24_t out[F24Q_LANES])
+{
+lanes_bits:
+    for (int i = 0; i < F24Q_LANES; i++)
+        out[i] = f24w_bits(a.l[i]);
+}
+#define F24Q_BINARY(name)                                                                          \
+    static inline f24q f24q_##name(f24q a, f24q b)                                                 \
+    {                                                                                              \
+        f24q q;                                                                                    \
+        for (int i = 0; i < F24Q_LANES; i++)                                                       \
+            q.l[i] = f24w_##name(a.l[i], b.l[i]);                                                  \
+        return q;                                                                                  \
+    }
+F24Q_BINARY(add)
+F24Q_BINARY(mul)
+F24Q_BINARY(sub)
+F24Q_BINARY(div)
+F24Q_BINARY(min)
+F24Q_BINARY(max)
+static inline f24w f24q_lane(f24q a, int i) { return a.l[i]; }
+static inline f24q f24q_select(uint32_t mask, f24q a, f24q b) /* lane i of a where mask bit i */
+{
+lanes_select:
+    for (int i = 0; i < F24Q_LANES; i++)
+        a.l[i] = mask >> i & 1u ? a.l[i] : b.l[i];
+    return a;
+}
+static inline uint32_t f24q_le(f24q a, f24q b)
+{
+    uint32_t m = 0;
+lanes_le:
+    for (int i = 0; i < F24Q_LANES; i++)
+        m |= (uint32_t)f24w_le(a.l[i], b.l[i]) << i;
+    return m;
+}
+static inline uint32_t f24q_sign(f24q a)
+{
+    uint32_t m = 0;
+lanes_sign:
+    for (int i = 0; i < F24Q_LANES; i++)
+        m |= f24w_sign(a.l[i]) << i;
+    return m;
+}
+/* Exact dot products side by side: lane i is f24_sum_exact of the n terms a[k][i] * b[k][i]. */
+static inline void f24q_sum_exact(const f24_t a[][F24Q_LANES], const f24_t b[][F24Q_LANES], uint32_t n,
+                                  f24_t hi[F24Q_LANES], f24_t lo[F24Q_LANES])
+{
+lanes_sum:
+    for (int i = 0; i < F24Q_LANES; i++) {
+        f24_t ai[F24_SUM_TERMS], bi[F24_SUM_TERMS];
+    lanes_sum_terms:
+        for (uint32_t k = 0; k < F24_SUM_TERMS; k++) {
+            ai[k] = k < n ? a[k][i] : 0u;
+            bi[k] = k < n ? b[k][i] : 0u;
+        }
+        const f24x2 r = f24_sum_exact(ai, bi, n);
+        hi[i] = r.hi;
+        lo[i] = r.lo;
+    }
+}
 #endif
 
 #endif

@@ -49,17 +49,19 @@ isect_result isect_unit_triangle(f24_vec3 o, f24_vec3 d, f24_t te, f24_t tmin, f
 }
 
 /* The rebased origin p relative to the vertex C, per component (hi - c_hi) + (lo - c_lo): hi -
- * c_hi is exact or as small as the leaf, and lo - c_lo tiny. */
-static f24_vec3 offset_from_vertex(const f24_triangle *tri, f24_vec3x2 p, f24_vec3 *lo)
+ * c_hi is exact or as small as the leaf, and lo - c_lo tiny. The three components side by side
+ * (lane 3 unused). */
+static F24Q_FN f24_vec3 offset_from_vertex(const f24_triangle *tri, f24_vec3x2 p, f24_vec3 *lo)
 {
     const f24_affine *m = &tri->m;
-    const f24w lx = f24w_sub(f24w_of(p.lo.x), f24w_of(tri->c_lo.x)), ly = f24w_sub(f24w_of(p.lo.y), f24w_of(tri->c_lo.y)),
-               lz = f24w_sub(f24w_of(p.lo.z), f24w_of(tri->c_lo.z));
-    *lo = (f24_vec3){ f24w_bits(lx), f24w_bits(ly), f24w_bits(lz) };
-    const f24_vec3 c = { f24w_bits(f24w_add(f24w_sub(f24w_of(p.hi.x), f24w_of(m->m[0][3])), lx)),
-                         f24w_bits(f24w_add(f24w_sub(f24w_of(p.hi.y), f24w_of(m->m[1][3])), ly)),
-                         f24w_bits(f24w_add(f24w_sub(f24w_of(p.hi.z), f24w_of(m->m[2][3])), lz)) };
-    return c;
+    const f24_t p_hi[4] = { p.hi.x, p.hi.y, p.hi.z, 0 }, p_lo[4] = { p.lo.x, p.lo.y, p.lo.z, 0 },
+                c_hi[4] = { m->m[0][3], m->m[1][3], m->m[2][3], 0 }, c_lo[4] = { tri->c_lo.x, tri->c_lo.y, tri->c_lo.z, 0 };
+    const f24q l = f24q_sub(f24q_of(p_lo), f24q_of(c_lo));
+    f24_t lb[4], cb[4];
+    f24q_bits(l, lb);
+    f24q_bits(f24q_add(f24q_sub(f24q_of(p_hi), f24q_of(c_hi)), l), cb);
+    *lo = (f24_vec3){ lb[0], lb[1], lb[2] };
+    return (f24_vec3){ cb[0], cb[1], cb[2] };
 }
 
 /* Row 2 of M^-1 is the unit normal n: O'z = n.p.hi - n.C.hi + n.(p.lo - C.lo) from exact products

@@ -40,9 +40,12 @@ static uint32_t q_of(f24_t x)
 
 static uint32_t region_start(const uint32_t *mem, uint32_t r) { return mem[H_REGIONS + 2 * r]; }
 static f24_t ratio(int32_t num, int32_t den) { return f24_div(f24_from_i32(num), f24_from_i32(den)); }
-static f24_t dot3(f24_vec3 a, f24_vec3 b)
+/* The three products side by side (lane 3 unused), then their sum in order. */
+static F24Q_FN f24_t dot3(f24_vec3 a, f24_vec3 b)
 {
-    return f24_add(f24_add(f24_mul(a.x, b.x), f24_mul(a.y, b.y)), f24_mul(a.z, b.z));
+    const f24_t al[4] = { a.x, a.y, a.z, 0 }, bl[4] = { b.x, b.y, b.z, 0 };
+    const f24q p = f24q_mul(f24q_of(al), f24q_of(bl));
+    return f24w_bits(f24w_add(f24w_add(f24q_lane(p, 0), f24q_lane(p, 1)), f24q_lane(p, 2)));
 }
 static f24_vec3 sub3(f24_vec3 a, f24_vec3 b) { return (f24_vec3){ f24_sub(a.x, b.x), f24_sub(a.y, b.y), f24_sub(a.z, b.z) }; }
 static f24_vec3 scale3(f24_vec3 a, f24_t s) { return (f24_vec3){ f24_mul(a.x, s), f24_mul(a.y, s), f24_mul(a.z, s) }; }

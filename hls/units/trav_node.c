@@ -3,27 +3,34 @@
 
 static f24_t axis_of(f24_vec3 v, uint32_t k) { return k == 0 ? v.x : k == 1 ? v.y : v.z; }
 
-void trav_node_split(const trav_entry *e, uint32_t axis, f24_t split, const f24_vec3 o[], const f24_vec3 d[],
-                     trav_entry *l, trav_entry *r, uint32_t *near_left)
+/* The rays side by side, one lane each, as the datapath has them: every lane computes, the
+ * entry's mask selects the results. */
+F24Q_FN void trav_node_split(const trav_entry *e, uint32_t axis, f24_t split, const f24_vec3 o[], const f24_vec3 d[],
+                             trav_entry *l, trav_entry *r, uint32_t *near_left)
 {
-    l->mask = r->mask = 0;
-    *near_left = 0;
+    f24_t dk_bits[TRACE_PACKET], ok_bits[TRACE_PACKET], near_tf[TRACE_PACKET], far_tn[TRACE_PACKET];
+split_axes:
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        dk_bits[i] = axis_of(d[i], axis);
+        ok_bits[i] = axis_of(o[i], axis);
+    }
+    const f24q dk = f24q_of(dk_bits), tn = f24q_of(e->tn), tf = f24q_of(e->tf);
+    const f24q ts = f24q_div(f24q_sub(f24q_splat(split), f24q_of(ok_bits)), dk);
+    const f24q near_tfq = f24q_min(tf, ts), far_tnq = f24q_max(tn, ts);
+    f24q_bits(near_tfq, near_tf);
+    f24q_bits(far_tnq, far_tn);
+    const uint32_t in = e->mask, left = ~f24q_sign(dk) & in; /* -0 counts as negative */
+    const uint32_t near_ok = in & f24q_le(tn, near_tfq), far_ok = in & f24q_le(far_tnq, tf);
+    l->mask = (left & near_ok) | (~left & far_ok);
+    r->mask = (left & far_ok) | (~left & near_ok);
+    *near_left = left;
 split_rays:
     for (int i = 0; i < TRACE_PACKET; i++) {
-        l->tn[i] = l->tf[i] = r->tn[i] = r->tf[i] = 0;
-        if (!(e->mask >> i & 1u))
-            continue;
-        const f24w dk = f24w_of(axis_of(d[i], axis)), tn = f24w_of(e->tn[i]), tf = f24w_of(e->tf[i]);
-        const f24w ts = f24w_div(f24w_sub(f24w_of(split), f24w_of(axis_of(o[i], axis))), dk);
-        const f24w near_tf = f24w_min(tf, ts), far_tn = f24w_max(tn, ts);
-        const int left = !f24w_sign(dk);
-        trav_entry *nearc = left ? l : r, *farc = left ? r : l;
-        nearc->tn[i] = e->tn[i];
-        nearc->tf[i] = f24w_bits(near_tf);
-        farc->tn[i] = f24w_bits(far_tn);
-        farc->tf[i] = e->tf[i];
-        nearc->mask |= (uint32_t)f24w_le(tn, near_tf) << i;
-        farc->mask |= (uint32_t)f24w_le(far_tn, tf) << i;
-        *near_left |= (uint32_t)left << i;
+        const uint32_t on = in >> i & 1u, lft = left >> i & 1u;
+        const f24_t ntn = on ? e->tn[i] : 0, ntf = on ? near_tf[i] : 0, ftn = on ? far_tn[i] : 0, ftf = on ? e->tf[i] : 0;
+        l->tn[i] = lft ? ntn : ftn;
+        l->tf[i] = lft ? ntf : ftf;
+        r->tn[i] = lft ? ftn : ntn;
+        r->tf[i] = lft ? ftf : ntf;
     }
 }

@@ -4,59 +4,59 @@
 #include "trace_ops.h"
 #include "trav_algo.h"
 
-/* Slab test of ray (o, d) against a box of 6 fp24 words: narrows [tn, tf]. The sign bit of d
- * orders the slab distances, so that d = -0 behaves like a negative direction. */
-static void clip_box(const uint32_t *box, f24_vec3 o, f24_vec3 d, f24_t *tn, f24_t *tf)
+/* Slab test of the rays in mask (o, d) against a box of 6 fp24 words, the rays side by side as
+ * the unit's per-ray operators are: narrows their [tn, tf] and returns the rays in mask whose
+ * interval is not empty. The sign bit of d orders the slab distances, so that d = -0 behaves like
+ * a negative direction. Rays outside mask keep their tn and tf. */
+static F24Q_FN uint32_t clip_box(const uint32_t *box, const f24_vec3 o[], const f24_vec3 d[], uint32_t mask,
+                                 f24_t tn[TRACE_PACKET], f24_t tf[TRACE_PACKET])
 {
-    f24w n = f24w_of(*tn), f = f24w_of(*tf);
+    f24q n = f24q_of(tn), f = f24q_of(tf);
 clip_axes:
     for (uint32_t k = 0; k < 3; k++) {
-        const f24w ok = f24w_of(axis_of(o, k)), dk = f24w_of(axis_of(d, k));
-        f24w t0 = f24w_div(f24w_sub(f24w_of(box[k]), ok), dk), t1 = f24w_div(f24w_sub(f24w_of(box[3 + k]), ok), dk);
-        if (f24w_sign(dk)) {
-            const f24w s = t0;
-            t0 = t1;
-            t1 = s;
+        f24_t ok[TRACE_PACKET], dk[TRACE_PACKET];
+    clip_rays:
+        for (int i = 0; i < TRACE_PACKET; i++) {
+            ok[i] = axis_of(o[i], k);
+            dk[i] = axis_of(d[i], k);
         }
-        n = f24w_max(n, t0);
-        f = f24w_min(f, t1);
+        const f24q okq = f24q_of(ok), dkq = f24q_of(dk);
+        const f24q t0 = f24q_div(f24q_sub(f24q_splat(box[k]), okq), dkq),
+                   t1 = f24q_div(f24q_sub(f24q_splat(box[3 + k]), okq), dkq);
+        const uint32_t negative = f24q_sign(dkq);
+        n = f24q_max(n, f24q_select(negative, t1, t0));
+        f = f24q_min(f, f24q_select(negative, t0, t1));
     }
-    *tn = f24w_bits(n);
-    *tf = f24w_bits(f);
+    f24_t nb[TRACE_PACKET], fb[TRACE_PACKET];
+    f24q_bits(n, nb);
+    f24q_bits(f, fb);
+clip_results:
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        tn[i] = bit(mask, i) ? nb[i] : tn[i];
+        tf[i] = bit(mask, i) ? fb[i] : tf[i];
+    }
+    return mask & f24q_le(n, f);
 }
 
 uint32_t trav_scene_clip(const uint32_t *bounds, const ray_packet *rays, f24_t tn[TRACE_PACKET], f24_t tf[TRACE_PACKET])
 {
-    uint32_t mask = rays->active;
 scene_rays:
     for (int i = 0; i < TRACE_PACKET; i++) {
         tn[i] = rays->tmin[i];
         tf[i] = rays->tmax[i];
-        if (bit(mask, i))
-            clip_box(bounds, rays->o[i], rays->d[i], &tn[i], &tf[i]);
-        if (!f24_le(tn[i], tf[i]))
-            mask &= ~(1u << i);
     }
-    return mask;
+    return clip_box(bounds, rays->o, rays->d, rays->active, tn, tf);
 }
 
 uint32_t trav_object_clip(const uint32_t *bounds, const f24_vec3 o[], const f24_vec3 d[], const f24_t tmin[],
                           const f24_t best_t[], uint32_t need, f24_t tn[TRACE_PACKET], f24_t tf[TRACE_PACKET])
 {
-    uint32_t mask = need;
 object_rays:
     for (int i = 0; i < TRACE_PACKET; i++) {
-        tn[i] = F24_POS_INF;
-        tf[i] = 0;
-        if (!bit(mask, i))
-            continue;
-        tn[i] = tmin[i];
-        tf[i] = best_t[i];
-        clip_box(bounds, o[i], d[i], &tn[i], &tf[i]);
-        if (!f24_le(tn[i], tf[i]))
-            mask &= ~(1u << i);
+        tn[i] = bit(need, i) ? tmin[i] : F24_POS_INF;
+        tf[i] = bit(need, i) ? best_t[i] : 0;
     }
-    return mask;
+    return clip_box(bounds, o, d, need, tn, tf);
 }
 
 /* The walker's state for every algorithm: the rays and their intervals at the root, the stack

@@ -1,24 +1,27 @@
 /* Transformation unit: see xform_unit.h. */
 #include "xform_unit.h"
 
-/* One row on the working values of p. The translation goes through a mux, not an add of zero, so
- * a -0 sum keeps its sign. */
-static f24_t row_of(const f24_t row[4], f24w x, f24w y, f24w z, int with_translation)
+/* One row for p = { x, y, z, 1 }: the three products side by side (the unit's multipliers; lane 3
+ * is unused), summed in the contract's order. The translation goes through a mux, not an add of
+ * zero, so a -0 sum keeps its sign. */
+static F24Q_FN f24_t row_of(const f24_t row[4], const f24_t p[4], int with_translation)
 {
-    const f24w s = f24w_add(f24w_add(f24w_mul(f24w_of(row[0]), x), f24w_mul(f24w_of(row[1]), y)), f24w_mul(f24w_of(row[2]), z));
+    const f24q m = f24q_mul(f24q_of(row), f24q_of(p));
+    const f24w s = f24w_add(f24w_add(f24q_lane(m, 0), f24q_lane(m, 1)), f24q_lane(m, 2));
     return f24w_bits(with_translation ? f24w_add(s, f24w_of(row[3])) : s);
 }
 
 f24_t xform_row(const f24_t row[4], f24_vec3 p, int with_translation)
 {
-    return row_of(row, f24w_of(p.x), f24w_of(p.y), f24w_of(p.z), with_translation);
+    const f24_t q[4] = { p.x, p.y, p.z, F24_ONE };
+    return row_of(row, q, with_translation);
 }
 
 static f24_vec3 xform_step(const f24_affine *m, f24_vec3 p, int with_translation)
 {
-    const f24w x = f24w_of(p.x), y = f24w_of(p.y), z = f24w_of(p.z);
-    const f24_vec3 r = { row_of(m->m[0], x, y, z, with_translation), row_of(m->m[1], x, y, z, with_translation),
-                         row_of(m->m[2], x, y, z, with_translation) };
+    const f24_t q[4] = { p.x, p.y, p.z, F24_ONE };
+    const f24_vec3 r = { row_of(m->m[0], q, with_translation), row_of(m->m[1], q, with_translation),
+                         row_of(m->m[2], q, with_translation) };
     return r;
 }
 
@@ -26,22 +29,23 @@ f24_vec3 xform_point(const f24_affine *m, f24_vec3 p) { return xform_step(m, p, 
 
 f24_vec3 xform_vector(const f24_affine *m, f24_vec3 v) { return xform_step(m, v, 0); }
 
-/* One row in the wide mode, one rounding into a double word: a point's m0 x + m1 y + m2 z + t + tlo
- * for x, y, z in double words, a vector's m0 x + m1 y + m2 z of their high words (directions come
- * in single words). */
-static f24x2 xform_row_wide(const f24_t row[4], f24_t tlo, f24_vec3x2 p, int with_translation)
-{
-    const f24_t a[8] = { row[0], row[1], row[2], row[0], row[1], row[2], row[3], tlo };
-    const f24_t b[8] = { p.hi.x, p.hi.y, p.hi.z, p.lo.x, p.lo.y, p.lo.z, F24_ONE, F24_ONE };
-    return f24_sum_exact(a, b, with_translation ? 8u : 3u);
-}
-
+/* The wide mode, one rounding into a double word per row, the three rows side by side (lane 3
+ * unused): a point's m0 x + m1 y + m2 z + t + tlo for x, y, z in double words, a vector's
+ * m0 x + m1 y + m2 z of their high words (directions come in single words). */
 static f24_vec3x2 xform_step_wide(const f24_affine *m, f24_vec3 tlo, f24_vec3x2 p, int with_translation)
 {
-    const f24x2 x = xform_row_wide(m->m[0], tlo.x, p, with_translation),
-                y = xform_row_wide(m->m[1], tlo.y, p, with_translation),
-                z = xform_row_wide(m->m[2], tlo.z, p, with_translation);
-    const f24_vec3x2 r = { { x.hi, y.hi, z.hi }, { x.lo, y.lo, z.lo } };
+    f24_t a[8][F24Q_LANES], b[8][F24Q_LANES];
+    const f24_t x[8] = { p.hi.x, p.hi.y, p.hi.z, p.lo.x, p.lo.y, p.lo.z, F24_ONE, F24_ONE };
+    const f24_t t_lo[F24Q_LANES] = { tlo.x, tlo.y, tlo.z, 0 };
+wide_terms:
+    for (int k = 0; k < 8; k++)
+        for (int r = 0; r < F24Q_LANES; r++) {
+            a[k][r] = r == 3 ? 0u : k == 7 ? t_lo[r] : m->m[r][k < 6 ? k % 3 : 3];
+            b[k][r] = x[k];
+        }
+    f24_t hi[F24Q_LANES], lo[F24Q_LANES];
+    f24q_sum_exact(a, b, with_translation ? 8u : 3u, hi, lo);
+    const f24_vec3x2 r = { { hi[0], hi[1], hi[2] }, { lo[0], lo[1], lo[2] } };
     return r;
 }
 

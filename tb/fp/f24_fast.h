@@ -23,6 +23,9 @@
 
 #ifdef F24_FAST_SIM
 #define F24_SIM_WORKING /* f24.h then leaves the working values to this header */
+#ifndef __clang__
+#define F24_SIM_LANES /* and the packet values (the vectors below; clang keeps f24.h's lanes) */
+#endif
 #endif
 #include "f24.h"
 #include "f24_double.h" /* host/fp24: f24_fast_decode, f24_fast_encode */
@@ -52,6 +55,9 @@ static inline int f24_fast_eq(f24_t a, f24_t b) { return f24_fast_decode(a) == f
 
 /* f24_sum_exact from exact binary64 products and double-doubles (tb/fp/f24_fast_sum.c). */
 f24x2 f24_fast_sum_exact(const f24_t a[], const f24_t b[], uint32_t n);
+/* Its common case: r from the plain binary64 sum of the n exact products p and a bound on its
+ * error, where no fp24 rounding boundary lies within the bound of hi or lo; 0 otherwise. */
+int f24_fast_sum_filter(const double p[], uint32_t n, f24x2 *r);
 
 /* The working values of hls/fp24/f24.h held decoded: each operation rounds its binary64 result
  * with f24_fast_round and stays binary64, the comparisons and minimum/maximum are those above on
@@ -76,6 +82,116 @@ static inline f24_t f24_fast_max(f24_t a, f24_t b)
     return f24_fast_encode(f24_fast_minmax_w(f24_fast_decode(a), f24_fast_decode(b), 1));
 }
 
+#ifndef __clang__
+#define F24_FAST_VECTORS
+/* Four binary64 working values in one vector (the packet values of hls/fp24/f24.h in the
+ * simulation build), each operation the f24w one below on all lanes at once, written with lane
+ * masks (-1 or 0) and selects instead of branches. Functions using them (F24V_FN) are compiled
+ * for AVX2 and for the baseline instruction set, one chosen at load time by the CPU (the baseline
+ * one runs the vectors as pairs of SSE2 halves). Not with clang (the fuzz build): it rejects
+ * 32-byte vectors passed by value in code compiled without AVX. */
+#pragma GCC diagnostic ignored "-Wpsabi" /* static inline helpers: no ABI between them */
+typedef double f24v __attribute__((vector_size(32)));
+typedef int64_t f24v_i __attribute__((vector_size(32)));
+typedef uint64_t f24v_l __attribute__((vector_size(32)));
+typedef uint32_t f24v_u __attribute__((vector_size(16)));
+#ifdef F24_SIM_BASELINE /* the build's SIM_LANES=baseline: only what machines without AVX2 run */
+#define F24V_FN
+#else
+#define F24V_FN __attribute__((target_clones("avx2", "default")))
+#endif
+/* always inlined, also at -O0: a call would pass the vectors between code with and without AVX */
+#define F24V_INLINE static inline __attribute__((always_inline))
+
+F24V_INLINE f24v_i f24v_select(f24v_i mask, f24v_i a, f24v_i b) { return (a & mask) | (b & ~mask); }
+
+F24V_INLINE uint32_t f24v_mask(f24v_i m)
+{
+    return (uint32_t)((m[0] & 1) | (m[1] & 2) | (m[2] & 4) | (m[3] & 8));
+}
+
+/* f24_fast_decode per lane */
+F24V_INLINE f24v f24v_of(const f24_t a[F24Q_LANES])
+{
+    f24v_u u;
+    memcpy(&u, a, sizeof u);
+    const f24v_i x = __builtin_convertvector(u, f24v_i);
+    const f24v_i sign = (x >> (F24_EXP_BITS + F24_MAN_BITS) & 1) << 63, mag = x & (int64_t)F24_ABS_MASK;
+    const f24v_i normal = sign | (mag + (int64_t)F24_FAST_REBIAS) << (52 - F24_MAN_BITS);
+    const f24v_i special = sign | 0x7FF0000000000000ll | ((mag != (int64_t)F24_POS_INF) & (1ll << 51));
+    return (f24v)f24v_select(mag < (int64_t)F24_MIN_NORMAL, sign, f24v_select(mag < (int64_t)F24_POS_INF, normal, special));
+}
+
+F24V_INLINE f24v f24v_splat(f24_t a)
+{
+    const double d = f24_fast_decode(a);
+    return (f24v){ d, d, d, d };
+}
+
+/* The rounding to nearest even of a binary64 magnitude's significand to M+1 bits (a carry
+ * moves into the exponent field), in binary64 bit positions. */
+F24V_INLINE f24v_i f24v_round_bits(f24v_i mag52)
+{
+    enum { SHIFT = 52 - F24_MAN_BITS };
+    return mag52 + ((1ll << (SHIFT - 1)) - 1) + (f24v_i)((f24v_l)mag52 >> SHIFT & 1);
+}
+
+/* f24_fast_round per lane */
+F24V_INLINE f24v f24v_round(f24v d)
+{
+    enum { SHIFT = 52 - F24_MAN_BITS };
+    const int64_t min52 = (int64_t)(1023 - F24_BIAS + 1) << 52, inf52 = (int64_t)(1023 - F24_BIAS + F24_EXP_MAX) << 52;
+    const f24v_i bits = (f24v_i)d, mag52 = bits & 0x7FFFFFFFFFFFFFFFll;
+    const f24v_i r = f24v_round_bits(mag52) & ~((1ll << SHIFT) - 1);
+    const f24v_i ranged = f24v_select(r < min52, (f24v_i){ 0 }, f24v_select(r < inf52, r, (f24v_i){ 0 } + 0x7FF0000000000000ll));
+    const f24v nan = f24v_splat(F24_DEFAULT_NAN);
+    return (f24v)f24v_select(mag52 > 0x7FF0000000000000ll, (f24v_i)nan, (bits & (int64_t)0x8000000000000000ull) | ranged);
+}
+
+/* f24w_bits per lane */
+F24V_INLINE void f24v_bits(f24v a, f24_t out[F24Q_LANES])
+{
+    enum { SHIFT = 52 - F24_MAN_BITS };
+    const f24v_i bits = (f24v_i)a, mag52 = bits & 0x7FFFFFFFFFFFFFFFll, sign = bits < 0;
+    const f24v_i rebiased = (f24v_i)((f24v_l)f24v_round_bits(mag52) >> SHIFT) - (int64_t)F24_FAST_REBIAS;
+    const f24v_i ranged = f24v_select(rebiased < (int64_t)F24_MIN_NORMAL, (f24v_i){ 0 },
+                                      f24v_select(rebiased < (int64_t)F24_POS_INF, rebiased, (f24v_i){ 0 } + F24_POS_INF));
+    const f24v_i nan = a != a, sign_bit = sign & (int64_t)F24_SIGN_BIT;
+    const f24v_i w = f24v_select(nan, (nan & sign_bit) | F24_DEFAULT_NAN, sign_bit | ranged);
+    const f24v_u u = __builtin_convertvector(w, f24v_u);
+    memcpy(out, &u, sizeof u);
+}
+
+/* f24_fast_minmax_w per lane */
+F24V_INLINE f24v f24v_minmax(f24v x, f24v y, int want_max)
+{
+    const f24v_i xb = (f24v_i)x, yb = (f24v_i)y, x_nan = x != x, y_nan = y != y;
+    const f24v_i x_first = (x < y) | ((x == y) & (xb < 0)); /* -0 before +0 */
+    const f24v_i both = f24v_select(want_max ? ~x_first : x_first, xb, yb);
+    const f24v_i one = f24v_select(y_nan, xb, both);
+    return (f24v)f24v_select(x_nan, f24v_select(y_nan, (f24v_i)f24v_splat(F24_DEFAULT_NAN), yb), one);
+}
+
+F24V_INLINE f24v f24v_add(f24v a, f24v b) { return f24v_round(a + b); }
+F24V_INLINE f24v f24v_mul(f24v a, f24v b) { return f24v_round(a * b); }
+F24V_INLINE f24v f24v_sub(f24v a, f24v b) { return f24v_round(a - b); }
+F24V_INLINE f24v f24v_div(f24v a, f24v b) { return f24v_round(a / b); }
+F24V_INLINE f24v f24v_min(f24v a, f24v b) { return f24v_minmax(a, b, 0); }
+F24V_INLINE f24v f24v_max(f24v a, f24v b) { return f24v_minmax(a, b, 1); }
+F24V_INLINE double f24v_lane(f24v a, int i) { return a[i]; }
+F24V_INLINE f24v f24v_pick(uint32_t mask, f24v a, f24v b) /* lane i of a where mask bit i */
+{
+    const f24v_i m = ((f24v_i){ 1, 2, 4, 8 } & (int64_t)mask) != 0;
+    return (f24v)f24v_select(m, (f24v_i)a, (f24v_i)b);
+}
+F24V_INLINE uint32_t f24v_le(f24v a, f24v b) { return f24v_mask(a <= b); }
+F24V_INLINE uint32_t f24v_sign(f24v a) { return f24v_mask((f24v_i)a < 0); }
+
+/* f24q_sum_exact (hls/fp24/f24.h) on vectors (tb/fp/f24_fast_sum.c) */
+void f24_fast_sum_exact_lanes(const f24_t a[][F24Q_LANES], const f24_t b[][F24Q_LANES], uint32_t n,
+                              f24_t hi[F24Q_LANES], f24_t lo[F24Q_LANES]);
+#endif
+
 #ifdef F24_FAST_SIM
 typedef double f24w;
 static inline f24w f24w_of(f24_t a) { return f24_fast_decode(a); }
@@ -93,6 +209,26 @@ static inline f24w f24w_neg(f24w a) { return -a; }
 static inline int f24w_lt(f24w a, f24w b) { return a < b; }
 static inline int f24w_le(f24w a, f24w b) { return a <= b; }
 static inline uint32_t f24w_sign(f24w a) { return __builtin_signbit(a) != 0; }
+
+#ifdef F24_SIM_LANES /* the packet values of hls/fp24/f24.h are the vectors above */
+typedef f24v f24q;
+#define F24Q_FN F24V_FN
+#define f24q_of f24v_of
+#define f24q_splat f24v_splat
+#define f24q_bits f24v_bits
+#define f24q_add f24v_add
+#define f24q_mul f24v_mul
+#define f24q_sub f24v_sub
+#define f24q_div f24v_div
+#define f24q_min f24v_min
+#define f24q_max f24v_max
+#define f24q_lane f24v_lane
+#define f24q_select f24v_pick
+#define f24q_le f24v_le
+#define f24q_sign f24v_sign
+#define f24q_sum_exact f24_fast_sum_exact_lanes
+#endif
+
 
 #define f24_lt f24_fast_lt
 #define f24_le f24_fast_le

@@ -42,28 +42,121 @@ static f24_t round_dd(double r, double rr)
     return f24_fast_encode(r);
 }
 
-/* The products a[k]*b[k] into p; 0 if the nonzero ones may span more than the window holds
- * exactly (the integer operator decides those). Products of significands in [1, 2) lie in
- * [2^e, 2^(e+2)) for the sum e of the exponents, so a magnitude ratio below 2^(window - 2)
- * keeps e within the window's reach; the rare spreads between the two bounds go the slow way.
- * Inf and NaN operands show up as a non-finite sum later. */
-static int exact_products(const f24_t a[], const f24_t b[], uint32_t n, double p[])
+/* The window of the integer operator holds the exact sum when the nonzero products a[k]*b[k]
+ * are not too far apart (beyond, only its hi is exact and the integer operator decides).
+ * Products of significands in [1, 2) lie in [2^e, 2^(e+2)) for the sum e of the exponents, so a
+ * magnitude ratio below 2^(window - 2) keeps e within the window's reach. */
+static const double window_reach = __builtin_ldexp(1.0, 127 - 5 - (2 * F24_MAN_BITS + 1) - 2); /* f24_sum_exact.c: top - 2 */
+
+/* 1 if the products p span no more than the window holds (the rare spreads between the
+ * bounds go the slow way); Inf and NaN operands show up as a non-finite sum later. */
+static int within_window(const double p[], uint32_t n)
 {
-    const double reach = __builtin_ldexp(1.0, 127 - 5 - (2 * F24_MAN_BITS + 1) - 2); /* f24_sum_exact.c: top - 2 */
     double largest = 0, smallest = __builtin_inf();
     for (uint32_t k = 0; k < n; k++) {
-        p[k] = f24_fast_decode(a[k]) * f24_fast_decode(b[k]);
         const double m = __builtin_fabs(p[k]);
         largest = m > largest ? m : largest;
         smallest = m != 0 && m < smallest ? m : smallest;
     }
-    return largest < smallest * reach || largest == __builtin_inf();
+    return largest < smallest * window_reach || largest == __builtin_inf();
+}
+
+/* The fp24 rounding of x's magnitude as an integer (the kept bits, a carry into the exponent
+ * included): monotone in |x|, so two values of one sign with equal keys bound an interval that
+ * rounds to one fp24 value, range rules included (they depend on the rounded value only). */
+static inline uint64_t round_key(double x)
+{
+    enum { SHIFT = 52 - F24_MAN_BITS };
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    bits &= 0x7FFFFFFFFFFFFFFFull;
+    return (bits + ((1ull << (SHIFT - 1)) - 1u) + ((bits >> SHIFT) & 1u)) >> SHIFT;
+}
+
+/* 1 if every value within w of x (w >= 0) has x's sign and rounds to fp24 as x does; w = 0 is
+ * exact. x +- w are computed rounded; the callers' w hold the margin for that. */
+static inline int rounds_alike(double x, double w)
+{
+    const double ax = __builtin_fabs(x);
+    return w == 0 || (w < ax && round_key(ax - w) == round_key(ax + w));
+}
+
+/* A bound on |s - S| for the recursive binary64 sum s of the n products p and their exact sum
+ * S, 0 where s is exact; NaN where the products are not finite or spread wider than the window
+ * (sum|p| bounds the largest one). Every product has at most 2(M+1) significant bits, so all
+ * are multiples of 2^(e - 2M - 1) for the exponent e of the smallest nonzero one, and partial
+ * sums below 2^(e + 52 - 2M) are exact: mass = sum|p| < smallest 2^(50 - 2M) guarantees that
+ * with room for mass's own rounding. Otherwise recursive summation errs by at most
+ * (n-1)u/(1-(n-1)u) mass <= n u mass (u = 2^-53); n 2^-50 mass leaves room for the bound's own
+ * roundings. */
+static double sum_error(const double p[], uint32_t n, double *s)
+{
+    double sum = -0.0, mass = 0, smallest = __builtin_inf(); /* -0: -0 only if all products are -0 */
+    for (uint32_t k = 0; k < n; k++) {
+        const double m = __builtin_fabs(p[k]);
+        sum += p[k];
+        mass += m;
+        smallest = m != 0 && m < smallest ? m : smallest;
+    }
+    *s = sum;
+    if (!(mass < smallest * window_reach))
+        return __builtin_nan("");
+    return mass < smallest * __builtin_ldexp(1.0, 50 - 2 * F24_MAN_BITS) ? 0 : mass * (double)n * 0x1p-50;
+}
+
+int f24_fast_sum_filter(const double p[], uint32_t n, f24x2 *r)
+{
+    double s;
+    const double err = sum_error(p, n, &s);
+    /* 2 err and 2^-50 |x| cover the error of s and the roundings of x +- w (|x| u each) */
+    if (err != err || !rounds_alike(s, 2 * err + __builtin_fabs(s) * 0x1p-50 * (err != 0)))
+        return 0;
+    const f24_t hi = f24_fast_encode(s);
+    if (f24_exp(hi) == 0 || f24_exp(hi) == F24_EXP_MAX) { /* flushed (or zero) or overflowed */
+        *r = (f24x2){ hi, 0 };
+        return 1;
+    }
+    const double rest = s - f24_fast_decode(hi); /* exact: |s - hi| <= ulp(hi) / 2 */
+    if (!rounds_alike(rest, 2 * err + __builtin_fabs(rest) * 0x1p-50 * (err != 0)))
+        return 0;
+    *r = (f24x2){ hi, rest == 0 ? 0 : f24_fast_encode(rest) };
+    return 1;
+}
+
+#ifdef F24_FAST_VECTORS
+#define F24V_PRODUCTS_FN F24V_FN
+#else
+#define F24V_PRODUCTS_FN
+#endif
+
+/* The products a[k] b[k] into p, exact in binary64 (at most 2(M+1) significant bits); four at a
+ * time where the build has the vectors of tb/fp/f24_fast.h. */
+static F24V_PRODUCTS_FN void products(const f24_t a[], const f24_t b[], uint32_t n, double p[F24_SUM_TERMS])
+{
+#ifdef F24_FAST_VECTORS
+    f24_t ap[F24_SUM_TERMS] = { 0 }, bp[F24_SUM_TERMS] = { 0 };
+    memcpy(ap, a, n * sizeof a[0]);
+    memcpy(bp, b, n * sizeof b[0]);
+    for (uint32_t k = 0; k < n; k += F24Q_LANES) {
+        const f24v v = f24v_of(ap + k) * f24v_of(bp + k); /* lanes past n: zeros, unused */
+        memcpy(p + k, &v, sizeof v);
+    }
+#else
+    for (uint32_t k = 0; k < n; k++)
+        p[k] = f24_fast_decode(a[k]) * f24_fast_decode(b[k]);
+#endif
 }
 
 f24x2 f24_fast_sum_exact(const f24_t a[], const f24_t b[], uint32_t n)
 {
-    double p[F24_SUM_TERMS];
-    if (n == 0 || n > F24_SUM_TERMS || !exact_products(a, b, n, p))
+    double p[F24_SUM_TERMS] = { 0 }; /* (products writes p[0 .. n-1]: for the compiler's flow analysis) */
+    if (n == 0 || n > F24_SUM_TERMS)
+        return f24_sum_exact(a, b, n);
+    products(a, b, n, p);
+    f24x2 r;
+    if (f24_fast_sum_filter(p, n, &r))
+        return r;
+    if (!within_window(p, n))
         return f24_sum_exact(a, b, n);
     /* p[0] first: a sum of zero products keeps binary64's sign rule, -0 only if all are -0 */
     double s = p[0], e = 0;
@@ -85,3 +178,59 @@ f24x2 f24_fast_sum_exact(const f24_t a[], const f24_t b[], uint32_t n)
     const f24_dd rest = two_sum(sum.s - f24_fast_decode(hi), sum.e);
     return (f24x2){ hi, rest.s == 0 ? 0 : round_dd(rest.s, rest.e) };
 }
+
+#ifdef F24_FAST_VECTORS
+static inline __attribute__((always_inline)) f24v abs_lanes(f24v x) { return (f24v)((f24v_i)x & 0x7FFFFFFFFFFFFFFFll); }
+
+/* rounds_alike per lane, as a lane mask */
+static inline __attribute__((always_inline)) f24v_i rounds_alike_lanes(f24v x, f24v w)
+{
+    enum { SHIFT = 52 - F24_MAN_BITS };
+    const f24v ax = abs_lanes(x);
+    const f24v_l key_lo = (f24v_l)f24v_round_bits((f24v_i)(ax - w)) >> SHIFT,
+                 key_hi = (f24v_l)f24v_round_bits((f24v_i)(ax + w)) >> SHIFT;
+    return (w == 0) | ((w < ax) & ((f24v_i)key_lo == (f24v_i)key_hi));
+}
+
+/* The margin of f24_fast_sum_filter around x: 2 err, and 2^-50 |x| where err != 0. */
+static inline __attribute__((always_inline)) f24v margin_lanes(f24v x, f24v err, f24v_i inexact)
+{
+    return 2 * err + (f24v)((f24v_i)(abs_lanes(x) * 0x1p-50) & inexact);
+}
+
+/* f24_fast_sum_exact of the four lanes at once (n <= F24_SUM_TERMS): f24_fast_sum_filter on
+ * vectors, the products summed in order; a lane it cannot decide goes to f24_fast_sum_exact
+ * alone. */
+F24V_FN void f24_fast_sum_exact_lanes(const f24_t a[][F24Q_LANES], const f24_t b[][F24Q_LANES], uint32_t n,
+                                      f24_t hi[F24Q_LANES], f24_t lo[F24Q_LANES])
+{
+    const f24v zero = { 0, 0, 0, 0 }, inf = zero + __builtin_inf();
+    f24v sum = -zero, mass = zero, least = inf; /* -0: -0 only if all products are -0 */
+    for (uint32_t k = 0; k < n; k++) {
+        const f24v p = f24v_of(a[k]) * f24v_of(b[k]), m = abs_lanes(p); /* exact */
+        sum += p;
+        mass += m;
+        least = (f24v)f24v_select((m != 0) & (m < least), (f24v_i)m, (f24v_i)least);
+    }
+    const f24v_i window = mass < least * window_reach, exact = mass < least * __builtin_ldexp(1.0, 50 - 2 * F24_MAN_BITS);
+    const f24v err = (f24v)((f24v_i)(mass * (double)n * 0x1p-50) & ~exact);
+    const f24v hi_d = f24v_round(sum), rest = sum - hi_d; /* exact: |s - hi| <= ulp(hi) / 2 */
+    const f24v_i hi_special = (hi_d == 0) | (abs_lanes(hi_d) == inf); /* flushed (or zero) or overflowed: lo = 0 */
+    const f24v_i ok = window & rounds_alike_lanes(sum, margin_lanes(sum, err, ~exact)) &
+                      (hi_special | rounds_alike_lanes(rest, margin_lanes(rest, err, ~exact))) & (n > 0 ? -1ll : 0);
+    f24v_bits(sum, hi);
+    f24v_bits((f24v)((f24v_i)rest & ~(hi_special | (rest == 0))), lo);
+    for (int i = 0; i < F24Q_LANES; i++) {
+        if (ok[i])
+            continue;
+        f24_t ai[F24_SUM_TERMS], bi[F24_SUM_TERMS];
+        for (uint32_t k = 0; k < n; k++) {
+            ai[k] = a[k][i];
+            bi[k] = b[k][i];
+        }
+        const f24x2 r = f24_fast_sum_exact(ai, bi, n);
+        hi[i] = r.hi;
+        lo[i] = r.lo;
+    }
+}
+#endif
