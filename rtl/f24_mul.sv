@@ -1,17 +1,19 @@
 // f24_mul: pipelined fp24 multiplier, docs/fp24.md semantics bit for bit (hls/fp24/f24_mul.c).
 // Four combinational segments with STAGES pipeline registers spread evenly over the cuts after
 // them (PULP FPnew style; the last cut always gets one, so the output is registered):
-//   1 partial products: (M+1) x 6-bit slices of the significand product, exponent sum, specials
+//   1 partial products: (M+1) x PP_BITS-bit slices of the significand product, exponent sum, specials
 //   2 sum of the partial products
 //   3 one-bit normalize with sticky, exponent carry
 //   4 shared rounder (f24_round_pack), result or special
 // Latency STAGES cycles (default 4, >= 60 MHz on iCE40 HX8K at e7m16, docs/synth.md), one
-// operation per cycle (II = 1). Resources: one (M+1) x (M+1) multiplier as ceil((M+1)/6) slices
-// (DSP blocks on Xilinx), an exponent adder, the rounder, about 4 x 60 pipeline FFs.
+// operation per cycle (II = 1). Resources: one (M+1) x (M+1) multiplier as ceil((M+1)/PP_BITS)
+// slices (one DSP48E1 each on Xilinx: PP_BITS = M + 1 for one), an exponent adder, the rounder,
+// about 4 x 60 pipeline FFs.
 module f24_mul #(
   parameter int E = 7,
   parameter int M = 16,
-  parameter int STAGES = 4
+  parameter int STAGES = 4,
+  parameter int PP_BITS = 6  // bits of b per partial product; M + 1: one product (one DSP48E1 on Xilinx)
 ) (
   input  logic         clk_i,
   input  logic         rst_ni,
@@ -25,7 +27,7 @@ module f24_mul #(
   localparam int W = 1 + E + M;
   localparam int K = 4;                      // segments
   localparam int BIAS = (1 << (E - 1)) - 1;
-  localparam int SL = 6;                     // bits of b per partial product
+  localparam int SL = PP_BITS;               // bits of b per partial product
   localparam int NP = (M + 1 + SL - 1) / SL; // partial products
   localparam int PW = M + 1 + SL;            // bits of one partial product
   localparam logic [E-1:0] EMAX = '1;

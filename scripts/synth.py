@@ -27,7 +27,7 @@ UNITS = ["xform_unit", "isect_unit", "trav_node"]
 WIDTHS = [8, 10, 12, 14, 16, 18, 20, 23]
 ROBUST_EDGE_EPS = 8
 # the operators' default pipeline stages (rtl/f24_*.sv: STAGES) and the units' latencies built from them
-STAGES = {"f24_add": 6, "f24_mul": 4, "f24_div": 11, "f24_cmp": 2}
+STAGES = {"f24_add": 6, "f24_mul": 4, "f24_div": 11, "f24_cmp": 2, "f24_sum_exact": 25}
 LATENCY = dict(STAGES, xform_unit=STAGES["f24_mul"] + 3 * STAGES["f24_add"],
                isect_unit=STAGES["f24_div"] + STAGES["f24_mul"] + 2 * STAGES["f24_add"] + STAGES["f24_cmp"],
                trav_node=STAGES["f24_add"] + STAGES["f24_div"] + 2 * STAGES["f24_cmp"])
@@ -95,6 +95,10 @@ TIMING_INST = {
                ".b_i(b_q), .valid_o(), .res_o(res_o));",
     "f24_cmp": "f24_cmp #(.E({e}), .M({m})) u (.clk_i(clk_i), .rst_ni(1'b1), .en_i(1'b1), .valid_i(1'b1), .a_i(a_q), "
                ".b_i(b_q), .valid_o(), .flags_o(), .min_o(res_o), .max_o());",
+    # one term (with N >= 2 the exact dot product does not fit an HX8K); hi ^ lo keeps both words' logic
+    "f24_sum_exact": "logic [{e}+{m}:0] hi, lo; f24_sum_exact #(.E({e}), .M({m}), .N(1)) u (.clk_i(clk_i), .rst_ni(1'b1), "
+                     ".en_i(1'b1), .valid_i(1'b1), .a_i(a_q), .b_i(b_q), .valid_o(), .hi_o(hi), .lo_o(lo)); "
+                     "assign res_o = hi ^ lo;",
 }
 
 
@@ -124,6 +128,7 @@ def main():
     os.makedirs(OUT, exist_ok=True)
     jobs = {}
     with cf.ThreadPoolExecutor(max_workers=2) as pool:
+        jobs[("i", "f24_sum_exact", 16)] = pool.submit(ice40, "f24_sum_exact", 7, 16)
         for top in OPERATORS + UNITS:
             jobs[("x", top, 16)] = pool.submit(xilinx, top, 7, 16)
         for top in OPERATORS:
@@ -163,7 +168,11 @@ def write(res):
           f"| {t} | {BEFORE[t][0]} | {BEFORE[t][1]} | {BEFORE[t][2]} | {BEFORE[t][3]:.1f} | {LATENCY[t]} | "
           f"{res[('i', t, 16)]['lut4']} | {res[('i', t, 16)]['ff']} | "
           f"{res[('i', t, 16)]['fmax_mhz'] if res[('i', t, 16)].get('fmax_mhz') else res[('i', t, 16)].get('pnr', '-')} |"
-          for t in OPERATORS] + ["",
+          for t in OPERATORS + ["f24_sum_exact"]] + ["",
+          "f24_sum_exact with one term (N = 1: its whole datapath but the carry-save adder of the terms; "
+          "with N >= 2 it does not fit the HX8K's 7680 logic cells). The units' latencies follow from the "
+          "operators' (rtl/README.md): xform_unit MUL + 3 ADD, isect_unit DIV + MUL + 2 ADD + CMP, trav_node "
+          "ADD + DIV + 2 CMP.", "",
           "## Modules at e7m16 (the paper's 24-bit format)", "",
           "| module | latency | LUTs | SRL (pipeline shift registers) | FFs | DSP48E1 | BRAM | CARRY4 | iCE40 LUT4 | iCE40 FFs | iCE40 Fmax MHz |",
           "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
