@@ -3,11 +3,11 @@
 // leading one at bit 30 and everything below ORed into bit 0, and the exponent, clamped to the
 // rounder's range (at most -2: zero even after a carry; at least the Inf exponent: Inf).
 // A binary-search leading-zero count merged with the shifter (shift by 64, 32, ..., 1 where the
-// bits above are zero), an OR tree for the sticky bit, the exponent adder, in three segments
+// bits above are zero), an OR tree for the sticky bit, a 12-bit exponent adder, in three segments
 // with R1, R2, R3 pipeline registers at the cuts after them (the caller spreads its own STAGES
 // over them; 0 is a wire): 1 shift by 64, 32; 2 by 16, 8, 4; 3 by 2, 1, sticky, exponent.
 // Latency R1 + R2 + R3 cycles (default 3), II = 1. Resources: a 128-bit 7-level shifter with zero
-// detectors, a 97-input OR, a 32-bit exponent adder and clamp, about 3 x 170 pipeline FFs.
+// detectors, a 97-input OR, 12-bit exponent adders and clamp, about 3 x 150 pipeline FFs.
 module f24_norm128 #(
   parameter int E = 7,
   parameter int R1 = 1,
@@ -23,7 +23,7 @@ module f24_norm128 #(
   output logic signed [E+2:0] exp_o
 );
   localparam int BIAS = (1 << (E - 1)) - 1;
-  localparam int EXP_MAX = (1 << E) - 1;
+  localparam logic signed [11:0] EXP_MAX = 12'((1 << E) - 1);
 
   // ---- segment 1: by 64, 32
   logic [127:0] x1;
@@ -36,41 +36,48 @@ module f24_norm128 #(
   end
   logic [127:0] x2;
   logic [1:0] n2;
-  logic signed [15:0] s2;
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic signed [15:0] s2;       // 12 bits of it are used
+  /* verilator lint_on UNUSEDSIGNAL */
   /* verilator lint_off PINCONNECTEMPTY */
   f24_pipe #(.W(128 + 2 + 16), .STAGES(R1)) u_c1 (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en_i), .valid_i(1'b0),
     .data_i({x1, n1, scale_i}), .valid_o(), .data_o({x2, n2, s2}));
 
-  // ---- segment 2: by 16, 8, 4
+  // ---- segment 2: by 16, 8, 4; the exponent but for the last two shift bits (12 bits hold it:
+  // |scale| stays below 2^(E+2))
   logic [127:0] xs2;
   logic [4:0] ns2;
+  logic signed [11:0] base2;
   always_comb begin
     xs2 = x2;
     ns2 = {n2, 3'b000};
     if (xs2[127:112] == 0) begin xs2 = xs2 << 16; ns2[2] = 1'b1; end
     if (xs2[127:120] == 0) begin xs2 = xs2 << 8; ns2[1] = 1'b1; end
     if (xs2[127:124] == 0) begin xs2 = xs2 << 4; ns2[0] = 1'b1; end
+    base2 = 12'sd127 - 12'({ns2, 2'b00}) + 12'(s2) + 12'(BIAS);
   end
   logic [127:0] x3;
-  logic [4:0] n3;
-  logic signed [15:0] s3;
-  f24_pipe #(.W(128 + 5 + 16), .STAGES(R2)) u_c2 (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en_i), .valid_i(1'b0),
-    .data_i({xs2, ns2, s2}), .valid_o(), .data_o({x3, n3, s3}));
+  logic signed [11:0] base3;
+  f24_pipe #(.W(128 + 12), .STAGES(R2)) u_c2 (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en_i), .valid_i(1'b0),
+    .data_i({xs2, base2}), .valid_o(), .data_o({x3, base3}));
 
-  // ---- segment 3: by 2, 1; sticky; exponent
+  // ---- segment 3: by 2, 1; sticky (the bits below bit 94 ORed beside the shift); exponent
   logic [127:0] xs3;
-  logic [6:0] n;
+  logic [1:0] n;
+  logic low, sticky;
   logic [30:0] sig;
-  logic signed [31:0] e;
+  logic signed [11:0] e;
   logic signed [E+2:0] ex;
   always_comb begin
     xs3 = x3;
-    n = {n3, 2'b00};
+    n = '0;
     if (xs3[127:126] == 0) begin xs3 = xs3 << 2; n[1] = 1'b1; end
     if (xs3[127] == 0) begin xs3 = xs3 << 1; n[0] = 1'b1; end
-    sig = {xs3[127:98], xs3[97] | (xs3[96:0] != 0)};  // the leading one (bit 127 - n of a) at bit 30
-    e = 32'd127 - 32'(n) + 32'(s3) + BIAS;
-    ex = (E+3)'(e < -2 ? -2 : e > EXP_MAX ? EXP_MAX : e);
+    low = x3[93:0] != 0;                         // bits 96 .. 0 after the shift by n: x3[96-n:0]
+    sticky = low | (n <= 2'd2 && x3[94]) | (n <= 2'd1 && x3[95]) | (n == 2'd0 && x3[96]);
+    sig = {xs3[127:98], xs3[97] | sticky};      // the leading one (bit 127 - n of a) at bit 30
+    e = base3 - 12'(n);
+    ex = (E+3)'(e < -12'sd2 ? -12'sd2 : e > EXP_MAX ? EXP_MAX : e);
   end
   f24_pipe #(.W(31 + E + 3), .STAGES(R3)) u_c3 (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en_i), .valid_i(1'b0),
     .data_i({sig, ex}), .valid_o(), .data_o({sig_o, exp_o}));

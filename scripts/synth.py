@@ -16,8 +16,10 @@
    intersection unit's plane distance) at e7m16, and with 9 terms at M = 12 and 20, and the area
    of the whole fix composed from it and the operators.
 Runs two Yosys processes at a time; logs in build/synth/.
+`python3 scripts/synth.py --redo i:f24_sum_exact:e7m16 [KEY ...]` measures only the given entries of
+build/synth/synth.json again (keys as in that file) and rewrites it and docs/synth.md.
 """
-import concurrent.futures as cf, json, os, re, subprocess, sys, tempfile
+import concurrent.futures as cf, json, os, re, subprocess, sys, tempfile, time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RTL = sorted(os.path.join(ROOT, "rtl", f) for f in os.listdir(os.path.join(ROOT, "rtl")) if f.endswith(".sv"))
@@ -34,7 +36,7 @@ LATENCY = dict(STAGES, xform_unit=STAGES["f24_mul"] + 3 * STAGES["f24_add"],
 # before the operators were pipelined inside (a combinational core, then a delay line): make synth at
 # commit 0abb082 (2026-11-24), iCE40 HX8K: latency, LUT4, FFs, Fmax MHz
 BEFORE = {"f24_add": (3, 756, 72, 14.83), "f24_mul": (3, 896, 72, 32.89), "f24_div": (6, 1394, 144, 4.64),
-          "f24_cmp": (1, 224, 24, 49.47)}
+          "f24_cmp": (1, 224, 24, 49.47), "f24_sum_exact": (4, 6133, 192, 3.69)}  # (sum: one term, measured alike)
 FP_UNITS = {  # fp24 operators in each datapath: add/sub, mul, div, comparisons (min/max/compare)
     "xform_unit": (9, 9, 0, 0), "isect_unit": (4, 2, 1, 5), "trav_node": (4, 0, 4, 16)}
 SUM_TERMS = [4, 8, 9]           # f24_sum_exact instances of the accuracy datapath at e7m16
@@ -124,8 +126,37 @@ def ice40(top, e, m):
     return res
 
 
+def parse_key(key):
+    """'i:f24_add:e7m16' or 'x:f24_sum_exact:e7m16:n9' -> the key of main()'s result dict."""
+    kind, top, fmt = key.split(":", 2)
+    m = fmt.split("m", 1)[1]
+    return (kind, top, int(m) if m.isdigit() else m)
+
+
+REDONE = []  # entries measured again by --redo, named in docs/synth.md
+
+
+def redo(keys):
+    """Measure the given entries again, keep the others from build/synth/synth.json."""
+    REDONE.extend(keys)
+    res = {parse_key(k): v for k, v in json.load(open(os.path.join(OUT, "synth.json"))).items()}
+    for key in keys:
+        kind, top, m = parse_key(key)
+        mm, _, opt = str(m).partition(":")
+        if kind == "i":
+            res[(kind, top, m)] = ice40(top, 7, int(mm))
+        else:
+            res[(kind, top, m)] = xilinx(top, 7, int(mm), int(opt[4:]) if opt.startswith("edge") else 0,
+                                         int(opt[1:]) if opt.startswith("n") else 0)
+        print(f"synth: {key}: {res[(kind, top, m)]}", file=sys.stderr, flush=True)
+    json.dump({f"{k[0]}:{k[1]}:e7m{k[2]}": v for k, v in res.items()}, open(os.path.join(OUT, "synth.json"), "w"), indent=1)
+    write(res)
+
+
 def main():
     os.makedirs(OUT, exist_ok=True)
+    if len(sys.argv) > 2 and sys.argv[1] == "--redo":
+        return redo(sys.argv[2:])
     jobs = {}
     with cf.ThreadPoolExecutor(max_workers=2) as pool:
         jobs[("i", "f24_sum_exact", 16)] = pool.submit(ice40, "f24_sum_exact", 7, 16)
@@ -162,10 +193,12 @@ def write(res):
           "join later (f24_pipe), which Xilinx maps to SRL shift registers (SRL column), iCE40 to flip-flops.", "",
           "## Pipelined operators on iCE40 HX8K (e7m16), before and after", "",
           "Before: each operator a combinational core followed by its delay line (make synth at commit 0abb082, "
-          "2026-11-24); after: registers inside the operators at the default STAGES.", "",
+          f"2026-11-24); after: registers inside the operators at the default STAGES (`make synth`, "
+          f"{time.strftime('%Y-%m-%d', time.gmtime())}"
+          + (f"; re-measured with `python3 scripts/synth.py --redo {' '.join(REDONE)}`" if REDONE else "") + ").", "",
           "| operator | latency before | LUT4 before | FFs before | Fmax MHz before | latency (STAGES) | LUT4 | FFs | Fmax MHz |",
           "|---|---:|---:|---:|---:|---:|---:|---:|---:|"] + [
-          f"| {t} | {BEFORE[t][0]} | {BEFORE[t][1]} | {BEFORE[t][2]} | {BEFORE[t][3]:.1f} | {LATENCY[t]} | "
+          f"| {t}{' (N = 1)' if t == 'f24_sum_exact' else ''} | {BEFORE[t][0]} | {BEFORE[t][1]} | {BEFORE[t][2]} | {BEFORE[t][3]:.1f} | {LATENCY[t]} | "
           f"{res[('i', t, 16)]['lut4']} | {res[('i', t, 16)]['ff']} | "
           f"{res[('i', t, 16)]['fmax_mhz'] if res[('i', t, 16)].get('fmax_mhz') else res[('i', t, 16)].get('pnr', '-')} |"
           for t in OPERATORS + ["f24_sum_exact"]] + ["",
