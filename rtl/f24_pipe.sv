@@ -1,13 +1,16 @@
 // f24_pipe: STAGES pipeline registers (data and valid) with a clock enable, the delay line that
-// gives every operator and unit its parameterized latency. STAGES = 0 is a wire. Synthesis with
+// gives every operator and unit its parameterized latency, and the pipeline cut between two segments
+// of an operator (STAGES of 0, 1 or more registers there). STAGES = 0 is a wire. Synthesis with
 // retiming (synth_* -retime) may move the registers into the combinational logic before them.
 module f24_pipe #(
   parameter int W = 24,
   parameter int STAGES = 1
 ) (
-  input  logic         clk_i,
+  /* verilator lint_off UNUSEDSIGNAL */
+  input  logic         clk_i,      // unused when STAGES = 0
   input  logic         rst_ni,
   input  logic         en_i,
+  /* verilator lint_on UNUSEDSIGNAL */
   input  logic         valid_i,
   input  logic [W-1:0] data_i,
   output logic         valid_o,

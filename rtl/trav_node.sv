@@ -3,12 +3,16 @@
 // left unless D_axis has its sign bit set, near = [tn, min(tf, t_split)], far =
 // [max(tn, t_split), tf], child mask bits for non-empty intervals; rays outside the mask get
 // [0, 0]. Datapath: 4 subtractors, 4 dividers (Table 2: 4 add, 4 div), 4 min, 4 max and 8
-// interval comparators. Latency LATENCY (default: adder 3 + divider 6 + min/max 1 + comparator
-// 1 = 11), one node per cycle (II = 1). Handshake: valid/ready.
+// interval comparators, all pipelined (rtl/f24_*.sv); the operands that join later wait in
+// f24_pipe delay lines. Latency LATENCY = ADD_STAGES + DIV_STAGES + 2 CMP_STAGES (default
+// 6 + 11 + 2 x 2 = 21), one node per cycle (II = 1); the clock is that of the operators
+// (docs/synth.md). Handshake: valid/ready.
 module trav_node #(
   parameter int E = 7,
   parameter int M = 16,
-  parameter int LATENCY = 11
+  parameter int ADD_STAGES = 6,
+  parameter int DIV_STAGES = 11,
+  parameter int CMP_STAGES = 2
 ) (
   input  logic                    clk_i,
   input  logic                    rst_ni,
@@ -32,53 +36,58 @@ module trav_node #(
   output logic [4*(E+M+1)-1:0]    r_tf_o
 );
   localparam int W = 1 + E + M;
-  /* verilator lint_off UNUSEDSIGNAL */
-  logic nc_lt_o [64], nc_le_o [64], nc_eq_o [64], nc_unordered_o [64];
-  logic [E+M:0] nc_min_o [64], nc_max_o [64]; // comparator outputs this datapath does not use
-  /* verilator lint_on UNUSEDSIGNAL */
-  logic [3:0] l_mask, r_mask, near_left;
-  logic [4*W-1:0] l_tn, l_tf, r_tn, r_tf;
+  localparam int LATENCY = ADD_STAGES + DIV_STAGES + 2 * CMP_STAGES;
+  localparam int L_MM = LATENCY - CMP_STAGES;                    // min/max results
+  logic [3:0] left_in, mask_q, left_q, mask_o, left_o, fl_le, fr_le;
+  logic valid_q, en;
+  assign en = ready_i || !valid_o;
+  assign ready_o = en;
 
+  /* verilator lint_off PINCONNECTEMPTY */
   for (genvar i = 0; i < 4; i++) begin : g_ray
-    logic [W-1:0] ok, dk, diff, ts, tn, tf, near_tf, far_tn, ltn, ltf, rtn, rtf;
+    logic [W-1:0] ok, dk, dk_q, diff, ts, tn_q, tf_q, tn_q2, tf_q2, near_tf, far_tn, ltn, ltf, rtn, rtf;
     /* verilator lint_off UNUSEDSIGNAL */
     logic [3:0] fl, fr; // {unordered, eq, le, lt}: le is used
     /* verilator lint_on UNUSEDSIGNAL */
-    logic left;
     assign ok = o_i[(3*i + 32'(axis_i))*W +: W];
     assign dk = d_i[(3*i + 32'(axis_i))*W +: W];
-    assign tn = tn_i[i*W +: W];
-    assign tf = tf_i[i*W +: W];
-    f24_add_core #(.E(E), .M(M)) u_sub (.a_i(split_i), .b_i(ok), .sub_i(1'b1), .res_o(diff));
-    f24_div_core #(.E(E), .M(M)) u_div (.a_i(diff), .b_i(dk), .res_o(ts));
-    f24_cmp_core #(.E(E), .M(M)) u_min (.a_i(tf), .b_i(ts), .lt_o(nc_lt_o[0]), .le_o(nc_le_o[1]), .eq_o(nc_eq_o[2]), .unordered_o(nc_unordered_o[3]),
-                                        .min_o(near_tf), .max_o(nc_max_o[4]));
-    f24_cmp_core #(.E(E), .M(M)) u_max (.a_i(tn), .b_i(ts), .lt_o(nc_lt_o[5]), .le_o(nc_le_o[6]), .eq_o(nc_eq_o[7]), .unordered_o(nc_unordered_o[8]),
-                                        .min_o(nc_min_o[9]), .max_o(far_tn));
-    assign left = !dk[W-1];
-    assign ltn = !mask_i[i] ? '0 : left ? tn : far_tn;
-    assign ltf = !mask_i[i] ? '0 : left ? near_tf : tf;
-    assign rtn = !mask_i[i] ? '0 : left ? far_tn : tn;
-    assign rtf = !mask_i[i] ? '0 : left ? tf : near_tf;
-    f24_cmp_core #(.E(E), .M(M)) u_cl (.a_i(ltn), .b_i(ltf), .lt_o(fl[0]), .le_o(fl[1]), .eq_o(fl[2]),
-                                       .unordered_o(fl[3]), .min_o(nc_min_o[10]), .max_o(nc_max_o[11]));
-    f24_cmp_core #(.E(E), .M(M)) u_cr (.a_i(rtn), .b_i(rtf), .lt_o(fr[0]), .le_o(fr[1]), .eq_o(fr[2]),
-                                       .unordered_o(fr[3]), .min_o(nc_min_o[12]), .max_o(nc_max_o[13]));
-    assign l_mask[i] = mask_i[i] && fl[1];
-    assign r_mask[i] = mask_i[i] && fr[1];
-    assign near_left[i] = mask_i[i] && left;
-    assign l_tn[i*W +: W] = ltn;
-    assign l_tf[i*W +: W] = ltf;
-    assign r_tn[i*W +: W] = rtn;
-    assign r_tf[i*W +: W] = rtf;
+    assign left_in[i] = !dk[W-1];
+    f24_add #(.E(E), .M(M), .STAGES(ADD_STAGES)) u_sub (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en),
+      .valid_i(1'b0), .a_i(split_i), .b_i(ok), .sub_i(1'b1), .valid_o(), .res_o(diff));
+    f24_pipe #(.W(W), .STAGES(ADD_STAGES)) u_d_dk (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en), .valid_i(1'b0),
+      .data_i(dk), .valid_o(), .data_o(dk_q));
+    f24_div #(.E(E), .M(M), .STAGES(DIV_STAGES)) u_div (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en),
+      .valid_i(1'b0), .a_i(diff), .b_i(dk_q), .valid_o(), .res_o(ts));
+    f24_pipe #(.W(2 * W), .STAGES(ADD_STAGES + DIV_STAGES)) u_d_t (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en),
+      .valid_i(1'b0), .data_i({tn_i[i*W +: W], tf_i[i*W +: W]}), .valid_o(), .data_o({tn_q, tf_q}));
+    f24_cmp #(.E(E), .M(M), .STAGES(CMP_STAGES)) u_min (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en),
+      .valid_i(1'b0), .a_i(tf_q), .b_i(ts), .valid_o(), .flags_o(), .min_o(near_tf), .max_o());
+    f24_cmp #(.E(E), .M(M), .STAGES(CMP_STAGES)) u_max (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en),
+      .valid_i(1'b0), .a_i(tn_q), .b_i(ts), .valid_o(), .flags_o(), .min_o(), .max_o(far_tn));
+    f24_pipe #(.W(2 * W), .STAGES(CMP_STAGES)) u_d_t2 (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en),
+      .valid_i(1'b0), .data_i({tn_q, tf_q}), .valid_o(), .data_o({tn_q2, tf_q2}));
+    assign ltn = !mask_q[i] ? '0 : left_q[i] ? tn_q2 : far_tn;
+    assign ltf = !mask_q[i] ? '0 : left_q[i] ? near_tf : tf_q2;
+    assign rtn = !mask_q[i] ? '0 : left_q[i] ? far_tn : tn_q2;
+    assign rtf = !mask_q[i] ? '0 : left_q[i] ? tf_q2 : near_tf;
+    f24_cmp #(.E(E), .M(M), .STAGES(CMP_STAGES)) u_cl (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en),
+      .valid_i(1'b0), .a_i(ltn), .b_i(ltf), .valid_o(), .flags_o(fl), .min_o(), .max_o());
+    f24_cmp #(.E(E), .M(M), .STAGES(CMP_STAGES)) u_cr (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en),
+      .valid_i(1'b0), .a_i(rtn), .b_i(rtf), .valid_o(), .flags_o(fr), .min_o(), .max_o());
+    assign fl_le[i] = fl[1];
+    assign fr_le[i] = fr[1];
+    f24_pipe #(.W(4 * W), .STAGES(CMP_STAGES)) u_d_out (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en),
+      .valid_i(1'b0), .data_i({ltn, ltf, rtn, rtf}), .valid_o(),
+      .data_o({l_tn_o[i*W +: W], l_tf_o[i*W +: W], r_tn_o[i*W +: W], r_tf_o[i*W +: W]}));
   end
+  /* verilator lint_on PINCONNECTEMPTY */
 
-  logic en;
-  assign en = ready_i || !valid_o;
-  assign ready_o = en;
-  f24_pipe #(.W(12 + 16 * W), .STAGES(LATENCY)) u_pipe (
-    .clk_i(clk_i), .rst_ni(rst_ni), .en_i(en), .valid_i(valid_i),
-    .data_i({l_mask, r_mask, near_left, l_tn, l_tf, r_tn, r_tf}),
-    .valid_o(valid_o), .data_o({l_mask_o, r_mask_o, near_left_o, l_tn_o, l_tf_o, r_tn_o, r_tf_o})
-  );
+  // valid, mask and near side beside the datapath: to the min/max results, then to the output
+  f24_pipe #(.W(8), .STAGES(L_MM)) u_ctl (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en), .valid_i(valid_i),
+    .data_i({mask_i, left_in}), .valid_o(valid_q), .data_o({mask_q, left_q}));
+  f24_pipe #(.W(8), .STAGES(CMP_STAGES)) u_ctl2 (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en), .valid_i(valid_q),
+    .data_i({mask_q, left_q}), .valid_o(valid_o), .data_o({mask_o, left_o}));
+  assign l_mask_o = mask_o & fl_le;
+  assign r_mask_o = mask_o & fr_le;
+  assign near_left_o = mask_o & left_o;
 endmodule

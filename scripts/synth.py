@@ -22,8 +22,10 @@
 Runs two Yosys processes at a time; logs in build/synth/.
 `scripts/synth.py --only-control` synthesizes only item 4 and merges it into an existing
 build/synth/synth.json (the other modules' figures as they were) before writing docs/synth.md.
+`python3 scripts/synth.py --redo i:f24_sum_exact:e7m16 [KEY ...]` measures only the given entries of
+build/synth/synth.json again (keys as in that file) and rewrites it and docs/synth.md.
 """
-import concurrent.futures as cf, json, os, re, subprocess, sys, tempfile
+import concurrent.futures as cf, json, os, re, subprocess, sys, tempfile, time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RTL = sorted(os.path.join(ROOT, "rtl", f) for f in os.listdir(os.path.join(ROOT, "rtl")) if f.endswith(".sv"))
@@ -32,7 +34,15 @@ OPERATORS = ["f24_add", "f24_mul", "f24_div", "f24_cmp"]
 UNITS = ["xform_unit", "isect_unit", "trav_node"]
 WIDTHS = [8, 10, 12, 14, 16, 18, 20, 23]
 ROBUST_EDGE_EPS = 8
-LATENCY = {"f24_add": 3, "f24_mul": 3, "f24_div": 6, "f24_cmp": 1, "xform_unit": 12, "isect_unit": 16, "trav_node": 11}
+# the operators' default pipeline stages (rtl/f24_*.sv: STAGES) and the units' latencies built from them
+STAGES = {"f24_add": 6, "f24_mul": 4, "f24_div": 11, "f24_cmp": 2, "f24_sum_exact": 25}
+LATENCY = dict(STAGES, xform_unit=STAGES["f24_mul"] + 3 * STAGES["f24_add"],
+               isect_unit=STAGES["f24_div"] + STAGES["f24_mul"] + 2 * STAGES["f24_add"] + STAGES["f24_cmp"],
+               trav_node=STAGES["f24_add"] + STAGES["f24_div"] + 2 * STAGES["f24_cmp"])
+# before the operators were pipelined inside (a combinational core, then a delay line): make synth at
+# commit 0abb082 (2026-11-24), iCE40 HX8K: latency, LUT4, FFs, Fmax MHz
+BEFORE = {"f24_add": (3, 756, 72, 14.83), "f24_mul": (3, 896, 72, 32.89), "f24_div": (6, 1394, 144, 4.64),
+          "f24_cmp": (1, 224, 24, 49.47), "f24_sum_exact": (4, 6133, 192, 3.69)}  # (sum: one term, measured alike)
 FP_UNITS = {  # fp24 operators in each datapath: add/sub, mul, div, comparisons (min/max/compare)
     "xform_unit": (9, 9, 0, 0), "isect_unit": (4, 2, 1, 5), "trav_node": (4, 0, 4, 16)}
 SUM_TERMS = [4, 8, 9]           # f24_sum_exact instances of the accuracy datapath at e7m16
@@ -93,6 +103,10 @@ TIMING_INST = {
                ".b_i(b_q), .valid_o(), .res_o(res_o));",
     "f24_cmp": "f24_cmp #(.E({e}), .M({m})) u (.clk_i(clk_i), .rst_ni(1'b1), .en_i(1'b1), .valid_i(1'b1), .a_i(a_q), "
                ".b_i(b_q), .valid_o(), .flags_o(), .min_o(res_o), .max_o());",
+    # one term (with N >= 2 the exact dot product does not fit an HX8K); hi ^ lo keeps both words' logic
+    "f24_sum_exact": "logic [{e}+{m}:0] hi, lo; f24_sum_exact #(.E({e}), .M({m}), .N(1)) u (.clk_i(clk_i), .rst_ni(1'b1), "
+                     ".en_i(1'b1), .valid_i(1'b1), .a_i(a_q), .b_i(b_q), .valid_o(), .hi_o(hi), .lo_o(lo)); "
+                     "assign res_o = hi ^ lo;",
 }
 
 
@@ -154,17 +168,42 @@ def control(name, top, params):
             "ice40_bram": ci.get("SB_RAM40_4K", 0), "ice40_bram_bits": 4096 * ci.get("SB_RAM40_4K", 0)}
 
 
+def parse_key(key):
+    """'i:f24_add:e7m16' or 'x:f24_sum_exact:e7m16:n9' -> the key of main()'s result dict."""
+    kind, top, fmt = key.split(":", 2)
+    m = fmt.split("m", 1)[1]
+    return (kind, top, int(m) if m.isdigit() else m)
+
+
+REDONE = []  # entries measured again by --redo, named in docs/synth.md
+
+
+def redo(keys):
+    """Measure the given entries again, keep the others from build/synth/synth.json."""
+    REDONE.extend(keys)
+    res = {parse_key(k): v for k, v in json.load(open(os.path.join(OUT, "synth.json"))).items()}
+    for key in keys:
+        kind, top, m = parse_key(key)
+        mm, _, opt = str(m).partition(":")
+        if kind == "c":
+            res[(kind, top, m)] = next(control(n, t, p) for n, t, p, _ in CONTROL if n == top)
+        elif kind == "i":
+            res[(kind, top, m)] = ice40(top, 7, int(mm))
+        else:
+            res[(kind, top, m)] = xilinx(top, 7, int(mm), int(opt[4:]) if opt.startswith("edge") else 0,
+                                         int(opt[1:]) if opt.startswith("n") else 0)
+        print(f"synth: {key}: {res[(kind, top, m)]}", file=sys.stderr, flush=True)
+    json.dump({f"{k[0]}:{k[1]}:e7m{k[2]}": v for k, v in res.items()}, open(os.path.join(OUT, "synth.json"), "w"), indent=1)
+    write(res)
+
+
 def main():
     os.makedirs(OUT, exist_ok=True)
     if "--only-control" in sys.argv[1:]:
         path = os.path.join(OUT, "synth.json")
         if not os.path.exists(path):
             sys.exit("synth.py --only-control: no build/synth/synth.json to merge into (run make synth once)")
-        res = {}
-        for k, v in json.load(open(path)).items():
-            kind, top, rest = k.split(":", 2)
-            m = rest[3:]
-            res[(kind, top, int(m) if m.isdigit() else m)] = v
+        res = {parse_key(k): v for k, v in json.load(open(path)).items()}
         with cf.ThreadPoolExecutor(max_workers=2) as pool:
             jobs = {control_key(n): pool.submit(control, n, t, p) for n, t, p, _ in CONTROL}
             for k, f in jobs.items():
@@ -173,10 +212,13 @@ def main():
         json.dump({f"{k[0]}:{k[1]}:e7m{k[2]}": v for k, v in res.items()}, open(path, "w"), indent=1)
         write(res)
         return
+    if len(sys.argv) > 2 and sys.argv[1] == "--redo":
+        return redo(sys.argv[2:])
     jobs = {}
     with cf.ThreadPoolExecutor(max_workers=2) as pool:
         for n, t, p, _ in CONTROL:
             jobs[control_key(n)] = pool.submit(control, n, t, p)
+        jobs[("i", "f24_sum_exact", 16)] = pool.submit(ice40, "f24_sum_exact", 7, 16)
         for top in OPERATORS + UNITS:
             jobs[("x", top, 16)] = pool.submit(xilinx, top, 7, 16)
         for top in OPERATORS:
@@ -204,11 +246,26 @@ def main():
 def write(res):
     md = ["# Synthesis figures (generated by `make synth`, scripts/synth.py; do not edit)", "",
           "Yosys (Debian 0.23) `synth_xilinx -flatten` (7-series cells) and `synth_ice40` + `nextpnr-ice40 --hx8k` "
-          "for the operators. The RTL keeps each operator's combinational core and puts its pipeline registers "
-          "after it (f24_pipe), so LUT counts are those of the datapath; Xilinx maps most pipeline registers to "
-          "SRL shift registers (SRL column), iCE40 to flip-flops. The iCE40 Fmax is measured with registered "
-          "inputs and without retiming, so it is the clock of the whole combinational core in one cycle: a lower "
-          "bound for the pipelined operator, whose registers a retiming synthesis would move into the core.", "",
+          "for the operators. Every operator is pipelined inside (PULP FPnew style): its combinational "
+          "segments are separated by cuts that get the STAGES pipeline registers evenly (rtl/README.md), so "
+          "the iCE40 Fmax, measured with registered inputs and without retiming, is the clock of the pipelined "
+          "operator at its default depth. The units chain the pipelined operators and delay the operands that "
+          "join later (f24_pipe), which Xilinx maps to SRL shift registers (SRL column), iCE40 to flip-flops.", "",
+          "## Pipelined operators on iCE40 HX8K (e7m16), before and after", "",
+          "Before: each operator a combinational core followed by its delay line (make synth at commit 0abb082, "
+          f"2026-11-24); after: registers inside the operators at the default STAGES (`make synth`, "
+          f"{time.strftime('%Y-%m-%d', time.gmtime())}"
+          + (f"; re-measured with `python3 scripts/synth.py --redo {' '.join(REDONE)}`" if REDONE else "") + ").", "",
+          "| operator | latency before | LUT4 before | FFs before | Fmax MHz before | latency (STAGES) | LUT4 | FFs | Fmax MHz |",
+          "|---|---:|---:|---:|---:|---:|---:|---:|---:|"] + [
+          f"| {t}{' (N = 1)' if t == 'f24_sum_exact' else ''} | {BEFORE[t][0]} | {BEFORE[t][1]} | {BEFORE[t][2]} | {BEFORE[t][3]:.1f} | {LATENCY[t]} | "
+          f"{res[('i', t, 16)]['lut4']} | {res[('i', t, 16)]['ff']} | "
+          f"{res[('i', t, 16)]['fmax_mhz'] if res[('i', t, 16)].get('fmax_mhz') else res[('i', t, 16)].get('pnr', '-')} |"
+          for t in OPERATORS + ["f24_sum_exact"]] + ["",
+          "f24_sum_exact with one term (N = 1: its whole datapath but the carry-save adder of the terms; "
+          "with N >= 2 it does not fit the HX8K's 7680 logic cells). The units' latencies follow from the "
+          "operators' (rtl/README.md): xform_unit MUL + 3 ADD, isect_unit DIV + MUL + 2 ADD + CMP, trav_node "
+          "ADD + DIV + 2 CMP.", "",
           "## Modules at e7m16 (the paper's 24-bit format)", "",
           "| module | latency | LUTs | SRL (pipeline shift registers) | FFs | DSP48E1 | BRAM | CARRY4 | iCE40 LUT4 | iCE40 FFs | iCE40 Fmax MHz |",
           "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]

@@ -23,8 +23,8 @@
  * (rtl/isect_unit.sv); the origin path 9 adders (the offset from C in double words), 6
  * multipliers and 4 adders (rows 0 and 1 of M^-1), 9 unrounded products into one exact
  * accumulator (row 2); rays are intersected one at a time.
- * Latency 16 cycles for the test (rtl/isect_unit.sv: divider 6 + multiplier 3 + two adders 3 +
- * comparator 1; the cycle model's default, docs/cycle-model.md), throughput one ray per cycle (one
+ * Latency 29 cycles for the test (rtl/isect_unit.sv: divider 11 + multiplier 4 + two adders 6 +
+ * comparator 2; the cycle model's default, docs/cycle-model.md), throughput one ray per cycle (one
  * issue slot per ray); docs/synth.md has the test's area. The core's operation on it is
  * op_tri_isect in trace.c (closest hits per ray, any-hit for shadow packets).
  */

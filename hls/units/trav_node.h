@@ -6,8 +6,8 @@
  * far = [max(tn, t_split), tf]; a child's mask bit is set when its interval is not empty
  * (tn <= tf). Rays outside the mask get empty intervals [0, 0] and no mask bit.
  * Datapath: 4 subtractors, 4 dividers (Table 2: 4 adders, 4 dividers), per ray a min, a max and
- * two interval comparators (16 comparisons; Table 2 counts 13). Latency 11 cycles
- * (rtl/trav_node.sv: subtractor 3 + divider 6 + min/max 1 + comparator 1), throughput one node
+ * two interval comparators (16 comparisons; Table 2 counts 13). Latency 21 cycles
+ * (rtl/trav_node.sv: subtractor 6 + divider 11 + min/max 2 + comparator 2), throughput one node
  * per cycle; docs/synth.md: 11455 LUTs at e7m16. Part of the traversal unit (trav_unit.h), used
  * by its stack family (trav_stack.c).
  */

@@ -17,7 +17,7 @@
  * walkers sharing trav_cursor.c. The algorithm is the one the trace flags ask for where the
  * memory image holds its structure (accelerator bits), else the stack.
  *
- * Latency 11 cycles (rtl/trav_node.sv: subtractor 3 + divider 6 + min/max 1 + comparator 1; the
+ * Latency 21 cycles (rtl/trav_node.sv: subtractor 6 + divider 11 + min/max 2 + comparator 2; the
  * cycle model's default, docs/cycle-model.md), throughput one operation (node, cell or clip) per
  * cycle and packet (1 issue slot). Operators: the node datapath 4 subtractors, 4 dividers, per ray
  * a min, a max and 2 interval comparators (docs/synth.md: trav_node, 11455 LUTs at e7m16); the

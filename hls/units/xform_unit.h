@@ -10,7 +10,7 @@
  * pipelined, one step per cycle. A ray entering an instance takes two steps (its rebased origin,
  * its direction: rebased origins are per ray, so a packet's rays no longer share the origin step);
  * a ray meeting a triangle takes one (its direction; the intersection unit transforms the origin).
- * Latency 12 cycles (rtl/xform_unit.sv: multiplier 3 + three adders 3; the cycle model's default,
+ * Latency 22 cycles (rtl/xform_unit.sv: multiplier 4 + three adders 6; the cycle model's default,
  * docs/cycle-model.md), throughput one step per cycle; docs/synth.md: 6653 LUTs, 9 DSP at e7m16.
  * Its users: the core's operations op_inst_xform (an instance, path d, in the wide mode below)
  * and op_tri_xform (a triangle's directions, path e) in trace.c, the RGS's ray generation (rgs.c,

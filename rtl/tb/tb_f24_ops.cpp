@@ -133,7 +133,7 @@ int main(int argc, char **argv)
     top.eval();
     top.rst_ni = 1;
     const auto t0 = std::chrono::steady_clock::now();
-    for (size_t i = 0; i < vec.size() + 16; i++, g_cycle++) {
+    for (size_t i = 0; i < vec.size() + 64; i++, g_cycle++) {
         const bool valid = i < vec.size();
         const uint32_t a = valid ? vec[i].a & mask : 0, b = valid ? vec[i].b & mask : 0;
         top.clk_i = 0;

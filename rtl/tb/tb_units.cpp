@@ -270,7 +270,7 @@ int main(int argc, char **argv)
     top.rst_ni = 1;
     const std::size_t total = std::max(xs.size(), std::max(is.size(), ts.size()));
     const auto t0 = std::chrono::steady_clock::now();
-    for (std::size_t c = 0; c < total + 32; c++, g_cycle++) {
+    for (std::size_t c = 0; c < total + 128; c++, g_cycle++) {
         top.clk_i = 0;
         top.x_valid_i = c < xs.size();
         if (c < xs.size()) {

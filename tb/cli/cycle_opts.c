@@ -17,7 +17,7 @@ const char CYCLE_OPTIONS_HELP[] =
     "  --line-bytes N,L,M[,S] their line sizes (default 8,4, one triangle transformation, 16)\n"
     "  --mem-latency C       memory latency in cycles after a transfer (default 10)\n"
     "  --mem-mbps B          memory port bandwidth per pipe in MB/s (default 1000)\n"
-    "  --unit-latency LIST   unit pipeline latencies, e.g. rgs=12,xform=12,trav=11,list=3,isect=16\n"
+    "  --unit-latency LIST   unit pipeline latencies, e.g. rgs=12,xform=22,trav=21,list=3,isect=29\n"
     "  --tile N              tile edge in pixels handed out by the controller (even, default 16)\n";
 
 static const char *const unit_keys[UNIT_KINDS] = { "rgs", "xform", "trav", "list", "isect" };

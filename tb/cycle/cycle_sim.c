@@ -18,14 +18,14 @@ void cycle_config_default(cycle_config *c)
     memset(c, 0, sizeof *c);
     c->pipes = 1;
     c->threads_per_pipe = 32;
-    /* the RTL's latencies (rtl/xform_unit.sv 12, rtl/trav_node.sv 11, rtl/isect_unit.sv 16, from
-     * operator latencies add 3, mul 3, div 6, cmp 1; rtl/list_unit.sv 3: read, compare, update);
-     * the RGS has no RTL yet: an estimate */
+    /* the RTL's latencies (rtl/xform_unit.sv 22, rtl/trav_node.sv 21, rtl/isect_unit.sv 29, from
+     * the pipelined operators' default stages add 6, mul 4, div 11, cmp 2, >= 60 MHz on iCE40;
+     * rtl/list_unit.sv 3: read, compare, update); the RGS has no RTL yet: an estimate */
     c->latency[UNIT_RGS] = 12;
-    c->latency[UNIT_XFORM] = 12;
-    c->latency[UNIT_TRAV] = 11;
+    c->latency[UNIT_XFORM] = 22;
+    c->latency[UNIT_TRAV] = 21;
     c->latency[UNIT_LIST] = 3;
-    c->latency[UNIT_ISECT] = 16;
+    c->latency[UNIT_ISECT] = 29;
     c->tile = 16;
     c->epoch = 256;
     c->host_threads = 1;
