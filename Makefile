@@ -101,12 +101,13 @@ HOST_BUILD ?= $(BUILD)
 HOST_OBJS := $(patsubst %.cpp,$(HOST_BUILD)/obj/host/%.o,$(HOST_CXX)) $(patsubst %.c,$(HOST_BUILD)/obj/host/%.o,$(HOST_C))
 # The saarcor program loads OpenImageIO's shim on first use from libsaarcor_img.so next to it
 # (host/image/img.c: its ~260 libraries would cost every command ~0.2 s of start-up); the tests,
-# benchmarks and fuzzers link it in.
+# benchmarks and fuzzers link it in, and so does the sanitizer build's program (LeakSanitizer
+# can fault scanning the dynamic TLS of libraries loaded after start: "Tracer caught signal 11").
 IMG_OBJ := $(HOST_BUILD)/obj/host/host/image/img_oiio.o
 IMG_LIB := $(HOST_BUILD)/libsaarcor_img.so
 IMG_LIBS := -lOpenImageIO -lOpenImageIO_Util
-PROG_HOST_OBJS := $(filter-out $(IMG_OBJ),$(HOST_OBJS))
-PROG_LDLIBS := $(filter-out $(IMG_LIBS),$(LDLIBS))
+PROG_HOST_OBJS := $(if $(filter 1,$(SAN)),$(HOST_OBJS),$(filter-out $(IMG_OBJ),$(HOST_OBJS)))
+PROG_LDLIBS := $(if $(filter 1,$(SAN)),$(LDLIBS),$(filter-out $(IMG_LIBS),$(LDLIBS)))
 $(foreach d,$(sort $(BUILD) $(HOST_BUILD)),$(d)/obj/host/host/image/img_oiio.o): CXXFLAGS += -fPIC
 $(IMG_LIB): $(IMG_OBJ)
 	@echo "  LD    $@"
