@@ -169,14 +169,12 @@ module f24_add #(
 
   // ---- segment 6: round, or the special result
   logic spec6, s6;
-  logic [W-1:0] spec_res6, rounded, res6;
+  logic [W-1:0] spec_res6;
   logic signed [E+2:0] exp6;
   logic [30:0] sig6;
   assign {spec6, spec_res6, s6, exp6, sig6} = d5;
-  f24_round_pack #(.E(E), .M(M)) u_round (.sign_i(s6), .exp_i(exp6), .sig_i(sig6), .res_o(rounded));
-  assign res6 = spec6 ? spec_res6 : rounded;
-
-  f24_pipe #(.W(W), .STAGES(STAGES - 5 * STAGES / K)) u_c6 (
-    .clk_i(clk_i), .rst_ni(rst_ni), .en_i(en_i), .valid_i(v5), .data_i(res6), .valid_o(valid_o), .data_o(res_o)
+  f24_round_stage #(.E(E), .M(M), .STAGES(STAGES - 5 * STAGES / K)) u_c6 (
+    .clk_i(clk_i), .rst_ni(rst_ni), .en_i(en_i), .valid_i(v5), .spec_i(spec6), .spec_res_i(spec_res6), .sign_i(s6),
+    .exp_i(exp6), .sig_i(sig6), .valid_o(valid_o), .res_o(res_o)
   );
 endmodule

@@ -99,7 +99,7 @@ module f24_div #(
 
   // ---- segment M+5: sticky, round, or the special result
   logic specl, signl;
-  logic [W-1:0] spec_resl, rounded, resl;
+  logic [W-1:0] spec_resl;
   logic signed [E+2:0] expl;
   /* verilator lint_off UNUSEDSIGNAL */
   logic [M+2:0] dvl;              // the divisor is no longer needed
@@ -111,10 +111,8 @@ module f24_div #(
     {specl, spec_resl, signl, expl, dvl, reml, quotl} = d[STEPS];
     sig = 31'({quotl[STEPS-1:1], quotl[0] | (reml != 0)}) << (30 - (STEPS - 1));
   end
-  f24_round_pack #(.E(E), .M(M)) u_round (.sign_i(signl), .exp_i(expl), .sig_i(sig), .res_o(rounded));
-  assign resl = specl ? spec_resl : rounded;
-
-  f24_pipe #(.W(W), .STAGES(STAGES - (K - 1) * STAGES / K)) u_cl (
-    .clk_i(clk_i), .rst_ni(rst_ni), .en_i(en_i), .valid_i(v[STEPS]), .data_i(resl), .valid_o(valid_o), .data_o(res_o)
+  f24_round_stage #(.E(E), .M(M), .STAGES(STAGES - (K - 1) * STAGES / K)) u_cl (
+    .clk_i(clk_i), .rst_ni(rst_ni), .en_i(en_i), .valid_i(v[STEPS]), .spec_i(specl), .spec_res_i(spec_resl),
+    .sign_i(signl), .exp_i(expl), .sig_i(sig), .valid_o(valid_o), .res_o(res_o)
   );
 endmodule

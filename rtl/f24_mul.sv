@@ -122,14 +122,12 @@ module f24_mul #(
 
   // ---- segment 4: round, or the special result
   logic spec4, s4;
-  logic [W-1:0] spec_res4, rounded, res4;
+  logic [W-1:0] spec_res4;
   logic signed [E+2:0] exp4;
   logic [30:0] sig4;
   assign {spec4, spec_res4, s4, exp4, sig4} = d3;
-  f24_round_pack #(.E(E), .M(M)) u_round (.sign_i(s4), .exp_i(exp4), .sig_i(sig4), .res_o(rounded));
-  assign res4 = spec4 ? spec_res4 : rounded;
-
-  f24_pipe #(.W(W), .STAGES(STAGES - 3 * STAGES / K)) u_c4 (
-    .clk_i(clk_i), .rst_ni(rst_ni), .en_i(en_i), .valid_i(v3), .data_i(res4), .valid_o(valid_o), .data_o(res_o)
+  f24_round_stage #(.E(E), .M(M), .STAGES(STAGES - 3 * STAGES / K)) u_c4 (
+    .clk_i(clk_i), .rst_ni(rst_ni), .en_i(en_i), .valid_i(v3), .spec_i(spec4), .spec_res_i(spec_res4), .sign_i(s4),
+    .exp_i(exp4), .sig_i(sig4), .valid_o(valid_o), .res_o(res_o)
   );
 endmodule
