@@ -44,6 +44,7 @@ t_list_and_cache() {
     --capture-unit-io "$T/capc" --capture-limit 200000 >/dev/null
   "$B/rtl/e7m16/tb_list" -n 50000 --capture "$T/capc"
   "$B/rtl/e7m16/tb_cache" --capture "$T/capc"
+  "$B/rtl/e7m16/tb_sched" -n 100000 --capture "$T/capc"
   # three frames of the animated scene: the caches emptied between frames (flush_i)
   mkdir -p "$T/anim"
   "$BIN" render animated -o "$T/anim/a.png" --width 32 --height 24 --mode cycle --threads-per-pipe 64 --frames 0:2 \
@@ -76,7 +77,8 @@ t_list_cache_mutants_caught() {
     --threads-per-pipe 64 --capture-unit-io "$T/capc" --capture-limit 200000 >/dev/null
   mutant list list_unit.sv "s/s2_next\[r\] + 3'd1/s2_next[r]/" -n 2000 --capture "$T/capc" &&
     mutant cache cache_dm.sv "s/tag_eff = (p_tag_we \&\& p_tag_idx == s1_idx) ? p_tag : tag_q;/tag_eff = tag_q;/" \
-      --capture "$T/capc"
+      --capture "$T/capc" &&
+    mutant sched thread_sched.sv "s/ptr_q\[u\] <= TW'((32'(pick) + 1) % THREADS);/ptr_q[u] <= '0;/" -n 0 --capture "$T/capc"
 }
 
 t_mutant_caught() { # the bench must fail on a wrong rounder

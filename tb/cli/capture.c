@@ -11,11 +11,12 @@
 
 #include "isect_unit.h"
 #include "list_unit.h"
+#include "cycle_sim.h"
 #include "mem_iface.h"
 #include "trav_node.h"
 #include "xform_unit.h"
 
-enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_UNITS };
+enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_UNITS };
 
 static struct {
     int on;
@@ -24,7 +25,8 @@ static struct {
     pthread_mutex_t lock;
 } cap = { .lock = PTHREAD_MUTEX_INITIALIZER };
 
-static const char *const cap_files[CAP_UNITS] = { "xform.hex", "isect.hex", "trav.hex", "list.hex", "mem.hex" };
+static const char *const cap_files[CAP_UNITS] = { "xform.hex", "isect.hex", "trav.hex", "list.hex", "mem.hex",
+                                                  "sched.hex" };
 
 /* The list unit's threads: trace_state addresses in the order first seen (the RTL's thread ids),
  * and the memory interfaces (pipes) likewise. */
@@ -317,4 +319,22 @@ uint64_t __wrap_mem_iface_read(mem_iface *m, uint32_t kind, uint32_t word_addr, 
             (unsigned long long)(m->stats.hits[kind] - h0));
     end(f);
     return at;
+}
+
+/* The scheduler's events (cycle_sim.h): "N pipe threads" where a pipe starts a frame, "R pipe
+ * cycle unit thread slots" where a thread joins a unit's ready set (cycle: the first the unit can
+ * issue it), "I pipe cycle unit thread slots" where the unit issues it. */
+void capture_sched_probe(void *arg, uint32_t pipe, int what, uint64_t cycle, uint32_t unit, uint32_t thread,
+                         uint32_t slots)
+{
+    (void)arg;
+    FILE *f = begin(CAP_SCHED);
+    if (!f)
+        return;
+    if (what == SCHED_FRAME)
+        fprintf(f, "N %x %x", pipe, thread);
+    else
+        fprintf(f, "%c %x %llx %x %x %x", what == SCHED_READY ? 'R' : 'I', pipe, (unsigned long long)cycle, unit, thread,
+                slots);
+    end(f);
 }

@@ -10,7 +10,9 @@
  * rtl/tb/tb_cache.cpp: per pipe a line "C pipe" with the cache sizes and line bytes of the four
  * kinds, the latency and the port's occupancy per byte in 1/65536 cycles, then per read of the
  * memory interface: pipe, kind, word address, words, cycle, the cycle its data is at the unit,
- * lookups, hits; "N pipe" where a frame starts, "F pipe" where the caches are emptied). The hls/
+ * lookups, hits; "N pipe" where a frame starts, "F pipe" where the caches are emptied),
+ * DIR/sched.hex (cycle mode only, for rtl/tb/tb_sched.cpp: the thread scheduler's ready and
+ * issue events, capture_sched_probe). The hls/
  * units are not touched: the program is linked with --wrap for xform_point, xform_vector,
  * isect_unit_rebased, trav_node_split, list_unit_entry, list_mailboxes_clear, mem_iface_read,
  * mem_iface_flush and mem_iface_new_frame, and the wrappers record the calls while capturing is on
@@ -25,9 +27,13 @@
 /* 0, or -1 with a message in err if DIR cannot be made or its files written. */
 int capture_start(const char *dir, uint64_t limit, char *err, unsigned errlen);
 
-/* Transactions recorded per unit: xform, isect, trav, list, mem. */
-#define CAPTURE_UNITS 5
+/* Transactions recorded per unit: xform, isect, trav, list, mem, sched. */
+#define CAPTURE_UNITS 6
 void capture_counts(uint64_t out[CAPTURE_UNITS]);
+
+/* The cycle model's scheduler probe (cycle_set_sched_probe) that writes DIR/sched.hex. */
+void capture_sched_probe(void *arg, uint32_t pipe, int what, uint64_t cycle, uint32_t unit, uint32_t thread,
+                         uint32_t slots);
 
 /* Closes the files; 0, or -1 if writing failed. */
 int capture_stop(void);

@@ -726,6 +726,8 @@ int cmd_render(int argc, char **argv)
         scene_free(&s);
         return SAARCOR_EXIT_INTERNAL;
     }
+    if (ro.sim && ro.capture)
+        cycle_set_sched_probe(ro.sim, capture_sched_probe, NULL);
     rc = mpi_run ? render_mpi(&ro, mpi_run, b, &s, o.scene)
                  : render_frame(b, &s, &ro, ro.first, o.scene, render_host(b, ro.build_secs));
     uint32_t written = rc == SAARCOR_EXIT_OK;
@@ -755,9 +757,10 @@ int cmd_render(int argc, char **argv)
             cli_error("render", "--capture-unit-io: writing the vectors in '%s' failed", ro.capture);
             rc = SAARCOR_EXIT_INPUT;
         } else {
-            printf("captured unit transactions in %s: xform %llu, isect %llu, trav %llu, list %llu, mem %llu\n",
+            printf("captured unit transactions in %s: xform %llu, isect %llu, trav %llu, list %llu, mem %llu, "
+                   "sched %llu\n",
                    ro.capture, (unsigned long long)n[0], (unsigned long long)n[1], (unsigned long long)n[2],
-                   (unsigned long long)n[3], (unsigned long long)n[4]);
+                   (unsigned long long)n[3], (unsigned long long)n[4], (unsigned long long)n[5]);
         }
     }
     mi_free(b);

@@ -67,9 +67,13 @@ typedef struct {
     pixel_cost cost[TRACE_PACKET]; /* its block's per-pixel cost so far (if kept) */
 } thread;
 
+/* A unit's input queue as the RTL scheduler holds it (rtl/thread_sched.sv): one ready bit per
+ * thread, any number set per cycle, and a round-robin pointer: the unit issues the first ready
+ * thread at or after the pointer, which then moves past it. */
 typedef struct {
-    uint32_t *ids, head, count; /* ring buffer of thread ids */
-} fifo;
+    uint64_t *ready; /* bit t of word t / 64: thread t waits for the unit */
+    uint32_t count, ptr;
+} ready_set;
 
 #define TILE_QUEUE 2
 
@@ -82,7 +86,7 @@ typedef struct {
     hit_record *hits;
     pixel_cost *costs; /* per pixel (NULL: not kept) */
     thread *th;
-    fifo queue[UNIT_KINDS];
+    ready_set queue[UNIT_KINDS];
     uint64_t free_at[UNIT_KINDS];
     uint64_t *heap; /* events: cycle << 16 | thread, min first */
     uint32_t heap_n;
@@ -95,6 +99,10 @@ typedef struct {
     rgs_counters counters;
     cycle_stats st;
     trace_pipe *tp; /* waveform recorder (NULL: none) */
+    cycle_sched_probe probe; /* scheduler events (NULL: none) */
+    void *probe_arg;
+    uint32_t index;   /* the pipe's number */
+    int in_cycle;     /* a ready thread joins the set in a cycle's commit: the unit sees it next cycle */
 } pipe_state;
 
 static void heap_push(pipe_state *p, uint64_t cycle, uint32_t t)
@@ -127,20 +135,43 @@ static uint64_t heap_pop(pipe_state *p)
     return top;
 }
 
-static void fifo_push(fifo *f, uint32_t cap, uint32_t id) { f->ids[(f->head + f->count++) % cap] = id; }
+static uint32_t ready_words(uint32_t threads) { return (threads + 63) / 64; }
 
-static uint32_t fifo_pop(fifo *f, uint32_t cap)
+static void ready_set_add(ready_set *q, uint32_t id)
 {
-    const uint32_t id = f->ids[f->head];
-    f->head = (f->head + 1) % cap;
-    f->count--;
-    return id;
+    q->ready[id / 64] |= 1ull << (id % 64);
+    q->count++;
+}
+
+/* The first ready thread at or after the pointer, cyclically (the queue is not empty). */
+static uint32_t ready_first(const ready_set *q, uint32_t threads)
+{
+    const uint32_t n = ready_words(threads), w0 = q->ptr / 64;
+    const uint64_t at_or_after = q->ready[w0] & (~0ull << (q->ptr % 64));
+    if (at_or_after)
+        return w0 * 64 + (uint32_t)__builtin_ctzll(at_or_after);
+    for (uint32_t k = 1; k <= n; k++) {
+        const uint32_t w = (w0 + k) % n;
+        if (q->ready[w])
+            return w * 64 + (uint32_t)__builtin_ctzll(q->ready[w]);
+    }
+    return 0; /* not reached: count > 0 */
+}
+
+static void ready_set_take(ready_set *q, uint32_t id, uint32_t threads)
+{
+    q->ready[id / 64] &= ~(1ull << (id % 64));
+    q->count--;
+    q->ptr = (id + 1) % threads;
 }
 
 /* Thread id joins unit u's queue. */
 static void enqueue(pipe_state *p, int u, uint32_t id)
 {
-    fifo_push(&p->queue[u], p->cfg->threads_per_pipe, id);
+    ready_set_add(&p->queue[u], id);
+    if (p->probe)
+        p->probe(p->probe_arg, p->index, SCHED_READY, p->now + (p->in_cycle ? 1u : 0u), (uint32_t)u, id,
+                 p->th[id].op.slots);
     if (p->tp)
         trace_queue(p->tp, u, p->now, p->queue[u].count);
 }
@@ -269,7 +300,7 @@ static void pipe_cycle(pipe_state *p)
     uint32_t issue[UNIT_KINDS];
     for (int k = 0; k < UNIT_KINDS; k++) { /* phase 1: decisions from the current state only */
         const int u = p->cfg->reverse_order ? UNIT_KINDS - 1 - k : k;
-        issue[u] = p->queue[u].count && p->free_at[u] <= p->now ? p->queue[u].ids[p->queue[u].head] : UINT32_MAX;
+        issue[u] = p->queue[u].count && p->free_at[u] <= p->now ? ready_first(&p->queue[u], cap) : UINT32_MAX;
     }
     p->n_arrived = 0;
     while (p->heap_n && p->heap[0] >> 16 == p->now) /* results and memory data arriving now */
@@ -277,12 +308,15 @@ static void pipe_cycle(pipe_state *p)
     for (int u = 0; u < UNIT_KINDS; u++) { /* phase 2: commit, in a fixed order */
         if (issue[u] == UINT32_MAX)
             continue;
-        thread *t = &p->th[fifo_pop(&p->queue[u], cap)];
+        ready_set_take(&p->queue[u], issue[u], cap);
+        thread *t = &p->th[issue[u]];
         leave_state(p, t);
         t->state = TH_UNIT;
         p->free_at[u] = p->now + t->op.slots;
         p->st.busy[u] += t->op.slots;
         p->st.ops[u]++;
+        if (p->probe)
+            p->probe(p->probe_arg, p->index, SCHED_ISSUE, p->now, (uint32_t)u, issue[u], t->op.slots);
         heap_push(p, p->now + t->op.slots - 1 + p->cfg->latency[u], issue[u]);
         if (p->tp) {
             trace_issue(p->tp, u, p->now, issue[u], t->op.slots);
@@ -290,6 +324,7 @@ static void pipe_cycle(pipe_state *p)
         }
     }
     qsort(p->arrived, p->n_arrived, sizeof *p->arrived, cmp_u32);
+    p->in_cycle = 1;
     for (uint32_t i = 0; i < p->n_arrived; i++) {
         thread *t = &p->th[p->arrived[i]];
         if (t->state == TH_MEMORY) { /* data is here: join the unit's queue */
@@ -300,6 +335,7 @@ static void pipe_cycle(pipe_state *p)
             advance(p, p->arrived[i]);
         }
     }
+    p->in_cycle = 0;
     if (p->n_arrived)
         p->last_event = p->now;
 }
@@ -356,6 +392,14 @@ struct cycle_sim {
 
 void cycle_set_costs(cycle_sim *s, pixel_cost *costs) { s->costs = costs; }
 
+void cycle_set_sched_probe(cycle_sim *s, cycle_sched_probe probe, void *arg)
+{
+    for (uint32_t i = 0; i < s->cfg.pipes; i++) {
+        s->pipes[i].probe = probe;
+        s->pipes[i].probe_arg = arg;
+    }
+}
+
 void cycle_set_trace(cycle_sim *s, cycle_trace *tr)
 {
     s->trace = tr;
@@ -379,12 +423,13 @@ cycle_sim *cycle_create(const cycle_config *cfg)
         pipe_state *p = &s->pipes[i];
         const uint32_t n = cfg->threads_per_pipe;
         p->cfg = &s->cfg;
+        p->index = i;
         p->th = calloc(n, sizeof *p->th);
         p->heap = calloc(n, sizeof *p->heap);
         p->arrived = calloc(n, sizeof *p->arrived);
         ok = p->th && p->heap && p->arrived && mem_iface_init(&p->mi, &cfg->mem) == 0;
         for (int u = 0; ok && u < UNIT_KINDS; u++)
-            ok = (p->queue[u].ids = calloc(n, sizeof(uint32_t))) != NULL;
+            ok = (p->queue[u].ready = calloc(ready_words(n), sizeof(uint64_t))) != NULL;
     }
     if (!ok) {
         cycle_free(s);
@@ -403,7 +448,7 @@ void cycle_free(cycle_sim *s)
         free(p->heap);
         free(p->arrived);
         for (int u = 0; u < UNIT_KINDS; u++)
-            free(p->queue[u].ids);
+            free(p->queue[u].ready);
         mem_iface_free(&p->mi);
     }
     free(s->pipes);
@@ -482,7 +527,8 @@ static void pipe_reset(pipe_state *p, const uint32_t *mem, const rgs_config *rcf
     for (uint32_t i = 0; i < p->cfg->threads_per_pipe; i++)
         p->th[i] = (thread){ .state = TH_IDLE };
     for (int u = 0; u < UNIT_KINDS; u++) {
-        p->queue[u].head = p->queue[u].count = 0;
+        p->queue[u].count = p->queue[u].ptr = 0;
+        memset(p->queue[u].ready, 0, ready_words(p->cfg->threads_per_pipe) * sizeof(uint64_t));
         p->free_at[u] = 0;
     }
     p->heap_n = p->n_tiles = p->have_tile = p->active = 0;
@@ -490,6 +536,8 @@ static void pipe_reset(pipe_state *p, const uint32_t *mem, const rgs_config *rcf
     memset(&p->counters, 0, sizeof p->counters);
     memset(&p->st, 0, sizeof p->st);
     mem_iface_new_frame(&p->mi);
+    if (p->probe)
+        p->probe(p->probe_arg, p->index, SCHED_FRAME, 0, 0, p->cfg->threads_per_pipe, 0);
 }
 
 void cycle_stats_add(cycle_stats *sum, const cycle_stats *s)

@@ -10,7 +10,8 @@
  * counters are bit-identical to the functional mode for any T and P. This model adds only time:
  *   - a thread whose operation is decided reads its memory blocks through the caches; a miss
  *     parks only that thread until its data arrives, then it joins the unit's queue;
- *   - a unit issues the operation at the head of its queue when its issue slots are free; the
+ *   - a unit issues the operation of the first ready thread at or after its round-robin pointer
+ *     (the RTL scheduler's policy, rtl/thread_sched.sv) when its issue slots are free; the
  *     operation occupies `slots` issue cycles (transformation steps, rays intersected, rays
  *     shaded) and its result leaves the pipeline `latency` cycles after its last slot, when the
  *     thread decides its next operation (the routing of paths a..g).
@@ -71,6 +72,16 @@ void cycle_set_costs(cycle_sim *s, pixel_cost *costs);
 
 /* Records the following render's signals into tr (cycle_trace.h; made for this config), NULL: none. */
 void cycle_set_trace(cycle_sim *s, cycle_trace *tr);
+
+/* The scheduler's events of the following renders, for the RTL co-simulation of the thread
+ * scheduler (rtl/thread_sched.sv; tb/cli/capture.c writes them to DIR/sched.hex): SCHED_FRAME
+ * when pipe `pipe` starts a frame (thread = its thread count), SCHED_READY when a thread joins
+ * unit u's ready set, with the issue slots of its operation (`cycle`: the first cycle the unit can
+ * issue it), SCHED_ISSUE when unit u issues it. Called from the pipe's host thread. NULL: none. */
+enum { SCHED_FRAME, SCHED_READY, SCHED_ISSUE };
+typedef void (*cycle_sched_probe)(void *arg, uint32_t pipe, int what, uint64_t cycle, uint32_t unit, uint32_t thread,
+                                  uint32_t slots);
+void cycle_set_sched_probe(cycle_sim *s, cycle_sched_probe probe, void *arg);
 
 /* Empties the caches: the memory image changed. */
 void cycle_flush(cycle_sim *s);
