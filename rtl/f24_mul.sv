@@ -106,7 +106,7 @@ module f24_mul #(
     lead = 6'(2 * M) + 6'(carry);                      // position of the leading one
     wide = 64'(prod3);
     if (lead >= 30)
-      sig = 31'((wide >> (lead - 30)) | 64'((wide & ((64'd1 << (lead - 30)) - 1)) != 0));
+      sig = 31'((wide >> (lead - 30)) | 64'((wide & ~({64{1'b1}} << (lead - 30))) != 0));
     else
       sig = 31'(wide << (30 - lead));
     exp3n = exp3 + (E+3)'(carry);

@@ -39,11 +39,9 @@ module thread_sched #(
 
   // Lowest set bit of v (v != 0), as a priority encoder from the top down.
   function automatic logic [TW-1:0] lowest(input logic [THREADS-1:0] v);
-    logic [TW-1:0] r;
-    r = '0;
+    lowest = '0;
     for (int i = THREADS - 1; i >= 0; i--)
-      if (v[i]) r = TW'(i);
-    return r;
+      if (v[i]) lowest = TW'(i);
   endfunction
 
   for (genvar u = 0; u < UNITS; u++) begin : g_unit

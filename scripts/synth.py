@@ -69,6 +69,50 @@ def cells(log):
     return out
 
 
+# 7-series cells a register-to-register path passes through: LUTs and LUT RAM reads count one
+# level each; carry chains, wide-function muxes, inverters and DSP48E1 slices (registers off)
+# count none (dedicated logic, not LUT levels); everything else (flip-flops, SRLs, block RAM) and
+# the ports end a path.
+LEVEL_CELLS = {**{f"LUT{k}": 1 for k in range(1, 7)}, **{k: 1 for k in ("RAM32M", "RAM64M", "RAM32X1D", "RAM64X1D",
+               "RAM128X1D", "RAM256X1S", "RAM64X1S", "RAM32X1S", "RAM128X1S")},
+               "CARRY4": 0, "MUXF7": 0, "MUXF8": 0, "INV": 0, "DSP48E1": 0}
+
+
+def lut_levels(js):
+    """The most LUT levels between two registers (or ports) of the flattened netlist js."""
+    mods = json.load(open(js))["modules"]  # the top (its name carries the parameters) and the cell library
+    mod = next(v for v in mods.values() if int(v.get("attributes", {}).get("top", "0"), 2))
+    driver, cells = {}, mod["cells"]
+    for name, c in cells.items():
+        for port, bits in c["connections"].items():
+            if c.get("port_directions", {}).get(port) == "output":
+                for b in bits:
+                    driver[b] = name
+    depth = {}
+    for start in cells:  # longest path by depth-first search with an explicit stack (no recursion limit)
+        stack = [start]
+        while stack:
+            n = stack[-1]
+            if n in depth:
+                stack.pop()
+                continue
+            c = cells[n]
+            if c["type"] not in LEVEL_CELLS:
+                depth[n] = 0
+                stack.pop()
+                continue
+            ins = [driver[b] for p, bits in c["connections"].items()
+                   if c.get("port_directions", {}).get(p) == "input" for b in bits if b in driver]
+            todo = [d for d in ins if d not in depth and d != n]
+            if todo:
+                stack.extend(todo)
+                continue
+            feed = [depth[d] for d in ins if cells[d]["type"] in LEVEL_CELLS and d != n]
+            depth[n] = LEVEL_CELLS[c["type"]] + max(feed, default=0)
+            stack.pop()
+    return max(depth.values(), default=0)
+
+
 def xilinx(top, e, m, edge_eps=0, terms=0):
     log = os.path.join(OUT, f"{top}_e{e}m{m}{f'_edge{edge_eps}' if edge_eps else ''}{f'_n{terms}' if terms else ''}_xilinx.log")
     reads = " ".join(f"read_verilog -sv {f};" for f in RTL)
@@ -77,12 +121,14 @@ def xilinx(top, e, m, edge_eps=0, terms=0):
     flow = (f"synth_xilinx -top {top} -flatten -run :coarse; techmap -map +/cmp2lut.v -map +/cmp2lcu.v -D LUT_WIDTH=6; "
             f"alumacc; opt; memory -nomap; opt_clean; synth_xilinx -top {top} -flatten -run map_memory:")
     extra = (f" -set EDGE_EPS {edge_eps}" if edge_eps else "") + (f" -set N {terms}" if terms else "")
-    c = cells(yosys(f"{reads} chparam -set E {e} -set M {m}{extra} {top}; {flow}; stat", log))
+    js = log[:-len(".log")] + ".json"
+    c = cells(yosys(f"{reads} chparam -set E {e} -set M {m}{extra} {top}; {flow}; stat; write_json {js}", log))
     luts = sum(v for k, v in c.items() if re.fullmatch(r"LUT\d", k))
     srl = sum(v for k, v in c.items() if k.startswith("SRL"))
     ffs = sum(v for k, v in c.items() if re.fullmatch(r"FD[RSCP]E(_1)?", k))
     return {"luts": luts, "srl": srl, "ffs": ffs, "dsp": c.get("DSP48E1", 0),
-            "bram": c.get("RAMB18E1", 0) + 2 * c.get("RAMB36E1", 0), "carry4": c.get("CARRY4", 0)}
+            "bram": c.get("RAMB18E1", 0) + 2 * c.get("RAMB36E1", 0), "carry4": c.get("CARRY4", 0),
+            "lut6_levels": lut_levels(js)}
 
 
 # For a clock-to-clock Fmax the operator gets input registers: the path from them through the
@@ -141,6 +187,7 @@ CONTROL = [
     (f"cache_dm matrices 6 KB / {MB_E7M16} B", "cache_dm", {"LINE_BYTES": MB_E7M16, "SIZE_BYTES": 6144}, "hit 2"),
     ("cache_dm shading 4 KB / 16 B", "cache_dm", {"LINE_BYTES": 16, "SIZE_BYTES": 4096}, "hit 2"),
     ("mem_port 4 requesters", "mem_port", {"N": 4, "DW": 8 * MB_E7M16}, "0"),
+    ("thread_sched 64 threads, 5 units", "thread_sched", {"THREADS": 64, "UNITS": 5}, "1"),
 ]
 
 
@@ -153,7 +200,8 @@ def control(name, top, params):
     tag = re.sub(r"[^A-Za-z0-9]+", "_", name).strip("_")
     reads = " ".join(f"read_verilog -sv {f};" for f in RTL)
     chp = " ".join(f"-set {k} {v}" for k, v in params.items())
-    cx = cells(yosys(f"{reads} chparam {chp} {top}; synth_xilinx -top {top} -flatten; stat",
+    js = os.path.join(OUT, f"ctl_{tag}_xilinx.json")
+    cx = cells(yosys(f"{reads} chparam {chp} {top}; synth_xilinx -top {top} -flatten; stat; write_json {js}",
                      os.path.join(OUT, f"ctl_{tag}_xilinx.log")))
     ci = cells(yosys(f"{reads} chparam {chp} {top}; synth_ice40 -top {top}; stat",
                      os.path.join(OUT, f"ctl_{tag}_ice40.log")))
@@ -163,7 +211,7 @@ def control(name, top, params):
             "xilinx_lutram_cells": sum(v for k, v in cx.items() if k in lutram),
             "xilinx_lutram_bits": sum(v * lutram[k] for k, v in cx.items() if k in lutram),
             "xilinx_ffs": sum(v for k, v in cx.items() if re.fullmatch(r"FD[RSCP]E(_1)?", k)),
-            "xilinx_bram18": cx.get("RAMB18E1", 0) + 2 * cx.get("RAMB36E1", 0),
+            "xilinx_bram18": cx.get("RAMB18E1", 0) + 2 * cx.get("RAMB36E1", 0), "lut6_levels": lut_levels(js),
             "ice40_lut4": ci.get("SB_LUT4", 0), "ice40_ff": sum(v for k, v in ci.items() if k.startswith("SB_DFF")),
             "ice40_bram": ci.get("SB_RAM40_4K", 0), "ice40_bram_bits": 4096 * ci.get("SB_RAM40_4K", 0)}
 
@@ -267,17 +315,21 @@ def write(res):
           "operators' (rtl/README.md): xform_unit MUL + 3 ADD, isect_unit DIV + MUL + 2 ADD + CMP, trav_node "
           "ADD + DIV + 2 CMP.", "",
           "## Modules at e7m16 (the paper's 24-bit format)", "",
-          "| module | latency | LUTs | SRL (pipeline shift registers) | FFs | DSP48E1 | BRAM | CARRY4 | iCE40 LUT4 | iCE40 FFs | iCE40 Fmax MHz |",
-          "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+          "| module | latency | LUTs | SRL (pipeline shift registers) | FFs | DSP48E1 | BRAM | CARRY4 | LUT6 levels | iCE40 LUT4 | iCE40 FFs | iCE40 Fmax MHz |",
+          "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for top in OPERATORS + UNITS:
         x = res[("x", top, 16)]
         i = res.get(("i", top, 16))
         fmax = "-" if not i else (f"{i['fmax_mhz']:.1f}" if i.get("fmax_mhz") else i.get("pnr", "-"))
         md.append(f"| {top} | {LATENCY[top]} | {x['luts']} | {x['srl']} | {x['ffs']} | {x['dsp']} | {x['bram']} | "
-                  f"{x['carry4']} | {i['lut4'] if i else '-'} | {i['ff'] if i else '-'} | {fmax} |")
+                  f"{x['carry4']} | {x.get('lut6_levels', '-')} | {i['lut4'] if i else '-'} | {i['ff'] if i else '-'} | {fmax} |")
     tot = {k: sum(res[("x", u, 16)][k] for u in UNITS) for k in ("luts", "srl", "ffs", "dsp")}
     ops = [sum(FP_UNITS[u][j] for u in UNITS) for j in range(4)]
-    md += ["", "## One DynRTP's floating-point datapaths", "",
+    md += ["", "LUT6 levels: the most LUTs on a path between two registers (or ports) of the flattened "
+           "7-series netlist (`lut_levels` in scripts/synth.py over Yosys's `write_json`): LUTs and LUT RAM "
+           "reads count one level, carry chains, MUXF7/F8 and DSP48E1 slices none. Issue 23 asks for at most "
+           "8 between any two registers of the whole DynRTP.",
+           "", "## One DynRTP's floating-point datapaths", "",
            f"One transformation unit + one intersection unit + one traversal node decision (4 rays): "
            f"**{tot['luts']} LUTs (+ {tot['srl']} SRL shift registers for the pipeline), {tot['ffs']} FFs, {tot['dsp']} DSP48E1** (7-series). fp24 operators: "
            f"{ops[0]} add/sub, {ops[1]} mul, {ops[2]} div, {ops[3]} comparisons; the paper's Table 2 for one pipeline: "
@@ -318,16 +370,17 @@ def control_section(res):
           "Xilinx: `synth_xilinx -flatten` (LUT RAM counted apart from the LUTs, block RAM in RAMB18 units); iCE40: "
           "`synth_ice40` (SB_RAM40_4K blocks of 4 Kbit). Memories that Yosys does not map to block RAM (the list "
           "unit's 36 small memories, the caches' request tables) become LUT RAM or flip-flops.", "",
-          "| module | latency | LUTs | LUT RAM (bits) | FFs | RAMB18 | iCE40 LUT4 | iCE40 FFs | iCE40 BRAM (bits) |",
-          "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+          "| module | latency | LUTs | LUT RAM (bits) | FFs | RAMB18 | LUT6 levels | iCE40 LUT4 | iCE40 FFs | iCE40 BRAM (bits) |",
+          "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for name, _, _, lat in CONTROL:
         r = res.get(control_key(name))
         if not r:
             continue
         md.append(f"| {name} | {lat} | {r['xilinx_luts']} | {r['xilinx_lutram_cells']} ({r['xilinx_lutram_bits']}) | "
-                  f"{r['xilinx_ffs']} | {r['xilinx_bram18']} | {r['ice40_lut4']} | {r['ice40_ff']} | "
+                  f"{r['xilinx_ffs']} | {r['xilinx_bram18']} | {r.get('lut6_levels', '-')} | {r['ice40_lut4']} | {r['ice40_ff']} | "
                   f"{r['ice40_bram']} ({r['ice40_bram_bits']}) |")
-    tot = {k: sum(res[control_key(n)][k] for n, t, _, _ in CONTROL if control_key(n) in res and t != "list_unit")
+    tot = {k: sum(res[control_key(n)][k] for n, t, _, _ in CONTROL
+                  if control_key(n) in res and t in ("cache_dm", "mem_port"))
            for k in ("xilinx_luts", "xilinx_ffs", "xilinx_bram18", "ice40_lut4")}
     md += ["", f"The four caches and the port together: {tot['xilinx_luts']} LUTs, {tot['xilinx_ffs']} FFs, "
            f"{tot['xilinx_bram18']} RAMB18 (7-series), {tot['ice40_lut4']} iCE40 LUT4s. Most of it is the caches' "

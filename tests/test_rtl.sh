@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # RTL tests in make test (the short form of make rtl-test): verilator --lint-only -Wall is clean
-# for every module in rtl/; the fp24 operators match the C model bit for bit on the edge sets,
+# for every module in rtl/ and Yosys parses them (make synth); the fp24 operators match the C model bit for bit on the edge sets,
 # 10^5 random vectors and the golden hex vectors; the datapath units match on random vectors and
 # on transactions captured while rendering the room (saarcor render --capture-unit-io); the exact
 # dot product (rtl/f24_sum_exact.sv) matches hls/fp24/f24_sum_exact.c on 10^5 sets; the list unit
@@ -24,6 +24,10 @@ t_lint() {
     verilator --lint-only -Wall rtl/*.sv --top-module "$(basename "$f" .sv)"
   done
   echo "verilator --lint-only -Wall: $(ls rtl/*.sv | wc -l) modules clean"
+  # make synth reads every module with Yosys, whose SystemVerilog subset is smaller than Verilator's
+  yosys -q -p "$(for f in rtl/*.sv; do printf 'read_verilog -sv %s; ' "$f"; done)" >/dev/null 2>"$T/yosys.err" ||
+    { grep ERROR "$T/yosys.err"; return 1; }
+  echo "yosys read_verilog -sv: $(ls rtl/*.sv | wc -l) modules parse"
 }
 
 t_operators() {
