@@ -89,7 +89,7 @@ SIM_SRCS = $(MEMIMAGE) $(HLS_UNITS) $(CYCLE) $(REF) $(CLI)
 # render --capture-unit-io records the units' calls through linker wrappers (tb/cli/capture.c)
 comma := ,
 CAPTURE_WRAP := $(addprefix -Wl$(comma)--wrap=,xform_point xform_vector isect_unit_rebased trav_node_split \
-  list_unit_entry list_mailboxes_clear mem_iface_read mem_iface_flush mem_iface_new_frame)
+  list_unit_entry list_mailboxes_clear mem_iface_read mem_iface_flush mem_iface_new_frame rgs_block_begin)
 
 # per-format objects: everything that depends on the fp24 parameters
 fp_objs = $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(HLS_FP24) $(TB_FP))
@@ -326,7 +326,7 @@ $(BUILD)/rtl/$(1)/tb_%: rtl/tb/tb_%.sv rtl/tb/tb_%.cpp $(RTL) $(call rtl_c_objs,
 	$(Q)verilator $(VERILATOR_FLAGS) -GE=$(call fmt_e,$(1)) -GM=$(call fmt_m,$(1)) --top-module tb_$$* \
 	  -Mdir $(BUILD)/rtl/$(1)/obj_$$* -o $(CURDIR)/$$@ $(addprefix $(CURDIR)/,$(RTL)) \
 	  $(CURDIR)/rtl/tb/tb_$$*.sv $(CURDIR)/rtl/tb/tb_$$*.cpp \
-	  -CFLAGS "$(call fmt_flags,$(1)) $(addprefix -I$(CURDIR)/,hls hls/fp24 hls/units host/fp24 tb/fp)" \
+	  -CFLAGS "$(call fmt_flags,$(1)) $(addprefix -I$(CURDIR)/,hls hls/fp24 hls/units host/fp24 tb/fp host/memimage host/kdtree host/scene)" \
 	  -LDFLAGS "$(addprefix $(CURDIR)/,$(call rtl_c_objs,$(1))) -lmpfr -lgmp -lm" >$(BUILD)/rtl/$(1)/build_$$*.log 2>&1 \
 	  || { tail -30 $(BUILD)/rtl/$(1)/build_$$*.log; exit 1; }
 endef

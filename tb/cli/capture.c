@@ -12,10 +12,12 @@
 #include "isect_unit.h"
 #include "list_unit.h"
 #include "mem_iface.h"
+#include "memimage.h"
+#include "rgs.h"
 #include "trav_node.h"
 #include "xform_unit.h"
 
-enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_UNITS };
+enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_RGS, CAP_UNITS };
 
 static struct {
     int on;
@@ -24,7 +26,7 @@ static struct {
     pthread_mutex_t lock;
 } cap = { .lock = PTHREAD_MUTEX_INITIALIZER };
 
-static const char *const cap_files[CAP_UNITS] = { "xform.hex", "isect.hex", "trav.hex", "list.hex", "mem.hex" };
+static const char *const cap_files[CAP_UNITS] = { "xform.hex", "isect.hex", "trav.hex", "list.hex", "mem.hex", "rgs.hex" };
 
 /* The list unit's threads: trace_state addresses in the order first seen (the RTL's thread ids),
  * and the memory interfaces (pipes) likewise. */
@@ -317,4 +319,30 @@ uint64_t __wrap_mem_iface_read(mem_iface *m, uint32_t kind, uint32_t word_addr, 
             (unsigned long long)(m->stats.hits[kind] - h0));
     end(f);
     return at;
+}
+
+/* ---- RGS: the primary packet of every block a thread takes, with the camera block ---- */
+
+void __real_rgs_block_begin(const uint32_t *mem, uint32_t x0, uint32_t y0, rgs_block *b);
+void __wrap_rgs_block_begin(const uint32_t *mem, uint32_t x0, uint32_t y0, rgs_block *b);
+
+void __wrap_rgs_block_begin(const uint32_t *mem, uint32_t x0, uint32_t y0, rgs_block *b)
+{
+    __real_rgs_block_begin(mem, x0, y0, b);
+    FILE *f = begin(CAP_RGS);
+    if (!f)
+        return;
+    const ray_packet *rp = &b->stack[0].rays; /* the primary packet, the block's first task */
+    fprintf(f, "%x %x ", x0, y0);
+    words(f, &mem[mem[MI_H_REGION_TABLE + 2 * MI_R_CAMERA]], MI_CAMERA_WORDS);
+    fprintf(f, " %x", rp->active);
+    for (int i = 0; i < TRACE_PACKET; i++)
+        fprintf(f, " %06x %06x %06x", rp->o[i].x, rp->o[i].y, rp->o[i].z);
+    for (int i = 0; i < TRACE_PACKET; i++)
+        fprintf(f, " %06x %06x %06x", rp->d[i].x, rp->d[i].y, rp->d[i].z);
+    fputc(' ', f);
+    words(f, rp->tmin, TRACE_PACKET);
+    fputc(' ', f);
+    words(f, rp->tmax, TRACE_PACKET);
+    end(f);
 }

@@ -10,10 +10,13 @@
  * rtl/tb/tb_cache.cpp: per pipe a line "C pipe" with the cache sizes and line bytes of the four
  * kinds, the latency and the port's occupancy per byte in 1/65536 cycles, then per read of the
  * memory interface: pipe, kind, word address, words, cycle, the cycle its data is at the unit,
- * lookups, hits; "N pipe" where a frame starts, "F pipe" where the caches are emptied). The hls/
+ * lookups, hits; "N pipe" where a frame starts, "F pipe" where the caches are emptied), DIR/rgs.hex
+ * (the RGS's primary rays, for rtl/tb/tb_rgs.cpp: per block a thread takes, in the order taken,
+ * x0, y0, the 16 camera words, the primary packet's active mask, 4 x O, 4 x D, 4 x tmin, 4 x tmax;
+ * in cycle mode with one pipe that is the tile controller's order). The hls/
  * units are not touched: the program is linked with --wrap for xform_point, xform_vector,
  * isect_unit_rebased, trav_node_split, list_unit_entry, list_mailboxes_clear, mem_iface_read,
- * mem_iface_flush and mem_iface_new_frame, and the wrappers record the calls while capturing is on
+ * mem_iface_flush, mem_iface_new_frame and rgs_block_begin, and the wrappers record the calls while capturing is on
  * (at most `limit` transactions per unit; recorded in call order, which with several host threads
  * interleaves).
  */
@@ -25,8 +28,8 @@
 /* 0, or -1 with a message in err if DIR cannot be made or its files written. */
 int capture_start(const char *dir, uint64_t limit, char *err, unsigned errlen);
 
-/* Transactions recorded per unit: xform, isect, trav, list, mem. */
-#define CAPTURE_UNITS 5
+/* Transactions recorded per unit: xform, isect, trav, list, mem, rgs. */
+#define CAPTURE_UNITS 6
 void capture_counts(uint64_t out[CAPTURE_UNITS]);
 
 /* Closes the files; 0, or -1 if writing failed. */
