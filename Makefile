@@ -13,7 +13,9 @@
 #   make widths     build build/w/<format>/saarcor for every tested fp24 format
 #   make rtl-test   Verilator co-simulation of rtl/ against the C model (operators at 6 formats with
 #                   10^6 vectors each, units on random and captured vectors; the list unit and the
-#                   caches with the memory port on cycle-mode frames of room, terrain, plants), lint
+#                   caches with the memory port, the RGS's ray generation and the tile controller on
+#                   cycle-mode frames of room, terrain, plants; ray generation on an orthographic
+#                   frame and random blocks), lint
 #   make synth      Yosys synthesis figures -> docs/synth.md
 #   make bench-precision  every format against the binary64 reference: time, cycles, PSNR, plots
 #   make results    docs/results.md from build/bench/ (run after make bench)
@@ -222,7 +224,7 @@ test: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(BUILD)/baseline HOST_BUILD=$(BUILD) SIM_LANES=baseline $(BUILD)/baseline/saarcor
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(O0_BUILD) OPT='-O0 -g' $(O0_BUILD)/saarcor
 	@$(MAKE) --no-print-directory $(BUILD)/rtl/$(DEFAULT_FMT)/tb_f24_ops $(BUILD)/rtl/$(DEFAULT_FMT)/tb_units $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sum \
-	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_list $(BUILD)/rtl/$(DEFAULT_FMT)/tb_cache
+	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_list $(BUILD)/rtl/$(DEFAULT_FMT)/tb_cache $(BUILD)/rtl/$(DEFAULT_FMT)/tb_rgs
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 test-programs
 	@$(MAKE) --no-print-directory -j$$(nproc) robust
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 fuzz-replay
@@ -339,7 +341,7 @@ rtl-lint:
 
 # every operator at every format: edge set + RTL_N random vectors per operation class (+ golden hex)
 rtl-test: deps rtl-lint
-	@$(MAKE) --no-print-directory all $(foreach f,$(RTL_FORMATS),$(BUILD)/rtl/$(f)/tb_f24_ops $(BUILD)/rtl/$(f)/tb_units $(BUILD)/rtl/$(f)/tb_sum) \
+	@$(MAKE) --no-print-directory all $(foreach f,$(RTL_FORMATS),$(BUILD)/rtl/$(f)/tb_f24_ops $(BUILD)/rtl/$(f)/tb_units $(BUILD)/rtl/$(f)/tb_sum $(BUILD)/rtl/$(f)/tb_rgs) \
 	  $(foreach f,$(DEFAULT_FMT) e8m23,$(BUILD)/rtl/$(f)/tb_list $(BUILD)/rtl/$(f)/tb_cache)
 	@mkdir -p $(BUILD)/rtl/capture
 	@set -o pipefail; for f in $(RTL_FORMATS); do \
@@ -358,12 +360,22 @@ rtl-test: deps rtl-lint
 	    $(BUILD)/w/$$f/saarcor render $$s -o $(BUILD)/rtl/$$s.$$f.cycle.png --width 128 --height 96 --mode cycle \
 	      --threads-per-pipe 64 --capture-unit-io $(BUILD)/rtl/capture/$$s.$$f.cycle --capture-limit 1000000 >/dev/null || exit 1; \
 	    $(BUILD)/rtl/$$f/tb_list -n $$(( $(RTL_N) / 10 )) --capture $(BUILD)/rtl/capture/$$s.$$f.cycle || exit 1; \
-	    $(BUILD)/rtl/$$f/tb_cache --capture $(BUILD)/rtl/capture/$$s.$$f.cycle || exit 1; done; done | tee $(BUILD)/rtl/memory.log
+	    $(BUILD)/rtl/$$f/tb_cache --capture $(BUILD)/rtl/capture/$$s.$$f.cycle || exit 1; \
+	    $(BUILD)/rtl/$$f/tb_rgs -n 0 --capture $(BUILD)/rtl/capture/$$s.$$f.cycle --order 16 || exit 1; done; done | tee $(BUILD)/rtl/memory.log
 	@mkdir -p $(BUILD)/rtl/animated
 	@set -o pipefail; $(BUILD)/saarcor render animated -o $(BUILD)/rtl/animated/a.png --width 128 --height 96 --mode cycle \
 	  --threads-per-pipe 64 --frames 0:3 --capture-unit-io $(BUILD)/rtl/capture/animated.cycle --capture-limit 1000000 >/dev/null \
 	  && $(BUILD)/rtl/$(DEFAULT_FMT)/tb_list -n 0 --capture $(BUILD)/rtl/capture/animated.cycle \
-	  && $(BUILD)/rtl/$(DEFAULT_FMT)/tb_cache --capture $(BUILD)/rtl/capture/animated.cycle | tee -a $(BUILD)/rtl/memory.log
+	  && $(BUILD)/rtl/$(DEFAULT_FMT)/tb_cache --capture $(BUILD)/rtl/capture/animated.cycle \
+	  && $(BUILD)/rtl/$(DEFAULT_FMT)/tb_rgs -n 0 --capture $(BUILD)/rtl/capture/animated.cycle --order 16 | tee -a $(BUILD)/rtl/memory.log
+	@# the RGS's ray generation: an orthographic frame (the cornell box's camera made orthographic), random blocks
+	@$(BUILD)/saarcor gen cornell -o $(BUILD)/rtl/capture/cornell.gltf >/dev/null
+	@python3 scripts/ortho_camera.py $(BUILD)/rtl/capture/cornell.gltf $(BUILD)/rtl/capture/ortho.gltf
+	@set -o pipefail; for f in $(DEFAULT_FMT) e8m23; do \
+	  $(BUILD)/w/$$f/saarcor render $(BUILD)/rtl/capture/ortho.gltf -o $(BUILD)/rtl/ortho.$$f.png --width 128 --height 96 \
+	    --mode cycle --capture-unit-io $(BUILD)/rtl/capture/ortho.$$f.cycle --capture-limit 1000 >/dev/null || exit 1; \
+	  $(BUILD)/rtl/$$f/tb_rgs -n 0 --capture $(BUILD)/rtl/capture/ortho.$$f.cycle --order 16 || exit 1; done | tee $(BUILD)/rtl/rgs.log
+	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_rgs -n $(RTL_N) || exit 1; done | tee -a $(BUILD)/rtl/rgs.log
 	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_sum -n $(RTL_N) || exit 1; done \
 	  | tee -a $(BUILD)/rtl/units.log
 
