@@ -322,7 +322,7 @@ fmt_m = $(word 2,$(subst m, ,$(subst e,,$(1))))
 # build/rtl/<format>/tb_<name>: the Verilator model of rtl/tb/tb_<name>.sv with its C++ bench,
 # linked with the C model of the same format
 define RTL_RULES
-$(BUILD)/rtl/$(1)/tb_%: rtl/tb/tb_%.sv rtl/tb/tb_%.cpp $(RTL) $(call rtl_c_objs,$(1))
+$(BUILD)/rtl/$(1)/tb_%: rtl/tb/tb_%.sv rtl/tb/tb_%.cpp $(wildcard rtl/tb/*.h) $(RTL) $(call rtl_c_objs,$(1))
 	@mkdir -p $$(@D)
 	@echo "  VERILATOR $$@"
 	$(Q)verilator $(VERILATOR_FLAGS) -GE=$(call fmt_e,$(1)) -GM=$(call fmt_m,$(1)) --top-module tb_$$* \

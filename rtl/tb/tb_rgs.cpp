@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "Vtb_rgs.h"
+#include "tb_fp24.h"
 #include "verilated.h"
 
 extern "C" {
@@ -37,19 +38,7 @@ extern "C" {
 
 namespace {
 
-constexpr int W = F24_WIDTH;
 constexpr int CAM = MI_CAMERA_WORDS;
-
-template <std::size_t N> uint32_t get(const VlWide<N> &w, int idx)
-{
-    uint32_t v = 0;
-    for (int b = 0; b < W; b++) {
-        const int bit = idx * W + b;
-        v |= (w[bit / 32] >> (bit % 32) & 1u) << b;
-    }
-    return v;
-}
-template <typename T> uint32_t get(const T &q, int idx) { return (uint32_t)((q >> (idx * W)) & (((T)1 << W) - 1)); }
 
 // a block and its packet, in the word order of rgs.hex
 struct packet { uint32_t active, o[12], d[12], tmin[4], tmax[4]; };
@@ -92,22 +81,7 @@ std::vector<std::pair<uint32_t, uint32_t>> c_order(uint32_t rx0, uint32_t ry0, u
     return v;
 }
 
-uint64_t g_rng = 1;
-uint32_t rnd() { g_rng ^= g_rng << 13, g_rng ^= g_rng >> 7, g_rng ^= g_rng << 17; return (uint32_t)(g_rng >> 11); }
 uint32_t rnd32() { return rnd() << 16 ^ rnd(); }
-uint32_t rnd_f24()
-{
-    const uint32_t k = rnd() % 20;
-    if (k == 0) {
-        const uint32_t sp[] = { 0, F24_SIGN_BIT, F24_POS_INF, F24_POS_INF | F24_SIGN_BIT, F24_DEFAULT_NAN, F24_ONE,
-                                F24_ONE | F24_SIGN_BIT, F24_MIN_NORMAL, F24_MAX_NORMAL, 1 };
-        return sp[rnd() % 10];
-    }
-    if (k == 1)
-        return rnd() & F24_MASK;
-    const uint32_t e = (uint32_t)F24_BIAS - 12 + rnd() % 20;
-    return ((rnd() & 1u) ? F24_SIGN_BIT : 0u) | e << F24_MAN_BITS | (rnd() & F24_FRAC_MASK);
-}
 // sizes and coordinates: small ones, the int32 sign boundary of 2x + 1, the top of uint32
 uint32_t rnd_coord()
 {
