@@ -373,7 +373,7 @@ rtl-test: deps rtl-lint
 	@python3 scripts/ortho_camera.py $(BUILD)/rtl/capture/cornell.gltf $(BUILD)/rtl/capture/ortho.gltf
 	@set -o pipefail; for f in $(DEFAULT_FMT) e8m23; do \
 	  $(BUILD)/w/$$f/saarcor render $(BUILD)/rtl/capture/ortho.gltf -o $(BUILD)/rtl/ortho.$$f.png --width 128 --height 96 \
-	    --mode cycle --capture-unit-io $(BUILD)/rtl/capture/ortho.$$f.cycle --capture-limit 1000 >/dev/null || exit 1; \
+	    --mode cycle --capture-unit-io $(BUILD)/rtl/capture/ortho.$$f.cycle --capture-limit 4000 >/dev/null || exit 1; \
 	  $(BUILD)/rtl/$$f/tb_rgs -n 0 --capture $(BUILD)/rtl/capture/ortho.$$f.cycle --order 16 || exit 1; done | tee $(BUILD)/rtl/rgs.log
 	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_rgs -n $(RTL_N) || exit 1; done | tee -a $(BUILD)/rtl/rgs.log
 	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_sum -n $(RTL_N) || exit 1; done \

@@ -24,7 +24,8 @@
 // Handshakes: valid/ready on the camera port, the block input and the packet output; a stalled
 // packet output stops the converters and the transformation unit (one enable).
 // Resources: the xform_unit, two converters, 12 camera words + 2 x 32-bit size registers,
-// 4 x 3 result words and 4 active bits in the collector.
+// 4 x 3 result words and 4 active bits in the collector; Yosys 0.23 synth_xilinx at e7m16:
+// 7257 LUTs, 5057 FFs, 27 DSP48E1 (the xform_unit alone: 7004, 4232, 27; docs/synth.md).
 module rgs_raygen #(
   parameter int E = 7,
   parameter int M = 16,

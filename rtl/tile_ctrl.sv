@@ -19,7 +19,8 @@
 // 2 .. 4096 as --tile); blk_valid_o/blk_ready_i one block per cycle; done_o pulses for one cycle
 // after the frame's last block is taken (the cycle after the frame is taken for an empty region).
 // Latency 1 cycle from the frame to its first block, throughput 1 block per cycle.
-// Resources: 6 x 32-bit registers, 4 x 33-bit adders and comparators, 2 x 13-bit offset counters.
+// Resources: 7 x 32-bit registers, 33-bit adders and comparators, 2 x 13-bit offset counters;
+// Yosys 0.23: synth_xilinx 409 LUTs, 265 FFs; synth_ice40 925 LUT4, 263 FFs.
 module tile_ctrl (
   input  logic        clk_i,
   input  logic        rst_ni,

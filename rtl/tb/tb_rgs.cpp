@@ -12,7 +12,7 @@
 //                            the whole image, and its blocks must be the recording's, in order
 //   -n N                     N random blocks on random camera words (kind 0, 1 or other, sizes
 //                            up to 2^32 - 1, coordinates to 2^32 - 1, any fp24 encodings), with
-//                            gaps at the input and back pressure at the output; and N / 50 random
+//                            gaps at the input and back pressure at the output; and N / 200 random
 //                            frames of tile_ctrl (regions, edges 2 .. 4096) against the replica
 // A mismatch prints the unit, the packet or block number, the block, the cycle and both values;
 // exit code 1. It reports the ray generation's latency (block taken to packet out) and its
@@ -386,7 +386,7 @@ int main(int argc, char **argv)
     run_blocks(s, std::vector<block>(bl.begin() + (long)full, bl.end()), false, 20, 20);
 
     // random frames of tile_ctrl alone, with back pressure
-    const std::size_t frames = n / 50;
+    const std::size_t frames = n / 200;
     uint64_t tc_blocks = 0;
     for (std::size_t f = 0; f < frames; f++) {
         const uint32_t tile = rnd() % 64 == 0 ? 2u << rnd() % 12 : 2 + 2 * (rnd() % 32);
