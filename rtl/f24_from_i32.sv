@@ -5,7 +5,7 @@
 // pixel centre f24_mul(f24_from_i32(2x + 1), 1/2) is SCALE = -1 (rgs_raygen). Two combinational
 // segments with STAGES pipeline registers spread evenly over the cuts after them (PULP FPnew style,
 // as the operators; the last cut always gets one, so the output is registered):
-//   1 magnitude, leading-zero count, normalizing shift (leading one to bit 30, sticky in bit 0)
+//   1 magnitude, leading-zero count, normalizing shift (leading one to bit 30)
 //   2 f24_round_pack (ties to even; a zero input gives +0)
 // Latency STAGES cycles (default 2), II = 1. Resources: a 32-bit negator, a 32-bit leading-zero
 // counter and barrel shifter, the shared rounder; Yosys 0.23 at e7m16: synth_xilinx 230 LUTs,
@@ -29,7 +29,7 @@ module f24_from_i32 #(
 
   // ---- segment 1: magnitude, leading zeros, normalization
   logic sign1, zero1;
-  logic [31:0] mag, norm;
+  logic [31:0] mag;
   logic [5:0] lz;
   logic [30:0] sig1;
   logic signed [E+2:0] exp1;
@@ -40,8 +40,7 @@ module f24_from_i32 #(
     lz = 6'd32;
     for (int b = 0; b < 32; b++)
       if (mag[b]) lz = 6'(31 - b);
-    norm = mag << lz;
-    sig1 = {norm[31:2], norm[1] | norm[0]};   // shift right by one, jamming the lost bit
+    sig1 = 31'((mag << lz) >> 1);  // the lost bit is 0: |a| <= 2^31 (the C's jam never sets a bit)
     exp1 = (E+3)'(31 + BIAS + SCALE) - (E+3)'(lz);
   end
 
