@@ -11,8 +11,10 @@
 //                            edge T: per frame tile_ctrl drives rgs_raygen (tb_rgs chain_i) over
 //                            the whole image, and its blocks must be the recording's, in order
 //   -n N                     N random blocks on random camera words (kind 0, 1 or other, sizes
-//                            up to 2^32 - 1, coordinates to 2^32 - 1, any fp24 encodings), with
-//                            gaps at the input and back pressure at the output; and N / 200 random
+//                            up to 2^32 - 1, coordinates to 2^32 - 1, any fp24 encodings; a new
+//                            camera is offered at once and must be held off while packets of the
+//                            old one are in flight), with gaps at the input and back pressure at
+//                            the output; and N / 200 random
 //                            frames of tile_ctrl (regions, edges 2 .. 4096) against the replica
 // A mismatch prints the unit, the packet or block number, the block, the cycle and both values;
 // exit code 1. It reports the ray generation's latency (block taken to packet out) and its
@@ -150,17 +152,22 @@ struct bench {
         top.clk_i = 0;
         g_cycle++;
     }
-    // the camera block, word by word in a random order, once the unit is idle
+    // the camera block's words in a random order (the port takes any)
+    static std::vector<uint32_t> camera_order()
+    {
+        std::vector<uint32_t> order(CAM);
+        for (int i = 0; i < CAM; i++) order[(std::size_t)i] = (uint32_t)i;
+        for (int i = CAM - 1; i > 0; i--) std::swap(order[(std::size_t)i], order[rnd() % (uint32_t)(i + 1)]);
+        return order;
+    }
+    // the camera block, word by word, into the idle unit
     void load_camera(const uint32_t *cam)
     {
-        uint32_t order[CAM];
-        for (int i = 0; i < CAM; i++) order[i] = (uint32_t)i;
-        for (int i = CAM - 1; i > 0; i--) std::swap(order[i], order[rnd() % (uint32_t)(i + 1)]);
         top.blk_valid_i = 0, top.frame_valid_i = 0, top.pkt_ready_i = 1;
-        for (int i = 0; i < CAM;) {
-            top.cam_valid_i = 1, top.cam_idx_i = order[i], top.cam_word_i = cam[order[i]];
+        for (uint32_t w : camera_order()) {
+            top.cam_valid_i = 1, top.cam_idx_i = w, top.cam_word_i = cam[w];
             top.eval();
-            i += top.cam_ready_o;
+            while (!top.cam_ready_o) edge(), top.eval();
             edge();
         }
         top.cam_valid_i = 0;
@@ -173,6 +180,7 @@ void run_blocks(bench &s, const std::vector<block> &bl, bool recorded, unsigned 
 {
     std::deque<std::size_t> inflight;
     std::size_t next = 0, loaded = SIZE_MAX;
+    std::vector<uint32_t> cam_words; // the new camera's words still to load
     auto &t = s.top;
     const auto check = [&](std::size_t k) {
         const packet got = s.read_packet();
@@ -182,21 +190,23 @@ void run_blocks(bench &s, const std::vector<block> &bl, bool recorded, unsigned 
     };
     t.chain_i = 0;
     for (uint64_t idle = 0; (next < bl.size() || !inflight.empty()) && idle < 10000;) {
-        if (next < bl.size() && (loaded == SIZE_MAX || std::memcmp(bl[next].cam, bl[loaded].cam, sizeof bl[next].cam))) {
-            for (uint64_t w = 0; !inflight.empty() && w < 1000; w++, s.edge()) { // drain, then a new camera
-                t.blk_valid_i = 0, t.pkt_ready_i = 1;
-                t.eval();
-                if (t.pkt_valid_o)
-                    check(inflight.front()), inflight.pop_front();
-            }
-            s.load_camera(bl[next].cam);
-            loaded = next;
-        }
-        t.blk_valid_i = next < bl.size() && rnd() % 100 >= gap;
+        // a new camera is offered at once: the port must hold it off while the old one's packets are in flight
+        if (cam_words.empty() && next < bl.size() &&
+            (loaded == SIZE_MAX || std::memcmp(bl[next].cam, bl[loaded].cam, sizeof bl[next].cam)))
+            cam_words = bench::camera_order(), loaded = next;
+        t.cam_valid_i = !cam_words.empty();
+        if (t.cam_valid_i) t.cam_idx_i = cam_words.back(), t.cam_word_i = bl[loaded].cam[cam_words.back()];
+        t.blk_valid_i = cam_words.empty() && next < bl.size() && rnd() % 100 >= gap;
         if (t.blk_valid_i) t.blk_x_i = bl[next].x0, t.blk_y_i = bl[next].y0;
         t.pkt_ready_i = rnd() % 100 >= stall;
         t.eval();
         idle++;
+        if (t.cam_valid_i && t.cam_ready_o) {
+            if (!inflight.empty() && g_mismatches++ < 10)
+                std::printf("PROTOCOL rgs_raygen: camera word %u taken at cycle %llu with %zu packets in flight\n",
+                            (unsigned)t.cam_idx_i, (unsigned long long)g_cycle, inflight.size());
+            cam_words.pop_back(), idle = 0;
+        }
         if (t.blk_valid_i && t.blk_ready_o) {
             if (s.first_take == UINT64_MAX) s.first_take = g_cycle;
             inflight.push_back(next++);
@@ -204,8 +214,8 @@ void run_blocks(bench &s, const std::vector<block> &bl, bool recorded, unsigned 
         }
         if (t.pkt_valid_o && t.pkt_ready_i) {
             if (inflight.empty()) {
-                std::printf("PROTOCOL rgs_raygen: a packet at cycle %llu without a block\n", (unsigned long long)g_cycle);
-                g_mismatches++;
+                if (g_mismatches++ < 10)
+                    std::printf("PROTOCOL rgs_raygen: a packet at cycle %llu without a block\n", (unsigned long long)g_cycle);
             } else {
                 if (s.first_out == UINT64_MAX) s.first_out = g_cycle;
                 s.last_out = g_cycle, s.timed_out++;
@@ -215,6 +225,7 @@ void run_blocks(bench &s, const std::vector<block> &bl, bool recorded, unsigned 
         }
         s.edge();
     }
+    t.cam_valid_i = 0;
     if (next < bl.size() || !inflight.empty()) {
         std::printf("PROTOCOL rgs_raygen: stuck at cycle %llu with %zu blocks left and %zu in flight\n",
                     (unsigned long long)g_cycle, bl.size() - next, inflight.size());
