@@ -63,7 +63,8 @@ module rgs_raygen #(
   logic ortho_q;
   logic [31:0] width_q, height_q;
   logic [W-1:0] cam_q [4:15];
-  logic [6:0] pending_q;   // rays issued whose packet has not left yet
+  localparam int PW = $clog2(CVT_STAGES + LATENCY_XF + 9) + 1;
+  logic [PW-1:0] pending_q; // rays issued whose packet has not left yet (at most the pipeline's + 8)
   logic busy_q;            // a block is held
   assign cam_ready_o = !busy_q && pending_q == 0;
 
@@ -162,7 +163,7 @@ module rgs_raygen #(
       if (put) slot_q <= slot_q + 2'd1;
       if (put && slot_q == 2'd3) pkt_valid_q <= 1'b1;
       else if (out) pkt_valid_q <= 1'b0;
-      pending_q <= pending_q + 7'(issue) - (out ? 7'd4 : 7'd0);
+      pending_q <= pending_q + PW'(issue) - (out ? PW'(4) : PW'(0));
     end
   end
   always_ff @(posedge clk_i) begin
