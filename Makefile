@@ -13,7 +13,9 @@
 #   make widths     build build/w/<format>/saarcor for every tested fp24 format
 #   make rtl-test   Verilator co-simulation of rtl/ against the C model (operators at 6 formats with
 #                   10^6 vectors each, units on random and captured vectors; the list unit and the
-#                   caches with the memory port on cycle-mode frames of room, terrain, plants), lint
+#                   caches with the memory port, the RGS's ray generation and the tile controller on
+#                   cycle-mode frames of room, terrain, plants; ray generation on an orthographic
+#                   frame and random blocks), lint
 #   make synth      Yosys synthesis figures -> docs/synth.md
 #   make bench-precision  every format against the binary64 reference: time, cycles, PSNR, plots
 #   make results    docs/results.md from build/bench/ (run after make bench)
@@ -89,7 +91,7 @@ SIM_SRCS = $(MEMIMAGE) $(HLS_UNITS) $(CYCLE) $(REF) $(CLI)
 # render --capture-unit-io records the units' calls through linker wrappers (tb/cli/capture.c)
 comma := ,
 CAPTURE_WRAP := $(addprefix -Wl$(comma)--wrap=,xform_point xform_vector isect_unit_rebased trav_node_split \
-  list_unit_entry list_mailboxes_clear mem_iface_read mem_iface_flush mem_iface_new_frame)
+  list_unit_entry list_mailboxes_clear mem_iface_read mem_iface_flush mem_iface_new_frame rgs_block_begin)
 
 # per-format objects: everything that depends on the fp24 parameters
 fp_objs = $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(HLS_FP24) $(TB_FP))
@@ -222,7 +224,7 @@ test: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(BUILD)/baseline HOST_BUILD=$(BUILD) SIM_LANES=baseline $(BUILD)/baseline/saarcor
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(O0_BUILD) OPT='-O0 -g' $(O0_BUILD)/saarcor
 	@$(MAKE) --no-print-directory $(BUILD)/rtl/$(DEFAULT_FMT)/tb_f24_ops $(BUILD)/rtl/$(DEFAULT_FMT)/tb_units $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sum \
-	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_list $(BUILD)/rtl/$(DEFAULT_FMT)/tb_cache $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sched
+	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_list $(BUILD)/rtl/$(DEFAULT_FMT)/tb_cache $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sched $(BUILD)/rtl/$(DEFAULT_FMT)/tb_rgs
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 test-programs
 	@$(MAKE) --no-print-directory -j$$(nproc) robust
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 fuzz-replay
@@ -320,13 +322,13 @@ fmt_m = $(word 2,$(subst m, ,$(subst e,,$(1))))
 # build/rtl/<format>/tb_<name>: the Verilator model of rtl/tb/tb_<name>.sv with its C++ bench,
 # linked with the C model of the same format
 define RTL_RULES
-$(BUILD)/rtl/$(1)/tb_%: rtl/tb/tb_%.sv rtl/tb/tb_%.cpp $(RTL) $(call rtl_c_objs,$(1))
+$(BUILD)/rtl/$(1)/tb_%: rtl/tb/tb_%.sv rtl/tb/tb_%.cpp $(wildcard rtl/tb/*.h) $(RTL) $(call rtl_c_objs,$(1))
 	@mkdir -p $$(@D)
 	@echo "  VERILATOR $$@"
 	$(Q)verilator $(VERILATOR_FLAGS) -GE=$(call fmt_e,$(1)) -GM=$(call fmt_m,$(1)) --top-module tb_$$* \
 	  -Mdir $(BUILD)/rtl/$(1)/obj_$$* -o $(CURDIR)/$$@ $(addprefix $(CURDIR)/,$(RTL)) \
 	  $(CURDIR)/rtl/tb/tb_$$*.sv $(CURDIR)/rtl/tb/tb_$$*.cpp \
-	  -CFLAGS "$(call fmt_flags,$(1)) $(addprefix -I$(CURDIR)/,hls hls/fp24 hls/units host/fp24 tb/fp)" \
+	  -CFLAGS "$(call fmt_flags,$(1)) $(addprefix -I$(CURDIR)/,hls hls/fp24 hls/units host/fp24 tb/fp host/memimage host/kdtree host/scene)" \
 	  -LDFLAGS "$(addprefix $(CURDIR)/,$(call rtl_c_objs,$(1))) -lmpfr -lgmp -lm" >$(BUILD)/rtl/$(1)/build_$$*.log 2>&1 \
 	  || { tail -30 $(BUILD)/rtl/$(1)/build_$$*.log; exit 1; }
 endef
@@ -339,7 +341,7 @@ rtl-lint:
 
 # every operator at every format: edge set + RTL_N random vectors per operation class (+ golden hex)
 rtl-test: deps rtl-lint
-	@$(MAKE) --no-print-directory all $(foreach f,$(RTL_FORMATS),$(BUILD)/rtl/$(f)/tb_f24_ops $(BUILD)/rtl/$(f)/tb_units $(BUILD)/rtl/$(f)/tb_sum) \
+	@$(MAKE) --no-print-directory all $(foreach f,$(RTL_FORMATS),$(BUILD)/rtl/$(f)/tb_f24_ops $(BUILD)/rtl/$(f)/tb_units $(BUILD)/rtl/$(f)/tb_sum $(BUILD)/rtl/$(f)/tb_rgs) \
 	  $(foreach f,$(DEFAULT_FMT) e8m23,$(BUILD)/rtl/$(f)/tb_list $(BUILD)/rtl/$(f)/tb_cache $(BUILD)/rtl/$(f)/tb_sched)
 	@mkdir -p $(BUILD)/rtl/capture
 	@set -o pipefail; for f in $(RTL_FORMATS); do \
@@ -359,13 +361,23 @@ rtl-test: deps rtl-lint
 	      --threads-per-pipe 64 --capture-unit-io $(BUILD)/rtl/capture/$$s.$$f.cycle --capture-limit 1000000 >/dev/null || exit 1; \
 	    $(BUILD)/rtl/$$f/tb_list -n $$(( $(RTL_N) / 10 )) --capture $(BUILD)/rtl/capture/$$s.$$f.cycle || exit 1; \
 	    $(BUILD)/rtl/$$f/tb_cache --capture $(BUILD)/rtl/capture/$$s.$$f.cycle || exit 1; \
-	    $(BUILD)/rtl/$$f/tb_sched -n $(RTL_N) --capture $(BUILD)/rtl/capture/$$s.$$f.cycle || exit 1; done; done | tee $(BUILD)/rtl/memory.log
+	    $(BUILD)/rtl/$$f/tb_sched -n $(RTL_N) --capture $(BUILD)/rtl/capture/$$s.$$f.cycle || exit 1; \
+	    $(BUILD)/rtl/$$f/tb_rgs -n 0 --capture $(BUILD)/rtl/capture/$$s.$$f.cycle --order 16 || exit 1; done; done | tee $(BUILD)/rtl/memory.log
 	@mkdir -p $(BUILD)/rtl/animated
 	@set -o pipefail; $(BUILD)/saarcor render animated -o $(BUILD)/rtl/animated/a.png --width 128 --height 96 --mode cycle \
 	  --threads-per-pipe 64 --frames 0:3 --capture-unit-io $(BUILD)/rtl/capture/animated.cycle --capture-limit 1000000 >/dev/null \
 	  && $(BUILD)/rtl/$(DEFAULT_FMT)/tb_list -n 0 --capture $(BUILD)/rtl/capture/animated.cycle \
 	  && $(BUILD)/rtl/$(DEFAULT_FMT)/tb_cache --capture $(BUILD)/rtl/capture/animated.cycle \
-	  && $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sched -n 0 --capture $(BUILD)/rtl/capture/animated.cycle | tee -a $(BUILD)/rtl/memory.log
+	  && $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sched -n 0 --capture $(BUILD)/rtl/capture/animated.cycle \
+	  && $(BUILD)/rtl/$(DEFAULT_FMT)/tb_rgs -n 0 --capture $(BUILD)/rtl/capture/animated.cycle --order 16 | tee -a $(BUILD)/rtl/memory.log
+	@# the RGS's ray generation: an orthographic frame (the cornell box's camera made orthographic), random blocks
+	@$(BUILD)/saarcor gen cornell -o $(BUILD)/rtl/capture/cornell.gltf >/dev/null
+	@python3 scripts/ortho_camera.py $(BUILD)/rtl/capture/cornell.gltf $(BUILD)/rtl/capture/ortho.gltf
+	@set -o pipefail; for f in $(DEFAULT_FMT) e8m23; do \
+	  $(BUILD)/w/$$f/saarcor render $(BUILD)/rtl/capture/ortho.gltf -o $(BUILD)/rtl/ortho.$$f.png --width 128 --height 96 \
+	    --mode cycle --capture-unit-io $(BUILD)/rtl/capture/ortho.$$f.cycle --capture-limit 4000 >/dev/null || exit 1; \
+	  $(BUILD)/rtl/$$f/tb_rgs -n 0 --capture $(BUILD)/rtl/capture/ortho.$$f.cycle --order 16 || exit 1; done | tee $(BUILD)/rtl/rgs.log
+	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_rgs -n $(RTL_N) || exit 1; done | tee -a $(BUILD)/rtl/rgs.log
 	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_sum -n $(RTL_N) || exit 1; done \
 	  | tee -a $(BUILD)/rtl/units.log
 

@@ -6,9 +6,13 @@
 # dot product (rtl/f24_sum_exact.sv) matches hls/fp24/f24_sum_exact.c on 10^5 sets; the list unit
 # (rtl/list_unit.sv) matches hls/units/list_unit.c on the operations of a cycle-mode frame of the
 # room at 64 threads and 5 x 10^4 random ones, and the caches with the memory port
-# (rtl/cache_dm.sv, mem_port.sv) the cycle model's caches on that frame's reads; the benches catch
-# mutants (a rounder that never rounds ties to even, a mailbox that never moves on, a cache
-# without its tag forwarding). Prints cmocka-style lines.
+# (rtl/cache_dm.sv, mem_port.sv) the cycle model's caches on that frame's reads; the RGS's ray
+# generation (rtl/rgs_raygen.sv) matches rgs_primary and the recorded packets of cycle-mode frames
+# of the room (perspective) and an orthographic cornell box, whose block order the tile controller
+# (rtl/tile_ctrl.sv) reproduces, and of a functional frame on 2 threads, and 2 x 10^4 random blocks
+# on random cameras; the benches catch mutants (a rounder that never rounds ties to even, a mailbox
+# that never moves on, a cache without its tag forwarding, a pixel centre without its + 1/2, a tile
+# controller stepping past the region's edge). Prints cmocka-style lines.
 set -u
 cd "$(dirname "$0")/.."
 B=${BUILD:-build}
@@ -70,7 +74,7 @@ mutant() {
   for f in rtl/*.sv; do [[ $f == "rtl/$file" ]] || srcs+=("$PWD/$f"); done
   verilator --cc --exe --build -j 2 -Wno-fatal -GE=7 -GM=16 --top-module "tb_$name" -Mdir "$d/obj" \
     -o "$d/tb" "${srcs[@]}" "$d/$file" "$PWD/rtl/tb/tb_$name.sv" "$PWD/rtl/tb/tb_$name.cpp" \
-    -CFLAGS "-DF24_EXP_BITS=7 -DF24_MAN_BITS=16 -I$PWD/hls -I$PWD/hls/fp24 -I$PWD/hls/units -I$PWD/tb/fp" \
+    -CFLAGS "-DF24_EXP_BITS=7 -DF24_MAN_BITS=16 $(printf -- "-I$PWD/%s " hls hls/fp24 hls/units tb/fp host/memimage host/kdtree host/scene)" \
     -LDFLAGS "$(ls "$PWD/$B"/obj/e7m16/hls/fp24/*.o "$PWD/$B"/obj/e7m16/hls/units/*.o "$PWD/$B"/obj/e7m16/tb/fp/*.o | tr '\n' ' ') -lmpfr -lgmp -lm" >/dev/null
   if "$d/tb" "$@" >"$d/log"; then echo "the mutant $file passed tb_$name"; return 1; fi
   grep -c MISMATCH "$d/log" | sed "s/^/mutant $file caught by tb_$name: /; s/$/ mismatch lines shown/"
@@ -83,6 +87,30 @@ t_list_cache_mutants_caught() {
     mutant cache cache_dm.sv "s/tag_eff = (p_tag_we \&\& p_tag_idx == s1_idx) ? p_tag : tag_q;/tag_eff = tag_q;/" \
       --capture "$T/capc" &&
     mutant sched thread_sched.sv "s/ptr_q\[u\] <= TW'((32'(pick) + 1) % THREADS);/ptr_q[u] <= '0;/" -n 0 --capture "$T/capc"
+}
+
+t_rgs() {
+  # orthographic: the cornell box's camera made orthographic; odd sizes, partial tiles of 8
+  "$BIN" gen cornell -o "$T/cornell.gltf" >/dev/null
+  python3 scripts/ortho_camera.py "$T/cornell.gltf" "$T/ortho.gltf"
+  "$BIN" render "$T/ortho.gltf" -o "$T/ortho.png" --width 38 --height 27 --mode cycle --tile 8 --capture-unit-io "$T/rgso" \
+    --capture-limit 1000 >/dev/null
+  "$B/rtl/e7m16/tb_rgs" -n 0 --capture "$T/rgso" --order 8 >"$T/rgso.log" || { cat "$T/rgso.log"; false; }
+  cat "$T/rgso.log"
+  grep -q "(266 orthographic; 1 frames in tile_ctrl's order" "$T/rgso.log"
+  # functional mode on 2 threads: the blocks in the order the threads took them
+  "$BIN" render cornell -o "$T/rgs_cornell.png" --width 32 --height 24 --threads 2 --capture-unit-io "$T/rgsf" \
+    --capture-limit 1000 >/dev/null
+  "$B/rtl/e7m16/tb_rgs" -n 0 --capture "$T/rgsf"
+  # perspective, the room in the cycle model's order, and random blocks on random cameras
+  "$BIN" render room -o "$T/rgs_room.png" --width 48 --height 32 --mode cycle --capture-unit-io "$T/rgsr" \
+    --capture-limit 1000 >/dev/null
+  "$B/rtl/e7m16/tb_rgs" -n 20000 --capture "$T/rgsr" --order 16
+}
+
+t_rgs_mutants_caught() {
+  mutant rgs rgs_raygen.sv "s/{x\[30:0\], 1'b1}/{x[30:0], 1'b0}/" -n 200 &&
+    mutant rgs tile_ctrl.sv "s/33'(x_q) + 33'd2 < 33'(x1_q)/33'(x_q) + 33'd2 <= 33'(x1_q)/" -n 2000
 }
 
 t_mutant_caught() { # the bench must fail on a wrong rounder
@@ -105,5 +133,7 @@ run_case rtl_units_match_c_model_and_capture t_units
 run_case rtl_exact_sum_matches_c_model t_exact_sum
 run_case rtl_list_unit_and_caches_match_c_model t_list_and_cache
 run_case rtl_list_cache_benches_catch_mutants t_list_cache_mutants_caught
+run_case rtl_rgs_raygen_and_tile_ctrl_match_c_model t_rgs
+run_case rtl_rgs_bench_catches_mutants t_rgs_mutants_caught
 run_case rtl_bench_catches_mutant t_mutant_caught
 exit $((fails != 0))

@@ -8,7 +8,10 @@
  * whose rays share their origin. Secondary rays: T_R = [D^, N^, D^; O] (the corrected form of the
  * paper's matrix) applied to the initial rays of reflection (-e, 0, t^)/(1, -2c, 0), transparency
  * (e, 0, t^)/(1, 0, 0) and refraction (e, 0, t^)/(eta_r, mu, 0) with mu = -eta_r c - sqrt(k);
- * shadow rays from the hit point P = T_R (0, 0, t^) towards each light.
+ * shadow rays from the hit point P = T_R (0, 0, t^) towards each light. The primary rays have RTL
+ * (rtl/rgs_raygen.sv, bit-identical to rgs_primary): 29 cycles from block to packet, one ray per
+ * cycle through the transformation unit, so a packet every 4 cycles (the cycle model's RB_GEN
+ * charges TRACE_PACKET + 1 steps).
  *
  * Shading is fixed function: Phong-like (ambient + diffuse with interpolated normals + highlight
  * of exponent 2^k), base colour x bilinear texture, the scene's lights with shadow rays (the

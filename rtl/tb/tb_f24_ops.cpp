@@ -1,7 +1,10 @@
 // Co-simulation of the fp24 operators (rtl/f24_*.sv) against the C model (hls/fp24): one operand
 // pair enters every cycle; every result leaving an operator is compared with the C model's
-// result for the pair that entered `latency` cycles earlier. Vectors: the TestFloat-style edge
-// set of each operation (tb/fp/f24_vec.c), N random pairs per operation class, and optional hex
+// result for the pair that entered `latency` cycles earlier. The converter f24_from_i32 takes the
+// pair's bits as an int32 i (the low 32 bits of {a, b}): f24_from_i32(i), and at SCALE = -1
+// f24_mul(f24_from_i32(i), 1/2) (the RGS's pixel centres). Vectors: the TestFloat-style edge
+// set of each operation (tb/fp/f24_vec.c), integer edges for the converter (0, +-2^k, +-2^k +- 1,
+// ties of the rounding), N random pairs per operation class, and optional hex
 // vector files ("a b result", tests/golden/f24, saarcor f24gen). A mismatch prints the vector,
 // the cycle and both results; the exit code is 1 on any mismatch.
 // usage: tb_f24_ops [-n N] [--seed S] [FILE.hex ...]
@@ -70,6 +73,11 @@ uint32_t m_flags(uint32_t a, uint32_t b)
     return (uint32_t)f24_lt(a, b) | (uint32_t)f24_le(a, b) << 1 | (uint32_t)f24_eq(a, b) << 2 |
            (uint32_t)f24_unordered(a, b) << 3;
 }
+// the converter's int32: the low 32 bits of {a, b}; and the pair that gives an int32
+int32_t int_of(uint32_t a, uint32_t b) { return (int32_t)(uint32_t)((uint64_t)a << F24_WIDTH | b); }
+f24_pair pair_of(uint32_t i) { return f24_pair{ F24_WIDTH >= 32 ? 0u : i >> F24_WIDTH, i & F24_MASK }; }
+uint32_t m_cvt(uint32_t a, uint32_t b) { return f24_from_i32(int_of(a, b)); }
+uint32_t m_half(uint32_t a, uint32_t b) { return f24_mul(f24_from_i32(int_of(a, b)), f24_div(F24_ONE, f24_from_i32(2))); }
 uint32_t m_min(uint32_t a, uint32_t b) { return f24_min(a, b); }
 uint32_t m_max(uint32_t a, uint32_t b) { return f24_max(a, b); }
 
@@ -94,6 +102,13 @@ int main(int argc, char **argv)
         const size_t k = f24_vec_edges(op, edges, F24_VEC_MAX_EDGES);
         vec.insert(vec.end(), edges, edges + k);
     }
+    for (int k = 0; k < 32; k++) // integers: powers of two and their neighbours, ties of the rounding
+        for (int32_t d = -1; d <= 1; d++)
+            for (uint32_t sign = 0; sign < 2; sign++) {
+                const uint32_t i = (1u << k) + (uint32_t)d, tie = ((1u << (F24_MAN_BITS + 1)) + 1u + 2u * (uint32_t)(d + 1)) << (k % 8);
+                vec.push_back(pair_of(sign ? 0u - i : i));
+                vec.push_back(pair_of(sign ? 0u - tie : tie));
+            }
     f24_rng rng;
     f24_rng_seed(&rng, seed);
     for (uint64_t i = 0; i < n; i++)
@@ -117,14 +132,14 @@ int main(int argc, char **argv)
     uint32_t sink = 0;
     for (const f24_pair &v : vec)
         sink ^= m_add(v.a, v.b) ^ m_sub(v.a, v.b) ^ m_mul(v.a, v.b) ^ m_div(v.a, v.b) ^ m_flags(v.a, v.b) ^
-                m_min(v.a, v.b) ^ m_max(v.a, v.b);
+                m_min(v.a, v.b) ^ m_max(v.a, v.b) ^ m_cvt(v.a, v.b) ^ m_half(v.a, v.b);
     const double c_secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
 
     VerilatedContext ctx;
     Vtb_f24_ops top{ &ctx };
     checker c_add{ "add" }, c_sub{ "sub" }, c_mul{ "mul" }, c_div{ "div" }, c_flags{ "lt/le/eq/unordered" },
-        c_min{ "min" }, c_max{ "max" };
-    checker *all[] = { &c_add, &c_sub, &c_mul, &c_div, &c_flags, &c_min, &c_max };
+        c_min{ "min" }, c_max{ "max" }, c_cvt{ "from_i32" }, c_half{ "from_i32 SCALE -1" };
+    checker *all[] = { &c_add, &c_sub, &c_mul, &c_div, &c_flags, &c_min, &c_max, &c_cvt, &c_half };
     const uint32_t mask = F24_MASK;
     top.rst_ni = 0;
     top.clk_i = 0;
@@ -153,6 +168,8 @@ int main(int argc, char **argv)
         check(c_flags, top.cmp_valid_o, top.cmp_flags_o, m_flags);
         check(c_min, top.cmp_valid_o, top.min_o, m_min);
         check(c_max, top.cmp_valid_o, top.max_o, m_max);
+        check(c_cvt, top.cvt_valid_o, top.cvt_o, m_cvt);
+        check(c_half, top.half_valid_o, top.half_o, m_half);
     }
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     uint64_t bad = 0, checked = 0;
@@ -163,7 +180,7 @@ int main(int argc, char **argv)
             std::printf("PROTOCOL %s: %zu operations never left the operator\n", c->name, c->q.size());
     }
     top.final();
-    std::printf("tb_f24_ops e%dm%d: %zu vectors x 7 results, %llu checked, %llu mismatches, %.2f s (RTL + check %.2f M "
+    std::printf("tb_f24_ops e%dm%d: %zu vectors x 9 results, %llu checked, %llu mismatches, %.2f s (RTL + check %.2f M "
                 "vectors/s; C model alone %.2f M vectors/s) [%x]\n",
                 F24_EXP_BITS, F24_MAN_BITS, vec.size(), (unsigned long long)checked, (unsigned long long)bad, secs,
                 vec.size() / secs / 1e6, vec.size() / c_secs / 1e6, sink & 0u);

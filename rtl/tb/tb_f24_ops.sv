@@ -1,5 +1,6 @@
 // tb_f24_ops: test wrapper (not synthesized) feeding one operand pair per cycle to every fp24
-// operator in parallel: adder, adder in subtract mode, multiplier, divider, comparator. Each
+// operator in parallel: adder, adder in subtract mode, multiplier, divider, comparator, and the
+// int-to-fp24 converter at SCALE 0 and -1 on the pair's bits {a, b} (the low 32 bits). Each
 // result comes out with its operator's latency; the C++ bench (tb_f24_ops.cpp) checks each
 // against the C model on every transaction.
 module tb_f24_ops #(
@@ -22,8 +23,16 @@ module tb_f24_ops #(
   output logic         cmp_valid_o,
   output logic [3:0]   cmp_flags_o,
   output logic [E+M:0] min_o,
-  output logic [E+M:0] max_o
+  output logic [E+M:0] max_o,
+  output logic         cvt_valid_o,
+  output logic [E+M:0] cvt_o,
+  output logic         half_valid_o,
+  output logic [E+M:0] half_o
 );
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic [2*(E+M+1)-1:0] ab;   // the converters take its low 32 bits
+  /* verilator lint_on UNUSEDSIGNAL */
+  assign ab = {a_i, b_i};
   f24_add #(.E(E), .M(M)) u_add (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(valid_i), .a_i(a_i),
                                  .b_i(b_i), .sub_i(1'b0), .valid_o(add_valid_o), .res_o(add_o));
   f24_add #(.E(E), .M(M)) u_sub (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(valid_i), .a_i(a_i),
@@ -35,4 +44,8 @@ module tb_f24_ops #(
   f24_cmp #(.E(E), .M(M)) u_cmp (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(valid_i), .a_i(a_i),
                                  .b_i(b_i), .valid_o(cmp_valid_o), .flags_o(cmp_flags_o), .min_o(min_o),
                                  .max_o(max_o));
+  f24_from_i32 #(.E(E), .M(M)) u_cvt (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(valid_i), .a_i(ab[31:0]),
+                                      .valid_o(cvt_valid_o), .res_o(cvt_o));
+  f24_from_i32 #(.E(E), .M(M), .SCALE(-1)) u_half (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(valid_i),
+                                                   .a_i(ab[31:0]), .valid_o(half_valid_o), .res_o(half_o));
 endmodule

@@ -13,10 +13,12 @@
 #include "list_unit.h"
 #include "cycle_sim.h"
 #include "mem_iface.h"
+#include "memimage.h"
+#include "rgs.h"
 #include "trav_node.h"
 #include "xform_unit.h"
 
-enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_UNITS };
+enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_RGS, CAP_UNITS };
 
 static struct {
     int on;
@@ -25,8 +27,7 @@ static struct {
     pthread_mutex_t lock;
 } cap = { .lock = PTHREAD_MUTEX_INITIALIZER };
 
-static const char *const cap_files[CAP_UNITS] = { "xform.hex", "isect.hex", "trav.hex", "list.hex", "mem.hex",
-                                                  "sched.hex" };
+const char *const capture_unit_names[CAPTURE_UNITS] = { "xform", "isect", "trav", "list", "mem", "sched", "rgs" };
 
 /* The list unit's threads: trace_state addresses in the order first seen (the RTL's thread ids),
  * and the memory interfaces (pipes) likewise. */
@@ -42,7 +43,7 @@ int capture_start(const char *dir, uint64_t limit, char *err, unsigned errlen)
     }
     for (int u = 0; u < CAP_UNITS; u++) {
         char path[1024];
-        snprintf(path, sizeof path, "%s/%s", dir, cap_files[u]);
+        snprintf(path, sizeof path, "%s/%s.hex", dir, capture_unit_names[u]);
         if (!(cap.f[u] = fopen(path, "w"))) {
             snprintf(err, errlen, "cannot write '%s': %s", path, strerror(errno));
             capture_stop();
@@ -336,5 +337,31 @@ void capture_sched_probe(void *arg, uint32_t pipe, int what, uint64_t cycle, uin
     else
         fprintf(f, "%c %x %llx %x %x %x", what == SCHED_READY ? 'R' : 'I', pipe, (unsigned long long)cycle, unit, thread,
                 slots);
+    end(f);
+}
+
+/* ---- RGS: the primary packet of every block a thread takes, with the camera block ---- */
+
+void __real_rgs_block_begin(const uint32_t *mem, uint32_t x0, uint32_t y0, rgs_block *b);
+void __wrap_rgs_block_begin(const uint32_t *mem, uint32_t x0, uint32_t y0, rgs_block *b);
+
+void __wrap_rgs_block_begin(const uint32_t *mem, uint32_t x0, uint32_t y0, rgs_block *b)
+{
+    __real_rgs_block_begin(mem, x0, y0, b);
+    FILE *f = begin(CAP_RGS);
+    if (!f)
+        return;
+    const ray_packet *rp = &b->stack[0].rays; /* the primary packet, the block's first task */
+    fprintf(f, "%x %x ", x0, y0);
+    words(f, &mem[mem[MI_H_REGION_TABLE + 2 * MI_R_CAMERA]], MI_CAMERA_WORDS);
+    fprintf(f, " %x", rp->active);
+    for (int i = 0; i < TRACE_PACKET; i++)
+        fprintf(f, " %06x %06x %06x", rp->o[i].x, rp->o[i].y, rp->o[i].z);
+    for (int i = 0; i < TRACE_PACKET; i++)
+        fprintf(f, " %06x %06x %06x", rp->d[i].x, rp->d[i].y, rp->d[i].z);
+    fputc(' ', f);
+    words(f, rp->tmin, TRACE_PACKET);
+    fputc(' ', f);
+    words(f, rp->tmax, TRACE_PACKET);
     end(f);
 }

@@ -110,8 +110,9 @@ static int usage(void)
            "  --vcd-cycles A:B   the cycles written: A up to but not including B (default 0:20000)\n"
            "  --usage-plot FILE.svg  cycle mode: each unit's utilisation per epoch as an SVG chart\n"
            "  --capture-unit-io DIR  record the transformation, intersection, traversal-node and list\n"
-           "                     transactions (and in cycle mode the memory reads) as hex vectors for the\n"
-           "                     RTL co-simulation (DIR/xform.hex, isect.hex, trav.hex, list.hex, mem.hex;\n"
+           "                     transactions, the primary packets (and in cycle mode the memory reads) as hex\n"
+           "                     vectors for the RTL co-simulation (DIR/xform.hex, isect.hex, trav.hex, list.hex,\n"
+           "                     rgs.hex, mem.hex;\n"
            "                     at most --capture-limit N per unit, default 100000)\n"
            "  --frame N          frame N of the animation at --fps (time N / fps), to -o\n"
            "  --frames A:B       frames A..B of the animation at --fps (default 30) to OUT_NNNN.png (and\n"
@@ -757,10 +758,10 @@ int cmd_render(int argc, char **argv)
             cli_error("render", "--capture-unit-io: writing the vectors in '%s' failed", ro.capture);
             rc = SAARCOR_EXIT_INPUT;
         } else {
-            printf("captured unit transactions in %s: xform %llu, isect %llu, trav %llu, list %llu, mem %llu, "
-                   "sched %llu\n",
-                   ro.capture, (unsigned long long)n[0], (unsigned long long)n[1], (unsigned long long)n[2],
-                   (unsigned long long)n[3], (unsigned long long)n[4], (unsigned long long)n[5]);
+            printf("captured unit transactions in %s:", ro.capture);
+            for (int u = 0; u < CAPTURE_UNITS; u++)
+                printf("%s %s %llu", u ? "," : "", capture_unit_names[u], (unsigned long long)n[u]);
+            printf("\n");
         }
     }
     mi_free(b);
