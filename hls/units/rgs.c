@@ -596,9 +596,10 @@ int rgs_step(const uint32_t *mem, const rgs_config *cfg, rgs_block *b, unit_op *
 route:
     for (int guard = 0; guard < 4; guard++) { /* transitions without a unit operation, then one operation */
         switch (b->phase) {
-        case RB_GEN: /* transformation unit: primary rays T_init, n + 1 steps (shared origin); camera block */
+        case RB_GEN: /* transformation unit: primary rays T_init, one step per ray (the shared origin, or an
+                      * orthographic packet's shared direction, is a camera word: rtl/rgs_raygen.sv); camera block */
             b->trav_flags = cfg->traversal << TRACE_TRAV_SHIFT;
-            op_set(op, UNIT_XFORM, TRACE_PACKET + 1);
+            op_set(op, UNIT_XFORM, TRACE_PACKET);
             shade_read(op, &c->trace, region_start(mem, R_CAMERA), CAM_WORDS);
             b->phase = RB_NEXT;
             return 1;
