@@ -1,5 +1,6 @@
 // tb_f24_ops: test wrapper (not synthesized) feeding one operand pair per cycle to every fp24
-// operator in parallel: adder, adder in subtract mode, multiplier, divider, comparator. Each
+// operator in parallel: adder, adder in subtract mode, multiplier, divider, comparator, and the
+// unary square root and integer conversion on the first operand. Each
 // result comes out with its operator's latency; the C++ bench (tb_f24_ops.cpp) checks each
 // against the C model on every transaction.
 module tb_f24_ops #(
@@ -22,7 +23,11 @@ module tb_f24_ops #(
   output logic         cmp_valid_o,
   output logic [3:0]   cmp_flags_o,
   output logic [E+M:0] min_o,
-  output logic [E+M:0] max_o
+  output logic [E+M:0] max_o,
+  output logic         sqrt_valid_o,
+  output logic [E+M:0] sqrt_o,
+  output logic         to_i32_valid_o,
+  output logic [31:0]  to_i32_o
 );
   f24_add #(.E(E), .M(M)) u_add (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(valid_i), .a_i(a_i),
                                  .b_i(b_i), .sub_i(1'b0), .valid_o(add_valid_o), .res_o(add_o));
@@ -35,4 +40,8 @@ module tb_f24_ops #(
   f24_cmp #(.E(E), .M(M)) u_cmp (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(valid_i), .a_i(a_i),
                                  .b_i(b_i), .valid_o(cmp_valid_o), .flags_o(cmp_flags_o), .min_o(min_o),
                                  .max_o(max_o));
+  f24_sqrt #(.E(E), .M(M)) u_sqrt (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(valid_i), .a_i(a_i),
+                                   .valid_o(sqrt_valid_o), .res_o(sqrt_o));
+  f24_to_i32 #(.E(E), .M(M)) u_to_i32 (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(valid_i), .a_i(a_i),
+                                       .valid_o(to_i32_valid_o), .res_o(to_i32_o));
 endmodule
