@@ -343,7 +343,7 @@ rtl-test: deps rtl-lint
 	  $(foreach f,$(DEFAULT_FMT) e8m23,$(BUILD)/rtl/$(f)/tb_list $(BUILD)/rtl/$(f)/tb_cache $(BUILD)/rtl/$(f)/tb_sched)
 	@mkdir -p $(BUILD)/rtl/capture
 	@set -o pipefail; for f in $(RTL_FORMATS); do \
-	  extra=; [ $$f = $(DEFAULT_FMT) ] && extra=$$(ls tests/golden/f24/{add,sub,mul,div,lt,le,eq,min,max}.hex); \
+	  extra=; [ $$f = $(DEFAULT_FMT) ] && extra=$$(ls tests/golden/f24/{add,sub,mul,div,lt,le,eq,min,max,sqrt,to_i32}.hex); \
 	  $(BUILD)/rtl/$$f/tb_f24_ops -n $(RTL_N) $$extra || exit 1; done | tee $(BUILD)/rtl/ops.log
 	@set -o pipefail; for s in room terrain plants; do \
 	  for f in $(DEFAULT_FMT) e8m23; do \

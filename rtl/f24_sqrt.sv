@@ -1,5 +1,6 @@
 // f24_sqrt: pipelined fp24 square root, docs/fp24.md semantics bit for bit (hls/fp24/f24_sqrt.c),
-// for the RGS's shading (normalization of interpolated normals and of light vectors, Sec. 4).
+// for the RGS's shading (Sec. 4; hls/units/rgs.c: vector lengths for the cosines, the refraction
+// term; shade_rec.c: the decoded normal's 1/length).
 // Restoring digit-by-digit root unrolled: K = M + 5 combinational segments with STAGES pipeline
 // registers spread evenly over the cuts after them (PULP FPnew style; the last cut always gets
 // one, so the output is registered):

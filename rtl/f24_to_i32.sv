@@ -1,7 +1,8 @@
 // f24_to_i32: pipelined fp24 to 32-bit signed integer conversion, rounding toward zero,
-// docs/fp24.md bit for bit (hls/fp24/f24_to_i32.c): the RGS's colour quantizer (Sec. 4, shading)
-// and index computations. Saturates to INT32_MIN / INT32_MAX from 2^31 on (+-Inf too, as the C
-// model's exponent test covers Inf for E >= 6); NaN, zeros, subnormal encodings and |a| < 1 give 0.
+// docs/fp24.md bit for bit (hls/fp24/f24_to_i32.c): the RGS's colour quantizer to Q12 and the
+// texel coordinates of its texture filter (Sec. 4, shading; hls/units/rgs.c). Saturates to
+// INT32_MIN / INT32_MAX from 2^31 on (+-Inf too, as the C model's exponent test covers Inf for
+// E >= 6); NaN, zeros, subnormal encodings and |a| < 1 give 0.
 // Two combinational segments with STAGES pipeline registers spread evenly over the cuts after them
 // (PULP FPnew style; the last cut always gets one, so the output is registered):
 //   1 unbiased exponent, zero/saturation decisions, a 31-bit right shifter of the significand
