@@ -13,14 +13,16 @@
 // the same integers as this narrow form's (both are the integer root and radicand - root^2).
 // sqrt(+-0) = +-0 (and subnormal encodings), sqrt(+Inf) = +Inf, NaN and negative nonzero
 // operands (including -Inf) give the default NaN; the result never overflows or underflows.
-// Latency STAGES cycles (default 11 as the divider's: about two rows per stage, >= 60 MHz on
-// iCE40 HX8K at e7m16, docs/synth.md), one root per cycle (II = 1). Resources: M+3 rows of
-// 4..M+6-bit subtractors and muxes (about (M+3)(M+10)/2 adder bits, half the divider's rows'
-// width on average), the rounder, about STAGES x (2M + E + 30) pipeline FFs at most.
+// Latency STAGES cycles (default 9: about 2.3 rows per stage, >= 60 MHz on iCE40 HX8K at e7m16;
+// 8 missed it, docs/synth.md), one root per cycle (II = 1). Resources: M+3 rows of 4..M+6-bit
+// subtractors and muxes (about (M+3)(M+10)/2 adder bits, on average a little more than half the
+// divider's), the rounder, at most STAGES x (4M + 2E + 14) pipeline FFs (the state's full width;
+// synthesis drops the radicand bits already brought down and the early rows' zero bits: 360 at
+// e7m16).
 module f24_sqrt #(
   parameter int E = 7,
   parameter int M = 16,
-  parameter int STAGES = 11
+  parameter int STAGES = 9
 ) (
   input  logic         clk_i,
   input  logic         rst_ni,

@@ -44,7 +44,7 @@ UNITS = ["xform_unit", "isect_unit", "trav_node"]
 WIDTHS = [8, 10, 12, 14, 16, 18, 20, 23]
 ROBUST_EDGE_EPS = 8
 # the operators' default pipeline stages (rtl/f24_*.sv: STAGES) and the units' latencies built from them
-STAGES = {"f24_add": 6, "f24_mul": 4, "f24_div": 11, "f24_cmp": 2, "f24_sum_exact": 25, "f24_sqrt": 11,
+STAGES = {"f24_add": 6, "f24_mul": 4, "f24_div": 11, "f24_cmp": 2, "f24_sum_exact": 25, "f24_sqrt": 9,
           "f24_to_i32": 2}
 LATENCY = dict(STAGES, xform_unit=STAGES["f24_mul"] + 3 * STAGES["f24_add"],
                isect_unit=STAGES["f24_div"] + STAGES["f24_mul"] + 2 * STAGES["f24_add"] + STAGES["f24_cmp"],
