@@ -4,9 +4,11 @@
 // conversion take the pair's first operand. Vectors: the TestFloat-style edge set of each
 // operation (tb/fp/f24_vec.c), every value at the integer conversion's boundaries (|a| near 1,
 // 2^M and 2^31 = saturation), N random pairs per operation class, and optional hex vector files
-// ("a b result" or, unary, "a result"; tests/golden/f24, saarcor f24gen). A mismatch prints the
-// vector, the cycle and both results; the exit code is 1 on any mismatch.
-// usage: tb_f24_ops [-n N] [--seed S] [FILE.hex ...]
+// ("a b result" or, unary, "a result"; tests/golden/f24, saarcor f24gen); --unary-all adds every
+// encoding of the format as a first operand (b = 0), which checks the square root and the integer
+// conversion exhaustively. A mismatch prints the vector, the cycle and both results; the exit code
+// is 1 on any mismatch.
+// usage: tb_f24_ops [-n N] [--seed S] [--unary-all] [FILE.hex ...]
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -94,12 +96,15 @@ void to_i32_edges(std::vector<f24_pair> &vec)
 int main(int argc, char **argv)
 {
     uint64_t n = 1000000, seed = 1;
+    bool unary_all = false;
     std::vector<std::string> files;
     for (int i = 1; i < argc; i++) {
         if (!std::strcmp(argv[i], "-n") && i + 1 < argc)
             n = std::strtoull(argv[++i], nullptr, 0);
         else if (!std::strcmp(argv[i], "--seed") && i + 1 < argc)
             seed = std::strtoull(argv[++i], nullptr, 0);
+        else if (!std::strcmp(argv[i], "--unary-all"))
+            unary_all = true;
         else
             files.push_back(argv[i]);
     }
@@ -116,6 +121,9 @@ int main(int argc, char **argv)
     f24_rng_seed(&rng, seed);
     for (uint64_t i = 0; i < n; i++)
         vec.push_back(f24_vec_random(classes[i % n_classes], &rng));
+    if (unary_all)
+        for (uint64_t a = 0; a <= F24_MASK; a++)
+            vec.push_back(f24_pair{ (uint32_t)a, 0 });
     for (const std::string &f : files) {
         FILE *in = std::fopen(f.c_str(), "r");
         if (!in) {
