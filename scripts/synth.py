@@ -8,7 +8,7 @@
 2. A resource estimate for one DynRTP's floating-point datapaths (one transformation unit, one
    intersection unit, one traversal node decision for 4 rays) next to the paper's Table 2 and
    the prototype's Virtex-II 6000.
-3. The operators and the intersection unit across mantissa widths M in {8, 10, ..., 20, 23}
+3. The operators (the RGS's too) and the intersection unit across mantissa widths M in {8, 10, ..., 20, 23}
    (E = 7), for hardware cost against image error (docs/synth.md, build/synth/synth.json, read
    by make bench-precision), and the intersection unit with the robust edge option
    (EDGE_EPS = 8, docs/stress.md) beside the exact one.
@@ -193,11 +193,15 @@ def parse_key(key):
     return (kind, top, int(m) if m.isdigit() else m)
 
 
-REDONE = []  # entries measured again by --redo, named in docs/synth.md
+REDONE = []  # entries measured again by --redo since the last make synth, named in docs/synth.md
 
 
 def redo(keys):
     """Measure the given entries again, keep the others from build/synth/synth.json."""
+    # the earlier --redo runs that docs/synth.md names stay named (until a whole make synth)
+    old = re.search(r"re-measured with `python3 scripts/synth.py --redo ([^`]*)`",
+                    open(os.path.join(ROOT, "docs", "synth.md")).read())
+    REDONE.extend(k for k in (old.group(1).split() if old else []) if k not in keys)
     REDONE.extend(keys)
     res = {parse_key(k): v for k, v in json.load(open(os.path.join(OUT, "synth.json"))).items()}
     for key in keys:
@@ -244,7 +248,7 @@ def main():
         for m in WIDTHS:
             if m == 16:
                 continue
-            for top in OPERATORS + ["isect_unit"]:
+            for top in OPERATORS + RGS_OPERATORS + ["isect_unit"]:
                 jobs[("x", top, m)] = pool.submit(xilinx, top, 7, m)
         jobs[("x", "isect_unit", f"16:edge{ROBUST_EDGE_EPS}")] = pool.submit(xilinx, "isect_unit", 7, 16, ROBUST_EDGE_EPS)
         for n in SUM_TERMS:
@@ -314,10 +318,10 @@ def write(res):
            "take a large part of that budget if built fully unrolled with II = 1 dividers; the prototype's "
            "dividers and 4-ray traversal were evidently shared more tightly.", "",
            "## Across mantissa widths (E = 7, synth_xilinx)", "",
-           "| M | " + " | ".join(f"{t} LUTs / DSP" for t in OPERATORS + ["isect_unit"]) + " |",
-           "|---:|" + "---:|" * (len(OPERATORS) + 1)]
+           "| M | " + " | ".join(f"{t} LUTs / DSP" for t in OPERATORS + RGS_OPERATORS + ["isect_unit"]) + " |",
+           "|---:|" + "---:|" * (len(OPERATORS + RGS_OPERATORS) + 1)]
     for m in WIDTHS:
-        row = [f"{res[('x', t, m)]['luts']} / {res[('x', t, m)]['dsp']}" for t in OPERATORS + ["isect_unit"]]
+        row = [f"{res[('x', t, m)]['luts']} / {res[('x', t, m)]['dsp']}" for t in OPERATORS + RGS_OPERATORS + ["isect_unit"]]
         md.append(f"| {m} | " + " | ".join(row) + " |")
     exact, robust = res[("x", "isect_unit", 16)], res[("x", "isect_unit", f"16:edge{ROBUST_EDGE_EPS}")]
     md += ["", "## Robust edge option (docs/stress.md)", "",
