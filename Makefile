@@ -339,13 +339,15 @@ rtl-lint:
 	@for m in $(notdir $(basename $(RTL))); do verilator --lint-only -Wall $(RTL) --top-module $$m || exit 1; done
 	@echo "rtl-lint: verilator --lint-only -Wall clean for $(words $(RTL)) modules"
 
-# every operator at every format: edge set + RTL_N random vectors per operation class (+ golden hex)
+# every operator at every format: edge set + RTL_N random vectors per operation class (+ golden hex);
+# the square root and the integer conversion on every encoding where W <= 24 (16.8 M at e7m16, ~25 s)
 rtl-test: deps rtl-lint
 	@$(MAKE) --no-print-directory all $(foreach f,$(RTL_FORMATS),$(BUILD)/rtl/$(f)/tb_f24_ops $(BUILD)/rtl/$(f)/tb_units $(BUILD)/rtl/$(f)/tb_sum $(BUILD)/rtl/$(f)/tb_rgs) \
 	  $(foreach f,$(DEFAULT_FMT) e8m23,$(BUILD)/rtl/$(f)/tb_list $(BUILD)/rtl/$(f)/tb_cache $(BUILD)/rtl/$(f)/tb_sched)
 	@mkdir -p $(BUILD)/rtl/capture
 	@set -o pipefail; for f in $(RTL_FORMATS); do \
-	  extra=; [ $$f = $(DEFAULT_FMT) ] && extra=$$(ls tests/golden/f24/{add,sub,mul,div,lt,le,eq,min,max}.hex); \
+	  extra=; [ $$f = $(DEFAULT_FMT) ] && extra=$$(ls tests/golden/f24/{add,sub,mul,div,lt,le,eq,min,max,sqrt,to_i32}.hex); \
+	  em=$${f#e}; [ $$(( $${em%m*} + $${em#*m} )) -lt 24 ] && extra="$$extra --unary-all"; \
 	  $(BUILD)/rtl/$$f/tb_f24_ops -n $(RTL_N) $$extra || exit 1; done | tee $(BUILD)/rtl/ops.log
 	@set -o pipefail; for s in room terrain plants; do \
 	  for f in $(DEFAULT_FMT) e8m23; do \

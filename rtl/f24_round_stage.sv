@@ -1,6 +1,6 @@
-// f24_round_stage: the last segment of the pipelined adder, multiplier and divider: the shared
-// rounder (f24_round_pack) on the unrounded result, or the special result (NaN, Inf, zero) the
-// operator decided in its first segment, then the operator's remaining STAGES registers.
+// f24_round_stage: the last segment of the pipelined adder, multiplier, divider and square root:
+// the shared rounder (f24_round_pack) on the unrounded result, or the special result (NaN, Inf,
+// zero) the operator decided in its first segment, then the operator's remaining STAGES registers.
 // Latency STAGES (0: combinational), one result per cycle; resources: one f24_round_pack, a W-bit
 // multiplexer and STAGES x (W + 1) flip-flops.
 module f24_round_stage #(

@@ -1,13 +1,14 @@
 #!/usr/bin/env python3
 """make synth: Yosys synthesis of every RTL module -> docs/synth.md (generated, do not edit).
 
-1. Every operator and datapath unit at the default format (E=7, M=16) with synth_xilinx
-   (7-series cells: LUTs, flip-flops, DSP48E1, block RAM, CARRY4), and the operators also with
-   synth_ice40 followed by nextpnr-ice40 (HX8K) for an Fmax estimate where a module fits.
+1. Every operator (the datapaths' and the RGS's square root and integer conversion) and datapath
+   unit at the default format (E=7, M=16) with synth_xilinx (7-series cells: LUTs, flip-flops,
+   DSP48E1, block RAM, CARRY4), and the operators also with synth_ice40 followed by nextpnr-ice40
+   (HX8K) for an Fmax estimate where a module fits.
 2. A resource estimate for one DynRTP's floating-point datapaths (one transformation unit, one
    intersection unit, one traversal node decision for 4 rays) next to the paper's Table 2 and
    the prototype's Virtex-II 6000.
-3. The operators and the intersection unit across mantissa widths M in {8, 10, ..., 20, 23}
+3. The operators (the RGS's too) and the intersection unit across mantissa widths M in {8, 10, ..., 20, 23}
    (E = 7), for hardware cost against image error (docs/synth.md, build/synth/synth.json, read
    by make bench-precision), and the intersection unit with the robust edge option
    (EDGE_EPS = 8, docs/stress.md) beside the exact one.
@@ -29,13 +30,17 @@ import concurrent.futures as cf, json, os, re, subprocess, sys, tempfile, time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RTL = sorted(os.path.join(ROOT, "rtl", f) for f in os.listdir(os.path.join(ROOT, "rtl")) if f.endswith(".sv"))
+
+
 OUT = os.path.join(ROOT, "build", "synth")
 OPERATORS = ["f24_add", "f24_mul", "f24_div", "f24_cmp"]
+RGS_OPERATORS = ["f24_sqrt", "f24_to_i32"]  # the shading's (issue 23), unary; built pipelined from the start
 UNITS = ["xform_unit", "isect_unit", "trav_node"]
 WIDTHS = [8, 10, 12, 14, 16, 18, 20, 23]
 ROBUST_EDGE_EPS = 8
 # the operators' default pipeline stages (rtl/f24_*.sv: STAGES) and the units' latencies built from them
-STAGES = {"f24_add": 6, "f24_mul": 4, "f24_div": 11, "f24_cmp": 2, "f24_sum_exact": 25}
+STAGES = {"f24_add": 6, "f24_mul": 4, "f24_div": 11, "f24_cmp": 2, "f24_sum_exact": 25, "f24_sqrt": 9,
+          "f24_to_i32": 2}
 LATENCY = dict(STAGES, xform_unit=STAGES["f24_mul"] + 3 * STAGES["f24_add"],
                isect_unit=STAGES["f24_div"] + STAGES["f24_mul"] + 2 * STAGES["f24_add"] + STAGES["f24_cmp"],
                trav_node=STAGES["f24_add"] + STAGES["f24_div"] + 2 * STAGES["f24_cmp"])
@@ -134,7 +139,7 @@ def xilinx(top, e, m, edge_eps=0, terms=0):
 # For a clock-to-clock Fmax the operator gets input registers: the path from them through the
 # combinational core to its first pipeline register is the one a clock constrains.
 TIMING_WRAPPER = """module time_{top} (input logic clk_i, input logic [{w}:0] a_i, input logic [{w}:0] b_i,
-                   output logic [{w}:0] res_o);
+                   output logic [{ow}:0] res_o);
   logic [{w}:0] a_q, b_q;
   always_ff @(posedge clk_i) begin a_q <= a_i; b_q <= b_i; end
   {inst}
@@ -153,7 +158,13 @@ TIMING_INST = {
     "f24_sum_exact": "logic [{e}+{m}:0] hi, lo; f24_sum_exact #(.E({e}), .M({m}), .N(1)) u (.clk_i(clk_i), .rst_ni(1'b1), "
                      ".en_i(1'b1), .valid_i(1'b1), .a_i(a_q), .b_i(b_q), .valid_o(), .hi_o(hi), .lo_o(lo)); "
                      "assign res_o = hi ^ lo;",
+    # unary: b_q drives nothing and is removed
+    "f24_sqrt": "f24_sqrt #(.E({e}), .M({m})) u (.clk_i(clk_i), .rst_ni(1'b1), .en_i(1'b1), .valid_i(1'b1), .a_i(a_q), "
+                ".valid_o(), .res_o(res_o));",
+    "f24_to_i32": "f24_to_i32 #(.E({e}), .M({m})) u (.clk_i(clk_i), .rst_ni(1'b1), .en_i(1'b1), .valid_i(1'b1), "
+                  ".a_i(a_q), .valid_o(), .res_o(res_o));",
 }
+TIMING_OUT_BITS = {"f24_to_i32": 32}  # result width where it is not the format's
 
 
 def ice40(top, e, m):
@@ -161,12 +172,14 @@ def ice40(top, e, m):
     js = os.path.join(OUT, f"{top}_e{e}m{m}.json")
     wrapper = os.path.join(OUT, f"time_{top}.sv")
     with open(wrapper, "w") as f:
-        f.write(TIMING_WRAPPER.format(top=top, w=e + m, inst=TIMING_INST[top].format(e=e, m=m)))
+        f.write(TIMING_WRAPPER.format(top=top, w=e + m, ow=TIMING_OUT_BITS.get(top, 1 + e + m) - 1,
+                                      inst=TIMING_INST[top].format(e=e, m=m)))
     reads = " ".join(f"read_verilog -sv {f};" for f in RTL + [wrapper])
     c = cells(yosys(f"{reads} synth_ice40 -top time_{top} -json {js}; stat", log))
     lcs = c.get("SB_LUT4", 0)
-    res = {"lut4": lcs, "ff": sum(v for k, v in c.items() if k.startswith("SB_DFF")) - 2 * (1 + e + m),
-           "fmax_mhz": None}  # (the wrapper's input registers not counted)
+    inputs = 1 if top in RGS_OPERATORS else 2  # (the wrapper's input registers not counted)
+    res = {"lut4": lcs, "ff": sum(v for k, v in c.items() if k.startswith("SB_DFF")) - inputs * (1 + e + m),
+           "fmax_mhz": None}
     pnr_log = os.path.join(OUT, f"{top}_e{e}m{m}_nextpnr.log")
     r = subprocess.run(["nextpnr-ice40", "--hx8k", "--package", "ct256", "--json", js, "--timing-allow-fail",
                         "--seed", "1", "--quiet", "-l", pnr_log], capture_output=True, text=True, timeout=900)
@@ -223,11 +236,15 @@ def parse_key(key):
     return (kind, top, int(m) if m.isdigit() else m)
 
 
-REDONE = []  # entries measured again by --redo, named in docs/synth.md
+REDONE = []  # entries measured again by --redo since the last make synth, named in docs/synth.md
 
 
 def redo(keys):
     """Measure the given entries again, keep the others from build/synth/synth.json."""
+    # the earlier --redo runs that docs/synth.md names stay named (until a whole make synth)
+    old = re.search(r"re-measured with `python3 scripts/synth.py --redo ([^`]*)`",
+                    open(os.path.join(ROOT, "docs", "synth.md")).read())
+    REDONE.extend(k for k in (old.group(1).split() if old else []) if k not in keys)
     REDONE.extend(keys)
     res = {parse_key(k): v for k, v in json.load(open(os.path.join(OUT, "synth.json"))).items()}
     for key in keys:
@@ -267,14 +284,14 @@ def main():
         for n, t, p, _ in CONTROL:
             jobs[control_key(n)] = pool.submit(control, n, t, p)
         jobs[("i", "f24_sum_exact", 16)] = pool.submit(ice40, "f24_sum_exact", 7, 16)
-        for top in OPERATORS + UNITS:
+        for top in OPERATORS + RGS_OPERATORS + UNITS:
             jobs[("x", top, 16)] = pool.submit(xilinx, top, 7, 16)
-        for top in OPERATORS:
+        for top in OPERATORS + RGS_OPERATORS:
             jobs[("i", top, 16)] = pool.submit(ice40, top, 7, 16)
         for m in WIDTHS:
             if m == 16:
                 continue
-            for top in OPERATORS + ["isect_unit"]:
+            for top in OPERATORS + RGS_OPERATORS + ["isect_unit"]:
                 jobs[("x", top, m)] = pool.submit(xilinx, top, 7, m)
         jobs[("x", "isect_unit", f"16:edge{ROBUST_EDGE_EPS}")] = pool.submit(xilinx, "isect_unit", 7, 16, ROBUST_EDGE_EPS)
         for n in SUM_TERMS:
@@ -306,18 +323,21 @@ def write(res):
           + (f"; re-measured with `python3 scripts/synth.py --redo {' '.join(REDONE)}`" if REDONE else "") + ").", "",
           "| operator | latency before | LUT4 before | FFs before | Fmax MHz before | latency (STAGES) | LUT4 | FFs | Fmax MHz |",
           "|---|---:|---:|---:|---:|---:|---:|---:|---:|"] + [
-          f"| {t}{' (N = 1)' if t == 'f24_sum_exact' else ''} | {BEFORE[t][0]} | {BEFORE[t][1]} | {BEFORE[t][2]} | {BEFORE[t][3]:.1f} | {LATENCY[t]} | "
+          f"| {t}{' (N = 1)' if t == 'f24_sum_exact' else ''} | "
+          + (f"{BEFORE[t][0]} | {BEFORE[t][1]} | {BEFORE[t][2]} | {BEFORE[t][3]:.1f}" if t in BEFORE else "- | - | - | -")
+          + f" | {LATENCY[t]} | "
           f"{res[('i', t, 16)]['lut4']} | {res[('i', t, 16)]['ff']} | "
           f"{res[('i', t, 16)]['fmax_mhz'] if res[('i', t, 16)].get('fmax_mhz') else res[('i', t, 16)].get('pnr', '-')} |"
-          for t in OPERATORS + ["f24_sum_exact"]] + ["",
+          for t in OPERATORS + ["f24_sum_exact"] + RGS_OPERATORS] + ["",
           "f24_sum_exact with one term (N = 1: its whole datapath but the carry-save adder of the terms; "
-          "with N >= 2 it does not fit the HX8K's 7680 logic cells). The units' latencies follow from the "
+          "with N >= 2 it does not fit the HX8K's 7680 logic cells). f24_sqrt and f24_to_i32 (the RGS's "
+          "shading) were pipelined from the start: no before. The units' latencies follow from the "
           "operators' (rtl/README.md): xform_unit MUL + 3 ADD, isect_unit DIV + MUL + 2 ADD + CMP, trav_node "
           "ADD + DIV + 2 CMP.", "",
           "## Modules at e7m16 (the paper's 24-bit format)", "",
           "| module | latency | LUTs | SRL (pipeline shift registers) | FFs | DSP48E1 | BRAM | CARRY4 | LUT6 levels | iCE40 LUT4 | iCE40 FFs | iCE40 Fmax MHz |",
           "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
-    for top in OPERATORS + UNITS:
+    for top in OPERATORS + RGS_OPERATORS + UNITS:
         x = res[("x", top, 16)]
         i = res.get(("i", top, 16))
         fmax = "-" if not i else (f"{i['fmax_mhz']:.1f}" if i.get("fmax_mhz") else i.get("pnr", "-"))
@@ -345,10 +365,10 @@ def write(res):
            "take a large part of that budget if built fully unrolled with II = 1 dividers; the prototype's "
            "dividers and 4-ray traversal were evidently shared more tightly.", "",
            "## Across mantissa widths (E = 7, synth_xilinx)", "",
-           "| M | " + " | ".join(f"{t} LUTs / DSP" for t in OPERATORS + ["isect_unit"]) + " |",
-           "|---:|" + "---:|" * (len(OPERATORS) + 1)]
+           "| M | " + " | ".join(f"{t} LUTs / DSP" for t in OPERATORS + RGS_OPERATORS + ["isect_unit"]) + " |",
+           "|---:|" + "---:|" * (len(OPERATORS + RGS_OPERATORS) + 1)]
     for m in WIDTHS:
-        row = [f"{res[('x', t, m)]['luts']} / {res[('x', t, m)]['dsp']}" for t in OPERATORS + ["isect_unit"]]
+        row = [f"{res[('x', t, m)]['luts']} / {res[('x', t, m)]['dsp']}" for t in OPERATORS + RGS_OPERATORS + ["isect_unit"]]
         md.append(f"| {m} | " + " | ".join(row) + " |")
     exact, robust = res[("x", "isect_unit", 16)], res[("x", "isect_unit", f"16:edge{ROBUST_EDGE_EPS}")]
     md += ["", "## Robust edge option (docs/stress.md)", "",

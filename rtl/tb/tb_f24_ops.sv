@@ -1,7 +1,7 @@
 // tb_f24_ops: test wrapper (not synthesized) feeding one operand pair per cycle to every fp24
 // operator in parallel: adder, adder in subtract mode, multiplier, divider, comparator, and the
-// int-to-fp24 converter at SCALE 0 and -1 on the pair's bits {a, b} (the low 32 bits). Each
-// result comes out with its operator's latency; the C++ bench (tb_f24_ops.cpp) checks each
+// int-to-fp24 converter at SCALE 0 and -1 on the pair's bits {a, b} (the low 32 bits), and the
+// unary square root and integer conversion on the first operand. Each result comes out with its operator's latency; the C++ bench (tb_f24_ops.cpp) checks each
 // against the C model on every transaction.
 module tb_f24_ops #(
   parameter int E = 7,
@@ -27,7 +27,11 @@ module tb_f24_ops #(
   output logic         cvt_valid_o,
   output logic [E+M:0] cvt_o,
   output logic         half_valid_o,
-  output logic [E+M:0] half_o
+  output logic [E+M:0] half_o,
+  output logic         sqrt_valid_o,
+  output logic [E+M:0] sqrt_o,
+  output logic         to_i32_valid_o,
+  output logic [31:0]  to_i32_o
 );
   /* verilator lint_off UNUSEDSIGNAL */
   logic [2*(E+M+1)-1:0] ab;   // the converters take its low 32 bits
@@ -48,4 +52,8 @@ module tb_f24_ops #(
                                       .valid_o(cvt_valid_o), .res_o(cvt_o));
   f24_from_i32 #(.E(E), .M(M), .SCALE(-1)) u_half (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(valid_i),
                                                    .a_i(ab[31:0]), .valid_o(half_valid_o), .res_o(half_o));
+  f24_sqrt #(.E(E), .M(M)) u_sqrt (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(valid_i), .a_i(a_i),
+                                   .valid_o(sqrt_valid_o), .res_o(sqrt_o));
+  f24_to_i32 #(.E(E), .M(M)) u_to_i32 (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(valid_i), .a_i(a_i),
+                                       .valid_o(to_i32_valid_o), .res_o(to_i32_o));
 endmodule
