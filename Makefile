@@ -89,7 +89,8 @@ SIM_SRCS = $(MEMIMAGE) $(HLS_UNITS) $(CYCLE) $(REF) $(CLI)
 # render --capture-unit-io records the units' calls through linker wrappers (tb/cli/capture.c)
 comma := ,
 CAPTURE_WRAP := $(addprefix -Wl$(comma)--wrap=,xform_point xform_vector isect_unit_rebased trav_node_split \
-  list_unit_entry list_mailboxes_clear mem_iface_read mem_iface_flush mem_iface_new_frame)
+  list_unit_entry list_mailboxes_clear mem_iface_read mem_iface_flush mem_iface_new_frame rebase_origin \
+  xform_point_wide xform_vector_wide)
 
 # per-format objects: everything that depends on the fp24 parameters
 fp_objs = $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(HLS_FP24) $(TB_FP))
@@ -320,7 +321,7 @@ fmt_m = $(word 2,$(subst m, ,$(subst e,,$(1))))
 # build/rtl/<format>/tb_<name>: the Verilator model of rtl/tb/tb_<name>.sv with its C++ bench,
 # linked with the C model of the same format
 define RTL_RULES
-$(BUILD)/rtl/$(1)/tb_%: rtl/tb/tb_%.sv rtl/tb/tb_%.cpp $(RTL) $(call rtl_c_objs,$(1))
+$(BUILD)/rtl/$(1)/tb_%: rtl/tb/tb_%.sv rtl/tb/tb_%.cpp $(wildcard rtl/tb/*.h) $(RTL) $(call rtl_c_objs,$(1))
 	@mkdir -p $$(@D)
 	@echo "  VERILATOR $$@"
 	$(Q)verilator $(VERILATOR_FLAGS) -GE=$(call fmt_e,$(1)) -GM=$(call fmt_m,$(1)) --top-module tb_$$* \

@@ -15,42 +15,17 @@
 #include <vector>
 
 #include "Vtb_units.h"
-#include "verilated.h"
+#include "tb_common.h"
 
 extern "C" {
-#include "f24.h"
 #include "isect_unit.h"
 #include "trav_node.h"
 #include "xform_unit.h"
 }
 
+using namespace cosim;
+
 namespace {
-
-constexpr int W = F24_WIDTH;
-
-template <std::size_t N> void put(VlWide<N> &w, int idx, uint32_t v)
-{
-    for (int b = 0; b < W; b++) {
-        const int bit = idx * W + b;
-        const uint32_t m = 1u << (bit % 32);
-        w[bit / 32] = (v >> b & 1u) ? (w[bit / 32] | m) : (w[bit / 32] & ~m);
-    }
-}
-template <typename T> void put(T &q, int idx, uint32_t v)
-{
-    const int sh = idx * W;
-    q = (T)((q & ~((((T)1 << W) - 1) << sh)) | ((T)v << sh));
-}
-template <std::size_t N> uint32_t get(const VlWide<N> &w, int idx)
-{
-    uint32_t v = 0;
-    for (int b = 0; b < W; b++) {
-        const int bit = idx * W + b;
-        v |= (w[bit / 32] >> (bit % 32) & 1u) << b;
-    }
-    return v;
-}
-template <typename T> uint32_t get(const T &q, int idx) { return (uint32_t)((q >> (idx * W)) & (((T)1 << W) - 1)); }
 
 // one transaction of each unit: inputs, and the outputs the C model (or the capture) gives
 struct xform_tx { uint32_t m[12], v[3], point, r[3]; };
@@ -93,8 +68,6 @@ void model(trav_tx &x)
 }
 
 // random operands: mostly values of moderate magnitude, some specials, some arbitrary encodings
-uint64_t g_rng = 1;
-uint32_t rnd() { g_rng ^= g_rng << 13, g_rng ^= g_rng >> 7, g_rng ^= g_rng << 17; return (uint32_t)(g_rng >> 11); }
 uint32_t rnd_f24()
 {
     const uint32_t k = rnd() % 20;
@@ -154,65 +127,6 @@ template <> std::vector<trav_tx> random_set(std::size_t n)
     return v;
 }
 
-// captured files: hex words per line in the field order of the structs
-template <typename T> bool read_capture(const std::string &path, std::vector<T> &out, bool &present)
-{
-    FILE *f = std::fopen(path.c_str(), "r");
-    present = f != nullptr;
-    if (!f)
-        return true;
-    char line[4096];
-    const std::size_t words = sizeof(T) / sizeof(uint32_t);
-    while (std::fgets(line, sizeof line, f)) {
-        T x;
-        uint32_t *w = reinterpret_cast<uint32_t *>(&x);
-        char *p = line;
-        std::size_t k = 0;
-        for (; k < words; k++) {
-            char *end;
-            w[k] = (uint32_t)std::strtoul(p, &end, 16);
-            if (end == p)
-                break;
-            p = end;
-        }
-        if (k != words) {
-            std::fclose(f);
-            std::printf("tb_units: %s: malformed line (%zu of %zu words)\n", path.c_str(), k, words);
-            return false;
-        }
-        out.push_back(x);
-    }
-    std::fclose(f);
-    return true;
-}
-
-struct stream_stats { uint64_t sent = 0, checked = 0, mismatches = 0, vs_capture = 0; };
-uint64_t g_cycle = 0;
-
-void print_words(const char *label, const uint32_t *w, std::size_t n)
-{
-    std::printf("  %s:", label);
-    for (std::size_t i = 0; i < n; i++)
-        std::printf(" %06x", w[i]);
-    std::printf("\n");
-}
-
-template <typename T> void compare(const char *unit, stream_stats &s, const T &want, const T &got, std::size_t in_words,
-                                   const char *what)
-{
-    s.checked++;
-    const uint32_t *a = reinterpret_cast<const uint32_t *>(&want), *b = reinterpret_cast<const uint32_t *>(&got);
-    const std::size_t words = sizeof(T) / sizeof(uint32_t);
-    if (!std::memcmp(a + in_words, b + in_words, (words - in_words) * sizeof(uint32_t)))
-        return;
-    if (s.mismatches++ < 10) {
-        std::printf("MISMATCH %s at cycle %llu (against %s):\n", unit, (unsigned long long)g_cycle, what);
-        print_words("inputs", a, in_words);
-        print_words("expected", a + in_words, words - in_words);
-        print_words("rtl", b + in_words, words - in_words);
-    }
-}
-
 } // namespace
 
 int main(int argc, char **argv)
@@ -234,8 +148,8 @@ int main(int argc, char **argv)
         std::vector<isect_tx> ci;
         std::vector<trav_tx> ct;
         bool px, pi, pt;
-        if (!read_capture(capture + "/xform.hex", cx, px) || !read_capture(capture + "/isect.hex", ci, pi) ||
-            !read_capture(capture + "/trav.hex", ct, pt))
+        if (!read_capture("tb_units", capture + "/xform.hex", cx, px) || !read_capture("tb_units", capture + "/isect.hex", ci, pi) ||
+            !read_capture("tb_units", capture + "/trav.hex", ct, pt))
             return 2;
         if (!px || !pi || !pt || cx.empty() || ci.empty() || ct.empty()) {
             std::printf("tb_units: %s lacks xform.hex, isect.hex or trav.hex vectors\n", capture.c_str());

@@ -109,10 +109,11 @@ static int usage(void)
            "                     the memory port's outstanding transfers; threads in flight (docs/cycle-model.md)\n"
            "  --vcd-cycles A:B   the cycles written: A up to but not including B (default 0:20000)\n"
            "  --usage-plot FILE.svg  cycle mode: each unit's utilisation per epoch as an SVG chart\n"
-           "  --capture-unit-io DIR  record the transformation, intersection, traversal-node and list\n"
-           "                     transactions (and in cycle mode the memory reads) as hex vectors for the\n"
-           "                     RTL co-simulation (DIR/xform.hex, isect.hex, trav.hex, list.hex, mem.hex;\n"
-           "                     at most --capture-limit N per unit, default 100000)\n"
+           "  --capture-unit-io DIR  record the transformation (also its wide mode), intersection,\n"
+           "                     traversal-node, list-unit and rebase-unit transactions (and in cycle mode\n"
+           "                     the memory reads) as hex vectors for the RTL co-simulation (DIR/xform.hex,\n"
+           "                     isect.hex, trav.hex, list.hex, mem.hex, rebase.hex, wide.hex; at most\n"
+           "                     --capture-limit N per unit, default 100000)\n"
            "  --frame N          frame N of the animation at --fps (time N / fps), to -o\n"
            "  --frames A:B       frames A..B of the animation at --fps (default 30) to OUT_NNNN.png (and\n"
            "                     AOV/stats files numbered alike), rebuilding per frame only what changed\n"
@@ -755,9 +756,11 @@ int cmd_render(int argc, char **argv)
             cli_error("render", "--capture-unit-io: writing the vectors in '%s' failed", ro.capture);
             rc = SAARCOR_EXIT_INPUT;
         } else {
-            printf("captured unit transactions in %s: xform %llu, isect %llu, trav %llu, list %llu, mem %llu\n",
+            printf("captured unit transactions in %s: xform %llu, isect %llu, trav %llu, list %llu, mem %llu, "
+                   "rebase %llu, wide %llu\n",
                    ro.capture, (unsigned long long)n[0], (unsigned long long)n[1], (unsigned long long)n[2],
-                   (unsigned long long)n[3], (unsigned long long)n[4]);
+                   (unsigned long long)n[3], (unsigned long long)n[4], (unsigned long long)n[5],
+                   (unsigned long long)n[6]);
         }
     }
     mi_free(b);
