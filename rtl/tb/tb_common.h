@@ -114,6 +114,19 @@ template <typename T> void compare(const char *unit, stream_stats &s, const T &w
     }
 }
 
+// the benches' options: -n N (random transactions), --seed S (of rnd), --capture DIR; false, with
+// the usage line, on anything else
+inline bool parse_args(int argc, char **argv, const char *bench, std::size_t &n, std::string &capture)
+{
+    for (int i = 1; i < argc; i++) {
+        if (!std::strcmp(argv[i], "-n") && i + 1 < argc) n = std::strtoull(argv[++i], nullptr, 0);
+        else if (!std::strcmp(argv[i], "--seed") && i + 1 < argc) g_rng = std::strtoull(argv[++i], nullptr, 0) | 1u;
+        else if (!std::strcmp(argv[i], "--capture") && i + 1 < argc) capture = argv[++i];
+        else { std::printf("usage: %s [-n N] [--seed S] [--capture DIR]\n", bench); return false; }
+    }
+    return true;
+}
+
 } // namespace cosim
 
 #endif

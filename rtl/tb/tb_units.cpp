@@ -133,12 +133,8 @@ int main(int argc, char **argv)
 {
     std::size_t n = 200000;
     std::string capture;
-    for (int i = 1; i < argc; i++) {
-        if (!std::strcmp(argv[i], "-n") && i + 1 < argc) n = std::strtoull(argv[++i], nullptr, 0);
-        else if (!std::strcmp(argv[i], "--seed") && i + 1 < argc) g_rng = std::strtoull(argv[++i], nullptr, 0) | 1u;
-        else if (!std::strcmp(argv[i], "--capture") && i + 1 < argc) capture = argv[++i];
-        else { std::printf("usage: tb_units [-n N] [--seed S] [--capture DIR]\n"); return 2; }
-    }
+    if (!parse_args(argc, argv, "tb_units", n, capture))
+        return 2;
     std::vector<xform_tx> xs = random_set<xform_tx>(n);
     std::vector<isect_tx> is = random_set<isect_tx>(n);
     std::vector<trav_tx> ts = random_set<trav_tx>(n);

@@ -186,12 +186,8 @@ int main(int argc, char **argv)
 {
     std::size_t n = 100000;
     std::string capture;
-    for (int i = 1; i < argc; i++) {
-        if (!std::strcmp(argv[i], "-n") && i + 1 < argc) n = std::strtoull(argv[++i], nullptr, 0);
-        else if (!std::strcmp(argv[i], "--seed") && i + 1 < argc) g_rng = std::strtoull(argv[++i], nullptr, 0) | 1u;
-        else if (!std::strcmp(argv[i], "--capture") && i + 1 < argc) capture = argv[++i];
-        else { std::printf("usage: tb_wide [-n N] [--seed S] [--capture DIR]\n"); return 2; }
-    }
+    if (!parse_args(argc, argv, "tb_wide", n, capture))
+        return 2;
     stream<rebase_tx> b{ "rebase_unit" };
     stream<wide_tx> w{ "xform_wide" };
     if (!capture.empty()) {
