@@ -10,8 +10,9 @@
 // the rule that a sum of zero products is -0 only if every one is -0 (an AND of their signs). So
 // one 8-term f24_sum_exact per row gives exactly the C's 3-term sum, signed zeros included.
 // Datapath: three f24_sum_exact of 8 terms (all 24 products in one pass, each sum with its own
-// 8 multipliers; the C header's hardware note, the narrow unit's 9 multipliers used twice for a
-// point, would halve them at half the rate), the vector mode's term muxes in front of them.
+// multipliers, 6 a row: those of the terms times 1 are shifts; the C header's hardware note, the
+// narrow unit's 9 multipliers used twice for a point, would halve them at half the rate), the
+// vector mode's term muxes in front of them.
 // Latency LATENCY = SUM_STAGES (default 25) cycles, one point or vector per cycle (II = 1).
 // Resources: 3 x f24_sum_exact N = 8 (docs/synth.md).
 // Handshake: valid/ready; the pipeline advances when the output is free or taken.
@@ -36,14 +37,16 @@ module xform_wide #(
 );
   localparam int W = 1 + E + M;
   localparam int LATENCY = SUM_STAGES;
-  localparam logic [W-1:0] ONE = {2'b00, {(E-1){1'b1}}, {M{1'b0}}};
   localparam logic [W-1:0] NEG_ZERO = {1'b1, {(E+M){1'b0}}};
   logic en;
+  logic [W-1:0] one;
   logic [5*W-1:0] b_point;
   assign en = ready_i || !valid_o;
   assign ready_o = en;
-  // terms 3 .. 7's right operands: p.lo x, y, z, 1, 1 (a vector: +0)
-  assign b_point = point_i ? {ONE, ONE, p_lo_i} : '0;
+  // terms 3 .. 7's right operands: p.lo x, y, z, 1, 1 (a vector: +0); the 1 written with its
+  // constant fraction, so that synthesis folds the multipliers of terms 6 and 7 (shifts)
+  assign one = {2'b00, {(E-1){point_i}}, {M{1'b0}}};
+  assign b_point = {one, one, point_i ? p_lo_i : '0};
 
   /* verilator lint_off PINCONNECTEMPTY */
   for (genvar r = 0; r < 3; r++) begin : g_row
