@@ -12,8 +12,9 @@
 #                   bench-longrun: peak RSS over 1,000 frames of the animated scene)
 #   make widths     build build/w/<format>/saarcor for every tested fp24 format
 #   make rtl-test   Verilator co-simulation of rtl/ against the C model (operators at 6 formats with
-#                   10^6 vectors each, units on random and captured vectors; the list unit and the
-#                   caches with the memory port, the RGS's ray generation and the tile controller on
+#                   10^6 vectors each, units (also the rebase unit and the transformation unit's wide
+#                   mode) on random and captured vectors; the list unit, the caches with the memory
+#                   port, the thread scheduler, the RGS's ray generation and the tile controller on
 #                   cycle-mode frames of room, terrain, plants; ray generation on an orthographic
 #                   frame and random blocks), lint
 #   make synth      Yosys synthesis figures -> docs/synth.md
@@ -91,7 +92,8 @@ SIM_SRCS = $(MEMIMAGE) $(HLS_UNITS) $(CYCLE) $(REF) $(CLI)
 # render --capture-unit-io records the units' calls through linker wrappers (tb/cli/capture.c)
 comma := ,
 CAPTURE_WRAP := $(addprefix -Wl$(comma)--wrap=,xform_point xform_vector isect_unit_rebased trav_node_split \
-  list_unit_entry list_mailboxes_clear mem_iface_read mem_iface_flush mem_iface_new_frame rgs_block_begin)
+  list_unit_entry list_mailboxes_clear mem_iface_read mem_iface_flush mem_iface_new_frame rgs_block_begin \
+  rebase_origin xform_point_wide xform_vector_wide)
 
 # per-format objects: everything that depends on the fp24 parameters
 fp_objs = $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(HLS_FP24) $(TB_FP))
@@ -224,7 +226,8 @@ test: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(BUILD)/baseline HOST_BUILD=$(BUILD) SIM_LANES=baseline $(BUILD)/baseline/saarcor
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(O0_BUILD) OPT='-O0 -g' $(O0_BUILD)/saarcor
 	@$(MAKE) --no-print-directory $(BUILD)/rtl/$(DEFAULT_FMT)/tb_f24_ops $(BUILD)/rtl/$(DEFAULT_FMT)/tb_units $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sum \
-	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_list $(BUILD)/rtl/$(DEFAULT_FMT)/tb_cache $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sched $(BUILD)/rtl/$(DEFAULT_FMT)/tb_rgs
+	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_list $(BUILD)/rtl/$(DEFAULT_FMT)/tb_cache $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sched $(BUILD)/rtl/$(DEFAULT_FMT)/tb_rgs \
+	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_wide
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 test-programs
 	@$(MAKE) --no-print-directory -j$$(nproc) robust
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 fuzz-replay
@@ -342,7 +345,8 @@ rtl-lint:
 # every operator at every format: edge set + RTL_N random vectors per operation class (+ golden hex);
 # the square root and the integer conversion on every encoding where W <= 24 (16.8 M at e7m16, ~25 s)
 rtl-test: deps rtl-lint
-	@$(MAKE) --no-print-directory all $(foreach f,$(RTL_FORMATS),$(BUILD)/rtl/$(f)/tb_f24_ops $(BUILD)/rtl/$(f)/tb_units $(BUILD)/rtl/$(f)/tb_sum $(BUILD)/rtl/$(f)/tb_rgs) \
+	@$(MAKE) --no-print-directory all $(foreach f,$(RTL_FORMATS),$(BUILD)/rtl/$(f)/tb_f24_ops $(BUILD)/rtl/$(f)/tb_units $(BUILD)/rtl/$(f)/tb_sum \
+	  $(BUILD)/rtl/$(f)/tb_rgs $(BUILD)/rtl/$(f)/tb_wide) \
 	  $(foreach f,$(DEFAULT_FMT) e8m23,$(BUILD)/rtl/$(f)/tb_list $(BUILD)/rtl/$(f)/tb_cache $(BUILD)/rtl/$(f)/tb_sched)
 	@mkdir -p $(BUILD)/rtl/capture
 	@set -o pipefail; for f in $(RTL_FORMATS); do \
@@ -353,8 +357,11 @@ rtl-test: deps rtl-lint
 	  for f in $(DEFAULT_FMT) e8m23; do \
 	    $(BUILD)/w/$$f/saarcor render $$s -o $(BUILD)/rtl/$$s.$$f.png --width 128 --height 96 \
 	      --capture-unit-io $(BUILD)/rtl/capture/$$s.$$f --capture-limit 200000 >/dev/null || exit 1; \
-	    $(BUILD)/rtl/$$f/tb_units -n 0 --capture $(BUILD)/rtl/capture/$$s.$$f || exit 1; done; done | tee $(BUILD)/rtl/units.log
+	    $(BUILD)/rtl/$$f/tb_units -n 0 --capture $(BUILD)/rtl/capture/$$s.$$f || exit 1; \
+	    $(BUILD)/rtl/$$f/tb_wide -n 0 --capture $(BUILD)/rtl/capture/$$s.$$f || exit 1; done; done | tee $(BUILD)/rtl/units.log
 	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_units -n $(RTL_N) || exit 1; done \
+	  | tee -a $(BUILD)/rtl/units.log
+	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_wide -n $(RTL_N) || exit 1; done \
 	  | tee -a $(BUILD)/rtl/units.log
 	@# list unit and memory interface: a cycle-mode frame at the paper's 64 threads per pipe
 	@set -o pipefail; for s in room terrain plants; do \

@@ -18,13 +18,16 @@
    block RAM and its bits).
 5. The accuracy datapath (docs/numerics.md): the exact dot product f24_sum_exact with the term
    counts its users need (4: rebase unit, 8: the transformation unit's wide mode, 9: the
-   intersection unit's plane distance) at e7m16, and with 9 terms at M = 12 and 20, and the area
-   of the whole fix composed from it and the operators.
+   intersection unit's plane distance) at e7m16, and with 9 terms at M = 12 and 20; the units built
+   from it (rtl/xform_wide.sv, rtl/rebase_unit.sv) with synth_xilinx at e7m16, and the area of the
+   whole fix: those units as measured, the intersection unit's origin path composed from the exact
+   sum and the operators.
 Runs two Yosys processes at a time; logs in build/synth/.
 `scripts/synth.py --only-control` synthesizes only item 4 and merges it into an existing
 build/synth/synth.json (the other modules' figures as they were) before writing docs/synth.md.
 `python3 scripts/synth.py --redo i:f24_sum_exact:e7m16 [KEY ...]` measures only the given entries of
-build/synth/synth.json again (keys as in that file) and rewrites it and docs/synth.md.
+build/synth/synth.json again (keys as in that file, or new ones such as x:rebase_unit:e7m16) and
+rewrites it and docs/synth.md.
 """
 import concurrent.futures as cf, json, os, re, subprocess, sys, tempfile, time
 
@@ -36,6 +39,7 @@ OUT = os.path.join(ROOT, "build", "synth")
 OPERATORS = ["f24_add", "f24_mul", "f24_div", "f24_cmp"]
 RGS_OPERATORS = ["f24_sqrt", "f24_to_i32"]  # the shading's (issue 23), unary; built pipelined from the start
 UNITS = ["xform_unit", "isect_unit", "trav_node"]
+ACCURACY_UNITS = ["xform_wide", "rebase_unit"]  # the accuracy datapath's units (docs/numerics.md)
 WIDTHS = [8, 10, 12, 14, 16, 18, 20, 23]
 ROBUST_EDGE_EPS = 8
 # the operators' default pipeline stages (rtl/f24_*.sv: STAGES) and the units' latencies built from them
@@ -43,7 +47,8 @@ STAGES = {"f24_add": 6, "f24_mul": 4, "f24_div": 11, "f24_cmp": 2, "f24_sum_exac
           "f24_to_i32": 2}
 LATENCY = dict(STAGES, xform_unit=STAGES["f24_mul"] + 3 * STAGES["f24_add"],
                isect_unit=STAGES["f24_div"] + STAGES["f24_mul"] + 2 * STAGES["f24_add"] + STAGES["f24_cmp"],
-               trav_node=STAGES["f24_add"] + STAGES["f24_div"] + 2 * STAGES["f24_cmp"])
+               trav_node=STAGES["f24_add"] + STAGES["f24_div"] + 2 * STAGES["f24_cmp"],
+               xform_wide=STAGES["f24_sum_exact"], rebase_unit=STAGES["f24_sum_exact"])
 # before the operators were pipelined inside (a combinational core, then a delay line): make synth at
 # commit 0abb082 (2026-11-24), iCE40 HX8K: latency, LUT4, FFs, Fmax MHz
 BEFORE = {"f24_add": (3, 756, 72, 14.83), "f24_mul": (3, 896, 72, 32.89), "f24_div": (6, 1394, 144, 4.64),
@@ -52,10 +57,11 @@ FP_UNITS = {  # fp24 operators in each datapath: add/sub, mul, div, comparisons 
     "xform_unit": (9, 9, 0, 0), "isect_unit": (4, 2, 1, 5), "trav_node": (4, 0, 4, 16)}
 SUM_TERMS = [4, 8, 9]           # f24_sum_exact instances of the accuracy datapath at e7m16
 SUM_WIDTHS = [12, 16, 20]       # ... and its 9-term form across widths
-# the fix, per unit: (exact sums by term count, extra adders, extra multipliers) beside the paper's units
-FIX = {"transformation unit (wide mode, 3 rows)": ({8: 3}, 0, 0),
-       "rebase unit (3 components)": ({4: 3}, 0, 0),
-       "intersection unit (origin path, te + t')": ({9: 1}, 9 + 4 + 1, 6)}
+# the fix, per unit: (exact sums by term count, extra adders, extra multipliers, the module that builds
+# it: measured where it exists, else composed from the exact sums and the operators)
+FIX = {"transformation unit (wide mode, 3 rows)": ({8: 3}, 0, 0, "xform_wide"),
+       "rebase unit (3 components)": ({4: 3}, 0, 0, "rebase_unit"),
+       "intersection unit (origin path, te + t')": ({9: 1}, 9 + 4 + 1, 6, None)}
 
 
 def yosys(script, log):
@@ -236,16 +242,19 @@ def parse_key(key):
     return (kind, top, int(m) if m.isdigit() else m)
 
 
-REDONE = []  # entries measured again by --redo since the last make synth, named in docs/synth.md
+# the entries measured again by --redo since the last full run, one key a line (named in docs/synth.md)
+REDONE = os.path.join(OUT, "redone.txt")
+
+
+def redone():
+    return open(REDONE).read().split() if os.path.exists(REDONE) else []
 
 
 def redo(keys):
     """Measure the given entries again, keep the others from build/synth/synth.json."""
-    # the earlier --redo runs that docs/synth.md names stay named (until a whole make synth)
-    old = re.search(r"re-measured with `python3 scripts/synth.py --redo ([^`]*)`",
-                    open(os.path.join(ROOT, "docs", "synth.md")).read())
-    REDONE.extend(k for k in (old.group(1).split() if old else []) if k not in keys)
-    REDONE.extend(keys)
+    before = redone()
+    with open(REDONE, "w") as f:
+        f.write("".join(k + "\n" for k in before + [k for k in keys if k not in before]))
     res = {parse_key(k): v for k, v in json.load(open(os.path.join(OUT, "synth.json"))).items()}
     for key in keys:
         kind, top, m = parse_key(key)
@@ -279,12 +288,14 @@ def main():
         return
     if len(sys.argv) > 2 and sys.argv[1] == "--redo":
         return redo(sys.argv[2:])
+    if os.path.exists(REDONE):
+        os.remove(REDONE)
     jobs = {}
     with cf.ThreadPoolExecutor(max_workers=2) as pool:
         for n, t, p, _ in CONTROL:
             jobs[control_key(n)] = pool.submit(control, n, t, p)
         jobs[("i", "f24_sum_exact", 16)] = pool.submit(ice40, "f24_sum_exact", 7, 16)
-        for top in OPERATORS + RGS_OPERATORS + UNITS:
+        for top in OPERATORS + RGS_OPERATORS + UNITS + ACCURACY_UNITS:
             jobs[("x", top, 16)] = pool.submit(xilinx, top, 7, 16)
         for top in OPERATORS + RGS_OPERATORS:
             jobs[("i", top, 16)] = pool.submit(ice40, top, 7, 16)
@@ -320,7 +331,7 @@ def write(res):
           "Before: each operator a combinational core followed by its delay line (make synth at commit 0abb082, "
           f"2026-11-24); after: registers inside the operators at the default STAGES (`make synth`, "
           f"{time.strftime('%Y-%m-%d', time.gmtime())}"
-          + (f"; re-measured with `python3 scripts/synth.py --redo {' '.join(REDONE)}`" if REDONE else "") + ").", "",
+          + (f"; re-measured with `python3 scripts/synth.py --redo {' '.join(redone())}`" if redone() else "") + ").", "",
           "| operator | latency before | LUT4 before | FFs before | Fmax MHz before | latency (STAGES) | LUT4 | FFs | Fmax MHz |",
           "|---|---:|---:|---:|---:|---:|---:|---:|---:|"] + [
           f"| {t}{' (N = 1)' if t == 'f24_sum_exact' else ''} | "
@@ -427,15 +438,27 @@ def accuracy_section(res):
         if m != 16:
             x = res[("x", "f24_sum_exact", f"{m}:n9")]
             md.append(f"| f24_sum_exact, e7m{m}, 9 terms | {x['luts']} | {x['dsp']} | {x['carry4']} |")
-    md += ["", "The fix composed from them and the operators above (e7m16; an exact sum's own multipliers "
-           "counted, although the transformation unit's wide mode would reuse its 9):", "",
+    md += ["", "The units built from it (synth_xilinx at e7m16; valid/ready, one ray per cycle; co-simulated by "
+           "rtl/tb/tb_wide.cpp): xform_wide, the transformation unit's wide mode (3 x 8 terms, all 24 products "
+           "in one pass), and rebase_unit (3 x 4 terms, te beside):", "",
+           "| module | latency | LUTs | SRL | FFs | DSP48E1 | CARRY4 |", "|---|---:|---:|---:|---:|---:|---:|"]
+    for top in ACCURACY_UNITS:
+        x = res.get(("x", top, 16))
+        if x:
+            md.append(f"| {top} | {LATENCY[top]} | {x['luts']} | {x['srl']} | {x['ffs']} | {x['dsp']} | {x['carry4']} |")
+    md += ["", "The whole fix at e7m16: the units above as measured, the intersection unit's origin path (no RTL "
+           "yet) composed from the exact sum and the operators above (an exact sum's own multipliers counted):", "",
            "| unit | exact sums | extra add / mul | LUTs | DSP48E1 |", "|---|---|---:|---:|---:|"]
     total_l = total_d = 0
-    for unit, (sums, adds, muls) in FIX.items():
-        luts = sum(k * res[("x", "f24_sum_exact", f"16:n{n}")]["luts"] for n, k in sums.items()) + adds * add["luts"] + muls * mul["luts"]
-        dsp = sum(k * res[("x", "f24_sum_exact", f"16:n{n}")]["dsp"] for n, k in sums.items()) + adds * add["dsp"] + muls * mul["dsp"]
+    for unit, (sums, adds, muls, top) in FIX.items():
+        if ("x", top, 16) in res:
+            luts, dsp, how = res[("x", top, 16)]["luts"], res[("x", top, 16)]["dsp"], f" ({top}, measured)"
+        else:
+            luts = sum(k * res[("x", "f24_sum_exact", f"16:n{n}")]["luts"] for n, k in sums.items()) + adds * add["luts"] + muls * mul["luts"]
+            dsp = sum(k * res[("x", "f24_sum_exact", f"16:n{n}")]["dsp"] for n, k in sums.items()) + adds * add["dsp"] + muls * mul["dsp"]
+            how = " (composed)"
         total_l, total_d = total_l + luts, total_d + dsp
-        md.append(f"| {unit} | " + ", ".join(f"{k} x {n} terms" for n, k in sums.items()) +
+        md.append(f"| {unit}{how} | " + ", ".join(f"{k} x {n} terms" for n, k in sums.items()) +
                   f" | {adds} / {muls} | {luts} | {dsp} |")
     base = sum(res[("x", u, 16)]["luts"] for u in UNITS)
     md.append(f"| **total** | | | **{total_l}** | **{total_d}** |")

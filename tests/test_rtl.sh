@@ -8,14 +8,17 @@
 # (rtl/list_unit.sv) matches hls/units/list_unit.c on the operations of a cycle-mode frame of the
 # room at 64 threads and 5 x 10^4 random ones, the caches with the memory port (rtl/cache_dm.sv,
 # mem_port.sv) the cycle model's caches on that frame's reads, and the thread scheduler
-# (rtl/thread_sched.sv) its issues; the RGS's ray generation (rtl/rgs_raygen.sv) matches
-# rgs_primary and the recorded packets of cycle-mode frames of the room (perspective) and an
-# orthographic cornell box, whose block order the tile controller (rtl/tile_ctrl.sv) reproduces,
-# and of a functional frame on 2 threads, and 2 x 10^4 random blocks on random cameras; the benches
-# catch mutants (a rounder that never rounds ties to even, a square root without its sticky bit, a
-# mailbox that never moves on, a cache without its tag forwarding, a scheduler whose pointer never
-# moves on, a pixel centre without its + 1/2, a tile controller stepping past the region's edge).
-# Prints cmocka-style lines.
+# (rtl/thread_sched.sv) its issues; the rebase unit and the transformation unit's wide mode
+# (rtl/rebase_unit.sv, xform_wide.sv) match rebase_origin and xform_point_wide / xform_vector_wide
+# on the room's captured transactions and 2 x 10^4 random ones; the RGS's ray generation
+# (rtl/rgs_raygen.sv) matches rgs_primary and the recorded packets of cycle-mode frames of the room
+# (perspective) and an orthographic cornell box, whose block order the tile controller
+# (rtl/tile_ctrl.sv) reproduces, and of a functional frame on 2 threads, and 2 x 10^4 random blocks
+# on random cameras; the benches catch mutants (a rounder that never rounds ties to even, a square
+# root without its sticky bit, a mailbox that never moves on, a cache without its tag forwarding, a
+# scheduler whose pointer never moves on, a rebase that moves by t = Inf, a vector mode whose unused
+# terms are +0, a pixel centre without its + 1/2, a tile controller stepping past the region's
+# edge). Prints cmocka-style lines.
 set -u
 cd "$(dirname "$0")/.."
 B=${BUILD:-build}
@@ -44,6 +47,16 @@ t_operators() {
 t_units() {
   "$BIN" render room -o "$T/room.png" --width 48 --height 32 --capture-unit-io "$T/cap" --capture-limit 20000 >/dev/null
   "$B/rtl/e7m16/tb_units" -n 20000 --capture "$T/cap"
+}
+
+capture_room() { # the functional frame's capture of t_units, made here if that case did not run
+  [[ -f "$T/cap/wide.hex" ]] || "$BIN" render room -o "$T/room.png" --width 48 --height 32 --capture-unit-io "$T/cap" \
+    --capture-limit 20000 >/dev/null
+}
+
+t_wide() {
+  capture_room
+  "$B/rtl/e7m16/tb_wide" -n 20000 --capture "$T/cap"
 }
 
 t_exact_sum() {
@@ -116,6 +129,13 @@ t_rgs_mutants_caught() {
     mutant rgs tile_ctrl.sv "s/33'(x_q) + 33'd2 < 33'(x1_q)/33'(x_q) + 33'd2 <= 33'(x1_q)/" -n 2000
 }
 
+# the rebase unit without the test for t = Inf (rebase_distance: 0), the wide mode's vector with its
+# five unused terms +0 * +0 (the sum of three -0 products would come out +0)
+t_wide_mutants_caught() {
+  mutant wide rebase_unit.sv "s/assign te = t_i\[W-2:M\] == '1 ? '0 : t_i;/assign te = t_i;/" -n 4000 &&
+    mutant wide xform_wide.sv "s/{5{NEG_ZERO}}/'0/" -n 4000
+}
+
 t_mutant_caught() { # the bench must fail on a wrong rounder
   mkdir -p "$T/mut"
   sed "s/kept_even = tie ? {kept\[M+1:1\], 1'b0} : kept;/kept_even = kept;/" rtl/f24_round_pack.sv >"$T/mut/f24_round_pack.sv"
@@ -135,10 +155,12 @@ t_mutant_caught() { # the bench must fail on a wrong rounder
 run_case rtl_lint_clean t_lint
 run_case rtl_operators_match_c_model t_operators
 run_case rtl_units_match_c_model_and_capture t_units
+run_case rtl_rebase_and_wide_xform_match_c_model_and_capture t_wide
 run_case rtl_exact_sum_matches_c_model t_exact_sum
 run_case rtl_list_unit_and_caches_match_c_model t_list_and_cache
 run_case rtl_list_cache_benches_catch_mutants t_list_cache_mutants_caught
 run_case rtl_rgs_raygen_and_tile_ctrl_match_c_model t_rgs
 run_case rtl_rgs_bench_catches_mutants t_rgs_mutants_caught
+run_case rtl_wide_bench_catches_mutants t_wide_mutants_caught
 run_case rtl_bench_catches_mutant t_mutant_caught
 exit $((fails != 0))

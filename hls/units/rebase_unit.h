@@ -14,10 +14,11 @@
  * (isect_unit.h).
  * Datapath: per component 2 multipliers whose products are not rounded and one 4-term exact
  * accumulator: 6 multipliers, 3 accumulators. One ray per cycle, when the list unit opens a leaf
- * (one issue slot per ray of the leaf on the list unit, trace.c). No RTL yet: the cycle model
- * counts its issue slots on the list unit and no latency of its own (docs/cycle-model.md); built
- * from the pipelined exact accumulator (rtl/f24_sum_exact.sv, 25 stages at >= 60 MHz on iCE40),
- * its latency would be about 25 cycles.
+ * (one issue slot per ray of the leaf on the list unit, trace.c). RTL: rtl/rebase_unit.sv, three
+ * pipelined exact accumulators (rtl/f24_sum_exact.sv, N = 4) with te beside them: latency 25
+ * cycles (SUM_STAGES), one ray per cycle, co-simulated bit for bit by rtl/tb/tb_wide.cpp. The
+ * cycle model counts its issue slots on the list unit and no latency of its own
+ * (docs/cycle-model.md).
  */
 #ifndef SAARCOR_REBASE_UNIT_H
 #define SAARCOR_REBASE_UNIT_H

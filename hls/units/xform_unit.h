@@ -32,7 +32,10 @@ f24_vec3 xform_vector(const f24_affine *m, f24_vec3 v);
  * double words with the translation in two words, m's column 3 and tlo (the instance record's low
  * words), a vector without. Hardware: the multipliers skip rounding and per row one 128-bit
  * accumulator of 8 terms takes the place of the three adders; a point in double words takes the
- * unit's 9 multipliers twice (docs/numerics.md). */
+ * unit's 9 multipliers twice (docs/numerics.md). RTL: rtl/xform_wide.sv, a module of its own with
+ * all 24 products in one pass (three f24_sum_exact of 8 terms; a vector's 5 other terms -0 * +0,
+ * which leave the 3-term sum's bits as they are): latency 25 cycles, one point or vector per cycle,
+ * co-simulated by rtl/tb/tb_wide.cpp. */
 f24_vec3x2 xform_point_wide(const f24_affine *m, f24_vec3 tlo, f24_vec3x2 p);
 f24_vec3x2 xform_vector_wide(const f24_affine *m, f24_vec3 v);
 

@@ -29,7 +29,7 @@
 #include <vector>
 
 #include "Vtb_rgs.h"
-#include "tb_fp24.h"
+#include "tb_common.h"
 #include "verilated.h"
 
 extern "C" {
@@ -37,6 +37,8 @@ extern "C" {
 #include "memimage.h"
 #include "rgs.h"
 }
+
+using namespace cosim;
 
 namespace {
 

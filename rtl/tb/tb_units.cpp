@@ -15,15 +15,16 @@
 #include <vector>
 
 #include "Vtb_units.h"
-#include "tb_fp24.h"
+#include "tb_common.h"
 #include "verilated.h"
 
 extern "C" {
-#include "f24.h"
 #include "isect_unit.h"
 #include "trav_node.h"
 #include "xform_unit.h"
 }
+
+using namespace cosim;
 
 namespace {
 
@@ -112,77 +113,14 @@ template <> std::vector<trav_tx> random_set(std::size_t n)
     return v;
 }
 
-// captured files: hex words per line in the field order of the structs
-template <typename T> bool read_capture(const std::string &path, std::vector<T> &out, bool &present)
-{
-    FILE *f = std::fopen(path.c_str(), "r");
-    present = f != nullptr;
-    if (!f)
-        return true;
-    char line[4096];
-    const std::size_t words = sizeof(T) / sizeof(uint32_t);
-    while (std::fgets(line, sizeof line, f)) {
-        T x;
-        uint32_t *w = reinterpret_cast<uint32_t *>(&x);
-        char *p = line;
-        std::size_t k = 0;
-        for (; k < words; k++) {
-            char *end;
-            w[k] = (uint32_t)std::strtoul(p, &end, 16);
-            if (end == p)
-                break;
-            p = end;
-        }
-        if (k != words) {
-            std::fclose(f);
-            std::printf("tb_units: %s: malformed line (%zu of %zu words)\n", path.c_str(), k, words);
-            return false;
-        }
-        out.push_back(x);
-    }
-    std::fclose(f);
-    return true;
-}
-
-struct stream_stats { uint64_t sent = 0, checked = 0, mismatches = 0, vs_capture = 0; };
-uint64_t g_cycle = 0;
-
-void print_words(const char *label, const uint32_t *w, std::size_t n)
-{
-    std::printf("  %s:", label);
-    for (std::size_t i = 0; i < n; i++)
-        std::printf(" %06x", w[i]);
-    std::printf("\n");
-}
-
-template <typename T> void compare(const char *unit, stream_stats &s, const T &want, const T &got, std::size_t in_words,
-                                   const char *what)
-{
-    s.checked++;
-    const uint32_t *a = reinterpret_cast<const uint32_t *>(&want), *b = reinterpret_cast<const uint32_t *>(&got);
-    const std::size_t words = sizeof(T) / sizeof(uint32_t);
-    if (!std::memcmp(a + in_words, b + in_words, (words - in_words) * sizeof(uint32_t)))
-        return;
-    if (s.mismatches++ < 10) {
-        std::printf("MISMATCH %s at cycle %llu (against %s):\n", unit, (unsigned long long)g_cycle, what);
-        print_words("inputs", a, in_words);
-        print_words("expected", a + in_words, words - in_words);
-        print_words("rtl", b + in_words, words - in_words);
-    }
-}
-
 } // namespace
 
 int main(int argc, char **argv)
 {
     std::size_t n = 200000;
     std::string capture;
-    for (int i = 1; i < argc; i++) {
-        if (!std::strcmp(argv[i], "-n") && i + 1 < argc) n = std::strtoull(argv[++i], nullptr, 0);
-        else if (!std::strcmp(argv[i], "--seed") && i + 1 < argc) g_rng = std::strtoull(argv[++i], nullptr, 0) | 1u;
-        else if (!std::strcmp(argv[i], "--capture") && i + 1 < argc) capture = argv[++i];
-        else { std::printf("usage: tb_units [-n N] [--seed S] [--capture DIR]\n"); return 2; }
-    }
+    if (!parse_args(argc, argv, "tb_units", n, capture))
+        return 2;
     std::vector<xform_tx> xs = random_set<xform_tx>(n);
     std::vector<isect_tx> is = random_set<isect_tx>(n);
     std::vector<trav_tx> ts = random_set<trav_tx>(n);
@@ -192,8 +130,8 @@ int main(int argc, char **argv)
         std::vector<isect_tx> ci;
         std::vector<trav_tx> ct;
         bool px, pi, pt;
-        if (!read_capture(capture + "/xform.hex", cx, px) || !read_capture(capture + "/isect.hex", ci, pi) ||
-            !read_capture(capture + "/trav.hex", ct, pt))
+        if (!read_capture("tb_units", capture + "/xform.hex", cx, px) || !read_capture("tb_units", capture + "/isect.hex", ci, pi) ||
+            !read_capture("tb_units", capture + "/trav.hex", ct, pt))
             return 2;
         if (!px || !pi || !pt || cx.empty() || ci.empty() || ct.empty()) {
             std::printf("tb_units: %s lacks xform.hex, isect.hex or trav.hex vectors\n", capture.c_str());

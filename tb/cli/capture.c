@@ -14,11 +14,12 @@
 #include "cycle_sim.h"
 #include "mem_iface.h"
 #include "memimage.h"
+#include "rebase_unit.h"
 #include "rgs.h"
 #include "trav_node.h"
 #include "xform_unit.h"
 
-enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_RGS, CAP_UNITS };
+enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_RGS, CAP_REBASE, CAP_WIDE, CAP_UNITS };
 
 static struct {
     int on;
@@ -27,7 +28,8 @@ static struct {
     pthread_mutex_t lock;
 } cap = { .lock = PTHREAD_MUTEX_INITIALIZER };
 
-const char *const capture_unit_names[CAPTURE_UNITS] = { "xform", "isect", "trav", "list", "mem", "sched", "rgs" };
+const char *const capture_unit_names[CAPTURE_UNITS] = { "xform", "isect", "trav", "list", "mem",
+                                                        "sched", "rgs",  "rebase", "wide" };
 
 /* The list unit's threads: trace_state addresses in the order first seen (the RTL's thread ids),
  * and the memory interfaces (pipes) likewise. */
@@ -137,6 +139,58 @@ f24_vec3 __wrap_xform_vector(const f24_affine *m, f24_vec3 v)
 {
     const f24_vec3 r = __real_xform_vector(m, v);
     record_xform(m, v, 0, r);
+    return r;
+}
+
+/* ---- the accuracy datapath: the rebase unit and the transformation unit's wide mode ---- */
+
+f24_vec3x2 __real_rebase_origin(f24_vec3x2 o, f24_vec3x2 d, f24_t t);
+f24_vec3x2 __real_xform_point_wide(const f24_affine *m, f24_vec3 tlo, f24_vec3x2 p);
+f24_vec3x2 __real_xform_vector_wide(const f24_affine *m, f24_vec3 v);
+f24_vec3x2 __wrap_rebase_origin(f24_vec3x2 o, f24_vec3x2 d, f24_t t);
+f24_vec3x2 __wrap_xform_point_wide(const f24_affine *m, f24_vec3 tlo, f24_vec3x2 p);
+f24_vec3x2 __wrap_xform_vector_wide(const f24_affine *m, f24_vec3 v);
+
+/* With the distance the unit passes on beside p: rebase_distance(t), what trace.c stores as te. */
+f24_vec3x2 __wrap_rebase_origin(f24_vec3x2 o, f24_vec3x2 d, f24_t t)
+{
+    const f24_vec3x2 p = __real_rebase_origin(o, d, t);
+    FILE *f = begin(CAP_REBASE);
+    if (!f)
+        return p;
+    const uint32_t w[20] = { o.hi.x, o.hi.y, o.hi.z, o.lo.x, o.lo.y, o.lo.z, d.hi.x, d.hi.y, d.hi.z, d.lo.x,
+                             d.lo.y, d.lo.z, t, p.hi.x, p.hi.y, p.hi.z, p.lo.x, p.lo.y, p.lo.z, rebase_distance(t) };
+    words(f, w, 20);
+    end(f);
+    return p;
+}
+
+/* A vector is recorded as a point would be, with zero low words and translation low words. */
+static void record_wide(const f24_affine *m, f24_vec3 tlo, f24_vec3x2 p, uint32_t point, f24_vec3x2 r)
+{
+    FILE *f = begin(CAP_WIDE);
+    if (!f)
+        return;
+    const uint32_t w[16] = { tlo.x, tlo.y, tlo.z, p.hi.x, p.hi.y, p.hi.z, p.lo.x, p.lo.y, p.lo.z, point,
+                             r.hi.x, r.hi.y, r.hi.z, r.lo.x, r.lo.y, r.lo.z };
+    words(f, &m->m[0][0], 12);
+    fputc(' ', f);
+    words(f, w, 16);
+    end(f);
+}
+
+f24_vec3x2 __wrap_xform_point_wide(const f24_affine *m, f24_vec3 tlo, f24_vec3x2 p)
+{
+    const f24_vec3x2 r = __real_xform_point_wide(m, tlo, p);
+    record_wide(m, tlo, p, 1, r);
+    return r;
+}
+
+f24_vec3x2 __wrap_xform_vector_wide(const f24_affine *m, f24_vec3 v)
+{
+    const f24_vec3x2 r = __real_xform_vector_wide(m, v);
+    const f24_vec3 none = { 0, 0, 0 };
+    record_wide(m, none, (f24_vec3x2){ v, none }, 0, r);
     return r;
 }
 
