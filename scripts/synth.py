@@ -40,6 +40,7 @@ OPERATORS = ["f24_add", "f24_mul", "f24_div", "f24_cmp"]
 RGS_OPERATORS = ["f24_sqrt", "f24_to_i32"]  # the shading's (issue 23), unary; built pipelined from the start
 UNITS = ["xform_unit", "isect_unit", "trav_node"]
 ACCURACY_UNITS = ["xform_wide", "rebase_unit"]  # the accuracy datapath's units (docs/numerics.md)
+RGS_UNITS = ["rgs_raygen"]  # the RGS's RTL so far: primary rays through its own xform_unit
 WIDTHS = [8, 10, 12, 14, 16, 18, 20, 23]
 ROBUST_EDGE_EPS = 8
 # the operators' default pipeline stages (rtl/f24_*.sv: STAGES) and the units' latencies built from them
@@ -48,7 +49,8 @@ STAGES = {"f24_add": 6, "f24_mul": 4, "f24_div": 11, "f24_cmp": 2, "f24_sum_exac
 LATENCY = dict(STAGES, xform_unit=STAGES["f24_mul"] + 3 * STAGES["f24_add"],
                isect_unit=STAGES["f24_div"] + STAGES["f24_mul"] + 2 * STAGES["f24_add"] + STAGES["f24_cmp"],
                trav_node=STAGES["f24_add"] + STAGES["f24_div"] + 2 * STAGES["f24_cmp"],
-               xform_wide=STAGES["f24_sum_exact"], rebase_unit=STAGES["f24_sum_exact"])
+               xform_wide=STAGES["f24_sum_exact"], rebase_unit=STAGES["f24_sum_exact"],
+               rgs_raygen=1 + 2 + STAGES["f24_mul"] + 3 * STAGES["f24_add"] + 4)  # in, convert 2, xform, 4 rays
 # before the operators were pipelined inside (a combinational core, then a delay line): make synth at
 # commit 0abb082 (2026-11-24), iCE40 HX8K: latency, LUT4, FFs, Fmax MHz
 BEFORE = {"f24_add": (3, 756, 72, 14.83), "f24_mul": (3, 896, 72, 32.89), "f24_div": (6, 1394, 144, 4.64),
@@ -207,6 +209,7 @@ CONTROL = [
     ("cache_dm shading 4 KB / 16 B", "cache_dm", {"LINE_BYTES": 16, "SIZE_BYTES": 4096}, "hit 2"),
     ("mem_port 4 requesters", "mem_port", {"N": 4, "DW": 8 * MB_E7M16}, "0"),
     ("thread_sched 64 threads, 5 units", "thread_sched", {"THREADS": 64, "UNITS": 5}, "1"),
+    ("tile_ctrl", "tile_ctrl", {}, "1"),
 ]
 
 
@@ -295,7 +298,7 @@ def main():
         for n, t, p, _ in CONTROL:
             jobs[control_key(n)] = pool.submit(control, n, t, p)
         jobs[("i", "f24_sum_exact", 16)] = pool.submit(ice40, "f24_sum_exact", 7, 16)
-        for top in OPERATORS + RGS_OPERATORS + UNITS + ACCURACY_UNITS:
+        for top in OPERATORS + RGS_OPERATORS + UNITS + ACCURACY_UNITS + RGS_UNITS:
             jobs[("x", top, 16)] = pool.submit(xilinx, top, 7, 16)
         for top in OPERATORS + RGS_OPERATORS:
             jobs[("i", top, 16)] = pool.submit(ice40, top, 7, 16)
@@ -348,7 +351,7 @@ def write(res):
           "## Modules at e7m16 (the paper's 24-bit format)", "",
           "| module | latency | LUTs | SRL (pipeline shift registers) | FFs | DSP48E1 | BRAM | CARRY4 | LUT6 levels | iCE40 LUT4 | iCE40 FFs | iCE40 Fmax MHz |",
           "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
-    for top in OPERATORS + RGS_OPERATORS + UNITS:
+    for top in OPERATORS + RGS_OPERATORS + UNITS + [u for u in RGS_UNITS if ("x", u, 16) in res]:
         x = res[("x", top, 16)]
         i = res.get(("i", top, 16))
         fmax = "-" if not i else (f"{i['fmax_mhz']:.1f}" if i.get("fmax_mhz") else i.get("pnr", "-"))
@@ -441,11 +444,12 @@ def accuracy_section(res):
     md += ["", "The units built from it (synth_xilinx at e7m16; valid/ready, one ray per cycle; co-simulated by "
            "rtl/tb/tb_wide.cpp): xform_wide, the transformation unit's wide mode (3 x 8 terms, all 24 products "
            "in one pass), and rebase_unit (3 x 4 terms, te beside):", "",
-           "| module | latency | LUTs | SRL | FFs | DSP48E1 | CARRY4 |", "|---|---:|---:|---:|---:|---:|---:|"]
+           "| module | latency | LUTs | SRL | FFs | DSP48E1 | CARRY4 | LUT6 levels |", "|---|---:|---:|---:|---:|---:|---:|---:|"]
     for top in ACCURACY_UNITS:
         x = res.get(("x", top, 16))
         if x:
-            md.append(f"| {top} | {LATENCY[top]} | {x['luts']} | {x['srl']} | {x['ffs']} | {x['dsp']} | {x['carry4']} |")
+            md.append(f"| {top} | {LATENCY[top]} | {x['luts']} | {x['srl']} | {x['ffs']} | {x['dsp']} | {x['carry4']} | "
+                      f"{x.get('lut6_levels', '-')} |")
     md += ["", "The whole fix at e7m16: the units above as measured, the intersection unit's origin path (no RTL "
            "yet) composed from the exact sum and the operators above (an exact sum's own multipliers counted):", "",
            "| unit | exact sums | extra add / mul | LUTs | DSP48E1 |", "|---|---|---:|---:|---:|"]
