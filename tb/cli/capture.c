@@ -169,6 +169,34 @@ isect_result __wrap_isect_unit_rebased(const f24_triangle *m, f24_vec3x2 p, f24_
     return capturing() ? captured_isect(m, p, te, d, tmin, tmax) : __real_isect_unit_rebased(m, p, te, d, tmin, tmax);
 }
 
+/* The packet form records ray by ray, through the one-ray function it equals bit for bit: the
+ * same transactions in the same order as the unit's stream of rays. */
+void __real_isect_unit_packet(const f24_triangle *m, uint32_t need, const f24_vec3x2 p[F24Q_LANES], const f24_t te[F24Q_LANES],
+                              const f24_vec3 d[F24Q_LANES], const f24_t tmin[F24Q_LANES], const f24_t tmax[F24Q_LANES],
+                              isect_result r[F24Q_LANES]);
+void __wrap_isect_unit_packet(const f24_triangle *m, uint32_t need, const f24_vec3x2 p[F24Q_LANES], const f24_t te[F24Q_LANES],
+                              const f24_vec3 d[F24Q_LANES], const f24_t tmin[F24Q_LANES], const f24_t tmax[F24Q_LANES],
+                              isect_result r[F24Q_LANES]);
+
+CAPTURE_PATH void captured_isect_packet(const f24_triangle *m, uint32_t need, const f24_vec3x2 p[F24Q_LANES],
+                                        const f24_t te[F24Q_LANES], const f24_vec3 d[F24Q_LANES],
+                                        const f24_t tmin[F24Q_LANES], const f24_t tmax[F24Q_LANES],
+                                        isect_result r[F24Q_LANES])
+{
+    for (int i = 0; i < F24Q_LANES; i++)
+        r[i] = need >> i & 1u ? captured_isect(m, p[i], te[i], d[i], tmin[i], tmax[i]) : (isect_result){ 0, 0, 0, 0, 0 };
+}
+
+void __wrap_isect_unit_packet(const f24_triangle *m, uint32_t need, const f24_vec3x2 p[F24Q_LANES], const f24_t te[F24Q_LANES],
+                              const f24_vec3 d[F24Q_LANES], const f24_t tmin[F24Q_LANES], const f24_t tmax[F24Q_LANES],
+                              isect_result r[F24Q_LANES])
+{
+    if (capturing())
+        captured_isect_packet(m, need, p, te, d, tmin, tmax, r);
+    else
+        __real_isect_unit_packet(m, need, p, te, d, tmin, tmax, r);
+}
+
 CAPTURE_PATH void captured_trav(const trav_entry *e, uint32_t axis, f24_t split, const f24_vec3 o[], const f24_vec3 d[],
                                 trav_entry *l, trav_entry *r, uint32_t *near_left)
 {

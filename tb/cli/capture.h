@@ -12,7 +12,7 @@
  * memory interface: pipe, kind, word address, words, cycle, the cycle its data is at the unit,
  * lookups, hits; "N pipe" where a frame starts, "F pipe" where the caches are emptied). The hls/
  * units are not touched: the program is linked with --wrap for xform_point, xform_vector,
- * isect_unit_rebased, trav_node_split, list_unit_entry, list_mailboxes_clear, mem_iface_read,
+ * isect_unit_rebased, isect_unit_packet (recorded ray by ray), trav_node_split, list_unit_entry, list_mailboxes_clear, mem_iface_read,
  * mem_iface_flush and mem_iface_new_frame, and the wrappers record the calls while capturing is on
  * (at most `limit` transactions per unit; recorded in call order, which with several host threads
  * interleaves).
