@@ -17,11 +17,22 @@ f24_t xform_row(const f24_t row[4], f24_vec3 p, int with_translation)
     return row_of(row, q, with_translation);
 }
 
-static f24_vec3 xform_step(const f24_affine *m, f24_vec3 p, int with_translation)
+/* The three rows side by side (lane r: row r, lane 3 unused), each in row_of's order:
+ * ((m0 x + m1 y) + m2 z) (+ t). */
+static F24Q_FN f24_vec3 xform_step(const f24_affine *m, f24_vec3 p, int with_translation)
 {
-    const f24_t q[4] = { p.x, p.y, p.z, F24_ONE };
-    const f24_vec3 r = { row_of(m->m[0], q, with_translation), row_of(m->m[1], q, with_translation),
-                         row_of(m->m[2], q, with_translation) };
+    f24_t col[4][F24Q_LANES];
+step_columns:
+    for (int k = 0; k < 4; k++)
+        for (int r = 0; r < F24Q_LANES; r++)
+            col[k][r] = r < 3 ? m->m[r][k] : 0u;
+    f24q s = f24q_add(f24q_add(f24q_mul(f24q_of(col[0]), f24q_splat(p.x)), f24q_mul(f24q_of(col[1]), f24q_splat(p.y))),
+                      f24q_mul(f24q_of(col[2]), f24q_splat(p.z)));
+    if (with_translation)
+        s = f24q_add(s, f24q_of(col[3]));
+    f24_t out[F24Q_LANES];
+    f24q_bits(s, out);
+    const f24_vec3 r = { out[0], out[1], out[2] };
     return r;
 }
 
