@@ -84,9 +84,12 @@ static void words(FILE *f, const uint32_t *w, int n)
 static inline int capturing(void) { return __builtin_expect(cap.on, 0); }
 #define CAPTURE_PATH static __attribute__((noinline, cold))
 
-/* Locks and returns the file of unit u if this transaction is to be recorded. */
+/* Locks and returns the file of unit u if this transaction is to be recorded (capturing again:
+ * a wrapper that records after the unit's call reaches it also when nothing is captured). */
 static FILE *begin(int u)
 {
+    if (!capturing())
+        return NULL;
     pthread_mutex_lock(&cap.lock);
     if (cap.n[u] >= cap.limit) {
         pthread_mutex_unlock(&cap.lock);
@@ -349,8 +352,6 @@ static uint32_t pipe_id(FILE *f, const mem_iface *m)
 void __wrap_mem_iface_flush(mem_iface *m)
 {
     __real_mem_iface_flush(m);
-    if (!capturing()) /* once a frame: no need for the tail call */
-        return;
     FILE *f = begin(CAP_MEM);
     if (!f)
         return;
@@ -361,8 +362,6 @@ void __wrap_mem_iface_flush(mem_iface *m)
 void __wrap_mem_iface_new_frame(mem_iface *m)
 {
     __real_mem_iface_new_frame(m);
-    if (!capturing()) /* once a frame: no need for the tail call */
-        return;
     FILE *f = begin(CAP_MEM);
     if (!f)
         return;
