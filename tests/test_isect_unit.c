@@ -262,11 +262,75 @@ static void small_and_far(void **state)
     assert_true(worst_unmoved > 1e-2);
 }
 
+/* isect_unit_packet against isect_unit_rebased ray by ray: random triangles (shared-edge flags
+ * included) and packets of rays aimed near them or at their edges from rebased origins, intervals
+ * that hold, cut or miss the hit distance (NaN too), now and then a ray parallel to the plane or
+ * a zero direction; every
+ * mask of rays that need the triangle. Each needed lane bit for bit the one-ray result, the others
+ * zeros. */
+static void packet_as_single(void **state)
+{
+    (void)state;
+    int bad = 0, lanes = 0, hits = 0, outside = 0;
+    for (int n = 0; n < 20000 && bad < 5; n++) {
+        double a[3], b[3], c[3];
+        for (int k = 0; k < 3; k++) {
+            a[k] = 10 * urand() - 5;
+            b[k] = 10 * urand() - 5;
+            c[k] = 10 * urand() - 5;
+        }
+        affine tx;
+        if (!mi_triangle_transform(a, b, c, 64, &tx))
+            continue;
+        f24_triangle t24 = record_of(&tx);
+        t24.shared = (uint32_t)(urand() * 8) & (TRI_SHARED_U | TRI_SHARED_V | TRI_SHARED_W);
+        f24_vec3x2 p[F24Q_LANES];
+        f24_vec3 d[F24Q_LANES];
+        f24_t te[F24Q_LANES], tmin[F24Q_LANES], tmax[F24Q_LANES];
+        for (int i = 0; i < F24Q_LANES; i++) {
+            double o[3], dd[3];
+            const int kind = (int)(urand() * 16);
+            double w0 = 1.2 * urand() - 0.1, w1 = (1.2 - w0) * urand() - 0.05;
+            if (kind >= 2 && kind <= 7) /* at an edge (u = 0, v = 0, u + v = 1), where the margins decide */
+                w0 = kind % 3 == 0 ? 0 : w0, w1 = kind % 3 == 1 ? 0 : kind % 3 == 2 ? 1 - w0 : w1;
+            for (int k = 0; k < 3; k++) {
+                o[k] = 40 * urand() - 20;
+                dd[k] = w0 * a[k] + w1 * b[k] + (1 - w0 - w1) * c[k] - o[k];
+            }
+            d[i] = kind == 0 ? V(0, 0, 0) : V(dd[0], dd[1], dd[2]);
+            if (kind == 1) /* parallel to the plane: D'z = 0 up to rounding */
+                d[i] = V(a[0] - c[0], a[1] - c[1], a[2] - c[2]);
+            te[i] = F(urand() < 0.5 ? 0 : 0.9 * urand());
+            p[i] = rebased(V(o[0], o[1], o[2]), d[i], te[i]);
+            const double t = urand() * 1.5;
+            tmin[i] = F(urand() < 0.7 ? 0 : t - 0.5);
+            tmax[i] = urand() < 0.5 ? F24_POS_INF : urand() < 0.05 ? F24_DEFAULT_NAN : F(t);
+        }
+        const uint32_t need = (uint32_t)n % 16u;
+        isect_result r[F24Q_LANES];
+        isect_unit_packet(&t24, need, p, te, d, tmin, tmax, r);
+        for (int i = 0; i < F24Q_LANES; i++) {
+            const isect_result none = { 0, 0, 0, 0, 0 },
+                               ref = need >> i & 1u ? isect_unit_rebased(&t24, p[i], te[i], d[i], tmin[i], tmax[i]) : none;
+            lanes += need >> i & 1u;
+            hits += ref.hit;
+            outside += (need >> i & 1u) && !ref.hit && ref.u == 0 && ref.v == 0;
+            if (r[i].hit != ref.hit || r[i].t != ref.t || r[i].u != ref.u || r[i].v != ref.v || r[i].cos_n != ref.cos_n) {
+                print_message("packet %d (need %x) lane %d: hit %d t %06x u %06x v %06x cos %06x, one ray: %d %06x %06x %06x %06x\n",
+                              n, need, i, r[i].hit, r[i].t, r[i].u, r[i].v, r[i].cos_n, ref.hit, ref.t, ref.u, ref.v, ref.cos_n);
+                bad++;
+            }
+        }
+    }
+    assert_int_equal(bad, 0);
+    assert_true(hits > lanes / 8 && outside > lanes / 8); /* both sides of the early-out well covered */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(hand_cases), cmocka_unit_test(parallel_and_interval), cmocka_unit_test(shared_edges),
-        cmocka_unit_test(against_double_precision), cmocka_unit_test(small_and_far),
+        cmocka_unit_test(against_double_precision), cmocka_unit_test(small_and_far), cmocka_unit_test(packet_as_single),
     };
     return cmocka_run_group_tests_name("isect_unit", tests, NULL, NULL);
 }

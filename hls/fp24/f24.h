@@ -185,6 +185,14 @@ lanes_le:
         m |= (uint32_t)f24w_le(a.l[i], b.l[i]) << i;
     return m;
 }
+static inline uint32_t f24q_lt(f24q a, f24q b)
+{
+    uint32_t m = 0;
+lanes_lt:
+    for (int i = 0; i < F24Q_LANES; i++)
+        m |= (uint32_t)f24w_lt(a.l[i], b.l[i]) << i;
+    return m;
+}
 static inline uint32_t f24q_sign(f24q a)
 {
     uint32_t m = 0;

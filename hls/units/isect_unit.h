@@ -61,4 +61,11 @@ f24_vec3 isect_origin(const f24_triangle *tri, f24_vec3x2 p);
  * a third of the arithmetic (the simulator's saving; a hardware unit may gate its x/y rows alike). */
 isect_result isect_unit_rebased(const f24_triangle *tri, f24_vec3x2 p, f24_t te, f24_vec3 d, f24_t tmin, f24_t tmax);
 
+/* isect_unit_rebased on the rays of a packet that need the triangle (bit i of need: lane i), bit
+ * for bit: r[i] for each of them, zeros for the others. The simulator's form of the unit's stream
+ * of rays (one per cycle): the lanes side by side (f24q), branch-free. */
+void isect_unit_packet(const f24_triangle *tri, uint32_t need, const f24_vec3x2 p[F24Q_LANES], const f24_t te[F24Q_LANES],
+                       const f24_vec3 d[F24Q_LANES], const f24_t tmin[F24Q_LANES], const f24_t tmax[F24Q_LANES],
+                       isect_result r[F24Q_LANES]);
+
 #endif

@@ -272,16 +272,17 @@ static void op_tri_xform(const uint32_t *mem, trace_state *s, unit_op *op, trace
 static void op_tri_isect(trace_state *s, unit_op *op, trace_counters *c)
 {
     op_set(op, UNIT_ISECT, count_rays(s->need));
+    isect_result r[TRACE_PACKET];
+    isect_unit_packet(&s->tx, s->need, s->p, s->te, s->d, s->tmin_rel, s->best_rel, r);
 isect_rays:
     for (int i = 0; i < TRACE_PACKET; i++) {
         if (!bit(s->need, i))
             continue;
-        const isect_result r = isect_unit_rebased(&s->tx, s->p[i], s->te[i], s->d[i], s->tmin_rel[i], s->best_rel[i]);
         c->intersections++;
-        if (r.hit) {
-            s->best_rel[i] = r.t;
-            s->best_t[i] = f24_add(s->t0[i], r.t); /* back to the distance from the ray's origin */
-            s->hits[i] = (hit_record){ s->inst, s->tri, s->best_t[i], r.u, r.v, r.cos_n };
+        if (r[i].hit) {
+            s->best_rel[i] = r[i].t;
+            s->best_t[i] = f24_add(s->t0[i], r[i].t); /* back to the distance from the ray's origin */
+            s->hits[i] = (hit_record){ s->inst, s->tri, s->best_t[i], r[i].u, r[i].v, r[i].cos_n };
             if (s->flags & TRACE_ANY_HIT)
                 s->alive &= ~(1u << i);
         }

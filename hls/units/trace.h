@@ -43,6 +43,9 @@
 #include "vec3.h"
 
 #define TRACE_PACKET 4
+#if TRACE_PACKET != F24Q_LANES
+#error "the units compute the rays of a packet as the lanes of f24q (hls/fp24/f24.h)"
+#endif
 #define TRACE_STACK 64     /* traversal states per packet and level (the prototype kept 64) */
 #define TRACE_MAILBOX 8    /* entries of the per-ray mailbox of the list unit */
 #define TRACE_NO_HIT 0xFFFFFFFFu

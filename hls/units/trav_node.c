@@ -24,13 +24,13 @@ split_axes:
     l->mask = (left & near_ok) | (~left & far_ok);
     r->mask = (left & far_ok) | (~left & near_ok);
     *near_left = left;
-split_rays:
+split_rays: /* as masks (all ones or zero per ray), so that the lanes' selects need no branch */
     for (int i = 0; i < TRACE_PACKET; i++) {
-        const uint32_t on = in >> i & 1u, lft = left >> i & 1u;
-        const f24_t ntn = on ? e->tn[i] : 0, ntf = on ? near_tf[i] : 0, ftn = on ? far_tn[i] : 0, ftf = on ? e->tf[i] : 0;
-        l->tn[i] = lft ? ntn : ftn;
-        l->tf[i] = lft ? ntf : ftf;
-        r->tn[i] = lft ? ftn : ntn;
-        r->tf[i] = lft ? ftf : ntf;
+        const uint32_t on = 0u - (in >> i & 1u), lft = 0u - (left >> i & 1u);
+        const f24_t ntn = e->tn[i] & on, ntf = near_tf[i] & on, ftn = far_tn[i] & on, ftf = e->tf[i] & on;
+        l->tn[i] = (ntn & lft) | (ftn & ~lft);
+        l->tf[i] = (ntf & lft) | (ftf & ~lft);
+        r->tn[i] = (ftn & lft) | (ntn & ~lft);
+        r->tf[i] = (ftf & lft) | (ntf & ~lft);
     }
 }

@@ -17,11 +17,22 @@ f24_t xform_row(const f24_t row[4], f24_vec3 p, int with_translation)
     return row_of(row, q, with_translation);
 }
 
-static f24_vec3 xform_step(const f24_affine *m, f24_vec3 p, int with_translation)
+/* The three rows side by side (lane r: row r, lane 3 unused), each in row_of's order:
+ * ((m0 x + m1 y) + m2 z) (+ t). */
+static F24Q_FN f24_vec3 xform_step(const f24_affine *m, f24_vec3 p, int with_translation)
 {
-    const f24_t q[4] = { p.x, p.y, p.z, F24_ONE };
-    const f24_vec3 r = { row_of(m->m[0], q, with_translation), row_of(m->m[1], q, with_translation),
-                         row_of(m->m[2], q, with_translation) };
+    f24_t col[4][F24Q_LANES];
+step_columns:
+    for (int k = 0; k < 4; k++)
+        for (int r = 0; r < F24Q_LANES; r++)
+            col[k][r] = r < 3 ? m->m[r][k] : 0u;
+    f24q s = f24q_add(f24q_add(f24q_mul(f24q_of(col[0]), f24q_splat(p.x)), f24q_mul(f24q_of(col[1]), f24q_splat(p.y))),
+                      f24q_mul(f24q_of(col[2]), f24q_splat(p.z)));
+    if (with_translation)
+        s = f24q_add(s, f24q_of(col[3]));
+    f24_t out[F24Q_LANES];
+    f24q_bits(s, out);
+    const f24_vec3 r = { out[0], out[1], out[2] };
     return r;
 }
 
@@ -37,14 +48,22 @@ static f24_vec3x2 xform_step_wide(const f24_affine *m, f24_vec3 tlo, f24_vec3x2 
     f24_t a[8][F24Q_LANES], b[8][F24Q_LANES];
     const f24_t x[8] = { p.hi.x, p.hi.y, p.hi.z, p.lo.x, p.lo.y, p.lo.z, F24_ONE, F24_ONE };
     const f24_t t_lo[F24Q_LANES] = { tlo.x, tlo.y, tlo.z, 0 };
+    const uint32_t n = with_translation ? 8u : 3u; /* a vector's terms: its high words' three */
 wide_terms:
-    for (int k = 0; k < 8; k++)
-        for (int r = 0; r < F24Q_LANES; r++) {
-            a[k][r] = r == 3 ? 0u : k == 7 ? t_lo[r] : m->m[r][k < 6 ? k % 3 : 3];
+    for (uint32_t k = 0; k < n; k++)
+        for (int r = 0; r < F24Q_LANES; r++)
             b[k][r] = x[k];
-        }
+wide_rows:
+    for (int r = 0; r < F24Q_LANES; r++) {
+        const f24_t *row = m->m[r < 3 ? r : 0], on = r < 3 ? ~0u : 0u;
+        a[0][r] = a[3][r] = row[0] & on;
+        a[1][r] = a[4][r] = row[1] & on;
+        a[2][r] = a[5][r] = row[2] & on;
+        a[6][r] = row[3] & on;
+        a[7][r] = t_lo[r];
+    }
     f24_t hi[F24Q_LANES], lo[F24Q_LANES];
-    f24q_sum_exact(a, b, with_translation ? 8u : 3u, hi, lo);
+    f24q_sum_exact(a, b, n, hi, lo);
     const f24_vec3x2 r = { { hi[0], hi[1], hi[2] }, { lo[0], lo[1], lo[2] } };
     return r;
 }

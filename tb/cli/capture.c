@@ -83,10 +83,17 @@ static void words(FILE *f, const uint32_t *w, int n)
         fprintf(f, "%s%06x", i ? " " : "", w[i]);
 }
 
-/* Locks and returns the file of unit u if this transaction is to be recorded. */
+/* The wrappers sit on every render's hot path, capturing or not: each tests this flag and
+ * tail-calls either the unit or its recording path (CAPTURE_PATH: out of line, so that the
+ * wrapper needs no stack frame and keeps no argument). */
+static inline int capturing(void) { return __builtin_expect(cap.on, 0); }
+#define CAPTURE_PATH static __attribute__((noinline, cold))
+
+/* Locks and returns the file of unit u if this transaction is to be recorded (capturing again:
+ * a wrapper that records after the unit's call reaches it also when nothing is captured). */
 static FILE *begin(int u)
 {
-    if (!cap.on)
+    if (!capturing())
         return NULL;
     pthread_mutex_lock(&cap.lock);
     if (cap.n[u] >= cap.limit) {
@@ -128,18 +135,21 @@ static void record_xform(const f24_affine *m, f24_vec3 v, uint32_t point, f24_ve
     end(f);
 }
 
+CAPTURE_PATH f24_vec3 captured_xform(const f24_affine *m, f24_vec3 v, uint32_t point)
+{
+    const f24_vec3 r = point ? __real_xform_point(m, v) : __real_xform_vector(m, v);
+    record_xform(m, v, point, r);
+    return r;
+}
+
 f24_vec3 __wrap_xform_point(const f24_affine *m, f24_vec3 p)
 {
-    const f24_vec3 r = __real_xform_point(m, p);
-    record_xform(m, p, 1, r);
-    return r;
+    return capturing() ? captured_xform(m, p, 1) : __real_xform_point(m, p);
 }
 
 f24_vec3 __wrap_xform_vector(const f24_affine *m, f24_vec3 v)
 {
-    const f24_vec3 r = __real_xform_vector(m, v);
-    record_xform(m, v, 0, r);
-    return r;
+    return capturing() ? captured_xform(m, v, 0) : __real_xform_vector(m, v);
 }
 
 /* ---- the accuracy datapath: the rebase unit and the transformation unit's wide mode ---- */
@@ -152,7 +162,7 @@ f24_vec3x2 __wrap_xform_point_wide(const f24_affine *m, f24_vec3 tlo, f24_vec3x2
 f24_vec3x2 __wrap_xform_vector_wide(const f24_affine *m, f24_vec3 v);
 
 /* With the distance the unit passes on beside p: rebase_distance(t), what trace.c stores as te. */
-f24_vec3x2 __wrap_rebase_origin(f24_vec3x2 o, f24_vec3x2 d, f24_t t)
+CAPTURE_PATH f24_vec3x2 captured_rebase(f24_vec3x2 o, f24_vec3x2 d, f24_t t)
 {
     const f24_vec3x2 p = __real_rebase_origin(o, d, t);
     FILE *f = begin(CAP_REBASE);
@@ -163,6 +173,11 @@ f24_vec3x2 __wrap_rebase_origin(f24_vec3x2 o, f24_vec3x2 d, f24_t t)
     words(f, w, 20);
     end(f);
     return p;
+}
+
+f24_vec3x2 __wrap_rebase_origin(f24_vec3x2 o, f24_vec3x2 d, f24_t t)
+{
+    return capturing() ? captured_rebase(o, d, t) : __real_rebase_origin(o, d, t);
 }
 
 /* A vector is recorded as a point would be, with zero low words and translation low words. */
@@ -179,31 +194,33 @@ static void record_wide(const f24_affine *m, f24_vec3 tlo, f24_vec3x2 p, uint32_
     end(f);
 }
 
+CAPTURE_PATH f24_vec3x2 captured_wide(const f24_affine *m, f24_vec3 tlo, f24_vec3x2 p, uint32_t point)
+{
+    const f24_vec3x2 r = point ? __real_xform_point_wide(m, tlo, p) : __real_xform_vector_wide(m, p.hi);
+    record_wide(m, tlo, p, point, r);
+    return r;
+}
+
 f24_vec3x2 __wrap_xform_point_wide(const f24_affine *m, f24_vec3 tlo, f24_vec3x2 p)
 {
-    const f24_vec3x2 r = __real_xform_point_wide(m, tlo, p);
-    record_wide(m, tlo, p, 1, r);
-    return r;
+    return capturing() ? captured_wide(m, tlo, p, 1) : __real_xform_point_wide(m, tlo, p);
 }
 
 f24_vec3x2 __wrap_xform_vector_wide(const f24_affine *m, f24_vec3 v)
 {
-    const f24_vec3x2 r = __real_xform_vector_wide(m, v);
     const f24_vec3 none = { 0, 0, 0 };
-    record_wide(m, none, (f24_vec3x2){ v, none }, 0, r);
-    return r;
+    return capturing() ? captured_wide(m, none, (f24_vec3x2){ v, none }, 0) : __real_xform_vector_wide(m, v);
 }
 
 /* The intersection unit's datapath sees the ray after the triangle's matrix: the origin from the
  * rebased origin (isect_origin), the direction from the transformation unit (recorded as its
  * transaction), then the test, recorded in full (not early-out), whose hit flag equals the one
  * returned. */
-isect_result __wrap_isect_unit_rebased(const f24_triangle *m, f24_vec3x2 p, f24_t te, f24_vec3 d, f24_t tmin, f24_t tmax)
+CAPTURE_PATH isect_result captured_isect(const f24_triangle *m, f24_vec3x2 p, f24_t te, f24_vec3 d, f24_t tmin,
+                                         f24_t tmax)
 {
     const isect_result r = __real_isect_unit_rebased(m, p, te, d, tmin, tmax);
-    if (!cap.on)
-        return r;
-    const f24_vec3 ot = isect_origin(m, p), dt = __wrap_xform_vector(&m->m, d);
+    const f24_vec3 ot = isect_origin(m, p), dt = captured_xform(&m->m, d, 0);
     const isect_result full = isect_unit_triangle(ot, dt, te, tmin, tmax, m->shared);
     FILE *f = begin(CAP_ISECT);
     if (!f)
@@ -215,8 +232,41 @@ isect_result __wrap_isect_unit_rebased(const f24_triangle *m, f24_vec3x2 p, f24_
     return r;
 }
 
-void __wrap_trav_node_split(const trav_entry *e, uint32_t axis, f24_t split, const f24_vec3 o[], const f24_vec3 d[],
-                            trav_entry *l, trav_entry *r, uint32_t *near_left)
+isect_result __wrap_isect_unit_rebased(const f24_triangle *m, f24_vec3x2 p, f24_t te, f24_vec3 d, f24_t tmin, f24_t tmax)
+{
+    return capturing() ? captured_isect(m, p, te, d, tmin, tmax) : __real_isect_unit_rebased(m, p, te, d, tmin, tmax);
+}
+
+/* The packet form records ray by ray, through the one-ray function it equals bit for bit: the
+ * same transactions in the same order as the unit's stream of rays. */
+void __real_isect_unit_packet(const f24_triangle *m, uint32_t need, const f24_vec3x2 p[F24Q_LANES], const f24_t te[F24Q_LANES],
+                              const f24_vec3 d[F24Q_LANES], const f24_t tmin[F24Q_LANES], const f24_t tmax[F24Q_LANES],
+                              isect_result r[F24Q_LANES]);
+void __wrap_isect_unit_packet(const f24_triangle *m, uint32_t need, const f24_vec3x2 p[F24Q_LANES], const f24_t te[F24Q_LANES],
+                              const f24_vec3 d[F24Q_LANES], const f24_t tmin[F24Q_LANES], const f24_t tmax[F24Q_LANES],
+                              isect_result r[F24Q_LANES]);
+
+CAPTURE_PATH void captured_isect_packet(const f24_triangle *m, uint32_t need, const f24_vec3x2 p[F24Q_LANES],
+                                        const f24_t te[F24Q_LANES], const f24_vec3 d[F24Q_LANES],
+                                        const f24_t tmin[F24Q_LANES], const f24_t tmax[F24Q_LANES],
+                                        isect_result r[F24Q_LANES])
+{
+    for (int i = 0; i < F24Q_LANES; i++)
+        r[i] = need >> i & 1u ? captured_isect(m, p[i], te[i], d[i], tmin[i], tmax[i]) : (isect_result){ 0, 0, 0, 0, 0 };
+}
+
+void __wrap_isect_unit_packet(const f24_triangle *m, uint32_t need, const f24_vec3x2 p[F24Q_LANES], const f24_t te[F24Q_LANES],
+                              const f24_vec3 d[F24Q_LANES], const f24_t tmin[F24Q_LANES], const f24_t tmax[F24Q_LANES],
+                              isect_result r[F24Q_LANES])
+{
+    if (capturing())
+        captured_isect_packet(m, need, p, te, d, tmin, tmax, r);
+    else
+        __real_isect_unit_packet(m, need, p, te, d, tmin, tmax, r);
+}
+
+CAPTURE_PATH void captured_trav(const trav_entry *e, uint32_t axis, f24_t split, const f24_vec3 o[], const f24_vec3 d[],
+                                trav_entry *l, trav_entry *r, uint32_t *near_left)
 {
     __real_trav_node_split(e, axis, split, o, d, l, r, near_left);
     FILE *f = begin(CAP_TRAV);
@@ -241,6 +291,15 @@ void __wrap_trav_node_split(const trav_entry *e, uint32_t axis, f24_t split, con
     fputc(' ', f);
     words(f, r->tf, TRACE_PACKET);
     end(f);
+}
+
+void __wrap_trav_node_split(const trav_entry *e, uint32_t axis, f24_t split, const f24_vec3 o[], const f24_vec3 d[],
+                            trav_entry *l, trav_entry *r, uint32_t *near_left)
+{
+    if (capturing())
+        captured_trav(e, axis, split, o, d, l, r, near_left);
+    else
+        __real_trav_node_split(e, axis, split, o, d, l, r, near_left);
 }
 
 /* ---- list unit: list_unit_entry and list_mailboxes_clear, per trace_state ---- */
@@ -278,7 +337,7 @@ static void record_list(int id, uint32_t level, const uint32_t in[7], const uint
     end(f);
 }
 
-void __wrap_list_mailboxes_clear(trace_mailbox box[TRACE_PACKET])
+CAPTURE_PATH void captured_clear(trace_mailbox box[TRACE_PACKET])
 {
     __real_list_mailboxes_clear(box);
     FILE *f = begin(CAP_LIST);
@@ -295,8 +354,16 @@ void __wrap_list_mailboxes_clear(trace_mailbox box[TRACE_PACKET])
     record_list(id, level, in, out);
 }
 
-uint32_t __wrap_list_unit_entry(const uint32_t *mem, trav_walker *w, trace_mailbox box[TRACE_PACKET], uint32_t alive,
-                                uint32_t *key, unit_op *op, trace_counters *c)
+void __wrap_list_mailboxes_clear(trace_mailbox box[TRACE_PACKET])
+{
+    if (capturing())
+        captured_clear(box);
+    else
+        __real_list_mailboxes_clear(box);
+}
+
+CAPTURE_PATH uint32_t captured_list(const uint32_t *mem, trav_walker *w, trace_mailbox box[TRACE_PACKET], uint32_t alive,
+                                    uint32_t *key, unit_op *op, trace_counters *c)
 {
     const trav_walker before = *w;
     const uint64_t skips = c->mailbox_skips;
@@ -312,6 +379,12 @@ uint32_t __wrap_list_unit_entry(const uint32_t *mem, trav_walker *w, trace_mailb
                    out[4] = { *key, need, (uint32_t)(c->mailbox_skips - skips), w->k };
     record_list(id, level, in, out);
     return need;
+}
+
+uint32_t __wrap_list_unit_entry(const uint32_t *mem, trav_walker *w, trace_mailbox box[TRACE_PACKET], uint32_t alive,
+                                uint32_t *key, unit_op *op, trace_counters *c)
+{
+    return capturing() ? captured_list(mem, w, box, alive, key, op, c) : __real_list_unit_entry(mem, w, box, alive, key, op, c);
 }
 
 /* ---- memory interface (cycle mode): every read with its timing and cache lookups ---- */
@@ -361,7 +434,7 @@ void __wrap_mem_iface_new_frame(mem_iface *m)
     end(f);
 }
 
-uint64_t __wrap_mem_iface_read(mem_iface *m, uint32_t kind, uint32_t word_addr, uint32_t words, uint64_t now)
+CAPTURE_PATH uint64_t captured_read(mem_iface *m, uint32_t kind, uint32_t word_addr, uint32_t words, uint64_t now)
 {
     const uint64_t l0 = kind < MEM_KINDS ? m->stats.lookups[kind] : 0, h0 = kind < MEM_KINDS ? m->stats.hits[kind] : 0;
     const uint64_t at = __real_mem_iface_read(m, kind, word_addr, words, now);
@@ -374,6 +447,11 @@ uint64_t __wrap_mem_iface_read(mem_iface *m, uint32_t kind, uint32_t word_addr, 
             (unsigned long long)(m->stats.hits[kind] - h0));
     end(f);
     return at;
+}
+
+uint64_t __wrap_mem_iface_read(mem_iface *m, uint32_t kind, uint32_t word_addr, uint32_t words, uint64_t now)
+{
+    return capturing() ? captured_read(m, kind, word_addr, words, now) : __real_mem_iface_read(m, kind, word_addr, words, now);
 }
 
 /* The scheduler's events (cycle_sim.h): "N pipe threads" where a pipe starts a frame, "R pipe

@@ -19,7 +19,7 @@
  * rebase_distance(t)), DIR/wide.hex (xform_point_wide and xform_vector_wide: 12 matrix words, the
  * translation's 3 low words, p hi, p lo, point flag; r hi, r lo; a vector with zero low words).
  * The hls/ units are not touched: the program is linked with --wrap for xform_point, xform_vector,
- * isect_unit_rebased, trav_node_split, list_unit_entry, list_mailboxes_clear, mem_iface_read,
+ * isect_unit_rebased, isect_unit_packet (recorded ray by ray), trav_node_split, list_unit_entry, list_mailboxes_clear, mem_iface_read,
  * mem_iface_flush, mem_iface_new_frame, rgs_block_begin, rebase_origin, xform_point_wide and xform_vector_wide
  * (called from trace.c, in another object), and the wrappers record the calls while capturing is on
  * (at most `limit` transactions per unit; recorded in call order, which with several host threads

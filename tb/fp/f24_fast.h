@@ -185,6 +185,7 @@ F24V_INLINE f24v f24v_pick(uint32_t mask, f24v a, f24v b) /* lane i of a where m
     return (f24v)f24v_select(m, (f24v_i)a, (f24v_i)b);
 }
 F24V_INLINE uint32_t f24v_le(f24v a, f24v b) { return f24v_mask(a <= b); }
+F24V_INLINE uint32_t f24v_lt(f24v a, f24v b) { return f24v_mask(a < b); }
 F24V_INLINE uint32_t f24v_sign(f24v a) { return f24v_mask((f24v_i)a < 0); }
 
 /* f24q_sum_exact (hls/fp24/f24.h) on vectors (tb/fp/f24_fast_sum.c) */
@@ -225,6 +226,7 @@ typedef f24v f24q;
 #define f24q_lane f24v_lane
 #define f24q_select f24v_pick
 #define f24q_le f24v_le
+#define f24q_lt f24v_lt
 #define f24q_sign f24v_sign
 #define f24q_sum_exact f24_fast_sum_exact_lanes
 #endif

@@ -198,17 +198,62 @@ static inline __attribute__((always_inline)) f24v margin_lanes(f24v x, f24v err,
     return 2 * err + (f24v)((f24v_i)(abs_lanes(x) * 0x1p-50) & inexact);
 }
 
+typedef struct { f24v s, e; } f24v_dd;
+
+/* two_sum per lane */
+static inline __attribute__((always_inline)) f24v_dd two_sum_lanes(f24v a, f24v b)
+{
+    const f24v s = a + b, bb = s - a;
+    return (f24v_dd){ s, (a - (s - bb)) + (b - bb) };
+}
+
+/* round_dd per lane, before the encoding: r moved one binary64 ulp toward rr where r is an fp24
+ * tie and rr != 0 */
+static inline __attribute__((always_inline)) f24v tie_lanes(f24v r, f24v rr)
+{
+    enum { SHIFT = 52 - F24_MAN_BITS };
+    const f24v_i bits = (f24v_i)r, tie = ((bits & ((1ll << SHIFT) - 1)) == (1ll << (SHIFT - 1))) & (rr != 0);
+    const f24v_i away = (rr < 0) == (r < 0); /* away from zero: +1 on the magnitude, else -1 */
+    return (f24v)(bits + (tie & ((away & 1) | ~away)));
+}
+
+/* f24_fast_sum_exact's double-double path per lane on the products p (their magnitudes' sum mass
+ * within the window): hi and lo where the error sum is exact and the sum finite, as a lane mask. */
+static inline __attribute__((always_inline)) f24v_i dd_lanes(const f24v p[], uint32_t n, f24_t hi[F24Q_LANES],
+                                                             f24_t lo[F24Q_LANES])
+{
+    f24v s = p[0], e = { 0, 0, 0, 0 };
+    f24v_i exact = e == e;
+    for (uint32_t k = 1; k < n; k++) {
+        const f24v_dd t = two_sum_lanes(s, p[k]), u = two_sum_lanes(e, t.e);
+        s = t.s;
+        e = u.s;
+        exact &= u.e == 0;
+    }
+    const f24v_dd sum = two_sum_lanes(s, e);
+    const f24v_i zero = sum.s == 0; /* all products zero (signed zero) or an exact cancellation (+0) */
+    const f24v hi_d = f24v_round(tie_lanes(sum.s, sum.e));
+    const f24v_i hi_special = (hi_d == 0) | (abs_lanes(hi_d) == e + __builtin_inf());
+    const f24v_dd rest = two_sum_lanes(sum.s - hi_d, sum.e);
+    f24v_bits((f24v)f24v_select(zero, (f24v_i)s & (f24v_i)(s == 0), (f24v_i)hi_d), hi);
+    f24v_bits((f24v)((f24v_i)tie_lanes(rest.s, rest.e) & ~(zero | hi_special | (rest.s == 0))), lo);
+    return exact & (s - s == 0);
+}
+
 /* f24_fast_sum_exact of the four lanes at once (n <= F24_SUM_TERMS): f24_fast_sum_filter on
- * vectors, the products summed in order; a lane it cannot decide goes to f24_fast_sum_exact
- * alone. */
+ * vectors, the products summed in order, then for the lanes it cannot decide (cancellation: the
+ * plane distance of isect_unit.c) the double-double path on vectors; a lane neither decides goes
+ * to f24_fast_sum_exact alone. */
 F24V_FN void f24_fast_sum_exact_lanes(const f24_t a[][F24Q_LANES], const f24_t b[][F24Q_LANES], uint32_t n,
                                       f24_t hi[F24Q_LANES], f24_t lo[F24Q_LANES])
 {
     const f24v zero = { 0, 0, 0, 0 }, inf = zero + __builtin_inf();
     f24v sum = -zero, mass = zero, least = inf; /* -0: -0 only if all products are -0 */
+    f24v p[F24_SUM_TERMS];
     for (uint32_t k = 0; k < n; k++) {
-        const f24v p = f24v_of(a[k]) * f24v_of(b[k]), m = abs_lanes(p); /* exact */
-        sum += p;
+        p[k] = f24v_of(a[k]) * f24v_of(b[k]); /* exact */
+        const f24v m = abs_lanes(p[k]);
+        sum += p[k];
         mass += m;
         least = (f24v)f24v_select((m != 0) & (m < least), (f24v_i)m, (f24v_i)least);
     }
@@ -220,9 +265,18 @@ F24V_FN void f24_fast_sum_exact_lanes(const f24_t a[][F24Q_LANES], const f24_t b
                       (hi_special | rounds_alike_lanes(rest, margin_lanes(rest, err, ~exact))) & (n > 0 ? -1ll : 0);
     f24v_bits(sum, hi);
     f24v_bits((f24v)((f24v_i)rest & ~(hi_special | (rest == 0))), lo);
+    f24v_i dd = { 0, 0, 0, 0 };
+    f24_t dd_hi[F24Q_LANES], dd_lo[F24Q_LANES];
+    if (n > 0 && (ok[0] & ok[1] & ok[2] & ok[3]) == 0)
+        dd = window & dd_lanes(p, n, dd_hi, dd_lo);
     for (int i = 0; i < F24Q_LANES; i++) {
         if (ok[i])
             continue;
+        if (dd[i]) {
+            hi[i] = dd_hi[i];
+            lo[i] = dd_lo[i];
+            continue;
+        }
         f24_t ai[F24_SUM_TERMS], bi[F24_SUM_TERMS];
         for (uint32_t k = 0; k < n; k++) {
             ai[k] = a[k][i];
