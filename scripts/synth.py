@@ -29,7 +29,7 @@ build/synth/synth.json (the other modules' figures as they were) before writing 
 build/synth/synth.json again (keys as in that file, or new ones such as x:rebase_unit:e7m16) and
 rewrites it and docs/synth.md.
 """
-import concurrent.futures as cf, json, os, re, subprocess, sys, tempfile, time
+import concurrent.futures as cf, json, os, re, shlex, subprocess, sys, tempfile, time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RTL = sorted(os.path.join(ROOT, "rtl", f) for f in os.listdir(os.path.join(ROOT, "rtl")) if f.endswith(".sv"))
@@ -250,7 +250,7 @@ REDONE = os.path.join(OUT, "redone.txt")
 
 
 def redone():
-    return open(REDONE).read().split() if os.path.exists(REDONE) else []
+    return [k for k in open(REDONE).read().splitlines() if k] if os.path.exists(REDONE) else []
 
 
 def redo(keys):
@@ -259,17 +259,21 @@ def redo(keys):
     with open(REDONE, "w") as f:
         f.write("".join(k + "\n" for k in before + [k for k in keys if k not in before]))
     res = {parse_key(k): v for k, v in json.load(open(os.path.join(OUT, "synth.json"))).items()}
-    for key in keys:
+
+    def measure(key):
         kind, top, m = parse_key(key)
         mm, _, opt = str(m).partition(":")
         if kind == "c":
-            res[(kind, top, m)] = next(control(n, t, p) for n, t, p, _ in CONTROL if n == top)
-        elif kind == "i":
-            res[(kind, top, m)] = ice40(top, 7, int(mm))
-        else:
-            res[(kind, top, m)] = xilinx(top, 7, int(mm), int(opt[4:]) if opt.startswith("edge") else 0,
-                                         int(opt[1:]) if opt.startswith("n") else 0)
-        print(f"synth: {key}: {res[(kind, top, m)]}", file=sys.stderr, flush=True)
+            return next(control(n, t, p) for n, t, p, _ in CONTROL if n == top)
+        if kind == "i":
+            return ice40(top, 7, int(mm))
+        return xilinx(top, 7, int(mm), int(opt[4:]) if opt.startswith("edge") else 0,
+                      int(opt[1:]) if opt.startswith("n") else 0)
+
+    with cf.ThreadPoolExecutor(max_workers=2) as pool:  # two Yosys processes at a time, as a whole run
+        for key, r in zip(keys, pool.map(measure, keys)):
+            res[parse_key(key)] = r
+            print(f"synth: {key}: {r}", file=sys.stderr, flush=True)
     json.dump({f"{k[0]}:{k[1]}:e7m{k[2]}": v for k, v in res.items()}, open(os.path.join(OUT, "synth.json"), "w"), indent=1)
     write(res)
 
@@ -334,7 +338,7 @@ def write(res):
           "Before: each operator a combinational core followed by its delay line (make synth at commit 0abb082, "
           f"2026-11-24); after: registers inside the operators at the default STAGES (`make synth`, "
           f"{time.strftime('%Y-%m-%d', time.gmtime())}"
-          + (f"; re-measured with `python3 scripts/synth.py --redo {' '.join(redone())}`" if redone() else "") + ").", "",
+          + (f"; re-measured with `python3 scripts/synth.py --redo {' '.join(shlex.quote(k) for k in redone())}`" if redone() else "") + ").", "",
           "| operator | latency before | LUT4 before | FFs before | Fmax MHz before | latency (STAGES) | LUT4 | FFs | Fmax MHz |",
           "|---|---:|---:|---:|---:|---:|---:|---:|---:|"] + [
           f"| {t}{' (N = 1)' if t == 'f24_sum_exact' else ''} | "
