@@ -89,7 +89,8 @@ SIM_SRCS = $(MEMIMAGE) $(HLS_UNITS) $(CYCLE) $(REF) $(CLI)
 # render --capture-unit-io records the units' calls through linker wrappers (tb/cli/capture.c)
 comma := ,
 CAPTURE_WRAP := $(addprefix -Wl$(comma)--wrap=,xform_point xform_vector isect_unit_rebased trav_node_split \
-  list_unit_entry list_mailboxes_clear mem_iface_read mem_iface_flush mem_iface_new_frame)
+  list_unit_entry list_mailboxes_clear mem_iface_read mem_iface_flush mem_iface_new_frame trav_scene_clip trav_object_clip \
+  trav_start trav_walk)
 
 # per-format objects: everything that depends on the fp24 parameters
 fp_objs = $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(HLS_FP24) $(TB_FP))

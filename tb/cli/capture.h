@@ -10,10 +10,14 @@
  * rtl/tb/tb_cache.cpp: per pipe a line "C pipe" with the cache sizes and line bytes of the four
  * kinds, the latency and the port's occupancy per byte in 1/65536 cycles, then per read of the
  * memory interface: pipe, kind, word address, words, cycle, the cycle its data is at the unit,
- * lookups, hits; "N pipe" where a frame starts, "F pipe" where the caches are emptied). The hls/
+ * lookups, hits; "N pipe" where a frame starts, "F pipe" where the caches are emptied),
+ * DIR/trav_unit.hex (the traversal unit's operations, for rtl/tb/tb_trav.cpp: scene and object
+ * clips, walk starts and steps per thread and level with their operands, the node read and the
+ * walker state after; the layout at record_trav in capture.c). The hls/
  * units are not touched: the program is linked with --wrap for xform_point, xform_vector,
  * isect_unit_rebased, trav_node_split, list_unit_entry, list_mailboxes_clear, mem_iface_read,
- * mem_iface_flush and mem_iface_new_frame, and the wrappers record the calls while capturing is on
+ * mem_iface_flush, mem_iface_new_frame, trav_scene_clip, trav_object_clip, trav_start and
+ * trav_walk, and the wrappers record the calls while capturing is on
  * (at most `limit` transactions per unit; recorded in call order, which with several host threads
  * interleaves).
  */
@@ -25,8 +29,8 @@
 /* 0, or -1 with a message in err if DIR cannot be made or its files written. */
 int capture_start(const char *dir, uint64_t limit, char *err, unsigned errlen);
 
-/* Transactions recorded per unit: xform, isect, trav, list, mem. */
-#define CAPTURE_UNITS 5
+/* Transactions recorded per unit: xform, isect, trav, list, mem, trav_unit. */
+#define CAPTURE_UNITS 6
 void capture_counts(uint64_t out[CAPTURE_UNITS]);
 
 /* Closes the files; 0, or -1 if writing failed. */

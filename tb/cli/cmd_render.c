@@ -755,9 +755,9 @@ int cmd_render(int argc, char **argv)
             cli_error("render", "--capture-unit-io: writing the vectors in '%s' failed", ro.capture);
             rc = SAARCOR_EXIT_INPUT;
         } else {
-            printf("captured unit transactions in %s: xform %llu, isect %llu, trav %llu, list %llu, mem %llu\n",
+            printf("captured unit transactions in %s: xform %llu, isect %llu, trav %llu, list %llu, mem %llu, trav_unit %llu\n",
                    ro.capture, (unsigned long long)n[0], (unsigned long long)n[1], (unsigned long long)n[2],
-                   (unsigned long long)n[3], (unsigned long long)n[4]);
+                   (unsigned long long)n[3], (unsigned long long)n[4], (unsigned long long)n[5]);
         }
     }
     mi_free(b);
