@@ -13,7 +13,8 @@
 #   make widths     build build/w/<format>/saarcor for every tested fp24 format
 #   make rtl-test   Verilator co-simulation of rtl/ against the C model (operators at 6 formats with
 #                   10^6 vectors each, units on random and captured vectors; the list unit and the
-#                   caches with the memory port on cycle-mode frames of room, terrain, plants), lint
+#                   caches with the memory port and the traversal unit on cycle-mode frames of room,
+#                   terrain, plants), lint
 #   make synth      Yosys synthesis figures -> docs/synth.md
 #   make bench-precision  every format against the binary64 reference: time, cycles, PSNR, plots
 #   make results    docs/results.md from build/bench/ (run after make bench)
@@ -223,7 +224,7 @@ test: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(BUILD)/baseline HOST_BUILD=$(BUILD) SIM_LANES=baseline $(BUILD)/baseline/saarcor
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(O0_BUILD) OPT='-O0 -g' $(O0_BUILD)/saarcor
 	@$(MAKE) --no-print-directory $(BUILD)/rtl/$(DEFAULT_FMT)/tb_f24_ops $(BUILD)/rtl/$(DEFAULT_FMT)/tb_units $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sum \
-	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_list $(BUILD)/rtl/$(DEFAULT_FMT)/tb_cache
+	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_list $(BUILD)/rtl/$(DEFAULT_FMT)/tb_cache $(BUILD)/rtl/$(DEFAULT_FMT)/tb_trav
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 test-programs
 	@$(MAKE) --no-print-directory -j$$(nproc) robust
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 fuzz-replay
@@ -341,7 +342,7 @@ rtl-lint:
 # every operator at every format: edge set + RTL_N random vectors per operation class (+ golden hex)
 rtl-test: deps rtl-lint
 	@$(MAKE) --no-print-directory all $(foreach f,$(RTL_FORMATS),$(BUILD)/rtl/$(f)/tb_f24_ops $(BUILD)/rtl/$(f)/tb_units $(BUILD)/rtl/$(f)/tb_sum) \
-	  $(foreach f,$(DEFAULT_FMT) e8m23,$(BUILD)/rtl/$(f)/tb_list $(BUILD)/rtl/$(f)/tb_cache)
+	  $(foreach f,$(DEFAULT_FMT) e8m23,$(BUILD)/rtl/$(f)/tb_list $(BUILD)/rtl/$(f)/tb_cache $(BUILD)/rtl/$(f)/tb_trav)
 	@mkdir -p $(BUILD)/rtl/capture
 	@set -o pipefail; for f in $(RTL_FORMATS); do \
 	  extra=; [ $$f = $(DEFAULT_FMT) ] && extra=$$(ls tests/golden/f24/{add,sub,mul,div,lt,le,eq,min,max}.hex); \
@@ -353,18 +354,21 @@ rtl-test: deps rtl-lint
 	    $(BUILD)/rtl/$$f/tb_units -n 0 --capture $(BUILD)/rtl/capture/$$s.$$f || exit 1; done; done | tee $(BUILD)/rtl/units.log
 	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_units -n $(RTL_N) || exit 1; done \
 	  | tee -a $(BUILD)/rtl/units.log
-	@# list unit and memory interface: a cycle-mode frame at the paper's 64 threads per pipe
+	@# list unit, memory interface and traversal unit: a cycle-mode frame at the paper's 64 threads per pipe
 	@set -o pipefail; for s in room terrain plants; do \
 	  for f in $(DEFAULT_FMT) e8m23; do \
 	    $(BUILD)/w/$$f/saarcor render $$s -o $(BUILD)/rtl/$$s.$$f.cycle.png --width 128 --height 96 --mode cycle \
 	      --threads-per-pipe 64 --capture-unit-io $(BUILD)/rtl/capture/$$s.$$f.cycle --capture-limit 1000000 >/dev/null || exit 1; \
 	    $(BUILD)/rtl/$$f/tb_list -n $$(( $(RTL_N) / 10 )) --capture $(BUILD)/rtl/capture/$$s.$$f.cycle || exit 1; \
-	    $(BUILD)/rtl/$$f/tb_cache --capture $(BUILD)/rtl/capture/$$s.$$f.cycle || exit 1; done; done | tee $(BUILD)/rtl/memory.log
+	    $(BUILD)/rtl/$$f/tb_cache --capture $(BUILD)/rtl/capture/$$s.$$f.cycle || exit 1; \
+	    $(BUILD)/rtl/$$f/tb_trav -n $$(( $(RTL_N) / 10 )) --capture $(BUILD)/rtl/capture/$$s.$$f.cycle || exit 1; \
+	  done; done | tee $(BUILD)/rtl/memory.log
 	@mkdir -p $(BUILD)/rtl/animated
 	@set -o pipefail; $(BUILD)/saarcor render animated -o $(BUILD)/rtl/animated/a.png --width 128 --height 96 --mode cycle \
 	  --threads-per-pipe 64 --frames 0:3 --capture-unit-io $(BUILD)/rtl/capture/animated.cycle --capture-limit 1000000 >/dev/null \
-	  && $(BUILD)/rtl/$(DEFAULT_FMT)/tb_list -n 0 --capture $(BUILD)/rtl/capture/animated.cycle \
-	  && $(BUILD)/rtl/$(DEFAULT_FMT)/tb_cache --capture $(BUILD)/rtl/capture/animated.cycle | tee -a $(BUILD)/rtl/memory.log
+	  && { $(BUILD)/rtl/$(DEFAULT_FMT)/tb_list -n 0 --capture $(BUILD)/rtl/capture/animated.cycle \
+	  && $(BUILD)/rtl/$(DEFAULT_FMT)/tb_cache --capture $(BUILD)/rtl/capture/animated.cycle \
+	  && $(BUILD)/rtl/$(DEFAULT_FMT)/tb_trav -n 0 --capture $(BUILD)/rtl/capture/animated.cycle; } | tee -a $(BUILD)/rtl/memory.log
 	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_sum -n $(RTL_N) || exit 1; done \
 	  | tee -a $(BUILD)/rtl/units.log
 

@@ -35,11 +35,14 @@
 // planes through it: the lo plane of an axis narrows [tn, tf] as the node's right child does, the
 // hi plane as its left child, so that every max and min happens in hls/units order) and 8 f24_cmp
 // (the prune, the restart's drop of done cells, the restart).
-// Control: one operation at a time (a small FSM); latency per operation at the defaults
-// (trav_node 21, comparator 2) and a memory answering at once: start 2 cycles, walk step at an
-// inner node 1 + (CMP + 1) + 3 + (NODE + 1) + 2 = 31 (+ CMP + 2 with a pop in the prune, + 1 for a
-// pop at the end, + CMP + 1 in a restarted pass, + 2 CMP + 2 for a restart), at a leaf 9,
-// clip 6 (NODE + 1) + 2 = 134; throughput one operation per latency (II = latency).
+// Control: one operation at a time (a small FSM). Latency from the operation's transfer to the
+// result's, at the defaults (trav_node NODE = 21, comparator CMP = 2) with a memory answering in
+// the cycle after the request: start 1; walk step at an inner node 1 (walker read) + (CMP + 1)
+// (prune) + 1 + 2 (node request, response) + (NODE + 1) (split) + 2 (push, pop) = 31, at a leaf
+// 9, without a node read (every ray pruned) 6; + CMP + 2 when the pruned entry is dropped and the
+// next popped, + 1 for a pop at the end, + CMP in a restarted pass, + 2 CMP for a restart; clip
+// 6 (NODE + 1) + 2 = 134 (its planes one after the other through trav_node). The next operation
+// is accepted in the cycle after the result leaves: II = latency + 1.
 // Handshake: valid/ready at the operation input, the result output and the node read request;
 // the node response (node_rsp_valid_i with w0, w1) is taken when it comes.
 module trav_unit #(

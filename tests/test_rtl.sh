@@ -6,9 +6,11 @@
 # dot product (rtl/f24_sum_exact.sv) matches hls/fp24/f24_sum_exact.c on 10^5 sets; the list unit
 # (rtl/list_unit.sv) matches hls/units/list_unit.c on the operations of a cycle-mode frame of the
 # room at 64 threads and 5 x 10^4 random ones, and the caches with the memory port
-# (rtl/cache_dm.sv, mem_port.sv) the cycle model's caches on that frame's reads; the benches catch
-# mutants (a rounder that never rounds ties to even, a mailbox that never moves on, a cache
-# without its tag forwarding). Prints cmocka-style lines.
+# (rtl/cache_dm.sv, mem_port.sv) the cycle model's caches on that frame's reads; the traversal
+# unit (rtl/trav_unit.sv) matches hls/units/trav_unit.c (TRAV_STACK) on that frame's operations and
+# 2 x 10^4 random ones that overflow its stacks; the benches catch mutants (a rounder that never
+# rounds ties to even, a mailbox that never moves on, a cache without its tag forwarding, a walk
+# that pushes the near child, an overflow that sets no lost). Prints cmocka-style lines.
 set -u
 cd "$(dirname "$0")/.."
 B=${BUILD:-build}
@@ -71,6 +73,22 @@ mutant() {
   grep -c MISMATCH "$d/log" | sed "s/^/mutant $file caught by tb_$name: /; s/$/ mismatch lines shown/"
 }
 
+t_trav_unit() {
+  [[ -f "$T/capc/trav_unit.hex" ]] || "$BIN" render room -o "$T/room_cycle.png" --width 48 --height 32 --mode cycle \
+    --threads-per-pipe 64 --capture-unit-io "$T/capc" --capture-limit 200000 >/dev/null
+  "$B/rtl/e7m16/tb_trav" -n 20000 --capture "$T/capc" | tee "$T/trav.log"
+  # the random walks must have overflowed stacks and restarted, else the overflow path went unchecked
+  grep -Eq ", [1-9][0-9]* stack overflows, [1-9][0-9]* restarts" "$T/trav.log"
+}
+
+t_trav_mutants_caught() { # the near child pushed instead of the far one; an overflow that sets no lost
+  [[ -f "$T/capc/trav_unit.hex" ]] || "$BIN" render room -o "$T/room_cycle.png" --width 48 --height 32 --mode cycle \
+    --threads-per-pipe 64 --capture-unit-io "$T/capc" --capture-limit 200000 >/dev/null
+  mutant trav trav_unit.sv "s/stk_mem\[{idx, top}\] <= first_near_left ?/stk_mem[{idx, top}] <= !first_near_left ?/" \
+    -n 0 --capture "$T/capc" &&
+    mutant trav trav_unit.sv "s/if (sp == SPW'(DEPTH)) lost <= 1'b1;/if (sp == SPW'(DEPTH)) lost <= 1'b0;/" -n 20000
+}
+
 t_list_cache_mutants_caught() {
   [[ -f "$T/capc/list.hex" ]] || "$BIN" render room -o "$T/room_cycle.png" --width 48 --height 32 --mode cycle \
     --threads-per-pipe 64 --capture-unit-io "$T/capc" --capture-limit 200000 >/dev/null
@@ -99,5 +117,7 @@ run_case rtl_units_match_c_model_and_capture t_units
 run_case rtl_exact_sum_matches_c_model t_exact_sum
 run_case rtl_list_unit_and_caches_match_c_model t_list_and_cache
 run_case rtl_list_cache_benches_catch_mutants t_list_cache_mutants_caught
+run_case rtl_trav_unit_matches_c_model_and_capture t_trav_unit
+run_case rtl_trav_bench_catches_mutants t_trav_mutants_caught
 run_case rtl_bench_catches_mutant t_mutant_caught
 exit $((fails != 0))

@@ -14,6 +14,7 @@
 // A mismatch prints the unit, the operation, its kind, the cycle, thread, level, the field and
 // both values; exit code 1.
 // usage: tb_trav [-n N] [--seed S] [--capture DIR]
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -439,7 +440,7 @@ int main(int argc, char **argv)
     uint32_t rsp_wait = 0, rsp_addr = 0;
     bool rsp_pending = false;
     uint64_t kinds[4] = {}, kind_cycles[4] = {}, started = 0, vs_capture = 0, overflows = 0, restarts = 0, leaves = 0;
-    uint64_t lists = 0, reads = 0;
+    uint64_t lists = 0, reads = 0, step_n[3] = {}, step_cycles[3] = {}, step_max[3] = {};
     for (; done < total; g_cycle++) {
         if (g_cycle > 400 * total + 1000) {
             std::printf("PROTOCOL: trav_unit stopped (%zu of %zu operations done)\n", done, total);
@@ -486,6 +487,12 @@ int main(int argc, char **argv)
             }
             kinds[cur.kind]++;
             kind_cycles[cur.kind] += g_cycle - started;
+            if (cur.captured && cur.kind == 3) { // latency without memory latency and back pressure
+                const int at = expect.addr == NONE ? 0 : expect.leaf ? 1 : 2;
+                step_n[at]++;
+                step_cycles[at] += g_cycle - started;
+                step_max[at] = std::max(step_max[at], g_cycle - started);
+            }
             busy = false;
             done++;
         }
@@ -532,5 +539,13 @@ int main(int argc, char **argv)
                 kinds[2] ? (double)kind_cycles[2] / (double)kinds[2] : 0.0,
                 kinds[3] ? (double)kind_cycles[3] / (double)kinds[3] : 0.0, (unsigned long long)g_cycle,
                 (unsigned long long)g_mismatches);
+    if (captured) {
+        std::printf("tb_trav: captured walk steps, cycles from operation to result (memory answering at once):");
+        const char *const at[3] = { "no node read", "leaf", "inner node" };
+        for (int k = 0; k < 3; k++)
+            std::printf("%s %s %llu x %.1f (max %llu)", k ? ";" : "", at[k], (unsigned long long)step_n[k],
+                        step_n[k] ? (double)step_cycles[k] / (double)step_n[k] : 0.0, (unsigned long long)step_max[k]);
+        std::printf("\n");
+    }
     return g_mismatches ? 1 : 0;
 }
