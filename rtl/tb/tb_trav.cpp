@@ -441,7 +441,7 @@ int main(int argc, char **argv)
     bool rsp_pending = false;
     uint64_t kinds[4] = {}, kind_cycles[4] = {}, started = 0, vs_capture = 0, overflows = 0, restarts = 0, leaves = 0;
     uint64_t lists = 0, reads = 0, step_n[3] = {}, step_cycles[3] = {}, step_max[3] = {};
-    for (; done < total; g_cycle++) {
+    for (; done < total && g_mismatches < 20; g_cycle++) { // after 20 the walkers have parted anyway
         if (g_cycle > 400 * total + 1000) {
             std::printf("PROTOCOL: trav_unit stopped (%zu of %zu operations done)\n", done, total);
             return 1;
@@ -526,11 +526,11 @@ int main(int argc, char **argv)
         top.eval();
     }
     top.final();
-    std::printf("tb_trav: %zu operations (%zu captured) compared with the C unit (%llu also with the capture): "
+    std::printf("tb_trav: %zu of %zu operations (%zu captured) compared with the C unit (%llu also with the capture): "
                 "scene clips %llu, object clips %llu, starts %llu, walk steps %llu (%llu node reads, %llu leaves, %llu "
                 "with entries, %llu stack overflows, %llu restarts); cycles per operation %.1f, %.1f, %.1f, %.1f; "
                 "%llu cycles; %llu mismatches\n",
-                ops.size(), captured, (unsigned long long)vs_capture, (unsigned long long)kinds[0],
+                done, total, captured, (unsigned long long)vs_capture, (unsigned long long)kinds[0],
                 (unsigned long long)kinds[1], (unsigned long long)kinds[2], (unsigned long long)kinds[3],
                 (unsigned long long)reads, (unsigned long long)leaves, (unsigned long long)lists,
                 (unsigned long long)overflows, (unsigned long long)restarts,
