@@ -50,6 +50,7 @@ module trav_unit #(
   parameter int M = 16,
   parameter int THREADS = 64,
   parameter int DEPTH = 64,       // TRACE_STACK: stack entries per thread and level (a power of 2)
+  parameter int CTX = 4,          // operations in flight (of different threads or levels)
   parameter int AW = 32,          // word addresses and node indices
   parameter int ADD_STAGES = 6,
   parameter int DIV_STAGES = 11,
@@ -73,6 +74,8 @@ module trav_unit #(
   output logic                        node_req_valid_o,
   input  logic                        node_req_ready_i,
   output logic [AW-1:0]               node_addr_o,
+  output logic [$clog2(THREADS)-1:0]  node_thread_o,  // whose node: routing, statistics
+  output logic                        node_level_o,
   input  logic                        node_rsp_valid_i,
   input  logic [31:0]                 node_w0_i,
   input  logic [31:0]                 node_w1_i,
@@ -103,308 +106,175 @@ module trav_unit #(
   localparam int TPW = $clog2(DEPTH);
   localparam int ENW = AW + 4 + 8 * W;        // a stack entry {node, mask, tn, tf}
   localparam int STW = ENW + 3 + SPW + TPW + AW + 4 + 12 * W;
-  localparam logic [1:0] K_OBJECT = 2'd1, K_START = 2'd2, K_WALK = 2'd3;
-  localparam logic [E-1:0] EMAX = '1;
-  localparam logic [W-1:0] POS_INF = {1'b0, EMAX, {M{1'b0}}};
+  localparam int CW = CTX > 1 ? $clog2(CTX) : 1;
+  localparam int NODE_LATENCY = ADD_STAGES + DIV_STAGES + 2 * CMP_STAGES; // trav_node's
   if (DEPTH < 2 || (DEPTH & (DEPTH - 1)) != 0) begin : g_depth_check
     $error("trav_unit: DEPTH is a power of 2 (the circular stack's top pointer wraps)");
   end
 
-  typedef enum logic [4:0] {
-    S_IDLE, S_PRUNE_GO, S_PRUNE, S_POP, S_AFTER, S_REQ, S_RSP, S_DECODE, S_NODE, S_DROP, S_CHOOSE, S_END,
-    S_END_POP, S_RST_MAX, S_RST_CMP, S_CLIP_GO, S_CLIP, S_CLIP_END, S_OUT
-  } state_t;
-  state_t st;
-
-  // the operation
-  logic [IW-1:0] idx;
-  logic [1:0] kind;
-  logic [4*3*W-1:0] op_o, op_d;
-  logic [4*W-1:0] op_tn, op_tf, op_best;
-  logic [3:0] op_mask;
-  logic [6*W-1:0] op_box;
-
-  // the walker state of (thread, level) while the operation runs
-  logic [AW-1:0] cur_node, nodes;
-  logic [3:0] cur_mask, root_mask;
-  logic [4*W-1:0] cur_tn, cur_tf, root_tn, root_tf, t_exit;
-  logic have_cur, lost, restarted;
-  logic [SPW-1:0] sp;
-  logic [TPW-1:0] top;
-
-  // step results
-  logic popped, leaf, list;
-  logic [31:0] w0, w1;
-  logic [4*W-1:0] leaf_tn;
-  logic [3:0] leaf_mask;
-  logic [AW-1:0] l_node, r_node;
-  logic [3:0] l_mask, r_mask, near_left;
-  logic [4*W-1:0] l_tn, l_tf, r_tn, r_tf;
-  logic [2:0] pass;                 // clip: the slab plane (axis = pass / 2, hi when odd)
-  logic [3:0] clip_mask;
-  logic [4*W-1:0] cl_n, cl_f;
-
   // memories: the walker state and the stacks
   logic [STW-1:0] st_mem [2*THREADS];
   logic [ENW-1:0] stk_mem [2*THREADS*DEPTH];
+  logic [STW-1:0] st_rd;
   logic [ENW-1:0] stk_rd;
 
-  // the per-node datapath
+  // the contexts' requests and results
+  logic [CTX-1:0] busy, start, node_req, node_grant, node_done, stk_rd_req, stk_rd_grant, stk_wr_req, stk_wr_grant;
+  logic [CTX-1:0] mem_req, mem_grant, mem_rsp, out_valid, out_grant, c_write_back, c_have_cur, c_leaf, c_list;
+  logic [CTX-1:0] c_lost, c_restarted;
+  logic [IW-1:0] c_idx [CTX];
+  logic [1:0] c_axis [CTX], c_kind [CTX];
+  logic [W-1:0] c_split [CTX];
+  logic [3:0] c_node_mask [CTX], c_mask [CTX], c_leaf_mask [CTX];
+  logic [4*3*W-1:0] c_o [CTX], c_d [CTX];
+  logic [4*W-1:0] c_node_tn [CTX], c_node_tf [CTX], c_tn [CTX], c_tf [CTX], c_leaf_tn [CTX];
+  logic [IW+TPW-1:0] c_stk_rd_addr [CTX], c_stk_wr_addr [CTX];
+  logic [ENW-1:0] c_stk_wr_data [CTX];
+  logic [AW-1:0] c_mem_addr [CTX], c_node [CTX];
+  logic [STW-1:0] c_state [CTX];
+  logic [31:0] c_leaf_first [CTX], c_leaf_count [CTX];
+  logic [SPW-1:0] c_sp [CTX];
+
+  // the shared per-node datapath and its results
   logic node_go, node_valid;
-  logic [1:0] node_axis;
-  logic [W-1:0] node_split;
-  logic [3:0] node_mask, nd_l_mask, nd_r_mask, nd_near_left;
-  logic [4*W-1:0] node_tn, node_tf, nd_l_tn, nd_l_tf, nd_r_tn, nd_r_tf;
-  /* verilator lint_off PINCONNECTEMPTY */
-  trav_node #(.E(E), .M(M), .ADD_STAGES(ADD_STAGES), .DIV_STAGES(DIV_STAGES), .CMP_STAGES(CMP_STAGES)) u_node (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(node_go), .ready_o(), .axis_i(node_axis), .split_i(node_split),
-    .mask_i(node_mask), .o_i(op_o), .d_i(op_d), .tn_i(node_tn), .tf_i(node_tf), .valid_o(node_valid),
-    .ready_i(1'b1), .l_mask_o(nd_l_mask), .r_mask_o(nd_r_mask), .near_left_o(nd_near_left), .l_tn_o(nd_l_tn),
-    .l_tf_o(nd_l_tf), .r_tn_o(nd_r_tn), .r_tf_o(nd_r_tf));
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic tag_valid; // the same as node_valid
+  /* verilator lint_on UNUSEDSIGNAL */
+  logic [CW-1:0] node_sel, tag;
+  logic [3:0] nd_l_mask, nd_r_mask, nd_near_left;
+  logic [4*W-1:0] nd_l_tn, nd_l_tf, nd_r_tn, nd_r_tf;
 
-  // 8 comparators: lanes 0..3 and 4..7 per ray
-  logic cmp_go, cmp_valid;
-  logic [W-1:0] cmp_a [8], cmp_b [8], cmp_max [4];
-  logic [7:0] cmp_lt, cmp_le;
-  for (genvar j = 0; j < 8; j++) begin : g_cmp
-    /* verilator lint_off UNUSEDSIGNAL */
-    logic [3:0] fl; // {unordered, eq, le, lt}: lt and le are used
-    logic [W-1:0] mx; // lanes 0..3: the restart's max
-    logic v;          // lane 0's stands for all
-    /* verilator lint_on UNUSEDSIGNAL */
-    f24_cmp #(.E(E), .M(M), .STAGES(CMP_STAGES)) u_cmp (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1),
-      .valid_i(cmp_go), .a_i(cmp_a[j]), .b_i(cmp_b[j]), .valid_o(v), .flags_o(fl), .min_o(), .max_o(mx));
-    assign cmp_lt[j] = fl[0];
-    assign cmp_le[j] = fl[1];
-    if (j < 4) begin : g_max
-      assign cmp_max[j] = mx;
-    end
-    if (j == 0) begin : g_valid
-      assign cmp_valid = v;
-    end
+  for (genvar c = 0; c < CTX; c++) begin : g_ctx
+    assign node_grant[c] = node_go && node_sel == CW'(c);
+    assign node_done[c] = node_valid && tag == CW'(c);
+    trav_ctx #(.E(E), .M(M), .IW(IW), .DEPTH(DEPTH), .AW(AW), .CMP_STAGES(CMP_STAGES)) u_ctx (
+      .clk_i(clk_i), .rst_ni(rst_ni), .start_i(start[c]), .idx_i({thread_i, level_i}), .kind_i(kind_i), .o_i(o_i),
+      .d_i(d_i), .tn_i(tn_i), .tf_i(tf_i), .best_i(best_i), .mask_i(mask_i), .box_i(box_i), .nodes_i(nodes_i),
+      .state_i(st_rd), .busy_o(busy[c]), .idx_o(c_idx[c]),
+      .node_req_o(node_req[c]), .node_grant_i(node_grant[c]), .node_axis_o(c_axis[c]), .node_split_o(c_split[c]),
+      .node_mask_o(c_node_mask[c]), .node_o_o(c_o[c]), .node_d_o(c_d[c]), .node_tn_o(c_node_tn[c]),
+      .node_tf_o(c_node_tf[c]), .node_done_i(node_done[c]), .nd_l_mask_i(nd_l_mask), .nd_r_mask_i(nd_r_mask),
+      .nd_near_left_i(nd_near_left), .nd_l_tn_i(nd_l_tn), .nd_l_tf_i(nd_l_tf), .nd_r_tn_i(nd_r_tn), .nd_r_tf_i(nd_r_tf),
+      .stk_rd_req_o(stk_rd_req[c]), .stk_rd_addr_o(c_stk_rd_addr[c]), .stk_rd_grant_i(stk_rd_grant[c]),
+      .stk_rd_data_i(stk_rd), .stk_wr_req_o(stk_wr_req[c]), .stk_wr_addr_o(c_stk_wr_addr[c]),
+      .stk_wr_data_o(c_stk_wr_data[c]), .stk_wr_grant_i(stk_wr_grant[c]),
+      .mem_req_o(mem_req[c]), .mem_addr_o(c_mem_addr[c]), .mem_grant_i(mem_grant[c]), .mem_rsp_i(mem_rsp[c]),
+      .mem_w0_i(node_w0_i), .mem_w1_i(node_w1_i),
+      .out_valid_o(out_valid[c]), .out_grant_i(out_grant[c]), .state_o(c_state[c]), .write_back_o(c_write_back[c]),
+      .kind_o(c_kind[c]), .mask_o(c_mask[c]), .tn_o(c_tn[c]), .tf_o(c_tf[c]), .node_o(c_node[c]),
+      .have_cur_o(c_have_cur[c]), .leaf_o(c_leaf[c]), .list_o(c_list[c]), .leaf_first_o(c_leaf_first[c]),
+      .leaf_count_o(c_leaf_count[c]), .leaf_mask_o(c_leaf_mask[c]), .leaf_tn_o(c_leaf_tn[c]), .sp_o(c_sp[c]),
+      .lost_o(c_lost[c]), .restarted_o(c_restarted[c]));
   end
-  /* verilator lint_on PINCONNECTEMPTY */
 
-  function automatic logic [W-1:0] lane(input logic [4*W-1:0] v, input int i);
-    lane = v[i*W +: W];
+  // the lowest requesting context of a request vector (the requests are one-shot: a context that
+  // asks waits at most CTX - 1 cycles)
+  function automatic logic [CW-1:0] lowest(input logic [CTX-1:0] req);
+    lowest = '0;
+    for (int c = CTX - 1; c >= 0; c--)
+      if (req[c]) lowest = CW'(c);
   endfunction
 
-  // what the operators are fed, by state (the registers they read are stable while they work)
+  // input: into a free context, unless an operation of the same thread and level is in flight
+  logic take, hazard;
+  logic [CW-1:0] acc;
   always_comb begin
-    node_go = st == S_CLIP_GO || (st == S_DECODE && w0[1:0] != 2'd3);
-    node_axis = st == S_CLIP_GO ? pass[2:1] : w0[1:0];
-    node_split = st == S_CLIP_GO ? op_box[(pass[0] ? 3 + 32'(pass[2:1]) : 32'(pass[2:1]))*W +: W] : w1[W-1:0];
-    node_mask = st == S_CLIP_GO ? 4'hF : cur_mask;
-    node_tn = st == S_CLIP_GO ? cl_n : cur_tn;
-    node_tf = st == S_CLIP_GO ? cl_f : cur_tf;
-    cmp_go = st == S_PRUNE_GO || (st == S_NODE && node_valid && restarted) ||
-             (st == S_END && !have_cur && sp == 0 && lost) || (st == S_RST_MAX && cmp_valid);
-    for (int i = 0; i < 4; i++) begin
-      if (st == S_PRUNE_GO) begin            // entry_rays: best_t < tn
-        cmp_a[i] = lane(op_best, i);
-        cmp_b[i] = lane(cur_tn, i);
-        cmp_a[4+i] = lane(op_best, i);
-        cmp_b[4+i] = lane(cur_tn, i);
-      end else if (st == S_NODE) begin       // trav_restart_drop_done: tf <= t_exit
-        cmp_a[i] = lane(nd_l_tf, i);
-        cmp_b[i] = lane(t_exit, i);
-        cmp_a[4+i] = lane(nd_r_tf, i);
-        cmp_b[4+i] = lane(t_exit, i);
-      end else if (st == S_END) begin        // trav_restart: max(tn, t_exit)
-        cmp_a[i] = lane(root_tn, i);
-        cmp_b[i] = lane(t_exit, i);
-        cmp_a[4+i] = lane(root_tn, i);
-        cmp_b[4+i] = lane(t_exit, i);
-      end else begin                         // trav_restart: tn < tf, best_t < tn
-        cmp_a[i] = cmp_max[i];
-        cmp_b[i] = lane(root_tf, i);
-        cmp_a[4+i] = lane(op_best, i);
-        cmp_b[4+i] = cmp_max[i];
-      end
-    end
+    hazard = 1'b0;
+    for (int c = 0; c < CTX; c++) hazard = hazard | (busy[c] && c_idx[c] == {thread_i, level_i});
   end
-
-  // walker_split's choice: the lead ray, its near side, the far child to push
-  logic [2:0] lead;                 // a fourth ray leads when none of the others does
-  logic [1:0] first;
-  logic first_near_left, both;
-  always_comb begin
-    lead = restarted ? l_mask[2:0] | r_mask[2:0] : cur_mask[2:0];
-    first = lead[0] ? 2'd0 : lead[1] ? 2'd1 : lead[2] ? 2'd2 : 2'd3;
-    first_near_left = near_left[first];
-    if (restarted && !(first_near_left ? l_mask[first] : r_mask[first])) first_near_left = !first_near_left;
-    both = l_mask != 0 && r_mask != 0;
-  end
-
-  logic take;
-  assign ready_o = st == S_IDLE;
+  assign acc = lowest(~busy);
+  assign ready_o = busy != '1 && !hazard;
   assign take = valid_i && ready_o;
-  assign node_req_valid_o = st == S_REQ;
-  assign node_addr_o = nodes + (cur_node << 1);
-  assign valid_o = st == S_OUT;
+  for (genvar c = 0; c < CTX; c++) begin : g_start
+    assign start[c] = take && acc == CW'(c);
+  end
 
+  // the per-node datapath: one context's node or clip plane per cycle, its tag beside it
+  assign node_go = node_req != 0;
+  assign node_sel = lowest(node_req);
+  /* verilator lint_off PINCONNECTEMPTY */
+  trav_node #(.E(E), .M(M), .ADD_STAGES(ADD_STAGES), .DIV_STAGES(DIV_STAGES), .CMP_STAGES(CMP_STAGES)) u_node (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(node_go), .ready_o(), .axis_i(c_axis[node_sel]),
+    .split_i(c_split[node_sel]), .mask_i(c_node_mask[node_sel]), .o_i(c_o[node_sel]), .d_i(c_d[node_sel]),
+    .tn_i(c_node_tn[node_sel]), .tf_i(c_node_tf[node_sel]), .valid_o(node_valid), .ready_i(1'b1),
+    .l_mask_o(nd_l_mask), .r_mask_o(nd_r_mask), .near_left_o(nd_near_left), .l_tn_o(nd_l_tn), .l_tf_o(nd_l_tf),
+    .r_tn_o(nd_r_tn), .r_tf_o(nd_r_tf));
+  /* verilator lint_on PINCONNECTEMPTY */
+  f24_pipe #(.W(CW), .STAGES(NODE_LATENCY)) u_tag (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(node_go),
+    .data_i(node_sel), .valid_o(tag_valid), .data_o(tag));
+
+  // the state memory: read as an operation enters (its context loads it a cycle later), written
+  // as the result of a start or walk leaves
+  logic [CW-1:0] out_sel, rr;
+  always_ff @(posedge clk_i) begin
+    if (take) st_rd <= st_mem[{thread_i, level_i}];
+    if (valid_o && ready_i && c_write_back[out_sel]) st_mem[c_idx[out_sel]] <= c_state[out_sel];
+  end
+
+  // the stack memory: one read and one write per cycle
+  logic [CW-1:0] stk_rd_sel, stk_wr_sel;
+  assign stk_rd_sel = lowest(stk_rd_req);
+  assign stk_wr_sel = lowest(stk_wr_req);
+  for (genvar c = 0; c < CTX; c++) begin : g_stk
+    assign stk_rd_grant[c] = stk_rd_req[c] && stk_rd_sel == CW'(c);
+    assign stk_wr_grant[c] = stk_wr_req[c] && stk_wr_sel == CW'(c);
+  end
+  always_ff @(posedge clk_i) begin
+    if (stk_rd_req != 0) stk_rd <= stk_mem[c_stk_rd_addr[stk_rd_sel]];
+    if (stk_wr_req != 0) stk_mem[c_stk_wr_addr[stk_wr_sel]] <= c_stk_wr_data[stk_wr_sel];
+  end
+
+  // the node reads: one request per cycle, the responses in request order (a FIFO of contexts)
+  logic [CW-1:0] mem_sel, rsp_ctx [CTX], rsp_head, rsp_tail;
+  assign mem_sel = lowest(mem_req);
+  assign node_req_valid_o = mem_req != 0;
+  assign node_addr_o = c_mem_addr[mem_sel];
+  assign {node_thread_o, node_level_o} = c_idx[mem_sel];
+  for (genvar c = 0; c < CTX; c++) begin : g_mem
+    assign mem_grant[c] = node_req_ready_i && mem_req[c] && mem_sel == CW'(c);
+    assign mem_rsp[c] = node_rsp_valid_i && rsp_ctx[rsp_head] == CW'(c);
+  end
   always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) st <= S_IDLE;
-    else begin
-      case (st)
-        S_IDLE: if (take) st <= kind_i == K_START ? S_OUT : kind_i == K_WALK ? S_PRUNE_GO : S_CLIP_GO;
-        S_PRUNE_GO: st <= S_PRUNE;
-        S_PRUNE: if (cmp_valid) st <= (cur_mask & op_mask & ~cmp_lt[3:0]) == 0 && sp != 0 && !popped ? S_POP : S_AFTER;
-        S_POP: st <= S_PRUNE_GO;
-        S_AFTER: st <= cur_mask == 0 ? S_END : S_REQ;
-        S_REQ: if (node_req_ready_i) st <= S_RSP;
-        S_RSP: if (node_rsp_valid_i) st <= S_DECODE;
-        S_DECODE: st <= w0[1:0] == 2'd3 ? S_END : S_NODE;
-        S_NODE: if (node_valid) st <= restarted ? S_DROP : S_CHOOSE;
-        S_DROP: if (cmp_valid) st <= S_CHOOSE;
-        S_CHOOSE: st <= S_END;
-        S_END: st <= have_cur ? S_OUT : sp != 0 ? S_END_POP : lost ? S_RST_MAX : S_OUT;
-        S_END_POP: st <= S_OUT;
-        S_RST_MAX: if (cmp_valid) st <= S_RST_CMP;
-        S_RST_CMP: if (cmp_valid) st <= S_OUT;
-        S_CLIP_GO: st <= S_CLIP;
-        S_CLIP: if (node_valid) st <= pass == 3'd5 ? S_CLIP_END : S_CLIP_GO;
-        S_CLIP_END: st <= S_OUT;
-        S_OUT: if (ready_i) st <= S_IDLE;
-        default: st <= S_IDLE;
-      endcase
+    if (!rst_ni) begin
+      rsp_head <= '0;
+      rsp_tail <= '0;
+    end else begin
+      if (node_req_valid_o && node_req_ready_i) rsp_tail <= rsp_tail == CW'(CTX - 1) ? '0 : rsp_tail + CW'(1);
+      if (node_rsp_valid_i) rsp_head <= rsp_head == CW'(CTX - 1) ? '0 : rsp_head + CW'(1);
     end
   end
-
   always_ff @(posedge clk_i) begin
-    case (st)
-      S_IDLE: if (take) begin
-        idx <= {thread_i, level_i};
-        kind <= kind_i;
-        op_o <= o_i;
-        op_d <= d_i;
-        op_best <= best_i;
-        op_mask <= mask_i;
-        op_box <= box_i;
-        popped <= 1'b0;
-        leaf <= 1'b0;
-        list <= 1'b0;
-        pass <= 3'd0;
-        for (int i = 0; i < 4; i++) begin  // the clips' intervals before the box (trav_object_clip)
-          op_tn[i*W +: W] <= kind_i == K_OBJECT && !mask_i[i] ? POS_INF : lane(tn_i, i);
-          op_tf[i*W +: W] <= kind_i == K_OBJECT && !mask_i[i] ? '0 : lane(tf_i, i);
-          cl_n[i*W +: W] <= kind_i == K_OBJECT && !mask_i[i] ? POS_INF : lane(tn_i, i);
-          cl_f[i*W +: W] <= kind_i == K_OBJECT && !mask_i[i] ? '0 : lane(tf_i, i);
-        end
-        if (kind_i == K_START) begin         // walker_init
-          {cur_node, cur_mask, cur_tn, cur_tf} <= {AW'(0), mask_i, tn_i, tf_i};
-          {have_cur, lost, restarted, sp, top} <= {3'b100, SPW'(0), TPW'(0)};
-          {nodes, root_mask, root_tn, root_tf, t_exit} <= {nodes_i, mask_i, tn_i, tf_i, tn_i};
-        end else begin
-          {cur_node, cur_mask, cur_tn, cur_tf, have_cur, lost, restarted, sp, top, nodes, root_mask, root_tn,
-           root_tf, t_exit} <= st_mem[{thread_i, level_i}];
-        end
-      end
-      S_PRUNE: if (cmp_valid) begin
-        cur_mask <= cur_mask & op_mask & ~cmp_lt[3:0];
-        stk_rd <= stk_mem[{idx, top - TPW'(1)}];
-      end
-      S_POP: begin                           // the second read port: the next entry, pruned anew
-        {cur_node, cur_mask, cur_tn, cur_tf} <= stk_rd;
-        sp <= sp - SPW'(1);
-        top <= top - TPW'(1);
-        popped <= 1'b1;
-      end
-      S_AFTER: begin
-        root_mask <= root_mask & op_mask;
-        if (cur_mask == 0) have_cur <= 1'b0;
-      end
-      S_RSP: if (node_rsp_valid_i) begin
-        w0 <= node_w0_i;
-        w1 <= node_w1_i;
-      end
-      S_DECODE: if (w0[1:0] == 2'd3) begin  // a leaf: its list range and rays
-        have_cur <= 1'b0;
-        leaf <= 1'b1;
-        list <= w0[31:2] != 0;
-        leaf_mask <= cur_mask;
-        leaf_tn <= cur_tn;
-      end
-      S_NODE: if (node_valid) begin         // a side that is an empty leaf is not stored
-        l_mask <= nd_l_mask & {4{!w0[2]}};
-        r_mask <= nd_r_mask & {4{!w0[3]}};
-        l_node <= AW'(w0 >> 4);
-        r_node <= AW'(w0 >> 4) + AW'(!w0[2]);
-        near_left <= nd_near_left;
-        {l_tn, l_tf, r_tn, r_tf} <= {nd_l_tn, nd_l_tf, nd_r_tn, nd_r_tf};
-      end
-      S_DROP: if (cmp_valid) begin          // a restarted pass: cells that end at t_exit are done
-        l_mask <= l_mask & ~cmp_le[3:0];
-        r_mask <= r_mask & ~cmp_le[7:4];
-      end
-      S_CHOOSE: begin
-        if (both) begin                      // walker_push: a full stack drops its oldest entry
-          stk_mem[{idx, top}] <= first_near_left ? {r_node, r_mask, r_tn, r_tf} : {l_node, l_mask, l_tn, l_tf};
-          top <= top + TPW'(1);
-          if (sp == SPW'(DEPTH)) lost <= 1'b1;
-          else sp <= sp + SPW'(1);
-          {cur_node, cur_mask, cur_tn, cur_tf} <=
-            first_near_left ? {l_node, l_mask, l_tn, l_tf} : {r_node, r_mask, r_tn, r_tf};
-        end else begin
-          {cur_node, cur_mask, cur_tn, cur_tf} <= l_mask != 0 ? {l_node, l_mask, l_tn, l_tf} : {r_node, r_mask, r_tn, r_tf};
-        end
-      end
-      S_END: stk_rd <= stk_mem[{idx, top - TPW'(1)}];
-      S_END_POP: begin
-        {cur_node, cur_mask, cur_tn, cur_tf} <= stk_rd;
-        sp <= sp - SPW'(1);
-        top <= top - TPW'(1);
-        have_cur <= 1'b1;
-      end
-      S_RST_MAX: if (cmp_valid) begin       // trav_restart: from the root, tn = t_exit = max(tn, t_exit)
-        for (int i = 0; i < 4; i++) begin
-          t_exit[i*W +: W] <= cmp_max[i];
-          cur_tn[i*W +: W] <= cmp_max[i];
-        end
-      end
-      S_RST_CMP: if (cmp_valid) begin       // rays with nothing left or their hit before it are done
-        root_mask <= root_mask & cmp_lt[3:0] & ~cmp_lt[7:4];
-        cur_mask <= root_mask & cmp_lt[3:0] & ~cmp_lt[7:4];
-        cur_node <= '0;
-        cur_tf <= root_tf;
-        have_cur <= (root_mask & cmp_lt[3:0] & ~cmp_lt[7:4]) != 0;
-        lost <= 1'b0;
-        restarted <= 1'b1;
-      end
-      S_CLIP: if (node_valid) begin         // lo plane: the right child's interval, hi plane: the left's
-        cl_n <= pass[0] ? nd_l_tn : nd_r_tn;
-        cl_f <= pass[0] ? nd_l_tf : nd_r_tf;
-        clip_mask <= nd_l_mask;
-        pass <= pass + 3'd1;
-      end
-      S_CLIP_END: begin                      // rays outside the mask keep their interval
-        for (int i = 0; i < 4; i++) begin
-          cl_n[i*W +: W] <= op_mask[i] ? lane(cl_n, i) : lane(op_tn, i);
-          cl_f[i*W +: W] <= op_mask[i] ? lane(cl_f, i) : lane(op_tf, i);
-        end
-        clip_mask <= clip_mask & op_mask;
-      end
-      S_OUT: if (kind == K_START || kind == K_WALK)
-        st_mem[idx] <= {cur_node, cur_mask, cur_tn, cur_tf, have_cur, lost, restarted, sp, top, nodes, root_mask,
-                        root_tn, root_tf, t_exit};
-      default: ;
-    endcase
+    if (node_req_valid_o && node_req_ready_i) rsp_ctx[rsp_tail] <= mem_sel;
   end
 
-  assign {thread_o, level_o} = idx;
-  assign kind_o = kind;
-  assign mask_o = kind[1] ? cur_mask : clip_mask;
-  assign tn_o = kind[1] ? cur_tn : cl_n;
-  assign tf_o = kind[1] ? cur_tf : cl_f;
-  assign node_o = cur_node;
-  assign have_cur_o = have_cur;
-  assign leaf_o = leaf;
-  assign list_o = list;
-  assign leaf_first_o = w1;
-  assign leaf_count_o = {2'b00, w0[31:2]};
-  assign leaf_mask_o = leaf_mask;
-  assign leaf_tn_o = leaf_tn;
-  assign sp_o = sp;
-  assign lost_o = lost;
-  assign restarted_o = restarted;
+  // the results: round robin from the context after the last one served
+  always_comb begin
+    out_sel = rr;
+    for (int k = CTX - 1; k >= 0; k--)
+      if (out_valid[(32'(rr) + k) % CTX]) out_sel = CW'((32'(rr) + k) % CTX);
+  end
+  assign valid_o = out_valid != 0;
+  for (genvar c = 0; c < CTX; c++) begin : g_out
+    assign out_grant[c] = ready_i && out_valid[c] && out_sel == CW'(c);
+  end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) rr <= '0;
+    else if (valid_o && ready_i) rr <= out_sel == CW'(CTX - 1) ? '0 : out_sel + CW'(1);
+  end
+  assign {thread_o, level_o} = c_idx[out_sel];
+  assign kind_o = c_kind[out_sel];
+  assign mask_o = c_mask[out_sel];
+  assign tn_o = c_tn[out_sel];
+  assign tf_o = c_tf[out_sel];
+  assign node_o = c_node[out_sel];
+  assign have_cur_o = c_have_cur[out_sel];
+  assign leaf_o = c_leaf[out_sel];
+  assign list_o = c_list[out_sel];
+  assign leaf_first_o = c_leaf_first[out_sel];
+  assign leaf_count_o = c_leaf_count[out_sel];
+  assign leaf_mask_o = c_leaf_mask[out_sel];
+  assign leaf_tn_o = c_leaf_tn[out_sel];
+  assign sp_o = c_sp[out_sel];
+  assign lost_o = c_lost[out_sel];
+  assign restarted_o = c_restarted[out_sel];
 endmodule

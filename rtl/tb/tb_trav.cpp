@@ -433,14 +433,24 @@ int main(int argc, char **argv)
     top.eval();
     top.rst_ni = 1;
 
-    std::size_t next = 0, done = 0, total = captured + n;
-    op cur{};
-    result expect{};
-    bool busy = false;
-    uint32_t rsp_wait = 0, rsp_addr = 0;
-    bool rsp_pending = false;
-    uint64_t kinds[4] = {}, kind_cycles[4] = {}, started = 0, vs_capture = 0, overflows = 0, restarts = 0, leaves = 0;
-    uint64_t lists = 0, reads = 0, step_n[3] = {}, step_cycles[3] = {}, step_max[3] = {};
+    // the operations in flight, one per thread and level at most (the unit holds back another)
+    struct pending {
+        bool on;
+        std::size_t index;
+        result expect;
+        uint64_t started;
+    };
+    static pending pend[THREADS][2];
+    struct response {
+        uint32_t w0, w1;
+        uint64_t due;
+    };
+    std::deque<response> rsp; // the node memory: in request order
+    const std::size_t total = captured + n;
+    std::size_t next = 0, done = 0;
+    uint64_t kinds[4] = {}, kind_cycles[4] = {}, vs_capture = 0, overflows = 0, restarts = 0, leaves = 0;
+    uint64_t lists = 0, reads = 0, step_n[3] = {}, step_cycles[3] = {}, step_max[3] = {}, captured_cycles = 0;
+    uint64_t in_flight = 0, in_flight_max = 0;
     for (; done < total && g_mismatches < 20; g_cycle++) { // after 20 the walkers have parted anyway
         if (g_cycle > 400 * total + 1000) {
             std::printf("PROTOCOL: trav_unit stopped (%zu of %zu operations done)\n", done, total);
@@ -449,7 +459,7 @@ int main(int argc, char **argv)
         const bool random_phase = next >= captured;
         top.clk_i = 0;
         bool offer = false;
-        if (!busy && next < total && (!random_phase || rnd() % 4 != 0)) {
+        if (next < total && (!random_phase || rnd() % 4 != 0)) {
             if (next == ops.size())
                 ops.push_back(random_op());
             offer = true;
@@ -458,69 +468,80 @@ int main(int argc, char **argv)
         top.valid_i = offer;
         top.ready_i = !random_phase || rnd() % 3 != 0;
         top.node_req_ready_i = !random_phase || rnd() % 3 != 0;
-        top.node_rsp_valid_i = rsp_pending && rsp_wait == 0;
+        top.node_rsp_valid_i = !rsp.empty() && rsp.front().due <= g_cycle;
         if (top.node_rsp_valid_i) {
-            top.node_w0_i = mem_at(rsp_addr);
-            top.node_w1_i = mem_at(rsp_addr + 1);
-            rsp_pending = false;
-        } else if (rsp_pending) {
-            rsp_wait--;
+            top.node_w0_i = rsp.front().w0;
+            top.node_w1_i = rsp.front().w1;
+            rsp.pop_front();
         }
         top.eval();
         // this edge's transfers: the result, the operation, the node read
         if (top.valid_o && top.ready_i) {
-            if (!busy) {
-                std::printf("PROTOCOL: trav_unit result at cycle %llu without an operation\n", (unsigned long long)g_cycle);
+            pending &p = pend[top.thread_o][top.level_o];
+            if (!p.on) {
+                std::printf("PROTOCOL: trav_unit result at cycle %llu for thread %u level %u, which has no operation\n",
+                            (unsigned long long)g_cycle, top.thread_o, top.level_o);
                 return 1;
             }
+            const op &o = ops[p.index];
             const result got = sample(top);
-            if (top.thread_o != cur.thread || top.level_o != cur.level || top.kind_o != cur.kind) {
-                if (g_mismatches++ < 20)
-                    std::printf("MISMATCH trav_unit operation %zu cycle %llu: thread %u level %u kind %u left as "
-                                "thread %u level %u kind %u\n", done, (unsigned long long)g_cycle, cur.thread,
-                                cur.level, cur.kind, top.thread_o, top.level_o, top.kind_o);
-            }
-            compare("RTL against the C unit", done, cur, expect, got, "C", "rtl");
-            if (cur.captured) {
-                compare("RTL against the capture", done, cur, rec[done], got, "capture", "rtl");
+            if (top.kind_o != o.kind && g_mismatches++ < 20)
+                std::printf("MISMATCH trav_unit operation %zu cycle %llu thread %u level %u: kind %u left as %u\n",
+                            p.index, (unsigned long long)g_cycle, o.thread, o.level, o.kind, top.kind_o);
+            compare("RTL against the C unit", p.index, o, p.expect, got, "C", "rtl");
+            if (o.captured) {
+                compare("RTL against the capture", p.index, o, rec[p.index], got, "capture", "rtl");
                 vs_capture++;
             }
-            kinds[cur.kind]++;
-            kind_cycles[cur.kind] += g_cycle - started;
-            if (cur.captured && cur.kind == 3) { // latency without memory latency and back pressure
-                const int at = expect.addr == NONE ? 0 : expect.leaf ? 1 : 2;
+            kinds[o.kind]++;
+            kind_cycles[o.kind] += g_cycle - p.started;
+            if (o.captured && o.kind == 3) {
+                const int at = p.expect.addr == NONE ? 0 : p.expect.leaf ? 1 : 2;
                 step_n[at]++;
-                step_cycles[at] += g_cycle - started;
-                step_max[at] = std::max(step_max[at], g_cycle - started);
+                step_cycles[at] += g_cycle - p.started;
+                step_max[at] = std::max(step_max[at], g_cycle - p.started);
             }
-            busy = false;
-            done++;
+            p.on = false;
+            in_flight--;
+            if (++done == captured)
+                captured_cycles = g_cycle + 1;
         }
         if (offer && top.ready_o) {
-            cur = ops[next];
-            const trav_walker before = cur.kind >= 2 ? g_w[cur.thread][cur.level] : trav_walker{};
-            expect = model(cur);
-            if (cur.captured && !compare("C replay against the capture", next, cur, rec[next], expect, "capture", "C"))
-                std::printf("  (the C unit replayed here must agree with the recording: same state, same order)\n");
-            if (cur.kind == 3) {
-                overflows += expect.lost && !before.lost;
-                restarts += g_w[cur.thread][cur.level].pass != before.pass;
-                leaves += expect.leaf;
-                lists += expect.ret;
+            const op &o = ops[next];
+            pending &p = pend[o.thread][o.level];
+            if (p.on) {
+                std::printf("PROTOCOL: trav_unit took operation %zu at cycle %llu while thread %u level %u has "
+                            "operation %zu in flight\n", next, (unsigned long long)g_cycle, o.thread, o.level, p.index);
+                return 1;
             }
-            started = g_cycle;
-            busy = true;
+            const trav_walker before = o.kind >= 2 ? g_w[o.thread][o.level] : trav_walker{};
+            p = pending{ true, next, model(o), g_cycle };
+            if (o.captured && !compare("C replay against the capture", next, o, rec[next], p.expect, "capture", "C"))
+                std::printf("  (the C unit replayed here must agree with the recording: same state, same order)\n");
+            if (o.kind == 3) {
+                overflows += p.expect.lost && !before.lost;
+                restarts += g_w[o.thread][o.level].pass != before.pass;
+                leaves += p.expect.leaf;
+                lists += p.expect.ret;
+            }
+            in_flight_max = std::max(in_flight_max, ++in_flight);
             next++;
         }
         if (top.node_req_valid_o && top.node_req_ready_i) {
             reads++;
-            if ((!busy || cur.kind != 3 || top.node_addr_o != expect.addr) && g_mismatches++ < 20)
+            const pending &p = pend[top.node_thread_o][top.node_level_o];
+            const op *o = p.on ? &ops[p.index] : nullptr;
+            if ((!o || o->kind != 3 || top.node_addr_o != p.expect.addr) && g_mismatches++ < 20)
                 std::printf("MISMATCH trav_unit (RTL against the C unit) operation %zu (%s) cycle %llu thread %u level "
-                            "%u: node read at %x, C %x\n", done, KIND[cur.kind], (unsigned long long)g_cycle,
-                            cur.thread, cur.level, top.node_addr_o, expect.addr);
-            rsp_pending = true;
-            rsp_addr = top.node_addr_o;
-            rsp_wait = random_phase ? rnd() % 4 : 0;
+                            "%u: node read at %x, C %x\n", p.index, o ? KIND[o->kind] : "none",
+                            (unsigned long long)g_cycle, top.node_thread_o, top.node_level_o, top.node_addr_o,
+                            p.expect.addr);
+            // the words the operation read while rendering (the image may change between frames)
+            const bool rec_words = o && o->captured && top.node_addr_o == o->read[0];
+            const uint64_t after = random_phase ? 1 + rnd() % 4 : 1;
+            rsp.push_back(response{ rec_words ? o->read[1] : mem_at(top.node_addr_o),
+                                    rec_words ? o->read[2] : mem_at(top.node_addr_o + 1),
+                                    std::max(rsp.empty() ? 0 : rsp.back().due, g_cycle + after) });
         }
         top.clk_i = 1;
         top.eval();
@@ -529,7 +550,7 @@ int main(int argc, char **argv)
     std::printf("tb_trav: %zu of %zu operations (%zu captured) compared with the C unit (%llu also with the capture): "
                 "scene clips %llu, object clips %llu, starts %llu, walk steps %llu (%llu node reads, %llu leaves, %llu "
                 "with entries, %llu stack overflows, %llu restarts); cycles per operation %.1f, %.1f, %.1f, %.1f; "
-                "%llu cycles; %llu mismatches\n",
+                "at most %llu in flight; %llu cycles; %llu mismatches\n",
                 done, total, captured, (unsigned long long)vs_capture, (unsigned long long)kinds[0],
                 (unsigned long long)kinds[1], (unsigned long long)kinds[2], (unsigned long long)kinds[3],
                 (unsigned long long)reads, (unsigned long long)leaves, (unsigned long long)lists,
@@ -537,10 +558,12 @@ int main(int argc, char **argv)
                 kinds[0] ? (double)kind_cycles[0] / (double)kinds[0] : 0.0,
                 kinds[1] ? (double)kind_cycles[1] / (double)kinds[1] : 0.0,
                 kinds[2] ? (double)kind_cycles[2] / (double)kinds[2] : 0.0,
-                kinds[3] ? (double)kind_cycles[3] / (double)kinds[3] : 0.0, (unsigned long long)g_cycle,
-                (unsigned long long)g_mismatches);
-    if (captured) {
-        std::printf("tb_trav: captured walk steps, cycles from operation to result (memory answering at once):");
+                kinds[3] ? (double)kind_cycles[3] / (double)kinds[3] : 0.0, (unsigned long long)in_flight_max,
+                (unsigned long long)g_cycle, (unsigned long long)g_mismatches);
+    if (captured && captured_cycles) {
+        std::printf("tb_trav: the captured operations in %llu cycles (%.2f cycles per operation, the memory answering "
+                    "in the next cycle); walk steps from operation to result:", (unsigned long long)captured_cycles,
+                    (double)captured_cycles / (double)captured);
         const char *const at[3] = { "no node read", "leaf", "inner node" };
         for (int k = 0; k < 3; k++)
             std::printf("%s %s %llu x %.1f (max %llu)", k ? ";" : "", at[k], (unsigned long long)step_n[k],

@@ -5,7 +5,8 @@ module tb_trav #(
   parameter int E = 7,
   parameter int M = 16,
   parameter int THREADS = 64,
-  parameter int DEPTH = 64
+  parameter int DEPTH = 64,
+  parameter int CTX = 4
 ) (
   input  logic                        clk_i,
   input  logic                        rst_ni,
@@ -25,6 +26,8 @@ module tb_trav #(
   output logic                        node_req_valid_o,
   input  logic                        node_req_ready_i,
   output logic [31:0]                 node_addr_o,
+  output logic [$clog2(THREADS)-1:0]  node_thread_o,
+  output logic                        node_level_o,
   input  logic                        node_rsp_valid_i,
   input  logic [31:0]                 node_w0_i,
   input  logic [31:0]                 node_w1_i,
@@ -48,5 +51,5 @@ module tb_trav #(
   output logic                        lost_o,
   output logic                        restarted_o
 );
-  trav_unit #(.E(E), .M(M), .THREADS(THREADS), .DEPTH(DEPTH)) u_trav (.*);
+  trav_unit #(.E(E), .M(M), .THREADS(THREADS), .DEPTH(DEPTH), .CTX(CTX)) u_trav (.*);
 endmodule
