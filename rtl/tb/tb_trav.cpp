@@ -446,8 +446,14 @@ int main(int argc, char **argv)
         uint64_t due;
     };
     std::deque<response> rsp; // the node memory: in request order
+    // the captured operations are offered in their order per thread, the oldest first whose thread
+    // has nothing in flight (as the threads' queue in front of the unit would), within a window
+    constexpr std::size_t WINDOW = 256;
+    std::vector<char> issued(captured, 0);
+    std::vector<uint64_t> seen(THREADS, 0);
+    uint64_t scan = 0;
     const std::size_t total = captured + n;
-    std::size_t next = 0, done = 0;
+    std::size_t oldest = 0, next = captured, done = 0, captured_done = 0;
     uint64_t kinds[4] = {}, kind_cycles[4] = {}, vs_capture = 0, overflows = 0, restarts = 0, leaves = 0;
     uint64_t lists = 0, reads = 0, step_n[3] = {}, step_cycles[3] = {}, step_max[3] = {}, captured_cycles = 0;
     uint64_t in_flight = 0, in_flight_max = 0;
@@ -456,15 +462,27 @@ int main(int argc, char **argv)
             std::printf("PROTOCOL: trav_unit stopped (%zu of %zu operations done)\n", done, total);
             return 1;
         }
-        const bool random_phase = next >= captured;
+        const bool random_phase = oldest >= captured;
         top.clk_i = 0;
-        bool offer = false;
-        if (next < total && (!random_phase || rnd() % 4 != 0)) {
+        std::size_t pick = total;
+        if (!random_phase) {
+            scan++;
+            for (std::size_t j = oldest; j < captured && j < oldest + WINDOW && pick == total; j++) {
+                const uint32_t t = ops[j].thread;
+                if (issued[j])
+                    continue;
+                if (seen[t] != scan && !pend[t][0].on && !pend[t][1].on)
+                    pick = j;
+                seen[t] = scan;
+            }
+        } else if (next < total && rnd() % 4 != 0) {
             if (next == ops.size())
                 ops.push_back(random_op());
-            offer = true;
-            drive(top, ops[next]);
+            pick = next;
         }
+        const bool offer = pick < total;
+        if (offer)
+            drive(top, ops[pick]);
         top.valid_i = offer;
         top.ready_i = !random_phase || rnd() % 3 != 0;
         top.node_req_ready_i = !random_phase || rnd() % 3 != 0;
@@ -503,20 +521,21 @@ int main(int argc, char **argv)
             }
             p.on = false;
             in_flight--;
-            if (++done == captured)
+            done++;
+            if (o.captured && ++captured_done == captured)
                 captured_cycles = g_cycle + 1;
         }
         if (offer && top.ready_o) {
-            const op &o = ops[next];
+            const op &o = ops[pick];
             pending &p = pend[o.thread][o.level];
             if (p.on) {
                 std::printf("PROTOCOL: trav_unit took operation %zu at cycle %llu while thread %u level %u has "
-                            "operation %zu in flight\n", next, (unsigned long long)g_cycle, o.thread, o.level, p.index);
+                            "operation %zu in flight\n", pick, (unsigned long long)g_cycle, o.thread, o.level, p.index);
                 return 1;
             }
             const trav_walker before = o.kind >= 2 ? g_w[o.thread][o.level] : trav_walker{};
-            p = pending{ true, next, model(o), g_cycle };
-            if (o.captured && !compare("C replay against the capture", next, o, rec[next], p.expect, "capture", "C"))
+            p = pending{ true, pick, model(o), g_cycle };
+            if (o.captured && !compare("C replay against the capture", pick, o, rec[pick], p.expect, "capture", "C"))
                 std::printf("  (the C unit replayed here must agree with the recording: same state, same order)\n");
             if (o.kind == 3) {
                 overflows += p.expect.lost && !before.lost;
@@ -525,7 +544,13 @@ int main(int argc, char **argv)
                 lists += p.expect.ret;
             }
             in_flight_max = std::max(in_flight_max, ++in_flight);
-            next++;
+            if (o.captured) {
+                issued[pick] = 1;
+                while (oldest < captured && issued[oldest])
+                    oldest++;
+            } else {
+                next++;
+            }
         }
         if (top.node_req_valid_o && top.node_req_ready_i) {
             reads++;
