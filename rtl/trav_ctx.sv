@@ -22,7 +22,7 @@
 // Latency at the defaults (trav_node NODE = 21, comparator CMP = 2) when every grant comes at
 // once and the memory answers in the cycle after the request: start 1; walk step at an inner node
 // 2 (walker read) + (CMP + 1) (prune) + 1 + 2 (node request, response) + (NODE + 1) (split) + 2
-// (push, pop) = 32, at a leaf 10, without a node read 7; + CMP + 3 when the pruned entry is dropped
+// (push, pop) = 32, at a leaf 9, without a node read 7; + CMP + 3 when the pruned entry is dropped
 // and the next popped, + 2 for a pop at the end, + CMP in a restarted pass, + 2 CMP for a restart;
 // clip 6 (NODE + 1) + 2 = 134. One operation at a time; the context is free again in the cycle
 // after its result leaves.

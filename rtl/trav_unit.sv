@@ -30,21 +30,26 @@
 // State per thread and level (index {thread, level}): the current entry, sp, top, have_cur, lost,
 // restarted, the tree's address, the root entry and t_exit in one memory of 2 THREADS words; the
 // stacks in one memory of 2 THREADS DEPTH entries {node, mask, 4 tn, 4 tf} (AW + 4 + 8 W bits),
-// both with one synchronous read and one write port (block RAM).
-// Datapath: one trav_node (4 sub, 4 div, 4 min, 4 max, 8 comparators; the clips run their 6 slab
-// planes through it: the lo plane of an axis narrows [tn, tf] as the node's right child does, the
-// hi plane as its left child, so that every max and min happens in hls/units order) and 8 f24_cmp
-// (the prune, the restart's drop of done cells, the restart).
-// Control: one operation at a time (a small FSM). Latency from the operation's transfer to the
-// result's, at the defaults (trav_node NODE = 21, comparator CMP = 2) with a memory answering in
-// the cycle after the request: start 1; walk step at an inner node 1 (walker read) + (CMP + 1)
-// (prune) + 1 + 2 (node request, response) + (NODE + 1) (split) + 2 (push, pop) = 31, at a leaf
-// 9, without a node read (every ray pruned) 6; + CMP + 2 when the pruned entry is dropped and the
-// next popped, + 1 for a pop at the end, + CMP in a restarted pass, + 2 CMP for a restart; clip
-// 6 (NODE + 1) + 2 = 134 (its planes one after the other through trav_node). The next operation
-// is accepted in the cycle after the result leaves: II = latency + 1.
-// Handshake: valid/ready at the operation input, the result output and the node read request;
-// the node response (node_rsp_valid_i with w0, w1) is taken when it comes.
+// both with one synchronous read and one write port (block RAM): 2 x 64 x 64 x 228 bits of stack
+// at the defaults (the prototype's 64 entries per thread in block RAM).
+// Structure: CTX operation contexts (trav_ctx: the FSM of one operation with its operands, the
+// walker state while it runs and 8 comparators) share one trav_node (4 sub, 4 div, 4 min, 4 max,
+// 8 comparators: the split of a walk step, and a clip's 6 slab planes in turn), the state
+// memory (read as an operation enters, written as its result leaves), the stack memory's read and
+// write ports, the node read port and the result output. An operation enters a free context
+// unless an operation of the same thread and level is in flight (in the DynRTP a thread has one
+// operation in flight anyway); results leave as they are done (round robin among the finished
+// contexts), so operations of different threads may overtake each other. The shared resources go
+// to the lowest requesting context (every request is one-shot, so a context waits at most CTX - 1
+// cycles); node responses return in request order.
+// Latency per operation (trav_ctx: walk step 32 cycles at an inner node, 9 at a leaf, clip 134,
+// start 1, when no other context competes); throughput up to CTX operations per latency, at most
+// one trav_node issue per cycle (a walk step at an inner node takes one, a clip six). On the
+// captured room frame (48x32, 64 threads, rtl/tb/tb_trav.cpp) 39.4 cycles per operation with CTX
+// = 1, 9.95 with 4, 2.65 with 16.
+// Handshake: valid/ready at the operation input, the result output and the node read request
+// (node_thread_o, node_level_o: whose node); the node response (node_rsp_valid_i with w0, w1) is
+// taken when it comes, in request order.
 module trav_unit #(
   parameter int E = 7,
   parameter int M = 16,

@@ -84,7 +84,7 @@ t_trav_unit() {
 t_trav_mutant_caught() { # the near child pushed instead of the far one
   [[ -f "$T/capc/trav_unit.hex" ]] || "$BIN" render room -o "$T/room_cycle.png" --width 48 --height 32 --mode cycle \
     --threads-per-pipe 64 --capture-unit-io "$T/capc" --capture-limit 200000 >/dev/null
-  mutant trav trav_unit.sv "s/stk_mem\[{idx, top}\] <= first_near_left ?/stk_mem[{idx, top}] <= !first_near_left ?/" \
+  mutant trav trav_ctx.sv "s/assign stk_wr_data_o = first_near_left ?/assign stk_wr_data_o = !first_near_left ?/" \
     -n 0 --capture "$T/capc"
 }
 
