@@ -38,10 +38,9 @@
 // memory (read as an operation enters, written as its result leaves), the stack memory's read and
 // write ports, the node read port and the result output. An operation enters a free context
 // unless an operation of the same thread and level is in flight (in the DynRTP a thread has one
-// operation in flight anyway); results leave as they are done (round robin among the finished
-// contexts), so operations of different threads may overtake each other. The shared resources go
-// to the lowest requesting context (every request is one-shot, so a context waits at most CTX - 1
-// cycles); node responses return in request order.
+// operation in flight anyway); results leave as they are done, so operations of different threads
+// may overtake each other. Each shared resource serves its requesting contexts round robin (a
+// context waits at most CTX - 1 grants); node responses return in request order.
 // Latency per operation (trav_ctx: walk step 32 cycles at an inner node, 9 at a leaf, clip 134,
 // start 1, when no other context competes); throughput up to CTX operations per latency, at most
 // one trav_node issue per cycle (a walk step at an inner node takes one, a clip six). On the
@@ -145,7 +144,7 @@ module trav_unit #(
   /* verilator lint_off UNUSEDSIGNAL */
   logic tag_valid; // the same as node_valid
   /* verilator lint_on UNUSEDSIGNAL */
-  logic [CW-1:0] node_sel, tag;
+  logic [CW-1:0] node_sel, tag, stk_rd_sel, stk_wr_sel, mem_sel, out_sel;
   logic [3:0] nd_l_mask, nd_r_mask, nd_near_left;
   logic [4*W-1:0] nd_l_tn, nd_l_tf, nd_r_tn, nd_r_tf;
 
@@ -172,13 +171,27 @@ module trav_unit #(
       .lost_o(c_lost[c]), .restarted_o(c_restarted[c]));
   end
 
-  // the lowest requesting context of a request vector (the requests are one-shot: a context that
-  // asks waits at most CTX - 1 cycles)
-  function automatic logic [CW-1:0] lowest(input logic [CTX-1:0] req);
-    lowest = '0;
-    for (int c = CTX - 1; c >= 0; c--)
-      if (req[c]) lowest = CW'(c);
+  // round robin: the first requesting context from `from` on (from = the one after the last
+  // served), so that no context waits more than CTX - 1 grants
+  function automatic logic [CW-1:0] pick(input logic [CTX-1:0] req, input logic [CW-1:0] from);
+    pick = from;
+    for (int k = CTX - 1; k >= 0; k--)
+      if (req[(32'(from) + k) % CTX]) pick = CW'((32'(from) + k) % CTX);
   endfunction
+  function automatic logic [CW-1:0] after(input logic [CW-1:0] c);
+    after = c == CW'(CTX - 1) ? '0 : c + CW'(1);
+  endfunction
+  logic [CW-1:0] rr_node, rr_rd, rr_wr, rr_mem, rr_out;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) {rr_node, rr_rd, rr_wr, rr_mem, rr_out} <= '0;
+    else begin
+      if (node_go) rr_node <= after(node_sel);
+      if (stk_rd_req != 0) rr_rd <= after(stk_rd_sel);
+      if (stk_wr_req != 0) rr_wr <= after(stk_wr_sel);
+      if (node_req_valid_o && node_req_ready_i) rr_mem <= after(mem_sel);
+      if (valid_o && ready_i) rr_out <= after(out_sel);
+    end
+  end
 
   // input: into a free context, unless an operation of the same thread and level is in flight
   logic take, hazard;
@@ -187,7 +200,7 @@ module trav_unit #(
     hazard = 1'b0;
     for (int c = 0; c < CTX; c++) hazard = hazard | (busy[c] && c_idx[c] == {thread_i, level_i});
   end
-  assign acc = lowest(~busy);
+  assign acc = pick(~busy, '0);
   assign ready_o = busy != '1 && !hazard;
   assign take = valid_i && ready_o;
   for (genvar c = 0; c < CTX; c++) begin : g_start
@@ -196,7 +209,7 @@ module trav_unit #(
 
   // the per-node datapath: one context's node or clip plane per cycle, its tag beside it
   assign node_go = node_req != 0;
-  assign node_sel = lowest(node_req);
+  assign node_sel = pick(node_req, rr_node);
   /* verilator lint_off PINCONNECTEMPTY */
   trav_node #(.E(E), .M(M), .ADD_STAGES(ADD_STAGES), .DIV_STAGES(DIV_STAGES), .CMP_STAGES(CMP_STAGES)) u_node (
     .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(node_go), .ready_o(), .axis_i(c_axis[node_sel]),
@@ -210,16 +223,14 @@ module trav_unit #(
 
   // the state memory: read as an operation enters (its context loads it a cycle later), written
   // as the result of a start or walk leaves
-  logic [CW-1:0] out_sel, rr;
   always_ff @(posedge clk_i) begin
     if (take) st_rd <= st_mem[{thread_i, level_i}];
     if (valid_o && ready_i && c_write_back[out_sel]) st_mem[c_idx[out_sel]] <= c_state[out_sel];
   end
 
   // the stack memory: one read and one write per cycle
-  logic [CW-1:0] stk_rd_sel, stk_wr_sel;
-  assign stk_rd_sel = lowest(stk_rd_req);
-  assign stk_wr_sel = lowest(stk_wr_req);
+  assign stk_rd_sel = pick(stk_rd_req, rr_rd);
+  assign stk_wr_sel = pick(stk_wr_req, rr_wr);
   for (genvar c = 0; c < CTX; c++) begin : g_stk
     assign stk_rd_grant[c] = stk_rd_req[c] && stk_rd_sel == CW'(c);
     assign stk_wr_grant[c] = stk_wr_req[c] && stk_wr_sel == CW'(c);
@@ -230,8 +241,8 @@ module trav_unit #(
   end
 
   // the node reads: one request per cycle, the responses in request order (a FIFO of contexts)
-  logic [CW-1:0] mem_sel, rsp_ctx [CTX], rsp_head, rsp_tail;
-  assign mem_sel = lowest(mem_req);
+  logic [CW-1:0] rsp_ctx [CTX], rsp_head, rsp_tail;
+  assign mem_sel = pick(mem_req, rr_mem);
   assign node_req_valid_o = mem_req != 0;
   assign node_addr_o = c_mem_addr[mem_sel];
   assign {node_thread_o, node_level_o} = c_idx[mem_sel];
@@ -244,27 +255,19 @@ module trav_unit #(
       rsp_head <= '0;
       rsp_tail <= '0;
     end else begin
-      if (node_req_valid_o && node_req_ready_i) rsp_tail <= rsp_tail == CW'(CTX - 1) ? '0 : rsp_tail + CW'(1);
-      if (node_rsp_valid_i) rsp_head <= rsp_head == CW'(CTX - 1) ? '0 : rsp_head + CW'(1);
+      if (node_req_valid_o && node_req_ready_i) rsp_tail <= after(rsp_tail);
+      if (node_rsp_valid_i) rsp_head <= after(rsp_head);
     end
   end
   always_ff @(posedge clk_i) begin
     if (node_req_valid_o && node_req_ready_i) rsp_ctx[rsp_tail] <= mem_sel;
   end
 
-  // the results: round robin from the context after the last one served
-  always_comb begin
-    out_sel = rr;
-    for (int k = CTX - 1; k >= 0; k--)
-      if (out_valid[(32'(rr) + k) % CTX]) out_sel = CW'((32'(rr) + k) % CTX);
-  end
+  // the results
+  assign out_sel = pick(out_valid, rr_out);
   assign valid_o = out_valid != 0;
   for (genvar c = 0; c < CTX; c++) begin : g_out
     assign out_grant[c] = ready_i && out_valid[c] && out_sel == CW'(c);
-  end
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) rr <= '0;
-    else if (valid_o && ready_i) rr <= out_sel == CW'(CTX - 1) ? '0 : out_sel + CW'(1);
   end
   assign {thread_o, level_o} = c_idx[out_sel];
   assign kind_o = c_kind[out_sel];
