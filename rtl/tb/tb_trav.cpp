@@ -1,18 +1,21 @@
 // Co-simulation of the traversal unit (rtl/trav_unit.sv) against the C unit (hls/units/trav_unit.c:
 // trav_scene_clip, trav_object_clip, trav_start, trav_walk with the algorithm TRAV_STACK,
-// trav_stack.c, trav_restart.c). The bench is the unit's kd-node memory (a read request answered
-// 1 to 4 cycles later with the two words at the address) and keeps the C walkers per thread and
-// level; every operation the RTL accepts is applied to the C unit in the same order, and every
-// result leaving the RTL is compared field by field with the C unit's (clip: mask, tn, tf; start
-// and walk: the walker state after: have_cur, sp, the current entry's node, mask, tn, tf, lost,
-// restarted; walk: the node address read, leaf, list, and at a leaf its first entry, count,
-// mask, tn) and, for captured operations (saarcor render --capture-unit-io DIR:
-// DIR/trav_unit.hex), with the results recorded while rendering. Random operations follow:
-// walks over random kd-trees (child links anywhere, so that walks go deep and the stacks of 64
-// overflow, drop their oldest entries and restart), random closest hits and alive masks, random
-// clips, with random gaps at the input, back pressure at the output and memory latency.
+// trav_stack.c, trav_restart.c). The bench is the unit's kd-node memory (read requests answered
+// in order, 1 to 4 cycles later, with the two words at the address) and keeps the C walkers per
+// thread and level; every operation the RTL accepts is applied to the C unit in the same order
+// (the captured ones offered in their order per thread: the oldest first whose thread has
+// nothing in flight), and every result leaving the RTL (matched by thread and level: results of
+// different threads may overtake each other) is compared field by field with the C unit's
+// (clip: mask, tn, tf; start and walk: the walker state after: have_cur, sp, the current entry's
+// node, mask, tn, tf, lost, restarted; walk: the node address read, leaf, list, and at a leaf its
+// first entry, count, mask, tn) and, for captured operations (saarcor render --capture-unit-io
+// DIR: DIR/trav_unit.hex), with the results recorded while rendering. Random operations follow:
+// walks over random kd-trees (child links anywhere) and a chain of inner nodes whose every far
+// child is pushed (the stacks of 64 overflow, drop their oldest entries and restart), random
+// closest hits and alive masks, random clips, with random gaps at the input, back pressure at the
+// output and memory latency.
 // A mismatch prints the unit, the operation, its kind, the cycle, thread, level, the field and
-// both values; exit code 1.
+// both values; exit code 1 (the bench stops after 20 mismatches).
 // usage: tb_trav [-n N] [--seed S] [--capture DIR]
 #include <algorithm>
 #include <cstdio>
@@ -133,7 +136,6 @@ bool compare(const char *what, std::size_t index, const op &o, const result &a, 
                         what, index, o.captured ? "captured" : "random", KIND[o.kind], (unsigned long long)g_cycle,
                         o.thread, o.level, name, an, x, bn, y);
     };
-    const char *const lanes[4] = { "0", "1", "2", "3" };
     char name[32];
     if (o.kind <= 1) {
         field("mask", a.mask, b.mask);
@@ -146,9 +148,9 @@ bool compare(const char *what, std::size_t index, const op &o, const result &a, 
         field("restarted", a.restarted, b.restarted);
     }
     for (int i = 0; i < 4; i++) {
-        std::snprintf(name, sizeof name, "tn[%s]", lanes[i]);
+        std::snprintf(name, sizeof name, "tn[%d]", i);
         field(name, a.tn[i], b.tn[i]);
-        std::snprintf(name, sizeof name, "tf[%s]", lanes[i]);
+        std::snprintf(name, sizeof name, "tf[%d]", i);
         field(name, a.tf[i], b.tf[i]);
     }
     if (o.kind == 3) {
@@ -159,7 +161,7 @@ bool compare(const char *what, std::size_t index, const op &o, const result &a, 
             field("leaf_count", a.leaf_count, b.leaf_count);
             field("leaf_mask", a.leaf_mask, b.leaf_mask);
             for (int i = 0; i < 4; i++) {
-                std::snprintf(name, sizeof name, "leaf_tn[%s]", lanes[i]);
+                std::snprintf(name, sizeof name, "leaf_tn[%d]", i);
                 field(name, a.leaf_tn[i], b.leaf_tn[i]);
             }
         }
