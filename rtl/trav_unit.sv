@@ -46,6 +46,8 @@
 // one trav_node issue per cycle (a walk step at an inner node takes one, a clip six). On the
 // captured room frame (48x32, 64 threads, rtl/tb/tb_trav.cpp) 39.4 cycles per operation with CTX
 // = 1, 9.95 with 4, 2.65 with 16, 1.56 with 32 (bound: 1.33, the trav_node issues).
+// Resources (synth_xilinx at e7m16, THREADS = 64, DEPTH = 64, CTX = 4; scripts/synth.py's flow):
+// 28830 LUT6, 458 SRL, 17924 flip-flops, 7 DSP48E1, 120 RAMB18 (the walker states and the stacks).
 // Handshake: valid/ready at the operation input, the result output and the node read request
 // (node_thread_o, node_level_o: whose node); the node response (node_rsp_valid_i with w0, w1) is
 // taken when it comes, in request order.
