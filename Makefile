@@ -14,9 +14,9 @@
 #   make rtl-test   Verilator co-simulation of rtl/ against the C model (operators at 6 formats with
 #                   10^6 vectors each, units (also the rebase unit and the transformation unit's wide
 #                   mode) on random and captured vectors; the list unit, the caches with the memory
-#                   port, the thread scheduler, the RGS's ray generation and the tile controller on
-#                   cycle-mode frames of room, terrain, plants; ray generation on an orthographic
-#                   frame and random blocks), lint
+#                   port, the thread scheduler, the traversal unit, the RGS's ray generation and the
+#                   tile controller on cycle-mode frames of room, terrain, plants; ray generation on
+#                   an orthographic frame and random blocks), lint
 #   make synth      Yosys synthesis figures -> docs/synth.md
 #   make bench-precision  every format against the binary64 reference: time, cycles, PSNR, plots
 #   make results    docs/results.md from build/bench/ (run after make bench)
@@ -93,7 +93,8 @@ SIM_SRCS = $(MEMIMAGE) $(HLS_UNITS) $(CYCLE) $(REF) $(CLI)
 comma := ,
 CAPTURE_WRAP := $(addprefix -Wl$(comma)--wrap=,xform_point xform_vector isect_unit_rebased isect_unit_packet trav_node_split \
   list_unit_entry list_mailboxes_clear mem_iface_read mem_iface_flush mem_iface_new_frame rgs_block_begin \
-  rebase_origin xform_point_wide xform_vector_wide)
+  rebase_origin xform_point_wide xform_vector_wide \
+  trav_scene_clip trav_object_clip trav_start trav_walk)
 
 # per-format objects: everything that depends on the fp24 parameters
 fp_objs = $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(HLS_FP24) $(TB_FP))
@@ -227,7 +228,7 @@ test: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(O0_BUILD) OPT='-O0 -g' $(O0_BUILD)/saarcor
 	@$(MAKE) --no-print-directory $(BUILD)/rtl/$(DEFAULT_FMT)/tb_f24_ops $(BUILD)/rtl/$(DEFAULT_FMT)/tb_units $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sum \
 	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_list $(BUILD)/rtl/$(DEFAULT_FMT)/tb_cache $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sched $(BUILD)/rtl/$(DEFAULT_FMT)/tb_rgs \
-	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_wide
+	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_wide $(BUILD)/rtl/$(DEFAULT_FMT)/tb_trav
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 test-programs
 	@$(MAKE) --no-print-directory -j$$(nproc) robust
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 fuzz-replay
@@ -347,7 +348,7 @@ rtl-lint:
 rtl-test: deps rtl-lint
 	@$(MAKE) --no-print-directory all $(foreach f,$(RTL_FORMATS),$(BUILD)/rtl/$(f)/tb_f24_ops $(BUILD)/rtl/$(f)/tb_units $(BUILD)/rtl/$(f)/tb_sum \
 	  $(BUILD)/rtl/$(f)/tb_rgs $(BUILD)/rtl/$(f)/tb_wide) \
-	  $(foreach f,$(DEFAULT_FMT) e8m23,$(BUILD)/rtl/$(f)/tb_list $(BUILD)/rtl/$(f)/tb_cache $(BUILD)/rtl/$(f)/tb_sched)
+	  $(foreach f,$(DEFAULT_FMT) e8m23,$(BUILD)/rtl/$(f)/tb_list $(BUILD)/rtl/$(f)/tb_cache $(BUILD)/rtl/$(f)/tb_sched $(BUILD)/rtl/$(f)/tb_trav)
 	@mkdir -p $(BUILD)/rtl/capture
 	@set -o pipefail; for f in $(RTL_FORMATS); do \
 	  extra=; [ $$f = $(DEFAULT_FMT) ] && extra=$$(ls tests/golden/f24/{add,sub,mul,div,lt,le,eq,min,max,sqrt,to_i32}.hex); \
@@ -363,7 +364,7 @@ rtl-test: deps rtl-lint
 	  | tee -a $(BUILD)/rtl/units.log
 	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_wide -n $(RTL_N) || exit 1; done \
 	  | tee -a $(BUILD)/rtl/units.log
-	@# list unit and memory interface: a cycle-mode frame at the paper's 64 threads per pipe
+	@# list unit, memory interface, scheduler, traversal unit, ray generation: a cycle-mode frame at the paper's 64 threads per pipe
 	@set -o pipefail; for s in room terrain plants; do \
 	  for f in $(DEFAULT_FMT) e8m23; do \
 	    $(BUILD)/w/$$f/saarcor render $$s -o $(BUILD)/rtl/$$s.$$f.cycle.png --width 128 --height 96 --mode cycle \
@@ -371,14 +372,17 @@ rtl-test: deps rtl-lint
 	    $(BUILD)/rtl/$$f/tb_list -n $$(( $(RTL_N) / 10 )) --capture $(BUILD)/rtl/capture/$$s.$$f.cycle || exit 1; \
 	    $(BUILD)/rtl/$$f/tb_cache --capture $(BUILD)/rtl/capture/$$s.$$f.cycle || exit 1; \
 	    $(BUILD)/rtl/$$f/tb_sched -n $(RTL_N) --capture $(BUILD)/rtl/capture/$$s.$$f.cycle || exit 1; \
-	    $(BUILD)/rtl/$$f/tb_rgs -n 0 --capture $(BUILD)/rtl/capture/$$s.$$f.cycle --order 16 || exit 1; done; done | tee $(BUILD)/rtl/memory.log
+	    $(BUILD)/rtl/$$f/tb_rgs -n 0 --capture $(BUILD)/rtl/capture/$$s.$$f.cycle --order 16 || exit 1; \
+	    $(BUILD)/rtl/$$f/tb_trav -n $$(( $(RTL_N) / 10 )) --capture $(BUILD)/rtl/capture/$$s.$$f.cycle || exit 1; \
+	  done; done | tee $(BUILD)/rtl/memory.log
 	@mkdir -p $(BUILD)/rtl/animated
 	@set -o pipefail; $(BUILD)/saarcor render animated -o $(BUILD)/rtl/animated/a.png --width 128 --height 96 --mode cycle \
 	  --threads-per-pipe 64 --frames 0:3 --capture-unit-io $(BUILD)/rtl/capture/animated.cycle --capture-limit 1000000 >/dev/null \
-	  && $(BUILD)/rtl/$(DEFAULT_FMT)/tb_list -n 0 --capture $(BUILD)/rtl/capture/animated.cycle \
+	  && { $(BUILD)/rtl/$(DEFAULT_FMT)/tb_list -n 0 --capture $(BUILD)/rtl/capture/animated.cycle \
 	  && $(BUILD)/rtl/$(DEFAULT_FMT)/tb_cache --capture $(BUILD)/rtl/capture/animated.cycle \
 	  && $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sched -n 0 --capture $(BUILD)/rtl/capture/animated.cycle \
-	  && $(BUILD)/rtl/$(DEFAULT_FMT)/tb_rgs -n 0 --capture $(BUILD)/rtl/capture/animated.cycle --order 16 | tee -a $(BUILD)/rtl/memory.log
+	  && $(BUILD)/rtl/$(DEFAULT_FMT)/tb_rgs -n 0 --capture $(BUILD)/rtl/capture/animated.cycle --order 16 \
+	  && $(BUILD)/rtl/$(DEFAULT_FMT)/tb_trav -n 0 --capture $(BUILD)/rtl/capture/animated.cycle; } | tee -a $(BUILD)/rtl/memory.log
 	@# the RGS's ray generation: an orthographic frame (the cornell box's camera made orthographic), random blocks
 	@$(BUILD)/saarcor gen cornell -o $(BUILD)/rtl/capture/cornell.gltf >/dev/null
 	@python3 scripts/ortho_camera.py $(BUILD)/rtl/capture/cornell.gltf $(BUILD)/rtl/capture/ortho.gltf

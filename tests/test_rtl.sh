@@ -10,14 +10,16 @@
 # mem_port.sv) the cycle model's caches on that frame's reads, and the thread scheduler
 # (rtl/thread_sched.sv) its issues; the rebase unit and the transformation unit's wide mode
 # (rtl/rebase_unit.sv, xform_wide.sv) match rebase_origin and xform_point_wide / xform_vector_wide
-# on the room's captured transactions and 2 x 10^4 random ones; the RGS's ray generation
+# on the room's captured transactions and 2 x 10^4 random ones; the traversal unit (rtl/trav_unit.sv)
+# matches hls/units/trav_unit.c (TRAV_STACK) on the cycle-mode frame's operations and 2 x 10^4 random
+# ones that overflow its stacks; the RGS's ray generation
 # (rtl/rgs_raygen.sv) matches rgs_primary and the recorded packets of cycle-mode frames of the room
 # (perspective) and an orthographic cornell box, whose block order the tile controller
 # (rtl/tile_ctrl.sv) reproduces, and of a functional frame on 2 threads, and 2 x 10^4 random blocks
 # on random cameras; the benches catch mutants (a rounder that never rounds ties to even, a square
 # root without its sticky bit, a mailbox that never moves on, a cache without its tag forwarding, a
 # scheduler whose pointer never moves on, a rebase that moves by t = Inf, a vector mode whose unused
-# terms are +0, a pixel centre without its + 1/2, a tile controller stepping past the region's
+# terms are +0, a walk that pushes the near child, a pixel centre without its + 1/2, a tile controller stepping past the region's
 # edge). Prints cmocka-style lines.
 set -u
 cd "$(dirname "$0")/.."
@@ -96,6 +98,21 @@ mutant() {
   grep -c MISMATCH "$d/log" | sed "s/^/mutant $file caught by tb_$name: /; s/$/ mismatch lines shown/"
 }
 
+t_trav_unit() {
+  [[ -f "$T/capc/trav_unit.hex" ]] || "$BIN" render room -o "$T/room_cycle.png" --width 48 --height 32 --mode cycle \
+    --threads-per-pipe 64 --capture-unit-io "$T/capc" --capture-limit 200000 >/dev/null
+  "$B/rtl/e7m16/tb_trav" -n 20000 --capture "$T/capc" | tee "$T/trav.log"
+  # the random walks must have overflowed stacks and restarted, else the overflow path went unchecked
+  grep -Eq ", [1-9][0-9]* stack overflows, [1-9][0-9]* restarts" "$T/trav.log"
+}
+
+t_trav_mutant_caught() { # the near child pushed instead of the far one
+  [[ -f "$T/capc/trav_unit.hex" ]] || "$BIN" render room -o "$T/room_cycle.png" --width 48 --height 32 --mode cycle \
+    --threads-per-pipe 64 --capture-unit-io "$T/capc" --capture-limit 200000 >/dev/null
+  mutant trav trav_ctx.sv "s/assign stk_wr_data_o = first_near_left ?/assign stk_wr_data_o = !first_near_left ?/" \
+    -n 0 --capture "$T/capc"
+}
+
 t_list_cache_mutants_caught() {
   [[ -f "$T/capc/list.hex" ]] || "$BIN" render room -o "$T/room_cycle.png" --width 48 --height 32 --mode cycle \
     --threads-per-pipe 64 --capture-unit-io "$T/capc" --capture-limit 200000 >/dev/null
@@ -162,5 +179,7 @@ run_case rtl_list_cache_benches_catch_mutants t_list_cache_mutants_caught
 run_case rtl_rgs_raygen_and_tile_ctrl_match_c_model t_rgs
 run_case rtl_rgs_bench_catches_mutants t_rgs_mutants_caught
 run_case rtl_wide_bench_catches_mutants t_wide_mutants_caught
+run_case rtl_trav_unit_matches_c_model_and_capture t_trav_unit
+run_case rtl_trav_bench_catches_mutant t_trav_mutant_caught
 run_case rtl_bench_catches_mutant t_mutant_caught
 exit $((fails != 0))

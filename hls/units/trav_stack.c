@@ -10,7 +10,7 @@
  *
  * Per step one kd-tree entry: the prune (4 comparators), the node read (2 words), and at an inner
  * node the per-node datapath (trav_node.h: 4 sub, 4 div, per ray min, max, 2 compares); latency
- * and throughput those of the traversal unit (trav_unit.h: 11 cycles, one entry per cycle).
+ * and throughput those of the traversal unit (trav_unit.h: 21 cycles, one entry per cycle).
  * State per level: TRACE_STACK entries of a node index, mask and 4 intervals.
  */
 #include "trace_ops.h"

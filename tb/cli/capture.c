@@ -17,9 +17,10 @@
 #include "rebase_unit.h"
 #include "rgs.h"
 #include "trav_node.h"
+#include "trav_unit.h"
 #include "xform_unit.h"
 
-enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_RGS, CAP_REBASE, CAP_WIDE, CAP_UNITS };
+enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_RGS, CAP_REBASE, CAP_WIDE, CAP_TRAV_UNIT, CAP_UNITS };
 
 static struct {
     int on;
@@ -28,8 +29,8 @@ static struct {
     pthread_mutex_t lock;
 } cap = { .lock = PTHREAD_MUTEX_INITIALIZER };
 
-const char *const capture_unit_names[CAPTURE_UNITS] = { "xform", "isect", "trav", "list", "mem",
-                                                        "sched", "rgs",  "rebase", "wide" };
+const char *const capture_unit_names[CAPTURE_UNITS] = { "xform", "isect", "trav",   "list", "mem",      "sched",
+                                                        "rgs",   "rebase", "wide", "trav_unit" };
 
 /* The list unit's threads: trace_state addresses in the order first seen (the RTL's thread ids),
  * and the memory interfaces (pipes) likewise. */
@@ -496,4 +497,181 @@ void __wrap_rgs_block_begin(const uint32_t *mem, uint32_t x0, uint32_t y0, rgs_b
     fputc(' ', f);
     words(f, rp->tmax, TRACE_PACKET);
     end(f);
+}
+
+/* ---- traversal unit: its operations per trace_state and level (for rtl/tb/tb_trav.cpp) ---- */
+
+uint32_t __real_trav_scene_clip(const uint32_t *bounds, const ray_packet *rays, f24_t tn[TRACE_PACKET],
+                                f24_t tf[TRACE_PACKET]);
+uint32_t __real_trav_object_clip(const uint32_t *bounds, const f24_vec3 o[], const f24_vec3 d[], const f24_t tmin[],
+                                 const f24_t best_t[], uint32_t need, f24_t tn[TRACE_PACKET], f24_t tf[TRACE_PACKET]);
+void __real_trav_start(trav_walker *w, const uint32_t *mem, uint32_t asked, uint32_t accel, uint32_t nodes,
+                       uint32_t lists, uint32_t grid, uint32_t mask, const f24_t tn[], const f24_t tf[],
+                       const f24_vec3 o[], const f24_vec3 d[], unit_op *op, trace_counters *c);
+int __real_trav_walk(trav_walker *w, const uint32_t *mem, const f24_vec3 o[], const f24_vec3 d[], const f24_t best_t[],
+                     uint32_t alive, unit_op *op, trace_counters *c);
+uint32_t __wrap_trav_scene_clip(const uint32_t *bounds, const ray_packet *rays, f24_t tn[TRACE_PACKET],
+                                f24_t tf[TRACE_PACKET]);
+uint32_t __wrap_trav_object_clip(const uint32_t *bounds, const f24_vec3 o[], const f24_vec3 d[], const f24_t tmin[],
+                                 const f24_t best_t[], uint32_t need, f24_t tn[TRACE_PACKET], f24_t tf[TRACE_PACKET]);
+void __wrap_trav_start(trav_walker *w, const uint32_t *mem, uint32_t asked, uint32_t accel, uint32_t nodes,
+                       uint32_t lists, uint32_t grid, uint32_t mask, const f24_t tn[], const f24_t tf[],
+                       const f24_vec3 o[], const f24_vec3 d[], unit_op *op, trace_counters *c);
+int __wrap_trav_walk(trav_walker *w, const uint32_t *mem, const f24_vec3 o[], const f24_vec3 d[], const f24_t best_t[],
+                     uint32_t alive, unit_op *op, trace_counters *c);
+
+/* One line of trav_unit.hex: kind (0 scene clip, 1 object clip, 2 start, 3 walk), thread, level;
+ * box (6), o (12), d (12), tn (4), tf (4), best_t (4), mask, nodes, algorithm, the node read
+ * (address, w0, w1; address ffffffff for none); the return value, and after the operation the
+ * walker's have_cur, whether the step was at a leaf, leaf_first, leaf_count, leaf_mask, leaf_tn
+ * (4), sp, the current entry (node, mask, tn (4), tf (4); for a clip its mask, tn, tf), lost, pass. */
+typedef struct {
+    uint32_t kind, box[6], o[12], d[12], tn[4], tf[4], best[4], mask, nodes, algo, read[3];
+} trav_cap_in;
+
+static void vec_words(uint32_t out[12], const f24_vec3 v[])
+{
+    for (int i = 0; i < TRACE_PACKET; i++)
+        out[3 * i] = v[i].x, out[3 * i + 1] = v[i].y, out[3 * i + 2] = v[i].z;
+}
+
+static void record_trav(const char *base, uint32_t level, const trav_cap_in *in, uint32_t ret, const trav_walker *w,
+                        uint32_t leaf, const trav_entry *out)
+{
+    FILE *f = begin(CAP_TRAV_UNIT);
+    if (!f)
+        return;
+    fprintf(f, "%x %x %x ", in->kind, (unsigned)state_id(base, 1), level);
+    words(f, in->box, 6);
+    fputc(' ', f);
+    words(f, in->o, 12);
+    fputc(' ', f);
+    words(f, in->d, 12);
+    fputc(' ', f);
+    words(f, in->tn, 4);
+    fputc(' ', f);
+    words(f, in->tf, 4);
+    fputc(' ', f);
+    words(f, in->best, 4);
+    fprintf(f, " %x %x %x %x %x %x %x", in->mask, in->nodes, in->algo, in->read[0], in->read[1], in->read[2], ret);
+    fprintf(f, " %x %x %x %x %x ", w->have_cur, leaf, w->leaf_first, w->leaf_count, w->leaf_mask);
+    words(f, w->leaf_tn, 4);
+    fprintf(f, " %x %x %x ", w->sp, out->node, out->mask);
+    words(f, out->tn, 4);
+    fputc(' ', f);
+    words(f, out->tf, 4);
+    fprintf(f, " %x %x", w->lost, w->pass);
+    end(f);
+}
+
+CAPTURE_PATH uint32_t captured_scene_clip(const uint32_t *bounds, const ray_packet *rays, f24_t tn[TRACE_PACKET],
+                                           f24_t tf[TRACE_PACKET])
+{
+    const uint32_t mask = __real_trav_scene_clip(bounds, rays, tn, tf);
+    trav_cap_in in = { .kind = 0, .mask = rays->active, .read = { 0xFFFFFFFFu, 0, 0 } };
+    memcpy(in.box, bounds, sizeof in.box);
+    vec_words(in.o, rays->o);
+    vec_words(in.d, rays->d);
+    memcpy(in.tn, rays->tmin, sizeof in.tn);
+    memcpy(in.tf, rays->tmax, sizeof in.tf);
+    trav_entry out = { .mask = mask };
+    memcpy(out.tn, tn, sizeof out.tn);
+    memcpy(out.tf, tf, sizeof out.tf);
+    const trav_walker none = { 0 };
+    record_trav((const char *)rays - offsetof(trace_state, rays), 0, &in, mask, &none, 0, &out);
+    return mask;
+}
+
+CAPTURE_PATH uint32_t captured_object_clip(const uint32_t *bounds, const f24_vec3 o[], const f24_vec3 d[],
+                                            const f24_t tmin[], const f24_t best_t[], uint32_t need,
+                                            f24_t tn[TRACE_PACKET], f24_t tf[TRACE_PACKET])
+{
+    const uint32_t mask = __real_trav_object_clip(bounds, o, d, tmin, best_t, need, tn, tf);
+    trav_cap_in in = { .kind = 1, .mask = need, .read = { 0xFFFFFFFFu, 0, 0 } };
+    memcpy(in.box, bounds, sizeof in.box);
+    vec_words(in.o, o);
+    vec_words(in.d, d);
+    for (int i = 0; i < TRACE_PACKET; i++) /* the rays outside need: not read by the unit */
+        in.tn[i] = need >> i & 1u ? tmin[i] : 0, in.tf[i] = need >> i & 1u ? best_t[i] : 0;
+    trav_entry out = { .mask = mask };
+    memcpy(out.tn, tn, sizeof out.tn);
+    memcpy(out.tf, tf, sizeof out.tf);
+    const trav_walker none = { 0 };
+    record_trav((const char *)o - offsetof(trace_state, o), 1, &in, mask, &none, 0, &out);
+    return mask;
+}
+
+/* The trace_state and level of walker w: level 1 if that state is known, else level 0. */
+static const char *walker_base(const trav_walker *w, uint32_t *level)
+{
+    const char *p = (const char *)w;
+    pthread_mutex_lock(&cap.lock);
+    *level = state_id(p - WALK_OFF(1), 0) >= 0;
+    pthread_mutex_unlock(&cap.lock);
+    return p - WALK_OFF(*level);
+}
+
+CAPTURE_PATH void captured_start(trav_walker *w, const uint32_t *mem, uint32_t asked, uint32_t accel, uint32_t nodes,
+                                 uint32_t lists, uint32_t grid, uint32_t mask, const f24_t tn[], const f24_t tf[],
+                                 const f24_vec3 o[], const f24_vec3 d[], unit_op *op, trace_counters *c)
+{
+    __real_trav_start(w, mem, asked, accel, nodes, lists, grid, mask, tn, tf, o, d, op, c);
+    trav_cap_in in = { .kind = 2, .mask = mask, .nodes = nodes, .algo = w->algo, .read = { 0xFFFFFFFFu, 0, 0 } };
+    vec_words(in.o, o);
+    vec_words(in.d, d);
+    memcpy(in.tn, tn, sizeof in.tn);
+    memcpy(in.tf, tf, sizeof in.tf);
+    uint32_t level;
+    const char *base = walker_base(w, &level);
+    record_trav(base, level, &in, 0, w, 0, &w->cur);
+}
+
+CAPTURE_PATH int captured_walk(trav_walker *w, const uint32_t *mem, const f24_vec3 o[], const f24_vec3 d[],
+                               const f24_t best_t[], uint32_t alive, unit_op *op, trace_counters *c)
+{
+    const uint64_t leaves = c->leaves;
+    const int ret = __real_trav_walk(w, mem, o, d, best_t, alive, op, c);
+    trav_cap_in in = { .kind = 3, .mask = alive, .nodes = w->nodes, .algo = w->algo, .read = { 0xFFFFFFFFu, 0, 0 } };
+    vec_words(in.o, o);
+    vec_words(in.d, d);
+    memcpy(in.best, best_t, sizeof in.best);
+    for (uint32_t r = 0; r < op->n_reads; r++)
+        if (op->read[r].kind == MEM_NODES) {
+            const uint32_t a = op->read[r].addr;
+            in.read[0] = a, in.read[1] = mem[a], in.read[2] = mem[a + 1];
+        }
+    uint32_t level;
+    const char *base = walker_base(w, &level);
+    record_trav(base, level, &in, (uint32_t)ret, w, c->leaves != leaves, &w->cur);
+    return ret;
+}
+
+uint32_t __wrap_trav_scene_clip(const uint32_t *bounds, const ray_packet *rays, f24_t tn[TRACE_PACKET],
+                                f24_t tf[TRACE_PACKET])
+{
+    return capturing() ? captured_scene_clip(bounds, rays, tn, tf) : __real_trav_scene_clip(bounds, rays, tn, tf);
+}
+
+uint32_t __wrap_trav_object_clip(const uint32_t *bounds, const f24_vec3 o[], const f24_vec3 d[], const f24_t tmin[],
+                                 const f24_t best_t[], uint32_t need, f24_t tn[TRACE_PACKET], f24_t tf[TRACE_PACKET])
+{
+    return capturing() ? captured_object_clip(bounds, o, d, tmin, best_t, need, tn, tf)
+                       : __real_trav_object_clip(bounds, o, d, tmin, best_t, need, tn, tf);
+}
+
+void __wrap_trav_start(trav_walker *w, const uint32_t *mem, uint32_t asked, uint32_t accel, uint32_t nodes,
+                       uint32_t lists, uint32_t grid, uint32_t mask, const f24_t tn[], const f24_t tf[],
+                       const f24_vec3 o[], const f24_vec3 d[], unit_op *op, trace_counters *c)
+{
+    if (capturing())
+        captured_start(w, mem, asked, accel, nodes, lists, grid, mask, tn, tf, o, d, op, c);
+    else
+        __real_trav_start(w, mem, asked, accel, nodes, lists, grid, mask, tn, tf, o, d, op, c);
+}
+
+int __wrap_trav_walk(trav_walker *w, const uint32_t *mem, const f24_vec3 o[], const f24_vec3 d[], const f24_t best_t[],
+                     uint32_t alive, unit_op *op, trace_counters *c)
+{
+    return capturing() ? captured_walk(w, mem, o, d, best_t, alive, op, c)
+                       : __real_trav_walk(w, mem, o, d, best_t, alive, op, c);
 }

@@ -12,17 +12,21 @@
  * memory interface: pipe, kind, word address, words, cycle, the cycle its data is at the unit,
  * lookups, hits; "N pipe" where a frame starts, "F pipe" where the caches are emptied),
  * DIR/sched.hex (cycle mode only, for rtl/tb/tb_sched.cpp: the thread scheduler's ready and
- * issue events, capture_sched_probe), DIR/rgs.hex (the RGS's primary rays, for rtl/tb/tb_rgs.cpp: per block a thread takes, in the order taken,
- * x0, y0, the 16 camera words, the primary packet's active mask, 4 x O, 4 x D, 4 x tmin, 4 x tmax;
+ * issue events, capture_sched_probe), DIR/rgs.hex (the RGS's primary rays, for
+ * rtl/tb/tb_rgs.cpp: per block a thread takes, in the order taken, x0, y0, the 16 camera words, the primary packet's active mask, 4 x O, 4 x D, 4 x tmin, 4 x tmax;
  * in cycle mode with one pipe that is the tile controller's order),
  * DIR/rebase.hex (rebase_origin, for rtl/tb/tb_wide.cpp: o hi, o lo, d hi, d lo, t; p hi, p lo,
  * rebase_distance(t)), DIR/wide.hex (xform_point_wide and xform_vector_wide: 12 matrix words, the
- * translation's 3 low words, p hi, p lo, point flag; r hi, r lo; a vector with zero low words).
+ * translation's 3 low words, p hi, p lo, point flag; r hi, r lo; a vector with zero low words),
+ * DIR/trav_unit.hex (the traversal unit's operations, for rtl/tb/tb_trav.cpp: scene and object
+ * clips, walk starts and steps per thread and level with their operands, the node read and the
+ * walker state after; the layout at record_trav in capture.c).
  * The hls/ units are not touched: the program is linked with --wrap for xform_point, xform_vector,
- * isect_unit_rebased, isect_unit_packet (recorded ray by ray), trav_node_split, list_unit_entry, list_mailboxes_clear, mem_iface_read,
- * mem_iface_flush, mem_iface_new_frame, rgs_block_begin, rebase_origin, xform_point_wide and xform_vector_wide
- * (called from trace.c, in another object), and the wrappers record the calls while capturing is on
- * (at most `limit` transactions per unit; recorded in call order, which with several host threads
+ * isect_unit_rebased, isect_unit_packet (recorded ray by ray), trav_node_split, list_unit_entry,
+ * list_mailboxes_clear, mem_iface_read, mem_iface_flush, mem_iface_new_frame, rgs_block_begin,
+ * rebase_origin, xform_point_wide, xform_vector_wide (called from trace.c, in another object),
+ * trav_scene_clip, trav_object_clip, trav_start and trav_walk, and the wrappers record the calls
+ * while capturing is on (at most `limit` transactions per unit; recorded in call order, which with several host threads
  * interleaves).
  */
 #ifndef SAARCOR_CAPTURE_H
@@ -34,8 +38,8 @@
 int capture_start(const char *dir, uint64_t limit, char *err, unsigned errlen);
 
 /* Transactions recorded per unit (DIR/NAME.hex for each name): xform, isect, trav, list, mem, sched, rgs,
- * rebase, wide. */
-#define CAPTURE_UNITS 9
+ * rebase, wide, trav_unit. */
+#define CAPTURE_UNITS 10
 extern const char *const capture_unit_names[CAPTURE_UNITS];
 void capture_counts(uint64_t out[CAPTURE_UNITS]);
 
