@@ -393,6 +393,8 @@ rtl-test: deps rtl-lint
 	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_rgs -n $(RTL_N) || exit 1; done | tee -a $(BUILD)/rtl/rgs.log
 	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_sum -n $(RTL_N) || exit 1; done \
 	  | tee -a $(BUILD)/rtl/units.log
+	@# the short form with every mutant (make test builds one per bench)
+	@SAARCOR_RTL_MUTANTS=all BUILD=$(BUILD) bash tests/run.sh tests/test_rtl.sh
 
 # Yosys synthesis of every module (synth_xilinx; synth_ice40 + nextpnr-ice40 for the operators;
 # the operators and the intersection unit across mantissa widths) -> docs/synth.md

@@ -40,7 +40,9 @@ OPERATORS = ["f24_add", "f24_mul", "f24_div", "f24_cmp"]
 RGS_OPERATORS = ["f24_sqrt", "f24_to_i32"]  # the shading's (issue 23), unary; built pipelined from the start
 UNITS = ["xform_unit", "isect_unit", "trav_node"]
 ACCURACY_UNITS = ["xform_wide", "rebase_unit"]  # the accuracy datapath's units (docs/numerics.md)
-RGS_UNITS = ["rgs_raygen"]  # the RGS's RTL so far: primary rays through its own xform_unit
+# units with their control (beyond a datapath): the traversal unit (CTX = 4 operation contexts
+# around one trav_node, per-thread stacks) and the RGS's primary rays (through its own xform_unit)
+PIPE_UNITS = ["trav_unit", "rgs_raygen"]
 WIDTHS = [8, 10, 12, 14, 16, 18, 20, 23]
 ROBUST_EDGE_EPS = 8
 # the operators' default pipeline stages (rtl/f24_*.sv: STAGES) and the units' latencies built from them
@@ -50,7 +52,8 @@ LATENCY = dict(STAGES, xform_unit=STAGES["f24_mul"] + 3 * STAGES["f24_add"],
                isect_unit=STAGES["f24_div"] + STAGES["f24_mul"] + 2 * STAGES["f24_add"] + STAGES["f24_cmp"],
                trav_node=STAGES["f24_add"] + STAGES["f24_div"] + 2 * STAGES["f24_cmp"],
                xform_wide=STAGES["f24_sum_exact"], rebase_unit=STAGES["f24_sum_exact"],
-               rgs_raygen=1 + 2 + STAGES["f24_mul"] + 3 * STAGES["f24_add"] + 4)  # in, convert 2, xform, 4 rays
+               rgs_raygen=1 + 2 + STAGES["f24_mul"] + 3 * STAGES["f24_add"] + 4,  # in, convert 2, xform, 4 rays
+               trav_unit="32 (a step at an inner node)")
 # before the operators were pipelined inside (a combinational core, then a delay line): make synth at
 # commit 0abb082 (2026-11-24), iCE40 HX8K: latency, LUT4, FFs, Fmax MHz
 BEFORE = {"f24_add": (3, 756, 72, 14.83), "f24_mul": (3, 896, 72, 32.89), "f24_div": (6, 1394, 144, 4.64),
@@ -302,7 +305,7 @@ def main():
         for n, t, p, _ in CONTROL:
             jobs[control_key(n)] = pool.submit(control, n, t, p)
         jobs[("i", "f24_sum_exact", 16)] = pool.submit(ice40, "f24_sum_exact", 7, 16)
-        for top in OPERATORS + RGS_OPERATORS + UNITS + ACCURACY_UNITS + RGS_UNITS:
+        for top in OPERATORS + RGS_OPERATORS + UNITS + ACCURACY_UNITS + PIPE_UNITS:
             jobs[("x", top, 16)] = pool.submit(xilinx, top, 7, 16)
         for top in OPERATORS + RGS_OPERATORS:
             jobs[("i", top, 16)] = pool.submit(ice40, top, 7, 16)
@@ -355,7 +358,7 @@ def write(res):
           "## Modules at e7m16 (the paper's 24-bit format)", "",
           "| module | latency | LUTs | SRL (pipeline shift registers) | FFs | DSP48E1 | BRAM | CARRY4 | LUT6 levels | iCE40 LUT4 | iCE40 FFs | iCE40 Fmax MHz |",
           "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
-    for top in OPERATORS + RGS_OPERATORS + UNITS + [u for u in RGS_UNITS if ("x", u, 16) in res]:
+    for top in OPERATORS + RGS_OPERATORS + UNITS + [u for u in PIPE_UNITS if ("x", u, 16) in res]:
         x = res[("x", top, 16)]
         i = res.get(("i", top, 16))
         fmax = "-" if not i else (f"{i['fmax_mhz']:.1f}" if i.get("fmax_mhz") else i.get("pnr", "-"))
