@@ -261,7 +261,6 @@ def redo(keys):
     before = redone()
     with open(REDONE, "w") as f:
         f.write("".join(k + "\n" for k in before + [k for k in keys if k not in before]))
-    res = {parse_key(k): v for k, v in json.load(open(os.path.join(OUT, "synth.json"))).items()}
 
     def measure(key):
         kind, top, m = parse_key(key)
@@ -273,10 +272,14 @@ def redo(keys):
         return xilinx(top, 7, int(mm), int(opt[4:]) if opt.startswith("edge") else 0,
                       int(opt[1:]) if opt.startswith("n") else 0)
 
+    new = {}
     with cf.ThreadPoolExecutor(max_workers=2) as pool:  # two Yosys processes at a time, as a whole run
         for key, r in zip(keys, pool.map(measure, keys)):
-            res[parse_key(key)] = r
+            new[parse_key(key)] = r
             print(f"synth: {key}: {r}", file=sys.stderr, flush=True)
+    # read again: another --redo may have written its entries meanwhile
+    res = {parse_key(k): v for k, v in json.load(open(os.path.join(OUT, "synth.json"))).items()}
+    res.update(new)
     json.dump({f"{k[0]}:{k[1]}:e7m{k[2]}": v for k, v in res.items()}, open(os.path.join(OUT, "synth.json"), "w"), indent=1)
     write(res)
 
