@@ -16,9 +16,10 @@
 // many write ports. Round robin keeps it fair: no thread waits for more than THREADS issues.
 // Latency: a thread set in cycle c can issue in c + 1. Throughput: one issue per unit and cycle
 // (an operation of n slots blocks its unit n cycles).
-// Resources (THREADS = 64, UNITS = 5): 5 x 64 ready flip-flops, 5 x 6-bit pointers, 5 SLOT_BITS
-// busy counters; per unit two 64-bit priority encoders (at or after the pointer, and from 0) and
-// a 64:1 SLOT_BITS-bit multiplexer of the slots.
+// Resources (THREADS = 64, UNITS = 5): 5 x 64 ready flip-flops, 5 x 64 pointer flip-flops (the
+// pointer as the mask of the threads after it, so that no comparator per thread is needed), 5
+// SLOT_BITS busy counters; per unit a lowest-set-bit isolation on a 64-bit carry chain, OR trees
+// for the index and the slots (docs/synth.md: LUT6 levels).
 module thread_sched #(
   parameter int THREADS = 64,
   parameter int UNITS = 5,       // RGS, transformation, traversal, list, intersection (trace.h)
@@ -34,41 +35,54 @@ module thread_sched #(
   output logic [UNITS*SLOT_BITS-1:0]     issue_slots_o
 );
   logic [THREADS-1:0] ready_q [UNITS];
-  logic [TW-1:0]      ptr_q [UNITS];
+  logic [THREADS-1:0] after_q [UNITS];   // the threads after the one issued last (the pointer as a mask)
   logic [SLOT_BITS-1:0] busy_q [UNITS];  // cycles the unit's issue slots stay taken after this one
 
-  // Lowest set bit of v (v != 0), as a priority encoder from the top down.
-  function automatic logic [TW-1:0] lowest(input logic [THREADS-1:0] v);
-    lowest = '0;
-    for (int i = THREADS - 1; i >= 0; i--)
-      if (v[i]) lowest = TW'(i);
+  // The index of a one-hot vector: per index bit an OR over the threads (a tree, no priority chain).
+  function automatic logic [TW-1:0] index_of(input logic [THREADS-1:0] onehot);
+    index_of = '0;
+    for (int t = 0; t < THREADS; t++)
+      if (onehot[t]) index_of = index_of | TW'(t);
+  endfunction
+
+  // The slots of the thread of a one-hot vector: an AND-OR multiplexer.
+  function automatic logic [SLOT_BITS-1:0] slots_of(input logic [THREADS-1:0] onehot,
+                                                    input logic [THREADS*SLOT_BITS-1:0] slots);
+    slots_of = '0;
+    for (int t = 0; t < THREADS; t++)
+      if (onehot[t]) slots_of = slots_of | slots[t*SLOT_BITS +: SLOT_BITS];
   endfunction
 
   for (genvar u = 0; u < UNITS; u++) begin : g_unit
-    logic [THREADS-1:0] at_or_after;
-    logic [TW-1:0]      pick;
+    logic [THREADS-1:0] later, cand, grant;
+    logic [SLOT_BITS-1:0] slots;
     logic               go;
 
+    // Round robin: the lowest ready thread after the last issued one, else the lowest ready thread
+    // (the first at or after the pointer, cyclically). cand & -cand isolates the lowest set bit on
+    // a carry chain; the index and the slots follow from the one-hot grant by OR trees.
     always_comb begin
-      for (int t = 0; t < THREADS; t++) at_or_after[t] = ready_q[u][t] && TW'(t) >= ptr_q[u];
-      pick = |at_or_after ? lowest(at_or_after) : lowest(ready_q[u]);
+      later = ready_q[u] & after_q[u];
+      cand = |later ? later : ready_q[u];
+      grant = cand & (~cand + THREADS'(1));
+      slots = slots_of(grant, slots_i);
       go = |ready_q[u] && busy_q[u] == '0;
     end
 
     assign issue_valid_o[u] = go;
-    assign issue_thread_o[u*TW +: TW] = pick;
-    assign issue_slots_o[u*SLOT_BITS +: SLOT_BITS] = slots_i[pick*SLOT_BITS +: SLOT_BITS];
+    assign issue_thread_o[u*TW +: TW] = index_of(grant);
+    assign issue_slots_o[u*SLOT_BITS +: SLOT_BITS] = slots;
 
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) begin
         ready_q[u] <= '0;
-        ptr_q[u] <= '0;
+        after_q[u] <= '1;
         busy_q[u] <= '0;
       end else begin
-        ready_q[u] <= (ready_q[u] & ~(go ? THREADS'(1) << pick : '0)) | set_i[u*THREADS +: THREADS];
+        ready_q[u] <= (ready_q[u] & ~(go ? grant : '0)) | set_i[u*THREADS +: THREADS];
         if (go) begin
-          ptr_q[u] <= TW'((32'(pick) + 1) % THREADS);
-          busy_q[u] <= slots_i[pick*SLOT_BITS +: SLOT_BITS] - SLOT_BITS'(1);
+          after_q[u] <= ~((grant << 1) - THREADS'(1));  // the threads above the granted one
+          busy_q[u] <= slots - SLOT_BITS'(1);
         end else if (busy_q[u] != '0) begin
           busy_q[u] <= busy_q[u] - SLOT_BITS'(1);
         end

@@ -124,7 +124,7 @@ t_list_cache_mutants_caught() {
   mutant list list_unit.sv "s/s2_next\[r\] + 3'd1/s2_next[r]/" -n 2000 --capture "$T/capc" &&
     mutant cache cache_dm.sv "s/tag_eff = (p_tag_we \&\& p_tag_idx == s1_idx) ? p_tag : tag_q;/tag_eff = tag_q;/" \
       --capture "$T/capc" &&
-    mutant sched thread_sched.sv "s/ptr_q\[u\] <= TW'((32'(pick) + 1) % THREADS);/ptr_q[u] <= '0;/" -n 0 --capture "$T/capc"
+    mutant sched thread_sched.sv "s/after_q\[u\] <= ~((grant << 1) - THREADS'(1));/after_q[u] <= '1;/" -n 0 --capture "$T/capc"
 }
 
 t_rgs() {
