@@ -16,12 +16,12 @@
 # (rtl/rgs_raygen.sv) matches rgs_primary and the recorded packets of cycle-mode frames of the room
 # (perspective) and an orthographic cornell box, whose block order the tile controller
 # (rtl/tile_ctrl.sv) reproduces, and of a functional frame on 2 threads, and 2 x 10^4 random blocks
-# on random cameras; the benches catch mutants (a rounder that never rounds ties to even, a square
-# root without its sticky bit, a mailbox that never moves on, a cache without its tag forwarding, a
-# scheduler whose pointer never moves on, a vector mode whose unused terms are +0, a walk that pushes
-# the near child, a pixel centre without its + 1/2; with SAARCOR_RTL_MUTANTS=all, as make rtl-test
-# runs it, also a rebase that moves by t = Inf and a tile controller stepping past the region's
-# edge). Prints cmocka-style lines.
+# on random cameras; the benches catch mutants (a rounder that never rounds ties to even, a mailbox
+# that never moves on, a cache without its tag forwarding, a scheduler whose pointer never moves on,
+# a walk that pushes the near child; with SAARCOR_RTL_MUTANTS=all, as make rtl-test runs it, also a
+# square root without its sticky bit, a pixel centre without its + 1/2, a tile controller stepping
+# past the region's edge, a vector mode whose unused terms are +0 and a rebase that moves by
+# t = Inf). Prints cmocka-style lines.
 set -u
 cd "$(dirname "$0")/.."
 B=${BUILD:-build}
@@ -83,8 +83,10 @@ t_list_and_cache() {
 
 # builds tb_NAME with rtl/FILE replaced by the sed expression EXPR in $T/mut_NAME; runs it with ARGS
 # and expects it to fail
-# Each mutant is a Verilator build (10-20 s); make test runs one per bench, make rtl-test
-# (SAARCOR_RTL_MUTANTS=all) every one.
+# Each mutant is a Verilator build (10-20 s, its C++ at -O0): make test runs the mutants of the
+# rounder, the list unit, the cache, the scheduler and the traversal unit; make rtl-test
+# (SAARCOR_RTL_MUTANTS=all) also those of the square root, the ray generation, the tile controller,
+# the wide transformation and the rebase unit.
 extra_mutants() { [[ ${SAARCOR_RTL_MUTANTS:-} == all ]]; }
 
 mutant() {
@@ -96,6 +98,7 @@ mutant() {
   local srcs=()
   for f in rtl/*.sv; do [[ $f == "rtl/$file" ]] || srcs+=("$PWD/$f"); done
   verilator --cc --exe --build -j 2 -Wno-fatal -GE=7 -GM=16 --top-module "tb_$name" -Mdir "$d/obj" \
+    -MAKEFLAGS OPT_FAST=-O0 -MAKEFLAGS OPT_SLOW=-O0 -MAKEFLAGS OPT_GLOBAL=-O0 \
     -o "$d/tb" "${srcs[@]}" "$d/$file" "$PWD/rtl/tb/tb_$name.sv" "$PWD/rtl/tb/tb_$name.cpp" \
     -CFLAGS "-DF24_EXP_BITS=7 -DF24_MAN_BITS=16 $(printf -- "-I$PWD/%s " hls hls/fp24 hls/units tb/fp host/memimage host/kdtree host/scene)" \
     -LDFLAGS "$(ls "$PWD/$B"/obj/e7m16/hls/fp24/*.o "$PWD/$B"/obj/e7m16/hls/units/*.o "$PWD/$B"/obj/e7m16/tb/fp/*.o | tr '\n' ' ') -lmpfr -lgmp -lm" >/dev/null
@@ -147,17 +150,15 @@ t_rgs() {
 }
 
 t_rgs_mutants_caught() {
-  mutant rgs rgs_raygen.sv "s/{x\[30:0\], 1'b1}/{x[30:0], 1'b0}/" -n 200
-  extra_mutants || return 0
-  mutant rgs tile_ctrl.sv "s/33'(x_q) + 33'd2 < 33'(x1_q)/33'(x_q) + 33'd2 <= 33'(x1_q)/" -n 2000
+  mutant rgs rgs_raygen.sv "s/{x\[30:0\], 1'b1}/{x[30:0], 1'b0}/" -n 200 &&
+    mutant rgs tile_ctrl.sv "s/33'(x_q) + 33'd2 < 33'(x1_q)/33'(x_q) + 33'd2 <= 33'(x1_q)/" -n 2000
 }
 
 # the rebase unit without the test for t = Inf (rebase_distance: 0), the wide mode's vector with its
 # five unused terms +0 * +0 (the sum of three -0 products would come out +0)
 t_wide_mutants_caught() {
-  mutant wide xform_wide.sv "s/{5{NEG_ZERO}}/'0/" -n 4000
-  extra_mutants || return 0
-  mutant wide rebase_unit.sv "s/assign te = t_i\[W-2:M\] == '1 ? '0 : t_i;/assign te = t_i;/" -n 4000
+  mutant wide xform_wide.sv "s/{5{NEG_ZERO}}/'0/" -n 4000 &&
+    mutant wide rebase_unit.sv "s/assign te = t_i\[W-2:M\] == '1 ? '0 : t_i;/assign te = t_i;/" -n 4000
 }
 
 t_mutant_caught() { # the bench must fail on a wrong rounder
@@ -172,7 +173,10 @@ t_mutant_caught() { # the bench must fail on a wrong rounder
     -LDFLAGS "$(ls "$PWD/$B"/obj/e7m16/hls/fp24/*.o "$PWD/$B"/obj/e7m16/tb/fp/*.o | tr '\n' ' ') -lmpfr -lgmp -lm" >/dev/null
   if "$T/mut/tb" -n 20000 >"$T/mut/log"; then echo "the mutant rounder passed the bench"; return 1; fi
   grep -c MISMATCH "$T/mut/log" | sed 's/^/mutant caught: /; s/$/ mismatch lines shown/'
-  # a square root that drops the remainder's sticky bit takes inexact roots above a half ulp for ties
+}
+
+# a square root that drops the remainder's sticky bit takes inexact roots above a half ulp for ties
+t_sqrt_mutant_caught() {
   mutant f24_ops f24_sqrt.sv "s/rootl\[0\] | (reml != 0)/rootl[0]/" -n 20000
 }
 
@@ -184,8 +188,11 @@ run_case rtl_exact_sum_matches_c_model t_exact_sum
 run_case rtl_list_unit_and_caches_match_c_model t_list_and_cache
 run_case rtl_list_cache_benches_catch_mutants t_list_cache_mutants_caught
 run_case rtl_rgs_raygen_and_tile_ctrl_match_c_model t_rgs
-run_case rtl_rgs_bench_catches_mutants t_rgs_mutants_caught
-run_case rtl_wide_bench_catches_mutants t_wide_mutants_caught
+if extra_mutants; then
+  run_case rtl_sqrt_bench_catches_mutant t_sqrt_mutant_caught
+  run_case rtl_rgs_bench_catches_mutants t_rgs_mutants_caught
+  run_case rtl_wide_bench_catches_mutants t_wide_mutants_caught
+fi
 run_case rtl_trav_unit_matches_c_model_and_capture t_trav_unit
 run_case rtl_trav_bench_catches_mutant t_trav_mutant_caught
 run_case rtl_bench_catches_mutant t_mutant_caught
