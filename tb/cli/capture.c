@@ -29,8 +29,8 @@ static struct {
     pthread_mutex_t lock;
 } cap = { .lock = PTHREAD_MUTEX_INITIALIZER };
 
-const char *const capture_unit_names[CAPTURE_UNITS] = { "xform", "isect", "trav",   "list", "mem",      "sched",
-                                                        "rgs",   "rebase", "wide", "trav_unit" };
+const char *const capture_unit_names[CAPTURE_UNITS] = { "xform", "isect", "trav", "list",  "mem",
+                                                        "sched", "rgs",   "rebase", "wide", "trav_unit" };
 
 /* The list unit's threads: trace_state addresses in the order first seen (the RTL's thread ids),
  * and the memory interfaces (pipes) likewise. */
