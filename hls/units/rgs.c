@@ -28,31 +28,29 @@ static uint32_t q_mul(uint32_t a, uint32_t b) { return q_sat((a * b + 2048u) >> 
 static uint32_t q_add(uint32_t a, uint32_t b) { return q_sat(a + b); }
 static uint32_t q_byte(uint32_t t) { return (t << 4) | (t >> 4); } /* 8-bit -> Q12, 255 -> 4095 */
 
+static f24w ratio_w(int32_t num, int32_t den) { return f24w_div(f24w_from_i32(num), f24w_from_i32(den)); }
+static f24_t ratio(int32_t num, int32_t den) { return f24w_bits(ratio_w(num, den)); }
+
 /* fp24 -> Q12: one multiplier, one adder, the float-to-int converter; clamps to [0, 65535]. */
-static uint32_t q_of(f24_t x)
+static uint32_t q_of_w(f24w x)
 {
-    const int32_t i = f24_to_i32(f24_add(f24_mul(x, f24_from_i32(4096)), f24_div(F24_ONE, f24_from_i32(2))));
+    const int32_t i = f24_to_i32(f24w_bits(f24w_add(f24w_mul(x, f24w_from_i32(4096)), ratio_w(1, 2))));
     return i < 0 ? 0u : q_sat((uint32_t)i);
 }
+static uint32_t q_of(f24_t x) { return q_of_w(f24w_of(x)); }
 
 
 /* ---- fp24 vector helpers ------------------------------------------------------------------ */
 
 static uint32_t region_start(const uint32_t *mem, uint32_t r) { return mem[H_REGIONS + 2 * r]; }
-static f24_t ratio(int32_t num, int32_t den) { return f24_div(f24_from_i32(num), f24_from_i32(den)); }
-/* The three products side by side (lane 3 unused), then their sum in order. */
-static F24Q_FN f24_t dot3(f24_vec3 a, f24_vec3 b)
+static f24_t dot3(f24_vec3 a, f24_vec3 b) { return f24w_bits(f24w_dot3(f24w_vec3_of(a), f24w_vec3_of(b))); }
+static f24w_vec3 sub3_w(f24w_vec3 a, f24w_vec3 b)
 {
-    const f24_t al[4] = { a.x, a.y, a.z, 0 }, bl[4] = { b.x, b.y, b.z, 0 };
-    const f24q p = f24q_mul(f24q_of(al), f24q_of(bl));
-    return f24w_bits(f24w_add(f24w_add(f24q_lane(p, 0), f24q_lane(p, 1)), f24q_lane(p, 2)));
+    return (f24w_vec3){ f24w_sub(a.x, b.x), f24w_sub(a.y, b.y), f24w_sub(a.z, b.z) };
 }
-static f24_vec3 sub3(f24_vec3 a, f24_vec3 b) { return (f24_vec3){ f24_sub(a.x, b.x), f24_sub(a.y, b.y), f24_sub(a.z, b.z) }; }
-static f24_vec3 scale3(f24_vec3 a, f24_t s) { return (f24_vec3){ f24_mul(a.x, s), f24_mul(a.y, s), f24_mul(a.z, s) }; }
+static f24w_vec3 neg3_w(f24w_vec3 a) { return (f24w_vec3){ f24w_neg(a.x), f24w_neg(a.y), f24w_neg(a.z) }; }
 static f24_vec3 neg3(f24_vec3 a) { return (f24_vec3){ f24_neg(a.x), f24_neg(a.y), f24_neg(a.z) }; }
-static f24_t length3(f24_vec3 a) { return f24_sqrt(dot3(a, a)); }
-/* Cosine between unit vector n and direction d (any length). */
-static f24_t cos_to(f24_vec3 n, f24_vec3 d) { return f24_div(dot3(n, d), length3(d)); }
+static f24w length3_w(f24w_vec3 a) { return f24w_sqrt(f24w_dot3(a, a)); }
 
 /* T_R = [D^, N^, D^; O]: the transformation of every secondary ray of a hit. */
 static f24_affine t_r(f24_vec3 o, f24_vec3 d, f24_vec3 n)
@@ -128,10 +126,18 @@ block_pixels:
 /* ---- the surface at a hit ------------------------------------------------------------------- */
 
 
-/* u A + v B + (1 - u - v) C. */
-static f24_t lerp(f24_t a, f24_t b, f24_t c, f24_t u, f24_t v)
+/* The barycentric weights of a hit: u, v and w = (1 - u) - v. */
+typedef struct { f24w u, v, w; } bary;
+static bary bary_of(const hit_record *h)
 {
-    return f24_add(f24_add(f24_mul(u, a), f24_mul(v, b)), f24_mul(f24_sub(f24_sub(F24_ONE, u), v), c));
+    const f24w u = f24w_of(h->u), v = f24w_of(h->v);
+    return (bary){ u, v, f24w_sub(f24w_sub(f24w_of(F24_ONE), u), v) };
+}
+
+/* u A + v B + w C. */
+static f24w lerp(f24w a, f24w b, f24w c, bary k)
+{
+    return f24w_add(f24w_add(f24w_mul(k.u, a), f24w_mul(k.v, b)), f24w_mul(k.w, c));
 }
 
 /* Notes a shading read in op (the shading cache's view) and counts it. */
@@ -147,13 +153,16 @@ static f24_vec3 hit_normal(const uint32_t *mem, const hit_record *h, uint32_t ob
                            trace_counters *c)
 {
     f24_vec3 n = { 0, 0, 0 };
+    int geometric = 1; /* no vertex normals, or they interpolate to zero length */
     if (mem[obj + O_FLAGS] & SHADE_HAS_NORMALS) {
-        const f24_vec3 a = shade_rec_normal(&mem[shade], 0), b = shade_rec_normal(&mem[shade], 1),
-                       cc = shade_rec_normal(&mem[shade], 2);
-        n = (f24_vec3){ lerp(a.x, b.x, cc.x, h->u, h->v), lerp(a.y, b.y, cc.y, h->u, h->v),
-                        lerp(a.z, b.z, cc.z, h->u, h->v) };
+        const f24w_vec3 a = shade_rec_normal_w(&mem[shade], 0), b = shade_rec_normal_w(&mem[shade], 1),
+                        cc = shade_rec_normal_w(&mem[shade], 2);
+        const bary k = bary_of(h);
+        const f24w_vec3 nw = { lerp(a.x, b.x, cc.x, k), lerp(a.y, b.y, cc.y, k), lerp(a.z, b.z, cc.z, k) };
+        n = f24w_vec3_bits(nw);
+        geometric = f24_is_zero(f24w_bits(f24w_dot3(nw, nw)));
     }
-    if (f24_is_zero(dot3(n, n))) {
+    if (geometric) {
         const uint32_t tri = mem[obj + O_TRIANGLES] + TRI_WORDS * h->triangle;
         n = (f24_vec3){ f24_record_get(mem, tri, 8), f24_record_get(mem, tri, 9), f24_record_get(mem, tri, 10) };
         shade_read(op, c, tri + 8 * F24_WIDTH / 32, F24_RECORD_SPAN(8, 3));
@@ -183,14 +192,14 @@ static uint32_t channel(uint32_t texel_word, int k) { return q_byte(texel_word >
 
 /* Texel coordinate of texture coordinate s over n texels (centres at +1/2): the wrapped integer
  * part i0, its right neighbour i1 and the fraction in Q8 (0..256). */
-static void texel_axis(f24_t s, uint32_t n, uint32_t *i0, uint32_t *i1, uint32_t *frac)
+static void texel_axis(f24w s, uint32_t n, uint32_t *i0, uint32_t *i1, uint32_t *frac)
 {
-    const f24_t x = f24_sub(f24_mul(s, f24_from_i32((int32_t)n)), ratio(1, 2));
-    int32_t i = f24_to_i32(x);
-    if (f24_lt(x, f24_from_i32(i)) && i != INT32_MIN)
+    const f24w x = f24w_sub(f24w_mul(s, f24w_from_i32((int32_t)n)), ratio_w(1, 2));
+    int32_t i = f24_to_i32(f24w_bits(x));
+    if (f24w_lt(x, f24w_from_i32(i)) && i != INT32_MIN)
         i -= 1; /* to_i32 rounds toward zero; this is floor (a saturated coordinate stays) */
-    const f24_t f = f24_sub(x, f24_from_i32(i));
-    const int32_t q = f24_to_i32(f24_add(f24_mul(f, f24_from_i32(256)), ratio(1, 2)));
+    const f24w f = f24w_sub(x, f24w_from_i32(i));
+    const int32_t q = f24_to_i32(f24w_bits(f24w_add(f24w_mul(f, f24w_from_i32(256)), ratio_w(1, 2))));
     const int32_t m = i % (int32_t)n;
     *i0 = (uint32_t)(m < 0 ? m + (int32_t)n : m); /* repeat wrapping */
     *i1 = *i0 + 1 == n ? 0 : *i0 + 1;
@@ -198,7 +207,7 @@ static void texel_axis(f24_t s, uint32_t n, uint32_t *i0, uint32_t *i1, uint32_t
 }
 
 /* Bilinear sample (Q12) of texture entry tex at (s, t), in integers: weights in Q8. */
-static void sample_bilinear(const uint32_t *mem, const uint32_t *tex, f24_t s, f24_t t, uint32_t out[3], unit_op *op,
+static void sample_bilinear(const uint32_t *mem, const uint32_t *tex, f24w s, f24w t, uint32_t out[3], unit_op *op,
                             trace_counters *c)
 {
     uint32_t x0, x1, fx, y0, y1, fy;
@@ -221,11 +230,12 @@ static void modulate_texture(const uint32_t *mem, uint32_t t, uint32_t flags, co
 {
     if (t >= mem[H_TEXTURES] || !(flags & SHADE_HAS_TEXCOORDS))
         return;
-    f24_t st[2];
+    const bary w = bary_of(h);
+    f24w st[2];
 texcoords:
     for (uint32_t k = 0; k < 2; k++)
-        st[k] = lerp(shade_rec_texcoord(flags, tail, uv, k), shade_rec_texcoord(flags, tail, uv, 2 + k),
-                     shade_rec_texcoord(flags, tail, uv, 4 + k), h->u, h->v);
+        st[k] = lerp(f24w_of(shade_rec_texcoord(flags, tail, uv, k)), f24w_of(shade_rec_texcoord(flags, tail, uv, 2 + k)),
+                     f24w_of(shade_rec_texcoord(flags, tail, uv, 4 + k)), w);
     const uint32_t entry = region_start(mem, R_TEXTURES) + TEX_WORDS * t;
     uint32_t tex[3];
     shade_read(op, c, entry, TEX_WORDS);
@@ -288,17 +298,19 @@ static surface surface_at(const uint32_t *mem, const ray_packet *rp, int i, cons
     shade_read(op, c, ia, 13);
     shade_read(op, c, obj + O_TRIANGLES, O_FLAGS - O_TRIANGLES + 1);
     shade_read(op, c, shade, shade_rec_words(flags));
-    const f24_t dlen = length3(rp->d[i]);
+    const f24w one = f24w_of(F24_ONE), dlen = length3_w(f24w_vec3_of(rp->d[i]));
+    const f24w_vec3 d = f24w_scale3(f24w_vec3_of(rp->d[i]), f24w_div(one, dlen));
     sf.valid = 1;
-    sf.d = scale3(rp->d[i], f24_div(F24_ONE, dlen));
-    f24_vec3 n = hit_normal(mem, h, obj, shade, op, c);
-    if (!f24_sign(dot3(n, sf.d)))
-        n = neg3(n); /* towards the ray: both faces are front faces */
-    sf.n = scale3(n, f24_div(F24_ONE, length3(n)));
+    sf.d = f24w_vec3_bits(d);
+    f24w_vec3 n = f24w_vec3_of(hit_normal(mem, h, obj, shade, op, c));
+    if (!f24w_sign(f24w_dot3(n, d)))
+        n = neg3_w(n); /* towards the ray: both faces are front faces */
+    sf.n = f24w_vec3_bits(f24w_scale3(n, f24w_div(one, length3_w(n))));
     sf.entering = f24_sign(h->cos_n) != 0; /* the sign of n.d survives the instance transformation */
-    sf.t_hat = f24_mul(h->t, dlen);
+    sf.t_hat = f24w_bits(f24w_mul(f24w_of(h->t), dlen));
     sf.tr = t_r(rp->o[i], sf.d, sf.n);
     sf.p = xform_point(&sf.tr, (f24_vec3){ 0, 0, sf.t_hat });
+    sf.mirror = rgs_reflect(sf.d, sf.n);
     sf.mat = region_start(mem, R_MATERIALS) + MAT_WORDS * shade_rec_material(flags, tail);
     shade_read(op, c, sf.mat, MAT_WORDS);
     sf.unlit = (mem[sf.mat + SHADE_M_FLAGS] & SHADE_MAT_UNLIT) != 0;
@@ -331,7 +343,9 @@ normalize_colour:
 static void light_packet(const uint32_t *l, const surface sf[], f24_t eps, ray_packet *sh, uint32_t diff[],
                          uint32_t spec[], uint32_t k_of[])
 {
-    const f24_vec3 lpos = { l[4], l[5], l[6] }, ldir = { l[7], l[8], l[9] };
+    const f24_vec3 ldir = { l[7], l[8], l[9] };
+    const f24w_vec3 lpos_w = f24w_vec3_of((f24_vec3){ l[4], l[5], l[6] }), ldir_w = f24w_vec3_of(ldir);
+    const f24w zero = f24w_of(0), eps_w = f24w_of(eps);
     const int directional = l[0] == 0;
     sh->active = 0;
 shadow_rays:
@@ -342,20 +356,23 @@ shadow_rays:
         if (!sf[i].valid || sf[i].unlit)
             continue; /* an unlit surface takes no light */
         sh->o[i] = sf[i].p;
-        sh->d[i] = directional ? neg3(ldir) : sub3(lpos, sf[i].p);
-        const f24_t dist = length3(sh->d[i]);
-        sh->tmin[i] = directional ? eps : f24_div(eps, dist);
+        /* the direction to the light (a directional light's is its word's negation, not rounded) */
+        const f24w_vec3 to_light = directional ? neg3_w(ldir_w) : sub3_w(lpos_w, f24w_vec3_of(sf[i].p));
+        sh->d[i] = directional ? neg3(ldir) : f24w_vec3_bits(to_light);
+        const f24w dist = length3_w(to_light);
+        sh->tmin[i] = directional ? eps : f24w_bits(f24w_div(eps_w, dist));
         sh->tmax[i] = directional ? F24_POS_INF : F24_ONE;
-        f24_t w = f24_div(dot3(sf[i].n, sh->d[i]), dist);
-        if (!f24_lt(0, w))
+        /* cosines of the light direction with the normal, the cone axis, the mirror direction */
+        f24w w = f24w_div(f24w_dot3(f24w_vec3_of(sf[i].n), to_light), dist);
+        if (!f24w_lt(zero, w))
             continue; /* the light is behind the surface */
         if (SAARCOR_CFG_SPOT_LIGHTS && l[0] == 2) { /* spot: smooth step from the outer to the inner cone */
-            const f24_t c = f24_neg(cos_to(ldir, sh->d[i]));
-            const f24_t f = f24_div(f24_sub(c, l[12]), f24_sub(l[11], l[12]));
-            w = f24_mul(w, f24_max(0, f24_min(f, F24_ONE)));
+            const f24w c = f24w_neg(f24w_div(f24w_dot3(ldir_w, to_light), dist));
+            const f24w f = f24w_div(f24w_sub(c, f24w_of(l[12])), f24w_sub(f24w_of(l[11]), f24w_of(l[12])));
+            w = f24w_mul(w, f24w_max(zero, f24w_min(f, f24w_of(F24_ONE))));
         }
-        diff[i] = q_mul(q_of(w), Q12_DIFFUSE);
-        uint32_t s = q_of(f24_max(0, cos_to(rgs_reflect(sf[i].d, sf[i].n), sh->d[i])));
+        diff[i] = q_mul(q_of_w(w), Q12_DIFFUSE);
+        uint32_t s = q_of_w(f24w_max(zero, f24w_div(f24w_dot3(f24w_vec3_of(sf[i].mirror), to_light), dist)));
     phong_power:
         for (uint32_t j = 0; j < 8; j++)
             if (j < k_of[i])
@@ -495,10 +512,10 @@ static void spawn_children(const uint32_t *mem, const rgs_block *b, int i, const
                            rgs_task *trans)
 {
     const uint32_t *m = &mem[sf->mat], w_r = mat_kr(m), w_t = mat_kt(m);
-    const f24_t c = dot3(sf->n, sf->d), e = b->eps;
+    const f24_t e = b->eps;
     const f24_vec3 back = xform_point(&sf->tr, (f24_vec3){ f24_neg(e), 0, sf->t_hat });
     const f24_vec3 ahead = xform_point(&sf->tr, (f24_vec3){ e, 0, sf->t_hat });
-    const f24_vec3 mirror = xform_vector(&sf->tr, (f24_vec3){ F24_ONE, f24_neg(f24_add(c, c)), 0 });
+    const f24_vec3 mirror = sf->mirror; /* T_R (1, -2c, 0) */
 child_weights:
     for (int k = 0; k < 3; k++) {
         refl->weight[i][k] = q_mul(q_mul(b->cur.weight[i][k], w_r), sf->tint[k]);

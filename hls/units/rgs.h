@@ -68,6 +68,7 @@ typedef struct {
 typedef struct {
     int valid;
     f24_vec3 p, d, n;   /* hit point, unit ray direction, unit shading normal facing the ray */
+    f24_vec3 mirror;    /* d mirrored at n, T_R (1, -2c, 0): the highlight's and the reflection ray's direction */
     f24_affine tr;      /* T_R of the hit */
     f24_t t_hat;        /* hit distance along d */
     int entering;       /* the geometric normal faces against the ray */

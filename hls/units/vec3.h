@@ -13,6 +13,22 @@
 
 typedef struct { f24_t x, y, z; } f24_vec3;
 
+/* A vector of working values (f24.h): a chain of vector operations (shading's normals, cosines,
+ * directions) reads its fp24 inputs once with f24w_vec3_of and stores only its results. */
+typedef struct { f24w x, y, z; } f24w_vec3;
+
+static inline f24w_vec3 f24w_vec3_of(f24_vec3 a) { return (f24w_vec3){ f24w_of(a.x), f24w_of(a.y), f24w_of(a.z) }; }
+static inline f24_vec3 f24w_vec3_bits(f24w_vec3 a) { return (f24_vec3){ f24w_bits(a.x), f24w_bits(a.y), f24w_bits(a.z) }; }
+/* ((a.x b.x + a.y b.y) + a.z b.z), the order of every dot product of the units */
+static inline f24w f24w_dot3(f24w_vec3 a, f24w_vec3 b)
+{
+    return f24w_add(f24w_add(f24w_mul(a.x, b.x), f24w_mul(a.y, b.y)), f24w_mul(a.z, b.z));
+}
+static inline f24w_vec3 f24w_scale3(f24w_vec3 a, f24w s)
+{
+    return (f24w_vec3){ f24w_mul(a.x, s), f24w_mul(a.y, s), f24w_mul(a.z, s) };
+}
+
 /* A vector of double words (f24.h): ray positions and directions in object space, where one fp24
  * would lose the bits that tell small neighbouring triangles apart (docs/numerics.md). */
 typedef struct { f24_vec3 hi, lo; } f24_vec3x2;

@@ -110,16 +110,24 @@ F24V_INLINE uint32_t f24v_mask(f24v_i m)
     return (uint32_t)((m[0] & 1) | (m[1] & 2) | (m[2] & 4) | (m[3] & 8));
 }
 
-/* f24_fast_decode per lane */
+/* f24_fast_decode per lane, through binary32 (every fp24 value is one: E <= 8, M <= 23, f24.h):
+ * the fields move within 32-bit lanes, then one exact conversion widens the lanes to binary64 (a
+ * NaN stays quiet with its sign and no payload, as f24_fast_decode makes it). */
+typedef int32_t f24v_s __attribute__((vector_size(16)));
+typedef float f24v_f __attribute__((vector_size(16)));
 F24V_INLINE f24v f24v_of(const f24_t a[F24Q_LANES])
 {
-    f24v_u u;
-    memcpy(&u, a, sizeof u);
-    const f24v_i x = __builtin_convertvector(u, f24v_i);
-    const f24v_i sign = (x >> (F24_EXP_BITS + F24_MAN_BITS) & 1) << 63, mag = x & (int64_t)F24_ABS_MASK;
-    const f24v_i normal = sign | (mag + (int64_t)F24_FAST_REBIAS) << (52 - F24_MAN_BITS);
-    const f24v_i special = sign | 0x7FF0000000000000ll | ((mag != (int64_t)F24_POS_INF) & (1ll << 51));
-    return (f24v)f24v_select(mag < (int64_t)F24_MIN_NORMAL, sign, f24v_select(mag < (int64_t)F24_POS_INF, normal, special));
+    f24v_s x;
+    memcpy(&x, a, sizeof x);
+    const f24v_s mag = x & (int32_t)F24_ABS_MASK; /* below 2^31: signed comparisons are exact */
+    const f24v_s sign = (f24v_s)((f24v_u)x >> (F24_EXP_BITS + F24_MAN_BITS) << 31);
+    const f24v_s normal = (mag << (23 - F24_MAN_BITS)) + (int32_t)((127u - F24_BIAS) << 23);
+    const f24v_s special = 0x7F800000 | ((mag != (int32_t)F24_POS_INF) & (1 << 22));
+    const f24v_s big = mag >= (int32_t)F24_POS_INF, finite = (mag >= (int32_t)F24_MIN_NORMAL) & ~big;
+    const f24v_s bits = sign | (normal & finite) | (special & big);
+    f24v_f f;
+    memcpy(&f, &bits, sizeof f);
+    return __builtin_convertvector(f, f24v);
 }
 
 F24V_INLINE f24v f24v_splat(f24_t a)
@@ -204,6 +212,8 @@ static inline f24w f24w_add(f24w a, f24w b) { return f24_fast_round(a + b); }
 static inline f24w f24w_sub(f24w a, f24w b) { return f24_fast_round(a - b); }
 static inline f24w f24w_mul(f24w a, f24w b) { return f24_fast_round(a * b); }
 static inline f24w f24w_div(f24w a, f24w b) { return f24_fast_round(a / b); }
+static inline f24w f24w_sqrt(f24w a) { return f24_fast_round(__builtin_sqrt(a)); }
+static inline f24w f24w_from_i32(int32_t i) { return f24_fast_round((double)i); }
 static inline f24w f24w_min(f24w a, f24w b) { return f24_fast_minmax_w(a, b, 0); }
 static inline f24w f24w_max(f24w a, f24w b) { return f24_fast_minmax_w(a, b, 1); }
 static inline f24w f24w_neg(f24w a) { return -a; }
