@@ -59,9 +59,40 @@ static void mapped_comparisons_on_edges(void **state)
     }
 }
 
+/* The working values' operations the shading chains use beyond the mapped ones (f24w_sqrt,
+ * f24w_from_i32, f24w_to_i32) against the integer operators, and the packet values' decoding
+ * (f24v_of, through binary32 lanes) against the scalar decoding bit for bit, on the edge sets
+ * (subnormal encodings, Inf, NaN of both signs, bits above the format) and random operands. */
+static void working_values_and_lanes(void **state)
+{
+    (void)state;
+    static f24_pair e[F24_VEC_MAX_EDGES];
+    const size_t n = f24_vec_edges(F24_OP_SQRT, e, F24_VEC_MAX_EDGES);
+    f24_rng rng;
+    f24_rng_seed(&rng, 5);
+    for (size_t i = 0; i < n + 50000; i++) {
+        const f24_pair v = i < n ? e[i] : f24_vec_random(F24_OP_MUL, &rng);
+        assert_int_equal(f24w_bits(f24w_sqrt(f24w_of(v.a))), f24_ops[F24_OP_SQRT].hw(v.a, 0));
+        assert_int_equal(f24w_bits(f24w_from_i32((int32_t)v.b)), f24_ops[F24_OP_FROM_I32].hw(v.b, 0));
+        assert_int_equal((uint32_t)f24w_to_i32(f24w_of(v.a)), f24_ops[F24_OP_TO_I32].hw(v.a, 0));
+        /* large products: the saturation of f24w_to_i32 */
+        const f24w big = f24w_mul(f24w_of(v.a), f24w_of(v.b));
+        assert_int_equal((uint32_t)f24w_to_i32(big), f24_ops[F24_OP_TO_I32].hw(f24w_bits(big), 0));
+#ifdef F24_FAST_VECTORS
+        const f24_t lanes[F24Q_LANES] = { v.a, v.b, v.a | ~F24_MASK, f24_neg(v.b) };
+        const f24v d = f24v_of(lanes);
+        for (int k = 0; k < F24Q_LANES; k++) {
+            const double want = f24_fast_decode(lanes[k]);
+            assert_memory_equal(&d[k], &want, sizeof want);
+        }
+#endif
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = { cmocka_unit_test(selected_path_is_fast_and_identical),
-                                        cmocka_unit_test(mapped_comparisons_on_edges) };
+                                        cmocka_unit_test(mapped_comparisons_on_edges),
+                                        cmocka_unit_test(working_values_and_lanes) };
     return cmocka_run_group_tests_name("fp24 build-time path selection", tests, NULL, NULL);
 }

@@ -121,6 +121,7 @@ static inline f24w f24w_mul(f24w a, f24w b) { return f24_mul(a, b); }
 static inline f24w f24w_div(f24w a, f24w b) { return f24_div(a, b); }
 static inline f24w f24w_sqrt(f24w a) { return f24_sqrt(a); }
 static inline f24w f24w_from_i32(int32_t i) { return f24_from_i32(i); }
+static inline int32_t f24w_to_i32(f24w a) { return f24_to_i32(a); }
 static inline f24w f24w_min(f24w a, f24w b) { return f24_min(a, b); }
 static inline f24w f24w_max(f24w a, f24w b) { return f24_max(a, b); }
 static inline f24w f24w_neg(f24w a) { return f24_neg(a); }

@@ -34,7 +34,7 @@ static f24_t ratio(int32_t num, int32_t den) { return f24w_bits(ratio_w(num, den
 /* fp24 -> Q12: one multiplier, one adder, the float-to-int converter; clamps to [0, 65535]. */
 static uint32_t q_of_w(f24w x)
 {
-    const int32_t i = f24_to_i32(f24w_bits(f24w_add(f24w_mul(x, f24w_from_i32(4096)), ratio_w(1, 2))));
+    const int32_t i = f24w_to_i32(f24w_add(f24w_mul(x, f24w_from_i32(4096)), ratio_w(1, 2)));
     return i < 0 ? 0u : q_sat((uint32_t)i);
 }
 static uint32_t q_of(f24_t x) { return q_of_w(f24w_of(x)); }
@@ -195,11 +195,11 @@ static uint32_t channel(uint32_t texel_word, int k) { return q_byte(texel_word >
 static void texel_axis(f24w s, uint32_t n, uint32_t *i0, uint32_t *i1, uint32_t *frac)
 {
     const f24w x = f24w_sub(f24w_mul(s, f24w_from_i32((int32_t)n)), ratio_w(1, 2));
-    int32_t i = f24_to_i32(f24w_bits(x));
+    int32_t i = f24w_to_i32(x);
     if (f24w_lt(x, f24w_from_i32(i)) && i != INT32_MIN)
         i -= 1; /* to_i32 rounds toward zero; this is floor (a saturated coordinate stays) */
     const f24w f = f24w_sub(x, f24w_from_i32(i));
-    const int32_t q = f24_to_i32(f24w_bits(f24w_add(f24w_mul(f, f24w_from_i32(256)), ratio_w(1, 2))));
+    const int32_t q = f24w_to_i32(f24w_add(f24w_mul(f, f24w_from_i32(256)), ratio_w(1, 2)));
     const int32_t m = i % (int32_t)n;
     *i0 = (uint32_t)(m < 0 ? m + (int32_t)n : m); /* repeat wrapping */
     *i1 = *i0 + 1 == n ? 0 : *i0 + 1;

@@ -214,6 +214,11 @@ static inline f24w f24w_mul(f24w a, f24w b) { return f24_fast_round(a * b); }
 static inline f24w f24w_div(f24w a, f24w b) { return f24_fast_round(a / b); }
 static inline f24w f24w_sqrt(f24w a) { return f24_fast_round(__builtin_sqrt(a)); }
 static inline f24w f24w_from_i32(int32_t i) { return f24_fast_round((double)i); }
+/* f24_to_i32 (hls/fp24/f24_to_i32.c): toward zero, saturating, NaN -> 0 */
+static inline int32_t f24w_to_i32(f24w a)
+{
+    return a != a ? 0 : a >= 0x1p31 ? INT32_MAX : a <= -0x1p31 ? INT32_MIN : (int32_t)a;
+}
 static inline f24w f24w_min(f24w a, f24w b) { return f24_fast_minmax_w(a, b, 0); }
 static inline f24w f24w_max(f24w a, f24w b) { return f24_fast_minmax_w(a, b, 1); }
 static inline f24w f24w_neg(f24w a) { return -a; }
