@@ -80,6 +80,11 @@ f24_vec3x2 xform_vector_wide(const f24_affine *m, f24_vec3 v)
 f24_vec3 xform_identity(const f24_affine *m, f24_vec3 v, int point)
 {
     const f24_t c[3] = { v.x, v.y, v.z };
+    /* the common case, as one check: no component is zero, Inf or NaN, so every row passes its
+     * own component through (the rows below give the same) */
+    if ((uint32_t)(f24_exp(v.x) - 1) < F24_EXP_MAX - 1u && (uint32_t)(f24_exp(v.y) - 1) < F24_EXP_MAX - 1u &&
+        (uint32_t)(f24_exp(v.z) - 1) < F24_EXP_MAX - 1u)
+        return v;
     f24_t r[3];
 identity_rows:
     for (int k = 0; k < 3; k++) {
