@@ -75,15 +75,11 @@ first_ray:
  * split, or report a leaf (its list range). Afterwards, if the entry is used up, the next one is
  * popped (or, the stack empty after a drop, the walk restarts); !w->have_cur then means the tree
  * is done. Returns 1 at a leaf with entries. */
-/* The rays of entry e still alive whose closest hit does not lie before it (4 comparators). */
-static uint32_t entry_rays(const trav_entry *e, const f24_t best_t[], uint32_t alive)
+/* The rays of entry e still alive whose closest hit does not lie before it (4 comparators, side
+ * by side: every lane compares, the mask keeps the entry's). */
+static F24Q_FN uint32_t entry_rays(const trav_entry *e, const f24_t best_t[], uint32_t alive)
 {
-    uint32_t mask = e->mask & alive;
-entry_prune:
-    for (int i = 0; i < TRACE_PACKET; i++)
-        if (bit(mask, i) && f24_lt(best_t[i], e->tn[i]))
-            mask &= ~(1u << i);
-    return mask;
+    return e->mask & alive & ~f24q_lt(f24q_of(best_t), f24q_of(e->tn));
 }
 
 int trav_stack_step(trav_walker *w, const uint32_t *mem, const f24_vec3 o[], const f24_vec3 d[], const f24_t best_t[],
