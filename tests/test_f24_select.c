@@ -60,8 +60,9 @@ static void mapped_comparisons_on_edges(void **state)
 }
 
 /* The working values' operations the shading chains use beyond the mapped ones (f24w_sqrt,
- * f24w_from_i32, f24w_to_i32) against the integer operators, and the packet values' decoding
- * (f24v_of, through binary32 lanes) against the scalar decoding bit for bit, on the edge sets
+ * f24w_from_i32, f24w_to_i32) against the integer operators, the packet values' decoding (f24v_of,
+ * through binary32 lanes) against the scalar decoding bit for bit, and their sqrt and from_i32
+ * (the vertex normals' datapath) against the integer operators, on the edge sets
  * (subnormal encodings, Inf, NaN of both signs, bits above the format) and random operands. */
 static void working_values_and_lanes(void **state)
 {
@@ -80,10 +81,16 @@ static void working_values_and_lanes(void **state)
         assert_int_equal((uint32_t)f24w_to_i32(big), f24_ops[F24_OP_TO_I32].hw(f24w_bits(big), 0));
 #ifdef F24_FAST_VECTORS
         const f24_t lanes[F24Q_LANES] = { v.a, v.b, v.a | ~F24_MASK, f24_neg(v.b) };
+        const int32_t ints[F24Q_LANES] = { (int32_t)v.a, (int32_t)v.b, -(int32_t)v.a, (int32_t)(v.a << 8) };
         const f24v d = f24v_of(lanes);
+        f24_t roots[F24Q_LANES], from_ints[F24Q_LANES];
+        f24v_bits(f24v_sqrt(d), roots);
+        f24v_bits(f24v_from_i32(ints), from_ints);
         for (int k = 0; k < F24Q_LANES; k++) {
             const double want = f24_fast_decode(lanes[k]);
             assert_memory_equal(&d[k], &want, sizeof want);
+            assert_int_equal(roots[k], f24_ops[F24_OP_SQRT].hw(lanes[k], 0));
+            assert_int_equal(from_ints[k], f24_ops[F24_OP_FROM_I32].hw((uint32_t)ints[k], 0));
         }
 #endif
     }

@@ -172,6 +172,21 @@ F24Q_BINARY(sub)
 F24Q_BINARY(div)
 F24Q_BINARY(min)
 F24Q_BINARY(max)
+static inline f24q f24q_sqrt(f24q a)
+{
+lanes_sqrt:
+    for (int i = 0; i < F24Q_LANES; i++)
+        a.l[i] = f24w_sqrt(a.l[i]);
+    return a;
+}
+static inline f24q f24q_from_i32(const int32_t a[F24Q_LANES])
+{
+    f24q q;
+lanes_from_i32:
+    for (int i = 0; i < F24Q_LANES; i++)
+        q.l[i] = f24w_from_i32(a[i]);
+    return q;
+}
 static inline f24w f24q_lane(f24q a, int i) { return a.l[i]; }
 static inline f24q f24q_select(uint32_t mask, f24q a, f24q b) /* lane i of a where mask bit i */
 {

@@ -140,6 +140,20 @@ static f24w lerp(f24w a, f24w b, f24w c, bary k)
     return f24w_add(f24w_add(f24w_mul(k.u, a), f24w_mul(k.v, b)), f24w_mul(k.w, c));
 }
 
+/* u A + v B + w C of each component of the three vertex normals (lanes of n[c]) with the
+ * weights (u, v, w) in lanes: the products side by side, then their sum in lerp's order. */
+static F24Q_FN f24_vec3 lerp_lanes(const f24_t n[3][F24Q_LANES], const f24_t weights[F24Q_LANES])
+{
+    const f24q k = f24q_of(weights);
+    f24_t r[3];
+normal_components:
+    for (int c = 0; c < 3; c++) {
+        const f24q p = f24q_mul(f24q_of(n[c]), k);
+        r[c] = f24w_bits(f24w_add(f24w_add(f24q_lane(p, 0), f24q_lane(p, 1)), f24q_lane(p, 2)));
+    }
+    return (f24_vec3){ r[0], r[1], r[2] };
+}
+
 /* Notes a shading read in op (the shading cache's view) and counts it. */
 static void shade_read(unit_op *op, trace_counters *c, uint32_t addr, uint32_t words)
 {
@@ -155,11 +169,12 @@ static f24_vec3 hit_normal(const uint32_t *mem, const hit_record *h, uint32_t ob
     f24_vec3 n = { 0, 0, 0 };
     int geometric = 1; /* no vertex normals, or they interpolate to zero length */
     if (mem[obj + O_FLAGS] & SHADE_HAS_NORMALS) {
-        const f24w_vec3 a = shade_rec_normal_w(&mem[shade], 0), b = shade_rec_normal_w(&mem[shade], 1),
-                        cc = shade_rec_normal_w(&mem[shade], 2);
+        f24_t normals[3][F24Q_LANES];
+        shade_rec_normals(&mem[shade], normals);
         const bary k = bary_of(h);
-        const f24w_vec3 nw = { lerp(a.x, b.x, cc.x, k), lerp(a.y, b.y, cc.y, k), lerp(a.z, b.z, cc.z, k) };
-        n = f24w_vec3_bits(nw);
+        const f24_t weights[F24Q_LANES] = { h->u, h->v, f24w_bits(k.w), 0 };
+        n = lerp_lanes(normals, weights);
+        const f24w_vec3 nw = f24w_vec3_of(n);
         geometric = f24_is_zero(f24w_bits(f24w_dot3(nw, nw)));
     }
     if (geometric) {

@@ -129,9 +129,10 @@ static inline uint32_t shade_rec_colour(uint32_t flags, const uint32_t *tail, ui
 /* The octahedral components x (c = 0) and y (c = 1) of normal k of a normal block. */
 int32_t shade_rec_oct(const uint32_t *normals, uint32_t k, uint32_t c);
 
-/* Unit vertex normal k (A, B, C) of a normal block; (0, 0, 0) for a missing normal: as working
- * values (shading interpolates them at once), and as fp24 words. */
-f24w_vec3 shade_rec_normal_w(const uint32_t *normals, uint32_t k);
+/* Unit vertex normal k (A, B, C) of a normal block; (0, 0, 0) for a missing normal. */
 f24_vec3 shade_rec_normal(const uint32_t *normals, uint32_t k);
+/* All three of a block side by side, as the shading datapath decodes them: out[c][k] is
+ * component c (x, y, z) of normal k (lane 3 unused, zero). */
+void shade_rec_normals(const uint32_t *normals, f24_t out[3][F24Q_LANES]);
 
 #endif

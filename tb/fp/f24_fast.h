@@ -184,6 +184,16 @@ F24V_INLINE f24v f24v_add(f24v a, f24v b) { return f24v_round(a + b); }
 F24V_INLINE f24v f24v_mul(f24v a, f24v b) { return f24v_round(a * b); }
 F24V_INLINE f24v f24v_sub(f24v a, f24v b) { return f24v_round(a - b); }
 F24V_INLINE f24v f24v_div(f24v a, f24v b) { return f24v_round(a / b); }
+F24V_INLINE f24v f24v_sqrt(f24v a)
+{
+    return f24v_round((f24v){ __builtin_sqrt(a[0]), __builtin_sqrt(a[1]), __builtin_sqrt(a[2]), __builtin_sqrt(a[3]) });
+}
+F24V_INLINE f24v f24v_from_i32(const int32_t a[F24Q_LANES]) /* exact in binary64, then rounded */
+{
+    f24v_s x;
+    memcpy(&x, a, sizeof x);
+    return f24v_round(__builtin_convertvector(x, f24v));
+}
 F24V_INLINE f24v f24v_min(f24v a, f24v b) { return f24v_minmax(a, b, 0); }
 F24V_INLINE f24v f24v_max(f24v a, f24v b) { return f24v_minmax(a, b, 1); }
 F24V_INLINE double f24v_lane(f24v a, int i) { return a[i]; }
@@ -238,6 +248,8 @@ typedef f24v f24q;
 #define f24q_div f24v_div
 #define f24q_min f24v_min
 #define f24q_max f24v_max
+#define f24q_sqrt f24v_sqrt
+#define f24q_from_i32 f24v_from_i32
 #define f24q_lane f24v_lane
 #define f24q_select f24v_pick
 #define f24q_le f24v_le
