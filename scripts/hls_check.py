@@ -119,16 +119,32 @@ FP_OPS = {"add": ("f24_add", "f24_sub"), "mul": ("f24_mul",), "div": ("f24_div",
           "cmp": ("f24_lt", "f24_le", "f24_eq", "f24_min", "f24_max")}
 
 
+# the working and packet values' operations (hls/fp24/f24.h): one operator per working-value
+# site, one per lane per packet-value site; their own bodies (the wrappers) are no sites
+FP_LANES = {"f24_": 1, "f24w_": 1, "f24q_": 4}
+
+
+def fp_op(name):
+    """(operator class, operators per site) of a callee, or None."""
+    name = name.rpartition(":")[2]
+    for prefix, n in FP_LANES.items():
+        if name.startswith(prefix):
+            for k, names in FP_OPS.items():
+                if "f24_" + name[len(prefix):] in names:
+                    return k, n
+    return None
+
+
 def fp_call_sites(out):
     """fp24 operator call sites in hls/units and hls/top: an upper bound of the operator instances
     an HLS tool allocates before it shares them."""
     sites = {k: 0 for k in FP_OPS}
     for ci in glob.glob(os.path.join(out, "callgraph", "*.ci")):
         for src, dst in re.findall(r'edge: \{ sourcename: "([^"]+)" targetname: "([^"]+)"', open(ci).read()):
-            if "fp24/" in src:
+            op = fp_op(dst)
+            if "fp24/" in src or op is None or fp_op(src) is not None:
                 continue
-            for k, names in FP_OPS.items():
-                sites[k] += dst in names
+            sites[op[0]] += op[1]
     return sites
 
 

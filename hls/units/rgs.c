@@ -134,11 +134,6 @@ static bary bary_of(const hit_record *h)
     return (bary){ u, v, f24w_sub(f24w_sub(f24w_of(F24_ONE), u), v) };
 }
 
-/* u A + v B + w C. */
-static f24w lerp(f24w a, f24w b, f24w c, bary k)
-{
-    return f24w_add(f24w_add(f24w_mul(k.u, a), f24w_mul(k.v, b)), f24w_mul(k.w, c));
-}
 
 /* u A + v B + w C of each component of the three vertex normals (lanes of n[c]) with the
  * weights (u, v, w) in lanes: the products side by side, then their sum in lerp's order. */
@@ -194,6 +189,12 @@ transpose:
 }
 
 #if SAARCOR_CFG_TEXTURES
+/* u A + v B + w C. */
+static f24w lerp(f24w a, f24w b, f24w c, bary k)
+{
+    return f24w_add(f24w_add(f24w_mul(k.u, a), f24w_mul(k.v, b)), f24w_mul(k.w, c));
+}
+
 /* The texel word of texture entry tex at wrapped coordinates (one shading read). */
 static uint32_t texel(const uint32_t *mem, const uint32_t *tex, uint32_t x, uint32_t y, unit_op *op, trace_counters *c)
 {
