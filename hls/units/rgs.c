@@ -134,7 +134,6 @@ static bary bary_of(const hit_record *h)
     return (bary){ u, v, f24w_sub(f24w_sub(f24w_of(F24_ONE), u), v) };
 }
 
-
 /* u A + v B + w C of each component of the three vertex normals (lanes of n[c]) with the
  * weights (u, v, w) in lanes: the products side by side, then their sum in lerp's order. */
 static F24Q_FN f24_vec3 lerp_lanes(const f24_t n[3][F24Q_LANES], const f24_t weights[F24Q_LANES])
