@@ -4,29 +4,37 @@
 //   * one request is one line lookup (req_line_i: the byte address / LINE_BYTES; a read across
 //     lines is one request per line, as mem_iface_read loops over them); the line's index is
 //     req_line_i mod LINES (LINES = SIZE_BYTES / LINE_BYTES; a bit field when LINES is a power of
-//     two, else a constant modulo: the matrix cache's 153 lines of 40 bytes at e7m16);
+//     two, else a constant modulo, the matrix cache's 153 lines of 40 bytes at e7m16, as a sum of
+//     per-chunk residues);
 //   * hit: the tag of the index holds the line. A miss tags the index at once and requests the
 //     line from memory (one transfer of LINE_BYTES at byte address line * LINE_BYTES); a second
 //     lookup of a line whose fill is still under way is a hit that waits for that fill (no second
 //     transfer), the youngest fill of the line;
 //   * the response (rsp_id_o = req_id_i, rsp_hit_o, the line's data) leaves as soon as the data is
-//     there: a hit on a filled line two cycles after the request, a lookup that waits for a fill
-//     in the cycle after the fill arrived; responses leave in any order (only the requests that
-//     wait for memory wait: hits under misses), round robin over the table's entries.
+//     there: a hit on a filled line two cycles after the request (three with stage SI, below), a
+//     lookup that waits for a fill in the cycle after the fill arrived; responses leave in any
+//     order (only the requests that wait for memory wait: hits under misses), round robin over the
+//     table's entries.
 // Outstanding requests: a table of OUTSTANDING requests (id, hit, the fill awaited, the line's
 // data) and a FIFO of the fills requested from memory (line addresses; fills return in request
 // order, so the oldest fill is the one that arrives, and its data goes to every request waiting on
 // it and into the data array). A request is taken only if the table has room, so the lookup never
 // stalls; with the table full req_ready_o is low. After reset and flush_i the tags are cleared, one
 // index per cycle (LINES cycles, req_ready_o low), as mem_iface_flush empties the caches.
-// Pipeline: S0 (request cycle) reads the tag and data arrays (synchronous block RAM, with forwarding
-// of the tag written and of the fill written in the cycle before); S1 compares the tag, searches the
-// fill FIFO (one line-address comparator per slot), writes the tag on a miss and the table;
-// the table's ready entries are offered at rsp_valid_o. Latency: hit 2 cycles, miss 1 cycle after
-// the fill arrives; throughput one lookup per cycle.
+// Pipeline: with a line count that is not a power of two, SI (request cycle) computes the index
+// (a sum of table lookups and a final reduction: more LUT levels than a stage has) and S0 follows
+// a cycle later; else S0 is the request cycle. S0 reads the tag and data arrays (synchronous block
+// RAM, with forwarding of the tag written and of the fill written in the cycle before); S1 compares
+// the tag, searches the fill FIFO (one line-address comparator per slot), writes the tag on a miss
+// and the table; the table's ready entries are offered at rsp_valid_o. Latency: hit 2 cycles (3
+// with SI), miss 1 cycle after the fill arrives; throughput one lookup per cycle.
+// Every choice among the table's entries and the fill FIFO's slots is a one-hot vector (the free
+// entry and the response's round robin isolated on carry chains, rr_pick; the youngest fill of a
+// line marked by a bit per slot, cleared when a younger fill of its line is requested), so no
+// path between registers has a priority chain (docs/synth.md: LUT6 levels).
 // Resources: tag array LINES x (AW + 1) and data array LINES x 8 LINE_BYTES bits (block RAM),
-// request table OUTSTANDING x (IDW + 8 LINE_BYTES + log2 OUTSTANDING + 3) flip-flops, fill FIFO
-// OUTSTANDING x AW flip-flops and as many AW-bit equality comparators (docs/synth.md).
+// request table OUTSTANDING x (IDW + 8 LINE_BYTES + log2 OUTSTANDING + 4) flip-flops, fill FIFO
+// OUTSTANDING x (AW + 2) flip-flops and as many AW-bit equality comparators.
 module cache_dm #(
   parameter int LINE_BYTES = 8,
   parameter int SIZE_BYTES = 4096,
@@ -58,12 +66,12 @@ module cache_dm #(
   localparam int OW = OUTSTANDING > 1 ? $clog2(OUTSTANDING) : 1;
   localparam bit POW2 = (LINES & (LINES - 1)) == 0;
 
-  function automatic logic [IXW-1:0] index_of(input logic [AW-1:0] line);
-    /* verilator lint_off UNUSEDSIGNAL */
-    logic [AW-1:0] r; // below LINES
-    /* verilator lint_on UNUSEDSIGNAL */
-    r = POW2 ? line & AW'(LINES - 1) : line % AW'(LINES);
-    index_of = r[IXW-1:0];
+  localparam int CB = 5;                // bits per chunk of the index's residue sum
+  localparam int CHUNKS = (AW + CB - 1) / CB;
+  localparam int SW = $clog2(CHUNKS * LINES + 1);
+  function automatic int weight(input int k); // 2^(CB k) mod LINES
+    weight = 1 % LINES;
+    for (int i = 0; i < k; i++) weight = (weight * (1 << CB)) % LINES;
   endfunction
 
   // ---- flush: clear the tags one index per cycle ----
@@ -87,25 +95,26 @@ module cache_dm #(
   logic [IDW-1:0] rt_id [OUTSTANDING];
   logic [OW-1:0] rt_slot [OUTSTANDING];
   logic [DW-1:0] rt_data [OUTSTANDING];
-  logic [OW:0] rt_free_n;
-  logic [OW-1:0] rt_alloc, rt_out, rt_last;
-  logic rt_out_any;
+  // all per-entry selections by one-hot vectors: free entries and grants isolated on carry chains
+  logic [OUTSTANDING-1:0] rt_free, rt_alloc, rt_grant, rt_after, rt_after_next;
+  logic [OW-1:0] rt_out;
+  logic rt_out_any, rt_room1, rt_room2, rt_room3;
+  logic [OUTSTANDING-1:0] rt_free2, rt_free3; // the free entries but the lowest one, two
   always_comb begin
-    rt_free_n = '0;
-    rt_alloc = '0;
-    for (int e = OUTSTANDING - 1; e >= 0; e--)
-      if (!rt_valid[e]) rt_alloc = OW'(e);
-    for (int e = 0; e < OUTSTANDING; e++) rt_free_n = rt_free_n + (OW + 1)'(!rt_valid[e]);
-    // round robin from the entry after the last one answered: no response waits for more than
-    // OUTSTANDING others
-    rt_out = '0;
-    rt_out_any = 1'b0;
-    for (int k = OUTSTANDING; k >= 1; k--)
-      if (rt_valid[OW'(32'(rt_last) + k)] && rt_ready[OW'(32'(rt_last) + k)]) begin
-        rt_out = OW'(32'(rt_last) + k);
-        rt_out_any = 1'b1;
-      end
+    rt_free = ~rt_valid;
+    rt_alloc = rt_free & (~rt_free + OUTSTANDING'(1));             // the lowest free entry
+    rt_free2 = rt_free & (rt_free - OUTSTANDING'(1));
+    rt_free3 = rt_free2 & (rt_free2 - OUTSTANDING'(1));
+    rt_room1 = |rt_free;
+    rt_room2 = |rt_free2;
+    rt_room3 = |rt_free3;
   end
+  // round robin from the entry after the last one answered: no response waits for more than
+  // OUTSTANDING others
+  rr_pick #(.N(OUTSTANDING)) u_out (
+    .req_i(rt_valid & rt_ready), .after_i(rt_after), .any_o(rt_out_any), .grant_o(rt_grant),
+    .index_o(rt_out), .after_o(rt_after_next)
+  );
   assign rsp_valid_o = rt_out_any;
   assign rsp_id_o = rt_id[rt_out];
   assign rsp_hit_o = rt_hit[rt_out];
@@ -115,6 +124,7 @@ module cache_dm #(
   logic [AW-1:0] ff_line [OUTSTANDING];
   logic [IXW-1:0] ff_idx [OUTSTANDING]; // its index (no second modulo)
   logic [OUTSTANDING-1:0] ff_valid;  // the slot's fill is under way
+  logic [OUTSTANDING-1:0] ff_young;  // no younger fill of the slot's line was requested since
   logic [OW-1:0] ff_head, ff_send, ff_tail;
   logic [OW:0] ff_count, ff_unsent;
   assign mem_req_valid_o = ff_unsent != 0;
@@ -125,9 +135,65 @@ module cache_dm #(
   logic [IDW-1:0] s1_id;
   logic [AW-1:0] s1_line;
   logic [IXW-1:0] idx0, s1_idx;
-  assign idx0 = index_of(req_line_i);
-  // room in the table for S1's request and this one: S1 never stalls
-  assign req_ready_o = !flushing && !flush_i && rt_free_n > (OW + 1)'(s1_valid);
+  // the request as it reads the arrays (S0): the request itself, or with a line count that is not
+  // a power of two, the request and its index a cycle later (stage SI)
+  logic a_valid;
+  logic [IDW-1:0] a_id;
+  logic [AW-1:0] a_line;
+  logic [IXW-1:0] a_idx;
+  // The line's index, line mod LINES, without a divider (a constant modulo of AW bits is a
+  // 58-level LUT network): line = sum of its CB-bit chunks c_k 2^(CB k), so line = sum of
+  // (c_k 2^(CB k)) mod LINES (mod LINES). Each term is a table of 2^CB constants, their sum is
+  // below CHUNKS LINES, and its residue is the sum less the largest multiple of LINES not above it
+  // (comparisons against constants on carry chains, one subtraction). Yosys maps the stage to 10
+  // LUT6 levels (docs/synth.md), hence its own cycle.
+  if (POW2) begin : g_index_bits
+    assign idx0 = req_line_i[IXW-1:0];
+    assign a_valid = take;
+    assign a_id = req_id_i;
+    assign a_line = req_line_i;
+    assign a_idx = idx0;
+  end else begin : g_index_mod
+    logic [CB*CHUNKS-1:0] chunks;
+    logic [CHUNKS*IXW-1:0] terms;
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic [SW-1:0] sum, r; // r below LINES
+    /* verilator lint_on UNUSEDSIGNAL */
+    assign chunks = (CB * CHUNKS)'(req_line_i);
+    for (genvar k = 0; k < CHUNKS; k++) begin : g_chunk
+      logic [(1<<CB)*IXW-1:0] table_k;
+      for (genvar v = 0; v < (1 << CB); v++) begin : g_entry
+        assign table_k[v*IXW +: IXW] = IXW'((v * weight(k)) % LINES);
+      end
+      assign terms[k*IXW +: IXW] = table_k[chunks[CB*k +: CB]*IXW +: IXW];
+    end
+    // the multiple of LINES to take away is a function of the comparisons' thermometer code (one
+    // LUT level), so the residue is one subtraction, not a choice among CHUNKS differences
+    logic [SW-1:0] multiple;
+    always_comb begin
+      sum = '0;
+      for (int k = 0; k < CHUNKS; k++) sum = sum + SW'(terms[k*IXW +: IXW]);
+      multiple = '0;
+      for (int q = 1; q < CHUNKS; q++)
+        if (sum >= SW'(q * LINES)) multiple = SW'(q * LINES);
+      r = sum - multiple;
+    end
+    assign idx0 = r[IXW-1:0];
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) a_valid <= 1'b0;
+      else a_valid <= take;
+    end
+    always_ff @(posedge clk_i) begin
+      if (take) begin
+        a_id <= req_id_i;
+        a_line <= req_line_i;
+        a_idx <= idx0;
+      end
+    end
+  end
+  // room in the table for the requests in SI and S1 and this one: they never stall
+  assign req_ready_o = !flushing && !flush_i && ((POW2 || !a_valid) ? (s1_valid ? rt_room2 : rt_room1)
+                                                                    : (s1_valid ? rt_room3 : rt_room2));
   assign take = req_valid_i && req_ready_o;
 
   logic [AW:0] tag_mem [LINES];  // {valid, line}
@@ -138,8 +204,8 @@ module cache_dm #(
   logic [IXW-1:0] tag_widx;
   logic [AW:0] tag_wdata;
   always_ff @(posedge clk_i) begin
-    tag_q <= tag_mem[idx0];
-    data_q <= data_mem[idx0];
+    tag_q <= tag_mem[a_idx];
+    data_q <= data_mem[a_idx];
     if (tag_we) tag_mem[tag_widx] <= tag_wdata;
   end
 
@@ -148,11 +214,8 @@ module cache_dm #(
   logic [AW:0] tag_eff;
   logic [DW-1:0] data_eff;
   logic [OW-1:0] match_slot;
-  logic match_any;
-  logic [OUTSTANDING-1:0] match_vec;
-  /* verilator lint_off UNUSEDSIGNAL */
-  logic [2*OUTSTANDING-1:0] match_rot; // the low half is used
-  /* verilator lint_on UNUSEDSIGNAL */
+  logic match_any, match_head;
+  logic [OUTSTANDING-1:0] match_vec, match_young;
   // forwarding registers: the tag written and the fill written in the cycle before
   logic p_tag_we, p_fill_we;
   logic [IXW-1:0] p_tag_idx, p_fill_idx;
@@ -163,17 +226,15 @@ module cache_dm #(
     tag_eff = (p_tag_we && p_tag_idx == s1_idx) ? p_tag : tag_q;
     data_eff = (p_fill_we && p_fill_idx == s1_idx) ? p_fill_data : data_q;
     miss = !(tag_eff[AW] && tag_eff[AW-1:0] == s1_line);
-    // the fills under way of this line (one comparator per slot), rotated so that bit k is the
-    // k-th oldest: the youngest match wins
+    // the fills under way of this line (one comparator per slot); the youngest wins, the one
+    // match whose young bit is set (fills complete oldest first, so it is valid while any is)
     for (int s = 0; s < OUTSTANDING; s++) match_vec[s] = ff_valid[s] && ff_line[s] == s1_line;
-    match_rot = {match_vec, match_vec} >> ff_head;
-    match_any = 1'b0;
+    match_young = match_vec & ff_young;
+    match_any = |match_vec;
     match_slot = '0;
-    for (int k = 0; k < OUTSTANDING; k++)
-      if (match_rot[k]) begin
-        match_any = 1'b1;
-        match_slot = OW'(32'(ff_head) + k);
-      end
+    for (int s = 0; s < OUTSTANDING; s++)
+      if (match_young[s]) match_slot = match_slot | OW'(s);
+    match_head = match_young[ff_head];
     wait_fill = miss || match_any;
     tag_we = flushing || (s1_valid && miss);
     tag_widx = flushing ? flush_idx : s1_idx;
@@ -187,17 +248,18 @@ module cache_dm #(
     if (!rst_ni) begin
       s1_valid <= 1'b0;
       rt_valid <= '0;
-      rt_last <= OW'(OUTSTANDING - 1);
+      rt_after <= '0;
       ff_head <= '0;
       ff_send <= '0;
       ff_tail <= '0;
       ff_count <= '0;
       ff_unsent <= '0;
       ff_valid <= '0;
+      ff_young <= '0;
       p_tag_we <= 1'b0;
       p_fill_we <= 1'b0;
     end else begin
-      s1_valid <= take;
+      s1_valid <= a_valid;
       p_tag_we <= tag_we;
       p_fill_we <= fill_now;
       // fill FIFO
@@ -209,26 +271,25 @@ module cache_dm #(
         ff_head <= ff_head + 1'b1;
         ff_valid[ff_head] <= 1'b0;
       end
-      if (s1_valid && miss) ff_valid[ff_tail] <= 1'b1;
+      if (s1_valid && miss) begin
+        ff_valid[ff_tail] <= 1'b1;
+        ff_young <= (ff_young & ~match_vec) | (OUTSTANDING'(1) << ff_tail);
+      end
       // request table: a fill completes the requests waiting on it; the response frees its entry
       for (int e = 0; e < OUTSTANDING; e++)
         if (fill_now && rt_valid[e] && !rt_ready[e] && rt_slot[e] == ff_head) rt_ready[e] <= 1'b1;
-      if (rsp_valid_o && rsp_ready_i) begin
-        rt_valid[rt_out] <= 1'b0;
-        rt_last <= rt_out;
-      end
-      if (s1_valid) begin
-        rt_valid[rt_alloc] <= 1'b1;
-        rt_ready[rt_alloc] <= !wait_fill || (fill_now && s1_slot == ff_head && !miss);
-      end
+      if (rsp_valid_o && rsp_ready_i) rt_after <= rt_after_next;
+      rt_valid <= (rt_valid & ~(rsp_valid_o && rsp_ready_i ? rt_grant : '0)) | (s1_valid ? rt_alloc : '0);
+      for (int e = 0; e < OUTSTANDING; e++)
+        if (s1_valid && rt_alloc[e]) rt_ready[e] <= !wait_fill || (fill_now && match_head && !miss);
     end
   end
 
   always_ff @(posedge clk_i) begin
-    if (take) begin
-      s1_id <= req_id_i;
-      s1_line <= req_line_i;
-      s1_idx <= idx0;
+    if (a_valid) begin
+      s1_id <= a_id;
+      s1_line <= a_line;
+      s1_idx <= a_idx;
     end
     p_tag_idx <= tag_widx;
     p_tag <= tag_wdata;
@@ -241,11 +302,12 @@ module cache_dm #(
     end
     for (int e = 0; e < OUTSTANDING; e++)
       if (fill_now && rt_valid[e] && !rt_ready[e] && rt_slot[e] == ff_head) rt_data[e] <= mem_rsp_data_i;
-    if (s1_valid) begin
-      rt_id[rt_alloc] <= s1_id;
-      rt_hit[rt_alloc] <= !miss;
-      rt_slot[rt_alloc] <= s1_slot;
-      rt_data[rt_alloc] <= (fill_now && s1_slot == ff_head && !miss && wait_fill) ? mem_rsp_data_i : data_eff;
-    end
+    for (int e = 0; e < OUTSTANDING; e++)
+      if (s1_valid && rt_alloc[e]) begin
+        rt_id[e] <= s1_id;
+        rt_hit[e] <= !miss;
+        rt_slot[e] <= s1_slot;
+        rt_data[e] <= (fill_now && match_head && !miss && wait_fill) ? mem_rsp_data_i : data_eff;
+      end
   end
 endmodule

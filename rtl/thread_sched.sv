@@ -18,8 +18,8 @@
 // (an operation of n slots blocks its unit n cycles).
 // Resources (THREADS = 64, UNITS = 5): 5 x 64 ready flip-flops, 5 x 64 pointer flip-flops (the
 // pointer as the mask of the threads after it, so that no comparator per thread is needed), 5
-// SLOT_BITS busy counters; per unit a lowest-set-bit isolation on a 64-bit carry chain, OR trees
-// for the index and the slots (docs/synth.md: LUT6 levels).
+// SLOT_BITS busy counters; per unit an rr_pick (a lowest-set-bit isolation on a 64-bit carry chain, OR trees
+// for the index) and an OR tree for the slots (docs/synth.md: LUT6 levels).
 module thread_sched #(
   parameter int THREADS = 64,
   parameter int UNITS = 5,       // RGS, transformation, traversal, list, intersection (trace.h)
@@ -38,13 +38,6 @@ module thread_sched #(
   logic [THREADS-1:0] after_q [UNITS];   // the threads after the one issued last (the pointer as a mask)
   logic [SLOT_BITS-1:0] busy_q [UNITS];  // cycles the unit's issue slots stay taken after this one
 
-  // The index of a one-hot vector: per index bit an OR over the threads (a tree, no priority chain).
-  function automatic logic [TW-1:0] index_of(input logic [THREADS-1:0] onehot);
-    index_of = '0;
-    for (int t = 0; t < THREADS; t++)
-      if (onehot[t]) index_of = index_of | TW'(t);
-  endfunction
-
   // The slots of the thread of a one-hot vector: an AND-OR multiplexer.
   function automatic logic [SLOT_BITS-1:0] slots_of(input logic [THREADS-1:0] onehot,
                                                     input logic [THREADS*SLOT_BITS-1:0] slots);
@@ -54,23 +47,20 @@ module thread_sched #(
   endfunction
 
   for (genvar u = 0; u < UNITS; u++) begin : g_unit
-    logic [THREADS-1:0] later, cand, grant;
+    logic [THREADS-1:0] grant, after_next;
     logic [SLOT_BITS-1:0] slots;
-    logic               go;
+    logic               any, go;
 
-    // Round robin: the lowest ready thread after the last issued one, else the lowest ready thread
-    // (the first at or after the pointer, cyclically). cand & -cand isolates the lowest set bit on
-    // a carry chain; the index and the slots follow from the one-hot grant by OR trees.
-    always_comb begin
-      later = ready_q[u] & after_q[u];
-      cand = |later ? later : ready_q[u];
-      grant = cand & (~cand + THREADS'(1));
-      slots = slots_of(grant, slots_i);
-      go = |ready_q[u] && busy_q[u] == '0;
-    end
+    // Round robin: the first ready thread at or after the pointer, cyclically (rr_pick); the slots
+    // follow from the one-hot grant by an OR tree.
+    rr_pick #(.N(THREADS)) u_pick (
+      .req_i(ready_q[u]), .after_i(after_q[u]), .any_o(any), .grant_o(grant),
+      .index_o(issue_thread_o[u*TW +: TW]), .after_o(after_next)
+    );
+    assign slots = slots_of(grant, slots_i);
+    assign go = any && busy_q[u] == '0;
 
     assign issue_valid_o[u] = go;
-    assign issue_thread_o[u*TW +: TW] = index_of(grant);
     assign issue_slots_o[u*SLOT_BITS +: SLOT_BITS] = slots;
 
     always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -81,7 +71,7 @@ module thread_sched #(
       end else begin
         ready_q[u] <= (ready_q[u] & ~(go ? grant : '0)) | set_i[u*THREADS +: THREADS];
         if (go) begin
-          after_q[u] <= ~((grant << 1) - THREADS'(1));  // the threads above the granted one
+          after_q[u] <= after_next;
           busy_q[u] <= slots - SLOT_BITS'(1);
         end else if (busy_q[u] != '0) begin
           busy_q[u] <= busy_q[u] - SLOT_BITS'(1);

@@ -86,7 +86,7 @@ t_list_and_cache() {
 # Each mutant is a Verilator build (10-20 s, its C++ at -O0): make test runs the mutants of the
 # rounder, the list unit, the cache, the scheduler and the traversal unit; make rtl-test
 # (SAARCOR_RTL_MUTANTS=all) also those of the square root, the ray generation, the tile controller,
-# the wide transformation and the rebase unit.
+# the wide transformation and the rebase unit, and the caches with tables of 4 requests.
 extra_mutants() { [[ ${SAARCOR_RTL_MUTANTS:-} == all ]]; }
 
 mutant() {
@@ -97,13 +97,32 @@ mutant() {
   ! cmp -s "rtl/$file" "$d/$file" || { echo "the mutation of $file changed nothing"; return 1; }
   local srcs=()
   for f in rtl/*.sv; do [[ $f == "rtl/$file" ]] || srcs+=("$PWD/$f"); done
-  verilator --cc --exe --build -j 2 -Wno-fatal -GE=7 -GM=16 --top-module "tb_$name" -Mdir "$d/obj" \
-    -MAKEFLAGS OPT_FAST=-O0 -MAKEFLAGS OPT_SLOW=-O0 -MAKEFLAGS OPT_GLOBAL=-O0 \
-    -o "$d/tb" "${srcs[@]}" "$d/$file" "$PWD/rtl/tb/tb_$name.sv" "$PWD/rtl/tb/tb_$name.cpp" \
-    -CFLAGS "-DF24_EXP_BITS=7 -DF24_MAN_BITS=16 $(printf -- "-I$PWD/%s " hls hls/fp24 hls/units tb/fp host/memimage host/kdtree host/scene)" \
-    -LDFLAGS "$(ls "$PWD/$B"/obj/e7m16/hls/fp24/*.o "$PWD/$B"/obj/e7m16/hls/units/*.o "$PWD/$B"/obj/e7m16/tb/fp/*.o | tr '\n' ' ') -lmpfr -lgmp -lm" >/dev/null
+  model "$name" "$d" "" "${srcs[@]}" "$d/$file"
   if "$d/tb" "$@" >"$d/log"; then echo "the mutant $file passed tb_$name"; return 1; fi
   grep -c MISMATCH "$d/log" | sed "s/^/mutant $file caught by tb_$name: /; s/$/ mismatch lines shown/"
+}
+
+# builds DIR/tb, the model of tb_NAME from the given rtl/ sources with the Verilator options OPTS
+# (e.g. other parameters of the bench's wrapper), its C++ at -O0
+model() {
+  local name=$1 d=$2 opts=$3; shift 3
+  # shellcheck disable=SC2086 # OPTS are words
+  verilator --cc --exe --build -j 2 -Wno-fatal -GE=7 -GM=16 $opts --top-module "tb_$name" -Mdir "$d/obj" \
+    -MAKEFLAGS OPT_FAST=-O0 -MAKEFLAGS OPT_SLOW=-O0 -MAKEFLAGS OPT_GLOBAL=-O0 \
+    -o "$d/tb" "$@" "$PWD/rtl/tb/tb_$name.sv" "$PWD/rtl/tb/tb_$name.cpp" \
+    -CFLAGS "-DF24_EXP_BITS=7 -DF24_MAN_BITS=16 $(printf -- "-I$PWD/%s " hls hls/fp24 hls/units tb/fp host/memimage host/kdtree host/scene)" \
+    -LDFLAGS "$(ls "$PWD/$B"/obj/e7m16/hls/fp24/*.o "$PWD/$B"/obj/e7m16/hls/units/*.o "$PWD/$B"/obj/e7m16/tb/fp/*.o | tr '\n' ' ') -lmpfr -lgmp -lm" >/dev/null
+}
+
+# the caches with 4 outstanding requests each: their tables fill, so the room kept for the requests
+# in the index stage and S1 (req_ready_o) is exercised
+t_cache_small_table() {
+  [[ -f "$T/capc/mem.hex" ]] || "$BIN" render room -o "$T/room_cycle.png" --width 48 --height 32 --mode cycle \
+    --threads-per-pipe 64 --capture-unit-io "$T/capc" --capture-limit 200000 >/dev/null
+  mkdir -p "$T/cache4"
+  model cache "$T/cache4" -GOUTSTANDING=4 "$PWD"/rtl/*.sv
+  "$T/cache4/tb" --capture "$T/capc" | tee "$T/cache4/log"
+  grep -Eq "matrices cache .* [1-9][0-9]* cycles with its request table full" "$T/cache4/log"
 }
 
 t_trav_unit() {
@@ -127,7 +146,7 @@ t_list_cache_mutants_caught() {
   mutant list list_unit.sv "s/s2_next\[r\] + 3'd1/s2_next[r]/" -n 2000 --capture "$T/capc" &&
     mutant cache cache_dm.sv "s/tag_eff = (p_tag_we \&\& p_tag_idx == s1_idx) ? p_tag : tag_q;/tag_eff = tag_q;/" \
       --capture "$T/capc" &&
-    mutant sched thread_sched.sv "s/after_q\[u\] <= ~((grant << 1) - THREADS'(1));/after_q[u] <= '1;/" -n 0 --capture "$T/capc"
+    mutant sched thread_sched.sv "s/after_q\[u\] <= after_next;/after_q[u] <= '1;/" -n 0 --capture "$T/capc"
 }
 
 t_rgs() {
@@ -192,6 +211,7 @@ if extra_mutants; then
   run_case rtl_sqrt_bench_catches_mutant t_sqrt_mutant_caught
   run_case rtl_rgs_bench_catches_mutants t_rgs_mutants_caught
   run_case rtl_wide_bench_catches_mutants t_wide_mutants_caught
+  run_case rtl_caches_with_full_tables_match_c_model t_cache_small_table
 fi
 run_case rtl_trav_unit_matches_c_model_and_capture t_trav_unit
 run_case rtl_trav_bench_catches_mutant t_trav_mutant_caught

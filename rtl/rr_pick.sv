@@ -1,0 +1,32 @@
+// rr_pick: a round-robin pick among N requesters, in few LUT levels (no priority chain): the
+// first requester at or after the pointer, cyclically. The pointer is kept by the owner as the
+// mask of the requesters after the one picked last (after_i; all ones, or all zeros, before the
+// first pick), so that no comparator per requester is needed; the next mask is after_o.
+// The lowest requester after the pointer, else the lowest requester: req & -req isolates the
+// lowest set bit on a carry chain, and the index follows from the one-hot grant by OR trees.
+// Used by the thread scheduler (one per unit) and by the caches' response selection.
+// Combinational. Resources: two N-bit carry chains (isolation, the next mask), an N-input OR,
+// log2 N OR trees of N/2 inputs.
+module rr_pick #(
+  parameter int N = 16,
+  localparam int NW = N > 1 ? $clog2(N) : 1
+) (
+  input  logic [N-1:0]  req_i,
+  input  logic [N-1:0]  after_i,
+  output logic          any_o,
+  output logic [N-1:0]  grant_o,   // one-hot; zero if no request
+  output logic [NW-1:0] index_o,   // of the grant
+  output logic [N-1:0]  after_o    // the requesters above the granted one
+);
+  logic [N-1:0] later, cand;
+  always_comb begin
+    later = req_i & after_i;
+    cand = |later ? later : req_i;
+    grant_o = cand & (~cand + N'(1));
+    after_o = ~((grant_o << 1) - N'(1));
+    index_o = '0;
+    for (int i = 0; i < N; i++)
+      if (grant_o[i]) index_o = index_o | NW'(i);
+  end
+  assign any_o = |req_i;
+endmodule
