@@ -603,23 +603,82 @@ static int split_events(builder *b, const prim_set *s, const split *sp, const aa
     return 0;
 }
 
-/* Root set: bounds of every primitive (no clipping needed: they lie in the root box). */
+/* Order-preserving integer key of an event position: key(x) < key(y) iff x < y, for finite x, y;
+ * -0 and +0, equal positions, get the same key. */
+static uint64_t pos_key(double x)
+{
+    x += 0.0; /* -0 + +0 = +0 */
+    uint64_t k;
+    memcpy(&k, &x, sizeof k);
+    return k ^ ((uint64_t)((int64_t)k >> 63) | 1ull << 63); /* negative: all bits flipped; else the sign bit set */
+}
+
+/* Sorts e[0..n) by position, stably: LSD radix sort over pos_key, a byte a pass, skipping the
+ * bytes all keys share; tmp has room for n events. O(n), without the comparisons' mispredicted
+ * branches: the root's lists are the longest of the build. */
+static void radix_sort_events(event *e, uint32_t n, event *tmp)
+{
+    if (n == 0)
+        return;
+    uint32_t hist[8][256];
+    memset(hist, 0, sizeof hist);
+    for (uint32_t i = 0; i < n; i++) {
+        const uint64_t k = pos_key(e[i].pos);
+        for (int d = 0; d < 8; d++)
+            hist[d][k >> 8 * d & 255]++;
+    }
+    event *src = e, *dst = tmp;
+    const uint64_t k0 = pos_key(e[0].pos);
+    for (int d = 0; d < 8; d++) {
+        uint32_t *h = hist[d];
+        if (h[k0 >> 8 * d & 255] == n)
+            continue; /* every key has this byte */
+        for (uint32_t v = 0, sum = 0; v < 256; v++) { /* counts to first indexes */
+            const uint32_t c = h[v];
+            h[v] = sum;
+            sum += c;
+        }
+        for (uint32_t i = 0; i < n; i++)
+            dst[h[pos_key(src[i].pos) >> 8 * d & 255]++] = src[i];
+        event *const t = src;
+        src = dst;
+        dst = t;
+    }
+    if (src != e)
+        memcpy(e, src, n * sizeof *e);
+}
+
+/* Root set: bounds of every primitive (no clipping needed: they lie in the root box). The events
+ * of an axis are written by type, then primitive, and sorted stably by position: event_less
+ * order. */
 static int root_events(const builder *b, prim_set *s, aabb *root)
 {
     const uint32_t n = b->src->count;
-    event *tmp = malloc(((size_t)n + 1) * sizeof *tmp); /* half of an axis's 2n events */
-    if (!tmp || events_alloc(s, 2 * (size_t)n)) {
+    aabb *bx = malloc(((size_t)n + 1) * sizeof *bx);
+    event *tmp = malloc((2 * (size_t)n + 1) * sizeof *tmp);
+    if (!bx || !tmp || events_alloc(s, 2 * (size_t)n)) {
+        free(bx);
         free(tmp);
         return -1;
     }
     for (uint32_t i = 0; i < n; i++) {
-        const aabb bx = b->src->bounds(b->src->user, i);
-        put_events(s->ev, s->n_ev, i, &bx);
-        box_union(root, &bx);
+        bx[i] = b->src->bounds(b->src->user, i);
+        box_union(root, &bx[i]);
+    }
+    for (int a = 0; a < 3; a++) {
+        event *e = s->ev[a];
+        uint32_t m = 0;
+        for (uint32_t type = EV_END; type < EV_TYPES; type++)
+            for (uint32_t i = 0; i < n; i++) {
+                const int flat = bx[i].lo[a] == bx[i].hi[a];
+                if (flat ? type == EV_PLANAR : type != EV_PLANAR)
+                    e[m++] = (event){ type == EV_END ? bx[i].hi[a] : bx[i].lo[a], i, type };
+            }
+        s->n_ev[a] = m;
+        radix_sort_events(e, m, tmp);
     }
     s->n = n;
-    for (int a = 0; a < 3; a++)
-        sort_events(s->ev[a], s->n_ev[a], tmp);
+    free(bx);
     free(tmp);
     return 0;
 }
