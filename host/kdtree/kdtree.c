@@ -1797,7 +1797,7 @@ static void clip_plane(const polygon *src, int axis, double d, int keep_above, p
 {
     dst->n = 0;
     for (int i = 0; i < src->n; i++) {
-        const double *a = src->v[i], *c = src->v[(i + 1) % src->n];
+        const double *a = src->v[i], *c = src->v[i + 1 < src->n ? i + 1 : 0];
         const int ain = keep_above ? a[axis] >= d : a[axis] <= d;
         const int cin = keep_above ? c[axis] >= d : c[axis] <= d;
         if (ain)
@@ -1811,13 +1811,18 @@ static void clip_plane(const polygon *src, int axis, double d, int keep_above, p
     }
 }
 
-/* Whether every vertex of p lies on the kept side of the plane (clip_plane keeps p as it is). */
-static int all_inside(const polygon *p, int axis, double d, int keep_above)
+/* Bounds of the vertices of p (p->n > 0). */
+static aabb poly_bounds(const polygon *p)
 {
-    int in = 1;
-    for (int i = 0; i < p->n; i++)
-        in &= keep_above ? p->v[i][axis] >= d : p->v[i][axis] <= d;
-    return in;
+    aabb b;
+    for (int k = 0; k < 3; k++) {
+        b.lo[k] = b.hi[k] = p->v[0][k];
+        for (int i = 1; i < p->n; i++) {
+            b.lo[k] = dmin(b.lo[k], p->v[i][k]);
+            b.hi[k] = dmax(b.hi[k], p->v[i][k]);
+        }
+    }
+    return b;
 }
 
 int kd_clip_triangle(const double a[3], const double b[3], const double c[3], const aabb *box, aabb *out)
@@ -1828,23 +1833,19 @@ int kd_clip_triangle(const double a[3], const double b[3], const double c[3], co
     memcpy(p[0].v[1], b, sizeof p[0].v[0]);
     memcpy(p[0].v[2], c, sizeof p[0].v[0]);
     int cur = 0;
-    for (int plane = 0; plane < 6 && p[cur].n > 0; plane++) {
+    aabb bounds = poly_bounds(&p[0]); /* of p[cur]: which planes leave it as it is */
+    for (int plane = 0; plane < 6; plane++) {
         const int axis = plane / 2, above = plane % 2 == 0;
         const double d = above ? box->lo[axis] : box->hi[axis];
-        if (all_inside(&p[cur], axis, d, above))
-            continue; /* most planes of a node box miss the part: clip_plane would copy it */
+        if (above ? bounds.lo[axis] >= d : bounds.hi[axis] <= d)
+            continue; /* every vertex on the kept side (most planes of a node box): clip_plane would copy p */
         clip_plane(&p[cur], axis, d, above, &p[1 - cur]);
         cur = 1 - cur;
+        if (p[cur].n == 0)
+            return 0;
+        bounds = poly_bounds(&p[cur]);
     }
-    if (p[cur].n == 0)
-        return 0;
     /* exact inside tests, crossings on their plane and within their edge: the polygon lies in box */
-    for (int k = 0; k < 3; k++) {
-        out->lo[k] = out->hi[k] = p[cur].v[0][k];
-        for (int i = 1; i < p[cur].n; i++) {
-            out->lo[k] = dmin(out->lo[k], p[cur].v[i][k]);
-            out->hi[k] = dmax(out->hi[k], p[cur].v[i][k]);
-        }
-    }
+    *out = bounds;
     return 1;
 }
