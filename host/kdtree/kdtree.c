@@ -168,6 +168,8 @@ typedef struct {
     uint8_t *side;    /* exact mode: SIDE_* of each primitive of the node being split */
     event *scratch;   /* exact mode: the straddlers' events (clip_straddlers) */
     uint32_t cap_scratch;
+    uint32_t *straddlers; /* exact mode: the straddlers of the node being split (clip_straddlers) */
+    uint32_t cap_straddlers;
     double *cand;     /* binned mode: candidate planes of one axis */
     uint32_t *counts; /* binned mode: 3 x (bins + 1) counters */
     measure_kind kind;   /* of SAH weights: measure(kind, node box) / root_measure */
@@ -488,29 +490,29 @@ typedef struct {
 
 /* Sets b->side for the primitives of s from their events on the split axis (a primitive's start
  * comes before its end): a start at or above the plane means right only, an end at or below it
- * left only, the rest straddles. */
+ * left only, the rest straddles; a planar event goes by side_of. Without branches on the events'
+ * types and positions, which follow no pattern. */
 static side_counts classify(builder *b, const prim_set *s, const split *sp)
 {
     const event *ev = s->ev[sp->axis];
     const uint32_t m = s->n_ev[sp->axis];
-    side_counts c = { 0, 0, 0 };
+    const double q = sp->pos;
+    const uint8_t in_plane = sp->planar_left ? SIDE_LEFT : SIDE_RIGHT;
+    uint32_t left = 0, right = 0;
     for (uint32_t i = 0; i < m; i++) {
-        const event *e = &ev[i];
-        uint8_t *side = &b->side[e->prim];
-        if (e->type == EV_PLANAR) {
-            *side = (uint8_t)side_of(e->pos, e->pos, sp);
-            c.left += *side == SIDE_LEFT;
-            c.right += *side == SIDE_RIGHT;
-        } else if (e->type == EV_START) {
-            *side = e->pos >= sp->pos ? SIDE_RIGHT : SIDE_BOTH;
-            c.right += *side == SIDE_RIGHT;
-        } else if (e->pos <= sp->pos) {
-            *side = SIDE_LEFT;
-            c.left++;
-        }
+        const double x = ev[i].pos;
+        const uint32_t t = ev[i].type;
+        uint8_t *side = &b->side[ev[i].prim];
+        const uint8_t planar = x == q ? in_plane : x < q ? SIDE_LEFT : SIDE_RIGHT;
+        const uint8_t start = x >= q ? SIDE_RIGHT : SIDE_BOTH;
+        const uint8_t end = x <= q ? SIDE_LEFT : *side; /* above: as its start said */
+        const uint8_t by_type[EV_TYPES] = { [EV_END] = end, [EV_PLANAR] = planar, [EV_START] = start };
+        const uint8_t v = by_type[t];
+        *side = v;
+        left += (t != EV_START) & (v == SIDE_LEFT); /* counted at the end (or planar) event */
+        right += (t != EV_END) & (v == SIDE_RIGHT); /* at the start (or planar) event */
     }
-    c.both = s->n - c.left - c.right;
-    return c;
+    return (side_counts){ left, right, s->n - left - right };
 }
 
 /* Where the straddlers' events for child c on axis a go in b->scratch (nb straddlers). */
@@ -533,43 +535,59 @@ static int clip_straddlers(builder *b, const prim_set *s, const split *sp, const
     for (int c = 0; c < 2; c++)
         for (int a = 0; a < 3; a++)
             ev[c][a] = clipped_events(b, nb, c, a);
+    uint32_t *list = reserve(b->straddlers, &b->cap_straddlers, (uint64_t)nb + 1, sizeof *list);
+    if (!list)
+        return -1;
+    b->straddlers = list;
+    /* the straddlers, listed without branches (their order does not matter: the events are sorted) */
     const event *split_ev = s->ev[sp->axis];
+    uint32_t n = 0;
     for (uint32_t i = 0; i < s->n_ev[sp->axis]; i++) {
-        if (split_ev[i].type != EV_START || b->side[split_ev[i].prim] != SIDE_BOTH)
-            continue;
+        list[n] = split_ev[i].prim;
+        n += (split_ev[i].type == EV_START) & (b->side[split_ev[i].prim] == SIDE_BOTH);
+    }
+    for (uint32_t i = 0; i < n; i++)
         for (int c = 0; c < 2; c++) {
             aabb part;
-            if (part_in_box(b, split_ev[i].prim, NULL, cb[c], &part)) {
-                put_events(ev[c], k[c], split_ev[i].prim, &part);
+            if (part_in_box(b, list[i], NULL, cb[c], &part)) {
+                put_events(ev[c], k[c], list[i], &part);
                 kept[c]++;
             }
         }
-    }
     for (int c = 0; c < 2; c++)
         for (int a = 0; a < 3; a++)
             sort_events(ev[c][a], k[c][a], scratch + 12 * (size_t)nb);
     return 0;
 }
 
-/* The events of one axis for both children in one pass: the one-sided events of ev[0..n) in
- * their order, each child's merged with its sorted straddler events add[c][0..k[c]), into out[c]
- * (m[c] events). */
+/* The events of one axis for both children: the one-sided events of ev[0..n) in their order, each
+ * child's merged with its sorted straddler events add[c][0..k[c]), into out[c] (m[c] events; one
+ * spare entry). First every event is written to both children and kept by the one it belongs to
+ * (after room for the straddlers' events), then the merge runs in place (its write index never
+ * passes its read index); both without branches on the data. */
 static void distribute(const builder *b, const event *ev, uint32_t n, event *const add[2], const uint32_t k[2],
                        event *const out[2], uint32_t m[2])
 {
-    uint32_t j[2] = { 0, 0 }, o[2] = { 0, 0 };
+    uint32_t o[2] = { k[0], k[1] };
     for (uint32_t i = 0; i < n; i++) {
         const int side = b->side[ev[i].prim];
-        if (side == SIDE_BOTH)
-            continue;
-        const int c = side == SIDE_RIGHT;
-        while (j[c] < k[c] && event_less(&add[c][j[c]], &ev[i]))
-            out[c][o[c]++] = add[c][j[c]++];
-        out[c][o[c]++] = ev[i];
+        out[0][o[0]] = ev[i];
+        out[1][o[1]] = ev[i];
+        o[0] += side == SIDE_LEFT;
+        o[1] += side == SIDE_RIGHT;
     }
     for (int c = 0; c < 2; c++) {
-        memcpy(out[c] + o[c], add[c] + j[c], (k[c] - j[c]) * sizeof(event));
-        m[c] = o[c] + k[c] - j[c];
+        event *const e = out[c];
+        const event *const a = add[c];
+        uint32_t i = k[c], j = 0, w = 0; /* w = (i - k) + j < i while j < k */
+        while (j < k[c] && i < o[c]) {
+            const int first = event_less(&a[j], &e[i]);
+            e[w++] = *(first ? &a[j] : &e[i]);
+            j += (uint32_t)first;
+            i += (uint32_t)!first;
+        }
+        memcpy(e + w, a + j, (k[c] - j) * sizeof *e); /* j == k: the rest is in place already */
+        m[c] = o[c];
     }
 }
 
@@ -1345,11 +1363,14 @@ static void scratch_free(builder *b)
     free(b->counts);
     free(b->side);
     free(b->scratch);
+    free(b->straddlers);
     b->cand = NULL;
     b->counts = NULL;
     b->side = NULL;
     b->scratch = NULL;
     b->cap_scratch = 0;
+    b->straddlers = NULL;
+    b->cap_straddlers = 0;
 }
 
 static void task_free(task *t)
@@ -1617,6 +1638,8 @@ static int build_parallel(builder *b, const aabb *box, prim_set *s, uint32_t thr
     b->st = root.b.st;
     b->scratch = root.b.scratch; /* b's scratch (perhaps grown) stays the caller's to free */
     b->cap_scratch = root.b.cap_scratch;
+    b->straddlers = root.b.straddlers;
+    b->cap_straddlers = root.b.cap_straddlers;
     b->nodes = out.nodes;
     b->n_nodes = b->cap_nodes = out.n_nodes;
     b->prims = out.prims;
