@@ -1795,12 +1795,25 @@ enum { CLIP_MAX = 16 };
 typedef struct {
     double v[CLIP_MAX][3];
     int n;
+    aabb b; /* bounds of v[0..n), kept by poly_add (the same minima and maxima, in the same order, as
+               a pass over the vertices) */
 } polygon;
+
+static void poly_clear(polygon *p)
+{
+    p->n = 0;
+    p->b = (aabb){ { INFINITY, INFINITY, INFINITY }, { -INFINITY, -INFINITY, -INFINITY } };
+}
 
 static void poly_add(polygon *p, const double v[3])
 {
-    if (p->n < CLIP_MAX)
-        memcpy(p->v[p->n++], v, sizeof p->v[0]);
+    if (p->n == CLIP_MAX)
+        return;
+    memcpy(p->v[p->n++], v, sizeof p->v[0]);
+    for (int k = 0; k < 3; k++) {
+        p->b.lo[k] = dmin(p->b.lo[k], v[k]);
+        p->b.hi[k] = dmax(p->b.hi[k], v[k]);
+    }
 }
 
 /* Point where segment in-out crosses x[axis] = d, computed from the inside end so that an edge
@@ -1818,7 +1831,7 @@ static void crossing(const double in[3], const double out[3], int axis, double d
 /* Keeps the part of src with x[axis] >= d (keep_above) or <= d; points on the plane are kept. */
 static void clip_plane(const polygon *src, int axis, double d, int keep_above, polygon *dst)
 {
-    dst->n = 0;
+    poly_clear(dst);
     for (int i = 0; i < src->n; i++) {
         const double *a = src->v[i], *c = src->v[i + 1 < src->n ? i + 1 : 0];
         const int ain = keep_above ? a[axis] >= d : a[axis] <= d;
@@ -1834,41 +1847,26 @@ static void clip_plane(const polygon *src, int axis, double d, int keep_above, p
     }
 }
 
-/* Bounds of the vertices of p (p->n > 0). */
-static aabb poly_bounds(const polygon *p)
-{
-    aabb b;
-    for (int k = 0; k < 3; k++) {
-        b.lo[k] = b.hi[k] = p->v[0][k];
-        for (int i = 1; i < p->n; i++) {
-            b.lo[k] = dmin(b.lo[k], p->v[i][k]);
-            b.hi[k] = dmax(b.hi[k], p->v[i][k]);
-        }
-    }
-    return b;
-}
-
 int kd_clip_triangle(const double a[3], const double b[3], const double c[3], const aabb *box, aabb *out)
 {
     polygon p[2];
-    p[0].n = 3;
-    memcpy(p[0].v[0], a, sizeof p[0].v[0]);
-    memcpy(p[0].v[1], b, sizeof p[0].v[0]);
-    memcpy(p[0].v[2], c, sizeof p[0].v[0]);
+    poly_clear(&p[0]);
+    poly_add(&p[0], a);
+    poly_add(&p[0], b);
+    poly_add(&p[0], c);
     int cur = 0;
-    aabb bounds = poly_bounds(&p[0]); /* of p[cur]: which planes leave it as it is */
     for (int plane = 0; plane < 6; plane++) {
         const int axis = plane / 2, above = plane % 2 == 0;
         const double d = above ? box->lo[axis] : box->hi[axis];
-        if (above ? bounds.lo[axis] >= d : bounds.hi[axis] <= d)
+        const aabb *bounds = &p[cur].b;
+        if (above ? bounds->lo[axis] >= d : bounds->hi[axis] <= d)
             continue; /* every vertex on the kept side (most planes of a node box): clip_plane would copy p */
         clip_plane(&p[cur], axis, d, above, &p[1 - cur]);
         cur = 1 - cur;
         if (p[cur].n == 0)
             return 0;
-        bounds = poly_bounds(&p[cur]);
     }
     /* exact inside tests, crossings on their plane and within their edge: the polygon lies in box */
-    *out = bounds;
+    *out = p[cur].b;
     return 1;
 }
