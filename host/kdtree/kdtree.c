@@ -394,7 +394,7 @@ static uint64_t event_key(const event *e) { return (uint64_t)e->type << 32 | e->
 
 static int event_less(const event *a, const event *b)
 {
-    return a->pos < b->pos || (a->pos == b->pos && event_key(a) < event_key(b));
+    return (a->pos < b->pos) | ((a->pos == b->pos) & (event_key(a) < event_key(b))); /* no branches */
 }
 
 /* Sorts e[0..n) by event_less: merge sort, insertion sort below 16 events; tmp has room for n / 2
@@ -418,8 +418,12 @@ static void sort_events(event *e, uint32_t n, event *tmp)
         return; /* already in order: common for the clipped parts of a few straddlers */
     memcpy(tmp, e, h * sizeof *e);
     uint32_t i = 0, j = h, o = 0; /* o < j: the merge never overtakes the right half it reads */
-    while (i < h && j < n)
-        e[o++] = event_less(&e[j], &tmp[i]) ? e[j++] : tmp[i++];
+    while (i < h && j < n) { /* the first of the two selected without a branch */
+        const int right = event_less(&e[j], &tmp[i]);
+        e[o++] = *(right ? &e[j] : &tmp[i]);
+        j += (uint32_t)right;
+        i += (uint32_t)!right;
+    }
     memcpy(e + o, tmp + i, (h - i) * sizeof *e);
 }
 
