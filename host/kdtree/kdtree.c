@@ -459,16 +459,18 @@ static void put_events(event *const ev[3], uint32_t n[3], uint32_t id, const aab
 static void sweep_axis(const builder *b, const prim_set *s, const aabb *box, uint32_t k, split *best)
 {
     const event *ev = s->ev[k];
-    const uint32_t m = s->n_ev[k];
+    const uint32_t m = s->n_ev[k], n = s->n;
     const axis_terms t = terms_of(b, box, k);
+    const double lo = box->lo[k], hi = box->hi[k]; /* in locals: quantize could change *box, for all the compiler knows */
+    const int faces = b->p.face_splits && hi > lo;
     uint32_t below[EV_TYPES] = { 0 }, j = 0;
     double last = -INFINITY;
     for (uint32_t i = 0; i < m; i++) {
         if (i > 0 && ev[i].pos == ev[i - 1].pos)
             continue;
         const double q = snap(b, ev[i].pos);
-        const int face = b->p.face_splits && box->hi[k] > box->lo[k] && (q == box->lo[k] || q == box->hi[k]);
-        if (!(q > last) || !(strictly_inside(box, k, q) || face))
+        const int face = faces && (q == lo || q == hi);
+        if (!(q > last) || !((q > lo && q < hi) || face))
             continue;
         last = q;
         while (j < m && ev[j].pos < q)
@@ -477,9 +479,9 @@ static void sweep_axis(const builder *b, const prim_set *s, const aabb *box, uin
         while (j < m && ev[j].pos == q)
             at[ev[j++].type]++;
         const uint32_t nl = below[EV_START] + below[EV_PLANAR];
-        const uint32_t nr = s->n - below[EV_END] - below[EV_PLANAR] - at[EV_END] - at[EV_PLANAR];
+        const uint32_t nr = n - below[EV_END] - below[EV_PLANAR] - at[EV_END] - at[EV_PLANAR];
         if (face)
-            consider_face(&t, q, at[EV_PLANAR], s->n, best);
+            consider_face(&t, q, at[EV_PLANAR], n, best);
         else
             consider(&t, q, nl, at[EV_PLANAR], nr, best);
         for (int e = 0; e < EV_TYPES; e++)
