@@ -14,13 +14,17 @@
  * Exact mode (bins == 0), after Wald & Havran, "On building fast kd-trees for ray tracing, and
  * on doing that in O(N log N)" (2006). Each primitive contributes per axis a start and an end
  * event at its bounds inside the node (from clip(), "perfect splits"), or one planar event if it
- * is flat on that axis. The three event lists are sorted once at the root. A node sweeps them for
- * the cheapest plane; primitives lying in a candidate plane are tried on both sides. Splitting
- * keeps the events of one-sided primitives (still sorted); primitives straddling the plane are
- * clipped to the two child boxes and only their new events are sorted and merged in.
- * Cost: O(N log N) for the root sort and the sweeps/splits (O(n) per node, O(log N) levels),
- * plus sorting the straddlers' events per node (O(N log^2 N) in the worst case, in practice the
- * straddlers are few). Event counts are 32-bit: at most 2^31 primitives.
+ * is flat on that axis. The three event lists are sorted once at the root (an O(N) radix sort on
+ * an order-preserving integer key of the position). A node sweeps them for the cheapest plane;
+ * primitives lying in a candidate plane are tried on both sides. Splitting keeps the events of
+ * one-sided primitives (still sorted); primitives straddling the plane are clipped to the two
+ * child boxes and only their new events are sorted and merged in.
+ * Cost: O(N log N) for the sweeps/splits (O(n) per node, O(log N) levels), plus sorting the
+ * straddlers' events per node (O(N log^2 N) in the worst case, in practice the straddlers are
+ * few). Event counts are 32-bit: at most 2^31 primitives. The passes that classify the events,
+ * list the straddlers, split the lists and merge (in sorts and into the children) choose without
+ * branches on the data: event types and positions follow no pattern a branch predictor could use
+ * (bunny.glb: 34.5 -> 22.8 M mispredicted branches per build; same trees).
  *
  * Binned mode (bins > 0, the per-frame top level): candidates are the bins - 1 evenly spaced
  * planes per axis. Every primitive is ranked against them exactly (its bin, checked against the
