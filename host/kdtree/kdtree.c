@@ -1815,7 +1815,7 @@ static void poly_clear(polygon *p)
     p->b = (aabb){ { INFINITY, INFINITY, INFINITY }, { -INFINITY, -INFINITY, -INFINITY } };
 }
 
-static void poly_add(polygon *p, const double v[3])
+static inline void poly_add(polygon *p, const double v[3])
 {
     if (p->n == CLIP_MAX)
         return;
