@@ -432,7 +432,8 @@ static void sort_events(event *e, uint32_t n, event *tmp)
     memcpy(e + o, tmp + i, (h - i) * sizeof *e);
 }
 
-/* Room for per_axis events on each axis, in one block at ev[0] (one spare, so that no size is 0). */
+/* Room for per_axis events on each axis, in one block at ev[0], and one spare (no size is 0, and
+ * distribute() writes one entry past the events it keeps). */
 static int events_alloc(prim_set *s, size_t per_axis)
 {
     if (!(s->ev[0] = malloc(3 * (per_axis + 1) * sizeof(event))))
