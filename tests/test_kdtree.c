@@ -767,6 +767,27 @@ static void identical_boxes(void **state)
     free(bs.b);
 }
 
+/* Positions -0 and +0 are equal: the root's event lists (sorted by an integer key of the position)
+ * order their events by type and primitive, as at any other position. A leaf lists its primitives
+ * in the order of their events on x; no plane can separate these boxes. */
+static void signed_zero_positions(void **state)
+{
+    (void)state;
+    box_set bs = { calloc(4, sizeof(aabb)), 4 };
+    for (uint32_t i = 0; i < bs.n; i++)
+        bs.b[i] = (aabb){ { i % 2 ? -0.0 : 0.0, 0, 0 }, { 1, 1, 1 } };
+    const kd_source src = box_source(&bs);
+    const kd_params p = params(0, NULL);
+    kd_tree t;
+    assert_int_equal(kd_build(&src, &p, &t), 0);
+    check_tree(&src, &p, &t);
+    assert_int_equal(t.n_nodes, 1);
+    for (uint32_t i = 0; i < bs.n; i++)
+        assert_int_equal(t.prims[i], i);
+    kd_free(&t);
+    free(bs.b);
+}
+
 /* Many copies of a few triangles, and of random boxes. */
 static void duplicates(void **state)
 {
@@ -1434,6 +1455,7 @@ int main(void)
         cmocka_unit_test(node_limit),
         cmocka_unit_test(sah_cost_by_hand),
         cmocka_unit_test(two_boxes_by_hand),
+        cmocka_unit_test(signed_zero_positions),
         cmocka_unit_test(clip_triangle_cases),
         cmocka_unit_test(clip_triangle_random),
         cmocka_unit_test(ropes_cover_faces),

@@ -1,9 +1,9 @@
 /*
  * SAH kd-tree builder (host). One builder serves both levels of the paper's two-level scheme:
- * the bottom level over the triangles of one object (built once: binned SAH near the root, exact
- * SAH over event lists near the leaves, with perfect splits from triangle-box clipping throughout)
- * and the top level over the world-space boxes of the object instances (rebuilt every frame,
- * binned SAH for speed).
+ * the bottom level over the triangles of one object (built once: exact SAH over sorted event
+ * lists, with perfect splits from triangle-box clipping throughout; optionally binned SAH near the
+ * root, see kd_params.exact_max) and the top level over the world-space boxes of the object
+ * instances (rebuilt every frame, binned SAH for speed).
  *
  * Primitives are abstract: the caller supplies their bounds and, for perfect splits, a clipping
  * function. Split planes can be snapped to the device's number format (quantize), and primitives
