@@ -23,7 +23,8 @@
 // Latency: per packet the sum of its operations' unit latencies plus the memory reads (tb_core
 // reports cycles per packet); throughput one packet at a time.
 // Resources: the units' (rtl/README.md) plus 3 f24_add, one f24_sum_exact of 9 terms and the state
-// registers (about 4 x 20 W + 40 x 32 bits).
+// registers: 36 W bits per ray (3456 bits at e7m16 for the packet), a 40-word descriptor buffer,
+// about 20 words of routing state and 10 counters of 32 bits (not yet synthesized).
 // Handshake: valid/ready at the packet input and the result output; word port valid/ready with
 // responses in request order (mem_rsp_valid_i); trav_unit's node port and list_unit's read port
 // as those units define them.
@@ -390,7 +391,7 @@ module trace_core #(
   always_comb
     for (int c = 0; c < 10; c++) count_o[c*32 +: 32] = cnt[c];
 
-  // where a packet goes after a list entry or a walk step (route_after_list)
+  // the loader: reads n words from base into lbuf through the word port, then goes to next
   task automatic load(input logic [31:0] base, input logic [5:0] n, input logic [5:0] next);
     ld_base <= base;
     ld_n <= n;
@@ -509,7 +510,7 @@ module trace_core #(
           end
           st <= S_IC_LOAD;
         end
-        S_ROUTE:
+        S_ROUTE:  // route_after_list: the next entry, the next walk step, back up, or done
           if (alive == 0) st <= S_DONE;
           else if (k[level] < leaf_count[level]) st <= S_LIST_GO;
           else if (have_cur[level]) st <= S_WALK_GO;
