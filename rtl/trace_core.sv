@@ -103,12 +103,12 @@ module trace_core #(
   // the FSM's states (trace_step's operations and their unit transactions)
   localparam logic [5:0]
     S_IDLE = 6'd0, S_CLR0 = 6'd1, S_LOAD = 6'd2, S_HDR = 6'd3, S_SC_GO = 6'd4, S_TRAV_WAIT = 6'd5,
-    S_SC_DONE = 6'd6, S_START_GO = 6'd7, S_START_DONE = 6'd8, S_SINGLE_NODE = 6'd9, S_SINGLE_LIST = 6'd10, S_SINGLE_ID = 6'd11,
-    S_ROUTE = 6'd12, S_WALK_GO = 6'd13, S_WALK_DONE = 6'd14, S_LIST_GO = 6'd15, S_LIST_WAIT = 6'd16, S_RB_RAY = 6'd17,
-    S_RB_WAIT = 6'd18, S_IX_LOAD = 6'd19, S_IX = 6'd20, S_IX_RAY = 6'd21, S_WIDE_GO = 6'd22, S_WIDE_WAIT = 6'd23,
-    S_IC_LOAD = 6'd24, S_IC_CLR = 6'd25, S_IC_RAY = 6'd26, S_ADD_WAIT = 6'd27, S_IC_CLIP = 6'd28, S_IC_DONE = 6'd29,
-    S_TX_LOAD = 6'd30, S_TI_RAY = 6'd31, S_XF_GO = 6'd32, S_XF_WAIT = 6'd33, S_TI_OFS = 6'd34, S_TI_SUM = 6'd35,
-    S_SUM_WAIT = 6'd36, S_TI_ISECT = 6'd37, S_TI_HIT = 6'd38, S_DONE = 6'd39;
+    S_SC_DONE = 6'd6, S_START_GO = 6'd7, S_START_DONE = 6'd8, S_SINGLE_NODE = 6'd9, S_SINGLE_LIST = 6'd10, S_ROUTE = 6'd11,
+    S_WALK_GO = 6'd12, S_WALK_DONE = 6'd13, S_LIST_GO = 6'd14, S_LIST_WAIT = 6'd15, S_RB_RAY = 6'd16, S_RB_WAIT = 6'd17,
+    S_IX_LOAD = 6'd18, S_IX = 6'd19, S_IX_RAY = 6'd20, S_WIDE_GO = 6'd21, S_WIDE_WAIT = 6'd22, S_IC_LOAD = 6'd23,
+    S_IC_CLR = 6'd24, S_IC_RAY = 6'd25, S_ADD_WAIT = 6'd26, S_IC_CLIP = 6'd27, S_IC_DONE = 6'd28, S_TX_LOAD = 6'd29,
+    S_TI_RAY = 6'd30, S_XF_GO = 6'd31, S_XF_WAIT = 6'd32, S_TI_OFS = 6'd33, S_TI_SUM = 6'd34, S_SUM_WAIT = 6'd35,
+    S_TI_ISECT = 6'd36, S_TI_HIT = 6'd37, S_DONE = 6'd38;
   logic [5:0] st, ret, ld_ret, add_ret;
 
   logic [TW-1:0] thread;
@@ -495,20 +495,7 @@ module trace_core #(
         S_SINGLE_NODE: load(hdr_top_lists + lbuf[0], 6'd1, S_SINGLE_LIST);
         S_SINGLE_LIST: begin
           inst <= lbuf[0];
-          if (!flags[2]) st <= S_IX_LOAD;
-          else load(hdr_inst + INST_WORDS * lbuf[0], 6'(INST_READ), S_SINGLE_ID);
-        end
-        S_SINGLE_ID: begin  // TRACE_IDENTITY: the rays pass as wiring
-          obj <= hdr_objects + 16 * lbuf[12];
-          cnt[C_MATRICES] <= cnt[C_MATRICES] + INST_READ + OBJ_READ;
-          for (int i = 0; i < 4; i++) begin
-            so[i] <= identity(inst_m, ro[i], 1'b1);
-            sd[i] <= identity(inst_m, rd[i], 1'b0);
-            so_lo[i] <= '0;
-            sd_lo[i] <= '0;
-            t0[i] <= '0;
-          end
-          st <= S_IC_LOAD;
+          st <= S_IX_LOAD;
         end
         S_ROUTE:  // route_after_list: the next entry, the next walk step, back up, or done
           if (alive == 0) st <= S_DONE;
@@ -572,7 +559,9 @@ module trace_core #(
         S_IX: begin
           obj <= hdr_objects + 16 * lbuf[12];
           cnt[C_MATRICES] <= cnt[C_MATRICES] + INST_READ + OBJ_READ;
-          if (lbuf[13][0]) begin  // an identity instance: wiring, and the clip in the same operation
+          // an identity instance, or TRACE_IDENTITY's single one (enter_single_object): the rays pass
+          // as wiring, and the clip follows in the same operation
+          if (lbuf[13][0] || flags[2]) begin
             for (int i = 0; i < 4; i++)
               if (need[i]) begin
                 so[i] <= identity(inst_m, ro[i], 1'b1);
