@@ -1,37 +1,37 @@
-// trace_core: the ray tracing core of a DynRTP (paper section 3, Figure 2 paths b..f): the thread
-// state of a ray packet and the routing of hls/units/trace.c (trace_begin, trace_step and its
-// operations route_after_list, enter_single_object, op_scene_clip, op_walk, rebase_leaf, op_list,
-// op_inst_xform, op_inst_clip, op_tri_xform, op_tri_isect) around the units that have RTL:
-// trav_unit (clips, walk start, walk steps; its stacks), list_unit (mailboxes), rebase_unit,
-// xform_wide (instances, path d), xform_unit (triangle directions, path e; also rows 0 and 1 of
-// the origin path), isect_unit, and the intersection unit's origin path of isect_unit_rebased /
-// isect_origin (the offset from the vertex C on 3 adders, the plane distance on an f24_sum_exact
-// of 9 terms). A packet of 4 rays enters with its TRACE_* flags (TRACE_SKIP_TOP, TRACE_ANY_HIT for
-// shadow packets, TRACE_IDENTITY) and leaves with its 4 closest (or any) hits and its
-// trace_counters, bit for bit those of trace_begin + trace_step to TP_DONE. The traversal algorithm
-// is TRAV_STACK only (the algorithm trav_unit has; the others of the C unit have no RTL).
-// State of the packet in flight (trace_state): the rays, alive, best_t, the hits, the level and per
-// level the leaf (first, count, mask, tn, k), the list address and have_cur, the current
-// instance/object/triangle and need mask, the object-space rays in double words, t0, best_rel,
-// tmin_rel, the rebased origins p and te; the walkers' stacks and the mailboxes live in
-// trav_unit and list_unit (indexed by thread and level). The memory image's words the C reads
-// for its descriptors (header, instance, object, triangle records) come through a word read
-// port, one request at a time; the traversal and list units read through their own ports.
-// Step 1 of the thread state: THREADS sizes the units' per-thread memories and thread_i is the id
-// the units see, but the core holds one packet at a time and runs one unit operation at a time
-// (the units are pipelined; only one thread's operation is in flight): no thread_sched yet.
-// Latency: per packet the sum of its operations' unit latencies plus the memory reads (tb_core
-// reports cycles per packet); throughput one packet at a time.
-// Resources: the units' (rtl/README.md) plus 3 f24_add, one f24_sum_exact of 9 terms and the state
-// registers: 36 W bits per ray (3456 bits at e7m16 for the packet), a 40-word descriptor buffer,
-// about 20 words of routing state and 10 counters of 32 bits (not yet synthesized).
-// Handshake: valid/ready at the packet input and the result output; word port valid/ready with
-// responses in request order (mem_rsp_valid_i); trav_unit's node port and list_unit's read port
-// as those units define them.
+// trace_core: the ray tracing core of a DynRTP (paper section 3, Figure 2 paths b..f): THREADS
+// threads (trace_thread: each one packet's state and the FSM of hls/units/trace.c's trace_step)
+// share the units that have RTL: trav_unit (clips, walk start, walk steps; the stacks of every
+// thread and level), list_unit (the mailboxes), rebase_unit, xform_wide (instances, path d),
+// xform_unit (triangle directions, path e; rows 0 and 1 of the intersection's origin path), 3
+// f24_add (the origin's offset from the vertex, the relative distances, best_t = t0 + t), an
+// f24_sum_exact of 9 terms (the plane distance) and isect_unit. A packet of 4 rays enters a free
+// thread with its TRACE_* flags (TRACE_SKIP_TOP, TRACE_ANY_HIT for shadow packets,
+// TRACE_IDENTITY) and leaves with its 4 closest (or any) hits and its trace_counters, bit for bit
+// those of trace_begin + trace_step to TP_DONE. The traversal algorithm is TRAV_STACK only (the
+// algorithm trav_unit has; the others of the C unit have no RTL).
+// Issue: thread_sched (one ready set per unit, round robin): a thread raises its bit of a unit as
+// it decides its next operation there; an issued thread whose unit refuses it (trav_unit with
+// every context busy) raises it again. Each unit takes one operation per cycle, so operations of
+// different threads are in flight in every unit at once; the units without a thread id of their
+// own (rebase, wide and narrow transformation, adders, exact sum, intersection) carry the issued
+// thread beside their pipeline in an f24_pipe of their latency (their outputs are always taken, so
+// the latency is fixed). Results go to their thread alone.
+// Memory: the descriptor words (header, instance, object, triangle records) through the word port,
+// lent to one loading thread at a time until its load is done; trav_unit's node port (whose
+// responses, in request order, are counted for their thread through a FIFO of thread ids) and
+// list_unit's read port are the core's.
+// Latency: per packet the sum of its operations' unit latencies, waits and reads (rtl/tb/tb_core.cpp
+// reports cycles per packet and the operations in flight); throughput: up to one operation per
+// unit and cycle, THREADS packets in flight.
+// Resources: the units' (rtl/README.md), thread_sched (8 units), THREADS trace_thread (36 W bits
+// per ray of state each), the operand multiplexers (THREADS to 1 per unit), not yet synthesized.
+// Handshake: valid/ready at the packet input (into thread thread_i: ready_o when it is free) and
+// at the result output (the lowest finished thread first); word port valid/ready with responses in
+// request order; trav_unit's node port and list_unit's read port as those units define them.
 module trace_core #(
   parameter int E = 7,
   parameter int M = 16,
-  parameter int THREADS = 64,
+  parameter int THREADS = 4,
   parameter int CTX = 4,
   parameter int ADD_STAGES = 6,
   parameter int MUL_STAGES = 4,
@@ -41,7 +41,7 @@ module trace_core #(
 ) (
   input  logic                        clk_i,
   input  logic                        rst_ni,
-  // packet in (trace_begin)
+  // packet in (trace_begin) to thread thread_i
   input  logic                        valid_i,
   output logic                        ready_o,
   input  logic [$clog2(THREADS)-1:0]  thread_i,
@@ -62,6 +62,7 @@ module trace_core #(
   output logic [4*(E+M+1)-1:0]        v_o,
   output logic [4*(E+M+1)-1:0]        cos_o,
   output logic [10*32-1:0]            count_o,    // trace_counters in its order (words: 4 kinds)
+  output logic [$clog2(THREADS):0]    inflight_o, // threads with an operation in a unit
   // word read port (descriptors)
   output logic                        mem_req_valid_o,
   input  logic                        mem_req_ready_i,
@@ -82,618 +83,240 @@ module trace_core #(
 );
   localparam int W = 1 + E + M;
   localparam int TW = $clog2(THREADS);
-  localparam logic [E-1:0] EXP_MAX = '1;
-  localparam logic [W-1:0] POS_INF = {1'b0, EXP_MAX, {M{1'b0}}};
-  localparam logic [W-1:0] DNAN = {1'b0, EXP_MAX, 1'b1, {(M-1){1'b0}}};
-  localparam logic [31:0] NO_HIT = '1;
-  // memory image layout (docs/memory-image.md; hls/units/trace.c)
-  localparam int H_INSTANCES = 7, H_BOUNDS = 12, H_OBJECTS_AT = 18 + 2 * 5, H_INST_AT = 18 + 2 * 8;
-  localparam int H_TOP_NODES_AT = 18 + 2 * 9, H_TOP_LISTS_AT = 18 + 2 * 10, HDR_WORDS = H_TOP_LISTS_AT + 1;
-  localparam int TRI_BITS = 12 * W + 3 * 9 + 3;             // F24_TRIANGLE_BITS
-  localparam int TRI_WORDS = (TRI_BITS + 31) / 32;          // F24_TRIANGLE_RECORD_WORDS
-  localparam int INST_WORDS = TRI_WORDS * ((17 + TRI_WORDS - 1) / TRI_WORDS);
-  localparam int INST_READ = 17, OBJ_READ = 14, LBUF = 40;
-  localparam int C_STEPS = 0, C_LEAVES = 1, C_ENTRIES = 2, C_SKIPS = 3, C_XFORMS = 4, C_ISECTS = 5;
-  localparam int C_NODES = 6, C_LISTS = 7, C_MATRICES = 8;
-  if (M < 8) begin : g_m_check
-    $error("trace_core: M >= 8 (the vertex's low part, 9-bit multiples, converts exactly)");
+  localparam int UNITS = 8;
+  localparam int U_TRAV = 0, U_LIST = 1, U_RB = 2, U_XW = 3, U_XF = 4, U_IS = 5, U_ADD = 6, U_SUM = 7;
+  localparam int XF_LATENCY = MUL_STAGES + 3 * ADD_STAGES;
+  localparam int IS_LATENCY = DIV_STAGES + MUL_STAGES + 2 * ADD_STAGES + CMP_STAGES;
+  if (THREADS < 2) begin : g_threads_check
+    $error("trace_core: THREADS >= 2 (the units index their state by a thread id of $clog2(THREADS) bits)");
   end
 
-  // ---- state of the packet in flight (trace_state) ----
-  // the FSM's states (trace_step's operations and their unit transactions)
-  localparam logic [5:0]
-    S_IDLE = 6'd0, S_CLR0 = 6'd1, S_LOAD = 6'd2, S_HDR = 6'd3, S_SC_GO = 6'd4, S_TRAV_WAIT = 6'd5,
-    S_SC_DONE = 6'd6, S_START_GO = 6'd7, S_START_DONE = 6'd8, S_SINGLE_NODE = 6'd9, S_SINGLE_LIST = 6'd10, S_ROUTE = 6'd11,
-    S_WALK_GO = 6'd12, S_WALK_DONE = 6'd13, S_LIST_GO = 6'd14, S_LIST_WAIT = 6'd15, S_RB_RAY = 6'd16, S_RB_WAIT = 6'd17,
-    S_IX_LOAD = 6'd18, S_IX = 6'd19, S_IX_RAY = 6'd20, S_WIDE_GO = 6'd21, S_WIDE_WAIT = 6'd22, S_IC_LOAD = 6'd23,
-    S_IC_CLR = 6'd24, S_IC_RAY = 6'd25, S_ADD_WAIT = 6'd26, S_IC_CLIP = 6'd27, S_IC_DONE = 6'd28, S_TX_LOAD = 6'd29,
-    S_TI_RAY = 6'd30, S_XF_GO = 6'd31, S_XF_WAIT = 6'd32, S_TI_OFS = 6'd33, S_TI_SUM = 6'd34, S_SUM_WAIT = 6'd35,
-    S_TI_ISECT = 6'd36, S_TI_HIT = 6'd37, S_DONE = 6'd38;
-  logic [5:0] st, ret, ld_ret, add_ret;
+  // ---- the threads' requests, operands and results ----
+  logic [THREADS-1:0] t_ready, t_valid, t_out_ready, t_mem_req, t_loading, t_waiting, t_node_rsp;
+  logic [31:0] t_mem_addr [THREADS];
+  logic [4*32-1:0] t_inst [THREADS], t_tri [THREADS];
+  logic [4*W-1:0] t_t [THREADS], t_u [THREADS], t_v [THREADS], t_cos [THREADS];
+  logic [10*32-1:0] t_count [THREADS];
+  logic [THREADS-1:0] req [UNITS], req_q [UNITS], grant [UNITS], done [UNITS];
+  logic [UNITS-1:0] unit_ready, issue_valid;
+  logic [UNITS*TW-1:0] issue_thread;
+  logic [TW-1:0] sel [UNITS];
+  logic [UNITS*THREADS-1:0] set;
+  // operands per thread
+  logic [1:0] t_trav_kind [THREADS];
+  logic [THREADS-1:0] t_trav_level, t_list_level, t_list_clear, t_xw_point, t_add_sub;
+  logic [4*3*W-1:0] t_trav_o [THREADS], t_trav_d [THREADS];
+  logic [4*W-1:0] t_trav_tn [THREADS], t_trav_tf [THREADS], t_trav_best [THREADS];
+  logic [3:0] t_trav_mask [THREADS], t_list_leaf_mask [THREADS], t_list_alive [THREADS];
+  logic [6*W-1:0] t_trav_box [THREADS];
+  logic [31:0] t_trav_nodes [THREADS], t_list_lists [THREADS], t_list_first [THREADS], t_list_k [THREADS];
+  logic [3*W-1:0] t_rb_o_hi [THREADS], t_rb_o_lo [THREADS], t_rb_d_hi [THREADS], t_rb_d_lo [THREADS];
+  logic [W-1:0] t_rb_t [THREADS], t_is_te [THREADS], t_is_tmin [THREADS], t_is_tmax [THREADS];
+  logic [12*W-1:0] t_xw_m [THREADS], t_xf_m [THREADS];
+  logic [3*W-1:0] t_xw_tlo [THREADS], t_xw_p_hi [THREADS], t_xw_p_lo [THREADS], t_xf_v [THREADS];
+  logic [3*W-1:0] t_is_o [THREADS], t_is_d [THREADS], t_add_a [THREADS], t_add_b [THREADS];
+  logic [2:0] t_is_shared [THREADS];
+  logic [9*W-1:0] t_sum_a [THREADS], t_sum_b [THREADS];
+  // the units' results (to every thread; done says whose)
+  logic [3:0] trav_mask, trav_leaf_mask, list_need, list_skip;
+  logic [4*W-1:0] trav_tn, trav_tf, trav_leaf_tn;
+  logic trav_have_cur, trav_leaf, is_hit;
+  logic [31:0] trav_leaf_first, trav_leaf_count, list_key, list_k;
+  logic [3*W-1:0] rb_p_hi, rb_p_lo, xw_hi, xw_lo, xf_r, add_r;
+  logic [W-1:0] rb_te, is_t, is_u, is_v, is_cos, sum_hi;
+  // the word port's owner
+  logic owner_valid;
+  logic [TW-1:0] owner;
 
-  logic [TW-1:0] thread;
-  logic [2:0] flags;
-  logic [3:0] active, alive, need, todo;
-  logic [1:0] ray;
-  logic [3*W-1:0] ro [4], rd [4], so [4], sd [4], so_lo [4], sd_lo [4], p_hi [4], p_lo [4];
-  logic [W-1:0] tmin [4], best_t [4], best_rel [4], tmin_rel [4], t0 [4], te [4];
-  logic [31:0] h_inst [4], h_tri [4];
-  logic [W-1:0] h_t [4], h_u [4], h_v [4], h_cos [4];
-  logic level;
-  logic [31:0] lists [2], leaf_first [2], leaf_count [2], k [2];
-  logic [3:0] leaf_mask [2];
-  logic [W-1:0] leaf_tn [2][4];
-  logic have_cur [2];
-  logic [31:0] hdr_instances, hdr_objects, hdr_inst, hdr_top_nodes, hdr_top_lists;
-  logic [6*W-1:0] scene_box;
-  logic [31:0] inst, obj, tris, tri_ix;
-  logic [31:0] cnt [10];
-  logic walk_read;
-  // the loader: ld_n words from ld_base into lbuf, then ld_ret
-  logic [31:0] lbuf [LBUF];
-  logic [31:0] ld_base;
-  logic [5:0] ld_n, ld_sent, ld_got;
-  // the intersection's intermediate values
-  logic [3*W-1:0] dd, ofs_lo, ofs_hi, ofs;
-  logic [1:0] ofs_pass;
-  logic xf_dir;                      // xform_unit pass: 1 the direction, 0 the offset c
-
-  // ---- lowest ray of todo ----
-  logic [1:0] first;
-  always_comb begin
-    first = 2'd0;
-    for (int i = 3; i >= 0; i--)
-      if (todo[i]) first = 2'(i);
+  /* verilator lint_off PINCONNECTEMPTY */
+  for (genvar t = 0; t < THREADS; t++) begin : g_thread
+    trace_thread #(.E(E), .M(M)) u_thread (
+      .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(valid_i && thread_i == TW'(t)), .ready_o(t_ready[t]),
+      .flags_i(flags_i), .active_i(active_i), .o_i(o_i), .d_i(d_i), .tmin_i(tmin_i), .tmax_i(tmax_i),
+      .valid_o(t_valid[t]), .ready_i(t_out_ready[t]), .inst_o(t_inst[t]), .tri_o(t_tri[t]), .t_o(t_t[t]),
+      .u_o(t_u[t]), .v_o(t_v[t]), .cos_o(t_cos[t]), .count_o(t_count[t]),
+      .mem_req_valid_o(t_mem_req[t]), .mem_req_ready_i(owner_valid && owner == TW'(t) && mem_req_ready_i),
+      .mem_addr_o(t_mem_addr[t]), .mem_rsp_valid_i(owner_valid && owner == TW'(t) && mem_rsp_valid_i),
+      .mem_rdata_i(mem_rdata_i), .node_rsp_i(t_node_rsp[t]), .loading_o(t_loading[t]), .waiting_o(t_waiting[t]),
+      .trav_req_o(req[U_TRAV][t]), .trav_grant_i(grant[U_TRAV][t]), .trav_kind_o(t_trav_kind[t]),
+      .trav_level_o(t_trav_level[t]), .trav_o_o(t_trav_o[t]), .trav_d_o(t_trav_d[t]), .trav_tn_o(t_trav_tn[t]),
+      .trav_tf_o(t_trav_tf[t]), .trav_best_o(t_trav_best[t]), .trav_mask_o(t_trav_mask[t]),
+      .trav_box_o(t_trav_box[t]), .trav_nodes_o(t_trav_nodes[t]), .trav_done_i(done[U_TRAV][t]),
+      .trav_mask_i(trav_mask), .trav_tn_i(trav_tn), .trav_tf_i(trav_tf), .trav_have_cur_i(trav_have_cur),
+      .trav_leaf_i(trav_leaf), .trav_leaf_first_i(trav_leaf_first), .trav_leaf_count_i(trav_leaf_count),
+      .trav_leaf_mask_i(trav_leaf_mask), .trav_leaf_tn_i(trav_leaf_tn),
+      .list_req_o(req[U_LIST][t]), .list_grant_i(grant[U_LIST][t]), .list_level_o(t_list_level[t]),
+      .list_clear_o(t_list_clear[t]), .list_lists_o(t_list_lists[t]), .list_first_o(t_list_first[t]),
+      .list_k_o(t_list_k[t]), .list_leaf_mask_o(t_list_leaf_mask[t]), .list_alive_o(t_list_alive[t]),
+      .list_done_i(done[U_LIST][t]), .list_key_i(list_key), .list_need_i(list_need), .list_skip_i(list_skip),
+      .list_k_i(list_k),
+      .rb_req_o(req[U_RB][t]), .rb_grant_i(grant[U_RB][t]), .rb_o_hi_o(t_rb_o_hi[t]), .rb_o_lo_o(t_rb_o_lo[t]),
+      .rb_d_hi_o(t_rb_d_hi[t]), .rb_d_lo_o(t_rb_d_lo[t]), .rb_t_o(t_rb_t[t]), .rb_done_i(done[U_RB][t]),
+      .rb_p_hi_i(rb_p_hi), .rb_p_lo_i(rb_p_lo), .rb_te_i(rb_te),
+      .xw_req_o(req[U_XW][t]), .xw_grant_i(grant[U_XW][t]), .xw_m_o(t_xw_m[t]), .xw_tlo_o(t_xw_tlo[t]),
+      .xw_p_hi_o(t_xw_p_hi[t]), .xw_p_lo_o(t_xw_p_lo[t]), .xw_point_o(t_xw_point[t]), .xw_done_i(done[U_XW][t]),
+      .xw_hi_i(xw_hi), .xw_lo_i(xw_lo),
+      .xf_req_o(req[U_XF][t]), .xf_grant_i(grant[U_XF][t]), .xf_m_o(t_xf_m[t]), .xf_v_o(t_xf_v[t]),
+      .xf_done_i(done[U_XF][t]), .xf_r_i(xf_r),
+      .is_req_o(req[U_IS][t]), .is_grant_i(grant[U_IS][t]), .is_o_o(t_is_o[t]), .is_d_o(t_is_d[t]),
+      .is_te_o(t_is_te[t]), .is_tmin_o(t_is_tmin[t]), .is_tmax_o(t_is_tmax[t]), .is_shared_o(t_is_shared[t]),
+      .is_done_i(done[U_IS][t]), .is_hit_i(is_hit), .is_t_i(is_t), .is_u_i(is_u), .is_v_i(is_v), .is_cos_i(is_cos),
+      .add_req_o(req[U_ADD][t]), .add_grant_i(grant[U_ADD][t]), .add_a_o(t_add_a[t]), .add_b_o(t_add_b[t]),
+      .add_sub_o(t_add_sub[t]), .add_done_i(done[U_ADD][t]), .add_r_i(add_r),
+      .sum_req_o(req[U_SUM][t]), .sum_grant_i(grant[U_SUM][t]), .sum_a_o(t_sum_a[t]), .sum_b_o(t_sum_b[t]),
+      .sum_done_i(done[U_SUM][t]), .sum_hi_i(sum_hi));
   end
-  function automatic logic [31:0] popcount(input logic [3:0] m);
-    popcount = {31'd0, m[0]} + {31'd0, m[1]} + {31'd0, m[2]} + {31'd0, m[3]};
-  endfunction
 
-  // ---- the records ----
-  logic [TRI_WORDS*32-1:0] rec;
+  // ---- issue: a thread's request raises its ready bit once; a refused issue raises it again ----
+  logic [THREADS-1:0] one [THREADS];
   always_comb
-    for (int i = 0; i < TRI_WORDS; i++) rec[i*32 +: 32] = lbuf[i];
-  logic [12*W-1:0] tri_m, inst_m;
-  logic [3*W-1:0] c_hi, c_lo, neg_c_hi, inst_tlo;
-  logic [2:0] tri_shared;
-  // f24_vertex_lo: the low part k 2^-8 ulp(hi) of a vertex component from its 9-bit field
-  function automatic logic [W-1:0] vertex_lo(input logic [8:0] field, input logic [E-1:0] he);
-    logic [8:0] mag;
-    logic [M-1:0] frac;
-    int p, e;
-    mag = field[8] ? 9'(-field) : field;
-    p = 0;
-    for (int i = 0; i < 9; i++)
-      if (mag[i]) p = i;
-    frac = M'({{(M-1){1'b0}}, mag} << (M - p));
-    e = {{(32-E){1'b0}}, he};
-    e = e + p - M - 8;
-    if (field == 0 || he == 0 || he == EXP_MAX) vertex_lo = '0;
-    else if (e <= 0) vertex_lo = {field[8], {(E+M){1'b0}}};
-    else vertex_lo = {field[8], e[E-1:0], frac};
-  endfunction
-  always_comb begin
-    tri_m = rec[0 +: 12*W];
-    for (int i = 0; i < 12; i++) inst_m[i*W +: W] = lbuf[i][W-1:0];
-    for (int j = 0; j < 3; j++) begin
-      c_hi[j*W +: W] = tri_m[(4*j+3)*W +: W];
-      neg_c_hi[j*W +: W] = c_hi[j*W +: W] ^ {1'b1, {(W-1){1'b0}}};
-      c_lo[j*W +: W] = vertex_lo(rec[12*W + 9*j +: 9], c_hi[j*W + M +: E]);
-      inst_tlo[j*W +: W] = lbuf[14 + j][W-1:0];
-    end
-    tri_shared = rec[12*W + 27 +: 3];
+    for (int t = 0; t < THREADS; t++) one[t] = THREADS'(1) << t;
+  for (genvar u = 0; u < UNITS; u++) begin : g_issue
+    assign sel[u] = issue_thread[u*TW +: TW];
+    assign grant[u] = issue_valid[u] && unit_ready[u] ? one[sel[u]] : '0;
+    assign set[u*THREADS +: THREADS] = (req[u] & ~req_q[u]) | (issue_valid[u] && !unit_ready[u] ? one[sel[u]] : '0);
+    always_ff @(posedge clk_i or negedge rst_ni)
+      if (!rst_ni) req_q[u] <= '0;
+      else req_q[u] <= req[u];
   end
-  // xform_identity: the bits xform_point/xform_vector give for an identity with signed zeros
-  function automatic logic [3*W-1:0] identity(input logic [12*W-1:0] m, input logic [3*W-1:0] v, input logic point);
-    logic [3*W-1:0] r;
-    for (int kk = 0; kk < 3; kk++) begin
-      logic [W-1:0] c;
-      logic nan, neg;
-      c = v[kk*W +: W];
-      nan = c[M +: E] == EXP_MAX && c[M-1:0] != 0;
-      neg = point ? m[(4*kk+3)*W + W-1] : 1'b1;
-      for (int j = 0; j < 3; j++) begin
-        if (j != kk && v[j*W + M +: E] == EXP_MAX) nan = 1'b1;
-        neg &= j == kk ? v[j*W + W-1] : m[(4*kk+j)*W + W-1] ^ v[j*W + W-1];
-      end
-      r[kk*W +: W] = nan ? DNAN : c[M +: E] != 0 ? c : {neg, {(W-1){1'b0}}};
-    end
-    identity = r;
-  endfunction
+  thread_sched #(.THREADS(THREADS), .UNITS(UNITS), .SLOT_BITS(1)) u_sched (
+    .clk_i(clk_i), .rst_ni(rst_ni), .set_i(set), .slots_i('1), .issue_valid_o(issue_valid),
+    .issue_thread_o(issue_thread), .issue_slots_o());
 
   // ---- the units ----
-  logic tv_valid, tv_ready, tv_out_valid, tv_level;
-  logic [1:0] tv_kind;
-  logic [4*3*W-1:0] tv_o, tv_d, ray_o, ray_d, obj_o, obj_d;
-  logic [4*W-1:0] tv_tn, tv_tf, tv_best, tv_tn_o, tv_tf_o, tv_leaf_tn;
-  logic [3:0] tv_mask, tv_mask_o, tv_leaf_mask;
-  logic [6*W-1:0] tv_box;
-  logic [31:0] tv_nodes, tv_leaf_first, tv_leaf_count;
-  logic tv_have_cur, tv_leaf;
-  logic [4*W-1:0] v_tmin, v_tmax, v_best_t, v_best_rel, v_tmin_rel;
-  always_comb
-    for (int i = 0; i < 4; i++) begin
-      ray_o[i*3*W +: 3*W] = ro[i];
-      ray_d[i*3*W +: 3*W] = rd[i];
-      obj_o[i*3*W +: 3*W] = so[i];
-      obj_d[i*3*W +: 3*W] = sd[i];
-      v_tmin[i*W +: W] = tmin[i];
-      v_best_t[i*W +: W] = best_t[i];
-      v_best_rel[i*W +: W] = best_rel[i];
-      v_tmin_rel[i*W +: W] = tmin_rel[i];
-    end
-  assign v_tmax = tmax_i;  // taken with the packet only (best_t holds it afterwards)
-  assign tv_valid = st == S_SC_GO || st == S_START_GO || st == S_WALK_GO || st == S_IC_CLIP;
-  assign tv_o = st == S_SC_GO || (st != S_IC_CLIP && !level) ? ray_o : obj_o;
-  assign tv_d = st == S_SC_GO || (st != S_IC_CLIP && !level) ? ray_d : obj_d;
-  assign tv_best = level ? v_best_rel : v_best_t;
-  assign tv_box = st == S_SC_GO ? scene_box : {lbuf[13][W-1:0], lbuf[12][W-1:0], lbuf[11][W-1:0],
-                                               lbuf[10][W-1:0], lbuf[9][W-1:0], lbuf[8][W-1:0]};
-  logic [4*W-1:0] clip_tn, clip_tf, r_leaf_tn;   // the traversal unit's last result
-  logic [3:0] clip_mask, r_leaf_mask;
-  logic r_have_cur, r_leaf;
-  logic [31:0] r_leaf_first, r_leaf_count;
-  always_comb begin
-    tv_kind = 2'd3;
-    tv_level = level;
-    tv_mask = alive;
-    tv_tn = clip_tn;
-    tv_tf = clip_tf;
-    unique case (st)
-      S_SC_GO: begin
-        tv_kind = 2'd0;
-        tv_level = 1'b0;
-        tv_mask = active;
-        tv_tn = v_tmin;
-        tv_tf = v_best_t;     // tmax
-      end
-      S_IC_CLIP: begin
-        tv_kind = 2'd1;
-        tv_level = 1'b1;
-        tv_mask = need;
-        tv_tn = v_tmin_rel;
-        tv_tf = v_best_rel;
-      end
-      S_START_GO: begin
-        tv_kind = 2'd2;
-        tv_mask = clip_mask;
-      end
-      default: ;
-    endcase
-  end
-  assign tv_nodes = level ? lbuf[0] : hdr_top_nodes;
-  /* verilator lint_off PINCONNECTEMPTY */
+  logic trav_valid_o;
+  logic [TW-1:0] trav_thread, node_thread;
   trav_unit #(.E(E), .M(M), .THREADS(THREADS), .CTX(CTX), .ADD_STAGES(ADD_STAGES), .DIV_STAGES(DIV_STAGES),
               .CMP_STAGES(CMP_STAGES)) u_trav (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(tv_valid), .ready_o(tv_ready), .thread_i(thread),
-    .level_i(tv_level), .kind_i(tv_kind), .o_i(tv_o), .d_i(tv_d), .tn_i(tv_tn), .tf_i(tv_tf), .best_i(tv_best),
-    .mask_i(tv_mask), .box_i(tv_box), .nodes_i(tv_nodes),
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(issue_valid[U_TRAV]), .ready_o(unit_ready[U_TRAV]),
+    .thread_i(sel[U_TRAV]), .level_i(t_trav_level[sel[U_TRAV]]), .kind_i(t_trav_kind[sel[U_TRAV]]),
+    .o_i(t_trav_o[sel[U_TRAV]]), .d_i(t_trav_d[sel[U_TRAV]]), .tn_i(t_trav_tn[sel[U_TRAV]]),
+    .tf_i(t_trav_tf[sel[U_TRAV]]), .best_i(t_trav_best[sel[U_TRAV]]), .mask_i(t_trav_mask[sel[U_TRAV]]),
+    .box_i(t_trav_box[sel[U_TRAV]]), .nodes_i(t_trav_nodes[sel[U_TRAV]]),
     .node_req_valid_o(node_req_valid_o), .node_req_ready_i(node_req_ready_i), .node_addr_o(node_addr_o),
-    .node_thread_o(), .node_level_o(), .node_rsp_valid_i(node_rsp_valid_i), .node_w0_i(node_w0_i),
-    .node_w1_i(node_w1_i), .valid_o(tv_out_valid), .ready_i(1'b1), .thread_o(), .level_o(), .kind_o(),
-    .mask_o(tv_mask_o), .tn_o(tv_tn_o), .tf_o(tv_tf_o), .node_o(), .have_cur_o(tv_have_cur), .leaf_o(tv_leaf),
-    .list_o(), .leaf_first_o(tv_leaf_first), .leaf_count_o(tv_leaf_count), .leaf_mask_o(tv_leaf_mask),
-    .leaf_tn_o(tv_leaf_tn), .sp_o(), .lost_o(), .restarted_o());
+    .node_thread_o(node_thread), .node_level_o(), .node_rsp_valid_i(node_rsp_valid_i), .node_w0_i(node_w0_i),
+    .node_w1_i(node_w1_i), .valid_o(trav_valid_o), .ready_i(1'b1), .thread_o(trav_thread), .level_o(), .kind_o(),
+    .mask_o(trav_mask), .tn_o(trav_tn), .tf_o(trav_tf), .node_o(), .have_cur_o(trav_have_cur), .leaf_o(trav_leaf),
+    .list_o(), .leaf_first_o(trav_leaf_first), .leaf_count_o(trav_leaf_count), .leaf_mask_o(trav_leaf_mask),
+    .leaf_tn_o(trav_leaf_tn), .sp_o(), .lost_o(), .restarted_o());
+  assign done[U_TRAV] = trav_valid_o ? one[trav_thread] : '0;
 
-  logic lu_valid, lu_ready, lu_clear, lu_out_valid;
-  logic [31:0] lu_key, lu_k;
-  logic [3:0] lu_need, lu_skip;
-  assign lu_valid = st == S_CLR0 || st == S_IC_CLR || st == S_LIST_GO;
-  assign lu_clear = st != S_LIST_GO;
+  logic list_valid_o;
+  logic [TW-1:0] list_thread;
   list_unit #(.THREADS(THREADS)) u_list (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(lu_valid), .ready_o(lu_ready), .thread_i(thread),
-    .level_i(st == S_CLR0 ? 1'b0 : st == S_IC_CLR ? 1'b1 : level), .clear_i(lu_clear), .lists_i(lists[level]),
-    .first_i(leaf_first[level]), .k_i(k[level]), .leaf_mask_i(leaf_mask[level]), .alive_i(alive),
-    .mem_re_o(list_re_o), .mem_addr_o(list_addr_o), .mem_rdata_i(list_rdata_i), .valid_o(lu_out_valid),
-    .ready_i(1'b1), .thread_o(), .level_o(), .key_o(lu_key), .need_o(lu_need), .skip_o(lu_skip), .k_o(lu_k));
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(issue_valid[U_LIST]), .ready_o(unit_ready[U_LIST]),
+    .thread_i(sel[U_LIST]), .level_i(t_list_level[sel[U_LIST]]), .clear_i(t_list_clear[sel[U_LIST]]),
+    .lists_i(t_list_lists[sel[U_LIST]]), .first_i(t_list_first[sel[U_LIST]]), .k_i(t_list_k[sel[U_LIST]]),
+    .leaf_mask_i(t_list_leaf_mask[sel[U_LIST]]), .alive_i(t_list_alive[sel[U_LIST]]),
+    .mem_re_o(list_re_o), .mem_addr_o(list_addr_o), .mem_rdata_i(list_rdata_i), .valid_o(list_valid_o),
+    .ready_i(1'b1), .thread_o(list_thread), .level_o(), .key_o(list_key), .need_o(list_need), .skip_o(list_skip),
+    .k_o(list_k));
+  assign done[U_LIST] = list_valid_o ? one[list_thread] : '0;
 
-  // rebase: the leaf's origins (rebase_leaf, level 1) or the world ray to the top-level leaf (op_inst_xform)
-  logic rb_valid, rb_ready, rb_out_valid, rb_leaf;
-  logic [3*W-1:0] rb_p_hi, rb_p_lo;
-  logic [W-1:0] rb_te;
-  assign rb_valid = st == S_RB_RAY && todo != 0;
-  rebase_unit #(.E(E), .M(M), .SUM_STAGES(SUM_STAGES)) u_rebase (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(rb_valid), .ready_o(rb_ready),
-    .o_hi_i(rb_leaf ? so[first] : ro[first]), .o_lo_i(rb_leaf ? so_lo[first] : '0),
-    .d_hi_i(rb_leaf ? sd[first] : rd[first]), .d_lo_i(rb_leaf ? sd_lo[first] : '0),
-    .t_i(leaf_tn[rb_leaf][first]), .valid_o(rb_out_valid), .ready_i(1'b1), .p_hi_o(rb_p_hi), .p_lo_o(rb_p_lo),
-    .te_o(rb_te));
-
-  logic xw_valid, xw_ready, xw_out_valid, xw_point;
-  logic [3*W-1:0] xw_hi, xw_lo;
-  assign xw_valid = st == S_WIDE_GO;
-  xform_wide #(.E(E), .M(M), .SUM_STAGES(SUM_STAGES)) u_wide (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(xw_valid), .ready_o(xw_ready), .m_i(inst_m), .tlo_i(inst_tlo),
-    .p_hi_i(xw_point ? p_hi[ray] : rd[ray]), .p_lo_i(p_lo[ray]), .point_i(xw_point), .valid_o(xw_out_valid),
-    .ready_i(1'b1), .r_hi_o(xw_hi), .r_lo_o(xw_lo));
-
-  logic xf_valid, xf_ready, xf_out_valid;
-  logic [3*W-1:0] xf_r;
-  assign xf_valid = st == S_XF_GO;
-  xform_unit #(.E(E), .M(M), .ADD_STAGES(ADD_STAGES), .MUL_STAGES(MUL_STAGES)) u_xform (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(xf_valid), .ready_o(xf_ready), .m_i(tri_m),
-    .v_i(xf_dir ? sd[ray] : ofs), .point_i(1'b0), .valid_o(xf_out_valid), .ready_i(1'b1), .r_o(xf_r));
-
-  // 3 adders: the offset from the vertex, the relative distances, best_t = t0 + t
-  logic add_valid, add_sub;
-  logic [3*W-1:0] add_a, add_b, add_r;
-  logic [2:0] add_out_valid;
-  for (genvar j = 0; j < 3; j++) begin : g_add
-    f24_add #(.E(E), .M(M), .STAGES(ADD_STAGES)) u_add (
-      .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(add_valid), .a_i(add_a[j*W +: W]),
-      .b_i(add_b[j*W +: W]), .sub_i(add_sub), .valid_o(add_out_valid[j]), .res_o(add_r[j*W +: W]));
+  // the units without a thread id: their outputs are always taken, so the issued thread travels
+  // beside them in a delay line of their latency
+  logic [UNITS-1:U_RB] out_valid;
+  logic [TW-1:0] out_thread [UNITS];
+  for (genvar u = U_RB; u < UNITS; u++) begin : g_tag
+    localparam int LAT = u == U_XF ? XF_LATENCY : u == U_IS ? IS_LATENCY : u == U_ADD ? ADD_STAGES : SUM_STAGES;
+    f24_pipe #(.W(TW), .STAGES(LAT)) u_tag (
+      .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(issue_valid[u] && unit_ready[u]), .data_i(sel[u]),
+      .valid_o(), .data_o(out_thread[u]));
+    assign done[u] = out_valid[u] ? one[out_thread[u]] : '0;
   end
 
-  // the plane distance O'z: n.p_hi + n.(-C_hi) + n.(p_lo - C_lo) in one exact sum
-  logic sum_valid, sum_out_valid;
-  logic [9*W-1:0] sum_a, sum_b;
-  logic [W-1:0] sum_oz, oz;
-  assign sum_valid = st == S_TI_SUM;
-  assign sum_a = {3{tri_m[8*W +: 3*W]}};
-  assign sum_b = {ofs_lo, neg_c_hi, p_hi[ray]};
-  f24_sum_exact #(.E(E), .M(M), .N(9), .STAGES(SUM_STAGES)) u_sum (
-    .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(sum_valid), .a_i(sum_a), .b_i(sum_b),
-    .valid_o(sum_out_valid), .hi_o(sum_oz), .lo_o());
+  rebase_unit #(.E(E), .M(M), .SUM_STAGES(SUM_STAGES)) u_rebase (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(issue_valid[U_RB]), .ready_o(unit_ready[U_RB]),
+    .o_hi_i(t_rb_o_hi[sel[U_RB]]), .o_lo_i(t_rb_o_lo[sel[U_RB]]), .d_hi_i(t_rb_d_hi[sel[U_RB]]),
+    .d_lo_i(t_rb_d_lo[sel[U_RB]]), .t_i(t_rb_t[sel[U_RB]]), .valid_o(out_valid[U_RB]), .ready_i(1'b1),
+    .p_hi_o(rb_p_hi), .p_lo_o(rb_p_lo), .te_o(rb_te));
 
-  logic is_valid, is_ready, is_out_valid, is_hit;
-  logic [W-1:0] is_t, is_u, is_v, is_cos;
-  logic [2*W-1:0] oxy;
-  assign is_valid = st == S_TI_ISECT;
+  xform_wide #(.E(E), .M(M), .SUM_STAGES(SUM_STAGES)) u_wide (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(issue_valid[U_XW]), .ready_o(unit_ready[U_XW]),
+    .m_i(t_xw_m[sel[U_XW]]), .tlo_i(t_xw_tlo[sel[U_XW]]), .p_hi_i(t_xw_p_hi[sel[U_XW]]),
+    .p_lo_i(t_xw_p_lo[sel[U_XW]]), .point_i(t_xw_point[sel[U_XW]]), .valid_o(out_valid[U_XW]), .ready_i(1'b1),
+    .r_hi_o(xw_hi), .r_lo_o(xw_lo));
+
+  xform_unit #(.E(E), .M(M), .ADD_STAGES(ADD_STAGES), .MUL_STAGES(MUL_STAGES)) u_xform (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(issue_valid[U_XF]), .ready_o(unit_ready[U_XF]),
+    .m_i(t_xf_m[sel[U_XF]]), .v_i(t_xf_v[sel[U_XF]]), .point_i(1'b0), .valid_o(out_valid[U_XF]), .ready_i(1'b1),
+    .r_o(xf_r));
+
   isect_unit #(.E(E), .M(M), .ADD_STAGES(ADD_STAGES), .MUL_STAGES(MUL_STAGES), .DIV_STAGES(DIV_STAGES),
                .CMP_STAGES(CMP_STAGES)) u_isect (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(is_valid), .ready_o(is_ready), .o_i({oz, oxy}),
-    .d_i(dd), .te_i(te[ray]), .tmin_i(tmin_rel[ray]), .tmax_i(best_rel[ray]), .shared_i(tri_shared),
-    .valid_o(is_out_valid), .ready_i(1'b1), .hit_o(is_hit), .t_o(is_t), .u_o(is_u), .v_o(is_v), .cos_o(is_cos));
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(issue_valid[U_IS]), .ready_o(unit_ready[U_IS]),
+    .o_i(t_is_o[sel[U_IS]]), .d_i(t_is_d[sel[U_IS]]), .te_i(t_is_te[sel[U_IS]]), .tmin_i(t_is_tmin[sel[U_IS]]),
+    .tmax_i(t_is_tmax[sel[U_IS]]), .shared_i(t_is_shared[sel[U_IS]]), .valid_o(out_valid[U_IS]), .ready_i(1'b1),
+    .hit_o(is_hit), .t_o(is_t), .u_o(is_u), .v_o(is_v), .cos_o(is_cos));
+
+  logic [2:0] add_valid;
+  assign unit_ready[U_ADD] = 1'b1;  // the operators have no stall
+  for (genvar j = 0; j < 3; j++) begin : g_add
+    f24_add #(.E(E), .M(M), .STAGES(ADD_STAGES)) u_add (
+      .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(issue_valid[U_ADD]),
+      .a_i(t_add_a[sel[U_ADD]][j*W +: W]), .b_i(t_add_b[sel[U_ADD]][j*W +: W]), .sub_i(t_add_sub[sel[U_ADD]]),
+      .valid_o(add_valid[j]), .res_o(add_r[j*W +: W]));
+  end
+  assign out_valid[U_ADD] = &add_valid;
+
+  assign unit_ready[U_SUM] = 1'b1;
+  f24_sum_exact #(.E(E), .M(M), .N(9), .STAGES(SUM_STAGES)) u_sum (
+    .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(issue_valid[U_SUM]), .a_i(t_sum_a[sel[U_SUM]]),
+    .b_i(t_sum_b[sel[U_SUM]]), .valid_o(out_valid[U_SUM]), .hi_o(sum_hi), .lo_o());
   /* verilator lint_on PINCONNECTEMPTY */
 
-  // ---- the adders' operands, by the state that starts them ----
-  always_comb begin
-    add_valid = 1'b0;
-    add_sub = 1'b1;
-    add_a = '0;
-    add_b = '0;
-    unique case (st)
-      S_IC_RAY: begin  // best_rel = best_t - t0, tmin_rel = tmin - t0
-        add_valid = todo != 0;
-        add_a[0 +: 2*W] = {tmin[first], best_t[first]};
-        add_b[0 +: 2*W] = {t0[first], t0[first]};
-      end
-      S_TI_OFS: begin  // l = p_lo - C_lo, h = p_hi - C_hi, c = h + l
-        add_valid = 1'b1;
-        add_sub = ofs_pass != 2'd2;
-        add_a = ofs_pass == 2'd0 ? p_lo[ray] : ofs_pass == 2'd1 ? p_hi[ray] : ofs_hi;
-        add_b = ofs_pass == 2'd0 ? c_lo : ofs_pass == 2'd1 ? c_hi : ofs_lo;
-      end
-      S_TI_HIT: begin  // best_t = t0 + t
-        add_valid = is_out_valid && is_hit;
-        add_sub = 1'b0;
-        add_a[0 +: W] = t0[ray];
-        add_b[0 +: W] = is_t;
-      end
-      default: ;
-    endcase
-  end
-
-  assign mem_req_valid_o = st == S_LOAD && ld_sent != ld_n;
-  assign mem_addr_o = ld_base + 32'(ld_sent);
-  assign ready_o = st == S_IDLE;
-  assign valid_o = st == S_DONE;
-  assign thread_o = thread;
-  always_comb
-    for (int i = 0; i < 4; i++) begin
-      inst_o[i*32 +: 32] = h_inst[i];
-      tri_o[i*32 +: 32] = h_tri[i];
-      t_o[i*W +: W] = h_t[i];
-      u_o[i*W +: W] = h_u[i];
-      v_o[i*W +: W] = h_v[i];
-      cos_o[i*W +: W] = h_cos[i];
-    end
-  always_comb
-    for (int c = 0; c < 10; c++) count_o[c*32 +: 32] = cnt[c];
-
-  // the loader: reads n words from base into lbuf through the word port, then goes to next
-  task automatic load(input logic [31:0] base, input logic [5:0] n, input logic [5:0] next);
-    ld_base <= base;
-    ld_n <= n;
-    ld_sent <= '0;
-    ld_got <= '0;
-    ld_ret <= next;
-    st <= S_LOAD;
-  endtask
-
+  // ---- kd-node reads: whose they are, in request order ----
+  logic [TW-1:0] node_q [2**TW];
+  logic [TW:0] node_wr, node_rd;
   always_ff @(posedge clk_i or negedge rst_ni)
     if (!rst_ni) begin
-      st <= S_IDLE;
+      node_wr <= '0;
+      node_rd <= '0;
     end else begin
-      if (node_rsp_valid_i) begin
-        cnt[C_NODES] <= cnt[C_NODES] + 2;
-        walk_read <= 1'b1;
+      if (node_req_valid_o && node_req_ready_i) begin
+        node_q[node_wr[TW-1:0]] <= node_thread;
+        node_wr <= node_wr + 1'b1;
       end
-      unique case (st)
-        S_IDLE:
-          if (valid_i) begin
-            thread <= thread_i;
-            flags <= flags_i;
-            active <= active_i;
-            alive <= active_i;
-            level <= 1'b0;
-            have_cur[0] <= 1'b0;
-            have_cur[1] <= 1'b0;
-            for (int i = 0; i < 4; i++) begin
-              ro[i] <= o_i[i*3*W +: 3*W];
-              rd[i] <= d_i[i*3*W +: 3*W];
-              tmin[i] <= tmin_i[i*W +: W];
-              tmin_rel[i] <= tmin_i[i*W +: W];
-              best_t[i] <= v_tmax[i*W +: W];
-              best_rel[i] <= v_tmax[i*W +: W];
-              t0[i] <= '0;
-              h_inst[i] <= NO_HIT;
-              h_tri[i] <= NO_HIT;
-              h_t[i] <= POS_INF;
-              h_u[i] <= '0;
-              h_v[i] <= '0;
-              h_cos[i] <= '0;
-            end
-            for (int c = 0; c < 10; c++) cnt[c] <= '0;
-            st <= S_CLR0;
-          end
-        S_CLR0:
-          if (lu_ready) load(32'd0, 6'(HDR_WORDS), S_HDR);
-        S_LOAD: begin
-          if (mem_req_valid_o && mem_req_ready_i) ld_sent <= ld_sent + 1'b1;
-          if (mem_rsp_valid_i) begin
-            lbuf[ld_got] <= mem_rdata_i;
-            ld_got <= ld_got + 1'b1;
-            if (ld_got + 1'b1 == ld_n) st <= ld_ret;
-          end
-        end
-        S_HDR: begin
-          hdr_instances <= lbuf[H_INSTANCES];
-          hdr_objects <= lbuf[H_OBJECTS_AT];
-          hdr_inst <= lbuf[H_INST_AT];
-          hdr_top_nodes <= lbuf[H_TOP_NODES_AT];
-          hdr_top_lists <= lbuf[H_TOP_LISTS_AT];
-          for (int j = 0; j < 6; j++) scene_box[j*W +: W] <= lbuf[H_BOUNDS + j][W-1:0];
-          st <= S_SC_GO;
-        end
-        // traversal unit: an operation issued, its result awaited (ret: what follows)
-        S_SC_GO: if (tv_ready) begin ret <= S_SC_DONE; st <= S_TRAV_WAIT; end
-        S_START_GO: if (tv_ready) begin ret <= S_START_DONE; st <= S_TRAV_WAIT; end
-        S_WALK_GO: if (tv_ready) begin ret <= S_WALK_DONE; walk_read <= 1'b0; st <= S_TRAV_WAIT; end
-        S_IC_CLIP: if (tv_ready) begin ret <= S_IC_DONE; st <= S_TRAV_WAIT; end
-        S_TRAV_WAIT:
-          if (tv_out_valid) begin
-            clip_mask <= tv_mask_o;
-            clip_tn <= tv_tn_o;
-            clip_tf <= tv_tf_o;
-            r_have_cur <= tv_have_cur;
-            r_leaf <= tv_leaf;
-            r_leaf_first <= tv_leaf_first;
-            r_leaf_count <= tv_leaf_count;
-            r_leaf_mask <= tv_leaf_mask;
-            r_leaf_tn <= tv_leaf_tn;
-            st <= ret;
-          end
-        S_SC_DONE:  // op_scene_clip
-          if (clip_mask == 0 || hdr_instances == 0) st <= S_DONE;
-          else if (flags[0]) begin  // enter_single_object: its one-leaf list
-            need <= clip_mask;
-            leaf_count[0] <= '0;
-            k[0] <= '0;
-            for (int i = 0; i < 4; i++) leaf_tn[0][i] <= clip_tn[i*W +: W];
-            load(hdr_top_nodes + 1, 6'd1, S_SINGLE_NODE);
-          end else begin
-            lists[0] <= hdr_top_lists;
-            st <= S_START_GO;
-          end
-        S_START_DONE: begin
-          have_cur[level] <= 1'b1;
-          leaf_count[level] <= '0;
-          k[level] <= '0;
-          st <= S_WALK_GO;
-        end
-        S_SINGLE_NODE: load(hdr_top_lists + lbuf[0], 6'd1, S_SINGLE_LIST);
-        S_SINGLE_LIST: begin
-          inst <= lbuf[0];
-          st <= S_IX_LOAD;
-        end
-        S_ROUTE:  // route_after_list: the next entry, the next walk step, back up, or done
-          if (alive == 0) st <= S_DONE;
-          else if (k[level] < leaf_count[level]) st <= S_LIST_GO;
-          else if (have_cur[level]) st <= S_WALK_GO;
-          else if (!level) st <= S_DONE;
-          else level <= 1'b0;
-        S_WALK_DONE: begin  // op_walk
-          have_cur[level] <= r_have_cur;
-          if (r_leaf) begin
-            leaf_first[level] <= r_leaf_first;
-            leaf_count[level] <= r_leaf_count;
-            leaf_mask[level] <= r_leaf_mask;
-            k[level] <= '0;
-            for (int i = 0; i < 4; i++) leaf_tn[level][i] <= r_leaf_tn[i*W +: W];
-            cnt[C_LEAVES] <= cnt[C_LEAVES] + 1;
-          end else if (walk_read) cnt[C_STEPS] <= cnt[C_STEPS] + 1;
-          st <= S_ROUTE;
-        end
-        S_LIST_GO: if (lu_ready) st <= S_LIST_WAIT;
-        S_LIST_WAIT:  // op_list
-          if (lu_out_valid) begin
-            k[level] <= lu_k;
-            need <= lu_need;
-            cnt[C_ENTRIES] <= cnt[C_ENTRIES] + 1;
-            cnt[C_SKIPS] <= cnt[C_SKIPS] + popcount(lu_skip);
-            cnt[C_LISTS] <= cnt[C_LISTS] + 1;
-            if (level) tri_ix <= lu_key;
-            else inst <= lu_key;
-            ret <= lu_need == 0 ? S_ROUTE : level ? S_TX_LOAD : S_IX_LOAD;
-            if (level && k[1] == 0) begin  // rebase_leaf: the leaf opens
-              rb_leaf <= 1'b1;
-              todo <= leaf_mask[1] & alive;
-              st <= S_RB_RAY;
-            end else st <= lu_need == 0 ? S_ROUTE : level ? S_TX_LOAD : S_IX_LOAD;
-          end
-        S_RB_RAY:
-          if (todo == 0) st <= ret;
-          else if (rb_ready) begin
-            ray <= first;
-            todo[first] <= 1'b0;
-            st <= S_RB_WAIT;
-          end
-        S_RB_WAIT:
-          if (rb_out_valid) begin
-            if (rb_leaf) begin
-              p_hi[ray] <= rb_p_hi;
-              p_lo[ray] <= rb_p_lo;
-              te[ray] <= rb_te;
-              st <= S_RB_RAY;
-            end else begin
-              p_hi[ray] <= rb_p_hi;
-              p_lo[ray] <= rb_p_lo;
-              t0[ray] <= rb_te;
-              xw_point <= 1'b1;
-              st <= S_WIDE_GO;
-            end
-          end
-        // op_inst_xform
-        S_IX_LOAD: load(hdr_inst + INST_WORDS * inst, 6'(INST_READ), S_IX);
-        S_IX: begin
-          obj <= hdr_objects + 16 * lbuf[12];
-          cnt[C_MATRICES] <= cnt[C_MATRICES] + INST_READ + OBJ_READ;
-          // an identity instance, or TRACE_IDENTITY's single one (enter_single_object): the rays pass
-          // as wiring, and the clip follows in the same operation
-          if (lbuf[13][0] || flags[2]) begin
-            for (int i = 0; i < 4; i++)
-              if (need[i]) begin
-                so[i] <= identity(inst_m, ro[i], 1'b1);
-                sd[i] <= identity(inst_m, rd[i], 1'b0);
-                so_lo[i] <= '0;
-                sd_lo[i] <= '0;
-                t0[i] <= '0;
-              end
-            st <= S_IC_LOAD;
-          end else begin
-            cnt[C_XFORMS] <= cnt[C_XFORMS] + 2 * popcount(need);
-            todo <= need;
-            st <= S_IX_RAY;
-          end
-        end
-        S_IX_RAY:  // per ray: rebase to the top-level leaf, the origin wide, the direction wide
-          if (todo == 0) st <= S_IC_LOAD;
-          else begin
-            rb_leaf <= 1'b0;
-            st <= S_RB_RAY;
-            ret <= S_IC_LOAD;
-          end
-        S_WIDE_GO: if (xw_ready) st <= S_WIDE_WAIT;
-        S_WIDE_WAIT:
-          if (xw_out_valid) begin
-            if (xw_point) begin
-              so[ray] <= xw_hi;
-              so_lo[ray] <= xw_lo;
-              xw_point <= 1'b0;
-              st <= S_WIDE_GO;
-            end else begin
-              sd[ray] <= xw_hi;
-              sd_lo[ray] <= xw_lo;
-              st <= S_RB_RAY;  // the next ray (todo)
-            end
-          end
-        // op_inst_clip / inst_clip
-        S_IC_LOAD: load(obj, 6'(OBJ_READ), S_IC_CLR);
-        S_IC_CLR:
-          if (lu_ready) begin
-            todo <= need;
-            st <= S_IC_RAY;
-          end
-        S_IC_RAY:
-          if (todo == 0) st <= S_IC_CLIP;
-          else begin
-            ray <= first;
-            todo[first] <= 1'b0;
-            add_ret <= S_IC_RAY;
-            st <= S_ADD_WAIT;
-          end
-        S_ADD_WAIT:
-          if (&add_out_valid) begin
-            if (add_ret == S_IC_RAY) begin
-              best_rel[ray] <= add_r[0 +: W];
-              tmin_rel[ray] <= add_r[W +: W];
-            end else if (add_ret == S_TI_OFS) begin
-              if (ofs_pass == 2'd0) ofs_lo <= add_r;
-              else if (ofs_pass == 2'd1) ofs_hi <= add_r;
-              else ofs <= add_r;
-              ofs_pass <= ofs_pass + 1'b1;
-            end else best_t[ray] <= add_r[0 +: W];
-            if (add_ret == S_TI_OFS && ofs_pass == 2'd2) st <= S_XF_GO;
-            else if (add_ret == S_TI_HIT) begin
-              h_t[ray] <= add_r[0 +: W];
-              st <= S_TI_RAY;
-            end else st <= add_ret;
-          end
-        S_IC_DONE:
-          if (clip_mask == 0) st <= S_ROUTE;
-          else begin
-            tris <= lbuf[2];
-            lists[1] <= lbuf[1];
-            level <= 1'b1;
-            st <= S_START_GO;
-          end
-        // op_tri_xform, op_tri_isect
-        S_TX_LOAD: begin
-          cnt[C_MATRICES] <= cnt[C_MATRICES] + TRI_WORDS;
-          cnt[C_XFORMS] <= cnt[C_XFORMS] + popcount(need);
-          cnt[C_ISECTS] <= cnt[C_ISECTS] + popcount(need);
-          todo <= need;
-          load(tris + TRI_WORDS * tri_ix, 6'(TRI_WORDS), S_TI_RAY);
-        end
-        S_TI_RAY:
-          if (todo == 0) st <= S_ROUTE;
-          else begin
-            ray <= first;
-            todo[first] <= 1'b0;
-            xf_dir <= 1'b1;
-            st <= S_XF_GO;
-          end
-        S_XF_GO: if (xf_ready) st <= S_XF_WAIT;
-        S_XF_WAIT:
-          if (xf_out_valid) begin
-            if (xf_dir) begin
-              dd <= xf_r;
-              xf_dir <= 1'b0;
-              ofs_pass <= 2'd0;
-              st <= S_TI_OFS;
-            end else begin
-              oxy <= xf_r[0 +: 2*W];
-              st <= S_TI_SUM;
-            end
-          end
-        S_TI_OFS: begin
-          add_ret <= S_TI_OFS;
-          st <= S_ADD_WAIT;
-        end
-        S_TI_SUM: st <= S_SUM_WAIT;
-        S_SUM_WAIT:
-          if (sum_out_valid) begin
-            oz <= sum_oz;
-            st <= S_TI_ISECT;
-          end
-        S_TI_ISECT: if (is_ready) st <= S_TI_HIT;
-        S_TI_HIT:
-          if (is_out_valid) begin
-            if (is_hit) begin
-              best_rel[ray] <= is_t;
-              h_inst[ray] <= inst;
-              h_tri[ray] <= tri_ix;
-              h_u[ray] <= is_u;
-              h_v[ray] <= is_v;
-              h_cos[ray] <= is_cos;
-              if (flags[1]) alive[ray] <= 1'b0;
-              add_ret <= S_TI_HIT;
-              st <= S_ADD_WAIT;
-            end else st <= S_TI_RAY;
-          end
-        S_DONE: if (ready_i) st <= S_IDLE;
-        default: st <= S_IDLE;
-      endcase
+      if (node_rsp_valid_i) node_rd <= node_rd + 1'b1;
     end
+  assign t_node_rsp = node_rsp_valid_i ? one[node_q[node_rd[TW-1:0]]] : '0;
+
+  // ---- the word port: lent to the lowest loading thread until its load is done ----
+  logic [TW-1:0] pick;
+  always_comb begin
+    pick = '0;
+    for (int t = THREADS - 1; t >= 0; t--)
+      if (t_loading[t]) pick = TW'(t);
+  end
+  always_ff @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) owner_valid <= 1'b0;
+    else if (!owner_valid || !t_loading[owner]) begin
+      owner_valid <= |t_loading;
+      owner <= pick;
+    end
+  assign mem_req_valid_o = owner_valid && t_mem_req[owner];
+  assign mem_addr_o = t_mem_addr[owner];
+
+  // ---- packets in and out ----
+  logic [TW-1:0] out_sel;
+  always_comb begin
+    out_sel = '0;
+    for (int t = THREADS - 1; t >= 0; t--)
+      if (t_valid[t]) out_sel = TW'(t);
+  end
+  assign ready_o = t_ready[thread_i];
+  assign valid_o = |t_valid;
+  assign t_out_ready = ready_i && valid_o ? one[out_sel] : '0;
+  assign thread_o = out_sel;
+  assign inst_o = t_inst[out_sel];
+  assign tri_o = t_tri[out_sel];
+  assign t_o = t_t[out_sel];
+  assign u_o = t_u[out_sel];
+  assign v_o = t_v[out_sel];
+  assign cos_o = t_cos[out_sel];
+  assign count_o = t_count[out_sel];
+  always_comb begin
+    inflight_o = '0;
+    for (int t = 0; t < THREADS; t++) inflight_o = inflight_o + (TW+1)'(t_waiting[t]);
+  end
 endmodule

@@ -1,10 +1,11 @@
-// tb_core: test wrapper (not synthesized) around the ray tracing core (rtl/trace_core.sv) with the
-// units at the paper's 64 threads; the C++ bench (tb_core.cpp) is its memory (the word, kd-node and
-// list read ports) and checks every packet's hits and counters against trace_begin/trace_step.
+// tb_core: test wrapper (not synthesized) around the ray tracing core (rtl/trace_core.sv) with 8
+// threads and 4 traversal contexts (so that the traversal unit also refuses issues); the C++ bench
+// (tb_core.cpp) is its memory (the word, kd-node and list read ports) and checks every packet's
+// hits and counters against trace_begin/trace_step.
 module tb_core #(
   parameter int E = 7,
   parameter int M = 16,
-  parameter int THREADS = 64
+  parameter int THREADS = 8
 ) (
   input  logic                        clk_i,
   input  logic                        rst_ni,
@@ -27,6 +28,7 @@ module tb_core #(
   output logic [4*(E+M+1)-1:0]        v_o,
   output logic [4*(E+M+1)-1:0]        cos_o,
   output logic [10*32-1:0]            count_o,
+  output logic [$clog2(THREADS):0]    inflight_o,
   output logic                        mem_req_valid_o,
   input  logic                        mem_req_ready_i,
   output logic [31:0]                 mem_addr_o,
