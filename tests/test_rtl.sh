@@ -18,13 +18,14 @@
 # (rtl/tile_ctrl.sv) reproduces, and of a functional frame on 2 threads, and 2 x 10^4 random blocks
 # on random cameras; the benches catch mutants (a rounder that never rounds ties to even, a mailbox
 # that never moves on, a cache without its tag forwarding, a scheduler whose pointer never moves on,
-# a walk that pushes the near child; with SAARCOR_RTL_MUTANTS=all, also a core that walks on before the rest of a leaf's entries, as make rtl-test runs it, also a
+# a walk that pushes the near child; with SAARCOR_RTL_MUTANTS=all, as make rtl-test runs it, also a
 # square root without its sticky bit, a pixel centre without its + 1/2, a tile controller stepping
-# past the region's edge, a vector mode whose unused terms are +0 and a rebase that moves by
-# t = Inf); the ray tracing core (rtl/trace_core.sv, its routing with the units) traces the packets
-# of functional frames (primary, shadow, secondary) of cornell, subpass_scene_opaque.glb, the room
-# (its first 150 packets) and Fox.glb (TRACE_SKIP_TOP and TRACE_IDENTITY) to trace_step's hits and
-# counters. Prints cmocka-style lines.
+# past the region's edge, a vector mode whose unused terms are +0, a rebase that moves by t = Inf
+# and a core thread that walks on before the rest of a leaf's entries); the ray tracing core
+# (rtl/trace_core.sv: 8 threads of rtl/trace_thread.sv sharing the units) traces the packets of
+# functional frames (primary, shadow, secondary) of cornell, subpass_scene_opaque.glb, the room and
+# Fox.glb (TRACE_SKIP_TOP and TRACE_IDENTITY) to trace_step's hits and counters. Prints
+# cmocka-style lines.
 set -u
 cd "$(dirname "$0")/.."
 B=${BUILD:-build}
@@ -89,7 +90,7 @@ t_list_and_cache() {
 # Each mutant is a Verilator build (10-20 s, its C++ at -O0): make test runs the mutants of the
 # rounder, the list unit, the cache, the scheduler and the traversal unit; make rtl-test
 # (SAARCOR_RTL_MUTANTS=all) also those of the square root, the ray generation, the tile controller,
-# the wide transformation, the rebase unit and the core (its build takes about 1.5 minutes).
+# the wide transformation, the rebase unit and the core (its build takes about 2 minutes).
 extra_mutants() { [[ ${SAARCOR_RTL_MUTANTS:-} == all ]]; }
 
 mutant() {
@@ -172,13 +173,15 @@ core_scene() { # NAME SCENE W H [tb_core options]: capture a frame, trace its pa
   "$BIN" render "$scene" -o "$T/core_$name.png" --width "$w" --height "$h" --capture-unit-io "$T/core_$name" \
     --capture-limit 1000 >/dev/null
   "$B/rtl/e7m16/tb_core" --capture "$T/core_$name" "$@" | tee "$T/core_$name.log"
-  grep -Eq "\(([1-9][0-9]*) any-hit\), [1-9][0-9]* rays hit.* 0 mismatches" "$T/core_$name.log"
+  grep -Eq "\(([1-9][0-9]*) any-hit\) on [0-9]+ threads, [1-9][0-9]* rays hit.* 0 mismatches" "$T/core_$name.log"
 }
 
 t_core() {
   core_scene cornell cornell 32 24 &&
+    # 8 threads: packets in flight together, more than one operation at a time in the units
+    grep -Eq "on 8 threads.* ([2-9]|[1-9][0-9])\.[0-9]+ operations in flight" "$T/core_cornell.log" &&
     core_scene subpass ../shared/scenes/subpass_scene_opaque.glb 32 24 &&
-    core_scene room room 32 24 --packets 150 &&
+    core_scene room room 32 24 &&
     core_scene fox ../shared/scenes/Fox.glb 16 12 &&
     { [[ ! -e ../shared/scenes/Fox.glb ]] || awk '{ f[$3] = 1 } END { exit !(f[5] && f[7]) }' "$T/core_fox/trace.hex"; }
 }
@@ -186,7 +189,7 @@ t_core() {
 t_core_mutant_caught() { # route_after_list walking on before the rest of its leaf's entries
   [[ -f "$T/core_cornell/trace.hex" ]] || "$BIN" render cornell -o "$T/core_cornell.png" --width 32 --height 24 \
     --capture-unit-io "$T/core_cornell" --capture-limit 1000 >/dev/null
-  mutant core trace_core.sv "s/else if (k\[level\] < leaf_count\[level\]) st <= S_LIST_GO;/else if (k[level] < leaf_count[level] \&\& !have_cur[level]) st <= S_LIST_GO;/" \
+  mutant core trace_thread.sv "s/else if (k\[level\] < leaf_count\[level\]) st <= S_LIST_GO;/else if (k[level] < leaf_count[level] \&\& !have_cur[level]) st <= S_LIST_GO;/" \
     --capture "$T/core_cornell" --packets 60
 }
 
