@@ -16,7 +16,8 @@
 #                   mode) on random and captured vectors; the list unit, the caches with the memory
 #                   port, the thread scheduler, the traversal unit, the RGS's ray generation and the
 #                   tile controller on cycle-mode frames of room, terrain, plants; ray generation on
-#                   an orthographic frame and random blocks), lint
+#                   an orthographic frame and random blocks; the ray tracing core on every packet of
+#                   functional frames of cornell, room, subpass_scene_opaque.glb), lint
 #   make synth      Yosys synthesis figures -> docs/synth.md
 #   make bench-precision  every format against the binary64 reference: time, cycles, PSNR, plots
 #   make results    docs/results.md from build/bench/ (run after make bench)

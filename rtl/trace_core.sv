@@ -281,29 +281,26 @@ module trace_core #(
     end
   assign t_node_rsp = node_rsp_valid_i ? one[node_q[node_rd[TW-1:0]]] : '0;
 
-  // ---- the word port: lent to the lowest loading thread until its load is done ----
-  logic [TW-1:0] pick;
-  always_comb begin
-    pick = '0;
+  // the lowest thread of a set (the word port's next owner, the next packet out)
+  function automatic logic [TW-1:0] lowest(input logic [THREADS-1:0] m);
+    lowest = '0;
     for (int t = THREADS - 1; t >= 0; t--)
-      if (t_loading[t]) pick = TW'(t);
-  end
+      if (m[t]) lowest = TW'(t);
+  endfunction
+
+  // ---- the word port: lent to the lowest loading thread until its load is done ----
   always_ff @(posedge clk_i or negedge rst_ni)
     if (!rst_ni) owner_valid <= 1'b0;
     else if (!owner_valid || !t_loading[owner]) begin
       owner_valid <= |t_loading;
-      owner <= pick;
+      owner <= lowest(t_loading);
     end
   assign mem_req_valid_o = owner_valid && t_mem_req[owner];
   assign mem_addr_o = t_mem_addr[owner];
 
   // ---- packets in and out ----
   logic [TW-1:0] out_sel;
-  always_comb begin
-    out_sel = '0;
-    for (int t = THREADS - 1; t >= 0; t--)
-      if (t_valid[t]) out_sel = TW'(t);
-  end
+  assign out_sel = lowest(t_valid);
   assign ready_o = t_ready[thread_i];
   assign valid_o = |t_valid;
   assign t_out_ready = ready_i && valid_o ? one[out_sel] : '0;
