@@ -16,7 +16,8 @@
 #                   mode) on random and captured vectors; the list unit, the caches with the memory
 #                   port, the thread scheduler, the traversal unit, the RGS's ray generation and the
 #                   tile controller on cycle-mode frames of room, terrain, plants; ray generation on
-#                   an orthographic frame and random blocks), lint
+#                   an orthographic frame and random blocks; the ray tracing core on every packet of
+#                   functional frames of cornell, room, subpass_scene_opaque.glb), lint
 #   make synth      Yosys synthesis figures -> docs/synth.md
 #   make bench-precision  every format against the binary64 reference: time, cycles, PSNR, plots
 #   make results    docs/results.md from build/bench/ (run after make bench)
@@ -94,7 +95,7 @@ comma := ,
 CAPTURE_WRAP := $(addprefix -Wl$(comma)--wrap=,xform_point xform_vector isect_unit_rebased isect_unit_packet trav_node_split \
   list_unit_entry list_mailboxes_clear mem_iface_read mem_iface_flush mem_iface_new_frame rgs_block_begin \
   rebase_origin xform_point_wide xform_vector_wide \
-  trav_scene_clip trav_object_clip trav_start trav_walk)
+  trav_scene_clip trav_object_clip trav_start trav_walk trace_begin trace_step)
 
 # per-format objects: everything that depends on the fp24 parameters
 fp_objs = $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(HLS_FP24) $(TB_FP))
@@ -228,7 +229,7 @@ test: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(O0_BUILD) OPT='-O0 -g' $(O0_BUILD)/saarcor
 	@$(MAKE) --no-print-directory -j$$(nproc) $(BUILD)/rtl/$(DEFAULT_FMT)/tb_f24_ops $(BUILD)/rtl/$(DEFAULT_FMT)/tb_units $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sum \
 	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_list $(BUILD)/rtl/$(DEFAULT_FMT)/tb_cache $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sched $(BUILD)/rtl/$(DEFAULT_FMT)/tb_rgs \
-	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_wide $(BUILD)/rtl/$(DEFAULT_FMT)/tb_trav
+	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_wide $(BUILD)/rtl/$(DEFAULT_FMT)/tb_trav $(BUILD)/rtl/$(DEFAULT_FMT)/tb_core
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 test-programs
 	@$(MAKE) --no-print-directory -j$$(nproc) robust
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 fuzz-replay
@@ -348,7 +349,7 @@ rtl-lint:
 rtl-test: deps rtl-lint
 	@$(MAKE) --no-print-directory all $(foreach f,$(RTL_FORMATS),$(BUILD)/rtl/$(f)/tb_f24_ops $(BUILD)/rtl/$(f)/tb_units $(BUILD)/rtl/$(f)/tb_sum \
 	  $(BUILD)/rtl/$(f)/tb_rgs $(BUILD)/rtl/$(f)/tb_wide) \
-	  $(foreach f,$(DEFAULT_FMT) e8m23,$(BUILD)/rtl/$(f)/tb_list $(BUILD)/rtl/$(f)/tb_cache $(BUILD)/rtl/$(f)/tb_sched $(BUILD)/rtl/$(f)/tb_trav)
+	  $(foreach f,$(DEFAULT_FMT) e8m23,$(BUILD)/rtl/$(f)/tb_list $(BUILD)/rtl/$(f)/tb_cache $(BUILD)/rtl/$(f)/tb_sched $(BUILD)/rtl/$(f)/tb_trav $(BUILD)/rtl/$(f)/tb_core)
 	@mkdir -p $(BUILD)/rtl/capture
 	@set -o pipefail; for f in $(RTL_FORMATS); do \
 	  extra=; [ $$f = $(DEFAULT_FMT) ] && extra=$$(ls tests/golden/f24/{add,sub,mul,div,lt,le,eq,min,max,sqrt,to_i32}.hex); \
@@ -383,6 +384,13 @@ rtl-test: deps rtl-lint
 	  && $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sched -n 0 --capture $(BUILD)/rtl/capture/animated.cycle \
 	  && $(BUILD)/rtl/$(DEFAULT_FMT)/tb_rgs -n 0 --capture $(BUILD)/rtl/capture/animated.cycle --order 16 \
 	  && $(BUILD)/rtl/$(DEFAULT_FMT)/tb_trav -n 0 --capture $(BUILD)/rtl/capture/animated.cycle; } | tee -a $(BUILD)/rtl/memory.log
+	@# the ray tracing core: every packet of functional frames (128x96) with shadows and reflections
+	@set -o pipefail; for s in cornell room ../shared/scenes/subpass_scene_opaque.glb; do \
+	  for f in $(DEFAULT_FMT) e8m23; do n=$$(basename $$s .glb); \
+	    $(BUILD)/w/$$f/saarcor render $$s -o $(BUILD)/rtl/core.$$n.$$f.png --width 128 --height 96 \
+	      --capture-unit-io $(BUILD)/rtl/capture/core.$$n.$$f --capture-limit 1000000 >/dev/null || exit 1; \
+	    $(BUILD)/rtl/$$f/tb_core --capture $(BUILD)/rtl/capture/core.$$n.$$f || exit 1; \
+	  done; done | tee $(BUILD)/rtl/core.log
 	@# the RGS's ray generation: an orthographic frame (the cornell box's camera made orthographic), random blocks
 	@$(BUILD)/saarcor gen cornell -o $(BUILD)/rtl/capture/cornell.gltf >/dev/null
 	@python3 scripts/ortho_camera.py $(BUILD)/rtl/capture/cornell.gltf $(BUILD)/rtl/capture/ortho.gltf

@@ -20,8 +20,12 @@
 # that never moves on, a cache without its tag forwarding, a scheduler whose pointer never moves on,
 # a walk that pushes the near child; with SAARCOR_RTL_MUTANTS=all, as make rtl-test runs it, also a
 # square root without its sticky bit, a pixel centre without its + 1/2, a tile controller stepping
-# past the region's edge, a vector mode whose unused terms are +0 and a rebase that moves by
-# t = Inf). Prints cmocka-style lines.
+# past the region's edge, a vector mode whose unused terms are +0, a rebase that moves by t = Inf
+# and a core thread that walks on before the rest of a leaf's entries); the ray tracing core
+# (rtl/trace_core.sv: 8 threads of rtl/trace_thread.sv sharing the units) traces the packets of
+# functional frames (primary, shadow, secondary) of cornell, subpass_scene_opaque.glb, the room and
+# Fox.glb (TRACE_SKIP_TOP and TRACE_IDENTITY) to trace_step's hits and counters. Prints
+# cmocka-style lines.
 set -u
 cd "$(dirname "$0")/.."
 B=${BUILD:-build}
@@ -86,7 +90,8 @@ t_list_and_cache() {
 # Each mutant is a Verilator build (10-20 s, its C++ at -O0): make test runs the mutants of the
 # rounder, the list unit, the cache, the scheduler and the traversal unit; make rtl-test
 # (SAARCOR_RTL_MUTANTS=all) also those of the square root, the ray generation, the tile controller,
-# the wide transformation and the rebase unit, and the caches with tables of 4 requests.
+# the wide transformation, the rebase unit and the core (its build takes about 2 minutes), and the
+# caches with tables of 4 requests.
 extra_mutants() { [[ ${SAARCOR_RTL_MUTANTS:-} == all ]]; }
 
 mutant() {
@@ -180,6 +185,34 @@ t_wide_mutants_caught() {
     mutant wide rebase_unit.sv "s/assign te = t_i\[W-2:M\] == '1 ? '0 : t_i;/assign te = t_i;/" -n 4000
 }
 
+# the ray tracing core: functional frames' packets (tb_core) at 32x24; scenes of ../shared skipped
+# with a message when it is absent
+core_scene() { # NAME SCENE W H [tb_core options]: capture a frame, trace its packets in the RTL
+  local name=$1 scene=$2 w=$3 h=$4; shift 4
+  if [[ $scene == ../shared/* && ! -e $scene ]]; then echo "$name: skipped, $scene is absent"; return 0; fi
+  "$BIN" render "$scene" -o "$T/core_$name.png" --width "$w" --height "$h" --capture-unit-io "$T/core_$name" \
+    --capture-limit 1000 >/dev/null
+  "$B/rtl/e7m16/tb_core" --capture "$T/core_$name" "$@" | tee "$T/core_$name.log"
+  grep -Eq "\(([1-9][0-9]*) any-hit\) on [0-9]+ threads, [1-9][0-9]* rays hit.* 0 mismatches" "$T/core_$name.log"
+}
+
+t_core() {
+  core_scene cornell cornell 32 24 &&
+    # 8 threads: packets in flight together, more than one operation at a time in the units
+    grep -Eq "on 8 threads.* ([2-9]|[1-9][0-9])\.[0-9]+ operations in flight" "$T/core_cornell.log" &&
+    core_scene subpass ../shared/scenes/subpass_scene_opaque.glb 32 24 &&
+    core_scene room room 32 24 &&
+    core_scene fox ../shared/scenes/Fox.glb 16 12 &&
+    { [[ ! -e ../shared/scenes/Fox.glb ]] || awk '{ f[$3] = 1 } END { exit !(f[5] && f[7]) }' "$T/core_fox/trace.hex"; }
+}
+
+t_core_mutant_caught() { # route_after_list walking on before the rest of its leaf's entries
+  [[ -f "$T/core_cornell/trace.hex" ]] || "$BIN" render cornell -o "$T/core_cornell.png" --width 32 --height 24 \
+    --capture-unit-io "$T/core_cornell" --capture-limit 1000 >/dev/null
+  mutant core trace_thread.sv "s/else if (k\[level\] < leaf_count\[level\]) st <= S_LIST_GO;/else if (k[level] < leaf_count[level] \&\& !have_cur[level]) st <= S_LIST_GO;/" \
+    --capture "$T/core_cornell" --packets 60
+}
+
 t_mutant_caught() { # the bench must fail on a wrong rounder
   mkdir -p "$T/mut"
   sed "s/kept_even = tie ? {kept\[M+1:1\], 1'b0} : kept;/kept_even = kept;/" rtl/f24_round_pack.sv >"$T/mut/f24_round_pack.sv"
@@ -215,5 +248,7 @@ if extra_mutants; then
 fi
 run_case rtl_trav_unit_matches_c_model_and_capture t_trav_unit
 run_case rtl_trav_bench_catches_mutant t_trav_mutant_caught
+run_case rtl_core_matches_c_model_and_capture t_core
+extra_mutants && run_case rtl_core_bench_catches_mutant t_core_mutant_caught
 run_case rtl_bench_catches_mutant t_mutant_caught
 exit $((fails != 0))

@@ -20,7 +20,7 @@
 #include "trav_unit.h"
 #include "xform_unit.h"
 
-enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_RGS, CAP_REBASE, CAP_WIDE, CAP_TRAV_UNIT, CAP_UNITS };
+enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_RGS, CAP_REBASE, CAP_WIDE, CAP_TRAV_UNIT, CAP_TRACE, CAP_UNITS };
 
 static struct {
     int on;
@@ -30,13 +30,27 @@ static struct {
 } cap = { .lock = PTHREAD_MUTEX_INITIALIZER };
 
 const char *const capture_unit_names[CAPTURE_UNITS] = { "xform", "isect", "trav", "list",  "mem",
-                                                        "sched", "rgs",   "rebase", "wide", "trav_unit" };
+                                                        "sched", "rgs",   "rebase", "wide", "trav_unit",
+                                                        "trace" };
 
 /* The list unit's threads: trace_state addresses in the order first seen (the RTL's thread ids),
  * and the memory interfaces (pipes) likewise. */
 #define CAP_MAX_IDS 4096
 static const void *cap_state[CAP_MAX_IDS], *cap_pipe[CAP_MAX_IDS];
 static uint32_t cap_states, cap_pipes;
+
+/* The core's packets being traced (trace_begin to trace_step's end), by trace_state, and the
+ * memory images they read (DIR/image_N.bin: a new one per image address or frame). */
+#define CAP_TRACES 256
+static struct {
+    const trace_state *s;
+    uint32_t image, id, flags, stepped;
+    ray_packet rays;
+    trace_counters c;
+} cap_trace[CAP_TRACES];
+static const uint32_t *cap_image;
+static uint32_t cap_image_frame, cap_images;
+static char cap_dir[1024];
 
 int capture_start(const char *dir, uint64_t limit, char *err, unsigned errlen)
 {
@@ -54,7 +68,10 @@ int capture_start(const char *dir, uint64_t limit, char *err, unsigned errlen)
         }
         cap.n[u] = 0;
     }
-    cap_states = cap_pipes = 0;
+    cap_states = cap_pipes = cap_images = 0;
+    cap_image = NULL;
+    memset(cap_trace, 0, sizeof cap_trace);
+    snprintf(cap_dir, sizeof cap_dir, "%s", dir);
     cap.limit = limit;
     cap.on = 1;
     return 0;
@@ -674,4 +691,117 @@ int __wrap_trav_walk(trav_walker *w, const uint32_t *mem, const f24_vec3 o[], co
 {
     return capturing() ? captured_walk(w, mem, o, d, best_t, alive, op, c)
                        : __real_trav_walk(w, mem, o, d, best_t, alive, op, c);
+}
+
+/* ---- the core: every packet from trace_begin to its hits (for rtl/tb/tb_core.cpp) ---- */
+
+void __real_trace_begin(const ray_packet *rays, uint32_t flags, trace_state *s);
+int __real_trace_step(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c);
+void __wrap_trace_begin(const ray_packet *rays, uint32_t flags, trace_state *s);
+int __wrap_trace_step(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c);
+
+static int trace_slot(const trace_state *s)
+{
+    for (int i = 0; i < CAP_TRACES; i++)
+        if (cap_trace[i].s == s)
+            return i;
+    return -1;
+}
+
+CAPTURE_PATH void captured_trace_begin(const ray_packet *rays, uint32_t flags, trace_state *s)
+{
+    __real_trace_begin(rays, flags, s);
+    pthread_mutex_lock(&cap.lock);
+    int i = trace_slot(s);
+    if (i < 0)
+        i = trace_slot(NULL); /* no slot free (more packets in flight than CAP_TRACES): not recorded */
+    if (i >= 0) {
+        cap_trace[i].s = s;
+        cap_trace[i].id = (uint32_t)state_id((const char *)s, 1);
+        cap_trace[i].flags = flags;
+        cap_trace[i].rays = *rays;
+        cap_trace[i].stepped = 0;
+        memset(&cap_trace[i].c, 0, sizeof cap_trace[i].c);
+    }
+    pthread_mutex_unlock(&cap.lock);
+}
+
+/* The image a packet reads: written once per image address and frame word (animations update the
+ * image in place), all its used words. */
+static uint32_t trace_image(const uint32_t *mem)
+{
+    if (cap_images && mem == cap_image && mem[MI_H_FRAME] == cap_image_frame)
+        return cap_images - 1;
+    char path[1100];
+    snprintf(path, sizeof path, "%s/image_%u.bin", cap_dir, cap_images);
+    FILE *f = fopen(path, "wb");
+    if (f) {
+        fwrite(mem, sizeof *mem, mem[MI_H_USED_WORDS], f);
+        fclose(f);
+    }
+    cap_image = mem;
+    cap_image_frame = mem[MI_H_FRAME];
+    return cap_images++;
+}
+
+CAPTURE_PATH int captured_trace_step(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
+{
+    const trace_counters before = *c;
+    const int more = __real_trace_step(mem, s, op, c);
+    pthread_mutex_lock(&cap.lock);
+    const int i = trace_slot(s);
+    if (i < 0) {
+        pthread_mutex_unlock(&cap.lock);
+        return more;
+    }
+    if (!cap_trace[i].stepped++)
+        cap_trace[i].image = trace_image(mem);
+    uint64_t *sum = &cap_trace[i].c.traversal_steps;
+    const uint64_t *now = &c->traversal_steps, *was = &before.traversal_steps;
+    for (uint32_t k = 0; k < sizeof *c / sizeof *now; k++) /* trace_counters: all uint64_t */
+        sum[k] += now[k] - was[k];
+    const uint32_t image = cap_trace[i].image, id = cap_trace[i].id, flags = cap_trace[i].flags;
+    const ray_packet rays = cap_trace[i].rays;
+    const trace_counters pc = cap_trace[i].c;
+    if (!more)
+        cap_trace[i].s = NULL;
+    pthread_mutex_unlock(&cap.lock);
+    if (more)
+        return more;
+    FILE *f = begin(CAP_TRACE);
+    if (!f)
+        return more;
+    /* one line of trace.hex: image, thread (trace_state number), flags, active, 4 x O, 4 x D, 4 x tmin,
+     * 4 x tmax; per ray instance, triangle, t, u, v, cos; the packet's trace_counters (10) */
+    fprintf(f, "%x %x %x %x", image, id, flags, rays.active);
+    for (int r = 0; r < TRACE_PACKET; r++)
+        fprintf(f, " %06x %06x %06x", rays.o[r].x, rays.o[r].y, rays.o[r].z);
+    for (int r = 0; r < TRACE_PACKET; r++)
+        fprintf(f, " %06x %06x %06x", rays.d[r].x, rays.d[r].y, rays.d[r].z);
+    fputc(' ', f);
+    words(f, rays.tmin, TRACE_PACKET);
+    fputc(' ', f);
+    words(f, rays.tmax, TRACE_PACKET);
+    for (int r = 0; r < TRACE_PACKET; r++) {
+        const hit_record *h = &s->hits[r];
+        fprintf(f, " %x %x %06x %06x %06x %06x", h->instance, h->triangle, h->t, h->u, h->v, h->cos_n);
+    }
+    const uint64_t *pw = &pc.traversal_steps;
+    for (uint32_t k = 0; k < sizeof pc / sizeof *pw; k++)
+        fprintf(f, " %llx", (unsigned long long)pw[k]);
+    end(f);
+    return more;
+}
+
+void __wrap_trace_begin(const ray_packet *rays, uint32_t flags, trace_state *s)
+{
+    if (capturing())
+        captured_trace_begin(rays, flags, s);
+    else
+        __real_trace_begin(rays, flags, s);
+}
+
+int __wrap_trace_step(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
+{
+    return capturing() ? captured_trace_step(mem, s, op, c) : __real_trace_step(mem, s, op, c);
 }

@@ -1,0 +1,320 @@
+// trace_core: the ray tracing core of a DynRTP (paper section 3, Figure 2 paths b..f): THREADS
+// threads (trace_thread: each one packet's state and the FSM of hls/units/trace.c's trace_step)
+// share the units that have RTL: trav_unit (clips, walk start, walk steps; the stacks of every
+// thread and level), list_unit (the mailboxes), rebase_unit, xform_wide (instances, path d),
+// xform_unit (triangle directions, path e; rows 0 and 1 of the intersection's origin path), 3
+// f24_add (the origin's offset from the vertex, the relative distances, best_t = t0 + t), an
+// f24_sum_exact of 9 terms (the plane distance) and isect_unit. A packet of 4 rays enters a free
+// thread with its TRACE_* flags (TRACE_SKIP_TOP, TRACE_ANY_HIT for shadow packets,
+// TRACE_IDENTITY) and leaves with its 4 closest (or any) hits and its trace_counters, bit for bit
+// those of trace_begin + trace_step to TP_DONE. The traversal algorithm is TRAV_STACK only (the
+// algorithm trav_unit has; the others of the C unit have no RTL).
+// Issue: thread_sched (one ready set per unit, round robin): a thread raises its bit of a unit as
+// it decides its next operation there; an issued thread whose unit refuses it (trav_unit with
+// every context busy) raises it again. Each unit takes one operation per cycle, so operations of
+// different threads are in flight in every unit at once; the units without a thread id of their
+// own (rebase, wide and narrow transformation, adders, exact sum, intersection) carry the issued
+// thread beside their pipeline in an f24_pipe of their latency (their outputs are always taken, so
+// the latency is fixed). Results go to their thread alone.
+// Memory: the descriptor words (header, instance, object, triangle records) through the word port,
+// lent to one loading thread at a time until its load is done; trav_unit's node port (whose
+// responses, in request order, are counted for their thread through a FIFO of thread ids) and
+// list_unit's read port are the core's.
+// Latency: per packet the sum of its operations' unit latencies, waits and reads (rtl/tb/tb_core.cpp
+// reports cycles per packet and the operations in flight); throughput: up to one operation per
+// unit and cycle, THREADS packets in flight.
+// Resources: the units' (rtl/README.md), thread_sched (8 units), THREADS trace_thread (each 5718
+// LUTs and 6183 flip-flops with synth_xilinx at e7m16: its state in registers), the operand
+// multiplexers (THREADS to 1 per unit); the whole core is not yet synthesized.
+// Handshake: valid/ready at the packet input (into thread thread_i: ready_o when it is free) and
+// at the result output (the lowest finished thread first); word port valid/ready with responses in
+// request order; trav_unit's node port and list_unit's read port as those units define them.
+module trace_core #(
+  parameter int E = 7,
+  parameter int M = 16,
+  parameter int THREADS = 4,
+  parameter int CTX = 4,
+  parameter int ADD_STAGES = 6,
+  parameter int MUL_STAGES = 4,
+  parameter int DIV_STAGES = 11,
+  parameter int CMP_STAGES = 2,
+  parameter int SUM_STAGES = 25
+) (
+  input  logic                        clk_i,
+  input  logic                        rst_ni,
+  // packet in (trace_begin) to thread thread_i
+  input  logic                        valid_i,
+  output logic                        ready_o,
+  input  logic [$clog2(THREADS)-1:0]  thread_i,
+  input  logic [2:0]                  flags_i,    // TRACE_SKIP_TOP, TRACE_ANY_HIT, TRACE_IDENTITY
+  input  logic [3:0]                  active_i,
+  input  logic [4*3*(E+M+1)-1:0]      o_i,        // ray i: words 3i .. 3i+2 (x, y, z)
+  input  logic [4*3*(E+M+1)-1:0]      d_i,
+  input  logic [4*(E+M+1)-1:0]        tmin_i,
+  input  logic [4*(E+M+1)-1:0]        tmax_i,
+  // hits out (TP_DONE)
+  output logic                        valid_o,
+  input  logic                        ready_i,
+  output logic [$clog2(THREADS)-1:0]  thread_o,
+  output logic [4*32-1:0]             inst_o,     // TRACE_NO_HIT for a miss
+  output logic [4*32-1:0]             tri_o,
+  output logic [4*(E+M+1)-1:0]        t_o,
+  output logic [4*(E+M+1)-1:0]        u_o,
+  output logic [4*(E+M+1)-1:0]        v_o,
+  output logic [4*(E+M+1)-1:0]        cos_o,
+  output logic [10*32-1:0]            count_o,    // trace_counters in its order (words: 4 kinds)
+  output logic [$clog2(THREADS):0]    inflight_o, // threads with an operation in a unit
+  // word read port (descriptors)
+  output logic                        mem_req_valid_o,
+  input  logic                        mem_req_ready_i,
+  output logic [31:0]                 mem_addr_o,
+  input  logic                        mem_rsp_valid_i,
+  input  logic [31:0]                 mem_rdata_i,
+  // trav_unit's node port
+  output logic                        node_req_valid_o,
+  input  logic                        node_req_ready_i,
+  output logic [31:0]                 node_addr_o,
+  input  logic                        node_rsp_valid_i,
+  input  logic [31:0]                 node_w0_i,
+  input  logic [31:0]                 node_w1_i,
+  // list_unit's read port
+  output logic                        list_re_o,
+  output logic [31:0]                 list_addr_o,
+  input  logic [31:0]                 list_rdata_i
+);
+  localparam int W = 1 + E + M;
+  localparam int TW = $clog2(THREADS);
+  localparam int UNITS = 8;
+  localparam int U_TRAV = 0, U_LIST = 1, U_RB = 2, U_XW = 3, U_XF = 4, U_IS = 5, U_ADD = 6, U_SUM = 7;
+  localparam int XF_LATENCY = MUL_STAGES + 3 * ADD_STAGES;
+  localparam int IS_LATENCY = DIV_STAGES + MUL_STAGES + 2 * ADD_STAGES + CMP_STAGES;
+  if (THREADS < 2) begin : g_threads_check
+    $error("trace_core: THREADS >= 2 (the units index their state by a thread id of $clog2(THREADS) bits)");
+  end
+
+  // ---- the threads' requests, operands and results ----
+  logic [THREADS-1:0] t_ready, t_valid, t_out_ready, t_mem_req, t_loading, t_waiting, t_node_rsp;
+  logic [31:0] t_mem_addr [THREADS];
+  logic [4*32-1:0] t_inst [THREADS], t_tri [THREADS];
+  logic [4*W-1:0] t_t [THREADS], t_u [THREADS], t_v [THREADS], t_cos [THREADS];
+  logic [10*32-1:0] t_count [THREADS];
+  logic [THREADS-1:0] req [UNITS], req_q [UNITS], grant [UNITS], done [UNITS];
+  logic [UNITS-1:0] unit_ready, issue_valid;
+  logic [UNITS*TW-1:0] issue_thread;
+  logic [TW-1:0] sel [UNITS];
+  logic [UNITS*THREADS-1:0] set;
+  // operands per thread
+  logic [1:0] t_trav_kind [THREADS];
+  logic [THREADS-1:0] t_trav_level, t_list_level, t_list_clear, t_xw_point, t_add_sub;
+  logic [4*3*W-1:0] t_trav_o [THREADS], t_trav_d [THREADS];
+  logic [4*W-1:0] t_trav_tn [THREADS], t_trav_tf [THREADS], t_trav_best [THREADS];
+  logic [3:0] t_trav_mask [THREADS], t_list_leaf_mask [THREADS], t_list_alive [THREADS];
+  logic [6*W-1:0] t_trav_box [THREADS];
+  logic [31:0] t_trav_nodes [THREADS], t_list_lists [THREADS], t_list_first [THREADS], t_list_k [THREADS];
+  logic [3*W-1:0] t_rb_o_hi [THREADS], t_rb_o_lo [THREADS], t_rb_d_hi [THREADS], t_rb_d_lo [THREADS];
+  logic [W-1:0] t_rb_t [THREADS], t_is_te [THREADS], t_is_tmin [THREADS], t_is_tmax [THREADS];
+  logic [12*W-1:0] t_xw_m [THREADS], t_xf_m [THREADS];
+  logic [3*W-1:0] t_xw_tlo [THREADS], t_xw_p_hi [THREADS], t_xw_p_lo [THREADS], t_xf_v [THREADS];
+  logic [3*W-1:0] t_is_o [THREADS], t_is_d [THREADS], t_add_a [THREADS], t_add_b [THREADS];
+  logic [2:0] t_is_shared [THREADS];
+  logic [9*W-1:0] t_sum_a [THREADS], t_sum_b [THREADS];
+  // the units' results (to every thread; done says whose)
+  logic [3:0] trav_mask, trav_leaf_mask, list_need, list_skip;
+  logic [4*W-1:0] trav_tn, trav_tf, trav_leaf_tn;
+  logic trav_have_cur, trav_leaf, is_hit;
+  logic [31:0] trav_leaf_first, trav_leaf_count, list_key, list_k;
+  logic [3*W-1:0] rb_p_hi, rb_p_lo, xw_hi, xw_lo, xf_r, add_r;
+  logic [W-1:0] rb_te, is_t, is_u, is_v, is_cos, sum_hi;
+  // the word port's owner
+  logic owner_valid;
+  logic [TW-1:0] owner;
+
+  /* verilator lint_off PINCONNECTEMPTY */
+  for (genvar t = 0; t < THREADS; t++) begin : g_thread
+    trace_thread #(.E(E), .M(M)) u_thread (
+      .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(valid_i && thread_i == TW'(t)), .ready_o(t_ready[t]),
+      .flags_i(flags_i), .active_i(active_i), .o_i(o_i), .d_i(d_i), .tmin_i(tmin_i), .tmax_i(tmax_i),
+      .valid_o(t_valid[t]), .ready_i(t_out_ready[t]), .inst_o(t_inst[t]), .tri_o(t_tri[t]), .t_o(t_t[t]),
+      .u_o(t_u[t]), .v_o(t_v[t]), .cos_o(t_cos[t]), .count_o(t_count[t]),
+      .mem_req_valid_o(t_mem_req[t]), .mem_req_ready_i(owner_valid && owner == TW'(t) && mem_req_ready_i),
+      .mem_addr_o(t_mem_addr[t]), .mem_rsp_valid_i(owner_valid && owner == TW'(t) && mem_rsp_valid_i),
+      .mem_rdata_i(mem_rdata_i), .node_rsp_i(t_node_rsp[t]), .loading_o(t_loading[t]), .waiting_o(t_waiting[t]),
+      .trav_req_o(req[U_TRAV][t]), .trav_grant_i(grant[U_TRAV][t]), .trav_kind_o(t_trav_kind[t]),
+      .trav_level_o(t_trav_level[t]), .trav_o_o(t_trav_o[t]), .trav_d_o(t_trav_d[t]), .trav_tn_o(t_trav_tn[t]),
+      .trav_tf_o(t_trav_tf[t]), .trav_best_o(t_trav_best[t]), .trav_mask_o(t_trav_mask[t]),
+      .trav_box_o(t_trav_box[t]), .trav_nodes_o(t_trav_nodes[t]), .trav_done_i(done[U_TRAV][t]),
+      .trav_mask_i(trav_mask), .trav_tn_i(trav_tn), .trav_tf_i(trav_tf), .trav_have_cur_i(trav_have_cur),
+      .trav_leaf_i(trav_leaf), .trav_leaf_first_i(trav_leaf_first), .trav_leaf_count_i(trav_leaf_count),
+      .trav_leaf_mask_i(trav_leaf_mask), .trav_leaf_tn_i(trav_leaf_tn),
+      .list_req_o(req[U_LIST][t]), .list_grant_i(grant[U_LIST][t]), .list_level_o(t_list_level[t]),
+      .list_clear_o(t_list_clear[t]), .list_lists_o(t_list_lists[t]), .list_first_o(t_list_first[t]),
+      .list_k_o(t_list_k[t]), .list_leaf_mask_o(t_list_leaf_mask[t]), .list_alive_o(t_list_alive[t]),
+      .list_done_i(done[U_LIST][t]), .list_key_i(list_key), .list_need_i(list_need), .list_skip_i(list_skip),
+      .list_k_i(list_k),
+      .rb_req_o(req[U_RB][t]), .rb_grant_i(grant[U_RB][t]), .rb_o_hi_o(t_rb_o_hi[t]), .rb_o_lo_o(t_rb_o_lo[t]),
+      .rb_d_hi_o(t_rb_d_hi[t]), .rb_d_lo_o(t_rb_d_lo[t]), .rb_t_o(t_rb_t[t]), .rb_done_i(done[U_RB][t]),
+      .rb_p_hi_i(rb_p_hi), .rb_p_lo_i(rb_p_lo), .rb_te_i(rb_te),
+      .xw_req_o(req[U_XW][t]), .xw_grant_i(grant[U_XW][t]), .xw_m_o(t_xw_m[t]), .xw_tlo_o(t_xw_tlo[t]),
+      .xw_p_hi_o(t_xw_p_hi[t]), .xw_p_lo_o(t_xw_p_lo[t]), .xw_point_o(t_xw_point[t]), .xw_done_i(done[U_XW][t]),
+      .xw_hi_i(xw_hi), .xw_lo_i(xw_lo),
+      .xf_req_o(req[U_XF][t]), .xf_grant_i(grant[U_XF][t]), .xf_m_o(t_xf_m[t]), .xf_v_o(t_xf_v[t]),
+      .xf_done_i(done[U_XF][t]), .xf_r_i(xf_r),
+      .is_req_o(req[U_IS][t]), .is_grant_i(grant[U_IS][t]), .is_o_o(t_is_o[t]), .is_d_o(t_is_d[t]),
+      .is_te_o(t_is_te[t]), .is_tmin_o(t_is_tmin[t]), .is_tmax_o(t_is_tmax[t]), .is_shared_o(t_is_shared[t]),
+      .is_done_i(done[U_IS][t]), .is_hit_i(is_hit), .is_t_i(is_t), .is_u_i(is_u), .is_v_i(is_v), .is_cos_i(is_cos),
+      .add_req_o(req[U_ADD][t]), .add_grant_i(grant[U_ADD][t]), .add_a_o(t_add_a[t]), .add_b_o(t_add_b[t]),
+      .add_sub_o(t_add_sub[t]), .add_done_i(done[U_ADD][t]), .add_r_i(add_r),
+      .sum_req_o(req[U_SUM][t]), .sum_grant_i(grant[U_SUM][t]), .sum_a_o(t_sum_a[t]), .sum_b_o(t_sum_b[t]),
+      .sum_done_i(done[U_SUM][t]), .sum_hi_i(sum_hi));
+  end
+
+  // ---- issue: a thread's request raises its ready bit once; a refused issue raises it again ----
+  logic [THREADS-1:0] one [THREADS];
+  always_comb
+    for (int t = 0; t < THREADS; t++) one[t] = THREADS'(1) << t;
+  for (genvar u = 0; u < UNITS; u++) begin : g_issue
+    assign sel[u] = issue_thread[u*TW +: TW];
+    assign grant[u] = issue_valid[u] && unit_ready[u] ? one[sel[u]] : '0;
+    assign set[u*THREADS +: THREADS] = (req[u] & ~req_q[u]) | (issue_valid[u] && !unit_ready[u] ? one[sel[u]] : '0);
+    always_ff @(posedge clk_i or negedge rst_ni)
+      if (!rst_ni) req_q[u] <= '0;
+      else req_q[u] <= req[u];
+  end
+  thread_sched #(.THREADS(THREADS), .UNITS(UNITS), .SLOT_BITS(1)) u_sched (
+    .clk_i(clk_i), .rst_ni(rst_ni), .set_i(set), .slots_i('1), .issue_valid_o(issue_valid),
+    .issue_thread_o(issue_thread), .issue_slots_o());
+
+  // ---- the units ----
+  logic trav_valid_o;
+  logic [TW-1:0] trav_thread, node_thread;
+  trav_unit #(.E(E), .M(M), .THREADS(THREADS), .CTX(CTX), .ADD_STAGES(ADD_STAGES), .DIV_STAGES(DIV_STAGES),
+              .CMP_STAGES(CMP_STAGES)) u_trav (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(issue_valid[U_TRAV]), .ready_o(unit_ready[U_TRAV]),
+    .thread_i(sel[U_TRAV]), .level_i(t_trav_level[sel[U_TRAV]]), .kind_i(t_trav_kind[sel[U_TRAV]]),
+    .o_i(t_trav_o[sel[U_TRAV]]), .d_i(t_trav_d[sel[U_TRAV]]), .tn_i(t_trav_tn[sel[U_TRAV]]),
+    .tf_i(t_trav_tf[sel[U_TRAV]]), .best_i(t_trav_best[sel[U_TRAV]]), .mask_i(t_trav_mask[sel[U_TRAV]]),
+    .box_i(t_trav_box[sel[U_TRAV]]), .nodes_i(t_trav_nodes[sel[U_TRAV]]),
+    .node_req_valid_o(node_req_valid_o), .node_req_ready_i(node_req_ready_i), .node_addr_o(node_addr_o),
+    .node_thread_o(node_thread), .node_level_o(), .node_rsp_valid_i(node_rsp_valid_i), .node_w0_i(node_w0_i),
+    .node_w1_i(node_w1_i), .valid_o(trav_valid_o), .ready_i(1'b1), .thread_o(trav_thread), .level_o(), .kind_o(),
+    .mask_o(trav_mask), .tn_o(trav_tn), .tf_o(trav_tf), .node_o(), .have_cur_o(trav_have_cur), .leaf_o(trav_leaf),
+    .list_o(), .leaf_first_o(trav_leaf_first), .leaf_count_o(trav_leaf_count), .leaf_mask_o(trav_leaf_mask),
+    .leaf_tn_o(trav_leaf_tn), .sp_o(), .lost_o(), .restarted_o());
+  assign done[U_TRAV] = trav_valid_o ? one[trav_thread] : '0;
+
+  logic list_valid_o;
+  logic [TW-1:0] list_thread;
+  list_unit #(.THREADS(THREADS)) u_list (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(issue_valid[U_LIST]), .ready_o(unit_ready[U_LIST]),
+    .thread_i(sel[U_LIST]), .level_i(t_list_level[sel[U_LIST]]), .clear_i(t_list_clear[sel[U_LIST]]),
+    .lists_i(t_list_lists[sel[U_LIST]]), .first_i(t_list_first[sel[U_LIST]]), .k_i(t_list_k[sel[U_LIST]]),
+    .leaf_mask_i(t_list_leaf_mask[sel[U_LIST]]), .alive_i(t_list_alive[sel[U_LIST]]),
+    .mem_re_o(list_re_o), .mem_addr_o(list_addr_o), .mem_rdata_i(list_rdata_i), .valid_o(list_valid_o),
+    .ready_i(1'b1), .thread_o(list_thread), .level_o(), .key_o(list_key), .need_o(list_need), .skip_o(list_skip),
+    .k_o(list_k));
+  assign done[U_LIST] = list_valid_o ? one[list_thread] : '0;
+
+  // the units without a thread id: their outputs are always taken, so the issued thread travels
+  // beside them in a delay line of their latency
+  logic [UNITS-1:U_RB] out_valid;
+  logic [TW-1:0] out_thread [UNITS];
+  for (genvar u = U_RB; u < UNITS; u++) begin : g_tag
+    localparam int LAT = u == U_XF ? XF_LATENCY : u == U_IS ? IS_LATENCY : u == U_ADD ? ADD_STAGES : SUM_STAGES;
+    f24_pipe #(.W(TW), .STAGES(LAT)) u_tag (
+      .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(issue_valid[u] && unit_ready[u]), .data_i(sel[u]),
+      .valid_o(), .data_o(out_thread[u]));
+    assign done[u] = out_valid[u] ? one[out_thread[u]] : '0;
+  end
+
+  rebase_unit #(.E(E), .M(M), .SUM_STAGES(SUM_STAGES)) u_rebase (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(issue_valid[U_RB]), .ready_o(unit_ready[U_RB]),
+    .o_hi_i(t_rb_o_hi[sel[U_RB]]), .o_lo_i(t_rb_o_lo[sel[U_RB]]), .d_hi_i(t_rb_d_hi[sel[U_RB]]),
+    .d_lo_i(t_rb_d_lo[sel[U_RB]]), .t_i(t_rb_t[sel[U_RB]]), .valid_o(out_valid[U_RB]), .ready_i(1'b1),
+    .p_hi_o(rb_p_hi), .p_lo_o(rb_p_lo), .te_o(rb_te));
+
+  xform_wide #(.E(E), .M(M), .SUM_STAGES(SUM_STAGES)) u_wide (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(issue_valid[U_XW]), .ready_o(unit_ready[U_XW]),
+    .m_i(t_xw_m[sel[U_XW]]), .tlo_i(t_xw_tlo[sel[U_XW]]), .p_hi_i(t_xw_p_hi[sel[U_XW]]),
+    .p_lo_i(t_xw_p_lo[sel[U_XW]]), .point_i(t_xw_point[sel[U_XW]]), .valid_o(out_valid[U_XW]), .ready_i(1'b1),
+    .r_hi_o(xw_hi), .r_lo_o(xw_lo));
+
+  xform_unit #(.E(E), .M(M), .ADD_STAGES(ADD_STAGES), .MUL_STAGES(MUL_STAGES)) u_xform (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(issue_valid[U_XF]), .ready_o(unit_ready[U_XF]),
+    .m_i(t_xf_m[sel[U_XF]]), .v_i(t_xf_v[sel[U_XF]]), .point_i(1'b0), .valid_o(out_valid[U_XF]), .ready_i(1'b1),
+    .r_o(xf_r));
+
+  isect_unit #(.E(E), .M(M), .ADD_STAGES(ADD_STAGES), .MUL_STAGES(MUL_STAGES), .DIV_STAGES(DIV_STAGES),
+               .CMP_STAGES(CMP_STAGES)) u_isect (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(issue_valid[U_IS]), .ready_o(unit_ready[U_IS]),
+    .o_i(t_is_o[sel[U_IS]]), .d_i(t_is_d[sel[U_IS]]), .te_i(t_is_te[sel[U_IS]]), .tmin_i(t_is_tmin[sel[U_IS]]),
+    .tmax_i(t_is_tmax[sel[U_IS]]), .shared_i(t_is_shared[sel[U_IS]]), .valid_o(out_valid[U_IS]), .ready_i(1'b1),
+    .hit_o(is_hit), .t_o(is_t), .u_o(is_u), .v_o(is_v), .cos_o(is_cos));
+
+  logic [2:0] add_valid;
+  assign unit_ready[U_ADD] = 1'b1;  // the operators have no stall
+  for (genvar j = 0; j < 3; j++) begin : g_add
+    f24_add #(.E(E), .M(M), .STAGES(ADD_STAGES)) u_add (
+      .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(issue_valid[U_ADD]),
+      .a_i(t_add_a[sel[U_ADD]][j*W +: W]), .b_i(t_add_b[sel[U_ADD]][j*W +: W]), .sub_i(t_add_sub[sel[U_ADD]]),
+      .valid_o(add_valid[j]), .res_o(add_r[j*W +: W]));
+  end
+  assign out_valid[U_ADD] = &add_valid;
+
+  assign unit_ready[U_SUM] = 1'b1;
+  f24_sum_exact #(.E(E), .M(M), .N(9), .STAGES(SUM_STAGES)) u_sum (
+    .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(issue_valid[U_SUM]), .a_i(t_sum_a[sel[U_SUM]]),
+    .b_i(t_sum_b[sel[U_SUM]]), .valid_o(out_valid[U_SUM]), .hi_o(sum_hi), .lo_o());
+  /* verilator lint_on PINCONNECTEMPTY */
+
+  // ---- kd-node reads: whose they are, in request order ----
+  logic [TW-1:0] node_q [2**TW];
+  logic [TW:0] node_wr, node_rd;
+  always_ff @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) begin
+      node_wr <= '0;
+      node_rd <= '0;
+    end else begin
+      if (node_req_valid_o && node_req_ready_i) begin
+        node_q[node_wr[TW-1:0]] <= node_thread;
+        node_wr <= node_wr + 1'b1;
+      end
+      if (node_rsp_valid_i) node_rd <= node_rd + 1'b1;
+    end
+  assign t_node_rsp = node_rsp_valid_i ? one[node_q[node_rd[TW-1:0]]] : '0;
+
+  // the lowest thread of a set (the word port's next owner, the next packet out)
+  function automatic logic [TW-1:0] lowest(input logic [THREADS-1:0] m);
+    lowest = '0;
+    for (int t = THREADS - 1; t >= 0; t--)
+      if (m[t]) lowest = TW'(t);
+  endfunction
+
+  // ---- the word port: lent to the lowest loading thread until its load is done ----
+  always_ff @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) owner_valid <= 1'b0;
+    else if (!owner_valid || !t_loading[owner]) begin
+      owner_valid <= |t_loading;
+      owner <= lowest(t_loading);
+    end
+  assign mem_req_valid_o = owner_valid && t_mem_req[owner];
+  assign mem_addr_o = t_mem_addr[owner];
+
+  // ---- packets in and out ----
+  logic [TW-1:0] out_sel;
+  assign out_sel = lowest(t_valid);
+  assign ready_o = t_ready[thread_i];
+  assign valid_o = |t_valid;
+  assign t_out_ready = ready_i && valid_o ? one[out_sel] : '0;
+  assign thread_o = out_sel;
+  assign inst_o = t_inst[out_sel];
+  assign tri_o = t_tri[out_sel];
+  assign t_o = t_t[out_sel];
+  assign u_o = t_u[out_sel];
+  assign v_o = t_v[out_sel];
+  assign cos_o = t_cos[out_sel];
+  assign count_o = t_count[out_sel];
+  always_comb begin
+    inflight_o = '0;
+    for (int t = 0; t < THREADS; t++) inflight_o = inflight_o + (TW+1)'(t_waiting[t]);
+  end
+endmodule

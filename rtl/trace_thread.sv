@@ -1,0 +1,729 @@
+// trace_thread: one thread of the ray tracing core (trace_core): the state of its packet
+// (trace_state: the rays, alive, best_t, the hits, the level and per level the leaf, the list
+// address and have_cur, the current instance/object/triangle and need mask, the object-space rays
+// in double words, t0, best_rel, tmin_rel, the rebased origins p and te) and the FSM of
+// hls/units/trace.c's trace_step (route_after_list, enter_single_object, op_scene_clip, op_walk,
+// rebase_leaf, op_list, op_inst_xform, op_inst_clip, op_tri_xform, op_tri_isect), one unit
+// transaction at a time. Per unit it raises a request with the operation's operands (*_req_o and
+// the operand ports) and waits for the core's grant (*_grant_i: the unit took it), then for the
+// result, which the core delivers to this thread alone (*_done_i with the result ports, shared by
+// all threads). The descriptor words (header, instance, object, triangle records) come through the
+// word port, which the core lends to one loading thread at a time. TRAV_STACK only (the
+// algorithm trav_unit has). The stacks and mailboxes live in trav_unit and list_unit.
+// Latency: the sum of the packet's unit operations, their waits for the units and the reads.
+// Resources: the state registers, 36 W bits per ray, a 40-word descriptor buffer, about 20 words
+// of routing state and 10 counters of 32 bits; the record unpacking (f24_vertex_lo) and the
+// identity mapping (xform_identity) in wires. Yosys 0.23 synth_xilinx at e7m16: 5718 LUTs, 6183
+// flip-flops, 4 DSP48E1 (the record addresses' constant multiplications), 205 CARRY4: all in
+// flip-flops, so the paper's 64 threads want this state in block RAM indexed by thread.
+// Handshake: valid/ready at the packet input and the result output; request/grant to the units.
+module trace_thread #(
+  parameter int E = 7,
+  parameter int M = 16
+) (
+  input  logic                        clk_i,
+  input  logic                        rst_ni,
+  // packet in (trace_begin)
+  input  logic                        valid_i,
+  output logic                        ready_o,
+  input  logic [2:0]                  flags_i,    // TRACE_SKIP_TOP, TRACE_ANY_HIT, TRACE_IDENTITY
+  input  logic [3:0]                  active_i,
+  input  logic [4*3*(E+M+1)-1:0]      o_i,        // ray i: words 3i .. 3i+2 (x, y, z)
+  input  logic [4*3*(E+M+1)-1:0]      d_i,
+  input  logic [4*(E+M+1)-1:0]        tmin_i,
+  input  logic [4*(E+M+1)-1:0]        tmax_i,
+  // hits out (TP_DONE)
+  output logic                        valid_o,
+  input  logic                        ready_i,
+  output logic [4*32-1:0]             inst_o,     // TRACE_NO_HIT for a miss
+  output logic [4*32-1:0]             tri_o,
+  output logic [4*(E+M+1)-1:0]        t_o,
+  output logic [4*(E+M+1)-1:0]        u_o,
+  output logic [4*(E+M+1)-1:0]        v_o,
+  output logic [4*(E+M+1)-1:0]        cos_o,
+  output logic [10*32-1:0]            count_o,    // trace_counters in its order (words: 4 kinds)
+  // word read port (descriptors), lent by the core
+  output logic                        mem_req_valid_o,
+  input  logic                        mem_req_ready_i,
+  output logic [31:0]                 mem_addr_o,
+  input  logic                        mem_rsp_valid_i,
+  input  logic [31:0]                 mem_rdata_i,
+  input  logic                        node_rsp_i,  // a kd-node read of this thread answered
+  output logic                        loading_o,   // reading descriptor words (wants the word port)
+  output logic                        waiting_o,   // an operation of this thread is in a unit
+  // traversal unit
+  output logic                        trav_req_o,
+  input  logic                        trav_grant_i,
+  output logic [1:0]                  trav_kind_o,
+  output logic                        trav_level_o,
+  output logic [4*3*(E+M+1)-1:0]      trav_o_o,
+  output logic [4*3*(E+M+1)-1:0]      trav_d_o,
+  output logic [4*(E+M+1)-1:0]        trav_tn_o,
+  output logic [4*(E+M+1)-1:0]        trav_tf_o,
+  output logic [4*(E+M+1)-1:0]        trav_best_o,
+  output logic [3:0]                  trav_mask_o,
+  output logic [6*(E+M+1)-1:0]        trav_box_o,
+  output logic [31:0]                 trav_nodes_o,
+  input  logic                        trav_done_i,
+  input  logic [3:0]                  trav_mask_i,
+  input  logic [4*(E+M+1)-1:0]        trav_tn_i,
+  input  logic [4*(E+M+1)-1:0]        trav_tf_i,
+  input  logic                        trav_have_cur_i,
+  input  logic                        trav_leaf_i,
+  input  logic [31:0]                 trav_leaf_first_i,
+  input  logic [31:0]                 trav_leaf_count_i,
+  input  logic [3:0]                  trav_leaf_mask_i,
+  input  logic [4*(E+M+1)-1:0]        trav_leaf_tn_i,
+  // list unit
+  output logic                        list_req_o,
+  input  logic                        list_grant_i,
+  output logic                        list_level_o,
+  output logic                        list_clear_o,
+  output logic [31:0]                 list_lists_o,
+  output logic [31:0]                 list_first_o,
+  output logic [31:0]                 list_k_o,
+  output logic [3:0]                  list_leaf_mask_o,
+  output logic [3:0]                  list_alive_o,
+  input  logic                        list_done_i,
+  input  logic [31:0]                 list_key_i,
+  input  logic [3:0]                  list_need_i,
+  input  logic [3:0]                  list_skip_i,
+  input  logic [31:0]                 list_k_i,
+  // rebase unit
+  output logic                        rb_req_o,
+  input  logic                        rb_grant_i,
+  output logic [3*(E+M+1)-1:0]        rb_o_hi_o,
+  output logic [3*(E+M+1)-1:0]        rb_o_lo_o,
+  output logic [3*(E+M+1)-1:0]        rb_d_hi_o,
+  output logic [3*(E+M+1)-1:0]        rb_d_lo_o,
+  output logic [E+M:0]                rb_t_o,
+  input  logic                        rb_done_i,
+  input  logic [3*(E+M+1)-1:0]        rb_p_hi_i,
+  input  logic [3*(E+M+1)-1:0]        rb_p_lo_i,
+  input  logic [E+M:0]                rb_te_i,
+  // the transformation unit's wide mode
+  output logic                        xw_req_o,
+  input  logic                        xw_grant_i,
+  output logic [12*(E+M+1)-1:0]       xw_m_o,
+  output logic [3*(E+M+1)-1:0]        xw_tlo_o,
+  output logic [3*(E+M+1)-1:0]        xw_p_hi_o,
+  output logic [3*(E+M+1)-1:0]        xw_p_lo_o,
+  output logic                        xw_point_o,
+  input  logic                        xw_done_i,
+  input  logic [3*(E+M+1)-1:0]        xw_hi_i,
+  input  logic [3*(E+M+1)-1:0]        xw_lo_i,
+  // the transformation unit (directions, and rows 0 and 1 of the origin path)
+  output logic                        xf_req_o,
+  input  logic                        xf_grant_i,
+  output logic [12*(E+M+1)-1:0]       xf_m_o,
+  output logic [3*(E+M+1)-1:0]        xf_v_o,
+  input  logic                        xf_done_i,
+  input  logic [3*(E+M+1)-1:0]        xf_r_i,
+  // the intersection unit
+  output logic                        is_req_o,
+  input  logic                        is_grant_i,
+  output logic [3*(E+M+1)-1:0]        is_o_o,
+  output logic [3*(E+M+1)-1:0]        is_d_o,
+  output logic [E+M:0]                is_te_o,
+  output logic [E+M:0]                is_tmin_o,
+  output logic [E+M:0]                is_tmax_o,
+  output logic [2:0]                  is_shared_o,
+  input  logic                        is_done_i,
+  input  logic                        is_hit_i,
+  input  logic [E+M:0]                is_t_i,
+  input  logic [E+M:0]                is_u_i,
+  input  logic [E+M:0]                is_v_i,
+  input  logic [E+M:0]                is_cos_i,
+  // 3 adders (one operation on 3 lanes)
+  output logic                        add_req_o,
+  input  logic                        add_grant_i,
+  output logic [3*(E+M+1)-1:0]        add_a_o,
+  output logic [3*(E+M+1)-1:0]        add_b_o,
+  output logic                        add_sub_o,
+  input  logic                        add_done_i,
+  input  logic [3*(E+M+1)-1:0]        add_r_i,
+  // the exact sum of 9 products (the plane distance)
+  output logic                        sum_req_o,
+  input  logic                        sum_grant_i,
+  output logic [9*(E+M+1)-1:0]        sum_a_o,
+  output logic [9*(E+M+1)-1:0]        sum_b_o,
+  input  logic                        sum_done_i,
+  input  logic [E+M:0]                sum_hi_i
+);
+  localparam int W = 1 + E + M;
+  localparam logic [E-1:0] EXP_MAX = '1;
+  localparam logic [W-1:0] POS_INF = {1'b0, EXP_MAX, {M{1'b0}}};
+  localparam logic [W-1:0] DNAN = {1'b0, EXP_MAX, 1'b1, {(M-1){1'b0}}};
+  localparam logic [31:0] NO_HIT = '1;
+  // memory image layout (docs/memory-image.md; hls/units/trace.c)
+  localparam int H_INSTANCES = 7, H_BOUNDS = 12, H_OBJECTS_AT = 18 + 2 * 5, H_INST_AT = 18 + 2 * 8;
+  localparam int H_TOP_NODES_AT = 18 + 2 * 9, H_TOP_LISTS_AT = 18 + 2 * 10, HDR_WORDS = H_TOP_LISTS_AT + 1;
+  localparam int TRI_BITS = 12 * W + 3 * 9 + 3;             // F24_TRIANGLE_BITS
+  localparam int TRI_WORDS = (TRI_BITS + 31) / 32;          // F24_TRIANGLE_RECORD_WORDS
+  localparam int INST_WORDS = TRI_WORDS * ((17 + TRI_WORDS - 1) / TRI_WORDS);
+  localparam int INST_READ = 17, OBJ_READ = 14, LBUF = 40;
+  localparam int C_STEPS = 0, C_LEAVES = 1, C_ENTRIES = 2, C_SKIPS = 3, C_XFORMS = 4, C_ISECTS = 5;
+  localparam int C_NODES = 6, C_LISTS = 7, C_MATRICES = 8;
+  if (M < 8) begin : g_m_check
+    $error("trace_thread: M >= 8 (the vertex's low part, 9-bit multiples, converts exactly)");
+  end
+
+  // ---- state of the packet in flight (trace_state) ----
+  // the FSM's states (trace_step's operations and their unit transactions)
+  localparam logic [5:0]
+    S_IDLE = 6'd0, S_CLR0 = 6'd1, S_LOAD = 6'd2, S_HDR = 6'd3, S_SC_GO = 6'd4, S_TRAV_WAIT = 6'd5,
+    S_SC_DONE = 6'd6, S_START_GO = 6'd7, S_START_DONE = 6'd8, S_SINGLE_NODE = 6'd9, S_SINGLE_LIST = 6'd10, S_ROUTE = 6'd11,
+    S_WALK_GO = 6'd12, S_WALK_DONE = 6'd13, S_LIST_GO = 6'd14, S_LIST_WAIT = 6'd15, S_RB_RAY = 6'd16, S_RB_WAIT = 6'd17,
+    S_IX_LOAD = 6'd18, S_IX = 6'd19, S_IX_RAY = 6'd20, S_WIDE_GO = 6'd21, S_WIDE_WAIT = 6'd22, S_IC_LOAD = 6'd23,
+    S_IC_CLR = 6'd24, S_IC_RAY = 6'd25, S_ADD_WAIT = 6'd26, S_IC_CLIP = 6'd27, S_IC_DONE = 6'd28, S_TX_LOAD = 6'd29,
+    S_TI_RAY = 6'd30, S_XF_GO = 6'd31, S_XF_WAIT = 6'd32, S_TI_OFS = 6'd33, S_TI_SUM = 6'd34, S_SUM_WAIT = 6'd35,
+    S_TI_ISECT = 6'd36, S_TI_HIT = 6'd37, S_DONE = 6'd38, S_IC_ADD = 6'd39, S_HIT_ADD = 6'd40;
+  logic [5:0] st, ret, ld_ret, add_ret;
+
+  logic [2:0] flags;
+  logic [3:0] active, alive, need, todo;
+  logic [1:0] ray;
+  logic [3*W-1:0] ro [4], rd [4], so [4], sd [4], so_lo [4], sd_lo [4], p_hi [4], p_lo [4];
+  logic [W-1:0] tmin [4], best_t [4], best_rel [4], tmin_rel [4], t0 [4], te [4];
+  logic [31:0] h_inst [4], h_tri [4];
+  logic [W-1:0] h_t [4], h_u [4], h_v [4], h_cos [4];
+  logic level;
+  logic [31:0] lists [2], leaf_first [2], leaf_count [2], k [2];
+  logic [3:0] leaf_mask [2];
+  logic [W-1:0] leaf_tn [2][4];
+  logic have_cur [2];
+  logic [31:0] hdr_instances, hdr_objects, hdr_inst, hdr_top_nodes, hdr_top_lists;
+  logic [6*W-1:0] scene_box;
+  logic [31:0] inst, obj, tris, tri_ix;
+  logic [31:0] cnt [10];
+  logic walk_read;
+  // the loader: ld_n words from ld_base into lbuf, then ld_ret
+  logic [31:0] lbuf [LBUF];
+  logic [31:0] ld_base;
+  logic [5:0] ld_n, ld_sent, ld_got;
+  // the intersection's intermediate values
+  logic [3*W-1:0] dd, ofs_lo, ofs_hi, ofs;
+  logic [1:0] ofs_pass;
+  logic xf_dir;                      // xform_unit pass: 1 the direction, 0 the offset c
+
+  // ---- lowest ray of todo ----
+  logic [1:0] first;
+  always_comb begin
+    first = 2'd0;
+    for (int i = 3; i >= 0; i--)
+      if (todo[i]) first = 2'(i);
+  end
+  function automatic logic [31:0] popcount(input logic [3:0] m);
+    popcount = {31'd0, m[0]} + {31'd0, m[1]} + {31'd0, m[2]} + {31'd0, m[3]};
+  endfunction
+
+  // ---- the records ----
+  logic [TRI_WORDS*32-1:0] rec;
+  always_comb
+    for (int i = 0; i < TRI_WORDS; i++) rec[i*32 +: 32] = lbuf[i];
+  logic [12*W-1:0] tri_m, inst_m;
+  logic [3*W-1:0] c_hi, c_lo, neg_c_hi, inst_tlo;
+  logic [2:0] tri_shared;
+  // f24_vertex_lo: the low part k 2^-8 ulp(hi) of a vertex component from its 9-bit field
+  function automatic logic [W-1:0] vertex_lo(input logic [8:0] field, input logic [E-1:0] he);
+    logic [8:0] mag;
+    logic [M-1:0] frac;
+    int p, e;
+    mag = field[8] ? 9'(-field) : field;
+    p = 0;
+    for (int i = 0; i < 9; i++)
+      if (mag[i]) p = i;
+    frac = M'({{(M-1){1'b0}}, mag} << (M - p));
+    e = {{(32-E){1'b0}}, he};
+    e = e + p - M - 8;
+    if (field == 0 || he == 0 || he == EXP_MAX) vertex_lo = '0;
+    else if (e <= 0) vertex_lo = {field[8], {(E+M){1'b0}}};
+    else vertex_lo = {field[8], e[E-1:0], frac};
+  endfunction
+  always_comb begin
+    tri_m = rec[0 +: 12*W];
+    for (int i = 0; i < 12; i++) inst_m[i*W +: W] = lbuf[i][W-1:0];
+    for (int j = 0; j < 3; j++) begin
+      c_hi[j*W +: W] = tri_m[(4*j+3)*W +: W];
+      neg_c_hi[j*W +: W] = c_hi[j*W +: W] ^ {1'b1, {(W-1){1'b0}}};
+      c_lo[j*W +: W] = vertex_lo(rec[12*W + 9*j +: 9], c_hi[j*W + M +: E]);
+      inst_tlo[j*W +: W] = lbuf[14 + j][W-1:0];
+    end
+    tri_shared = rec[12*W + 27 +: 3];
+  end
+  // xform_identity: the bits xform_point/xform_vector give for an identity with signed zeros
+  function automatic logic [3*W-1:0] identity(input logic [12*W-1:0] m, input logic [3*W-1:0] v, input logic point);
+    logic [3*W-1:0] r;
+    for (int kk = 0; kk < 3; kk++) begin
+      logic [W-1:0] c;
+      logic nan, neg;
+      c = v[kk*W +: W];
+      nan = c[M +: E] == EXP_MAX && c[M-1:0] != 0;
+      neg = point ? m[(4*kk+3)*W + W-1] : 1'b1;
+      for (int j = 0; j < 3; j++) begin
+        if (j != kk && v[j*W + M +: E] == EXP_MAX) nan = 1'b1;
+        neg &= j == kk ? v[j*W + W-1] : m[(4*kk+j)*W + W-1] ^ v[j*W + W-1];
+      end
+      r[kk*W +: W] = nan ? DNAN : c[M +: E] != 0 ? c : {neg, {(W-1){1'b0}}};
+    end
+    identity = r;
+  endfunction
+
+  // ---- the units ----
+  logic [4*3*W-1:0] ray_o, ray_d, obj_o, obj_d;
+  logic [4*W-1:0] v_tmin, v_tmax, v_best_t, v_best_rel, v_tmin_rel;
+  always_comb
+    for (int i = 0; i < 4; i++) begin
+      ray_o[i*3*W +: 3*W] = ro[i];
+      ray_d[i*3*W +: 3*W] = rd[i];
+      obj_o[i*3*W +: 3*W] = so[i];
+      obj_d[i*3*W +: 3*W] = sd[i];
+      v_tmin[i*W +: W] = tmin[i];
+      v_best_t[i*W +: W] = best_t[i];
+      v_best_rel[i*W +: W] = best_rel[i];
+      v_tmin_rel[i*W +: W] = tmin_rel[i];
+    end
+  assign v_tmax = tmax_i;  // taken with the packet only (best_t holds it afterwards)
+  assign trav_req_o = st == S_SC_GO || st == S_START_GO || st == S_WALK_GO || st == S_IC_CLIP;
+  assign trav_o_o = st == S_SC_GO || (st != S_IC_CLIP && !level) ? ray_o : obj_o;
+  assign trav_d_o = st == S_SC_GO || (st != S_IC_CLIP && !level) ? ray_d : obj_d;
+  assign trav_best_o = level ? v_best_rel : v_best_t;
+  assign trav_box_o = st == S_SC_GO ? scene_box : {lbuf[13][W-1:0], lbuf[12][W-1:0], lbuf[11][W-1:0],
+                                               lbuf[10][W-1:0], lbuf[9][W-1:0], lbuf[8][W-1:0]};
+  logic [4*W-1:0] clip_tn, clip_tf, r_leaf_tn;   // the traversal unit's last result
+  logic [3:0] clip_mask, r_leaf_mask;
+  logic r_have_cur, r_leaf;
+  logic [31:0] r_leaf_first, r_leaf_count;
+  always_comb begin
+    trav_kind_o = 2'd3;
+    trav_level_o = level;
+    trav_mask_o = alive;
+    trav_tn_o = clip_tn;
+    trav_tf_o = clip_tf;
+    unique case (st)
+      S_SC_GO: begin
+        trav_kind_o = 2'd0;
+        trav_level_o = 1'b0;
+        trav_mask_o = active;
+        trav_tn_o = v_tmin;
+        trav_tf_o = v_best_t;     // tmax
+      end
+      S_IC_CLIP: begin
+        trav_kind_o = 2'd1;
+        trav_level_o = 1'b1;
+        trav_mask_o = need;
+        trav_tn_o = v_tmin_rel;
+        trav_tf_o = v_best_rel;
+      end
+      S_START_GO: begin
+        trav_kind_o = 2'd2;
+        trav_mask_o = clip_mask;
+      end
+      default: ;
+    endcase
+  end
+  assign trav_nodes_o = level ? lbuf[0] : hdr_top_nodes;
+  // ---- the other units' operands ----
+  assign list_req_o = st == S_CLR0 || st == S_IC_CLR || st == S_LIST_GO;
+  assign list_clear_o = st != S_LIST_GO;
+  assign list_level_o = st == S_CLR0 ? 1'b0 : st == S_IC_CLR ? 1'b1 : level;
+  assign list_lists_o = lists[level];
+  assign list_first_o = leaf_first[level];
+  assign list_k_o = k[level];
+  assign list_leaf_mask_o = leaf_mask[level];
+  assign list_alive_o = alive;
+  // rebase: the leaf's origins (rebase_leaf, level 1) or the world ray to the top-level leaf (op_inst_xform)
+  logic rb_leaf;
+  assign rb_req_o = st == S_RB_RAY && todo != 0;
+  assign rb_o_hi_o = rb_leaf ? so[first] : ro[first];
+  assign rb_o_lo_o = rb_leaf ? so_lo[first] : '0;
+  assign rb_d_hi_o = rb_leaf ? sd[first] : rd[first];
+  assign rb_d_lo_o = rb_leaf ? sd_lo[first] : '0;
+  assign rb_t_o = leaf_tn[rb_leaf][first];
+  logic xw_point;
+  assign xw_req_o = st == S_WIDE_GO;
+  assign xw_m_o = inst_m;
+  assign xw_tlo_o = inst_tlo;
+  assign xw_p_hi_o = xw_point ? p_hi[ray] : rd[ray];
+  assign xw_p_lo_o = p_lo[ray];
+  assign xw_point_o = xw_point;
+  assign xf_req_o = st == S_XF_GO;
+  assign xf_m_o = tri_m;
+  assign xf_v_o = xf_dir ? sd[ray] : ofs;
+  // the plane distance O'z: n.p_hi + n.(-C_hi) + n.(p_lo - C_lo) in one exact sum
+  logic [W-1:0] oz;
+  assign sum_req_o = st == S_TI_SUM;
+  assign sum_a_o = {3{tri_m[8*W +: 3*W]}};
+  assign sum_b_o = {ofs_lo, neg_c_hi, p_hi[ray]};
+  logic [2*W-1:0] oxy;
+  assign is_req_o = st == S_TI_ISECT;
+  assign is_o_o = {oz, oxy};
+  assign is_d_o = dd;
+  assign is_te_o = te[ray];
+  assign is_tmin_o = tmin_rel[ray];
+  assign is_tmax_o = best_rel[ray];
+  assign is_shared_o = tri_shared;
+  logic [W-1:0] hit_t;               // the hit's t, taken as it leaves the intersection unit
+
+  // ---- the adders' operands, by the state that starts them ----
+  always_comb begin
+    add_req_o = 1'b0;
+    add_sub_o = 1'b1;
+    add_a_o = '0;
+    add_b_o = '0;
+    unique case (st)
+      S_IC_ADD: begin  // best_rel = best_t - t0, tmin_rel = tmin - t0
+        add_req_o = 1'b1;
+        add_a_o[0 +: 2*W] = {tmin[ray], best_t[ray]};
+        add_b_o[0 +: 2*W] = {t0[ray], t0[ray]};
+      end
+      S_TI_OFS: begin  // l = p_lo - C_lo, h = p_hi - C_hi, c = h + l
+        add_req_o = 1'b1;
+        add_sub_o = ofs_pass != 2'd2;
+        add_a_o = ofs_pass == 2'd0 ? p_lo[ray] : ofs_pass == 2'd1 ? p_hi[ray] : ofs_hi;
+        add_b_o = ofs_pass == 2'd0 ? c_lo : ofs_pass == 2'd1 ? c_hi : ofs_lo;
+      end
+      S_HIT_ADD: begin  // best_t = t0 + t
+        add_req_o = 1'b1;
+        add_sub_o = 1'b0;
+        add_a_o[0 +: W] = t0[ray];
+        add_b_o[0 +: W] = hit_t;
+      end
+      default: ;
+    endcase
+  end
+
+  assign mem_req_valid_o = st == S_LOAD && ld_sent != ld_n;
+  assign loading_o = st == S_LOAD;
+  assign waiting_o = st == S_TRAV_WAIT || st == S_LIST_WAIT || st == S_RB_WAIT || st == S_WIDE_WAIT ||
+                     st == S_XF_WAIT || st == S_ADD_WAIT || st == S_SUM_WAIT || st == S_TI_HIT;
+  assign mem_addr_o = ld_base + 32'(ld_sent);
+  assign ready_o = st == S_IDLE;
+  assign valid_o = st == S_DONE;
+  always_comb
+    for (int i = 0; i < 4; i++) begin
+      inst_o[i*32 +: 32] = h_inst[i];
+      tri_o[i*32 +: 32] = h_tri[i];
+      t_o[i*W +: W] = h_t[i];
+      u_o[i*W +: W] = h_u[i];
+      v_o[i*W +: W] = h_v[i];
+      cos_o[i*W +: W] = h_cos[i];
+    end
+  always_comb
+    for (int c = 0; c < 10; c++) count_o[c*32 +: 32] = cnt[c];
+
+  // the loader: reads n words from base into lbuf through the word port, then goes to next
+  task automatic load(input logic [31:0] base, input logic [5:0] n, input logic [5:0] next);
+    ld_base <= base;
+    ld_n <= n;
+    ld_sent <= '0;
+    ld_got <= '0;
+    ld_ret <= next;
+    st <= S_LOAD;
+  endtask
+
+  always_ff @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) begin
+      st <= S_IDLE;
+    end else begin
+      if (node_rsp_i) begin
+        cnt[C_NODES] <= cnt[C_NODES] + 2;
+        walk_read <= 1'b1;
+      end
+      unique case (st)
+        S_IDLE:
+          if (valid_i) begin
+            flags <= flags_i;
+            active <= active_i;
+            alive <= active_i;
+            level <= 1'b0;
+            have_cur[0] <= 1'b0;
+            have_cur[1] <= 1'b0;
+            for (int i = 0; i < 4; i++) begin
+              ro[i] <= o_i[i*3*W +: 3*W];
+              rd[i] <= d_i[i*3*W +: 3*W];
+              tmin[i] <= tmin_i[i*W +: W];
+              tmin_rel[i] <= tmin_i[i*W +: W];
+              best_t[i] <= v_tmax[i*W +: W];
+              best_rel[i] <= v_tmax[i*W +: W];
+              t0[i] <= '0;
+              h_inst[i] <= NO_HIT;
+              h_tri[i] <= NO_HIT;
+              h_t[i] <= POS_INF;
+              h_u[i] <= '0;
+              h_v[i] <= '0;
+              h_cos[i] <= '0;
+            end
+            for (int c = 0; c < 10; c++) cnt[c] <= '0;
+            st <= S_CLR0;
+          end
+        S_CLR0:
+          if (list_grant_i) load(32'd0, 6'(HDR_WORDS), S_HDR);
+        S_LOAD: begin
+          if (mem_req_valid_o && mem_req_ready_i) ld_sent <= ld_sent + 1'b1;
+          if (mem_rsp_valid_i) begin
+            lbuf[ld_got] <= mem_rdata_i;
+            ld_got <= ld_got + 1'b1;
+            if (ld_got + 1'b1 == ld_n) st <= ld_ret;
+          end
+        end
+        S_HDR: begin
+          hdr_instances <= lbuf[H_INSTANCES];
+          hdr_objects <= lbuf[H_OBJECTS_AT];
+          hdr_inst <= lbuf[H_INST_AT];
+          hdr_top_nodes <= lbuf[H_TOP_NODES_AT];
+          hdr_top_lists <= lbuf[H_TOP_LISTS_AT];
+          for (int j = 0; j < 6; j++) scene_box[j*W +: W] <= lbuf[H_BOUNDS + j][W-1:0];
+          st <= S_SC_GO;
+        end
+        // traversal unit: an operation issued, its result awaited (ret: what follows)
+        S_SC_GO: if (trav_grant_i) begin ret <= S_SC_DONE; st <= S_TRAV_WAIT; end
+        S_START_GO: if (trav_grant_i) begin ret <= S_START_DONE; st <= S_TRAV_WAIT; end
+        S_WALK_GO: if (trav_grant_i) begin ret <= S_WALK_DONE; walk_read <= 1'b0; st <= S_TRAV_WAIT; end
+        S_IC_CLIP: if (trav_grant_i) begin ret <= S_IC_DONE; st <= S_TRAV_WAIT; end
+        S_TRAV_WAIT:
+          if (trav_done_i) begin
+            clip_mask <= trav_mask_i;
+            clip_tn <= trav_tn_i;
+            clip_tf <= trav_tf_i;
+            r_have_cur <= trav_have_cur_i;
+            r_leaf <= trav_leaf_i;
+            r_leaf_first <= trav_leaf_first_i;
+            r_leaf_count <= trav_leaf_count_i;
+            r_leaf_mask <= trav_leaf_mask_i;
+            r_leaf_tn <= trav_leaf_tn_i;
+            st <= ret;
+          end
+        S_SC_DONE:  // op_scene_clip
+          if (clip_mask == 0 || hdr_instances == 0) st <= S_DONE;
+          else if (flags[0]) begin  // enter_single_object: its one-leaf list
+            need <= clip_mask;
+            leaf_count[0] <= '0;
+            k[0] <= '0;
+            for (int i = 0; i < 4; i++) leaf_tn[0][i] <= clip_tn[i*W +: W];
+            load(hdr_top_nodes + 1, 6'd1, S_SINGLE_NODE);
+          end else begin
+            lists[0] <= hdr_top_lists;
+            st <= S_START_GO;
+          end
+        S_START_DONE: begin
+          have_cur[level] <= 1'b1;
+          leaf_count[level] <= '0;
+          k[level] <= '0;
+          st <= S_WALK_GO;
+        end
+        S_SINGLE_NODE: load(hdr_top_lists + lbuf[0], 6'd1, S_SINGLE_LIST);
+        S_SINGLE_LIST: begin
+          inst <= lbuf[0];
+          st <= S_IX_LOAD;
+        end
+        S_ROUTE:  // route_after_list: the next entry, the next walk step, back up, or done
+          if (alive == 0) st <= S_DONE;
+          else if (k[level] < leaf_count[level]) st <= S_LIST_GO;
+          else if (have_cur[level]) st <= S_WALK_GO;
+          else if (!level) st <= S_DONE;
+          else level <= 1'b0;
+        S_WALK_DONE: begin  // op_walk
+          have_cur[level] <= r_have_cur;
+          if (r_leaf) begin
+            leaf_first[level] <= r_leaf_first;
+            leaf_count[level] <= r_leaf_count;
+            leaf_mask[level] <= r_leaf_mask;
+            k[level] <= '0;
+            for (int i = 0; i < 4; i++) leaf_tn[level][i] <= r_leaf_tn[i*W +: W];
+            cnt[C_LEAVES] <= cnt[C_LEAVES] + 1;
+          end else if (walk_read) cnt[C_STEPS] <= cnt[C_STEPS] + 1;
+          st <= S_ROUTE;
+        end
+        S_LIST_GO: if (list_grant_i) st <= S_LIST_WAIT;
+        S_LIST_WAIT:  // op_list
+          if (list_done_i) begin
+            k[level] <= list_k_i;
+            need <= list_need_i;
+            cnt[C_ENTRIES] <= cnt[C_ENTRIES] + 1;
+            cnt[C_SKIPS] <= cnt[C_SKIPS] + popcount(list_skip_i);
+            cnt[C_LISTS] <= cnt[C_LISTS] + 1;
+            if (level) tri_ix <= list_key_i;
+            else inst <= list_key_i;
+            ret <= list_need_i == 0 ? S_ROUTE : level ? S_TX_LOAD : S_IX_LOAD;
+            if (level && k[1] == 0) begin  // rebase_leaf: the leaf opens
+              rb_leaf <= 1'b1;
+              todo <= leaf_mask[1] & alive;
+              st <= S_RB_RAY;
+            end else st <= list_need_i == 0 ? S_ROUTE : level ? S_TX_LOAD : S_IX_LOAD;
+          end
+        S_RB_RAY:
+          if (todo == 0) st <= ret;
+          else if (rb_grant_i) begin
+            ray <= first;
+            todo[first] <= 1'b0;
+            st <= S_RB_WAIT;
+          end
+        S_RB_WAIT:
+          if (rb_done_i) begin
+            if (rb_leaf) begin
+              p_hi[ray] <= rb_p_hi_i;
+              p_lo[ray] <= rb_p_lo_i;
+              te[ray] <= rb_te_i;
+              st <= S_RB_RAY;
+            end else begin
+              p_hi[ray] <= rb_p_hi_i;
+              p_lo[ray] <= rb_p_lo_i;
+              t0[ray] <= rb_te_i;
+              xw_point <= 1'b1;
+              st <= S_WIDE_GO;
+            end
+          end
+        // op_inst_xform
+        S_IX_LOAD: load(hdr_inst + INST_WORDS * inst, 6'(INST_READ), S_IX);
+        S_IX: begin
+          obj <= hdr_objects + 16 * lbuf[12];
+          cnt[C_MATRICES] <= cnt[C_MATRICES] + INST_READ + OBJ_READ;
+          // an identity instance, or TRACE_IDENTITY's single one (enter_single_object): the rays pass
+          // as wiring, and the clip follows in the same operation
+          if (lbuf[13][0] || flags[2]) begin
+            for (int i = 0; i < 4; i++)
+              if (need[i]) begin
+                so[i] <= identity(inst_m, ro[i], 1'b1);
+                sd[i] <= identity(inst_m, rd[i], 1'b0);
+                so_lo[i] <= '0;
+                sd_lo[i] <= '0;
+                t0[i] <= '0;
+              end
+            st <= S_IC_LOAD;
+          end else begin
+            cnt[C_XFORMS] <= cnt[C_XFORMS] + 2 * popcount(need);
+            todo <= need;
+            st <= S_IX_RAY;
+          end
+        end
+        S_IX_RAY:  // per ray: rebase to the top-level leaf, the origin wide, the direction wide
+          if (todo == 0) st <= S_IC_LOAD;
+          else begin
+            rb_leaf <= 1'b0;
+            st <= S_RB_RAY;
+            ret <= S_IC_LOAD;
+          end
+        S_WIDE_GO: if (xw_grant_i) st <= S_WIDE_WAIT;
+        S_WIDE_WAIT:
+          if (xw_done_i) begin
+            if (xw_point) begin
+              so[ray] <= xw_hi_i;
+              so_lo[ray] <= xw_lo_i;
+              xw_point <= 1'b0;
+              st <= S_WIDE_GO;
+            end else begin
+              sd[ray] <= xw_hi_i;
+              sd_lo[ray] <= xw_lo_i;
+              st <= S_RB_RAY;  // the next ray (todo)
+            end
+          end
+        // op_inst_clip / inst_clip
+        S_IC_LOAD: load(obj, 6'(OBJ_READ), S_IC_CLR);
+        S_IC_CLR:
+          if (list_grant_i) begin
+            todo <= need;
+            st <= S_IC_RAY;
+          end
+        S_IC_RAY:
+          if (todo == 0) st <= S_IC_CLIP;
+          else begin
+            ray <= first;
+            todo[first] <= 1'b0;
+            st <= S_IC_ADD;
+          end
+        S_IC_ADD:
+          if (add_grant_i) begin
+            add_ret <= S_IC_RAY;
+            st <= S_ADD_WAIT;
+          end
+        S_ADD_WAIT:
+          if (add_done_i) begin
+            if (add_ret == S_IC_RAY) begin
+              best_rel[ray] <= add_r_i[0 +: W];
+              tmin_rel[ray] <= add_r_i[W +: W];
+            end else if (add_ret == S_TI_OFS) begin
+              if (ofs_pass == 2'd0) ofs_lo <= add_r_i;
+              else if (ofs_pass == 2'd1) ofs_hi <= add_r_i;
+              else ofs <= add_r_i;
+              ofs_pass <= ofs_pass + 1'b1;
+            end else best_t[ray] <= add_r_i[0 +: W];
+            if (add_ret == S_TI_OFS && ofs_pass == 2'd2) st <= S_XF_GO;
+            else if (add_ret == S_TI_HIT) begin
+              h_t[ray] <= add_r_i[0 +: W];
+              st <= S_TI_RAY;
+            end else st <= add_ret;
+          end
+        S_IC_DONE:
+          if (clip_mask == 0) st <= S_ROUTE;
+          else begin
+            tris <= lbuf[2];
+            lists[1] <= lbuf[1];
+            level <= 1'b1;
+            st <= S_START_GO;
+          end
+        // op_tri_xform, op_tri_isect
+        S_TX_LOAD: begin
+          cnt[C_MATRICES] <= cnt[C_MATRICES] + TRI_WORDS;
+          cnt[C_XFORMS] <= cnt[C_XFORMS] + popcount(need);
+          cnt[C_ISECTS] <= cnt[C_ISECTS] + popcount(need);
+          todo <= need;
+          load(tris + TRI_WORDS * tri_ix, 6'(TRI_WORDS), S_TI_RAY);
+        end
+        S_TI_RAY:
+          if (todo == 0) st <= S_ROUTE;
+          else begin
+            ray <= first;
+            todo[first] <= 1'b0;
+            xf_dir <= 1'b1;
+            st <= S_XF_GO;
+          end
+        S_XF_GO: if (xf_grant_i) st <= S_XF_WAIT;
+        S_XF_WAIT:
+          if (xf_done_i) begin
+            if (xf_dir) begin
+              dd <= xf_r_i;
+              xf_dir <= 1'b0;
+              ofs_pass <= 2'd0;
+              st <= S_TI_OFS;
+            end else begin
+              oxy <= xf_r_i[0 +: 2*W];
+              st <= S_TI_SUM;
+            end
+          end
+        S_TI_OFS:
+          if (add_grant_i) begin
+            add_ret <= S_TI_OFS;
+            st <= S_ADD_WAIT;
+          end
+        S_TI_SUM: if (sum_grant_i) st <= S_SUM_WAIT;
+        S_SUM_WAIT:
+          if (sum_done_i) begin
+            oz <= sum_hi_i;
+            st <= S_TI_ISECT;
+          end
+        S_TI_ISECT: if (is_grant_i) st <= S_TI_HIT;
+        S_TI_HIT:
+          if (is_done_i) begin
+            if (is_hit_i) begin
+              hit_t <= is_t_i;
+              best_rel[ray] <= is_t_i;
+              h_inst[ray] <= inst;
+              h_tri[ray] <= tri_ix;
+              h_u[ray] <= is_u_i;
+              h_v[ray] <= is_v_i;
+              h_cos[ray] <= is_cos_i;
+              if (flags[1]) alive[ray] <= 1'b0;
+              st <= S_HIT_ADD;
+            end else st <= S_TI_RAY;
+          end
+        S_HIT_ADD:
+          if (add_grant_i) begin
+            add_ret <= S_TI_HIT;
+            st <= S_ADD_WAIT;
+          end
+        S_DONE: if (ready_i) st <= S_IDLE;
+        default: st <= S_IDLE;
+      endcase
+    end
+endmodule
