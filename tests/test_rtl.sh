@@ -16,12 +16,15 @@
 # (rtl/rgs_raygen.sv) matches rgs_primary and the recorded packets of cycle-mode frames of the room
 # (perspective) and an orthographic cornell box, whose block order the tile controller
 # (rtl/tile_ctrl.sv) reproduces, and of a functional frame on 2 threads, and 2 x 10^4 random blocks
-# on random cameras; the benches catch mutants (a rounder that never rounds ties to even, a mailbox
+# on random cameras; the RGS's decoding of the shading record's vertex normals
+# (rtl/shade_rec_decode.sv) matches shade_rec_normal and the normals recorded while rendering the
+# room, the cornell box and (from ../shared/scenes, if present) subpass_scene_opaque and
+# CesiumMilkTruck with shadows and reflections, and 2 x 10^4 random codes; the benches catch mutants (a rounder that never rounds ties to even, a mailbox
 # that never moves on, a cache without its tag forwarding, a scheduler whose pointer never moves on,
 # a walk that pushes the near child; with SAARCOR_RTL_MUTANTS=all, as make rtl-test runs it, also a
 # square root without its sticky bit, a pixel centre without its + 1/2, a tile controller stepping
-# past the region's edge, a vector mode whose unused terms are +0 and a rebase that moves by
-# t = Inf). Prints cmocka-style lines.
+# past the region's edge, a vector mode whose unused terms are +0, a rebase that moves by
+# t = Inf and a normal decoder folding the lower hemisphere with the wrong sign). Prints cmocka-style lines.
 set -u
 cd "$(dirname "$0")/.."
 B=${BUILD:-build}
@@ -154,6 +157,30 @@ t_rgs_mutants_caught() {
     mutant rgs tile_ctrl.sv "s/33'(x_q) + 33'd2 < 33'(x1_q)/33'(x_q) + 33'd2 <= 33'(x1_q)/" -n 2000
 }
 
+# the RGS's shading datapath: the vertex normals decoded while rendering scenes with vertex normals
+# (textured ones among them), then random codes, which must include missing and folded normals
+t_shade() {
+  local scenes=(room cornell) s
+  for s in subpass_scene_opaque CesiumMilkTruck; do
+    if [[ -f ../shared/scenes/$s.glb ]]; then scenes+=("../shared/scenes/$s.glb"); else echo "../shared/scenes/$s.glb is absent: skipped"; fi
+  done
+  for s in "${scenes[@]}"; do
+    local d
+    d="$T/shade_$(basename "$s" .glb)"
+    "$BIN" render "$s" -o "$d.png" --width 32 --height 24 --max-depth 2 --capture-unit-io "$d" --capture-limit 20000 \
+      >/dev/null 2>&1
+    "$B/rtl/e7m16/tb_shade" -n 0 --capture "$d"
+  done
+  "$B/rtl/e7m16/tb_shade" -n 20000 | tee "$T/shade.log"
+  grep -Eq "; [1-9][0-9]* missing, [1-9][0-9]* folded\), latency" "$T/shade.log"
+}
+
+# the normal decoder's fold of the lower hemisphere with the x component's sign the wrong way round
+t_shade_mutant_caught() {
+  mutant shade shade_rec_decode.sv "s/fx = x < 0 ? ay - OCT_ONE : OCT_ONE - ay;/fx = x < 0 ? OCT_ONE - ay : ay - OCT_ONE;/" \
+    -n 2000
+}
+
 # the rebase unit without the test for t = Inf (rebase_distance: 0), the wide mode's vector with its
 # five unused terms +0 * +0 (the sum of three -0 products would come out +0)
 t_wide_mutants_caught() {
@@ -188,10 +215,12 @@ run_case rtl_exact_sum_matches_c_model t_exact_sum
 run_case rtl_list_unit_and_caches_match_c_model t_list_and_cache
 run_case rtl_list_cache_benches_catch_mutants t_list_cache_mutants_caught
 run_case rtl_rgs_raygen_and_tile_ctrl_match_c_model t_rgs
+run_case rtl_shade_datapath_matches_c_model_and_capture t_shade
 if extra_mutants; then
   run_case rtl_sqrt_bench_catches_mutant t_sqrt_mutant_caught
   run_case rtl_rgs_bench_catches_mutants t_rgs_mutants_caught
   run_case rtl_wide_bench_catches_mutants t_wide_mutants_caught
+  run_case rtl_shade_bench_catches_mutant t_shade_mutant_caught
 fi
 run_case rtl_trav_unit_matches_c_model_and_capture t_trav_unit
 run_case rtl_trav_bench_catches_mutant t_trav_mutant_caught

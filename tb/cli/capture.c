@@ -16,11 +16,12 @@
 #include "memimage.h"
 #include "rebase_unit.h"
 #include "rgs.h"
+#include "shade_rec.h"
 #include "trav_node.h"
 #include "trav_unit.h"
 #include "xform_unit.h"
 
-enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_RGS, CAP_REBASE, CAP_WIDE, CAP_TRAV_UNIT, CAP_UNITS };
+enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_RGS, CAP_REBASE, CAP_WIDE, CAP_TRAV_UNIT, CAP_SHADE_REC, CAP_UNITS };
 
 static struct {
     int on;
@@ -29,8 +30,9 @@ static struct {
     pthread_mutex_t lock;
 } cap = { .lock = PTHREAD_MUTEX_INITIALIZER };
 
-const char *const capture_unit_names[CAPTURE_UNITS] = { "xform", "isect", "trav", "list",  "mem",
-                                                        "sched", "rgs",   "rebase", "wide", "trav_unit" };
+const char *const capture_unit_names[CAPTURE_UNITS] = { "xform", "isect",  "trav", "list",      "mem",
+                                                        "sched", "rgs",    "rebase", "wide",     "trav_unit",
+                                                        "shade_rec" };
 
 /* The list unit's threads: trace_state addresses in the order first seen (the RTL's thread ids),
  * and the memory interfaces (pipes) likewise. */
@@ -497,6 +499,31 @@ void __wrap_rgs_block_begin(const uint32_t *mem, uint32_t x0, uint32_t y0, rgs_b
     fputc(' ', f);
     words(f, rp->tmax, TRACE_PACKET);
     end(f);
+}
+
+/* ---- RGS shading: each vertex normal decoded from a compact shading record (surface_at's
+ * hit_normal, for rtl/tb/tb_shade.cpp): the record's 4 normal words, the vertex k, the unit normal ---- */
+
+f24_vec3 __real_shade_rec_normal(const uint32_t *normals, uint32_t k);
+f24_vec3 __wrap_shade_rec_normal(const uint32_t *normals, uint32_t k);
+
+CAPTURE_PATH f24_vec3 captured_shade_rec_normal(const uint32_t *normals, uint32_t k)
+{
+    const f24_vec3 n = __real_shade_rec_normal(normals, k);
+    FILE *f = begin(CAP_SHADE_REC);
+    if (!f)
+        return n;
+    const uint32_t out[3] = { n.x, n.y, n.z };
+    words(f, normals, SHADE_NORMAL_WORDS);
+    fprintf(f, " %x ", k);
+    words(f, out, 3);
+    end(f);
+    return n;
+}
+
+f24_vec3 __wrap_shade_rec_normal(const uint32_t *normals, uint32_t k)
+{
+    return capturing() ? captured_shade_rec_normal(normals, k) : __real_shade_rec_normal(normals, k);
 }
 
 /* ---- traversal unit: its operations per trace_state and level (for rtl/tb/tb_trav.cpp) ---- */

@@ -20,12 +20,14 @@
  * translation's 3 low words, p hi, p lo, point flag; r hi, r lo; a vector with zero low words),
  * DIR/trav_unit.hex (the traversal unit's operations, for rtl/tb/tb_trav.cpp: scene and object
  * clips, walk starts and steps per thread and level with their operands, the node read and the
- * walker state after; the layout at record_trav in capture.c).
+ * walker state after; the layout at record_trav in capture.c), DIR/shade_rec.hex (the RGS's
+ * decoding of the compact shading record's vertex normals, shade_rec_normal, for
+ * rtl/tb/tb_shade.cpp: the record's 4 normal words, the vertex k, the unit normal's 3 words).
  * The hls/ units are not touched: the program is linked with --wrap for xform_point, xform_vector,
  * isect_unit_rebased, isect_unit_packet (recorded ray by ray), trav_node_split, list_unit_entry,
  * list_mailboxes_clear, mem_iface_read, mem_iface_flush, mem_iface_new_frame, rgs_block_begin,
  * rebase_origin, xform_point_wide, xform_vector_wide (called from trace.c, in another object),
- * trav_scene_clip, trav_object_clip, trav_start and trav_walk, and the wrappers record the calls
+ * trav_scene_clip, trav_object_clip, trav_start, trav_walk and shade_rec_normal (called from rgs.c), and the wrappers record the calls
  * while capturing is on (at most `limit` transactions per unit; recorded in call order, which with several host threads
  * interleaves).
  */
@@ -38,8 +40,8 @@
 int capture_start(const char *dir, uint64_t limit, char *err, unsigned errlen);
 
 /* Transactions recorded per unit (DIR/NAME.hex for each name): xform, isect, trav, list, mem, sched, rgs,
- * rebase, wide, trav_unit. */
-#define CAPTURE_UNITS 10
+ * rebase, wide, trav_unit, shade_rec. */
+#define CAPTURE_UNITS 11
 extern const char *const capture_unit_names[CAPTURE_UNITS];
 void capture_counts(uint64_t out[CAPTURE_UNITS]);
 
