@@ -94,7 +94,8 @@ comma := ,
 CAPTURE_WRAP := $(addprefix -Wl$(comma)--wrap=,xform_point xform_vector isect_unit_rebased isect_unit_packet trav_node_split \
   list_unit_entry list_mailboxes_clear mem_iface_read mem_iface_flush mem_iface_new_frame rgs_block_begin \
   rebase_origin xform_point_wide xform_vector_wide \
-  trav_scene_clip trav_object_clip trav_start trav_walk shade_rec_normal)
+  trav_scene_clip trav_object_clip trav_start trav_walk shade_rec_normal \
+  rgs_sample_bilinear)
 
 # per-format objects: everything that depends on the fp24 parameters
 fp_objs = $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(HLS_FP24) $(TB_FP))
@@ -393,9 +394,10 @@ rtl-test: deps rtl-lint
 	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_rgs -n $(RTL_N) || exit 1; done | tee -a $(BUILD)/rtl/rgs.log
 	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_sum -n $(RTL_N) || exit 1; done \
 	  | tee -a $(BUILD)/rtl/units.log
-	@# the RGS's shading datapath: the vertex normals decoded in frames with shadows and reflections
-	@# (scenes with vertex normals; textured ones from ../shared/scenes when present), random codes
-	@set -o pipefail; for s in room cornell plants $(wildcard ../shared/scenes/subpass_scene_opaque.glb ../shared/scenes/CesiumMilkTruck.glb); do \
+	@# the RGS's shading datapath: the vertex normals decoded and the textures sampled in frames with
+	@# shadows and reflections (textured scenes from ../shared/scenes when present), random ones
+	@set -o pipefail; for s in room cornell plants $(wildcard ../shared/scenes/subpass_scene_opaque.glb ../shared/scenes/CesiumMilkTruck.glb \
+	  ../shared/scenes/Avocado/Avocado.gltf); do \
 	  for f in $(DEFAULT_FMT) e8m23; do \
 	    $(BUILD)/w/$$f/saarcor render $$s -o $(BUILD)/rtl/shade.$$f.png --width 128 --height 96 \
 	      --capture-unit-io $(BUILD)/rtl/capture/shade.$$f --capture-limit 1000000 >/dev/null 2>&1 || exit 1; \

@@ -1,6 +1,7 @@
 /* Ray generation and shading unit: see rgs.h and docs/shading.md. */
 #include "rgs.h"
 
+#include "rgs_ops.h"
 #include "shade_rec.h"
 #include "trace_ops.h"
 #include "xform_unit.h"
@@ -15,18 +16,12 @@ enum {
 };
 
 #define BACKGROUND 0x1A1A24u
-#define Q12_MAX 65535u
 #define Q12_AMBIENT 614u   /* 0.15 */
 #define Q12_DIFFUSE 3482u  /* 0.85 */
 #define MIN_WEIGHT 16u     /* 1/256: lighter secondary rays are not spawned */
 #define EPS_SHIFT 10       /* e = 2^-10 x the largest extent of the scene bounds */
 
 /* ---- integer colour arithmetic (Q12) ---------------------------------------------------- */
-
-static uint32_t q_sat(uint32_t x) { return x < Q12_MAX ? x : Q12_MAX; }
-static uint32_t q_mul(uint32_t a, uint32_t b) { return q_sat((a * b + 2048u) >> 12); }
-static uint32_t q_add(uint32_t a, uint32_t b) { return q_sat(a + b); }
-static uint32_t q_byte(uint32_t t) { return (t << 4) | (t >> 4); } /* 8-bit -> Q12, 255 -> 4095 */
 
 /* fp24 -> Q12: one multiplier, one adder, the float-to-int converter; clamps to [0, 65535]. */
 static uint32_t q_of(f24_t x)
@@ -39,7 +34,6 @@ static uint32_t q_of(f24_t x)
 /* ---- fp24 vector helpers ------------------------------------------------------------------ */
 
 static uint32_t region_start(const uint32_t *mem, uint32_t r) { return mem[H_REGIONS + 2 * r]; }
-static f24_t ratio(int32_t num, int32_t den) { return f24_div(f24_from_i32(num), f24_from_i32(den)); }
 /* The three products side by side (lane 3 unused), then their sum in order. */
 static F24Q_FN f24_t dot3(f24_vec3 a, f24_vec3 b)
 {
@@ -103,7 +97,7 @@ camera_matrix:
         t.m[r][3] = mem[cam + 4 + (uint32_t)r];
     }
     const f24_vec3 origin = { mem[cam + 4], mem[cam + 5], mem[cam + 6] };
-    const f24_t half = ratio(1, 2);
+    const f24_t half = rgs_ratio(1, 2);
     rp->active = 0;
 block_pixels:
     for (int i = 0; i < TRACE_PACKET; i++) {
@@ -170,50 +164,6 @@ transpose:
 }
 
 #if SAARCOR_CFG_TEXTURES
-/* The texel word of texture entry tex at wrapped coordinates (one shading read). */
-static uint32_t texel(const uint32_t *mem, const uint32_t *tex, uint32_t x, uint32_t y, unit_op *op, trace_counters *c)
-{
-    const uint32_t at = tex[2] + y * tex[0] + x;
-    shade_read(op, c, at, 1);
-    return mem[at];
-}
-
-/* Channel k of a texel word, as Q12. */
-static uint32_t channel(uint32_t texel_word, int k) { return q_byte(texel_word >> (8 * k) & 0xFFu); }
-
-/* Texel coordinate of texture coordinate s over n texels (centres at +1/2): the wrapped integer
- * part i0, its right neighbour i1 and the fraction in Q8 (0..256). */
-static void texel_axis(f24_t s, uint32_t n, uint32_t *i0, uint32_t *i1, uint32_t *frac)
-{
-    const f24_t x = f24_sub(f24_mul(s, f24_from_i32((int32_t)n)), ratio(1, 2));
-    int32_t i = f24_to_i32(x);
-    if (f24_lt(x, f24_from_i32(i)) && i != INT32_MIN)
-        i -= 1; /* to_i32 rounds toward zero; this is floor (a saturated coordinate stays) */
-    const f24_t f = f24_sub(x, f24_from_i32(i));
-    const int32_t q = f24_to_i32(f24_add(f24_mul(f, f24_from_i32(256)), ratio(1, 2)));
-    const int32_t m = i % (int32_t)n;
-    *i0 = (uint32_t)(m < 0 ? m + (int32_t)n : m); /* repeat wrapping */
-    *i1 = *i0 + 1 == n ? 0 : *i0 + 1;
-    *frac = q < 0 ? 0u : q > 256 ? 256u : (uint32_t)q;
-}
-
-/* Bilinear sample (Q12) of texture entry tex at (s, t), in integers: weights in Q8. */
-static void sample_bilinear(const uint32_t *mem, const uint32_t *tex, f24_t s, f24_t t, uint32_t out[3], unit_op *op,
-                            trace_counters *c)
-{
-    uint32_t x0, x1, fx, y0, y1, fy;
-    texel_axis(s, tex[0], &x0, &x1, &fx);
-    texel_axis(t, tex[1], &y0, &y1, &fy);
-    const uint32_t t00 = texel(mem, tex, x0, y0, op, c), t10 = texel(mem, tex, x1, y0, op, c);
-    const uint32_t t01 = texel(mem, tex, x0, y1, op, c), t11 = texel(mem, tex, x1, y1, op, c);
-bilinear:
-    for (int k = 0; k < 3; k++) {
-        const uint32_t top = channel(t00, k) * (256u - fx) + channel(t10, k) * fx;
-        const uint32_t bottom = channel(t01, k) * (256u - fx) + channel(t11, k) * fx;
-        out[k] = (top * (256u - fy) + bottom * fy + 32768u) >> 16;
-    }
-}
-
 /* Multiplies out (Q12) by the bilinear sample of texture t at the hit's coordinates of set uv
  * (hls/units/shade_rec.h), if t names a texture and the object has texture coordinates. */
 static void modulate_texture(const uint32_t *mem, uint32_t t, uint32_t flags, const uint32_t *tail, uint32_t uv,
@@ -229,7 +179,7 @@ texcoords:
     const uint32_t entry = region_start(mem, R_TEXTURES) + TEX_WORDS * t;
     uint32_t tex[3];
     shade_read(op, c, entry, TEX_WORDS);
-    sample_bilinear(mem, &mem[entry], st[0], st[1], tex, op, c);
+    rgs_sample_bilinear(mem, &mem[entry], st[0], st[1], tex, op, c);
 texture_modulate:
     for (int k = 0; k < 3; k++)
         out[k] = q_mul(out[k], tex[k]);

@@ -1,17 +1,28 @@
-// Co-simulation of the RGS's shading datapath (rtl/shade_rec_decode.sv) against the C model: each
-// vertex normal decoded from a compact shading record is compared with shade_rec_normal
-// (hls/units/shade_rec.c) and, for captured ones (saarcor render --capture-unit-io DIR:
-// DIR/shade_rec.hex, every shade_rec_normal call while rendering: the record's 4 normal words, the
-// vertex k, the unit normal), with the normal recorded while rendering. The bench slices the
-// vertex's 42-bit code out of the record (shade_rec_bits, as the RGS's read of the record would) and
-// gives every transaction a thread id (its number modulo 64), which must come out with its result.
-// Random transactions: records of random words with one vertex's code set to an edge (the missing
-// normal x = -2^20 with any y, the poles and axes +-(2^20 - 1), codes on and beside the fold
-// |x| + |y| = 2^20 - 1, the smallest components) or anything. The handshake is exercised: in every
-// other epoch of 1024 cycles the input has random gaps and the output random back pressure. A
+// Co-simulation of the RGS's shading datapath against the C model, one stream per unit:
+//  shade_rec_decode (rtl/shade_rec_decode.sv): each vertex normal decoded from a compact shading
+//    record, against shade_rec_normal (hls/units/shade_rec.c). The bench slices the vertex's 42-bit
+//    code out of the record (shade_rec_bits, as the RGS's read of the record would).
+//  tex_bilinear (rtl/tex_bilinear.sv): each bilinear texture sample, against rgs_texel_axis and
+//    rgs_bilinear_blend (hls/units/rgs_tex.c, the functions rgs_sample_bilinear is made of). The
+//    bench is the memory: every texel request must carry the C's address (texture address + y w +
+//    x, in the C's order t00, t10, t01, t11) and gets its word back in order, after 1 cycle or, in
+//    the gappy epochs, 1 to 4 cycles with gaps.
+// Captured transactions (saarcor render --capture-unit-io DIR: DIR/shade_rec.hex, every
+// shade_rec_normal call: the record's 4 normal words, the vertex k, the unit normal; DIR/tex.hex,
+// every rgs_sample_bilinear call: s, t, width, height, texel address, the 4 texel words read, the
+// axes' x0 x1 fx y0 y1 fy, the sample) come first and are also checked against the recording; then
+// random ones: records of random words with one vertex's code set to an edge (the missing normal
+// x = -2^20 with any y, the poles and axes +-(2^20 - 1), codes on and beside the fold
+// |x| + |y| = 2^20 - 1, small components) or anything; samples at coordinates near 0 and 1, on
+// texel centres and edges, large, negative, Inf, NaN or any encoding, on textures of 1 texel, small,
+// power-of-two and huge sizes (to 2^31 - 1) at any address (the address sums wrap as the C's),
+// with random texels. Every transaction gets a thread id (its number modulo 64), which must come
+// out with its result. The handshakes are exercised: in every other epoch of 1024 cycles the inputs
+// have random gaps and the outputs (and the memory's request port) random back pressure. A
 // mismatch prints the unit, the transaction, the cycle, the thread, the field and both values (and
-// the inputs); exit code 1 on any mismatch, a wrong thread, or a result lost or invented.
+// the inputs); exit code 1 on any mismatch, a wrong thread or address, or a result lost or invented.
 // usage: tb_shade [-n N] [--seed S] [--capture DIR]
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -23,6 +34,7 @@
 #include "tb_common.h"
 
 extern "C" {
+#include "rgs_ops.h"
 #include "shade_rec.h"
 }
 
@@ -32,7 +44,8 @@ namespace {
 
 // shade_rec.hex's word order: inputs (the record's normal words, the vertex), then the normal
 struct normal_tx { uint32_t rec[SHADE_NORMAL_WORDS], k, n[3]; };
-constexpr std::size_t NORMAL_IN = SHADE_NORMAL_WORDS + 1;
+// tex.hex's word order: inputs (s, t, the texture entry), the texels, the axes, the sample
+struct tex_tx { uint32_t s, t, width, height, addr, texel[4], axes[6], rgb[3]; };
 constexpr uint32_t OCT_MASK = (1u << SHADE_OCT_BITS) - 1u;
 
 uint64_t code_of(const normal_tx &x)
@@ -48,6 +61,21 @@ void model(normal_tx &x)
     x.n[0] = n.x, x.n[1] = n.y, x.n[2] = n.z;
 }
 
+// the axes and the sample of the texels as the C computes them
+void model(tex_tx &x)
+{
+    uint32_t *a = x.axes;
+    rgs_texel_axis(x.s, x.width, &a[0], &a[1], &a[2]);
+    rgs_texel_axis(x.t, x.height, &a[3], &a[4], &a[5]);
+    rgs_bilinear_blend(x.texel, a[2], a[5], x.rgb);
+}
+
+// the word address of texel j (t00, t10, t01, t11) of a modelled sample
+uint32_t texel_addr(const tex_tx &x, int j)
+{
+    return x.addr + x.axes[j < 2 ? 3 : 4] * x.width + x.axes[j & 1];
+}
+
 // an octahedral component: an edge or anything
 int32_t rnd_oct()
 {
@@ -61,11 +89,13 @@ int32_t rnd_oct()
     }
 }
 
+uint32_t rnd32() { return rnd() << 16 ^ rnd(); }
+
 normal_tx random_normal()
 {
     normal_tx x{};
     for (auto &w : x.rec)
-        w = rnd() << 16 ^ rnd();
+        w = rnd32();
     x.k = rnd() % 3;
     int32_t cx = rnd_oct(), cy = rnd_oct();
     if (rnd() % 4 == 0) { // on or beside the fold |x| + |y| = 2^20 - 1
@@ -83,26 +113,110 @@ normal_tx random_normal()
     return x;
 }
 
+uint32_t rnd_size()
+{
+    switch (rnd() % 6) {
+    case 0: return 1 + rnd() % 3;
+    case 1: return 1u << rnd() % 13;
+    case 2: return 1 + rnd32() % 0x7FFFFFFFu;
+    default: return 1 + rnd() % 300;
+    }
+}
+
+// a texture coordinate over n texels: moderate, on a texel centre or edge, huge, special or anything
+uint32_t rnd_coord(uint32_t n)
+{
+    switch (rnd() % 10) {
+    case 0: return rnd_f24();
+    case 1: return rnd32() & F24_MASK;
+    case 2: case 3: { // (k + 1/2) / n or k / n, k possibly outside 0..n
+        const int32_t k = (int32_t)(rnd() % (2 * (n % 4096) + 3)) - (int32_t)(n % 4096) - 1;
+        const f24_t num = (rnd() & 1u) ? f24_add(f24_from_i32(k), f24_div(F24_ONE, f24_from_i32(2))) : f24_from_i32(k);
+        return f24_div(num, f24_from_i32((int32_t)n));
+    }
+    default: // [-4, 4)
+        return f24_div(f24_from_i32((int32_t)(rnd() % 65536) - 32768), f24_from_i32(8192));
+    }
+}
+
+tex_tx random_tex()
+{
+    tex_tx x{};
+    x.width = rnd_size(), x.height = rnd_size();
+    x.s = rnd_coord(x.width), x.t = rnd_coord(x.height);
+    x.addr = rnd() % 4 ? rnd() % 0x1000000u : rnd32();
+    for (auto &w : x.texel)
+        w = rnd() % 8 ? rnd32() : (rnd() & 1u) ? 0xFFFFFFFFu : 0u;
+    model(x);
+    return x;
+}
+
 uint64_t g_mismatches = 0;
 
-// the normal's words and the thread id against the expected ones; the first 10 mismatches print
-void check(std::size_t t, const normal_tx &want, const uint32_t got[3], uint32_t tid, const char *against)
+// field by field: the first 10 mismatches print the unit, transaction, cycle, thread, fields, inputs
+void report(const char *unit, std::size_t t, const char *against, const char *const field[], const uint32_t *want,
+            const uint32_t *got, std::size_t n, const uint32_t *in, std::size_t n_in, uint32_t tid)
 {
     const bool tid_ok = tid == t % 64;
-    if (tid_ok && !std::memcmp(want.n, got, sizeof want.n))
+    if (tid_ok && !std::memcmp(want, got, n * sizeof(uint32_t)))
         return;
     if (g_mismatches++ >= 10)
         return;
-    std::printf("MISMATCH shade_rec_decode transaction %zu (vertex %u, code %011llx) at cycle %llu, thread %zu, against %s:\n",
-                t, want.k, (unsigned long long)code_of(want), (unsigned long long)g_cycle, t % 64, against);
+    std::printf("MISMATCH %s transaction %zu at cycle %llu, thread %zu, against %s:\n", unit, t,
+                (unsigned long long)g_cycle, t % 64, against);
     if (!tid_ok)
-        std::printf("  thread   expected %zu rtl %u\n", t % 64, tid);
-    const char *field[3] = { "n.x", "n.y", "n.z" };
-    for (int c = 0; c < 3; c++)
-        if (want.n[c] != got[c])
-            std::printf("  %-8s expected %06x rtl %06x\n", field[c], want.n[c], got[c]);
-    print_words("inputs", want.rec, NORMAL_IN);
+        std::printf("  %-8s expected %zu rtl %u\n", "thread", t % 64, tid);
+    for (std::size_t c = 0; c < n; c++)
+        if (want[c] != got[c])
+            std::printf("  %-8s expected %06x rtl %06x\n", field[c], want[c], got[c]);
+    print_words("inputs", in, n_in);
 }
+
+const char *const NORMAL_FIELD[] = { "n.x", "n.y", "n.z" };
+const char *const TEX_FIELD[] = { "x0", "x1", "fx", "y0", "y1", "fy", "r", "g", "b" };
+
+template <typename T> bool load(const std::string &dir, const char *file, std::vector<T> &out, const char *why)
+{
+    bool present;
+    if (!read_capture("tb_shade", dir + "/" + file, out, present))
+        return false;
+    if (!present || out.empty()) {
+        std::printf("tb_shade: %s lacks %s vectors (%s)\n", dir.c_str(), file, why);
+        return false;
+    }
+    return true;
+}
+
+// a unit's stream: the transactions, those accepted and not yet handed over (in order)
+template <typename T> struct stream {
+    std::vector<T> tx;
+    std::size_t captured = 0, next = 0;
+    std::deque<std::size_t> in_flight;
+    uint64_t checked = 0, vs_capture = 0, invented = 0, latency = 0, first_in = 0;
+
+    bool offer(bool calm) const { return next < tx.size() && (calm || rnd() % 4 != 0); }
+    void accept()
+    {
+        if (next == 0)
+            first_in = g_cycle;
+        in_flight.push_back(next++);
+    }
+    // the transaction a result belongs to, or SIZE_MAX for a result nobody asked for
+    std::size_t hand_over()
+    {
+        if (in_flight.empty()) {
+            invented++;
+            return SIZE_MAX;
+        }
+        const std::size_t t = in_flight.front();
+        in_flight.pop_front();
+        if (!latency)
+            latency = g_cycle - first_in;
+        checked++;
+        return t;
+    }
+    bool done() const { return next == tx.size() && in_flight.empty(); }
+};
 
 } // namespace
 
@@ -112,27 +226,27 @@ int main(int argc, char **argv)
     std::string capture;
     if (!parse_args(argc, argv, "tb_shade", n, capture))
         return 2;
-    std::vector<normal_tx> tx;
-    std::size_t captured = 0;
+    stream<normal_tx> nd;
+    stream<tex_tx> tx;
     if (!capture.empty()) {
-        bool present;
-        if (!read_capture("tb_shade", capture + "/shade_rec.hex", tx, present))
+        if (!load(capture, "shade_rec.hex", nd.tx, "a scene with vertex normals?"))
             return 2;
-        if (!present || tx.empty()) {
-            std::printf("tb_shade: %s lacks shade_rec.hex vectors (a scene with vertex normals?)\n", capture.c_str());
+        bool present; // a scene without textures records no sample
+        if (!read_capture("tb_shade", capture + "/tex.hex", tx.tx, present))
             return 2;
-        }
-        captured = tx.size();
+        nd.captured = nd.tx.size(), tx.captured = tx.tx.size();
     }
     for (std::size_t i = 0; i < n; i++)
-        tx.push_back(random_normal());
-    std::size_t missing = 0, folded = 0;
-    for (const auto &x : tx) {
+        nd.tx.push_back(random_normal()), tx.tx.push_back(random_tex());
+    std::size_t missing = 0, folded = 0, wrapped = 0;
+    for (const auto &x : nd.tx) {
         const uint64_t c = code_of(x);
         const int32_t cx = (int32_t)((uint32_t)c << 11) >> 11, cy = (int32_t)((uint32_t)(c >> SHADE_OCT_BITS) << 11) >> 11;
         missing += cx < -SHADE_OCT_ONE;
         folded += cx >= -SHADE_OCT_ONE && std::abs(cx) + std::abs(cy) > SHADE_OCT_ONE;
     }
+    for (const auto &x : tx.tx) // the right or lower neighbour wrapped to 0
+        wrapped += x.axes[1] == 0 || x.axes[4] == 0;
 
     VerilatedContext ctx;
     Vtb_shade top{ &ctx };
@@ -141,53 +255,106 @@ int main(int argc, char **argv)
     top.clk_i = 1;
     top.eval();
     top.rst_ni = 1;
-    std::deque<std::size_t> in_flight;
-    std::size_t next = 0;
-    uint64_t checked = 0, vs_capture = 0, invented = 0, idle = 0, latency = 0, first_in = 0;
-    for (; (next < tx.size() || !in_flight.empty()) && idle < 1000; g_cycle++) {
+    // the memory: requests taken (sample, texel) in order; responses due at a cycle, in order
+    std::size_t requests = 0;
+    struct response { uint64_t due; uint32_t word; };
+    std::deque<response> rsp;
+    uint64_t bad_addr = 0, idle = 0;
+    for (; (!nd.done() || !tx.done()) && idle < 1000; g_cycle++) {
         const bool calm = (g_cycle / 1024) % 2 == 0;
         top.clk_i = 0;
-        top.n_valid_i = next < tx.size() && (calm || rnd() % 4 != 0);
+        top.n_valid_i = nd.offer(calm);
         if (top.n_valid_i) {
-            top.n_code_i = code_of(tx[next]);
-            top.n_tid_i = next % 64;
+            top.n_code_i = code_of(nd.tx[nd.next]);
+            top.n_tid_i = nd.next % 64;
         }
         top.n_ready_i = calm || rnd() % 4 != 0;
+        top.t_valid_i = tx.offer(calm);
+        if (top.t_valid_i) {
+            const tex_tx &x = tx.tx[tx.next];
+            top.t_s_i = x.s, top.t_t_i = x.t, top.t_width_i = x.width, top.t_height_i = x.height, top.t_addr_i = x.addr;
+            top.t_tid_i = tx.next % 64;
+        }
+        top.t_ready_i = calm || rnd() % 4 != 0;
+        top.t_req_ready_i = calm || rnd() % 4 != 0;
+        top.t_rsp_valid_i = !rsp.empty() && rsp.front().due <= g_cycle;
+        top.t_rsp_data_i = top.t_rsp_valid_i ? rsp.front().word : 0;
         top.eval();
-        const bool take = top.n_valid_i && top.n_ready_o, give = top.n_valid_o && top.n_ready_i;
-        if (give) {
+        bool any = false;
+        if (top.n_valid_o && top.n_ready_i) {
+            const std::size_t t = nd.hand_over();
             const uint32_t got[3] = { get(top.n_o, 0), get(top.n_o, 1), get(top.n_o, 2) };
-            if (in_flight.empty()) {
-                invented++;
-            } else {
-                const std::size_t t = in_flight.front();
-                in_flight.pop_front();
-                if (!latency)
-                    latency = g_cycle - first_in;
-                normal_tx want = tx[t];
+            if (t != SIZE_MAX) {
+                normal_tx want = nd.tx[t];
                 model(want);
-                check(t, want, got, top.n_tid_o, "C model");
-                if (t < captured)
-                    check(t, tx[t], got, top.n_tid_o, "capture"), vs_capture++;
-                checked++;
+                report("shade_rec_decode", t, "C model", NORMAL_FIELD, want.n, got, 3, want.rec, 5, top.n_tid_o);
+                if (t < nd.captured)
+                    report("shade_rec_decode", t, "capture", NORMAL_FIELD, nd.tx[t].n, got, 3, want.rec, 5, top.n_tid_o),
+                        nd.vs_capture++;
             }
-            idle = 0;
-        } else {
-            idle++;
+            any = true;
         }
-        if (take) {
-            if (next == 0)
-                first_in = g_cycle;
-            in_flight.push_back(next++);
+        if (top.t_valid_o && top.t_ready_i) {
+            const std::size_t t = tx.hand_over();
+            if (t != SIZE_MAX) {
+                tex_tx want = tx.tx[t];
+                model(want);
+                // the RTL's axes are inside: only its sample is compared; the C's axes with the recording's
+                uint32_t got[9];
+                std::memcpy(got, want.axes, sizeof want.axes);
+                for (int k = 0; k < 3; k++)
+                    got[6 + k] = (uint32_t)(top.t_rgb_o >> (16 * k) & 0xFFFFu);
+                report("tex_bilinear", t, "C model", TEX_FIELD, want.axes, got, 9, &want.s, 9, top.t_tid_o);
+                if (t < tx.captured)
+                    report("tex_bilinear", t, "capture", TEX_FIELD, tx.tx[t].axes, got, 9, &want.s, 9, top.t_tid_o),
+                        tx.vs_capture++;
+            }
+            any = true;
         }
+        if (top.t_rsp_valid_i && top.t_rsp_ready_o)
+            rsp.pop_front();
+        if (top.t_req_valid_o && top.t_req_ready_i) {
+            // the request's sample: the (requests / 4)th accepted, in order
+            const std::size_t s = requests / 4;
+            const int j = (int)(requests % 4);
+            requests++;
+            if (s >= tx.next) {
+                bad_addr++;
+                std::printf("MISMATCH tex_bilinear request %zu at cycle %llu: no sample to read for\n", requests - 1,
+                            (unsigned long long)g_cycle);
+            } else {
+                tex_tx want = tx.tx[s];
+                model(want);
+                const uint32_t a = texel_addr(want, j);
+                if (top.t_req_addr_o != a && bad_addr++ < 10)
+                    std::printf("MISMATCH tex_bilinear transaction %zu at cycle %llu, thread %zu: texel %d address "
+                                "expected %08x rtl %08x\n",
+                                s, (unsigned long long)g_cycle, s % 64, j, a, top.t_req_addr_o);
+                const uint64_t after = calm ? 1 : 1 + rnd() % 4;
+                const uint64_t due = std::max<uint64_t>(g_cycle + after, rsp.empty() ? 0 : rsp.back().due);
+                rsp.push_back({ due, want.texel[j] });
+            }
+        }
+        if (top.n_valid_i && top.n_ready_o)
+            nd.accept();
+        if (top.t_valid_i && top.t_ready_o)
+            tx.accept();
+        idle = any ? 0 : idle + 1;
         top.clk_i = 1;
         top.eval();
     }
-    const bool lost = next < tx.size() || !in_flight.empty();
+    const bool lost = !nd.done() || !tx.done();
     std::printf("tb_shade: shade_rec_decode %llu normals checked (%zu captured, %llu also against the capture; %zu missing, "
-                "%zu folded), latency %llu cycles, %llu cycles, %llu mismatches%s%s\n",
-                (unsigned long long)checked, captured, (unsigned long long)vs_capture, missing, folded,
-                (unsigned long long)latency, (unsigned long long)g_cycle, (unsigned long long)g_mismatches,
-                lost ? ", RESULTS LOST" : "", invented ? ", RESULTS INVENTED" : "");
-    return g_mismatches || lost || invented ? 1 : 0;
+                "%zu folded), latency %llu cycles\n",
+                (unsigned long long)nd.checked, nd.captured, (unsigned long long)nd.vs_capture, missing, folded,
+                (unsigned long long)nd.latency);
+    std::printf("tb_shade: tex_bilinear %llu samples checked (%zu captured, %llu also against the capture; %zu with a "
+                "neighbour wrapped to 0), %zu texel reads, latency %llu cycles\n",
+                (unsigned long long)tx.checked, tx.captured, (unsigned long long)tx.vs_capture, wrapped, requests,
+                (unsigned long long)tx.latency);
+    const bool invented = nd.invented || tx.invented;
+    std::printf("tb_shade: %llu cycles, %llu mismatches, %llu wrong addresses%s%s\n", (unsigned long long)g_cycle,
+                (unsigned long long)g_mismatches, (unsigned long long)bad_addr, lost ? ", RESULTS LOST" : "",
+                invented ? ", RESULTS INVENTED" : "");
+    return g_mismatches || bad_addr || lost || invented ? 1 : 0;
 }

@@ -16,12 +16,13 @@
 #include "memimage.h"
 #include "rebase_unit.h"
 #include "rgs.h"
+#include "rgs_ops.h"
 #include "shade_rec.h"
 #include "trav_node.h"
 #include "trav_unit.h"
 #include "xform_unit.h"
 
-enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_RGS, CAP_REBASE, CAP_WIDE, CAP_TRAV_UNIT, CAP_SHADE_REC, CAP_UNITS };
+enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_RGS, CAP_REBASE, CAP_WIDE, CAP_TRAV_UNIT, CAP_SHADE_REC, CAP_TEX, CAP_UNITS };
 
 static struct {
     int on;
@@ -32,7 +33,7 @@ static struct {
 
 const char *const capture_unit_names[CAPTURE_UNITS] = { "xform", "isect",  "trav", "list",      "mem",
                                                         "sched", "rgs",    "rebase", "wide",     "trav_unit",
-                                                        "shade_rec" };
+                                                        "shade_rec", "tex" };
 
 /* The list unit's threads: trace_state addresses in the order first seen (the RTL's thread ids),
  * and the memory interfaces (pipes) likewise. */
@@ -524,6 +525,43 @@ CAPTURE_PATH f24_vec3 captured_shade_rec_normal(const uint32_t *normals, uint32_
 f24_vec3 __wrap_shade_rec_normal(const uint32_t *normals, uint32_t k)
 {
     return capturing() ? captured_shade_rec_normal(normals, k) : __real_shade_rec_normal(normals, k);
+}
+
+/* The RGS's bilinear texture samples (for rtl/tb/tb_shade.cpp): s, t, the texture entry's width,
+ * height and texel address; the 4 texel words read (t00, t10, t01, t11); the two axes' x0, x1, fx
+ * and y0, y1, fy (rgs_texel_axis); the Q12 sample. */
+void __real_rgs_sample_bilinear(const uint32_t *mem, const uint32_t *tex, f24_t s, f24_t t, uint32_t out[3], unit_op *op,
+                                trace_counters *c);
+void __wrap_rgs_sample_bilinear(const uint32_t *mem, const uint32_t *tex, f24_t s, f24_t t, uint32_t out[3], unit_op *op,
+                                trace_counters *c);
+
+CAPTURE_PATH void captured_sample(const uint32_t *mem, const uint32_t *tex, f24_t s, f24_t t, uint32_t out[3],
+                                  unit_op *op, trace_counters *c)
+{
+    __real_rgs_sample_bilinear(mem, tex, s, t, out, op, c);
+    FILE *f = begin(CAP_TEX);
+    if (!f)
+        return;
+    uint32_t a[6];
+    rgs_texel_axis(s, tex[0], &a[0], &a[1], &a[2]);
+    rgs_texel_axis(t, tex[1], &a[3], &a[4], &a[5]);
+    const uint32_t in[5] = { s, t, tex[0], tex[1], tex[2] };
+    const uint32_t texels[4] = { mem[tex[2] + a[3] * tex[0] + a[0]], mem[tex[2] + a[3] * tex[0] + a[1]],
+                                 mem[tex[2] + a[4] * tex[0] + a[0]], mem[tex[2] + a[4] * tex[0] + a[1]] };
+    fprintf(f, "%x %x %x %x %x %x %x %x %x", in[0], in[1], in[2], in[3], in[4], texels[0], texels[1], texels[2], texels[3]);
+    for (int k = 0; k < 6; k++)
+        fprintf(f, " %x", a[k]);
+    fprintf(f, " %x %x %x", out[0], out[1], out[2]);
+    end(f);
+}
+
+void __wrap_rgs_sample_bilinear(const uint32_t *mem, const uint32_t *tex, f24_t s, f24_t t, uint32_t out[3], unit_op *op,
+                                trace_counters *c)
+{
+    if (capturing())
+        captured_sample(mem, tex, s, t, out, op, c);
+    else
+        __real_rgs_sample_bilinear(mem, tex, s, t, out, op, c);
 }
 
 /* ---- traversal unit: its operations per trace_state and level (for rtl/tb/tb_trav.cpp) ---- */

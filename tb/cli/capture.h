@@ -22,12 +22,15 @@
  * clips, walk starts and steps per thread and level with their operands, the node read and the
  * walker state after; the layout at record_trav in capture.c), DIR/shade_rec.hex (the RGS's
  * decoding of the compact shading record's vertex normals, shade_rec_normal, for
- * rtl/tb/tb_shade.cpp: the record's 4 normal words, the vertex k, the unit normal's 3 words).
+ * rtl/tb/tb_shade.cpp: the record's 4 normal words, the vertex k, the unit normal's 3 words),
+ * DIR/tex.hex (the RGS's bilinear texture samples, rgs_sample_bilinear, for rtl/tb/tb_shade.cpp:
+ * s, t, the texture's width, height and texel address, the 4 texel words read, the axes' x0, x1,
+ * fx, y0, y1, fy, the Q12 sample).
  * The hls/ units are not touched: the program is linked with --wrap for xform_point, xform_vector,
  * isect_unit_rebased, isect_unit_packet (recorded ray by ray), trav_node_split, list_unit_entry,
  * list_mailboxes_clear, mem_iface_read, mem_iface_flush, mem_iface_new_frame, rgs_block_begin,
  * rebase_origin, xform_point_wide, xform_vector_wide (called from trace.c, in another object),
- * trav_scene_clip, trav_object_clip, trav_start, trav_walk and shade_rec_normal (called from rgs.c), and the wrappers record the calls
+ * trav_scene_clip, trav_object_clip, trav_start, trav_walk, shade_rec_normal and rgs_sample_bilinear (called from rgs.c), and the wrappers record the calls
  * while capturing is on (at most `limit` transactions per unit; recorded in call order, which with several host threads
  * interleaves).
  */
@@ -40,8 +43,8 @@
 int capture_start(const char *dir, uint64_t limit, char *err, unsigned errlen);
 
 /* Transactions recorded per unit (DIR/NAME.hex for each name): xform, isect, trav, list, mem, sched, rgs,
- * rebase, wide, trav_unit, shade_rec. */
-#define CAPTURE_UNITS 11
+ * rebase, wide, trav_unit, shade_rec, tex. */
+#define CAPTURE_UNITS 12
 extern const char *const capture_unit_names[CAPTURE_UNITS];
 void capture_counts(uint64_t out[CAPTURE_UNITS]);
 
