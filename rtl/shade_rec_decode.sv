@@ -5,8 +5,8 @@
 // The 42-bit octahedral code (x in bits 0..20, y in 21..41, signed) is unfolded in integers:
 // |x|, |y|, z = 2^20 - 1 - |x| - |y| and, for z < 0 (the lower hemisphere), x and y folded over
 // the diagonals (4 adders of 22 bits, 2 sign muxes; combinational, in front of the converters);
-// then 3 `f24_from_i32` (SCALE 0), the squared length ((x x + y y) + z z) on 3 `f24_mul` and
-// 2 `f24_add` in the C's order, its root (`f24_sqrt`), 1 / root (`f24_div`) and the 3 products
+// then 3 `f24_from_i32` (SCALE 0), 1 / sqrt((x x + y y) + z z) in the C's order (`f24_inv_length`:
+// `f24_dot3`, `f24_sqrt`, `f24_div`) and the 3 products
 // with the converted components (3 `f24_mul`; the components wait in an `f24_pipe`). The code
 // x = -2^20 (SHADE_NO_NORMAL: the vertex has no normal) gives (+0, +0, +0) as the C does.
 // The thread id (TID_BITS) travels beside the datapath with the valid bit.
@@ -14,8 +14,7 @@
 // (default 2 + 8 + 12 + 9 + 11 = 42) cycles, one normal per cycle (II = 1); handshake valid/ready,
 // the pipeline advances when the output is free or taken. Resources (the operators'): 3 int-to-fp24
 // converters, 6 multipliers, 2 adders, 1 square root, 1 divider, the integer unfolding, delay
-// lines for the components (3 W bits x (MUL + 2 ADD + SQRT + DIV) stages) and the product z z
-// (W x ADD), the missing flag and the thread id (LATENCY stages).
+// lines for the components (3 W bits x (MUL + 2 ADD + SQRT + DIV) stages), the missing flag and the thread id (LATENCY stages).
 module shade_rec_decode #(
   parameter int E = 7,
   parameter int M = 16,
@@ -39,8 +38,6 @@ module shade_rec_decode #(
 );
   localparam int W = 1 + E + M;
   localparam int OCT = 21;                    // SHADE_OCT_BITS
-  localparam int BIAS = (1 << (E - 1)) - 1;
-  localparam logic [W-1:0] ONE = {1'b0, E'(BIAS), {M{1'b0}}};
   localparam int LEN_STAGES = MUL_STAGES + 2 * ADD_STAGES;
   localparam int LATENCY = CVT_STAGES + 2 * MUL_STAGES + 2 * ADD_STAGES + SQRT_STAGES + DIV_STAGES;
   localparam logic signed [31:0] OCT_ONE = (32'sd1 <<< (OCT - 1)) - 32'sd1;
@@ -69,37 +66,27 @@ module shade_rec_decode #(
 
   /* verilator lint_off PINCONNECTEMPTY */
   logic missing_q;
-  logic [W-1:0] n [3];
-  logic [W-1:0] sq [3];
+  logic [3*W-1:0] n;
   logic [W-1:0] n_q [3];
   logic [W-1:0] prod [3];
-  logic [W-1:0] zz_q, xy, len2, len, inv;
+  logic [W-1:0] inv;
   logic [31:0] comp [3];
   assign comp[0] = fx;
   assign comp[1] = fy;
   assign comp[2] = z;
   for (genvar k = 0; k < 3; k++) begin : g_comp
     f24_from_i32 #(.E(E), .M(M), .SCALE(0), .STAGES(CVT_STAGES)) u_cvt (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en),
-      .valid_i(1'b0), .a_i(comp[k]), .valid_o(), .res_o(n[k]));
-    f24_mul #(.E(E), .M(M), .STAGES(MUL_STAGES)) u_sq (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en), .valid_i(1'b0),
-      .a_i(n[k]), .b_i(n[k]), .valid_o(), .res_o(sq[k]));
+      .valid_i(1'b0), .a_i(comp[k]), .valid_o(), .res_o(n[k*W +: W]));
     // the component waits for 1 / length
     f24_pipe #(.W(W), .STAGES(LEN_STAGES + SQRT_STAGES + DIV_STAGES)) u_d_n (.clk_i(clk_i), .rst_ni(rst_ni),
-      .en_i(en), .valid_i(1'b0), .data_i(n[k]), .valid_o(), .data_o(n_q[k]));
+      .en_i(en), .valid_i(1'b0), .data_i(n[k*W +: W]), .valid_o(), .data_o(n_q[k]));
     f24_mul #(.E(E), .M(M), .STAGES(MUL_STAGES)) u_scale (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en), .valid_i(1'b0),
       .a_i(n_q[k]), .b_i(inv), .valid_o(), .res_o(prod[k]));
     assign n_o[k*W +: W] = missing_q ? '0 : prod[k];
   end
-  f24_add #(.E(E), .M(M), .STAGES(ADD_STAGES)) u_xy (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en), .valid_i(1'b0),
-    .a_i(sq[0]), .b_i(sq[1]), .sub_i(1'b0), .valid_o(), .res_o(xy));
-  f24_pipe #(.W(W), .STAGES(ADD_STAGES)) u_d_zz (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en), .valid_i(1'b0),
-    .data_i(sq[2]), .valid_o(), .data_o(zz_q));
-  f24_add #(.E(E), .M(M), .STAGES(ADD_STAGES)) u_len2 (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en), .valid_i(1'b0),
-    .a_i(xy), .b_i(zz_q), .sub_i(1'b0), .valid_o(), .res_o(len2));
-  f24_sqrt #(.E(E), .M(M), .STAGES(SQRT_STAGES)) u_len (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en), .valid_i(1'b0),
-    .a_i(len2), .valid_o(), .res_o(len));
-  f24_div #(.E(E), .M(M), .STAGES(DIV_STAGES)) u_inv (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en), .valid_i(1'b0),
-    .a_i(ONE), .b_i(len), .valid_o(), .res_o(inv));
+  f24_inv_length #(.E(E), .M(M), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES), .SQRT_STAGES(SQRT_STAGES),
+    .DIV_STAGES(DIV_STAGES)) u_inv (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en), .valid_i(1'b0), .v_i(n), .valid_o(),
+    .len_o(), .inv_o(inv));
 
   // valid, the thread id and the missing flag beside the datapath; a missing normal is +0
   f24_pipe #(.W(TID_BITS + 1), .STAGES(LATENCY)) u_ctl (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en),

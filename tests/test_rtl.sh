@@ -17,17 +17,19 @@
 # (perspective) and an orthographic cornell box, whose block order the tile controller
 # (rtl/tile_ctrl.sv) reproduces, and of a functional frame on 2 threads, and 2 x 10^4 random blocks
 # on random cameras; the RGS's decoding of the shading record's vertex normals
-# (rtl/shade_rec_decode.sv) and its bilinear texture sample (rtl/tex_bilinear.sv, tex_axis.sv, its
-# texel reads served by the bench) match shade_rec_normal and rgs_sample_bilinear's parts and the
-# normals and samples recorded while rendering the room (textured), the cornell box and (from
-# ../shared/scenes, if present) subpass_scene_opaque and CesiumMilkTruck (textured) with shadows and
-# reflections, and 2 x 10^4 random codes and samples; the benches catch mutants (a rounder that never rounds ties to even, a mailbox
+# (rtl/shade_rec_decode.sv), its bilinear texture sample (rtl/tex_bilinear.sv, tex_axis.sv, its
+# texel reads served by the bench) and the frame of a hit (rtl/rgs_frame.sv: unit direction and
+# normal, t_hat, hit point) match shade_rec_normal, rgs_sample_bilinear's parts and
+# rgs_surface_frame and the normals, samples and frames recorded while rendering the room
+# (textured), the cornell box and (from ../shared/scenes, if present) subpass_scene_opaque and
+# CesiumMilkTruck (textured) with shadows and reflections, and 2 x 10^4 random ones of each; the
+# benches catch mutants (a rounder that never rounds ties to even, a mailbox
 # that never moves on, a cache without its tag forwarding, a scheduler whose pointer never moves on,
 # a walk that pushes the near child; with SAARCOR_RTL_MUTANTS=all, as make rtl-test runs it, also a
 # square root without its sticky bit, a pixel centre without its + 1/2, a tile controller stepping
 # past the region's edge, a vector mode whose unused terms are +0, a rebase that moves by
-# t = Inf, a normal decoder folding the lower hemisphere with the wrong sign and a bilinear blend
-# that truncates). Prints cmocka-style lines.
+# t = Inf, a normal decoder folding the lower hemisphere with the wrong sign, a bilinear blend
+# that truncates and a shading normal turned away from the ray). Prints cmocka-style lines.
 set -u
 cd "$(dirname "$0")/.."
 B=${BUILD:-build}
@@ -172,22 +174,28 @@ t_shade() {
     d="$T/shade_$(basename "$s" .glb)"
     "$BIN" render "$s" -o "$d.png" --width 32 --height 24 --max-depth 2 --capture-unit-io "$d" --capture-limit 20000 \
       >/dev/null 2>&1
-    "$B/rtl/e7m16/tb_shade" -n 0 --capture "$d" | tee "$d.log"
+    "$B/rtl/e7m16/tb_shade" -n 0 --capture "$d" >"$d.log" || { cat "$d.log"; false; }
+    cat "$d.log"
   done
-  # the room and the truck are textured: their samples were checked
+  # the room and the truck are textured: their samples were checked; every scene's frames were
+  grep -Eq "shade_rec_decode [1-9][0-9]* normals checked" "$T/shade_room.log"
   for s in room CesiumMilkTruck; do
     [[ ! -f "$T/shade_$s.log" ]] || grep -Eq "tex_bilinear [1-9][0-9]* samples checked" "$T/shade_$s.log"
   done
-  "$B/rtl/e7m16/tb_shade" -n 20000 | tee "$T/shade.log"
+  for s in "${scenes[@]}"; do grep -Eq "rgs_frame [1-9][0-9]* frames checked" "$T/shade_$(basename "$s" .glb).log"; done
+  "$B/rtl/e7m16/tb_shade" -n 20000 >"$T/shade.log" || { cat "$T/shade.log"; false; }
+  cat "$T/shade.log"
   grep -Eq "; [1-9][0-9]* missing, [1-9][0-9]* folded\), latency" "$T/shade.log"
 }
 
 # the normal decoder's fold of the lower hemisphere with the x component's sign the wrong way round;
-# the bilinear blend truncating instead of rounding (no + 2^15 before the shift by 16)
+# the bilinear blend truncating instead of rounding (no + 2^15 before the shift by 16); the frame's
+# normal negated where it already faces the ray
 t_shade_mutants_caught() {
   mutant shade shade_rec_decode.sv "s/fx = x < 0 ? ay - OCT_ONE : OCT_ONE - ay;/fx = x < 0 ? OCT_ONE - ay : ay - OCT_ONE;/" \
     -n 2000 &&
-    mutant shade tex_bilinear.sv "s/bottom \* 32'(hfy) + 32'd32768;/bottom * 32'(hfy);/" -n 2000
+    mutant shade tex_bilinear.sv "s/bottom \* 32'(hfy) + 32'd32768;/bottom * 32'(hfy);/" -n 2000 &&
+    mutant shade rgs_frame.sv "s/\^ !facing\[W-1\]/^ facing[W-1]/" -n 2000
 }
 
 # the rebase unit without the test for t = Inf (rebase_distance: 0), the wide mode's vector with its

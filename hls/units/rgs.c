@@ -34,38 +34,21 @@ static uint32_t q_of(f24_t x)
 /* ---- fp24 vector helpers ------------------------------------------------------------------ */
 
 static uint32_t region_start(const uint32_t *mem, uint32_t r) { return mem[H_REGIONS + 2 * r]; }
-/* The three products side by side (lane 3 unused), then their sum in order. */
-static F24Q_FN f24_t dot3(f24_vec3 a, f24_vec3 b)
-{
-    const f24_t al[4] = { a.x, a.y, a.z, 0 }, bl[4] = { b.x, b.y, b.z, 0 };
-    const f24q p = f24q_mul(f24q_of(al), f24q_of(bl));
-    return f24w_bits(f24w_add(f24w_add(f24q_lane(p, 0), f24q_lane(p, 1)), f24q_lane(p, 2)));
-}
 static f24_vec3 sub3(f24_vec3 a, f24_vec3 b) { return (f24_vec3){ f24_sub(a.x, b.x), f24_sub(a.y, b.y), f24_sub(a.z, b.z) }; }
-static f24_vec3 scale3(f24_vec3 a, f24_t s) { return (f24_vec3){ f24_mul(a.x, s), f24_mul(a.y, s), f24_mul(a.z, s) }; }
-static f24_vec3 neg3(f24_vec3 a) { return (f24_vec3){ f24_neg(a.x), f24_neg(a.y), f24_neg(a.z) }; }
-static f24_t length3(f24_vec3 a) { return f24_sqrt(dot3(a, a)); }
 /* Cosine between unit vector n and direction d (any length). */
-static f24_t cos_to(f24_vec3 n, f24_vec3 d) { return f24_div(dot3(n, d), length3(d)); }
-
-/* T_R = [D^, N^, D^; O]: the transformation of every secondary ray of a hit. */
-static f24_affine t_r(f24_vec3 o, f24_vec3 d, f24_vec3 n)
-{
-    const f24_affine m = { { { d.x, n.x, d.x, o.x }, { d.y, n.y, d.y, o.y }, { d.z, n.z, d.z, o.z } } };
-    return m;
-}
+static f24_t cos_to(f24_vec3 n, f24_vec3 d) { return f24_div(rgs_dot3(n, d), length3(d)); }
 
 f24_vec3 rgs_reflect(f24_vec3 d, f24_vec3 n)
 {
     const f24_affine m = t_r((f24_vec3){ 0, 0, 0 }, d, n);
-    const f24_t c = dot3(n, d);
+    const f24_t c = rgs_dot3(n, d);
     return xform_vector(&m, (f24_vec3){ F24_ONE, f24_neg(f24_add(c, c)), 0 });
 }
 
 #if SAARCOR_CFG_REFRACTION
 int rgs_refract(f24_vec3 d, f24_vec3 n, f24_t eta_r, f24_vec3 *out)
 {
-    const f24_t c = dot3(n, d);
+    const f24_t c = rgs_dot3(n, d);
     const f24_t k = f24_sub(F24_ONE, f24_mul(f24_mul(eta_r, eta_r), f24_sub(F24_ONE, f24_mul(c, c))));
     if (f24_lt(k, 0))
         return 0; /* total internal reflection */
@@ -134,9 +117,8 @@ static void shade_read(unit_op *op, trace_counters *c, uint32_t addr, uint32_t w
     op_read(op, c, MEM_SHADING, addr, words);
 }
 
-/* World-space shading normal at the hit (not normalized): the interpolated decoded vertex
- * normals, or the geometric normal (row 2 of the triangle transformation), through the
- * transposed world-to-object matrix. */
+/* Object-space shading normal at the hit (not normalized): the interpolated decoded vertex
+ * normals, or the geometric normal (row 2 of the triangle transformation). */
 static f24_vec3 hit_normal(const uint32_t *mem, const hit_record *h, uint32_t obj, uint32_t shade, unit_op *op,
                            trace_counters *c)
 {
@@ -147,20 +129,12 @@ static f24_vec3 hit_normal(const uint32_t *mem, const hit_record *h, uint32_t ob
         n = (f24_vec3){ lerp(a.x, b.x, cc.x, h->u, h->v), lerp(a.y, b.y, cc.y, h->u, h->v),
                         lerp(a.z, b.z, cc.z, h->u, h->v) };
     }
-    if (f24_is_zero(dot3(n, n))) {
+    if (f24_is_zero(rgs_dot3(n, n))) {
         const uint32_t tri = mem[obj + O_TRIANGLES] + TRI_WORDS * h->triangle;
         n = (f24_vec3){ f24_record_get(mem, tri, 8), f24_record_get(mem, tri, 9), f24_record_get(mem, tri, 10) };
         shade_read(op, c, tri + 8 * F24_WIDTH / 32, F24_RECORD_SPAN(8, 3));
     }
-    const f24_affine w2o = f24_affine_load(mem, region_start(mem, R_INSTANCES) + INST_WORDS * h->instance);
-    f24_affine tr;
-transpose:
-    for (int r = 0; r < 3; r++) {
-        for (int k = 0; k < 3; k++)
-            tr.m[r][k] = w2o.m[k][r];
-        tr.m[r][3] = 0;
-    }
-    return xform_vector(&tr, n);
+    return n;
 }
 
 #if SAARCOR_CFG_TEXTURES
@@ -238,17 +212,9 @@ static surface surface_at(const uint32_t *mem, const ray_packet *rp, int i, cons
     shade_read(op, c, ia, 13);
     shade_read(op, c, obj + O_TRIANGLES, O_FLAGS - O_TRIANGLES + 1);
     shade_read(op, c, shade, shade_rec_words(flags));
-    const f24_t dlen = length3(rp->d[i]);
     sf.valid = 1;
-    sf.d = scale3(rp->d[i], f24_div(F24_ONE, dlen));
-    f24_vec3 n = hit_normal(mem, h, obj, shade, op, c);
-    if (!f24_sign(dot3(n, sf.d)))
-        n = neg3(n); /* towards the ray: both faces are front faces */
-    sf.n = scale3(n, f24_div(F24_ONE, length3(n)));
-    sf.entering = f24_sign(h->cos_n) != 0; /* the sign of n.d survives the instance transformation */
-    sf.t_hat = f24_mul(h->t, dlen);
-    sf.tr = t_r(rp->o[i], sf.d, sf.n);
-    sf.p = xform_point(&sf.tr, (f24_vec3){ 0, 0, sf.t_hat });
+    const f24_affine w2o = f24_affine_load(mem, ia);
+    rgs_surface_frame(rp->o[i], rp->d[i], h->t, h->cos_n, hit_normal(mem, h, obj, shade, op, c), &w2o, &sf);
     sf.mat = region_start(mem, R_MATERIALS) + MAT_WORDS * shade_rec_material(flags, tail);
     shade_read(op, c, sf.mat, MAT_WORDS);
     sf.unlit = (mem[sf.mat + SHADE_M_FLAGS] & SHADE_MAT_UNLIT) != 0;
@@ -296,7 +262,7 @@ shadow_rays:
         const f24_t dist = length3(sh->d[i]);
         sh->tmin[i] = directional ? eps : f24_div(eps, dist);
         sh->tmax[i] = directional ? F24_POS_INF : F24_ONE;
-        f24_t w = f24_div(dot3(sf[i].n, sh->d[i]), dist);
+        f24_t w = f24_div(rgs_dot3(sf[i].n, sh->d[i]), dist);
         if (!f24_lt(0, w))
             continue; /* the light is behind the surface */
         if (SAARCOR_CFG_SPOT_LIGHTS && l[0] == 2) { /* spot: smooth step from the outer to the inner cone */
@@ -445,7 +411,7 @@ static void spawn_children(const uint32_t *mem, const rgs_block *b, int i, const
                            rgs_task *trans)
 {
     const uint32_t *m = &mem[sf->mat], w_r = mat_kr(m), w_t = mat_kt(m);
-    const f24_t c = dot3(sf->n, sf->d), e = b->eps;
+    const f24_t c = rgs_dot3(sf->n, sf->d), e = b->eps;
     const f24_vec3 back = xform_point(&sf->tr, (f24_vec3){ f24_neg(e), 0, sf->t_hat });
     const f24_vec3 ahead = xform_point(&sf->tr, (f24_vec3){ e, 0, sf->t_hat });
     const f24_vec3 mirror = xform_vector(&sf->tr, (f24_vec3){ F24_ONE, f24_neg(f24_add(c, c)), 0 });

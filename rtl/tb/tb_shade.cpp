@@ -2,6 +2,9 @@
 //  shade_rec_decode (rtl/shade_rec_decode.sv): each vertex normal decoded from a compact shading
 //    record, against shade_rec_normal (hls/units/shade_rec.c). The bench slices the vertex's 42-bit
 //    code out of the record (shade_rec_bits, as the RGS's read of the record would).
+//  rgs_frame (rtl/rgs_frame.sv): the frame of each hit the RGS shades (unit direction, unit shading
+//    normal facing the ray, entering, t_hat, the hit point), against rgs_surface_frame
+//    (hls/units/rgs_geom.c).
 //  tex_bilinear (rtl/tex_bilinear.sv): each bilinear texture sample, against rgs_texel_axis and
 //    rgs_bilinear_blend (hls/units/rgs_tex.c, the functions rgs_sample_bilinear is made of). The
 //    bench is the memory: every texel request must carry the C's address (texture address + y w +
@@ -10,13 +13,15 @@
 // Captured transactions (saarcor render --capture-unit-io DIR: DIR/shade_rec.hex, every
 // shade_rec_normal call: the record's 4 normal words, the vertex k, the unit normal; DIR/tex.hex,
 // every rgs_sample_bilinear call: s, t, width, height, texel address, the 4 texel words read, the
-// axes' x0 x1 fx y0 y1 fy, the sample) come first and are also checked against the recording; then
+// axes' x0 x1 fx y0 y1 fy, the sample; DIR/frame.hex, every rgs_surface_frame call: o, d, t, cos_n,
+// the object-space normal, the world-to-object 3x3; the outputs) come first and are also checked against the recording; then
 // random ones: records of random words with one vertex's code set to an edge (the missing normal
 // x = -2^20 with any y, the poles and axes +-(2^20 - 1), codes on and beside the fold
 // |x| + |y| = 2^20 - 1, small components) or anything; samples at coordinates near 0 and 1, on
 // texel centres and edges, large, negative, Inf, NaN or any encoding, on textures of 1 texel, small,
 // power-of-two and huge sizes (to 2^31 - 1) at any address (the address sums wrap as the C's),
-// with random texels. Every transaction gets a thread id (its number modulo 64), which must come
+// with random texels; frames of rays of moderate, tiny, huge, zero or special components, normals
+// of any length (zero too) and rotation-like or arbitrary matrices. Every transaction gets a thread id (its number modulo 64), which must come
 // out with its result. The handshakes are exercised: in every other epoch of 1024 cycles the inputs
 // have random gaps and the outputs (and the memory's request port) random back pressure. A
 // mismatch prints the unit, the transaction, the cycle, the thread, the field and both values (and
@@ -46,6 +51,9 @@ namespace {
 struct normal_tx { uint32_t rec[SHADE_NORMAL_WORDS], k, n[3]; };
 // tex.hex's word order: inputs (s, t, the texture entry), the texels, the axes, the sample
 struct tex_tx { uint32_t s, t, width, height, addr, texel[4], axes[6], rgb[3]; };
+// frame.hex's word order: inputs (o, d, t, cos_n, n, the 3x3 row by row), then the frame
+struct frame_tx { uint32_t o[3], d[3], t, cos_n, n[3], w2o[9], dh[3], nh[3], entering, t_hat, p[3]; };
+constexpr std::size_t FRAME_IN = 20;
 constexpr uint32_t OCT_MASK = (1u << SHADE_OCT_BITS) - 1u;
 
 uint64_t code_of(const normal_tx &x)
@@ -68,6 +76,21 @@ void model(tex_tx &x)
     rgs_texel_axis(x.s, x.width, &a[0], &a[1], &a[2]);
     rgs_texel_axis(x.t, x.height, &a[3], &a[4], &a[5]);
     rgs_bilinear_blend(x.texel, a[2], a[5], x.rgb);
+}
+
+f24_vec3 v3(const uint32_t *w) { return f24_vec3{ w[0], w[1], w[2] }; }
+void words3(f24_vec3 v, uint32_t *w) { w[0] = v.x, w[1] = v.y, w[2] = v.z; }
+
+void model(frame_tx &x)
+{
+    f24_affine m{};
+    for (int k = 0; k < 3; k++)
+        for (int r = 0; r < 3; r++)
+            m.m[k][r] = x.w2o[3 * k + r];
+    surface sf{};
+    rgs_surface_frame(v3(x.o), v3(x.d), x.t, x.cos_n, v3(x.n), &m, &sf);
+    words3(sf.d, x.dh), words3(sf.n, x.nh), words3(sf.p, x.p);
+    x.entering = (uint32_t)sf.entering, x.t_hat = sf.t_hat;
 }
 
 // the word address of texel j (t00, t10, t01, t11) of a modelled sample
@@ -151,6 +174,32 @@ tex_tx random_tex()
     return x;
 }
 
+// a moderate value of magnitude up to 2^scale, or now and then a special one or any encoding
+uint32_t moderate(int scale)
+{
+    if (rnd() % 16 == 0)
+        return rnd_f24();
+    const uint32_t e = (uint32_t)(F24_BIAS - scale + (int)(rnd() % (uint32_t)(2 * scale + 1)));
+    return ((rnd() & 1u) ? F24_SIGN_BIT : 0u) | e << F24_MAN_BITS | (rnd() & F24_FRAC_MASK);
+}
+
+frame_tx random_frame()
+{
+    frame_tx x{};
+    const uint32_t kind = rnd() % 8; // 0: zero normal, 1: any encodings, else moderate
+    for (int k = 0; k < 3; k++) {
+        x.o[k] = kind == 1 ? rnd32() & F24_MASK : moderate(8);
+        x.d[k] = kind == 1 ? rnd32() & F24_MASK : moderate(4);
+        x.n[k] = kind == 0 ? ((rnd() & 1u) ? F24_SIGN_BIT : 0u) : kind == 1 ? rnd32() & F24_MASK : moderate(3);
+    }
+    x.t = kind == 1 ? rnd32() & F24_MASK : moderate(6);
+    x.cos_n = moderate(1);
+    for (auto &w : x.w2o)
+        w = kind == 1 ? rnd32() & F24_MASK : moderate(2);
+    model(x);
+    return x;
+}
+
 uint64_t g_mismatches = 0;
 
 // field by field: the first 10 mismatches print the unit, transaction, cycle, thread, fields, inputs
@@ -173,6 +222,7 @@ void report(const char *unit, std::size_t t, const char *against, const char *co
 }
 
 const char *const NORMAL_FIELD[] = { "n.x", "n.y", "n.z" };
+const char *const FRAME_FIELD[] = { "d^.x", "d^.y", "d^.z", "n^.x", "n^.y", "n^.z", "entering", "t_hat", "p.x", "p.y", "p.z" };
 const char *const TEX_FIELD[] = { "x0", "x1", "fx", "y0", "y1", "fy", "r", "g", "b" };
 
 template <typename T> bool load(const std::string &dir, const char *file, std::vector<T> &out, const char *why)
@@ -228,16 +278,18 @@ int main(int argc, char **argv)
         return 2;
     stream<normal_tx> nd;
     stream<tex_tx> tx;
+    stream<frame_tx> fr;
     if (!capture.empty()) {
-        if (!load(capture, "shade_rec.hex", nd.tx, "a scene with vertex normals?"))
+        bool present; // a scene without vertex normals or textures records no normal or sample
+        if (!read_capture("tb_shade", capture + "/shade_rec.hex", nd.tx, present) ||
+            !read_capture("tb_shade", capture + "/tex.hex", tx.tx, present))
             return 2;
-        bool present; // a scene without textures records no sample
-        if (!read_capture("tb_shade", capture + "/tex.hex", tx.tx, present))
+        if (!load(capture, "frame.hex", fr.tx, "no surface shaded?"))
             return 2;
-        nd.captured = nd.tx.size(), tx.captured = tx.tx.size();
+        nd.captured = nd.tx.size(), tx.captured = tx.tx.size(), fr.captured = fr.tx.size();
     }
     for (std::size_t i = 0; i < n; i++)
-        nd.tx.push_back(random_normal()), tx.tx.push_back(random_tex());
+        nd.tx.push_back(random_normal()), tx.tx.push_back(random_tex()), fr.tx.push_back(random_frame());
     std::size_t missing = 0, folded = 0, wrapped = 0;
     for (const auto &x : nd.tx) {
         const uint64_t c = code_of(x);
@@ -260,7 +312,7 @@ int main(int argc, char **argv)
     struct response { uint64_t due; uint32_t word; };
     std::deque<response> rsp;
     uint64_t bad_addr = 0, idle = 0;
-    for (; (!nd.done() || !tx.done()) && idle < 1000; g_cycle++) {
+    for (; (!nd.done() || !tx.done() || !fr.done()) && idle < 1000; g_cycle++) {
         const bool calm = (g_cycle / 1024) % 2 == 0;
         top.clk_i = 0;
         top.n_valid_i = nd.offer(calm);
@@ -276,6 +328,17 @@ int main(int argc, char **argv)
             top.t_tid_i = tx.next % 64;
         }
         top.t_ready_i = calm || rnd() % 4 != 0;
+        top.f_valid_i = fr.offer(calm);
+        if (top.f_valid_i) {
+            const frame_tx &x = fr.tx[fr.next];
+            for (int k = 0; k < 3; k++)
+                put(top.f_o_i, k, x.o[k]), put(top.f_d_i, k, x.d[k]), put(top.f_n_i, k, x.n[k]);
+            for (int k = 0; k < 9; k++)
+                put(top.f_w2o_i, k, x.w2o[k]);
+            top.f_t_i = x.t, top.f_cos_n_i = x.cos_n;
+            top.f_tid_i = fr.next % 64;
+        }
+        top.f_ready_i = calm || rnd() % 4 != 0;
         top.t_req_ready_i = calm || rnd() % 4 != 0;
         top.t_rsp_valid_i = !rsp.empty() && rsp.front().due <= g_cycle;
         top.t_rsp_data_i = top.t_rsp_valid_i ? rsp.front().word : 0;
@@ -291,6 +354,22 @@ int main(int argc, char **argv)
                 if (t < nd.captured)
                     report("shade_rec_decode", t, "capture", NORMAL_FIELD, nd.tx[t].n, got, 3, want.rec, 5, top.n_tid_o),
                         nd.vs_capture++;
+            }
+            any = true;
+        }
+        if (top.f_valid_o && top.f_ready_i) {
+            const std::size_t t = fr.hand_over();
+            if (t != SIZE_MAX) {
+                frame_tx want = fr.tx[t];
+                model(want);
+                uint32_t got[11];
+                for (int k = 0; k < 3; k++)
+                    got[k] = get(top.f_d_o, k), got[3 + k] = get(top.f_n_o, k), got[8 + k] = get(top.f_p_o, k);
+                got[6] = top.f_entering_o, got[7] = top.f_t_hat_o;
+                report("rgs_frame", t, "C model", FRAME_FIELD, want.dh, got, 11, want.o, FRAME_IN, top.f_tid_o);
+                if (t < fr.captured)
+                    report("rgs_frame", t, "capture", FRAME_FIELD, fr.tx[t].dh, got, 11, want.o, FRAME_IN, top.f_tid_o),
+                        fr.vs_capture++;
             }
             any = true;
         }
@@ -339,11 +418,13 @@ int main(int argc, char **argv)
             nd.accept();
         if (top.t_valid_i && top.t_ready_o)
             tx.accept();
+        if (top.f_valid_i && top.f_ready_o)
+            fr.accept();
         idle = any ? 0 : idle + 1;
         top.clk_i = 1;
         top.eval();
     }
-    const bool lost = !nd.done() || !tx.done();
+    const bool lost = !nd.done() || !tx.done() || !fr.done();
     std::printf("tb_shade: shade_rec_decode %llu normals checked (%zu captured, %llu also against the capture; %zu missing, "
                 "%zu folded), latency %llu cycles\n",
                 (unsigned long long)nd.checked, nd.captured, (unsigned long long)nd.vs_capture, missing, folded,
@@ -352,7 +433,11 @@ int main(int argc, char **argv)
                 "neighbour wrapped to 0), %zu texel reads, latency %llu cycles\n",
                 (unsigned long long)tx.checked, tx.captured, (unsigned long long)tx.vs_capture, wrapped, requests,
                 (unsigned long long)tx.latency);
-    const bool invented = nd.invented || tx.invented;
+    std::printf("tb_shade: rgs_frame %llu frames checked (%zu captured, %llu also against the capture), latency %llu "
+                "cycles\n",
+                (unsigned long long)fr.checked, fr.captured, (unsigned long long)fr.vs_capture,
+                (unsigned long long)fr.latency);
+    const bool invented = nd.invented || tx.invented || fr.invented;
     std::printf("tb_shade: %llu cycles, %llu mismatches, %llu wrong addresses%s%s\n", (unsigned long long)g_cycle,
                 (unsigned long long)g_mismatches, (unsigned long long)bad_addr, lost ? ", RESULTS LOST" : "",
                 invented ? ", RESULTS INVENTED" : "");

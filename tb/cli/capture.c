@@ -22,7 +22,7 @@
 #include "trav_unit.h"
 #include "xform_unit.h"
 
-enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_RGS, CAP_REBASE, CAP_WIDE, CAP_TRAV_UNIT, CAP_SHADE_REC, CAP_TEX, CAP_UNITS };
+enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_RGS, CAP_REBASE, CAP_WIDE, CAP_TRAV_UNIT, CAP_SHADE_REC, CAP_TEX, CAP_FRAME, CAP_UNITS };
 
 static struct {
     int on;
@@ -33,7 +33,7 @@ static struct {
 
 const char *const capture_unit_names[CAPTURE_UNITS] = { "xform", "isect",  "trav", "list",      "mem",
                                                         "sched", "rgs",    "rebase", "wide",     "trav_unit",
-                                                        "shade_rec", "tex" };
+                                                        "shade_rec", "tex",    "frame" };
 
 /* The list unit's threads: trace_state addresses in the order first seen (the RTL's thread ids),
  * and the memory interfaces (pipes) likewise. */
@@ -562,6 +562,39 @@ void __wrap_rgs_sample_bilinear(const uint32_t *mem, const uint32_t *tex, f24_t 
         captured_sample(mem, tex, s, t, out, op, c);
     else
         __real_rgs_sample_bilinear(mem, tex, s, t, out, op, c);
+}
+
+/* The frame of each hit the RGS shades (for rtl/tb/tb_shade.cpp): o, d, t, cos_n, the object-space
+ * normal, the world-to-object matrix's 3x3 (row by row); the unit direction, the unit shading
+ * normal, entering, t_hat, the hit point. */
+void __real_rgs_surface_frame(f24_vec3 o, f24_vec3 d, f24_t t, f24_t cos_n, f24_vec3 n, const f24_affine *w2o,
+                              surface *sf);
+void __wrap_rgs_surface_frame(f24_vec3 o, f24_vec3 d, f24_t t, f24_t cos_n, f24_vec3 n, const f24_affine *w2o,
+                              surface *sf);
+
+CAPTURE_PATH void captured_frame(f24_vec3 o, f24_vec3 d, f24_t t, f24_t cos_n, f24_vec3 n, const f24_affine *w2o,
+                                 surface *sf)
+{
+    __real_rgs_surface_frame(o, d, t, cos_n, n, w2o, sf);
+    FILE *f = begin(CAP_FRAME);
+    if (!f)
+        return;
+    const uint32_t w[31] = { o.x, o.y, o.z, d.x, d.y, d.z, t, cos_n, n.x, n.y, n.z,
+                             w2o->m[0][0], w2o->m[0][1], w2o->m[0][2], w2o->m[1][0], w2o->m[1][1], w2o->m[1][2],
+                             w2o->m[2][0], w2o->m[2][1], w2o->m[2][2],
+                             sf->d.x, sf->d.y, sf->d.z, sf->n.x, sf->n.y, sf->n.z, (uint32_t)sf->entering, sf->t_hat,
+                             sf->p.x, sf->p.y, sf->p.z };
+    words(f, w, 31);
+    end(f);
+}
+
+void __wrap_rgs_surface_frame(f24_vec3 o, f24_vec3 d, f24_t t, f24_t cos_n, f24_vec3 n, const f24_affine *w2o,
+                              surface *sf)
+{
+    if (capturing())
+        captured_frame(o, d, t, cos_n, n, w2o, sf);
+    else
+        __real_rgs_surface_frame(o, d, t, cos_n, n, w2o, sf);
 }
 
 /* ---- traversal unit: its operations per trace_state and level (for rtl/tb/tb_trav.cpp) ---- */

@@ -25,12 +25,15 @@
  * rtl/tb/tb_shade.cpp: the record's 4 normal words, the vertex k, the unit normal's 3 words),
  * DIR/tex.hex (the RGS's bilinear texture samples, rgs_sample_bilinear, for rtl/tb/tb_shade.cpp:
  * s, t, the texture's width, height and texel address, the 4 texel words read, the axes' x0, x1,
- * fx, y0, y1, fy, the Q12 sample).
+ * fx, y0, y1, fy, the Q12 sample), DIR/frame.hex (the frame of each hit the RGS shades,
+ * rgs_surface_frame, for rtl/tb/tb_shade.cpp: o, d, t, cos_n, the object-space normal, the
+ * world-to-object matrix's 3x3 row by row; the unit direction, the unit normal, entering, t_hat,
+ * the hit point).
  * The hls/ units are not touched: the program is linked with --wrap for xform_point, xform_vector,
  * isect_unit_rebased, isect_unit_packet (recorded ray by ray), trav_node_split, list_unit_entry,
  * list_mailboxes_clear, mem_iface_read, mem_iface_flush, mem_iface_new_frame, rgs_block_begin,
  * rebase_origin, xform_point_wide, xform_vector_wide (called from trace.c, in another object),
- * trav_scene_clip, trav_object_clip, trav_start, trav_walk, shade_rec_normal and rgs_sample_bilinear (called from rgs.c), and the wrappers record the calls
+ * trav_scene_clip, trav_object_clip, trav_start, trav_walk, shade_rec_normal, rgs_sample_bilinear and rgs_surface_frame (called from rgs.c), and the wrappers record the calls
  * while capturing is on (at most `limit` transactions per unit; recorded in call order, which with several host threads
  * interleaves).
  */
@@ -43,8 +46,8 @@
 int capture_start(const char *dir, uint64_t limit, char *err, unsigned errlen);
 
 /* Transactions recorded per unit (DIR/NAME.hex for each name): xform, isect, trav, list, mem, sched, rgs,
- * rebase, wide, trav_unit, shade_rec, tex. */
-#define CAPTURE_UNITS 12
+ * rebase, wide, trav_unit, shade_rec, tex, frame. */
+#define CAPTURE_UNITS 13
 extern const char *const capture_unit_names[CAPTURE_UNITS];
 void capture_counts(uint64_t out[CAPTURE_UNITS]);
 

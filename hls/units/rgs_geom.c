@@ -1,0 +1,33 @@
+/* The RGS's vector helpers and the frame of a hit: see rgs_ops.h and docs/shading.md. Outside
+ * rgs.c so that the unit capture can wrap rgs_surface_frame. */
+#include "rgs_ops.h"
+
+#include "xform_unit.h"
+
+F24Q_FN f24_t rgs_dot3(f24_vec3 a, f24_vec3 b)
+{
+    const f24_t al[4] = { a.x, a.y, a.z, 0 }, bl[4] = { b.x, b.y, b.z, 0 };
+    const f24q p = f24q_mul(f24q_of(al), f24q_of(bl));
+    return f24w_bits(f24w_add(f24w_add(f24q_lane(p, 0), f24q_lane(p, 1)), f24q_lane(p, 2)));
+}
+
+void rgs_surface_frame(f24_vec3 o, f24_vec3 d, f24_t t, f24_t cos_n, f24_vec3 n, const f24_affine *w2o, surface *sf)
+{
+    const f24_t dlen = length3(d);
+    sf->d = scale3(d, f24_div(F24_ONE, dlen));
+    f24_affine tr;
+transpose:
+    for (int r = 0; r < 3; r++) {
+        for (int k = 0; k < 3; k++)
+            tr.m[r][k] = w2o->m[k][r];
+        tr.m[r][3] = 0;
+    }
+    f24_vec3 nw = xform_vector(&tr, n);
+    if (!f24_sign(rgs_dot3(nw, sf->d)))
+        nw = neg3(nw); /* towards the ray: both faces are front faces */
+    sf->n = scale3(nw, f24_div(F24_ONE, length3(nw)));
+    sf->entering = f24_sign(cos_n) != 0; /* the sign of n.d survives the instance transformation */
+    sf->t_hat = f24_mul(t, dlen);
+    sf->tr = t_r(o, sf->d, sf->n);
+    sf->p = xform_point(&sf->tr, (f24_vec3){ 0, 0, sf->t_hat });
+}
