@@ -18,9 +18,10 @@
 # (rtl/tile_ctrl.sv) reproduces, and of a functional frame on 2 threads, and 2 x 10^4 random blocks
 # on random cameras; the RGS's decoding of the shading record's vertex normals
 # (rtl/shade_rec_decode.sv), its bilinear texture sample (rtl/tex_bilinear.sv, tex_axis.sv, its
-# texel reads served by the bench) and the frame of a hit (rtl/rgs_frame.sv: unit direction and
-# normal, t_hat, hit point) match shade_rec_normal, rgs_sample_bilinear's parts and
-# rgs_surface_frame and the normals, samples and frames recorded while rendering the room
+# texel reads served by the bench), the frame of a hit (rtl/rgs_frame.sv: unit direction and
+# normal, t_hat, hit point) and a light at a surface (rtl/rgs_light.sv: shadow ray, Q12 weights)
+# match shade_rec_normal, rgs_sample_bilinear's parts, rgs_surface_frame and rgs_light_packet and
+# the normals, samples, frames and lights recorded while rendering the room
 # (textured), the cornell box and (from ../shared/scenes, if present) subpass_scene_opaque and
 # CesiumMilkTruck (textured) with shadows and reflections, and 2 x 10^4 random ones of each; the
 # benches catch mutants (a rounder that never rounds ties to even, a mailbox
@@ -29,7 +30,7 @@
 # square root without its sticky bit, a pixel centre without its + 1/2, a tile controller stepping
 # past the region's edge, a vector mode whose unused terms are +0, a rebase that moves by
 # t = Inf, a normal decoder folding the lower hemisphere with the wrong sign, a bilinear blend
-# that truncates and a shading normal turned away from the ray). Prints cmocka-style lines.
+# that truncates, a shading normal turned away from the ray and a highlight squared once too often). Prints cmocka-style lines.
 set -u
 cd "$(dirname "$0")/.."
 B=${BUILD:-build}
@@ -182,20 +183,25 @@ t_shade() {
   for s in room CesiumMilkTruck; do
     [[ ! -f "$T/shade_$s.log" ]] || grep -Eq "tex_bilinear [1-9][0-9]* samples checked" "$T/shade_$s.log"
   done
-  for s in "${scenes[@]}"; do grep -Eq "rgs_frame [1-9][0-9]* frames checked" "$T/shade_$(basename "$s" .glb).log"; done
+  for s in "${scenes[@]}"; do
+    grep -Eq "rgs_frame [1-9][0-9]* frames checked" "$T/shade_$(basename "$s" .glb).log"
+    grep -Eq "rgs_light [1-9][0-9]* light-surface pairs checked" "$T/shade_$(basename "$s" .glb).log"
+  done
   "$B/rtl/e7m16/tb_shade" -n 20000 >"$T/shade.log" || { cat "$T/shade.log"; false; }
   cat "$T/shade.log"
   grep -Eq "; [1-9][0-9]* missing, [1-9][0-9]* folded\), latency" "$T/shade.log"
+  grep -Eq "; [1-9][0-9]* lit, [1-9][0-9]* by a spot\), latency" "$T/shade.log"
 }
 
 # the normal decoder's fold of the lower hemisphere with the x component's sign the wrong way round;
 # the bilinear blend truncating instead of rounding (no + 2^15 before the shift by 16); the frame's
-# normal negated where it already faces the ray
+# normal negated where it already faces the ray; the Phong power with one squaring too many
 t_shade_mutants_caught() {
   mutant shade shade_rec_decode.sv "s/fx = x < 0 ? ay - OCT_ONE : OCT_ONE - ay;/fx = x < 0 ? OCT_ONE - ay : ay - OCT_ONE;/" \
     -n 2000 &&
     mutant shade tex_bilinear.sv "s/bottom \* 32'(hfy) + 32'd32768;/bottom * 32'(hfy);/" -n 2000 &&
-    mutant shade rgs_frame.sv "s/\^ !facing\[W-1\]/^ facing[W-1]/" -n 2000
+    mutant shade rgs_frame.sv "s/\^ !facing\[W-1\]/^ facing[W-1]/" -n 2000 &&
+    mutant shade rgs_light.sv "s/4'(j) < k_s\[j\]/4'(j) <= k_s[j]/" -n 2000
 }
 
 # the rebase unit without the test for t = Inf (rebase_distance: 0), the wide mode's vector with its

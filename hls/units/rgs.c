@@ -17,26 +17,14 @@ enum {
 
 #define BACKGROUND 0x1A1A24u
 #define Q12_AMBIENT 614u   /* 0.15 */
-#define Q12_DIFFUSE 3482u  /* 0.85 */
 #define MIN_WEIGHT 16u     /* 1/256: lighter secondary rays are not spawned */
 #define EPS_SHIFT 10       /* e = 2^-10 x the largest extent of the scene bounds */
 
-/* ---- integer colour arithmetic (Q12) ---------------------------------------------------- */
-
-/* fp24 -> Q12: one multiplier, one adder, the float-to-int converter; clamps to [0, 65535]. */
-static uint32_t q_of(f24_t x)
-{
-    const int32_t i = f24_to_i32(f24_add(f24_mul(x, f24_from_i32(4096)), f24_div(F24_ONE, f24_from_i32(2))));
-    return i < 0 ? 0u : q_sat((uint32_t)i);
-}
 
 
 /* ---- fp24 vector helpers ------------------------------------------------------------------ */
 
 static uint32_t region_start(const uint32_t *mem, uint32_t r) { return mem[H_REGIONS + 2 * r]; }
-static f24_vec3 sub3(f24_vec3 a, f24_vec3 b) { return (f24_vec3){ f24_sub(a.x, b.x), f24_sub(a.y, b.y), f24_sub(a.z, b.z) }; }
-/* Cosine between unit vector n and direction d (any length). */
-static f24_t cos_to(f24_vec3 n, f24_vec3 d) { return f24_div(rgs_dot3(n, d), length3(d)); }
 
 f24_vec3 rgs_reflect(f24_vec3 d, f24_vec3 n)
 {
@@ -242,46 +230,6 @@ normalize_colour:
         out[c] = f24_lt(0, m) ? q_of(f24_div(l[1 + c], m)) : 0u;
 }
 
-/* Diffuse and highlight weights of light l at the packet's surfaces and the shadow packet that
- * tests them; rays whose weights are zero are not traced. */
-static void light_packet(const uint32_t *l, const surface sf[], f24_t eps, ray_packet *sh, uint32_t diff[],
-                         uint32_t spec[], uint32_t k_of[])
-{
-    const f24_vec3 lpos = { l[4], l[5], l[6] }, ldir = { l[7], l[8], l[9] };
-    const int directional = l[0] == 0;
-    sh->active = 0;
-shadow_rays:
-    for (int i = 0; i < TRACE_PACKET; i++) {
-        diff[i] = spec[i] = 0;
-        sh->o[i] = sh->d[i] = (f24_vec3){ 0, 0, 0 };
-        sh->tmin[i] = sh->tmax[i] = 0;
-        if (!sf[i].valid || sf[i].unlit)
-            continue; /* an unlit surface takes no light */
-        sh->o[i] = sf[i].p;
-        sh->d[i] = directional ? neg3(ldir) : sub3(lpos, sf[i].p);
-        const f24_t dist = length3(sh->d[i]);
-        sh->tmin[i] = directional ? eps : f24_div(eps, dist);
-        sh->tmax[i] = directional ? F24_POS_INF : F24_ONE;
-        f24_t w = f24_div(rgs_dot3(sf[i].n, sh->d[i]), dist);
-        if (!f24_lt(0, w))
-            continue; /* the light is behind the surface */
-        if (SAARCOR_CFG_SPOT_LIGHTS && l[0] == 2) { /* spot: smooth step from the outer to the inner cone */
-            const f24_t c = f24_neg(cos_to(ldir, sh->d[i]));
-            const f24_t f = f24_div(f24_sub(c, l[12]), f24_sub(l[11], l[12]));
-            w = f24_mul(w, f24_max(0, f24_min(f, F24_ONE)));
-        }
-        diff[i] = q_mul(q_of(w), Q12_DIFFUSE);
-        uint32_t s = q_of(f24_max(0, cos_to(rgs_reflect(sf[i].d, sf[i].n), sh->d[i])));
-    phong_power:
-        for (uint32_t j = 0; j < 8; j++)
-            if (j < k_of[i])
-                s = q_mul(s, s); /* cos^(2^k): k squarings */
-        spec[i] = s;
-        if (diff[i] | spec[i])
-            sh->active |= 1u << i;
-    }
-}
-
 static uint32_t at_least_one(uint32_t n) { return n ? n : 1u; }
 
 /* Next operation of a block (rgs_step). */
@@ -324,7 +272,7 @@ static void op_light(const uint32_t *mem, const rgs_config *cfg, rgs_block *b, u
 {
     const uint32_t at = region_start(mem, R_LIGHTS) + LIGHT_WORDS * b->light;
     const uint32_t *l = &mem[at];
-    light_packet(l, b->sf, b->eps, &b->shadow, b->diff, b->spec, b->k_of);
+    rgs_light_packet(l, b->sf, b->eps, &b->shadow, b->diff, b->spec, b->k_of);
     light_colour(l, b->colour);
     op_set(op, UNIT_RGS, at_least_one(count_rays(b->shadow.active)));
     shade_read(op, &c->trace, at, LIGHT_WORDS);

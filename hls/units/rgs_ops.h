@@ -2,8 +2,9 @@
  * Operations of the RGS's shading (hls/units/rgs.c, docs/shading.md) that live outside rgs.c so
  * that the RTL co-simulation (rtl/tb/tb_shade.cpp) can call them and the unit capture
  * (tb/cli/capture.c) can wrap them: the integer colour arithmetic in Q12 (4096 = 1.0, saturating
- * at 65535), the fp24 vector helpers and the frame of a hit (hls/units/rgs_geom.c), the bilinear
- * texture sample (hls/units/rgs_tex.c).
+ * at 65535), the fp24 vector helpers and the frame of a hit (hls/units/rgs_geom.c), a light's
+ * weights and shadow rays (hls/units/rgs_light.c), the bilinear texture sample
+ * (hls/units/rgs_tex.c).
  */
 #ifndef SAARCOR_RGS_OPS_H
 #define SAARCOR_RGS_OPS_H
@@ -20,12 +21,22 @@ static inline uint32_t q_byte(uint32_t t) { return (t << 4) | (t >> 4); } /* 8-b
 /* num / den in fp24 (the constants of shading: 1/2). */
 static inline f24_t rgs_ratio(int32_t num, int32_t den) { return f24_div(f24_from_i32(num), f24_from_i32(den)); }
 
+/* fp24 -> Q12: one multiplier, one adder, the float-to-int converter; clamps to [0, 65535]. */
+static inline uint32_t q_of(f24_t x)
+{
+    const int32_t i = f24_to_i32(f24_add(f24_mul(x, f24_from_i32(4096)), f24_div(F24_ONE, f24_from_i32(2))));
+    return i < 0 ? 0u : q_sat((uint32_t)i);
+}
+
 /* fp24 vectors: the three products side by side, then their sum in order ((x + y) + z); a scaled
  * vector, a negated one, the length. */
 f24_t rgs_dot3(f24_vec3 a, f24_vec3 b);
 static inline f24_vec3 scale3(f24_vec3 a, f24_t s) { return (f24_vec3){ f24_mul(a.x, s), f24_mul(a.y, s), f24_mul(a.z, s) }; }
 static inline f24_vec3 neg3(f24_vec3 a) { return (f24_vec3){ f24_neg(a.x), f24_neg(a.y), f24_neg(a.z) }; }
 static inline f24_t length3(f24_vec3 a) { return f24_sqrt(rgs_dot3(a, a)); }
+static inline f24_vec3 sub3(f24_vec3 a, f24_vec3 b) { return (f24_vec3){ f24_sub(a.x, b.x), f24_sub(a.y, b.y), f24_sub(a.z, b.z) }; }
+/* Cosine between unit vector n and direction d (any length). */
+static inline f24_t cos_to(f24_vec3 n, f24_vec3 d) { return f24_div(rgs_dot3(n, d), length3(d)); }
 
 /* T_R = [D^, N^, D^; O]: the transformation of every secondary ray of a hit. */
 static inline f24_affine t_r(f24_vec3 o, f24_vec3 d, f24_vec3 n)
@@ -39,6 +50,12 @@ static inline f24_affine t_r(f24_vec3 o, f24_vec3 d, f24_vec3 n)
  * turned towards the ray), entering (the sign of the hit's cos_n), t_hat = t |d|, T_R and the hit
  * point P = T_R (0, 0, t_hat). */
 void rgs_surface_frame(f24_vec3 o, f24_vec3 d, f24_t t, f24_t cos_n, f24_vec3 n, const f24_affine *w2o, surface *sf);
+
+/* Diffuse and highlight weights of light l (its 16-word record) at the packet's surfaces and the
+ * shadow packet that tests them (hls/units/rgs_light.c); rays whose weights are zero are not
+ * traced. k_of: the surfaces' highlight exponents (cos^(2^k)). */
+void rgs_light_packet(const uint32_t *l, const surface sf[], f24_t eps, ray_packet *sh, uint32_t diff[], uint32_t spec[],
+                      const uint32_t k_of[]);
 
 /* Texel coordinate of texture coordinate s over n texels (1 <= n < 2^31; centres at +1/2): the
  * wrapped integer part i0, its right neighbour i1 and the fraction in Q8 (0..256). */

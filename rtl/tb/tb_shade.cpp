@@ -5,6 +5,9 @@
 //  rgs_frame (rtl/rgs_frame.sv): the frame of each hit the RGS shades (unit direction, unit shading
 //    normal facing the ray, entering, t_hat, the hit point), against rgs_surface_frame
 //    (hls/units/rgs_geom.c).
+//  rgs_light (rtl/rgs_light.sv): one light at one surface (the shadow ray, the Q12 diffuse and
+//    highlight weights, the active bit), against rgs_light_packet (hls/units/rgs_light.c) on a
+//    packet whose other rays are invalid.
 //  tex_bilinear (rtl/tex_bilinear.sv): each bilinear texture sample, against rgs_texel_axis and
 //    rgs_bilinear_blend (hls/units/rgs_tex.c, the functions rgs_sample_bilinear is made of). The
 //    bench is the memory: every texel request must carry the C's address (texture address + y w +
@@ -14,14 +17,18 @@
 // shade_rec_normal call: the record's 4 normal words, the vertex k, the unit normal; DIR/tex.hex,
 // every rgs_sample_bilinear call: s, t, width, height, texel address, the 4 texel words read, the
 // axes' x0 x1 fx y0 y1 fy, the sample; DIR/frame.hex, every rgs_surface_frame call: o, d, t, cos_n,
-// the object-space normal, the world-to-object 3x3; the outputs) come first and are also checked against the recording; then
+// the object-space normal, the world-to-object 3x3; the outputs; DIR/light.hex, every light at every
+// surface of rgs_light_packet: the light record's words 0..12, e, the surface's valid, unlit, P,
+// N^, D^, k; the shadow ray, active, diff, spec) come first and are also checked against the recording; then
 // random ones: records of random words with one vertex's code set to an edge (the missing normal
 // x = -2^20 with any y, the poles and axes +-(2^20 - 1), codes on and beside the fold
 // |x| + |y| = 2^20 - 1, small components) or anything; samples at coordinates near 0 and 1, on
 // texel centres and edges, large, negative, Inf, NaN or any encoding, on textures of 1 texel, small,
 // power-of-two and huge sizes (to 2^31 - 1) at any address (the address sums wrap as the C's),
 // with random texels; frames of rays of moderate, tiny, huge, zero or special components, normals
-// of any length (zero too) and rotation-like or arbitrary matrices. Every transaction gets a thread id (its number modulo 64), which must come
+// of any length (zero too) and rotation-like or arbitrary matrices; lights of every type (spot cones
+// equal, reversed or special too) at random surfaces, invalid and unlit ones, exponents 0..15.
+// Every transaction gets a thread id (its number modulo 64), which must come
 // out with its result. The handshakes are exercised: in every other epoch of 1024 cycles the inputs
 // have random gaps and the outputs (and the memory's request port) random back pressure. A
 // mismatch prints the unit, the transaction, the cycle, the thread, the field and both values (and
@@ -54,6 +61,11 @@ struct tex_tx { uint32_t s, t, width, height, addr, texel[4], axes[6], rgb[3]; }
 // frame.hex's word order: inputs (o, d, t, cos_n, n, the 3x3 row by row), then the frame
 struct frame_tx { uint32_t o[3], d[3], t, cos_n, n[3], w2o[9], dh[3], nh[3], entering, t_hat, p[3]; };
 constexpr std::size_t FRAME_IN = 20;
+// light.hex's word order: inputs (the light's words 0..12, e, the surface, k), then the outputs
+struct light_tx {
+    uint32_t l[13], eps, valid, unlit, p[3], n[3], d[3], k, o[3], sd[3], tmin, tmax, active, diff, spec;
+};
+constexpr std::size_t LIGHT_IN = 26;
 constexpr uint32_t OCT_MASK = (1u << SHADE_OCT_BITS) - 1u;
 
 uint64_t code_of(const normal_tx &x)
@@ -91,6 +103,22 @@ void model(frame_tx &x)
     rgs_surface_frame(v3(x.o), v3(x.d), x.t, x.cos_n, v3(x.n), &m, &sf);
     words3(sf.d, x.dh), words3(sf.n, x.nh), words3(sf.p, x.p);
     x.entering = (uint32_t)sf.entering, x.t_hat = sf.t_hat;
+}
+
+// rgs_light_packet on a packet of this surface and three invalid ones
+void model(light_tx &x)
+{
+    surface sf[TRACE_PACKET] = {};
+    sf[0].valid = (int)x.valid, sf[0].unlit = (int)x.unlit;
+    sf[0].p = v3(x.p), sf[0].n = v3(x.n), sf[0].d = v3(x.d);
+    const uint32_t k_of[TRACE_PACKET] = { x.k, 0, 0, 0 };
+    uint32_t l[16] = {};
+    std::memcpy(l, x.l, sizeof x.l);
+    ray_packet sh;
+    uint32_t diff[TRACE_PACKET], spec[TRACE_PACKET];
+    rgs_light_packet(l, sf, x.eps, &sh, diff, spec, k_of);
+    words3(sh.o[0], x.o), words3(sh.d[0], x.sd);
+    x.tmin = sh.tmin[0], x.tmax = sh.tmax[0], x.active = sh.active & 1u, x.diff = diff[0], x.spec = spec[0];
 }
 
 // the word address of texel j (t00, t10, t01, t11) of a modelled sample
@@ -200,6 +228,32 @@ frame_tx random_frame()
     return x;
 }
 
+light_tx random_light()
+{
+    light_tx x{};
+    const uint32_t types[] = { 0, 1, 2, 2, 3 };
+    x.l[0] = rnd() % 16 ? types[rnd() % 5] : rnd32();
+    for (int k = 0; k < 3; k++) {
+        x.l[1 + k] = moderate(1);             // the colour: not this unit's
+        x.l[4 + k] = moderate(6), x.l[7 + k] = moderate(0);
+        x.p[k] = moderate(6), x.n[k] = moderate(0), x.d[k] = moderate(0);
+    }
+    x.l[10] = moderate(2);
+    // the cone: inner > outer mostly, equal, reversed, or anything
+    const uint32_t cin = f24_div(f24_from_i32((int32_t)(rnd() % 4096)), f24_from_i32(4096));
+    const uint32_t cout = f24_div(f24_from_i32((int32_t)(rnd() % 4096) - 2048), f24_from_i32(4096));
+    switch (rnd() % 8) {
+    case 0: x.l[11] = x.l[12] = cin; break;
+    case 1: x.l[11] = cout, x.l[12] = cin; break;
+    case 2: x.l[11] = rnd_f24(), x.l[12] = rnd_f24(); break;
+    default: x.l[11] = cin, x.l[12] = cout;
+    }
+    x.eps = moderate(3);
+    x.valid = rnd() % 8 != 0, x.unlit = rnd() % 8 == 0, x.k = rnd() % 16;
+    model(x);
+    return x;
+}
+
 uint64_t g_mismatches = 0;
 
 // field by field: the first 10 mismatches print the unit, transaction, cycle, thread, fields, inputs
@@ -223,6 +277,7 @@ void report(const char *unit, std::size_t t, const char *against, const char *co
 
 const char *const NORMAL_FIELD[] = { "n.x", "n.y", "n.z" };
 const char *const FRAME_FIELD[] = { "d^.x", "d^.y", "d^.z", "n^.x", "n^.y", "n^.z", "entering", "t_hat", "p.x", "p.y", "p.z" };
+const char *const LIGHT_FIELD[] = { "o.x", "o.y", "o.z", "d.x", "d.y", "d.z", "tmin", "tmax", "active", "diff", "spec" };
 const char *const TEX_FIELD[] = { "x0", "x1", "fx", "y0", "y1", "fy", "r", "g", "b" };
 
 template <typename T> bool load(const std::string &dir, const char *file, std::vector<T> &out, const char *why)
@@ -279,6 +334,7 @@ int main(int argc, char **argv)
     stream<normal_tx> nd;
     stream<tex_tx> tx;
     stream<frame_tx> fr;
+    stream<light_tx> li;
     if (!capture.empty()) {
         bool present; // a scene without vertex normals or textures records no normal or sample
         if (!read_capture("tb_shade", capture + "/shade_rec.hex", nd.tx, present) ||
@@ -286,10 +342,12 @@ int main(int argc, char **argv)
             return 2;
         if (!load(capture, "frame.hex", fr.tx, "no surface shaded?"))
             return 2;
-        nd.captured = nd.tx.size(), tx.captured = tx.tx.size(), fr.captured = fr.tx.size();
+        if (!load(capture, "light.hex", li.tx, "no surface lit?"))
+            return 2;
+        nd.captured = nd.tx.size(), tx.captured = tx.tx.size(), fr.captured = fr.tx.size(), li.captured = li.tx.size();
     }
     for (std::size_t i = 0; i < n; i++)
-        nd.tx.push_back(random_normal()), tx.tx.push_back(random_tex()), fr.tx.push_back(random_frame());
+        nd.tx.push_back(random_normal()), tx.tx.push_back(random_tex()), fr.tx.push_back(random_frame()), li.tx.push_back(random_light());
     std::size_t missing = 0, folded = 0, wrapped = 0;
     for (const auto &x : nd.tx) {
         const uint64_t c = code_of(x);
@@ -312,7 +370,10 @@ int main(int argc, char **argv)
     struct response { uint64_t due; uint32_t word; };
     std::deque<response> rsp;
     uint64_t bad_addr = 0, idle = 0;
-    for (; (!nd.done() || !tx.done() || !fr.done()) && idle < 1000; g_cycle++) {
+    std::size_t lit = 0, spots = 0;
+    for (const auto &x : li.tx)
+        lit += x.diff != 0, spots += x.l[0] == 2 && x.diff != 0;
+    for (; (!nd.done() || !tx.done() || !fr.done() || !li.done()) && idle < 1000; g_cycle++) {
         const bool calm = (g_cycle / 1024) % 2 == 0;
         top.clk_i = 0;
         top.n_valid_i = nd.offer(calm);
@@ -339,6 +400,18 @@ int main(int argc, char **argv)
             top.f_tid_i = fr.next % 64;
         }
         top.f_ready_i = calm || rnd() % 4 != 0;
+        top.l_valid_i = li.offer(calm);
+        if (top.l_valid_i) {
+            const light_tx &x = li.tx[li.next];
+            top.l_type_i = x.l[0];
+            for (int k = 0; k < 3; k++)
+                put(top.l_lpos_i, k, x.l[4 + k]), put(top.l_ldir_i, k, x.l[7 + k]), put(top.l_p_i, k, x.p[k]),
+                    put(top.l_n_i, k, x.n[k]), put(top.l_d_i, k, x.d[k]);
+            top.l_cos_in_i = x.l[11], top.l_cos_out_i = x.l[12], top.l_eps_i = x.eps;
+            top.l_sf_valid_i = x.valid, top.l_unlit_i = x.unlit, top.l_k_i = x.k;
+            top.l_tid_i = li.next % 64;
+        }
+        top.l_ready_i = calm || rnd() % 4 != 0;
         top.t_req_ready_i = calm || rnd() % 4 != 0;
         top.t_rsp_valid_i = !rsp.empty() && rsp.front().due <= g_cycle;
         top.t_rsp_data_i = top.t_rsp_valid_i ? rsp.front().word : 0;
@@ -370,6 +443,23 @@ int main(int argc, char **argv)
                 if (t < fr.captured)
                     report("rgs_frame", t, "capture", FRAME_FIELD, fr.tx[t].dh, got, 11, want.o, FRAME_IN, top.f_tid_o),
                         fr.vs_capture++;
+            }
+            any = true;
+        }
+        if (top.l_valid_o && top.l_ready_i) {
+            const std::size_t t = li.hand_over();
+            if (t != SIZE_MAX) {
+                light_tx want = li.tx[t];
+                model(want);
+                uint32_t got[11];
+                for (int k = 0; k < 3; k++)
+                    got[k] = get(top.l_o_o, k), got[3 + k] = get(top.l_d_o, k);
+                got[6] = top.l_tmin_o, got[7] = top.l_tmax_o, got[8] = top.l_active_o, got[9] = top.l_diff_o,
+                got[10] = top.l_spec_o;
+                report("rgs_light", t, "C model", LIGHT_FIELD, want.o, got, 11, want.l, LIGHT_IN, top.l_tid_o);
+                if (t < li.captured)
+                    report("rgs_light", t, "capture", LIGHT_FIELD, li.tx[t].o, got, 11, want.l, LIGHT_IN, top.l_tid_o),
+                        li.vs_capture++;
             }
             any = true;
         }
@@ -420,11 +510,13 @@ int main(int argc, char **argv)
             tx.accept();
         if (top.f_valid_i && top.f_ready_o)
             fr.accept();
+        if (top.l_valid_i && top.l_ready_o)
+            li.accept();
         idle = any ? 0 : idle + 1;
         top.clk_i = 1;
         top.eval();
     }
-    const bool lost = !nd.done() || !tx.done() || !fr.done();
+    const bool lost = !nd.done() || !tx.done() || !fr.done() || !li.done();
     std::printf("tb_shade: shade_rec_decode %llu normals checked (%zu captured, %llu also against the capture; %zu missing, "
                 "%zu folded), latency %llu cycles\n",
                 (unsigned long long)nd.checked, nd.captured, (unsigned long long)nd.vs_capture, missing, folded,
@@ -437,7 +529,11 @@ int main(int argc, char **argv)
                 "cycles\n",
                 (unsigned long long)fr.checked, fr.captured, (unsigned long long)fr.vs_capture,
                 (unsigned long long)fr.latency);
-    const bool invented = nd.invented || tx.invented || fr.invented;
+    std::printf("tb_shade: rgs_light %llu light-surface pairs checked (%zu captured, %llu also against the capture; %zu "
+                "lit, %zu by a spot), latency %llu cycles\n",
+                (unsigned long long)li.checked, li.captured, (unsigned long long)li.vs_capture, lit, spots,
+                (unsigned long long)li.latency);
+    const bool invented = nd.invented || tx.invented || fr.invented || li.invented;
     std::printf("tb_shade: %llu cycles, %llu mismatches, %llu wrong addresses%s%s\n", (unsigned long long)g_cycle,
                 (unsigned long long)g_mismatches, (unsigned long long)bad_addr, lost ? ", RESULTS LOST" : "",
                 invented ? ", RESULTS INVENTED" : "");

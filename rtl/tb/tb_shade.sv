@@ -1,7 +1,8 @@
 // tb_shade: test wrapper (not synthesized) around the RGS's shading datapath, each unit with its own
 // input stream and handshake: the decoding of the compact shading record's vertex normals
 // (shade_rec_decode, ports n_*), the bilinear texture sample (tex_bilinear, ports t_*, whose
-// memory port the bench serves) and the frame of a hit (rgs_frame, ports f_*). The C++ bench (tb_shade.cpp) drives valid_i and ready_i with gaps
+// memory port the bench serves), the frame of a hit (rgs_frame, ports f_*) and a light at a surface
+// (rgs_light, ports l_*). The C++ bench (tb_shade.cpp) drives valid_i and ready_i with gaps
 // and back pressure and checks every result against the C model.
 module tb_shade #(
   parameter int E = 7,
@@ -51,7 +52,32 @@ module tb_shade #(
   output logic [3*(E+M+1)-1:0] f_n_o,
   output logic                 f_entering_o,
   output logic [E+M:0]         f_t_hat_o,
-  output logic [3*(E+M+1)-1:0] f_p_o
+  output logic [3*(E+M+1)-1:0] f_p_o,
+  input  logic                 l_valid_i,
+  output logic                 l_ready_o,
+  input  logic [5:0]           l_tid_i,
+  input  logic [31:0]          l_type_i,
+  input  logic [3*(E+M+1)-1:0] l_lpos_i,
+  input  logic [3*(E+M+1)-1:0] l_ldir_i,
+  input  logic [E+M:0]         l_cos_in_i,
+  input  logic [E+M:0]         l_cos_out_i,
+  input  logic [E+M:0]         l_eps_i,
+  input  logic                 l_sf_valid_i,
+  input  logic                 l_unlit_i,
+  input  logic [3*(E+M+1)-1:0] l_p_i,
+  input  logic [3*(E+M+1)-1:0] l_n_i,
+  input  logic [3*(E+M+1)-1:0] l_d_i,
+  input  logic [3:0]           l_k_i,
+  output logic                 l_valid_o,
+  input  logic                 l_ready_i,
+  output logic [5:0]           l_tid_o,
+  output logic [3*(E+M+1)-1:0] l_o_o,
+  output logic [3*(E+M+1)-1:0] l_d_o,
+  output logic [E+M:0]         l_tmin_o,
+  output logic [E+M:0]         l_tmax_o,
+  output logic                 l_active_o,
+  output logic [15:0]          l_diff_o,
+  output logic [15:0]          l_spec_o
 );
   shade_rec_decode #(.E(E), .M(M), .TID_BITS(6)) u_dec (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(n_valid_i),
     .ready_o(n_ready_o), .tid_i(n_tid_i), .code_i(n_code_i), .valid_o(n_valid_o), .ready_i(n_ready_i),
@@ -65,4 +91,10 @@ module tb_shade #(
     .ready_o(f_ready_o), .tid_i(f_tid_i), .o_i(f_o_i), .d_i(f_d_i), .t_i(f_t_i), .cos_n_i(f_cos_n_i), .n_i(f_n_i),
     .w2o_i(f_w2o_i), .valid_o(f_valid_o), .ready_i(f_ready_i), .tid_o(f_tid_o), .d_o(f_d_o), .n_o(f_n_o),
     .entering_o(f_entering_o), .t_hat_o(f_t_hat_o), .p_o(f_p_o));
+  rgs_light #(.E(E), .M(M), .TID_BITS(6)) u_light (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(l_valid_i),
+    .ready_o(l_ready_o), .tid_i(l_tid_i), .type_i(l_type_i), .lpos_i(l_lpos_i), .ldir_i(l_ldir_i),
+    .cos_in_i(l_cos_in_i), .cos_out_i(l_cos_out_i), .eps_i(l_eps_i), .sf_valid_i(l_sf_valid_i), .unlit_i(l_unlit_i),
+    .p_i(l_p_i), .n_i(l_n_i), .d_i(l_d_i), .k_i(l_k_i), .valid_o(l_valid_o), .ready_i(l_ready_i), .tid_o(l_tid_o),
+    .o_o(l_o_o), .d_o(l_d_o), .tmin_o(l_tmin_o), .tmax_o(l_tmax_o), .active_o(l_active_o), .diff_o(l_diff_o),
+    .spec_o(l_spec_o));
 endmodule

@@ -22,7 +22,7 @@
 #include "trav_unit.h"
 #include "xform_unit.h"
 
-enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_RGS, CAP_REBASE, CAP_WIDE, CAP_TRAV_UNIT, CAP_SHADE_REC, CAP_TEX, CAP_FRAME, CAP_UNITS };
+enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_RGS, CAP_REBASE, CAP_WIDE, CAP_TRAV_UNIT, CAP_SHADE_REC, CAP_TEX, CAP_FRAME, CAP_LIGHT, CAP_UNITS };
 
 static struct {
     int on;
@@ -33,7 +33,7 @@ static struct {
 
 const char *const capture_unit_names[CAPTURE_UNITS] = { "xform", "isect",  "trav", "list",      "mem",
                                                         "sched", "rgs",    "rebase", "wide",     "trav_unit",
-                                                        "shade_rec", "tex",    "frame" };
+                                                        "shade_rec", "tex",    "frame",  "light" };
 
 /* The list unit's threads: trace_state addresses in the order first seen (the RTL's thread ids),
  * and the memory interfaces (pipes) likewise. */
@@ -595,6 +595,42 @@ void __wrap_rgs_surface_frame(f24_vec3 o, f24_vec3 d, f24_t t, f24_t cos_n, f24_
         captured_frame(o, d, t, cos_n, n, w2o, sf);
     else
         __real_rgs_surface_frame(o, d, t, cos_n, n, w2o, sf);
+}
+
+/* Each light's weights and shadow ray at each surface of a packet (for rtl/tb/tb_shade.cpp), a line
+ * per ray: the light record's words 0..12, eps, the surface's valid, unlit, P, N^, D^, highlight
+ * exponent; the shadow ray's o, d, tmin, tmax, its active bit, the diffuse and highlight weights. */
+void __real_rgs_light_packet(const uint32_t *l, const surface sf[], f24_t eps, ray_packet *sh, uint32_t diff[],
+                             uint32_t spec[], const uint32_t k_of[]);
+void __wrap_rgs_light_packet(const uint32_t *l, const surface sf[], f24_t eps, ray_packet *sh, uint32_t diff[],
+                             uint32_t spec[], const uint32_t k_of[]);
+
+CAPTURE_PATH void captured_light(const uint32_t *l, const surface sf[], f24_t eps, ray_packet *sh, uint32_t diff[],
+                                 uint32_t spec[], const uint32_t k_of[])
+{
+    __real_rgs_light_packet(l, sf, eps, sh, diff, spec, k_of);
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        FILE *f = begin(CAP_LIGHT);
+        if (!f)
+            return;
+        const surface *s = &sf[i];
+        const uint32_t w[24] = { eps, (uint32_t)s->valid, (uint32_t)s->unlit, s->p.x, s->p.y, s->p.z, s->n.x, s->n.y, s->n.z,
+                                 s->d.x, s->d.y, s->d.z, k_of[i], sh->o[i].x, sh->o[i].y, sh->o[i].z, sh->d[i].x,
+                                 sh->d[i].y, sh->d[i].z, sh->tmin[i], sh->tmax[i], sh->active >> i & 1u, diff[i], spec[i] };
+        words(f, l, 13);
+        fputc(' ', f);
+        words(f, w, 24);
+        end(f);
+    }
+}
+
+void __wrap_rgs_light_packet(const uint32_t *l, const surface sf[], f24_t eps, ray_packet *sh, uint32_t diff[],
+                             uint32_t spec[], const uint32_t k_of[])
+{
+    if (capturing())
+        captured_light(l, sf, eps, sh, diff, spec, k_of);
+    else
+        __real_rgs_light_packet(l, sf, eps, sh, diff, spec, k_of);
 }
 
 /* ---- traversal unit: its operations per trace_state and level (for rtl/tb/tb_trav.cpp) ---- */
