@@ -93,11 +93,6 @@ block_pixels:
 /* ---- the surface at a hit ------------------------------------------------------------------- */
 
 
-/* u A + v B + (1 - u - v) C. */
-static f24_t lerp(f24_t a, f24_t b, f24_t c, f24_t u, f24_t v)
-{
-    return f24_add(f24_add(f24_mul(u, a), f24_mul(v, b)), f24_mul(f24_sub(f24_sub(F24_ONE, u), v), c));
-}
 
 /* Notes a shading read in op (the shading cache's view) and counts it. */
 static void shade_read(unit_op *op, trace_counters *c, uint32_t addr, uint32_t words)
@@ -114,8 +109,8 @@ static f24_vec3 hit_normal(const uint32_t *mem, const hit_record *h, uint32_t ob
     if (mem[obj + O_FLAGS] & SHADE_HAS_NORMALS) {
         const f24_vec3 a = shade_rec_normal(&mem[shade], 0), b = shade_rec_normal(&mem[shade], 1),
                        cc = shade_rec_normal(&mem[shade], 2);
-        n = (f24_vec3){ lerp(a.x, b.x, cc.x, h->u, h->v), lerp(a.y, b.y, cc.y, h->u, h->v),
-                        lerp(a.z, b.z, cc.z, h->u, h->v) };
+        n = (f24_vec3){ rgs_lerp(a.x, b.x, cc.x, h->u, h->v), rgs_lerp(a.y, b.y, cc.y, h->u, h->v),
+                        rgs_lerp(a.z, b.z, cc.z, h->u, h->v) };
     }
     if (f24_is_zero(rgs_dot3(n, n))) {
         const uint32_t tri = mem[obj + O_TRIANGLES] + TRI_WORDS * h->triangle;
@@ -136,7 +131,7 @@ static void modulate_texture(const uint32_t *mem, uint32_t t, uint32_t flags, co
     f24_t st[2];
 texcoords:
     for (uint32_t k = 0; k < 2; k++)
-        st[k] = lerp(shade_rec_texcoord(flags, tail, uv, k), shade_rec_texcoord(flags, tail, uv, 2 + k),
+        st[k] = rgs_lerp(shade_rec_texcoord(flags, tail, uv, k), shade_rec_texcoord(flags, tail, uv, 2 + k),
                      shade_rec_texcoord(flags, tail, uv, 4 + k), h->u, h->v);
     const uint32_t entry = region_start(mem, R_TEXTURES) + TEX_WORDS * t;
     uint32_t tex[3];

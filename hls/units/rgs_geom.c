@@ -1,5 +1,6 @@
-/* The RGS's vector helpers and the frame of a hit: see rgs_ops.h and docs/shading.md. Outside
- * rgs.c so that the unit capture can wrap rgs_surface_frame. */
+/* The RGS's vector helpers, the barycentric interpolation and the frame of a hit: see rgs_ops.h
+ * and docs/shading.md. Outside rgs.c so that the unit capture can wrap rgs_lerp and
+ * rgs_surface_frame. */
 #include "rgs_ops.h"
 
 #include "xform_unit.h"
@@ -9,6 +10,11 @@ F24Q_FN f24_t rgs_dot3(f24_vec3 a, f24_vec3 b)
     const f24_t al[4] = { a.x, a.y, a.z, 0 }, bl[4] = { b.x, b.y, b.z, 0 };
     const f24q p = f24q_mul(f24q_of(al), f24q_of(bl));
     return f24w_bits(f24w_add(f24w_add(f24q_lane(p, 0), f24q_lane(p, 1)), f24q_lane(p, 2)));
+}
+
+f24_t rgs_lerp(f24_t a, f24_t b, f24_t c, f24_t u, f24_t v)
+{
+    return f24_add(f24_add(f24_mul(u, a), f24_mul(v, b)), f24_mul(f24_sub(f24_sub(F24_ONE, u), v), c));
 }
 
 void rgs_surface_frame(f24_vec3 o, f24_vec3 d, f24_t t, f24_t cos_n, f24_vec3 n, const f24_affine *w2o, surface *sf)

@@ -2,7 +2,8 @@
  * Operations of the RGS's shading (hls/units/rgs.c, docs/shading.md) that live outside rgs.c so
  * that the RTL co-simulation (rtl/tb/tb_shade.cpp) can call them and the unit capture
  * (tb/cli/capture.c) can wrap them: the integer colour arithmetic in Q12 (4096 = 1.0, saturating
- * at 65535), the fp24 vector helpers and the frame of a hit (hls/units/rgs_geom.c), a light's
+ * at 65535), the fp24 vector helpers, the barycentric interpolation and the frame of a hit
+ * (hls/units/rgs_geom.c), a light's
  * weights and shadow rays (hls/units/rgs_light.c), the bilinear texture sample
  * (hls/units/rgs_tex.c).
  */
@@ -44,6 +45,10 @@ static inline f24_affine t_r(f24_vec3 o, f24_vec3 d, f24_vec3 n)
     const f24_affine m = { { { d.x, n.x, d.x, o.x }, { d.y, n.y, d.y, o.y }, { d.z, n.z, d.z, o.z } } };
     return m;
 }
+
+/* u A + v B + (1 - u - v) C: a component of the hit's interpolated vertex normal or texture
+ * coordinates (barycentrics u, v). */
+f24_t rgs_lerp(f24_t a, f24_t b, f24_t c, f24_t u, f24_t v);
 
 /* The frame of a hit of the ray (o, d) at distance t: into sf the unit direction d, the unit shading
  * normal (object-space normal n through the transposed 3x3 of the world-to-object matrix w2o,

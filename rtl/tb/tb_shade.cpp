@@ -8,6 +8,8 @@
 //  rgs_light (rtl/rgs_light.sv): one light at one surface (the shadow ray, the Q12 diffuse and
 //    highlight weights, the active bit), against rgs_light_packet (hls/units/rgs_light.c) on a
 //    packet whose other rays are invalid.
+//  rgs_lerp (rtl/rgs_lerp.sv): each component of a hit's interpolated vertex normal or texture
+//    coordinates, against rgs_lerp (hls/units/rgs_geom.c).
 //  tex_bilinear (rtl/tex_bilinear.sv): each bilinear texture sample, against rgs_texel_axis and
 //    rgs_bilinear_blend (hls/units/rgs_tex.c, the functions rgs_sample_bilinear is made of). The
 //    bench is the memory: every texel request must carry the C's address (texture address + y w +
@@ -19,7 +21,8 @@
 // axes' x0 x1 fx y0 y1 fy, the sample; DIR/frame.hex, every rgs_surface_frame call: o, d, t, cos_n,
 // the object-space normal, the world-to-object 3x3; the outputs; DIR/light.hex, every light at every
 // surface of rgs_light_packet: the light record's words 0..12, e, the surface's valid, unlit, P,
-// N^, D^, k; the shadow ray, active, diff, spec) come first and are also checked against the recording; then
+// N^, D^, k; the shadow ray, active, diff, spec; DIR/lerp.hex, every rgs_lerp call: a, b, c, u, v;
+// the result) come first and are also checked against the recording; then
 // random ones: records of random words with one vertex's code set to an edge (the missing normal
 // x = -2^20 with any y, the poles and axes +-(2^20 - 1), codes on and beside the fold
 // |x| + |y| = 2^20 - 1, small components) or anything; samples at coordinates near 0 and 1, on
@@ -27,7 +30,8 @@
 // power-of-two and huge sizes (to 2^31 - 1) at any address (the address sums wrap as the C's),
 // with random texels; frames of rays of moderate, tiny, huge, zero or special components, normals
 // of any length (zero too) and rotation-like or arbitrary matrices; lights of every type (spot cones
-// equal, reversed or special too) at random surfaces, invalid and unlit ones, exponents 0..15.
+// equal, reversed or special too) at random surfaces, invalid and unlit ones, exponents 0..15;
+// interpolations at barycentrics inside the triangle, on its edges, outside or special.
 // Every transaction gets a thread id (its number modulo 64), which must come
 // out with its result. The handshakes are exercised: in every other epoch of 1024 cycles the inputs
 // have random gaps and the outputs (and the memory's request port) random back pressure. A
@@ -66,6 +70,8 @@ struct light_tx {
     uint32_t l[13], eps, valid, unlit, p[3], n[3], d[3], k, o[3], sd[3], tmin, tmax, active, diff, spec;
 };
 constexpr std::size_t LIGHT_IN = 26;
+// lerp.hex's word order: a, b, c, u, v, the result
+struct lerp_tx { uint32_t a, b, c, u, v, r; };
 constexpr uint32_t OCT_MASK = (1u << SHADE_OCT_BITS) - 1u;
 
 uint64_t code_of(const normal_tx &x)
@@ -104,6 +110,8 @@ void model(frame_tx &x)
     words3(sf.d, x.dh), words3(sf.n, x.nh), words3(sf.p, x.p);
     x.entering = (uint32_t)sf.entering, x.t_hat = sf.t_hat;
 }
+
+void model(lerp_tx &x) { x.r = rgs_lerp(x.a, x.b, x.c, x.u, x.v); }
 
 // rgs_light_packet on a packet of this surface and three invalid ones
 void model(light_tx &x)
@@ -254,6 +262,24 @@ light_tx random_light()
     return x;
 }
 
+// a barycentric: in [0, 1] mostly, 0 or 1 exactly, slightly outside, or anything
+uint32_t rnd_bary()
+{
+    switch (rnd() % 8) {
+    case 0: return rnd() & 1u ? F24_ONE : (rnd() & 1u) ? F24_SIGN_BIT : 0u;
+    case 1: return moderate(1);
+    case 2: return rnd_f24();
+    default: return f24_div(f24_from_i32((int32_t)(rnd() % 65537)), f24_from_i32(65536));
+    }
+}
+
+lerp_tx random_lerp()
+{
+    lerp_tx x{ moderate(2), moderate(2), moderate(2), rnd_bary(), rnd_bary(), 0 };
+    model(x);
+    return x;
+}
+
 uint64_t g_mismatches = 0;
 
 // field by field: the first 10 mismatches print the unit, transaction, cycle, thread, fields, inputs
@@ -278,6 +304,7 @@ void report(const char *unit, std::size_t t, const char *against, const char *co
 const char *const NORMAL_FIELD[] = { "n.x", "n.y", "n.z" };
 const char *const FRAME_FIELD[] = { "d^.x", "d^.y", "d^.z", "n^.x", "n^.y", "n^.z", "entering", "t_hat", "p.x", "p.y", "p.z" };
 const char *const LIGHT_FIELD[] = { "o.x", "o.y", "o.z", "d.x", "d.y", "d.z", "tmin", "tmax", "active", "diff", "spec" };
+const char *const LERP_FIELD[] = { "r" };
 const char *const TEX_FIELD[] = { "x0", "x1", "fx", "y0", "y1", "fy", "r", "g", "b" };
 
 template <typename T> bool load(const std::string &dir, const char *file, std::vector<T> &out, const char *why)
@@ -335,6 +362,7 @@ int main(int argc, char **argv)
     stream<tex_tx> tx;
     stream<frame_tx> fr;
     stream<light_tx> li;
+    stream<lerp_tx> le;
     if (!capture.empty()) {
         bool present; // a scene without vertex normals or textures records no normal or sample
         if (!read_capture("tb_shade", capture + "/shade_rec.hex", nd.tx, present) ||
@@ -342,12 +370,14 @@ int main(int argc, char **argv)
             return 2;
         if (!load(capture, "frame.hex", fr.tx, "no surface shaded?"))
             return 2;
-        if (!load(capture, "light.hex", li.tx, "no surface lit?"))
+        if (!load(capture, "light.hex", li.tx, "no surface lit?") ||
+            !read_capture("tb_shade", capture + "/lerp.hex", le.tx, present))
             return 2;
+        le.captured = le.tx.size();
         nd.captured = nd.tx.size(), tx.captured = tx.tx.size(), fr.captured = fr.tx.size(), li.captured = li.tx.size();
     }
     for (std::size_t i = 0; i < n; i++)
-        nd.tx.push_back(random_normal()), tx.tx.push_back(random_tex()), fr.tx.push_back(random_frame()), li.tx.push_back(random_light());
+        nd.tx.push_back(random_normal()), tx.tx.push_back(random_tex()), fr.tx.push_back(random_frame()), li.tx.push_back(random_light()), le.tx.push_back(random_lerp());
     std::size_t missing = 0, folded = 0, wrapped = 0;
     for (const auto &x : nd.tx) {
         const uint64_t c = code_of(x);
@@ -373,7 +403,7 @@ int main(int argc, char **argv)
     std::size_t lit = 0, spots = 0;
     for (const auto &x : li.tx)
         lit += x.diff != 0, spots += x.l[0] == 2 && x.diff != 0;
-    for (; (!nd.done() || !tx.done() || !fr.done() || !li.done()) && idle < 1000; g_cycle++) {
+    for (; (!nd.done() || !tx.done() || !fr.done() || !li.done() || !le.done()) && idle < 1000; g_cycle++) {
         const bool calm = (g_cycle / 1024) % 2 == 0;
         top.clk_i = 0;
         top.n_valid_i = nd.offer(calm);
@@ -412,6 +442,13 @@ int main(int argc, char **argv)
             top.l_tid_i = li.next % 64;
         }
         top.l_ready_i = calm || rnd() % 4 != 0;
+        top.e_valid_i = le.offer(calm);
+        if (top.e_valid_i) {
+            const lerp_tx &x = le.tx[le.next];
+            top.e_a_i = x.a, top.e_b_i = x.b, top.e_c_i = x.c, top.e_u_i = x.u, top.e_v_i = x.v;
+            top.e_tid_i = le.next % 64;
+        }
+        top.e_ready_i = calm || rnd() % 4 != 0;
         top.t_req_ready_i = calm || rnd() % 4 != 0;
         top.t_rsp_valid_i = !rsp.empty() && rsp.front().due <= g_cycle;
         top.t_rsp_data_i = top.t_rsp_valid_i ? rsp.front().word : 0;
@@ -460,6 +497,19 @@ int main(int argc, char **argv)
                 if (t < li.captured)
                     report("rgs_light", t, "capture", LIGHT_FIELD, li.tx[t].o, got, 11, want.l, LIGHT_IN, top.l_tid_o),
                         li.vs_capture++;
+            }
+            any = true;
+        }
+        if (top.e_valid_o && top.e_ready_i) {
+            const std::size_t t = le.hand_over();
+            if (t != SIZE_MAX) {
+                lerp_tx want = le.tx[t];
+                model(want);
+                const uint32_t got = top.e_r_o;
+                report("rgs_lerp", t, "C model", LERP_FIELD, &want.r, &got, 1, &want.a, 5, top.e_tid_o);
+                if (t < le.captured)
+                    report("rgs_lerp", t, "capture", LERP_FIELD, &le.tx[t].r, &got, 1, &want.a, 5, top.e_tid_o),
+                        le.vs_capture++;
             }
             any = true;
         }
@@ -512,11 +562,13 @@ int main(int argc, char **argv)
             fr.accept();
         if (top.l_valid_i && top.l_ready_o)
             li.accept();
+        if (top.e_valid_i && top.e_ready_o)
+            le.accept();
         idle = any ? 0 : idle + 1;
         top.clk_i = 1;
         top.eval();
     }
-    const bool lost = !nd.done() || !tx.done() || !fr.done() || !li.done();
+    const bool lost = !nd.done() || !tx.done() || !fr.done() || !li.done() || !le.done();
     std::printf("tb_shade: shade_rec_decode %llu normals checked (%zu captured, %llu also against the capture; %zu missing, "
                 "%zu folded), latency %llu cycles\n",
                 (unsigned long long)nd.checked, nd.captured, (unsigned long long)nd.vs_capture, missing, folded,
@@ -533,7 +585,11 @@ int main(int argc, char **argv)
                 "lit, %zu by a spot), latency %llu cycles\n",
                 (unsigned long long)li.checked, li.captured, (unsigned long long)li.vs_capture, lit, spots,
                 (unsigned long long)li.latency);
-    const bool invented = nd.invented || tx.invented || fr.invented || li.invented;
+    std::printf("tb_shade: rgs_lerp %llu components checked (%zu captured, %llu also against the capture), latency %llu "
+                "cycles\n",
+                (unsigned long long)le.checked, le.captured, (unsigned long long)le.vs_capture,
+                (unsigned long long)le.latency);
+    const bool invented = nd.invented || tx.invented || fr.invented || li.invented || le.invented;
     std::printf("tb_shade: %llu cycles, %llu mismatches, %llu wrong addresses%s%s\n", (unsigned long long)g_cycle,
                 (unsigned long long)g_mismatches, (unsigned long long)bad_addr, lost ? ", RESULTS LOST" : "",
                 invented ? ", RESULTS INVENTED" : "");

@@ -1,8 +1,8 @@
 // tb_shade: test wrapper (not synthesized) around the RGS's shading datapath, each unit with its own
 // input stream and handshake: the decoding of the compact shading record's vertex normals
 // (shade_rec_decode, ports n_*), the bilinear texture sample (tex_bilinear, ports t_*, whose
-// memory port the bench serves), the frame of a hit (rgs_frame, ports f_*) and a light at a surface
-// (rgs_light, ports l_*). The C++ bench (tb_shade.cpp) drives valid_i and ready_i with gaps
+// memory port the bench serves), the frame of a hit (rgs_frame, ports f_*), a light at a surface
+// (rgs_light, ports l_*) and the barycentric interpolation (rgs_lerp, ports e_*). The C++ bench (tb_shade.cpp) drives valid_i and ready_i with gaps
 // and back pressure and checks every result against the C model.
 module tb_shade #(
   parameter int E = 7,
@@ -77,7 +77,19 @@ module tb_shade #(
   output logic [E+M:0]         l_tmax_o,
   output logic                 l_active_o,
   output logic [15:0]          l_diff_o,
-  output logic [15:0]          l_spec_o
+  output logic [15:0]          l_spec_o,
+  input  logic                 e_valid_i,
+  output logic                 e_ready_o,
+  input  logic [5:0]           e_tid_i,
+  input  logic [E+M:0]         e_a_i,
+  input  logic [E+M:0]         e_b_i,
+  input  logic [E+M:0]         e_c_i,
+  input  logic [E+M:0]         e_u_i,
+  input  logic [E+M:0]         e_v_i,
+  output logic                 e_valid_o,
+  input  logic                 e_ready_i,
+  output logic [5:0]           e_tid_o,
+  output logic [E+M:0]         e_r_o
 );
   shade_rec_decode #(.E(E), .M(M), .TID_BITS(6)) u_dec (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(n_valid_i),
     .ready_o(n_ready_o), .tid_i(n_tid_i), .code_i(n_code_i), .valid_o(n_valid_o), .ready_i(n_ready_i),
@@ -97,4 +109,7 @@ module tb_shade #(
     .p_i(l_p_i), .n_i(l_n_i), .d_i(l_d_i), .k_i(l_k_i), .valid_o(l_valid_o), .ready_i(l_ready_i), .tid_o(l_tid_o),
     .o_o(l_o_o), .d_o(l_d_o), .tmin_o(l_tmin_o), .tmax_o(l_tmax_o), .active_o(l_active_o), .diff_o(l_diff_o),
     .spec_o(l_spec_o));
+  rgs_lerp #(.E(E), .M(M), .TID_BITS(6)) u_lerp (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(e_valid_i),
+    .ready_o(e_ready_o), .tid_i(e_tid_i), .a_i(e_a_i), .b_i(e_b_i), .c_i(e_c_i), .u_i(e_u_i), .v_i(e_v_i),
+    .valid_o(e_valid_o), .ready_i(e_ready_i), .tid_o(e_tid_o), .r_o(e_r_o));
 endmodule

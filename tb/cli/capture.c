@@ -22,7 +22,7 @@
 #include "trav_unit.h"
 #include "xform_unit.h"
 
-enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_RGS, CAP_REBASE, CAP_WIDE, CAP_TRAV_UNIT, CAP_SHADE_REC, CAP_TEX, CAP_FRAME, CAP_LIGHT, CAP_UNITS };
+enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_RGS, CAP_REBASE, CAP_WIDE, CAP_TRAV_UNIT, CAP_SHADE_REC, CAP_TEX, CAP_FRAME, CAP_LIGHT, CAP_LERP, CAP_UNITS };
 
 static struct {
     int on;
@@ -33,7 +33,8 @@ static struct {
 
 const char *const capture_unit_names[CAPTURE_UNITS] = { "xform", "isect",  "trav", "list",      "mem",
                                                         "sched", "rgs",    "rebase", "wide",     "trav_unit",
-                                                        "shade_rec", "tex",    "frame",  "light" };
+                                                        "shade_rec", "tex",    "frame",  "light",
+                                                        "lerp" };
 
 /* The list unit's threads: trace_state addresses in the order first seen (the RTL's thread ids),
  * and the memory interfaces (pipes) likewise. */
@@ -595,6 +596,28 @@ void __wrap_rgs_surface_frame(f24_vec3 o, f24_vec3 d, f24_t t, f24_t cos_n, f24_
         captured_frame(o, d, t, cos_n, n, w2o, sf);
     else
         __real_rgs_surface_frame(o, d, t, cos_n, n, w2o, sf);
+}
+
+/* Each component of a hit's interpolated vertex normal or texture coordinates (for
+ * rtl/tb/tb_shade.cpp): a, b, c, u, v; u a + v b + (1 - u - v) c. */
+f24_t __real_rgs_lerp(f24_t a, f24_t b, f24_t c, f24_t u, f24_t v);
+f24_t __wrap_rgs_lerp(f24_t a, f24_t b, f24_t c, f24_t u, f24_t v);
+
+CAPTURE_PATH f24_t captured_lerp(f24_t a, f24_t b, f24_t c, f24_t u, f24_t v)
+{
+    const f24_t r = __real_rgs_lerp(a, b, c, u, v);
+    FILE *f = begin(CAP_LERP);
+    if (!f)
+        return r;
+    const uint32_t w[6] = { a, b, c, u, v, r };
+    words(f, w, 6);
+    end(f);
+    return r;
+}
+
+f24_t __wrap_rgs_lerp(f24_t a, f24_t b, f24_t c, f24_t u, f24_t v)
+{
+    return capturing() ? captured_lerp(a, b, c, u, v) : __real_rgs_lerp(a, b, c, u, v);
 }
 
 /* Each light's weights and shadow ray at each surface of a packet (for rtl/tb/tb_shade.cpp), a line
