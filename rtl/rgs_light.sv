@@ -21,7 +21,7 @@
 // per cycle (II = 1); handshake valid/ready, the pipeline advances when the output is free or
 // taken. Resources: 8 `f24_dot3` (24 multipliers, 16 adders), 1 square root, 4 dividers, 5 adders,
 // 4 comparators, 1 multiplier, 2 `q12_of`, 9 16 x 16-bit integer multipliers (the diffuse weight
-// and 8 squarings), delay lines.
+// and 8 squarings, `q12_mul`), delay lines.
 module rgs_light #(
   parameter int E = 7,
   parameter int M = 16,
@@ -76,15 +76,6 @@ module rgs_light #(
   localparam int TC = TR + DOT > T1 ? TR + DOT : T1;                   // R . d and |d| together
   localparam int TS = TC + DIV_STAGES + CMP_STAGES + Q;                // s in Q12
   localparam int LATENCY = TW + Q > TS + 8 ? TW + Q : TS + 8;
-
-  // Q12 x Q12: (a b + 2048) >> 12, saturated at 65535 (the C's q_mul)
-  function automatic logic [15:0] q12_mul(input logic [15:0] a, input logic [15:0] b);
-    /* verilator lint_off UNUSEDSIGNAL */
-    logic [32:0] prod;  // the 12 bits below the Q12 point are dropped
-    /* verilator lint_on UNUSEDSIGNAL */
-    prod = 33'(a) * 33'(b) + 33'd2048;
-    q12_mul = prod[32:28] != 0 ? 16'hFFFF : prod[27:12];
-  endfunction
 
   logic en;
   assign en = ready_i || !valid_o;
@@ -161,7 +152,7 @@ module rgs_light #(
   logic [15:0] qw, diff, diff_q;
   q12_of #(.E(E), .M(M), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES), .TOI_STAGES(TOI_STAGES)) u_qw (
     .clk_i(clk_i), .rst_ni(rst_ni), .en_i(en), .valid_i(1'b0), .x_i(w_sel), .valid_o(), .q_o(qw));
-  assign diff = q12_mul(qw, 16'd3482);
+  q12_mul u_diff (.a_i(qw), .b_i(16'd3482), .p_o(diff));
   f24_pipe #(.W(16), .STAGES(LATENCY - TW - Q)) u_d_diff (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en),
     .valid_i(1'b0), .data_i(diff), .valid_o(), .data_o(diff_q));
 
@@ -199,8 +190,10 @@ module rgs_light #(
   f24_pipe #(.W(4), .STAGES(TS)) u_d_k (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en), .valid_i(1'b0),
     .data_i(k_i), .valid_o(), .data_o(k_s[0]));
   for (genvar j = 0; j < 8; j++) begin : g_phong  // cos^(2^k): squaring j where j < k
-    f24_pipe #(.W(20), .STAGES(1)) u_sq (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en), .valid_i(1'b0),
-      .data_i({k_s[j], 4'(j) < k_s[j] ? q12_mul(s[j], s[j]) : s[j]}), .valid_o(), .data_o({k_s[j+1], s[j+1]}));
+    logic [15:0] sq;
+    q12_mul u_sq (.a_i(s[j]), .b_i(s[j]), .p_o(sq));
+    f24_pipe #(.W(20), .STAGES(1)) u_stage (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en), .valid_i(1'b0),
+      .data_i({k_s[j], 4'(j) < k_s[j] ? sq : s[j]}), .valid_o(), .data_o({k_s[j+1], s[j+1]}));
   end
   logic [15:0] spec_q;
   f24_pipe #(.W(16), .STAGES(LATENCY - TS - 8)) u_d_spec (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en),

@@ -19,10 +19,11 @@
 # on random cameras; the RGS's decoding of the shading record's vertex normals
 # (rtl/shade_rec_decode.sv), its bilinear texture sample (rtl/tex_bilinear.sv, tex_axis.sv, its
 # texel reads served by the bench), the frame of a hit (rtl/rgs_frame.sv: unit direction and
-# normal, t_hat, hit point), a light at a surface (rtl/rgs_light.sv: shadow ray, Q12 weights) and
-# the barycentric interpolation (rtl/rgs_lerp.sv) match shade_rec_normal, rgs_sample_bilinear's
-# parts, rgs_surface_frame, rgs_light_packet and rgs_lerp and the normals, samples, frames, lights
-# and interpolations recorded while rendering the room
+# normal, t_hat, hit point), a light at a surface (rtl/rgs_light.sv: shadow ray, Q12 weights), its
+# colour and accumulation (rtl/rgs_light_colour.sv, rgs_add_light.sv) and the barycentric
+# interpolation (rtl/rgs_lerp.sv) match shade_rec_normal, rgs_sample_bilinear's parts,
+# rgs_surface_frame, rgs_light_packet, rgs_light_colour, rgs_add_light and rgs_lerp and the
+# transactions recorded while rendering the room
 # (textured), the cornell box and (from ../shared/scenes, if present) subpass_scene_opaque and
 # CesiumMilkTruck (textured) with shadows and reflections, and 2 x 10^4 random ones of each; the
 # benches catch mutants (a rounder that never rounds ties to even, a mailbox

@@ -216,14 +216,6 @@ static uint32_t mat_ks(const uint32_t *m) { return m[M_SHADER1] >> 13 & 0x1FFFu;
 
 /* ---- lights ----------------------------------------------------------------------------------- */
 
-/* Light colour scaled to a maximum component of one, in Q12. */
-static void light_colour(const uint32_t *l, uint32_t out[3])
-{
-    const f24_t m = f24_max(f24_max(l[1], l[2]), l[3]);
-normalize_colour:
-    for (int c = 0; c < 3; c++)
-        out[c] = f24_lt(0, m) ? q_of(f24_div(l[1 + c], m)) : 0u;
-}
 
 static uint32_t at_least_one(uint32_t n) { return n ? n : 1u; }
 
@@ -256,10 +248,7 @@ static void add_light(rgs_block *b, uint32_t visible)
 add_light_rays:
     for (int i = 0; i < TRACE_PACKET; i++)
         if (visible >> i & 1u)
-            for (int k = 0; k < 3; k++) {
-                b->diffuse[i][k] = q_add(b->diffuse[i][k], q_mul(b->diff[i], b->colour[k]));
-                b->highlight[i][k] = q_add(b->highlight[i][k], q_mul(b->spec[i], b->colour[k]));
-            }
+            rgs_add_light(b->diffuse[i], b->highlight[i], b->diff[i], b->spec[i], b->colour);
 }
 
 /* RGS: the next light's weights and its shadow packet; unoccluded light is added at once. */
@@ -268,7 +257,7 @@ static void op_light(const uint32_t *mem, const rgs_config *cfg, rgs_block *b, u
     const uint32_t at = region_start(mem, R_LIGHTS) + LIGHT_WORDS * b->light;
     const uint32_t *l = &mem[at];
     rgs_light_packet(l, b->sf, b->eps, &b->shadow, b->diff, b->spec, b->k_of);
-    light_colour(l, b->colour);
+    rgs_light_colour(l, b->colour);
     op_set(op, UNIT_RGS, at_least_one(count_rays(b->shadow.active)));
     shade_read(op, &c->trace, at, LIGHT_WORDS);
     if (SAARCOR_CFG_SHADOWS && cfg->shadows && b->shadow.active) {

@@ -1,5 +1,6 @@
-/* A light's weights at a packet's surfaces and its shadow packet: see rgs_ops.h and docs/shading.md.
- * Outside rgs.c so that the unit capture can wrap rgs_light_packet. */
+/* A light's weights at a packet's surfaces and its shadow packet, its colour and the accumulation
+ * of its light: see rgs_ops.h and docs/shading.md. Outside rgs.c so that the unit capture can wrap
+ * rgs_light_packet, rgs_light_colour and rgs_add_light. */
 #include "rgs_ops.h"
 
 #define Q12_DIFFUSE 3482u /* 0.85 */
@@ -39,5 +40,22 @@ shadow_rays:
         spec[i] = s;
         if (diff[i] | spec[i])
             sh->active |= 1u << i;
+    }
+}
+
+void rgs_light_colour(const uint32_t *l, uint32_t out[3])
+{
+    const f24_t m = f24_max(f24_max(l[1], l[2]), l[3]);
+normalize_colour:
+    for (int c = 0; c < 3; c++)
+        out[c] = f24_lt(0, m) ? q_of(f24_div(l[1 + c], m)) : 0u;
+}
+
+void rgs_add_light(uint32_t diffuse[3], uint32_t highlight[3], uint32_t diff, uint32_t spec, const uint32_t colour[3])
+{
+add_light_channels:
+    for (int k = 0; k < 3; k++) {
+        diffuse[k] = q_add(diffuse[k], q_mul(diff, colour[k]));
+        highlight[k] = q_add(highlight[k], q_mul(spec, colour[k]));
     }
 }

@@ -62,6 +62,13 @@ void rgs_surface_frame(f24_vec3 o, f24_vec3 d, f24_t t, f24_t cos_n, f24_vec3 n,
 void rgs_light_packet(const uint32_t *l, const surface sf[], f24_t eps, ray_packet *sh, uint32_t diff[], uint32_t spec[],
                       const uint32_t k_of[]);
 
+/* Light colour (the record's words 1..3) scaled to a maximum component of one, in Q12. */
+void rgs_light_colour(const uint32_t *l, uint32_t out[3]);
+
+/* The light of a visible light source added to a ray's Q12 diffuse and highlight sums: its
+ * weights diff and spec times the light's colour. */
+void rgs_add_light(uint32_t diffuse[3], uint32_t highlight[3], uint32_t diff, uint32_t spec, const uint32_t colour[3]);
+
 /* Texel coordinate of texture coordinate s over n texels (1 <= n < 2^31; centres at +1/2): the
  * wrapped integer part i0, its right neighbour i1 and the fraction in Q8 (0..256). */
 void rgs_texel_axis(f24_t s, uint32_t n, uint32_t *i0, uint32_t *i1, uint32_t *frac);

@@ -10,6 +10,9 @@
 //    packet whose other rays are invalid.
 //  rgs_lerp (rtl/rgs_lerp.sv): each component of a hit's interpolated vertex normal or texture
 //    coordinates, against rgs_lerp (hls/units/rgs_geom.c).
+//  rgs_light_colour, rgs_add_light (rtl/rgs_light_colour.sv, rgs_add_light.sv): each light's Q12
+//    colour and each visible light added to a ray's sums, against rgs_light_colour and
+//    rgs_add_light (hls/units/rgs_light.c).
 //  tex_bilinear (rtl/tex_bilinear.sv): each bilinear texture sample, against rgs_texel_axis and
 //    rgs_bilinear_blend (hls/units/rgs_tex.c, the functions rgs_sample_bilinear is made of). The
 //    bench is the memory: every texel request must carry the C's address (texture address + y w +
@@ -22,7 +25,8 @@
 // the object-space normal, the world-to-object 3x3; the outputs; DIR/light.hex, every light at every
 // surface of rgs_light_packet: the light record's words 0..12, e, the surface's valid, unlit, P,
 // N^, D^, k; the shadow ray, active, diff, spec; DIR/lerp.hex, every rgs_lerp call: a, b, c, u, v;
-// the result) come first and are also checked against the recording; then
+// the result; DIR/colour.hex and DIR/accum.hex, every rgs_light_colour and rgs_add_light call)
+// come first and are also checked against the recording; then
 // random ones: records of random words with one vertex's code set to an edge (the missing normal
 // x = -2^20 with any y, the poles and axes +-(2^20 - 1), codes on and beside the fold
 // |x| + |y| = 2^20 - 1, small components) or anything; samples at coordinates near 0 and 1, on
@@ -31,7 +35,8 @@
 // with random texels; frames of rays of moderate, tiny, huge, zero or special components, normals
 // of any length (zero too) and rotation-like or arbitrary matrices; lights of every type (spot cones
 // equal, reversed or special too) at random surfaces, invalid and unlit ones, exponents 0..15;
-// interpolations at barycentrics inside the triangle, on its edges, outside or special.
+// interpolations at barycentrics inside the triangle, on its edges, outside or special; colours of
+// any sign, zero or special; sums and weights of any 16-bit value (saturating).
 // Every transaction gets a thread id (its number modulo 64), which must come
 // out with its result. The handshakes are exercised: in every other epoch of 1024 cycles the inputs
 // have random gaps and the outputs (and the memory's request port) random back pressure. A
@@ -72,6 +77,10 @@ struct light_tx {
 constexpr std::size_t LIGHT_IN = 26;
 // lerp.hex's word order: a, b, c, u, v, the result
 struct lerp_tx { uint32_t a, b, c, u, v, r; };
+// colour.hex: the light's words 1..3, its Q12 colour; accum.hex: the sums, diff, spec, the colour;
+// the sums after
+struct colour_tx { uint32_t c[3], q[3]; };
+struct accum_tx { uint32_t diffuse[3], highlight[3], diff, spec, colour[3], diffuse_o[3], highlight_o[3]; };
 constexpr uint32_t OCT_MASK = (1u << SHADE_OCT_BITS) - 1u;
 
 uint64_t code_of(const normal_tx &x)
@@ -112,6 +121,16 @@ void model(frame_tx &x)
 }
 
 void model(lerp_tx &x) { x.r = rgs_lerp(x.a, x.b, x.c, x.u, x.v); }
+void model(colour_tx &x)
+{
+    const uint32_t l[4] = { 0, x.c[0], x.c[1], x.c[2] };
+    rgs_light_colour(l, x.q);
+}
+void model(accum_tx &x)
+{
+    std::memcpy(x.diffuse_o, x.diffuse, sizeof x.diffuse), std::memcpy(x.highlight_o, x.highlight, sizeof x.highlight);
+    rgs_add_light(x.diffuse_o, x.highlight_o, x.diff, x.spec, x.colour);
+}
 
 // rgs_light_packet on a packet of this surface and three invalid ones
 void model(light_tx &x)
@@ -280,6 +299,26 @@ lerp_tx random_lerp()
     return x;
 }
 
+colour_tx random_colour()
+{
+    colour_tx x{};
+    for (auto &c : x.c)
+        c = rnd() % 8 ? moderate(4) & ~(rnd() % 4 ? F24_SIGN_BIT : 0u) : rnd() % 2 ? 0u : rnd_f24();
+    model(x);
+    return x;
+}
+
+accum_tx random_accum()
+{
+    accum_tx x{};
+    const uint32_t top = rnd() % 4 ? 8192 : 65536; // mostly moderate, now and then up to saturation
+    for (int k = 0; k < 3; k++)
+        x.diffuse[k] = rnd() % top, x.highlight[k] = rnd() % top, x.colour[k] = rnd() % 4097;
+    x.diff = rnd() % top, x.spec = rnd() % top;
+    model(x);
+    return x;
+}
+
 uint64_t g_mismatches = 0;
 
 // field by field: the first 10 mismatches print the unit, transaction, cycle, thread, fields, inputs
@@ -305,6 +344,8 @@ const char *const NORMAL_FIELD[] = { "n.x", "n.y", "n.z" };
 const char *const FRAME_FIELD[] = { "d^.x", "d^.y", "d^.z", "n^.x", "n^.y", "n^.z", "entering", "t_hat", "p.x", "p.y", "p.z" };
 const char *const LIGHT_FIELD[] = { "o.x", "o.y", "o.z", "d.x", "d.y", "d.z", "tmin", "tmax", "active", "diff", "spec" };
 const char *const LERP_FIELD[] = { "r" };
+const char *const COLOUR_FIELD[] = { "r", "g", "b" };
+const char *const ACCUM_FIELD[] = { "diffuse.r", "diffuse.g", "diffuse.b", "highlight.r", "highlight.g", "highlight.b" };
 const char *const TEX_FIELD[] = { "x0", "x1", "fx", "y0", "y1", "fy", "r", "g", "b" };
 
 template <typename T> bool load(const std::string &dir, const char *file, std::vector<T> &out, const char *why)
@@ -319,8 +360,14 @@ template <typename T> bool load(const std::string &dir, const char *file, std::v
     return true;
 }
 
-// a unit's stream: the transactions, those accepted and not yet handed over (in order)
+template <typename T> const uint32_t *words_of(const T &x) { return reinterpret_cast<const uint32_t *>(&x); }
+
+// a unit's stream: the transactions (in_words inputs, the outputs from word out_at on), those
+// accepted and not yet handed over (in order)
 template <typename T> struct stream {
+    const char *unit;
+    const char *const *field;
+    std::size_t in_words, out_at;
     std::vector<T> tx;
     std::size_t captured = 0, next = 0;
     std::deque<std::size_t> in_flight;
@@ -348,6 +395,21 @@ template <typename T> struct stream {
         return t;
     }
     bool done() const { return next == tx.size() && in_flight.empty(); }
+    // valid_o && ready_i: got holds the unit's outputs, tid its thread; compared with the C model's
+    // and, for a captured transaction, with the recording's
+    void result(const uint32_t *got, uint32_t tid)
+    {
+        const std::size_t t = hand_over();
+        if (t == SIZE_MAX)
+            return;
+        T want = tx[t];
+        model(want);
+        const std::size_t n_out = sizeof(T) / sizeof(uint32_t) - out_at;
+        report(unit, t, "C model", field, words_of(want) + out_at, got, n_out, words_of(want), in_words, tid);
+        if (t < captured)
+            report(unit, t, "capture", field, words_of(tx[t]) + out_at, got, n_out, words_of(want), in_words, tid),
+                vs_capture++;
+    }
 };
 
 } // namespace
@@ -358,11 +420,13 @@ int main(int argc, char **argv)
     std::string capture;
     if (!parse_args(argc, argv, "tb_shade", n, capture))
         return 2;
-    stream<normal_tx> nd;
-    stream<tex_tx> tx;
-    stream<frame_tx> fr;
-    stream<light_tx> li;
-    stream<lerp_tx> le;
+    stream<normal_tx> nd{ "shade_rec_decode", NORMAL_FIELD, SHADE_NORMAL_WORDS + 1, SHADE_NORMAL_WORDS + 1 };
+    stream<tex_tx> tx{ "tex_bilinear", TEX_FIELD, 9, 9 };
+    stream<frame_tx> fr{ "rgs_frame", FRAME_FIELD, FRAME_IN, FRAME_IN };
+    stream<light_tx> li{ "rgs_light", LIGHT_FIELD, LIGHT_IN, LIGHT_IN };
+    stream<lerp_tx> le{ "rgs_lerp", LERP_FIELD, 5, 5 };
+    stream<colour_tx> co{ "rgs_light_colour", COLOUR_FIELD, 3, 3 };
+    stream<accum_tx> ac{ "rgs_add_light", ACCUM_FIELD, 11, 11 };
     if (!capture.empty()) {
         bool present; // a scene without vertex normals or textures records no normal or sample
         if (!read_capture("tb_shade", capture + "/shade_rec.hex", nd.tx, present) ||
@@ -373,11 +437,14 @@ int main(int argc, char **argv)
         if (!load(capture, "light.hex", li.tx, "no surface lit?") ||
             !read_capture("tb_shade", capture + "/lerp.hex", le.tx, present))
             return 2;
-        le.captured = le.tx.size();
+        if (!load(capture, "colour.hex", co.tx, "no light?") || !read_capture("tb_shade", capture + "/accum.hex", ac.tx, present))
+            return 2;
+        le.captured = le.tx.size(), co.captured = co.tx.size(), ac.captured = ac.tx.size();
         nd.captured = nd.tx.size(), tx.captured = tx.tx.size(), fr.captured = fr.tx.size(), li.captured = li.tx.size();
     }
     for (std::size_t i = 0; i < n; i++)
-        nd.tx.push_back(random_normal()), tx.tx.push_back(random_tex()), fr.tx.push_back(random_frame()), li.tx.push_back(random_light()), le.tx.push_back(random_lerp());
+        nd.tx.push_back(random_normal()), tx.tx.push_back(random_tex()), fr.tx.push_back(random_frame()), li.tx.push_back(random_light()), le.tx.push_back(random_lerp()), co.tx.push_back(random_colour()),
+            ac.tx.push_back(random_accum());
     std::size_t missing = 0, folded = 0, wrapped = 0;
     for (const auto &x : nd.tx) {
         const uint64_t c = code_of(x);
@@ -403,7 +470,8 @@ int main(int argc, char **argv)
     std::size_t lit = 0, spots = 0;
     for (const auto &x : li.tx)
         lit += x.diff != 0, spots += x.l[0] == 2 && x.diff != 0;
-    for (; (!nd.done() || !tx.done() || !fr.done() || !li.done() || !le.done()) && idle < 1000; g_cycle++) {
+    for (; (!nd.done() || !tx.done() || !fr.done() || !li.done() || !le.done() || !co.done() || !ac.done()) && idle < 1000;
+         g_cycle++) {
         const bool calm = (g_cycle / 1024) % 2 == 0;
         top.clk_i = 0;
         top.n_valid_i = nd.offer(calm);
@@ -449,85 +517,82 @@ int main(int argc, char **argv)
             top.e_tid_i = le.next % 64;
         }
         top.e_ready_i = calm || rnd() % 4 != 0;
+        top.c_valid_i = co.offer(calm);
+        if (top.c_valid_i) {
+            for (int k = 0; k < 3; k++)
+                put(top.c_colour_i, k, co.tx[co.next].c[k]);
+            top.c_tid_i = co.next % 64;
+        }
+        top.c_ready_i = calm || rnd() % 4 != 0;
+        top.a_valid_i = ac.offer(calm);
+        if (top.a_valid_i) {
+            const accum_tx &x = ac.tx[ac.next];
+            top.a_diffuse_i = top.a_highlight_i = top.a_colour_i = 0;
+            for (int k = 0; k < 3; k++)
+                top.a_diffuse_i |= (uint64_t)x.diffuse[k] << 16 * k, top.a_highlight_i |= (uint64_t)x.highlight[k] << 16 * k,
+                    top.a_colour_i |= (uint64_t)x.colour[k] << 16 * k;
+            top.a_diff_i = x.diff, top.a_spec_i = x.spec;
+            top.a_tid_i = ac.next % 64;
+        }
+        top.a_ready_i = calm || rnd() % 4 != 0;
         top.t_req_ready_i = calm || rnd() % 4 != 0;
         top.t_rsp_valid_i = !rsp.empty() && rsp.front().due <= g_cycle;
         top.t_rsp_data_i = top.t_rsp_valid_i ? rsp.front().word : 0;
         top.eval();
         bool any = false;
         if (top.n_valid_o && top.n_ready_i) {
-            const std::size_t t = nd.hand_over();
             const uint32_t got[3] = { get(top.n_o, 0), get(top.n_o, 1), get(top.n_o, 2) };
-            if (t != SIZE_MAX) {
-                normal_tx want = nd.tx[t];
-                model(want);
-                report("shade_rec_decode", t, "C model", NORMAL_FIELD, want.n, got, 3, want.rec, 5, top.n_tid_o);
-                if (t < nd.captured)
-                    report("shade_rec_decode", t, "capture", NORMAL_FIELD, nd.tx[t].n, got, 3, want.rec, 5, top.n_tid_o),
-                        nd.vs_capture++;
-            }
+            nd.result(got, top.n_tid_o);
             any = true;
         }
         if (top.f_valid_o && top.f_ready_i) {
-            const std::size_t t = fr.hand_over();
-            if (t != SIZE_MAX) {
-                frame_tx want = fr.tx[t];
-                model(want);
-                uint32_t got[11];
-                for (int k = 0; k < 3; k++)
-                    got[k] = get(top.f_d_o, k), got[3 + k] = get(top.f_n_o, k), got[8 + k] = get(top.f_p_o, k);
-                got[6] = top.f_entering_o, got[7] = top.f_t_hat_o;
-                report("rgs_frame", t, "C model", FRAME_FIELD, want.dh, got, 11, want.o, FRAME_IN, top.f_tid_o);
-                if (t < fr.captured)
-                    report("rgs_frame", t, "capture", FRAME_FIELD, fr.tx[t].dh, got, 11, want.o, FRAME_IN, top.f_tid_o),
-                        fr.vs_capture++;
-            }
+            uint32_t got[11];
+            for (int k = 0; k < 3; k++)
+                got[k] = get(top.f_d_o, k), got[3 + k] = get(top.f_n_o, k), got[8 + k] = get(top.f_p_o, k);
+            got[6] = top.f_entering_o, got[7] = top.f_t_hat_o;
+            fr.result(got, top.f_tid_o);
             any = true;
         }
         if (top.l_valid_o && top.l_ready_i) {
-            const std::size_t t = li.hand_over();
-            if (t != SIZE_MAX) {
-                light_tx want = li.tx[t];
-                model(want);
-                uint32_t got[11];
-                for (int k = 0; k < 3; k++)
-                    got[k] = get(top.l_o_o, k), got[3 + k] = get(top.l_d_o, k);
-                got[6] = top.l_tmin_o, got[7] = top.l_tmax_o, got[8] = top.l_active_o, got[9] = top.l_diff_o,
-                got[10] = top.l_spec_o;
-                report("rgs_light", t, "C model", LIGHT_FIELD, want.o, got, 11, want.l, LIGHT_IN, top.l_tid_o);
-                if (t < li.captured)
-                    report("rgs_light", t, "capture", LIGHT_FIELD, li.tx[t].o, got, 11, want.l, LIGHT_IN, top.l_tid_o),
-                        li.vs_capture++;
-            }
+            uint32_t got[11];
+            for (int k = 0; k < 3; k++)
+                got[k] = get(top.l_o_o, k), got[3 + k] = get(top.l_d_o, k);
+            got[6] = top.l_tmin_o, got[7] = top.l_tmax_o, got[8] = top.l_active_o, got[9] = top.l_diff_o,
+            got[10] = top.l_spec_o;
+            li.result(got, top.l_tid_o);
             any = true;
         }
         if (top.e_valid_o && top.e_ready_i) {
-            const std::size_t t = le.hand_over();
-            if (t != SIZE_MAX) {
-                lerp_tx want = le.tx[t];
-                model(want);
-                const uint32_t got = top.e_r_o;
-                report("rgs_lerp", t, "C model", LERP_FIELD, &want.r, &got, 1, &want.a, 5, top.e_tid_o);
-                if (t < le.captured)
-                    report("rgs_lerp", t, "capture", LERP_FIELD, &le.tx[t].r, &got, 1, &want.a, 5, top.e_tid_o),
-                        le.vs_capture++;
-            }
+            const uint32_t got = top.e_r_o;
+            le.result(&got, top.e_tid_o);
+            any = true;
+        }
+        if (top.c_valid_o && top.c_ready_i) {
+            uint32_t got[3];
+            for (int k = 0; k < 3; k++)
+                got[k] = (uint32_t)(top.c_q_o >> 16 * k & 0xFFFFu);
+            co.result(got, top.c_tid_o);
+            any = true;
+        }
+        if (top.a_valid_o && top.a_ready_i) {
+            uint32_t got[6];
+            for (int k = 0; k < 3; k++)
+                got[k] = (uint32_t)(top.a_diffuse_o >> 16 * k & 0xFFFFu), got[3 + k] = (uint32_t)(top.a_highlight_o >> 16 * k & 0xFFFFu);
+            ac.result(got, top.a_tid_o);
             any = true;
         }
         if (top.t_valid_o && top.t_ready_i) {
-            const std::size_t t = tx.hand_over();
-            if (t != SIZE_MAX) {
-                tex_tx want = tx.tx[t];
-                model(want);
-                // the RTL's axes are inside: only its sample is compared; the C's axes with the recording's
-                uint32_t got[9];
-                std::memcpy(got, want.axes, sizeof want.axes);
-                for (int k = 0; k < 3; k++)
-                    got[6 + k] = (uint32_t)(top.t_rgb_o >> (16 * k) & 0xFFFFu);
-                report("tex_bilinear", t, "C model", TEX_FIELD, want.axes, got, 9, &want.s, 9, top.t_tid_o);
-                if (t < tx.captured)
-                    report("tex_bilinear", t, "capture", TEX_FIELD, tx.tx[t].axes, got, 9, &want.s, 9, top.t_tid_o),
-                        tx.vs_capture++;
+            // the RTL's axes are inside: its outputs are the C's axes (checked against the recording's)
+            // and its sample
+            uint32_t got[9] = {};
+            if (!tx.in_flight.empty()) {
+                tex_tx c = tx.tx[tx.in_flight.front()];
+                model(c);
+                std::memcpy(got, c.axes, sizeof c.axes);
             }
+            for (int k = 0; k < 3; k++)
+                got[6 + k] = (uint32_t)(top.t_rgb_o >> (16 * k) & 0xFFFFu);
+            tx.result(got, top.t_tid_o);
             any = true;
         }
         if (top.t_rsp_valid_i && top.t_rsp_ready_o)
@@ -564,11 +629,15 @@ int main(int argc, char **argv)
             li.accept();
         if (top.e_valid_i && top.e_ready_o)
             le.accept();
+        if (top.c_valid_i && top.c_ready_o)
+            co.accept();
+        if (top.a_valid_i && top.a_ready_o)
+            ac.accept();
         idle = any ? 0 : idle + 1;
         top.clk_i = 1;
         top.eval();
     }
-    const bool lost = !nd.done() || !tx.done() || !fr.done() || !li.done() || !le.done();
+    const bool lost = !nd.done() || !tx.done() || !fr.done() || !li.done() || !le.done() || !co.done() || !ac.done();
     std::printf("tb_shade: shade_rec_decode %llu normals checked (%zu captured, %llu also against the capture; %zu missing, "
                 "%zu folded), latency %llu cycles\n",
                 (unsigned long long)nd.checked, nd.captured, (unsigned long long)nd.vs_capture, missing, folded,
@@ -589,7 +658,12 @@ int main(int argc, char **argv)
                 "cycles\n",
                 (unsigned long long)le.checked, le.captured, (unsigned long long)le.vs_capture,
                 (unsigned long long)le.latency);
-    const bool invented = nd.invented || tx.invented || fr.invented || li.invented || le.invented;
+    std::printf("tb_shade: rgs_light_colour %llu colours (%zu captured, %llu also against the capture), latency %llu cycles; "
+                "rgs_add_light %llu accumulations (%zu captured, %llu also against the capture), latency %llu cycles\n",
+                (unsigned long long)co.checked, co.captured, (unsigned long long)co.vs_capture,
+                (unsigned long long)co.latency, (unsigned long long)ac.checked, ac.captured,
+                (unsigned long long)ac.vs_capture, (unsigned long long)ac.latency);
+    const bool invented = nd.invented || tx.invented || fr.invented || li.invented || le.invented || co.invented || ac.invented;
     std::printf("tb_shade: %llu cycles, %llu mismatches, %llu wrong addresses%s%s\n", (unsigned long long)g_cycle,
                 (unsigned long long)g_mismatches, (unsigned long long)bad_addr, lost ? ", RESULTS LOST" : "",
                 invented ? ", RESULTS INVENTED" : "");

@@ -2,7 +2,8 @@
 // input stream and handshake: the decoding of the compact shading record's vertex normals
 // (shade_rec_decode, ports n_*), the bilinear texture sample (tex_bilinear, ports t_*, whose
 // memory port the bench serves), the frame of a hit (rgs_frame, ports f_*), a light at a surface
-// (rgs_light, ports l_*) and the barycentric interpolation (rgs_lerp, ports e_*). The C++ bench (tb_shade.cpp) drives valid_i and ready_i with gaps
+// (rgs_light, ports l_*), the barycentric interpolation (rgs_lerp, ports e_*), a light's colour
+// (rgs_light_colour, ports c_*) and its accumulation (rgs_add_light, ports a_*). The C++ bench (tb_shade.cpp) drives valid_i and ready_i with gaps
 // and back pressure and checks every result against the C model.
 module tb_shade #(
   parameter int E = 7,
@@ -89,7 +90,28 @@ module tb_shade #(
   output logic                 e_valid_o,
   input  logic                 e_ready_i,
   output logic [5:0]           e_tid_o,
-  output logic [E+M:0]         e_r_o
+  output logic [E+M:0]         e_r_o,
+  input  logic                 c_valid_i,
+  output logic                 c_ready_o,
+  input  logic [5:0]           c_tid_i,
+  input  logic [3*(E+M+1)-1:0] c_colour_i,
+  output logic                 c_valid_o,
+  input  logic                 c_ready_i,
+  output logic [5:0]           c_tid_o,
+  output logic [47:0]          c_q_o,
+  input  logic                 a_valid_i,
+  output logic                 a_ready_o,
+  input  logic [5:0]           a_tid_i,
+  input  logic [47:0]          a_diffuse_i,
+  input  logic [47:0]          a_highlight_i,
+  input  logic [15:0]          a_diff_i,
+  input  logic [15:0]          a_spec_i,
+  input  logic [47:0]          a_colour_i,
+  output logic                 a_valid_o,
+  input  logic                 a_ready_i,
+  output logic [5:0]           a_tid_o,
+  output logic [47:0]          a_diffuse_o,
+  output logic [47:0]          a_highlight_o
 );
   shade_rec_decode #(.E(E), .M(M), .TID_BITS(6)) u_dec (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(n_valid_i),
     .ready_o(n_ready_o), .tid_i(n_tid_i), .code_i(n_code_i), .valid_o(n_valid_o), .ready_i(n_ready_i),
@@ -112,4 +134,11 @@ module tb_shade #(
   rgs_lerp #(.E(E), .M(M), .TID_BITS(6)) u_lerp (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(e_valid_i),
     .ready_o(e_ready_o), .tid_i(e_tid_i), .a_i(e_a_i), .b_i(e_b_i), .c_i(e_c_i), .u_i(e_u_i), .v_i(e_v_i),
     .valid_o(e_valid_o), .ready_i(e_ready_i), .tid_o(e_tid_o), .r_o(e_r_o));
+  rgs_light_colour #(.E(E), .M(M), .TID_BITS(6)) u_colour (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(c_valid_i),
+    .ready_o(c_ready_o), .tid_i(c_tid_i), .colour_i(c_colour_i), .valid_o(c_valid_o), .ready_i(c_ready_i),
+    .tid_o(c_tid_o), .q_o(c_q_o));
+  rgs_add_light #(.TID_BITS(6)) u_accum (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(a_valid_i), .ready_o(a_ready_o),
+    .tid_i(a_tid_i), .diffuse_i(a_diffuse_i), .highlight_i(a_highlight_i), .diff_i(a_diff_i), .spec_i(a_spec_i),
+    .colour_i(a_colour_i), .valid_o(a_valid_o), .ready_i(a_ready_i), .tid_o(a_tid_o), .diffuse_o(a_diffuse_o),
+    .highlight_o(a_highlight_o));
 endmodule

@@ -22,7 +22,7 @@
 #include "trav_unit.h"
 #include "xform_unit.h"
 
-enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_RGS, CAP_REBASE, CAP_WIDE, CAP_TRAV_UNIT, CAP_SHADE_REC, CAP_TEX, CAP_FRAME, CAP_LIGHT, CAP_LERP, CAP_UNITS };
+enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_RGS, CAP_REBASE, CAP_WIDE, CAP_TRAV_UNIT, CAP_SHADE_REC, CAP_TEX, CAP_FRAME, CAP_LIGHT, CAP_LERP, CAP_COLOUR, CAP_ACCUM, CAP_UNITS };
 
 static struct {
     int on;
@@ -34,7 +34,7 @@ static struct {
 const char *const capture_unit_names[CAPTURE_UNITS] = { "xform", "isect",  "trav", "list",      "mem",
                                                         "sched", "rgs",    "rebase", "wide",     "trav_unit",
                                                         "shade_rec", "tex",    "frame",  "light",
-                                                        "lerp" };
+                                                        "lerp",      "colour", "accum" };
 
 /* The list unit's threads: trace_state addresses in the order first seen (the RTL's thread ids),
  * and the memory interfaces (pipes) likewise. */
@@ -596,6 +596,63 @@ void __wrap_rgs_surface_frame(f24_vec3 o, f24_vec3 d, f24_t t, f24_t cos_n, f24_
         captured_frame(o, d, t, cos_n, n, w2o, sf);
     else
         __real_rgs_surface_frame(o, d, t, cos_n, n, w2o, sf);
+}
+
+/* Each light's colour (for rtl/tb/tb_shade.cpp): the record's words 1..3; the Q12 colour. */
+void __real_rgs_light_colour(const uint32_t *l, uint32_t out[3]);
+void __wrap_rgs_light_colour(const uint32_t *l, uint32_t out[3]);
+
+CAPTURE_PATH void captured_colour(const uint32_t *l, uint32_t out[3])
+{
+    __real_rgs_light_colour(l, out);
+    FILE *f = begin(CAP_COLOUR);
+    if (!f)
+        return;
+    words(f, &l[1], 3);
+    fputc(' ', f);
+    words(f, out, 3);
+    end(f);
+}
+
+void __wrap_rgs_light_colour(const uint32_t *l, uint32_t out[3])
+{
+    if (capturing())
+        captured_colour(l, out);
+    else
+        __real_rgs_light_colour(l, out);
+}
+
+/* Each visible light added to a ray's sums (for rtl/tb/tb_shade.cpp): diffuse and highlight sums
+ * before, diff, spec, the light's colour; the sums after. */
+void __real_rgs_add_light(uint32_t diffuse[3], uint32_t highlight[3], uint32_t diff, uint32_t spec,
+                          const uint32_t colour[3]);
+void __wrap_rgs_add_light(uint32_t diffuse[3], uint32_t highlight[3], uint32_t diff, uint32_t spec,
+                          const uint32_t colour[3]);
+
+CAPTURE_PATH void captured_accum(uint32_t diffuse[3], uint32_t highlight[3], uint32_t diff, uint32_t spec,
+                                 const uint32_t colour[3])
+{
+    const uint32_t in[11] = { diffuse[0], diffuse[1], diffuse[2], highlight[0], highlight[1], highlight[2], diff, spec,
+                              colour[0], colour[1], colour[2] };
+    __real_rgs_add_light(diffuse, highlight, diff, spec, colour);
+    FILE *f = begin(CAP_ACCUM);
+    if (!f)
+        return;
+    words(f, in, 11);
+    fputc(' ', f);
+    words(f, diffuse, 3);
+    fputc(' ', f);
+    words(f, highlight, 3);
+    end(f);
+}
+
+void __wrap_rgs_add_light(uint32_t diffuse[3], uint32_t highlight[3], uint32_t diff, uint32_t spec,
+                          const uint32_t colour[3])
+{
+    if (capturing())
+        captured_accum(diffuse, highlight, diff, spec, colour);
+    else
+        __real_rgs_add_light(diffuse, highlight, diff, spec, colour);
 }
 
 /* Each component of a hit's interpolated vertex normal or texture coordinates (for

@@ -32,12 +32,16 @@
  * rtl/tb/tb_shade.cpp, a line per ray: the light record's words 0..12, eps, the surface's valid,
  * unlit, P, N^, D^, highlight exponent; the shadow ray's o, d, tmin, tmax, active bit, the diffuse
  * and highlight weights), DIR/lerp.hex (each component of a hit's interpolated vertex normal or
- * texture coordinates, rgs_lerp, for rtl/tb/tb_shade.cpp: a, b, c, u, v; the result).
+ * texture coordinates, rgs_lerp, for rtl/tb/tb_shade.cpp: a, b, c, u, v; the result),
+ * DIR/colour.hex (each light's colour, rgs_light_colour: the record's words 1..3; the Q12 colour),
+ * DIR/accum.hex (each visible light added to a ray, rgs_add_light: the diffuse and highlight sums
+ * before, diff, spec, the colour; the sums after).
  * The hls/ units are not touched: the program is linked with --wrap for xform_point, xform_vector,
  * isect_unit_rebased, isect_unit_packet (recorded ray by ray), trav_node_split, list_unit_entry,
  * list_mailboxes_clear, mem_iface_read, mem_iface_flush, mem_iface_new_frame, rgs_block_begin,
  * rebase_origin, xform_point_wide, xform_vector_wide (called from trace.c, in another object),
- * trav_scene_clip, trav_object_clip, trav_start, trav_walk, shade_rec_normal, rgs_sample_bilinear, rgs_lerp, rgs_surface_frame and rgs_light_packet (called from rgs.c), and the wrappers record the calls
+ * trav_scene_clip, trav_object_clip, trav_start, trav_walk, shade_rec_normal, rgs_sample_bilinear, rgs_lerp, rgs_surface_frame, rgs_light_packet, rgs_light_colour and rgs_add_light (called from
+ * rgs.c), and the wrappers record the calls
  * while capturing is on (at most `limit` transactions per unit; recorded in call order, which with several host threads
  * interleaves).
  */
@@ -50,8 +54,8 @@
 int capture_start(const char *dir, uint64_t limit, char *err, unsigned errlen);
 
 /* Transactions recorded per unit (DIR/NAME.hex for each name): xform, isect, trav, list, mem, sched, rgs,
- * rebase, wide, trav_unit, shade_rec, tex, frame, light, lerp. */
-#define CAPTURE_UNITS 15
+ * rebase, wide, trav_unit, shade_rec, tex, frame, light, lerp, colour, accum. */
+#define CAPTURE_UNITS 17
 extern const char *const capture_unit_names[CAPTURE_UNITS];
 void capture_counts(uint64_t out[CAPTURE_UNITS]);
 
