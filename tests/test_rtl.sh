@@ -20,10 +20,10 @@
 # (rtl/shade_rec_decode.sv), its bilinear texture sample (rtl/tex_bilinear.sv, tex_axis.sv, its
 # texel reads served by the bench), the frame of a hit (rtl/rgs_frame.sv: unit direction and
 # normal, t_hat, hit point), a light at a surface (rtl/rgs_light.sv: shadow ray, Q12 weights), its
-# colour and accumulation (rtl/rgs_light_colour.sv, rgs_add_light.sv) and the barycentric
-# interpolation (rtl/rgs_lerp.sv) match shade_rec_normal, rgs_sample_bilinear's parts,
-# rgs_surface_frame, rgs_light_packet, rgs_light_colour, rgs_add_light and rgs_lerp and the
-# transactions recorded while rendering the room
+# colour and accumulation (rtl/rgs_light_colour.sv, rgs_add_light.sv), the barycentric
+# interpolation (rtl/rgs_lerp.sv) and the child rays (rtl/rgs_spawn.sv) match shade_rec_normal,
+# rgs_sample_bilinear's parts, rgs_surface_frame, rgs_light_packet, rgs_light_colour, rgs_add_light,
+# rgs_lerp and rgs_spawn_children and the transactions recorded while rendering the room
 # (textured), the cornell box and (from ../shared/scenes, if present) subpass_scene_opaque and
 # CesiumMilkTruck (textured) with shadows and reflections, and 2 x 10^4 random ones of each; the
 # benches catch mutants (a rounder that never rounds ties to even, a mailbox
@@ -32,7 +32,8 @@
 # square root without its sticky bit, a pixel centre without its + 1/2, a tile controller stepping
 # past the region's edge, a vector mode whose unused terms are +0, a rebase that moves by
 # t = Inf, a normal decoder folding the lower hemisphere with the wrong sign, a bilinear blend
-# that truncates, a shading normal turned away from the ray and a highlight squared once too often). Prints cmocka-style lines.
+# that truncates, a shading normal turned away from the ray, a highlight squared once too often and
+# a transmission ray leaving from behind the surface when eta = 1). Prints cmocka-style lines.
 set -u
 cd "$(dirname "$0")/.."
 B=${BUILD:-build}
@@ -193,17 +194,20 @@ t_shade() {
   cat "$T/shade.log"
   grep -Eq "; [1-9][0-9]* missing, [1-9][0-9]* folded\), latency" "$T/shade.log"
   grep -Eq "; [1-9][0-9]* lit, [1-9][0-9]* by a spot\), latency" "$T/shade.log"
+  grep -Eq "; [1-9][0-9]* refracted, [1-9][0-9]* totally reflected\), latency" "$T/shade.log"
 }
 
 # the normal decoder's fold of the lower hemisphere with the x component's sign the wrong way round;
 # the bilinear blend truncating instead of rounding (no + 2^15 before the shift by 16); the frame's
-# normal negated where it already faces the ray; the Phong power with one squaring too many
+# normal negated where it already faces the ray; the Phong power with one squaring too many; the
+# transmission ray from the back origin for eta = 1 instead of on total internal reflection
 t_shade_mutants_caught() {
   mutant shade shade_rec_decode.sv "s/fx = x < 0 ? ay - OCT_ONE : OCT_ONE - ay;/fx = x < 0 ? OCT_ONE - ay : ay - OCT_ONE;/" \
     -n 2000 &&
     mutant shade tex_bilinear.sv "s/bottom \* 32'(hfy) + 32'd32768;/bottom * 32'(hfy);/" -n 2000 &&
     mutant shade rgs_frame.sv "s/\^ !facing\[W-1\]/^ facing[W-1]/" -n 2000 &&
-    mutant shade rgs_light.sv "s/4'(j) < k_s\[j\]/4'(j) <= k_s[j]/" -n 2000
+    mutant shade rgs_light.sv "s/4'(j) < k_s\[j\]/4'(j) <= k_s[j]/" -n 2000 &&
+    mutant shade rgs_spawn.sv "s/assign t_o_o = !one_l \&\& tir_l/assign t_o_o = one_l || tir_l/" -n 2000
 }
 
 # the rebase unit without the test for t = Inf (rebase_distance: 0), the wide mode's vector with its

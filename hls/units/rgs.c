@@ -12,12 +12,11 @@ enum {
     TEX_WORDS = 4, LIGHT_WORDS = 16, MAX_LIGHTS = 64,
     OBJ_WORDS = 16, O_TRIANGLES = 2, O_SHADING = 3, O_FLAGS = 7,
     INST_WORDS = F24_INSTANCE_RECORD_WORDS, TRI_WORDS = F24_TRIANGLE_RECORD_WORDS, MAT_WORDS = 16, CAM_WORDS = 16,
-    M_EMISSIVE = 4, M_TEXTURE = 7, M_METALLIC = 10, M_ETA = 13, M_SHADER0 = 14, M_SHADER1 = 15,
+    M_EMISSIVE = 4, M_TEXTURE = 7, M_METALLIC = 10,
 };
 
 #define BACKGROUND 0x1A1A24u
 #define Q12_AMBIENT 614u   /* 0.15 */
-#define MIN_WEIGHT 16u     /* 1/256: lighter secondary rays are not spawned */
 #define EPS_SHIFT 10       /* e = 2^-10 x the largest extent of the scene bounds */
 
 
@@ -327,48 +326,6 @@ init_block:
     b->stack[b->sp++] = t;
 }
 
-#if SAARCOR_CFG_SECONDARY
-static uint32_t mat_kr(const uint32_t *m) { return m[M_SHADER0] >> 13 & 0x1FFFu; }
-static uint32_t mat_kt(const uint32_t *m) { return m[M_SHADER1] & 0x1FFFu; }
-
-static uint32_t q_max3(const uint32_t c[3])
-{
-    const uint32_t m = c[0] > c[1] ? c[0] : c[1];
-    return m > c[2] ? m : c[2];
-}
-
-/* The child rays of one surface: reflection (weight kr tint) and transmission (weight kt base;
- * refraction, straight transparency for eta = 1, or reflection on total internal reflection). */
-static void spawn_children(const uint32_t *mem, const rgs_block *b, int i, const surface *sf, rgs_task *refl,
-                           rgs_task *trans)
-{
-    const uint32_t *m = &mem[sf->mat], w_r = mat_kr(m), w_t = mat_kt(m);
-    const f24_t c = rgs_dot3(sf->n, sf->d), e = b->eps;
-    const f24_vec3 back = xform_point(&sf->tr, (f24_vec3){ f24_neg(e), 0, sf->t_hat });
-    const f24_vec3 ahead = xform_point(&sf->tr, (f24_vec3){ e, 0, sf->t_hat });
-    const f24_vec3 mirror = xform_vector(&sf->tr, (f24_vec3){ F24_ONE, f24_neg(f24_add(c, c)), 0 });
-child_weights:
-    for (int k = 0; k < 3; k++) {
-        refl->weight[i][k] = q_mul(q_mul(b->cur.weight[i][k], w_r), sf->tint[k]);
-        trans->weight[i][k] = q_mul(q_mul(b->cur.weight[i][k], w_t), sf->base[k]);
-    }
-    refl->rays.o[i] = back;
-    refl->rays.d[i] = mirror;
-    if (q_max3(refl->weight[i]) >= MIN_WEIGHT)
-        refl->rays.active |= 1u << i;
-    trans->rays.o[i] = ahead;
-    trans->rays.d[i] = sf->d; /* transparency: (1, 0, 0) through T_R */
-#if SAARCOR_CFG_REFRACTION
-    const f24_t ior = m[M_ETA], eta_r = sf->entering ? f24_div(F24_ONE, ior) : ior;
-    if (!f24_eq(ior, F24_ONE) && !rgs_refract(sf->d, sf->n, eta_r, &trans->rays.d[i])) {
-        trans->rays.o[i] = back; /* total internal reflection */
-        trans->rays.d[i] = mirror;
-    }
-#endif
-    if (q_max3(trans->weight[i]) >= MIN_WEIGHT)
-        trans->rays.active |= 1u << i;
-}
-#endif
 
 static void task_init(rgs_task *t, uint32_t depth, uint32_t kind)
 {
@@ -413,7 +370,7 @@ accumulate:
 #if SAARCOR_CFG_SECONDARY
         if (sf[i].valid && children) {
             const uint32_t spawned = refl.rays.active | trans.rays.active;
-            spawn_children(mem, b, i, &sf[i], &refl, &trans);
+            rgs_spawn_children(&mem[sf[i].mat], b->cur.weight[i], b->eps, i, &sf[i], &refl, &trans);
             if (!(b->profile & PROFILE_LIVE_CHILDREN) || ((refl.rays.active | trans.rays.active) != spawned))
                 b->children++; /* its T_R steps (the general pipeline runs them for every surface) */
         }

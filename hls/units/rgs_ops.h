@@ -4,7 +4,8 @@
  * (tb/cli/capture.c) can wrap them: the integer colour arithmetic in Q12 (4096 = 1.0, saturating
  * at 65535), the fp24 vector helpers, the barycentric interpolation and the frame of a hit
  * (hls/units/rgs_geom.c), a light's
- * weights and shadow rays (hls/units/rgs_light.c), the bilinear texture sample
+ * weights and shadow rays (hls/units/rgs_light.c), the child rays (hls/units/rgs_spawn.c), the
+ * bilinear texture sample
  * (hls/units/rgs_tex.c).
  */
 #ifndef SAARCOR_RGS_OPS_H
@@ -13,6 +14,10 @@
 #include "rgs.h"
 
 #define RGS_Q12_MAX 65535u
+
+/* material words (docs/memory-image.md): the index of refraction, the shader words kd | kr << 13 |
+ * k << 26 and kt | ks << 13 */
+enum { M_ETA = 13, M_SHADER0 = 14, M_SHADER1 = 15 };
 
 static inline uint32_t q_sat(uint32_t x) { return x < RGS_Q12_MAX ? x : RGS_Q12_MAX; }
 static inline uint32_t q_mul(uint32_t a, uint32_t b) { return q_sat((a * b + 2048u) >> 12); }
@@ -68,6 +73,13 @@ void rgs_light_colour(const uint32_t *l, uint32_t out[3]);
 /* The light of a visible light source added to a ray's Q12 diffuse and highlight sums: its
  * weights diff and spec times the light's colour. */
 void rgs_add_light(uint32_t diffuse[3], uint32_t highlight[3], uint32_t diff, uint32_t spec, const uint32_t colour[3]);
+
+/* The child rays of surface sf (ray i of the packet; m: its material record, weight: the ray's Q12
+ * weight, eps: the ray offset e) into refl and trans: reflection (weight kr tint) and transmission
+ * (weight kt base; refraction, straight transparency for eta = 1, or reflection on total internal
+ * reflection), each active if its largest weight component is at least 16 (hls/units/rgs_spawn.c). */
+void rgs_spawn_children(const uint32_t *m, const uint32_t weight[3], f24_t eps, int i, const surface *sf,
+                        rgs_task *refl, rgs_task *trans);
 
 /* Texel coordinate of texture coordinate s over n texels (1 <= n < 2^31; centres at +1/2): the
  * wrapped integer part i0, its right neighbour i1 and the fraction in Q8 (0..256). */

@@ -13,6 +13,9 @@
 //  rgs_light_colour, rgs_add_light (rtl/rgs_light_colour.sv, rgs_add_light.sv): each light's Q12
 //    colour and each visible light added to a ray's sums, against rgs_light_colour and
 //    rgs_add_light (hls/units/rgs_light.c).
+//  rgs_spawn (rtl/rgs_spawn.sv): the child rays of each surface (reflection, transmission with
+//    refraction and total internal reflection, their Q12 weights and active bits), against
+//    rgs_spawn_children (hls/units/rgs_spawn.c) on a packet of that one ray.
 //  tex_bilinear (rtl/tex_bilinear.sv): each bilinear texture sample, against rgs_texel_axis and
 //    rgs_bilinear_blend (hls/units/rgs_tex.c, the functions rgs_sample_bilinear is made of). The
 //    bench is the memory: every texel request must carry the C's address (texture address + y w +
@@ -25,8 +28,9 @@
 // the object-space normal, the world-to-object 3x3; the outputs; DIR/light.hex, every light at every
 // surface of rgs_light_packet: the light record's words 0..12, e, the surface's valid, unlit, P,
 // N^, D^, k; the shadow ray, active, diff, spec; DIR/lerp.hex, every rgs_lerp call: a, b, c, u, v;
-// the result; DIR/colour.hex and DIR/accum.hex, every rgs_light_colour and rgs_add_light call)
-// come first and are also checked against the recording; then
+// the result; DIR/colour.hex and DIR/accum.hex, every rgs_light_colour and rgs_add_light call;
+// DIR/spawn.hex, every rgs_spawn_children call: the material's words 13..15, the ray's weight, e, the
+// surface's T_R origin, D^, N^, t_hat, entering, tint, base; both children) come first and are also checked against the recording; then
 // random ones: records of random words with one vertex's code set to an edge (the missing normal
 // x = -2^20 with any y, the poles and axes +-(2^20 - 1), codes on and beside the fold
 // |x| + |y| = 2^20 - 1, small components) or anything; samples at coordinates near 0 and 1, on
@@ -36,7 +40,9 @@
 // of any length (zero too) and rotation-like or arbitrary matrices; lights of every type (spot cones
 // equal, reversed or special too) at random surfaces, invalid and unlit ones, exponents 0..15;
 // interpolations at barycentrics inside the triangle, on its edges, outside or special; colours of
-// any sign, zero or special; sums and weights of any 16-bit value (saturating).
+// any sign, zero or special; sums and weights of any 16-bit value (saturating); child rays of
+// surfaces with indices of refraction 1, near 1, glass-like, below 1 (total internal reflection
+// when leaving), special, entering or leaving, and weights around the spawn threshold.
 // Every transaction gets a thread id (its number modulo 64), which must come
 // out with its result. The handshakes are exercised: in every other epoch of 1024 cycles the inputs
 // have random gaps and the outputs (and the memory's request port) random back pressure. A
@@ -80,6 +86,12 @@ struct lerp_tx { uint32_t a, b, c, u, v, r; };
 // colour.hex: the light's words 1..3, its Q12 colour; accum.hex: the sums, diff, spec, the colour;
 // the sums after
 struct colour_tx { uint32_t c[3], q[3]; };
+// spawn.hex: the inputs, then the reflection and the transmission ray (o, d, weight, active)
+struct spawn_tx {
+    uint32_t eta, shader0, shader1, weight[3], eps, o[3], d[3], n[3], t_hat, entering, tint[3], base[3];
+    uint32_t r_o[3], r_d[3], r_w[3], r_active, t_o[3], t_d[3], t_w[3], t_active;
+};
+constexpr std::size_t SPAWN_IN = 24;
 struct accum_tx { uint32_t diffuse[3], highlight[3], diff, spec, colour[3], diffuse_o[3], highlight_o[3]; };
 constexpr uint32_t OCT_MASK = (1u << SHADE_OCT_BITS) - 1u;
 
@@ -121,6 +133,23 @@ void model(frame_tx &x)
 }
 
 void model(lerp_tx &x) { x.r = rgs_lerp(x.a, x.b, x.c, x.u, x.v); }
+void model(spawn_tx &x)
+{
+    uint32_t m[16] = {};
+    m[13] = x.eta, m[14] = x.shader0, m[15] = x.shader1;
+    surface sf{};
+    sf.d = v3(x.d), sf.n = v3(x.n), sf.t_hat = x.t_hat, sf.entering = (int)x.entering;
+    sf.tr = t_r(v3(x.o), sf.d, sf.n);
+    for (int k = 0; k < 3; k++)
+        sf.tint[k] = x.tint[k], sf.base[k] = x.base[k];
+    rgs_task refl{}, trans{};
+    rgs_spawn_children(m, x.weight, x.eps, 0, &sf, &refl, &trans);
+    words3(refl.rays.o[0], x.r_o), words3(refl.rays.d[0], x.r_d), words3(trans.rays.o[0], x.t_o),
+        words3(trans.rays.d[0], x.t_d);
+    for (int k = 0; k < 3; k++)
+        x.r_w[k] = refl.weight[0][k], x.t_w[k] = trans.weight[0][k];
+    x.r_active = refl.rays.active & 1u, x.t_active = trans.rays.active & 1u;
+}
 void model(colour_tx &x)
 {
     const uint32_t l[4] = { 0, x.c[0], x.c[1], x.c[2] };
@@ -299,6 +328,29 @@ lerp_tx random_lerp()
     return x;
 }
 
+spawn_tx random_spawn()
+{
+    spawn_tx x{};
+    const uint32_t etas[] = { F24_ONE, f24_div(f24_from_i32(3), f24_from_i32(2)), f24_div(f24_from_i32(2), f24_from_i32(3)),
+                              f24_div(f24_from_i32(4097), f24_from_i32(4096)), f24_from_i32(4) };
+    x.eta = rnd() % 8 ? etas[rnd() % 5] : rnd() % 2 ? moderate(1) : rnd_f24();
+    x.shader0 = rnd32(), x.shader1 = rnd32();
+    const uint32_t top = rnd() % 4 ? 4097 : 65536;
+    for (int k = 0; k < 3; k++) {
+        x.weight[k] = rnd() % top, x.tint[k] = rnd() % top, x.base[k] = rnd() % top;
+        x.o[k] = moderate(6), x.d[k] = moderate(0), x.n[k] = moderate(0);
+    }
+    if (rnd() % 2) { // a unit direction and normal as rgs_surface_frame leaves them
+        const f24_t dl = f24_div(F24_ONE, f24_sqrt(rgs_dot3(v3(x.d), v3(x.d))));
+        const f24_t nl = f24_div(F24_ONE, f24_sqrt(rgs_dot3(v3(x.n), v3(x.n))));
+        for (int k = 0; k < 3; k++)
+            x.d[k] = f24_mul(x.d[k], dl), x.n[k] = f24_mul(x.n[k], nl);
+    }
+    x.eps = moderate(3), x.t_hat = moderate(6), x.entering = rnd() % 2;
+    model(x);
+    return x;
+}
+
 colour_tx random_colour()
 {
     colour_tx x{};
@@ -345,6 +397,10 @@ const char *const FRAME_FIELD[] = { "d^.x", "d^.y", "d^.z", "n^.x", "n^.y", "n^.
 const char *const LIGHT_FIELD[] = { "o.x", "o.y", "o.z", "d.x", "d.y", "d.z", "tmin", "tmax", "active", "diff", "spec" };
 const char *const LERP_FIELD[] = { "r" };
 const char *const COLOUR_FIELD[] = { "r", "g", "b" };
+const char *const SPAWN_FIELD[] = { "refl.o.x", "refl.o.y", "refl.o.z", "refl.d.x", "refl.d.y", "refl.d.z", "refl.w.r",
+                                    "refl.w.g", "refl.w.b", "refl.active", "trans.o.x", "trans.o.y", "trans.o.z",
+                                    "trans.d.x", "trans.d.y", "trans.d.z", "trans.w.r", "trans.w.g", "trans.w.b",
+                                    "trans.active" };
 const char *const ACCUM_FIELD[] = { "diffuse.r", "diffuse.g", "diffuse.b", "highlight.r", "highlight.g", "highlight.b" };
 const char *const TEX_FIELD[] = { "x0", "x1", "fx", "y0", "y1", "fy", "r", "g", "b" };
 
@@ -427,6 +483,7 @@ int main(int argc, char **argv)
     stream<lerp_tx> le{ "rgs_lerp", LERP_FIELD, 5, 5 };
     stream<colour_tx> co{ "rgs_light_colour", COLOUR_FIELD, 3, 3 };
     stream<accum_tx> ac{ "rgs_add_light", ACCUM_FIELD, 11, 11 };
+    stream<spawn_tx> sp{ "rgs_spawn", SPAWN_FIELD, SPAWN_IN, SPAWN_IN };
     if (!capture.empty()) {
         bool present; // a scene without vertex normals or textures records no normal or sample
         if (!read_capture("tb_shade", capture + "/shade_rec.hex", nd.tx, present) ||
@@ -439,12 +496,14 @@ int main(int argc, char **argv)
             return 2;
         if (!load(capture, "colour.hex", co.tx, "no light?") || !read_capture("tb_shade", capture + "/accum.hex", ac.tx, present))
             return 2;
-        le.captured = le.tx.size(), co.captured = co.tx.size(), ac.captured = ac.tx.size();
+        if (!read_capture("tb_shade", capture + "/spawn.hex", sp.tx, present))
+            return 2;
+        le.captured = le.tx.size(), co.captured = co.tx.size(), ac.captured = ac.tx.size(), sp.captured = sp.tx.size();
         nd.captured = nd.tx.size(), tx.captured = tx.tx.size(), fr.captured = fr.tx.size(), li.captured = li.tx.size();
     }
     for (std::size_t i = 0; i < n; i++)
         nd.tx.push_back(random_normal()), tx.tx.push_back(random_tex()), fr.tx.push_back(random_frame()), li.tx.push_back(random_light()), le.tx.push_back(random_lerp()), co.tx.push_back(random_colour()),
-            ac.tx.push_back(random_accum());
+            ac.tx.push_back(random_accum()), sp.tx.push_back(random_spawn());
     std::size_t missing = 0, folded = 0, wrapped = 0;
     for (const auto &x : nd.tx) {
         const uint64_t c = code_of(x);
@@ -470,7 +529,8 @@ int main(int argc, char **argv)
     std::size_t lit = 0, spots = 0;
     for (const auto &x : li.tx)
         lit += x.diff != 0, spots += x.l[0] == 2 && x.diff != 0;
-    for (; (!nd.done() || !tx.done() || !fr.done() || !li.done() || !le.done() || !co.done() || !ac.done()) && idle < 1000;
+    for (; (!nd.done() || !tx.done() || !fr.done() || !li.done() || !le.done() || !co.done() || !ac.done() ||
+                !sp.done()) && idle < 1000;
          g_cycle++) {
         const bool calm = (g_cycle / 1024) % 2 == 0;
         top.clk_i = 0;
@@ -535,6 +595,20 @@ int main(int argc, char **argv)
             top.a_tid_i = ac.next % 64;
         }
         top.a_ready_i = calm || rnd() % 4 != 0;
+        top.s_valid_i = sp.offer(calm);
+        if (top.s_valid_i) {
+            const spawn_tx &x = sp.tx[sp.next];
+            top.s_eta_i = x.eta, top.s_kr_i = x.shader0 >> 13 & 0x1FFFu, top.s_kt_i = x.shader1 & 0x1FFFu;
+            top.s_weight_i = top.s_tint_i = top.s_base_i = 0;
+            for (int k = 0; k < 3; k++) {
+                top.s_weight_i |= (uint64_t)x.weight[k] << 16 * k, top.s_tint_i |= (uint64_t)x.tint[k] << 16 * k,
+                    top.s_base_i |= (uint64_t)x.base[k] << 16 * k;
+                put(top.s_o_i, k, x.o[k]), put(top.s_d_i, k, x.d[k]), put(top.s_n_i, k, x.n[k]);
+            }
+            top.s_eps_i = x.eps, top.s_t_hat_i = x.t_hat, top.s_entering_i = x.entering;
+            top.s_tid_i = sp.next % 64;
+        }
+        top.s_ready_i = calm || rnd() % 4 != 0;
         top.t_req_ready_i = calm || rnd() % 4 != 0;
         top.t_rsp_valid_i = !rsp.empty() && rsp.front().due <= g_cycle;
         top.t_rsp_data_i = top.t_rsp_valid_i ? rsp.front().word : 0;
@@ -565,6 +639,18 @@ int main(int argc, char **argv)
         if (top.e_valid_o && top.e_ready_i) {
             const uint32_t got = top.e_r_o;
             le.result(&got, top.e_tid_o);
+            any = true;
+        }
+        if (top.s_valid_o && top.s_ready_i) {
+            uint32_t got[20];
+            for (int k = 0; k < 3; k++) {
+                got[k] = get(top.s_r_o_o, k), got[3 + k] = get(top.s_r_d_o, k);
+                got[6 + k] = (uint32_t)(top.s_r_w_o >> 16 * k & 0xFFFFu);
+                got[10 + k] = get(top.s_t_o_o, k), got[13 + k] = get(top.s_t_d_o, k);
+                got[16 + k] = (uint32_t)(top.s_t_w_o >> 16 * k & 0xFFFFu);
+            }
+            got[9] = top.s_r_active_o, got[19] = top.s_t_active_o;
+            sp.result(got, top.s_tid_o);
             any = true;
         }
         if (top.c_valid_o && top.c_ready_i) {
@@ -633,11 +719,13 @@ int main(int argc, char **argv)
             co.accept();
         if (top.a_valid_i && top.a_ready_o)
             ac.accept();
+        if (top.s_valid_i && top.s_ready_o)
+            sp.accept();
         idle = any ? 0 : idle + 1;
         top.clk_i = 1;
         top.eval();
     }
-    const bool lost = !nd.done() || !tx.done() || !fr.done() || !li.done() || !le.done() || !co.done() || !ac.done();
+    const bool lost = !nd.done() || !tx.done() || !fr.done() || !li.done() || !le.done() || !co.done() || !ac.done() || !sp.done();
     std::printf("tb_shade: shade_rec_decode %llu normals checked (%zu captured, %llu also against the capture; %zu missing, "
                 "%zu folded), latency %llu cycles\n",
                 (unsigned long long)nd.checked, nd.captured, (unsigned long long)nd.vs_capture, missing, folded,
@@ -663,7 +751,16 @@ int main(int argc, char **argv)
                 (unsigned long long)co.checked, co.captured, (unsigned long long)co.vs_capture,
                 (unsigned long long)co.latency, (unsigned long long)ac.checked, ac.captured,
                 (unsigned long long)ac.vs_capture, (unsigned long long)ac.latency);
-    const bool invented = nd.invented || tx.invented || fr.invented || li.invented || le.invented || co.invented || ac.invented;
+    std::size_t tir = 0, refracted = 0;
+    for (const auto &x : sp.tx)
+        tir += x.eta != F24_ONE && x.t_o[0] == x.r_o[0] && x.t_d[0] == x.r_d[0],
+            refracted += x.eta != F24_ONE && x.t_d[0] != x.d[0];
+    std::printf("tb_shade: rgs_spawn %llu surfaces checked (%zu captured, %llu also against the capture; %zu refracted, %zu "
+                "totally reflected), latency %llu cycles\n",
+                (unsigned long long)sp.checked, sp.captured, (unsigned long long)sp.vs_capture, refracted, tir,
+                (unsigned long long)sp.latency);
+    const bool invented = nd.invented || tx.invented || fr.invented || li.invented || le.invented || co.invented ||
+                          ac.invented || sp.invented;
     std::printf("tb_shade: %llu cycles, %llu mismatches, %llu wrong addresses%s%s\n", (unsigned long long)g_cycle,
                 (unsigned long long)g_mismatches, (unsigned long long)bad_addr, lost ? ", RESULTS LOST" : "",
                 invented ? ", RESULTS INVENTED" : "");

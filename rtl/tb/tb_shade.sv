@@ -3,7 +3,8 @@
 // (shade_rec_decode, ports n_*), the bilinear texture sample (tex_bilinear, ports t_*, whose
 // memory port the bench serves), the frame of a hit (rgs_frame, ports f_*), a light at a surface
 // (rgs_light, ports l_*), the barycentric interpolation (rgs_lerp, ports e_*), a light's colour
-// (rgs_light_colour, ports c_*) and its accumulation (rgs_add_light, ports a_*). The C++ bench (tb_shade.cpp) drives valid_i and ready_i with gaps
+// (rgs_light_colour, ports c_*), its accumulation (rgs_add_light, ports a_*) and the child rays of a
+// surface (rgs_spawn, ports s_*). The C++ bench (tb_shade.cpp) drives valid_i and ready_i with gaps
 // and back pressure and checks every result against the C model.
 module tb_shade #(
   parameter int E = 7,
@@ -111,7 +112,33 @@ module tb_shade #(
   input  logic                 a_ready_i,
   output logic [5:0]           a_tid_o,
   output logic [47:0]          a_diffuse_o,
-  output logic [47:0]          a_highlight_o
+  output logic [47:0]          a_highlight_o,
+  input  logic                 s_valid_i,
+  output logic                 s_ready_o,
+  input  logic [5:0]           s_tid_i,
+  input  logic [E+M:0]         s_eta_i,
+  input  logic [12:0]          s_kr_i,
+  input  logic [12:0]          s_kt_i,
+  input  logic [47:0]          s_weight_i,
+  input  logic [E+M:0]         s_eps_i,
+  input  logic [3*(E+M+1)-1:0] s_o_i,
+  input  logic [3*(E+M+1)-1:0] s_d_i,
+  input  logic [3*(E+M+1)-1:0] s_n_i,
+  input  logic [E+M:0]         s_t_hat_i,
+  input  logic                 s_entering_i,
+  input  logic [47:0]          s_tint_i,
+  input  logic [47:0]          s_base_i,
+  output logic                 s_valid_o,
+  input  logic                 s_ready_i,
+  output logic [5:0]           s_tid_o,
+  output logic [3*(E+M+1)-1:0] s_r_o_o,
+  output logic [3*(E+M+1)-1:0] s_r_d_o,
+  output logic [47:0]          s_r_w_o,
+  output logic                 s_r_active_o,
+  output logic [3*(E+M+1)-1:0] s_t_o_o,
+  output logic [3*(E+M+1)-1:0] s_t_d_o,
+  output logic [47:0]          s_t_w_o,
+  output logic                 s_t_active_o
 );
   shade_rec_decode #(.E(E), .M(M), .TID_BITS(6)) u_dec (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(n_valid_i),
     .ready_o(n_ready_o), .tid_i(n_tid_i), .code_i(n_code_i), .valid_o(n_valid_o), .ready_i(n_ready_i),
@@ -141,4 +168,10 @@ module tb_shade #(
     .tid_i(a_tid_i), .diffuse_i(a_diffuse_i), .highlight_i(a_highlight_i), .diff_i(a_diff_i), .spec_i(a_spec_i),
     .colour_i(a_colour_i), .valid_o(a_valid_o), .ready_i(a_ready_i), .tid_o(a_tid_o), .diffuse_o(a_diffuse_o),
     .highlight_o(a_highlight_o));
+  rgs_spawn #(.E(E), .M(M), .TID_BITS(6)) u_spawn (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(s_valid_i),
+    .ready_o(s_ready_o), .tid_i(s_tid_i), .eta_i(s_eta_i), .kr_i(s_kr_i), .kt_i(s_kt_i), .weight_i(s_weight_i),
+    .eps_i(s_eps_i), .o_i(s_o_i), .d_i(s_d_i), .n_i(s_n_i), .t_hat_i(s_t_hat_i), .entering_i(s_entering_i),
+    .tint_i(s_tint_i), .base_i(s_base_i), .valid_o(s_valid_o), .ready_i(s_ready_i), .tid_o(s_tid_o),
+    .r_o_o(s_r_o_o), .r_d_o(s_r_d_o), .r_w_o(s_r_w_o), .r_active_o(s_r_active_o), .t_o_o(s_t_o_o),
+    .t_d_o(s_t_d_o), .t_w_o(s_t_w_o), .t_active_o(s_t_active_o));
 endmodule

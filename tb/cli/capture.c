@@ -22,7 +22,7 @@
 #include "trav_unit.h"
 #include "xform_unit.h"
 
-enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_RGS, CAP_REBASE, CAP_WIDE, CAP_TRAV_UNIT, CAP_SHADE_REC, CAP_TEX, CAP_FRAME, CAP_LIGHT, CAP_LERP, CAP_COLOUR, CAP_ACCUM, CAP_UNITS };
+enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_RGS, CAP_REBASE, CAP_WIDE, CAP_TRAV_UNIT, CAP_SHADE_REC, CAP_TEX, CAP_FRAME, CAP_LIGHT, CAP_LERP, CAP_COLOUR, CAP_ACCUM, CAP_SPAWN, CAP_UNITS };
 
 static struct {
     int on;
@@ -34,7 +34,7 @@ static struct {
 const char *const capture_unit_names[CAPTURE_UNITS] = { "xform", "isect",  "trav", "list",      "mem",
                                                         "sched", "rgs",    "rebase", "wide",     "trav_unit",
                                                         "shade_rec", "tex",    "frame",  "light",
-                                                        "lerp",      "colour", "accum" };
+                                                        "lerp",      "colour", "accum",  "spawn" };
 
 /* The list unit's threads: trace_state addresses in the order first seen (the RTL's thread ids),
  * and the memory interfaces (pipes) likewise. */
@@ -596,6 +596,46 @@ void __wrap_rgs_surface_frame(f24_vec3 o, f24_vec3 d, f24_t t, f24_t cos_n, f24_
         captured_frame(o, d, t, cos_n, n, w2o, sf);
     else
         __real_rgs_surface_frame(o, d, t, cos_n, n, w2o, sf);
+}
+
+/* The child rays of each surface (for rtl/tb/tb_shade.cpp): the material's words 13..15, the ray's
+ * weight, e, the surface's T_R origin, D^, N^, t_hat, entering, tint, base; the reflection ray's o,
+ * d, weight, active bit, the transmission ray's likewise. */
+void __real_rgs_spawn_children(const uint32_t *m, const uint32_t weight[3], f24_t eps, int i, const surface *sf,
+                               rgs_task *refl, rgs_task *trans);
+void __wrap_rgs_spawn_children(const uint32_t *m, const uint32_t weight[3], f24_t eps, int i, const surface *sf,
+                               rgs_task *refl, rgs_task *trans);
+
+static void task_ray(FILE *f, const rgs_task *t, int i)
+{
+    fprintf(f, " %06x %06x %06x %06x %06x %06x %x %x %x %x", t->rays.o[i].x, t->rays.o[i].y, t->rays.o[i].z, t->rays.d[i].x,
+            t->rays.d[i].y, t->rays.d[i].z, t->weight[i][0], t->weight[i][1], t->weight[i][2], t->rays.active >> i & 1u);
+}
+
+CAPTURE_PATH void captured_spawn(const uint32_t *m, const uint32_t weight[3], f24_t eps, int i, const surface *sf,
+                                 rgs_task *refl, rgs_task *trans)
+{
+    __real_rgs_spawn_children(m, weight, eps, i, sf, refl, trans);
+    FILE *f = begin(CAP_SPAWN);
+    if (!f)
+        return;
+    const uint32_t w[24] = { m[13], m[14], m[15], weight[0], weight[1], weight[2], eps, sf->tr.m[0][3], sf->tr.m[1][3],
+                             sf->tr.m[2][3], sf->d.x, sf->d.y, sf->d.z, sf->n.x, sf->n.y, sf->n.z, sf->t_hat,
+                             (uint32_t)sf->entering, sf->tint[0], sf->tint[1], sf->tint[2], sf->base[0], sf->base[1],
+                             sf->base[2] };
+    words(f, w, 24);
+    task_ray(f, refl, i);
+    task_ray(f, trans, i);
+    end(f);
+}
+
+void __wrap_rgs_spawn_children(const uint32_t *m, const uint32_t weight[3], f24_t eps, int i, const surface *sf,
+                               rgs_task *refl, rgs_task *trans)
+{
+    if (capturing())
+        captured_spawn(m, weight, eps, i, sf, refl, trans);
+    else
+        __real_rgs_spawn_children(m, weight, eps, i, sf, refl, trans);
 }
 
 /* Each light's colour (for rtl/tb/tb_shade.cpp): the record's words 1..3; the Q12 colour. */

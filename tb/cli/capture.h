@@ -35,12 +35,14 @@
  * texture coordinates, rgs_lerp, for rtl/tb/tb_shade.cpp: a, b, c, u, v; the result),
  * DIR/colour.hex (each light's colour, rgs_light_colour: the record's words 1..3; the Q12 colour),
  * DIR/accum.hex (each visible light added to a ray, rgs_add_light: the diffuse and highlight sums
- * before, diff, spec, the colour; the sums after).
+ * before, diff, spec, the colour; the sums after), DIR/spawn.hex (the child rays of each surface,
+ * rgs_spawn_children: the material's words 13..15, the ray's weight, e, the T_R origin, D^, N^,
+ * t_hat, entering, tint, base; the reflection and the transmission ray's o, d, weight, active bit).
  * The hls/ units are not touched: the program is linked with --wrap for xform_point, xform_vector,
  * isect_unit_rebased, isect_unit_packet (recorded ray by ray), trav_node_split, list_unit_entry,
  * list_mailboxes_clear, mem_iface_read, mem_iface_flush, mem_iface_new_frame, rgs_block_begin,
  * rebase_origin, xform_point_wide, xform_vector_wide (called from trace.c, in another object),
- * trav_scene_clip, trav_object_clip, trav_start, trav_walk, shade_rec_normal, rgs_sample_bilinear, rgs_lerp, rgs_surface_frame, rgs_light_packet, rgs_light_colour and rgs_add_light (called from
+ * trav_scene_clip, trav_object_clip, trav_start, trav_walk, shade_rec_normal, rgs_sample_bilinear, rgs_lerp, rgs_surface_frame, rgs_light_packet, rgs_light_colour, rgs_add_light and rgs_spawn_children (called from
  * rgs.c), and the wrappers record the calls
  * while capturing is on (at most `limit` transactions per unit; recorded in call order, which with several host threads
  * interleaves).
@@ -54,8 +56,8 @@
 int capture_start(const char *dir, uint64_t limit, char *err, unsigned errlen);
 
 /* Transactions recorded per unit (DIR/NAME.hex for each name): xform, isect, trav, list, mem, sched, rgs,
- * rebase, wide, trav_unit, shade_rec, tex, frame, light, lerp, colour, accum. */
-#define CAPTURE_UNITS 17
+ * rebase, wide, trav_unit, shade_rec, tex, frame, light, lerp, colour, accum, spawn. */
+#define CAPTURE_UNITS 18
 extern const char *const capture_unit_names[CAPTURE_UNITS];
 void capture_counts(uint64_t out[CAPTURE_UNITS]);
 
