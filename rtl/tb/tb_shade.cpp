@@ -430,6 +430,18 @@ template <typename T> struct stream {
     uint64_t checked = 0, vs_capture = 0, invented = 0, latency = 0, first_in = 0;
 
     bool offer(bool calm) const { return next < tx.size() && (calm || rnd() % 4 != 0); }
+    // a cycle's handshake inputs: the next transaction offered (set puts its inputs on the ports,
+    // its number modulo 64 is the thread id), ready for the output; in the gappy epochs (!calm)
+    // with random gaps and back pressure
+    template <typename P, typename Set> void drive(bool calm, P &valid, P &tid, P &ready, Set set) const
+    {
+        valid = offer(calm);
+        if (valid) {
+            set(tx[next]);
+            tid = (P)(next % 64);
+        }
+        ready = calm || rnd() % 4 != 0;
+    }
     void accept()
     {
         if (next == 0)
@@ -534,70 +546,42 @@ int main(int argc, char **argv)
          g_cycle++) {
         const bool calm = (g_cycle / 1024) % 2 == 0;
         top.clk_i = 0;
-        top.n_valid_i = nd.offer(calm);
-        if (top.n_valid_i) {
-            top.n_code_i = code_of(nd.tx[nd.next]);
-            top.n_tid_i = nd.next % 64;
-        }
-        top.n_ready_i = calm || rnd() % 4 != 0;
-        top.t_valid_i = tx.offer(calm);
-        if (top.t_valid_i) {
-            const tex_tx &x = tx.tx[tx.next];
+        nd.drive(calm, top.n_valid_i, top.n_tid_i, top.n_ready_i, [&](const normal_tx &x) {
+            top.n_code_i = code_of(x);
+        });
+        tx.drive(calm, top.t_valid_i, top.t_tid_i, top.t_ready_i, [&](const tex_tx &x) {
             top.t_s_i = x.s, top.t_t_i = x.t, top.t_width_i = x.width, top.t_height_i = x.height, top.t_addr_i = x.addr;
-            top.t_tid_i = tx.next % 64;
-        }
-        top.t_ready_i = calm || rnd() % 4 != 0;
-        top.f_valid_i = fr.offer(calm);
-        if (top.f_valid_i) {
-            const frame_tx &x = fr.tx[fr.next];
+        });
+        fr.drive(calm, top.f_valid_i, top.f_tid_i, top.f_ready_i, [&](const frame_tx &x) {
             for (int k = 0; k < 3; k++)
                 put(top.f_o_i, k, x.o[k]), put(top.f_d_i, k, x.d[k]), put(top.f_n_i, k, x.n[k]);
             for (int k = 0; k < 9; k++)
                 put(top.f_w2o_i, k, x.w2o[k]);
             top.f_t_i = x.t, top.f_cos_n_i = x.cos_n;
-            top.f_tid_i = fr.next % 64;
-        }
-        top.f_ready_i = calm || rnd() % 4 != 0;
-        top.l_valid_i = li.offer(calm);
-        if (top.l_valid_i) {
-            const light_tx &x = li.tx[li.next];
+        });
+        li.drive(calm, top.l_valid_i, top.l_tid_i, top.l_ready_i, [&](const light_tx &x) {
             top.l_type_i = x.l[0];
             for (int k = 0; k < 3; k++)
                 put(top.l_lpos_i, k, x.l[4 + k]), put(top.l_ldir_i, k, x.l[7 + k]), put(top.l_p_i, k, x.p[k]),
                     put(top.l_n_i, k, x.n[k]), put(top.l_d_i, k, x.d[k]);
             top.l_cos_in_i = x.l[11], top.l_cos_out_i = x.l[12], top.l_eps_i = x.eps;
             top.l_sf_valid_i = x.valid, top.l_unlit_i = x.unlit, top.l_k_i = x.k;
-            top.l_tid_i = li.next % 64;
-        }
-        top.l_ready_i = calm || rnd() % 4 != 0;
-        top.e_valid_i = le.offer(calm);
-        if (top.e_valid_i) {
-            const lerp_tx &x = le.tx[le.next];
+        });
+        le.drive(calm, top.e_valid_i, top.e_tid_i, top.e_ready_i, [&](const lerp_tx &x) {
             top.e_a_i = x.a, top.e_b_i = x.b, top.e_c_i = x.c, top.e_u_i = x.u, top.e_v_i = x.v;
-            top.e_tid_i = le.next % 64;
-        }
-        top.e_ready_i = calm || rnd() % 4 != 0;
-        top.c_valid_i = co.offer(calm);
-        if (top.c_valid_i) {
+        });
+        co.drive(calm, top.c_valid_i, top.c_tid_i, top.c_ready_i, [&](const colour_tx &x) {
             for (int k = 0; k < 3; k++)
-                put(top.c_colour_i, k, co.tx[co.next].c[k]);
-            top.c_tid_i = co.next % 64;
-        }
-        top.c_ready_i = calm || rnd() % 4 != 0;
-        top.a_valid_i = ac.offer(calm);
-        if (top.a_valid_i) {
-            const accum_tx &x = ac.tx[ac.next];
+                put(top.c_colour_i, k, x.c[k]);
+        });
+        ac.drive(calm, top.a_valid_i, top.a_tid_i, top.a_ready_i, [&](const accum_tx &x) {
             top.a_diffuse_i = top.a_highlight_i = top.a_colour_i = 0;
             for (int k = 0; k < 3; k++)
                 top.a_diffuse_i |= (uint64_t)x.diffuse[k] << 16 * k, top.a_highlight_i |= (uint64_t)x.highlight[k] << 16 * k,
                     top.a_colour_i |= (uint64_t)x.colour[k] << 16 * k;
             top.a_diff_i = x.diff, top.a_spec_i = x.spec;
-            top.a_tid_i = ac.next % 64;
-        }
-        top.a_ready_i = calm || rnd() % 4 != 0;
-        top.s_valid_i = sp.offer(calm);
-        if (top.s_valid_i) {
-            const spawn_tx &x = sp.tx[sp.next];
+        });
+        sp.drive(calm, top.s_valid_i, top.s_tid_i, top.s_ready_i, [&](const spawn_tx &x) {
             top.s_eta_i = x.eta, top.s_kr_i = x.shader0 >> 13 & 0x1FFFu, top.s_kt_i = x.shader1 & 0x1FFFu;
             top.s_weight_i = top.s_tint_i = top.s_base_i = 0;
             for (int k = 0; k < 3; k++) {
@@ -606,9 +590,7 @@ int main(int argc, char **argv)
                 put(top.s_o_i, k, x.o[k]), put(top.s_d_i, k, x.d[k]), put(top.s_n_i, k, x.n[k]);
             }
             top.s_eps_i = x.eps, top.s_t_hat_i = x.t_hat, top.s_entering_i = x.entering;
-            top.s_tid_i = sp.next % 64;
-        }
-        top.s_ready_i = calm || rnd() % 4 != 0;
+        });
         top.t_req_ready_i = calm || rnd() % 4 != 0;
         top.t_rsp_valid_i = !rsp.empty() && rsp.front().due <= g_cycle;
         top.t_rsp_data_i = top.t_rsp_valid_i ? rsp.front().word : 0;
