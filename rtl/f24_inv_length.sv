@@ -1,6 +1,6 @@
 // f24_inv_length: the length of an fp24 3-vector and its reciprocal in the C's operations,
-// |v| = sqrt(v . v) and 1 / |v| (hls/units/rgs_ops.h `length3` and the shading's
-// f24_div(F24_ONE, length3(v)); shade_rec.c's 1 / sqrt(len2)), for the RGS's normalizations
+// |v| = sqrt(v . v) and 1 / |v| (hls/units/rgs_geom.c `rgs_length3` and the shading's
+// f24_div(F24_ONE, rgs_length3(v)); shade_rec.c's 1 / sqrt(len2)), for the RGS's normalizations
 // (paper section 3: the unit ray direction and the unit shading normal of a hit, the decoded
 // vertex normals): an `f24_dot3`, an `f24_sqrt` and an `f24_div` of the constant 1 in a chain.
 // Latency: len_o after LEN_LATENCY = MUL + 2 ADD + SQRT (default 25) cycles, inv_o and valid_o

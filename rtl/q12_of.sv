@@ -1,5 +1,5 @@
 // q12_of: fp24 to the RGS's Q12 colour fixed point (4096 = 1.0; docs/shading.md, "Integer colour
-// arithmetic"; hls/units/rgs_ops.h `q_of`): to_i32(x 4096 + 1/2) clamped to 0 .. 65535, bit for bit
+// arithmetic"; hls/units/rgs_geom.c `rgs_q_of`): to_i32(x 4096 + 1/2) clamped to 0 .. 65535, bit for bit
 // as the C, on its operators: `f24_mul` by the constant 4096, `f24_add` of 1/2, `f24_to_i32`
 // (toward zero, saturating), then the clamp (negative to 0, above 65535 to 65535). Used for the
 // cosines, spot factors, light colours and material factors of shading (paper section 3).

@@ -148,7 +148,7 @@ static void modulate_colours(uint32_t flags, const uint32_t *tail, const hit_rec
 {
     if (!(flags & SHADE_HAS_COLOURS))
         return;
-    const uint32_t wa = q_of(h->u), wb = q_of(h->v), wc = wa + wb < RGS_Q12_ONE ? RGS_Q12_ONE - wa - wb : 0u;
+    const uint32_t wa = rgs_q_of(h->u), wb = rgs_q_of(h->v), wc = wa + wb < RGS_Q12_ONE ? RGS_Q12_ONE - wa - wb : 0u;
 vertex_colours:
     for (uint32_t k = 0; k < 3; k++) {
         const uint32_t sum = wa * q_byte(shade_rec_colour(flags, tail, 0, k)) +
@@ -165,8 +165,8 @@ static void surface_colours(const uint32_t *mem, uint32_t mat, uint32_t flags, c
 {
 material_factors:
     for (uint32_t k = 0; k < 3; k++) {
-        sf->base[k] = q_of(mem[mat + k]);
-        sf->emission[k] = q_of(mem[mat + M_EMISSIVE + k]);
+        sf->base[k] = rgs_q_of(mem[mat + k]);
+        sf->emission[k] = rgs_q_of(mem[mat + M_EMISSIVE + k]);
     }
     modulate_colours(flags, tail, h, sf->base);
 #if SAARCOR_CFG_TEXTURES
@@ -201,7 +201,7 @@ static surface surface_at(const uint32_t *mem, const ray_packet *rp, int i, cons
     shade_read(op, c, sf.mat, MAT_WORDS);
     sf.unlit = (mem[sf.mat + SHADE_M_FLAGS] & SHADE_MAT_UNLIT) != 0;
     surface_colours(mem, sf.mat, flags, tail, h, &sf, op, c);
-    const uint32_t metal = q_of(mem[sf.mat + M_METALLIC]);
+    const uint32_t metal = rgs_q_of(mem[sf.mat + M_METALLIC]);
 tint:
     for (int k = 0; k < 3; k++) /* 1 + m (b - 1) = (1 - m) + m b */
         sf.tint[k] = q_add(RGS_Q12_ONE - (metal < RGS_Q12_ONE ? metal : RGS_Q12_ONE), q_mul(metal, sf.base[k]));

@@ -20,7 +20,7 @@ shadow_rays:
             continue; /* an unlit surface takes no light */
         sh->o[i] = sf[i].p;
         sh->d[i] = directional ? neg3(ldir) : sub3(lpos, sf[i].p);
-        const f24_t dist = length3(sh->d[i]);
+        const f24_t dist = rgs_length3(sh->d[i]);
         sh->tmin[i] = directional ? eps : f24_div(eps, dist);
         sh->tmax[i] = directional ? F24_POS_INF : F24_ONE;
         f24_t w = f24_div(rgs_dot3(sf[i].n, sh->d[i]), dist);
@@ -31,8 +31,8 @@ shadow_rays:
             const f24_t f = f24_div(f24_sub(c, l[12]), f24_sub(l[11], l[12]));
             w = f24_mul(w, f24_max(0, f24_min(f, F24_ONE)));
         }
-        diff[i] = q_mul(q_of(w), Q12_DIFFUSE);
-        uint32_t s = q_of(f24_max(0, cos_to(rgs_reflect(sf[i].d, sf[i].n), sh->d[i])));
+        diff[i] = q_mul(rgs_q_of(w), Q12_DIFFUSE);
+        uint32_t s = rgs_q_of(f24_max(0, cos_to(rgs_reflect(sf[i].d, sf[i].n), sh->d[i])));
     phong_power:
         for (uint32_t j = 0; j < 8; j++)
             if (j < k_of[i])
@@ -48,7 +48,7 @@ void rgs_light_colour(const uint32_t *l, uint32_t out[3])
     const f24_t m = f24_max(f24_max(l[1], l[2]), l[3]);
 normalize_colour:
     for (int c = 0; c < 3; c++)
-        out[c] = f24_lt(0, m) ? q_of(f24_div(l[1 + c], m)) : 0u;
+        out[c] = f24_lt(0, m) ? rgs_q_of(f24_div(l[1 + c], m)) : 0u;
 }
 
 void rgs_add_light(uint32_t diffuse[3], uint32_t highlight[3], uint32_t diff, uint32_t spec, const uint32_t colour[3])

@@ -27,22 +27,19 @@ static inline uint32_t q_byte(uint32_t t) { return (t << 4) | (t >> 4); } /* 8-b
 /* num / den in fp24 (the constants of shading: 1/2). */
 static inline f24_t rgs_ratio(int32_t num, int32_t den) { return f24_div(f24_from_i32(num), f24_from_i32(den)); }
 
-/* fp24 -> Q12: one multiplier, one adder, the float-to-int converter; clamps to [0, 65535]. */
-static inline uint32_t q_of(f24_t x)
-{
-    const int32_t i = f24_to_i32(f24_add(f24_mul(x, f24_from_i32(4096)), f24_div(F24_ONE, f24_from_i32(2))));
-    return i < 0 ? 0u : q_sat((uint32_t)i);
-}
+/* fp24 -> Q12: one multiplier, one adder, the float-to-int converter; clamps to [0, 65535]
+ * (hls/units/rgs_geom.c: one definition, so that the operators count once). */
+uint32_t rgs_q_of(f24_t x);
 
 /* fp24 vectors: the three products side by side, then their sum in order ((x + y) + z); a scaled
- * vector, a negated one, the length. */
+ * vector, a negated one, the length (rgs_geom.c). */
 f24_t rgs_dot3(f24_vec3 a, f24_vec3 b);
 static inline f24_vec3 scale3(f24_vec3 a, f24_t s) { return (f24_vec3){ f24_mul(a.x, s), f24_mul(a.y, s), f24_mul(a.z, s) }; }
 static inline f24_vec3 neg3(f24_vec3 a) { return (f24_vec3){ f24_neg(a.x), f24_neg(a.y), f24_neg(a.z) }; }
-static inline f24_t length3(f24_vec3 a) { return f24_sqrt(rgs_dot3(a, a)); }
+f24_t rgs_length3(f24_vec3 a);
 static inline f24_vec3 sub3(f24_vec3 a, f24_vec3 b) { return (f24_vec3){ f24_sub(a.x, b.x), f24_sub(a.y, b.y), f24_sub(a.z, b.z) }; }
 /* Cosine between unit vector n and direction d (any length). */
-static inline f24_t cos_to(f24_vec3 n, f24_vec3 d) { return f24_div(rgs_dot3(n, d), length3(d)); }
+static inline f24_t cos_to(f24_vec3 n, f24_vec3 d) { return f24_div(rgs_dot3(n, d), rgs_length3(d)); }
 
 /* T_R = [D^, N^, D^; O]: the transformation of every secondary ray of a hit. */
 static inline f24_affine t_r(f24_vec3 o, f24_vec3 d, f24_vec3 n)
