@@ -95,7 +95,9 @@ comma := ,
 CAPTURE_WRAP := $(addprefix -Wl$(comma)--wrap=,xform_point xform_vector isect_unit_rebased isect_unit_packet trav_node_split \
   list_unit_entry list_mailboxes_clear mem_iface_read mem_iface_flush mem_iface_new_frame rgs_block_begin \
   rebase_origin xform_point_wide xform_vector_wide \
-  trav_scene_clip trav_object_clip trav_start trav_walk trace_begin trace_step)
+  trav_scene_clip trav_object_clip trav_start trav_walk trace_begin trace_step shade_rec_normal \
+  rgs_sample_bilinear rgs_surface_frame rgs_light_packet rgs_lerp rgs_light_colour rgs_add_light \
+  rgs_spawn_children)
 
 # per-format objects: everything that depends on the fp24 parameters
 fp_objs = $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(HLS_FP24) $(TB_FP))
@@ -229,7 +231,8 @@ test: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=$(O0_BUILD) OPT='-O0 -g' $(O0_BUILD)/saarcor
 	@$(MAKE) --no-print-directory -j$$(nproc) $(BUILD)/rtl/$(DEFAULT_FMT)/tb_f24_ops $(BUILD)/rtl/$(DEFAULT_FMT)/tb_units $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sum \
 	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_list $(BUILD)/rtl/$(DEFAULT_FMT)/tb_cache $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sched $(BUILD)/rtl/$(DEFAULT_FMT)/tb_rgs \
-	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_wide $(BUILD)/rtl/$(DEFAULT_FMT)/tb_trav $(BUILD)/rtl/$(DEFAULT_FMT)/tb_core
+	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_wide $(BUILD)/rtl/$(DEFAULT_FMT)/tb_trav $(BUILD)/rtl/$(DEFAULT_FMT)/tb_core \
+	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_shade
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 test-programs
 	@$(MAKE) --no-print-directory -j$$(nproc) robust
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 fuzz-replay
@@ -348,7 +351,7 @@ rtl-lint:
 # the square root and the integer conversion on every encoding where W <= 24 (16.8 M at e7m16, ~25 s)
 rtl-test: deps rtl-lint
 	@$(MAKE) --no-print-directory all $(foreach f,$(RTL_FORMATS),$(BUILD)/rtl/$(f)/tb_f24_ops $(BUILD)/rtl/$(f)/tb_units $(BUILD)/rtl/$(f)/tb_sum \
-	  $(BUILD)/rtl/$(f)/tb_rgs $(BUILD)/rtl/$(f)/tb_wide) \
+	  $(BUILD)/rtl/$(f)/tb_rgs $(BUILD)/rtl/$(f)/tb_wide $(BUILD)/rtl/$(f)/tb_shade) \
 	  $(foreach f,$(DEFAULT_FMT) e8m23,$(BUILD)/rtl/$(f)/tb_list $(BUILD)/rtl/$(f)/tb_cache $(BUILD)/rtl/$(f)/tb_sched $(BUILD)/rtl/$(f)/tb_trav $(BUILD)/rtl/$(f)/tb_core)
 	@mkdir -p $(BUILD)/rtl/capture
 	@set -o pipefail; for f in $(RTL_FORMATS); do \
@@ -401,6 +404,16 @@ rtl-test: deps rtl-lint
 	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_rgs -n $(RTL_N) || exit 1; done | tee -a $(BUILD)/rtl/rgs.log
 	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_sum -n $(RTL_N) || exit 1; done \
 	  | tee -a $(BUILD)/rtl/units.log
+	@# the RGS's shading datapath: the vertex normals decoded and the textures sampled in frames with
+	@# shadows and reflections (textured scenes from ../shared/scenes when present), random ones
+	@set -o pipefail; for s in room cornell plants $(wildcard ../shared/scenes/subpass_scene_opaque.glb ../shared/scenes/CesiumMilkTruck.glb \
+	  ../shared/scenes/Avocado/Avocado.gltf); do \
+	  for f in $(DEFAULT_FMT) e8m23; do \
+	    $(BUILD)/w/$$f/saarcor render $$s -o $(BUILD)/rtl/shade.$$f.png --width 128 --height 96 \
+	      --capture-unit-io $(BUILD)/rtl/capture/shade.$$f --capture-limit 1000000 >/dev/null 2>&1 || exit 1; \
+	    $(BUILD)/rtl/$$f/tb_shade -n 0 --capture $(BUILD)/rtl/capture/shade.$$f || exit 1; done; done | tee $(BUILD)/rtl/shade.log
+	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_shade -n $(RTL_N) || exit 1; done \
+	  | tee -a $(BUILD)/rtl/shade.log
 	@# the short form with every mutant (make test builds one per bench)
 	@SAARCOR_RTL_MUTANTS=all BUILD=$(BUILD) bash tests/run.sh tests/test_rtl.sh
 

@@ -30,11 +30,11 @@ module f24_pipe #(
         for (int s = 1; s < STAGES; s++) valid_q[s] <= valid_q[s-1];
       end
     end
-    always_ff @(posedge clk_i) begin
-      if (en_i) begin
-        data_q[0] <= data_i;
-        for (int s = 1; s < STAGES; s++) data_q[s] <= data_q[s-1];
-      end
+    always_ff @(posedge clk_i) if (en_i) data_q[0] <= data_i;
+    // a register per stage (not a procedural loop, which Verilator leaves rolled and then cannot
+    // take for a delayed array assignment beyond its unroll count of 64 stages)
+    for (genvar s = 1; s < STAGES; s++) begin : g_stage
+      always_ff @(posedge clk_i) if (en_i) data_q[s] <= data_q[s-1];
     end
     assign valid_o = valid_q[STAGES-1];
     assign data_o = data_q[STAGES-1];

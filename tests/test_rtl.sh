@@ -16,16 +16,28 @@
 # (rtl/rgs_raygen.sv) matches rgs_primary and the recorded packets of cycle-mode frames of the room
 # (perspective) and an orthographic cornell box, whose block order the tile controller
 # (rtl/tile_ctrl.sv) reproduces, and of a functional frame on 2 threads, and 2 x 10^4 random blocks
-# on random cameras; the benches catch mutants (a rounder that never rounds ties to even, a mailbox
+# on random cameras; the RGS's decoding of the shading record's vertex normals
+# (rtl/shade_rec_decode.sv), its bilinear texture sample (rtl/tex_bilinear.sv, tex_axis.sv, its
+# texel reads served by the bench), the frame of a hit (rtl/rgs_frame.sv: unit direction and
+# normal, t_hat, hit point), a light at a surface (rtl/rgs_light.sv: shadow ray, Q12 weights), its
+# colour and accumulation (rtl/rgs_light_colour.sv, rgs_add_light.sv), the barycentric
+# interpolation (rtl/rgs_lerp.sv) and the child rays (rtl/rgs_spawn.sv) match shade_rec_normal,
+# rgs_sample_bilinear's parts, rgs_surface_frame, rgs_light_packet, rgs_light_colour, rgs_add_light,
+# rgs_lerp and rgs_spawn_children and the transactions recorded while rendering the room
+# (textured), the cornell box and (from ../shared/scenes, if present) subpass_scene_opaque and
+# CesiumMilkTruck (textured) with shadows and reflections, and 2 x 10^4 random ones of each; the
+# benches catch mutants (a rounder that never rounds ties to even, a mailbox
 # that never moves on, a cache without its tag forwarding, a scheduler whose pointer never moves on,
 # a walk that pushes the near child; with SAARCOR_RTL_MUTANTS=all, as make rtl-test runs it, also a
 # square root without its sticky bit, a pixel centre without its + 1/2, a tile controller stepping
-# past the region's edge, a vector mode whose unused terms are +0, a rebase that moves by t = Inf
-# and a core thread that walks on before the rest of a leaf's entries); the ray tracing core
-# (rtl/trace_core.sv: 8 threads of rtl/trace_thread.sv sharing the units) traces the packets of
-# functional frames (primary, shadow, secondary) of cornell, subpass_scene_opaque.glb, the room and
-# Fox.glb (TRACE_SKIP_TOP and TRACE_IDENTITY) to trace_step's hits and counters. Prints
-# cmocka-style lines.
+# past the region's edge, a vector mode whose unused terms are +0, a rebase that moves by t = Inf,
+# a core thread that walks on before the rest of a leaf's entries, a normal decoder folding the
+# lower hemisphere with the wrong sign, a bilinear blend that truncates, a shading normal turned
+# away from the ray, a highlight squared once too often and a transmission ray leaving from behind
+# the surface when eta = 1); the ray tracing core (rtl/trace_core.sv: 8 threads of
+# rtl/trace_thread.sv sharing the units) traces the packets of functional frames (primary, shadow,
+# secondary) of cornell, subpass_scene_opaque.glb, the room and Fox.glb (TRACE_SKIP_TOP and
+# TRACE_IDENTITY) to trace_step's hits and counters. Prints cmocka-style lines.
 set -u
 cd "$(dirname "$0")/.."
 B=${BUILD:-build}
@@ -178,6 +190,50 @@ t_rgs_mutants_caught() {
     mutant rgs tile_ctrl.sv "s/33'(x_q) + 33'd2 < 33'(x1_q)/33'(x_q) + 33'd2 <= 33'(x1_q)/" -n 2000
 }
 
+# the RGS's shading datapath: the vertex normals decoded while rendering scenes with vertex normals
+# (textured ones among them), then random codes, which must include missing and folded normals
+t_shade() {
+  local scenes=(room cornell) s
+  for s in subpass_scene_opaque CesiumMilkTruck; do
+    if [[ -f ../shared/scenes/$s.glb ]]; then scenes+=("../shared/scenes/$s.glb"); else echo "../shared/scenes/$s.glb is absent: skipped"; fi
+  done
+  for s in "${scenes[@]}"; do
+    local d
+    d="$T/shade_$(basename "$s" .glb)"
+    "$BIN" render "$s" -o "$d.png" --width 32 --height 24 --max-depth 2 --capture-unit-io "$d" --capture-limit 20000 \
+      >/dev/null 2>&1
+    "$B/rtl/e7m16/tb_shade" -n 0 --capture "$d" >"$d.log" || { cat "$d.log"; false; }
+    cat "$d.log"
+  done
+  # the room and the truck are textured: their samples were checked; every scene's frames were
+  grep -Eq "shade_rec_decode [1-9][0-9]* normals checked" "$T/shade_room.log"
+  for s in room CesiumMilkTruck; do
+    [[ ! -f "$T/shade_$s.log" ]] || grep -Eq "tex_bilinear [1-9][0-9]* samples checked" "$T/shade_$s.log"
+  done
+  for s in "${scenes[@]}"; do
+    grep -Eq "rgs_frame [1-9][0-9]* frames checked" "$T/shade_$(basename "$s" .glb).log"
+    grep -Eq "rgs_light [1-9][0-9]* light-surface pairs checked" "$T/shade_$(basename "$s" .glb).log"
+  done
+  "$B/rtl/e7m16/tb_shade" -n 20000 >"$T/shade.log" || { cat "$T/shade.log"; false; }
+  cat "$T/shade.log"
+  grep -Eq "; [1-9][0-9]* missing, [1-9][0-9]* folded\), latency" "$T/shade.log"
+  grep -Eq "; [1-9][0-9]* lit, [1-9][0-9]* by a spot\), latency" "$T/shade.log"
+  grep -Eq "; [1-9][0-9]* refracted, [1-9][0-9]* totally reflected\), latency" "$T/shade.log"
+}
+
+# the normal decoder's fold of the lower hemisphere with the x component's sign the wrong way round;
+# the bilinear blend truncating instead of rounding (no + 2^15 before the shift by 16); the frame's
+# normal negated where it already faces the ray; the Phong power with one squaring too many; the
+# transmission ray from the back origin for eta = 1 instead of on total internal reflection
+t_shade_mutants_caught() {
+  mutant shade shade_rec_decode.sv "s/fx = x < 0 ? ay - OCT_ONE : OCT_ONE - ay;/fx = x < 0 ? OCT_ONE - ay : ay - OCT_ONE;/" \
+    -n 2000 &&
+    mutant shade tex_bilinear.sv "s/bottom \* 32'(hfy) + 32'd32768;/bottom * 32'(hfy);/" -n 2000 &&
+    mutant shade rgs_frame.sv "s/\^ !facing\[W-1\]/^ facing[W-1]/" -n 2000 &&
+    mutant shade rgs_light.sv "s/4'(j) < k_s\[j\]/4'(j) <= k_s[j]/" -n 2000 &&
+    mutant shade rgs_spawn.sv "s/assign t_o_o = !one_l \&\& tir_l/assign t_o_o = one_l || tir_l/" -n 2000
+}
+
 # the rebase unit without the test for t = Inf (rebase_distance: 0), the wide mode's vector with its
 # five unused terms +0 * +0 (the sum of three -0 products would come out +0)
 t_wide_mutants_caught() {
@@ -240,11 +296,13 @@ run_case rtl_exact_sum_matches_c_model t_exact_sum
 run_case rtl_list_unit_and_caches_match_c_model t_list_and_cache
 run_case rtl_list_cache_benches_catch_mutants t_list_cache_mutants_caught
 run_case rtl_rgs_raygen_and_tile_ctrl_match_c_model t_rgs
+run_case rtl_shade_datapath_matches_c_model_and_capture t_shade
 if extra_mutants; then
   run_case rtl_sqrt_bench_catches_mutant t_sqrt_mutant_caught
   run_case rtl_rgs_bench_catches_mutants t_rgs_mutants_caught
   run_case rtl_wide_bench_catches_mutants t_wide_mutants_caught
   run_case rtl_caches_with_full_tables_match_c_model t_cache_small_table
+  run_case rtl_shade_bench_catches_mutants t_shade_mutants_caught
 fi
 run_case rtl_trav_unit_matches_c_model_and_capture t_trav_unit
 run_case rtl_trav_bench_catches_mutant t_trav_mutant_caught

@@ -1,6 +1,7 @@
 /* Ray generation and shading unit: see rgs.h and docs/shading.md. */
 #include "rgs.h"
 
+#include "rgs_ops.h"
 #include "shade_rec.h"
 #include "trace_ops.h"
 #include "xform_unit.h"
@@ -11,65 +12,30 @@ enum {
     TEX_WORDS = 4, LIGHT_WORDS = 16, MAX_LIGHTS = 64,
     OBJ_WORDS = 16, O_TRIANGLES = 2, O_SHADING = 3, O_FLAGS = 7,
     INST_WORDS = F24_INSTANCE_RECORD_WORDS, TRI_WORDS = F24_TRIANGLE_RECORD_WORDS, MAT_WORDS = 16, CAM_WORDS = 16,
-    M_EMISSIVE = 4, M_TEXTURE = 7, M_METALLIC = 10, M_ETA = 13, M_SHADER0 = 14, M_SHADER1 = 15,
+    M_EMISSIVE = 4, M_TEXTURE = 7, M_METALLIC = 10,
 };
 
 #define BACKGROUND 0x1A1A24u
-#define Q12_MAX 65535u
 #define Q12_AMBIENT 614u   /* 0.15 */
-#define Q12_DIFFUSE 3482u  /* 0.85 */
-#define MIN_WEIGHT 16u     /* 1/256: lighter secondary rays are not spawned */
 #define EPS_SHIFT 10       /* e = 2^-10 x the largest extent of the scene bounds */
 
-/* ---- integer colour arithmetic (Q12) ---------------------------------------------------- */
-
-static uint32_t q_sat(uint32_t x) { return x < Q12_MAX ? x : Q12_MAX; }
-static uint32_t q_mul(uint32_t a, uint32_t b) { return q_sat((a * b + 2048u) >> 12); }
-static uint32_t q_add(uint32_t a, uint32_t b) { return q_sat(a + b); }
-static uint32_t q_byte(uint32_t t) { return (t << 4) | (t >> 4); } /* 8-bit -> Q12, 255 -> 4095 */
-
-static f24w ratio_w(int32_t num, int32_t den) { return f24w_div(f24w_from_i32(num), f24w_from_i32(den)); }
-static f24_t ratio(int32_t num, int32_t den) { return f24w_bits(ratio_w(num, den)); }
-
-/* fp24 -> Q12: one multiplier, one adder, the float-to-int converter; clamps to [0, 65535]. */
-static uint32_t q_of_w(f24w x)
-{
-    const int32_t i = f24w_to_i32(f24w_add(f24w_mul(x, f24w_from_i32(4096)), ratio_w(1, 2)));
-    return i < 0 ? 0u : q_sat((uint32_t)i);
-}
-static uint32_t q_of(f24_t x) { return q_of_w(f24w_of(x)); }
 
 
 /* ---- fp24 vector helpers ------------------------------------------------------------------ */
 
 static uint32_t region_start(const uint32_t *mem, uint32_t r) { return mem[H_REGIONS + 2 * r]; }
-static f24_t dot3(f24_vec3 a, f24_vec3 b) { return f24w_bits(f24w_dot3(f24w_vec3_of(a), f24w_vec3_of(b))); }
-static f24w_vec3 sub3_w(f24w_vec3 a, f24w_vec3 b)
-{
-    return (f24w_vec3){ f24w_sub(a.x, b.x), f24w_sub(a.y, b.y), f24w_sub(a.z, b.z) };
-}
-static f24w_vec3 neg3_w(f24w_vec3 a) { return (f24w_vec3){ f24w_neg(a.x), f24w_neg(a.y), f24w_neg(a.z) }; }
-static f24_vec3 neg3(f24_vec3 a) { return (f24_vec3){ f24_neg(a.x), f24_neg(a.y), f24_neg(a.z) }; }
-static f24w length3_w(f24w_vec3 a) { return f24w_sqrt(f24w_dot3(a, a)); }
-
-/* T_R = [D^, N^, D^; O]: the transformation of every secondary ray of a hit. */
-static f24_affine t_r(f24_vec3 o, f24_vec3 d, f24_vec3 n)
-{
-    const f24_affine m = { { { d.x, n.x, d.x, o.x }, { d.y, n.y, d.y, o.y }, { d.z, n.z, d.z, o.z } } };
-    return m;
-}
 
 f24_vec3 rgs_reflect(f24_vec3 d, f24_vec3 n)
 {
     const f24_affine m = t_r((f24_vec3){ 0, 0, 0 }, d, n);
-    const f24_t c = dot3(n, d);
+    const f24_t c = rgs_dot3(n, d);
     return xform_vector(&m, (f24_vec3){ F24_ONE, f24_neg(f24_add(c, c)), 0 });
 }
 
 #if SAARCOR_CFG_REFRACTION
 int rgs_refract(f24_vec3 d, f24_vec3 n, f24_t eta_r, f24_vec3 *out)
 {
-    const f24_t c = dot3(n, d);
+    const f24_t c = rgs_dot3(n, d);
     const f24_t k = f24_sub(F24_ONE, f24_mul(f24_mul(eta_r, eta_r), f24_sub(F24_ONE, f24_mul(c, c))));
     if (f24_lt(k, 0))
         return 0; /* total internal reflection */
@@ -101,7 +67,7 @@ camera_matrix:
         t.m[r][3] = mem[cam + 4 + (uint32_t)r];
     }
     const f24_vec3 origin = { mem[cam + 4], mem[cam + 5], mem[cam + 6] };
-    const f24_t half = ratio(1, 2);
+    const f24_t half = rgs_ratio(1, 2);
     rp->active = 0;
 block_pixels:
     for (int i = 0; i < TRACE_PACKET; i++) {
@@ -126,27 +92,6 @@ block_pixels:
 /* ---- the surface at a hit ------------------------------------------------------------------- */
 
 
-/* The barycentric weights of a hit: u, v and w = (1 - u) - v. */
-typedef struct { f24w u, v, w; } bary;
-static bary bary_of(const hit_record *h)
-{
-    const f24w u = f24w_of(h->u), v = f24w_of(h->v);
-    return (bary){ u, v, f24w_sub(f24w_sub(f24w_of(F24_ONE), u), v) };
-}
-
-/* u A + v B + w C of each component of the three vertex normals (lanes of n[c]) with the
- * weights (u, v, w) in lanes: the products side by side, then their sum in lerp's order. */
-static F24Q_FN f24_vec3 lerp_lanes(const f24_t n[3][F24Q_LANES], const f24_t weights[F24Q_LANES])
-{
-    const f24q k = f24q_of(weights);
-    f24_t r[3];
-normal_components:
-    for (int c = 0; c < 3; c++) {
-        const f24q p = f24q_mul(f24q_of(n[c]), k);
-        r[c] = f24w_bits(f24w_add(f24w_add(f24q_lane(p, 0), f24q_lane(p, 1)), f24q_lane(p, 2)));
-    }
-    return (f24_vec3){ r[0], r[1], r[2] };
-}
 
 /* Notes a shading read in op (the shading cache's view) and counts it. */
 static void shade_read(unit_op *op, trace_counters *c, uint32_t addr, uint32_t words)
@@ -154,90 +99,27 @@ static void shade_read(unit_op *op, trace_counters *c, uint32_t addr, uint32_t w
     op_read(op, c, MEM_SHADING, addr, words);
 }
 
-/* World-space shading normal at the hit (not normalized): the interpolated decoded vertex
- * normals, or the geometric normal (row 2 of the triangle transformation), through the
- * transposed world-to-object matrix. */
+/* Object-space shading normal at the hit (not normalized): the interpolated decoded vertex
+ * normals, or the geometric normal (row 2 of the triangle transformation). */
 static f24_vec3 hit_normal(const uint32_t *mem, const hit_record *h, uint32_t obj, uint32_t shade, unit_op *op,
                            trace_counters *c)
 {
     f24_vec3 n = { 0, 0, 0 };
-    int geometric = 1; /* no vertex normals, or they interpolate to zero length */
     if (mem[obj + O_FLAGS] & SHADE_HAS_NORMALS) {
-        f24_t normals[3][F24Q_LANES];
-        shade_rec_normals(&mem[shade], normals);
-        const bary k = bary_of(h);
-        const f24_t weights[F24Q_LANES] = { h->u, h->v, f24w_bits(k.w), 0 };
-        n = lerp_lanes(normals, weights);
-        const f24w_vec3 nw = f24w_vec3_of(n);
-        geometric = f24_is_zero(f24w_bits(f24w_dot3(nw, nw)));
+        const f24_vec3 a = shade_rec_normal(&mem[shade], 0), b = shade_rec_normal(&mem[shade], 1),
+                       cc = shade_rec_normal(&mem[shade], 2);
+        n = (f24_vec3){ rgs_lerp(a.x, b.x, cc.x, h->u, h->v), rgs_lerp(a.y, b.y, cc.y, h->u, h->v),
+                        rgs_lerp(a.z, b.z, cc.z, h->u, h->v) };
     }
-    if (geometric) {
+    if (f24_is_zero(rgs_dot3(n, n))) {
         const uint32_t tri = mem[obj + O_TRIANGLES] + TRI_WORDS * h->triangle;
         n = (f24_vec3){ f24_record_get(mem, tri, 8), f24_record_get(mem, tri, 9), f24_record_get(mem, tri, 10) };
         shade_read(op, c, tri + 8 * F24_WIDTH / 32, F24_RECORD_SPAN(8, 3));
     }
-    const f24_affine w2o = f24_affine_load(mem, region_start(mem, R_INSTANCES) + INST_WORDS * h->instance);
-    f24_affine tr;
-transpose:
-    for (int r = 0; r < 3; r++) {
-        for (int k = 0; k < 3; k++)
-            tr.m[r][k] = w2o.m[k][r];
-        tr.m[r][3] = 0;
-    }
-    return xform_vector(&tr, n);
+    return n;
 }
 
 #if SAARCOR_CFG_TEXTURES
-/* u A + v B + w C. */
-static f24w lerp(f24w a, f24w b, f24w c, bary k)
-{
-    return f24w_add(f24w_add(f24w_mul(k.u, a), f24w_mul(k.v, b)), f24w_mul(k.w, c));
-}
-
-/* The texel word of texture entry tex at wrapped coordinates (one shading read). */
-static uint32_t texel(const uint32_t *mem, const uint32_t *tex, uint32_t x, uint32_t y, unit_op *op, trace_counters *c)
-{
-    const uint32_t at = tex[2] + y * tex[0] + x;
-    shade_read(op, c, at, 1);
-    return mem[at];
-}
-
-/* Channel k of a texel word, as Q12. */
-static uint32_t channel(uint32_t texel_word, int k) { return q_byte(texel_word >> (8 * k) & 0xFFu); }
-
-/* Texel coordinate of texture coordinate s over n texels (centres at +1/2): the wrapped integer
- * part i0, its right neighbour i1 and the fraction in Q8 (0..256). */
-static void texel_axis(f24w s, uint32_t n, uint32_t *i0, uint32_t *i1, uint32_t *frac)
-{
-    const f24w x = f24w_sub(f24w_mul(s, f24w_from_i32((int32_t)n)), ratio_w(1, 2));
-    int32_t i = f24w_to_i32(x);
-    if (f24w_lt(x, f24w_from_i32(i)) && i != INT32_MIN)
-        i -= 1; /* to_i32 rounds toward zero; this is floor (a saturated coordinate stays) */
-    const f24w f = f24w_sub(x, f24w_from_i32(i));
-    const int32_t q = f24w_to_i32(f24w_add(f24w_mul(f, f24w_from_i32(256)), ratio_w(1, 2)));
-    const int32_t m = i % (int32_t)n;
-    *i0 = (uint32_t)(m < 0 ? m + (int32_t)n : m); /* repeat wrapping */
-    *i1 = *i0 + 1 == n ? 0 : *i0 + 1;
-    *frac = q < 0 ? 0u : q > 256 ? 256u : (uint32_t)q;
-}
-
-/* Bilinear sample (Q12) of texture entry tex at (s, t), in integers: weights in Q8. */
-static void sample_bilinear(const uint32_t *mem, const uint32_t *tex, f24w s, f24w t, uint32_t out[3], unit_op *op,
-                            trace_counters *c)
-{
-    uint32_t x0, x1, fx, y0, y1, fy;
-    texel_axis(s, tex[0], &x0, &x1, &fx);
-    texel_axis(t, tex[1], &y0, &y1, &fy);
-    const uint32_t t00 = texel(mem, tex, x0, y0, op, c), t10 = texel(mem, tex, x1, y0, op, c);
-    const uint32_t t01 = texel(mem, tex, x0, y1, op, c), t11 = texel(mem, tex, x1, y1, op, c);
-bilinear:
-    for (int k = 0; k < 3; k++) {
-        const uint32_t top = channel(t00, k) * (256u - fx) + channel(t10, k) * fx;
-        const uint32_t bottom = channel(t01, k) * (256u - fx) + channel(t11, k) * fx;
-        out[k] = (top * (256u - fy) + bottom * fy + 32768u) >> 16;
-    }
-}
-
 /* Multiplies out (Q12) by the bilinear sample of texture t at the hit's coordinates of set uv
  * (hls/units/shade_rec.h), if t names a texture and the object has texture coordinates. */
 static void modulate_texture(const uint32_t *mem, uint32_t t, uint32_t flags, const uint32_t *tail, uint32_t uv,
@@ -245,16 +127,15 @@ static void modulate_texture(const uint32_t *mem, uint32_t t, uint32_t flags, co
 {
     if (t >= mem[H_TEXTURES] || !(flags & SHADE_HAS_TEXCOORDS))
         return;
-    const bary w = bary_of(h);
-    f24w st[2];
+    f24_t st[2];
 texcoords:
     for (uint32_t k = 0; k < 2; k++)
-        st[k] = lerp(f24w_of(shade_rec_texcoord(flags, tail, uv, k)), f24w_of(shade_rec_texcoord(flags, tail, uv, 2 + k)),
-                     f24w_of(shade_rec_texcoord(flags, tail, uv, 4 + k)), w);
+        st[k] = rgs_lerp(shade_rec_texcoord(flags, tail, uv, k), shade_rec_texcoord(flags, tail, uv, 2 + k),
+                     shade_rec_texcoord(flags, tail, uv, 4 + k), h->u, h->v);
     const uint32_t entry = region_start(mem, R_TEXTURES) + TEX_WORDS * t;
     uint32_t tex[3];
     shade_read(op, c, entry, TEX_WORDS);
-    sample_bilinear(mem, &mem[entry], st[0], st[1], tex, op, c);
+    rgs_sample_bilinear(mem, &mem[entry], st[0], st[1], tex, op, c);
 texture_modulate:
     for (int k = 0; k < 3; k++)
         out[k] = q_mul(out[k], tex[k]);
@@ -267,7 +148,7 @@ static void modulate_colours(uint32_t flags, const uint32_t *tail, const hit_rec
 {
     if (!(flags & SHADE_HAS_COLOURS))
         return;
-    const uint32_t wa = q_of(h->u), wb = q_of(h->v), wc = wa + wb < RGS_Q12_ONE ? RGS_Q12_ONE - wa - wb : 0u;
+    const uint32_t wa = rgs_q_of(h->u), wb = rgs_q_of(h->v), wc = wa + wb < RGS_Q12_ONE ? RGS_Q12_ONE - wa - wb : 0u;
 vertex_colours:
     for (uint32_t k = 0; k < 3; k++) {
         const uint32_t sum = wa * q_byte(shade_rec_colour(flags, tail, 0, k)) +
@@ -284,8 +165,8 @@ static void surface_colours(const uint32_t *mem, uint32_t mat, uint32_t flags, c
 {
 material_factors:
     for (uint32_t k = 0; k < 3; k++) {
-        sf->base[k] = q_of(mem[mat + k]);
-        sf->emission[k] = q_of(mem[mat + M_EMISSIVE + k]);
+        sf->base[k] = rgs_q_of(mem[mat + k]);
+        sf->emission[k] = rgs_q_of(mem[mat + M_EMISSIVE + k]);
     }
     modulate_colours(flags, tail, h, sf->base);
 #if SAARCOR_CFG_TEXTURES
@@ -313,24 +194,14 @@ static surface surface_at(const uint32_t *mem, const ray_packet *rp, int i, cons
     shade_read(op, c, ia, 13);
     shade_read(op, c, obj + O_TRIANGLES, O_FLAGS - O_TRIANGLES + 1);
     shade_read(op, c, shade, shade_rec_words(flags));
-    const f24w one = f24w_of(F24_ONE), dlen = length3_w(f24w_vec3_of(rp->d[i]));
-    const f24w_vec3 d = f24w_scale3(f24w_vec3_of(rp->d[i]), f24w_div(one, dlen));
     sf.valid = 1;
-    sf.d = f24w_vec3_bits(d);
-    f24w_vec3 n = f24w_vec3_of(hit_normal(mem, h, obj, shade, op, c));
-    if (!f24w_sign(f24w_dot3(n, d)))
-        n = neg3_w(n); /* towards the ray: both faces are front faces */
-    sf.n = f24w_vec3_bits(f24w_scale3(n, f24w_div(one, length3_w(n))));
-    sf.entering = f24_sign(h->cos_n) != 0; /* the sign of n.d survives the instance transformation */
-    sf.t_hat = f24w_bits(f24w_mul(f24w_of(h->t), dlen));
-    sf.tr = t_r(rp->o[i], sf.d, sf.n);
-    sf.p = xform_point(&sf.tr, (f24_vec3){ 0, 0, sf.t_hat });
-    sf.mirror = rgs_reflect(sf.d, sf.n);
+    const f24_affine w2o = f24_affine_load(mem, ia);
+    rgs_surface_frame(rp->o[i], rp->d[i], h->t, h->cos_n, hit_normal(mem, h, obj, shade, op, c), &w2o, &sf);
     sf.mat = region_start(mem, R_MATERIALS) + MAT_WORDS * shade_rec_material(flags, tail);
     shade_read(op, c, sf.mat, MAT_WORDS);
     sf.unlit = (mem[sf.mat + SHADE_M_FLAGS] & SHADE_MAT_UNLIT) != 0;
     surface_colours(mem, sf.mat, flags, tail, h, &sf, op, c);
-    const uint32_t metal = q_of(mem[sf.mat + M_METALLIC]);
+    const uint32_t metal = rgs_q_of(mem[sf.mat + M_METALLIC]);
 tint:
     for (int k = 0; k < 3; k++) /* 1 + m (b - 1) = (1 - m) + m b */
         sf.tint[k] = q_add(RGS_Q12_ONE - (metal < RGS_Q12_ONE ? metal : RGS_Q12_ONE), q_mul(metal, sf.base[k]));
@@ -344,59 +215,6 @@ static uint32_t mat_ks(const uint32_t *m) { return m[M_SHADER1] >> 13 & 0x1FFFu;
 
 /* ---- lights ----------------------------------------------------------------------------------- */
 
-/* Light colour scaled to a maximum component of one, in Q12. */
-static void light_colour(const uint32_t *l, uint32_t out[3])
-{
-    const f24_t m = f24_max(f24_max(l[1], l[2]), l[3]);
-normalize_colour:
-    for (int c = 0; c < 3; c++)
-        out[c] = f24_lt(0, m) ? q_of(f24_div(l[1 + c], m)) : 0u;
-}
-
-/* Diffuse and highlight weights of light l at the packet's surfaces and the shadow packet that
- * tests them; rays whose weights are zero are not traced. */
-static void light_packet(const uint32_t *l, const surface sf[], f24_t eps, ray_packet *sh, uint32_t diff[],
-                         uint32_t spec[], uint32_t k_of[])
-{
-    const f24_vec3 ldir = { l[7], l[8], l[9] };
-    const f24w_vec3 lpos_w = f24w_vec3_of((f24_vec3){ l[4], l[5], l[6] }), ldir_w = f24w_vec3_of(ldir);
-    const f24w zero = f24w_of(0), eps_w = f24w_of(eps);
-    const int directional = l[0] == 0;
-    sh->active = 0;
-shadow_rays:
-    for (int i = 0; i < TRACE_PACKET; i++) {
-        diff[i] = spec[i] = 0;
-        sh->o[i] = sh->d[i] = (f24_vec3){ 0, 0, 0 };
-        sh->tmin[i] = sh->tmax[i] = 0;
-        if (!sf[i].valid || sf[i].unlit)
-            continue; /* an unlit surface takes no light */
-        sh->o[i] = sf[i].p;
-        /* the direction to the light (a directional light's is its word's negation, not rounded) */
-        const f24w_vec3 to_light = directional ? neg3_w(ldir_w) : sub3_w(lpos_w, f24w_vec3_of(sf[i].p));
-        sh->d[i] = directional ? neg3(ldir) : f24w_vec3_bits(to_light);
-        const f24w dist = length3_w(to_light);
-        sh->tmin[i] = directional ? eps : f24w_bits(f24w_div(eps_w, dist));
-        sh->tmax[i] = directional ? F24_POS_INF : F24_ONE;
-        /* cosines of the light direction with the normal, the cone axis, the mirror direction */
-        f24w w = f24w_div(f24w_dot3(f24w_vec3_of(sf[i].n), to_light), dist);
-        if (!f24w_lt(zero, w))
-            continue; /* the light is behind the surface */
-        if (SAARCOR_CFG_SPOT_LIGHTS && l[0] == 2) { /* spot: smooth step from the outer to the inner cone */
-            const f24w c = f24w_neg(f24w_div(f24w_dot3(ldir_w, to_light), dist));
-            const f24w f = f24w_div(f24w_sub(c, f24w_of(l[12])), f24w_sub(f24w_of(l[11]), f24w_of(l[12])));
-            w = f24w_mul(w, f24w_max(zero, f24w_min(f, f24w_of(F24_ONE))));
-        }
-        diff[i] = q_mul(q_of_w(w), Q12_DIFFUSE);
-        uint32_t s = q_of_w(f24w_max(zero, f24w_div(f24w_dot3(f24w_vec3_of(sf[i].mirror), to_light), dist)));
-    phong_power:
-        for (uint32_t j = 0; j < 8; j++)
-            if (j < k_of[i])
-                s = q_mul(s, s); /* cos^(2^k): k squarings */
-        spec[i] = s;
-        if (diff[i] | spec[i])
-            sh->active |= 1u << i;
-    }
-}
 
 static uint32_t at_least_one(uint32_t n) { return n ? n : 1u; }
 
@@ -429,10 +247,7 @@ static void add_light(rgs_block *b, uint32_t visible)
 add_light_rays:
     for (int i = 0; i < TRACE_PACKET; i++)
         if (visible >> i & 1u)
-            for (int k = 0; k < 3; k++) {
-                b->diffuse[i][k] = q_add(b->diffuse[i][k], q_mul(b->diff[i], b->colour[k]));
-                b->highlight[i][k] = q_add(b->highlight[i][k], q_mul(b->spec[i], b->colour[k]));
-            }
+            rgs_add_light(b->diffuse[i], b->highlight[i], b->diff[i], b->spec[i], b->colour);
 }
 
 /* RGS: the next light's weights and its shadow packet; unoccluded light is added at once. */
@@ -440,8 +255,8 @@ static void op_light(const uint32_t *mem, const rgs_config *cfg, rgs_block *b, u
 {
     const uint32_t at = region_start(mem, R_LIGHTS) + LIGHT_WORDS * b->light;
     const uint32_t *l = &mem[at];
-    light_packet(l, b->sf, b->eps, &b->shadow, b->diff, b->spec, b->k_of);
-    light_colour(l, b->colour);
+    rgs_light_packet(l, b->sf, b->eps, &b->shadow, b->diff, b->spec, b->k_of);
+    rgs_light_colour(l, b->colour);
     op_set(op, UNIT_RGS, at_least_one(count_rays(b->shadow.active)));
     shade_read(op, &c->trace, at, LIGHT_WORDS);
     if (SAARCOR_CFG_SHADOWS && cfg->shadows && b->shadow.active) {
@@ -511,48 +326,6 @@ init_block:
     b->stack[b->sp++] = t;
 }
 
-#if SAARCOR_CFG_SECONDARY
-static uint32_t mat_kr(const uint32_t *m) { return m[M_SHADER0] >> 13 & 0x1FFFu; }
-static uint32_t mat_kt(const uint32_t *m) { return m[M_SHADER1] & 0x1FFFu; }
-
-static uint32_t q_max3(const uint32_t c[3])
-{
-    const uint32_t m = c[0] > c[1] ? c[0] : c[1];
-    return m > c[2] ? m : c[2];
-}
-
-/* The child rays of one surface: reflection (weight kr tint) and transmission (weight kt base;
- * refraction, straight transparency for eta = 1, or reflection on total internal reflection). */
-static void spawn_children(const uint32_t *mem, const rgs_block *b, int i, const surface *sf, rgs_task *refl,
-                           rgs_task *trans)
-{
-    const uint32_t *m = &mem[sf->mat], w_r = mat_kr(m), w_t = mat_kt(m);
-    const f24_t e = b->eps;
-    const f24_vec3 back = xform_point(&sf->tr, (f24_vec3){ f24_neg(e), 0, sf->t_hat });
-    const f24_vec3 ahead = xform_point(&sf->tr, (f24_vec3){ e, 0, sf->t_hat });
-    const f24_vec3 mirror = sf->mirror; /* T_R (1, -2c, 0) */
-child_weights:
-    for (int k = 0; k < 3; k++) {
-        refl->weight[i][k] = q_mul(q_mul(b->cur.weight[i][k], w_r), sf->tint[k]);
-        trans->weight[i][k] = q_mul(q_mul(b->cur.weight[i][k], w_t), sf->base[k]);
-    }
-    refl->rays.o[i] = back;
-    refl->rays.d[i] = mirror;
-    if (q_max3(refl->weight[i]) >= MIN_WEIGHT)
-        refl->rays.active |= 1u << i;
-    trans->rays.o[i] = ahead;
-    trans->rays.d[i] = sf->d; /* transparency: (1, 0, 0) through T_R */
-#if SAARCOR_CFG_REFRACTION
-    const f24_t ior = m[M_ETA], eta_r = sf->entering ? f24_div(F24_ONE, ior) : ior;
-    if (!f24_eq(ior, F24_ONE) && !rgs_refract(sf->d, sf->n, eta_r, &trans->rays.d[i])) {
-        trans->rays.o[i] = back; /* total internal reflection */
-        trans->rays.d[i] = mirror;
-    }
-#endif
-    if (q_max3(trans->weight[i]) >= MIN_WEIGHT)
-        trans->rays.active |= 1u << i;
-}
-#endif
 
 static void task_init(rgs_task *t, uint32_t depth, uint32_t kind)
 {
@@ -597,7 +370,7 @@ accumulate:
 #if SAARCOR_CFG_SECONDARY
         if (sf[i].valid && children) {
             const uint32_t spawned = refl.rays.active | trans.rays.active;
-            spawn_children(mem, b, i, &sf[i], &refl, &trans);
+            rgs_spawn_children(&mem[sf[i].mat], b->cur.weight[i], b->eps, i, &sf[i], &refl, &trans);
             if (!(b->profile & PROFILE_LIVE_CHILDREN) || ((refl.rays.active | trans.rays.active) != spawned))
                 b->children++; /* its T_R steps (the general pipeline runs them for every surface) */
         }

@@ -27,9 +27,8 @@
  *
  * fp24 operators per shaded ray (datapath, shared across the steps): decoding the 3 vertex
  * normals of the compact shading record (shade_rec.h: per normal 3 int-to-fp24, 6 mul, 2 add,
- * 1 sqrt, 1 div; the three side by side), normalization of D and N (2 sqrt, 2 div), T_R steps on
- * the transformation unit (the hit point and the mirror direction, once per surface), per light 2
- * dot products (diffuse and highlight cosines), the spot factor (1 div) and the float-to-Q12 converters. Latency 12 cycles
+ * 1 sqrt, 1 div), normalization of D and N (2 sqrt, 2 div), T_R steps on the transformation unit, per light 2 dot products (diffuse and
+ * highlight cosines), the spot factor (1 div) and the float-to-Q12 converters. Latency 12 cycles
  * (the cycle model's default, docs/cycle-model.md: an estimate, no RTL yet), throughput one
  * shaded ray per cycle (an operation takes as many issue slots as it shades rays, at least 1).
  */
@@ -69,7 +68,6 @@ typedef struct {
 typedef struct {
     int valid;
     f24_vec3 p, d, n;   /* hit point, unit ray direction, unit shading normal facing the ray */
-    f24_vec3 mirror;    /* d mirrored at n, T_R (1, -2c, 0): the highlight's and the reflection ray's direction */
     f24_affine tr;      /* T_R of the hit */
     f24_t t_hat;        /* hit distance along d */
     int entering;       /* the geometric normal faces against the ray */

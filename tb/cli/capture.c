@@ -16,11 +16,16 @@
 #include "memimage.h"
 #include "rebase_unit.h"
 #include "rgs.h"
+#include "rgs_ops.h"
+#include "shade_rec.h"
 #include "trav_node.h"
 #include "trav_unit.h"
 #include "xform_unit.h"
 
-enum { CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_RGS, CAP_REBASE, CAP_WIDE, CAP_TRAV_UNIT, CAP_TRACE, CAP_UNITS };
+enum {
+    CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_RGS, CAP_REBASE, CAP_WIDE, CAP_TRAV_UNIT, CAP_TRACE,
+    CAP_SHADE_REC, CAP_TEX, CAP_FRAME, CAP_LIGHT, CAP_LERP, CAP_COLOUR, CAP_ACCUM, CAP_SPAWN, CAP_UNITS
+};
 
 static struct {
     int on;
@@ -29,9 +34,10 @@ static struct {
     pthread_mutex_t lock;
 } cap = { .lock = PTHREAD_MUTEX_INITIALIZER };
 
-const char *const capture_unit_names[CAPTURE_UNITS] = { "xform", "isect", "trav", "list",  "mem",
-                                                        "sched", "rgs",   "rebase", "wide", "trav_unit",
-                                                        "trace" };
+const char *const capture_unit_names[CAPTURE_UNITS] = {
+    "xform", "isect", "trav",  "list", "mem",  "sched",  "rgs",   "rebase", "wide", "trav_unit",
+    "trace", "shade_rec", "tex", "frame", "light", "lerp", "colour", "accum", "spawn"
+};
 
 /* The list unit's threads: trace_state addresses in the order first seen (the RTL's thread ids),
  * and the memory interfaces (pipes) likewise. */
@@ -514,6 +520,256 @@ void __wrap_rgs_block_begin(const uint32_t *mem, uint32_t x0, uint32_t y0, rgs_b
     fputc(' ', f);
     words(f, rp->tmax, TRACE_PACKET);
     end(f);
+}
+
+/* ---- RGS shading: each vertex normal decoded from a compact shading record (surface_at's
+ * hit_normal, for rtl/tb/tb_shade.cpp): the record's 4 normal words, the vertex k, the unit normal ---- */
+
+f24_vec3 __real_shade_rec_normal(const uint32_t *normals, uint32_t k);
+f24_vec3 __wrap_shade_rec_normal(const uint32_t *normals, uint32_t k);
+
+CAPTURE_PATH f24_vec3 captured_shade_rec_normal(const uint32_t *normals, uint32_t k)
+{
+    const f24_vec3 n = __real_shade_rec_normal(normals, k);
+    FILE *f = begin(CAP_SHADE_REC);
+    if (!f)
+        return n;
+    const uint32_t out[3] = { n.x, n.y, n.z };
+    words(f, normals, SHADE_NORMAL_WORDS);
+    fprintf(f, " %x ", k);
+    words(f, out, 3);
+    end(f);
+    return n;
+}
+
+f24_vec3 __wrap_shade_rec_normal(const uint32_t *normals, uint32_t k)
+{
+    return capturing() ? captured_shade_rec_normal(normals, k) : __real_shade_rec_normal(normals, k);
+}
+
+/* The RGS's bilinear texture samples (for rtl/tb/tb_shade.cpp): s, t, the texture entry's width,
+ * height and texel address; the 4 texel words read (t00, t10, t01, t11); the two axes' x0, x1, fx
+ * and y0, y1, fy (rgs_texel_axis); the Q12 sample. */
+void __real_rgs_sample_bilinear(const uint32_t *mem, const uint32_t *tex, f24_t s, f24_t t, uint32_t out[3], unit_op *op,
+                                trace_counters *c);
+void __wrap_rgs_sample_bilinear(const uint32_t *mem, const uint32_t *tex, f24_t s, f24_t t, uint32_t out[3], unit_op *op,
+                                trace_counters *c);
+
+CAPTURE_PATH void captured_sample(const uint32_t *mem, const uint32_t *tex, f24_t s, f24_t t, uint32_t out[3],
+                                  unit_op *op, trace_counters *c)
+{
+    __real_rgs_sample_bilinear(mem, tex, s, t, out, op, c);
+    FILE *f = begin(CAP_TEX);
+    if (!f)
+        return;
+    uint32_t a[6];
+    rgs_texel_axis(s, tex[0], &a[0], &a[1], &a[2]);
+    rgs_texel_axis(t, tex[1], &a[3], &a[4], &a[5]);
+    const uint32_t in[5] = { s, t, tex[0], tex[1], tex[2] };
+    const uint32_t texels[4] = { mem[tex[2] + a[3] * tex[0] + a[0]], mem[tex[2] + a[3] * tex[0] + a[1]],
+                                 mem[tex[2] + a[4] * tex[0] + a[0]], mem[tex[2] + a[4] * tex[0] + a[1]] };
+    fprintf(f, "%x %x %x %x %x %x %x %x %x", in[0], in[1], in[2], in[3], in[4], texels[0], texels[1], texels[2], texels[3]);
+    for (int k = 0; k < 6; k++)
+        fprintf(f, " %x", a[k]);
+    fprintf(f, " %x %x %x", out[0], out[1], out[2]);
+    end(f);
+}
+
+void __wrap_rgs_sample_bilinear(const uint32_t *mem, const uint32_t *tex, f24_t s, f24_t t, uint32_t out[3], unit_op *op,
+                                trace_counters *c)
+{
+    if (capturing())
+        captured_sample(mem, tex, s, t, out, op, c);
+    else
+        __real_rgs_sample_bilinear(mem, tex, s, t, out, op, c);
+}
+
+/* The frame of each hit the RGS shades (for rtl/tb/tb_shade.cpp): o, d, t, cos_n, the object-space
+ * normal, the world-to-object matrix's 3x3 (row by row); the unit direction, the unit shading
+ * normal, entering, t_hat, the hit point. */
+void __real_rgs_surface_frame(f24_vec3 o, f24_vec3 d, f24_t t, f24_t cos_n, f24_vec3 n, const f24_affine *w2o,
+                              surface *sf);
+void __wrap_rgs_surface_frame(f24_vec3 o, f24_vec3 d, f24_t t, f24_t cos_n, f24_vec3 n, const f24_affine *w2o,
+                              surface *sf);
+
+CAPTURE_PATH void captured_frame(f24_vec3 o, f24_vec3 d, f24_t t, f24_t cos_n, f24_vec3 n, const f24_affine *w2o,
+                                 surface *sf)
+{
+    __real_rgs_surface_frame(o, d, t, cos_n, n, w2o, sf);
+    FILE *f = begin(CAP_FRAME);
+    if (!f)
+        return;
+    const uint32_t w[31] = { o.x, o.y, o.z, d.x, d.y, d.z, t, cos_n, n.x, n.y, n.z,
+                             w2o->m[0][0], w2o->m[0][1], w2o->m[0][2], w2o->m[1][0], w2o->m[1][1], w2o->m[1][2],
+                             w2o->m[2][0], w2o->m[2][1], w2o->m[2][2],
+                             sf->d.x, sf->d.y, sf->d.z, sf->n.x, sf->n.y, sf->n.z, (uint32_t)sf->entering, sf->t_hat,
+                             sf->p.x, sf->p.y, sf->p.z };
+    words(f, w, 31);
+    end(f);
+}
+
+void __wrap_rgs_surface_frame(f24_vec3 o, f24_vec3 d, f24_t t, f24_t cos_n, f24_vec3 n, const f24_affine *w2o,
+                              surface *sf)
+{
+    if (capturing())
+        captured_frame(o, d, t, cos_n, n, w2o, sf);
+    else
+        __real_rgs_surface_frame(o, d, t, cos_n, n, w2o, sf);
+}
+
+/* The child rays of each surface (for rtl/tb/tb_shade.cpp): the material's words 13..15, the ray's
+ * weight, e, the surface's T_R origin, D^, N^, t_hat, entering, tint, base; the reflection ray's o,
+ * d, weight, active bit, the transmission ray's likewise. */
+void __real_rgs_spawn_children(const uint32_t *m, const uint32_t weight[3], f24_t eps, int i, const surface *sf,
+                               rgs_task *refl, rgs_task *trans);
+void __wrap_rgs_spawn_children(const uint32_t *m, const uint32_t weight[3], f24_t eps, int i, const surface *sf,
+                               rgs_task *refl, rgs_task *trans);
+
+static void task_ray(FILE *f, const rgs_task *t, int i)
+{
+    fprintf(f, " %06x %06x %06x %06x %06x %06x %x %x %x %x", t->rays.o[i].x, t->rays.o[i].y, t->rays.o[i].z, t->rays.d[i].x,
+            t->rays.d[i].y, t->rays.d[i].z, t->weight[i][0], t->weight[i][1], t->weight[i][2], t->rays.active >> i & 1u);
+}
+
+CAPTURE_PATH void captured_spawn(const uint32_t *m, const uint32_t weight[3], f24_t eps, int i, const surface *sf,
+                                 rgs_task *refl, rgs_task *trans)
+{
+    __real_rgs_spawn_children(m, weight, eps, i, sf, refl, trans);
+    FILE *f = begin(CAP_SPAWN);
+    if (!f)
+        return;
+    const uint32_t w[24] = { m[13], m[14], m[15], weight[0], weight[1], weight[2], eps, sf->tr.m[0][3], sf->tr.m[1][3],
+                             sf->tr.m[2][3], sf->d.x, sf->d.y, sf->d.z, sf->n.x, sf->n.y, sf->n.z, sf->t_hat,
+                             (uint32_t)sf->entering, sf->tint[0], sf->tint[1], sf->tint[2], sf->base[0], sf->base[1],
+                             sf->base[2] };
+    words(f, w, 24);
+    task_ray(f, refl, i);
+    task_ray(f, trans, i);
+    end(f);
+}
+
+void __wrap_rgs_spawn_children(const uint32_t *m, const uint32_t weight[3], f24_t eps, int i, const surface *sf,
+                               rgs_task *refl, rgs_task *trans)
+{
+    if (capturing())
+        captured_spawn(m, weight, eps, i, sf, refl, trans);
+    else
+        __real_rgs_spawn_children(m, weight, eps, i, sf, refl, trans);
+}
+
+/* Each light's colour (for rtl/tb/tb_shade.cpp): the record's words 1..3; the Q12 colour. */
+void __real_rgs_light_colour(const uint32_t *l, uint32_t out[3]);
+void __wrap_rgs_light_colour(const uint32_t *l, uint32_t out[3]);
+
+CAPTURE_PATH void captured_colour(const uint32_t *l, uint32_t out[3])
+{
+    __real_rgs_light_colour(l, out);
+    FILE *f = begin(CAP_COLOUR);
+    if (!f)
+        return;
+    words(f, &l[1], 3);
+    fputc(' ', f);
+    words(f, out, 3);
+    end(f);
+}
+
+void __wrap_rgs_light_colour(const uint32_t *l, uint32_t out[3])
+{
+    if (capturing())
+        captured_colour(l, out);
+    else
+        __real_rgs_light_colour(l, out);
+}
+
+/* Each visible light added to a ray's sums (for rtl/tb/tb_shade.cpp): diffuse and highlight sums
+ * before, diff, spec, the light's colour; the sums after. */
+void __real_rgs_add_light(uint32_t diffuse[3], uint32_t highlight[3], uint32_t diff, uint32_t spec,
+                          const uint32_t colour[3]);
+void __wrap_rgs_add_light(uint32_t diffuse[3], uint32_t highlight[3], uint32_t diff, uint32_t spec,
+                          const uint32_t colour[3]);
+
+CAPTURE_PATH void captured_accum(uint32_t diffuse[3], uint32_t highlight[3], uint32_t diff, uint32_t spec,
+                                 const uint32_t colour[3])
+{
+    const uint32_t in[11] = { diffuse[0], diffuse[1], diffuse[2], highlight[0], highlight[1], highlight[2], diff, spec,
+                              colour[0], colour[1], colour[2] };
+    __real_rgs_add_light(diffuse, highlight, diff, spec, colour);
+    FILE *f = begin(CAP_ACCUM);
+    if (!f)
+        return;
+    words(f, in, 11);
+    fputc(' ', f);
+    words(f, diffuse, 3);
+    fputc(' ', f);
+    words(f, highlight, 3);
+    end(f);
+}
+
+void __wrap_rgs_add_light(uint32_t diffuse[3], uint32_t highlight[3], uint32_t diff, uint32_t spec,
+                          const uint32_t colour[3])
+{
+    if (capturing())
+        captured_accum(diffuse, highlight, diff, spec, colour);
+    else
+        __real_rgs_add_light(diffuse, highlight, diff, spec, colour);
+}
+
+/* Each component of a hit's interpolated vertex normal or texture coordinates (for
+ * rtl/tb/tb_shade.cpp): a, b, c, u, v; u a + v b + (1 - u - v) c. */
+f24_t __real_rgs_lerp(f24_t a, f24_t b, f24_t c, f24_t u, f24_t v);
+f24_t __wrap_rgs_lerp(f24_t a, f24_t b, f24_t c, f24_t u, f24_t v);
+
+CAPTURE_PATH f24_t captured_lerp(f24_t a, f24_t b, f24_t c, f24_t u, f24_t v)
+{
+    const f24_t r = __real_rgs_lerp(a, b, c, u, v);
+    FILE *f = begin(CAP_LERP);
+    if (!f)
+        return r;
+    const uint32_t w[6] = { a, b, c, u, v, r };
+    words(f, w, 6);
+    end(f);
+    return r;
+}
+
+f24_t __wrap_rgs_lerp(f24_t a, f24_t b, f24_t c, f24_t u, f24_t v)
+{
+    return capturing() ? captured_lerp(a, b, c, u, v) : __real_rgs_lerp(a, b, c, u, v);
+}
+
+/* Each light's weights and shadow ray at each surface of a packet (for rtl/tb/tb_shade.cpp), a line
+ * per ray: the light record's words 0..12, eps, the surface's valid, unlit, P, N^, D^, highlight
+ * exponent; the shadow ray's o, d, tmin, tmax, its active bit, the diffuse and highlight weights. */
+void __real_rgs_light_packet(const uint32_t *l, const surface sf[], f24_t eps, ray_packet *sh, uint32_t diff[],
+                             uint32_t spec[], const uint32_t k_of[]);
+void __wrap_rgs_light_packet(const uint32_t *l, const surface sf[], f24_t eps, ray_packet *sh, uint32_t diff[],
+                             uint32_t spec[], const uint32_t k_of[]);
+
+CAPTURE_PATH void captured_light(const uint32_t *l, const surface sf[], f24_t eps, ray_packet *sh, uint32_t diff[],
+                                 uint32_t spec[], const uint32_t k_of[])
+{
+    __real_rgs_light_packet(l, sf, eps, sh, diff, spec, k_of);
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        FILE *f = begin(CAP_LIGHT);
+        if (!f)
+            return;
+        const surface *s = &sf[i];
+        const uint32_t w[24] = { eps, (uint32_t)s->valid, (uint32_t)s->unlit, s->p.x, s->p.y, s->p.z, s->n.x, s->n.y, s->n.z,
+                                 s->d.x, s->d.y, s->d.z, k_of[i], sh->o[i].x, sh->o[i].y, sh->o[i].z, sh->d[i].x,
+                                 sh->d[i].y, sh->d[i].z, sh->tmin[i], sh->tmax[i], sh->active >> i & 1u, diff[i], spec[i] };
+        words(f, l, 13);
+        fputc(' ', f);
+        words(f, w, 24);
+        end(f);
+    }
+}
+
+void __wrap_rgs_light_packet(const uint32_t *l, const surface sf[], f24_t eps, ray_packet *sh, uint32_t diff[],
+                             uint32_t spec[], const uint32_t k_of[])
+{
+    if (capturing())
+        captured_light(l, sf, eps, sh, diff, spec, k_of);
+    else
+        __real_rgs_light_packet(l, sf, eps, sh, diff, spec, k_of);
 }
 
 /* ---- traversal unit: its operations per trace_state and level (for rtl/tb/tb_trav.cpp) ---- */

@@ -23,13 +23,32 @@
  * walker state after; the layout at record_trav in capture.c), DIR/trace.hex (the core, for
  * rtl/tb/tb_core.cpp: every packet traced, from trace_begin to the trace_step that ends it: the
  * rays, flags, hits and the packet's trace_counters; the layout at captured_trace_step), with the
- * memory images they read in DIR/image_N.bin (the used words, little-endian).
+ * memory images they read in DIR/image_N.bin (the used words, little-endian), DIR/shade_rec.hex (the RGS's
+ * decoding of the compact shading record's vertex normals, shade_rec_normal, for
+ * rtl/tb/tb_shade.cpp: the record's 4 normal words, the vertex k, the unit normal's 3 words),
+ * DIR/tex.hex (the RGS's bilinear texture samples, rgs_sample_bilinear, for rtl/tb/tb_shade.cpp:
+ * s, t, the texture's width, height and texel address, the 4 texel words read, the axes' x0, x1,
+ * fx, y0, y1, fy, the Q12 sample), DIR/frame.hex (the frame of each hit the RGS shades,
+ * rgs_surface_frame, for rtl/tb/tb_shade.cpp: o, d, t, cos_n, the object-space normal, the
+ * world-to-object matrix's 3x3 row by row; the unit direction, the unit normal, entering, t_hat,
+ * the hit point), DIR/light.hex (each light at each surface of a packet, rgs_light_packet, for
+ * rtl/tb/tb_shade.cpp, a line per ray: the light record's words 0..12, eps, the surface's valid,
+ * unlit, P, N^, D^, highlight exponent; the shadow ray's o, d, tmin, tmax, active bit, the diffuse
+ * and highlight weights), DIR/lerp.hex (each component of a hit's interpolated vertex normal or
+ * texture coordinates, rgs_lerp, for rtl/tb/tb_shade.cpp: a, b, c, u, v; the result),
+ * DIR/colour.hex (each light's colour, rgs_light_colour: the record's words 1..3; the Q12 colour),
+ * DIR/accum.hex (each visible light added to a ray, rgs_add_light: the diffuse and highlight sums
+ * before, diff, spec, the colour; the sums after), DIR/spawn.hex (the child rays of each surface,
+ * rgs_spawn_children: the material's words 13..15, the ray's weight, e, the T_R origin, D^, N^,
+ * t_hat, entering, tint, base; the reflection and the transmission ray's o, d, weight, active bit).
  * The hls/ units are not touched: the program is linked with --wrap for xform_point, xform_vector,
  * isect_unit_rebased, isect_unit_packet (recorded ray by ray), trav_node_split, list_unit_entry,
  * list_mailboxes_clear, mem_iface_read, mem_iface_flush, mem_iface_new_frame, rgs_block_begin,
  * rebase_origin, xform_point_wide, xform_vector_wide (called from trace.c, in another object),
- * trav_scene_clip, trav_object_clip, trav_start, trav_walk, trace_begin and trace_step (called from
- * rgs.c; trace_packet's own calls are not seen), and the wrappers record the calls
+ * trav_scene_clip, trav_object_clip, trav_start, trav_walk, trace_begin, trace_step,
+ * shade_rec_normal, rgs_sample_bilinear, rgs_lerp, rgs_surface_frame, rgs_light_packet,
+ * rgs_light_colour, rgs_add_light and rgs_spawn_children (called from rgs.c; trace_packet's own
+ * calls are not seen), and the wrappers record the calls
  * while capturing is on (at most `limit` transactions per unit; recorded in call order, which with several host threads
  * interleaves).
  */
@@ -42,8 +61,8 @@
 int capture_start(const char *dir, uint64_t limit, char *err, unsigned errlen);
 
 /* Transactions recorded per unit (DIR/NAME.hex for each name): xform, isect, trav, list, mem, sched, rgs,
- * rebase, wide, trav_unit, trace. */
-#define CAPTURE_UNITS 11
+ * rebase, wide, trav_unit, trace, shade_rec, tex, frame, light, lerp, colour, accum, spawn. */
+#define CAPTURE_UNITS 19
 extern const char *const capture_unit_names[CAPTURE_UNITS];
 void capture_counts(uint64_t out[CAPTURE_UNITS]);
 
