@@ -41,13 +41,15 @@
 // operation in flight anyway); results leave as they are done, so operations of different threads
 // may overtake each other. Each shared resource serves its requesting contexts round robin (a
 // context waits at most CTX - 1 grants); node responses return in request order.
-// Latency per operation (trav_ctx: walk step 32 cycles at an inner node, 9 at a leaf, clip 134,
-// start 1, when no other context competes); throughput up to CTX operations per latency, at most
-// one trav_node issue per cycle (a walk step at an inner node takes one, a clip six). On the
-// captured room frame (48x32, 64 threads, rtl/tb/tb_trav.cpp) 39.4 cycles per operation with CTX
-// = 1, 9.95 with 4, 2.65 with 16, 1.56 with 32 (bound: 1.33, the trav_node issues).
+// Latency per operation (trav_ctx: walk step 33 cycles at an inner node, 9 at a leaf, clip 140,
+// start 1, when no other context competes; the granted operands wait one cycle in stage G before
+// trav_node); throughput up to CTX operations per latency, at most one trav_node issue per cycle
+// (a walk step at an inner node takes one, a clip six). On the captured room frame (48x32, 64
+// threads, rtl/tb/tb_trav.cpp) 10.28 cycles per operation with CTX = 4 (before stage G: 39.4 with
+// CTX = 1, 9.95 with 4, 2.65 with 16, 1.56 with 32; bound: 1.33, the trav_node issues).
 // Resources (synth_xilinx at e7m16, THREADS = 64, DEPTH = 64, CTX = 4; scripts/synth.py's flow):
-// 28830 LUT6, 458 SRL, 17924 flip-flops, 7 DSP48E1, 120 RAMB18 (the walker states and the stacks).
+// 31180 LUT6, 458 SRL, 18725 flip-flops, 7 DSP48E1, 120 RAMB18 (the walker states and the stacks);
+// 11 LUT6 levels (14 before stage G).
 // Handshake: valid/ready at the operation input, the result output and the node read request
 // (node_thread_o, node_level_o: whose node); the node response (node_rsp_valid_i with w0, w1) is
 // taken when it comes, in request order.
@@ -209,19 +211,44 @@ module trav_unit #(
     assign start[c] = take && acc == CW'(c);
   end
 
-  // the per-node datapath: one context's node or clip plane per cycle, its tag beside it
+  // the per-node datapath: one context's node or clip plane per cycle, its tag beside it. The
+  // granted context's operands are registered before trav_node (stage G): the arbitration and
+  // the operand choice (the context's state, plane and node words) would otherwise share a cycle
+  // with trav_node's first segment (14 LUT6 levels; docs/synth.md).
   assign node_go = node_req != 0;
   assign node_sel = pick(node_req, rr_node);
+  logic g_valid;
+  logic [CW-1:0] g_sel;
+  logic [1:0] g_axis;
+  logic [W-1:0] g_split;
+  logic [3:0] g_mask;
+  logic [4*3*W-1:0] g_o, g_d;
+  logic [4*W-1:0] g_tn, g_tf;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) g_valid <= 1'b0;
+    else g_valid <= node_go;
+  end
+  always_ff @(posedge clk_i) begin
+    if (node_go) begin
+      g_sel <= node_sel;
+      g_axis <= c_axis[node_sel];
+      g_split <= c_split[node_sel];
+      g_mask <= c_node_mask[node_sel];
+      g_o <= c_o[node_sel];
+      g_d <= c_d[node_sel];
+      g_tn <= c_node_tn[node_sel];
+      g_tf <= c_node_tf[node_sel];
+    end
+  end
   /* verilator lint_off PINCONNECTEMPTY */
   trav_node #(.E(E), .M(M), .ADD_STAGES(ADD_STAGES), .DIV_STAGES(DIV_STAGES), .CMP_STAGES(CMP_STAGES)) u_node (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(node_go), .ready_o(), .axis_i(c_axis[node_sel]),
-    .split_i(c_split[node_sel]), .mask_i(c_node_mask[node_sel]), .o_i(c_o[node_sel]), .d_i(c_d[node_sel]),
-    .tn_i(c_node_tn[node_sel]), .tf_i(c_node_tf[node_sel]), .valid_o(node_valid), .ready_i(1'b1),
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(g_valid), .ready_o(), .axis_i(g_axis), .split_i(g_split),
+    .mask_i(g_mask), .o_i(g_o), .d_i(g_d), .tn_i(g_tn), .tf_i(g_tf), .valid_o(node_valid), .ready_i(1'b1),
     .l_mask_o(nd_l_mask), .r_mask_o(nd_r_mask), .near_left_o(nd_near_left), .l_tn_o(nd_l_tn), .l_tf_o(nd_l_tf),
     .r_tn_o(nd_r_tn), .r_tf_o(nd_r_tf));
   /* verilator lint_on PINCONNECTEMPTY */
-  f24_pipe #(.W(CW), .STAGES(NODE_LATENCY)) u_tag (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(node_go),
-    .data_i(node_sel), .valid_o(tag_valid), .data_o(tag));
+  f24_pipe #(.W(CW), .STAGES(NODE_LATENCY)) u_tag (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(g_valid),
+    .data_i(g_sel), .valid_o(tag_valid), .data_o(tag));
 
   // the state memory: read as an operation enters (its context loads it a cycle later), written
   // as the result of a start or walk leaves

@@ -53,7 +53,7 @@ LATENCY = dict(STAGES, xform_unit=STAGES["f24_mul"] + 3 * STAGES["f24_add"],
                trav_node=STAGES["f24_add"] + STAGES["f24_div"] + 2 * STAGES["f24_cmp"],
                xform_wide=STAGES["f24_sum_exact"], rebase_unit=STAGES["f24_sum_exact"],
                rgs_raygen=1 + 2 + STAGES["f24_mul"] + 3 * STAGES["f24_add"] + 4,  # in, convert 2, xform, 4 rays
-               trav_unit="32 (a step at an inner node)")
+               trav_unit="33 (a step at an inner node)")
 # before the operators were pipelined inside (a combinational core, then a delay line): make synth at
 # commit 0abb082 (2026-11-24), iCE40 HX8K: latency, LUT4, FFs, Fmax MHz
 BEFORE = {"f24_add": (3, 756, 72, 14.83), "f24_mul": (3, 896, 72, 32.89), "f24_div": (6, 1394, 144, 4.64),
