@@ -23,6 +23,20 @@ f24_t rgs_lerp(f24_t a, f24_t b, f24_t c, f24_t u, f24_t v)
     return f24w_bits(f24w_add(f24w_add(f24w_mul(uw, f24w_of(a)), f24w_mul(vw, f24w_of(b))), f24w_mul(w, f24w_of(c))));
 }
 
+F24Q_FN f24_vec3 rgs_lerp_normal(const f24_t n[3][F24Q_LANES], f24_t u, f24_t v)
+{
+    const f24_t w = f24w_bits(f24w_sub(f24w_sub(f24w_of(F24_ONE), f24w_of(u)), f24w_of(v)));
+    const f24_t weights[F24Q_LANES] = { u, v, w, 0 };
+    const f24q k = f24q_of(weights);
+    f24_t r[3];
+normal_components:
+    for (int c = 0; c < 3; c++) {
+        const f24q p = f24q_mul(f24q_of(n[c]), k);
+        r[c] = f24w_bits(f24w_add(f24w_add(f24q_lane(p, 0), f24q_lane(p, 1)), f24q_lane(p, 2)));
+    }
+    return (f24_vec3){ r[0], r[1], r[2] };
+}
+
 void rgs_surface_frame(f24_vec3 o, f24_vec3 d, f24_t t, f24_t cos_n, f24_vec3 n, const f24_affine *w2o, surface *sf)
 {
     const f24w one = f24w_of(F24_ONE), dlen = rgs_length3_w(f24w_vec3_of(d));

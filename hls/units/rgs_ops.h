@@ -60,6 +60,10 @@ static inline f24_affine t_r(f24_vec3 o, f24_vec3 d, f24_vec3 n)
 /* u A + v B + (1 - u - v) C: a component of the hit's interpolated vertex normal or texture
  * coordinates (barycentrics u, v). */
 f24_t rgs_lerp(f24_t a, f24_t b, f24_t c, f24_t u, f24_t v);
+/* The hit's interpolated vertex normal: rgs_lerp of each component of the three decoded normals
+ * (n[c][k]: component c of normal k, shade_rec_normals), the products of a component side by side
+ * (lanes: the weights u, v, 1 - u - v), then their sum in rgs_lerp's order. */
+f24_vec3 rgs_lerp_normal(const f24_t n[3][F24Q_LANES], f24_t u, f24_t v);
 
 /* The frame of a hit of the ray (o, d) at distance t: into sf the unit direction d, the unit shading
  * normal (object-space normal n through the transposed 3x3 of the world-to-object matrix w2o,
