@@ -95,8 +95,8 @@ comma := ,
 CAPTURE_WRAP := $(addprefix -Wl$(comma)--wrap=,xform_point xform_vector isect_unit_rebased isect_unit_packet trav_node_split \
   list_unit_entry list_mailboxes_clear mem_iface_read mem_iface_flush mem_iface_new_frame rgs_block_begin \
   rebase_origin xform_point_wide xform_vector_wide \
-  trav_scene_clip trav_object_clip trav_start trav_walk trace_begin trace_step shade_rec_normal \
-  rgs_sample_bilinear rgs_surface_frame rgs_light_packet rgs_lerp rgs_light_colour rgs_add_light \
+  trav_scene_clip trav_object_clip trav_start trav_walk trace_begin trace_step shade_rec_normals \
+  rgs_sample_bilinear rgs_surface_frame rgs_light_packet rgs_lerp rgs_lerp_normal rgs_light_colour rgs_add_light \
   rgs_spawn_children)
 
 # per-format objects: everything that depends on the fp24 parameters

@@ -106,10 +106,9 @@ static f24_vec3 hit_normal(const uint32_t *mem, const hit_record *h, uint32_t ob
 {
     f24_vec3 n = { 0, 0, 0 };
     if (mem[obj + O_FLAGS] & SHADE_HAS_NORMALS) {
-        const f24_vec3 a = shade_rec_normal(&mem[shade], 0), b = shade_rec_normal(&mem[shade], 1),
-                       cc = shade_rec_normal(&mem[shade], 2);
-        n = (f24_vec3){ rgs_lerp(a.x, b.x, cc.x, h->u, h->v), rgs_lerp(a.y, b.y, cc.y, h->u, h->v),
-                        rgs_lerp(a.z, b.z, cc.z, h->u, h->v) };
+        f24_t normals[3][F24Q_LANES];
+        shade_rec_normals(&mem[shade], normals); /* the three side by side, decoded once */
+        n = rgs_lerp_normal(normals, h->u, h->v);
     }
     if (f24_is_zero(rgs_dot3(n, n))) {
         const uint32_t tri = mem[obj + O_TRIANGLES] + TRI_WORDS * h->triangle;

@@ -27,7 +27,8 @@
  *
  * fp24 operators per shaded ray (datapath, shared across the steps): decoding the 3 vertex
  * normals of the compact shading record (shade_rec.h: per normal 3 int-to-fp24, 6 mul, 2 add,
- * 1 sqrt, 1 div), normalization of D and N (2 sqrt, 2 div), T_R steps on the transformation unit, per light 2 dot products (diffuse and
+ * 1 sqrt, 1 div; the three side by side, interpolated as lanes), normalization of D and N (2 sqrt,
+ * 2 div), T_R steps on the transformation unit, per light 2 dot products (diffuse and
  * highlight cosines), the spot factor (1 div) and the float-to-Q12 converters. Latency 12 cycles
  * (the cycle model's default, docs/cycle-model.md: an estimate, no RTL yet), throughput one
  * shaded ray per cycle (an operation takes as many issue slots as it shades rays, at least 1).

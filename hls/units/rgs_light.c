@@ -8,7 +8,9 @@
 void rgs_light_packet(const uint32_t *l, const surface sf[], f24_t eps, ray_packet *sh, uint32_t diff[], uint32_t spec[],
                       const uint32_t k_of[])
 {
-    const f24_vec3 lpos = { l[4], l[5], l[6] }, ldir = { l[7], l[8], l[9] };
+    const f24_vec3 ldir = { l[7], l[8], l[9] };
+    const f24w_vec3 lpos_w = f24w_vec3_of((f24_vec3){ l[4], l[5], l[6] }), ldir_w = f24w_vec3_of(ldir);
+    const f24w zero = f24w_of(0), eps_w = f24w_of(eps);
     const int directional = l[0] == 0;
     sh->active = 0;
 shadow_rays:
@@ -19,20 +21,24 @@ shadow_rays:
         if (!sf[i].valid || sf[i].unlit)
             continue; /* an unlit surface takes no light */
         sh->o[i] = sf[i].p;
-        sh->d[i] = directional ? neg3(ldir) : sub3(lpos, sf[i].p);
-        const f24_t dist = rgs_length3(sh->d[i]);
-        sh->tmin[i] = directional ? eps : f24_div(eps, dist);
+        /* the direction to the light (a directional light's is its words' negation, not rounded) */
+        const f24w_vec3 to_light = directional ? neg3_w(ldir_w) : sub3_w(lpos_w, f24w_vec3_of(sf[i].p));
+        sh->d[i] = directional ? neg3(ldir) : f24w_vec3_bits(to_light);
+        const f24w dist = rgs_length3_w(to_light);
+        sh->tmin[i] = directional ? eps : f24w_bits(f24w_div(eps_w, dist));
         sh->tmax[i] = directional ? F24_POS_INF : F24_ONE;
-        f24_t w = f24_div(rgs_dot3(sf[i].n, sh->d[i]), dist);
-        if (!f24_lt(0, w))
+        /* cosines of the light direction with the normal, the cone axis, the mirror direction */
+        f24w w = f24w_div(f24w_dot3(f24w_vec3_of(sf[i].n), to_light), dist);
+        if (!f24w_lt(zero, w))
             continue; /* the light is behind the surface */
         if (SAARCOR_CFG_SPOT_LIGHTS && l[0] == 2) { /* spot: smooth step from the outer to the inner cone */
-            const f24_t c = f24_neg(cos_to(ldir, sh->d[i]));
-            const f24_t f = f24_div(f24_sub(c, l[12]), f24_sub(l[11], l[12]));
-            w = f24_mul(w, f24_max(0, f24_min(f, F24_ONE)));
+            const f24w c = f24w_neg(f24w_div(f24w_dot3(ldir_w, to_light), dist));
+            const f24w f = f24w_div(f24w_sub(c, f24w_of(l[12])), f24w_sub(f24w_of(l[11]), f24w_of(l[12])));
+            w = f24w_mul(w, f24w_max(zero, f24w_min(f, f24w_of(F24_ONE))));
         }
-        diff[i] = q_mul(rgs_q_of(w), Q12_DIFFUSE);
-        uint32_t s = rgs_q_of(f24_max(0, cos_to(rgs_reflect(sf[i].d, sf[i].n), sh->d[i])));
+        diff[i] = q_mul(rgs_q_of_w(w), Q12_DIFFUSE);
+        const f24w_vec3 mirror = f24w_vec3_of(rgs_reflect(sf[i].d, sf[i].n));
+        uint32_t s = rgs_q_of_w(f24w_max(zero, f24w_div(f24w_dot3(mirror, to_light), dist)));
     phong_power:
         for (uint32_t j = 0; j < 8; j++)
             if (j < k_of[i])

@@ -24,22 +24,31 @@ static inline uint32_t q_mul(uint32_t a, uint32_t b) { return q_sat((a * b + 204
 static inline uint32_t q_add(uint32_t a, uint32_t b) { return q_sat(a + b); }
 static inline uint32_t q_byte(uint32_t t) { return (t << 4) | (t >> 4); } /* 8-bit -> Q12, 255 -> 4095 */
 
-/* num / den in fp24 (the constants of shading: 1/2). */
-static inline f24_t rgs_ratio(int32_t num, int32_t den) { return f24_div(f24_from_i32(num), f24_from_i32(den)); }
+/* The shading's operations compute on working values (f24w, f24.h: bit-identical to the fp24
+ * operators; decoded once in the simulator's fast build) and store only their results as fp24:
+ * the _w forms take and give working values, the others fp24 (the interfaces the unit capture
+ * records). */
+
+/* num / den (the constants of shading: 1/2). */
+static inline f24w rgs_ratio_w(int32_t num, int32_t den) { return f24w_div(f24w_from_i32(num), f24w_from_i32(den)); }
+static inline f24_t rgs_ratio(int32_t num, int32_t den) { return f24w_bits(rgs_ratio_w(num, den)); }
 
 /* fp24 -> Q12: one multiplier, one adder, the float-to-int converter; clamps to [0, 65535]
  * (hls/units/rgs_geom.c: one definition, so that the operators count once). */
+uint32_t rgs_q_of_w(f24w x);
 uint32_t rgs_q_of(f24_t x);
 
-/* fp24 vectors: the three products side by side, then their sum in order ((x + y) + z); a scaled
- * vector, a negated one, the length (rgs_geom.c). */
+/* fp24 vectors: the dot product ((x y + x y) + z z, f24w_dot3), a negated vector, a difference,
+ * the length (rgs_geom.c). */
 f24_t rgs_dot3(f24_vec3 a, f24_vec3 b);
-static inline f24_vec3 scale3(f24_vec3 a, f24_t s) { return (f24_vec3){ f24_mul(a.x, s), f24_mul(a.y, s), f24_mul(a.z, s) }; }
 static inline f24_vec3 neg3(f24_vec3 a) { return (f24_vec3){ f24_neg(a.x), f24_neg(a.y), f24_neg(a.z) }; }
+static inline f24w_vec3 neg3_w(f24w_vec3 a) { return (f24w_vec3){ f24w_neg(a.x), f24w_neg(a.y), f24w_neg(a.z) }; }
+static inline f24w_vec3 sub3_w(f24w_vec3 a, f24w_vec3 b)
+{
+    return (f24w_vec3){ f24w_sub(a.x, b.x), f24w_sub(a.y, b.y), f24w_sub(a.z, b.z) };
+}
+f24w rgs_length3_w(f24w_vec3 a);
 f24_t rgs_length3(f24_vec3 a);
-static inline f24_vec3 sub3(f24_vec3 a, f24_vec3 b) { return (f24_vec3){ f24_sub(a.x, b.x), f24_sub(a.y, b.y), f24_sub(a.z, b.z) }; }
-/* Cosine between unit vector n and direction d (any length). */
-static inline f24_t cos_to(f24_vec3 n, f24_vec3 d) { return f24_div(rgs_dot3(n, d), rgs_length3(d)); }
 
 /* T_R = [D^, N^, D^; O]: the transformation of every secondary ray of a hit. */
 static inline f24_affine t_r(f24_vec3 o, f24_vec3 d, f24_vec3 n)
@@ -51,6 +60,10 @@ static inline f24_affine t_r(f24_vec3 o, f24_vec3 d, f24_vec3 n)
 /* u A + v B + (1 - u - v) C: a component of the hit's interpolated vertex normal or texture
  * coordinates (barycentrics u, v). */
 f24_t rgs_lerp(f24_t a, f24_t b, f24_t c, f24_t u, f24_t v);
+/* The hit's interpolated vertex normal: rgs_lerp of each component of the three decoded normals
+ * (n[c][k]: component c of normal k, shade_rec_normals), the products of a component side by side
+ * (lanes: the weights u, v, 1 - u - v), then their sum in rgs_lerp's order. */
+f24_vec3 rgs_lerp_normal(const f24_t n[3][F24Q_LANES], f24_t u, f24_t v);
 
 /* The frame of a hit of the ray (o, d) at distance t: into sf the unit direction d, the unit shading
  * normal (object-space normal n through the transposed 3x3 of the world-to-object matrix w2o,

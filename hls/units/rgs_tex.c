@@ -17,12 +17,12 @@ static uint32_t channel(uint32_t texel_word, int k) { return q_byte(texel_word >
 
 void rgs_texel_axis(f24_t s, uint32_t n, uint32_t *i0, uint32_t *i1, uint32_t *frac)
 {
-    const f24_t x = f24_sub(f24_mul(s, f24_from_i32((int32_t)n)), rgs_ratio(1, 2));
-    int32_t i = f24_to_i32(x);
-    if (f24_lt(x, f24_from_i32(i)) && i != INT32_MIN)
+    const f24w x = f24w_sub(f24w_mul(f24w_of(s), f24w_from_i32((int32_t)n)), rgs_ratio_w(1, 2));
+    int32_t i = f24w_to_i32(x);
+    if (f24w_lt(x, f24w_from_i32(i)) && i != INT32_MIN)
         i -= 1; /* to_i32 rounds toward zero; this is floor (a saturated coordinate stays) */
-    const f24_t f = f24_sub(x, f24_from_i32(i));
-    const int32_t q = f24_to_i32(f24_add(f24_mul(f, f24_from_i32(256)), rgs_ratio(1, 2)));
+    const f24w f = f24w_sub(x, f24w_from_i32(i));
+    const int32_t q = f24w_to_i32(f24w_add(f24w_mul(f, f24w_from_i32(256)), rgs_ratio_w(1, 2)));
     const int32_t m = i % (int32_t)n;
     *i0 = (uint32_t)(m < 0 ? m + (int32_t)n : m); /* repeat wrapping */
     *i1 = *i0 + 1 == n ? 0 : *i0 + 1;

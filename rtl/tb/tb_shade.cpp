@@ -22,12 +22,13 @@
 //    x, in the C's order t00, t10, t01, t11) and gets its word back in order, after 1 cycle or, in
 //    the gappy epochs, 1 to 4 cycles with gaps.
 // Captured transactions (saarcor render --capture-unit-io DIR: DIR/shade_rec.hex, every
-// shade_rec_normal call: the record's 4 normal words, the vertex k, the unit normal; DIR/tex.hex,
+// vertex normal decoded (shade_rec_normals, a line per normal): the record's 4 normal words, the
+// vertex k, the unit normal; DIR/tex.hex,
 // every rgs_sample_bilinear call: s, t, width, height, texel address, the 4 texel words read, the
 // axes' x0 x1 fx y0 y1 fy, the sample; DIR/frame.hex, every rgs_surface_frame call: o, d, t, cos_n,
 // the object-space normal, the world-to-object 3x3; the outputs; DIR/light.hex, every light at every
 // surface of rgs_light_packet: the light record's words 0..12, e, the surface's valid, unlit, P,
-// N^, D^, k; the shadow ray, active, diff, spec; DIR/lerp.hex, every rgs_lerp call: a, b, c, u, v;
+// N^, D^, k; the shadow ray, active, diff, spec; DIR/lerp.hex, every rgs_lerp call and component of rgs_lerp_normal: a, b, c, u, v;
 // the result; DIR/colour.hex and DIR/accum.hex, every rgs_light_colour and rgs_add_light call;
 // DIR/spawn.hex, every rgs_spawn_children call: the material's words 13..15, the ray's weight, e, the
 // surface's T_R origin, D^, N^, t_hat, entering, tint, base; both children) come first and are also checked against the recording; then

@@ -523,28 +523,33 @@ void __wrap_rgs_block_begin(const uint32_t *mem, uint32_t x0, uint32_t y0, rgs_b
 }
 
 /* ---- RGS shading: each vertex normal decoded from a compact shading record (surface_at's
- * hit_normal, for rtl/tb/tb_shade.cpp): the record's 4 normal words, the vertex k, the unit normal ---- */
+ * hit_normal decodes the three side by side, shade_rec_normals; for rtl/tb/tb_shade.cpp a line per
+ * normal): the record's 4 normal words, the vertex k, the unit normal ---- */
 
-f24_vec3 __real_shade_rec_normal(const uint32_t *normals, uint32_t k);
-f24_vec3 __wrap_shade_rec_normal(const uint32_t *normals, uint32_t k);
+void __real_shade_rec_normals(const uint32_t *normals, f24_t out[3][F24Q_LANES]);
+void __wrap_shade_rec_normals(const uint32_t *normals, f24_t out[3][F24Q_LANES]);
 
-CAPTURE_PATH f24_vec3 captured_shade_rec_normal(const uint32_t *normals, uint32_t k)
+CAPTURE_PATH void captured_shade_rec_normals(const uint32_t *normals, f24_t out[3][F24Q_LANES])
 {
-    const f24_vec3 n = __real_shade_rec_normal(normals, k);
-    FILE *f = begin(CAP_SHADE_REC);
-    if (!f)
-        return n;
-    const uint32_t out[3] = { n.x, n.y, n.z };
-    words(f, normals, SHADE_NORMAL_WORDS);
-    fprintf(f, " %x ", k);
-    words(f, out, 3);
-    end(f);
-    return n;
+    __real_shade_rec_normals(normals, out);
+    for (uint32_t k = 0; k < 3; k++) {
+        FILE *f = begin(CAP_SHADE_REC);
+        if (!f)
+            return;
+        const uint32_t n[3] = { out[0][k], out[1][k], out[2][k] };
+        words(f, normals, SHADE_NORMAL_WORDS);
+        fprintf(f, " %x ", k);
+        words(f, n, 3);
+        end(f);
+    }
 }
 
-f24_vec3 __wrap_shade_rec_normal(const uint32_t *normals, uint32_t k)
+void __wrap_shade_rec_normals(const uint32_t *normals, f24_t out[3][F24Q_LANES])
 {
-    return capturing() ? captured_shade_rec_normal(normals, k) : __real_shade_rec_normal(normals, k);
+    if (capturing())
+        captured_shade_rec_normals(normals, out);
+    else
+        __real_shade_rec_normals(normals, out);
 }
 
 /* The RGS's bilinear texture samples (for rtl/tb/tb_shade.cpp): s, t, the texture entry's width,
@@ -734,6 +739,30 @@ CAPTURE_PATH f24_t captured_lerp(f24_t a, f24_t b, f24_t c, f24_t u, f24_t v)
 f24_t __wrap_rgs_lerp(f24_t a, f24_t b, f24_t c, f24_t u, f24_t v)
 {
     return capturing() ? captured_lerp(a, b, c, u, v) : __real_rgs_lerp(a, b, c, u, v);
+}
+
+/* The interpolated vertex normal (rgs_lerp_normal): a lerp.hex line per component. */
+f24_vec3 __real_rgs_lerp_normal(const f24_t n[3][F24Q_LANES], f24_t u, f24_t v);
+f24_vec3 __wrap_rgs_lerp_normal(const f24_t n[3][F24Q_LANES], f24_t u, f24_t v);
+
+CAPTURE_PATH f24_vec3 captured_lerp_normal(const f24_t n[3][F24Q_LANES], f24_t u, f24_t v)
+{
+    const f24_vec3 r = __real_rgs_lerp_normal(n, u, v);
+    const f24_t rc[3] = { r.x, r.y, r.z };
+    for (int c = 0; c < 3; c++) {
+        FILE *f = begin(CAP_LERP);
+        if (!f)
+            return r;
+        const uint32_t w[6] = { n[c][0], n[c][1], n[c][2], u, v, rc[c] };
+        words(f, w, 6);
+        end(f);
+    }
+    return r;
+}
+
+f24_vec3 __wrap_rgs_lerp_normal(const f24_t n[3][F24Q_LANES], f24_t u, f24_t v)
+{
+    return capturing() ? captured_lerp_normal(n, u, v) : __real_rgs_lerp_normal(n, u, v);
 }
 
 /* Each light's weights and shadow ray at each surface of a packet (for rtl/tb/tb_shade.cpp), a line

@@ -24,7 +24,7 @@
  * rtl/tb/tb_core.cpp: every packet traced, from trace_begin to the trace_step that ends it: the
  * rays, flags, hits and the packet's trace_counters; the layout at captured_trace_step), with the
  * memory images they read in DIR/image_N.bin (the used words, little-endian), DIR/shade_rec.hex (the RGS's
- * decoding of the compact shading record's vertex normals, shade_rec_normal, for
+ * decoding of the compact shading record's vertex normals, shade_rec_normals (a line per normal), for
  * rtl/tb/tb_shade.cpp: the record's 4 normal words, the vertex k, the unit normal's 3 words),
  * DIR/tex.hex (the RGS's bilinear texture samples, rgs_sample_bilinear, for rtl/tb/tb_shade.cpp:
  * s, t, the texture's width, height and texel address, the 4 texel words read, the axes' x0, x1,
@@ -35,7 +35,7 @@
  * rtl/tb/tb_shade.cpp, a line per ray: the light record's words 0..12, eps, the surface's valid,
  * unlit, P, N^, D^, highlight exponent; the shadow ray's o, d, tmin, tmax, active bit, the diffuse
  * and highlight weights), DIR/lerp.hex (each component of a hit's interpolated vertex normal or
- * texture coordinates, rgs_lerp, for rtl/tb/tb_shade.cpp: a, b, c, u, v; the result),
+ * texture coordinates, rgs_lerp and rgs_lerp_normal (a line per component), for rtl/tb/tb_shade.cpp: a, b, c, u, v; the result),
  * DIR/colour.hex (each light's colour, rgs_light_colour: the record's words 1..3; the Q12 colour),
  * DIR/accum.hex (each visible light added to a ray, rgs_add_light: the diffuse and highlight sums
  * before, diff, spec, the colour; the sums after), DIR/spawn.hex (the child rays of each surface,
@@ -46,7 +46,7 @@
  * list_mailboxes_clear, mem_iface_read, mem_iface_flush, mem_iface_new_frame, rgs_block_begin,
  * rebase_origin, xform_point_wide, xform_vector_wide (called from trace.c, in another object),
  * trav_scene_clip, trav_object_clip, trav_start, trav_walk, trace_begin, trace_step,
- * shade_rec_normal, rgs_sample_bilinear, rgs_lerp, rgs_surface_frame, rgs_light_packet,
+ * shade_rec_normals, rgs_sample_bilinear, rgs_lerp, rgs_lerp_normal, rgs_surface_frame, rgs_light_packet,
  * rgs_light_colour, rgs_add_light and rgs_spawn_children (called from rgs.c; trace_packet's own
  * calls are not seen), and the wrappers record the calls
  * while capturing is on (at most `limit` transactions per unit; recorded in call order, which with several host threads
