@@ -81,7 +81,7 @@ static void working_values_and_lanes(void **state)
         assert_int_equal((uint32_t)f24w_to_i32(big), f24_ops[F24_OP_TO_I32].hw(f24w_bits(big), 0));
 #ifdef F24_FAST_VECTORS
         const f24_t lanes[F24Q_LANES] = { v.a, v.b, v.a | ~F24_MASK, f24_neg(v.b) };
-        const int32_t ints[F24Q_LANES] = { (int32_t)v.a, (int32_t)v.b, -(int32_t)v.a, (int32_t)(v.a << 8) };
+        const int32_t ints[F24Q_LANES] = { (int32_t)v.a, (int32_t)v.b, (int32_t)(0u - v.a), (int32_t)(v.a << 8) };
         /* the lanes' values themselves: the next operation of a chain reads them unencoded */
         const f24v d = f24v_of(lanes), roots = f24v_sqrt(d), from_ints = f24v_from_i32(ints);
         for (int k = 0; k < F24Q_LANES; k++) {

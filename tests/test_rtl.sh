@@ -26,9 +26,9 @@
 # rgs_lerp and rgs_spawn_children and the transactions recorded while rendering the room
 # (textured), the cornell box and (from ../shared/scenes, if present) subpass_scene_opaque and
 # CesiumMilkTruck (textured) with shadows and reflections, and 2 x 10^4 random ones of each; the
-# benches catch mutants (a rounder that never rounds ties to even, a mailbox
-# that never moves on, a cache without its tag forwarding, a scheduler whose pointer never moves on,
-# a walk that pushes the near child; with SAARCOR_RTL_MUTANTS=all, as make rtl-test runs it, also a
+# benches catch mutants (a rounder that never rounds ties to even, a cache without its tag
+# forwarding; with SAARCOR_RTL_MUTANTS=all, as make rtl-test runs it, also a mailbox that never
+# moves on, a scheduler whose pointer never moves on, a walk that pushes the near child, a
 # square root without its sticky bit, a pixel centre without its + 1/2, a tile controller stepping
 # past the region's edge, a vector mode whose unused terms are +0, a rebase that moves by t = Inf,
 # a core thread that walks on before the rest of a leaf's entries, a normal decoder folding the
@@ -100,8 +100,8 @@ t_list_and_cache() {
 # builds tb_NAME with rtl/FILE replaced by the sed expression EXPR in $T/mut_NAME; runs it with ARGS
 # and expects it to fail
 # Each mutant is a Verilator build (10-20 s, its C++ at -O0): make test runs the mutants of the
-# rounder, the list unit, the cache, the scheduler and the traversal unit; make rtl-test
-# (SAARCOR_RTL_MUTANTS=all) also those of the square root, the ray generation, the tile controller,
+# rounder and the cache; make rtl-test (SAARCOR_RTL_MUTANTS=all) also those of the list unit, the
+# scheduler, the traversal unit, the square root, the ray generation, the tile controller,
 # the wide transformation, the rebase unit and the core (its build takes about 2 minutes), and the
 # caches with tables of 4 requests.
 extra_mutants() { [[ ${SAARCOR_RTL_MUTANTS:-} == all ]]; }
@@ -157,12 +157,17 @@ t_trav_mutant_caught() { # the near child pushed instead of the far one
     -n 0 --capture "$T/capc"
 }
 
-t_list_cache_mutants_caught() {
+t_cache_mutant_caught() {
+  [[ -f "$T/capc/mem.hex" ]] || "$BIN" render room -o "$T/room_cycle.png" --width 48 --height 32 --mode cycle \
+    --threads-per-pipe 64 --capture-unit-io "$T/capc" --capture-limit 200000 >/dev/null
+  mutant cache cache_dm.sv "s/tag_eff = (p_tag_we \&\& p_tag_idx == s1_idx) ? p_tag : tag_q;/tag_eff = tag_q;/" \
+    --capture "$T/capc"
+}
+
+t_list_sched_mutants_caught() {
   [[ -f "$T/capc/list.hex" ]] || "$BIN" render room -o "$T/room_cycle.png" --width 48 --height 32 --mode cycle \
     --threads-per-pipe 64 --capture-unit-io "$T/capc" --capture-limit 200000 >/dev/null
   mutant list list_unit.sv "s/s2_next\[r\] + 3'd1/s2_next[r]/" -n 2000 --capture "$T/capc" &&
-    mutant cache cache_dm.sv "s/tag_eff = (p_tag_we \&\& p_tag_idx == s1_idx) ? p_tag : tag_q;/tag_eff = tag_q;/" \
-      --capture "$T/capc" &&
     mutant sched thread_sched.sv "s/after_q\[u\] <= after_next;/after_q[u] <= '1;/" -n 0 --capture "$T/capc"
 }
 
@@ -294,7 +299,7 @@ run_case rtl_units_match_c_model_and_capture t_units
 run_case rtl_rebase_and_wide_xform_match_c_model_and_capture t_wide
 run_case rtl_exact_sum_matches_c_model t_exact_sum
 run_case rtl_list_unit_and_caches_match_c_model t_list_and_cache
-run_case rtl_list_cache_benches_catch_mutants t_list_cache_mutants_caught
+run_case rtl_cache_bench_catches_mutant t_cache_mutant_caught
 run_case rtl_rgs_raygen_and_tile_ctrl_match_c_model t_rgs
 run_case rtl_shade_datapath_matches_c_model_and_capture t_shade
 if extra_mutants; then
@@ -303,9 +308,10 @@ if extra_mutants; then
   run_case rtl_wide_bench_catches_mutants t_wide_mutants_caught
   run_case rtl_caches_with_full_tables_match_c_model t_cache_small_table
   run_case rtl_shade_bench_catches_mutants t_shade_mutants_caught
+  run_case rtl_list_sched_benches_catch_mutants t_list_sched_mutants_caught
 fi
 run_case rtl_trav_unit_matches_c_model_and_capture t_trav_unit
-run_case rtl_trav_bench_catches_mutant t_trav_mutant_caught
+extra_mutants && run_case rtl_trav_bench_catches_mutant t_trav_mutant_caught
 run_case rtl_core_matches_c_model_and_capture t_core
 extra_mutants && run_case rtl_core_bench_catches_mutant t_core_mutant_caught
 run_case rtl_bench_catches_mutant t_mutant_caught
