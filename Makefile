@@ -414,7 +414,7 @@ rtl-test: deps rtl-lint
 	    $(BUILD)/rtl/$$f/tb_shade -n 0 --capture $(BUILD)/rtl/capture/shade.$$f || exit 1; done; done | tee $(BUILD)/rtl/shade.log
 	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_shade -n $(RTL_N) || exit 1; done \
 	  | tee -a $(BUILD)/rtl/shade.log
-	@# the short form with every mutant (make test builds one per bench)
+	@# the short form with every mutant (make test builds the rounder's alone)
 	@SAARCOR_RTL_MUTANTS=all BUILD=$(BUILD) bash tests/run.sh tests/test_rtl.sh
 
 # Yosys synthesis of every module (synth_xilinx; synth_ice40 + nextpnr-ice40 for the operators;
