@@ -206,6 +206,11 @@ run: deps
 
 # ---- tests ---------------------------------------------------------------------------------
 UNIT_TESTS := $(foreach f,$(FORMATS),$(addprefix $(BUILD)/w/$(f)/,$(FORMAT_TESTS))) $(HOST_TESTS)
+# make test runs the unit tests under ASan/UBSan at the narrowest, the default and the widest
+# format (width-dependent undefined behaviour lives at the edges); make asan at every format
+ASAN_TEST_FORMATS := e7m8 $(DEFAULT_FMT) e8m23
+ASAN_UNIT_TESTS := $(foreach f,$(ASAN_TEST_FORMATS),$(addprefix build/asan/w/$(f)/,$(FORMAT_TESTS))) \
+	$(patsubst $(BUILD)/%,build/asan/%,$(HOST_TESTS))
 test-programs: $(UNIT_TESTS) $(BUILD)/saarcor $(BUILD)/w/e8m23/saarcor
 
 # unit tests of this build folder (used with BUILD=build/asan SAN=1 by `make asan`)
@@ -233,14 +238,14 @@ test: deps
 	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_list $(BUILD)/rtl/$(DEFAULT_FMT)/tb_cache $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sched $(BUILD)/rtl/$(DEFAULT_FMT)/tb_rgs \
 	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_wide $(BUILD)/rtl/$(DEFAULT_FMT)/tb_trav $(BUILD)/rtl/$(DEFAULT_FMT)/tb_core \
 	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_shade
-	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 test-programs
+	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 FORMATS="$(ASAN_TEST_FORMATS)" test-programs
 	@$(MAKE) --no-print-directory -j$$(nproc) robust
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 fuzz-replay
 	@bash tests/run.sh --report $(BUILD)/test-report.txt \
 	  tests/test_cli.sh tests/test_golden_asan.sh tests/test_golden.sh tests/test_mpi.sh tests/test_hls.sh \
 	  tests/test_determinism.sh tests/test_memcheck.sh tests/test_limits.sh tests/test_rtl.sh tests/test_longrun.sh \
 	  tests/test_interrupt.sh tests/test_fuzz.sh tests/test_stress.sh tests/test_heatmap.sh tests/test_hits.sh tests/test_vcd.sh tests/test_sim_arith.sh tests/test_shading.sh \
-	  $(UNIT_TESTS) $(patsubst $(BUILD)/%,build/asan/%,$(UNIT_TESTS))
+	  $(UNIT_TESTS) $(ASAN_UNIT_TESTS)
 
 # ---- fuzzing: libFuzzer harnesses of tests/fuzz/ (tests/fuzz/README.md) ----------------------------
 # Everything is compiled again with clang, ASan, UBSan and the fuzzer's coverage instrumentation
