@@ -241,10 +241,11 @@ test: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 FORMATS="$(ASAN_TEST_FORMATS)" test-programs
 	@$(MAKE) --no-print-directory -j$$(nproc) robust
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 fuzz-replay
+	@# the longest first, so that the two at a time end together
 	@bash tests/run.sh --report $(BUILD)/test-report.txt \
-	  tests/test_cli.sh tests/test_golden_asan.sh tests/test_golden.sh tests/test_mpi.sh tests/test_hls.sh \
-	  tests/test_determinism.sh tests/test_memcheck.sh tests/test_limits.sh tests/test_rtl.sh tests/test_longrun.sh \
-	  tests/test_interrupt.sh tests/test_fuzz.sh tests/test_stress.sh tests/test_heatmap.sh tests/test_hits.sh tests/test_vcd.sh tests/test_sim_arith.sh tests/test_shading.sh \
+	  tests/test_sim_arith.sh tests/test_rtl.sh tests/test_golden.sh tests/test_cli.sh tests/test_interrupt.sh tests/test_hls.sh \
+	  tests/test_memcheck.sh tests/test_mpi.sh tests/test_golden_asan.sh tests/test_heatmap.sh tests/test_determinism.sh \
+	  tests/test_stress.sh tests/test_limits.sh tests/test_longrun.sh tests/test_vcd.sh tests/test_fuzz.sh tests/test_hits.sh tests/test_shading.sh \
 	  $(UNIT_TESTS) $(ASAN_UNIT_TESTS)
 
 # ---- fuzzing: libFuzzer harnesses of tests/fuzz/ (tests/fuzz/README.md) ----------------------------
