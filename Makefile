@@ -17,7 +17,9 @@
 #                   port, the thread scheduler, the traversal unit, the RGS's ray generation and the
 #                   tile controller on cycle-mode frames of room, terrain, plants; ray generation on
 #                   an orthographic frame and random blocks; the ray tracing core on every packet of
-#                   functional frames of cornell, room, subpass_scene_opaque.glb), lint
+#                   functional frames of cornell, room, subpass_scene_opaque.glb; those frames at
+#                   128x96 through the Verilated DynRTP, render --mode rtl, beside --mode cycle), lint
+#   make rtl        the Verilated DynRTP (rtl/dynrtp.sv) that saarcor render --mode rtl runs
 #   make synth      Yosys synthesis figures -> docs/synth.md
 #   make bench-precision  every format against the binary64 reference: time, cycles, PSNR, plots
 #   make results    docs/results.md from build/bench/ (run after make bench)

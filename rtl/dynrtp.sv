@@ -22,10 +22,11 @@
 // Counters (the usage counted inside the RTL): cycles_o counts the cycles from the frame taken at
 // frame_valid_i until frame_end_i (the RGS's last block done); issues_o per unit of trace_core the
 // operations issued in that time (thread_sched: trav, list, rebase, wide, xform, isect, add, sum,
-// 64 bits each); packets_o the packets traced.
+// 64 bits each); packets_o the packets traced; reads_o per memory port of the core the reads its
+// cache took (kd nodes, list entries, descriptor words: the word port's usage).
 // Latency and throughput: tile_ctrl 1 block per cycle; the core's (rtl/README.md); the memory port
 // 1 transfer per cycle. Resources: trace_core's, 3 x cache_read (NODE_KB + LIST_KB + MAT_KB KB of
-// data arrays and their tags), mem_port, tile_ctrl, 10 x 64-bit counters.
+// data arrays and their tags), mem_port, tile_ctrl, 13 x 64-bit counters.
 module dynrtp #(
   parameter int E = 7,
   parameter int M = 16,
@@ -89,7 +90,8 @@ module dynrtp #(
   // counters
   output logic [63:0]            cycles_o,
   output logic [8*64-1:0]        issues_o,
-  output logic [63:0]            packets_o
+  output logic [63:0]            packets_o,
+  output logic [3*64-1:0]        reads_o
 );
   // ---- tile controller ----
   tile_ctrl u_tiles (
@@ -172,17 +174,22 @@ module dynrtp #(
       cycles_o <= '0;
       issues_o <= '0;
       packets_o <= '0;
+      reads_o <= '0;
     end else begin
       if (frame_valid_i && frame_ready_o) begin
         running <= 1'b1;
         cycles_o <= '0;
         issues_o <= '0;
         packets_o <= '0;
+        reads_o <= '0;
       end else if (running) begin
         running <= !frame_end_i;
         cycles_o <= cycles_o + 64'd1;
         for (int u = 0; u < 8; u++) issues_o[64*u +: 64] <= issues_o[64*u +: 64] + 64'(issue[u]);
         packets_o <= packets_o + 64'(valid_o && ready_i);
+        reads_o[0 +: 64] <= reads_o[0 +: 64] + 64'(node_req && node_ready);
+        reads_o[64 +: 64] <= reads_o[64 +: 64] + 64'(lreq_q && lreq_ready);
+        reads_o[128 +: 64] <= reads_o[128 +: 64] + 64'(word_req && word_ready);
       end
     end
   end

@@ -14,8 +14,9 @@
 //     its state), and the RTL's hits and counters must equal it; a mismatch prints the unit
 //     (trace_core), the packet, the cycle, the thread, the ray and field and both values, exit 1.
 // Writes DIR/pixels.bin (0xRRGGBB per pixel), DIR/hits.bin (instance, triangle, t, u, v, cos per
-// pixel: the primary hits) and DIR/stats (key value lines: the RTL's cycles, issues per unit and
-// packets, the memory port's transfers and bytes, the RGS's counters).
+// pixel: the primary hits) and DIR/stats (key value lines: the RTL's cycles, issues per unit,
+// packets and reads per port of the core, the memory port's transfers and bytes, the RGS's
+// counters).
 // usage: tb_dynrtp DIR   (DIR/image.bin, DIR/params as saarcor writes them); exit 0, 1 (a
 // mismatch or a hang), 2 (bad input)
 #include <algorithm>
@@ -48,6 +49,7 @@ constexpr uint64_t FX = 65536;
 constexpr uint64_t FLUSH = 1024;        // cycles after reset: the caches empty their tags (512 lines at most)
 constexpr uint64_t TIMEOUT = 1u << 22;  // cycles without a packet out before the harness gives up
 const char *const UNIT[8] = { "trav", "list", "rebase", "wide", "xform", "isect", "add", "sum" };
+const char *const PORT[3] = { "nodes", "lists", "words" }; // the core's memory ports
 const char *const HIT[6] = { "instance", "triangle", "t", "u", "v", "cos" };
 const char *const COUNTER[10] = { "traversal_steps", "leaves", "list_entries", "mailbox_skips", "transformations",
                                   "intersections", "words_nodes", "words_lists", "words_matrices", "words_shading" };
@@ -315,6 +317,9 @@ int main(int argc, char **argv)
     for (int u = 0; u < 8; u++)
         std::fprintf(st, "issues_%s %llu\n", UNIT[u],
                      (unsigned long long)((uint64_t)top.issues_o[2 * u] | (uint64_t)top.issues_o[2 * u + 1] << 32));
+    for (int k = 0; k < 3; k++)
+        std::fprintf(st, "reads_%s %llu\n", PORT[k],
+                     (unsigned long long)((uint64_t)top.reads_o[2 * k] | (uint64_t)top.reads_o[2 * k + 1] << 32));
     std::fprintf(st, "mem_transfers %llu\nmem_bytes %llu\n", (unsigned long long)transfers, (unsigned long long)bytes);
     for (int k = 0; k < RAY_KINDS; k++)
         std::fprintf(st, "rays_%d %llu\n", k, (unsigned long long)counters.rays[k]);

@@ -54,7 +54,8 @@ module tb_dynrtp #(
   input  logic [DW-1:0]    mem_rsp_data_i,
   output logic [63:0]      cycles_o,
   output logic [8*64-1:0]  issues_o,
-  output logic [63:0]      packets_o
+  output logic [63:0]      packets_o,
+  output logic [3*64-1:0]  reads_o
 );
   dynrtp #(.E(E), .M(M), .THREADS(THREADS)) u_dynrtp (.*);
 endmodule

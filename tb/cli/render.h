@@ -48,11 +48,13 @@ typedef struct {
 } frame_host;
 
 /* --mode rtl: the counters of the RTL (rtl/dynrtp.sv): cycles of the frame, operations issued per
- * unit of trace_core, packets traced, the memory port's transfers. */
-enum { RTL_UNITS = 8 };
+ * unit of trace_core, packets traced, reads per memory port of the core (kd nodes, list entries,
+ * descriptor words), the memory port's transfers. */
+enum { RTL_UNITS = 8, RTL_PORTS = 3 };
 extern const char *const rtl_unit_names[RTL_UNITS];
+extern const char *const rtl_port_names[RTL_PORTS];
 typedef struct {
-    uint64_t cycles, packets, issues[RTL_UNITS], mem_transfers, mem_bytes;
+    uint64_t cycles, packets, issues[RTL_UNITS], reads[RTL_PORTS], mem_transfers, mem_bytes;
     uint32_t threads;
 } rtl_stats;
 

@@ -22,6 +22,7 @@
 extern char **environ;
 
 const char *const rtl_unit_names[RTL_UNITS] = { "trav", "list", "rebase", "wide", "xform", "isect", "add", "sum" };
+const char *const rtl_port_names[RTL_PORTS] = { "nodes", "lists", "words" };
 
 /* <build>/rtl/eEmM/tb_dynrtp beside this program (build/saarcor or build/w/eEmM/saarcor). */
 static int model_path(char *path, size_t n)
@@ -111,6 +112,9 @@ static int read_stats(const char *path, rgs_counters *sum, rtl_stats *st)
         for (k = 0; k < RTL_UNITS; k++)
             if (!strncmp(key, "issues_", 7) && !strcmp(key + 7, rtl_unit_names[k]))
                 st->issues[k] = v;
+        for (k = 0; k < RTL_PORTS; k++)
+            if (!strncmp(key, "reads_", 6) && !strcmp(key + 6, rtl_port_names[k]))
+                st->reads[k] = v;
         for (k = 0; k < 10; k++)
             if (!strcmp(key, trace_keys[k]))
                 tw[k] = v;
@@ -204,6 +208,9 @@ void rtl_report(FILE *f, const render_opts *ro, const rtl_stats *st)
             (unsigned long long)st->mem_bytes);
     for (int k = 0; k < RTL_UNITS; k++)
         fprintf(f, " %s %.1f%%", rtl_unit_names[k], 100.0 * (double)st->issues[k] / (double)st->cycles);
+    fprintf(f, "; reads per cycle:");
+    for (int k = 0; k < RTL_PORTS; k++)
+        fprintf(f, " %s %.3f", rtl_port_names[k], (double)st->reads[k] / (double)st->cycles);
     fprintf(f, "\n");
 }
 
@@ -215,6 +222,9 @@ void rtl_report_json(FILE *f, const render_opts *ro, const rtl_stats *st)
             (unsigned long long)st->mem_transfers, (unsigned long long)st->mem_bytes);
     for (int k = 0; k < RTL_UNITS; k++)
         fprintf(f, "%s\"%s\": %llu", k ? ", " : "", rtl_unit_names[k], (unsigned long long)st->issues[k]);
+    fprintf(f, "}, \"reads\": {");
+    for (int k = 0; k < RTL_PORTS; k++)
+        fprintf(f, "%s\"%s\": %llu", k ? ", " : "", rtl_port_names[k], (unsigned long long)st->reads[k]);
     fprintf(f, "}, \"usage\": {");
     for (int k = 0; k < RTL_UNITS; k++)
         fprintf(f, "%s\"%s\": %.6f", k ? ", " : "", rtl_unit_names[k], (double)st->issues[k] / (double)st->cycles);
