@@ -61,7 +61,11 @@ int render_rtl_check(const render_opts *ro)
                                          "--capture-unit-io, --mpi or --frames");
     char path[1200];
     if (model_path(path, sizeof path) != 0 || access(path, X_OK) != 0) {
-        cli_error("render", "--mode rtl: no RTL model at %s: run make rtl", path);
+        if (F24_EXP_BITS == 7 && F24_MAN_BITS == 16) /* make rtl builds the default format's */
+            cli_error("render", "--mode rtl: no RTL model at %s: run make rtl", path);
+        else
+            cli_error("render", "--mode rtl: no RTL model at %s: run make rtl build/rtl/e%dm%d/tb_dynrtp", path,
+                      F24_EXP_BITS, F24_MAN_BITS);
         return SAARCOR_EXIT_USAGE;
     }
     return SAARCOR_EXIT_OK;
