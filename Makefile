@@ -17,7 +17,9 @@
 #                   port, the thread scheduler, the traversal unit, the RGS's ray generation and the
 #                   tile controller on cycle-mode frames of room, terrain, plants; ray generation on
 #                   an orthographic frame and random blocks; the ray tracing core on every packet of
-#                   functional frames of cornell, room, subpass_scene_opaque.glb), lint
+#                   functional frames of cornell, room, subpass_scene_opaque.glb; those frames at
+#                   128x96 through the Verilated DynRTP, render --mode rtl, beside --mode cycle), lint
+#   make rtl        the Verilated DynRTP (rtl/dynrtp.sv) that saarcor render --mode rtl runs
 #   make synth      Yosys synthesis figures -> docs/synth.md
 #   make bench-precision  every format against the binary64 reference: time, cycles, PSNR, plots
 #   make results    docs/results.md from build/bench/ (run after make bench)
@@ -181,7 +183,7 @@ $(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS) $(call fmt_objs,$
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
 
 
-.PHONY: fuzz fuzz-build fuzz-replay all mpi bench-mpi widths deps run test unit-tests test-programs asan verify-fp hls-check hls-vectors bench bench-skip bench-longrun bench-fp bench-build bench-render bench-accuracy bench-cycle bench-precision bench-peers results robust stress rtl-lint rtl-test synth clean
+.PHONY: fuzz fuzz-build fuzz-replay all mpi bench-mpi widths deps run test unit-tests test-programs asan verify-fp hls-check hls-vectors bench bench-skip bench-longrun bench-fp bench-build bench-render bench-accuracy bench-cycle bench-precision bench-peers results robust stress rtl rtl-lint rtl-test synth clean
 all: $(BUILD)/saarcor $(BUILD)/w/e8m23/saarcor $(if $(MPICC),$(BUILD)/libsaarcor_mpi.so)
 
 # ---- MPI: the work distributor that `render --mpi` and `jobs --mpi` dlopen (docs/mpi.md) -------
@@ -237,13 +239,13 @@ test: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) $(BUILD)/rtl/$(DEFAULT_FMT)/tb_f24_ops $(BUILD)/rtl/$(DEFAULT_FMT)/tb_units $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sum \
 	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_list $(BUILD)/rtl/$(DEFAULT_FMT)/tb_cache $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sched $(BUILD)/rtl/$(DEFAULT_FMT)/tb_rgs \
 	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_wide $(BUILD)/rtl/$(DEFAULT_FMT)/tb_trav $(BUILD)/rtl/$(DEFAULT_FMT)/tb_core \
-	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_shade
+	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_shade $(BUILD)/rtl/$(DEFAULT_FMT)/tb_dynrtp
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 FORMATS="$(ASAN_TEST_FORMATS)" test-programs
 	@$(MAKE) --no-print-directory -j$$(nproc) robust
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 fuzz-replay
 	@# the longest first, so that the two at a time end together
 	@bash tests/run.sh --report $(BUILD)/test-report.txt \
-	  tests/test_sim_arith.sh tests/test_rtl.sh tests/test_golden.sh tests/test_cli.sh tests/test_interrupt.sh tests/test_hls.sh \
+	  tests/test_sim_arith.sh tests/test_rtl.sh tests/test_golden.sh tests/test_cli.sh tests/test_rtl_render.sh tests/test_interrupt.sh tests/test_hls.sh \
 	  tests/test_memcheck.sh tests/test_mpi.sh tests/test_golden_asan.sh tests/test_heatmap.sh tests/test_determinism.sh \
 	  tests/test_stress.sh tests/test_limits.sh tests/test_longrun.sh tests/test_vcd.sh tests/test_fuzz.sh tests/test_hits.sh tests/test_shading.sh \
 	  $(UNIT_TESTS) $(ASAN_UNIT_TESTS)
@@ -360,6 +362,11 @@ $(BUILD)/rtl/$(1)/tb_%: rtl/tb/tb_%.sv rtl/tb/tb_%.cpp $(wildcard rtl/tb/*.h) $(
 endef
 $(foreach f,$(RTL_FORMATS),$(eval $(call RTL_RULES,$(f))))
 
+# make rtl: the Verilated DynRTP (rtl/dynrtp.sv) with its harness, which saarcor render --mode rtl
+# runs (build/rtl/<format>/tb_dynrtp beside build/saarcor; another format: make widths and
+# make build/rtl/e8m23/tb_dynrtp for render --precision fp32 --mode rtl)
+rtl: $(BUILD)/saarcor $(BUILD)/rtl/$(DEFAULT_FMT)/tb_dynrtp
+
 RTL_N ?= 1000000
 rtl-lint:
 	@for m in $(notdir $(basename $(RTL))); do verilator --lint-only -Wall $(RTL) --top-module $$m || exit 1; done
@@ -370,7 +377,8 @@ rtl-lint:
 rtl-test: deps rtl-lint
 	@$(MAKE) --no-print-directory all $(foreach f,$(RTL_FORMATS),$(BUILD)/rtl/$(f)/tb_f24_ops $(BUILD)/rtl/$(f)/tb_units $(BUILD)/rtl/$(f)/tb_sum \
 	  $(BUILD)/rtl/$(f)/tb_rgs $(BUILD)/rtl/$(f)/tb_wide $(BUILD)/rtl/$(f)/tb_shade) \
-	  $(foreach f,$(DEFAULT_FMT) e8m23,$(BUILD)/rtl/$(f)/tb_list $(BUILD)/rtl/$(f)/tb_cache $(BUILD)/rtl/$(f)/tb_sched $(BUILD)/rtl/$(f)/tb_trav $(BUILD)/rtl/$(f)/tb_core)
+	  $(foreach f,$(DEFAULT_FMT) e8m23,$(BUILD)/rtl/$(f)/tb_list $(BUILD)/rtl/$(f)/tb_cache $(BUILD)/rtl/$(f)/tb_sched $(BUILD)/rtl/$(f)/tb_trav $(BUILD)/rtl/$(f)/tb_core) \
+	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_dynrtp
 	@mkdir -p $(BUILD)/rtl/capture
 	@set -o pipefail; for f in $(RTL_FORMATS); do \
 	  extra=; [ $$f = $(DEFAULT_FMT) ] && extra=$$(ls tests/golden/f24/{add,sub,mul,div,lt,le,eq,min,max,sqrt,to_i32}.hex); \
@@ -412,6 +420,20 @@ rtl-test: deps rtl-lint
 	      --capture-unit-io $(BUILD)/rtl/capture/core.$$n.$$f --capture-limit 1000000 >/dev/null || exit 1; \
 	    $(BUILD)/rtl/$$f/tb_core --capture $(BUILD)/rtl/capture/core.$$n.$$f || exit 1; \
 	  done; done | tee $(BUILD)/rtl/core.log
+	@# render --mode rtl: frames (128x96, shadows and secondary rays) through the Verilated DynRTP, bit for bit
+	@# functional mode's PNG and primary hits; the RTL's cycles beside cycle mode's with the same parameters
+	@set -o pipefail; for s in cornell room ../shared/scenes/subpass_scene_opaque.glb; do n=$$(basename $$s .glb); \
+	  $(BUILD)/saarcor render $$s -o $(BUILD)/rtl/frame.$$n.rtl.png --aov $(BUILD)/rtl/frame.$$n.rtl.exr --width 128 --height 96 \
+	    --mode rtl --stats $(BUILD)/rtl/frame.$$n.rtl.json || exit 1; \
+	  $(BUILD)/saarcor render $$s -o $(BUILD)/rtl/frame.$$n.f.png --aov $(BUILD)/rtl/frame.$$n.f.exr --width 128 --height 96 >/dev/null || exit 1; \
+	  $(BUILD)/saarcor render $$s -o $(BUILD)/rtl/frame.$$n.c.png --width 128 --height 96 --mode cycle \
+	    --stats $(BUILD)/rtl/frame.$$n.c.json >/dev/null || exit 1; \
+	  cmp $(BUILD)/rtl/frame.$$n.rtl.png $(BUILD)/rtl/frame.$$n.f.png || exit 1; \
+	  oiiotool $(BUILD)/rtl/frame.$$n.f.exr --ch t,N.X,N.Y,N.Z,node,triangle,u,v -o $(BUILD)/rtl/frame.$$n.f8.exr || exit 1; \
+	  idiff -fail 0 -warn 0 $(BUILD)/rtl/frame.$$n.f8.exr $(BUILD)/rtl/frame.$$n.rtl.exr >/dev/null || exit 1; \
+	  python3 -c "import json, sys; r, c = (json.load(open(p))['cycle']['cycles'] for p in sys.argv[1:]); \
+	    print('$$n 128x96: rtl %d cycles, cycle mode %d, ratio %.2f' % (r, c, r / c))" \
+	    $(BUILD)/rtl/frame.$$n.rtl.json $(BUILD)/rtl/frame.$$n.c.json; done | tee $(BUILD)/rtl/frame.log
 	@# the RGS's ray generation: an orthographic frame (the cornell box's camera made orthographic), random blocks
 	@$(BUILD)/saarcor gen cornell -o $(BUILD)/rtl/capture/cornell.gltf >/dev/null
 	@python3 scripts/ortho_camera.py $(BUILD)/rtl/capture/cornell.gltf $(BUILD)/rtl/capture/ortho.gltf

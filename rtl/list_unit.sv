@@ -18,12 +18,16 @@
 //   S2: seen bits registered; need = mask & ~seen, the slot writes (the mailboxes are written at
 //       the end of S2) and the result registers;
 //   S3: valid_o with the result.
+// Memory wait (mem_valid_i): an entry whose list word is not yet at mem_rdata_i waits in S1 (the
+// DynRTP's list cache answers a hit 2 cycles after the read, a miss after its fill, rtl/dynrtp.sv);
+// S2 and the output drain meanwhile, and S0 takes nothing. With mem_valid_i = 1 (a memory that
+// answers in the next cycle) the pipeline is the 3 cycles above.
 // A thread has one operation in flight in the DynRTP; should a second operation of the same
 // thread and level arrive while the first is in S1 or S2, ready_o stays low until the first has
 // written its mailboxes (so back-to-back operations of one thread give the C unit's results).
-// Memory read port: mem_rdata_i must hold mem[mem_addr_o] from the cycle after mem_re_o until the
-// next mem_re_o (a block RAM with read enable; in the DynRTP the data array of the list cache on a
-// hit: a thread waits for its line before it joins the unit's queue, docs/cycle-model.md).
+// Memory read port: mem_rdata_i must hold mem[mem_addr_o] from the cycle mem_valid_i rises after
+// mem_re_o until the next mem_re_o (a block RAM with read enable: mem_valid_i = 1; in the DynRTP
+// the list cache behind a holding register, rtl/dynrtp.sv).
 // Resources (THREADS = 64, KW = 32): 32 x 128 x 32 + 4 x 128 x 3 bits of mailbox memory
 // (131,456 bits), 32 KW-bit equality comparators, one 3-input AW-bit adder, one AW-bit
 // incrementer, 4 3-bit incrementers, about 120 + 2 AW flip-flops of pipeline (docs/synth.md).
@@ -49,6 +53,7 @@ module list_unit #(
   output logic                        mem_re_o,
   output logic [AW-1:0]               mem_addr_o,
   input  logic [KW-1:0]               mem_rdata_i,
+  input  logic                        mem_valid_i, // mem_rdata_i holds the last read's word
   output logic                        valid_o,
   input  logic                        ready_i,
   output logic [$clog2(THREADS)-1:0]  thread_o,
@@ -66,9 +71,11 @@ module list_unit #(
     $error("list_unit: LATENCY is 3 (the pipeline's registers)");
   end
 
-  logic en, take, hazard;
+  // out: S2 moves to the output; en: S0 and S1 move too (S1's list word is there)
+  logic out, en, take, hazard;
   logic [IW-1:0] idx_in;
-  assign en = ready_i || !valid_o;
+  assign out = ready_i || !valid_o;
+  assign en = out && (!s1_valid || s1_clear || mem_valid_i);
   assign idx_in = {thread_i, level_i};
 
   // pipeline registers
@@ -91,7 +98,7 @@ module list_unit #(
   for (genvar r = 0; r < 4; r++) begin : g_ray
     logic [2:0] next_mem [2*THREADS];
     logic wr;
-    assign wr = en && s2_valid && (s2_clear || (s2_mask[r] && !s2_seen[r]));
+    assign wr = out && s2_valid && (s2_clear || (s2_mask[r] && !s2_seen[r]));
     always_ff @(posedge clk_i) begin
       if (en) next_rd[r] <= next_mem[idx_in];
       if (wr) next_mem[s2_idx] <= s2_clear ? 3'd0 : s2_next[r] + 3'd1;
@@ -119,9 +126,9 @@ module list_unit #(
       s1_valid <= 1'b0;
       s2_valid <= 1'b0;
       valid_o <= 1'b0;
-    end else if (en) begin
-      s1_valid <= take;
-      s2_valid <= s1_valid;
+    end else if (out) begin
+      s1_valid <= en ? take : s1_valid;
+      s2_valid <= en && s1_valid;  // a bubble while S1 waits for its word
       valid_o <= s2_valid && !s2_clear;
     end
   end
@@ -139,6 +146,8 @@ module list_unit #(
       s2_key <= mem_rdata_i;
       s2_k1 <= s1_k1;
       for (int r = 0; r < 4; r++) s2_next[r] <= next_rd[r];
+    end
+    if (out) begin
       {thread_o, level_o} <= s2_idx;
       key_o <= s2_key;
       need_o <= s2_mask & ~s2_seen;

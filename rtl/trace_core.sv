@@ -28,7 +28,9 @@
 // multiplexers (THREADS to 1 per unit); the whole core is not yet synthesized.
 // Handshake: valid/ready at the packet input (into thread thread_i: ready_o when it is free) and
 // at the result output (the lowest finished thread first); word port valid/ready with responses in
-// request order; trav_unit's node port and list_unit's read port as those units define them.
+// request order; trav_unit's node port and list_unit's read port as those units define them (the
+// list word with list_rvalid_i: the list cache's answer, 1 for a memory that answers in the next
+// cycle). issue_o: the operations issued per unit in this cycle (the DynRTP's usage counters).
 module trace_core #(
   parameter int E = 7,
   parameter int M = 16,
@@ -80,7 +82,10 @@ module trace_core #(
   // list_unit's read port
   output logic                        list_re_o,
   output logic [31:0]                 list_addr_o,
-  input  logic [31:0]                 list_rdata_i
+  input  logic [31:0]                 list_rdata_i,
+  input  logic                        list_rvalid_i, // list_rdata_i holds the last read's word
+  // the units' issues this cycle (thread_sched: trav, list, rebase, wide, xform, isect, add, sum)
+  output logic [7:0]                  issue_o
 );
   localparam int W = 1 + E + M;
   localparam int TW = $clog2(THREADS);
@@ -184,6 +189,8 @@ module trace_core #(
     .clk_i(clk_i), .rst_ni(rst_ni), .set_i(set), .slots_i('1), .issue_valid_o(issue_valid),
     .issue_thread_o(issue_thread), .issue_slots_o());
 
+  assign issue_o = issue_valid & unit_ready;
+
   // ---- the units ----
   logic trav_valid_o;
   logic [TW-1:0] trav_thread, node_thread;
@@ -209,7 +216,8 @@ module trace_core #(
     .thread_i(sel[U_LIST]), .level_i(t_list_level[sel[U_LIST]]), .clear_i(t_list_clear[sel[U_LIST]]),
     .lists_i(t_list_lists[sel[U_LIST]]), .first_i(t_list_first[sel[U_LIST]]), .k_i(t_list_k[sel[U_LIST]]),
     .leaf_mask_i(t_list_leaf_mask[sel[U_LIST]]), .alive_i(t_list_alive[sel[U_LIST]]),
-    .mem_re_o(list_re_o), .mem_addr_o(list_addr_o), .mem_rdata_i(list_rdata_i), .valid_o(list_valid_o),
+    .mem_re_o(list_re_o), .mem_addr_o(list_addr_o), .mem_rdata_i(list_rdata_i), .mem_valid_i(list_rvalid_i),
+    .valid_o(list_valid_o),
     .ready_i(1'b1), .thread_o(list_thread), .level_o(), .key_o(list_key), .need_o(list_need), .skip_o(list_skip),
     .k_o(list_k));
   assign done[U_LIST] = list_valid_o ? one[list_thread] : '0;

@@ -179,6 +179,7 @@ int main(int argc, char **argv)
     Vtb_core top{ &ctx };
     top.rst_ni = 0, top.clk_i = 0, top.valid_i = 0, top.ready_i = 1;
     top.mem_req_ready_i = 1, top.mem_rsp_valid_i = 0, top.node_req_ready_i = 1, top.node_rsp_valid_i = 0;
+    top.list_rvalid_i = 1; // the list word from the cycle after the read
     top.eval();
     top.clk_i = 1;
     top.eval();

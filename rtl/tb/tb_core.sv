@@ -42,7 +42,9 @@ module tb_core #(
   input  logic [31:0]                 node_w1_i,
   output logic                        list_re_o,
   output logic [31:0]                 list_addr_o,
-  input  logic [31:0]                 list_rdata_i
+  input  logic [31:0]                 list_rdata_i,
+  input  logic                        list_rvalid_i,
+  output logic [7:0]                  issue_o
 );
   trace_core #(.E(E), .M(M), .THREADS(THREADS)) u_core (.*);
 endmodule

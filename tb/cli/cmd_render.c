@@ -64,7 +64,7 @@ _Static_assert(RGS_MAX_DEPTH == SHADE_MAX_DEPTH, "the shading model and the RGS 
 
 static int usage(void)
 {
-    printf("usage: saarcor render SCENE [-o out.png] [--mode functional|cycle] [--max-depth D] [--no-shadows]\n"
+    printf("usage: saarcor render SCENE [-o out.png] [--mode functional|cycle|rtl] [--max-depth D] [--no-shadows]\n"
            "                      [--precision P] [--aov FILE.exr] [--heatmap FILE.png [--heatmap-of NAME]]\n"
            "                      [--frame N | --frames A:B] [--fps F]\n"
            "                      [--threads N] [--mpi [--mpi-tile N]]\n"
@@ -78,7 +78,11 @@ static int usage(void)
            "and in both modes.\n"
            "  --mode M           functional (default: each 2x2 block runs its ray tree to completion) or\n"
            "                     cycle (the same steps timed by the DynRTC model, docs/cycle-model.md:\n"
-           "                     prints cycles, fps, unit usage, cache hit rates, bandwidth, stalls)\n"
+           "                     prints cycles, fps, unit usage, cache hit rates, bandwidth, stalls) or\n"
+           "                     rtl (the Verilated DynRTP of rtl/dynrtp.sv, built by make rtl: tile\n"
+           "                     controller, ray tracing core, caches and memory port in RTL, the RGS as\n"
+           "                     C; cycle mode's memory options; --stats \"cycle\": the RTL's cycles and\n"
+           "                     operations per unit; --aov without the cost channels; TRAV_STACK only)\n"
            "  --max-depth D      levels of secondary rays, 0..%u (default %u; 0: primary rays only)\n"
            "  --no-shadows       lights are not occluded (no shadow rays)\n"
            "  --traversal A      the traversal unit's algorithm (docs/traversal.md): stack (default, the\n"
@@ -170,7 +174,7 @@ static int write_stats(const char *path, const render_opts *ro, const cycle_conf
         return -1;
     const trace_counters *t = &c->trace;
     fprintf(f, "{\"mode\": \"%s\", \"frame\": %u, \"seconds\": %.6f, \"max_depth\": %u, \"shadows\": %s, \"rays\": %llu, \"rays_by_kind\": {",
-            ro->cycle ? "cycle" : "functional", frame, secs, ro->cfg.max_depth, ro->cfg.shadows ? "true" : "false", (unsigned long long)all_rays(c));
+            ro->cycle ? "cycle" : ro->rtl ? "rtl" : "functional", frame, secs, ro->cfg.max_depth, ro->cfg.shadows ? "true" : "false", (unsigned long long)all_rays(c));
     for (int k = 0; k < RAY_KINDS; k++)
         fprintf(f, "%s\"%s\": %llu", k ? ", " : "", ray_kind_names[k], (unsigned long long)c->rays[k]);
     fprintf(f, "}, \"traversal_steps\": %llu, \"leaves\": %llu, \"list_entries\": %llu, \"mailbox_skips\": %llu, "
@@ -193,6 +197,10 @@ static int write_stats(const char *path, const render_opts *ro, const cycle_conf
     if (ro->cycle) {
         fprintf(f, ", \"cycle\": ");
         cycle_report_json(f, cc, &fr->cs, all_rays(c));
+    }
+    if (ro->rtl) { /* the RTL's counters: cycles and the issues per unit of trace_core */
+        fprintf(f, ", \"cycle\": ");
+        rtl_report_json(f, ro, &fr->rtl);
     }
     if (fr->mpi)
         fprintf(f, ", \"mpi\": {\"ranks\": %d, \"boards\": %u, \"items\": %u, \"bytes_to_workers\": %llu, "
@@ -223,7 +231,7 @@ static int write_aov(const char *path, const mi_builder *b, const scene *s, cons
 {
     enum { HITS = 8 };
     const char *names[HITS + PC_KINDS] = { "t", "N.X", "N.Y", "N.Z", "node", "triangle", "u", "v" };
-    const int ncost = cycle ? PC_KINDS : PC_CYCLES, nch = HITS + ncost;
+    const int ncost = !costs ? 0 : cycle ? PC_KINDS : PC_CYCLES, nch = HITS + ncost; /* rtl mode: no costs */
     for (int k = 0; k < ncost; k++)
         names[HITS + k] = pc_names[k];
     uint32_t n;
@@ -361,6 +369,8 @@ int render_frame_output(const render_opts *ro, const mi_builder *b, const scene 
         cc.pipes *= fr->boards;
     if (ro->cycle)
         cycle_report(stdout, &cc, &fr->cs, rays);
+    if (ro->rtl)
+        rtl_report(stdout, ro, &fr->rtl);
     if (fr->mpi)
         print_mpi(fr);
     fflush(stdout);
@@ -450,7 +460,7 @@ static int render_frame(const mi_builder *b, const scene *s, const render_opts *
         return trc;
     uint32_t *pixels = calloc((size_t)w * h, sizeof *pixels);
     hit_record *hits = ro->aov ? calloc((size_t)w * h, sizeof *hits) : NULL;
-    const int want_costs = ro->aov || ro->heatmap;
+    const int want_costs = (ro->aov || ro->heatmap) && !ro->rtl; /* the RTL attributes no work to pixels */
     pixel_cost *costs = want_costs ? calloc((size_t)w * h, sizeof *costs) : NULL;
     frame_result fr = { .host = host, .costs = costs };
     static const uint32_t all[4] = { 0, 0, UINT32_MAX, UINT32_MAX };
@@ -459,15 +469,20 @@ static int render_frame(const mi_builder *b, const scene *s, const render_opts *
         cycle_set_costs(ro->sim, costs);
         cycle_set_trace(ro->sim, tr);
     }
-    const int failed = !pixels || (ro->aov && !hits) || (want_costs && !costs) ? -1
+    const int no_memory = !pixels || (ro->aov && !hits) || (want_costs && !costs);
+    /* rtl mode: the model's exit code (its one-line error printed), else 0 */
+    const int rtl_rc = ro->rtl && !no_memory ? render_rtl(mem, n, ro, w, h, pixels, hits, &fr.sum, &fr.rtl) : 0;
+    const int failed = no_memory ? -1
                        : ro->cycle ? cycle_render(ro->sim, mem, &ro->cfg, pixels, hits, &fr.sum, &fr.cs, cycle_progress, NULL)
+                       : ro->rtl   ? 0
                                    : render_region(mem, &ro->cfg, ro->threads, all, pixels, hits, costs, &fr.sum);
     if (ro->sim)
         cycle_set_trace(ro->sim, NULL); /* tr is closed below */
     if (isatty(2) && ro->cycle)
         fprintf(stderr, "\r%*s\r", 14, "");
     fr.secs = now() - t0;
-    int rc = failed > 0 ? 128 + interrupt_signal() /* stopped by a signal: this frame is not written */
+    int rc = rtl_rc ? rtl_rc
+           : failed > 0 ? 128 + interrupt_signal() /* stopped by a signal: this frame is not written */
            : failed ? (cli_error("render", "out of memory"), SAARCOR_EXIT_INTERNAL)
                     : render_frame_output(ro, b, s, frame, scene_name, w, h, pixels, hits, &fr);
     if (tr && rc == SAARCOR_EXIT_OK)
@@ -649,9 +664,10 @@ int cmd_render(int argc, char **argv)
             ro.capture_limit = v;
             break;
         case 'm':
-            if (strcmp(optarg, "functional") != 0 && strcmp(optarg, "cycle") != 0)
-                return cli_usage_error("render", "bad --mode '%s' (functional or cycle)", optarg);
+            if (strcmp(optarg, "functional") != 0 && strcmp(optarg, "cycle") != 0 && strcmp(optarg, "rtl") != 0)
+                return cli_usage_error("render", "bad --mode '%s' (functional, cycle or rtl)", optarg);
             ro.cycle = strcmp(optarg, "cycle") == 0;
+            ro.rtl = strcmp(optarg, "rtl") == 0;
             break;
         case 'p':
             if (strcmp(optarg, "fp64") == 0)
@@ -682,6 +698,8 @@ int cmd_render(int argc, char **argv)
     if (prec_e != F24_EXP_BITS || prec_m != F24_MAN_BITS)
         return run_format(prec_e, prec_m, argv - 1);
     o.scene = argv[optind];
+    if (ro.rtl && (rc = render_rtl_check(&ro)) != SAARCOR_EXIT_OK)
+        return rc;
     if (ro.sequence && ro.one_frame)
         return cli_usage_error("render", "--frame and --frames exclude each other");
     /* from here on a signal stops at the next safe point (a long scene load is not one: the

@@ -8,6 +8,7 @@
 #define SAARCOR_RENDER_H
 
 #include <stdint.h>
+#include <stdio.h>
 
 #include "cycle_sim.h"
 #include "memimage.h"
@@ -25,6 +26,7 @@ typedef struct {
     double fps;
     rgs_config cfg;
     int cycle;       /* --mode cycle */
+    int rtl;         /* --mode rtl (render_rtl.c) */
     cycle_config cc;
     cycle_sim *sim;  /* kept across the frames of a sequence (warm caches) */
     const char *capture; /* --capture-unit-io DIR */
@@ -45,10 +47,22 @@ typedef struct {
     double secs;             /* host time: scene_evaluate + mi_update (the first frame: mi_build) */
 } frame_host;
 
+/* --mode rtl: the counters of the RTL (rtl/dynrtp.sv): cycles of the frame, operations issued per
+ * unit of trace_core, packets traced, reads per memory port of the core (kd nodes, list entries,
+ * descriptor words), the memory port's transfers. */
+enum { RTL_UNITS = 8, RTL_PORTS = 3 };
+extern const char *const rtl_unit_names[RTL_UNITS];
+extern const char *const rtl_port_names[RTL_PORTS];
+typedef struct {
+    uint64_t cycles, packets, issues[RTL_UNITS], reads[RTL_PORTS], mem_transfers, mem_bytes;
+    uint32_t threads;
+} rtl_stats;
+
 /* One frame's numbers, however it was rendered. */
 typedef struct {
     rgs_counters sum;
     cycle_stats cs;           /* cycle mode */
+    rtl_stats rtl;            /* rtl mode */
     double secs;              /* wall time of the render */
     frame_host host;
     uint32_t boards;          /* MPI: worker ranks (each a board of --pipes pipes); 0: one process */
@@ -64,6 +78,15 @@ typedef struct {
  * may be NULL); sum = the counters of that work. 0, or -1 if out of memory. */
 int render_region(const uint32_t *mem, const rgs_config *cfg, uint32_t threads, const uint32_t region[4],
                   uint32_t *pixels, hit_record *hits, pixel_cost *costs, rgs_counters *sum);
+
+/* --mode rtl (render_rtl.c): the options the RTL model has and the model built (make rtl), else a
+ * one-line error and its exit code; then the frame through the model: pixels, primary hits (may be
+ * NULL), the RGS's counters and the RTL's. */
+int render_rtl_check(const render_opts *ro);
+int render_rtl(const uint32_t *mem, uint32_t n, const render_opts *ro, uint32_t w, uint32_t h, uint32_t *pixels,
+               hit_record *hits, rgs_counters *sum, rtl_stats *st);
+void rtl_report(FILE *f, const render_opts *ro, const rtl_stats *st);
+void rtl_report_json(FILE *f, const render_opts *ro, const rtl_stats *st);
 
 /* Writes the frame's image (and AOV, stats file) and prints its report lines; b and s are needed
  * for --aov only (may be NULL otherwise). A saarcor exit code. */

@@ -1,0 +1,61 @@
+// tb_dynrtp: test wrapper (not synthesized) around the DynRTP top (rtl/dynrtp.sv) at THREADS
+// threads and the paper's caches (4/2/6 KB); the C++ harness (tb_dynrtp.cpp) is its RGS (the
+// linked C of hls/units/rgs.c) and its memory, and renders a frame through it for saarcor render
+// --mode rtl.
+module tb_dynrtp #(
+  parameter int E = 7,
+  parameter int M = 16,
+  parameter int THREADS = 32,
+  localparam int W = 1 + E + M,
+  localparam int TW = $clog2(THREADS),
+  localparam int DW = 32 * ((12 * W + 27 + 31) / 32)
+) (
+  input  logic             clk_i,
+  input  logic             rst_ni,
+  input  logic             flush_i,
+  input  logic             frame_valid_i,
+  output logic             frame_ready_o,
+  input  logic [31:0]      x0_i,
+  input  logic [31:0]      y0_i,
+  input  logic [31:0]      x1_i,
+  input  logic [31:0]      y1_i,
+  input  logic [12:0]      tile_i,
+  input  logic             frame_end_i,
+  output logic             blk_valid_o,
+  input  logic             blk_ready_i,
+  output logic [31:0]      blk_x_o,
+  output logic [31:0]      blk_y_o,
+  output logic             blk_done_o,
+  input  logic             valid_i,
+  output logic             ready_o,
+  input  logic [TW-1:0]    thread_i,
+  input  logic [2:0]       flags_i,
+  input  logic [3:0]       active_i,
+  input  logic [4*3*W-1:0] o_i,
+  input  logic [4*3*W-1:0] d_i,
+  input  logic [4*W-1:0]   tmin_i,
+  input  logic [4*W-1:0]   tmax_i,
+  output logic             valid_o,
+  input  logic             ready_i,
+  output logic [TW-1:0]    thread_o,
+  output logic [4*32-1:0]  inst_o,
+  output logic [4*32-1:0]  tri_o,
+  output logic [4*W-1:0]   t_o,
+  output logic [4*W-1:0]   u_o,
+  output logic [4*W-1:0]   v_o,
+  output logic [4*W-1:0]   cos_o,
+  output logic [10*32-1:0] count_o,
+  output logic             mem_req_valid_o,
+  input  logic             mem_req_ready_i,
+  output logic [31:0]      mem_req_addr_o,
+  output logic [7:0]       mem_req_bytes_o,
+  output logic [1:0]       mem_req_src_o,
+  input  logic             mem_rsp_valid_i,
+  input  logic [DW-1:0]    mem_rsp_data_i,
+  output logic [63:0]      cycles_o,
+  output logic [8*64-1:0]  issues_o,
+  output logic [63:0]      packets_o,
+  output logic [3*64-1:0]  reads_o
+);
+  dynrtp #(.E(E), .M(M), .THREADS(THREADS)) u_dynrtp (.*);
+endmodule
