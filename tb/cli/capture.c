@@ -24,7 +24,7 @@
 
 enum {
     CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_RGS, CAP_REBASE, CAP_WIDE, CAP_TRAV_UNIT, CAP_TRACE,
-    CAP_SHADE_REC, CAP_TEX, CAP_FRAME, CAP_LIGHT, CAP_LERP, CAP_COLOUR, CAP_ACCUM, CAP_SPAWN, CAP_UNITS
+    CAP_SHADE_REC, CAP_TEX, CAP_FRAME, CAP_LIGHT, CAP_LERP, CAP_COLOUR, CAP_ACCUM, CAP_SPAWN, CAP_SURFACE, CAP_UNITS
 };
 
 static struct {
@@ -36,7 +36,7 @@ static struct {
 
 const char *const capture_unit_names[CAPTURE_UNITS] = {
     "xform", "isect", "trav",  "list", "mem",  "sched",  "rgs",   "rebase", "wide", "trav_unit",
-    "trace", "shade_rec", "tex", "frame", "light", "lerp", "colour", "accum", "spawn"
+    "trace", "shade_rec", "tex", "frame", "light", "lerp", "colour", "accum", "spawn", "surface"
 };
 
 /* The list unit's threads: trace_state addresses in the order first seen (the RTL's thread ids),
@@ -1089,4 +1089,42 @@ void __wrap_trace_begin(const ray_packet *rays, uint32_t flags, trace_state *s)
 int __wrap_trace_step(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
 {
     return capturing() ? captured_trace_step(mem, s, op, c) : __real_trace_step(mem, s, op, c);
+}
+
+/* The surface of each hit the RGS shades (for rtl/tb/tb_shade.cpp): the memory image it reads
+ * (image_N.bin, as trace.hex), the ray's active bit, o, d; the hit's instance, triangle, t, u, v,
+ * cos_n; the reads noted (count, then address and words of each); the surface: valid, P, D^, N^,
+ * t_hat, entering, material address, unlit, base, emission, tint (Q12). */
+surface __real_rgs_surface_at(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h, unit_op *op,
+                              trace_counters *c);
+surface __wrap_rgs_surface_at(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h, unit_op *op,
+                              trace_counters *c);
+
+CAPTURE_PATH surface captured_surface(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h,
+                                      unit_op *op, trace_counters *c)
+{
+    const uint32_t first = op->n_reads;
+    const surface sf = __real_rgs_surface_at(mem, rp, i, h, op, c);
+    FILE *f = begin(CAP_SURFACE);
+    if (!f)
+        return sf;
+    fprintf(f, "%x %x %06x %06x %06x %06x %06x %06x %x %x %06x %06x %06x %06x %x", trace_image(mem),
+            rp->active >> i & 1u, rp->o[i].x, rp->o[i].y, rp->o[i].z, rp->d[i].x, rp->d[i].y, rp->d[i].z,
+            h->instance, h->triangle, h->t, h->u, h->v, h->cos_n, op->n_reads - first);
+    for (uint32_t r = first; r < op->n_reads; r++)
+        fprintf(f, " %x %x", op->read[r].addr, op->read[r].words);
+    const uint32_t w[14] = { (uint32_t)sf.valid, sf.p.x, sf.p.y, sf.p.z, sf.d.x, sf.d.y, sf.d.z,
+                             sf.n.x, sf.n.y, sf.n.z, sf.t_hat, (uint32_t)sf.entering, sf.mat, (uint32_t)sf.unlit };
+    fputc(' ', f);
+    words(f, w, 14);
+    for (int k = 0; k < 3; k++)
+        fprintf(f, " %x %x %x", sf.base[k], sf.emission[k], sf.tint[k]);
+    end(f);
+    return sf;
+}
+
+surface __wrap_rgs_surface_at(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h, unit_op *op,
+                              trace_counters *c)
+{
+    return capturing() ? captured_surface(mem, rp, i, h, op, c) : __real_rgs_surface_at(mem, rp, i, h, op, c);
 }
