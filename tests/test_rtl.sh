@@ -33,8 +33,8 @@
 # past the region's edge, a vector mode whose unused terms are +0, a rebase that moves by t = Inf,
 # a core thread that walks on before the rest of a leaf's entries, a normal decoder folding the
 # lower hemisphere with the wrong sign, a bilinear blend that truncates, a shading normal turned
-# away from the ray, a highlight squared once too often and a transmission ray leaving from behind
-# the surface when eta = 1); the ray tracing core (rtl/trace_core.sv: 8 threads of
+# away from the ray, a highlight squared once too often, a transmission ray leaving from behind
+# the surface when eta = 1 and a surface's vertex colours truncated instead of rounded); the ray tracing core (rtl/trace_core.sv: 8 threads of
 # rtl/trace_thread.sv sharing the units) traces the packets of functional frames (primary, shadow,
 # secondary) of cornell, subpass_scene_opaque.glb, the room and Fox.glb (TRACE_SKIP_TOP and
 # TRACE_IDENTITY) to trace_step's hits and counters. Prints cmocka-style lines.
@@ -226,6 +226,34 @@ t_shade() {
   grep -Eq "; [1-9][0-9]* refracted, [1-9][0-9]* totally reflected\), latency" "$T/shade.log"
 }
 
+# the RGS's surface at a hit (rgs_surface: its reads, the normal and its zero test, the frame, the
+# material's colours, vertex colours, base and emissive textures, the tint) on every surface of
+# frames with shadows and reflections: the room, cornell, the built-in vertex-colour and
+# emissive-texture scenes and ../shared's subpass_scene_opaque and textured CesiumMilkTruck, then
+# their hits with other barycentrics, distances, inactive rays and misses
+t_surface() {
+  local scenes=(room cornell vertex_colours emissive) s d
+  for s in subpass_scene_opaque CesiumMilkTruck; do
+    if [[ -f ../shared/scenes/$s.glb ]]; then scenes+=("../shared/scenes/$s.glb"); else echo "../shared/scenes/$s.glb is absent: skipped"; fi
+  done
+  for s in "${scenes[@]}"; do
+    d="$T/surface_$(basename "$s" .glb)"
+    "$BIN" render "$s" -o "$d.png" --width 32 --height 24 --max-depth 2 --capture-unit-io "$d" --capture-limit 400 \
+      >/dev/null 2>&1
+    "$B/rtl/e7m16/tb_surface" -n 200 --capture "$d" >"$d.log" || { cat "$d.log"; false; }
+    cat "$d.log"
+  done
+  grep -Eq "; [1-9][0-9]* valid, [1-9][0-9]* with vertex colours" "$T/surface_vertex_colours.log" &&
+    grep -Eq " [1-9][0-9]* texture samples\), 0 mismatches, 0 wrong reads" "$T/surface_emissive.log"
+}
+
+# the vertex colours' weighted sum truncated instead of rounded (no + 2048 before the shift by 12)
+t_surface_mutant_caught() {
+  [[ -f "$T/surface_vertex_colours/surface.hex" ]] || "$BIN" render vertex_colours -o "$T/vc.png" --width 32 --height 24 \
+    --max-depth 2 --capture-unit-io "$T/surface_vertex_colours" --capture-limit 400 >/dev/null 2>&1
+  mutant surface rgs_surface.sv "s/((sum + 32'd2048) >> 12)/(sum >> 12)/" -n 0 --capture "$T/surface_vertex_colours"
+}
+
 # the normal decoder's fold of the lower hemisphere with the x component's sign the wrong way round;
 # the bilinear blend truncating instead of rounding (no + 2^15 before the shift by 16); the frame's
 # normal negated where it already faces the ray; the Phong power with one squaring too many; the
@@ -301,12 +329,14 @@ run_case rtl_exact_sum_matches_c_model t_exact_sum
 run_case rtl_list_unit_and_caches_match_c_model t_list_and_cache
 run_case rtl_rgs_raygen_and_tile_ctrl_match_c_model t_rgs
 run_case rtl_shade_datapath_matches_c_model_and_capture t_shade
+run_case rtl_surface_matches_c_model_and_capture t_surface
 if extra_mutants; then
   run_case rtl_sqrt_bench_catches_mutant t_sqrt_mutant_caught
   run_case rtl_rgs_bench_catches_mutants t_rgs_mutants_caught
   run_case rtl_wide_bench_catches_mutants t_wide_mutants_caught
   run_case rtl_caches_with_full_tables_match_c_model t_cache_small_table
   run_case rtl_shade_bench_catches_mutants t_shade_mutants_caught
+  run_case rtl_surface_bench_catches_mutant t_surface_mutant_caught
   run_case rtl_list_sched_benches_catch_mutants t_list_sched_mutants_caught
   run_case rtl_cache_bench_catches_mutant t_cache_mutant_caught
 fi

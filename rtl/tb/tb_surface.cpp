@@ -29,6 +29,7 @@
 
 extern "C" {
 #include "rgs_ops.h"
+#include "shade_rec.h"
 }
 
 using namespace cosim;
@@ -114,7 +115,10 @@ bool load_image(const std::string &dir, uint32_t n, std::vector<uint32_t> &mem)
 }
 
 // the C model: the surface's outputs and the word addresses it reads
-void model(const std::vector<uint32_t> &mem, const surface_tx &x, std::vector<uint32_t> &out, std::vector<uint32_t> &reads)
+struct coverage { std::size_t valid = 0, colours = 0, samples = 0, geometric = 0; };
+
+void model(const std::vector<uint32_t> &mem, const surface_tx &x, std::vector<uint32_t> &out, std::vector<uint32_t> &reads,
+           coverage &cov)
 {
     ray_packet rp{};
     rp.active = x.active & 1u;
@@ -131,9 +135,18 @@ void model(const std::vector<uint32_t> &mem, const surface_tx &x, std::vector<ui
             out.push_back(q[k]);
     out.push_back(sf.valid ? mem[sf.mat + M_SHADER0] >> 26 & 0xFu : 0u);
     reads.clear();
-    for (uint32_t r = 0; r < op.n_reads; r++)
+    for (uint32_t r = 0; r < op.n_reads; r++) {
         for (uint32_t k = 0; k < op.read[r].words; k++)
             reads.push_back(op.read[r].addr + k);
+        cov.samples += op.read[r].words == 1; // a texel (a sample reads 4); every other read is longer
+    }
+    if (!sf.valid)
+        return;
+    cov.valid++;
+    const uint32_t obj = region_start(mem.data(), R_OBJECTS) +
+                         OBJ_WORDS * mem[region_start(mem.data(), R_INSTANCES) + INST_WORDS * x.inst + 12];
+    cov.colours += (mem[obj + O_FLAGS] & SHADE_HAS_COLOURS) != 0;
+    cov.geometric += op.n_reads > 3 && op.read[3].addr != sf.mat; // the read after the record: the normal's
 }
 
 uint32_t rnd_bary()
@@ -207,7 +220,8 @@ int main(int argc, char **argv)
 
     std::vector<uint32_t> mem, want, want_reads;
     uint32_t image = UINT32_MAX;
-    std::size_t next = 0, checked = 0, vs_capture = 0, read_pos = 0, valid_sf = 0;
+    std::size_t next = 0, checked = 0, vs_capture = 0, read_pos = 0;
+    coverage cov;
     uint64_t mismatches = 0, bad_reads = 0, idle = 0, cycles_busy = 0, latency_max = 0, started = 0;
     bool in_flight = false;
     struct response { uint64_t due; uint32_t word; };
@@ -301,13 +315,12 @@ int main(int argc, char **argv)
                     std::printf("MISMATCH rgs_surface transaction %zu: %zu words read, expected %zu\n", t, read_pos,
                                 want_reads.size());
                 checked++;
-                valid_sf += want[O_VALID];
                 latency_max = std::max<uint64_t>(latency_max, g_cycle - started);
                 in_flight = false;
             }
         }
         if (in_fire) {
-            model(mem, tx[next], want, want_reads);
+            model(mem, tx[next], want, want_reads, cov);
             read_pos = 0;
             in_flight = true;
             started = g_cycle;
@@ -321,9 +334,10 @@ int main(int argc, char **argv)
     const bool lost = next < tx.size() || in_flight;
     if (lost)
         std::printf("MISMATCH rgs_surface: stuck at transaction %zu (no result in 20000 cycles)\n", next);
-    std::printf("rgs_surface %zu surfaces checked (%zu captured, %zu vs capture, %zu random; %zu valid), %llu mismatches, "
-                "%llu wrong reads, %.1f cycles per surface, at most %llu\n",
-                checked, captured, vs_capture, tx.size() - captured, valid_sf, (unsigned long long)mismatches,
+    std::printf("rgs_surface %zu surfaces checked (%zu captured, %zu vs capture, %zu random; %zu valid, %zu with vertex "
+                "colours, %zu with the geometric normal, %zu texture samples), %llu mismatches, %llu wrong reads, %.1f cycles "
+                "per surface, at most %llu\n",
+                checked, captured, vs_capture, tx.size() - captured, cov.valid, cov.colours, cov.geometric, cov.samples / 4, (unsigned long long)mismatches,
                 (unsigned long long)bad_reads, checked ? (double)cycles_busy / (double)checked : 0.0,
                 (unsigned long long)latency_max);
     return mismatches || bad_reads || lost ? 1 : 0;
