@@ -9,7 +9,6 @@ enum {
     H_LIGHTS = 10, H_SCENE_BOUNDS = 12, R_CAMERA = 6, R_LIGHTS = 7, LIGHT_WORDS = 16, MAX_LIGHTS = 64, CAM_WORDS = 16,
 };
 
-#define BACKGROUND 0x1A1A24u
 #define Q12_AMBIENT 614u   /* 0.15 */
 #define EPS_SHIFT 10       /* e = 2^-10 x the largest extent of the scene bounds */
 
@@ -81,10 +80,6 @@ block_pixels:
     }
 }
 
-/* Material shader words (docs/memory-image.md): kd | kr << 13 | k << 26 and kt | ks << 13. */
-static uint32_t mat_kd(const uint32_t *m) { return m[M_SHADER0] & 0x1FFFu; }
-static uint32_t mat_k(const uint32_t *m) { return m[M_SHADER0] >> 26 & 0xFu; }
-static uint32_t mat_ks(const uint32_t *m) { return m[M_SHADER1] >> 13 & 0x1FFFu; }
 
 /* ---- lights ----------------------------------------------------------------------------------- */
 
@@ -104,7 +99,7 @@ static void op_surfaces(const uint32_t *mem, rgs_block *b, unit_op *op, rgs_coun
 surfaces:
     for (int i = 0; i < TRACE_PACKET; i++) {
         b->sf[i] = rgs_surface_at(mem, &b->cur.rays, i, &b->trace.hits[i], op, &c->trace);
-        b->k_of[i] = b->sf[i].valid ? mat_k(&mem[b->sf[i].mat]) : 0u;
+        b->k_of[i] = b->sf[i].valid ? rgs_mat_k(&mem[b->sf[i].mat]) : 0u;
         for (int k = 0; k < 3; k++) {
             b->diffuse[i][k] = b->sf[i].unlit ? RGS_Q12_ONE : Q12_AMBIENT; /* unlit: kd B alone */
             b->highlight[i][k] = 0;
@@ -223,32 +218,16 @@ static void op_accumulate(const uint32_t *mem, const rgs_config *cfg, rgs_block 
     const uint32_t depth = b->cur.depth + 1;
     const int children = SAARCOR_CFG_SECONDARY && depth <= cfg->max_depth && depth <= RGS_MAX_DEPTH &&
                          !(b->profile & PROFILE_NO_SECONDARY);
-    (void)children; /* unused when the configuration has no secondary rays */
     task_init(&refl, depth, RAY_REFLECTION);
     task_init(&trans, depth, RAY_TRANSMISSION);
     op_set(op, UNIT_RGS, at_least_one(count_rays(b->cur.rays.active)));
     b->children = 0;
+    const uint32_t spawn = (children ? RGS_SPAWN_ON : 0u) | ((b->profile & PROFILE_LIVE_CHILDREN) ? RGS_SPAWN_LIVE : 0u);
 accumulate:
-    for (int i = 0; i < TRACE_PACKET; i++) {
-        if (!(b->cur.rays.active >> i & 1u))
-            continue;
-        const uint32_t *m = sf[i].valid ? &mem[sf[i].mat] : 0;
-        for (int k = 0; k < 3; k++) {
-            uint32_t local = q_byte(BACKGROUND >> (16 - 8 * k) & 0xFFu);
-            if (sf[i].valid)
-                local = q_add(q_add(sf[i].emission[k], q_mul(q_mul(mat_kd(m), sf[i].base[k]), b->diffuse[i][k])),
-                              q_mul(q_mul(mat_ks(m), sf[i].tint[k]), b->highlight[i][k]));
-            b->acc[i][k] = q_add(b->acc[i][k], q_mul(b->cur.weight[i][k], local));
-        }
-#if SAARCOR_CFG_SECONDARY
-        if (sf[i].valid && children) {
-            const uint32_t spawned = refl.rays.active | trans.rays.active;
-            rgs_spawn_children(&mem[sf[i].mat], b->cur.weight[i], b->eps, i, &sf[i], &refl, &trans);
-            if (!(b->profile & PROFILE_LIVE_CHILDREN) || ((refl.rays.active | trans.rays.active) != spawned))
-                b->children++; /* its T_R steps (the general pipeline runs them for every surface) */
-        }
-#endif
-    }
+    for (int i = 0; i < TRACE_PACKET; i++)
+        if (b->cur.rays.active >> i & 1u)
+            b->children += rgs_accumulate_ray(sf[i].valid ? &mem[sf[i].mat] : 0, &sf[i], i, b->cur.weight[i],
+                                              b->diffuse[i], b->highlight[i], b->eps, spawn, b->acc[i], &refl, &trans);
     if (trans.rays.active)
         push(b, &trans, c);
     if (refl.rays.active)

@@ -20,6 +20,11 @@
  * k << 26 and kt | ks << 13 */
 enum { M_ETA = 13, M_SHADER0 = 14, M_SHADER1 = 15 };
 
+/* Material shader words (docs/memory-image.md): kd | kr << 13 | k << 26 and kt | ks << 13. */
+static inline uint32_t rgs_mat_kd(const uint32_t *m) { return m[M_SHADER0] & 0x1FFFu; }
+static inline uint32_t rgs_mat_k(const uint32_t *m) { return m[M_SHADER0] >> 26 & 0xFu; }
+static inline uint32_t rgs_mat_ks(const uint32_t *m) { return m[M_SHADER1] >> 13 & 0x1FFFu; }
+
 /* The image's words a surface reads (docs/memory-image.md): the header's texture count and region
  * table (start of region r at word H_REGIONS + 2 r), the records' strides and the fields of the
  * object descriptor and the material record that surface_at uses. */
@@ -118,6 +123,19 @@ void rgs_add_light(uint32_t diffuse[3], uint32_t highlight[3], uint32_t diff, ui
  * reflection), each active if its largest weight component is at least 16 (hls/units/rgs_spawn.c). */
 void rgs_spawn_children(const uint32_t *m, const uint32_t weight[3], f24_t eps, int i, const surface *sf,
                         rgs_task *refl, rgs_task *trans);
+
+/* rgs_accumulate_ray's spawn bits: the packet's depth allows children; the image's
+ * PROFILE_LIVE_CHILDREN (only a surface that spawns an active child takes T_R steps). */
+enum { RGS_SPAWN_ON = 1, RGS_SPAWN_LIVE = 2 };
+
+/* One active ray i of op_accumulate (hls/units/rgs_accum.c): its colour (the background for an
+ * invalid surface sf, else emission + kd base diffuse + ks tint highlight, m: its material record)
+ * times its Q12 weight added to acc; with RGS_SPAWN_ON in spawn and a valid surface its child rays
+ * into refl and trans (rgs_spawn_children). Returns 1 if the ray's child rays take T_R steps on the
+ * transformation unit (every spawning surface, or with RGS_SPAWN_LIVE one with an active child). */
+int rgs_accumulate_ray(const uint32_t *m, const surface *sf, int i, const uint32_t weight[3], const uint32_t diffuse[3],
+                       const uint32_t highlight[3], f24_t eps, uint32_t spawn, uint32_t acc[3], rgs_task *refl,
+                       rgs_task *trans);
 
 /* Texel coordinate of texture coordinate s over n texels (1 <= n < 2^31; centres at +1/2): the
  * wrapped integer part i0, its right neighbour i1 and the fraction in Q8 (0..256). */
