@@ -34,7 +34,8 @@
 # a core thread that walks on before the rest of a leaf's entries, a normal decoder folding the
 # lower hemisphere with the wrong sign, a bilinear blend that truncates, a shading normal turned
 # away from the ray, a highlight squared once too often, a transmission ray leaving from behind
-# the surface when eta = 1 and a surface's vertex colours truncated instead of rounded); the ray tracing core (rtl/trace_core.sv: 8 threads of
+# the surface when eta = 1, a surface's vertex colours truncated instead of rounded and a ray
+# whose spawned children take no T_R steps when none is active); the ray tracing core (rtl/trace_core.sv: 8 threads of
 # rtl/trace_thread.sv sharing the units) traces the packets of functional frames (primary, shadow,
 # secondary) of cornell, subpass_scene_opaque.glb, the room and Fox.glb (TRACE_SKIP_TOP and
 # TRACE_IDENTITY) to trace_step's hits and counters. Prints cmocka-style lines.
@@ -254,6 +255,21 @@ t_surface_mutant_caught() {
   mutant surface rgs_surface.sv "s/((sum + 32'd2048) >> 12)/(sum >> 12)/" -n 0 --capture "$T/surface_vertex_colours"
 }
 
+# an active ray's share of the accumulation (rgs_accum: the pixel's colour, the child rays through
+# rgs_spawn, the T_R steps rule) on the rays of the room's frame, then random ones
+t_accum() {
+  local d="$T/accum_room"
+  "$BIN" render room -o "$d.png" --width 32 --height 24 --max-depth 2 --capture-unit-io "$d" --capture-limit 400 >/dev/null
+  "$B/rtl/e7m16/tb_accum" -n 4000 --capture "$d" | tee "$d.log"
+  grep -Eq "; [1-9][0-9]* with an active child, [1-9][0-9]* with T_R steps\), 0 mismatches" "$d.log"
+}
+
+# a ray whose children take T_R steps only if one is active, also without PROFILE_LIVE_CHILDREN
+t_accum_mutant_caught() {
+  mutant accum rgs_accum.sv "s/assign steps_o = spawn_q \&\& (!live_q || r_act || t_act);/assign steps_o = spawn_q \&\& (r_act || t_act);/" \
+    -n 4000
+}
+
 # the normal decoder's fold of the lower hemisphere with the x component's sign the wrong way round;
 # the bilinear blend truncating instead of rounding (no + 2^15 before the shift by 16); the frame's
 # normal negated where it already faces the ray; the Phong power with one squaring too many; the
@@ -330,6 +346,7 @@ run_case rtl_list_unit_and_caches_match_c_model t_list_and_cache
 run_case rtl_rgs_raygen_and_tile_ctrl_match_c_model t_rgs
 run_case rtl_shade_datapath_matches_c_model_and_capture t_shade
 run_case rtl_surface_matches_c_model_and_capture t_surface
+run_case rtl_accum_matches_c_model_and_capture t_accum
 if extra_mutants; then
   run_case rtl_sqrt_bench_catches_mutant t_sqrt_mutant_caught
   run_case rtl_rgs_bench_catches_mutants t_rgs_mutants_caught
@@ -337,6 +354,7 @@ if extra_mutants; then
   run_case rtl_caches_with_full_tables_match_c_model t_cache_small_table
   run_case rtl_shade_bench_catches_mutants t_shade_mutants_caught
   run_case rtl_surface_bench_catches_mutant t_surface_mutant_caught
+  run_case rtl_accum_bench_catches_mutant t_accum_mutant_caught
   run_case rtl_list_sched_benches_catch_mutants t_list_sched_mutants_caught
   run_case rtl_cache_bench_catches_mutant t_cache_mutant_caught
 fi
