@@ -10,7 +10,8 @@
 //           (values 8..10 of the triangle record, F24_RECORD_SPAN(8, 3) words read)
 //   frame   d^, n^ facing the ray, t_hat, P, entering (`rgs_frame`)
 //   material  its 16 words read (address: the object's material or the record tail's); unlit,
-//           the highlight exponent k (shader word 0, bits 26..29)
+//           the highlight exponent k (shader word 0, bits 26..29), the index of refraction and the
+//           kd, kr, kt, ks fields (words 13..15) for the accumulation
 //   colours  9 conversions to Q12 on one `q12_of` (base and emissive factors, metallic, u, v);
 //           vertex colours (`modulate_colours`: weights q(u), q(v), 1 - both, the bytes widened,
 //           the C's uint32 arithmetic); per texture (base colour, then emissive) if its index is
@@ -74,7 +75,7 @@ module rgs_surface #(
   output logic [31:0]          mem_addr_o,
   input  logic                 mem_rsp_valid_i,
   input  logic [31:0]          mem_rdata_i,
-  // the surface (hls/units/rgs.h `surface`, and the exponent k of the material)
+  // the surface (hls/units/rgs.h `surface`, and the material's fields the accumulation needs)
   output logic                 valid_o,
   input  logic                 ready_i,
   output logic [TID_BITS-1:0]  tid_o,
@@ -87,6 +88,11 @@ module rgs_surface #(
   output logic [31:0]          mat_o,
   output logic                 unlit_o,
   output logic [3:0]           k_o,
+  output logic [E+M:0]         eta_o,       // material word 13, the shader fields of words 14, 15
+  output logic [12:0]          kd_o,
+  output logic [12:0]          kr_o,
+  output logic [12:0]          kt_o,
+  output logic [12:0]          ks_o,
   output logic [3*16-1:0]      base_o,      // Q12 R, G, B from the low half-word up
   output logic [3*16-1:0]      emission_o,
   output logic [3*16-1:0]      tint_o
@@ -286,6 +292,8 @@ module rgs_surface #(
   logic [W-1:0] th_q;
   logic [31:0] mat_q;
   logic [3:0] k_q;
+  logic [W-1:0] eta_q;
+  logic [12:0] kd_q, kr_q, kt_q, ks_q;
   logic [15:0] tint_q [3];
   assign ready_o = st == S_IDLE;
   assign valid_o = st == S_OUT;
@@ -299,6 +307,11 @@ module rgs_surface #(
   assign mat_o = mat_q;
   assign unlit_o = unlit_q;
   assign k_o = k_q;
+  assign eta_o = eta_q;
+  assign kd_o = kd_q;
+  assign kr_o = kr_q;
+  assign kt_o = kt_q;
+  assign ks_o = ks_q;
   for (genvar k = 0; k < 3; k++) begin : g_out
     assign base_o[16*k +: 16] = base_q[k];
     assign emission_o[16*k +: 16] = emis_q[k];
@@ -347,6 +360,11 @@ module rgs_surface #(
             mat_q <= '0;
             unlit_q <= 1'b0;
             k_q <= '0;
+            eta_q <= '0;
+            kd_q <= '0;
+            kr_q <= '0;
+            kt_q <= '0;
+            ks_q <= '0;
             for (int k = 0; k < 3; k++) begin
               base_q[k] <= '0;
               emis_q[k] <= '0;
@@ -458,6 +476,11 @@ module rgs_surface #(
             tex_idx_q[1] <= buf_q[12];
             unlit_q <= buf_q[8][3];
             k_q <= buf_q[14][29:26];
+            eta_q <= buf_q[13][W-1:0];
+            kd_q <= buf_q[14][12:0];
+            kr_q <= buf_q[14][25:13];
+            kt_q <= buf_q[15][12:0];
+            ks_q <= buf_q[15][25:13];
             qin_q <= '0;
             qout_q <= '0;
             st <= S_Q;

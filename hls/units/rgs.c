@@ -86,8 +86,6 @@ block_pixels:
 
 static uint32_t at_least_one(uint32_t n) { return n ? n : 1u; }
 
-/* Next operation of a block (rgs_step). */
-enum { RB_GEN, RB_NEXT, RB_TRACE, RB_SURFACES, RB_LIGHT, RB_SHADOW_GEN, RB_SHADOW_TRACE, RB_ACCUM, RB_CHILD_GEN, RB_DONE };
 
 /* ---- shading steps ---------------------------------------------------------------------------- */
 

@@ -79,6 +79,9 @@ typedef struct {
     uint32_t tint[3];   /* Q12 colour of reflection and highlight: 1 + metallic (base - 1) */
 } surface;
 
+/* Next operation of a block (rgs_block.phase, rgs_step; rtl/rgs_ctrl.sv has a state per phase). */
+enum { RB_GEN, RB_NEXT, RB_TRACE, RB_SURFACES, RB_LIGHT, RB_SHADOW_GEN, RB_SHADOW_TRACE, RB_ACCUM, RB_CHILD_GEN, RB_DONE };
+
 /* A 2x2 pixel block's thread: its ray tree, the packet in flight and its shading state. */
 typedef struct {
     rgs_task stack[RGS_STACK];

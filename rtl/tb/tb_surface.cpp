@@ -44,12 +44,13 @@ struct surface_tx {
 
 // the outputs compared, in this order
 enum { O_VALID, O_P, O_D = O_P + 3, O_N = O_D + 3, O_THAT = O_N + 3, O_ENT, O_MAT, O_UNLIT, O_BASE, O_EMIS = O_BASE + 3,
-       O_TINT = O_EMIS + 3, O_K = O_TINT + 3, OUT_WORDS };
+       O_TINT = O_EMIS + 3, O_K = O_TINT + 3, O_ETA, O_KD, O_KR, O_KT, O_KS, OUT_WORDS };
 const char *field_name(int k)
 {
     static const char *const name[] = { "valid", "p.x", "p.y", "p.z", "d.x", "d.y", "d.z", "n.x", "n.y", "n.z", "t_hat",
                                         "entering", "mat", "unlit", "base.r", "base.g", "base.b", "emission.r",
-                                        "emission.g", "emission.b", "tint.r", "tint.g", "tint.b", "k" };
+                                        "emission.g", "emission.b", "tint.r", "tint.g", "tint.b", "k", "eta", "kd",
+                                        "kr", "kt", "ks" };
     return name[k];
 }
 
@@ -94,7 +95,7 @@ bool parse_line(const char *line, surface_tx &x)
         x.out.push_back(c[3 * k + 1]);
     for (int k = 0; k < 3; k++)
         x.out.push_back(c[3 * k + 2]);
-    x.out.push_back(0); // k: not recorded (the material's word; compared with the C only)
+    x.out.resize(OUT_WORDS); // k and the material's fields: not recorded (compared with the C only)
     return true;
 }
 
@@ -133,7 +134,13 @@ void model(const std::vector<uint32_t> &mem, const surface_tx &x, std::vector<ui
     for (const uint32_t *q : { sf.base, sf.emission, sf.tint })
         for (int k = 0; k < 3; k++)
             out.push_back(q[k]);
-    out.push_back(sf.valid ? mem[sf.mat + M_SHADER0] >> 26 & 0xFu : 0u);
+    const uint32_t *m = &mem[sf.mat];
+    out.push_back(sf.valid ? m[M_SHADER0] >> 26 & 0xFu : 0u);
+    out.push_back(sf.valid ? m[M_ETA] & F24_MASK : 0u);
+    out.push_back(sf.valid ? m[M_SHADER0] & 0x1FFFu : 0u);
+    out.push_back(sf.valid ? m[M_SHADER0] >> 13 & 0x1FFFu : 0u);
+    out.push_back(sf.valid ? m[M_SHADER1] & 0x1FFFu : 0u);
+    out.push_back(sf.valid ? m[M_SHADER1] >> 13 & 0x1FFFu : 0u);
     reads.clear();
     for (uint32_t r = 0; r < op.n_reads; r++) {
         for (uint32_t k = 0; k < op.read[r].words; k++)
@@ -297,7 +304,8 @@ int main(int argc, char **argv)
                               got[O_EMIS + k] = (uint32_t)(top.emission_o >> (16 * k) & 0xFFFFu),
                               got[O_TINT + k] = (uint32_t)(top.tint_o >> (16 * k) & 0xFFFFu);
                 got[O_THAT] = top.t_hat_o, got[O_ENT] = top.entering_o, got[O_MAT] = top.mat_o;
-                got[O_UNLIT] = top.unlit_o, got[O_K] = top.k_o;
+                got[O_UNLIT] = top.unlit_o, got[O_K] = top.k_o, got[O_ETA] = top.eta_o, got[O_KD] = top.kd_o;
+                got[O_KR] = top.kr_o, got[O_KT] = top.kt_o, got[O_KS] = top.ks_o;
                 if (tid != t % 64)
                     report(t, "thread id", "tid", tid, (uint32_t)(t % 64), tid);
                 for (int k = 0; k < OUT_WORDS; k++)

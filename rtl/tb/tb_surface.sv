@@ -41,6 +41,11 @@ module tb_surface #(
   output logic [31:0]               mat_o,
   output logic                      unlit_o,
   output logic [3:0]                k_o,
+  output logic [E+M:0]              eta_o,
+  output logic [12:0]               kd_o,
+  output logic [12:0]               kr_o,
+  output logic [12:0]               kt_o,
+  output logic [12:0]               ks_o,
   output logic [3*16-1:0]           base_o,
   output logic [3*16-1:0]           emission_o,
   output logic [3*16-1:0]           tint_o
@@ -52,6 +57,6 @@ module tb_surface #(
     .cos_n_i(cos_n_i), .mem_req_valid_o(mem_req_valid_o), .mem_req_ready_i(mem_req_ready_i), .mem_addr_o(mem_addr_o),
     .mem_rsp_valid_i(mem_rsp_valid_i), .mem_rdata_i(mem_rdata_i), .valid_o(valid_o), .ready_i(ready_i),
     .tid_o(tid_o), .sf_valid_o(sf_valid_o), .p_o(p_o), .d_o(d_o), .n_o(n_o), .t_hat_o(t_hat_o),
-    .entering_o(entering_o), .mat_o(mat_o), .unlit_o(unlit_o), .k_o(k_o), .base_o(base_o), .emission_o(emission_o),
+    .entering_o(entering_o), .mat_o(mat_o), .unlit_o(unlit_o), .k_o(k_o), .eta_o(eta_o), .kd_o(kd_o), .kr_o(kr_o), .kt_o(kt_o), .ks_o(ks_o), .base_o(base_o), .emission_o(emission_o),
     .tint_o(tint_o));
 endmodule
