@@ -237,7 +237,8 @@ test: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) $(BUILD)/rtl/$(DEFAULT_FMT)/tb_f24_ops $(BUILD)/rtl/$(DEFAULT_FMT)/tb_units $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sum \
 	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_list $(BUILD)/rtl/$(DEFAULT_FMT)/tb_cache $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sched $(BUILD)/rtl/$(DEFAULT_FMT)/tb_rgs \
 	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_wide $(BUILD)/rtl/$(DEFAULT_FMT)/tb_trav $(BUILD)/rtl/$(DEFAULT_FMT)/tb_core \
-	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_shade $(BUILD)/rtl/$(DEFAULT_FMT)/tb_surface $(BUILD)/rtl/$(DEFAULT_FMT)/tb_accum
+	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_shade $(BUILD)/rtl/$(DEFAULT_FMT)/tb_surface $(BUILD)/rtl/$(DEFAULT_FMT)/tb_accum \
+	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_rgs_ctrl
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 FORMATS="$(ASAN_TEST_FORMATS)" test-programs
 	@$(MAKE) --no-print-directory -j$$(nproc) robust
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 fuzz-replay
@@ -357,7 +358,7 @@ rtl-lint:
 rtl-test: deps rtl-lint
 	@$(MAKE) --no-print-directory all $(foreach f,$(RTL_FORMATS),$(BUILD)/rtl/$(f)/tb_f24_ops $(BUILD)/rtl/$(f)/tb_units $(BUILD)/rtl/$(f)/tb_sum \
 	  $(BUILD)/rtl/$(f)/tb_rgs $(BUILD)/rtl/$(f)/tb_wide $(BUILD)/rtl/$(f)/tb_shade $(BUILD)/rtl/$(f)/tb_accum) \
-	  $(foreach f,$(DEFAULT_FMT) e8m23,$(BUILD)/rtl/$(f)/tb_surface $(BUILD)/rtl/$(f)/tb_list $(BUILD)/rtl/$(f)/tb_cache $(BUILD)/rtl/$(f)/tb_sched $(BUILD)/rtl/$(f)/tb_trav $(BUILD)/rtl/$(f)/tb_core)
+	  $(foreach f,$(DEFAULT_FMT) e8m23,$(BUILD)/rtl/$(f)/tb_surface $(BUILD)/rtl/$(f)/tb_rgs_ctrl $(BUILD)/rtl/$(f)/tb_list $(BUILD)/rtl/$(f)/tb_cache $(BUILD)/rtl/$(f)/tb_sched $(BUILD)/rtl/$(f)/tb_trav $(BUILD)/rtl/$(f)/tb_core)
 	@mkdir -p $(BUILD)/rtl/capture
 	@set -o pipefail; for f in $(RTL_FORMATS); do \
 	  extra=; [ $$f = $(DEFAULT_FMT) ] && extra=$$(ls tests/golden/f24/{add,sub,mul,div,lt,le,eq,min,max,sqrt,to_i32}.hex); \
@@ -430,6 +431,14 @@ rtl-test: deps rtl-lint
 	  | tee $(BUILD)/rtl/surface.log
 	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_accum -n $(RTL_N) || exit 1; done \
 	  | tee -a $(BUILD)/rtl/surface.log
+	@# the RGS's per-block control (rgs_ctrl): every block of frames with shadows and reflections, depth 3
+	@set -o pipefail; for s in cornell:128x96 room:64x48 vertex_colours:64x48 emissive:64x48 \
+	  $(addsuffix :128x96,$(wildcard ../shared/scenes/subpass_scene_opaque.glb ../shared/scenes/CesiumMilkTruck.glb)); do \
+	  for f in $(DEFAULT_FMT) e8m23; do sz=$${s##*:}; \
+	    $(BUILD)/w/$$f/saarcor render $${s%:*} -o $(BUILD)/rtl/ctrl.$$f.png --width $${sz%x*} --height $${sz#*x} \
+	      --capture-unit-io $(BUILD)/rtl/capture/ctrl.$$f --capture-limit 10 >/dev/null 2>&1 || exit 1; \
+	    $(BUILD)/rtl/$$f/tb_rgs_ctrl --capture $(BUILD)/rtl/capture/ctrl.$$f --max-depth 3 || exit 1; done; done \
+	  | tee $(BUILD)/rtl/rgs_ctrl.log
 	@# the short form with every mutant (make test builds the rounder's alone)
 	@SAARCOR_RTL_MUTANTS=all BUILD=$(BUILD) bash tests/run.sh tests/test_rtl.sh
 

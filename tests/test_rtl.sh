@@ -35,7 +35,8 @@
 # lower hemisphere with the wrong sign, a bilinear blend that truncates, a shading normal turned
 # away from the ray, a highlight squared once too often, a transmission ray leaving from behind
 # the surface when eta = 1, a surface's vertex colours truncated instead of rounded and a ray
-# whose spawned children take no T_R steps when none is active); the ray tracing core (rtl/trace_core.sv: 8 threads of
+# whose spawned children take no T_R steps when none is active, a block control spawning children one
+# level short); the ray tracing core (rtl/trace_core.sv: 8 threads of
 # rtl/trace_thread.sv sharing the units) traces the packets of functional frames (primary, shadow,
 # secondary) of cornell, subpass_scene_opaque.glb, the room and Fox.glb (TRACE_SKIP_TOP and
 # TRACE_IDENTITY) to trace_step's hits and counters. Prints cmocka-style lines.
@@ -270,6 +271,28 @@ t_accum_mutant_caught() {
     -n 4000
 }
 
+# the RGS's per-block control (rgs_ctrl): every block of cornell at 32x24 and the first 64 of the
+# room (reflections) with shadows and depth 2, the room without shadows; the bench traces the
+# packets with the C and compares them, the pixels and the primary hits with rgs_render_block
+t_rgs_ctrl() {
+  local s
+  for s in cornell room; do
+    "$BIN" render "$s" -o "$T/ctrl_$s.png" --width 32 --height 24 --capture-unit-io "$T/ctrl_$s" --capture-limit 10 >/dev/null
+  done
+  { "$B/rtl/e7m16/tb_rgs_ctrl" --capture "$T/ctrl_cornell" &&
+    "$B/rtl/e7m16/tb_rgs_ctrl" --capture "$T/ctrl_room" --blocks 64 &&
+    "$B/rtl/e7m16/tb_rgs_ctrl" --capture "$T/ctrl_room" --blocks 32 --no-shadows; } | tee "$T/ctrl.log"
+  [[ $(grep -c " 0 mismatches" "$T/ctrl.log") == 3 ]] && grep -q "^rgs_ctrl 192 blocks checked" "$T/ctrl.log"
+}
+
+# children one level short (depth + 1 < max_depth instead of <=): the room without reflections
+t_rgs_ctrl_mutant_caught() {
+  [[ -f "$T/ctrl_room/image_0.bin" ]] || "$BIN" render room -o "$T/ctrl_room.png" --width 32 --height 24 \
+    --capture-unit-io "$T/ctrl_room" --capture-limit 10 >/dev/null
+  mutant rgs_ctrl rgs_ctrl.sv "s/assign children_on = depth1 <= {1'b0, max_depth_i}/assign children_on = depth1 < {1'b0, max_depth_i}/" \
+    --capture "$T/ctrl_room" --max-depth 1
+}
+
 # the normal decoder's fold of the lower hemisphere with the x component's sign the wrong way round;
 # the bilinear blend truncating instead of rounding (no + 2^15 before the shift by 16); the frame's
 # normal negated where it already faces the ray; the Phong power with one squaring too many; the
@@ -347,6 +370,7 @@ run_case rtl_rgs_raygen_and_tile_ctrl_match_c_model t_rgs
 run_case rtl_shade_datapath_matches_c_model_and_capture t_shade
 run_case rtl_surface_matches_c_model_and_capture t_surface
 run_case rtl_accum_matches_c_model_and_capture t_accum
+run_case rtl_rgs_ctrl_matches_c_model t_rgs_ctrl
 if extra_mutants; then
   run_case rtl_sqrt_bench_catches_mutant t_sqrt_mutant_caught
   run_case rtl_rgs_bench_catches_mutants t_rgs_mutants_caught
@@ -355,6 +379,7 @@ if extra_mutants; then
   run_case rtl_shade_bench_catches_mutants t_shade_mutants_caught
   run_case rtl_surface_bench_catches_mutant t_surface_mutant_caught
   run_case rtl_accum_bench_catches_mutant t_accum_mutant_caught
+  run_case rtl_rgs_ctrl_bench_catches_mutant t_rgs_ctrl_mutant_caught
   run_case rtl_list_sched_benches_catch_mutants t_list_sched_mutants_caught
   run_case rtl_cache_bench_catches_mutant t_cache_mutant_caught
 fi
