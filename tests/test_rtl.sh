@@ -26,6 +26,11 @@
 # rgs_lerp and rgs_spawn_children and the transactions recorded while rendering the room
 # (textured), the cornell box and (from ../shared/scenes, if present) subpass_scene_opaque and
 # CesiumMilkTruck (textured) with shadows and reflections, and 2 x 10^4 random ones of each; the
+# surface at a hit (rtl/rgs_surface.sv: its reads, normal, frame, colours, textures) matches
+# rgs_surface_at on the surfaces of those frames and the built-in vertex-colour and emissive
+# scenes, word by word in its reads; a ray's accumulation (rtl/rgs_accum.sv) matches
+# rgs_accumulate_ray; the per-block control (rtl/rgs_ctrl.sv) matches rgs_render_block's pixels and
+# primary hits and rgs_step's packets on every block of cornell and part of the room; the
 # benches catch mutants (a rounder that never rounds ties to even; with SAARCOR_RTL_MUTANTS=all, as
 # make rtl-test runs it, also a cache without its tag forwarding, a mailbox that never
 # moves on, a scheduler whose pointer never moves on, a walk that pushes the near child, a
