@@ -30,7 +30,8 @@
  * 1 sqrt, 1 div; the three side by side, interpolated as lanes), normalization of D and N (2 sqrt,
  * 2 div), T_R steps on the transformation unit, per light 2 dot products (diffuse and
  * highlight cosines), the spot factor (1 div) and the float-to-Q12 converters. Latency 12 cycles
- * (the cycle model's default, docs/cycle-model.md: an estimate, no RTL yet), throughput one
+ * (the cycle model's default, docs/cycle-model.md: an estimate; rtl/rgs_ctrl.sv, the RTL of the
+ * block control, runs an operation's rays one after another and is not yet pipelined to it), throughput one
  * shaded ray per cycle (an operation takes as many issue slots as it shades rays, at least 1).
  */
 #ifndef SAARCOR_RGS_H
