@@ -99,7 +99,7 @@ CAPTURE_WRAP := $(addprefix -Wl$(comma)--wrap=,xform_point xform_vector isect_un
   rebase_origin xform_point_wide xform_vector_wide \
   trav_scene_clip trav_object_clip trav_start trav_walk trace_begin trace_step shade_rec_normals \
   rgs_sample_bilinear rgs_surface_frame rgs_light_packet rgs_lerp rgs_lerp_normal rgs_light_colour rgs_add_light \
-  rgs_spawn_children)
+  rgs_spawn_children rgs_surface_at rgs_accumulate_ray)
 
 # per-format objects: everything that depends on the fp24 parameters
 fp_objs = $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(HLS_FP24) $(TB_FP))
@@ -239,7 +239,9 @@ test: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) $(BUILD)/rtl/$(DEFAULT_FMT)/tb_f24_ops $(BUILD)/rtl/$(DEFAULT_FMT)/tb_units $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sum \
 	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_list $(BUILD)/rtl/$(DEFAULT_FMT)/tb_cache $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sched $(BUILD)/rtl/$(DEFAULT_FMT)/tb_rgs \
 	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_wide $(BUILD)/rtl/$(DEFAULT_FMT)/tb_trav $(BUILD)/rtl/$(DEFAULT_FMT)/tb_core \
-	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_shade $(BUILD)/rtl/$(DEFAULT_FMT)/tb_dynrtp
+	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_shade $(BUILD)/rtl/$(DEFAULT_FMT)/tb_surface $(BUILD)/rtl/$(DEFAULT_FMT)/tb_accum \
+	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_rgs_ctrl \
+	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_dynrtp
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 FORMATS="$(ASAN_TEST_FORMATS)" test-programs
 	@$(MAKE) --no-print-directory -j$$(nproc) robust
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 fuzz-replay
@@ -376,8 +378,8 @@ rtl-lint:
 # the square root and the integer conversion on every encoding where W <= 24 (16.8 M at e7m16, ~25 s)
 rtl-test: deps rtl-lint
 	@$(MAKE) --no-print-directory all $(foreach f,$(RTL_FORMATS),$(BUILD)/rtl/$(f)/tb_f24_ops $(BUILD)/rtl/$(f)/tb_units $(BUILD)/rtl/$(f)/tb_sum \
-	  $(BUILD)/rtl/$(f)/tb_rgs $(BUILD)/rtl/$(f)/tb_wide $(BUILD)/rtl/$(f)/tb_shade) \
-	  $(foreach f,$(DEFAULT_FMT) e8m23,$(BUILD)/rtl/$(f)/tb_list $(BUILD)/rtl/$(f)/tb_cache $(BUILD)/rtl/$(f)/tb_sched $(BUILD)/rtl/$(f)/tb_trav $(BUILD)/rtl/$(f)/tb_core) \
+	  $(BUILD)/rtl/$(f)/tb_rgs $(BUILD)/rtl/$(f)/tb_wide $(BUILD)/rtl/$(f)/tb_shade $(BUILD)/rtl/$(f)/tb_accum) \
+	  $(foreach f,$(DEFAULT_FMT) e8m23,$(BUILD)/rtl/$(f)/tb_surface $(BUILD)/rtl/$(f)/tb_rgs_ctrl $(BUILD)/rtl/$(f)/tb_list $(BUILD)/rtl/$(f)/tb_cache $(BUILD)/rtl/$(f)/tb_sched $(BUILD)/rtl/$(f)/tb_trav $(BUILD)/rtl/$(f)/tb_core) \
 	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_dynrtp
 	@mkdir -p $(BUILD)/rtl/capture
 	@set -o pipefail; for f in $(RTL_FORMATS); do \
@@ -454,6 +456,25 @@ rtl-test: deps rtl-lint
 	    $(BUILD)/rtl/$$f/tb_shade -n 0 --capture $(BUILD)/rtl/capture/shade.$$f || exit 1; done; done | tee $(BUILD)/rtl/shade.log
 	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_shade -n $(RTL_N) || exit 1; done \
 	  | tee -a $(BUILD)/rtl/shade.log
+	@# the RGS's surface at a hit (rgs_surface) and the accumulation (rgs_accum): every surface and ray of 128x96 frames with shadows and reflections
+	@set -o pipefail; for s in room cornell vertex_colours emissive uv_transform unlit $(wildcard ../shared/scenes/subpass_scene_opaque.glb \
+	  ../shared/scenes/CesiumMilkTruck.glb); do \
+	  for f in $(DEFAULT_FMT) e8m23; do \
+	    $(BUILD)/w/$$f/saarcor render $$s -o $(BUILD)/rtl/surface.$$f.png --width 128 --height 96 --max-depth 2 \
+	      --capture-unit-io $(BUILD)/rtl/capture/surface.$$f --capture-limit 1000000 >/dev/null 2>&1 || exit 1; \
+	    $(BUILD)/rtl/$$f/tb_surface -n 20000 --capture $(BUILD)/rtl/capture/surface.$$f || exit 1; \
+	    $(BUILD)/rtl/$$f/tb_accum -n 0 --capture $(BUILD)/rtl/capture/surface.$$f || exit 1; done; done \
+	  | tee $(BUILD)/rtl/surface.log
+	@set -o pipefail; for f in $(RTL_FORMATS); do $(BUILD)/rtl/$$f/tb_accum -n $(RTL_N) || exit 1; done \
+	  | tee -a $(BUILD)/rtl/surface.log
+	@# the RGS's per-block control (rgs_ctrl): every block of frames with shadows and reflections, depth 3
+	@set -o pipefail; for s in cornell:128x96 room:64x48 vertex_colours:64x48 emissive:64x48 \
+	  $(addsuffix :128x96,$(wildcard ../shared/scenes/subpass_scene_opaque.glb ../shared/scenes/CesiumMilkTruck.glb)); do \
+	  for f in $(DEFAULT_FMT) e8m23; do sz=$${s##*:}; \
+	    $(BUILD)/w/$$f/saarcor render $${s%:*} -o $(BUILD)/rtl/ctrl.$$f.png --width $${sz%x*} --height $${sz#*x} \
+	      --capture-unit-io $(BUILD)/rtl/capture/ctrl.$$f --capture-limit 10 >/dev/null 2>&1 || exit 1; \
+	    $(BUILD)/rtl/$$f/tb_rgs_ctrl --capture $(BUILD)/rtl/capture/ctrl.$$f --max-depth 3 || exit 1; done; done \
+	  | tee $(BUILD)/rtl/rgs_ctrl.log
 	@# the short form with every mutant (make test builds the rounder's alone)
 	@SAARCOR_RTL_MUTANTS=all BUILD=$(BUILD) bash tests/run.sh tests/test_rtl.sh
 

@@ -26,6 +26,11 @@
 # rgs_lerp and rgs_spawn_children and the transactions recorded while rendering the room
 # (textured), the cornell box and (from ../shared/scenes, if present) subpass_scene_opaque and
 # CesiumMilkTruck (textured) with shadows and reflections, and 2 x 10^4 random ones of each; the
+# surface at a hit (rtl/rgs_surface.sv: its reads, normal, frame, colours, textures) matches
+# rgs_surface_at on the surfaces of those frames and the built-in vertex-colour and emissive
+# scenes, word by word in its reads; a ray's accumulation (rtl/rgs_accum.sv) matches
+# rgs_accumulate_ray; the per-block control (rtl/rgs_ctrl.sv) matches rgs_render_block's pixels and
+# primary hits and rgs_step's packets on every block of cornell and part of the room; the
 # benches catch mutants (a rounder that never rounds ties to even; with SAARCOR_RTL_MUTANTS=all, as
 # make rtl-test runs it, also a cache without its tag forwarding, a mailbox that never
 # moves on, a scheduler whose pointer never moves on, a walk that pushes the near child, a
@@ -33,8 +38,10 @@
 # past the region's edge, a vector mode whose unused terms are +0, a rebase that moves by t = Inf,
 # a core thread that walks on before the rest of a leaf's entries, a normal decoder folding the
 # lower hemisphere with the wrong sign, a bilinear blend that truncates, a shading normal turned
-# away from the ray, a highlight squared once too often and a transmission ray leaving from behind
-# the surface when eta = 1); the ray tracing core (rtl/trace_core.sv: 8 threads of
+# away from the ray, a highlight squared once too often, a transmission ray leaving from behind
+# the surface when eta = 1, a surface's vertex colours truncated instead of rounded and a ray
+# whose spawned children take no T_R steps when none is active, a block control spawning children one
+# level short); the ray tracing core (rtl/trace_core.sv: 8 threads of
 # rtl/trace_thread.sv sharing the units) traces the packets of functional frames (primary, shadow,
 # secondary) of cornell, subpass_scene_opaque.glb, the room and Fox.glb (TRACE_SKIP_TOP and
 # TRACE_IDENTITY) to trace_step's hits and counters; the DynRTP top's harness (rtl/tb/tb_dynrtp.cpp,
@@ -228,6 +235,71 @@ t_shade() {
   grep -Eq "; [1-9][0-9]* refracted, [1-9][0-9]* totally reflected\), latency" "$T/shade.log"
 }
 
+# the RGS's surface at a hit (rgs_surface: its reads, the normal and its zero test, the frame, the
+# material's colours, vertex colours, base and emissive textures, the tint) on every surface of
+# frames with shadows and reflections: the room, cornell, the built-in vertex-colour and
+# emissive-texture scenes and ../shared's subpass_scene_opaque and textured CesiumMilkTruck, then
+# their hits with other barycentrics, distances, inactive rays and misses
+t_surface() {
+  local scenes=(room cornell vertex_colours emissive) s d
+  for s in subpass_scene_opaque CesiumMilkTruck; do
+    if [[ -f ../shared/scenes/$s.glb ]]; then scenes+=("../shared/scenes/$s.glb"); else echo "../shared/scenes/$s.glb is absent: skipped"; fi
+  done
+  for s in "${scenes[@]}"; do
+    d="$T/surface_$(basename "$s" .glb)"
+    "$BIN" render "$s" -o "$d.png" --width 32 --height 24 --max-depth 2 --capture-unit-io "$d" --capture-limit 400 \
+      >/dev/null 2>&1
+    "$B/rtl/e7m16/tb_surface" -n 200 --capture "$d" >"$d.log" || { cat "$d.log"; false; }
+    cat "$d.log"
+  done
+  grep -Eq "; [1-9][0-9]* valid, [1-9][0-9]* with vertex colours" "$T/surface_vertex_colours.log" &&
+    grep -Eq " [1-9][0-9]* texture samples\), 0 mismatches, 0 wrong reads" "$T/surface_emissive.log"
+}
+
+# the vertex colours' weighted sum truncated instead of rounded (no + 2048 before the shift by 12)
+t_surface_mutant_caught() {
+  [[ -f "$T/surface_vertex_colours/surface.hex" ]] || "$BIN" render vertex_colours -o "$T/vc.png" --width 32 --height 24 \
+    --max-depth 2 --capture-unit-io "$T/surface_vertex_colours" --capture-limit 400 >/dev/null 2>&1
+  mutant surface rgs_surface.sv "s/((sum + 32'd2048) >> 12)/(sum >> 12)/" -n 0 --capture "$T/surface_vertex_colours"
+}
+
+# an active ray's share of the accumulation (rgs_accum: the pixel's colour, the child rays through
+# rgs_spawn, the T_R steps rule) on the rays of the room's frame, then random ones
+t_accum() {
+  local d="$T/accum_room"
+  "$BIN" render room -o "$d.png" --width 32 --height 24 --max-depth 2 --capture-unit-io "$d" --capture-limit 400 >/dev/null
+  "$B/rtl/e7m16/tb_accum" -n 4000 --capture "$d" | tee "$d.log"
+  grep -Eq "; [1-9][0-9]* with an active child, [1-9][0-9]* with T_R steps\), 0 mismatches" "$d.log"
+}
+
+# a ray whose children take T_R steps only if one is active, also without PROFILE_LIVE_CHILDREN
+t_accum_mutant_caught() {
+  mutant accum rgs_accum.sv "s/assign steps_o = spawn_q \&\& (!live_q || r_act || t_act);/assign steps_o = spawn_q \&\& (r_act || t_act);/" \
+    -n 4000
+}
+
+# the RGS's per-block control (rgs_ctrl): every block of cornell at 32x24 and the first 64 of the
+# room (reflections) with shadows and depth 2, the room without shadows; the bench traces the
+# packets with the C and compares them, the pixels and the primary hits with rgs_render_block
+t_rgs_ctrl() {
+  local s
+  for s in cornell room; do
+    "$BIN" render "$s" -o "$T/ctrl_$s.png" --width 32 --height 24 --capture-unit-io "$T/ctrl_$s" --capture-limit 10 >/dev/null
+  done
+  { "$B/rtl/e7m16/tb_rgs_ctrl" --capture "$T/ctrl_cornell" &&
+    "$B/rtl/e7m16/tb_rgs_ctrl" --capture "$T/ctrl_room" --blocks 64 &&
+    "$B/rtl/e7m16/tb_rgs_ctrl" --capture "$T/ctrl_room" --blocks 32 --no-shadows; } | tee "$T/ctrl.log"
+  [[ $(grep -c " 0 mismatches" "$T/ctrl.log") == 3 ]] && grep -q "^rgs_ctrl 192 blocks checked" "$T/ctrl.log"
+}
+
+# children one level short (depth + 1 < max_depth instead of <=): the room without reflections
+t_rgs_ctrl_mutant_caught() {
+  [[ -f "$T/ctrl_room/image_0.bin" ]] || "$BIN" render room -o "$T/ctrl_room.png" --width 32 --height 24 \
+    --capture-unit-io "$T/ctrl_room" --capture-limit 10 >/dev/null
+  mutant rgs_ctrl rgs_ctrl.sv "s/assign children_on = depth1 <= {1'b0, max_depth_i}/assign children_on = depth1 < {1'b0, max_depth_i}/" \
+    --capture "$T/ctrl_room" --max-depth 1
+}
+
 # the normal decoder's fold of the lower hemisphere with the x component's sign the wrong way round;
 # the bilinear blend truncating instead of rounding (no + 2^15 before the shift by 16); the frame's
 # normal negated where it already faces the ray; the Phong power with one squaring too many; the
@@ -302,12 +374,18 @@ run_case rtl_exact_sum_matches_c_model t_exact_sum
 run_case rtl_list_unit_and_caches_match_c_model t_list_and_cache
 run_case rtl_rgs_raygen_and_tile_ctrl_match_c_model t_rgs
 run_case rtl_shade_datapath_matches_c_model_and_capture t_shade
+run_case rtl_surface_matches_c_model_and_capture t_surface
+run_case rtl_accum_matches_c_model_and_capture t_accum
+run_case rtl_rgs_ctrl_matches_c_model t_rgs_ctrl
 if extra_mutants; then
   run_case rtl_sqrt_bench_catches_mutant t_sqrt_mutant_caught
   run_case rtl_rgs_bench_catches_mutants t_rgs_mutants_caught
   run_case rtl_wide_bench_catches_mutants t_wide_mutants_caught
   run_case rtl_caches_with_full_tables_match_c_model t_cache_small_table
   run_case rtl_shade_bench_catches_mutants t_shade_mutants_caught
+  run_case rtl_surface_bench_catches_mutant t_surface_mutant_caught
+  run_case rtl_accum_bench_catches_mutant t_accum_mutant_caught
+  run_case rtl_rgs_ctrl_bench_catches_mutant t_rgs_ctrl_mutant_caught
   run_case rtl_list_sched_benches_catch_mutants t_list_sched_mutants_caught
   run_case rtl_cache_bench_catches_mutant t_cache_mutant_caught
 fi

@@ -2,28 +2,19 @@
 #include "rgs.h"
 
 #include "rgs_ops.h"
-#include "shade_rec.h"
 #include "trace_ops.h"
 #include "xform_unit.h"
 
 enum {
-    H_LIGHTS = 10, H_TEXTURES = 9, H_SCENE_BOUNDS = 12, H_REGIONS = 18,
-    R_MATERIALS = 1, R_TEXTURES = 2, R_OBJECTS = 5, R_CAMERA = 6, R_LIGHTS = 7, R_INSTANCES = 8,
-    TEX_WORDS = 4, LIGHT_WORDS = 16, MAX_LIGHTS = 64,
-    OBJ_WORDS = 16, O_TRIANGLES = 2, O_SHADING = 3, O_FLAGS = 7,
-    INST_WORDS = F24_INSTANCE_RECORD_WORDS, TRI_WORDS = F24_TRIANGLE_RECORD_WORDS, MAT_WORDS = 16, CAM_WORDS = 16,
-    M_EMISSIVE = 4, M_TEXTURE = 7, M_METALLIC = 10,
+    H_LIGHTS = 10, H_SCENE_BOUNDS = 12, R_CAMERA = 6, R_LIGHTS = 7, LIGHT_WORDS = 16, MAX_LIGHTS = 64, CAM_WORDS = 16,
 };
 
-#define BACKGROUND 0x1A1A24u
 #define Q12_AMBIENT 614u   /* 0.15 */
 #define EPS_SHIFT 10       /* e = 2^-10 x the largest extent of the scene bounds */
 
 
 
 /* ---- fp24 vector helpers ------------------------------------------------------------------ */
-
-static uint32_t region_start(const uint32_t *mem, uint32_t r) { return mem[H_REGIONS + 2 * r]; }
 
 f24_vec3 rgs_reflect(f24_vec3 d, f24_vec3 n)
 {
@@ -89,136 +80,12 @@ block_pixels:
     }
 }
 
-/* ---- the surface at a hit ------------------------------------------------------------------- */
-
-
-
-/* Notes a shading read in op (the shading cache's view) and counts it. */
-static void shade_read(unit_op *op, trace_counters *c, uint32_t addr, uint32_t words)
-{
-    op_read(op, c, MEM_SHADING, addr, words);
-}
-
-/* Object-space shading normal at the hit (not normalized): the interpolated decoded vertex
- * normals, or the geometric normal (row 2 of the triangle transformation). */
-static f24_vec3 hit_normal(const uint32_t *mem, const hit_record *h, uint32_t obj, uint32_t shade, unit_op *op,
-                           trace_counters *c)
-{
-    f24_vec3 n = { 0, 0, 0 };
-    if (mem[obj + O_FLAGS] & SHADE_HAS_NORMALS) {
-        f24_t normals[3][F24Q_LANES];
-        shade_rec_normals(&mem[shade], normals); /* the three side by side, decoded once */
-        n = rgs_lerp_normal(normals, h->u, h->v);
-    }
-    if (f24_is_zero(rgs_dot3(n, n))) {
-        const uint32_t tri = mem[obj + O_TRIANGLES] + TRI_WORDS * h->triangle;
-        n = (f24_vec3){ f24_record_get(mem, tri, 8), f24_record_get(mem, tri, 9), f24_record_get(mem, tri, 10) };
-        shade_read(op, c, tri + 8 * F24_WIDTH / 32, F24_RECORD_SPAN(8, 3));
-    }
-    return n;
-}
-
-#if SAARCOR_CFG_TEXTURES
-/* Multiplies out (Q12) by the bilinear sample of texture t at the hit's coordinates of set uv
- * (hls/units/shade_rec.h), if t names a texture and the object has texture coordinates. */
-static void modulate_texture(const uint32_t *mem, uint32_t t, uint32_t flags, const uint32_t *tail, uint32_t uv,
-                             const hit_record *h, uint32_t out[3], unit_op *op, trace_counters *c)
-{
-    if (t >= mem[H_TEXTURES] || !(flags & SHADE_HAS_TEXCOORDS))
-        return;
-    f24_t st[2];
-texcoords:
-    for (uint32_t k = 0; k < 2; k++)
-        st[k] = rgs_lerp(shade_rec_texcoord(flags, tail, uv, k), shade_rec_texcoord(flags, tail, uv, 2 + k),
-                     shade_rec_texcoord(flags, tail, uv, 4 + k), h->u, h->v);
-    const uint32_t entry = region_start(mem, R_TEXTURES) + TEX_WORDS * t;
-    uint32_t tex[3];
-    shade_read(op, c, entry, TEX_WORDS);
-    rgs_sample_bilinear(mem, &mem[entry], st[0], st[1], tex, op, c);
-texture_modulate:
-    for (int k = 0; k < 3; k++)
-        out[k] = q_mul(out[k], tex[k]);
-}
-#endif
-
-/* Multiplies out (Q12) by the vertex colours interpolated at the hit, if the object has them:
- * bytes widened as texels, weights u, v, 1 - u - v in Q12. */
-static void modulate_colours(uint32_t flags, const uint32_t *tail, const hit_record *h, uint32_t out[3])
-{
-    if (!(flags & SHADE_HAS_COLOURS))
-        return;
-    const uint32_t wa = rgs_q_of(h->u), wb = rgs_q_of(h->v), wc = wa + wb < RGS_Q12_ONE ? RGS_Q12_ONE - wa - wb : 0u;
-vertex_colours:
-    for (uint32_t k = 0; k < 3; k++) {
-        const uint32_t sum = wa * q_byte(shade_rec_colour(flags, tail, 0, k)) +
-                             wb * q_byte(shade_rec_colour(flags, tail, 1, k)) + wc * q_byte(shade_rec_colour(flags, tail, 2, k));
-        out[k] = q_mul(out[k], (sum + 2048u) >> 12);
-    }
-}
-
-/* Base colour and emission at the hit (tail: the shading record's tail): the material's
- * factors, the base colour times the vertex colours and its texture, the emission times its
- * texture (through the emissive coordinates if the object has them). */
-static void surface_colours(const uint32_t *mem, uint32_t mat, uint32_t flags, const uint32_t *tail,
-                            const hit_record *h, surface *sf, unit_op *op, trace_counters *c)
-{
-material_factors:
-    for (uint32_t k = 0; k < 3; k++) {
-        sf->base[k] = rgs_q_of(mem[mat + k]);
-        sf->emission[k] = rgs_q_of(mem[mat + M_EMISSIVE + k]);
-    }
-    modulate_colours(flags, tail, h, sf->base);
-#if SAARCOR_CFG_TEXTURES
-    modulate_texture(mem, mem[mat + M_TEXTURE], flags, tail, 0, h, sf->base, op, c);
-    modulate_texture(mem, mem[mat + SHADE_M_EMISSIVE_TEXTURE], flags, tail, (flags & SHADE_HAS_EMISSIVE_UV) ? 1u : 0u,
-                     h, sf->emission, op, c);
-#else
-    (void)op, (void)c;
-#endif
-}
-
-/* The surface of ray i at hit h; its reads are noted in op: instance, object descriptor
- * (words 2..7), shading record, geometric normal if needed, material, and per texture sampled
- * (base colour, emissive) its entry and 4 texels: at most 15 (UNIT_OP_READS). */
-static surface surface_at(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h, unit_op *op,
-                          trace_counters *c)
-{
-    surface sf = { 0 };
-    if (h->instance == TRACE_NO_HIT || !(rp->active >> i & 1u))
-        return sf;
-    const uint32_t ia = region_start(mem, R_INSTANCES) + INST_WORDS * h->instance;
-    const uint32_t obj = region_start(mem, R_OBJECTS) + OBJ_WORDS * mem[ia + 12], flags = mem[obj + O_FLAGS];
-    const uint32_t shade = mem[obj + O_SHADING] + shade_rec_words(flags) * h->triangle;
-    const uint32_t *tail = &mem[shade + shade_rec_tail(flags)];
-    shade_read(op, c, ia, 13);
-    shade_read(op, c, obj + O_TRIANGLES, O_FLAGS - O_TRIANGLES + 1);
-    shade_read(op, c, shade, shade_rec_words(flags));
-    sf.valid = 1;
-    const f24_affine w2o = f24_affine_load(mem, ia);
-    rgs_surface_frame(rp->o[i], rp->d[i], h->t, h->cos_n, hit_normal(mem, h, obj, shade, op, c), &w2o, &sf);
-    sf.mat = region_start(mem, R_MATERIALS) + MAT_WORDS * shade_rec_material(flags, tail);
-    shade_read(op, c, sf.mat, MAT_WORDS);
-    sf.unlit = (mem[sf.mat + SHADE_M_FLAGS] & SHADE_MAT_UNLIT) != 0;
-    surface_colours(mem, sf.mat, flags, tail, h, &sf, op, c);
-    const uint32_t metal = rgs_q_of(mem[sf.mat + M_METALLIC]);
-tint:
-    for (int k = 0; k < 3; k++) /* 1 + m (b - 1) = (1 - m) + m b */
-        sf.tint[k] = q_add(RGS_Q12_ONE - (metal < RGS_Q12_ONE ? metal : RGS_Q12_ONE), q_mul(metal, sf.base[k]));
-    return sf;
-}
-
-/* Material shader words (docs/memory-image.md): kd | kr << 13 | k << 26 and kt | ks << 13. */
-static uint32_t mat_kd(const uint32_t *m) { return m[M_SHADER0] & 0x1FFFu; }
-static uint32_t mat_k(const uint32_t *m) { return m[M_SHADER0] >> 26 & 0xFu; }
-static uint32_t mat_ks(const uint32_t *m) { return m[M_SHADER1] >> 13 & 0x1FFFu; }
 
 /* ---- lights ----------------------------------------------------------------------------------- */
 
 
 static uint32_t at_least_one(uint32_t n) { return n ? n : 1u; }
 
-/* Next operation of a block (rgs_step). */
-enum { RB_GEN, RB_NEXT, RB_TRACE, RB_SURFACES, RB_LIGHT, RB_SHADOW_GEN, RB_SHADOW_TRACE, RB_ACCUM, RB_CHILD_GEN, RB_DONE };
 
 /* ---- shading steps ---------------------------------------------------------------------------- */
 
@@ -229,8 +96,8 @@ static void op_surfaces(const uint32_t *mem, rgs_block *b, unit_op *op, rgs_coun
     op_set(op, UNIT_RGS, at_least_one(count_rays(b->cur.rays.active)));
 surfaces:
     for (int i = 0; i < TRACE_PACKET; i++) {
-        b->sf[i] = surface_at(mem, &b->cur.rays, i, &b->trace.hits[i], op, &c->trace);
-        b->k_of[i] = b->sf[i].valid ? mat_k(&mem[b->sf[i].mat]) : 0u;
+        b->sf[i] = rgs_surface_at(mem, &b->cur.rays, i, &b->trace.hits[i], op, &c->trace);
+        b->k_of[i] = b->sf[i].valid ? rgs_mat_k(&mem[b->sf[i].mat]) : 0u;
         for (int k = 0; k < 3; k++) {
             b->diffuse[i][k] = b->sf[i].unlit ? RGS_Q12_ONE : Q12_AMBIENT; /* unlit: kd B alone */
             b->highlight[i][k] = 0;
@@ -349,32 +216,16 @@ static void op_accumulate(const uint32_t *mem, const rgs_config *cfg, rgs_block 
     const uint32_t depth = b->cur.depth + 1;
     const int children = SAARCOR_CFG_SECONDARY && depth <= cfg->max_depth && depth <= RGS_MAX_DEPTH &&
                          !(b->profile & PROFILE_NO_SECONDARY);
-    (void)children; /* unused when the configuration has no secondary rays */
     task_init(&refl, depth, RAY_REFLECTION);
     task_init(&trans, depth, RAY_TRANSMISSION);
     op_set(op, UNIT_RGS, at_least_one(count_rays(b->cur.rays.active)));
     b->children = 0;
+    const uint32_t spawn = (children ? RGS_SPAWN_ON : 0u) | ((b->profile & PROFILE_LIVE_CHILDREN) ? RGS_SPAWN_LIVE : 0u);
 accumulate:
-    for (int i = 0; i < TRACE_PACKET; i++) {
-        if (!(b->cur.rays.active >> i & 1u))
-            continue;
-        const uint32_t *m = sf[i].valid ? &mem[sf[i].mat] : 0;
-        for (int k = 0; k < 3; k++) {
-            uint32_t local = q_byte(BACKGROUND >> (16 - 8 * k) & 0xFFu);
-            if (sf[i].valid)
-                local = q_add(q_add(sf[i].emission[k], q_mul(q_mul(mat_kd(m), sf[i].base[k]), b->diffuse[i][k])),
-                              q_mul(q_mul(mat_ks(m), sf[i].tint[k]), b->highlight[i][k]));
-            b->acc[i][k] = q_add(b->acc[i][k], q_mul(b->cur.weight[i][k], local));
-        }
-#if SAARCOR_CFG_SECONDARY
-        if (sf[i].valid && children) {
-            const uint32_t spawned = refl.rays.active | trans.rays.active;
-            rgs_spawn_children(&mem[sf[i].mat], b->cur.weight[i], b->eps, i, &sf[i], &refl, &trans);
-            if (!(b->profile & PROFILE_LIVE_CHILDREN) || ((refl.rays.active | trans.rays.active) != spawned))
-                b->children++; /* its T_R steps (the general pipeline runs them for every surface) */
-        }
-#endif
-    }
+    for (int i = 0; i < TRACE_PACKET; i++)
+        if (b->cur.rays.active >> i & 1u)
+            b->children += rgs_accumulate_ray(sf[i].valid ? &mem[sf[i].mat] : 0, &sf[i], i, b->cur.weight[i],
+                                              b->diffuse[i], b->highlight[i], b->eps, spawn, b->acc[i], &refl, &trans);
     if (trans.rays.active)
         push(b, &trans, c);
     if (refl.rays.active)

@@ -30,7 +30,8 @@
  * 1 sqrt, 1 div; the three side by side, interpolated as lanes), normalization of D and N (2 sqrt,
  * 2 div), T_R steps on the transformation unit, per light 2 dot products (diffuse and
  * highlight cosines), the spot factor (1 div) and the float-to-Q12 converters. Latency 12 cycles
- * (the cycle model's default, docs/cycle-model.md: an estimate, no RTL yet), throughput one
+ * (the cycle model's default, docs/cycle-model.md: an estimate; rtl/rgs_ctrl.sv, the RTL of the
+ * block control, runs an operation's rays one after another and is not yet pipelined to it), throughput one
  * shaded ray per cycle (an operation takes as many issue slots as it shades rays, at least 1).
  */
 #ifndef SAARCOR_RGS_H
@@ -78,6 +79,9 @@ typedef struct {
     uint32_t emission[3]; /* Q12 emission: factor x bilinear sample of the emissive texture */
     uint32_t tint[3];   /* Q12 colour of reflection and highlight: 1 + metallic (base - 1) */
 } surface;
+
+/* Next operation of a block (rgs_block.phase, rgs_step; rtl/rgs_ctrl.sv has a state per phase). */
+enum { RB_GEN, RB_NEXT, RB_TRACE, RB_SURFACES, RB_LIGHT, RB_SHADOW_GEN, RB_SHADOW_TRACE, RB_ACCUM, RB_CHILD_GEN, RB_DONE };
 
 /* A 2x2 pixel block's thread: its ray tree, the packet in flight and its shading state. */
 typedef struct {

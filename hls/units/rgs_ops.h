@@ -3,7 +3,7 @@
  * that the RTL co-simulation (rtl/tb/tb_shade.cpp) can call them and the unit capture
  * (tb/cli/capture.c) can wrap them: the integer colour arithmetic in Q12 (4096 = 1.0, saturating
  * at 65535), the fp24 vector helpers, the barycentric interpolation and the frame of a hit
- * (hls/units/rgs_geom.c), a light's
+ * (hls/units/rgs_geom.c), the surface at a hit (hls/units/rgs_surface.c), a light's
  * weights and shadow rays (hls/units/rgs_light.c), the child rays (hls/units/rgs_spawn.c), the
  * bilinear texture sample
  * (hls/units/rgs_tex.c).
@@ -12,12 +12,36 @@
 #define SAARCOR_RGS_OPS_H
 
 #include "rgs.h"
+#include "trace_ops.h"
 
 #define RGS_Q12_MAX 65535u
 
 /* material words (docs/memory-image.md): the index of refraction, the shader words kd | kr << 13 |
  * k << 26 and kt | ks << 13 */
 enum { M_ETA = 13, M_SHADER0 = 14, M_SHADER1 = 15 };
+
+/* Material shader words (docs/memory-image.md): kd | kr << 13 | k << 26 and kt | ks << 13. */
+static inline uint32_t rgs_mat_kd(const uint32_t *m) { return m[M_SHADER0] & 0x1FFFu; }
+static inline uint32_t rgs_mat_k(const uint32_t *m) { return m[M_SHADER0] >> 26 & 0xFu; }
+static inline uint32_t rgs_mat_ks(const uint32_t *m) { return m[M_SHADER1] >> 13 & 0x1FFFu; }
+
+/* The image's words a surface reads (docs/memory-image.md): the header's texture count and region
+ * table (start of region r at word H_REGIONS + 2 r), the records' strides and the fields of the
+ * object descriptor and the material record that surface_at uses. */
+enum {
+    H_TEXTURES = 9, H_REGIONS = 18, R_MATERIALS = 1, R_TEXTURES = 2, R_OBJECTS = 5, R_INSTANCES = 8,
+    TEX_WORDS = 4, OBJ_WORDS = 16, O_TRIANGLES = 2, O_SHADING = 3, O_FLAGS = 7,
+    INST_WORDS = F24_INSTANCE_RECORD_WORDS, TRI_WORDS = F24_TRIANGLE_RECORD_WORDS, MAT_WORDS = 16,
+    M_EMISSIVE = 4, M_TEXTURE = 7, M_METALLIC = 10,
+};
+
+static inline uint32_t region_start(const uint32_t *mem, uint32_t r) { return mem[H_REGIONS + 2 * r]; }
+
+/* Notes a shading read in op (the shading cache's view) and counts it. */
+static inline void shade_read(unit_op *op, trace_counters *c, uint32_t addr, uint32_t words)
+{
+    op_read(op, c, MEM_SHADING, addr, words);
+}
 
 static inline uint32_t q_sat(uint32_t x) { return x < RGS_Q12_MAX ? x : RGS_Q12_MAX; }
 static inline uint32_t q_mul(uint32_t a, uint32_t b) { return q_sat((a * b + 2048u) >> 12); }
@@ -71,6 +95,15 @@ f24_vec3 rgs_lerp_normal(const f24_t n[3][F24Q_LANES], f24_t u, f24_t v);
  * point P = T_R (0, 0, t_hat). */
 void rgs_surface_frame(f24_vec3 o, f24_vec3 d, f24_t t, f24_t cos_n, f24_vec3 n, const f24_affine *w2o, surface *sf);
 
+/* The surface of ray i of packet rp at its hit h (hls/units/rgs_surface.c): the instance, object
+ * descriptor (words 2..7) and shading record reads, the object-space normal (the interpolated
+ * decoded vertex normals, or the geometric normal if their squared length is zero), the frame
+ * (rgs_surface_frame), the material, its colours (factors, vertex colours, base-colour and emissive
+ * textures) and the tint; its reads are noted in op (at most 15, UNIT_OP_READS). An invalid surface
+ * (all zero) for an inactive ray or a miss. */
+surface rgs_surface_at(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h, unit_op *op,
+                       trace_counters *c);
+
 /* Diffuse and highlight weights of light l (its 16-word record) at the packet's surfaces and the
  * shadow packet that tests them (hls/units/rgs_light.c); rays whose weights are zero are not
  * traced. k_of: the surfaces' highlight exponents (cos^(2^k)). */
@@ -90,6 +123,19 @@ void rgs_add_light(uint32_t diffuse[3], uint32_t highlight[3], uint32_t diff, ui
  * reflection), each active if its largest weight component is at least 16 (hls/units/rgs_spawn.c). */
 void rgs_spawn_children(const uint32_t *m, const uint32_t weight[3], f24_t eps, int i, const surface *sf,
                         rgs_task *refl, rgs_task *trans);
+
+/* rgs_accumulate_ray's spawn bits: the packet's depth allows children; the image's
+ * PROFILE_LIVE_CHILDREN (only a surface that spawns an active child takes T_R steps). */
+enum { RGS_SPAWN_ON = 1, RGS_SPAWN_LIVE = 2 };
+
+/* One active ray i of op_accumulate (hls/units/rgs_accum.c): its colour (the background for an
+ * invalid surface sf, else emission + kd base diffuse + ks tint highlight, m: its material record)
+ * times its Q12 weight added to acc; with RGS_SPAWN_ON in spawn and a valid surface its child rays
+ * into refl and trans (rgs_spawn_children). Returns 1 if the ray's child rays take T_R steps on the
+ * transformation unit (every spawning surface, or with RGS_SPAWN_LIVE one with an active child). */
+int rgs_accumulate_ray(const uint32_t *m, const surface *sf, int i, const uint32_t weight[3], const uint32_t diffuse[3],
+                       const uint32_t highlight[3], f24_t eps, uint32_t spawn, uint32_t acc[3], rgs_task *refl,
+                       rgs_task *trans);
 
 /* Texel coordinate of texture coordinate s over n texels (1 <= n < 2^31; centres at +1/2): the
  * wrapped integer part i0, its right neighbour i1 and the fraction in Q8 (0..256). */

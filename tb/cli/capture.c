@@ -24,7 +24,7 @@
 
 enum {
     CAP_XFORM, CAP_ISECT, CAP_TRAV, CAP_LIST, CAP_MEM, CAP_SCHED, CAP_RGS, CAP_REBASE, CAP_WIDE, CAP_TRAV_UNIT, CAP_TRACE,
-    CAP_SHADE_REC, CAP_TEX, CAP_FRAME, CAP_LIGHT, CAP_LERP, CAP_COLOUR, CAP_ACCUM, CAP_SPAWN, CAP_UNITS
+    CAP_SHADE_REC, CAP_TEX, CAP_FRAME, CAP_LIGHT, CAP_LERP, CAP_COLOUR, CAP_ACCUM, CAP_SPAWN, CAP_SURFACE, CAP_ACCUMULATE, CAP_UNITS
 };
 
 static struct {
@@ -36,7 +36,7 @@ static struct {
 
 const char *const capture_unit_names[CAPTURE_UNITS] = {
     "xform", "isect", "trav",  "list", "mem",  "sched",  "rgs",   "rebase", "wide", "trav_unit",
-    "trace", "shade_rec", "tex", "frame", "light", "lerp", "colour", "accum", "spawn"
+    "trace", "shade_rec", "tex", "frame", "light", "lerp", "colour", "accum", "spawn", "surface", "accumulate"
 };
 
 /* The list unit's threads: trace_state addresses in the order first seen (the RTL's thread ids),
@@ -1089,4 +1089,93 @@ void __wrap_trace_begin(const ray_packet *rays, uint32_t flags, trace_state *s)
 int __wrap_trace_step(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
 {
     return capturing() ? captured_trace_step(mem, s, op, c) : __real_trace_step(mem, s, op, c);
+}
+
+/* The surface of each hit the RGS shades (for rtl/tb/tb_shade.cpp): the memory image it reads
+ * (image_N.bin, as trace.hex), the ray's active bit, o, d; the hit's instance, triangle, t, u, v,
+ * cos_n; the reads noted (count, then address and words of each); the surface: valid, P, D^, N^,
+ * t_hat, entering, material address, unlit, base, emission, tint (Q12). */
+surface __real_rgs_surface_at(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h, unit_op *op,
+                              trace_counters *c);
+surface __wrap_rgs_surface_at(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h, unit_op *op,
+                              trace_counters *c);
+
+CAPTURE_PATH surface captured_surface(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h,
+                                      unit_op *op, trace_counters *c)
+{
+    const uint32_t first = op->n_reads;
+    const surface sf = __real_rgs_surface_at(mem, rp, i, h, op, c);
+    FILE *f = begin(CAP_SURFACE);
+    if (!f)
+        return sf;
+    fprintf(f, "%x %x %06x %06x %06x %06x %06x %06x %x %x %06x %06x %06x %06x %x", trace_image(mem),
+            rp->active >> i & 1u, rp->o[i].x, rp->o[i].y, rp->o[i].z, rp->d[i].x, rp->d[i].y, rp->d[i].z,
+            h->instance, h->triangle, h->t, h->u, h->v, h->cos_n, op->n_reads - first);
+    for (uint32_t r = first; r < op->n_reads; r++)
+        fprintf(f, " %x %x", op->read[r].addr, op->read[r].words);
+    const uint32_t w[14] = { (uint32_t)sf.valid, sf.p.x, sf.p.y, sf.p.z, sf.d.x, sf.d.y, sf.d.z,
+                             sf.n.x, sf.n.y, sf.n.z, sf.t_hat, (uint32_t)sf.entering, sf.mat, (uint32_t)sf.unlit };
+    fputc(' ', f);
+    words(f, w, 14);
+    for (int k = 0; k < 3; k++)
+        fprintf(f, " %x %x %x", sf.base[k], sf.emission[k], sf.tint[k]);
+    end(f);
+    return sf;
+}
+
+surface __wrap_rgs_surface_at(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h, unit_op *op,
+                              trace_counters *c)
+{
+    return capturing() ? captured_surface(mem, rp, i, h, op, c) : __real_rgs_surface_at(mem, rp, i, h, op, c);
+}
+
+/* Each active ray's share of op_accumulate (for rtl/tb/tb_accum.cpp): the material's words 13..15
+ * (0 for an invalid surface), the surface's valid, T_R origin, D^, N^, t_hat, entering, base,
+ * emission, tint; the ray i, its weight, diffuse and highlight sums, e, the spawn bits, the pixel's
+ * sum before; the sum after, the reflection ray's o, d, weight, active bit, the transmission ray's
+ * likewise, and whether its children take T_R steps. */
+int __real_rgs_accumulate_ray(const uint32_t *m, const surface *sf, int i, const uint32_t weight[3],
+                              const uint32_t diffuse[3], const uint32_t highlight[3], f24_t eps, uint32_t spawn,
+                              uint32_t acc[3], rgs_task *refl, rgs_task *trans);
+int __wrap_rgs_accumulate_ray(const uint32_t *m, const surface *sf, int i, const uint32_t weight[3],
+                              const uint32_t diffuse[3], const uint32_t highlight[3], f24_t eps, uint32_t spawn,
+                              uint32_t acc[3], rgs_task *refl, rgs_task *trans);
+
+CAPTURE_PATH int captured_accumulate(const uint32_t *m, const surface *sf, int i, const uint32_t weight[3],
+                                     const uint32_t diffuse[3], const uint32_t highlight[3], f24_t eps, uint32_t spawn,
+                                     uint32_t acc[3], rgs_task *refl, rgs_task *trans)
+{
+    const uint32_t before[3] = { acc[0], acc[1], acc[2] };
+    const int steps = __real_rgs_accumulate_ray(m, sf, i, weight, diffuse, highlight, eps, spawn, acc, refl, trans);
+    FILE *f = begin(CAP_ACCUMULATE);
+    if (!f)
+        return steps;
+    const uint32_t mw[3] = { sf->valid ? m[M_ETA] : 0u, sf->valid ? m[M_SHADER0] : 0u, sf->valid ? m[M_SHADER1] : 0u };
+    const uint32_t geo[12] = { (uint32_t)sf->valid, sf->tr.m[0][3], sf->tr.m[1][3], sf->tr.m[2][3], sf->d.x, sf->d.y,
+                               sf->d.z, sf->n.x, sf->n.y, sf->n.z, sf->t_hat, (uint32_t)sf->entering };
+    fprintf(f, "%x %x %x ", mw[0], mw[1], mw[2]);
+    words(f, geo, 12);
+    const uint32_t *q[6] = { sf->base, sf->emission, sf->tint, weight, diffuse, highlight };
+    for (int k = 0; k < 6; k++)
+        fprintf(f, " %x %x %x", q[k][0], q[k][1], q[k][2]);
+    fprintf(f, " %x %06x %x %x %x %x", (uint32_t)i, eps, spawn, before[0], before[1], before[2]);
+    fprintf(f, " %x %x %x", acc[0], acc[1], acc[2]);
+    const rgs_task *child[2] = { refl, trans };
+    for (int k = 0; k < 2; k++) {
+        const rgs_task *t = child[k];
+        fprintf(f, " %06x %06x %06x %06x %06x %06x", t->rays.o[i].x, t->rays.o[i].y, t->rays.o[i].z, t->rays.d[i].x,
+                t->rays.d[i].y, t->rays.d[i].z);
+        fprintf(f, " %x %x %x %x", t->weight[i][0], t->weight[i][1], t->weight[i][2], t->rays.active >> i & 1u);
+    }
+    fprintf(f, " %x", (uint32_t)steps);
+    end(f);
+    return steps;
+}
+
+int __wrap_rgs_accumulate_ray(const uint32_t *m, const surface *sf, int i, const uint32_t weight[3],
+                              const uint32_t diffuse[3], const uint32_t highlight[3], f24_t eps, uint32_t spawn,
+                              uint32_t acc[3], rgs_task *refl, rgs_task *trans)
+{
+    return capturing() ? captured_accumulate(m, sf, i, weight, diffuse, highlight, eps, spawn, acc, refl, trans)
+                       : __real_rgs_accumulate_ray(m, sf, i, weight, diffuse, highlight, eps, spawn, acc, refl, trans);
 }

@@ -61,8 +61,8 @@
 int capture_start(const char *dir, uint64_t limit, char *err, unsigned errlen);
 
 /* Transactions recorded per unit (DIR/NAME.hex for each name): xform, isect, trav, list, mem, sched, rgs,
- * rebase, wide, trav_unit, trace, shade_rec, tex, frame, light, lerp, colour, accum, spawn. */
-#define CAPTURE_UNITS 19
+ * rebase, wide, trav_unit, trace, shade_rec, tex, frame, light, lerp, colour, accum, spawn, surface, accumulate. */
+#define CAPTURE_UNITS 21
 extern const char *const capture_unit_names[CAPTURE_UNITS];
 void capture_counts(uint64_t out[CAPTURE_UNITS]);
 

@@ -1,0 +1,552 @@
+// rgs_surface: the surface the RGS shades at a hit (paper sections 2.2 and 3, Figure 2 path g:
+// the shading's reads and the surface's geometry and colours; hls/units/rgs_surface.c
+// `rgs_surface_at`), bit for bit as the C, one surface at a time in this order:
+//   reads   the instance's 13 words (the world-to-object 3x3, the object index), the object
+//           descriptor's words 2..7 (triangle and shading record addresses, flags), the triangle's
+//           shading record (shade_rec_words(flags) words, up to 19) on the word read port
+//   normal  with vertex normals: the 3 codes decoded (`shade_rec_decode`, one a cycle) and
+//           interpolated per component (`rgs_lerp`, as `rgs_lerp_normal`); the squared length
+//           (`f24_dot3`, the C's `rgs_dot3(n, n)`): if its exponent is zero, the geometric normal
+//           (values 8..10 of the triangle record, F24_RECORD_SPAN(8, 3) words read)
+//   frame   d^, n^ facing the ray, t_hat, P, entering (`rgs_frame`)
+//   material  its 16 words read (address: the object's material or the record tail's); unlit,
+//           the highlight exponent k (shader word 0, bits 26..29), the index of refraction and the
+//           kd, kr, kt, ks fields (words 13..15) for the accumulation
+//   colours  9 conversions to Q12 on one `q12_of` (base and emissive factors, metallic, u, v);
+//           vertex colours (`modulate_colours`: weights q(u), q(v), 1 - both, the bytes widened,
+//           the C's uint32 arithmetic); per texture (base colour, then emissive) if its index is
+//           below the header's texture count and the object has texture coordinates: s, t
+//           interpolated (`rgs_lerp`), the entry's 4 words read, `tex_bilinear` sampling through
+//           the same read port (its 4 texel reads), the colour times the sample (`q_mul`); the tint
+//           (1 - m) + m base with m clamped to one (`q_mul`, `q_add`)
+// An inactive ray or a miss gives the invalid surface (all zero) without a read. T_R is wiring
+// (d^, n^ and the ray's origin, which the caller keeps). The header's words the C reads as
+// constants (the instance, object, material and texture regions' starts, the texture count) are
+// inputs: the block control loads them once per frame.
+// Reads: valid/ready request of one word address, responses in order (valid, no back pressure: the
+// unit takes one every cycle), as trace_core's word port; the read sequence is the C's (op reads).
+// Latency: about 20 + the reads (13 + 6 + record + material + per texture 8 words) + the chain of the
+// operators used (decode 42 + 2 lerp 24 + dot 16 + frame 118 + 9 conversions 20 + per texture lerp
+// 24 + sample 44): about 300 cycles for a textured hit with a memory answering in the next cycle
+// (the bench measures it); throughput one surface per latency (II = latency): the control is a
+// sequence, the units inside are pipelined and idle between their uses. A pipelined form with
+// several surfaces in flight (the packet's 4) is the next step. The thread id travels with the
+// surface. Resources: one each of `shade_rec_decode`, `rgs_lerp`, `f24_dot3`, `rgs_frame`,
+// `q12_of`, `tex_bilinear`; 3 `q12_mul`; the record (19 words), a read buffer (16 words), the
+// matrix (9 W bits) and the surface's registers; a 608-bit funnel shifter for the record's tail
+// fields.
+module rgs_surface #(
+  parameter int E = 7,
+  parameter int M = 16,
+  parameter int TID_BITS = 6,
+  parameter int CVT_STAGES = 2,
+  parameter int MUL_STAGES = 4,
+  parameter int ADD_STAGES = 6,
+  parameter int SQRT_STAGES = 9,
+  parameter int DIV_STAGES = 11,
+  parameter int CMP_STAGES = 2,
+  parameter int TOI_STAGES = 2,
+  parameter int MOD_STAGES = 16
+) (
+  input  logic                 clk_i,
+  input  logic                 rst_ni,
+  // the header's words (docs/memory-image.md): region starts and the texture count
+  input  logic [31:0]          inst_base_i,
+  input  logic [31:0]          obj_base_i,
+  input  logic [31:0]          mat_base_i,
+  input  logic [31:0]          tex_base_i,
+  input  logic [31:0]          n_tex_i,
+  // a ray and its hit (trace_core's result fields)
+  input  logic                 valid_i,
+  output logic                 ready_o,
+  input  logic [TID_BITS-1:0]  tid_i,
+  input  logic                 active_i,
+  input  logic [3*(E+M+1)-1:0] o_i,
+  input  logic [3*(E+M+1)-1:0] d_i,
+  input  logic [31:0]          inst_i,
+  input  logic [31:0]          tri_i,
+  input  logic [E+M:0]         t_i,
+  input  logic [E+M:0]         u_i,
+  input  logic [E+M:0]         v_i,
+  input  logic [E+M:0]         cos_n_i,
+  // word read port
+  output logic                 mem_req_valid_o,
+  input  logic                 mem_req_ready_i,
+  output logic [31:0]          mem_addr_o,
+  input  logic                 mem_rsp_valid_i,
+  input  logic [31:0]          mem_rdata_i,
+  // the surface (hls/units/rgs.h `surface`, and the material's fields the accumulation needs)
+  output logic                 valid_o,
+  input  logic                 ready_i,
+  output logic [TID_BITS-1:0]  tid_o,
+  output logic                 sf_valid_o,
+  output logic [3*(E+M+1)-1:0] p_o,
+  output logic [3*(E+M+1)-1:0] d_o,
+  output logic [3*(E+M+1)-1:0] n_o,
+  output logic [E+M:0]         t_hat_o,
+  output logic                 entering_o,
+  output logic [31:0]          mat_o,
+  output logic                 unlit_o,
+  output logic [3:0]           k_o,
+  output logic [E+M:0]         eta_o,       // material word 13, the shader fields of words 14, 15
+  output logic [12:0]          kd_o,
+  output logic [12:0]          kr_o,
+  output logic [12:0]          kt_o,
+  output logic [12:0]          ks_o,
+  output logic [3*16-1:0]      base_o,      // Q12 R, G, B from the low half-word up
+  output logic [3*16-1:0]      emission_o,
+  output logic [3*16-1:0]      tint_o
+);
+  localparam int W = 1 + E + M;
+  localparam int V = 3 * W;
+  // hls/units/f24_record.h: the triangle record (12 values, 3 x 9-bit vertex low parts, 3 edge
+  // flags) and the instance record (whole triangle records holding 17 words)
+  localparam int TRI_WORDS = (12 * W + 27 + 3 + 31) / 32;
+  localparam int INST_WORDS = TRI_WORDS * ((17 + TRI_WORDS - 1) / TRI_WORDS);
+  localparam int GN_WORD = 8 * W / 32;                         // the geometric normal: values 8..10
+  localparam int GN_SPAN = (11 * W - 1) / 32 - GN_WORD + 1;
+  localparam int GN_SHIFT = 8 * W % 32;
+  localparam int REC_MAX = 19;                                  // SHADE_MAX_WORDS
+  localparam int BUF = 16;
+  localparam logic [31:0] NO_HIT = 32'hFFFFFFFF;
+  localparam logic [15:0] ONE = 16'd4096;
+
+  typedef enum logic [4:0] {
+    S_IDLE, S_INST, S_OBJ, S_REC, S_DEC, S_LERPN, S_DOT, S_GN, S_FRAME, S_MAT, S_Q, S_TEX, S_TLERP, S_TENTRY,
+    S_TSAMPLE, S_TINT, S_OUT
+  } state_t;
+  state_t st;
+
+  // ---- the transaction's inputs ----
+  logic [TID_BITS-1:0] tid_q;
+  logic [V-1:0] o_q, d_q;
+  logic [31:0] tri_q;
+  logic [W-1:0] t_q, u_q, v_q, cos_q;
+
+  // ---- reads: a burst of n words from addr; responses into the record or the buffer ----
+  logic [31:0] rd_addr_q, buf_q [BUF], rec_q [REC_MAX];
+  logic [4:0] rd_left_q, rsp_left_q, rsp_idx_q;
+  logic burst_done, tex_port;
+  assign burst_done = rsp_left_q == 5'd0;
+  logic tex_req_valid;
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic tex_rsp_ready;  // always set: the sample's result is taken at once, so the texels are too
+  /* verilator lint_on UNUSEDSIGNAL */
+  logic [31:0] tex_req_addr;
+  assign tex_port = st == S_TSAMPLE;
+  assign mem_req_valid_o = tex_port ? tex_req_valid : rd_left_q != 5'd0;
+  assign mem_addr_o = tex_port ? tex_req_addr : rd_addr_q;
+
+  // ---- the object's flags and the record's fields (shade_rec.h) ----
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic [31:0] flags_q;  // bits 0, 1, 3, 4, 5 and the object's material in 16..31 (bit 2: the traversal's)
+  /* verilator lint_on UNUSEDSIGNAL */
+  logic [31:0] tri_base_q;
+  logic [V*3-1:0] w2o_q;   // m[k][r] at word 3k + r
+  logic has_n, has_tc, one_mat, has_col, has_euv;
+  assign has_n = flags_q[0];
+  assign has_tc = flags_q[1];
+  assign one_mat = flags_q[3];
+  assign has_col = flags_q[4];
+  assign has_euv = flags_q[5];
+
+  // words of a record for the flags f (shade_rec_words)
+  /* verilator lint_off UNUSEDSIGNAL */
+  function automatic logic [4:0] rec_words(input logic [5:0] f);  // f[2] is not the record's
+  /* verilator lint_on UNUSEDSIGNAL */
+    logic [31:0] bits;
+    bits = (f[3] ? 32'd0 : 32'd16) + 32'(6 * W) * ((f[1] ? 32'd1 : 32'd0) + (f[5] ? 32'd1 : 32'd0)) +
+           (f[4] ? 32'd72 : 32'd0);
+    return 5'((f[0] ? 32'd4 : 32'd0) + (bits + 32'd31) / 32'd32);
+  endfunction
+
+  logic [32*REC_MAX-1:0] rec_flat, tail;
+  for (genvar k = 0; k < REC_MAX; k++) begin : g_rec
+    assign rec_flat[32*k +: 32] = rec_q[k];
+  end
+  assign tail = has_n ? rec_flat >> 128 : rec_flat;
+  logic [31:0] mat_bits, colour_at;
+  assign mat_bits = one_mat ? 32'd0 : 32'd16;
+  assign colour_at = mat_bits + 32'(6 * W) * ((has_tc ? 32'd1 : 32'd0) + (has_euv ? 32'd1 : 32'd0));
+  function automatic logic [31:0] tail_field(input logic [32*REC_MAX-1:0] tl, input logic [31:0] at);
+    return 32'(tl >> at);
+  endfunction
+
+  // ---- the units ----
+  logic [1:0] in_q, out_q;   // operations issued and results collected in the current state
+  logic [3:0] qin_q, qout_q; // the conversions
+  logic dec_valid, dec_ready, dec_ovalid;
+  logic [41:0] dec_code;
+  logic [V-1:0] dec_n, nv_q [3], n_q;
+  /* verilator lint_off PINCONNECTEMPTY */
+  assign dec_valid = st == S_DEC && in_q != 2'd3;
+  assign dec_code = rec_flat[42*in_q +: 42];
+  shade_rec_decode #(.E(E), .M(M), .TID_BITS(1), .CVT_STAGES(CVT_STAGES), .MUL_STAGES(MUL_STAGES),
+    .ADD_STAGES(ADD_STAGES), .SQRT_STAGES(SQRT_STAGES), .DIV_STAGES(DIV_STAGES)) u_dec (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(dec_valid), .ready_o(dec_ready), .tid_i(1'b0), .code_i(dec_code),
+    .valid_o(dec_ovalid), .ready_i(1'b1), .tid_o(), .n_o(dec_n));
+
+  // the interpolation: a normal's components, then a texture's s and t (tail coordinates i, 2+i, 4+i)
+  logic tsel_q;              // the texture: 0 base colour, 1 emissive
+  logic [31:0] uv_at;
+  assign uv_at = mat_bits + (has_euv && tsel_q ? 32'(6 * W) : 32'd0);
+  logic lerp_valid, lerp_ready, lerp_ovalid;
+  logic [W-1:0] la, lb, lc, lerp_r, lr_q [3];
+  assign lerp_valid = (st == S_LERPN && in_q != 2'd3) || (st == S_TLERP && in_q != 2'd2);
+  always_comb begin
+    if (st == S_LERPN) begin
+      la = nv_q[0][W*in_q +: W];
+      lb = nv_q[1][W*in_q +: W];
+      lc = nv_q[2][W*in_q +: W];
+    end else begin
+      la = W'(tail_field(tail, uv_at + 32'(W) * 32'(in_q)));
+      lb = W'(tail_field(tail, uv_at + 32'(W) * (32'd2 + 32'(in_q))));
+      lc = W'(tail_field(tail, uv_at + 32'(W) * (32'd4 + 32'(in_q))));
+    end
+  end
+  rgs_lerp #(.E(E), .M(M), .TID_BITS(1), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES)) u_lerp (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(lerp_valid), .ready_o(lerp_ready), .tid_i(1'b0), .a_i(la), .b_i(lb),
+    .c_i(lc), .u_i(u_q), .v_i(v_q), .valid_o(lerp_ovalid), .ready_i(1'b1), .tid_o(), .r_o(lerp_r));
+
+  logic dot_ovalid;
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic [W-1:0] dot_r;  // its exponent: the zero test
+  /* verilator lint_on UNUSEDSIGNAL */
+  f24_dot3 #(.E(E), .M(M), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES)) u_dot (
+    .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(st == S_DOT && in_q == 2'd0), .a_i(n_q), .b_i(n_q),
+    .valid_o(dot_ovalid), .res_o(dot_r));
+
+  logic fr_ready, fr_ovalid, fr_entering;
+  logic [V-1:0] fr_d, fr_n, fr_p;
+  logic [W-1:0] fr_t_hat;
+  rgs_frame #(.E(E), .M(M), .TID_BITS(1), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES),
+    .SQRT_STAGES(SQRT_STAGES), .DIV_STAGES(DIV_STAGES)) u_frame (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(st == S_FRAME && in_q == 2'd0), .ready_o(fr_ready), .tid_i(1'b0),
+    .o_i(o_q), .d_i(d_q), .t_i(t_q), .cos_n_i(cos_q), .n_i(n_q), .w2o_i(w2o_q), .valid_o(fr_ovalid), .ready_i(1'b1),
+    .tid_o(), .d_o(fr_d), .n_o(fr_n), .entering_o(fr_entering), .t_hat_o(fr_t_hat), .p_o(fr_p));
+
+  // the material's fields: factors base 0..2, emission 4..6, metallic 10 (q12_of inputs 0..6), then u, v
+  logic [W-1:0] mf_q [7];
+  logic [31:0] tex_idx_q [2];
+  logic [W-1:0] q_x;
+  logic q_ovalid;
+  logic [15:0] q_r, qres_q [9];
+  always_comb begin
+    if (qin_q < 4'd7) q_x = mf_q[qin_q[2:0]];
+    else if (qin_q == 4'd7) q_x = u_q;
+    else q_x = v_q;
+  end
+  q12_of #(.E(E), .M(M), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES), .TOI_STAGES(TOI_STAGES)) u_q12 (
+    .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(st == S_Q && qin_q != 4'd9), .x_i(q_x),
+    .valid_o(q_ovalid), .q_o(q_r));
+
+  logic tx_ready, tx_ovalid;
+  logic [47:0] tx_rgb;
+  tex_bilinear #(.E(E), .M(M), .TID_BITS(1), .CVT_STAGES(CVT_STAGES), .MUL_STAGES(MUL_STAGES),
+    .ADD_STAGES(ADD_STAGES), .CMP_STAGES(CMP_STAGES), .TOI_STAGES(TOI_STAGES), .MOD_STAGES(MOD_STAGES)) u_tex (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(st == S_TSAMPLE && in_q == 2'd0), .ready_o(tx_ready), .tid_i(1'b0),
+    .s_i(lr_q[0]), .t_i(lr_q[1]), .width_i(buf_q[0]), .height_i(buf_q[1]), .addr_i(buf_q[2]),
+    .req_valid_o(tex_req_valid), .req_ready_i(tex_port && mem_req_ready_i), .req_addr_o(tex_req_addr),
+    .rsp_valid_i(tex_port && mem_rsp_valid_i), .rsp_ready_o(tex_rsp_ready), .rsp_data_i(mem_rdata_i),
+    .valid_o(tx_ovalid), .ready_i(1'b1), .tid_o(), .rgb_o(tx_rgb));
+  /* verilator lint_on PINCONNECTEMPTY */
+
+  // ---- Q12 products (q_mul) on 3 shared multipliers: the texture's modulation or the tint ----
+  logic [15:0] base_q [3], emis_q [3], qm_a [3], qm_b [3], qm_p [3];
+  for (genvar k = 0; k < 3; k++) begin : g_qm
+    assign qm_a[k] = st == S_TINT ? qres_q[6] : (tsel_q ? emis_q[k] : base_q[k]);
+    assign qm_b[k] = st == S_TINT ? base_q[k] : tx_rgb[16*k +: 16];
+    q12_mul u_qm (.a_i(qm_a[k]), .b_i(qm_b[k]), .p_o(qm_p[k]));
+  end
+
+  // vertex colours (modulate_colours): the C's uint32 sums and product (q_mul of a factor that can
+  // exceed 16 bits for barycentrics outside [0, 1])
+  function automatic logic [15:0] q_sat32(input logic [31:0] x);
+    return x < 32'd65535 ? x[15:0] : 16'hFFFF;
+  endfunction
+  function automatic logic [31:0] q_byte(input logic [7:0] b);
+    return {20'd0, b, 4'd0} | {28'd0, b[7:4]};
+  endfunction
+  logic [31:0] wa, wb, wc;
+  logic [15:0] vc_base [3];
+  assign wa = {16'd0, qres_q[7]};
+  assign wb = {16'd0, qres_q[8]};
+  assign wc = wa + wb < 32'(ONE) ? 32'(ONE) - wa - wb : 32'd0;
+  for (genvar k = 0; k < 3; k++) begin : g_vc
+    logic [31:0] sum;
+    assign sum = wa * q_byte(8'(tail_field(tail, colour_at + 32'(8 * k)))) +
+                 wb * q_byte(8'(tail_field(tail, colour_at + 32'(24 + 8 * k)))) +
+                 wc * q_byte(8'(tail_field(tail, colour_at + 32'(48 + 8 * k))));
+    assign vc_base[k] = q_sat32(({16'd0, qres_q[k]} * ((sum + 32'd2048) >> 12) + 32'd2048) >> 12);
+  end
+
+  // the texture to sample: its index below the header's count, and texture coordinates
+  logic tex_used;
+  assign tex_used = tex_idx_q[tsel_q] < n_tex_i && has_tc;
+  logic [15:0] metal_c;
+  assign metal_c = qres_q[6] < ONE ? qres_q[6] : ONE;
+
+  // ---- outputs ----
+  logic sfv_q, ent_q, unlit_q;
+  logic [V-1:0] p_q, dd_q, nn_q;
+  logic [W-1:0] th_q;
+  logic [31:0] mat_q;
+  logic [3:0] k_q;
+  logic [W-1:0] eta_q;
+  logic [12:0] kd_q, kr_q, kt_q, ks_q;
+  logic [15:0] tint_q [3];
+  assign ready_o = st == S_IDLE;
+  assign valid_o = st == S_OUT;
+  assign tid_o = tid_q;
+  assign sf_valid_o = sfv_q;
+  assign p_o = p_q;
+  assign d_o = dd_q;
+  assign n_o = nn_q;
+  assign t_hat_o = th_q;
+  assign entering_o = ent_q;
+  assign mat_o = mat_q;
+  assign unlit_o = unlit_q;
+  assign k_o = k_q;
+  assign eta_o = eta_q;
+  assign kd_o = kd_q;
+  assign kr_o = kr_q;
+  assign kt_o = kt_q;
+  assign ks_o = ks_q;
+  for (genvar k = 0; k < 3; k++) begin : g_out
+    assign base_o[16*k +: 16] = base_q[k];
+    assign emission_o[16*k +: 16] = emis_q[k];
+    assign tint_o[16*k +: 16] = tint_q[k];
+  end
+
+  // ---- the sequence ----
+  logic [31:0] rec_addr, mat_addr;
+  assign rec_addr = buf_q[1] + 32'(rec_words(buf_q[5][5:0])) * tri_q;
+  assign mat_addr = mat_base_i + 32'd16 * (one_mat ? {16'd0, flags_q[31:16]} : {16'd0, tail[15:0]});
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      st <= S_IDLE;
+      rd_left_q <= '0;
+      rsp_left_q <= '0;
+    end else begin
+      // the burst's requests and responses (not while the texture sample owns the port)
+      if (!tex_port && rd_left_q != 5'd0 && mem_req_ready_i) begin
+        rd_addr_q <= rd_addr_q + 32'd1;
+        rd_left_q <= rd_left_q - 5'd1;
+      end
+      if (!tex_port && mem_rsp_valid_i && rsp_left_q != 5'd0) begin
+        if (st == S_REC) rec_q[rsp_idx_q] <= mem_rdata_i;
+        else buf_q[rsp_idx_q[3:0]] <= mem_rdata_i;
+        rsp_idx_q <= rsp_idx_q + 5'd1;
+        rsp_left_q <= rsp_left_q - 5'd1;
+      end
+      unique case (st)
+        S_IDLE:
+          if (valid_i) begin
+            tid_q <= tid_i;
+            o_q <= o_i;
+            d_q <= d_i;
+            tri_q <= tri_i;
+            t_q <= t_i;
+            u_q <= u_i;
+            v_q <= v_i;
+            cos_q <= cos_n_i;
+            sfv_q <= 1'b0;
+            p_q <= '0;
+            dd_q <= '0;
+            nn_q <= '0;
+            th_q <= '0;
+            ent_q <= 1'b0;
+            mat_q <= '0;
+            unlit_q <= 1'b0;
+            k_q <= '0;
+            eta_q <= '0;
+            kd_q <= '0;
+            kr_q <= '0;
+            kt_q <= '0;
+            ks_q <= '0;
+            for (int k = 0; k < 3; k++) begin
+              base_q[k] <= '0;
+              emis_q[k] <= '0;
+              tint_q[k] <= '0;
+            end
+            if (!active_i || inst_i == NO_HIT) st <= S_OUT;
+            else begin
+              rd_addr_q <= inst_base_i + 32'(INST_WORDS) * inst_i;
+              rd_left_q <= 5'd13;
+              rsp_left_q <= 5'd13;
+              rsp_idx_q <= '0;
+              st <= S_INST;
+            end
+          end
+        S_INST:
+          if (burst_done) begin
+            for (int k = 0; k < 3; k++)
+              for (int r = 0; r < 3; r++) w2o_q[W*(3*k+r) +: W] <= buf_q[4*k+r][W-1:0];
+            rd_addr_q <= obj_base_i + 32'd16 * buf_q[12] + 32'd2;
+            rd_left_q <= 5'd6;
+            rsp_left_q <= 5'd6;
+            rsp_idx_q <= '0;
+            st <= S_OBJ;
+          end
+        S_OBJ:
+          if (burst_done) begin
+            tri_base_q <= buf_q[0];
+            flags_q <= buf_q[5];
+            rd_addr_q <= rec_addr;
+            rd_left_q <= rec_words(buf_q[5][5:0]);
+            rsp_left_q <= rec_words(buf_q[5][5:0]);
+            rsp_idx_q <= '0;
+            st <= S_REC;
+          end
+        S_REC:
+          if (burst_done) begin
+            in_q <= '0;
+            out_q <= '0;
+            n_q <= '0;
+            st <= has_n ? S_DEC : S_DOT;
+          end
+        S_DEC: begin
+          if (dec_valid && dec_ready) in_q <= in_q + 2'd1;
+          if (dec_ovalid) begin
+            nv_q[out_q] <= dec_n;
+            out_q <= out_q + 2'd1;
+            if (out_q == 2'd2) begin
+              in_q <= '0;
+              out_q <= '0;
+              st <= S_LERPN;
+            end
+          end
+        end
+        S_LERPN: begin
+          if (lerp_valid && lerp_ready) in_q <= in_q + 2'd1;
+          if (lerp_ovalid) begin
+            n_q[W*out_q +: W] <= lerp_r;
+            out_q <= out_q + 2'd1;
+            if (out_q == 2'd2) begin
+              in_q <= '0;
+              out_q <= '0;
+              st <= S_DOT;
+            end
+          end
+        end
+        S_DOT: begin
+          if (in_q == 2'd0) in_q <= 2'd1;
+          if (dot_ovalid) begin
+            in_q <= '0;
+            if (dot_r[W-2:M] == '0) begin  // f24_is_zero: the geometric normal
+              rd_addr_q <= tri_base_q + 32'(TRI_WORDS) * tri_q + 32'(GN_WORD);
+              rd_left_q <= 5'(GN_SPAN);
+              rsp_left_q <= 5'(GN_SPAN);
+              rsp_idx_q <= '0;
+              st <= S_GN;
+            end else st <= S_FRAME;
+          end
+        end
+        S_GN:
+          if (burst_done) begin
+            for (int c = 0; c < 3; c++) n_q[W*c +: W] <= W'({buf_q[2], buf_q[1], buf_q[0]} >> (GN_SHIFT + W * c));
+            st <= S_FRAME;
+          end
+        S_FRAME: begin
+          if (in_q == 2'd0 && fr_ready) in_q <= 2'd1;
+          if (fr_ovalid) begin
+            sfv_q <= 1'b1;
+            dd_q <= fr_d;
+            nn_q <= fr_n;
+            p_q <= fr_p;
+            th_q <= fr_t_hat;
+            ent_q <= fr_entering;
+            mat_q <= mat_addr;
+            rd_addr_q <= mat_addr;
+            rd_left_q <= 5'd16;
+            rsp_left_q <= 5'd16;
+            rsp_idx_q <= '0;
+            st <= S_MAT;
+          end
+        end
+        S_MAT:
+          if (burst_done) begin
+            for (int k = 0; k < 3; k++) begin
+              mf_q[k] <= buf_q[k][W-1:0];
+              mf_q[3+k] <= buf_q[4+k][W-1:0];
+            end
+            mf_q[6] <= buf_q[10][W-1:0];
+            tex_idx_q[0] <= buf_q[7];
+            tex_idx_q[1] <= buf_q[12];
+            unlit_q <= buf_q[8][3];
+            k_q <= buf_q[14][29:26];
+            eta_q <= buf_q[13][W-1:0];
+            kd_q <= buf_q[14][12:0];
+            kr_q <= buf_q[14][25:13];
+            kt_q <= buf_q[15][12:0];
+            ks_q <= buf_q[15][25:13];
+            qin_q <= '0;
+            qout_q <= '0;
+            st <= S_Q;
+          end
+        S_Q: begin
+          if (qin_q != 4'd9) qin_q <= qin_q + 4'd1;
+          if (q_ovalid) begin
+            qres_q[qout_q] <= q_r;
+            qout_q <= qout_q + 4'd1;
+          end
+          if (qout_q == 4'd9) begin
+            for (int k = 0; k < 3; k++) begin
+              base_q[k] <= has_col ? vc_base[k] : qres_q[k];
+              emis_q[k] <= qres_q[3+k];
+            end
+            tsel_q <= 1'b0;
+            st <= S_TEX;
+          end
+        end
+        S_TEX:
+          if (tex_used) begin
+            in_q <= '0;
+            out_q <= '0;
+            st <= S_TLERP;
+          end else if (tsel_q) st <= S_TINT;
+          else tsel_q <= 1'b1;
+        S_TLERP: begin
+          if (lerp_valid && lerp_ready) in_q <= in_q + 2'd1;
+          if (lerp_ovalid) begin
+            lr_q[out_q] <= lerp_r;
+            out_q <= out_q + 2'd1;
+            if (out_q == 2'd1) begin
+              rd_addr_q <= tex_base_i + 32'd4 * tex_idx_q[tsel_q];
+              rd_left_q <= 5'd4;
+              rsp_left_q <= 5'd4;
+              rsp_idx_q <= '0;
+              st <= S_TENTRY;
+            end
+          end
+        end
+        S_TENTRY:
+          if (burst_done) begin
+            in_q <= '0;
+            st <= S_TSAMPLE;
+          end
+        S_TSAMPLE: begin
+          if (in_q == 2'd0 && tx_ready) in_q <= 2'd1;
+          if (tx_ovalid) begin
+            for (int k = 0; k < 3; k++)
+              if (tsel_q) emis_q[k] <= qm_p[k];
+              else base_q[k] <= qm_p[k];
+            if (tsel_q) st <= S_TINT;
+            else begin
+              tsel_q <= 1'b1;
+              st <= S_TEX;
+            end
+          end
+        end
+        S_TINT: begin
+          for (int k = 0; k < 3; k++) tint_q[k] <= q_sat32({16'd0, ONE - metal_c} + {16'd0, qm_p[k]});
+          st <= S_OUT;
+        end
+        S_OUT:
+          if (ready_i) st <= S_IDLE;
+        default: st <= S_IDLE;
+      endcase
+    end
+  end
+endmodule

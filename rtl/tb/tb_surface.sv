@@ -1,0 +1,62 @@
+// tb_surface: test wrapper (not synthesized) around rgs_surface, the surface the RGS shades at a
+// hit (rtl/rgs_surface.sv), with thread ids of 6 bits; the C++ bench (tb_surface.cpp) is its memory
+// and checks every surface and every read against the C model.
+module tb_surface #(
+  parameter int E = 7,
+  parameter int M = 16
+) (
+  input  logic                      clk_i,
+  input  logic                      rst_ni,
+  input  logic [31:0]               inst_base_i,
+  input  logic [31:0]               obj_base_i,
+  input  logic [31:0]               mat_base_i,
+  input  logic [31:0]               tex_base_i,
+  input  logic [31:0]               n_tex_i,
+  input  logic                      valid_i,
+  output logic                      ready_o,
+  input  logic [5:0]                tid_i,
+  input  logic                      active_i,
+  input  logic [3*(E+M+1)-1:0]      o_i,
+  input  logic [3*(E+M+1)-1:0]      d_i,
+  input  logic [31:0]               inst_i,
+  input  logic [31:0]               tri_i,
+  input  logic [E+M:0]              t_i,
+  input  logic [E+M:0]              u_i,
+  input  logic [E+M:0]              v_i,
+  input  logic [E+M:0]              cos_n_i,
+  output logic                      mem_req_valid_o,
+  input  logic                      mem_req_ready_i,
+  output logic [31:0]               mem_addr_o,
+  input  logic                      mem_rsp_valid_i,
+  input  logic [31:0]               mem_rdata_i,
+  output logic                      valid_o,
+  input  logic                      ready_i,
+  output logic [5:0]                tid_o,
+  output logic                      sf_valid_o,
+  output logic [3*(E+M+1)-1:0]      p_o,
+  output logic [3*(E+M+1)-1:0]      d_o,
+  output logic [3*(E+M+1)-1:0]      n_o,
+  output logic [E+M:0]              t_hat_o,
+  output logic                      entering_o,
+  output logic [31:0]               mat_o,
+  output logic                      unlit_o,
+  output logic [3:0]                k_o,
+  output logic [E+M:0]              eta_o,
+  output logic [12:0]               kd_o,
+  output logic [12:0]               kr_o,
+  output logic [12:0]               kt_o,
+  output logic [12:0]               ks_o,
+  output logic [3*16-1:0]           base_o,
+  output logic [3*16-1:0]           emission_o,
+  output logic [3*16-1:0]           tint_o
+);
+  rgs_surface #(.E(E), .M(M), .TID_BITS(6)) u_dut (
+    .clk_i(clk_i), .rst_ni(rst_ni), .inst_base_i(inst_base_i), .obj_base_i(obj_base_i), .mat_base_i(mat_base_i),
+    .tex_base_i(tex_base_i), .n_tex_i(n_tex_i), .valid_i(valid_i), .ready_o(ready_o), .tid_i(tid_i),
+    .active_i(active_i), .o_i(o_i), .d_i(d_i), .inst_i(inst_i), .tri_i(tri_i), .t_i(t_i), .u_i(u_i), .v_i(v_i),
+    .cos_n_i(cos_n_i), .mem_req_valid_o(mem_req_valid_o), .mem_req_ready_i(mem_req_ready_i), .mem_addr_o(mem_addr_o),
+    .mem_rsp_valid_i(mem_rsp_valid_i), .mem_rdata_i(mem_rdata_i), .valid_o(valid_o), .ready_i(ready_i),
+    .tid_o(tid_o), .sf_valid_o(sf_valid_o), .p_o(p_o), .d_o(d_o), .n_o(n_o), .t_hat_o(t_hat_o),
+    .entering_o(entering_o), .mat_o(mat_o), .unlit_o(unlit_o), .k_o(k_o), .eta_o(eta_o), .kd_o(kd_o), .kr_o(kr_o), .kt_o(kt_o), .ks_o(ks_o), .base_o(base_o), .emission_o(emission_o),
+    .tint_o(tint_o));
+endmodule
