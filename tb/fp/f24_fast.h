@@ -111,8 +111,13 @@ F24V_INLINE uint32_t f24v_mask(f24v_i m)
 }
 
 /* f24_fast_decode per lane, through binary32 (every fp24 value is one: E <= 8, M <= 23, f24.h):
- * the fields move within 32-bit lanes, then one exact conversion widens the lanes to binary64 (a
- * NaN stays quiet with its sign and no payload, as f24_fast_decode makes it). */
+ * the fields move within 32-bit lanes, then one exact conversion widens the lanes to binary64.
+ * Inf and NaN keep their fraction bits (exponent all ones or-ed in): a NaN lane is a NaN with
+ * its sign, whatever payload it carries, which no operation, comparison or encoding of a working
+ * value can tell apart from f24_fast_decode's payload-free NaN (every NaN result is the default
+ * NaN, f24w_bits writes F24_DEFAULT_NAN with the sign), and it saves the classification of NaN
+ * against Inf. The widening is written per element, which gcc compiles to one vcvtps2pd
+ * (__builtin_convertvector takes four). */
 typedef int32_t f24v_s __attribute__((vector_size(16)));
 typedef float f24v_f __attribute__((vector_size(16)));
 F24V_INLINE f24v f24v_of(const f24_t a[F24Q_LANES])
@@ -122,12 +127,17 @@ F24V_INLINE f24v f24v_of(const f24_t a[F24Q_LANES])
     const f24v_s mag = x & (int32_t)F24_ABS_MASK; /* below 2^31: signed comparisons are exact */
     const f24v_s sign = (f24v_s)((f24v_u)x >> (F24_EXP_BITS + F24_MAN_BITS) << 31);
     const f24v_s normal = (mag << (23 - F24_MAN_BITS)) + (int32_t)((127u - F24_BIAS) << 23);
-    const f24v_s special = 0x7F800000 | ((mag != (int32_t)F24_POS_INF) & (1 << 22));
-    const f24v_s big = mag >= (int32_t)F24_POS_INF, finite = (mag >= (int32_t)F24_MIN_NORMAL) & ~big;
-    const f24v_s bits = sign | (normal & finite) | (special & big);
+    const f24v_s bits = sign | (normal & (mag >= (int32_t)F24_MIN_NORMAL)) | ((mag >= (int32_t)F24_POS_INF) & 0x7F800000);
     f24v_f f;
     memcpy(&f, &bits, sizeof f);
-    return __builtin_convertvector(f, f24v);
+    return (f24v){ f[0], f[1], f[2], f[3] };
+}
+
+/* Two working values are the same value: equal bits, or both NaN of one sign (a lane of f24v_of
+ * keeps a NaN's fraction bits, which nothing reads; the tests compare decodings with it). */
+static inline int f24_fast_same(double x, double y)
+{
+    return x != x ? y != y && __builtin_signbit(x) == __builtin_signbit(y) : memcmp(&x, &y, sizeof x) == 0;
 }
 
 F24V_INLINE f24v f24v_splat(f24_t a)
@@ -166,7 +176,8 @@ F24V_INLINE void f24v_bits(f24v a, f24_t out[F24Q_LANES])
                                       f24v_select(rebiased < (int64_t)F24_POS_INF, rebiased, (f24v_i){ 0 } + F24_POS_INF));
     const f24v_i nan = a != a, sign_bit = sign & (int64_t)F24_SIGN_BIT;
     const f24v_i w = f24v_select(nan, (nan & sign_bit) | F24_DEFAULT_NAN, sign_bit | ranged);
-    const f24v_u u = __builtin_convertvector(w, f24v_u);
+    /* per element: gcc narrows with one shuffle of the two halves (__builtin_convertvector: five) */
+    const f24v_u u = { (uint32_t)w[0], (uint32_t)w[1], (uint32_t)w[2], (uint32_t)w[3] };
     memcpy(out, &u, sizeof u);
 }
 
@@ -192,7 +203,7 @@ F24V_INLINE f24v f24v_from_i32(const int32_t a[F24Q_LANES]) /* exact in binary64
 {
     f24v_s x;
     memcpy(&x, a, sizeof x);
-    return f24v_round(__builtin_convertvector(x, f24v));
+    return f24v_round((f24v){ x[0], x[1], x[2], x[3] }); /* one vcvtdq2pd, as f24v_of's widening */
 }
 F24V_INLINE f24v f24v_min(f24v a, f24v b) { return f24v_minmax(a, b, 0); }
 F24V_INLINE f24v f24v_max(f24v a, f24v b) { return f24v_minmax(a, b, 1); }
