@@ -137,22 +137,16 @@ packet_lanes:
         tmax_l[i] = on ? tmax[i] : 0;
     }
     /* offset_from_vertex per component, and plane_distance's nine terms per lane */
-    f24q c[3], dq[3];
-    f24_t a[9][F24Q_LANES], b[9][F24Q_LANES];
+    f24q c[3], dq[3], a[9], b[9];
 packet_offset:
     for (int k = 0; k < 3; k++) {
-        const f24q l = f24q_sub(f24q_of(lo[k]), f24q_splat(c_lo[k]));
-        c[k] = f24q_add(f24q_sub(f24q_of(hi[k]), f24q_splat(m[k][3])), l);
+        const f24q l = f24q_sub(f24q_of(lo[k]), f24q_splat(c_lo[k])), h = f24q_of(hi[k]);
+        c[k] = f24q_add(f24q_sub(h, f24q_splat(m[k][3])), l);
         dq[k] = f24q_of(dir[k]);
-        f24_t lb[F24Q_LANES];
-        f24q_bits(l, lb);
-    packet_terms:
-        for (int i = 0; i < F24Q_LANES; i++) {
-            a[k][i] = a[3 + k][i] = a[6 + k][i] = m[2][k];
-            b[k][i] = hi[k][i];
-            b[3 + k][i] = f24_neg(m[k][3]);
-            b[6 + k][i] = lb[i];
-        }
+        a[k] = a[3 + k] = a[6 + k] = f24q_splat(m[2][k]);
+        b[k] = h;
+        b[3 + k] = f24q_splat(f24_neg(m[k][3]));
+        b[6 + k] = l;
     }
     f24_t oz[F24Q_LANES], oz_lo[F24Q_LANES], neg_oz[F24Q_LANES];
     f24q_sum_exact(a, b, 9, oz, oz_lo);

@@ -217,9 +217,9 @@ F24V_INLINE uint32_t f24v_le(f24v a, f24v b) { return f24v_mask(a <= b); }
 F24V_INLINE uint32_t f24v_lt(f24v a, f24v b) { return f24v_mask(a < b); }
 F24V_INLINE uint32_t f24v_sign(f24v a) { return f24v_mask((f24v_i)a < 0); }
 
-/* f24q_sum_exact (hls/fp24/f24.h) on vectors (tb/fp/f24_fast_sum.c) */
-void f24_fast_sum_exact_lanes(const f24_t a[][F24Q_LANES], const f24_t b[][F24Q_LANES], uint32_t n,
-                              f24_t hi[F24Q_LANES], f24_t lo[F24Q_LANES]);
+/* f24q_sum_exact (hls/fp24/f24.h) on vectors (tb/fp/f24_fast_sum.c): the terms' lanes are
+ * working values, so that a unit passes the ones it holds decoded and decodes a repeated term once */
+void f24_fast_sum_exact_lanes(const f24v a[], const f24v b[], uint32_t n, f24_t hi[F24Q_LANES], f24_t lo[F24Q_LANES]);
 #endif
 
 #ifdef F24_FAST_SIM
