@@ -188,6 +188,14 @@ lanes_from_i32:
     return q;
 }
 static inline f24w f24q_lane(f24q a, int i) { return a.l[i]; }
+static inline f24q f24q_broadcast(f24q a, int i) /* lane i in every lane */
+{
+    f24q q;
+lanes_broadcast:
+    for (int j = 0; j < F24Q_LANES; j++)
+        q.l[j] = a.l[i];
+    return q;
+}
 static inline f24q f24q_select(uint32_t mask, f24q a, f24q b) /* lane i of a where mask bit i */
 {
 lanes_select:

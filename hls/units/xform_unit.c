@@ -26,8 +26,10 @@ step_columns:
     for (int k = 0; k < 4; k++)
         for (int r = 0; r < F24Q_LANES; r++)
             col[k][r] = r < 3 ? m->m[r][k] : 0u;
-    f24q s = f24q_add(f24q_add(f24q_mul(f24q_of(col[0]), f24q_splat(p.x)), f24q_mul(f24q_of(col[1]), f24q_splat(p.y))),
-                      f24q_mul(f24q_of(col[2]), f24q_splat(p.z)));
+    const f24_t pw[F24Q_LANES] = { p.x, p.y, p.z, 0 };
+    const f24q pq = f24q_of(pw); /* p's components decoded together, each broadcast to the rows */
+    f24q s = f24q_add(f24q_add(f24q_mul(f24q_of(col[0]), f24q_broadcast(pq, 0)), f24q_mul(f24q_of(col[1]), f24q_broadcast(pq, 1))),
+                      f24q_mul(f24q_of(col[2]), f24q_broadcast(pq, 2)));
     if (with_translation)
         s = f24q_add(s, f24q_of(col[3]));
     f24_t out[F24Q_LANES];
@@ -55,16 +57,20 @@ wide_columns:
     a[0] = a[3] = f24q_of(col[0]);
     a[1] = a[4] = f24q_of(col[1]);
     a[2] = a[5] = f24q_of(col[2]);
-    b[0] = f24q_splat(p.hi.x);
-    b[1] = f24q_splat(p.hi.y);
-    b[2] = f24q_splat(p.hi.z);
+    /* p's words decoded together, each broadcast to the rows */
+    const f24_t p_hi[F24Q_LANES] = { p.hi.x, p.hi.y, p.hi.z, 0 }, p_lo[F24Q_LANES] = { p.lo.x, p.lo.y, p.lo.z, 0 };
+    const f24q hq = f24q_of(p_hi);
+    b[0] = f24q_broadcast(hq, 0);
+    b[1] = f24q_broadcast(hq, 1);
+    b[2] = f24q_broadcast(hq, 2);
     const uint32_t n = with_translation ? 8u : 3u; /* a vector's terms: its high words' three */
     if (with_translation) {
+        const f24q lq = f24q_of(p_lo);
         a[6] = f24q_of(col[3]);
         a[7] = f24q_of(t_lo);
-        b[3] = f24q_splat(p.lo.x);
-        b[4] = f24q_splat(p.lo.y);
-        b[5] = f24q_splat(p.lo.z);
+        b[3] = f24q_broadcast(lq, 0);
+        b[4] = f24q_broadcast(lq, 1);
+        b[5] = f24q_broadcast(lq, 2);
         b[6] = b[7] = f24q_splat(F24_ONE);
     }
     f24_t hi[F24Q_LANES], lo[F24Q_LANES];

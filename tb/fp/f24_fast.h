@@ -105,9 +105,13 @@ typedef uint32_t f24v_u __attribute__((vector_size(16)));
 
 F24V_INLINE f24v_i f24v_select(f24v_i mask, f24v_i a, f24v_i b) { return (a & mask) | (b & ~mask); }
 
+/* lane i's bit at i: the halves or-ed together first (gcc: 6 instructions instead of 11) */
+typedef int64_t f24v_i2 __attribute__((vector_size(16)));
 F24V_INLINE uint32_t f24v_mask(f24v_i m)
 {
-    return (uint32_t)((m[0] & 1) | (m[1] & 2) | (m[2] & 4) | (m[3] & 8));
+    const f24v_i b = m & (f24v_i){ 1, 2, 4, 8 };
+    const f24v_i2 o = (f24v_i2){ b[0], b[1] } | (f24v_i2){ b[2], b[3] };
+    return (uint32_t)(o[0] | o[1]);
 }
 
 /* f24_fast_decode per lane, through binary32 (every fp24 value is one: E <= 8, M <= 23, f24.h):
@@ -208,6 +212,8 @@ F24V_INLINE f24v f24v_from_i32(const int32_t a[F24Q_LANES]) /* exact in binary64
 F24V_INLINE f24v f24v_min(f24v a, f24v b) { return f24v_minmax(a, b, 0); }
 F24V_INLINE f24v f24v_max(f24v a, f24v b) { return f24v_minmax(a, b, 1); }
 F24V_INLINE double f24v_lane(f24v a, int i) { return a[i]; }
+/* one permutation, where a splat of an fp24 word decodes it alone */
+F24V_INLINE f24v f24v_broadcast(f24v a, int i) { return (f24v){ a[i], a[i], a[i], a[i] }; }
 F24V_INLINE f24v f24v_pick(uint32_t mask, f24v a, f24v b) /* lane i of a where mask bit i */
 {
     const f24v_i m = ((f24v_i){ 1, 2, 4, 8 } & (int64_t)mask) != 0;
@@ -262,6 +268,7 @@ typedef f24v f24q;
 #define f24q_sqrt f24v_sqrt
 #define f24q_from_i32 f24v_from_i32
 #define f24q_lane f24v_lane
+#define f24q_broadcast f24v_broadcast
 #define f24q_select f24v_pick
 #define f24q_le f24v_le
 #define f24q_lt f24v_lt
