@@ -188,6 +188,14 @@ lanes_from_i32:
     return q;
 }
 static inline f24w f24q_lane(f24q a, int i) { return a.l[i]; }
+static inline f24q f24q_broadcast(f24q a, int i) /* lane i in every lane */
+{
+    f24q q;
+lanes_broadcast:
+    for (int j = 0; j < F24Q_LANES; j++)
+        q.l[j] = a.l[i];
+    return q;
+}
 static inline f24q f24q_select(uint32_t mask, f24q a, f24q b) /* lane i of a where mask bit i */
 {
 lanes_select:
@@ -219,17 +227,17 @@ lanes_sign:
         m |= f24w_sign(a.l[i]) << i;
     return m;
 }
-/* Exact dot products side by side: lane i is f24_sum_exact of the n terms a[k][i] * b[k][i]. */
-static inline void f24q_sum_exact(const f24_t a[][F24Q_LANES], const f24_t b[][F24Q_LANES], uint32_t n,
-                                  f24_t hi[F24Q_LANES], f24_t lo[F24Q_LANES])
+/* Exact dot products side by side: lane i is f24_sum_exact of the n terms a[k] * b[k] of lane i
+ * (each lane's terms its working values' bits: the same values). */
+static inline void f24q_sum_exact(const f24q a[], const f24q b[], uint32_t n, f24_t hi[F24Q_LANES], f24_t lo[F24Q_LANES])
 {
 lanes_sum:
     for (int i = 0; i < F24Q_LANES; i++) {
         f24_t ai[F24_SUM_TERMS], bi[F24_SUM_TERMS];
     lanes_sum_terms:
         for (uint32_t k = 0; k < F24_SUM_TERMS; k++) {
-            ai[k] = k < n ? a[k][i] : 0u;
-            bi[k] = k < n ? b[k][i] : 0u;
+            ai[k] = k < n ? f24w_bits(a[k].l[i]) : 0u;
+            bi[k] = k < n ? f24w_bits(b[k].l[i]) : 0u;
         }
         const f24x2 r = f24_sum_exact(ai, bi, n);
         hi[i] = r.hi;

@@ -122,7 +122,9 @@ F24Q_FN void isect_unit_packet(const f24_triangle *tri, uint32_t need, const f24
         return;
     }
     const f24_t(*m)[4] = tri->m.m;
-    const f24_t c_lo[3] = { tri->c_lo.x, tri->c_lo.y, tri->c_lo.z };
+    const f24_t c_lo[F24Q_LANES] = { tri->c_lo.x, tri->c_lo.y, tri->c_lo.z, 0 };
+    /* the triangle's words as lanes, each operand of the per-ray datapaths one of them broadcast */
+    const f24q mq[3] = { f24q_of(m[0]), f24q_of(m[1]), f24q_of(m[2]) }, c_loq = f24q_of(c_lo);
     f24_t hi[3][F24Q_LANES], lo[3][F24Q_LANES], dir[3][F24Q_LANES], te_l[F24Q_LANES], tmin_l[F24Q_LANES],
         tmax_l[F24Q_LANES];
 packet_lanes:
@@ -137,22 +139,16 @@ packet_lanes:
         tmax_l[i] = on ? tmax[i] : 0;
     }
     /* offset_from_vertex per component, and plane_distance's nine terms per lane */
-    f24q c[3], dq[3];
-    f24_t a[9][F24Q_LANES], b[9][F24Q_LANES];
+    f24q c[3], dq[3], a[9], b[9];
 packet_offset:
     for (int k = 0; k < 3; k++) {
-        const f24q l = f24q_sub(f24q_of(lo[k]), f24q_splat(c_lo[k]));
-        c[k] = f24q_add(f24q_sub(f24q_of(hi[k]), f24q_splat(m[k][3])), l);
+        const f24q l = f24q_sub(f24q_of(lo[k]), f24q_broadcast(c_loq, k)), h = f24q_of(hi[k]);
+        c[k] = f24q_add(f24q_sub(h, f24q_broadcast(mq[k], 3)), l);
         dq[k] = f24q_of(dir[k]);
-        f24_t lb[F24Q_LANES];
-        f24q_bits(l, lb);
-    packet_terms:
-        for (int i = 0; i < F24Q_LANES; i++) {
-            a[k][i] = a[3 + k][i] = a[6 + k][i] = m[2][k];
-            b[k][i] = hi[k][i];
-            b[3 + k][i] = f24_neg(m[k][3]);
-            b[6 + k][i] = lb[i];
-        }
+        a[k] = a[3 + k] = a[6 + k] = f24q_broadcast(mq[2], k);
+        b[k] = h;
+        b[3 + k] = f24q_splat(f24_neg(m[k][3]));
+        b[6 + k] = l;
     }
     f24_t oz[F24Q_LANES], oz_lo[F24Q_LANES], neg_oz[F24Q_LANES];
     f24q_sum_exact(a, b, 9, oz, oz_lo);
@@ -166,9 +162,9 @@ packet_neg:
     f24q rows[5];
 packet_rows:
     for (int j = 0; j < 5; j++) {
-        const f24_t *mr = m[row[j]];
-        rows[j] = f24q_add(f24q_add(f24q_mul(f24q_splat(mr[0]), vec[j][0]), f24q_mul(f24q_splat(mr[1]), vec[j][1])),
-                           f24q_mul(f24q_splat(mr[2]), vec[j][2]));
+        const f24q mr = mq[row[j]];
+        rows[j] = f24q_add(f24q_add(f24q_mul(f24q_broadcast(mr, 0), vec[j][0]), f24q_mul(f24q_broadcast(mr, 1), vec[j][1])),
+                           f24q_mul(f24q_broadcast(mr, 2), vec[j][2]));
     }
     const f24q dz = rows[0], tl = f24q_div(f24q_of(neg_oz), dz), t = f24q_add(f24q_of(te_l), tl);
     const f24q u = f24q_add(rows[1], f24q_mul(tl, rows[3])), v = f24q_add(rows[2], f24q_mul(tl, rows[4]));

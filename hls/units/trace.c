@@ -229,17 +229,26 @@ static void op_inst_clip(const uint32_t *mem, trace_state *s, unit_op *op, trace
     inst_clip(mem, s, op, c);
 }
 
+/* The distances of the rays that need the instance from where they entered it (t0): the 4 rays
+ * side by side, as the traversal unit's subtractors compute them. */
+static F24Q_FN void relative_distances(trace_state *s)
+{
+    const f24q t0 = f24q_of(s->t0);
+    f24_t best[TRACE_PACKET], tmin[TRACE_PACKET];
+    f24q_bits(f24q_sub(f24q_of(s->best_t), t0), best);
+    f24q_bits(f24q_sub(f24q_of(s->rays.tmin), t0), tmin);
+relative_rays:
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        s->best_rel[i] = bit(s->need, i) ? best[i] : s->best_rel[i];
+        s->tmin_rel[i] = bit(s->need, i) ? tmin[i] : s->tmin_rel[i];
+    }
+}
+
 static void inst_clip(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
 {
     f24_t tn[TRACE_PACKET], tf[TRACE_PACKET];
     list_mailboxes_clear(s->box[1]); /* a new visit of an instance: its triangles anew */
-relative_distances:
-    for (int i = 0; i < TRACE_PACKET; i++) {
-        if (!bit(s->need, i))
-            continue;
-        s->best_rel[i] = f24_sub(s->best_t[i], s->t0[i]);
-        s->tmin_rel[i] = f24_sub(s->rays.tmin[i], s->t0[i]);
-    }
+    relative_distances(s);
     const uint32_t mask =
         trav_object_clip(&mem[s->obj + O_BOUNDS], s->o, s->d, s->tmin_rel, s->best_rel, s->need, tn, tf);
     if (!mask) {

@@ -12,17 +12,19 @@ static F24Q_FN uint32_t clip_box(const uint32_t *box, const f24_vec3 o[], const 
                                  f24_t tn[TRACE_PACKET], f24_t tf[TRACE_PACKET])
 {
     f24q n = f24q_of(tn), f = f24q_of(tf);
+    f24_t ok[3][TRACE_PACKET], dk[3][TRACE_PACKET]; /* the rays' components by axis, read once */
+    const f24_t lo[F24Q_LANES] = { box[0], box[1], box[2], 0 }, hi[F24Q_LANES] = { box[3], box[4], box[5], 0 };
+    const f24q loq = f24q_of(lo), hiq = f24q_of(hi); /* the box's planes, each broadcast to the rays */
+clip_rays:
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        ok[0][i] = o[i].x, ok[1][i] = o[i].y, ok[2][i] = o[i].z;
+        dk[0][i] = d[i].x, dk[1][i] = d[i].y, dk[2][i] = d[i].z;
+    }
 clip_axes:
     for (uint32_t k = 0; k < 3; k++) {
-        f24_t ok[TRACE_PACKET], dk[TRACE_PACKET];
-    clip_rays:
-        for (int i = 0; i < TRACE_PACKET; i++) {
-            ok[i] = axis_of(o[i], k);
-            dk[i] = axis_of(d[i], k);
-        }
-        const f24q okq = f24q_of(ok), dkq = f24q_of(dk);
-        const f24q t0 = f24q_div(f24q_sub(f24q_splat(box[k]), okq), dkq),
-                   t1 = f24q_div(f24q_sub(f24q_splat(box[3 + k]), okq), dkq);
+        const f24q okq = f24q_of(ok[k]), dkq = f24q_of(dk[k]);
+        const f24q t0 = f24q_div(f24q_sub(f24q_broadcast(loq, (int)k), okq), dkq),
+                   t1 = f24q_div(f24q_sub(f24q_broadcast(hiq, (int)k), okq), dkq);
         const uint32_t negative = f24q_sign(dkq);
         n = f24q_max(n, f24q_select(negative, t1, t0));
         f = f24q_min(f, f24q_select(negative, t0, t1));

@@ -26,8 +26,10 @@ step_columns:
     for (int k = 0; k < 4; k++)
         for (int r = 0; r < F24Q_LANES; r++)
             col[k][r] = r < 3 ? m->m[r][k] : 0u;
-    f24q s = f24q_add(f24q_add(f24q_mul(f24q_of(col[0]), f24q_splat(p.x)), f24q_mul(f24q_of(col[1]), f24q_splat(p.y))),
-                      f24q_mul(f24q_of(col[2]), f24q_splat(p.z)));
+    const f24_t pw[F24Q_LANES] = { p.x, p.y, p.z, 0 };
+    const f24q pq = f24q_of(pw); /* p's components decoded together, each broadcast to the rows */
+    f24q s = f24q_add(f24q_add(f24q_mul(f24q_of(col[0]), f24q_broadcast(pq, 0)), f24q_mul(f24q_of(col[1]), f24q_broadcast(pq, 1))),
+                      f24q_mul(f24q_of(col[2]), f24q_broadcast(pq, 2)));
     if (with_translation)
         s = f24q_add(s, f24q_of(col[3]));
     f24_t out[F24Q_LANES];
@@ -43,24 +45,33 @@ f24_vec3 xform_vector(const f24_affine *m, f24_vec3 v) { return xform_step(m, v,
 /* The wide mode, one rounding into a double word per row, the three rows side by side (lane 3
  * unused): a point's m0 x + m1 y + m2 z + t + tlo for x, y, z in double words, a vector's
  * m0 x + m1 y + m2 z of their high words (directions come in single words). */
-static f24_vec3x2 xform_step_wide(const f24_affine *m, f24_vec3 tlo, f24_vec3x2 p, int with_translation)
+static F24Q_FN f24_vec3x2 xform_step_wide(const f24_affine *m, f24_vec3 tlo, f24_vec3x2 p, int with_translation)
 {
-    f24_t a[8][F24Q_LANES], b[8][F24Q_LANES];
-    const f24_t x[8] = { p.hi.x, p.hi.y, p.hi.z, p.lo.x, p.lo.y, p.lo.z, F24_ONE, F24_ONE };
-    const f24_t t_lo[F24Q_LANES] = { tlo.x, tlo.y, tlo.z, 0 };
-    const uint32_t n = with_translation ? 8u : 3u; /* a vector's terms: its high words' three */
-wide_terms:
-    for (uint32_t k = 0; k < n; k++)
+    f24_t col[4][F24Q_LANES];
+wide_columns:
+    for (int k = 0; k < 4; k++)
         for (int r = 0; r < F24Q_LANES; r++)
-            b[k][r] = x[k];
-wide_rows:
-    for (int r = 0; r < F24Q_LANES; r++) {
-        const f24_t *row = m->m[r < 3 ? r : 0], on = r < 3 ? ~0u : 0u;
-        a[0][r] = a[3][r] = row[0] & on;
-        a[1][r] = a[4][r] = row[1] & on;
-        a[2][r] = a[5][r] = row[2] & on;
-        a[6][r] = row[3] & on;
-        a[7][r] = t_lo[r];
+            col[k][r] = r < 3 ? m->m[r][k] : 0u;
+    const f24_t t_lo[F24Q_LANES] = { tlo.x, tlo.y, tlo.z, 0 };
+    f24q a[8], b[8];
+    a[0] = a[3] = f24q_of(col[0]);
+    a[1] = a[4] = f24q_of(col[1]);
+    a[2] = a[5] = f24q_of(col[2]);
+    /* p's words decoded together, each broadcast to the rows */
+    const f24_t p_hi[F24Q_LANES] = { p.hi.x, p.hi.y, p.hi.z, 0 }, p_lo[F24Q_LANES] = { p.lo.x, p.lo.y, p.lo.z, 0 };
+    const f24q hq = f24q_of(p_hi);
+    b[0] = f24q_broadcast(hq, 0);
+    b[1] = f24q_broadcast(hq, 1);
+    b[2] = f24q_broadcast(hq, 2);
+    const uint32_t n = with_translation ? 8u : 3u; /* a vector's terms: its high words' three */
+    if (with_translation) {
+        const f24q lq = f24q_of(p_lo);
+        a[6] = f24q_of(col[3]);
+        a[7] = f24q_of(t_lo);
+        b[3] = f24q_broadcast(lq, 0);
+        b[4] = f24q_broadcast(lq, 1);
+        b[5] = f24q_broadcast(lq, 2);
+        b[6] = b[7] = f24q_splat(F24_ONE);
     }
     f24_t hi[F24Q_LANES], lo[F24Q_LANES];
     f24q_sum_exact(a, b, n, hi, lo);

@@ -244,14 +244,13 @@ static inline __attribute__((always_inline)) f24v_i dd_lanes(const f24v p[], uin
  * vectors, the products summed in order, then for the lanes it cannot decide (cancellation: the
  * plane distance of isect_unit.c) the double-double path on vectors; a lane neither decides goes
  * to f24_fast_sum_exact alone. */
-F24V_FN void f24_fast_sum_exact_lanes(const f24_t a[][F24Q_LANES], const f24_t b[][F24Q_LANES], uint32_t n,
-                                      f24_t hi[F24Q_LANES], f24_t lo[F24Q_LANES])
+F24V_FN void f24_fast_sum_exact_lanes(const f24v a[], const f24v b[], uint32_t n, f24_t hi[F24Q_LANES], f24_t lo[F24Q_LANES])
 {
     const f24v zero = { 0, 0, 0, 0 }, inf = zero + __builtin_inf();
     f24v sum = -zero, mass = zero, least = inf; /* -0: -0 only if all products are -0 */
     f24v p[F24_SUM_TERMS];
     for (uint32_t k = 0; k < n; k++) {
-        p[k] = f24v_of(a[k]) * f24v_of(b[k]); /* exact */
+        p[k] = a[k] * b[k]; /* exact */
         const f24v m = abs_lanes(p[k]);
         sum += p[k];
         mass += m;
@@ -278,9 +277,9 @@ F24V_FN void f24_fast_sum_exact_lanes(const f24_t a[][F24Q_LANES], const f24_t b
             continue;
         }
         f24_t ai[F24_SUM_TERMS], bi[F24_SUM_TERMS];
-        for (uint32_t k = 0; k < n; k++) {
-            ai[k] = a[k][i];
-            bi[k] = b[k][i];
+        for (uint32_t k = 0; k < n; k++) { /* the lane's terms as fp24 words (exact: fp24 values) */
+            ai[k] = f24_fast_encode(a[k][i]);
+            bi[k] = f24_fast_encode(b[k][i]);
         }
         const f24x2 r = f24_fast_sum_exact(ai, bi, n);
         hi[i] = r.hi;
