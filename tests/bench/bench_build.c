@@ -35,7 +35,8 @@
  *    the command (with --saarcor PROGRAM; process start-up included), and in this process the
  *    load and the build separately; all CPUs, median of 3.
  *
- * Output: --out DIR writes DIR/build.md and DIR/build.json; progress goes to stderr.
+ * Output: --out DIR writes DIR/build.md and DIR/build.json (with the load average at the start
+ * and the end of the run); progress goes to stderr.
  * --scenes DIR overrides the glTF folder (default: ../shared/scenes next to the source tree).
  */
 #define _GNU_SOURCE
@@ -799,6 +800,7 @@ typedef struct {
     load_result load;
     int have_gltf;
     const char *gltf_dir;
+    double load_avg[2]; /* 1-minute load average at the start and the end of the run (-1: unknown) */
 } report;
 
 static double per_tri(int64_t bytes, uint64_t tris) { return tris ? (double)bytes / (double)tris : 0; }
@@ -914,6 +916,9 @@ static void write_markdown(const char *path, const report *rp)
                "(process start-up included) and, in this process, its load (glTF + evaluation) and its `mi_build` "
                "(default device memory first, then a larger one, as `info` does).\n\n",
             cpus_all, REPS, SLOW_SECONDS, TOP_REPS, FRAMES);
+    fprintf(f, "Load average (1 minute) at the start and the end of the run: %.2f and %.2f on %d CPUs (a "
+               "load above the CPU count means other work shared the CPUs and stretched both sides' times).\n\n",
+            rp->load_avg[0], rp->load_avg[1], cpus_all);
     if (!rp->have_gltf)
         fprintf(f, "The glTF scenes were skipped: %s not found.\n\n", rp->gltf_dir);
     md_scenes(f, rp);
@@ -966,8 +971,9 @@ static void write_json(const char *path, const report *rp)
     FILE *f = fopen(path, "w");
     if (!f)
         fail("cannot write %s: %s", path, strerror(errno));
-    fprintf(f, "{\n  \"cpus\": [%d, %d], \"runs\": %d, \"slow_seconds\": %.1f, \"gltf_scenes\": %s,\n  \"scenes\": [\n",
-            cpus_of(CPU_ONE), cpus_of(CPU_ALL), REPS, SLOW_SECONDS, rp->have_gltf ? "true" : "false");
+    fprintf(f, "{\n  \"cpus\": [%d, %d], \"runs\": %d, \"slow_seconds\": %.1f, \"gltf_scenes\": %s, "
+               "\"load_average\": [%.2f, %.2f],\n  \"scenes\": [\n", cpus_of(CPU_ONE), cpus_of(CPU_ALL), REPS,
+            SLOW_SECONDS, rp->have_gltf ? "true" : "false", rp->load_avg[0], rp->load_avg[1]);
     for (int i = 0; i < rp->n_scenes; i++)
         json_scene(f, &rp->scenes[i], i + 1 == rp->n_scenes);
     fprintf(f, "  ],\n  \"top_level\": [\n");
@@ -1026,6 +1032,14 @@ static int bench_top_levels(const char *dir, top_result *top)
     return 2;
 }
 
+/* The 1-minute load average (-1 if unknown): other work on the machine stretches every time here,
+ * ours and Embree's alike, so the report states it. */
+static double load_average(void)
+{
+    double l;
+    return getloadavg(&l, 1) == 1 ? l : -1.0;
+}
+
 int main(int argc, char **argv)
 {
     const char *out = NULL, *dir = SAARCOR_SRC_DIR "/../shared/scenes", *saarcor = NULL;
@@ -1058,6 +1072,7 @@ int main(int argc, char **argv)
         fail("out of memory");
 
     const double t0 = now();
+    rp.load_avg[0] = load_average();
     for (size_t i = 0; rp.have_gltf && i < COUNT(gltf_files); i++)
         bench_scene(dir, gltf_files[i], &rp.scenes[rp.n_scenes++]);
     for (size_t i = 0; i < COUNT(generator_names); i++)
@@ -1068,6 +1083,7 @@ int main(int argc, char **argv)
             bench_frames(dir, frame_scenes[i], &rp.frames[rp.n_frames++]);
     if (rp.have_gltf)
         bench_load(dir, saarcor, &rp.load);
+    rp.load_avg[1] = load_average();
 
     char path[4096];
     snprintf(path, sizeof path, "%s/build.md", out);
