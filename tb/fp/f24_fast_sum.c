@@ -46,7 +46,11 @@ static f24_t round_dd(double r, double rr)
  * are not too far apart (beyond, only its hi is exact and the integer operator decides).
  * Products of significands in [1, 2) lie in [2^e, 2^(e+2)) for the sum e of the exponents, so a
  * magnitude ratio below 2^(window - 2) keeps e within the window's reach. */
-static const double window_reach = __builtin_ldexp(1.0, 127 - 5 - (2 * F24_MAN_BITS + 1) - 2); /* f24_sum_exact.c: top - 2 */
+#define WINDOW_REACH_LOG2 (127 - 5 - (2 * F24_MAN_BITS + 1) - 2) /* f24_sum_exact.c: top - 2 (73 .. 103) */
+/* 2^WINDOW_REACH_LOG2 as a product of two exact powers, so that it is a constant expression for
+ * every compiler (clang does not fold __builtin_ldexp in an initializer) */
+static const double window_reach =
+    (double)(1ull << WINDOW_REACH_LOG2 / 2) * (double)(1ull << (WINDOW_REACH_LOG2 - WINDOW_REACH_LOG2 / 2));
 
 /* 1 if the products p span no more than the window holds (the rare spreads between the
  * bounds go the slow way); Inf and NaN operands show up as a non-finite sum later. */
