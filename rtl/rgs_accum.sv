@@ -73,7 +73,7 @@ module rgs_accum #(
   function automatic logic [15:0] q_add(input logic [15:0] a, input logic [15:0] b);
     logic [16:0] s;
     s = {1'b0, a} + {1'b0, b};
-    return s[16] || s[15:0] == 16'hFFFF ? 16'hFFFF : s[15:0];
+    q_add = s[16] || s[15:0] == 16'hFFFF ? 16'hFFFF : s[15:0];
   endfunction
 
   logic [47:0] acc_new;

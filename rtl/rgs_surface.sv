@@ -157,7 +157,7 @@ module rgs_surface #(
     logic [31:0] bits;
     bits = (f[3] ? 32'd0 : 32'd16) + 32'(6 * W) * ((f[1] ? 32'd1 : 32'd0) + (f[5] ? 32'd1 : 32'd0)) +
            (f[4] ? 32'd72 : 32'd0);
-    return 5'((f[0] ? 32'd4 : 32'd0) + (bits + 32'd31) / 32'd32);
+    rec_words = 5'((f[0] ? 32'd4 : 32'd0) + (bits + 32'd31) / 32'd32);
   endfunction
 
   logic [32*REC_MAX-1:0] rec_flat, tail;
@@ -169,7 +169,7 @@ module rgs_surface #(
   assign mat_bits = one_mat ? 32'd0 : 32'd16;
   assign colour_at = mat_bits + 32'(6 * W) * ((has_tc ? 32'd1 : 32'd0) + (has_euv ? 32'd1 : 32'd0));
   function automatic logic [31:0] tail_field(input logic [32*REC_MAX-1:0] tl, input logic [31:0] at);
-    return 32'(tl >> at);
+    tail_field = 32'(tl >> at);
   endfunction
 
   // ---- the units ----
@@ -262,10 +262,10 @@ module rgs_surface #(
   // vertex colours (modulate_colours): the C's uint32 sums and product (q_mul of a factor that can
   // exceed 16 bits for barycentrics outside [0, 1])
   function automatic logic [15:0] q_sat32(input logic [31:0] x);
-    return x < 32'd65535 ? x[15:0] : 16'hFFFF;
+    q_sat32 = x < 32'd65535 ? x[15:0] : 16'hFFFF;
   endfunction
   function automatic logic [31:0] q_byte(input logic [7:0] b);
-    return {20'd0, b, 4'd0} | {28'd0, b[7:4]};
+    q_byte = {20'd0, b, 4'd0} | {28'd0, b[7:4]};
   endfunction
   logic [31:0] wa, wb, wc;
   logic [15:0] vc_base [3];
