@@ -16,8 +16,12 @@
 // own (rebase, wide and narrow transformation, adders, exact sum, intersection) carry the issued
 // thread beside their pipeline in an f24_pipe of their latency (their outputs are always taken, so
 // the latency is fixed). Results go to their thread alone.
-// Memory: the descriptor words (header, instance, object, triangle records) through the word port,
-// lent to one loading thread at a time until its load is done; trav_unit's node port (whose
+// Memory: the header's fields (the instance count, the region table's addresses, the scene bounds)
+// read once per memory image (after reset or flush_i) on the first packet's use and held here for
+// all threads, HDR_RSP responses; the instance, object and triangle records through the wide word
+// port, RW consecutive words per response (one matrix cache line: a triangle record in one, an
+// instance or object record in two), lent to one loading thread (or the header's load) at a time
+// until its load is done; trav_unit's node port (whose
 // responses, in request order, are counted for their thread through a FIFO of thread ids) and
 // list_unit's read port are the core's.
 // Latency: per packet the sum of its operations' unit latencies, waits and reads (rtl/tb/tb_core.cpp
@@ -34,6 +38,7 @@
 module trace_core #(
   parameter int E = 7,
   parameter int M = 16,
+  localparam int RW = (12 * (1 + E + M) + 27 + 3 + 31) / 32,  // words per response (a triangle record)
   parameter int THREADS = 4,
   parameter int CTX = 4,
   parameter int ADD_STAGES = 6,
@@ -44,6 +49,7 @@ module trace_core #(
 ) (
   input  logic                        clk_i,
   input  logic                        rst_ni,
+  input  logic                        flush_i,    // a new memory image (the core empty): read the header again
   // packet in (trace_begin) to thread thread_i
   input  logic                        valid_i,
   output logic                        ready_o,
@@ -66,12 +72,12 @@ module trace_core #(
   output logic [4*(E+M+1)-1:0]        cos_o,
   output logic [10*32-1:0]            count_o,    // trace_counters in its order (words: 4 kinds)
   output logic [$clog2(THREADS):0]    inflight_o, // threads with an operation in a unit
-  // word read port (descriptors)
+  // word read port (descriptors): RW words from the word address per response
   output logic                        mem_req_valid_o,
   input  logic                        mem_req_ready_i,
   output logic [31:0]                 mem_addr_o,
   input  logic                        mem_rsp_valid_i,
-  input  logic [31:0]                 mem_rdata_i,
+  input  logic [32*RW-1:0]            mem_rdata_i,
   // trav_unit's node port
   output logic                        node_req_valid_o,
   input  logic                        node_req_ready_i,
@@ -98,7 +104,7 @@ module trace_core #(
   end
 
   // ---- the threads' requests, operands and results ----
-  logic [THREADS-1:0] t_ready, t_valid, t_out_ready, t_mem_req, t_loading, t_waiting, t_node_rsp;
+  logic [THREADS-1:0] t_ready, t_valid, t_out_ready, t_mem_req, t_loading, t_waiting, t_node_rsp, t_hdr_want;
   logic [31:0] t_mem_addr [THREADS];
   logic [4*32-1:0] t_inst [THREADS], t_tri [THREADS];
   logic [4*W-1:0] t_t [THREADS], t_u [THREADS], t_v [THREADS], t_cos [THREADS];
@@ -130,9 +136,13 @@ module trace_core #(
   logic [31:0] trav_leaf_first, trav_leaf_count, list_key, list_k;
   logic [3*W-1:0] rb_p_hi, rb_p_lo, xw_hi, xw_lo, xf_r, add_r;
   logic [W-1:0] rb_te, is_t, is_u, is_v, is_cos, sum_hi;
-  // the word port's owner
-  logic owner_valid;
+  // the word port's owner: a thread, or the header's load (hdr_own)
+  logic owner_valid, hdr_own;
   logic [TW-1:0] owner;
+  // the header's fields, shared by all threads
+  logic hdr_ok;
+  logic [31:0] hdr_instances, hdr_objects, hdr_inst, hdr_top_nodes, hdr_top_lists;
+  logic [6*W-1:0] scene_box;
 
   /* verilator lint_off PINCONNECTEMPTY */
   for (genvar t = 0; t < THREADS; t++) begin : g_thread
@@ -141,6 +151,9 @@ module trace_core #(
       .flags_i(flags_i), .active_i(active_i), .o_i(o_i), .d_i(d_i), .tmin_i(tmin_i), .tmax_i(tmax_i),
       .valid_o(t_valid[t]), .ready_i(t_out_ready[t]), .inst_o(t_inst[t]), .tri_o(t_tri[t]), .t_o(t_t[t]),
       .u_o(t_u[t]), .v_o(t_v[t]), .cos_o(t_cos[t]), .count_o(t_count[t]),
+      .hdr_want_o(t_hdr_want[t]), .hdr_ok_i(hdr_ok), .hdr_instances_i(hdr_instances), .hdr_objects_i(hdr_objects),
+      .hdr_inst_i(hdr_inst), .hdr_top_nodes_i(hdr_top_nodes), .hdr_top_lists_i(hdr_top_lists),
+      .scene_box_i(scene_box),
       .mem_req_valid_o(t_mem_req[t]), .mem_req_ready_i(owner_valid && owner == TW'(t) && mem_req_ready_i),
       .mem_addr_o(t_mem_addr[t]), .mem_rsp_valid_i(owner_valid && owner == TW'(t) && mem_rsp_valid_i),
       .mem_rdata_i(mem_rdata_i), .node_rsp_i(t_node_rsp[t]), .loading_o(t_loading[t]), .waiting_o(t_waiting[t]),
@@ -297,15 +310,57 @@ module trace_core #(
       if (m[t]) lowest = TW'(t);
   endfunction
 
-  // ---- the word port: lent to the lowest loading thread until its load is done ----
+  // ---- the header: read once per image when a thread first waits for it ----
+  // memory image layout (docs/memory-image.md; hls/units/trace.c): the fields' word addresses
+  localparam int H_INSTANCES = 7, H_BOUNDS = 12, H_OBJECTS_AT = 18 + 2 * 5, H_INST_AT = 18 + 2 * 8;
+  localparam int H_TOP_NODES_AT = 18 + 2 * 9, H_TOP_LISTS_AT = 18 + 2 * 10;
+  localparam int HDR_RSP = (H_TOP_LISTS_AT + 1 + RW - 1) / RW;
+  localparam int HB = $clog2(HDR_RSP + 1);
+  logic hdr_load;
+  logic [HB-1:0] hdr_sent, hdr_got;
+  // the word at address a from the response that holds it
+  function automatic logic [31:0] hdr_word(input logic [32*RW-1:0] rsp, input int a);
+    hdr_word = rsp[32 * (a % RW) +: 32];
+  endfunction
   always_ff @(posedge clk_i or negedge rst_ni)
-    if (!rst_ni) owner_valid <= 1'b0;
-    else if (!owner_valid || !t_loading[owner]) begin
-      owner_valid <= |t_loading;
+    if (!rst_ni) begin
+      hdr_ok <= 1'b0;
+      hdr_load <= 1'b0;
+    end else if (flush_i) hdr_ok <= 1'b0;
+    else if (!hdr_ok && !hdr_load && |t_hdr_want) begin
+      hdr_load <= 1'b1;
+      hdr_sent <= '0;
+      hdr_got <= '0;
+    end else if (hdr_load) begin
+      if (hdr_own && mem_req_valid_o && mem_req_ready_i) hdr_sent <= hdr_sent + 1'b1;
+      if (hdr_own && mem_rsp_valid_i) begin
+        if (hdr_got == HB'(H_INSTANCES / RW)) hdr_instances <= hdr_word(mem_rdata_i, H_INSTANCES);
+        if (hdr_got == HB'(H_OBJECTS_AT / RW)) hdr_objects <= hdr_word(mem_rdata_i, H_OBJECTS_AT);
+        if (hdr_got == HB'(H_INST_AT / RW)) hdr_inst <= hdr_word(mem_rdata_i, H_INST_AT);
+        if (hdr_got == HB'(H_TOP_NODES_AT / RW)) hdr_top_nodes <= hdr_word(mem_rdata_i, H_TOP_NODES_AT);
+        if (hdr_got == HB'(H_TOP_LISTS_AT / RW)) hdr_top_lists <= hdr_word(mem_rdata_i, H_TOP_LISTS_AT);
+        for (int j = 0; j < 6; j++)
+          if (hdr_got == HB'((H_BOUNDS + j) / RW)) scene_box[j*W +: W] <= W'(hdr_word(mem_rdata_i, H_BOUNDS + j));
+        hdr_got <= hdr_got + 1'b1;
+        if (hdr_got == HB'(HDR_RSP - 1)) begin
+          hdr_load <= 1'b0;
+          hdr_ok <= 1'b1;
+        end
+      end
+    end
+
+  // ---- the word port: lent to the header's load, else to the lowest loading thread, until the load is done ----
+  always_ff @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) begin
+      owner_valid <= 1'b0;
+      hdr_own <= 1'b0;
+    end else if (hdr_own ? !hdr_load : !owner_valid || !t_loading[owner]) begin
+      hdr_own <= hdr_load;
+      owner_valid <= !hdr_load && |t_loading;
       owner <= lowest(t_loading);
     end
-  assign mem_req_valid_o = owner_valid && t_mem_req[owner];
-  assign mem_addr_o = t_mem_addr[owner];
+  assign mem_req_valid_o = hdr_own ? hdr_sent != HB'(HDR_RSP) : owner_valid && t_mem_req[owner];
+  assign mem_addr_o = hdr_own ? 32'(RW) * 32'(hdr_sent) : t_mem_addr[owner];
 
   // ---- packets in and out ----
   logic [TW-1:0] out_sel;
