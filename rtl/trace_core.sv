@@ -20,8 +20,9 @@
 // read once per memory image (after reset or flush_i) on the first packet's use and held here for
 // all threads, HDR_RSP responses; the instance, object and triangle records through the wide word
 // port, RW consecutive words per response (one matrix cache line: a triangle record in one, an
-// instance or object record in two), lent to one loading thread (or the header's load) at a time
-// until its load is done; trav_unit's node port (whose
+// instance or object record in two), shared request by request: each cycle the header's load or
+// else the lowest thread with a request sends one, its requester goes into a FIFO (the port
+// answers in request order) and the response goes to the FIFO's oldest; trav_unit's node port (whose
 // responses, in request order, are counted for their thread through a FIFO of thread ids) and
 // list_unit's read port are the core's.
 // Latency: per packet the sum of its operations' unit latencies, waits and reads (rtl/tb/tb_core.cpp
@@ -104,7 +105,7 @@ module trace_core #(
   end
 
   // ---- the threads' requests, operands and results ----
-  logic [THREADS-1:0] t_ready, t_valid, t_out_ready, t_mem_req, t_loading, t_waiting, t_node_rsp, t_hdr_want;
+  logic [THREADS-1:0] t_ready, t_valid, t_out_ready, t_mem_req, t_waiting, t_node_rsp, t_hdr_want;
   logic [31:0] t_mem_addr [THREADS];
   logic [4*32-1:0] t_inst [THREADS], t_tri [THREADS];
   logic [4*W-1:0] t_t [THREADS], t_u [THREADS], t_v [THREADS], t_cos [THREADS];
@@ -136,9 +137,11 @@ module trace_core #(
   logic [31:0] trav_leaf_first, trav_leaf_count, list_key, list_k;
   logic [3*W-1:0] rb_p_hi, rb_p_lo, xw_hi, xw_lo, xf_r, add_r;
   logic [W-1:0] rb_te, is_t, is_u, is_v, is_cos, sum_hi;
-  // the word port's owner: a thread, or the header's load (hdr_own)
-  logic owner_valid, hdr_own;
-  logic [TW-1:0] owner;
+  // the word port: this cycle's request (the header's load, hdr_req, or thread word_sel), the
+  // requester of the oldest response (word_head; its top bit the header's load)
+  logic hdr_req, word_take;
+  logic [TW-1:0] word_sel;
+  logic [TW:0] word_head;
   // the header's fields, shared by all threads
   logic hdr_ok;
   logic [31:0] hdr_instances, hdr_objects, hdr_inst, hdr_top_nodes, hdr_top_lists;
@@ -154,9 +157,9 @@ module trace_core #(
       .hdr_want_o(t_hdr_want[t]), .hdr_ok_i(hdr_ok), .hdr_instances_i(hdr_instances), .hdr_objects_i(hdr_objects),
       .hdr_inst_i(hdr_inst), .hdr_top_nodes_i(hdr_top_nodes), .hdr_top_lists_i(hdr_top_lists),
       .scene_box_i(scene_box),
-      .mem_req_valid_o(t_mem_req[t]), .mem_req_ready_i(owner_valid && owner == TW'(t) && mem_req_ready_i),
-      .mem_addr_o(t_mem_addr[t]), .mem_rsp_valid_i(owner_valid && owner == TW'(t) && mem_rsp_valid_i),
-      .mem_rdata_i(mem_rdata_i), .node_rsp_i(t_node_rsp[t]), .loading_o(t_loading[t]), .waiting_o(t_waiting[t]),
+      .mem_req_valid_o(t_mem_req[t]), .mem_req_ready_i(!hdr_req && word_sel == TW'(t) && word_take),
+      .mem_addr_o(t_mem_addr[t]), .mem_rsp_valid_i(mem_rsp_valid_i && word_head == {1'b0, TW'(t)}),
+      .mem_rdata_i(mem_rdata_i), .node_rsp_i(t_node_rsp[t]), .waiting_o(t_waiting[t]),
       .trav_req_o(req[U_TRAV][t]), .trav_grant_i(grant[U_TRAV][t]), .trav_kind_o(t_trav_kind[t]),
       .trav_level_o(t_trav_level[t]), .trav_o_o(t_trav_o[t]), .trav_d_o(t_trav_d[t]), .trav_tn_o(t_trav_tn[t]),
       .trav_tf_o(t_trav_tf[t]), .trav_best_o(t_trav_best[t]), .trav_mask_o(t_trav_mask[t]),
@@ -303,7 +306,7 @@ module trace_core #(
     end
   assign t_node_rsp = node_rsp_valid_i ? one[node_q[node_rd[TW-1:0]]] : '0;
 
-  // the lowest thread of a set (the word port's next owner, the next packet out)
+  // the lowest thread of a set (the word port's next request, the next packet out)
   function automatic logic [TW-1:0] lowest(input logic [THREADS-1:0] m);
     lowest = '0;
     for (int t = THREADS - 1; t >= 0; t--)
@@ -332,8 +335,8 @@ module trace_core #(
       hdr_sent <= '0;
       hdr_got <= '0;
     end else if (hdr_load) begin
-      if (hdr_own && mem_req_valid_o && mem_req_ready_i) hdr_sent <= hdr_sent + 1'b1;
-      if (hdr_own && mem_rsp_valid_i) begin
+      if (hdr_req && word_take) hdr_sent <= hdr_sent + 1'b1;
+      if (mem_rsp_valid_i && word_head[TW]) begin
         if (hdr_got == HB'(H_INSTANCES / RW)) hdr_instances <= hdr_word(mem_rdata_i, H_INSTANCES);
         if (hdr_got == HB'(H_OBJECTS_AT / RW)) hdr_objects <= hdr_word(mem_rdata_i, H_OBJECTS_AT);
         if (hdr_got == HB'(H_INST_AT / RW)) hdr_inst <= hdr_word(mem_rdata_i, H_INST_AT);
@@ -349,18 +352,29 @@ module trace_core #(
       end
     end
 
-  // ---- the word port: lent to the header's load, else to the lowest loading thread, until the load is done ----
+  // ---- the word port: one request per cycle, the header's load first, else the lowest thread ----
+  // The FIFO of requesters holds 2 THREADS (a thread has at most INST_RSP responses outstanding,
+  // 2 at e7m16); a request waits while it is full.
+  localparam int QB = TW + 1;
+  logic [TW:0] word_q [2**QB];
+  logic [QB:0] word_wr, word_rd;
+  assign hdr_req = hdr_load && hdr_sent != HB'(HDR_RSP);
+  assign word_sel = lowest(t_mem_req);
+  assign mem_req_valid_o = (hdr_req || |t_mem_req) && word_wr - word_rd != (QB + 1)'(2**QB);
+  assign mem_addr_o = hdr_req ? 32'(RW) * 32'(hdr_sent) : t_mem_addr[word_sel];
+  assign word_take = mem_req_valid_o && mem_req_ready_i;
+  assign word_head = word_q[word_rd[QB-1:0]];
   always_ff @(posedge clk_i or negedge rst_ni)
     if (!rst_ni) begin
-      owner_valid <= 1'b0;
-      hdr_own <= 1'b0;
-    end else if (hdr_own ? !hdr_load : !owner_valid || !t_loading[owner]) begin
-      hdr_own <= hdr_load;
-      owner_valid <= !hdr_load && |t_loading;
-      owner <= lowest(t_loading);
+      word_wr <= '0;
+      word_rd <= '0;
+    end else begin
+      if (word_take) begin
+        word_q[word_wr[QB-1:0]] <= hdr_req ? {1'b1, TW'(0)} : {1'b0, word_sel};
+        word_wr <= word_wr + 1'b1;
+      end
+      if (mem_rsp_valid_i) word_rd <= word_rd + 1'b1;
     end
-  assign mem_req_valid_o = hdr_own ? hdr_sent != HB'(HDR_RSP) : owner_valid && t_mem_req[owner];
-  assign mem_addr_o = hdr_own ? 32'(RW) * 32'(hdr_sent) : t_mem_addr[owner];
 
   // ---- packets in and out ----
   logic [TW-1:0] out_sel;

@@ -63,7 +63,6 @@ module trace_thread #(
   input  logic                        mem_rsp_valid_i,
   input  logic [32*RW-1:0]            mem_rdata_i,
   input  logic                        node_rsp_i,  // a kd-node read of this thread answered
-  output logic                        loading_o,   // reading descriptor words (wants the word port)
   output logic                        waiting_o,   // an operation of this thread is in a unit
   // traversal unit
   output logic                        trav_req_o,
@@ -405,7 +404,6 @@ module trace_thread #(
   end
 
   assign mem_req_valid_o = st == S_LOAD && ld_sent != ld_n;
-  assign loading_o = st == S_LOAD;
   assign waiting_o = st == S_TRAV_WAIT || st == S_LIST_WAIT || st == S_RB_WAIT || st == S_WIDE_WAIT ||
                      st == S_XF_WAIT || st == S_ADD_WAIT || st == S_SUM_WAIT || st == S_TI_HIT;
   assign mem_addr_o = ld_base + 32'(RW) * 32'(ld_sent);
