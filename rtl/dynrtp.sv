@@ -31,6 +31,7 @@ module dynrtp #(
   parameter int E = 7,
   parameter int M = 16,
   parameter int THREADS = 32,
+  parameter int CTX = 4,            // trav_unit's operation contexts (the bound at 32 threads: rtl/README.md)
   parameter int NODE_KB = 4,
   parameter int LIST_KB = 2,
   parameter int MAT_KB = 6,
@@ -107,7 +108,7 @@ module dynrtp #(
   logic [63:0] node_data;
   logic [7:0] issue;
   /* verilator lint_off PINCONNECTEMPTY */
-  trace_core #(.E(E), .M(M), .THREADS(THREADS)) u_core (
+  trace_core #(.E(E), .M(M), .THREADS(THREADS), .CTX(CTX)) u_core (
     .clk_i(clk_i), .rst_ni(rst_ni), .flush_i(flush_i), .valid_i(valid_i), .ready_o(ready_o), .thread_i(thread_i),
     .flags_i(flags_i),
     .active_i(active_i), .o_i(o_i), .d_i(d_i), .tmin_i(tmin_i), .tmax_i(tmax_i), .valid_o(valid_o),

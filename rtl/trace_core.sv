@@ -26,11 +26,14 @@
 // responses, in request order, are counted for their thread through a FIFO of thread ids) and
 // list_unit's read port are the core's.
 // Latency: per packet the sum of its operations' unit latencies, waits and reads (rtl/tb/tb_core.cpp
-// reports cycles per packet and the operations in flight); throughput: up to one operation per
-// unit and cycle, THREADS packets in flight.
+// reports cycles per packet and the operations in flight; a record read is one or two responses,
+// the header's read once per image HDR_RSP); throughput: up to one operation per unit and cycle,
+// one word port request per cycle, THREADS packets in flight.
 // Resources: the units' (rtl/README.md), thread_sched (8 units), THREADS trace_thread (each 5718
-// LUTs and 6183 flip-flops with synth_xilinx at e7m16: its state in registers), the operand
-// multiplexers (THREADS to 1 per unit); the whole core is not yet synthesized.
+// LUTs and 6183 flip-flops with synth_xilinx at e7m16 before its header and 20 buffer words came
+// out: its state in registers), the header's fields (5 words and the 6 W-bit bounds, once), the
+// word port's FIFO of 2 THREADS requesters of TW + 1 bits, the operand multiplexers (THREADS to 1
+// per unit); the whole core is not yet synthesized.
 // Handshake: valid/ready at the packet input (into thread thread_i: ready_o when it is free) and
 // at the result output (the lowest finished thread first); word port valid/ready with responses in
 // request order; trav_unit's node port and list_unit's read port as those units define them (the
