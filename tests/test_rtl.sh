@@ -274,8 +274,8 @@ t_core_mutant_caught() { # route_after_list walking on before the rest of its le
     --capture-unit-io "$T/core_cornell" --capture-limit 1000 >/dev/null
   mutant core trace_thread.sv "s/else if (k\[level\] < leaf_count\[level\]) st <= S_LIST_GO;/else if (k[level] < leaf_count[level] \&\& !have_cur[level]) st <= S_LIST_GO;/" \
     --capture "$T/core_cornell" --packets 60 &&
-    # a wide response unpacked over the one before (an instance record's second line over its first)
-    mutant core trace_thread.sv "s/lbuf\[r \* RW + j\] <= mem_rdata_i/lbuf[j] <= mem_rdata_i/" \
+    # an object record read in one response, not two (its bounds' last words stale)
+    mutant core trace_thread.sv "s/OBJ_RSP = (OBJ_READ + RW - 1) \/ RW/OBJ_RSP = OBJ_READ \/ RW/" \
       --capture "$T/core_cornell" --packets 60
 }
 
