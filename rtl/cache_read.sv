@@ -15,7 +15,7 @@
 module cache_read #(
   parameter int LINE_BYTES = 8,
   parameter int SIZE_BYTES = 4096,
-  parameter int WORDS = 2,          // words per read: 1 or 2
+  parameter int WORDS = 2,          // words per read: 1 .. a line's (LINE_BYTES / 4)
   parameter int OUTSTANDING = 16    // reads in flight (a power of two)
 ) (
   input  logic                     clk_i,
@@ -35,8 +35,8 @@ module cache_read #(
   localparam int LW = LINE_BYTES / 4;               // words per line
   localparam int SW = $clog2(OUTSTANDING);
   localparam int OW = LW > 1 ? $clog2(LW) : 1;
-  if (WORDS < 1 || WORDS > 2 || WORDS > LW + 1 || (1 << SW) != OUTSTANDING) begin : g_check
-    $error("cache_read: WORDS 1 or 2 (at most one line more), OUTSTANDING a power of two");
+  if (WORDS < 1 || WORDS > LW || (1 << SW) != OUTSTANDING) begin : g_check
+    $error("cache_read: WORDS 1 .. LINE_BYTES / 4 (a read touches at most two lines), OUTSTANDING a power of two");
   end
 
   // ---- the ring of reads ----

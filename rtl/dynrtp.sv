@@ -13,9 +13,9 @@
 // and trace_counters out, so the RGS drives the core as rgs_step would drive trace_step; the
 // shading cache and the RGS's uncached reads (nothing of the RGS reads memory here).
 // Where the memory interface differs from the cycle model (docs/cycle-model.md): the core's
-// descriptor word port reads the header, instance, object and triangle records word by word
-// through the matrix cache (the cycle model charges the records by blocks and the header not at
-// all); list_unit's entry waits in its pipeline for the list word (the cycle model parks the
+// descriptor word port reads the header once per image (4 responses at e7m16; the cycle model:
+// not at all) and a record in one or two responses of a matrix cache line's RW words each (a
+// read across two lines takes two lookups; the cycle model looks the lines up at once); list_unit's entry waits in its pipeline for the list word (the cycle model parks the
 // thread before the unit); every cache has OUTSTANDING reads in flight (the cycle model: no
 // limit); the caches answer a hit after 2 cycles (3 with the matrix cache's index stage, the
 // cycle model: at once).
@@ -23,7 +23,7 @@
 // frame_valid_i until frame_end_i (the RGS's last block done); issues_o per unit of trace_core the
 // operations issued in that time (thread_sched: trav, list, rebase, wide, xform, isect, add, sum,
 // 64 bits each); packets_o the packets traced; reads_o per memory port of the core the reads its
-// cache took (kd nodes, list entries, descriptor words: the word port's usage).
+// cache took (kd nodes, list entries, descriptor responses of RW words: the word port's usage).
 // Latency and throughput: tile_ctrl 1 block per cycle; the core's (rtl/README.md); the memory port
 // 1 transfer per cycle. Resources: trace_core's, 3 x cache_read (NODE_KB + LIST_KB + MAT_KB KB of
 // data arrays and their tags), mem_port, tile_ctrl, 13 x 64-bit counters.
@@ -31,13 +31,15 @@ module dynrtp #(
   parameter int E = 7,
   parameter int M = 16,
   parameter int THREADS = 32,
+  parameter int CTX = 4,            // trav_unit's operation contexts (the bound at 32 threads: rtl/README.md)
   parameter int NODE_KB = 4,
   parameter int LIST_KB = 2,
   parameter int MAT_KB = 6,
   parameter int OUTSTANDING = 16,   // reads in flight per cache
   localparam int W = 1 + E + M,
   localparam int TW = $clog2(THREADS),
-  localparam int MAT_LINE = 4 * ((12 * W + 27 + 31) / 32), // F24_TRIANGLE_RECORD_WORDS words
+  localparam int RW = (12 * W + 27 + 3 + 31) / 32,         // F24_TRIANGLE_RECORD_WORDS
+  localparam int MAT_LINE = 4 * RW,                         // bytes: one packed triangle record
   localparam int DW = 8 * MAT_LINE                          // the widest line
 ) (
   input  logic                   clk_i,
@@ -101,12 +103,14 @@ module dynrtp #(
 
   // ---- the core ----
   logic word_req, word_ready, word_rsp, node_req, node_ready, node_rsp, list_re, list_valid;
-  logic [31:0] word_addr, word_data, node_addr, list_addr, list_data;
+  logic [31:0] word_addr, node_addr, list_addr, list_data;
+  logic [32*RW-1:0] word_data;
   logic [63:0] node_data;
   logic [7:0] issue;
   /* verilator lint_off PINCONNECTEMPTY */
-  trace_core #(.E(E), .M(M), .THREADS(THREADS)) u_core (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(valid_i), .ready_o(ready_o), .thread_i(thread_i), .flags_i(flags_i),
+  trace_core #(.E(E), .M(M), .THREADS(THREADS), .CTX(CTX)) u_core (
+    .clk_i(clk_i), .rst_ni(rst_ni), .flush_i(flush_i), .valid_i(valid_i), .ready_o(ready_o), .thread_i(thread_i),
+    .flags_i(flags_i),
     .active_i(active_i), .o_i(o_i), .d_i(d_i), .tmin_i(tmin_i), .tmax_i(tmax_i), .valid_o(valid_o),
     .ready_i(ready_i), .thread_o(thread_o), .inst_o(inst_o), .tri_o(tri_o), .t_o(t_o), .u_o(u_o), .v_o(v_o),
     .cos_o(cos_o), .count_o(count_o), .inflight_o(), .mem_req_valid_o(word_req), .mem_req_ready_i(word_ready),
@@ -152,7 +156,7 @@ module dynrtp #(
     .mem_req_ready_i(mreq_ready[1]), .mem_req_addr_o(mreq_addr[32 +: 32]), .mem_rsp_valid_i(mrsp_valid[1]),
     .mem_rsp_data_i(mrsp_data[0 +: 32]));
 
-  cache_read #(.LINE_BYTES(MAT_LINE), .SIZE_BYTES(1024 * MAT_KB), .WORDS(1), .OUTSTANDING(OUTSTANDING)) u_matrices (
+  cache_read #(.LINE_BYTES(MAT_LINE), .SIZE_BYTES(1024 * MAT_KB), .WORDS(RW), .OUTSTANDING(OUTSTANDING)) u_matrices (
     .clk_i(clk_i), .rst_ni(rst_ni), .flush_i(flush_i), .req_valid_i(word_req), .req_ready_o(word_ready),
     .req_addr_i(word_addr), .rsp_valid_o(word_rsp), .rsp_data_o(word_data), .mem_req_valid_o(mreq_valid[2]),
     .mem_req_ready_i(mreq_ready[2]), .mem_req_addr_o(mreq_addr[64 +: 32]), .mem_rsp_valid_i(mrsp_valid[2]),

@@ -16,16 +16,24 @@
 // own (rebase, wide and narrow transformation, adders, exact sum, intersection) carry the issued
 // thread beside their pipeline in an f24_pipe of their latency (their outputs are always taken, so
 // the latency is fixed). Results go to their thread alone.
-// Memory: the descriptor words (header, instance, object, triangle records) through the word port,
-// lent to one loading thread at a time until its load is done; trav_unit's node port (whose
+// Memory: the header's fields (the instance count, the region table's addresses, the scene bounds)
+// read once per memory image (after reset or flush_i) on the first packet's use and held here for
+// all threads, HDR_RSP responses; the instance, object and triangle records through the wide word
+// port, RW consecutive words per response (one matrix cache line: a triangle record in one, an
+// instance or object record in two), shared request by request: each cycle the header's load or
+// else the lowest thread with a request sends one, its requester goes into a FIFO (the port
+// answers in request order) and the response goes to the FIFO's oldest; trav_unit's node port (whose
 // responses, in request order, are counted for their thread through a FIFO of thread ids) and
 // list_unit's read port are the core's.
 // Latency: per packet the sum of its operations' unit latencies, waits and reads (rtl/tb/tb_core.cpp
-// reports cycles per packet and the operations in flight); throughput: up to one operation per
-// unit and cycle, THREADS packets in flight.
+// reports cycles per packet and the operations in flight; a record read is one or two responses,
+// the header's read once per image HDR_RSP); throughput: up to one operation per unit and cycle,
+// one word port request per cycle, THREADS packets in flight.
 // Resources: the units' (rtl/README.md), thread_sched (8 units), THREADS trace_thread (each 5718
-// LUTs and 6183 flip-flops with synth_xilinx at e7m16: its state in registers), the operand
-// multiplexers (THREADS to 1 per unit); the whole core is not yet synthesized.
+// LUTs and 6183 flip-flops with synth_xilinx at e7m16 before its header and 20 buffer words came
+// out: its state in registers), the header's fields (5 words and the 6 W-bit bounds, once), the
+// word port's FIFO of 2 THREADS requesters of TW + 1 bits, the operand multiplexers (THREADS to 1
+// per unit); the whole core is not yet synthesized.
 // Handshake: valid/ready at the packet input (into thread thread_i: ready_o when it is free) and
 // at the result output (the lowest finished thread first); word port valid/ready with responses in
 // request order; trav_unit's node port and list_unit's read port as those units define them (the
@@ -34,6 +42,7 @@
 module trace_core #(
   parameter int E = 7,
   parameter int M = 16,
+  localparam int RW = (12 * (1 + E + M) + 27 + 3 + 31) / 32,  // words per response (a triangle record)
   parameter int THREADS = 4,
   parameter int CTX = 4,
   parameter int ADD_STAGES = 6,
@@ -44,6 +53,7 @@ module trace_core #(
 ) (
   input  logic                        clk_i,
   input  logic                        rst_ni,
+  input  logic                        flush_i,    // a new memory image (the core empty): read the header again
   // packet in (trace_begin) to thread thread_i
   input  logic                        valid_i,
   output logic                        ready_o,
@@ -66,12 +76,12 @@ module trace_core #(
   output logic [4*(E+M+1)-1:0]        cos_o,
   output logic [10*32-1:0]            count_o,    // trace_counters in its order (words: 4 kinds)
   output logic [$clog2(THREADS):0]    inflight_o, // threads with an operation in a unit
-  // word read port (descriptors)
+  // word read port (descriptors): RW words from the word address per response
   output logic                        mem_req_valid_o,
   input  logic                        mem_req_ready_i,
   output logic [31:0]                 mem_addr_o,
   input  logic                        mem_rsp_valid_i,
-  input  logic [31:0]                 mem_rdata_i,
+  input  logic [32*RW-1:0]            mem_rdata_i,
   // trav_unit's node port
   output logic                        node_req_valid_o,
   input  logic                        node_req_ready_i,
@@ -98,7 +108,7 @@ module trace_core #(
   end
 
   // ---- the threads' requests, operands and results ----
-  logic [THREADS-1:0] t_ready, t_valid, t_out_ready, t_mem_req, t_loading, t_waiting, t_node_rsp;
+  logic [THREADS-1:0] t_ready, t_valid, t_out_ready, t_mem_req, t_waiting, t_node_rsp, t_hdr_want;
   logic [31:0] t_mem_addr [THREADS];
   logic [4*32-1:0] t_inst [THREADS], t_tri [THREADS];
   logic [4*W-1:0] t_t [THREADS], t_u [THREADS], t_v [THREADS], t_cos [THREADS];
@@ -130,9 +140,15 @@ module trace_core #(
   logic [31:0] trav_leaf_first, trav_leaf_count, list_key, list_k;
   logic [3*W-1:0] rb_p_hi, rb_p_lo, xw_hi, xw_lo, xf_r, add_r;
   logic [W-1:0] rb_te, is_t, is_u, is_v, is_cos, sum_hi;
-  // the word port's owner
-  logic owner_valid;
-  logic [TW-1:0] owner;
+  // the word port: this cycle's request (the header's load, hdr_req, or thread word_sel), the
+  // requester of the oldest response (word_head; its top bit the header's load)
+  logic hdr_req, word_take;
+  logic [TW-1:0] word_sel;
+  logic [TW:0] word_head;
+  // the header's fields, shared by all threads
+  logic hdr_ok;
+  logic [31:0] hdr_instances, hdr_objects, hdr_inst, hdr_top_nodes, hdr_top_lists;
+  logic [6*W-1:0] scene_box;
 
   /* verilator lint_off PINCONNECTEMPTY */
   for (genvar t = 0; t < THREADS; t++) begin : g_thread
@@ -141,9 +157,12 @@ module trace_core #(
       .flags_i(flags_i), .active_i(active_i), .o_i(o_i), .d_i(d_i), .tmin_i(tmin_i), .tmax_i(tmax_i),
       .valid_o(t_valid[t]), .ready_i(t_out_ready[t]), .inst_o(t_inst[t]), .tri_o(t_tri[t]), .t_o(t_t[t]),
       .u_o(t_u[t]), .v_o(t_v[t]), .cos_o(t_cos[t]), .count_o(t_count[t]),
-      .mem_req_valid_o(t_mem_req[t]), .mem_req_ready_i(owner_valid && owner == TW'(t) && mem_req_ready_i),
-      .mem_addr_o(t_mem_addr[t]), .mem_rsp_valid_i(owner_valid && owner == TW'(t) && mem_rsp_valid_i),
-      .mem_rdata_i(mem_rdata_i), .node_rsp_i(t_node_rsp[t]), .loading_o(t_loading[t]), .waiting_o(t_waiting[t]),
+      .hdr_want_o(t_hdr_want[t]), .hdr_ok_i(hdr_ok), .hdr_instances_i(hdr_instances), .hdr_objects_i(hdr_objects),
+      .hdr_inst_i(hdr_inst), .hdr_top_nodes_i(hdr_top_nodes), .hdr_top_lists_i(hdr_top_lists),
+      .scene_box_i(scene_box),
+      .mem_req_valid_o(t_mem_req[t]), .mem_req_ready_i(!hdr_req && word_sel == TW'(t) && word_take),
+      .mem_addr_o(t_mem_addr[t]), .mem_rsp_valid_i(mem_rsp_valid_i && word_head == {1'b0, TW'(t)}),
+      .mem_rdata_i(mem_rdata_i), .node_rsp_i(t_node_rsp[t]), .waiting_o(t_waiting[t]),
       .trav_req_o(req[U_TRAV][t]), .trav_grant_i(grant[U_TRAV][t]), .trav_kind_o(t_trav_kind[t]),
       .trav_level_o(t_trav_level[t]), .trav_o_o(t_trav_o[t]), .trav_d_o(t_trav_d[t]), .trav_tn_o(t_trav_tn[t]),
       .trav_tf_o(t_trav_tf[t]), .trav_best_o(t_trav_best[t]), .trav_mask_o(t_trav_mask[t]),
@@ -290,22 +309,75 @@ module trace_core #(
     end
   assign t_node_rsp = node_rsp_valid_i ? one[node_q[node_rd[TW-1:0]]] : '0;
 
-  // the lowest thread of a set (the word port's next owner, the next packet out)
+  // the lowest thread of a set (the word port's next request, the next packet out)
   function automatic logic [TW-1:0] lowest(input logic [THREADS-1:0] m);
     lowest = '0;
     for (int t = THREADS - 1; t >= 0; t--)
       if (m[t]) lowest = TW'(t);
   endfunction
 
-  // ---- the word port: lent to the lowest loading thread until its load is done ----
+  // ---- the header: read once per image when a thread first waits for it ----
+  // memory image layout (docs/memory-image.md; hls/units/trace.c): the fields' word addresses
+  localparam int H_INSTANCES = 7, H_BOUNDS = 12, H_OBJECTS_AT = 18 + 2 * 5, H_INST_AT = 18 + 2 * 8;
+  localparam int H_TOP_NODES_AT = 18 + 2 * 9, H_TOP_LISTS_AT = 18 + 2 * 10;
+  localparam int HDR_RSP = (H_TOP_LISTS_AT + 1 + RW - 1) / RW;
+  localparam int HB = $clog2(HDR_RSP + 1);
+  logic hdr_load;
+  logic [HB-1:0] hdr_sent, hdr_got;
+  // the word at address a from the response that holds it
+  function automatic logic [31:0] hdr_word(input logic [32*RW-1:0] rsp, input int a);
+    hdr_word = rsp[32 * (a % RW) +: 32];
+  endfunction
   always_ff @(posedge clk_i or negedge rst_ni)
-    if (!rst_ni) owner_valid <= 1'b0;
-    else if (!owner_valid || !t_loading[owner]) begin
-      owner_valid <= |t_loading;
-      owner <= lowest(t_loading);
+    if (!rst_ni) begin
+      hdr_ok <= 1'b0;
+      hdr_load <= 1'b0;
+    end else if (flush_i) hdr_ok <= 1'b0;
+    else if (!hdr_ok && !hdr_load && |t_hdr_want) begin
+      hdr_load <= 1'b1;
+      hdr_sent <= '0;
+      hdr_got <= '0;
+    end else if (hdr_load) begin
+      if (hdr_req && word_take) hdr_sent <= hdr_sent + 1'b1;
+      if (mem_rsp_valid_i && word_head[TW]) begin
+        if (hdr_got == HB'(H_INSTANCES / RW)) hdr_instances <= hdr_word(mem_rdata_i, H_INSTANCES);
+        if (hdr_got == HB'(H_OBJECTS_AT / RW)) hdr_objects <= hdr_word(mem_rdata_i, H_OBJECTS_AT);
+        if (hdr_got == HB'(H_INST_AT / RW)) hdr_inst <= hdr_word(mem_rdata_i, H_INST_AT);
+        if (hdr_got == HB'(H_TOP_NODES_AT / RW)) hdr_top_nodes <= hdr_word(mem_rdata_i, H_TOP_NODES_AT);
+        if (hdr_got == HB'(H_TOP_LISTS_AT / RW)) hdr_top_lists <= hdr_word(mem_rdata_i, H_TOP_LISTS_AT);
+        for (int j = 0; j < 6; j++)
+          if (hdr_got == HB'((H_BOUNDS + j) / RW)) scene_box[j*W +: W] <= W'(hdr_word(mem_rdata_i, H_BOUNDS + j));
+        hdr_got <= hdr_got + 1'b1;
+        if (hdr_got == HB'(HDR_RSP - 1)) begin
+          hdr_load <= 1'b0;
+          hdr_ok <= 1'b1;
+        end
+      end
     end
-  assign mem_req_valid_o = owner_valid && t_mem_req[owner];
-  assign mem_addr_o = t_mem_addr[owner];
+
+  // ---- the word port: one request per cycle, the header's load first, else the lowest thread ----
+  // The FIFO of requesters holds 2 THREADS (a thread has at most INST_RSP responses outstanding,
+  // 2 at e7m16); a request waits while it is full.
+  localparam int QB = TW + 1;
+  logic [TW:0] word_q [2**QB];
+  logic [QB:0] word_wr, word_rd;
+  assign hdr_req = hdr_load && hdr_sent != HB'(HDR_RSP);
+  assign word_sel = lowest(t_mem_req);
+  assign mem_req_valid_o = (hdr_req || |t_mem_req) && word_wr - word_rd != (QB + 1)'(2**QB);
+  assign mem_addr_o = hdr_req ? 32'(RW) * 32'(hdr_sent) : t_mem_addr[word_sel];
+  assign word_take = mem_req_valid_o && mem_req_ready_i;
+  assign word_head = word_q[word_rd[QB-1:0]];
+  always_ff @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) begin
+      word_wr <= '0;
+      word_rd <= '0;
+    end else begin
+      if (word_take) begin
+        word_q[word_wr[QB-1:0]] <= hdr_req ? {1'b1, TW'(0)} : {1'b0, word_sel};
+        word_wr <= word_wr + 1'b1;
+      end
+      if (mem_rsp_valid_i) word_rd <= word_rd + 1'b1;
+    end
 
   // ---- packets in and out ----
   logic [TW-1:0] out_sel;

@@ -7,19 +7,24 @@
 // transaction at a time. Per unit it raises a request with the operation's operands (*_req_o and
 // the operand ports) and waits for the core's grant (*_grant_i: the unit took it), then for the
 // result, which the core delivers to this thread alone (*_done_i with the result ports, shared by
-// all threads). The descriptor words (header, instance, object, triangle records) come through the
-// word port, which the core lends to one loading thread at a time. TRAV_STACK only (the
+// all threads). The header's fields (hdr_*_i: the instance count, the region table's addresses, the
+// scene bounds) are the core's, read once per memory image and shared by all threads (the thread
+// waits in S_HDR until hdr_ok_i); the instance, object and triangle records come through the wide
+// word port, RW consecutive words (one matrix cache line, one packed triangle record) per response,
+// so a record takes one or two responses (ld_n of them, unpacked from lbuf). TRAV_STACK only (the
 // algorithm trav_unit has). The stacks and mailboxes live in trav_unit and list_unit.
 // Latency: the sum of the packet's unit operations, their waits for the units and the reads.
-// Resources: the state registers, 36 W bits per ray, a 40-word descriptor buffer, about 20 words
-// of routing state and 10 counters of 32 bits; the record unpacking (f24_vertex_lo) and the
-// identity mapping (xform_identity) in wires. Yosys 0.23 synth_xilinx at e7m16: 5718 LUTs, 6183
-// flip-flops, 4 DSP48E1 (the record addresses' constant multiplications), 205 CARRY4: all in
-// flip-flops, so the paper's 64 threads want this state in block RAM indexed by thread.
+// Resources: the state registers, 36 W bits per ray, a descriptor buffer of LBUF words (two
+// responses: 20 at e7m16), about 15 words of routing state and 10 counters of 32 bits; the record unpacking (f24_vertex_lo) and the
+// identity mapping (xform_identity) in wires. Yosys 0.23 synth_xilinx at e7m16 (before the header
+// moved to the core and the buffer shrank from 40 words to 20): 5718 LUTs, 6183 flip-flops, 4
+// DSP48E1 (the record addresses' constant multiplications), 205 CARRY4: all in flip-flops, so the paper's 64 threads want this state in block RAM indexed by thread.
 // Handshake: valid/ready at the packet input and the result output; request/grant to the units.
 module trace_thread #(
   parameter int E = 7,
-  parameter int M = 16
+  parameter int M = 16,
+  localparam int W = 1 + E + M,
+  localparam int RW = (12 * W + 27 + 3 + 31) / 32   // words per response: F24_TRIANGLE_RECORD_WORDS
 ) (
   input  logic                        clk_i,
   input  logic                        rst_ni,
@@ -42,14 +47,22 @@ module trace_thread #(
   output logic [4*(E+M+1)-1:0]        v_o,
   output logic [4*(E+M+1)-1:0]        cos_o,
   output logic [10*32-1:0]            count_o,    // trace_counters in its order (words: 4 kinds)
-  // word read port (descriptors), lent by the core
+  // the header's fields (the core's, hdr_ok_i when read)
+  output logic                        hdr_want_o,  // waiting for the header
+  input  logic                        hdr_ok_i,
+  input  logic [31:0]                 hdr_instances_i,
+  input  logic [31:0]                 hdr_objects_i,
+  input  logic [31:0]                 hdr_inst_i,
+  input  logic [31:0]                 hdr_top_nodes_i,
+  input  logic [31:0]                 hdr_top_lists_i,
+  input  logic [6*(E+M+1)-1:0]        scene_box_i,
+  // word read port (descriptors): RW words from the request's word address per response
   output logic                        mem_req_valid_o,
   input  logic                        mem_req_ready_i,
   output logic [31:0]                 mem_addr_o,
   input  logic                        mem_rsp_valid_i,
-  input  logic [31:0]                 mem_rdata_i,
+  input  logic [32*RW-1:0]            mem_rdata_i,
   input  logic                        node_rsp_i,  // a kd-node read of this thread answered
-  output logic                        loading_o,   // reading descriptor words (wants the word port)
   output logic                        waiting_o,   // an operation of this thread is in a unit
   // traversal unit
   output logic                        trav_req_o,
@@ -150,18 +163,17 @@ module trace_thread #(
   input  logic                        sum_done_i,
   input  logic [E+M:0]                sum_hi_i
 );
-  localparam int W = 1 + E + M;
   localparam logic [E-1:0] EXP_MAX = '1;
   localparam logic [W-1:0] POS_INF = {1'b0, EXP_MAX, {M{1'b0}}};
   localparam logic [W-1:0] DNAN = {1'b0, EXP_MAX, 1'b1, {(M-1){1'b0}}};
   localparam logic [31:0] NO_HIT = '1;
   // memory image layout (docs/memory-image.md; hls/units/trace.c)
-  localparam int H_INSTANCES = 7, H_BOUNDS = 12, H_OBJECTS_AT = 18 + 2 * 5, H_INST_AT = 18 + 2 * 8;
-  localparam int H_TOP_NODES_AT = 18 + 2 * 9, H_TOP_LISTS_AT = 18 + 2 * 10, HDR_WORDS = H_TOP_LISTS_AT + 1;
-  localparam int TRI_BITS = 12 * W + 3 * 9 + 3;             // F24_TRIANGLE_BITS
-  localparam int TRI_WORDS = (TRI_BITS + 31) / 32;          // F24_TRIANGLE_RECORD_WORDS
+  localparam int TRI_WORDS = RW;                            // F24_TRIANGLE_RECORD_WORDS
   localparam int INST_WORDS = TRI_WORDS * ((17 + TRI_WORDS - 1) / TRI_WORDS);
-  localparam int INST_READ = 17, OBJ_READ = 14, LBUF = 40;
+  localparam int INST_READ = 17, OBJ_READ = 14;
+  // responses per record (the instance's 17 words the most) and the buffer they fill
+  localparam int INST_RSP = (INST_READ + RW - 1) / RW, OBJ_RSP = (OBJ_READ + RW - 1) / RW;
+  localparam int LBUF = RW * INST_RSP;
   localparam int C_STEPS = 0, C_LEAVES = 1, C_ENTRIES = 2, C_SKIPS = 3, C_XFORMS = 4, C_ISECTS = 5;
   localparam int C_NODES = 6, C_LISTS = 7, C_MATRICES = 8;
   if (M < 8) begin : g_m_check
@@ -192,15 +204,13 @@ module trace_thread #(
   logic [3:0] leaf_mask [2];
   logic [W-1:0] leaf_tn [2][4];
   logic have_cur [2];
-  logic [31:0] hdr_instances, hdr_objects, hdr_inst, hdr_top_nodes, hdr_top_lists;
-  logic [6*W-1:0] scene_box;
   logic [31:0] inst, obj, tris, tri_ix;
   logic [31:0] cnt [10];
   logic walk_read;
-  // the loader: ld_n words from ld_base into lbuf, then ld_ret
+  // the loader: ld_n responses of RW words from ld_base into lbuf, then ld_ret
   logic [31:0] lbuf [LBUF];
   logic [31:0] ld_base;
-  logic [5:0] ld_n, ld_sent, ld_got;
+  logic [1:0] ld_n, ld_sent, ld_got;
   // the intersection's intermediate values
   logic [3*W-1:0] dd, ofs_lo, ofs_hi, ofs;
   logic [1:0] ofs_pass;
@@ -288,7 +298,7 @@ module trace_thread #(
   assign trav_o_o = st == S_SC_GO || (st != S_IC_CLIP && !level) ? ray_o : obj_o;
   assign trav_d_o = st == S_SC_GO || (st != S_IC_CLIP && !level) ? ray_d : obj_d;
   assign trav_best_o = level ? v_best_rel : v_best_t;
-  assign trav_box_o = st == S_SC_GO ? scene_box : {lbuf[13][W-1:0], lbuf[12][W-1:0], lbuf[11][W-1:0],
+  assign trav_box_o = st == S_SC_GO ? scene_box_i : {lbuf[13][W-1:0], lbuf[12][W-1:0], lbuf[11][W-1:0],
                                                lbuf[10][W-1:0], lbuf[9][W-1:0], lbuf[8][W-1:0]};
   logic [4*W-1:0] clip_tn, clip_tf, r_leaf_tn;   // the traversal unit's last result
   logic [3:0] clip_mask, r_leaf_mask;
@@ -322,7 +332,7 @@ module trace_thread #(
       default: ;
     endcase
   end
-  assign trav_nodes_o = level ? lbuf[0] : hdr_top_nodes;
+  assign trav_nodes_o = level ? lbuf[0] : hdr_top_nodes_i;
   // ---- the other units' operands ----
   assign list_req_o = st == S_CLR0 || st == S_IC_CLR || st == S_LIST_GO;
   assign list_clear_o = st != S_LIST_GO;
@@ -394,10 +404,10 @@ module trace_thread #(
   end
 
   assign mem_req_valid_o = st == S_LOAD && ld_sent != ld_n;
-  assign loading_o = st == S_LOAD;
   assign waiting_o = st == S_TRAV_WAIT || st == S_LIST_WAIT || st == S_RB_WAIT || st == S_WIDE_WAIT ||
                      st == S_XF_WAIT || st == S_ADD_WAIT || st == S_SUM_WAIT || st == S_TI_HIT;
-  assign mem_addr_o = ld_base + 32'(ld_sent);
+  assign mem_addr_o = ld_base + 32'(RW) * 32'(ld_sent);
+  assign hdr_want_o = st == S_HDR;
   assign ready_o = st == S_IDLE;
   assign valid_o = st == S_DONE;
   always_comb
@@ -412,8 +422,8 @@ module trace_thread #(
   always_comb
     for (int c = 0; c < 10; c++) count_o[c*32 +: 32] = cnt[c];
 
-  // the loader: reads n words from base into lbuf through the word port, then goes to next
-  task automatic load(input logic [31:0] base, input logic [5:0] n, input logic [5:0] next);
+  // the loader: reads n responses from base into lbuf through the word port, then goes to next
+  task automatic load(input logic [31:0] base, input logic [1:0] n, input logic [5:0] next);
     ld_base <= base;
     ld_n <= n;
     ld_sent <= '0;
@@ -458,24 +468,18 @@ module trace_thread #(
             st <= S_CLR0;
           end
         S_CLR0:
-          if (list_grant_i) load(32'd0, 6'(HDR_WORDS), S_HDR);
+          if (list_grant_i) st <= S_HDR;
         S_LOAD: begin
           if (mem_req_valid_o && mem_req_ready_i) ld_sent <= ld_sent + 1'b1;
           if (mem_rsp_valid_i) begin
-            lbuf[ld_got] <= mem_rdata_i;
+            for (int r = 0; r < INST_RSP; r++)
+              if (ld_got == 2'(r))
+                for (int j = 0; j < RW; j++) lbuf[r * RW + j] <= mem_rdata_i[32 * j +: 32];
             ld_got <= ld_got + 1'b1;
             if (ld_got + 1'b1 == ld_n) st <= ld_ret;
           end
         end
-        S_HDR: begin
-          hdr_instances <= lbuf[H_INSTANCES];
-          hdr_objects <= lbuf[H_OBJECTS_AT];
-          hdr_inst <= lbuf[H_INST_AT];
-          hdr_top_nodes <= lbuf[H_TOP_NODES_AT];
-          hdr_top_lists <= lbuf[H_TOP_LISTS_AT];
-          for (int j = 0; j < 6; j++) scene_box[j*W +: W] <= lbuf[H_BOUNDS + j][W-1:0];
-          st <= S_SC_GO;
-        end
+        S_HDR: if (hdr_ok_i) st <= S_SC_GO;
         // traversal unit: an operation issued, its result awaited (ret: what follows)
         S_SC_GO: if (trav_grant_i) begin ret <= S_SC_DONE; st <= S_TRAV_WAIT; end
         S_START_GO: if (trav_grant_i) begin ret <= S_START_DONE; st <= S_TRAV_WAIT; end
@@ -495,15 +499,15 @@ module trace_thread #(
             st <= ret;
           end
         S_SC_DONE:  // op_scene_clip
-          if (clip_mask == 0 || hdr_instances == 0) st <= S_DONE;
+          if (clip_mask == 0 || hdr_instances_i == 0) st <= S_DONE;
           else if (flags[0]) begin  // enter_single_object: its one-leaf list
             need <= clip_mask;
             leaf_count[0] <= '0;
             k[0] <= '0;
             for (int i = 0; i < 4; i++) leaf_tn[0][i] <= clip_tn[i*W +: W];
-            load(hdr_top_nodes + 1, 6'd1, S_SINGLE_NODE);
+            load(hdr_top_nodes_i + 1, 2'd1, S_SINGLE_NODE);
           end else begin
-            lists[0] <= hdr_top_lists;
+            lists[0] <= hdr_top_lists_i;
             st <= S_START_GO;
           end
         S_START_DONE: begin
@@ -512,7 +516,7 @@ module trace_thread #(
           k[level] <= '0;
           st <= S_WALK_GO;
         end
-        S_SINGLE_NODE: load(hdr_top_lists + lbuf[0], 6'd1, S_SINGLE_LIST);
+        S_SINGLE_NODE: load(hdr_top_lists_i + lbuf[0], 2'd1, S_SINGLE_LIST);
         S_SINGLE_LIST: begin
           inst <= lbuf[0];
           st <= S_IX_LOAD;
@@ -575,9 +579,9 @@ module trace_thread #(
             end
           end
         // op_inst_xform
-        S_IX_LOAD: load(hdr_inst + INST_WORDS * inst, 6'(INST_READ), S_IX);
+        S_IX_LOAD: load(hdr_inst_i + INST_WORDS * inst, 2'(INST_RSP), S_IX);
         S_IX: begin
-          obj <= hdr_objects + 16 * lbuf[12];
+          obj <= hdr_objects_i + 16 * lbuf[12];
           cnt[C_MATRICES] <= cnt[C_MATRICES] + INST_READ + OBJ_READ;
           // an identity instance, or TRACE_IDENTITY's single one (enter_single_object): the rays pass
           // as wiring, and the clip follows in the same operation
@@ -619,7 +623,7 @@ module trace_thread #(
             end
           end
         // op_inst_clip / inst_clip
-        S_IC_LOAD: load(obj, 6'(OBJ_READ), S_IC_CLR);
+        S_IC_LOAD: load(obj, 2'(OBJ_RSP), S_IC_CLR);
         S_IC_CLR:
           if (list_grant_i) begin
             todo <= need;
@@ -668,7 +672,7 @@ module trace_thread #(
           cnt[C_XFORMS] <= cnt[C_XFORMS] + popcount(need);
           cnt[C_ISECTS] <= cnt[C_ISECTS] + popcount(need);
           todo <= need;
-          load(tris + TRI_WORDS * tri_ix, 6'(TRI_WORDS), S_TI_RAY);
+          load(tris + TRI_WORDS * tri_ix, 2'd1, S_TI_RAY);
         end
         S_TI_RAY:
           if (todo == 0) st <= S_ROUTE;

@@ -32,7 +32,9 @@ for k in f:
         assert f[k] == r[k], (k, f[k], r[k])
 c = r["cycle"]
 assert c["cycles"] > 0 and c["packets"] > 0 and c["issues"]["isect"] == r["intersections"], c
-assert c["reads"]["lists"] == r["list_entries"] and c["reads"]["words"] >= r["words_by_type"]["matrices"], c
+# records read whole: a triangle's 10 words (e7m16) in one response of the word port, an instance's
+# and its object's 31 in four, the header once per frame
+assert c["reads"]["lists"] == r["list_entries"] and 0 < 5 * c["reads"]["words"] < r["words_by_type"]["matrices"], c
 assert all(0 < u < 1 for u in c["usage"].values()), c["usage"]
 PY
   grep -q "0 mismatches" "$T/r.log" || grep "^rtl:" "$T/r.log"

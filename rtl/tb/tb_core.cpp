@@ -5,8 +5,9 @@
 // primary, shadow and secondary packets) is traced by trace_begin + trace_step on the memory image
 // it read (DIR/image_N.bin) and checked against the recording; the packets then enter the RTL in
 // their order, each into the lowest free thread (--threads T of the model's 8: T packets in
-// flight; packets of another image wait until the core is empty). The bench is the RTL's memory
-// (the descriptor word port and the kd-node port answer one cycle after the request, the list
+// flight; packets of another image wait until the core is empty and enter with flush_i, so the core
+// reads that image's header). The bench is the RTL's memory (the descriptor word port, RW words
+// from the requested address per response, and the kd-node port answer one cycle after the request, the list
 // unit's read port holds mem[addr] from the cycle after its read enable). Every packet leaving a
 // thread is compared with its C result: the hits (instance, triangle, t, u, v, cos per ray) and the
 // counters. A mismatch prints the packet, its thread, the ray, the field and both values; exit
@@ -27,6 +28,7 @@
 
 extern "C" {
 #include "f24.h"
+#include "f24_record.h"
 #include "trace.h"
 }
 
@@ -36,6 +38,7 @@ using cosim::get;
 using cosim::put;
 
 constexpr uint32_t THREADS = 8; // tb_core.sv's
+constexpr int RW = F24_TRIANGLE_RECORD_WORDS; // the word port's words per response
 constexpr uint64_t timeout = 1u << 22; // cycles without a packet out before the bench gives up
 const char *const COUNTER[10] = { "traversal_steps", "leaves", "list_entries", "mailbox_skips", "transformations",
                                   "intersections", "words[nodes]", "words[lists]", "words[matrices]", "words[shading]" };
@@ -177,7 +180,7 @@ int main(int argc, char **argv)
 
     VerilatedContext ctx;
     Vtb_core top{ &ctx };
-    top.rst_ni = 0, top.clk_i = 0, top.valid_i = 0, top.ready_i = 1;
+    top.rst_ni = 0, top.clk_i = 0, top.valid_i = 0, top.flush_i = 0, top.ready_i = 1;
     top.mem_req_ready_i = 1, top.mem_rsp_valid_i = 0, top.node_req_ready_i = 1, top.node_rsp_valid_i = 0;
     top.list_rvalid_i = 1; // the list word from the cycle after the read
     top.eval();
@@ -207,8 +210,10 @@ int main(int argc, char **argv)
             if (in_thread[t] < 0)
                 free_t = t;
         top.valid_i = 0;
+        top.flush_i = 0;
         if (next < total && free_t >= 0 && (packets[next].image == image || busy == 0)) {
             const packet &p = packets[next];
+            top.flush_i = p.image != image;
             if (p.image != image && !load_image(capture, image = p.image, mem))
                 return 2;
             top.valid_i = 1;
@@ -221,7 +226,8 @@ int main(int argc, char **argv)
                 put(top.tmin_i, r, p.tmin[r]), put(top.tmax_i, r, p.tmax[r]);
         }
         top.mem_rsp_valid_i = !word_q.empty();
-        top.mem_rdata_i = word_q.empty() ? 0 : at(word_q.front());
+        for (int j = 0; j < RW; j++)
+            top.mem_rdata_i[j] = word_q.empty() ? 0 : at(word_q.front() + (uint32_t)j);
         top.node_rsp_valid_i = !node_q.empty();
         top.node_w0_i = node_q.empty() ? 0 : at(node_q.front());
         top.node_w1_i = node_q.empty() ? 0 : at(node_q.front() + 1);

@@ -5,10 +5,12 @@
 module tb_core #(
   parameter int E = 7,
   parameter int M = 16,
-  parameter int THREADS = 8
+  parameter int THREADS = 8,
+  localparam int RW = (12 * (1 + E + M) + 27 + 3 + 31) / 32  // the word port's words per response
 ) (
   input  logic                        clk_i,
   input  logic                        rst_ni,
+  input  logic                        flush_i,
   input  logic                        valid_i,
   output logic                        ready_o,
   input  logic [$clog2(THREADS)-1:0]  thread_i,
@@ -33,7 +35,7 @@ module tb_core #(
   input  logic                        mem_req_ready_i,
   output logic [31:0]                 mem_addr_o,
   input  logic                        mem_rsp_valid_i,
-  input  logic [31:0]                 mem_rdata_i,
+  input  logic [32*RW-1:0]            mem_rdata_i,
   output logic                        node_req_valid_o,
   input  logic                        node_req_ready_i,
   output logic [31:0]                 node_addr_o,
