@@ -890,9 +890,9 @@ static void zero_area_triangles(void **state)
     }
     const kd_source src = tri_source(&so);
     for (uint32_t bins = 0; bins <= 32; bins += 32) {
-        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, NULL, 1, 0, 0, 0 });
-        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, grid8, 1, 0, 0, 0 });
-        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, grid8, 1, 0, 16, 0 });
+        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, NULL, 1, 0, 0, 0, 0 });
+        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, grid8, 1, 0, 0, 0, 0 });
+        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, grid8, 1, 0, 16, 0, 0 });
     }
     free(so.t);
 }
@@ -971,7 +971,7 @@ static void assert_same_tree(const kd_tree *a, const kd_tree *b)
 
 /* A large build runs on several threads (given several cores), which build subtrees concurrently
  * and merge them. The tree must not depend on their timing: repeated builds are bit-identical,
- * and identical to the single-threaded build. Binned boxes (the top level), triangles binned with
+ * and identical to the single-threaded build (one CPU, or kd_params.threads). Binned boxes (the top level), triangles binned with
  * exact subtrees (the bottom level) and triangles in exact mode. */
 static void parallel_deterministic(void **state)
 {
@@ -997,6 +997,13 @@ static void parallel_deterministic(void **state)
         build_serial(&cases[i].src, &cases[i].p, &t);
         assert_same_tree(&first, &t);
         kd_free(&t);
+        for (uint32_t threads = 1; threads <= 3; threads += 2) { /* kd_params.threads, whatever the CPUs */
+            kd_params q = cases[i].p;
+            q.threads = threads;
+            assert_int_equal(kd_build(&cases[i].src, &q, &t), 0);
+            assert_same_tree(&first, &t);
+            kd_free(&t);
+        }
         kd_free(&first);
     }
     free(inst.b);

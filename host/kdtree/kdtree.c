@@ -48,8 +48,8 @@
  * for the planes it stores. quantize should be monotone (any rounding is); exact mode skips a
  * snapped candidate that would move the sweep backwards.
  *
- * Threads: sources of at least PAR_MIN_COUNT primitives are built on all CPUs (at most
- * PAR_MAX_THREADS), in every mode: subtrees are built concurrently into separate arrays, which are
+ * Threads: sources of at least PAR_MIN_COUNT primitives are built on params.threads threads (0: all
+ * CPUs; at most PAR_MAX_THREADS), in every mode: subtrees are built concurrently into separate arrays, which are
  * then merged in a fixed order into exactly the layout of the single-threaded build, so the tree
  * is the same bit for bit, whatever the thread timing. Such a build calls bounds, clip and
  * quantize from several threads at a time: they must be pure functions (thread-safe). If no
@@ -1768,7 +1768,8 @@ int kd_build(const kd_source *src, const kd_params *p, kd_tree *out)
     int rc = start(&b, &s, &root);
     b.kind = measure_of(&root);
     b.root_measure = measure(b.kind, &root);
-    const uint32_t threads = src->count >= PAR_MIN_COUNT ? kd_thread_count() : 1;
+    const uint32_t asked = p->threads ? p->threads : kd_thread_count();
+    const uint32_t threads = src->count < PAR_MIN_COUNT ? 1 : asked < PAR_MAX_THREADS ? asked : PAR_MAX_THREADS;
     subtree_sum sum = { 0.0, 0 };
     if (rc == 0 && threads > 1)
         rc = build_parallel(&b, &root, &s, threads, &sum.sum); /* frees s */

@@ -57,6 +57,9 @@ typedef struct {
     uint64_t max_nodes;        /* 0 (default): no limit; else kd_build stops with KD_TOO_MANY_NODES
                                   before the tree would grow past this many nodes (a hard limit is
                                   checked before the memory it bounds is allocated) */
+    uint32_t threads;          /* threads of a build of at least 512 primitives: 0 (default):
+                                  kd_thread_count(); at most 8 are used. The tree does not depend
+                                  on it (callers building several trees at once pass 1) */
 } kd_params;
 
 typedef struct {
