@@ -584,6 +584,8 @@ static void *trees_worker(void *arg)
 static void trees_build(const mi_builder *b, const scene *s, uint32_t *list, uint32_t n, const kd_params *q,
                         uint32_t threads, int *rc)
 {
+    enum { MAX_WORKERS = 8 }; /* kd_build's most */
+    threads = threads < MAX_WORKERS ? threads : MAX_WORKERS;
     uint64_t total = 0;
     for (uint32_t k = 0; k < n; k++) { /* insertion sort: a few objects; ties in object order */
         const uint32_t i = list[k];
@@ -604,10 +606,9 @@ static void trees_build(const mi_builder *b, const scene *s, uint32_t *list, uin
     }
     trees_job j = { b, s, list + big, n - big, *q, rc, 0 };
     j.q.threads = 1;
-    enum { MAX_WORKERS = 8 };
     pthread_t tid[MAX_WORKERS];
     uint32_t started = 0;
-    for (uint32_t t = 1; t < threads && t < MAX_WORKERS && t < j.n; t++)
+    for (uint32_t t = 1; t < threads && t < j.n; t++)
         started += pthread_create(&tid[started], NULL, trees_worker, &j) == 0;
     trees_worker(&j);
     for (uint32_t t = 0; t < started; t++)
