@@ -156,9 +156,10 @@ typedef struct {
 
 typedef struct pool pool;
 
-/* The nodes of one tree (all threads' builders), counted before they are allocated. */
+/* The nodes of one tree (all threads' builders), counted before they are allocated; used: the
+ * build's own count, or params.shared_nodes (atomic builtins: the API type is plain). */
 typedef struct {
-    atomic_uint_fast64_t used;
+    uint64_t *used;
     atomic_int exceeded;
 } node_budget;
 
@@ -358,7 +359,7 @@ static void *reserve(void *p, uint32_t *cap, uint64_t need, size_t size)
  * exceeded) if they would pass it. */
 static int charge_nodes(builder *b, uint32_t k)
 {
-    if (b->p.max_nodes == 0 || atomic_fetch_add(&b->budget->used, k) + k <= b->p.max_nodes)
+    if (b->p.max_nodes == 0 || __atomic_fetch_add(b->budget->used, k, __ATOMIC_RELAXED) + k <= b->p.max_nodes)
         return 0;
     atomic_store(&b->budget->exceeded, 1);
     return -1;
@@ -1760,7 +1761,8 @@ int kd_build(const kd_source *src, const kd_params *p, kd_tree *out)
 {
     const double t0 = now();
     memset(out, 0, sizeof *out);
-    node_budget budget = { 0, 0 };
+    uint64_t own_nodes = 0;
+    node_budget budget = { p->shared_nodes ? p->shared_nodes : &own_nodes, 0 };
     builder b = { .src = src, .p = *p, .budget = &budget };
     b.max_depth = kd_depth_bound(p, src->count);
     prim_set s = { 0 };

@@ -60,6 +60,9 @@ typedef struct {
     uint32_t threads;          /* threads of a build of at least 512 primitives: 0 (default):
                                   kd_thread_count(); at most 8 are used. The tree does not depend
                                   on it (callers building several trees at once pass 1) */
+    uint64_t *shared_nodes;    /* NULL (default): max_nodes bounds this tree; else a counter (start
+                                  it at 0) that the builds given it charge together, concurrently
+                                  or not, so that max_nodes bounds the nodes of all of them */
 } kd_params;
 
 typedef struct {

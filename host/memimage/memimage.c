@@ -635,25 +635,28 @@ static int objects_prepare(mi_builder *b, const scene *s, uint32_t *list, uint32
     const double t1 = seconds();
     b->st.transform_seconds += t1 - t0;
 
-    /* Each tree may use the node budget left by the trees it is not built beside (the top level
-     * and the objects not in the list); stage 3 charges them all in order. */
-    uint64_t others = b->top.n_nodes;
+    /* The concurrent trees share the node budget the others leave (the top level and the objects
+     * not in the list): together they allocate no more nodes than the limit allows. */
+    uint64_t others = b->top.n_nodes, shared = 0;
     for (uint32_t i = 0; i < b->n_objects; i++)
         others += b->obj[i].tree.n_nodes; /* the listed objects' trees are released */
     kd_params q = b->p.bottom;
+    q.shared_nodes = &shared;
     if (b->p.max_nodes)
         q.max_nodes = others < b->p.max_nodes ? b->p.max_nodes - others : 0;
+    const uint32_t threads = b->p.bottom.threads ? b->p.bottom.threads : kd_thread_count();
     uint32_t m = 0;
     for (uint32_t k = 0; k < n; k++)
         if (rc[list[k]] == 0 && (!b->p.max_nodes || q.max_nodes))
             order[m++] = list[k];
         else if (rc[list[k]] == 0)
             rc[list[k]] = MI_FAIL_NODE_LIMIT;
-    trees_build(b, s, order, m, &q, b->p.bottom.threads ? b->p.bottom.threads : kd_thread_count(), rc);
-    b->st.bottom_build_seconds += seconds() - t1;
+    trees_build(b, s, order, m, &q, threads, rc);
 
-    /* As built one after the other in object order: object list[k] saw the new trees before it
-     * and the old ones (mi_update) of the listed objects after it. */
+    /* Then the budget as a build one object after the other in object order charges it: object
+     * list[k] after the new trees before it, beside the old ones (mi_update) of the listed
+     * objects after it. A tree the shared budget stopped (which one depends on the timing) is
+     * built again with exactly that budget, so the first object over the limit fails, always. */
     uint64_t later_old = 0;
     for (uint32_t k = 0; k < n; k++)
         later_old += old_nodes[list[k]];
@@ -662,6 +665,12 @@ static int objects_prepare(mi_builder *b, const scene *s, uint32_t *list, uint32
         mi_object *o = &b->obj[list[k]];
         *failed = list[k];
         later_old -= old_nodes[list[k]];
+        if (rc[list[k]] == MI_FAIL_NODE_LIMIT && b->p.max_nodes && used + later_old < b->p.max_nodes) {
+            kd_params alone = b->p.bottom;
+            alone.threads = threads;
+            alone.max_nodes = b->p.max_nodes - used - later_old;
+            rc[list[k]] = object_tree(b, obj_mesh(b, s, o), o, &alone);
+        }
         used += o->tree.n_nodes;
         if (rc[list[k]] == 0 && b->p.max_nodes && used + later_old > b->p.max_nodes)
             rc[list[k]] = MI_FAIL_NODE_LIMIT;
@@ -672,6 +681,7 @@ static int objects_prepare(mi_builder *b, const scene *s, uint32_t *list, uint32
             goto done;
         }
     }
+    b->st.bottom_build_seconds += seconds() - t1;
     ret = 0;
 done:
     free(rc);
