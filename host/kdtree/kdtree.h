@@ -98,8 +98,8 @@ void kd_params_default(kd_params *p);
  * depth (the kd-depth limit is checked against it before building, tb/cli/cli_limits.h). */
 uint32_t kd_depth_bound(const kd_params *p, uint32_t count);
 
-/* Threads kd_build uses for a large source: the CPUs the calling thread may run on, at most 8
- * (the host's other parallel stages use the same budget). */
+/* Threads kd_build uses for a large source unless kd_params.threads says: the CPUs the calling
+ * thread may run on, at most 8 (the host's other parallel stages use the same budget). */
 uint32_t kd_thread_count(void);
 
 #define KD_TOO_MANY_NODES (-2)

@@ -1490,15 +1490,17 @@ mi_builder *mi_build_why(const scene *s, const mi_params *p, mi_failure *why, ch
         return NULL;
     }
     uint32_t *list = malloc(((size_t)b->n_objects + 1) * sizeof *list), failed;
-    for (uint32_t i = 0; list && i < b->n_objects; i++)
+    if (!list) {
+        snprintf(err, errlen, "out of memory");
+        mi_free(b);
+        return NULL;
+    }
+    for (uint32_t i = 0; i < b->n_objects; i++)
         list[i] = i;
-    const int built = list ? objects_prepare(b, s, list, b->n_objects, &failed) : -1;
+    const int built = objects_prepare(b, s, list, b->n_objects, &failed);
     free(list);
     if (built != 0) {
-        if (list)
-            *why = (mi_failure)object_error(b, built, obj_mesh(b, s, &b->obj[failed]), "building", err, errlen);
-        else
-            snprintf(err, errlen, "out of memory");
+        *why = (mi_failure)object_error(b, built, obj_mesh(b, s, &b->obj[failed]), "building", err, errlen);
         mi_free(b);
         return NULL;
     }
