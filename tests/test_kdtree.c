@@ -890,9 +890,9 @@ static void zero_area_triangles(void **state)
     }
     const kd_source src = tri_source(&so);
     for (uint32_t bins = 0; bins <= 32; bins += 32) {
-        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, NULL, 1, 0, 0, 0 });
-        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, grid8, 1, 0, 0, 0 });
-        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, grid8, 1, 0, 16, 0 });
+        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, NULL, 1, 0, 0, 0, 0, NULL });
+        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, grid8, 1, 0, 0, 0, 0, NULL });
+        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, grid8, 1, 0, 16, 0, 0, NULL });
     }
     free(so.t);
 }
@@ -971,7 +971,7 @@ static void assert_same_tree(const kd_tree *a, const kd_tree *b)
 
 /* A large build runs on several threads (given several cores), which build subtrees concurrently
  * and merge them. The tree must not depend on their timing: repeated builds are bit-identical,
- * and identical to the single-threaded build. Binned boxes (the top level), triangles binned with
+ * and identical to the single-threaded build (one CPU, or kd_params.threads). Binned boxes (the top level), triangles binned with
  * exact subtrees (the bottom level) and triangles in exact mode. */
 static void parallel_deterministic(void **state)
 {
@@ -997,6 +997,13 @@ static void parallel_deterministic(void **state)
         build_serial(&cases[i].src, &cases[i].p, &t);
         assert_same_tree(&first, &t);
         kd_free(&t);
+        for (uint32_t threads = 1; threads <= 3; threads += 2) { /* kd_params.threads, whatever the CPUs */
+            kd_params q = cases[i].p;
+            q.threads = threads;
+            assert_int_equal(kd_build(&cases[i].src, &q, &t), 0);
+            assert_same_tree(&first, &t);
+            kd_free(&t);
+        }
         kd_free(&first);
     }
     free(inst.b);
@@ -1104,7 +1111,8 @@ static void too_many_primitives(void **state)
 
 /* The node limit (kd_params.max_nodes) stops a build before the nodes are allocated: a budget
  * of exactly the tree's node count builds the same tree, one node less fails with
- * KD_TOO_MANY_NODES and an empty tree, on all CPUs and on one, in every mode. */
+ * KD_TOO_MANY_NODES and an empty tree, on all CPUs and on one, in every mode; with a counter
+ * shared by several builds (kd_params.shared_nodes) the limit bounds them together. */
 static void node_limit(void **state)
 {
     (void)state;
@@ -1133,6 +1141,17 @@ static void node_limit(void **state)
         assert_int_equal(kd_build(&cases[i].src, &p, &t), KD_TOO_MANY_NODES);
         assert_null(t.nodes);
         assert_int_equal(t.n_nodes, 0);
+        /* a counter shared by two builds: the budget of both trees is enough, one node less not */
+        for (uint64_t less = 0; less <= 1; less++) {
+            uint64_t shared = 0;
+            p.shared_nodes = &shared;
+            p.max_nodes = 2 * (uint64_t)free_tree.n_nodes - less;
+            assert_int_equal(kd_build(&cases[i].src, &p, &t), 0);
+            kd_free(&t);
+            assert_int_equal(kd_build(&cases[i].src, &p, &t), less ? KD_TOO_MANY_NODES : 0);
+            assert_true(less || shared == p.max_nodes);
+            kd_free(&t);
+        }
         kd_free(&free_tree);
     }
     free(so.t);

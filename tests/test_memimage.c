@@ -640,6 +640,111 @@ static void single_object_accelerators(void **state)
     scene_free(&s);
 }
 
+/* ---- objects built concurrently ------------------------------------------------------------ */
+
+/* Meshes of tris[i] random small triangles, one instance each, moved apart along x. */
+static void make_soup(scene *s, const uint32_t *tris, uint32_t n)
+{
+    memset(s, 0, sizeof *s);
+    s->n_meshes = s->n_nodes = s->n_roots = n;
+    s->meshes = calloc(n, sizeof *s->meshes);
+    s->nodes = calloc(n, sizeof *s->nodes);
+    s->roots = calloc(n, sizeof *s->roots);
+    for (uint32_t m = 0; m < n; m++) {
+        scene_mesh *me = &s->meshes[m];
+        snprintf(me->name, sizeof me->name, "soup%u", m);
+        me->n_triangles = tris[m];
+        me->n_vertices = 3 * tris[m];
+        me->positions = malloc(3 * (size_t)me->n_vertices * sizeof *me->positions);
+        me->indices = malloc((size_t)me->n_vertices * sizeof *me->indices);
+        me->material = calloc(tris[m], sizeof *me->material);
+        for (uint32_t t = 0; t < tris[m]; t++) {
+            double c[3] = { urand(), urand(), urand() };
+            for (uint32_t v = 3 * t; v < 3 * t + 3; v++) {
+                me->indices[v] = v;
+                for (int k = 0; k < 3; k++)
+                    me->positions[3 * v + (uint32_t)k] = (float)(c[k] + 0.05 * urand());
+            }
+        }
+        scene_node *no = &s->nodes[m];
+        no->parent = -1;
+        no->mesh = m;
+        no->camera = no->light = SCENE_NONE;
+        no->translation[0] = 1.5 * m;
+        no->rotation[3] = 1;
+        no->scale[0] = no->scale[1] = no->scale[2] = 1;
+        s->roots[m] = m;
+    }
+    s->n_materials = 1;
+    s->materials = calloc(1, sizeof *s->materials);
+    s->materials[0].base_color[0] = 0.8f;
+    s->materials[0].base_color_texture = s->materials[0].emissive_texture = SCENE_NONE;
+    assert_int_equal(scene_evaluate(s, 0, 0), 0);
+}
+
+/* mi_build with p.bottom.threads = threads and p.max_nodes = max_nodes: the image (NULL: the build
+ * failed, with err) and its words. */
+static mi_builder *build_threads(const scene *s, uint32_t threads, uint64_t max_nodes, char *err, size_t errlen)
+{
+    mi_params p;
+    mi_params_default(&p);
+    p.memory_bytes = 64u << 20;
+    p.bottom.threads = threads;
+    p.max_nodes = max_nodes;
+    return mi_build(s, &p, err, errlen);
+}
+
+/* The objects' trees are built several at a time (and a large one with all threads): the image
+ * is the same words for any thread count, and the node limit fails the same way, naming the
+ * object where a build one object after the other would have stopped. */
+static void objects_in_parallel(void **state)
+{
+    (void)state;
+    /* 3 threads: no object has a third of the triangles, so all five share the threads;
+     * 2: the largest is built alone first */
+    static const uint32_t tris[] = { 700, 1300, 1100, 1000, 40 };
+    scene s;
+    make_soup(&s, tris, 5);
+    char err[512];
+    mi_builder *one = build_threads(&s, 1, 0, err, sizeof err);
+    assert_non_null(one);
+    uint32_t n1, nk;
+    const uint32_t *w1 = mi_words(one, &n1);
+    assert_int_equal(mi_validate(w1, n1, err, sizeof err), 0);
+    for (uint32_t threads = 2; threads <= 4; threads++) {
+        mi_builder *b = build_threads(&s, threads, 0, err, sizeof err);
+        assert_non_null(b);
+        const uint32_t *wk = mi_words(b, &nk);
+        assert_int_equal(nk, n1);
+        assert_memory_equal(wk, w1, (size_t)n1 * sizeof *w1);
+        assert_memory_equal(mi_get_stats(b), mi_get_stats(one), offsetof(mi_stats, bottom_sah) + sizeof(double));
+        mi_free(b);
+    }
+
+    /* one node short of the trees (the last object's build passes the limit), and short of what
+     * the first object alone needs */
+    const mi_stats *st = mi_get_stats(one);
+    const uint64_t limits[] = { st->bottom_nodes + st->top_nodes, st->bottom_nodes - 1, 10 };
+    const char *failing[] = { NULL, "soup4", "soup0" };
+    for (uint32_t l = 0; l < 3; l++)
+        for (uint32_t threads = 1; threads <= 3; threads++) {
+            mi_builder *b = build_threads(&s, threads, limits[l], err, sizeof err);
+            if (!failing[l]) {
+                assert_non_null(b);
+                mi_free(b);
+                continue;
+            }
+            assert_null(b);
+            char want[64];
+            snprintf(want, sizeof want, "mesh '%s'", failing[l]);
+            if (!strstr(err, "limit kd-nodes exceeded") || !strstr(err, want))
+                fail_msg("%u threads, limit %llu: '%s' does not name %s", threads, (unsigned long long)limits[l],
+                         err, want);
+        }
+    mi_free(one);
+    scene_free(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -649,6 +754,7 @@ int main(void)
         cmocka_unit_test(corruption), cmocka_unit_test(accelerators),
         cmocka_unit_test(single_object_accelerators), cmocka_unit_test(shading_records),
         cmocka_unit_test(packed_triangle_records), cmocka_unit_test(shared_edge_flags), cmocka_unit_test(instance_table_on_lines),
+        cmocka_unit_test(objects_in_parallel),
     };
     return cmocka_run_group_tests_name("memimage", tests, NULL, NULL);
 }

@@ -48,8 +48,8 @@
  * for the planes it stores. quantize should be monotone (any rounding is); exact mode skips a
  * snapped candidate that would move the sweep backwards.
  *
- * Threads: sources of at least PAR_MIN_COUNT primitives are built on all CPUs (at most
- * PAR_MAX_THREADS), in every mode: subtrees are built concurrently into separate arrays, which are
+ * Threads: sources of at least PAR_MIN_COUNT primitives are built on params.threads threads (0: all
+ * CPUs; at most PAR_MAX_THREADS), in every mode: subtrees are built concurrently into separate arrays, which are
  * then merged in a fixed order into exactly the layout of the single-threaded build, so the tree
  * is the same bit for bit, whatever the thread timing. Such a build calls bounds, clip and
  * quantize from several threads at a time: they must be pure functions (thread-safe). If no
@@ -156,9 +156,10 @@ typedef struct {
 
 typedef struct pool pool;
 
-/* The nodes of one tree (all threads' builders), counted before they are allocated. */
+/* The nodes of one tree (all threads' builders), counted before they are allocated; used: the
+ * build's own count, or params.shared_nodes (atomic builtins: the API type is plain). */
 typedef struct {
-    atomic_uint_fast64_t used;
+    uint64_t *used;
     atomic_int exceeded;
 } node_budget;
 
@@ -358,7 +359,7 @@ static void *reserve(void *p, uint32_t *cap, uint64_t need, size_t size)
  * exceeded) if they would pass it. */
 static int charge_nodes(builder *b, uint32_t k)
 {
-    if (b->p.max_nodes == 0 || atomic_fetch_add(&b->budget->used, k) + k <= b->p.max_nodes)
+    if (b->p.max_nodes == 0 || __atomic_fetch_add(b->budget->used, k, __ATOMIC_RELAXED) + k <= b->p.max_nodes)
         return 0;
     atomic_store(&b->budget->exceeded, 1);
     return -1;
@@ -1760,7 +1761,8 @@ int kd_build(const kd_source *src, const kd_params *p, kd_tree *out)
 {
     const double t0 = now();
     memset(out, 0, sizeof *out);
-    node_budget budget = { 0, 0 };
+    uint64_t own_nodes = 0;
+    node_budget budget = { p->shared_nodes ? p->shared_nodes : &own_nodes, 0 };
     builder b = { .src = src, .p = *p, .budget = &budget };
     b.max_depth = kd_depth_bound(p, src->count);
     prim_set s = { 0 };
@@ -1768,7 +1770,8 @@ int kd_build(const kd_source *src, const kd_params *p, kd_tree *out)
     int rc = start(&b, &s, &root);
     b.kind = measure_of(&root);
     b.root_measure = measure(b.kind, &root);
-    const uint32_t threads = src->count >= PAR_MIN_COUNT ? kd_thread_count() : 1;
+    const uint32_t asked = p->threads ? p->threads : kd_thread_count();
+    const uint32_t threads = src->count < PAR_MIN_COUNT ? 1 : asked < PAR_MAX_THREADS ? asked : PAR_MAX_THREADS;
     subtree_sum sum = { 0.0, 0 };
     if (rc == 0 && threads > 1)
         rc = build_parallel(&b, &root, &s, threads, &sum.sum); /* frees s */

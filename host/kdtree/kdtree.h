@@ -57,6 +57,12 @@ typedef struct {
     uint64_t max_nodes;        /* 0 (default): no limit; else kd_build stops with KD_TOO_MANY_NODES
                                   before the tree would grow past this many nodes (a hard limit is
                                   checked before the memory it bounds is allocated) */
+    uint32_t threads;          /* threads of a build of at least 512 primitives: 0 (default):
+                                  kd_thread_count(); at most 8 are used. The tree does not depend
+                                  on it (callers building several trees at once pass 1) */
+    uint64_t *shared_nodes;    /* NULL (default): max_nodes bounds this tree; else a counter (start
+                                  it at 0) that the builds given it charge together, concurrently
+                                  or not, so that max_nodes bounds the nodes of all of them */
 } kd_params;
 
 typedef struct {
@@ -92,8 +98,8 @@ void kd_params_default(kd_params *p);
  * depth (the kd-depth limit is checked against it before building, tb/cli/cli_limits.h). */
 uint32_t kd_depth_bound(const kd_params *p, uint32_t count);
 
-/* Threads kd_build uses for a large source: the CPUs the calling thread may run on, at most 8
- * (the host's other parallel stages use the same budget). */
+/* Threads kd_build uses for a large source unless kd_params.threads says: the CPUs the calling
+ * thread may run on, at most 8 (the host's other parallel stages use the same budget). */
 uint32_t kd_thread_count(void);
 
 #define KD_TOO_MANY_NODES (-2)

@@ -16,6 +16,7 @@
 
 #include <math.h>
 #include <pthread.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -490,8 +491,17 @@ static int build_tree(const mi_builder *b, const kd_source *src, const kd_params
     return kd == 0 ? 0 : kd == KD_TOO_MANY_NODES ? MI_FAIL_NODE_LIMIT : MI_FAIL_OTHER;
 }
 
-/* Triangle transformations and the bottom-level tree of one mesh: 0, or an mi_failure. */
-static int object_prepare(mi_builder *b, const scene *s, const scene_mesh *m, mi_object *o)
+/* The bottom-level build of a list of objects (mi_build: all of them; mi_update: the deforming
+ * ones whose mesh changed) runs in three stages, so that the image is the same bits for any number
+ * of threads: (1) one object at a time, the triangle transformations (each object's triangles on
+ * all CPUs); (2) the objects' shared edges, kd-trees, ropes and grids, several objects at once,
+ * each into its own buffers and touching nothing else; (3) in object order, the node budget and
+ * the objects' sizes in the image. The trees do not depend on the order or the threads (kd_build
+ * is deterministic, and a node limit only ever stops a build), and stage 3 decides the node limit
+ * as the object-by-object build did, so results and errors are those of a serial build. */
+
+/* Stage 1: the triangle transformations of o (its old geometry released): 0, or -1 (memory). */
+static int object_transform(mi_builder *b, const scene_mesh *m, mi_object *o)
 {
     object_release(o);
     o->valid = malloc(((size_t)m->n_triangles + 1) * sizeof *o->valid);
@@ -502,7 +512,6 @@ static int object_prepare(mi_builder *b, const scene *s, const scene_mesh *m, mi
         free(ok);
         return -1;
     }
-    const double t0 = seconds();
     transform_job job = { m, o, b->p.max_condition, ok };
     for_parts(m->n_triangles, transform_part, &job);
     for (uint32_t t = 0; t < m->n_triangles; t++) /* the kept ones, in order */
@@ -511,22 +520,32 @@ static int object_prepare(mi_builder *b, const scene *s, const scene_mesh *m, mi
             o->valid[o->n_valid++] = t;
         }
     free(ok);
-    const double t1 = seconds();
-    b->st.transform_seconds += t1 - t0;
     b->st.degenerate_triangles += m->n_triangles - o->n_valid;
+    return 0;
+}
+
+/* Stage 2: o's shared edges, tree (parameters q), ropes and grid: 0, or an mi_failure. Reads b,
+ * writes only o: objects run concurrently. */
+static int object_tree(const mi_builder *b, const scene_mesh *m, mi_object *o, const kd_params *q)
+{
     if (mi_shared_edges(m, o->valid, o->n_valid, o->shared) != 0)
-        return -1;
+        return MI_FAIL_OTHER;
     const tri_source src = { m, o->valid, o->centre };
     const kd_source ks = { o->n_valid, &src, tri_bounds, tri_clip };
-    const int rc = build_tree(b, &ks, &b->p.bottom, &o->tree);
-    if (rc != 0)
-        return rc;
+    const int kd = kd_build(&ks, q, &o->tree);
+    if (kd != 0)
+        return kd == KD_TOO_MANY_NODES ? MI_FAIL_NODE_LIMIT : MI_FAIL_OTHER;
     const aabb root = device_box(&o->tree.bounds, OBJECT_BOUNDS_MARGIN_ULPS);
     int fail = 0;
     o->ropes = build_ropes(b, &o->tree, &root, &fail);
     if (fail || ((b->p.accel & MI_ACCEL_GRID) && build_grid(&ks, &root, &o->grid) != 0))
-        return -1;
-    b->st.bottom_build_seconds += seconds() - t1;
+        return MI_FAIL_OTHER;
+    return 0;
+}
+
+/* Stage 3: o's node slots, shading flags and size in the image: 0, or -1 (memory). */
+static int object_size(mi_builder *b, const scene *s, const scene_mesh *m, mi_object *o)
+{
     o->revision_seen = m->revision;
     o->n_slots = tree_slots(&o->tree, trees_compact(&b->p), &o->slot);
     if (!o->n_slots)
@@ -535,6 +554,140 @@ static int object_prepare(mi_builder *b, const scene *s, const scene_mesh *m, mi
     o->words = MI_NODE_WORDS * o->n_slots + list_words(&o->tree, o->ropes) + MI_TRIANGLE_WORDS - 1 +
                (MI_TRIANGLE_WORDS + shade_rec_words(o->shade_flags)) * o->n_valid + grid_words(&o->grid);
     return 0;
+}
+
+/* Stage 2 over the objects list[0..n) (largest first) for several threads: each takes the next
+ * object of the list and builds its tree single-threaded. */
+typedef struct {
+    const mi_builder *b;
+    const scene *s;
+    const uint32_t *list;
+    uint32_t n;
+    kd_params q;
+    int *rc;             /* per object of the image */
+    atomic_uint next;
+} trees_job;
+
+static void *trees_worker(void *arg)
+{
+    trees_job *j = arg;
+    for (uint32_t k; (k = atomic_fetch_add(&j->next, 1)) < j->n;) {
+        mi_object *o = &j->b->obj[j->list[k]];
+        j->rc[j->list[k]] = object_tree(j->b, obj_mesh(j->b, j->s, o), o, &j->q);
+    }
+    return NULL;
+}
+
+/* Stage 2 over list[0..n), sorted largest first, with `threads` threads: an object of at least
+ * 1/threads of the triangles still to build, or the last one, is built alone with every thread
+ * (bunny.glb is one object), the others concurrently, one thread each (the gallery's seven). */
+static void trees_build(const mi_builder *b, const scene *s, uint32_t *list, uint32_t n, const kd_params *q,
+                        uint32_t threads, int *rc)
+{
+    enum { MAX_WORKERS = 8 }; /* kd_build's most */
+    threads = threads < MAX_WORKERS ? threads : MAX_WORKERS;
+    uint64_t total = 0;
+    for (uint32_t k = 0; k < n; k++) { /* insertion sort: a few objects; ties in object order */
+        const uint32_t i = list[k];
+        uint32_t at = k;
+        for (; at > 0 && b->obj[list[at - 1]].n_valid < b->obj[i].n_valid; at--)
+            list[at] = list[at - 1];
+        list[at] = i;
+        total += b->obj[i].n_valid;
+    }
+    uint32_t big = 0;
+    for (; big < n && (threads == 1 || big + 1 == n || (uint64_t)b->obj[list[big]].n_valid * threads >= total);
+         big++) {
+        mi_object *o = &b->obj[list[big]];
+        total -= o->n_valid;
+        kd_params all = *q;
+        all.threads = threads;
+        rc[list[big]] = object_tree(b, obj_mesh(b, s, o), o, &all);
+    }
+    trees_job j = { b, s, list + big, n - big, *q, rc, 0 };
+    j.q.threads = 1;
+    pthread_t tid[MAX_WORKERS];
+    uint32_t started = 0;
+    for (uint32_t t = 1; t < threads && t < j.n; t++)
+        started += pthread_create(&tid[started], NULL, trees_worker, &j) == 0;
+    trees_worker(&j);
+    for (uint32_t t = 0; t < started; t++)
+        pthread_join(tid[t], NULL);
+}
+
+/* Builds the objects list[0..n) of b (their geometry and trees) in the three stages: 0, or an
+ * mi_failure with *failed the object it names (the first in object order that failed). */
+static int objects_prepare(mi_builder *b, const scene *s, uint32_t *list, uint32_t n, uint32_t *failed)
+{
+    int ret = -1;
+    int *rc = calloc((size_t)b->n_objects + 1, sizeof *rc);
+    uint64_t *old_nodes = calloc((size_t)b->n_objects + 1, sizeof *old_nodes);
+    uint32_t *order = malloc(((size_t)n + 1) * sizeof *order);
+    *failed = n ? list[0] : 0;
+    if (!rc || !old_nodes || !order)
+        goto done;
+    const double t0 = seconds();
+    for (uint32_t k = 0; k < n; k++) {
+        mi_object *o = &b->obj[list[k]];
+        old_nodes[list[k]] = o->tree.n_nodes;
+        rc[list[k]] = object_transform(b, obj_mesh(b, s, o), o) != 0 ? MI_FAIL_OTHER : 0;
+    }
+    const double t1 = seconds();
+    b->st.transform_seconds += t1 - t0;
+
+    /* The concurrent trees share the node budget the others leave (the top level and the objects
+     * not in the list): together they allocate no more nodes than the limit allows. */
+    uint64_t others = b->top.n_nodes, shared = 0;
+    for (uint32_t i = 0; i < b->n_objects; i++)
+        others += b->obj[i].tree.n_nodes; /* the listed objects' trees are released */
+    kd_params q = b->p.bottom;
+    q.shared_nodes = &shared;
+    if (b->p.max_nodes)
+        q.max_nodes = others < b->p.max_nodes ? b->p.max_nodes - others : 0;
+    const uint32_t threads = b->p.bottom.threads ? b->p.bottom.threads : kd_thread_count();
+    uint32_t m = 0;
+    for (uint32_t k = 0; k < n; k++)
+        if (rc[list[k]] == 0 && (!b->p.max_nodes || q.max_nodes))
+            order[m++] = list[k];
+        else if (rc[list[k]] == 0)
+            rc[list[k]] = MI_FAIL_NODE_LIMIT;
+    trees_build(b, s, order, m, &q, threads, rc);
+
+    /* Then the budget as a build one object after the other in object order charges it: object
+     * list[k] after the new trees before it, beside the old ones (mi_update) of the listed
+     * objects after it. A tree the shared budget stopped (which one depends on the timing) is
+     * built again with exactly that budget, so the first object over the limit fails, always. */
+    uint64_t later_old = 0;
+    for (uint32_t k = 0; k < n; k++)
+        later_old += old_nodes[list[k]];
+    uint64_t used = others;
+    for (uint32_t k = 0; k < n; k++) {
+        mi_object *o = &b->obj[list[k]];
+        *failed = list[k];
+        later_old -= old_nodes[list[k]];
+        if (rc[list[k]] == MI_FAIL_NODE_LIMIT && b->p.max_nodes && used + later_old < b->p.max_nodes) {
+            kd_params alone = b->p.bottom;
+            alone.threads = threads;
+            alone.max_nodes = b->p.max_nodes - used - later_old;
+            rc[list[k]] = object_tree(b, obj_mesh(b, s, o), o, &alone);
+        }
+        used += o->tree.n_nodes;
+        if (rc[list[k]] == 0 && b->p.max_nodes && used + later_old > b->p.max_nodes)
+            rc[list[k]] = MI_FAIL_NODE_LIMIT;
+        if (rc[list[k]] == 0 && object_size(b, s, obj_mesh(b, s, o), o) != 0)
+            rc[list[k]] = MI_FAIL_OTHER;
+        if (rc[list[k]] != 0) {
+            ret = rc[list[k]];
+            goto done;
+        }
+    }
+    b->st.bottom_build_seconds += seconds() - t1;
+    ret = 0;
+done:
+    free(rc);
+    free(old_nodes);
+    free(order);
+    return ret;
 }
 
 static void put_node(uint32_t *w, const kd_node *n, uint32_t first, const uint32_t *slot)
@@ -1336,14 +1489,20 @@ mi_builder *mi_build_why(const scene *s, const mi_params *p, mi_failure *why, ch
         mi_free(b);
         return NULL;
     }
-    for (uint32_t i = 0; i < b->n_objects; i++) {
-        const scene_mesh *m = obj_mesh(b, s, &b->obj[i]);
-        const int rc = object_prepare(b, s, m, &b->obj[i]);
-        if (rc != 0) {
-            *why = (mi_failure)object_error(b, rc, m, "building", err, errlen);
-            mi_free(b);
-            return NULL;
-        }
+    uint32_t *list = malloc(((size_t)b->n_objects + 1) * sizeof *list), failed;
+    if (!list) {
+        snprintf(err, errlen, "out of memory");
+        mi_free(b);
+        return NULL;
+    }
+    for (uint32_t i = 0; i < b->n_objects; i++)
+        list[i] = i;
+    const int built = objects_prepare(b, s, list, b->n_objects, &failed);
+    free(list);
+    if (built != 0) {
+        *why = (mi_failure)object_error(b, built, obj_mesh(b, s, &b->obj[failed]), "building", err, errlen);
+        mi_free(b);
+        return NULL;
     }
     const int rc = write_frame(b, s, 1, 1, err, errlen);
     if (rc != 0) {
@@ -1361,18 +1520,25 @@ int mi_update(mi_builder *b, const scene *s, char *err, size_t errlen)
     b->frame++;
     b->st.rebuilt_objects = 0;
     b->st.bottom_build_seconds = b->st.transform_seconds = 0; /* figures of this update only */
+    uint32_t *list = malloc(((size_t)b->n_objects + 1) * sizeof *list), n = 0, failed;
+    if (!list) {
+        snprintf(err, errlen, "out of memory");
+        return MI_FAIL_OTHER;
+    }
     for (uint32_t i = 0; i < b->n_objects; i++) {
-        mi_object *o = &b->obj[i];
+        const mi_object *o = &b->obj[i];
         const scene_mesh *m = obj_mesh(b, s, o);
         if (!o->dynamic || o->revision_seen == m->revision)
             continue;
         b->st.degenerate_triangles -= m->n_triangles - o->n_valid;
-        const int rc = object_prepare(b, s, m, o);
-        if (rc != 0)
-            return object_error(b, rc, m, "rebuilding", err, errlen);
-        b->st.rebuilt_objects++;
-        changed = 1;
+        list[n++] = i;
     }
+    const int built = objects_prepare(b, s, list, n, &failed);
+    free(list);
+    if (built != 0)
+        return object_error(b, built, obj_mesh(b, s, &b->obj[failed]), "rebuilding", err, errlen);
+    b->st.rebuilt_objects = n;
+    changed = n > 0;
     const int rc = write_frame(b, s, 0, changed, err, errlen);
     if (rc != 0)
         return rc;

@@ -74,8 +74,8 @@ static int usage(void)
            "intersection units reading the memory image. Shading (docs/shading.md): Phong-like with\n"
            "interpolated normals, bilinear textures, the scene's lights with shadow rays (a default light\n"
            "if it has none), reflection and transmission/refraction rays weighted by the glTF material.\n"
-           "The image is bit-identical for any --threads (host threads; default: the number of cores)\n"
-           "and in both modes.\n"
+           "The image is bit-identical for any --threads (host threads building the objects' trees and\n"
+           "rendering; default: the number of cores) and in both modes.\n"
            "  --mode M           functional (default: each 2x2 block runs its ray tree to completion) or\n"
            "                     cycle (the same steps timed by the DynRTC model, docs/cycle-model.md:\n"
            "                     prints cycles, fps, unit usage, cache hit rates, bandwidth, stalls) or\n"
@@ -727,6 +727,7 @@ int cmd_render(int argc, char **argv)
     if (rc != SAARCOR_EXIT_OK)
         return rc;
     const double build_t0 = now();
+    o.mi.bottom.threads = ro.threads; /* the objects' trees too (the image does not depend on it) */
     mi_builder *b = scene_opts_build(&o, "render", &s, NULL, &rc);
     ro.build_secs = now() - build_t0;
     if (!b) {
