@@ -239,8 +239,7 @@ test: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) $(BUILD)/rtl/$(DEFAULT_FMT)/tb_f24_ops $(BUILD)/rtl/$(DEFAULT_FMT)/tb_units $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sum \
 	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_list $(BUILD)/rtl/$(DEFAULT_FMT)/tb_cache $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sched $(BUILD)/rtl/$(DEFAULT_FMT)/tb_rgs \
 	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_wide $(BUILD)/rtl/$(DEFAULT_FMT)/tb_trav $(BUILD)/rtl/$(DEFAULT_FMT)/tb_core \
-	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_shade $(BUILD)/rtl/$(DEFAULT_FMT)/tb_surface $(BUILD)/rtl/$(DEFAULT_FMT)/tb_accum \
-	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_rgs_ctrl \
+	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_shade $(BUILD)/rtl/$(DEFAULT_FMT)/tb_rgs_ctrl \
 	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_dynrtp
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 FORMATS="$(ASAN_TEST_FORMATS)" test-programs
 	@$(MAKE) --no-print-directory -j$$(nproc) robust

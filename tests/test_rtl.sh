@@ -28,8 +28,8 @@
 # CesiumMilkTruck (textured) with shadows and reflections, and 2 x 10^4 random ones of each; the
 # surface at a hit (rtl/rgs_surface.sv: its reads, normal, frame, colours, textures) matches
 # rgs_surface_at on the surfaces of those frames and the built-in vertex-colour and emissive
-# scenes, word by word in its reads; a ray's accumulation (rtl/rgs_accum.sv) matches
-# rgs_accumulate_ray; the per-block control (rtl/rgs_ctrl.sv) matches rgs_render_block's pixels and
+# scenes, word by word in its reads, and a ray's accumulation (rtl/rgs_accum.sv) matches
+# rgs_accumulate_ray (these two with SAARCOR_RTL_MUTANTS=all, as make rtl-test runs it); the per-block control (rtl/rgs_ctrl.sv) matches rgs_render_block's pixels and
 # primary hits and rgs_step's packets on every block of cornell and part of the room; the
 # benches catch mutants (a rounder that never rounds ties to even; with SAARCOR_RTL_MUTANTS=all, as
 # make rtl-test runs it, also a cache without its tag forwarding, a mailbox that never
@@ -377,10 +377,12 @@ run_case rtl_exact_sum_matches_c_model t_exact_sum
 run_case rtl_list_unit_and_caches_match_c_model t_list_and_cache
 run_case rtl_rgs_raygen_and_tile_ctrl_match_c_model t_rgs
 run_case rtl_shade_datapath_matches_c_model_and_capture t_shade
-run_case rtl_surface_matches_c_model_and_capture t_surface
-run_case rtl_accum_matches_c_model_and_capture t_accum
 run_case rtl_rgs_ctrl_matches_c_model t_rgs_ctrl
 if extra_mutants; then
+  # the unit benches of rgs_ctrl's surface and accumulation (make test checks both inside whole
+  # blocks through tb_rgs_ctrl; their models are built by make rtl-test)
+  run_case rtl_surface_matches_c_model_and_capture t_surface
+  run_case rtl_accum_matches_c_model_and_capture t_accum
   run_case rtl_sqrt_bench_catches_mutant t_sqrt_mutant_caught
   run_case rtl_rgs_bench_catches_mutants t_rgs_mutants_caught
   run_case rtl_wide_bench_catches_mutants t_wide_mutants_caught
