@@ -66,6 +66,24 @@ inline uint32_t rnd_f24()
     return ((rnd() & 1u) ? F24_SIGN_BIT : 0u) | e << F24_MAN_BITS | (rnd() & F24_FRAC_MASK);
 }
 
+// the memory image N of a capture (DIR/image_N.bin, written by --capture-unit-io) into mem; false
+// (with a message naming the bench) if it cannot be read or is empty
+inline bool load_image(const char *bench, const std::string &dir, uint32_t n, std::vector<uint32_t> &mem)
+{
+    const std::string path = dir + "/image_" + std::to_string(n) + ".bin";
+    FILE *f = std::fopen(path.c_str(), "rb");
+    if (!f) {
+        std::printf("%s: cannot read %s\n", bench, path.c_str());
+        return false;
+    }
+    mem.clear();
+    uint32_t w;
+    while (std::fread(&w, sizeof w, 1, f) == 1)
+        mem.push_back(w);
+    std::fclose(f);
+    return !mem.empty();
+}
+
 // captured files: hex words per line in the field order of the structs; present says whether the
 // file exists; false (with a message naming the bench) on a malformed line
 template <typename T>

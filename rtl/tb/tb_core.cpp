@@ -79,22 +79,6 @@ bool compare(const char *what, std::size_t index, uint32_t thread, const outcome
     return same;
 }
 
-bool load_image(const std::string &dir, uint32_t n, std::vector<uint32_t> &mem)
-{
-    const std::string path = dir + "/image_" + std::to_string(n) + ".bin";
-    FILE *f = std::fopen(path.c_str(), "rb");
-    if (!f) {
-        std::printf("tb_core: cannot read %s\n", path.c_str());
-        return false;
-    }
-    mem.clear();
-    uint32_t w;
-    while (std::fread(&w, sizeof w, 1, f) == 1)
-        mem.push_back(w);
-    std::fclose(f);
-    return !mem.empty();
-}
-
 // the C core on one packet: trace_begin, then trace_step until it ends the packet
 outcome trace_c(const std::vector<uint32_t> &mem, const packet &p, uint64_t &ops)
 {
@@ -165,7 +149,7 @@ int main(int argc, char **argv)
     const std::size_t total = std::min(packets.size(), limit);
     for (std::size_t i = 0; i < total; i++) {
         const packet &p = packets[i];
-        if (p.image != image && !load_image(capture, image = p.image, mem))
+        if (p.image != image && !cosim::load_image("tb_core", capture, image = p.image, mem))
             return 2;
         outcome rec;
         std::memcpy(rec.hit, p.hit, sizeof p.hit);
@@ -214,7 +198,7 @@ int main(int argc, char **argv)
         if (next < total && free_t >= 0 && (packets[next].image == image || busy == 0)) {
             const packet &p = packets[next];
             top.flush_i = p.image != image;
-            if (p.image != image && !load_image(capture, image = p.image, mem))
+            if (p.image != image && !cosim::load_image("tb_core", capture, image = p.image, mem))
                 return 2;
             top.valid_i = 1;
             top.thread_i = (uint32_t)free_t;

@@ -74,21 +74,6 @@ block_ref reference(const std::vector<uint32_t> &mem, const rgs_config &cfg, uin
     return r;
 }
 
-bool load_image(const std::string &dir, std::vector<uint32_t> &mem)
-{
-    const std::string path = dir + "/image_0.bin";
-    FILE *f = std::fopen(path.c_str(), "rb");
-    if (!f) {
-        std::printf("tb_rgs_ctrl: cannot read %s\n", path.c_str());
-        return false;
-    }
-    uint32_t w;
-    while (std::fread(&w, sizeof w, 1, f) == 1)
-        mem.push_back(w);
-    std::fclose(f);
-    return !mem.empty();
-}
-
 } // namespace
 
 int main(int argc, char **argv)
@@ -108,7 +93,7 @@ int main(int argc, char **argv)
         }
     }
     std::vector<uint32_t> mem;
-    if (capture.empty() || !load_image(capture, mem))
+    if (capture.empty() || !load_image("tb_rgs_ctrl", capture, 0, mem))
         return 2;
     uint32_t width, height;
     rgs_image_size(mem.data(), &width, &height);

@@ -99,22 +99,6 @@ bool parse_line(const char *line, surface_tx &x)
     return true;
 }
 
-bool load_image(const std::string &dir, uint32_t n, std::vector<uint32_t> &mem)
-{
-    const std::string path = dir + "/image_" + std::to_string(n) + ".bin";
-    FILE *f = std::fopen(path.c_str(), "rb");
-    if (!f) {
-        std::printf("tb_surface: cannot read %s\n", path.c_str());
-        return false;
-    }
-    mem.clear();
-    uint32_t w;
-    while (std::fread(&w, sizeof w, 1, f) == 1)
-        mem.push_back(w);
-    std::fclose(f);
-    return !mem.empty();
-}
-
 // the C model: the surface's outputs and the word addresses it reads
 struct coverage { std::size_t valid = 0, colours = 0, samples = 0, geometric = 0; };
 
@@ -246,7 +230,7 @@ int main(int argc, char **argv)
         if (!in_flight && next < tx.size() && (calm || rnd() % 3 == 0)) {
             const surface_tx &x = tx[next];
             if (x.image != image) {
-                if (!load_image(capture, x.image, mem))
+                if (!load_image("tb_surface", capture, x.image, mem))
                     return 2;
                 image = x.image;
             }
