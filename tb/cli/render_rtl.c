@@ -1,9 +1,9 @@
 /*
  * saarcor render --mode rtl: a frame through the Verilated DynRTP (rtl/dynrtp.sv, built by make rtl
  * as <build>/rtl/eEmM/tb_dynrtp, rtl/tb/tb_dynrtp.cpp). The memory image and the parameters go to
- * a temporary folder, the model renders the frame there (the RGS as linked C driving the RTL core,
- * the memory with the cycle model's bandwidth and latency) and writes back the pixels, the primary
- * hits and its counters; the folder is removed afterwards.
+ * a temporary folder, the model renders the frame there (the RGS, the core, the caches and the
+ * memory port in RTL, the memory with the cycle model's bandwidth and latency) and writes back the
+ * pixels, the primary hits and its counters; the folder is removed afterwards.
  */
 #define _GNU_SOURCE
 #include <errno.h>
