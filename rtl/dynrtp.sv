@@ -1,40 +1,54 @@
-// dynrtp: one DynRTP (paper section 3, Figure 2) as far as it has RTL: the tile controller
-// (tile_ctrl) deals the frame's 2x2 blocks, the ray tracing core (trace_core: THREADS threads,
-// the traversal, list, rebase, transformation and intersection units, thread_sched) traces their
-// packets, and its three memory ports read through the paper's direct-mapped caches (cache_read
-// around cache_dm, the cycle model's default configuration tb/cycle/cycle_sim.c
-// cycle_config_default: kd nodes NODE_KB KB in lines of one node (8 bytes), lists LIST_KB KB in
-// lines of one entry (4 bytes), matrices MAT_KB KB in lines of one packed triangle record), all
-// on one memory port (mem_port) to an external memory with valid/ready and in-order answers.
-// What is RTL: the tile controller, the core, the caches and the memory port. What is not: the
-// RGS (ray generation, shading, secondary rays, the per-block control of hls/units/rgs.c
-// rgs_step; branch rgs builds rgs_ctrl): its seam is this module's ports, the blocks out
-// (blk_*), the packets in (trace_core's packet input: thread, TRACE_* flags, rays) and their hits
-// and trace_counters out, so the RGS drives the core as rgs_step would drive trace_step; the
-// shading cache and the RGS's uncached reads (nothing of the RGS reads memory here).
+// dynrtp: one DynRTP (paper section 3, Figure 2): the tile controller (tile_ctrl) deals the
+// frame's 2x2 blocks to the RGS, RGS_BLOCKS block controllers (rgs_ctrl: ray generation,
+// surfaces, lights and shadow rays, accumulation and secondary rays of hls/units/rgs.c
+// rgs_block_begin / rgs_step / rgs_block_finish) whose packets the ray tracing core (trace_core:
+// THREADS threads, the traversal, list, rebase, transformation and intersection units,
+// thread_sched) traces, and the memory side: the core's three ports read through the paper's
+// direct-mapped caches (cache_read around cache_dm, the cycle model's default configuration
+// tb/cycle/cycle_sim.c cycle_config_default: kd nodes NODE_KB KB in lines of one node (8 bytes),
+// lists LIST_KB KB in lines of one entry (4 bytes), matrices MAT_KB KB in lines of one packed
+// triangle record) and the RGS's word reads (header, camera, instances, shading records,
+// materials, lights, texels) through the shading cache (SHADE_KB KB in lines of 16 bytes, the
+// cycle model's MEM_SHADING cache), all four on one memory port (mem_port) to an external memory
+// with valid/ready and in-order answers.
+// The RGS: one rgs_ctrl holds one block (its ray-tree stack in registers), so RGS_BLOCKS of them
+// give RGS_BLOCKS blocks in flight, each with at most one packet in the core: rgs_ctrl k traces on
+// the core's thread k (its tag), so the core's hits go back to the controller of thread_o. A block
+// goes to the lowest idle controller below blocks_i (--threads-per-pipe: the blocks the harness
+// lets run); the controllers' packets enter the core round robin (rr_pick), their word reads are
+// merged round robin by a second mem_port (N = RGS_BLOCKS, the answers routed back in order) onto
+// the shading cache, their pixels leave round robin on the px_* port with the block's corner.
+// Every controller reads the frame's header and camera once after reset, before it takes a block.
+// The core's packet input and its hits are also outputs (tr_*, valid_o ...) for the harness, which
+// checks every packet against the C core.
 // Where the memory interface differs from the cycle model (docs/cycle-model.md): the core's
 // descriptor word port reads the header once per image (4 responses at e7m16; the cycle model:
 // not at all) and a record in one or two responses of a matrix cache line's RW words each (a
 // read across two lines takes two lookups; the cycle model looks the lines up at once); list_unit's entry waits in its pipeline for the list word (the cycle model parks the
 // thread before the unit); every cache has OUTSTANDING reads in flight (the cycle model: no
 // limit); the caches answer a hit after 2 cycles (3 with the matrix cache's index stage, the
-// cycle model: at once).
+// cycle model: at once); the RGS's reads are word by word (the cycle model: by records).
 // Counters (the usage counted inside the RTL): cycles_o counts the cycles from the frame taken at
-// frame_valid_i until frame_end_i (the RGS's last block done); issues_o per unit of trace_core the
-// operations issued in that time (thread_sched: trav, list, rebase, wide, xform, isect, add, sum,
-// 64 bits each); packets_o the packets traced; reads_o per memory port of the core the reads its
-// cache took (kd nodes, list entries, descriptor responses of RW words: the word port's usage).
-// Latency and throughput: tile_ctrl 1 block per cycle; the core's (rtl/README.md); the memory port
-// 1 transfer per cycle. Resources: trace_core's, 3 x cache_read (NODE_KB + LIST_KB + MAT_KB KB of
-// data arrays and their tags), mem_port, tile_ctrl, 13 x 64-bit counters.
+// frame_valid_i until frame_done_o (the last block's pixels taken); issues_o per unit of
+// trace_core the operations issued in that time (thread_sched: trav, list, rebase, wide, xform,
+// isect, add, sum, 64 bits each); packets_o the packets traced; reads_o per cache the reads it
+// took (kd nodes, list entries, descriptor responses of RW words, shading words).
+// Latency and throughput: tile_ctrl 1 block per cycle; rgs_ctrl a block per its sequence
+// (rtl/README.md), RGS_BLOCKS at once; the core's; the memory port 1 transfer per cycle.
+// Resources: trace_core's, RGS_BLOCKS x rgs_ctrl (each with its own shading units and a stack of
+// about 8 Kbit in registers: the RGS dominates the area beside the core), 4 x cache_read
+// (NODE_KB + LIST_KB + MAT_KB + SHADE_KB KB of data arrays and their tags), 2 x mem_port,
+// 2 x rr_pick, tile_ctrl, RGS_BLOCKS x 64 bits of block corners, 14 x 64-bit counters.
 module dynrtp #(
   parameter int E = 7,
   parameter int M = 16,
   parameter int THREADS = 32,
   parameter int CTX = 4,            // trav_unit's operation contexts (the bound at 32 threads: rtl/README.md)
+  parameter int RGS_BLOCKS = 8,     // block controllers (rgs_ctrl), at most THREADS
   parameter int NODE_KB = 4,
   parameter int LIST_KB = 2,
   parameter int MAT_KB = 6,
+  parameter int SHADE_KB = 4,
   parameter int OUTSTANDING = 16,   // reads in flight per cache
   localparam int W = 1 + E + M,
   localparam int TW = $clog2(THREADS),
@@ -45,7 +59,7 @@ module dynrtp #(
   input  logic                   clk_i,
   input  logic                   rst_ni,
   input  logic                   flush_i,     // a new memory image: the caches are emptied
-  // the frame (tile_ctrl)
+  // the frame (tile_ctrl) and the RGS's configuration (rgs_config)
   input  logic                   frame_valid_i,
   output logic                   frame_ready_o,
   input  logic [31:0]            x0_i,
@@ -53,26 +67,34 @@ module dynrtp #(
   input  logic [31:0]            x1_i,
   input  logic [31:0]            y1_i,
   input  logic [12:0]            tile_i,
-  input  logic                   frame_end_i, // the RGS has finished the frame's last block
-  // the RGS's seam: blocks out
-  output logic                   blk_valid_o,
-  input  logic                   blk_ready_i,
-  output logic [31:0]            blk_x_o,
-  output logic [31:0]            blk_y_o,
-  output logic                   blk_done_o,  // the frame's last block was taken
-  // packets in (trace_begin) to thread thread_i
-  input  logic                   valid_i,
-  output logic                   ready_o,
-  input  logic [TW-1:0]          thread_i,
-  input  logic [2:0]             flags_i,
-  input  logic [3:0]             active_i,
-  input  logic [4*3*W-1:0]       o_i,
-  input  logic [4*3*W-1:0]       d_i,
-  input  logic [4*W-1:0]         tmin_i,
-  input  logic [4*W-1:0]         tmax_i,
-  // hits out (TP_DONE)
+  input  logic [3:0]             max_depth_i,
+  input  logic                   shadows_i,
+  input  logic [7:0]             blocks_i,    // blocks in flight: 1 .. RGS_BLOCKS
+  output logic                   frame_done_o, // the frame's last block's pixels were taken
+  // the blocks' pixels (0xRRGGBB of pixel i = (x + (i & 1), y + (i >> 1)) at bits 24 i) and
+  // primary hits
+  output logic                   px_valid_o,
+  input  logic                   px_ready_i,
+  output logic [31:0]            px_x_o,
+  output logic [31:0]            px_y_o,
+  output logic [4*24-1:0]        px_rgb_o,
+  output logic [4*32-1:0]        px_inst_o,
+  output logic [4*32-1:0]        px_tri_o,
+  output logic [4*W-1:0]         px_t_o,
+  output logic [4*W-1:0]         px_u_o,
+  output logic [4*W-1:0]         px_v_o,
+  output logic [4*W-1:0]         px_cos_o,
+  // observed: the packets the core takes (trace_begin) on thread tr_thread_o
+  output logic                   tr_valid_o,
+  output logic [TW-1:0]          tr_thread_o,
+  output logic [2:0]             tr_flags_o,
+  output logic [3:0]             tr_active_o,
+  output logic [4*3*W-1:0]       tr_o_o,
+  output logic [4*3*W-1:0]       tr_d_o,
+  output logic [4*W-1:0]         tr_tmin_o,
+  output logic [4*W-1:0]         tr_tmax_o,
+  // observed: the hits the core gives back (TP_DONE)
   output logic                   valid_o,
-  input  logic                   ready_i,
   output logic [TW-1:0]          thread_o,
   output logic [4*32-1:0]        inst_o,
   output logic [4*32-1:0]        tri_o,
@@ -86,20 +108,112 @@ module dynrtp #(
   input  logic                   mem_req_ready_i,
   output logic [31:0]            mem_req_addr_o,
   output logic [7:0]             mem_req_bytes_o,
-  output logic [1:0]             mem_req_src_o,  // 0 kd nodes, 1 lists, 2 matrices
+  output logic [1:0]             mem_req_src_o,  // 0 kd nodes, 1 lists, 2 matrices, 3 shading
   input  logic                   mem_rsp_valid_i,
   input  logic [DW-1:0]          mem_rsp_data_i,
   // counters
   output logic [63:0]            cycles_o,
   output logic [8*64-1:0]        issues_o,
   output logic [63:0]            packets_o,
-  output logic [3*64-1:0]        reads_o
+  output logic [4*64-1:0]        reads_o
 );
-  // ---- tile controller ----
+  localparam int B = RGS_BLOCKS;
+  localparam int BW = B > 1 ? $clog2(B) : 1;
+  if (B < 1 || B > THREADS) begin : g_check
+    $error("dynrtp: RGS_BLOCKS 1 .. THREADS (one core thread per block controller)");
+  end
+
+  // ---- tile controller: a block to the lowest idle controller below blocks_i ----
+  logic blk_valid, blk_ready, blk_done;
+  logic [31:0] blk_x, blk_y;
   tile_ctrl u_tiles (
     .clk_i(clk_i), .rst_ni(rst_ni), .frame_valid_i(frame_valid_i), .frame_ready_o(frame_ready_o), .x0_i(x0_i),
-    .y0_i(y0_i), .x1_i(x1_i), .y1_i(y1_i), .tile_i(tile_i), .blk_valid_o(blk_valid_o), .blk_ready_i(blk_ready_i),
-    .blk_x_o(blk_x_o), .blk_y_o(blk_y_o), .done_o(blk_done_o));
+    .y0_i(y0_i), .x1_i(x1_i), .y1_i(y1_i), .tile_i(tile_i), .blk_valid_o(blk_valid), .blk_ready_i(blk_ready),
+    .blk_x_o(blk_x), .blk_y_o(blk_y), .done_o(blk_done));
+
+  logic [B-1:0] rb_ready, free;
+  logic [BW-1:0] dealt;
+  always_comb begin
+    dealt = '0;
+    for (int k = B - 1; k >= 0; k--) begin
+      free[k] = rb_ready[k] && 8'(k) < blocks_i;
+      if (free[k]) dealt = BW'(k);
+    end
+  end
+  assign blk_ready = |free;
+
+  // ---- the RGS: RGS_BLOCKS block controllers ----
+  logic [B-1:0] tr_valid, tr_ready, hit_ready, rd_valid, rd_ready, rd_rsp, px_valid, px_ready;
+  logic [B-1:0][TW-1:0] tr_tag, px_tag;
+  logic [B-1:0][2:0] tr_flags;
+  logic [B-1:0][3:0] tr_active;
+  logic [B-1:0][4*3*W-1:0] tr_o, tr_d;
+  logic [B-1:0][4*W-1:0] tr_tmin, tr_tmax, px_t, px_u, px_v, px_cos;
+  logic [B-1:0][31:0] rd_addr;
+  logic [B-1:0][4*24-1:0] px_rgb;
+  logic [B-1:0][4*32-1:0] px_inst, px_tri;
+  logic [31:0] rd_word;
+  logic [31:0] bx_q [THREADS], by_q [THREADS];  // the corner of thread k's block
+  logic core_ready;
+  for (genvar k = 0; k < B; k++) begin : g_rgs
+    rgs_ctrl #(.E(E), .M(M), .TAG_BITS(TW)) u_rgs (
+      .clk_i(clk_i), .rst_ni(rst_ni), .max_depth_i(max_depth_i), .shadows_i(shadows_i),
+      .blk_valid_i(blk_valid && free[k] && dealt == BW'(k)), .blk_ready_o(rb_ready[k]), .blk_tag_i(TW'(k)),
+      .blk_x_i(blk_x), .blk_y_i(blk_y), .tr_valid_o(tr_valid[k]), .tr_ready_i(tr_ready[k]), .tr_tag_o(tr_tag[k]),
+      .tr_flags_o(tr_flags[k]), .tr_active_o(tr_active[k]), .tr_o_o(tr_o[k]), .tr_d_o(tr_d[k]),
+      .tr_tmin_o(tr_tmin[k]), .tr_tmax_o(tr_tmax[k]), .hit_valid_i(valid_o && thread_o == TW'(k)),
+      .hit_ready_o(hit_ready[k]), .hit_inst_i(inst_o), .hit_tri_i(tri_o), .hit_t_i(t_o), .hit_u_i(u_o),
+      .hit_v_i(v_o), .hit_cos_i(cos_o), .mem_req_valid_o(rd_valid[k]), .mem_req_ready_i(rd_ready[k]),
+      .mem_addr_o(rd_addr[k]), .mem_rsp_valid_i(rd_rsp[k]), .mem_rdata_i(rd_word), .px_valid_o(px_valid[k]),
+      .px_ready_i(px_ready[k]), .px_tag_o(px_tag[k]), .px_rgb_o(px_rgb[k]), .px_inst_o(px_inst[k]),
+      .px_tri_o(px_tri[k]), .px_t_o(px_t[k]), .px_u_o(px_u[k]), .px_v_o(px_v[k]), .px_cos_o(px_cos[k]));
+  end
+  always_ff @(posedge clk_i) begin
+    if (blk_valid && blk_ready) begin
+      bx_q[TW'(dealt)] <= blk_x;
+      by_q[TW'(dealt)] <= blk_y;
+    end
+  end
+
+  // the packets into the core, round robin; the core's hits back to the controller of their thread
+  logic [B-1:0] tr_after_q, tr_after, tr_grant, px_after_q, px_after, px_grant;
+  logic [BW-1:0] tr_pick, px_pick;
+  logic tr_any, px_any;
+  rr_pick #(.N(B)) u_tr_pick (.req_i(tr_valid), .after_i(tr_after_q), .any_o(tr_any), .grant_o(tr_grant),
+    .index_o(tr_pick), .after_o(tr_after));
+  assign tr_ready = core_ready ? tr_grant : '0;
+  assign tr_valid_o = tr_any && core_ready;
+  assign tr_thread_o = tr_tag[tr_pick];
+  assign tr_flags_o = tr_flags[tr_pick];
+  assign tr_active_o = tr_active[tr_pick];
+  assign tr_o_o = tr_o[tr_pick];
+  assign tr_d_o = tr_d[tr_pick];
+  assign tr_tmin_o = tr_tmin[tr_pick];
+  assign tr_tmax_o = tr_tmax[tr_pick];
+
+  // the pixels out, round robin
+  rr_pick #(.N(B)) u_px_pick (.req_i(px_valid), .after_i(px_after_q), .any_o(px_any), .grant_o(px_grant),
+    .index_o(px_pick), .after_o(px_after));
+  assign px_ready = px_ready_i ? px_grant : '0;
+  assign px_valid_o = px_any;
+  assign px_x_o = bx_q[px_tag[px_pick]];
+  assign px_y_o = by_q[px_tag[px_pick]];
+  assign px_rgb_o = px_rgb[px_pick];
+  assign px_inst_o = px_inst[px_pick];
+  assign px_tri_o = px_tri[px_pick];
+  assign px_t_o = px_t[px_pick];
+  assign px_u_o = px_u[px_pick];
+  assign px_v_o = px_v[px_pick];
+  assign px_cos_o = px_cos[px_pick];
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      tr_after_q <= '0;
+      px_after_q <= '0;
+    end else begin
+      if (tr_valid_o) tr_after_q <= tr_after;
+      if (px_valid_o && px_ready_i) px_after_q <= px_after;
+    end
+  end
 
   // ---- the core ----
   logic word_req, word_ready, word_rsp, node_req, node_ready, node_rsp, list_re, list_valid;
@@ -107,12 +221,18 @@ module dynrtp #(
   logic [32*RW-1:0] word_data;
   logic [63:0] node_data;
   logic [7:0] issue;
+  logic hits_taken;
+  always_comb begin
+    hits_taken = 1'b0;
+    for (int k = 0; k < B; k++)
+      if (thread_o == TW'(k)) hits_taken = hit_ready[k];
+  end
   /* verilator lint_off PINCONNECTEMPTY */
   trace_core #(.E(E), .M(M), .THREADS(THREADS), .CTX(CTX)) u_core (
-    .clk_i(clk_i), .rst_ni(rst_ni), .flush_i(flush_i), .valid_i(valid_i), .ready_o(ready_o), .thread_i(thread_i),
-    .flags_i(flags_i),
-    .active_i(active_i), .o_i(o_i), .d_i(d_i), .tmin_i(tmin_i), .tmax_i(tmax_i), .valid_o(valid_o),
-    .ready_i(ready_i), .thread_o(thread_o), .inst_o(inst_o), .tri_o(tri_o), .t_o(t_o), .u_o(u_o), .v_o(v_o),
+    .clk_i(clk_i), .rst_ni(rst_ni), .flush_i(flush_i), .valid_i(tr_any), .ready_o(core_ready), .thread_i(tr_thread_o),
+    .flags_i(tr_flags_o), .active_i(tr_active_o), .o_i(tr_o_o), .d_i(tr_d_o), .tmin_i(tr_tmin_o),
+    .tmax_i(tr_tmax_o), .valid_o(valid_o), .ready_i(hits_taken), .thread_o(thread_o), .inst_o(inst_o),
+    .tri_o(tri_o), .t_o(t_o), .u_o(u_o), .v_o(v_o),
     .cos_o(cos_o), .count_o(count_o), .inflight_o(), .mem_req_valid_o(word_req), .mem_req_ready_i(word_ready),
     .mem_addr_o(word_addr), .mem_rsp_valid_i(word_rsp), .mem_rdata_i(word_data), .node_req_valid_o(node_req),
     .node_req_ready_i(node_ready), .node_addr_o(node_addr), .node_rsp_valid_i(node_rsp),
@@ -121,15 +241,14 @@ module dynrtp #(
   /* verilator lint_on PINCONNECTEMPTY */
 
   // ---- the caches ----
-  logic [2:0] mreq_valid, mreq_ready, mrsp_valid;
-  logic [3*32-1:0] mreq_addr;
+  logic [3:0] mreq_valid, mreq_ready, mrsp_valid;
+  logic [4*32-1:0] mreq_addr;
   logic [DW-1:0] mrsp_data;
   cache_read #(.LINE_BYTES(8), .SIZE_BYTES(1024 * NODE_KB), .WORDS(2), .OUTSTANDING(OUTSTANDING)) u_nodes (
     .clk_i(clk_i), .rst_ni(rst_ni), .flush_i(flush_i), .req_valid_i(node_req), .req_ready_o(node_ready),
     .req_addr_i(node_addr), .rsp_valid_o(node_rsp), .rsp_data_o(node_data), .mem_req_valid_o(mreq_valid[0]),
     .mem_req_ready_i(mreq_ready[0]), .mem_req_addr_o(mreq_addr[0 +: 32]), .mem_rsp_valid_i(mrsp_valid[0]),
     .mem_rsp_data_i(mrsp_data[0 +: 64]));
-
   // list_unit's read is a pulse with its address: held until the cache takes it; its word is held
   // from the answer until the next read (list_unit waits for it with list_valid)
   logic lreq_q, lrsp;
@@ -162,16 +281,48 @@ module dynrtp #(
     .mem_req_ready_i(mreq_ready[2]), .mem_req_addr_o(mreq_addr[64 +: 32]), .mem_rsp_valid_i(mrsp_valid[2]),
     .mem_rsp_data_i(mrsp_data));
 
+  // the RGS's word reads: the controllers' ports merged round robin, answers routed back in order,
+  // through the shading cache
+  logic sh_req, sh_ready, sh_rsp;
+  logic [31:0] sh_addr, sh_word;
+  /* verilator lint_off PINCONNECTEMPTY */
+  mem_port #(.N(B), .DW(32), .DEPTH(OUTSTANDING)) u_rgs_reads (
+    .clk_i(clk_i), .rst_ni(rst_ni), .req_valid_i(rd_valid), .req_ready_o(rd_ready), .req_addr_i(rd_addr),
+    .req_bytes_i({B{8'd4}}), .rsp_valid_o(rd_rsp), .rsp_data_o(rd_word), .mem_req_valid_o(sh_req),
+    .mem_req_ready_i(sh_ready), .mem_req_addr_o(sh_addr), .mem_req_bytes_o(), .mem_req_src_o(),
+    .mem_rsp_valid_i(sh_rsp), .mem_rsp_data_i(sh_word));
+  /* verilator lint_on PINCONNECTEMPTY */
+  
+  cache_read #(.LINE_BYTES(16), .SIZE_BYTES(1024 * SHADE_KB), .WORDS(1), .OUTSTANDING(OUTSTANDING)) u_shading (
+    .clk_i(clk_i), .rst_ni(rst_ni), .flush_i(flush_i), .req_valid_i(sh_req), .req_ready_o(sh_ready),
+    .req_addr_i(sh_addr), .rsp_valid_o(sh_rsp), .rsp_data_o(sh_word), .mem_req_valid_o(mreq_valid[3]),
+    .mem_req_ready_i(mreq_ready[3]), .mem_req_addr_o(mreq_addr[96 +: 32]), .mem_rsp_valid_i(mrsp_valid[3]),
+    .mem_rsp_data_i(mrsp_data[0 +: 128]));
+
   // ---- the memory port ----
-  mem_port #(.N(3), .DW(DW)) u_port (
+  mem_port #(.N(4), .DW(DW)) u_port (
     .clk_i(clk_i), .rst_ni(rst_ni), .req_valid_i(mreq_valid), .req_ready_o(mreq_ready), .req_addr_i(mreq_addr),
-    .req_bytes_i({8'(MAT_LINE), 8'd4, 8'd8}), .rsp_valid_o(mrsp_valid), .rsp_data_o(mrsp_data),
+    .req_bytes_i({8'd16, 8'(MAT_LINE), 8'd4, 8'd8}), .rsp_valid_o(mrsp_valid), .rsp_data_o(mrsp_data),
     .mem_req_valid_o(mem_req_valid_o), .mem_req_ready_i(mem_req_ready_i), .mem_req_addr_o(mem_req_addr_o),
     .mem_req_bytes_o(mem_req_bytes_o), .mem_req_src_o(mem_req_src_o), .mem_rsp_valid_i(mem_rsp_valid_i),
     .mem_rsp_data_i(mem_rsp_data_i));
 
-  // ---- counters: from the frame taken to the RGS's end of it ----
-  logic running;
+  // ---- the frame's end: every block dealt and its pixels taken ----
+  logic running, dealt_all_q;
+  logic [BW:0] busy_q;  // blocks in the controllers
+  assign frame_done_o = running && dealt_all_q && busy_q == '0;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      dealt_all_q <= 1'b0;
+      busy_q <= '0;
+    end else begin
+      if (frame_valid_i && frame_ready_o) dealt_all_q <= 1'b0;
+      else if (blk_done) dealt_all_q <= 1'b1;
+      busy_q <= busy_q + (BW + 1)'(blk_valid && blk_ready) - (BW + 1)'(px_valid_o && px_ready_i);
+    end
+  end
+
+  // ---- counters: from the frame taken to its end ----
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       running <= 1'b0;
@@ -187,13 +338,14 @@ module dynrtp #(
         packets_o <= '0;
         reads_o <= '0;
       end else if (running) begin
-        running <= !frame_end_i;
+        running <= !frame_done_o;
         cycles_o <= cycles_o + 64'd1;
         for (int u = 0; u < 8; u++) issues_o[64*u +: 64] <= issues_o[64*u +: 64] + 64'(issue[u]);
-        packets_o <= packets_o + 64'(valid_o && ready_i);
+        packets_o <= packets_o + 64'(valid_o && hits_taken);
         reads_o[0 +: 64] <= reads_o[0 +: 64] + 64'(node_req && node_ready);
         reads_o[64 +: 64] <= reads_o[64 +: 64] + 64'(lreq_q && lreq_ready);
         reads_o[128 +: 64] <= reads_o[128 +: 64] + 64'(word_req && word_ready);
+        reads_o[192 +: 64] <= reads_o[192 +: 64] + 64'(sh_req && sh_ready);
       end
     end
   end

@@ -46,7 +46,8 @@
 # secondary) of cornell, subpass_scene_opaque.glb, the room and Fox.glb (TRACE_SKIP_TOP and
 # TRACE_IDENTITY) to trace_step's hits and counters; the DynRTP top's harness (rtl/tb/tb_dynrtp.cpp,
 # saarcor render --mode rtl, tests/test_rtl_render.sh) catches a list word taken before the list
-# cache answered (with SAARCOR_RTL_MUTANTS=all). Prints cmocka-style lines.
+# cache answered and a block's pixels under a wrong corner (with SAARCOR_RTL_MUTANTS=all). Prints
+# cmocka-style lines.
 set -u
 cd "$(dirname "$0")/.."
 B=${BUILD:-build}
@@ -351,13 +352,20 @@ t_core_mutant_caught() { # route_after_list walking on before the rest of its le
       --capture "$T/core_cornell" --packets 60
 }
 
-# the DynRTP top (rtl/dynrtp.sv) rendering the cornell box at 16x12 through its harness: a list
-# word taken as there before the list cache has answered (the stale word of the read before)
-t_dynrtp_mutant_caught() {
+# the DynRTP top (rtl/dynrtp.sv) rendering the cornell box at 16x12 through its harness: $T/dyn
+dyn_frame() {
   mkdir -p "$T/dyn"
   "$BIN" info cornell --width 16 --height 12 --image "$T/dyn/image.bin" >/dev/null
   printf 'tile 16\nthreads 32\nmax_depth 3\nshadows 1\ntraversal 0\nmem_latency 10\nmem_mbps 1000\nclock_mhz 90\n' >"$T/dyn/params"
-  mutant dynrtp dynrtp.sv "s/if (list_re) list_valid <= 1'b0;/if (1'b0) list_valid <= 1'b0;/" "$T/dyn"
+}
+
+# a list word taken as there before the list cache has answered (the stale word of the read
+# before); a block's pixels sent out under the corner (x, x) instead of (x, y), caught by the check
+# of every block against rgs_render_block
+t_dynrtp_mutants_caught() {
+  dyn_frame
+  mutant dynrtp dynrtp.sv "s/if (list_re) list_valid <= 1'b0;/if (1'b0) list_valid <= 1'b0;/" "$T/dyn" &&
+    mutant dynrtp dynrtp.sv "s/assign px_y_o = by_q\[/assign px_y_o = bx_q[/" "$T/dyn"
 }
 
 t_mutant_caught() { # the bench must fail on a wrong rounder
@@ -398,6 +406,6 @@ run_case rtl_trav_unit_matches_c_model_and_capture t_trav_unit
 extra_mutants && run_case rtl_trav_bench_catches_mutant t_trav_mutant_caught
 run_case rtl_core_matches_c_model_and_capture t_core
 extra_mutants && run_case rtl_core_bench_catches_mutant t_core_mutant_caught
-extra_mutants && run_case rtl_dynrtp_harness_catches_mutant t_dynrtp_mutant_caught
+extra_mutants && run_case rtl_dynrtp_harness_catches_mutants t_dynrtp_mutants_caught
 run_case rtl_bench_catches_mutant t_mutant_caught
 exit $((fails != 0))

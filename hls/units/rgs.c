@@ -294,13 +294,6 @@ route:
     return 0;
 }
 
-int rgs_trace_pending(rgs_block *b)
-{
-    if (b->phase == RB_NEXT)
-        next_packet(b);
-    return b->phase == RB_TRACE || b->phase == RB_SHADOW_TRACE;
-}
-
 void rgs_block_finish(const rgs_block *b, uint32_t rgb[])
 {
 pixels:

@@ -116,12 +116,6 @@ void rgs_block_begin(const uint32_t *mem, uint32_t x0, uint32_t y0, rgs_block *b
  * child packets (T_R steps on the transformation unit). */
 int rgs_step(const uint32_t *mem, const rgs_config *cfg, rgs_block *b, unit_op *op, rgs_counters *c);
 
-/* Performs the block's transitions without a unit operation (a pending packet's trace_begin) and
- * returns 1 if its next operation is a trace_step of b->trace (a packet or a shadow packet, as
- * trace_begin left it): a driver may trace it elsewhere (the RTL core, rtl/tb/tb_dynrtp.cpp), store
- * the hits with trace_end and go on with rgs_step, which then finds the packet done. */
-int rgs_trace_pending(rgs_block *b);
-
 /* 0xRRGGBB of the block's pixels. */
 void rgs_block_finish(const rgs_block *b, uint32_t rgb[]);
 

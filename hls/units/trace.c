@@ -341,14 +341,6 @@ int trace_step(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters 
     }
 }
 
-void trace_end(trace_state *s, const hit_record hits[TRACE_PACKET])
-{
-end_hits:
-    for (int i = 0; i < TRACE_PACKET; i++)
-        s->hits[i] = hits[i];
-    s->phase = TP_DONE;
-}
-
 void trace_packet(const uint32_t *mem, const ray_packet *rays, hit_record hits[TRACE_PACKET], trace_counters *c)
 {
     trace_state s;

@@ -181,8 +181,6 @@ void trace_begin(const ray_packet *rays, uint32_t flags, trace_state *s);
  * packet is done: the closest hits are in s->hits. */
 int trace_step(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c);
 
-/* Ends the packet with hits traced elsewhere (the RTL core): trace_step then returns 0. */
-void trace_end(trace_state *s, const hit_record hits[TRACE_PACKET]);
 
 /* Functional mode: the whole packet, closest hits (skipping the top level if the profile says so). */
 void trace_packet(const uint32_t *mem, const ray_packet *rays, hit_record hits[TRACE_PACKET], trace_counters *c);

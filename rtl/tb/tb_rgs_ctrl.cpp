@@ -21,6 +21,7 @@
 
 #include "Vtb_rgs_ctrl.h"
 #include "tb_common.h"
+#include "tb_rays.h"
 
 extern "C" {
 #include "rgs.h"
@@ -196,13 +197,7 @@ int main(int argc, char **argv)
                 }
             }
             // the C traces what the RTL sent
-            ray_packet rays{};
-            rays.active = top.tr_active_o;
-            for (int i = 0; i < 4; i++) {
-                rays.o[i] = { get(top.tr_o_o, 3 * i), get(top.tr_o_o, 3 * i + 1), get(top.tr_o_o, 3 * i + 2) };
-                rays.d[i] = { get(top.tr_d_o, 3 * i), get(top.tr_d_o, 3 * i + 1), get(top.tr_d_o, 3 * i + 2) };
-                rays.tmin[i] = get(top.tr_tmin_o, i), rays.tmax[i] = get(top.tr_tmax_o, i);
-            }
+            const ray_packet rays = cosim::rays_of(top.tr_active_o, top.tr_o_o, top.tr_d_o, top.tr_tmin_o, top.tr_tmax_o);
             trace_begin(&rays, top.tr_flags_o, &ts);
             unit_op op;
             trace_counters c{};

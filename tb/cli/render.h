@@ -48,9 +48,9 @@ typedef struct {
 } frame_host;
 
 /* --mode rtl: the counters of the RTL (rtl/dynrtp.sv): cycles of the frame, operations issued per
- * unit of trace_core, packets traced, reads per memory port of the core (kd nodes, list entries,
- * descriptor words), the memory port's transfers. */
-enum { RTL_UNITS = 8, RTL_PORTS = 3 };
+ * unit of trace_core, packets traced, reads per cache (the core's kd nodes, list entries and
+ * descriptor words, the RGS's shading words), the memory port's transfers. */
+enum { RTL_UNITS = 8, RTL_PORTS = 4 };
 extern const char *const rtl_unit_names[RTL_UNITS];
 extern const char *const rtl_port_names[RTL_PORTS];
 typedef struct {

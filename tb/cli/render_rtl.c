@@ -1,9 +1,9 @@
 /*
  * saarcor render --mode rtl: a frame through the Verilated DynRTP (rtl/dynrtp.sv, built by make rtl
  * as <build>/rtl/eEmM/tb_dynrtp, rtl/tb/tb_dynrtp.cpp). The memory image and the parameters go to
- * a temporary folder, the model renders the frame there (the RGS as linked C driving the RTL core,
- * the memory with the cycle model's bandwidth and latency) and writes back the pixels, the primary
- * hits and its counters; the folder is removed afterwards.
+ * a temporary folder, the model renders the frame there (the RGS, the core, the caches and the
+ * memory port in RTL, the memory with the cycle model's bandwidth and latency) and writes back the
+ * pixels, the primary hits and its counters; the folder is removed afterwards.
  */
 #define _GNU_SOURCE
 #include <errno.h>
@@ -22,7 +22,7 @@
 extern char **environ;
 
 const char *const rtl_unit_names[RTL_UNITS] = { "trav", "list", "rebase", "wide", "xform", "isect", "add", "sum" };
-const char *const rtl_port_names[RTL_PORTS] = { "nodes", "lists", "words" };
+const char *const rtl_port_names[RTL_PORTS] = { "nodes", "lists", "words", "shading" };
 
 /* <build>/rtl/eEmM/tb_dynrtp beside this program (build/saarcor or build/w/eEmM/saarcor). */
 static int model_path(char *path, size_t n)
@@ -51,11 +51,11 @@ int render_rtl_check(const render_opts *ro)
         return cli_usage_error("render", "--mode rtl: the RTL is one DynRTP (--pipes 1)");
     if (memcmp(ro->cc.latency, d.latency, sizeof d.latency) != 0)
         return cli_usage_error("render", "--mode rtl: the units' latencies are the RTL's (no --unit-latency)");
-    for (int k = 0; k < MEM_SHADING; k++) /* the shading reads are the C RGS's: no cache in the RTL yet */
+    for (int k = 0; k < MEM_KINDS; k++)
         if (ro->cc.mem.cache[k].size_bytes != d.mem.cache[k].size_bytes ||
             ro->cc.mem.cache[k].line_bytes != d.mem.cache[k].line_bytes)
-            return cli_usage_error("render", "--mode rtl: the RTL's caches are 4,2,6 KB with lines 8,4 and one triangle "
-                                             "record (rtl/dynrtp.sv; no --cache-kb or --line-bytes)");
+            return cli_usage_error("render", "--mode rtl: the RTL's caches are 4,2,6,4 KB with lines 8, 4, one triangle "
+                                             "record and 16 (rtl/dynrtp.sv; no --cache-kb or --line-bytes)");
     if (ro->vcd || ro->usage_plot || ro->heatmap || ro->capture || ro->mpi || ro->sequence)
         return cli_usage_error("render", "--mode rtl renders one frame without --vcd, --usage-plot, --heatmap, "
                                          "--capture-unit-io, --mpi or --frames");
