@@ -239,8 +239,7 @@ test: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) $(BUILD)/rtl/$(DEFAULT_FMT)/tb_f24_ops $(BUILD)/rtl/$(DEFAULT_FMT)/tb_units $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sum \
 	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_list $(BUILD)/rtl/$(DEFAULT_FMT)/tb_cache $(BUILD)/rtl/$(DEFAULT_FMT)/tb_sched $(BUILD)/rtl/$(DEFAULT_FMT)/tb_rgs \
 	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_wide $(BUILD)/rtl/$(DEFAULT_FMT)/tb_trav $(BUILD)/rtl/$(DEFAULT_FMT)/tb_core \
-	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_shade $(BUILD)/rtl/$(DEFAULT_FMT)/tb_rgs_ctrl \
-	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_dynrtp
+	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_shade $(BUILD)/rtl/$(DEFAULT_FMT)/tb_rgs_ctrl
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 FORMATS="$(ASAN_TEST_FORMATS)" test-programs
 	@$(MAKE) --no-print-directory -j$$(nproc) robust
 	@$(MAKE) --no-print-directory -j$$(nproc) BUILD=build/asan SAN=1 fuzz-replay
@@ -475,7 +474,7 @@ rtl-test: deps rtl-lint
 	    $(BUILD)/rtl/$$f/tb_rgs_ctrl --capture $(BUILD)/rtl/capture/ctrl.$$f --max-depth 3 || exit 1; done; done \
 	  | tee $(BUILD)/rtl/rgs_ctrl.log
 	@# the short form with every mutant (make test builds the rounder's alone)
-	@SAARCOR_RTL_MUTANTS=all BUILD=$(BUILD) bash tests/run.sh tests/test_rtl.sh
+	@SAARCOR_RTL_MUTANTS=all BUILD=$(BUILD) bash tests/run.sh tests/test_rtl.sh tests/test_rtl_render.sh
 
 # Yosys synthesis of every module (synth_xilinx; synth_ice40 + nextpnr-ice40 for the operators;
 # the operators and the intersection unit across mantissa widths) -> docs/synth.md
