@@ -144,14 +144,15 @@ module dynrtp #(
 
   // ---- the RGS: RGS_BLOCKS block controllers ----
   logic [B-1:0] tr_valid, tr_ready, hit_ready, rd_valid, rd_ready, rd_rsp, px_valid, px_ready;
-  logic [B-1:0][TW-1:0] tr_tag, px_tag;
-  logic [B-1:0][2:0] tr_flags;
-  logic [B-1:0][3:0] tr_active;
-  logic [B-1:0][4*3*W-1:0] tr_o, tr_d;
-  logic [B-1:0][4*W-1:0] tr_tmin, tr_tmax, px_t, px_u, px_v, px_cos;
-  logic [B-1:0][31:0] rd_addr;
-  logic [B-1:0][4*24-1:0] px_rgb;
-  logic [B-1:0][4*32-1:0] px_inst, px_tri;
+  // per controller: unpacked arrays (Yosys 0.23 reads no packed arrays of more than one dimension)
+  logic [TW-1:0] tr_tag [B], px_tag [B];
+  logic [2:0] tr_flags [B];
+  logic [3:0] tr_active [B];
+  logic [4*3*W-1:0] tr_o [B], tr_d [B];
+  logic [4*W-1:0] tr_tmin [B], tr_tmax [B], px_t [B], px_u [B], px_v [B], px_cos [B];
+  logic [B*32-1:0] rd_addr;  // the read ports' mem_port takes the B addresses side by side
+  logic [4*24-1:0] px_rgb [B];
+  logic [4*32-1:0] px_inst [B], px_tri [B];
   logic [31:0] rd_word;
   logic [31:0] bx_q [THREADS], by_q [THREADS];  // the corner of thread k's block
   logic core_ready;
@@ -164,7 +165,7 @@ module dynrtp #(
       .tr_tmin_o(tr_tmin[k]), .tr_tmax_o(tr_tmax[k]), .hit_valid_i(valid_o && thread_o == TW'(k)),
       .hit_ready_o(hit_ready[k]), .hit_inst_i(inst_o), .hit_tri_i(tri_o), .hit_t_i(t_o), .hit_u_i(u_o),
       .hit_v_i(v_o), .hit_cos_i(cos_o), .mem_req_valid_o(rd_valid[k]), .mem_req_ready_i(rd_ready[k]),
-      .mem_addr_o(rd_addr[k]), .mem_rsp_valid_i(rd_rsp[k]), .mem_rdata_i(rd_word), .px_valid_o(px_valid[k]),
+      .mem_addr_o(rd_addr[k*32 +: 32]), .mem_rsp_valid_i(rd_rsp[k]), .mem_rdata_i(rd_word), .px_valid_o(px_valid[k]),
       .px_ready_i(px_ready[k]), .px_tag_o(px_tag[k]), .px_rgb_o(px_rgb[k]), .px_inst_o(px_inst[k]),
       .px_tri_o(px_tri[k]), .px_t_o(px_t[k]), .px_u_o(px_u[k]), .px_v_o(px_v[k]), .px_cos_o(px_cos[k]));
   end
