@@ -66,11 +66,10 @@ inline uint32_t rnd_f24()
     return ((rnd() & 1u) ? F24_SIGN_BIT : 0u) | e << F24_MAN_BITS | (rnd() & F24_FRAC_MASK);
 }
 
-// the memory image N of a capture (DIR/image_N.bin, written by --capture-unit-io) into mem; false
-// (with a message naming the bench) if it cannot be read or is empty
-inline bool load_image(const char *bench, const std::string &dir, uint32_t n, std::vector<uint32_t> &mem)
+// the 32-bit words of a binary file (a memory image) into mem; false (with a message naming the
+// bench) if it cannot be read or is empty
+inline bool read_words(const char *bench, const std::string &path, std::vector<uint32_t> &mem)
 {
-    const std::string path = dir + "/image_" + std::to_string(n) + ".bin";
     FILE *f = std::fopen(path.c_str(), "rb");
     if (!f) {
         std::printf("%s: cannot read %s\n", bench, path.c_str());
@@ -82,6 +81,12 @@ inline bool load_image(const char *bench, const std::string &dir, uint32_t n, st
         mem.push_back(w);
     std::fclose(f);
     return !mem.empty();
+}
+
+// the memory image N of a capture (DIR/image_N.bin, written by --capture-unit-io)
+inline bool load_image(const char *bench, const std::string &dir, uint32_t n, std::vector<uint32_t> &mem)
+{
+    return read_words(bench, dir + "/image_" + std::to_string(n) + ".bin", mem);
 }
 
 // captured files: hex words per line in the field order of the structs; present says whether the

@@ -67,18 +67,6 @@ struct transfer {
     uint32_t addr, bytes;
 };
 
-bool read_words(const std::string &path, std::vector<uint32_t> &mem)
-{
-    FILE *f = std::fopen(path.c_str(), "rb");
-    if (!f)
-        return false;
-    uint32_t w;
-    while (std::fread(&w, sizeof w, 1, f) == 1)
-        mem.push_back(w);
-    std::fclose(f);
-    return !mem.empty();
-}
-
 // bits [24 i, 24 i + 24) of a wide port: pixel i's 0xRRGGBB
 template <std::size_t N> uint32_t rgb_of(const VlWide<N> &v, int i)
 {
@@ -101,10 +89,8 @@ int main(int argc, char **argv)
     }
     const std::string dir = argv[1];
     std::vector<uint32_t> mem;
-    if (!read_words(dir + "/image.bin", mem)) {
-        std::printf("tb_dynrtp: cannot read %s/image.bin\n", dir.c_str());
+    if (!cosim::read_words("tb_dynrtp", dir + "/image.bin", mem))
         return 2;
-    }
     std::map<std::string, double> par;
     if (FILE *f = std::fopen((dir + "/params").c_str(), "r")) {
         char key[64];
