@@ -1,4 +1,75 @@
-// HEADER
+// trav_unit: the traversal unit's control with the per-thread stacks (paper section 3, Figure 2
+// paths b and f; section 4: the stacks of 64 entries per thread in block RAM), the algorithm
+// TRAV_STACK of hls/units/trav_unit.c (trav_scene_clip, trav_object_clip, trav_start, trav_walk)
+// and hls/units/trav_stack.c (trav_stack_step, walker_split, walker_push, entry_rays) with the
+// overflow path of hls/units/trav_restart.c, bit for bit. The other algorithms of the C unit
+// (short stack, kd-restart, push-down, ropes, grids) have no RTL. One operation per transaction:
+//   * kind 0, scene clip (trav_scene_clip): [tn_i, tf_i] = [tmin, tmax] of every ray against the
+//     box box_i (6 words: lo x y z, hi x y z); the rays of mask_i (active) whose interval is not
+//     empty leave in mask_o, their [tn, tf] in tn_o/tf_o (the other rays keep tn_i/tf_i).
+//   * kind 1, object clip (trav_object_clip): the same from [tmin, best_t] = [tn_i, tf_i] for the
+//     rays of mask_i (need); the others get [+Inf, 0].
+//   * kind 2, start (trav_start): the walk of (thread_i, level_i) begins at node 0 of the tree at
+//     word address nodes_i with the rays mask_i and intervals [tn_i, tf_i].
+//   * kind 3, walk (trav_walk): one kd-tree entry of (thread_i, level_i) with the rays' o_i, d_i,
+//     closest hits best_i and the rays still traced mask_i (alive): prune the rays whose hit lies
+//     before the entry (the second read port of trav_stack_step: an entry left without rays is
+//     dropped and the next popped and pruned in the same step), read the node's two words
+//     (node_addr_o = nodes + 2 node), at a leaf report it (leaf_o; list_o when it has entries;
+//     leaf_first_o, leaf_count_o, leaf_mask_o, leaf_tn_o), at an inner node split the rays
+//     (trav_node) and push the far child of the packet's first ray; an entry used up is replaced
+//     by the top of the stack; have_cur_o = 0 when the level is done. The walker state after the
+//     step leaves with it: the current entry (node_o, mask_o, tn_o, tf_o), sp_o, lost_o,
+//     restarted_o.
+// Overflow (walker_push, trav_restart): a push onto a full stack drops its oldest entry and sets
+// lost; the stack is circular (a top pointer modulo DEPTH and a count sp saturating at DEPTH), so
+// dropping the oldest entry is overwriting it. A level that runs dry after a drop restarts from
+// its root entry with each ray's interval from max(tn, t_exit) (trav_restart) and walks the
+// restarted pass's rules (trav_restart_drop_done, the lead ray of walker_split). With TRAV_STACK
+// t_exit stays where the walk started (trav_restart_leaf extends it for the short stacks only).
+// State per thread and level (index {thread, level}): the current entry, sp, top, have_cur, lost,
+// restarted, the tree's address, the root entry and t_exit in one memory of 2 THREADS words (one
+// synchronous read, one write port); the stacks in two banks (even and odd slots) of THREADS
+// DEPTH entries {node, mask, 4 tn, 4 tf} (AW + 4 + 8 W bits) each, one read and one write port
+// each (block RAM): 2 x 64 x 64 x 228 bits of stack at the defaults (the prototype's 64 entries
+// per thread). A step pops at most twice (the pruned entry's successor, the entry at the end),
+// always the two entries below top: both are read at once, one from each bank.
+// Structure: a linear pipeline, one operation entering per cycle, no per-operation state machine;
+// each operation's context (operands, walker state, step results) flows down it:
+//   A  input: taken unless an operation of the same thread and level is in flight (a bit per
+//      {thread, level}; in the DynRTP a thread has one operation in flight anyway) or SLOTS are;
+//      a start's state is walker_init's, a clip's intervals trav_object_clip's
+//   B  walker state read; C  the stack's top two entries; the prune comparators of the current
+//      entry and of the top one (best_t < tn), the restart's max(tn, t_exit), tn < tf and
+//      best_t < tn, computed ahead in case the step ends in a restart (2 CMP stages, 20
+//      comparators)
+//   D  the prune's outcome (pop and the popped entry's prune), the node address; E into the
+//      queue of operations and, if it reads a node, the queue of node requests (SLOTS each; the
+//      responses, taken when they come, in a third)
+//   N  into trav_node: a clip's next slab plane coming round (first), else the queue's head once
+//      its node's words are there (in request order); a leaf ends its entry here. A clip passes
+//      its 6 planes through trav_node in turn (the lo plane of an axis narrows [n, f] as the
+//      node's right child does, the hi plane as its left child, so that every max and min happens
+//      in hls/units order), every other operation passes beside it in one slot
+//   X  a clip's plane comes round or ends (the rays outside its mask keep their interval); an
+//      inner node's children; Y  the restarted pass's drop of done cells (8 comparators)
+//   Z  walker_split's choice; the push (stack write) and the new current entry; the end: the
+//      top of the stack (the first or second entry read in C), or the restart; the state written
+//      back, the result into the output queue
+// Results leave in the order they are made: different threads overtake each other where a clip
+// comes round or a node read waits. No stage stalls: the queues hold every operation in flight.
+// Latency at the defaults (trav_node NODE = 21, CMP = 2), memory answering in the cycle after the
+// request, nothing competing: walk step 38 (leaf, inner node or none), start 36, clip 146 (6 x 22
+// through trav_node). Throughput: one operation per cycle at the input; trav_node takes one slot
+// per cycle, a clip 6 of them: on the captured room frame (48x32, 64 threads, rtl/tb/tb_trav.cpp;
+// make build/rtl/e7m16/tb_trav; build/rtl/e7m16/tb_trav -n 0 --capture DIR, 2026-11-25)
+// 1.77 cycles per operation (bound from trav_node's slots: 1.50; the operation contexts it
+// replaced: 10.28 with 4 of them, 1.56 with 32).
+// Resources (synth_xilinx at e7m16, THREADS = 64, DEPTH = 64, SLOTS = 64; scripts/synth.py's
+// flow): SYNTH_FIGURES
+// Handshake: valid/ready at the operation input, the result output and the node read request
+// (node_thread_o, node_level_o: whose node); the node response (node_rsp_valid_i with w0, w1) is
+// taken when it comes, in request order.
 module trav_unit #(
   parameter int E = 7,
   parameter int M = 16,
