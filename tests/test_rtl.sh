@@ -164,11 +164,14 @@ t_trav_unit() {
        END { exit !(c != "" && c + 0 < 2.0) }' "$T/trav.log"
 }
 
-t_trav_mutant_caught() { # the near child pushed instead of the far one
+t_trav_mutant_caught() { # the near child pushed instead of the far one; at the end of a step that
+  # popped already, the popped entry taken again instead of the one below it (the stack's other bank)
   [[ -f "$T/capc/trav_unit.hex" ]] || "$BIN" render room -o "$T/room_cycle.png" --width 48 --height 32 --mode cycle \
     --threads-per-pipe 64 --capture-unit-io "$T/capc" --capture-limit 200000 >/dev/null
   mutant trav trav_unit.sv "s/assign stk_wd = z3_first_near_left ?/assign stk_wd = !z3_first_near_left ?/" \
     -n 0 --capture "$T/capc"
+  mutant trav trav_unit.sv "s/z4_cx\[O_POPPED\] ? z4_cx\[O_E2 +: ENW\]/z4_cx[O_POPPED] ? z4_cx[O_E1 +: ENW]/" \
+    -n 20000 --capture "$T/capc"
 }
 
 t_cache_mutant_caught() {
