@@ -3,8 +3,8 @@
 // wait: for its node's words, for the per-node datapath, at the output). No C function of its own:
 // it only holds words in order. The words sit in a memory with an asynchronous read (LUT RAM):
 // the head is read combinationally, so a word pushed in one cycle may leave in the next.
-// Latency 1 cycle (push to valid_o), throughput one push and one pop per cycle (also when full:
-// a pop makes room in the same cycle). Resources: DEPTH x W bits of LUT RAM, two pointers and a
+// Latency 1 cycle (push to valid_o), throughput one push and one pop per cycle (when full, a push
+// waits for the cycle after a pop). Resources: DEPTH x W bits of LUT RAM, two pointers and a
 // count. Handshake: valid/ready on both sides.
 module sync_fifo #(
   parameter int W = 32,
@@ -28,7 +28,9 @@ module sync_fifo #(
   logic [PW:0] count;
   logic push, pop;
   assign pop = valid_o && ready_i;
-  assign ready_o = count != (PW + 1)'(DEPTH) || ready_i;
+  // not ready when full even if a pop is under way: no path from ready_i to the memory's write
+  // enable (a LUT RAM's read data feeding its own write enable through the consumer)
+  assign ready_o = count != (PW + 1)'(DEPTH);
   assign push = valid_i && ready_o;
   assign valid_o = count != 0;
   assign data_o = mem[head];
