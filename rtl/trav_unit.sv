@@ -415,7 +415,12 @@ module trav_unit #(
     pass = nx[O_PASS +: 3];
     n_go = !nx[O_KIND + 1] || (nx[O_NEED] && !nx[O_LEAF]);
     n_axis = nx[O_KIND + 1] ? nx[O_W0 +: 2] : pass[2:1];
-    n_split = nx[O_KIND + 1] ? nx[O_W1 +: W] : nx[O_BOX + (pass[0] ? 3 + 32'(pass[2:1]) : 32'(pass[2:1])) * W +: W];
+    // the plane's word by a 6-way select on constant offsets (a variable offset times W became a
+    // multiplier and a shifter: 11 LUT6 levels)
+    n_split = nx[O_W1 +: W];
+    for (int k = 0; k < 6; k++)
+      if (!nx[O_KIND + 1] && {pass[0], pass[2:1]} == (k < 3 ? {1'b0, 2'(k)} : {1'b1, 2'(k - 3)}))
+        n_split = nx[O_BOX + k * W +: W];
     n_mask = nx[O_KIND + 1] ? nx[S_CMASK +: 4] : 4'hF;
   end
   always_ff @(posedge clk_i or negedge rst_ni) begin
