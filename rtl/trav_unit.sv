@@ -67,8 +67,8 @@
 // replaced: 10.28 with 4 of them, 1.56 with 32).
 // Resources (synth_xilinx at e7m16, THREADS = 64, DEPTH = 64, SLOTS = 64; scripts/synth.py's
 // flow, python3 scripts/synth.py --redo x:trav_unit:e7m16, 2026-11-25):
-// 19115 LUT6 (+ 881 RAM64M of LUT RAM: the queues, 3524 LUTs), 4057 SRL, 25353 flip-flops,
-// 3 DSP48E1, 120 RAMB18 (the walker states and the two stack banks), 1289 CARRY4; 11 LUT6 levels
+// 17662 LUT6 (+ 849 RAM64M of LUT RAM: the queues, 3396 LUTs), 3961 SRL, 24873 flip-flops,
+// 3 DSP48E1, 120 RAMB18 (the walker states and the two stack banks), 1284 CARRY4; 11 LUT6 levels
 // (the goal is 8; the unit of CTX = 4 contexts it replaced: 31180 LUT6, 18725 flip-flops, 11).
 // Handshake: valid/ready at the operation input, the result output and the node read request
 // (node_thread_o, node_level_o: whose node); the node response (node_rsp_valid_i with w0, w1) is
