@@ -67,9 +67,9 @@
 // replaced: 10.28 with 4 of them, 1.56 with 32).
 // Resources (synth_xilinx at e7m16, THREADS = 64, DEPTH = 64, SLOTS = 64; scripts/synth.py's
 // flow, python3 scripts/synth.py --redo x:trav_unit:e7m16, 2026-11-25):
-// 17662 LUT6 (+ 849 RAM64M of LUT RAM: the queues, 3396 LUTs), 3961 SRL, 24873 flip-flops,
-// 3 DSP48E1, 120 RAMB18 (the walker states and the two stack banks), 1284 CARRY4; 11 LUT6 levels
-// (the goal is 8; the unit of CTX = 4 contexts it replaced: 31180 LUT6, 18725 flip-flops, 11).
+// 15839 LUT6 (+ 849 RAM64M of LUT RAM: the queues, 3396 LUTs), 3961 SRL, 24873 flip-flops,
+// 0 DSP48E1, 120 RAMB18 (the walker states and the two stack banks), 1283 CARRY4; 8 LUT6 levels
+// (the goal: at most 8; the unit of CTX = 4 contexts it replaced: 31180 LUT6, 18725 flip-flops, 11).
 // Handshake: valid/ready at the operation input, the result output and the node read request
 // (node_thread_o, node_level_o: whose node); the node response (node_rsp_valid_i with w0, w1) is
 // taken when it comes, in request order.
@@ -416,7 +416,7 @@ module trav_unit #(
     n_go = !nx[O_KIND + 1] || (nx[O_NEED] && !nx[O_LEAF]);
     n_axis = nx[O_KIND + 1] ? nx[O_W0 +: 2] : pass[2:1];
     // the plane's word by a 6-way select on constant offsets (a variable offset times W became a
-    // multiplier and a shifter: 11 LUT6 levels)
+    // multiplier and a shifter)
     n_split = nx[O_W1 +: W];
     for (int k = 0; k < 6; k++)
       if (!nx[O_KIND + 1] && {pass[0], pass[2:1]} == (k < 3 ? {1'b0, 2'(k)} : {1'b1, 2'(k - 3)}))
