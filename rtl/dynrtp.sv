@@ -43,7 +43,6 @@ module dynrtp #(
   parameter int E = 7,
   parameter int M = 16,
   parameter int THREADS = 32,
-  parameter int CTX = 4,            // trav_unit's operation contexts (the bound at 32 threads: rtl/README.md)
   parameter int RGS_BLOCKS = 8,     // block controllers (rgs_ctrl), at most THREADS
   parameter int NODE_KB = 4,
   parameter int LIST_KB = 2,
@@ -229,7 +228,7 @@ module dynrtp #(
       if (thread_o == TW'(k)) hits_taken = hit_ready[k];
   end
   /* verilator lint_off PINCONNECTEMPTY */
-  trace_core #(.E(E), .M(M), .THREADS(THREADS), .CTX(CTX)) u_core (
+  trace_core #(.E(E), .M(M), .THREADS(THREADS)) u_core (
     .clk_i(clk_i), .rst_ni(rst_ni), .flush_i(flush_i), .valid_i(tr_any), .ready_o(core_ready), .thread_i(tr_thread_o),
     .flags_i(tr_flags_o), .active_i(tr_active_o), .o_i(tr_o_o), .d_i(tr_d_o), .tmin_i(tr_tmin_o),
     .tmax_i(tr_tmax_o), .valid_o(valid_o), .ready_i(hits_taken), .thread_o(thread_o), .inst_o(inst_o),

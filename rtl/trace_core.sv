@@ -11,7 +11,7 @@
 // algorithm trav_unit has; the others of the C unit have no RTL).
 // Issue: thread_sched (one ready set per unit, round robin): a thread raises its bit of a unit as
 // it decides its next operation there; an issued thread whose unit refuses it (trav_unit with
-// every context busy) raises it again. Each unit takes one operation per cycle, so operations of
+// its slots full) raises it again. Each unit takes one operation per cycle, so operations of
 // different threads are in flight in every unit at once; the units without a thread id of their
 // own (rebase, wide and narrow transformation, adders, exact sum, intersection) carry the issued
 // thread beside their pipeline in an f24_pipe of their latency (their outputs are always taken, so
@@ -44,7 +44,6 @@ module trace_core #(
   parameter int M = 16,
   localparam int RW = (12 * (1 + E + M) + 27 + 3 + 31) / 32,  // words per response (a triangle record)
   parameter int THREADS = 4,
-  parameter int CTX = 4,
   parameter int ADD_STAGES = 6,
   parameter int MUL_STAGES = 4,
   parameter int DIV_STAGES = 11,
@@ -213,7 +212,7 @@ module trace_core #(
   // ---- the units ----
   logic trav_valid_o;
   logic [TW-1:0] trav_thread, node_thread;
-  trav_unit #(.E(E), .M(M), .THREADS(THREADS), .CTX(CTX), .ADD_STAGES(ADD_STAGES), .DIV_STAGES(DIV_STAGES),
+  trav_unit #(.E(E), .M(M), .THREADS(THREADS), .ADD_STAGES(ADD_STAGES), .DIV_STAGES(DIV_STAGES),
               .CMP_STAGES(CMP_STAGES)) u_trav (
     .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(issue_valid[U_TRAV]), .ready_o(unit_ready[U_TRAV]),
     .thread_i(sel[U_TRAV]), .level_i(t_trav_level[sel[U_TRAV]]), .kind_i(t_trav_kind[sel[U_TRAV]]),

@@ -49,8 +49,10 @@ module trav_node #(
     /* verilator lint_off UNUSEDSIGNAL */
     logic [3:0] fl, fr; // {unordered, eq, le, lt}: le is used
     /* verilator lint_on UNUSEDSIGNAL */
-    assign ok = o_i[(3*i + 32'(axis_i))*W +: W];
-    assign dk = d_i[(3*i + 32'(axis_i))*W +: W];
+    // the axis's component by a 3-way select on constant offsets (a variable offset times W maps
+    // to a DSP multiplier, which hides a register from the LUT level count)
+    assign ok = axis_i == 2'd0 ? o_i[3*i*W +: W] : axis_i == 2'd1 ? o_i[(3*i + 1)*W +: W] : o_i[(3*i + 2)*W +: W];
+    assign dk = axis_i == 2'd0 ? d_i[3*i*W +: W] : axis_i == 2'd1 ? d_i[(3*i + 1)*W +: W] : d_i[(3*i + 2)*W +: W];
     assign left_in[i] = !dk[W-1];
     f24_add #(.E(E), .M(M), .STAGES(ADD_STAGES)) u_sub (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en),
       .valid_i(1'b0), .a_i(split_i), .b_i(ok), .sub_i(1'b1), .valid_o(), .res_o(diff));

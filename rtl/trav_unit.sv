@@ -28,28 +28,48 @@
 // restarted pass's rules (trav_restart_drop_done, the lead ray of walker_split). With TRAV_STACK
 // t_exit stays where the walk started (trav_restart_leaf extends it for the short stacks only).
 // State per thread and level (index {thread, level}): the current entry, sp, top, have_cur, lost,
-// restarted, the tree's address, the root entry and t_exit in one memory of 2 THREADS words; the
-// stacks in one memory of 2 THREADS DEPTH entries {node, mask, 4 tn, 4 tf} (AW + 4 + 8 W bits),
-// both with one synchronous read and one write port (block RAM): 2 x 64 x 64 x 228 bits of stack
-// at the defaults (the prototype's 64 entries per thread in block RAM).
-// Structure: CTX operation contexts (trav_ctx: the FSM of one operation with its operands, the
-// walker state while it runs and 8 comparators) share one trav_node (4 sub, 4 div, 4 min, 4 max,
-// 8 comparators: the split of a walk step, and a clip's 6 slab planes in turn), the state
-// memory (read as an operation enters, written as its result leaves), the stack memory's read and
-// write ports, the node read port and the result output. An operation enters a free context
-// unless an operation of the same thread and level is in flight (in the DynRTP a thread has one
-// operation in flight anyway); results leave as they are done, so operations of different threads
-// may overtake each other. Each shared resource serves its requesting contexts round robin (a
-// context waits at most CTX - 1 grants); node responses return in request order.
-// Latency per operation (trav_ctx: walk step 33 cycles at an inner node, 9 at a leaf, clip 140,
-// start 1, when no other context competes; the granted operands wait one cycle in stage G before
-// trav_node); throughput up to CTX operations per latency, at most one trav_node issue per cycle
-// (a walk step at an inner node takes one, a clip six). On the captured room frame (48x32, 64
-// threads, rtl/tb/tb_trav.cpp) 10.28 cycles per operation with CTX = 4 (before stage G: 39.4 with
-// CTX = 1, 9.95 with 4, 2.65 with 16, 1.56 with 32; bound: 1.33, the trav_node issues).
-// Resources (synth_xilinx at e7m16, THREADS = 64, DEPTH = 64, CTX = 4; scripts/synth.py's flow):
-// 31180 LUT6, 458 SRL, 18725 flip-flops, 7 DSP48E1, 120 RAMB18 (the walker states and the stacks);
-// 11 LUT6 levels (14 before stage G).
+// restarted, the tree's address, the root entry and t_exit in one memory of 2 THREADS words (one
+// synchronous read, one write port); the stacks in two banks (even and odd slots) of THREADS
+// DEPTH entries {node, mask, 4 tn, 4 tf} (AW + 4 + 8 W bits) each, one read and one write port
+// each (block RAM): 2 x 64 x 64 x 228 bits of stack at the defaults (the prototype's 64 entries
+// per thread). A step pops at most twice (the pruned entry's successor, the entry at the end),
+// always the two entries below top: both are read at once, one from each bank.
+// Structure: a linear pipeline, one operation entering per cycle, no per-operation state machine;
+// each operation's context (operands, walker state, step results) flows down it:
+//   A  input: taken unless an operation of the same thread and level is in flight (a bit per
+//      {thread, level}; in the DynRTP a thread has one operation in flight anyway) or SLOTS are;
+//      a start's state is walker_init's, a clip's intervals trav_object_clip's
+//   B  walker state read; C  the stack's top two entries; the prune comparators of the current
+//      entry and of the top one (best_t < tn), the restart's max(tn, t_exit), tn < tf and
+//      best_t < tn, computed ahead in case the step ends in a restart (2 CMP stages, 20
+//      comparators)
+//   D  the prune's outcome (pop and the popped entry's prune), the node address; E into the
+//      queue of operations and, if it reads a node, the queue of node requests (SLOTS each; the
+//      responses, taken when they come, in a third)
+//   N  into trav_node: a clip's next slab plane coming round (first), else the queue's head once
+//      its node's words are there (in request order); a leaf ends its entry here. A clip passes
+//      its 6 planes through trav_node in turn (the lo plane of an axis narrows [n, f] as the
+//      node's right child does, the hi plane as its left child, so that every max and min happens
+//      in hls/units order), every other operation passes beside it in one slot
+//   X  a clip's plane comes round or ends (the rays outside its mask keep their interval); an
+//      inner node's children; Y  the restarted pass's drop of done cells (8 comparators)
+//   Z  walker_split's choice; the push (stack write) and the new current entry; the end: the
+//      top of the stack (the first or second entry read in C), or the restart; the state written
+//      back, the result into the output queue
+// Results leave in the order they are made: different threads overtake each other where a clip
+// comes round or a node read waits. No stage stalls: the queues hold every operation in flight.
+// Latency at the defaults (trav_node NODE = 21, CMP = 2), memory answering in the cycle after the
+// request, nothing competing: walk step 38 (leaf, inner node or none), start 36, clip 146 (6 x 22
+// through trav_node). Throughput: one operation per cycle at the input; trav_node takes one slot
+// per cycle, a clip 6 of them: on the captured room frame (48x32, 64 threads, rtl/tb/tb_trav.cpp;
+// make build/rtl/e7m16/tb_trav; build/rtl/e7m16/tb_trav -n 0 --capture DIR, 2026-11-25)
+// 1.77 cycles per operation (bound from trav_node's slots: 1.50; the operation contexts it
+// replaced: 10.28 with 4 of them, 1.56 with 32).
+// Resources (synth_xilinx at e7m16, THREADS = 64, DEPTH = 64, SLOTS = 64; scripts/synth.py's
+// flow, python3 scripts/synth.py --redo x:trav_unit:e7m16, 2026-11-25):
+// 15839 LUT6 (+ 849 RAM64M of LUT RAM: the queues, 3396 LUTs), 3961 SRL, 24873 flip-flops,
+// 0 DSP48E1, 120 RAMB18 (the walker states and the two stack banks), 1283 CARRY4; 8 LUT6 levels
+// (the goal: at most 8; the unit of CTX = 4 contexts it replaced: 31180 LUT6, 18725 flip-flops, 11).
 // Handshake: valid/ready at the operation input, the result output and the node read request
 // (node_thread_o, node_level_o: whose node); the node response (node_rsp_valid_i with w0, w1) is
 // taken when it comes, in request order.
@@ -58,7 +78,7 @@ module trav_unit #(
   parameter int M = 16,
   parameter int THREADS = 64,
   parameter int DEPTH = 64,       // TRACE_STACK: stack entries per thread and level (a power of 2)
-  parameter int CTX = 4,          // operations in flight (of different threads or levels)
+  parameter int SLOTS = 64,       // operations in flight at most (a power of 2): the queues' depth
   parameter int AW = 32,          // word addresses and node indices
   parameter int ADD_STAGES = 6,
   parameter int DIV_STAGES = 11,
@@ -114,204 +134,496 @@ module trav_unit #(
   localparam int TPW = $clog2(DEPTH);
   localparam int ENW = AW + 4 + 8 * W;        // a stack entry {node, mask, tn, tf}
   localparam int STW = ENW + 3 + SPW + TPW + AW + 4 + 12 * W;
-  localparam int CW = CTX > 1 ? $clog2(CTX) : 1;
+  localparam int NW = $clog2(SLOTS + 1);
   localparam int NODE_LATENCY = ADD_STAGES + DIV_STAGES + 2 * CMP_STAGES; // trav_node's
-  if (DEPTH < 2 || (DEPTH & (DEPTH - 1)) != 0) begin : g_depth_check
-    $error("trav_unit: DEPTH is a power of 2 (the circular stack's top pointer wraps)");
+  localparam logic [1:0] K_OBJECT = 2'd1, K_START = 2'd2, K_WALK = 2'd3;
+  localparam logic [E-1:0] EMAX = '1;
+  localparam logic [W-1:0] POS_INF = {1'b0, EMAX, {M{1'b0}}};
+  if (DEPTH < 4 || (DEPTH & (DEPTH - 1)) != 0) begin : g_depth_check
+    $error("trav_unit: DEPTH is a power of 2 and at least 4 (the circular stack's top pointer wraps; two banks)");
   end
 
-  // memories: the walker state and the stacks
-  logic [STW-1:0] st_mem [2*THREADS];
-  logic [ENW-1:0] stk_mem [2*THREADS*DEPTH];
-  logic [STW-1:0] st_rd;
-  logic [ENW-1:0] stk_rd;
+  // An operation's context, the word that flows down the pipeline (fields LSB first). A clip keeps
+  // its running interval [n, f] in the current entry's tn, tf and its interval before the box in
+  // the root's (the walker state is unused by a clip); its result mask in the current entry's mask.
+  localparam int O_LEAF_TN = 0;                 // at a leaf: the entry's tn, mask
+  localparam int O_LEAF_MASK = O_LEAF_TN + 4 * W;
+  localparam int O_W1 = O_LEAF_MASK + 4;         // the node's words
+  localparam int O_W0 = O_W1 + 32;
+  localparam int O_LIST = O_W0 + 32;             // a leaf with entries
+  localparam int O_LEAF = O_LIST + 1;
+  localparam int O_PASS = O_LEAF + 1;            // a clip's slab plane (0 .. 5)
+  localparam int O_RST_MASK = O_PASS + 3;        // the restart's mask and tn, computed ahead
+  localparam int O_RST_TN = O_RST_MASK + 4;
+  localparam int O_NEED = O_RST_TN + 4 * W;      // the step reads a node
+  localparam int O_POPPED = O_NEED + 1;          // the pruned entry was dropped and the next popped
+  localparam int O_E2 = O_POPPED + 1;            // the stack's two top entries
+  localparam int O_E1 = O_E2 + ENW;
+  localparam int O_ST = O_E1 + ENW;              // the walker state (a word of the state memory)
+  localparam int O_BOX = O_ST + STW;
+  localparam int O_AMASK = O_BOX + 6 * W;        // mask_i: active, need or alive rays
+  localparam int O_BEST = O_AMASK + 4;
+  localparam int O_D = O_BEST + 4 * W;
+  localparam int O_O = O_D + 12 * W;
+  localparam int O_KIND = O_O + 12 * W;
+  localparam int O_IDX = O_KIND + 2;
+  localparam int CXW = O_IDX + IW;
+  // the walker state's fields (as laid out in the state memory's word)
+  localparam int S_TEXIT = O_ST;
+  localparam int S_RTF = S_TEXIT + 4 * W;        // the root entry's tf, tn, mask
+  localparam int S_RTN = S_RTF + 4 * W;
+  localparam int S_RMASK = S_RTN + 4 * W;
+  localparam int S_NODES = S_RMASK + 4;          // the tree's word address
+  localparam int S_TOP = S_NODES + AW;
+  localparam int S_SP = S_TOP + TPW;
+  localparam int S_RESTARTED = S_SP + SPW;
+  localparam int S_LOST = S_RESTARTED + 1;
+  localparam int S_HAVE = S_LOST + 1;
+  localparam int S_CUR = S_HAVE + 1;             // the current entry
+  localparam int S_CTF = S_CUR;
+  localparam int S_CTN = S_CUR + 4 * W;
+  localparam int S_CMASK = S_CUR + 8 * W;
+  localparam int S_CNODE = S_CUR + 8 * W + 4;
+  // a stack entry's fields
+  localparam int E_TN = 4 * W, E_MASK = 8 * W, E_NODE = 8 * W + 4;
 
-  // the contexts' requests and results
-  logic [CTX-1:0] busy, start, node_req, node_grant, node_done, stk_rd_req, stk_rd_grant, stk_wr_req, stk_wr_grant;
-  logic [CTX-1:0] mem_req, mem_grant, mem_rsp, out_valid, out_grant, c_write_back, c_have_cur, c_leaf, c_list;
-  logic [CTX-1:0] c_lost, c_restarted;
-  logic [IW-1:0] c_idx [CTX];
-  logic [1:0] c_axis [CTX], c_kind [CTX];
-  logic [W-1:0] c_split [CTX];
-  logic [3:0] c_node_mask [CTX], c_mask [CTX], c_leaf_mask [CTX];
-  logic [4*3*W-1:0] c_o [CTX], c_d [CTX];
-  logic [4*W-1:0] c_node_tn [CTX], c_node_tf [CTX], c_tn [CTX], c_tf [CTX], c_leaf_tn [CTX];
-  logic [IW+TPW-1:0] c_stk_rd_addr [CTX], c_stk_wr_addr [CTX];
-  logic [ENW-1:0] c_stk_wr_data [CTX];
-  logic [AW-1:0] c_mem_addr [CTX], c_node [CTX];
-  logic [STW-1:0] c_state [CTX];
-  logic [31:0] c_leaf_first [CTX], c_leaf_count [CTX];
-  logic [SPW-1:0] c_sp [CTX];
-
-  // the shared per-node datapath and its results
-  logic node_go, node_valid;
-  /* verilator lint_off UNUSEDSIGNAL */
-  logic tag_valid; // the same as node_valid
-  /* verilator lint_on UNUSEDSIGNAL */
-  logic [CW-1:0] node_sel, tag, stk_rd_sel, stk_wr_sel, mem_sel, out_sel;
-  logic [3:0] nd_l_mask, nd_r_mask, nd_near_left;
-  logic [4*W-1:0] nd_l_tn, nd_l_tf, nd_r_tn, nd_r_tf;
-
-  for (genvar c = 0; c < CTX; c++) begin : g_ctx
-    assign node_grant[c] = node_go && node_sel == CW'(c);
-    assign node_done[c] = node_valid && tag == CW'(c);
-    trav_ctx #(.E(E), .M(M), .IW(IW), .DEPTH(DEPTH), .AW(AW), .CMP_STAGES(CMP_STAGES)) u_ctx (
-      .clk_i(clk_i), .rst_ni(rst_ni), .start_i(start[c]), .idx_i({thread_i, level_i}), .kind_i(kind_i), .o_i(o_i),
-      .d_i(d_i), .tn_i(tn_i), .tf_i(tf_i), .best_i(best_i), .mask_i(mask_i), .box_i(box_i), .nodes_i(nodes_i),
-      .state_i(st_rd), .busy_o(busy[c]), .idx_o(c_idx[c]),
-      .node_req_o(node_req[c]), .node_grant_i(node_grant[c]), .node_axis_o(c_axis[c]), .node_split_o(c_split[c]),
-      .node_mask_o(c_node_mask[c]), .node_o_o(c_o[c]), .node_d_o(c_d[c]), .node_tn_o(c_node_tn[c]),
-      .node_tf_o(c_node_tf[c]), .node_done_i(node_done[c]), .nd_l_mask_i(nd_l_mask), .nd_r_mask_i(nd_r_mask),
-      .nd_near_left_i(nd_near_left), .nd_l_tn_i(nd_l_tn), .nd_l_tf_i(nd_l_tf), .nd_r_tn_i(nd_r_tn), .nd_r_tf_i(nd_r_tf),
-      .stk_rd_req_o(stk_rd_req[c]), .stk_rd_addr_o(c_stk_rd_addr[c]), .stk_rd_grant_i(stk_rd_grant[c]),
-      .stk_rd_data_i(stk_rd), .stk_wr_req_o(stk_wr_req[c]), .stk_wr_addr_o(c_stk_wr_addr[c]),
-      .stk_wr_data_o(c_stk_wr_data[c]), .stk_wr_grant_i(stk_wr_grant[c]),
-      .mem_req_o(mem_req[c]), .mem_addr_o(c_mem_addr[c]), .mem_grant_i(mem_grant[c]), .mem_rsp_i(mem_rsp[c]),
-      .mem_w0_i(node_w0_i), .mem_w1_i(node_w1_i),
-      .out_valid_o(out_valid[c]), .out_grant_i(out_grant[c]), .state_o(c_state[c]), .write_back_o(c_write_back[c]),
-      .kind_o(c_kind[c]), .mask_o(c_mask[c]), .tn_o(c_tn[c]), .tf_o(c_tf[c]), .node_o(c_node[c]),
-      .have_cur_o(c_have_cur[c]), .leaf_o(c_leaf[c]), .list_o(c_list[c]), .leaf_first_o(c_leaf_first[c]),
-      .leaf_count_o(c_leaf_count[c]), .leaf_mask_o(c_leaf_mask[c]), .leaf_tn_o(c_leaf_tn[c]), .sp_o(c_sp[c]),
-      .lost_o(c_lost[c]), .restarted_o(c_restarted[c]));
-  end
-
-  // round robin: the first requesting context from `from` on (from = the one after the last
-  // served), so that no context waits more than CTX - 1 grants
-  function automatic logic [CW-1:0] pick(input logic [CTX-1:0] req, input logic [CW-1:0] from);
-    pick = from;
-    for (int k = CTX - 1; k >= 0; k--)
-      if (req[(32'(from) + k) % CTX]) pick = CW'((32'(from) + k) % CTX);
+  function automatic logic [W-1:0] lane(input logic [4*W-1:0] v, input int i);
+    lane = v[i*W +: W];
   endfunction
-  function automatic logic [CW-1:0] after(input logic [CW-1:0] c);
-    after = c == CW'(CTX - 1) ? '0 : c + CW'(1);
-  endfunction
-  logic [CW-1:0] rr_node, rr_rd, rr_wr, rr_mem, rr_out;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) {rr_node, rr_rd, rr_wr, rr_mem, rr_out} <= '0;
-    else begin
-      if (node_go) rr_node <= after(node_sel);
-      if (stk_rd_req != 0) rr_rd <= after(stk_rd_sel);
-      if (stk_wr_req != 0) rr_wr <= after(stk_wr_sel);
-      if (node_req_valid_o && node_req_ready_i) rr_mem <= after(mem_sel);
-      if (valid_o && ready_i) rr_out <= after(out_sel);
-    end
-  end
 
-  // input: into a free context, unless an operation of the same thread and level is in flight
-  logic take, hazard;
-  logic [CW-1:0] acc;
-  always_comb begin
-    hazard = 1'b0;
-    for (int c = 0; c < CTX; c++) hazard = hazard | (busy[c] && c_idx[c] == {thread_i, level_i});
-  end
-  assign acc = pick(~busy, '0);
-  assign ready_o = busy != '1 && !hazard;
+  // ---- A: the input. An operation enters unless one of its thread and level is in flight (its
+  // walker state is read here and written as its result is made) or SLOTS operations are.
+  logic [2*THREADS-1:0] busy;
+  logic [NW-1:0] in_flight;
+  logic take, out_pop;
+  logic [IW-1:0] out_idx;
+  assign ready_o = !busy[{thread_i, level_i}] && in_flight != NW'(SLOTS);
   assign take = valid_i && ready_o;
-  for (genvar c = 0; c < CTX; c++) begin : g_start
-    assign start[c] = take && acc == CW'(c);
-  end
-
-  // the per-node datapath: one context's node or clip plane per cycle, its tag beside it. The
-  // granted context's operands are registered before trav_node (stage G): the arbitration and
-  // the operand choice (the context's state, plane and node words) would otherwise share a cycle
-  // with trav_node's first segment (14 LUT6 levels; docs/synth.md).
-  assign node_go = node_req != 0;
-  assign node_sel = pick(node_req, rr_node);
-  logic g_valid;
-  logic [CW-1:0] g_sel;
-  logic [1:0] g_axis;
-  logic [W-1:0] g_split;
-  logic [3:0] g_mask;
-  logic [4*3*W-1:0] g_o, g_d;
-  logic [4*W-1:0] g_tn, g_tf;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) g_valid <= 1'b0;
-    else g_valid <= node_go;
-  end
-  always_ff @(posedge clk_i) begin
-    if (node_go) begin
-      g_sel <= node_sel;
-      g_axis <= c_axis[node_sel];
-      g_split <= c_split[node_sel];
-      g_mask <= c_node_mask[node_sel];
-      g_o <= c_o[node_sel];
-      g_d <= c_d[node_sel];
-      g_tn <= c_node_tn[node_sel];
-      g_tf <= c_node_tf[node_sel];
-    end
-  end
-  /* verilator lint_off PINCONNECTEMPTY */
-  trav_node #(.E(E), .M(M), .ADD_STAGES(ADD_STAGES), .DIV_STAGES(DIV_STAGES), .CMP_STAGES(CMP_STAGES)) u_node (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(g_valid), .ready_o(), .axis_i(g_axis), .split_i(g_split),
-    .mask_i(g_mask), .o_i(g_o), .d_i(g_d), .tn_i(g_tn), .tf_i(g_tf), .valid_o(node_valid), .ready_i(1'b1),
-    .l_mask_o(nd_l_mask), .r_mask_o(nd_r_mask), .near_left_o(nd_near_left), .l_tn_o(nd_l_tn), .l_tf_o(nd_l_tf),
-    .r_tn_o(nd_r_tn), .r_tf_o(nd_r_tf));
-  /* verilator lint_on PINCONNECTEMPTY */
-  f24_pipe #(.W(CW), .STAGES(NODE_LATENCY)) u_tag (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(g_valid),
-    .data_i(g_sel), .valid_o(tag_valid), .data_o(tag));
-
-  // the state memory: read as an operation enters (its context loads it a cycle later), written
-  // as the result of a start or walk leaves
-  always_ff @(posedge clk_i) begin
-    if (take) st_rd <= st_mem[{thread_i, level_i}];
-    if (valid_o && ready_i && c_write_back[out_sel]) st_mem[c_idx[out_sel]] <= c_state[out_sel];
-  end
-
-  // the stack memory: one read and one write per cycle
-  assign stk_rd_sel = pick(stk_rd_req, rr_rd);
-  assign stk_wr_sel = pick(stk_wr_req, rr_wr);
-  for (genvar c = 0; c < CTX; c++) begin : g_stk
-    assign stk_rd_grant[c] = stk_rd_req[c] && stk_rd_sel == CW'(c);
-    assign stk_wr_grant[c] = stk_wr_req[c] && stk_wr_sel == CW'(c);
-  end
-  always_ff @(posedge clk_i) begin
-    if (stk_rd_req != 0) stk_rd <= stk_mem[c_stk_rd_addr[stk_rd_sel]];
-    if (stk_wr_req != 0) stk_mem[c_stk_wr_addr[stk_wr_sel]] <= c_stk_wr_data[stk_wr_sel];
-  end
-
-  // the node reads: one request per cycle, the responses in request order (a FIFO of contexts)
-  logic [CW-1:0] rsp_ctx [CTX], rsp_head, rsp_tail;
-  assign mem_sel = pick(mem_req, rr_mem);
-  assign node_req_valid_o = mem_req != 0;
-  assign node_addr_o = c_mem_addr[mem_sel];
-  assign {node_thread_o, node_level_o} = c_idx[mem_sel];
-  for (genvar c = 0; c < CTX; c++) begin : g_mem
-    assign mem_grant[c] = node_req_ready_i && mem_req[c] && mem_sel == CW'(c);
-    assign mem_rsp[c] = node_rsp_valid_i && rsp_ctx[rsp_head] == CW'(c);
-  end
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      rsp_head <= '0;
-      rsp_tail <= '0;
+      busy <= '0;
+      in_flight <= '0;
     end else begin
-      if (node_req_valid_o && node_req_ready_i) rsp_tail <= after(rsp_tail);
-      if (node_rsp_valid_i) rsp_head <= after(rsp_head);
+      if (take) busy[{thread_i, level_i}] <= 1'b1;
+      if (out_pop) busy[out_idx] <= 1'b0;
+      in_flight <= in_flight + NW'(take) - NW'(out_pop);
     end
   end
-  always_ff @(posedge clk_i) begin
-    if (node_req_valid_o && node_req_ready_i) rsp_ctx[rsp_tail] <= mem_sel;
+
+  // the context as it enters: a start's walker state is walker_init's, a clip's intervals are
+  // trav_object_clip's (the rays outside need get [+Inf, 0]); a walk's state comes from memory
+  logic [4*W-1:0] cl_tn, cl_tf;
+  logic [CXW-1:0] a_cx;
+  always_comb begin
+    for (int i = 0; i < 4; i++) begin
+      cl_tn[i*W +: W] = kind_i == K_OBJECT && !mask_i[i] ? POS_INF : lane(tn_i, i);
+      cl_tf[i*W +: W] = kind_i == K_OBJECT && !mask_i[i] ? '0 : lane(tf_i, i);
+    end
+    a_cx = '0;
+    a_cx[O_IDX +: IW] = {thread_i, level_i};
+    a_cx[O_KIND +: 2] = kind_i;
+    a_cx[O_O +: 12 * W] = o_i;
+    a_cx[O_D +: 12 * W] = d_i;
+    a_cx[O_BEST +: 4 * W] = best_i;
+    a_cx[O_AMASK +: 4] = mask_i;
+    a_cx[O_BOX +: 6 * W] = box_i;
+    if (kind_i == K_START)
+      a_cx[O_ST +: STW] = {AW'(0), mask_i, tn_i, tf_i, 3'b100, SPW'(0), TPW'(0), nodes_i, mask_i, tn_i, tf_i, tn_i};
+    else
+      a_cx[O_ST +: STW] = {AW'(0), 4'h0, cl_tn, cl_tf, 3'b000, SPW'(0), TPW'(0), AW'(0), 4'h0, cl_tn, cl_tf, {(4*W){1'b0}}};
   end
 
-  // the results
-  assign out_sel = pick(out_valid, rr_out);
-  assign valid_o = out_valid != 0;
-  for (genvar c = 0; c < CTX; c++) begin : g_out
-    assign out_grant[c] = ready_i && out_valid[c] && out_sel == CW'(c);
+  // ---- B: the walker state read (block RAM, one read and one write port); the stack's two top
+  // entries are read from its two banks (even and odd slots), whichever the step will pop
+  logic [STW-1:0] st_mem [2*THREADS];
+  logic [STW-1:0] st_rd;
+  logic st_we;
+  logic [IW-1:0] st_wa;
+  logic [STW-1:0] st_wd;
+  logic b_valid;
+  logic [CXW-1:0] b_cx, bx;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) b_valid <= 1'b0;
+    else b_valid <= take;
   end
-  assign {thread_o, level_o} = c_idx[out_sel];
-  assign kind_o = c_kind[out_sel];
-  assign mask_o = c_mask[out_sel];
-  assign tn_o = c_tn[out_sel];
-  assign tf_o = c_tf[out_sel];
-  assign node_o = c_node[out_sel];
-  assign have_cur_o = c_have_cur[out_sel];
-  assign leaf_o = c_leaf[out_sel];
-  assign list_o = c_list[out_sel];
-  assign leaf_first_o = c_leaf_first[out_sel];
-  assign leaf_count_o = c_leaf_count[out_sel];
-  assign leaf_mask_o = c_leaf_mask[out_sel];
-  assign leaf_tn_o = c_leaf_tn[out_sel];
-  assign sp_o = c_sp[out_sel];
-  assign lost_o = c_lost[out_sel];
-  assign restarted_o = c_restarted[out_sel];
+  always_ff @(posedge clk_i) begin
+    if (take) b_cx <= a_cx;
+    if (take) st_rd <= st_mem[{thread_i, level_i}];
+    if (st_we) st_mem[st_wa] <= st_wd;
+  end
+  always_comb begin
+    bx = b_cx;
+    if (b_cx[O_KIND +: 2] == K_WALK) bx[O_ST +: STW] = st_rd;
+  end
+
+  logic [ENW-1:0] stk_even [THREADS*DEPTH], stk_odd [THREADS*DEPTH];
+  logic [ENW-1:0] stk_rd_even, stk_rd_odd;
+  logic stk_we;
+  logic [IW-1:0] stk_widx;
+  logic [TPW-1:0] stk_wslot;
+  logic [ENW-1:0] stk_wd;
+  logic [TPW-1:0] b_s1;           // the slot of the top entry
+  logic [TPW-2:0] b_s2;           // the bank address of the one below it (in the other bank)
+  logic c_odd;                    // the top entry is in the odd bank
+  assign b_s1 = bx[S_TOP +: TPW] - TPW'(1);
+  assign b_s2 = b_s1[TPW-1:1] - (TPW - 1)'(!b_s1[0]);
+  always_ff @(posedge clk_i) begin
+    if (b_valid) begin
+      stk_rd_even <= stk_even[{bx[O_IDX +: IW], b_s1[0] ? b_s2 : b_s1[TPW-1:1]}];
+      stk_rd_odd <= stk_odd[{bx[O_IDX +: IW], b_s1[0] ? b_s1[TPW-1:1] : b_s2}];
+      c_odd <= b_s1[0];
+    end
+    if (stk_we && !stk_wslot[0]) stk_even[{stk_widx, stk_wslot[TPW-1:1]}] <= stk_wd;
+    if (stk_we && stk_wslot[0]) stk_odd[{stk_widx, stk_wslot[TPW-1:1]}] <= stk_wd;
+  end
+
+  // ---- C: the comparators that do not wait for the node: the prune of the current entry and of
+  // the stack's top (entry_rays, the second read port of trav_stack_step), and the restart's
+  // max(tn, t_exit), then its tn < tf and best_t < tn (trav_restart), in case the step needs it
+  logic c_valid;
+  logic [CXW-1:0] c_cx, cx, cx_mid, d_cx;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) c_valid <= 1'b0;
+    else c_valid <= b_valid;
+  end
+  always_ff @(posedge clk_i) if (b_valid) c_cx <= bx;
+  always_comb begin
+    cx = c_cx;
+    cx[O_E1 +: ENW] = c_odd ? stk_rd_odd : stk_rd_even;
+    cx[O_E2 +: ENW] = c_odd ? stk_rd_even : stk_rd_odd;
+  end
+  logic mid_valid, d_valid;
+  logic [3:0] p1_lt, p2_lt, p1_lt_d, p2_lt_d, r1_lt, r2_lt;
+  logic [4*W-1:0] rmax, rmax_d;
+  /* verilator lint_off PINCONNECTEMPTY */
+  for (genvar i = 0; i < 4; i++) begin : g_front
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic [3:0] f1, f2, f3, f4; // {unordered, eq, le, lt}: lt is used
+    /* verilator lint_on UNUSEDSIGNAL */
+    f24_cmp #(.E(E), .M(M), .STAGES(CMP_STAGES)) u_p1 (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(1'b0),
+      .a_i(lane(cx[O_BEST +: 4 * W], i)), .b_i(lane(cx[S_CTN +: 4 * W], i)), .valid_o(), .flags_o(f1), .min_o(),
+      .max_o());
+    f24_cmp #(.E(E), .M(M), .STAGES(CMP_STAGES)) u_p2 (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(1'b0),
+      .a_i(lane(cx[O_BEST +: 4 * W], i)), .b_i(lane(cx[O_E1 + E_TN +: 4 * W], i)), .valid_o(), .flags_o(f2),
+      .min_o(), .max_o());
+    f24_cmp #(.E(E), .M(M), .STAGES(CMP_STAGES)) u_max (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1),
+      .valid_i(1'b0), .a_i(lane(cx[S_RTN +: 4 * W], i)), .b_i(lane(cx[S_TEXIT +: 4 * W], i)), .valid_o(),
+      .flags_o(), .min_o(), .max_o(rmax[i*W +: W]));
+    f24_cmp #(.E(E), .M(M), .STAGES(CMP_STAGES)) u_r1 (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(1'b0),
+      .a_i(rmax[i*W +: W]), .b_i(lane(cx_mid[S_RTF +: 4 * W], i)), .valid_o(), .flags_o(f3), .min_o(), .max_o());
+    f24_cmp #(.E(E), .M(M), .STAGES(CMP_STAGES)) u_r2 (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(1'b0),
+      .a_i(lane(cx_mid[O_BEST +: 4 * W], i)), .b_i(rmax[i*W +: W]), .valid_o(), .flags_o(f4), .min_o(), .max_o());
+    assign p1_lt[i] = f1[0];
+    assign p2_lt[i] = f2[0];
+    assign r1_lt[i] = f3[0];
+    assign r2_lt[i] = f4[0];
+  end
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic pr_valid; // the same as d_valid
+  /* verilator lint_on UNUSEDSIGNAL */
+  /* verilator lint_on PINCONNECTEMPTY */
+  f24_pipe #(.W(CXW), .STAGES(CMP_STAGES)) u_c_mid (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(c_valid),
+    .data_i(cx), .valid_o(mid_valid), .data_o(cx_mid));
+  f24_pipe #(.W(CXW), .STAGES(CMP_STAGES)) u_c_d (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(mid_valid),
+    .data_i(cx_mid), .valid_o(d_valid), .data_o(d_cx));
+  f24_pipe #(.W(8 + 4 * W), .STAGES(CMP_STAGES)) u_p_d (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1),
+    .valid_i(mid_valid), .data_i({p1_lt, p2_lt, rmax}), .valid_o(pr_valid), .data_o({p1_lt_d, p2_lt_d, rmax_d}));
+
+  // ---- D: the prune (an entry left without rays is dropped and the next popped: the stack's top,
+  // pruned alongside), the node to read, the restart's outcome; E: into the queues
+  logic [CXW-1:0] dx, e_cx;
+  logic [AW-1:0] d_addr, e_addr;
+  logic e_valid;
+  always_comb begin
+    logic [3:0] m1, m2;
+    logic pop;
+    dx = d_cx;
+    m1 = d_cx[S_CMASK +: 4] & d_cx[O_AMASK +: 4] & ~p1_lt_d;
+    m2 = d_cx[O_E1 + E_MASK +: 4] & d_cx[O_AMASK +: 4] & ~p2_lt_d;
+    pop = m1 == 0 && d_cx[S_SP +: SPW] != 0;
+    if (d_cx[O_KIND +: 2] == K_WALK) begin
+      if (pop) begin
+        dx[S_CUR +: ENW] = {d_cx[O_E1 + E_NODE +: AW], m2, d_cx[O_E1 +: 8 * W]};
+        dx[S_SP +: SPW] = d_cx[S_SP +: SPW] - SPW'(1);
+        dx[S_TOP +: TPW] = d_cx[S_TOP +: TPW] - TPW'(1);
+      end else begin
+        dx[S_CMASK +: 4] = m1;
+      end
+      dx[O_POPPED] = pop;
+      dx[S_RMASK +: 4] = d_cx[S_RMASK +: 4] & d_cx[O_AMASK +: 4];
+      dx[O_NEED] = dx[S_CMASK +: 4] != 0;
+      dx[S_HAVE] = d_cx[S_HAVE] && dx[O_NEED];
+      // trav_restart: the rays with something left whose hit does not lie before it
+      dx[O_RST_MASK +: 4] = dx[S_RMASK +: 4] & r1_lt & ~r2_lt;
+      dx[O_RST_TN +: 4 * W] = rmax_d;
+    end
+    d_addr = dx[S_NODES +: AW] + (dx[S_CNODE +: AW] << 1);
+  end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) e_valid <= 1'b0;
+    else e_valid <= d_valid;
+  end
+  always_ff @(posedge clk_i) begin
+    if (d_valid) begin
+      e_cx <= dx;
+      e_addr <= d_addr;
+    end
+  end
+
+  // the queues, each of SLOTS entries (as many as operations in flight: they never refuse): the
+  // operations in order, their node read requests, the node responses (taken when they come)
+  logic q_valid, q_pop, rsp_valid, rsp_pop;
+  logic [CXW-1:0] q_cx;
+  logic [63:0] rsp;
+  /* verilator lint_off PINCONNECTEMPTY */
+  sync_fifo #(.W(CXW), .DEPTH(SLOTS)) u_queue (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(e_valid), .ready_o(),
+    .data_i(e_cx), .valid_o(q_valid), .ready_i(q_pop), .data_o(q_cx));
+  sync_fifo #(.W(AW + IW), .DEPTH(SLOTS)) u_req (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(e_valid && e_cx[O_NEED]),
+    .ready_o(), .data_i({e_addr, e_cx[O_IDX +: IW]}), .valid_o(node_req_valid_o), .ready_i(node_req_ready_i),
+    .data_o({node_addr_o, node_thread_o, node_level_o}));
+  sync_fifo #(.W(64), .DEPTH(SLOTS)) u_rsp (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(node_rsp_valid_i), .ready_o(),
+    .data_i({node_w1_i, node_w0_i}), .valid_o(rsp_valid), .ready_i(rsp_pop), .data_o(rsp));
+  /* verilator lint_on PINCONNECTEMPTY */
+
+  // ---- N: into the per-node datapath, one operation per cycle: a clip's next slab plane first
+  // (it comes round from trav_node's output), else the queue's head once its node's words are
+  // there. A leaf ends the entry here; an inner node and a clip's plane pass trav_node, the other
+  // operations beside it (the lo plane of an axis narrows [n, f] as the node's right child does,
+  // the hi plane as its left child, so that every max and min happens in hls/units order).
+  logic rc_valid, n_valid, g_valid, g_go, n_go;
+  logic [CXW-1:0] rc_cx, nx, g_cx;
+  logic [1:0] n_axis, g_axis;
+  logic [W-1:0] n_split, g_split;
+  logic [3:0] n_mask, g_mask;
+  assign q_pop = q_valid && (!q_cx[O_NEED] || rsp_valid) && !rc_valid;
+  assign rsp_pop = q_pop && q_cx[O_NEED];
+  assign n_valid = rc_valid || q_pop;
+  always_comb begin
+    logic [2:0] pass;
+    nx = rc_valid ? rc_cx : q_cx;
+    if (!rc_valid && q_cx[O_NEED]) begin
+      nx[O_W0 +: 32] = rsp[31:0];
+      nx[O_W1 +: 32] = rsp[63:32];
+      if (rsp[1:0] == 2'd3) begin        // a leaf: its list range and rays
+        nx[S_HAVE] = 1'b0;
+        nx[O_LEAF] = 1'b1;
+        nx[O_LIST] = rsp[31:2] != 0;
+        nx[O_LEAF_MASK +: 4] = q_cx[S_CMASK +: 4];
+        nx[O_LEAF_TN +: 4 * W] = q_cx[S_CTN +: 4 * W];
+      end
+    end
+    pass = nx[O_PASS +: 3];
+    n_go = !nx[O_KIND + 1] || (nx[O_NEED] && !nx[O_LEAF]);
+    n_axis = nx[O_KIND + 1] ? nx[O_W0 +: 2] : pass[2:1];
+    // the plane's word by a 6-way select on constant offsets (a variable offset times W became a
+    // multiplier and a shifter)
+    n_split = nx[O_W1 +: W];
+    for (int k = 0; k < 6; k++)
+      if (!nx[O_KIND + 1] && {pass[0], pass[2:1]} == (k < 3 ? {1'b0, 2'(k)} : {1'b1, 2'(k - 3)}))
+        n_split = nx[O_BOX + k * W +: W];
+    n_mask = nx[O_KIND + 1] ? nx[S_CMASK +: 4] : 4'hF;
+  end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) {g_valid, g_go} <= '0;
+    else {g_valid, g_go} <= {n_valid, n_valid && n_go};
+  end
+  always_ff @(posedge clk_i) begin
+    if (n_valid) begin
+      g_cx <= nx;
+      g_axis <= n_axis;
+      g_split <= n_split;
+      g_mask <= n_mask;
+    end
+  end
+
+  logic x_valid;
+  logic [3:0] nd_l_mask, nd_r_mask, nd_near_left;
+  logic [4*W-1:0] nd_l_tn, nd_l_tf, nd_r_tn, nd_r_tf;
+  logic [CXW-1:0] x_cx;
+  /* verilator lint_off PINCONNECTEMPTY */
+  trav_node #(.E(E), .M(M), .ADD_STAGES(ADD_STAGES), .DIV_STAGES(DIV_STAGES), .CMP_STAGES(CMP_STAGES)) u_node (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(g_go), .ready_o(), .axis_i(g_axis), .split_i(g_split),
+    .mask_i(g_mask), .o_i(g_cx[O_O +: 12 * W]), .d_i(g_cx[O_D +: 12 * W]), .tn_i(g_cx[S_CTN +: 4 * W]),
+    .tf_i(g_cx[S_CTF +: 4 * W]), .valid_o(), .ready_i(1'b1), .l_mask_o(nd_l_mask), .r_mask_o(nd_r_mask),
+    .near_left_o(nd_near_left), .l_tn_o(nd_l_tn), .l_tf_o(nd_l_tf), .r_tn_o(nd_r_tn), .r_tf_o(nd_r_tf));
+  /* verilator lint_on PINCONNECTEMPTY */
+  f24_pipe #(.W(CXW), .STAGES(NODE_LATENCY)) u_beside (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1),
+    .valid_i(g_valid), .data_i(g_cx), .valid_o(x_valid), .data_o(x_cx));
+
+  // ---- X: a clip's plane comes round for the next one (pass 5, the last, narrows as the left
+  // child: its mask is the clip's, then the rays outside the clip's mask keep their interval); an
+  // inner node's children (a side that is an empty leaf is not stored)
+  logic x_clip, x_round, y_valid;
+  logic [CXW-1:0] xx, y_cx;
+  logic [ENW-1:0] x_l, x_r, y_l, y_r;
+  logic [3:0] y_near_left;
+  assign x_clip = !x_cx[O_KIND + 1];
+  assign x_round = x_valid && x_clip && x_cx[O_PASS +: 3] != 3'd5;
+  always_comb begin
+    logic [31:0] w0;
+    logic [2:0] pass;
+    w0 = x_cx[O_W0 +: 32];
+    pass = x_cx[O_PASS +: 3];
+    xx = x_cx;
+    x_l = {AW'(w0 >> 4), nd_l_mask & {4{!w0[2]}}, nd_l_tn, nd_l_tf};
+    x_r = {AW'(w0 >> 4) + AW'(!w0[2]), nd_r_mask & {4{!w0[3]}}, nd_r_tn, nd_r_tf};
+    if (x_clip) begin
+      xx[S_CTN +: 4 * W] = pass[0] ? nd_l_tn : nd_r_tn;
+      xx[S_CTF +: 4 * W] = pass[0] ? nd_l_tf : nd_r_tf;
+      xx[O_PASS +: 3] = pass + 3'd1;
+      if (pass == 3'd5) begin
+        for (int i = 0; i < 4; i++) begin
+          xx[S_CTN + i * W +: W] = x_cx[O_AMASK + i] ? lane(nd_l_tn, i) : lane(x_cx[S_RTN +: 4 * W], i);
+          xx[S_CTF + i * W +: W] = x_cx[O_AMASK + i] ? lane(nd_l_tf, i) : lane(x_cx[S_RTF +: 4 * W], i);
+        end
+        xx[S_CMASK +: 4] = nd_l_mask & x_cx[O_AMASK +: 4];
+      end
+    end
+  end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) {rc_valid, y_valid} <= '0;
+    else {rc_valid, y_valid} <= {x_round, x_valid && !x_round};
+  end
+  always_ff @(posedge clk_i) begin
+    if (x_round) rc_cx <= xx;
+    if (x_valid) begin
+      y_cx <= xx;
+      y_l <= x_l;
+      y_r <= x_r;
+      y_near_left <= nd_near_left;
+    end
+  end
+
+  // ---- Y: in a restarted pass, the cells that end at t_exit are done (trav_restart_drop_done)
+  logic [7:0] y_le;
+  /* verilator lint_off PINCONNECTEMPTY */
+  for (genvar i = 0; i < 4; i++) begin : g_drop
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic [3:0] fl, fr; // {unordered, eq, le, lt}: le is used
+    /* verilator lint_on UNUSEDSIGNAL */
+    f24_cmp #(.E(E), .M(M), .STAGES(CMP_STAGES)) u_l (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(1'b0),
+      .a_i(lane(y_l[0 +: 4 * W], i)), .b_i(lane(y_cx[S_TEXIT +: 4 * W], i)), .valid_o(), .flags_o(fl), .min_o(),
+      .max_o());
+    f24_cmp #(.E(E), .M(M), .STAGES(CMP_STAGES)) u_r (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(1'b0),
+      .a_i(lane(y_r[0 +: 4 * W], i)), .b_i(lane(y_cx[S_TEXIT +: 4 * W], i)), .valid_o(), .flags_o(fr), .min_o(),
+      .max_o());
+    assign y_le[i] = fl[1];
+    assign y_le[4+i] = fr[1];
+  end
+  /* verilator lint_on PINCONNECTEMPTY */
+  logic z_valid;
+  logic [CXW-1:0] z_cx;
+  logic [ENW-1:0] z_l, z_r;
+  logic [3:0] z_near_left;
+  f24_pipe #(.W(CXW + 2 * ENW + 4), .STAGES(CMP_STAGES)) u_y_z (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1),
+    .valid_i(y_valid), .data_i({y_cx, y_l, y_r, y_near_left}), .valid_o(z_valid),
+    .data_o({z_cx, z_l, z_r, z_near_left}));
+
+  // ---- Z: walker_split's choice (the lead ray, its near side, the far child to push), then the
+  // push (a full stack drops its oldest entry: the stack is circular, top modulo DEPTH, sp
+  // saturating at DEPTH, and lost is set), then the entry's end (trav_stack_step's tail)
+  logic z2_both, z2_first_near_left;
+  logic [ENW-1:0] z2_l, z2_r;
+  always_comb begin
+    logic restarted;
+    logic [2:0] lead;                 // a fourth ray leads when none of the others does
+    logic [1:0] first;
+    restarted = z_cx[S_RESTARTED];
+    z2_l = z_l;
+    z2_r = z_r;
+    if (restarted) begin
+      z2_l[E_MASK +: 4] = z_l[E_MASK +: 4] & ~y_le[3:0];
+      z2_r[E_MASK +: 4] = z_r[E_MASK +: 4] & ~y_le[7:4];
+    end
+    lead = restarted ? z2_l[E_MASK +: 3] | z2_r[E_MASK +: 3] : z_cx[S_CMASK +: 3];
+    first = lead[0] ? 2'd0 : lead[1] ? 2'd1 : lead[2] ? 2'd2 : 2'd3;
+    z2_first_near_left = z_near_left[first];
+    if (restarted && !(z2_first_near_left ? z2_l[E_MASK + 32'(first)] : z2_r[E_MASK + 32'(first)]))
+      z2_first_near_left = !z2_first_near_left;
+    z2_both = z2_l[E_MASK +: 4] != 0 && z2_r[E_MASK +: 4] != 0;
+  end
+  logic z3_valid, z3_both, z3_first_near_left;
+  logic [CXW-1:0] z3_cx;
+  logic [ENW-1:0] z3_l, z3_r;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) z3_valid <= 1'b0;
+    else z3_valid <= z_valid;
+  end
+  always_ff @(posedge clk_i) begin
+    if (z_valid) begin
+      {z3_cx, z3_l, z3_r, z3_both, z3_first_near_left} <= {z_cx, z2_l, z2_r, z2_both, z2_first_near_left};
+    end
+  end
+  logic z3_inner;
+  logic [CXW-1:0] z3x;
+  assign z3_inner = z3_cx[O_KIND +: 2] == K_WALK && z3_cx[O_NEED] && !z3_cx[O_LEAF];
+  assign stk_we = z3_valid && z3_inner && z3_both;
+  assign stk_widx = z3_cx[O_IDX +: IW];
+  assign stk_wslot = z3_cx[S_TOP +: TPW];
+  assign stk_wd = z3_first_near_left ? z3_r : z3_l;
+  always_comb begin
+    z3x = z3_cx;
+    if (z3_inner) begin
+      if (!z3_both) begin
+        z3x[S_CUR +: ENW] = z3_l[E_MASK +: 4] != 0 ? z3_l : z3_r;
+      end else begin
+        z3x[S_TOP +: TPW] = z3_cx[S_TOP +: TPW] + TPW'(1);
+        if (z3_cx[S_SP +: SPW] == SPW'(DEPTH)) z3x[S_LOST] = 1'b1;
+        else z3x[S_SP +: SPW] = z3_cx[S_SP +: SPW] + SPW'(1);
+        z3x[S_CUR +: ENW] = z3_first_near_left ? z3_l : z3_r;
+      end
+    end
+  end
+  logic z4_valid;
+  logic [CXW-1:0] z4_cx, z4x;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) z4_valid <= 1'b0;
+    else z4_valid <= z3_valid;
+  end
+  always_ff @(posedge clk_i) if (z3_valid) z4_cx <= z3x;
+  // the end: an entry used up is replaced by the top of the stack (the first of the two read if
+  // nothing was popped before, else the second; no entry was pushed, which keeps the current
+  // one), or after a drop the level restarts from its root entry with tn = t_exit = max(tn, t_exit)
+  always_comb begin
+    z4x = z4_cx;
+    if (z4_cx[O_KIND +: 2] == K_WALK && !z4_cx[S_HAVE]) begin
+      if (z4_cx[S_SP +: SPW] != 0) begin
+        z4x[S_CUR +: ENW] = z4_cx[O_POPPED] ? z4_cx[O_E2 +: ENW] : z4_cx[O_E1 +: ENW];
+        z4x[S_SP +: SPW] = z4_cx[S_SP +: SPW] - SPW'(1);
+        z4x[S_TOP +: TPW] = z4_cx[S_TOP +: TPW] - TPW'(1);
+        z4x[S_HAVE] = 1'b1;
+      end else if (z4_cx[S_LOST]) begin
+        z4x[S_CUR +: ENW] = {AW'(0), z4_cx[O_RST_MASK +: 4], z4_cx[O_RST_TN +: 4 * W], z4_cx[S_RTF +: 4 * W]};
+        z4x[S_RMASK +: 4] = z4_cx[O_RST_MASK +: 4];
+        z4x[S_TEXIT +: 4 * W] = z4_cx[O_RST_TN +: 4 * W];
+        z4x[S_HAVE] = z4_cx[O_RST_MASK +: 4] != 0;
+        z4x[S_LOST] = 1'b0;
+        z4x[S_RESTARTED] = 1'b1;
+      end
+    end
+  end
+
+  // ---- the result: the walker state written back (start, walk), the result into the output
+  // queue (results leave in the order they are made: operations of different threads overtake
+  // each other where a clip comes round or a node read waits)
+  localparam int RW = IW + 2 + ENW + 3 + 64 + 4 + 4 * W + SPW + 2;
+  logic [RW-1:0] out_d, out_q;
+  assign st_we = z4_valid && z4_cx[O_KIND + 1];
+  assign st_wa = z4_cx[O_IDX +: IW];
+  assign st_wd = z4x[O_ST +: STW];
+  assign out_d = {z4x[O_IDX +: IW], z4x[O_KIND +: 2], z4x[S_CUR +: ENW], z4x[S_HAVE], z4x[O_LEAF], z4x[O_LIST],
+                  z4x[O_W1 +: 32], z4x[O_W0 +: 32], z4x[O_LEAF_MASK +: 4], z4x[O_LEAF_TN +: 4 * W],
+                  z4x[S_SP +: SPW], z4x[S_LOST], z4x[S_RESTARTED]};
+  /* verilator lint_off PINCONNECTEMPTY */
+  sync_fifo #(.W(RW), .DEPTH(SLOTS)) u_out (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(z4_valid), .ready_o(),
+    .data_i(out_d), .valid_o(valid_o), .ready_i(ready_i), .data_o(out_q));
+  /* verilator lint_on PINCONNECTEMPTY */
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic [1:0] out_w0_type; // the node word's type bits (a leaf's)
+  /* verilator lint_on UNUSEDSIGNAL */
+  assign {out_idx, kind_o, node_o, mask_o, tn_o, tf_o, have_cur_o, leaf_o, list_o, leaf_first_o, leaf_count_o[29:0],
+          out_w0_type, leaf_mask_o, leaf_tn_o, sp_o, lost_o, restarted_o} = out_q;
+  assign leaf_count_o[31:30] = 2'b00;
+  assign {thread_o, level_o} = out_idx;
+  assign out_pop = valid_o && ready_i;
 endmodule

@@ -40,8 +40,8 @@ OPERATORS = ["f24_add", "f24_mul", "f24_div", "f24_cmp"]
 RGS_OPERATORS = ["f24_sqrt", "f24_to_i32"]  # the shading's (issue 23), unary; built pipelined from the start
 UNITS = ["xform_unit", "isect_unit", "trav_node"]
 ACCURACY_UNITS = ["xform_wide", "rebase_unit"]  # the accuracy datapath's units (docs/numerics.md)
-# units with their control (beyond a datapath): the traversal unit (CTX = 4 operation contexts
-# around one trav_node, per-thread stacks) and the RGS's primary rays (through its own xform_unit)
+# units with their control (beyond a datapath): the traversal unit (a pipeline around one
+# trav_node, one operation per cycle, per-thread stacks) and the RGS's primary rays (through its own xform_unit)
 PIPE_UNITS = ["trav_unit", "rgs_raygen"]
 WIDTHS = [8, 10, 12, 14, 16, 18, 20, 23]
 ROBUST_EDGE_EPS = 8
@@ -53,7 +53,7 @@ LATENCY = dict(STAGES, xform_unit=STAGES["f24_mul"] + 3 * STAGES["f24_add"],
                trav_node=STAGES["f24_add"] + STAGES["f24_div"] + 2 * STAGES["f24_cmp"],
                xform_wide=STAGES["f24_sum_exact"], rebase_unit=STAGES["f24_sum_exact"],
                rgs_raygen=1 + 2 + STAGES["f24_mul"] + 3 * STAGES["f24_add"] + 4,  # in, convert 2, xform, 4 rays
-               trav_unit="33 (a step at an inner node)")
+               trav_unit="38 (a walk step; clip 146)")
 # before the operators were pipelined inside (a combinational core, then a delay line): make synth at
 # commit 0abb082 (2026-11-24), iCE40 HX8K: latency, LUT4, FFs, Fmax MHz
 BEFORE = {"f24_add": (3, 756, 72, 14.83), "f24_mul": (3, 896, 72, 32.89), "f24_div": (6, 1394, 144, 4.64),

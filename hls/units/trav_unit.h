@@ -24,11 +24,10 @@
  * clips per ray 6 subtractors, 6 dividers, 3 min, 3 max and 1 comparator (slab test); the prune
  * 4 comparators. The cursor walkers add their own (trav_algo.h).
  * RTL: the per-node datapath rtl/trav_node.sv; the control of the stack algorithm (TRAV_STACK:
- * clips, start, walk with the per-thread stacks, overflow and restart) rtl/trav_unit.sv with CTX
- * operations in flight (default 4) around one trav_node: 32 cycles per inner node, 9 per leaf,
- * 134 per clip (its slab planes pass the trav_node in turn), one trav_node issue per cycle at
- * most; the figures above, the cycle model's, would need about 32 contexts. The other algorithms
- * have no RTL.
+ * clips, start, walk with the per-thread stacks, overflow and restart) rtl/trav_unit.sv, a
+ * pipeline around one trav_node taking one operation per cycle: latency 38 per walk step (its
+ * node read queued), 146 per clip (its slab planes pass the trav_node in turn, so a clip takes 6
+ * of its slots, where the figures above count one). The other algorithms have no RTL.
  */
 #ifndef SAARCOR_TRAV_UNIT_H
 #define SAARCOR_TRAV_UNIT_H

@@ -6,7 +6,7 @@ module tb_trav #(
   parameter int M = 16,
   parameter int THREADS = 64,
   parameter int DEPTH = 64,
-  parameter int CTX = 4
+  parameter int SLOTS = 64
 ) (
   input  logic                        clk_i,
   input  logic                        rst_ni,
@@ -51,5 +51,5 @@ module tb_trav #(
   output logic                        lost_o,
   output logic                        restarted_o
 );
-  trav_unit #(.E(E), .M(M), .THREADS(THREADS), .DEPTH(DEPTH), .CTX(CTX)) u_trav (.*);
+  trav_unit #(.E(E), .M(M), .THREADS(THREADS), .DEPTH(DEPTH), .SLOTS(SLOTS)) u_trav (.*);
 endmodule
