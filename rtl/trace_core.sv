@@ -10,12 +10,16 @@
 // those of trace_begin + trace_step to TP_DONE. The traversal algorithm is TRAV_STACK only (the
 // algorithm trav_unit has; the others of the C unit have no RTL).
 // Issue: thread_sched (one ready set per unit, round robin): a thread raises its bit of a unit as
-// it decides its next operation there; an issued thread whose unit refuses it (trav_unit with
-// every context busy) raises it again. Each unit takes one operation per cycle, so operations of
-// different threads are in flight in every unit at once; the units without a thread id of their
-// own (rebase, wide and narrow transformation, adders, exact sum, intersection) carry the issued
-// thread beside their pipeline in an f24_pipe of their latency (their outputs are always taken, so
-// the latency is fixed). Results go to their thread alone.
+// it decides its next operation there, with the operation's issue slots (trace_thread's slots_o:
+// 1 for the traversal and list units, the ray steps of a batch for the per-ray units); an issued
+// thread whose unit refuses it (trav_unit with every context busy) raises it again. An issue of s
+// slots holds the unit for its thread s cycles, one ray step a cycle (feed_left, feed_thread), as
+// the cycle model charges an operation of n rays n issue slots. Each unit takes one step per
+// cycle, so steps of different threads are in flight in every unit at once; the units without a
+// thread id of their own (rebase, wide and narrow transformation, adders, exact sum,
+// intersection) carry the issued thread beside their pipeline in an f24_pipe of their latency
+// (their outputs are always taken, so the latency is fixed). Results go to their thread alone, in
+// the order its steps went in.
 // Memory: the header's fields (the instance count, the region table's addresses, the scene bounds)
 // read once per memory image (after reset or flush_i) on the first packet's use and held here for
 // all threads, HDR_RSP responses; the instance, object and triangle records through the wide word
@@ -27,9 +31,13 @@
 // list_unit's read port are the core's.
 // Latency: per packet the sum of its operations' unit latencies, waits and reads (rtl/tb/tb_core.cpp
 // reports cycles per packet and the operations in flight; a record read is one or two responses,
-// the header's read once per image HDR_RSP); throughput: up to one operation per unit and cycle,
-// one word port request per cycle, THREADS packets in flight.
-// Resources: the units' (rtl/README.md), thread_sched (8 units), THREADS trace_thread (each 5718
+// the header's read once per image HDR_RSP); measured (tb_core --capture of cornell 32x24's 327
+// packets, 2 shared AMD EPYC cores, 2026-11-25): 8 threads 64,680 cycles, 197.8 per packet
+// (91,517 and 279.9 when each thread ran its rays one after another), 1 thread (--threads 1)
+// 390,875, 1195.3 per packet (704,541 and 2154.6); throughput: up to one ray step per unit and
+// cycle, one word port request per cycle, THREADS packets in flight.
+// Resources: the units' (rtl/README.md), thread_sched (8 units, 4-bit slot counters), per unit a
+// 4-bit feed counter and a thread id, THREADS trace_thread (each 5718
 // LUTs and 6183 flip-flops with synth_xilinx at e7m16 before its header and 20 buffer words came
 // out: its state in registers), the header's fields (5 words and the 6 W-bit bounds, once), the
 // word port's FIFO of 2 THREADS requesters of TW + 1 bits, the operand multiplexers (THREADS to 1
@@ -38,7 +46,8 @@
 // at the result output (the lowest finished thread first); word port valid/ready with responses in
 // request order; trav_unit's node port and list_unit's read port as those units define them (the
 // list word with list_rvalid_i: the list cache's answer, 1 for a memory that answers in the next
-// cycle). issue_o: the operations issued per unit in this cycle (the DynRTP's usage counters).
+// cycle). issue_o: the steps each unit took in this cycle (a batch counts its rays: the DynRTP's
+// usage counters).
 module trace_core #(
   parameter int E = 7,
   parameter int M = 16,
