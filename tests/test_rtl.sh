@@ -37,7 +37,7 @@
 # square root without its sticky bit, a pixel centre without its + 1/2, a tile controller stepping
 # past the region's edge, a vector mode whose unused terms are +0, a rebase that moves by t = Inf,
 # a core thread that walks on before the rest of a leaf's entries, a core thread storing a batch's
-# results by the wrong pass, a core feeding a batch from the wrong thread, a normal decoder folding the
+# results by the wrong pass, a normal decoder folding the
 # lower hemisphere with the wrong sign, a bilinear blend that truncates, a shading normal turned
 # away from the ray, a highlight squared once too often, a transmission ray leaving from behind
 # the surface when eta = 1, a surface's vertex colours truncated instead of rounded and a ray
@@ -344,7 +344,7 @@ t_core() {
 }
 
 t_core_mutant_caught() { # route_after_list walking on before the rest of its leaf's entries; a record's responses;
-  # a batch's collection and feed
+  # a batch's collection
   [[ -f "$T/core_cornell/trace.hex" ]] || "$BIN" render cornell -o "$T/core_cornell.png" --width 32 --height 24 \
     --capture-unit-io "$T/core_cornell" --capture-limit 1000 >/dev/null
   mutant core trace_thread.sv "s/else if (k\[level\] < leaf_count\[level\]) st <= S_LIST_GO;/else if (k[level] < leaf_count[level] \&\& !have_cur[level]) st <= S_LIST_GO;/" \
@@ -353,10 +353,7 @@ t_core_mutant_caught() { # route_after_list walking on before the rest of its le
     mutant core trace_thread.sv "s/OBJ_RSP = (OBJ_READ + RW - 1) \/ RW/OBJ_RSP = OBJ_READ \/ RW/" \
       --capture "$T/core_cornell" --packets 60 &&
     # a two-pass batch's results stored by the wrong pass (the offsets' transformation as the directions)
-    mutant core trace_thread.sv "s/if (cpass) oxy\[cr\]/if (!cpass) oxy[cr]/" --capture "$T/core_cornell" --packets 60 &&
-    # a batch's later rays fed from the thread the scheduler would pick, not from the one holding the unit
-    mutant core trace_core.sv "s/assign sel\[u\] = feeding\[u\] ? feed_thread\[u\] : /assign sel[u] = /" \
-      --capture "$T/core_cornell" --packets 60
+    mutant core trace_thread.sv "s/if (cpass) oxy\[cr\]/if (!cpass) oxy[cr]/" --capture "$T/core_cornell" --packets 60
 }
 
 # the DynRTP top (rtl/dynrtp.sv) rendering the cornell box at 16x12 through its harness: $T/dyn
