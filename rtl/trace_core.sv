@@ -10,12 +10,16 @@
 // those of trace_begin + trace_step to TP_DONE. The traversal algorithm is TRAV_STACK only (the
 // algorithm trav_unit has; the others of the C unit have no RTL).
 // Issue: thread_sched (one ready set per unit, round robin): a thread raises its bit of a unit as
-// it decides its next operation there; an issued thread whose unit refuses it (trav_unit with
-// its slots full) raises it again. Each unit takes one operation per cycle, so operations of
-// different threads are in flight in every unit at once; the units without a thread id of their
-// own (rebase, wide and narrow transformation, adders, exact sum, intersection) carry the issued
-// thread beside their pipeline in an f24_pipe of their latency (their outputs are always taken, so
-// the latency is fixed). Results go to their thread alone.
+// it decides its next operation there, with the operation's issue slots (trace_thread's slots_o:
+// 1 for the traversal and list units, the ray steps of a batch for the per-ray units); an issued
+// thread whose unit refuses it (trav_unit with its slots full) raises it again. An issue of s
+// slots holds the unit for its thread s cycles, one ray step a cycle (feed_left, feed_thread), as
+// the cycle model charges an operation of n rays n issue slots. Each unit takes one step per
+// cycle, so steps of different threads are in flight in every unit at once; the units without a
+// thread id of their own (rebase, wide and narrow transformation, adders, exact sum,
+// intersection) carry the issued thread beside their pipeline in an f24_pipe of their latency
+// (their outputs are always taken, so the latency is fixed). Results go to their thread alone, in
+// the order its steps went in.
 // Memory: the header's fields (the instance count, the region table's addresses, the scene bounds)
 // read once per memory image (after reset or flush_i) on the first packet's use and held here for
 // all threads, HDR_RSP responses; the instance, object and triangle records through the wide word
@@ -27,9 +31,13 @@
 // list_unit's read port are the core's.
 // Latency: per packet the sum of its operations' unit latencies, waits and reads (rtl/tb/tb_core.cpp
 // reports cycles per packet and the operations in flight; a record read is one or two responses,
-// the header's read once per image HDR_RSP); throughput: up to one operation per unit and cycle,
-// one word port request per cycle, THREADS packets in flight.
-// Resources: the units' (rtl/README.md), thread_sched (8 units), THREADS trace_thread (each 5718
+// the header's read once per image HDR_RSP); measured (tb_core --capture of cornell 32x24's 327
+// packets, 2 shared AMD EPYC cores, 2026-11-25): 8 threads 64,680 cycles, 197.8 per packet
+// (91,517 and 279.9 when each thread ran its rays one after another), 1 thread (--threads 1)
+// 390,875, 1195.3 per packet (704,541 and 2154.6); throughput: up to one ray step per unit and
+// cycle, one word port request per cycle, THREADS packets in flight.
+// Resources: the units' (rtl/README.md), thread_sched (8 units, 4-bit slot counters), per unit a
+// 4-bit feed counter and a thread id, THREADS trace_thread (each 5718
 // LUTs and 6183 flip-flops with synth_xilinx at e7m16 before its header and 20 buffer words came
 // out: its state in registers), the header's fields (5 words and the 6 W-bit bounds, once), the
 // word port's FIFO of 2 THREADS requesters of TW + 1 bits, the operand multiplexers (THREADS to 1
@@ -38,7 +46,8 @@
 // at the result output (the lowest finished thread first); word port valid/ready with responses in
 // request order; trav_unit's node port and list_unit's read port as those units define them (the
 // list word with list_rvalid_i: the list cache's answer, 1 for a memory that answers in the next
-// cycle). issue_o: the operations issued per unit in this cycle (the DynRTP's usage counters).
+// cycle). issue_o: the steps each unit took in this cycle (a batch counts its rays: the DynRTP's
+// usage counters).
 module trace_core #(
   parameter int E = 7,
   parameter int M = 16,
@@ -108,6 +117,7 @@ module trace_core #(
 
   // ---- the threads' requests, operands and results ----
   logic [THREADS-1:0] t_ready, t_valid, t_out_ready, t_mem_req, t_waiting, t_node_rsp, t_hdr_want;
+  logic [THREADS*4-1:0] t_slots;
   logic [31:0] t_mem_addr [THREADS];
   logic [4*32-1:0] t_inst [THREADS], t_tri [THREADS];
   logic [4*W-1:0] t_t [THREADS], t_u [THREADS], t_v [THREADS], t_cos [THREADS];
@@ -162,6 +172,7 @@ module trace_core #(
       .mem_req_valid_o(t_mem_req[t]), .mem_req_ready_i(!hdr_req && word_sel == TW'(t) && word_take),
       .mem_addr_o(t_mem_addr[t]), .mem_rsp_valid_i(mem_rsp_valid_i && word_head == {1'b0, TW'(t)}),
       .mem_rdata_i(mem_rdata_i), .node_rsp_i(t_node_rsp[t]), .waiting_o(t_waiting[t]),
+      .slots_o(t_slots[t*4 +: 4]),
       .trav_req_o(req[U_TRAV][t]), .trav_grant_i(grant[U_TRAV][t]), .trav_kind_o(t_trav_kind[t]),
       .trav_level_o(t_trav_level[t]), .trav_o_o(t_trav_o[t]), .trav_d_o(t_trav_d[t]), .trav_tn_o(t_trav_tn[t]),
       .trav_tf_o(t_trav_tf[t]), .trav_best_o(t_trav_best[t]), .trav_mask_o(t_trav_mask[t]),
@@ -192,29 +203,53 @@ module trace_core #(
   end
 
   // ---- issue: a thread's request raises its ready bit once; a refused issue raises it again ----
+  // An issue of s slots (a batch of s ray steps) holds the unit for its thread s cycles: the issue
+  // takes the first step, the next s - 1 cycles feed the others (feed_left, feed_thread), one per
+  // cycle that the unit takes, while thread_sched keeps the unit busy (its slots). Only the units
+  // that are always ready get batches (s > 1); an issue that meets a refusal or a feed is refused
+  // and raised again.
   logic [THREADS-1:0] one [THREADS];
+  logic [3:0] issue_slots [UNITS], feed_left [UNITS];
+  logic [TW-1:0] feed_thread [UNITS];
+  logic [UNITS-1:0] feeding, accept, unit_valid;
+  logic [UNITS*4-1:0] issue_slots_v;
   always_comb
     for (int t = 0; t < THREADS; t++) one[t] = THREADS'(1) << t;
   for (genvar u = 0; u < UNITS; u++) begin : g_issue
-    assign sel[u] = issue_thread[u*TW +: TW];
-    assign grant[u] = issue_valid[u] && unit_ready[u] ? one[sel[u]] : '0;
-    assign set[u*THREADS +: THREADS] = (req[u] & ~req_q[u]) | (issue_valid[u] && !unit_ready[u] ? one[sel[u]] : '0);
+    assign issue_slots[u] = issue_slots_v[u*4 +: 4];
+    assign feeding[u] = feed_left[u] != '0;
+    assign accept[u] = issue_valid[u] && unit_ready[u] && !feeding[u];
+    assign unit_valid[u] = issue_valid[u] || feeding[u];
+    // the thread whose operands go into the unit: the feeding one, else the issued one
+    assign sel[u] = feeding[u] ? feed_thread[u] : issue_thread[u*TW +: TW];
+    assign grant[u] = unit_valid[u] && unit_ready[u] ? one[sel[u]] : '0;
+    assign set[u*THREADS +: THREADS] = (req[u] & ~req_q[u]) |
+                                       (issue_valid[u] && !accept[u] ? one[issue_thread[u*TW +: TW]] : '0);
     always_ff @(posedge clk_i or negedge rst_ni)
-      if (!rst_ni) req_q[u] <= '0;
-      else req_q[u] <= req[u];
+      if (!rst_ni) begin
+        req_q[u] <= '0;
+        feed_left[u] <= '0;
+      end else begin
+        req_q[u] <= req[u];
+        if (accept[u]) begin
+          feed_left[u] <= issue_slots[u] - 4'd1;
+          feed_thread[u] <= sel[u];
+        end else if (feeding[u] && unit_ready[u]) feed_left[u] <= feed_left[u] - 4'd1;
+      end
   end
-  thread_sched #(.THREADS(THREADS), .UNITS(UNITS), .SLOT_BITS(1)) u_sched (
-    .clk_i(clk_i), .rst_ni(rst_ni), .set_i(set), .slots_i('1), .issue_valid_o(issue_valid),
-    .issue_thread_o(issue_thread), .issue_slots_o());
+  thread_sched #(.THREADS(THREADS), .UNITS(UNITS), .SLOT_BITS(4)) u_sched (
+    .clk_i(clk_i), .rst_ni(rst_ni), .set_i(set), .slots_i(t_slots), .issue_valid_o(issue_valid),
+    .issue_thread_o(issue_thread), .issue_slots_o(issue_slots_v));
 
-  assign issue_o = issue_valid & unit_ready;
+  // the steps the units took this cycle (a batch counts its rays)
+  assign issue_o = unit_valid & unit_ready;
 
   // ---- the units ----
   logic trav_valid_o;
   logic [TW-1:0] trav_thread, node_thread;
   trav_unit #(.E(E), .M(M), .THREADS(THREADS), .ADD_STAGES(ADD_STAGES), .DIV_STAGES(DIV_STAGES),
               .CMP_STAGES(CMP_STAGES)) u_trav (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(issue_valid[U_TRAV]), .ready_o(unit_ready[U_TRAV]),
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(unit_valid[U_TRAV]), .ready_o(unit_ready[U_TRAV]),
     .thread_i(sel[U_TRAV]), .level_i(t_trav_level[sel[U_TRAV]]), .kind_i(t_trav_kind[sel[U_TRAV]]),
     .o_i(t_trav_o[sel[U_TRAV]]), .d_i(t_trav_d[sel[U_TRAV]]), .tn_i(t_trav_tn[sel[U_TRAV]]),
     .tf_i(t_trav_tf[sel[U_TRAV]]), .best_i(t_trav_best[sel[U_TRAV]]), .mask_i(t_trav_mask[sel[U_TRAV]]),
@@ -230,7 +265,7 @@ module trace_core #(
   logic list_valid_o;
   logic [TW-1:0] list_thread;
   list_unit #(.THREADS(THREADS)) u_list (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(issue_valid[U_LIST]), .ready_o(unit_ready[U_LIST]),
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(unit_valid[U_LIST]), .ready_o(unit_ready[U_LIST]),
     .thread_i(sel[U_LIST]), .level_i(t_list_level[sel[U_LIST]]), .clear_i(t_list_clear[sel[U_LIST]]),
     .lists_i(t_list_lists[sel[U_LIST]]), .first_i(t_list_first[sel[U_LIST]]), .k_i(t_list_k[sel[U_LIST]]),
     .leaf_mask_i(t_list_leaf_mask[sel[U_LIST]]), .alive_i(t_list_alive[sel[U_LIST]]),
@@ -247,31 +282,31 @@ module trace_core #(
   for (genvar u = U_RB; u < UNITS; u++) begin : g_tag
     localparam int LAT = u == U_XF ? XF_LATENCY : u == U_IS ? IS_LATENCY : u == U_ADD ? ADD_STAGES : SUM_STAGES;
     f24_pipe #(.W(TW), .STAGES(LAT)) u_tag (
-      .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(issue_valid[u] && unit_ready[u]), .data_i(sel[u]),
+      .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(unit_valid[u] && unit_ready[u]), .data_i(sel[u]),
       .valid_o(), .data_o(out_thread[u]));
     assign done[u] = out_valid[u] ? one[out_thread[u]] : '0;
   end
 
   rebase_unit #(.E(E), .M(M), .SUM_STAGES(SUM_STAGES)) u_rebase (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(issue_valid[U_RB]), .ready_o(unit_ready[U_RB]),
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(unit_valid[U_RB]), .ready_o(unit_ready[U_RB]),
     .o_hi_i(t_rb_o_hi[sel[U_RB]]), .o_lo_i(t_rb_o_lo[sel[U_RB]]), .d_hi_i(t_rb_d_hi[sel[U_RB]]),
     .d_lo_i(t_rb_d_lo[sel[U_RB]]), .t_i(t_rb_t[sel[U_RB]]), .valid_o(out_valid[U_RB]), .ready_i(1'b1),
     .p_hi_o(rb_p_hi), .p_lo_o(rb_p_lo), .te_o(rb_te));
 
   xform_wide #(.E(E), .M(M), .SUM_STAGES(SUM_STAGES)) u_wide (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(issue_valid[U_XW]), .ready_o(unit_ready[U_XW]),
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(unit_valid[U_XW]), .ready_o(unit_ready[U_XW]),
     .m_i(t_xw_m[sel[U_XW]]), .tlo_i(t_xw_tlo[sel[U_XW]]), .p_hi_i(t_xw_p_hi[sel[U_XW]]),
     .p_lo_i(t_xw_p_lo[sel[U_XW]]), .point_i(t_xw_point[sel[U_XW]]), .valid_o(out_valid[U_XW]), .ready_i(1'b1),
     .r_hi_o(xw_hi), .r_lo_o(xw_lo));
 
   xform_unit #(.E(E), .M(M), .ADD_STAGES(ADD_STAGES), .MUL_STAGES(MUL_STAGES)) u_xform (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(issue_valid[U_XF]), .ready_o(unit_ready[U_XF]),
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(unit_valid[U_XF]), .ready_o(unit_ready[U_XF]),
     .m_i(t_xf_m[sel[U_XF]]), .v_i(t_xf_v[sel[U_XF]]), .point_i(1'b0), .valid_o(out_valid[U_XF]), .ready_i(1'b1),
     .r_o(xf_r));
 
   isect_unit #(.E(E), .M(M), .ADD_STAGES(ADD_STAGES), .MUL_STAGES(MUL_STAGES), .DIV_STAGES(DIV_STAGES),
                .CMP_STAGES(CMP_STAGES)) u_isect (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(issue_valid[U_IS]), .ready_o(unit_ready[U_IS]),
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(unit_valid[U_IS]), .ready_o(unit_ready[U_IS]),
     .o_i(t_is_o[sel[U_IS]]), .d_i(t_is_d[sel[U_IS]]), .te_i(t_is_te[sel[U_IS]]), .tmin_i(t_is_tmin[sel[U_IS]]),
     .tmax_i(t_is_tmax[sel[U_IS]]), .shared_i(t_is_shared[sel[U_IS]]), .valid_o(out_valid[U_IS]), .ready_i(1'b1),
     .hit_o(is_hit), .t_o(is_t), .u_o(is_u), .v_o(is_v), .cos_o(is_cos));
@@ -280,7 +315,7 @@ module trace_core #(
   assign unit_ready[U_ADD] = 1'b1;  // the operators have no stall
   for (genvar j = 0; j < 3; j++) begin : g_add
     f24_add #(.E(E), .M(M), .STAGES(ADD_STAGES)) u_add (
-      .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(issue_valid[U_ADD]),
+      .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(unit_valid[U_ADD]),
       .a_i(t_add_a[sel[U_ADD]][j*W +: W]), .b_i(t_add_b[sel[U_ADD]][j*W +: W]), .sub_i(t_add_sub[sel[U_ADD]]),
       .valid_o(add_valid[j]), .res_o(add_r[j*W +: W]));
   end
@@ -288,7 +323,7 @@ module trace_core #(
 
   assign unit_ready[U_SUM] = 1'b1;
   f24_sum_exact #(.E(E), .M(M), .N(9), .STAGES(SUM_STAGES)) u_sum (
-    .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(issue_valid[U_SUM]), .a_i(t_sum_a[sel[U_SUM]]),
+    .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(unit_valid[U_SUM]), .a_i(t_sum_a[sel[U_SUM]]),
     .b_i(t_sum_b[sel[U_SUM]]), .valid_o(out_valid[U_SUM]), .hi_o(sum_hi), .lo_o());
   /* verilator lint_on PINCONNECTEMPTY */
 

@@ -3,20 +3,32 @@
 // address and have_cur, the current instance/object/triangle and need mask, the object-space rays
 // in double words, t0, best_rel, tmin_rel, the rebased origins p and te) and the FSM of
 // hls/units/trace.c's trace_step (route_after_list, enter_single_object, op_scene_clip, op_walk,
-// rebase_leaf, op_list, op_inst_xform, op_inst_clip, op_tri_xform, op_tri_isect), one unit
-// transaction at a time. Per unit it raises a request with the operation's operands (*_req_o and
-// the operand ports) and waits for the core's grant (*_grant_i: the unit took it), then for the
+// rebase_leaf, op_list, op_inst_xform, op_inst_clip, op_tri_xform, op_tri_isect). Per unit it
+// raises a request with the operation's operands (*_req_o and the operand ports) and its issue
+// slots (slots_o) and waits for the core's grant (*_grant_i: the unit took it), then for the
 // result, which the core delivers to this thread alone (*_done_i with the result ports, shared by
-// all threads). The header's fields (hdr_*_i: the instance count, the region table's addresses, the
-// scene bounds) are the core's, read once per memory image and shared by all threads (the thread
+// all threads). The traversal and list units take one operation per packet; the per-ray units
+// (rebase, wide and narrow transformation, adders, exact sum, intersection) take a batch: one step
+// of each ray of a mask, in one or two passes (an instance's origins then directions, a triangle's
+// directions then offsets), issued on consecutive cycles while the core holds the unit for the
+// thread (slots_o = the batch's steps), and its results collected as they come back, in issue
+// order; the next batch starts when the last result is in. A triangle: the offsets' two
+// subtractions (8 steps), their addition (4), the directions and offsets through xform_unit (8), the
+// plane distances (4), the intersections (4), best_t of the hits; so the packet's 4 rays flow
+// through the pipelined units back to back, as the cycle model times an operation of n rays (n
+// issue slots, the latency once). The header's fields (hdr_*_i: the instance count, the region
+// table's addresses, the scene bounds) are the core's, read once per memory image and shared by all threads (the thread
 // waits in S_HDR until hdr_ok_i); the instance, object and triangle records come through the wide
 // word port, RW consecutive words (one matrix cache line, one packed triangle record) per response,
 // so a record takes one or two responses (ld_n of them, unpacked from lbuf). TRAV_STACK only (the
 // algorithm trav_unit has). The stacks and mailboxes live in trav_unit and list_unit.
-// Latency: the sum of the packet's unit operations, their waits for the units and the reads.
-// Resources: the state registers, 36 W bits per ray, a descriptor buffer of LBUF words (two
-// responses: 20 at e7m16), about 15 words of routing state and 10 counters of 32 bits; the record unpacking (f24_vertex_lo) and the
-// identity mapping (xform_identity) in wires. Yosys 0.23 synth_xilinx at e7m16 (before the header
+// Latency: the sum of the packet's unit operations and batches (a batch: its issue slots plus the
+// unit's latency), their waits for the units and the reads.
+// Resources: the state registers, 36 W bits per ray and 12 W bits per ray of the intersection's
+// intermediate values (the offsets, the transformed direction and origin, the plane distance: 3 W
+// bits per ray before the batches), a descriptor buffer of LBUF words (two responses: 20 at
+// e7m16), about 15 words of routing state and 10 counters of 32 bits; the record unpacking
+// (f24_vertex_lo) and the identity mapping (xform_identity) in wires. Yosys 0.23 synth_xilinx at e7m16 (before the header
 // moved to the core and the buffer shrank from 40 words to 20): 5718 LUTs, 6183 flip-flops, 4
 // DSP48E1 (the record addresses' constant multiplications), 205 CARRY4: all in flip-flops, so the paper's 64 threads want this state in block RAM indexed by thread.
 // Handshake: valid/ready at the packet input and the result output; request/grant to the units.
@@ -64,6 +76,7 @@ module trace_thread #(
   input  logic [32*RW-1:0]            mem_rdata_i,
   input  logic                        node_rsp_i,  // a kd-node read of this thread answered
   output logic                        waiting_o,   // an operation of this thread is in a unit
+  output logic [3:0]                  slots_o,     // issue slots of the operation requested (thread_sched)
   // traversal unit
   output logic                        trav_req_o,
   input  logic                        trav_grant_i,
@@ -185,16 +198,31 @@ module trace_thread #(
   localparam logic [5:0]
     S_IDLE = 6'd0, S_CLR0 = 6'd1, S_LOAD = 6'd2, S_HDR = 6'd3, S_SC_GO = 6'd4, S_TRAV_WAIT = 6'd5,
     S_SC_DONE = 6'd6, S_START_GO = 6'd7, S_START_DONE = 6'd8, S_SINGLE_NODE = 6'd9, S_SINGLE_LIST = 6'd10, S_ROUTE = 6'd11,
-    S_WALK_GO = 6'd12, S_WALK_DONE = 6'd13, S_LIST_GO = 6'd14, S_LIST_WAIT = 6'd15, S_RB_RAY = 6'd16, S_RB_WAIT = 6'd17,
-    S_IX_LOAD = 6'd18, S_IX = 6'd19, S_IX_RAY = 6'd20, S_WIDE_GO = 6'd21, S_WIDE_WAIT = 6'd22, S_IC_LOAD = 6'd23,
-    S_IC_CLR = 6'd24, S_IC_RAY = 6'd25, S_ADD_WAIT = 6'd26, S_IC_CLIP = 6'd27, S_IC_DONE = 6'd28, S_TX_LOAD = 6'd29,
-    S_TI_RAY = 6'd30, S_XF_GO = 6'd31, S_XF_WAIT = 6'd32, S_TI_OFS = 6'd33, S_TI_SUM = 6'd34, S_SUM_WAIT = 6'd35,
-    S_TI_ISECT = 6'd36, S_TI_HIT = 6'd37, S_DONE = 6'd38, S_IC_ADD = 6'd39, S_HIT_ADD = 6'd40;
-  logic [5:0] st, ret, ld_ret, add_ret;
+    S_WALK_GO = 6'd12, S_WALK_DONE = 6'd13, S_LIST_GO = 6'd14, S_LIST_WAIT = 6'd15, S_BATCH = 6'd16,
+    S_IX_LOAD = 6'd17, S_IX = 6'd18, S_IC_LOAD = 6'd19, S_IC_CLR = 6'd20, S_IC_CLIP = 6'd21, S_IC_DONE = 6'd22,
+    S_TX_LOAD = 6'd23, S_DONE = 6'd24;
+  logic [5:0] st, ret, ld_ret;
+  // A batch (S_BATCH): one step of every ray of a mask through one per-ray unit, NPASS(op) passes of
+  // the mask (passes outer, rays inner, the lowest ray first), issued on consecutive cycles as the
+  // unit grants them (the core reserves the unit for the batch's slots, thread_sched) and collected
+  // in the same order as the results come back, which may start before the last issue.
+  localparam logic [3:0]
+    B_RB_LEAF = 4'd0,  // rebase: the leaf's origins (rebase_leaf)
+    B_RB_INST = 4'd1,  // rebase: the world rays to the top-level leaf (op_inst_xform)
+    B_XW = 4'd2,       // xform_wide: pass 0 the rebased origins, pass 1 the directions (op_inst_xform)
+    B_IC_ADD = 4'd3,   // adders: best_rel = best_t - t0, tmin_rel = tmin - t0 (relative_distances)
+    B_OFS = 4'd4,      // adders: pass 0 l = p_lo - C_lo, pass 1 h = p_hi - C_hi (the origin's offset)
+    B_OFS2 = 4'd5,     // adders: c = h + l
+    B_XF = 4'd6,       // xform_unit: pass 0 the directions, pass 1 the offsets c (rows 0 and 1)
+    B_SUM = 4'd7,      // the exact sum: the plane distance O'z
+    B_IS = 4'd8,       // isect_unit (op_tri_isect)
+    B_HIT = 4'd9;      // adders: best_t = t0 + t of the rays that hit
+  logic [3:0] bop;
+  logic [3:0] bmask, itodo, ctodo, hitm;  // the batch's rays; the pass's rays to issue, to collect; its hits
+  logic ipass, cpass, idone;              // the issue's and the collection's pass; all issued
 
   logic [2:0] flags;
-  logic [3:0] active, alive, need, todo;
-  logic [1:0] ray;
+  logic [3:0] active, alive, need;
   logic [3*W-1:0] ro [4], rd [4], so [4], sd [4], so_lo [4], sd_lo [4], p_hi [4], p_lo [4];
   logic [W-1:0] tmin [4], best_t [4], best_rel [4], tmin_rel [4], t0 [4], te [4];
   logic [31:0] h_inst [4], h_tri [4];
@@ -211,18 +239,20 @@ module trace_thread #(
   logic [31:0] lbuf [LBUF];
   logic [31:0] ld_base;
   logic [1:0] ld_n, ld_sent, ld_got;
-  // the intersection's intermediate values
-  logic [3*W-1:0] dd, ofs_lo, ofs_hi, ofs;
-  logic [1:0] ofs_pass;
-  logic xf_dir;                      // xform_unit pass: 1 the direction, 0 the offset c
+  // the intersection's intermediate values per ray (ofs_hi: h, then the offset c = h + l)
+  logic [3*W-1:0] dd [4], ofs_lo [4], ofs_hi [4];
+  logic [2*W-1:0] oxy [4];
+  logic [W-1:0] oz [4];
 
-  // ---- lowest ray of todo ----
-  logic [1:0] first;
-  always_comb begin
-    first = 2'd0;
+  // ---- the batch's issue ray (ir, lowest of itodo) and collection ray (cr, lowest of ctodo) ----
+  function automatic logic [1:0] lowest(input logic [3:0] m);
+    lowest = 2'd0;
     for (int i = 3; i >= 0; i--)
-      if (todo[i]) first = 2'(i);
-  end
+      if (m[i]) lowest = 2'(i);
+  endfunction
+  logic [1:0] ir, cr;
+  assign ir = lowest(itodo);
+  assign cr = lowest(ctodo);
   function automatic logic [31:0] popcount(input logic [3:0] m);
     popcount = {31'd0, m[0]} + {31'd0, m[1]} + {31'd0, m[2]} + {31'd0, m[3]};
   endfunction
@@ -342,70 +372,92 @@ module trace_thread #(
   assign list_k_o = k[level];
   assign list_leaf_mask_o = leaf_mask[level];
   assign list_alive_o = alive;
+  // ---- the batches' requests and operands (ray ir of pass ipass) ----
+  logic batch_req;
+  assign batch_req = st == S_BATCH && !idone;
+  assign slots_o = st == S_BATCH ? 4'(popcount(bmask)) << (bop == B_XW || bop == B_OFS || bop == B_XF) : 4'd1;
   // rebase: the leaf's origins (rebase_leaf, level 1) or the world ray to the top-level leaf (op_inst_xform)
   logic rb_leaf;
-  assign rb_req_o = st == S_RB_RAY && todo != 0;
-  assign rb_o_hi_o = rb_leaf ? so[first] : ro[first];
-  assign rb_o_lo_o = rb_leaf ? so_lo[first] : '0;
-  assign rb_d_hi_o = rb_leaf ? sd[first] : rd[first];
-  assign rb_d_lo_o = rb_leaf ? sd_lo[first] : '0;
-  assign rb_t_o = leaf_tn[rb_leaf][first];
-  logic xw_point;
-  assign xw_req_o = st == S_WIDE_GO;
+  assign rb_leaf = bop == B_RB_LEAF;
+  assign rb_req_o = batch_req && (bop == B_RB_LEAF || bop == B_RB_INST);
+  assign rb_o_hi_o = rb_leaf ? so[ir] : ro[ir];
+  assign rb_o_lo_o = rb_leaf ? so_lo[ir] : '0;
+  assign rb_d_hi_o = rb_leaf ? sd[ir] : rd[ir];
+  assign rb_d_lo_o = rb_leaf ? sd_lo[ir] : '0;
+  assign rb_t_o = leaf_tn[rb_leaf][ir];
+  assign xw_req_o = batch_req && bop == B_XW;
   assign xw_m_o = inst_m;
   assign xw_tlo_o = inst_tlo;
-  assign xw_p_hi_o = xw_point ? p_hi[ray] : rd[ray];
-  assign xw_p_lo_o = p_lo[ray];
-  assign xw_point_o = xw_point;
-  assign xf_req_o = st == S_XF_GO;
+  assign xw_p_hi_o = ipass ? rd[ir] : p_hi[ir];
+  assign xw_p_lo_o = p_lo[ir];
+  assign xw_point_o = !ipass;
+  assign xf_req_o = batch_req && bop == B_XF;
   assign xf_m_o = tri_m;
-  assign xf_v_o = xf_dir ? sd[ray] : ofs;
+  assign xf_v_o = ipass ? ofs_hi[ir] : sd[ir];
   // the plane distance O'z: n.p_hi + n.(-C_hi) + n.(p_lo - C_lo) in one exact sum
-  logic [W-1:0] oz;
-  assign sum_req_o = st == S_TI_SUM;
+  assign sum_req_o = batch_req && bop == B_SUM;
   assign sum_a_o = {3{tri_m[8*W +: 3*W]}};
-  assign sum_b_o = {ofs_lo, neg_c_hi, p_hi[ray]};
-  logic [2*W-1:0] oxy;
-  assign is_req_o = st == S_TI_ISECT;
-  assign is_o_o = {oz, oxy};
-  assign is_d_o = dd;
-  assign is_te_o = te[ray];
-  assign is_tmin_o = tmin_rel[ray];
-  assign is_tmax_o = best_rel[ray];
+  assign sum_b_o = {ofs_lo[ir], neg_c_hi, p_hi[ir]};
+  assign is_req_o = batch_req && bop == B_IS;
+  assign is_o_o = {oz[ir], oxy[ir]};
+  assign is_d_o = dd[ir];
+  assign is_te_o = te[ir];
+  assign is_tmin_o = tmin_rel[ir];
+  assign is_tmax_o = best_rel[ir];
   assign is_shared_o = tri_shared;
-  logic [W-1:0] hit_t;               // the hit's t, taken as it leaves the intersection unit
 
-  // ---- the adders' operands, by the state that starts them ----
+  // ---- the adders' operands, by the batch ----
   always_comb begin
-    add_req_o = 1'b0;
+    add_req_o = batch_req && (bop == B_IC_ADD || bop == B_OFS || bop == B_OFS2 || bop == B_HIT);
     add_sub_o = 1'b1;
     add_a_o = '0;
     add_b_o = '0;
-    unique case (st)
-      S_IC_ADD: begin  // best_rel = best_t - t0, tmin_rel = tmin - t0
-        add_req_o = 1'b1;
-        add_a_o[0 +: 2*W] = {tmin[ray], best_t[ray]};
-        add_b_o[0 +: 2*W] = {t0[ray], t0[ray]};
+    unique case (bop)
+      B_IC_ADD: begin  // best_rel = best_t - t0, tmin_rel = tmin - t0
+        add_a_o[0 +: 2*W] = {tmin[ir], best_t[ir]};
+        add_b_o[0 +: 2*W] = {t0[ir], t0[ir]};
       end
-      S_TI_OFS: begin  // l = p_lo - C_lo, h = p_hi - C_hi, c = h + l
-        add_req_o = 1'b1;
-        add_sub_o = ofs_pass != 2'd2;
-        add_a_o = ofs_pass == 2'd0 ? p_lo[ray] : ofs_pass == 2'd1 ? p_hi[ray] : ofs_hi;
-        add_b_o = ofs_pass == 2'd0 ? c_lo : ofs_pass == 2'd1 ? c_hi : ofs_lo;
+      B_OFS: begin  // l = p_lo - C_lo, h = p_hi - C_hi
+        add_a_o = ipass ? p_hi[ir] : p_lo[ir];
+        add_b_o = ipass ? c_hi : c_lo;
       end
-      S_HIT_ADD: begin  // best_t = t0 + t
-        add_req_o = 1'b1;
+      B_OFS2: begin  // c = h + l
         add_sub_o = 1'b0;
-        add_a_o[0 +: W] = t0[ray];
-        add_b_o[0 +: W] = hit_t;
+        add_a_o = ofs_hi[ir];
+        add_b_o = ofs_lo[ir];
+      end
+      B_HIT: begin  // best_t = t0 + t (best_rel holds the hit's t)
+        add_sub_o = 1'b0;
+        add_a_o[0 +: W] = t0[ir];
+        add_b_o[0 +: W] = best_rel[ir];
       end
       default: ;
     endcase
   end
 
+  // the batch's results: done of its unit, for ray cr of pass cpass
+  logic batch_grant, batch_done;
+  always_comb begin
+    batch_grant = rb_grant_i;
+    batch_done = rb_done_i;
+    unique case (bop)
+      B_XW: begin batch_grant = xw_grant_i; batch_done = xw_done_i; end
+      B_IC_ADD, B_OFS, B_OFS2, B_HIT: begin batch_grant = add_grant_i; batch_done = add_done_i; end
+      B_XF: begin batch_grant = xf_grant_i; batch_done = xf_done_i; end
+      B_SUM: begin batch_grant = sum_grant_i; batch_done = sum_done_i; end
+      B_IS: begin batch_grant = is_grant_i; batch_done = is_done_i; end
+      default: ;
+    endcase
+  end
+  // the last step of the batch: the last ray of the last pass
+  logic two_pass, i_last, c_last;
+  assign two_pass = bop == B_XW || bop == B_OFS || bop == B_XF;
+  assign i_last = itodo == (4'd1 << ir) && ipass == two_pass;
+  assign c_last = ctodo == (4'd1 << cr) && cpass == two_pass;
+
   assign mem_req_valid_o = st == S_LOAD && ld_sent != ld_n;
-  assign waiting_o = st == S_TRAV_WAIT || st == S_LIST_WAIT || st == S_RB_WAIT || st == S_WIDE_WAIT ||
-                     st == S_XF_WAIT || st == S_ADD_WAIT || st == S_SUM_WAIT || st == S_TI_HIT;
+  assign waiting_o = st == S_TRAV_WAIT || st == S_LIST_WAIT ||
+                     (st == S_BATCH && {idone, ipass, itodo} != {1'b0, cpass, ctodo});
   assign mem_addr_o = ld_base + 32'(RW) * 32'(ld_sent);
   assign hdr_want_o = st == S_HDR;
   assign ready_o = st == S_IDLE;
@@ -430,6 +482,18 @@ module trace_thread #(
     ld_got <= '0;
     ld_ret <= next;
     st <= S_LOAD;
+  endtask
+  // a batch of operation op for the rays of mask (not empty)
+  task automatic batch(input logic [3:0] op, input logic [3:0] mask);
+    bop <= op;
+    bmask <= mask;
+    itodo <= mask;
+    ctodo <= mask;
+    ipass <= 1'b0;
+    cpass <= 1'b0;
+    idone <= 1'b0;
+    hitm <= '0;
+    st <= S_BATCH;
   endtask
 
   always_ff @(posedge clk_i or negedge rst_ni)
@@ -550,34 +614,90 @@ module trace_thread #(
             if (level) tri_ix <= list_key_i;
             else inst <= list_key_i;
             ret <= list_need_i == 0 ? S_ROUTE : level ? S_TX_LOAD : S_IX_LOAD;
-            if (level && k[1] == 0) begin  // rebase_leaf: the leaf opens
-              rb_leaf <= 1'b1;
-              todo <= leaf_mask[1] & alive;
-              st <= S_RB_RAY;
-            end else st <= list_need_i == 0 ? S_ROUTE : level ? S_TX_LOAD : S_IX_LOAD;
+            // rebase_leaf: the leaf opens
+            if (level && k[1] == 0 && (leaf_mask[1] & alive) != 0) batch(B_RB_LEAF, leaf_mask[1] & alive);
+            else st <= list_need_i == 0 ? S_ROUTE : level ? S_TX_LOAD : S_IX_LOAD;
           end
-        S_RB_RAY:
-          if (todo == 0) st <= ret;
-          else if (rb_grant_i) begin
-            ray <= first;
-            todo[first] <= 1'b0;
-            st <= S_RB_WAIT;
+        // a batch: its issues as granted, its results as they come back, then what follows it
+        S_BATCH: begin
+          if (batch_grant) begin
+            if (i_last) idone <= 1'b1;
+            else if (itodo == (4'd1 << ir)) begin  // the pass's last ray: the second pass
+              itodo <= bmask;
+              ipass <= 1'b1;
+            end else itodo[ir] <= 1'b0;
           end
-        S_RB_WAIT:
-          if (rb_done_i) begin
-            if (rb_leaf) begin
-              p_hi[ray] <= rb_p_hi_i;
-              p_lo[ray] <= rb_p_lo_i;
-              te[ray] <= rb_te_i;
-              st <= S_RB_RAY;
-            end else begin
-              p_hi[ray] <= rb_p_hi_i;
-              p_lo[ray] <= rb_p_lo_i;
-              t0[ray] <= rb_te_i;
-              xw_point <= 1'b1;
-              st <= S_WIDE_GO;
-            end
+          if (batch_done) begin
+            if (ctodo == (4'd1 << cr)) begin
+              ctodo <= bmask;
+              cpass <= 1'b1;
+            end else ctodo[cr] <= 1'b0;
+            unique case (bop)
+              B_RB_LEAF: begin
+                p_hi[cr] <= rb_p_hi_i;
+                p_lo[cr] <= rb_p_lo_i;
+                te[cr] <= rb_te_i;
+              end
+              B_RB_INST: begin
+                p_hi[cr] <= rb_p_hi_i;
+                p_lo[cr] <= rb_p_lo_i;
+                t0[cr] <= rb_te_i;
+              end
+              B_XW:
+                if (cpass) begin
+                  sd[cr] <= xw_hi_i;
+                  sd_lo[cr] <= xw_lo_i;
+                end else begin
+                  so[cr] <= xw_hi_i;
+                  so_lo[cr] <= xw_lo_i;
+                end
+              B_IC_ADD: begin
+                best_rel[cr] <= add_r_i[0 +: W];
+                tmin_rel[cr] <= add_r_i[W +: W];
+              end
+              B_OFS:
+                if (cpass) ofs_hi[cr] <= add_r_i;
+                else ofs_lo[cr] <= add_r_i;
+              B_OFS2: ofs_hi[cr] <= add_r_i;
+              B_XF:
+                if (cpass) oxy[cr] <= xf_r_i[0 +: 2*W];
+                else dd[cr] <= xf_r_i;
+              B_SUM: oz[cr] <= sum_hi_i;
+              B_IS:
+                if (is_hit_i) begin
+                  best_rel[cr] <= is_t_i;
+                  h_inst[cr] <= inst;
+                  h_tri[cr] <= tri_ix;
+                  h_u[cr] <= is_u_i;
+                  h_v[cr] <= is_v_i;
+                  h_cos[cr] <= is_cos_i;
+                  hitm[cr] <= 1'b1;
+                  if (flags[1]) alive[cr] <= 1'b0;
+                end
+              B_HIT: begin
+                best_t[cr] <= add_r_i[0 +: W];
+                h_t[cr] <= add_r_i[0 +: W];
+              end
+              default: ;
+            endcase
+            // the batch's last result: what follows it
+            if (c_last)
+              unique case (bop)
+                B_RB_LEAF: st <= ret;
+                B_RB_INST: batch(B_XW, need);
+                B_XW: st <= S_IC_LOAD;
+                B_IC_ADD: st <= S_IC_CLIP;
+                B_OFS: batch(B_OFS2, need);
+                B_OFS2: batch(B_XF, need);
+                B_XF: batch(B_SUM, need);
+                B_SUM: batch(B_IS, need);
+                B_IS:
+                  if ((hitm | (is_hit_i ? 4'd1 << cr : 4'd0)) != 0) batch(B_HIT, hitm | (is_hit_i ? 4'd1 << cr : 4'd0));
+                  else st <= S_ROUTE;
+                default: st <= S_ROUTE;  // B_HIT
+              endcase
           end
+        end
         // op_inst_xform
         S_IX_LOAD: load(hdr_inst_i + INST_WORDS * inst, 2'(INST_RSP), S_IX);
         S_IX: begin
@@ -597,67 +717,12 @@ module trace_thread #(
             st <= S_IC_LOAD;
           end else begin
             cnt[C_XFORMS] <= cnt[C_XFORMS] + 2 * popcount(need);
-            todo <= need;
-            st <= S_IX_RAY;
+            batch(B_RB_INST, need);  // per ray: rebase to the top-level leaf, then the origins and directions wide
           end
         end
-        S_IX_RAY:  // per ray: rebase to the top-level leaf, the origin wide, the direction wide
-          if (todo == 0) st <= S_IC_LOAD;
-          else begin
-            rb_leaf <= 1'b0;
-            st <= S_RB_RAY;
-            ret <= S_IC_LOAD;
-          end
-        S_WIDE_GO: if (xw_grant_i) st <= S_WIDE_WAIT;
-        S_WIDE_WAIT:
-          if (xw_done_i) begin
-            if (xw_point) begin
-              so[ray] <= xw_hi_i;
-              so_lo[ray] <= xw_lo_i;
-              xw_point <= 1'b0;
-              st <= S_WIDE_GO;
-            end else begin
-              sd[ray] <= xw_hi_i;
-              sd_lo[ray] <= xw_lo_i;
-              st <= S_RB_RAY;  // the next ray (todo)
-            end
-          end
         // op_inst_clip / inst_clip
         S_IC_LOAD: load(obj, 2'(OBJ_RSP), S_IC_CLR);
-        S_IC_CLR:
-          if (list_grant_i) begin
-            todo <= need;
-            st <= S_IC_RAY;
-          end
-        S_IC_RAY:
-          if (todo == 0) st <= S_IC_CLIP;
-          else begin
-            ray <= first;
-            todo[first] <= 1'b0;
-            st <= S_IC_ADD;
-          end
-        S_IC_ADD:
-          if (add_grant_i) begin
-            add_ret <= S_IC_RAY;
-            st <= S_ADD_WAIT;
-          end
-        S_ADD_WAIT:
-          if (add_done_i) begin
-            if (add_ret == S_IC_RAY) begin
-              best_rel[ray] <= add_r_i[0 +: W];
-              tmin_rel[ray] <= add_r_i[W +: W];
-            end else if (add_ret == S_TI_OFS) begin
-              if (ofs_pass == 2'd0) ofs_lo <= add_r_i;
-              else if (ofs_pass == 2'd1) ofs_hi <= add_r_i;
-              else ofs <= add_r_i;
-              ofs_pass <= ofs_pass + 1'b1;
-            end else best_t[ray] <= add_r_i[0 +: W];
-            if (add_ret == S_TI_OFS && ofs_pass == 2'd2) st <= S_XF_GO;
-            else if (add_ret == S_TI_HIT) begin
-              h_t[ray] <= add_r_i[0 +: W];
-              st <= S_TI_RAY;
-            end else st <= add_ret;
-          end
+        S_IC_CLR: if (list_grant_i) batch(B_IC_ADD, need);
         S_IC_DONE:
           if (clip_mask == 0) st <= S_ROUTE;
           else begin
@@ -666,66 +731,14 @@ module trace_thread #(
             level <= 1'b1;
             st <= S_START_GO;
           end
-        // op_tri_xform, op_tri_isect
+        // op_tri_xform, op_tri_isect: the triangle's record, then its batches
         S_TX_LOAD: begin
           cnt[C_MATRICES] <= cnt[C_MATRICES] + TRI_WORDS;
           cnt[C_XFORMS] <= cnt[C_XFORMS] + popcount(need);
           cnt[C_ISECTS] <= cnt[C_ISECTS] + popcount(need);
-          todo <= need;
-          load(tris + TRI_WORDS * tri_ix, 2'd1, S_TI_RAY);
+          batch(B_OFS, need);
+          load(tris + TRI_WORDS * tri_ix, 2'd1, S_BATCH);
         end
-        S_TI_RAY:
-          if (todo == 0) st <= S_ROUTE;
-          else begin
-            ray <= first;
-            todo[first] <= 1'b0;
-            xf_dir <= 1'b1;
-            st <= S_XF_GO;
-          end
-        S_XF_GO: if (xf_grant_i) st <= S_XF_WAIT;
-        S_XF_WAIT:
-          if (xf_done_i) begin
-            if (xf_dir) begin
-              dd <= xf_r_i;
-              xf_dir <= 1'b0;
-              ofs_pass <= 2'd0;
-              st <= S_TI_OFS;
-            end else begin
-              oxy <= xf_r_i[0 +: 2*W];
-              st <= S_TI_SUM;
-            end
-          end
-        S_TI_OFS:
-          if (add_grant_i) begin
-            add_ret <= S_TI_OFS;
-            st <= S_ADD_WAIT;
-          end
-        S_TI_SUM: if (sum_grant_i) st <= S_SUM_WAIT;
-        S_SUM_WAIT:
-          if (sum_done_i) begin
-            oz <= sum_hi_i;
-            st <= S_TI_ISECT;
-          end
-        S_TI_ISECT: if (is_grant_i) st <= S_TI_HIT;
-        S_TI_HIT:
-          if (is_done_i) begin
-            if (is_hit_i) begin
-              hit_t <= is_t_i;
-              best_rel[ray] <= is_t_i;
-              h_inst[ray] <= inst;
-              h_tri[ray] <= tri_ix;
-              h_u[ray] <= is_u_i;
-              h_v[ray] <= is_v_i;
-              h_cos[ray] <= is_cos_i;
-              if (flags[1]) alive[ray] <= 1'b0;
-              st <= S_HIT_ADD;
-            end else st <= S_TI_RAY;
-          end
-        S_HIT_ADD:
-          if (add_grant_i) begin
-            add_ret <= S_TI_HIT;
-            st <= S_ADD_WAIT;
-          end
         S_DONE: if (ready_i) st <= S_IDLE;
         default: st <= S_IDLE;
       endcase
