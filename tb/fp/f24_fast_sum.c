@@ -247,8 +247,10 @@ static inline __attribute__((always_inline)) f24v_i dd_lanes(const f24v p[], uin
 /* f24_fast_sum_exact of the four lanes at once (n <= F24_SUM_TERMS): f24_fast_sum_filter on
  * vectors, the products summed in order, then for the lanes it cannot decide (cancellation: the
  * plane distance of isect_unit.c) the double-double path on vectors; a lane neither decides goes
- * to f24_fast_sum_exact alone. */
-F24V_FN void f24_fast_sum_exact_lanes(const f24v a[], const f24v b[], uint32_t n, f24_t hi[F24Q_LANES], f24_t lo[F24Q_LANES])
+ * to f24_fast_sum_exact alone. Inlined into f24_fast_sum_exact_lanes once per term count of the
+ * units, so that the loops over the terms unroll and the products stay in registers. */
+static inline __attribute__((always_inline)) void sum_lanes(const f24v a[], const f24v b[], uint32_t n,
+                                                            f24_t hi[F24Q_LANES], f24_t lo[F24Q_LANES])
 {
     const f24v zero = { 0, 0, 0, 0 }, inf = zero + __builtin_inf();
     f24v sum = -zero, mass = zero, least = inf; /* -0: -0 only if all products are -0 */
@@ -268,9 +270,11 @@ F24V_FN void f24_fast_sum_exact_lanes(const f24v a[], const f24v b[], uint32_t n
                       (hi_special | rounds_alike_lanes(rest, margin_lanes(rest, err, ~exact))) & (n > 0 ? -1ll : 0);
     f24v_bits(sum, hi);
     f24v_bits((f24v)((f24v_i)rest & ~(hi_special | (rest == 0))), lo);
+    if (n > 0 && (ok[0] & ok[1] & ok[2] & ok[3]) != 0)
+        return; /* the common case: every lane decided */
     f24v_i dd = { 0, 0, 0, 0 };
     f24_t dd_hi[F24Q_LANES], dd_lo[F24Q_LANES];
-    if (n > 0 && (ok[0] & ok[1] & ok[2] & ok[3]) == 0)
+    if (n > 0)
         dd = window & dd_lanes(p, n, dd_hi, dd_lo);
     for (int i = 0; i < F24Q_LANES; i++) {
         if (ok[i])
@@ -288,6 +292,19 @@ F24V_FN void f24_fast_sum_exact_lanes(const f24v a[], const f24v b[], uint32_t n
         const f24x2 r = f24_fast_sum_exact(ai, bi, n);
         hi[i] = r.hi;
         lo[i] = r.lo;
+    }
+}
+
+/* the term counts of the units: a vector's 3 and a point's 8 (xform_unit.c), the rebase's 4
+ * (rebase_unit.c), the plane distance's 9 (isect_unit.c) */
+F24V_FN void f24_fast_sum_exact_lanes(const f24v a[], const f24v b[], uint32_t n, f24_t hi[F24Q_LANES], f24_t lo[F24Q_LANES])
+{
+    switch (n) {
+    case 3: sum_lanes(a, b, 3, hi, lo); break;
+    case 4: sum_lanes(a, b, 4, hi, lo); break;
+    case 8: sum_lanes(a, b, 8, hi, lo); break;
+    case 9: sum_lanes(a, b, 9, hi, lo); break;
+    default: sum_lanes(a, b, n, hi, lo); break;
     }
 }
 #endif
