@@ -37,7 +37,6 @@ assert c["cycles"] > 0 and c["packets"] > 0 and c["issues"]["isect"] == r["inter
 assert c["reads"]["lists"] == r["list_entries"] and 0 < 5 * c["reads"]["words"] < r["words_by_type"]["matrices"], c
 assert all(0 < u < 1 for u in c["usage"].values()), c["usage"]
 PY
-  grep -q "0 mismatches" "$T/r.log" || grep "^rtl:" "$T/r.log"
   echo "cornell 32x24 --mode rtl: PNG, primary hits and counters as functional; $(grep '^rtl:' "$T/r.log" | cut -d';' -f1)"
 }
 
