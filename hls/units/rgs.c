@@ -16,16 +16,12 @@ enum {
 
 /* ---- fp24 vector helpers ------------------------------------------------------------------ */
 
-/* T_R's rows [D^, N^, D^] times (1, -2c, 0), each as xform_vector computes a row: ((d 1 + n (-2c)) + d 0) */
-f24w_vec3 rgs_reflect_w(f24w_vec3 d, f24w_vec3 n)
+f24_vec3 rgs_reflect(f24_vec3 d, f24_vec3 n)
 {
-    const f24w c = f24w_dot3(n, d), one = f24w_of(F24_ONE), zero = f24w_of(0);
-    const f24w_vec3 v = { one, f24w_neg(f24w_add(c, c)), zero };
-    return (f24w_vec3){ f24w_dot3((f24w_vec3){ d.x, n.x, d.x }, v), f24w_dot3((f24w_vec3){ d.y, n.y, d.y }, v),
-                        f24w_dot3((f24w_vec3){ d.z, n.z, d.z }, v) };
+    const f24_affine m = t_r((f24_vec3){ 0, 0, 0 }, d, n);
+    const f24_t c = rgs_dot3(n, d);
+    return xform_vector(&m, (f24_vec3){ F24_ONE, f24_neg(f24_add(c, c)), 0 });
 }
-
-f24_vec3 rgs_reflect(f24_vec3 d, f24_vec3 n) { return f24w_vec3_bits(rgs_reflect_w(f24w_vec3_of(d), f24w_vec3_of(n))); }
 
 #if SAARCOR_CFG_REFRACTION
 int rgs_refract(f24_vec3 d, f24_vec3 n, f24_t eta_r, f24_vec3 *out)

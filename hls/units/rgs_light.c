@@ -28,8 +28,7 @@ shadow_rays:
         sh->tmin[i] = directional ? eps : f24w_bits(f24w_div(eps_w, dist));
         sh->tmax[i] = directional ? F24_POS_INF : F24_ONE;
         /* cosines of the light direction with the normal, the cone axis, the mirror direction */
-        const f24w_vec3 nw = f24w_vec3_of(sf[i].n);
-        f24w w = f24w_div(f24w_dot3(nw, to_light), dist);
+        f24w w = f24w_div(f24w_dot3(f24w_vec3_of(sf[i].n), to_light), dist);
         if (!f24w_lt(zero, w))
             continue; /* the light is behind the surface */
         if (SAARCOR_CFG_SPOT_LIGHTS && l[0] == 2) { /* spot: smooth step from the outer to the inner cone */
@@ -38,7 +37,7 @@ shadow_rays:
             w = f24w_mul(w, f24w_max(zero, f24w_min(f, f24w_of(F24_ONE))));
         }
         diff[i] = q_mul(rgs_q_of_w(w), Q12_DIFFUSE);
-        const f24w_vec3 mirror = rgs_reflect_w(f24w_vec3_of(sf[i].d), nw);
+        const f24w_vec3 mirror = f24w_vec3_of(rgs_reflect(sf[i].d, sf[i].n));
         uint32_t s = rgs_q_of_w(f24w_max(zero, f24w_div(f24w_dot3(mirror, to_light), dist)));
     phong_power:
         for (uint32_t j = 0; j < 8; j++)

@@ -73,9 +73,6 @@ static inline f24w_vec3 sub3_w(f24w_vec3 a, f24w_vec3 b)
 }
 f24w rgs_length3_w(f24w_vec3 a);
 f24_t rgs_length3(f24_vec3 a);
-/* rgs_reflect (rgs.h) on working values: T_R (1, -2 (N^ . D^), 0) for T_R = [D^, N^, D^; 0], its
- * rows as dot products in xform_vector's order (rgs.c) */
-f24w_vec3 rgs_reflect_w(f24w_vec3 d, f24w_vec3 n);
 
 /* T_R = [D^, N^, D^; O]: the transformation of every secondary ray of a hit. */
 static inline f24_affine t_r(f24_vec3 o, f24_vec3 d, f24_vec3 n)
