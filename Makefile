@@ -183,7 +183,7 @@ $(BUILD)/test_%: $(BUILD)/obj/host/tests/test_%.o $(HOST_OBJS) $(call fmt_objs,$
 	$(Q)$(CC) $(SANFLAGS) $^ -o $@ $(TEST_LDLIBS)
 
 
-.PHONY: fuzz fuzz-build fuzz-replay all mpi bench-mpi widths deps run test unit-tests test-programs asan verify-fp hls-check hls-vectors bench bench-skip bench-longrun bench-fp bench-build bench-render bench-accuracy bench-cycle bench-precision bench-peers results robust stress rtl rtl-lint rtl-test synth clean
+.PHONY: fuzz fuzz-build fuzz-replay all mpi bench-mpi widths deps run test unit-tests test-programs asan verify-fp hls-check hls-vectors bench bench-skip bench-longrun bench-fp bench-build bench-render bench-accuracy bench-cycle bench-precision bench-peers results robust stress rtl rtl-lint rtl-test synth synth-dynrtp check-full clean
 all: $(BUILD)/saarcor $(BUILD)/w/e8m23/saarcor $(if $(MPICC),$(BUILD)/libsaarcor_mpi.so)
 
 # ---- MPI: the work distributor that `render --mpi` and `jobs --mpi` dlopen (docs/mpi.md) -------
@@ -480,6 +480,15 @@ rtl-test: deps rtl-lint
 # the operators and the intersection unit across mantissa widths) -> docs/synth.md
 synth: deps
 	python3 scripts/synth.py
+
+# only the whole DynRTP at the paper's configuration (7-series and iCE40, over an hour each), merged
+# into build/synth/synth.json ("dynrtp") and docs/synth.md
+synth-dynrtp: deps
+	python3 scripts/synth.py --dynrtp
+
+# the long checks make test leaves out: every RTL bench at every format with the 128x96 frames through
+# the Verilated DynRTP (rtl-test), and the synthesis of every module and of the whole DynRTP (synth)
+check-full: test rtl-test synth
 
 # ---- verification and benchmarks -----------------------------------------------------------
 VERIFY_N ?= 10000000

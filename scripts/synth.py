@@ -22,7 +22,12 @@
    from it (rtl/xform_wide.sv, rtl/rebase_unit.sv) with synth_xilinx at e7m16, and the area of the
    whole fix: those units as measured, the intersection unit's origin path composed from the exact
    sum and the operators.
+6. The whole DynRTP (rtl/dynrtp.sv) at the paper's configuration, per module without flattening:
+   7-series and iCE40 (`synth_ice40 -dsp`) totals, block RAM bits, LUT6 levels across module ports,
+   the LUT6 of each unit, beside the prototype (build/synth/synth.json "dynrtp"); over an hour each.
 Runs two Yosys processes at a time; logs in build/synth/.
+`scripts/synth.py --dynrtp [xilinx] [ice40]` (make synth-dynrtp) measures only item 6 and rewrites
+docs/synth.md from build/synth/synth.json if there is one.
 `scripts/synth.py --only-control` synthesizes only item 4 and merges it into an existing
 build/synth/synth.json (the other modules' figures as they were) before writing docs/synth.md.
 `python3 scripts/synth.py --redo i:f24_sum_exact:e7m16 [KEY ...]` measures only the given entries of
@@ -241,6 +246,255 @@ def control(name, top, params):
             "ice40_bram": ci.get("SB_RAM40_4K", 0), "ice40_bram_bits": 4096 * ci.get("SB_RAM40_4K", 0)}
 
 
+# The whole DynRTP at the paper's configuration (issue 23, goal 4): one pipe, 64 threads, caches of
+# 4 (kd nodes), 2 (lists) and 6 KB (matrices) and the 4 KB shading cache. Synthesized per module, not
+# flattened: each distinct module is mapped once however many instances it has (64 threads, 8 block
+# controllers), and Yosys's `stat` sums the hierarchy. The prototype's whole chip (Virtex-II 6000, 56%
+# of the logic: about 37,800 LUT4; 78% of the memory) and Table 2's 75 KB of memory stand beside it.
+DYNRTP_PARAMS = {"E": 7, "M": 16, "THREADS": 64, "NODE_KB": 4, "LIST_KB": 2, "MAT_KB": 6, "SHADE_KB": 4}
+PROTOTYPE_LUT4, TABLE2_BITS = 37800, 75 * 1024 * 8
+LUTRAM_BITS = {"RAM32M": 64 * 2, "RAM64M": 64 * 3, "RAM32X1D": 32, "RAM64X1D": 64, "RAM128X1D": 128,
+               "RAM256X1S": 256, "RAM64X1S": 64, "RAM32X1S": 32, "RAM128X1S": 128}
+DYNRTP_JSON = os.path.join(OUT, "dynrtp.json")  # the measured figures, merged into synth.json's "dynrtp"
+
+
+def dynrtp_script(flow, tail):
+    reads = " ".join(f"read_verilog -sv {f};" for f in RTL)
+    chp = " ".join(f"-set {k} {v}" for k, v in DYNRTP_PARAMS.items())
+    return f"{reads} chparam {chp} dynrtp; {flow}; {tail}"
+
+
+def blackbox(m):
+    return int(m.get("attributes", {}).get("blackbox", "0") or "0", 2) != 0
+
+
+def module_cells(mods):
+    """Per module: its own cells by type (submodule instances by module name); not the cell library."""
+    out = {}
+    for name, m in mods.items():
+        if blackbox(m):
+            continue
+        c = {}
+        for cell in m.get("cells", {}).values():
+            c[cell["type"]] = c.get(cell["type"], 0) + 1
+        out[name] = c
+    return out
+
+
+def hierarchy_totals(own, top):
+    """Per module: the cells of its whole subtree by type (instances expanded), from module_cells."""
+    memo = {}
+
+    def total(name):
+        if name not in memo:
+            t = {}
+            for typ, n in own[name].items():
+                for k, v in (total(typ).items() if typ in own else [(typ, 1)]):
+                    t[k] = t.get(k, 0) + n * v
+            memo[name] = t
+        return memo[name]
+    return {name: total(name) for name in own}, total(top)
+
+
+def luts_of(c):
+    return sum(v for k, v in c.items() if re.fullmatch(r"LUT\d", k))
+
+
+def hier_lut_levels(mods, top):
+    """The most LUT levels between two registers (or the top's ports) of a hierarchical 7-series netlist,
+    paths through module ports included: per module, the levels from its registers to each output bit,
+    from each input bit to each output bit it reaches without a register, and from each input bit to a
+    register inside, composed at every instance (LEVEL_CELLS as lut_levels)."""
+    summary = {}
+
+    def summarize(name):
+        mod = mods[name]
+        ports = mod.get("ports", {})
+        in_bits = {b: (p, i) for p, d in ports.items() if d["direction"] == "input" for i, b in enumerate(d["bits"])}
+        cells, driver = mod.get("cells", {}), {}
+        for cname, c in cells.items():
+            sub = summary.get(c["type"])
+            for port, bits in c["connections"].items():
+                out = c.get("port_directions", {}).get(port) == "output" if sub is None else \
+                    mods[c["type"]]["ports"].get(port, {}).get("direction") == "output"
+                if out:
+                    for i, b in enumerate(bits):
+                        driver[b] = (cname, port, i)
+        memo, worst = {}, [0]
+        in_to_reg = {}
+        NONE = -1 << 30
+
+        def value(bit):
+            """(levels from a register, {input bit: levels}) of a net, iteratively."""
+            stack = [bit]
+            while stack:
+                b = stack[-1]
+                if b in memo:
+                    stack.pop()
+                    continue
+                if b in in_bits:
+                    memo[b] = (NONE, {b: 0})
+                    stack.pop()
+                    continue
+                if b not in driver:  # a constant or an undriven bit
+                    memo[b] = (NONE, {})
+                    stack.pop()
+                    continue
+                cname, port, i = driver[b]
+                c = cells[cname]
+                sub = summary.get(c["type"])
+                if sub is None and c["type"] not in LEVEL_CELLS:  # a register, RAM, buffer: a start
+                    memo[b] = (0, {})
+                    stack.pop()
+                    continue
+                if sub is None:
+                    ins = [x for p, bits in c["connections"].items()
+                           if c.get("port_directions", {}).get(p) == "input" for x in bits]
+                    need = [(x, 0) for x in ins]
+                else:
+                    reg, thr = sub["reg_out"].get((port, i), NONE), sub["through"].get((port, i), {})
+                    need = [(c["connections"][p][j], l) for (p, j), l in thr.items()]
+                todo = [x for x, _ in need if x not in memo and isinstance(x, int)]
+                if todo:
+                    stack.extend(todo)
+                    continue
+                step = LEVEL_CELLS[c["type"]] if sub is None else 0
+                r, d = (NONE if sub is None else reg), {}
+                for x, l in need:
+                    if not isinstance(x, int):
+                        continue
+                    xr, xd = memo[x]
+                    r = max(r, xr + l + step)
+                    for k, v in xd.items():
+                        if d.get(k, NONE) < v + l + step:
+                            d[k] = v + l + step
+                memo[b] = (r, d)
+                stack.pop()
+            return memo[bit]
+
+        def endpoint(bit, extra):
+            """A path ends extra levels after net bit (a register input, or inside a submodule)."""
+            if not isinstance(bit, int):
+                return
+            r, d = value(bit)
+            worst[0] = max(worst[0], r + extra)
+            for k, v in d.items():
+                in_to_reg[k] = max(in_to_reg.get(k, 0), v + extra)
+
+        for cname, c in cells.items():
+            sub = summary.get(c["type"])
+            if sub is not None:
+                worst[0] = max(worst[0], sub["inside"])
+                for port, bits in c["connections"].items():
+                    if mods[c["type"]]["ports"].get(port, {}).get("direction") == "input":
+                        for i, b in enumerate(bits):
+                            if (port, i) in sub["in_to_reg"]:
+                                endpoint(b, sub["in_to_reg"][(port, i)])
+            elif c["type"] not in LEVEL_CELLS:
+                for port, bits in c["connections"].items():
+                    if c.get("port_directions", {}).get(port) == "input":
+                        for b in bits:
+                            endpoint(b, 0)
+        reg_out, through = {}, {}
+        for p, d in ports.items():
+            if d["direction"] == "output":
+                for i, b in enumerate(d["bits"]):
+                    if isinstance(b, int):
+                        r, dd = value(b)
+                        reg_out[(p, i)] = r
+                        through[(p, i)] = {in_bits[k]: v for k, v in dd.items()}
+        summary[name] = {"inside": worst[0], "reg_out": reg_out, "through": through,
+                         "in_to_reg": {in_bits[k]: v for k, v in in_to_reg.items()}}
+
+    order, seen = [], set()
+
+    def visit(name):  # submodules before their parents (the hierarchy is a DAG of modest depth)
+        if name in seen:
+            return
+        seen.add(name)
+        for c in mods[name].get("cells", {}).values():
+            if c["type"] in mods and not blackbox(mods[c["type"]]):
+                visit(c["type"])
+        order.append(name)
+    visit(top)
+    for name in order:
+        summarize(name)
+    s = summary[top]
+    ports = [s["inside"]] + list(s["reg_out"].values()) + list(s["in_to_reg"].values()) + \
+        [v for t in s["through"].values() for v in t.values()]
+    return max(ports)
+
+
+def dynrtp_top(mods):
+    return next(n for n, v in mods.items() if int(v.get("attributes", {}).get("top", "0"), 2))
+
+
+def dynrtp_xilinx():
+    """synth_xilinx of the whole DynRTP, hierarchical: LUT6, flip-flops, DSP48E1, RAM, LUT6 levels, and
+    the LUT6 of each of the top's units (which dominates)."""
+    log, js = os.path.join(OUT, "dynrtp_xilinx.log"), os.path.join(OUT, "dynrtp_xilinx.json")
+    flow = ("synth_xilinx -top dynrtp -run :coarse; techmap -map +/cmp2lut.v -map +/cmp2lcu.v -D LUT_WIDTH=6; "
+            "alumacc; opt; memory -nomap; opt_clean; synth_xilinx -top dynrtp -run map_memory:")
+    t0 = time.time()
+    yosys(dynrtp_script(flow, f"stat; write_json {js}"), log)
+    mods = json.load(open(js))["modules"]
+    top = dynrtp_top(mods)
+    own = module_cells(mods)
+    sub, tot = hierarchy_totals(own, top)
+    units = {}
+    for typ, n in own[top].items():
+        if typ in own:
+            units[key_name(typ)] = units.get(key_name(typ), 0) + n * luts_of(sub[typ])
+    return {"xilinx_lut6": luts_of(tot), "xilinx_ff": sum(v for k, v in tot.items() if re.fullmatch(r"FD[RSCP]E(_1)?", k)),
+            "xilinx_srl": sum(v for k, v in tot.items() if k.startswith("SRL")), "xilinx_dsp": tot.get("DSP48E1", 0),
+            "xilinx_bram18": tot.get("RAMB18E1", 0) + 2 * tot.get("RAMB36E1", 0),
+            "xilinx_lutram_bits": sum(v * LUTRAM_BITS[k] for k, v in tot.items() if k in LUTRAM_BITS),
+            "max_lut6_levels": hier_lut_levels(mods, top), "xilinx_units_lut6": units,
+            "xilinx_seconds": round(time.time() - t0)}
+
+
+def key_name(module):
+    """'$paramod$...\\rgs_ctrl' or '$paramod\\rr_pick\\N=...' -> 'rgs_ctrl'."""
+    return re.sub(r"^\$paramod\$[0-9a-f]+\\|^\$paramod\\|\\.*$", "", module)
+
+
+def dynrtp_ice40():
+    """synth_ice40 -dsp of the whole DynRTP, hierarchical: LUT4, flip-flops, SB_MAC16, block RAM bits."""
+    log = os.path.join(OUT, "dynrtp_ice40.log")
+    t0 = time.time()
+    c = cells(yosys(dynrtp_script("synth_ice40 -dsp -noflatten -top dynrtp", "stat"), log))
+    return {"ice40_lut4": c.get("SB_LUT4", 0), "ice40_ff": sum(v for k, v in c.items() if k.startswith("SB_DFF")),
+            "ice40_dsp": c.get("SB_MAC16", 0), "ice40_bram": c.get("SB_RAM40_4K", 0),
+            "bram_bits": 4096 * c.get("SB_RAM40_4K", 0), "ice40_seconds": round(time.time() - t0)}
+
+
+def dynrtp(parts):
+    """Measure the given parts ('xilinx', 'ice40') and merge them into DYNRTP_JSON and synth.json."""
+    res = json.load(open(DYNRTP_JSON)) if os.path.exists(DYNRTP_JSON) else {}
+    for part in parts:
+        res.update(dynrtp_xilinx() if part == "xilinx" else dynrtp_ice40())
+        res["date"] = time.strftime("%Y-%m-%d", time.gmtime())
+        json.dump(res, open(DYNRTP_JSON, "w"), indent=1)
+        print(f"synth: dynrtp {part}: {res}", file=sys.stderr, flush=True)
+    return res
+
+
+SYNTH_JSON = os.path.join(OUT, "synth.json")
+
+
+def load_results():
+    """build/synth/synth.json as main()'s result dict (the "dynrtp" object apart: DYNRTP_JSON)."""
+    return {parse_key(k): v for k, v in json.load(open(SYNTH_JSON)).items() if k != "dynrtp"}
+
+
+def save_results(res):
+    """synth.json: every module's entry, and the whole DynRTP's figures as "dynrtp" where measured."""
+    out = {f"{k[0]}:{k[1]}:e7m{k[2]}": v for k, v in res.items()}
+    if os.path.exists(DYNRTP_JSON):
+        out["dynrtp"] = json.load(open(DYNRTP_JSON))
+    json.dump(out, open(SYNTH_JSON, "w"), indent=1)
+
+
 def parse_key(key):
     """'i:f24_add:e7m16' or 'x:f24_sum_exact:e7m16:n9' -> the key of main()'s result dict."""
     kind, top, fmt = key.split(":", 2)
@@ -278,29 +532,38 @@ def redo(keys):
             new[parse_key(key)] = r
             print(f"synth: {key}: {r}", file=sys.stderr, flush=True)
     # read again: another --redo may have written its entries meanwhile
-    res = {parse_key(k): v for k, v in json.load(open(os.path.join(OUT, "synth.json"))).items()}
+    res = load_results()
     res.update(new)
-    json.dump({f"{k[0]}:{k[1]}:e7m{k[2]}": v for k, v in res.items()}, open(os.path.join(OUT, "synth.json"), "w"), indent=1)
+    save_results(res)
     write(res)
 
 
 def main():
     os.makedirs(OUT, exist_ok=True)
     if "--only-control" in sys.argv[1:]:
-        path = os.path.join(OUT, "synth.json")
-        if not os.path.exists(path):
+        if not os.path.exists(SYNTH_JSON):
             sys.exit("synth.py --only-control: no build/synth/synth.json to merge into (run make synth once)")
-        res = {parse_key(k): v for k, v in json.load(open(path)).items()}
+        res = load_results()
         with cf.ThreadPoolExecutor(max_workers=2) as pool:
             jobs = {control_key(n): pool.submit(control, n, t, p) for n, t, p, _ in CONTROL}
             for k, f in jobs.items():
                 res[k] = f.result()
                 print(f"synth: {k[1]}: {res[k]}", file=sys.stderr, flush=True)
-        json.dump({f"{k[0]}:{k[1]}:e7m{k[2]}": v for k, v in res.items()}, open(path, "w"), indent=1)
+        save_results(res)
         write(res)
         return
     if len(sys.argv) > 2 and sys.argv[1] == "--redo":
         return redo(sys.argv[2:])
+    if len(sys.argv) > 1 and sys.argv[1] == "--dynrtp":
+        parts = sys.argv[2:] or ["xilinx", "ice40"]
+        if any(p not in ("xilinx", "ice40") for p in parts):
+            sys.exit("synth.py --dynrtp: parts are xilinx and ice40")
+        dynrtp(parts)
+        if os.path.exists(SYNTH_JSON):
+            res = load_results()
+            save_results(res)
+            write(res)
+        return
     if os.path.exists(REDONE):
         os.remove(REDONE)
     jobs = {}
@@ -328,7 +591,8 @@ def main():
             res[k] = f.result()
             print(f"synth: {k[1]} e7m{k[2]} {'xilinx' if k[0] == 'x' else 'ice40' if k[0] == 'i' else ''}: {res[k]}",
                   file=sys.stderr, flush=True)
-    json.dump({f"{k[0]}:{k[1]}:e7m{k[2]}": v for k, v in res.items()}, open(os.path.join(OUT, "synth.json"), "w"), indent=1)
+    dynrtp(["xilinx", "ice40"])
+    save_results(res)
     write(res)
 
 
@@ -402,6 +666,7 @@ def write(res):
            f"({robust['luts'] - exact['luts']:+d} LUTs); the latency and issue rate are unchanged."]
     md += control_section(res)
     md += accuracy_section(res)
+    md += dynrtp_section()
     open(os.path.join(ROOT, "docs", "synth.md"), "w").write("\n".join(md) + "\n")
     print("\n".join(md))
 
@@ -480,6 +745,41 @@ def accuracy_section(res):
     md.append(f"| **total** | | | **{total_l}** | **{total_d}** |")
     md += ["", f"Against the three datapaths above ({base} LUTs) the fix adds {100 * total_l / max(1, base):.0f}% of their "
            "LUTs; the intersection unit's test itself gains one adder (t = te + t', in rtl/isect_unit.sv)."]
+    return md
+
+
+def dynrtp_section():
+    """The whole DynRTP at the paper's configuration beside the prototype (issue 23, goal 4)."""
+    if not os.path.exists(DYNRTP_JSON):
+        return []
+    d = json.load(open(DYNRTP_JSON))
+    cfg = ", ".join(f"{k} = {v}" for k, v in DYNRTP_PARAMS.items())
+    get = lambda k: f"{d[k]:,}" if k in d else "not measured"
+    md = ["", "## The whole DynRTP beside the prototype (issue 23, goal 4)", "",
+          f"rtl/dynrtp.sv at the paper's configuration ({cfg}; RGS_BLOCKS and the rest at their defaults), "
+          "synthesized per module without flattening (`python3 scripts/synth.py --dynrtp`, part of `make synth` "
+          f"and `make check-full`; {d.get('date', '?')}; 7-series {get('xilinx_seconds')} s, iCE40 "
+          f"{get('ice40_seconds')} s): a module is mapped once and counted once per instance.", "",
+          "| | this DynRTP | the prototype (one pipe, 64 threads, whole chip) |", "|---|---:|---:|",
+          f"| iCE40 LUT4 (`synth_ice40 -dsp`) | {get('ice40_lut4')} | about {PROTOTYPE_LUT4:,} (56% of a Virtex-II 6000) |",
+          f"| iCE40 flip-flops | {get('ice40_ff')} | - |",
+          f"| iCE40 multiplier blocks (SB_MAC16) | {get('ice40_dsp')} | - |",
+          f"| block RAM bits (iCE40 SB_RAM40_4K x 4096) | {get('bram_bits')} | {TABLE2_BITS:,} (Table 2: 75 KB) |",
+          f"| 7-series LUT6 (`synth_xilinx`) | {get('xilinx_lut6')} | - |",
+          f"| 7-series flip-flops / SRL | {get('xilinx_ff')} / {get('xilinx_srl')} | - |",
+          f"| 7-series DSP48E1 | {get('xilinx_dsp')} | - |",
+          f"| 7-series RAMB18 (RAMB36 as 2) / LUT RAM bits | {get('xilinx_bram18')} / {get('xilinx_lutram_bits')} | - |",
+          f"| most LUT6 levels between two registers | {get('max_lut6_levels')} | goal: at most 8 |"]
+    units = sorted(d.get("xilinx_units_lut6", {}).items(), key=lambda kv: -kv[1])
+    if units:
+        whole = max(1, d["xilinx_lut6"])
+        md += ["", "Where the LUT6 are (the top's units, each with its submodules, all instances):", "",
+               "| unit | LUT6 | share |", "|---|---:|---:|"]
+        md += [f"| {u} | {v:,} | {100 * v / whole:.1f}% |" for u, v in units]
+        md += ["", f"{units[0][0]} dominates. LUT6 levels: `hier_lut_levels` composes, per module, the levels "
+               "from its registers to each output bit, from each input bit to the output bits it reaches without a "
+               "register, and from each input bit to a register inside; on a small hierarchy it gives the count of "
+               "`lut_levels` on the same netlist flattened after mapping."]
     return md
 
 

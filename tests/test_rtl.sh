@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # RTL tests in make test (the short form of make rtl-test): verilator --lint-only -Wall is clean
-# for every module in rtl/ and Yosys parses them (make synth); the fp24 operators (with the RGS's
+# for every module in rtl/ and Yosys parses them (make synth); make synth's totals and LUT6 levels of
+# a hierarchical netlist (the whole DynRTP's method) equal Yosys's stat and the levels of the netlist
+# flattened after mapping on a small hierarchy (cache_read); the fp24 operators (with the RGS's
 # square root and integer conversion) match the C model bit for bit on the edge sets, 10^5 random
 # vectors and the golden hex vectors; the datapath units match on random vectors and on
 # transactions captured while rendering the room (saarcor render --capture-unit-io); the exact dot
@@ -67,6 +69,28 @@ t_lint() {
   yosys -q -p "$(for f in rtl/*.sv; do printf 'read_verilog -sv %s; ' "$f"; done)" >/dev/null 2>"$T/yosys.err" ||
     { grep ERROR "$T/yosys.err"; return 1; }
   echo "yosys read_verilog -sv: $(ls rtl/*.sv | wc -l) modules parse"
+}
+
+t_synth_levels() { # make synth's totals and LUT6 levels of a hierarchical netlist (the whole DynRTP's method)
+  # against Yosys's own stat and the levels of the same netlist flattened after mapping, on a small
+  # hierarchy whose paths cross module ports (cache_read: cache_dm and the combinational rr_pick)
+  yosys -q -l "$T/h.log" -p "$(for f in rtl/*.sv; do printf 'read_verilog -sv %s; ' "$f"; done) chparam -set SIZE_BYTES 256 \
+    -set OUTSTANDING 4 cache_read; synth_xilinx -top cache_read; stat; write_json $T/h.json" >/dev/null 2>&1 || return 1
+  yosys -q -p "read_json $T/h.json; flatten; write_json $T/f.json" >/dev/null 2>&1 || return 1
+  python3 - "$T" <<'PY'
+import json, sys
+sys.path.insert(0, "scripts")
+import synth as S
+t = sys.argv[1]
+mods = json.load(open(f"{t}/h.json"))["modules"]
+top = S.dynrtp_top(mods)
+_, tot = S.hierarchy_totals(S.module_cells(mods), top)
+flat = S.cells(open(f"{t}/h.log").read())
+h, f = S.hier_lut_levels(mods, top), S.lut_levels(f"{t}/f.json")
+print(f"cache_read: {S.luts_of(tot)} LUTs summed over the hierarchy, {S.luts_of(flat)} by stat; "
+      f"LUT6 levels {h} across module ports, {f} flattened")
+sys.exit(0 if (h, S.luts_of(tot)) == (f, S.luts_of(flat)) else 1)
+PY
 }
 
 t_operators() {
@@ -390,6 +414,7 @@ t_sqrt_mutant_caught() {
 
 run_case rtl_lint_clean t_lint
 run_case rtl_operators_match_c_model t_operators
+run_case synth_hierarchy_totals_and_levels t_synth_levels
 run_case rtl_units_match_c_model_and_capture t_units
 run_case rtl_rebase_and_wide_xform_match_c_model_and_capture t_wide
 run_case rtl_exact_sum_matches_c_model t_exact_sum
