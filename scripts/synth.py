@@ -470,10 +470,11 @@ def dynrtp_ice40():
 
 def dynrtp(parts):
     """Measure the given parts ('xilinx', 'ice40') and merge them into DYNRTP_JSON and synth.json."""
-    res = json.load(open(DYNRTP_JSON)) if os.path.exists(DYNRTP_JSON) else {}
     for part in parts:
-        res.update(dynrtp_xilinx() if part == "xilinx" else dynrtp_ice40())
-        res["date"] = time.strftime("%Y-%m-%d", time.gmtime())
+        new = dynrtp_xilinx() if part == "xilinx" else dynrtp_ice40()
+        # read after measuring: a run of the other part may have written its figures meanwhile
+        res = json.load(open(DYNRTP_JSON)) if os.path.exists(DYNRTP_JSON) else {}
+        res.update(new, date=time.strftime("%Y-%m-%d", time.gmtime()))
         json.dump(res, open(DYNRTP_JSON, "w"), indent=1)
         print(f"synth: dynrtp {part}: {res}", file=sys.stderr, flush=True)
     return res
