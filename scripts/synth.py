@@ -27,7 +27,7 @@
    the LUT6 of each unit, beside the prototype (build/synth/synth.json "dynrtp"); over an hour each.
 Runs two Yosys processes at a time; logs in build/synth/.
 `scripts/synth.py --dynrtp [xilinx] [ice40]` (make synth-dynrtp) measures only item 6 and rewrites
-docs/synth.md from build/synth/synth.json if there is one.
+docs/synth.md from build/synth/synth.json, or without one only its DynRTP section.
 `scripts/synth.py --only-control` synthesizes only item 4 and merges it into an existing
 build/synth/synth.json (the other modules' figures as they were) before writing docs/synth.md.
 `python3 scripts/synth.py --redo i:f24_sum_exact:e7m16 [KEY ...]` measures only the given entries of
@@ -564,6 +564,11 @@ def main():
             res = load_results()
             save_results(res)
             write(res)
+        else:  # no module figures here: only the DynRTP's section of docs/synth.md (its last) is rewritten
+            path = os.path.join(ROOT, "docs", "synth.md")
+            doc = open(path).read()
+            head = doc.find("\n## The whole DynRTP")
+            open(path, "w").write((doc if head < 0 else doc[:head]).rstrip("\n") + "\n" + "\n".join(dynrtp_section()) + "\n")
         return
     if os.path.exists(REDONE):
         os.remove(REDONE)
