@@ -764,8 +764,9 @@ def dynrtp_section():
     md = ["", "## The whole DynRTP beside the prototype (issue 23, goal 4)", "",
           f"rtl/dynrtp.sv at the paper's configuration ({cfg}; RGS_BLOCKS and the rest at their defaults), "
           "synthesized per module without flattening (`python3 scripts/synth.py --dynrtp`, part of `make synth` "
-          f"and `make check-full`; {d.get('date', '?')}; 7-series {get('xilinx_seconds')} s, iCE40 "
-          f"{get('ice40_seconds')} s): a module is mapped once and counted once per instance.", "",
+          f"and `make check-full`; {d.get('date', '?')}; "
+          + ", ".join(f"{n} {d[k]:,} s" for n, k in (("7-series", "xilinx_seconds"), ("iCE40", "ice40_seconds")) if k in d)
+          + "): a module is mapped once and counted once per instance.", "",
           "| | this DynRTP | the prototype (one pipe, 64 threads, whole chip) |", "|---|---:|---:|",
           f"| iCE40 LUT4 (`synth_ice40 -dsp`) | {get('ice40_lut4')} | about {PROTOTYPE_LUT4:,} (56% of a Virtex-II 6000) |",
           f"| iCE40 flip-flops | {get('ice40_ff')} | - |",
