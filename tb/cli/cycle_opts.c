@@ -47,13 +47,13 @@ static int parse_latencies(cycle_config *cfg, const char *arg)
         if (!eq)
             return 0;
         *eq = 0;
-        int u = -1;
+        int kind = -1;
         for (int k = 0; k < OP_KINDS; k++)
             if (strcmp(tok, op_kind_names[k]) == 0)
-                u = k;
-        if (u < 0 || !cli_parse_u64(eq + 1, 1, 1000, &v))
+                kind = k;
+        if (kind < 0 || !cli_parse_u64(eq + 1, 1, 1000, &v))
             return 0;
-        cfg->latency[u] = (uint32_t)v;
+        cfg->latency[kind] = (uint32_t)v;
     }
     return 1;
 }
