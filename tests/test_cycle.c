@@ -5,7 +5,8 @@
  * order); caches: a second identical frame hits 100% when the cache holds the whole image, a
  * tiny cache misses, and the bytes over the port equal the misses times the line size (every kind,
  * shading too; an uncached kind moves exactly its words); the shading cache on a known pattern; more
- * threads per pipe hide latency (fewer cycles), and a slower memory costs cycles.
+ * threads per pipe hide latency (fewer cycles), and a slower memory costs cycles; every operation
+ * is charged the latency of its kind.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
@@ -250,6 +251,41 @@ static void threads_hide_latency(void **state)
     image_free(&im);
 }
 
+/* Every operation is charged the latency of its kind (trace.h OP_*): with one thread nothing
+ * overlaps (the thread waits for each operation's reads and result before the next), so one more
+ * cycle of kind k's latency adds exactly the frame's operations of kind k, counted here by stepping
+ * the blocks as the functional mode does. */
+static void latency_per_kind(void **state)
+{
+    (void)state;
+    static frame f;
+    image im;
+    image_build(&im, "room");
+    uint64_t count[OP_KINDS] = { 0 };
+    for (uint32_t y = 0; y < H; y += 2)
+        for (uint32_t x = 0; x < W; x += 2) {
+            static rgs_block b;
+            unit_op op;
+            rgs_counters c = { 0 };
+            rgs_block_begin(im.mem, x, y, &b);
+            while (rgs_step(im.mem, &full, &b, &op, &c))
+                count[op.kind]++;
+        }
+    cycle_config cfg;
+    cycle_config_default(&cfg);
+    cfg.threads_per_pipe = 1;
+    cycle_stats base, more;
+    cycle_with(&cfg, im.mem, &full, &f, &base);
+    for (int k = 0; k < OP_KINDS; k++) {
+        assert_true(count[k] > 0); /* the room has every kind: instances, leaves, shadows, children */
+        cfg.latency[k]++;
+        cycle_with(&cfg, im.mem, &full, &f, &more);
+        cfg.latency[k]--;
+        assert_int_equal(more.cycles - base.cycles, count[k]);
+    }
+    image_free(&im);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -258,6 +294,7 @@ int main(void)
         cmocka_unit_test(caches),
         cmocka_unit_test(shading_cache_pattern),
         cmocka_unit_test(threads_hide_latency),
+        cmocka_unit_test(latency_per_kind),
     };
     return cmocka_run_group_tests_name("cycle model (tb/cycle)", tests, NULL, NULL);
 }

@@ -36,7 +36,7 @@ uint32_t list_unit_entry(const uint32_t *mem, trav_walker *w, trace_mailbox box[
     const uint32_t a = w->lists + w->leaf_first + w->k, entry = mem[a];
     uint32_t need = 0;
     *key = entry;
-    op_set(op, UNIT_LIST, 1);
+    op_set(op, OP_LIST, 1);
     op_read(op, c, MEM_LISTS, a, 1);
     c->list_entries++;
     w->k++;

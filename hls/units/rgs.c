@@ -93,7 +93,7 @@ static uint32_t at_least_one(uint32_t n) { return n ? n : 1u; }
 static void op_surfaces(const uint32_t *mem, rgs_block *b, unit_op *op, rgs_counters *c)
 {
     c->rays[b->cur.kind] += count_rays(b->cur.rays.active);
-    op_set(op, UNIT_RGS, at_least_one(count_rays(b->cur.rays.active)));
+    op_set(op, OP_SURFACE, at_least_one(count_rays(b->cur.rays.active)));
 surfaces:
     for (int i = 0; i < TRACE_PACKET; i++) {
         b->sf[i] = rgs_surface_at(mem, &b->cur.rays, i, &b->trace.hits[i], op, &c->trace);
@@ -123,7 +123,7 @@ static void op_light(const uint32_t *mem, const rgs_config *cfg, rgs_block *b, u
     const uint32_t *l = &mem[at];
     rgs_light_packet(l, b->sf, b->eps, &b->shadow, b->diff, b->spec, b->k_of);
     rgs_light_colour(l, b->colour);
-    op_set(op, UNIT_RGS, at_least_one(count_rays(b->shadow.active)));
+    op_set(op, OP_LIGHT, at_least_one(count_rays(b->shadow.active)));
     shade_read(op, &c->trace, at, LIGHT_WORDS);
     if (SAARCOR_CFG_SHADOWS && cfg->shadows && b->shadow.active) {
         b->phase = RB_SHADOW_GEN;
@@ -137,7 +137,7 @@ static void op_light(const uint32_t *mem, const rgs_config *cfg, rgs_block *b, u
 /* Transformation unit: shadow rays generated (T_shadow), n + 1 steps: they share the light. */
 static void op_shadow_gen(rgs_block *b, unit_op *op, rgs_counters *c)
 {
-    op_set(op, UNIT_XFORM, count_rays(b->shadow.active) + 1u);
+    op_set(op, OP_SHADOW, count_rays(b->shadow.active) + 1u);
     c->rays[RAY_SHADOW] += count_rays(b->shadow.active);
     trace_begin(&b->shadow, trace_flags_of(b->profile, 1) | b->trav_flags, &b->trace);
     b->phase = RB_SHADOW_TRACE;
@@ -218,7 +218,7 @@ static void op_accumulate(const uint32_t *mem, const rgs_config *cfg, rgs_block 
                          !(b->profile & PROFILE_NO_SECONDARY);
     task_init(&refl, depth, RAY_REFLECTION);
     task_init(&trans, depth, RAY_TRANSMISSION);
-    op_set(op, UNIT_RGS, at_least_one(count_rays(b->cur.rays.active)));
+    op_set(op, OP_ACCUM, at_least_one(count_rays(b->cur.rays.active)));
     b->children = 0;
     const uint32_t spawn = (children ? RGS_SPAWN_ON : 0u) | ((b->profile & PROFILE_LIVE_CHILDREN) ? RGS_SPAWN_LIVE : 0u);
 accumulate:
@@ -254,7 +254,7 @@ route:
         case RB_GEN: /* transformation unit: primary rays T_init, one step per ray (the shared origin, or an
                       * orthographic packet's shared direction, is a camera word: rtl/rgs_raygen.sv); camera block */
             b->trav_flags = cfg->traversal << TRACE_TRAV_SHIFT;
-            op_set(op, UNIT_XFORM, TRACE_PACKET);
+            op_set(op, OP_RAYGEN, TRACE_PACKET);
             shade_read(op, &c->trace, region_start(mem, R_CAMERA), CAM_WORDS);
             b->phase = RB_NEXT;
             return 1;
@@ -285,7 +285,7 @@ route:
 #endif
         case RB_ACCUM: op_accumulate(mem, cfg, b, op, c); return 1;
         case RB_CHILD_GEN: /* transformation unit: T_R steps for the back, ahead and mirror vectors */
-            op_set(op, UNIT_XFORM, 3 * b->children);
+            op_set(op, OP_CHILDREN, 3 * b->children);
             b->phase = RB_NEXT;
             return 1;
         default: return 0;

@@ -11,7 +11,7 @@
  * shadow rays from the hit point P = T_R (0, 0, t^) towards each light. The primary rays have RTL
  * (rtl/rgs_raygen.sv, bit-identical to rgs_primary): 29 cycles from block to packet, one ray per
  * cycle through the transformation unit, so a packet every 4 cycles (the cycle model's RB_GEN
- * charges TRACE_PACKET + 1 steps).
+ * charges TRACE_PACKET steps of kind OP_RAYGEN).
  *
  * Shading is fixed function: Phong-like (ambient + diffuse with interpolated normals + highlight
  * of exponent 2^k), base colour x bilinear texture, the scene's lights with shadow rays (the
@@ -29,10 +29,12 @@
  * normals of the compact shading record (shade_rec.h: per normal 3 int-to-fp24, 6 mul, 2 add,
  * 1 sqrt, 1 div; the three side by side, interpolated as lanes), normalization of D and N (2 sqrt,
  * 2 div), T_R steps on the transformation unit, per light 2 dot products (diffuse and
- * highlight cosines), the spot factor (1 div) and the float-to-Q12 converters. Latency 12 cycles
- * (the cycle model's default, docs/cycle-model.md: an estimate; rtl/rgs_ctrl.sv, the RTL of the
- * block control, runs an operation's rays one after another and is not yet pipelined to it), throughput one
- * shaded ray per cycle (an operation takes as many issue slots as it shades rays, at least 1).
+ * highlight cosines), the spot factor (1 div) and the float-to-Q12 converters. Each RGS operation
+ * has its kind (OP_SURFACE, OP_LIGHT, OP_ACCUM) and the cycle model charges each the latency of its
+ * pipelined RTL (rgs_surface's longest chain 198, rgs_light 87, rgs_accum 67 cycles;
+ * docs/cycle-model.md; rtl/rgs_ctrl.sv, the RTL of the block control, runs the surfaces one after
+ * another and is not yet pipelined to it), throughput one shaded ray per cycle (an operation takes
+ * as many issue slots as it shades rays, at least 1).
  */
 #ifndef SAARCOR_RGS_H
 #define SAARCOR_RGS_H

@@ -110,7 +110,7 @@ identity_rays:
 static void op_scene_clip(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
 {
     f24_t tn[TRACE_PACKET], tf[TRACE_PACKET];
-    op_set(op, UNIT_TRAV, 1);
+    op_set(op, OP_TRAV, 1);
     const uint32_t mask = trav_scene_clip(&mem[H_SCENE_BOUNDS], &s->rays, tn, tf);
     if (!mask || mem[H_INSTANCES] == 0) {
         s->phase = TP_DONE;
@@ -137,12 +137,15 @@ static void op_walk(const uint32_t *mem, trace_state *s, unit_op *op, trace_coun
 }
 
 /* Rebase unit, as the list unit opens a bottom-level leaf: each ray of the leaf gets its origin
- * moved to where it enters the leaf (rebase_unit.h), one issue slot per ray. */
+ * moved to where it enters the leaf (rebase_unit.h), one issue slot per ray; the operation then
+ * ends with the rebase unit's pipeline (OP_LEAF). */
 static void rebase_leaf(trace_state *s, unit_op *op)
 {
     const trav_walker *w = &s->walk[1];
     const uint32_t rays = w->leaf_mask & s->alive;
     op->slots += count_rays(rays);
+    if (rays)
+        op->kind = OP_LEAF;
 rebase_rays:
     for (int i = 0; i < TRACE_PACKET; i++) {
         if (!bit(rays, i))
@@ -190,7 +193,7 @@ static void op_inst_xform(const uint32_t *mem, trace_state *s, unit_op *op, trac
     const f24_affine w2o = f24_affine_load(mem, ia);
     const int identity = mem[ia + INST_FLAGS] & INST_IDENTITY;
     s->obj = region_start(mem, R_OBJECTS) + OBJ_WORDS * mem[ia + 12];
-    op_set(op, identity ? UNIT_TRAV : UNIT_XFORM, identity ? 1u : 2u * count_rays(s->need));
+    op_set(op, identity ? OP_TRAV : OP_INSTANCE, identity ? 1u : 2u * count_rays(s->need));
     op_read(op, c, MEM_MATRICES, ia, INST_READ);  /* matrix, object index, flags, translation low words */
     op_read(op, c, MEM_MATRICES, s->obj, obj_read(s->flags)); /* object descriptor: tree, triangles, bounds */
     c->transformations += identity ? 0u : op->slots;
@@ -225,7 +228,7 @@ to_object_space:
 /* Traversal unit: clip the object-space rays to the object's bounds and start its tree (path b). */
 static void op_inst_clip(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
 {
-    op_set(op, UNIT_TRAV, 1);
+    op_set(op, OP_TRAV, 1);
     inst_clip(mem, s, op, c);
 }
 
@@ -271,7 +274,7 @@ static void op_tri_xform(const uint32_t *mem, trace_state *s, unit_op *op, trace
 {
     const uint32_t a = s->tris + TRI_WORDS * s->tri;
     s->tx = f24_triangle_load(mem, a);
-    op_set(op, UNIT_XFORM, count_rays(s->need));
+    op_set(op, OP_XFORM, count_rays(s->need));
     op_read(op, c, MEM_MATRICES, a, TRI_WORDS);
     c->transformations += op->slots;
     s->phase = TP_TRI_ISECT;
@@ -280,7 +283,7 @@ static void op_tri_xform(const uint32_t *mem, trace_state *s, unit_op *op, trace
 /* Intersection unit: one ray per slot; closest hits back to the traversal (path f). */
 static void op_tri_isect(trace_state *s, unit_op *op, trace_counters *c)
 {
-    op_set(op, UNIT_ISECT, count_rays(s->need));
+    op_set(op, OP_ISECT, count_rays(s->need));
     isect_result r[TRACE_PACKET];
     isect_unit_packet(&s->tx, s->need, s->p, s->te, s->d, s->tmin_rel, s->best_rel, r);
 isect_rays:

@@ -10,8 +10,8 @@
  *
  * As a state machine: trace_state holds one packet's thread state (the prototype's per-thread
  * state: rays, stacks, mailboxes, closest hits), and trace_step performs exactly one operation of
- * one unit and describes it in a unit_op (which unit, how many issue slots, which memory block it
- * read). The functional mode (trace_packet) runs the steps back to back; the cycle model
+ * one unit and describes it in a unit_op (which unit and kind of operation, how many issue slots,
+ * which memory block it read). The functional mode (trace_packet) runs the steps back to back; the cycle model
  * (tb/cycle) times the same steps through pipelined units and caches, so both compute the same
  * bits by construction.
  *
@@ -76,14 +76,43 @@ typedef struct {
 /* The units of a DynRTP (paper Figure 2). */
 enum { UNIT_RGS, UNIT_XFORM, UNIT_TRAV, UNIT_LIST, UNIT_ISECT, UNIT_KINDS };
 
-/* One operation of one unit: the memory blocks it reads before it issues (word address and
- * count by data type) and the issue slots it occupies. The core's operations read at most 2
+/* What an operation does on its unit. A unit's operations of different kinds pass hardware
+ * pipelines of different depths (the RTL's modules, named below), so the cycle model charges each
+ * kind its own latency (docs/cycle-model.md); the kinds are grouped by unit, in the units' order
+ * above but the RGS last (op_kind_unit). */
+enum {
+    OP_RAYGEN,   /* transformation unit: a packet's primary rays, T_init (rtl/rgs_raygen.sv) */
+    OP_XFORM,    /* transformation unit: a triangle's directions (rtl/xform_unit.sv) */
+    OP_INSTANCE, /* transformation unit: an instance's rays rebased, then in the wide mode (rebase_unit, xform_wide) */
+    OP_SHADOW,   /* transformation unit: a light's shadow rays, T_shadow (the RTL forms them in rgs_light) */
+    OP_CHILDREN, /* transformation unit: T_R steps of the child rays (the RTL forms them in rgs_spawn) */
+    OP_TRAV,     /* traversal unit: a clip or a kd-tree entry (rtl/trav_node.sv) */
+    OP_LIST,     /* list unit: a leaf-list entry (rtl/list_unit.sv) */
+    OP_LEAF,     /* list unit: the entry that opens a bottom-level leaf, its rays through the rebase unit */
+    OP_ISECT,    /* intersection unit: a triangle's rays (rtl/isect_unit.sv) */
+    OP_SURFACE,  /* RGS: the surfaces of a traced packet (rtl/rgs_surface.sv) */
+    OP_LIGHT,    /* RGS: one light at the packet's surfaces, its shadow packet (rtl/rgs_light.sv) */
+    OP_ACCUM,    /* RGS: the packet's colours accumulated, its child rays (rtl/rgs_accum.sv) */
+    OP_KINDS
+};
+
+static inline uint32_t op_kind_unit(uint32_t kind)
+{
+    return kind >= OP_SURFACE ? UNIT_RGS
+         : kind >= OP_ISECT   ? UNIT_ISECT
+         : kind >= OP_LIST    ? UNIT_LIST
+         : kind >= OP_TRAV    ? UNIT_TRAV
+                              : UNIT_XFORM;
+}
+
+/* One operation of one unit: its kind, the memory blocks it reads before it issues (word address
+ * and count by data type) and the issue slots it occupies. The core's operations read at most 2
  * blocks; the RGS's surface operation up to 15 per ray (rgs.c surface_at: instance, object,
  * shading record, geometric normal, material, and per texture sampled, base colour and
  * emissive, its entry and 4 texels). */
 #define UNIT_OP_READS (15 * TRACE_PACKET)
 typedef struct {
-    uint32_t unit, slots, n_reads;
+    uint32_t unit, kind, slots, n_reads; /* unit = op_kind_unit(kind) */
     struct { uint32_t kind, addr, words; } read[UNIT_OP_READS];
 } unit_op;
 

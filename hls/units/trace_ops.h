@@ -15,9 +15,10 @@ static inline uint32_t bit(uint32_t mask, int i) { return mask >> i & 1u; }
 /* Rays in a packet's mask. */
 static inline uint32_t count_rays(uint32_t mask) { return bit(mask, 0) + bit(mask, 1) + bit(mask, 2) + bit(mask, 3); }
 
-static inline void op_set(unit_op *op, uint32_t unit, uint32_t slots)
+static inline void op_set(unit_op *op, uint32_t kind, uint32_t slots)
 {
-    op->unit = unit;
+    op->unit = op_kind_unit(kind);
+    op->kind = kind;
     op->slots = slots;
     op->n_reads = 0;
 }

@@ -105,7 +105,7 @@ void trav_start(trav_walker *w, const uint32_t *mem, uint32_t asked, uint32_t ac
 int trav_walk(trav_walker *w, const uint32_t *mem, const f24_vec3 o[], const f24_vec3 d[], const f24_t best_t[],
               uint32_t alive, unit_op *op, trace_counters *c)
 {
-    op_set(op, UNIT_TRAV, 1);
+    op_set(op, OP_TRAV, 1);
     if (w->algo == TRAV_ROPES)
         return trav_ropes_step(w, mem, o, d, best_t, alive, op, c);
     if (w->algo == TRAV_GRID)

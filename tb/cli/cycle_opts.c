@@ -17,7 +17,9 @@ const char CYCLE_OPTIONS_HELP[] =
     "  --line-bytes N,L,M[,S] their line sizes (default 8,4, one triangle transformation, 16)\n"
     "  --mem-latency C       memory latency in cycles after a transfer (default 10)\n"
     "  --mem-mbps B          memory port bandwidth per pipe in MB/s (default 1000)\n"
-    "  --unit-latency LIST   unit pipeline latencies, e.g. rgs=12,xform=22,trav=21,list=3,isect=29\n"
+    "  --unit-latency LIST   pipeline latency of each kind of operation, e.g. trav=21,isect=29; kinds raygen\n"
+    "                        xform instance shadow children (transformation unit), trav, list leaf, isect,\n"
+    "                        surface light accum (RGS)\n"
     "  --tile N              tile edge in pixels handed out by the controller (even, default 16)\n";
 
 static const char *const unit_keys[UNIT_KINDS] = { "rgs", "xform", "trav", "list", "isect" };
@@ -45,13 +47,13 @@ static int parse_latencies(cycle_config *cfg, const char *arg)
         if (!eq)
             return 0;
         *eq = 0;
-        int u = -1;
-        for (int k = 0; k < UNIT_KINDS; k++)
-            if (strcmp(tok, unit_keys[k]) == 0)
-                u = k;
-        if (u < 0 || !cli_parse_u64(eq + 1, 1, 1000, &v))
+        int kind = -1;
+        for (int k = 0; k < OP_KINDS; k++)
+            if (strcmp(tok, op_kind_names[k]) == 0)
+                kind = k;
+        if (kind < 0 || !cli_parse_u64(eq + 1, 1, 1000, &v))
             return 0;
-        cfg->latency[u] = (uint32_t)v;
+        cfg->latency[kind] = (uint32_t)v;
     }
     return 1;
 }
@@ -105,8 +107,9 @@ int cycle_opts_parse(cycle_config *cfg, const char *cmd, int c, const char *arg)
         return 1;
     case 7:
         if (!parse_latencies(cfg, arg))
-            return cli_usage_error(cmd, "bad --unit-latency '%s' (e.g. trav=12,isect=14; units rgs xform trav list "
-                                        "isect, 1..1000 cycles)", arg), -1;
+            return cli_usage_error(cmd, "bad --unit-latency '%s' (e.g. trav=12,isect=14; kinds raygen xform "
+                                        "instance shadow children trav list leaf isect surface light accum, "
+                                        "1..1000 cycles)", arg), -1;
         return 1;
     case 8:
         if (!cli_parse_u64(arg, 2, 4096, &v) || v % 2)
@@ -194,11 +197,15 @@ void cycle_report_json(FILE *f, const cycle_config *cfg, const cycle_stats *st, 
             (double)rays * d.fps, (unsigned long long)st->pipe_cycles_min, (unsigned long long)st->blocks,
             (unsigned long long)st->tiles);
     fprintf(f, "\"units\": {");
-    for (int u = 0; u < UNIT_KINDS; u++)
-        fprintf(f, "%s\"%s\": {\"latency\": %u, \"busy_cycles\": %llu, \"operations\": %llu, \"usage\": %.6f, "
-                   "\"queued_thread_cycles\": %llu}", u ? ", " : "", unit_keys[u], cfg->latency[u],
+    for (int u = 0; u < UNIT_KINDS; u++) {
+        fprintf(f, "%s\"%s\": {\"latencies\": {", u ? ", " : "", unit_keys[u]);
+        for (int k = 0, n = 0; k < OP_KINDS; k++)
+            if (op_kind_unit((uint32_t)k) == (uint32_t)u)
+                fprintf(f, "%s\"%s\": %u", n++ ? ", " : "", op_kind_names[k], cfg->latency[k]);
+        fprintf(f, "}, \"busy_cycles\": %llu, \"operations\": %llu, \"usage\": %.6f, \"queued_thread_cycles\": %llu}",
                 (unsigned long long)st->busy[u], (unsigned long long)st->ops[u], usage(cfg, st, u) / 100.0,
                 (unsigned long long)st->wait_unit[u]);
+    }
     fprintf(f, "}, \"memory\": {\"latency\": %u, \"mbps_per_pipe\": %g", cfg->mem.latency, cfg->mem.mbps);
     for (int k = 0; k < MEM_KINDS; k++) {
         fprintf(f, ", \"%s\": {", mem_kind_names[k]);

@@ -12,20 +12,29 @@
 
 const char *const unit_names[UNIT_KINDS] = { "RGS", "transformation", "traversal", "list", "intersection" };
 const char *const mem_kind_names[MEM_KINDS] = { "kd_nodes", "lists", "matrices", "shading" };
+const char *const op_kind_names[OP_KINDS] = { "raygen", "xform", "instance", "shadow", "children", "trav",
+                                              "list",   "leaf",  "isect",    "surface", "light",   "accum" };
 
 void cycle_config_default(cycle_config *c)
 {
     memset(c, 0, sizeof *c);
     c->pipes = 1;
     c->threads_per_pipe = 32;
-    /* the RTL's latencies (rtl/xform_unit.sv 22, rtl/trav_node.sv 21, rtl/isect_unit.sv 29, from
-     * the pipelined operators' default stages add 6, mul 4, div 11, cmp 2, >= 60 MHz on iCE40;
-     * rtl/list_unit.sv 3: read, compare, update); the RGS has no RTL yet: an estimate */
-    c->latency[UNIT_RGS] = 12;
-    c->latency[UNIT_XFORM] = 22;
-    c->latency[UNIT_TRAV] = 21;
-    c->latency[UNIT_LIST] = 3;
-    c->latency[UNIT_ISECT] = 29;
+    /* Each kind of operation takes the latency of the RTL module(s) that do it when pipelined
+     * (the operators' default stages add 6, mul 4, div 11, cmp 2, sqrt 9, cvt 2: >= 60 MHz on
+     * iCE40); docs/cycle-model.md derives each. */
+    c->latency[OP_RAYGEN] = 26;   /* rgs_raygen: block register 1 + f24_from_i32 2 + xform_unit 22 + packet 1 */
+    c->latency[OP_XFORM] = 22;    /* xform_unit: mul 4 + 3 add */
+    c->latency[OP_INSTANCE] = 50; /* rebase_unit 25, then xform_wide 25 (the origins' chain) */
+    c->latency[OP_SHADOW] = 1;    /* rgs_light forms the shadow rays: its register to the trace port */
+    c->latency[OP_CHILDREN] = 1;  /* rgs_spawn (in rgs_accum) forms the child rays: the stack's register */
+    c->latency[OP_TRAV] = 21;     /* trav_node: sub 6 + div 11 + min/max 2 + cmp 2 */
+    c->latency[OP_LIST] = 3;      /* list_unit: read, compare, update */
+    c->latency[OP_LEAF] = 25;     /* rebase_unit after the list entry's slot (the entry's 3 beside it) */
+    c->latency[OP_ISECT] = 29;    /* isect_unit: div 11 + mul 4 + 2 add + cmp 2 */
+    c->latency[OP_SURFACE] = 198; /* rgs_surface pipelined: shade_rec_decode 42 + rgs_lerp 22 + f24_dot3 16 + rgs_frame 118 */
+    c->latency[OP_LIGHT] = 87;    /* rgs_light (rgs_light_colour's 27 beside it) */
+    c->latency[OP_ACCUM] = 67;    /* rgs_accum: rgs_spawn's */
     c->tile = 16;
     c->epoch = 256;
     c->host_threads = 1;
@@ -317,7 +326,7 @@ static void pipe_cycle(pipe_state *p)
         p->st.ops[u]++;
         if (p->probe)
             p->probe(p->probe_arg, p->index, SCHED_ISSUE, p->now, (uint32_t)u, issue[u], t->op.slots);
-        heap_push(p, p->now + t->op.slots - 1 + p->cfg->latency[u], issue[u]);
+        heap_push(p, p->now + t->op.slots - 1 + p->cfg->latency[t->op.kind], issue[u]);
         if (p->tp) {
             trace_issue(p->tp, u, p->now, issue[u], t->op.slots);
             trace_queue(p->tp, u, p->now, p->queue[u].count);

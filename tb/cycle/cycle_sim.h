@@ -33,7 +33,7 @@
 
 typedef struct {
     uint32_t pipes, threads_per_pipe; /* P DynRTPs, T threads each */
-    uint32_t latency[UNIT_KINDS];     /* pipeline latency of each unit, cycles */
+    uint32_t latency[OP_KINDS];       /* pipeline latency of each kind of operation (trace.h), cycles */
     uint32_t tile;                    /* tile edge in pixels (even) handed out by the controller */
     uint32_t epoch;                   /* cycles between controller refills */
     uint32_t host_threads;            /* simulator threads (no effect on any result) */
@@ -111,6 +111,7 @@ void cycle_stats_add(cycle_stats *sum, const cycle_stats *s);
 void rgs_counters_add(rgs_counters *sum, const rgs_counters *c);
 
 extern const char *const unit_names[UNIT_KINDS];
+extern const char *const op_kind_names[OP_KINDS]; /* the keys of --unit-latency and --stats */
 extern const char *const mem_kind_names[MEM_KINDS];
 
 #endif
