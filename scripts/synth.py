@@ -430,27 +430,33 @@ def dynrtp_top(mods):
 
 
 def dynrtp_xilinx():
-    """synth_xilinx of the whole DynRTP, hierarchical: LUT6, flip-flops, DSP48E1, RAM, LUT6 levels, and
-    the LUT6 of each of the top's units (which dominates)."""
+    """synth_xilinx of the whole DynRTP, hierarchical (xilinx_figures)."""
     log, js = os.path.join(OUT, "dynrtp_xilinx.log"), os.path.join(OUT, "dynrtp_xilinx.json")
     flow = ("synth_xilinx -top dynrtp -run :coarse; techmap -map +/cmp2lut.v -map +/cmp2lcu.v -D LUT_WIDTH=6; "
             "alumacc; opt; memory -nomap; opt_clean; synth_xilinx -top dynrtp -run map_memory:")
     t0 = time.time()
     yosys(dynrtp_script(flow, f"stat; write_json {js}"), log)
+    return dict(xilinx_figures(js), xilinx_seconds=round(time.time() - t0))
+
+
+def xilinx_figures(js):
+    """LUT6, flip-flops, DSP48E1, RAM and LUT6 levels of a hierarchical 7-series netlist, and per unit of
+    the top (each with its submodules, all instances) its LUT6 and its own LUT6 levels (its ports as
+    path ends): which unit dominates, and where the deepest paths are."""
     mods = json.load(open(js))["modules"]
     top = dynrtp_top(mods)
     own = module_cells(mods)
     sub, tot = hierarchy_totals(own, top)
-    units = {}
+    units, levels = {}, {}
     for typ, n in own[top].items():
         if typ in own:
             units[key_name(typ)] = units.get(key_name(typ), 0) + n * luts_of(sub[typ])
+            levels[key_name(typ)] = max(levels.get(key_name(typ), 0), hier_lut_levels(mods, typ))
     return {"xilinx_lut6": luts_of(tot), "xilinx_ff": sum(v for k, v in tot.items() if re.fullmatch(r"FD[RSCP]E(_1)?", k)),
             "xilinx_srl": sum(v for k, v in tot.items() if k.startswith("SRL")), "xilinx_dsp": tot.get("DSP48E1", 0),
             "xilinx_bram18": tot.get("RAMB18E1", 0) + 2 * tot.get("RAMB36E1", 0),
             "xilinx_lutram_bits": sum(v * LUTRAM_BITS[k] for k, v in tot.items() if k in LUTRAM_BITS),
-            "max_lut6_levels": hier_lut_levels(mods, top), "xilinx_units_lut6": units,
-            "xilinx_seconds": round(time.time() - t0)}
+            "max_lut6_levels": hier_lut_levels(mods, top), "xilinx_units_lut6": units, "xilinx_units_lut6_levels": levels}
 
 
 def key_name(module):
@@ -780,9 +786,11 @@ def dynrtp_section():
     units = sorted(d.get("xilinx_units_lut6", {}).items(), key=lambda kv: -kv[1])
     if units:
         whole = max(1, d["xilinx_lut6"])
-        md += ["", "Where the LUT6 are (the top's units, each with its submodules, all instances):", "",
-               "| unit | LUT6 | share |", "|---|---:|---:|"]
-        md += [f"| {u} | {v:,} | {100 * v / whole:.1f}% |" for u, v in units]
+        lv = d.get("xilinx_units_lut6_levels", {})
+        md += ["", "Where the LUT6 are (the top's units, each with its submodules, all instances), and each unit's "
+               "most LUT6 levels on its own (its ports as path ends):", "",
+               "| unit | LUT6 | share | LUT6 levels |", "|---|---:|---:|---:|"]
+        md += [f"| {u} | {v:,} | {100 * v / whole:.1f}% | {lv.get(u, '-')} |" for u, v in units]
         md += ["", f"{units[0][0]} dominates. LUT6 levels: `hier_lut_levels` composes, per module, the levels "
                "from its registers to each output bit, from each input bit to the output bits it reaches without a "
                "register, and from each input bit to a register inside; on a small hierarchy it gives the count of "
