@@ -33,9 +33,10 @@
 /* ---- stack family (TRAV_STACK, TRAV_SHORT_STACK, TRAV_RESTART, TRAV_PUSH_DOWN): trav_stack.c */
 
 /* One kd-tree entry: prune the rays whose closest hit lies before it, then read the node and
- * split, or report a leaf; then the next entry from the stack, or the restart after a drop. */
-int trav_stack_step(trav_walker *w, const uint32_t *mem, const f24_vec3 o[], const f24_vec3 d[], const f24_t best_t[],
-                    uint32_t alive, unit_op *op, trace_counters *c);
+ * split (the rays held in w->rays since the start), or report a leaf; then the next entry from
+ * the stack, or the restart after a drop. */
+int trav_stack_step(trav_walker *w, const uint32_t *mem, const f24_t best_t[], uint32_t alive, unit_op *op,
+                    trace_counters *c);
 
 /* The restart (trav_restart.c) for the stack walkers that drop entries (w->cap < TRACE_STACK). */
 
