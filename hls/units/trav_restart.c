@@ -16,15 +16,9 @@
 #include "trav_algo.h"
 
 /* per ray 1 comparator, side by side */
-static F24Q_FN uint32_t done_rays(const trav_walker *w, const trav_entry *e)
+F24Q_FN uint32_t trav_restart_done(const trav_walker *w, const trav_entry *e)
 {
     return f24q_le(f24h_get(&e->tf), f24q_of(w->t_exit));
-}
-
-void trav_restart_drop_done(const trav_walker *w, trav_entry *e)
-{
-    if (w->pass)
-        e->mask &= ~done_rays(w, e);
 }
 
 F24Q_FN void trav_restart_leaf(trav_walker *w, const trav_entry *e)
