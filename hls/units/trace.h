@@ -89,7 +89,7 @@ typedef struct {
 } unit_op;
 
 /* A kd-tree entry of the walk: a node, its rays, and each ray's interval [tn, tf] in it, held as
- * the traversal unit's packet values (f24h, hls/fp24/f24.h: fp24 words in the hardware). */
+ * the traversal unit's packet values (f24h, hls/fp24/f24_held.h: fp24 words in the hardware). */
 typedef struct {
     uint32_t node, mask;
     f24h tn, tf;
