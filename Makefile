@@ -139,18 +139,18 @@ $(foreach d,$(sort $(BUILD) $(HOST_BUILD)),$(eval $(call HOST_RULES,$(d))))
 # tests built and run at every number format
 FORMAT_TESTS := test_f24 test_f24_select test_f24_record test_f24_sum
 
+# C objects of format $(1) in folder $(2): $(BUILD)/obj/<format> (the simulator's with SIM_FLAGS) and
+# $(BUILD)/obj/hw/<format> (the units in the hardware arithmetic, for the RTL benches: rtl_c_objs)
+define FORMAT_CC
+$(2)/%.o: %.c
+	@mkdir -p $$(@D)
+	@echo "  CC    $$@"
+	$(Q)$$(CC) $$(CFLAGS) $(call fmt_flags,$(1)) $$(INCLUDES) -I$(BUILD) -c $$< -o $$@
+endef
+$(foreach f,$(FORMATS),$(eval $(call FORMAT_CC,$(f),$(BUILD)/obj/$(f))) $(eval $(call FORMAT_CC,$(f),$(BUILD)/obj/hw/$(f))))
+
 define FORMAT_RULES
 $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(SIM_SRCS)): CFLAGS += $(SIM_FLAGS)
-
-$(BUILD)/obj/$(1)/%.o: %.c
-	@mkdir -p $$(@D)
-	@echo "  CC    $$@"
-	$(Q)$$(CC) $$(CFLAGS) $(call fmt_flags,$(1)) $$(INCLUDES) -I$(BUILD) -c $$< -o $$@
-
-$(BUILD)/obj/hw/$(1)/%.o: %.c
-	@mkdir -p $$(@D)
-	@echo "  CC    $$@"
-	$(Q)$$(CC) $$(CFLAGS) $(call fmt_flags,$(1)) $$(INCLUDES) -I$(BUILD) -c $$< -o $$@
 
 $(BUILD)/w/$(1)/saarcor: $(call fmt_objs,$(1)) $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(CLI)) $(PROG_HOST_OBJS) | $(IMG_LIB)
 	@mkdir -p $$(@D)
