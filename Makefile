@@ -94,7 +94,7 @@ SIM_SRCS = $(MEMIMAGE) $(HLS_UNITS) $(CYCLE) $(REF) $(CLI)
 
 # render --capture-unit-io records the units' calls through linker wrappers (tb/cli/capture.c)
 comma := ,
-CAPTURE_WRAP := $(addprefix -Wl$(comma)--wrap=,xform_point xform_vector isect_unit_rebased isect_unit_packet trav_node_split \
+CAPTURE_WRAP := $(addprefix -Wl$(comma)--wrap=,xform_point xform_vector isect_unit_rebased isect_unit_packet trav_node_split_held \
   list_unit_entry list_mailboxes_clear mem_iface_read mem_iface_flush mem_iface_new_frame rgs_block_begin \
   rebase_origin xform_point_wide xform_vector_wide \
   trav_scene_clip trav_object_clip trav_start trav_walk trace_begin trace_step shade_rec_normals \
@@ -139,13 +139,18 @@ $(foreach d,$(sort $(BUILD) $(HOST_BUILD)),$(eval $(call HOST_RULES,$(d))))
 # tests built and run at every number format
 FORMAT_TESTS := test_f24 test_f24_select test_f24_record test_f24_sum
 
-define FORMAT_RULES
-$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(SIM_SRCS)): CFLAGS += $(SIM_FLAGS)
-
-$(BUILD)/obj/$(1)/%.o: %.c
+# C objects of format $(1) in folder $(2): $(BUILD)/obj/<format> (the simulator's with SIM_FLAGS) and
+# $(BUILD)/obj/hw/<format> (the units in the hardware arithmetic, for the RTL benches: rtl_c_objs)
+define FORMAT_CC
+$(2)/%.o: %.c
 	@mkdir -p $$(@D)
 	@echo "  CC    $$@"
 	$(Q)$$(CC) $$(CFLAGS) $(call fmt_flags,$(1)) $$(INCLUDES) -I$(BUILD) -c $$< -o $$@
+endef
+$(foreach f,$(FORMATS),$(eval $(call FORMAT_CC,$(f),$(BUILD)/obj/$(f))) $(eval $(call FORMAT_CC,$(f),$(BUILD)/obj/hw/$(f))))
+
+define FORMAT_RULES
+$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(SIM_SRCS)): CFLAGS += $(SIM_FLAGS)
 
 $(BUILD)/w/$(1)/saarcor: $(call fmt_objs,$(1)) $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(CLI)) $(PROG_HOST_OBJS) | $(IMG_LIB)
 	@mkdir -p $$(@D)
@@ -158,6 +163,10 @@ $(foreach t,$(FORMAT_TESTS),$(BUILD)/w/$(1)/$(t)): $(BUILD)/w/$(1)/%: $(BUILD)/o
 	$(Q)$$(CC) $$(SANFLAGS) $$^ -o $$@ $$(TEST_LDLIBS)
 endef
 $(foreach f,$(FORMATS),$(eval $(call FORMAT_RULES,$(f))))
+
+# the host tests, benchmarks and fuzz replays link the simulator's units: they see their state
+# (trace_state, its held packet values: hls/fp24/f24_held.h) as the units were compiled
+$(BUILD)/obj/host/tests/%.o: CFLAGS += $(SIM_FLAGS)
 
 # tests find tests/golden and other inputs from the source tree
 $(BUILD)/obj/%/tests/test_f24.o $(BUILD)/obj/host/tests/%.o: CFLAGS += -DSAARCOR_SRC_DIR='"$(CURDIR)"'
@@ -343,7 +352,9 @@ $(BUILD)/rtl/verilated/%.o: $(VLT_INCLUDE)/%.cpp
 	@echo "  CXX $@"
 	$(Q)g++ -O1 -faligned-new -fcf-protection=none -w -DVM_COVERAGE=0 -DVM_SC=0 -DVM_TRACE=0 -DVM_TRACE_FST=0 \
 	  -DVM_TRACE_VCD=0 -I$(VLT_INCLUDE) -I$(VLT_INCLUDE)/vltstd -c $< -o $@
-rtl_c_objs = $(call fp_objs,$(1)) $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(HLS_UNITS))
+# the units in the hardware arithmetic (SIM_ARITH=hw): the benches read their state (the traversal's
+# held intervals and rays, hls/fp24/f24_held.h) as the fp24 words the RTL holds
+rtl_c_objs = $(call fp_objs,$(1)) $(patsubst %.c,$(BUILD)/obj/hw/$(1)/%.o,$(HLS_UNITS))
 fmt_e = $(word 1,$(subst m, ,$(subst e,,$(1))))
 fmt_m = $(word 2,$(subst m, ,$(subst e,,$(1))))
 

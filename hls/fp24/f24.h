@@ -138,6 +138,7 @@ static inline uint32_t f24w_sign(f24w a) { return f24_sign(a); }
  * on their definitions), so that the lanes compute together; the roundings stay the same. */
 #ifndef F24_SIM_LANES
 #define F24Q_FN
+#define F24Q_INLINE static inline /* helpers on packet values (f24_held.h); vector lanes inline them always */
 typedef struct { f24w l[F24Q_LANES]; } f24q;
 static inline f24q f24q_of(const f24_t a[F24Q_LANES])
 {

@@ -40,6 +40,7 @@
 #include <stdint.h>
 
 #include "config.h"
+#include "f24_held.h"
 #include "vec3.h"
 
 #define TRACE_PACKET 4
@@ -116,9 +117,11 @@ typedef struct {
     struct { uint32_t kind, addr, words; } read[UNIT_OP_READS];
 } unit_op;
 
+/* A kd-tree entry of the walk: a node, its rays, and each ray's interval [tn, tf] in it, held as
+ * the traversal unit's packet values (f24h, hls/fp24/f24_held.h: fp24 words in the hardware). */
 typedef struct {
     uint32_t node, mask;
-    f24_t tn[TRACE_PACKET], tf[TRACE_PACKET];
+    f24h tn, tf;
 } trav_entry;
 
 /* Traversal algorithms of the traversal unit (docs/traversal.md; make bench-peers compares them):
@@ -134,8 +137,14 @@ typedef struct {
 enum { TRAV_STACK, TRAV_SHORT_STACK, TRAV_RESTART, TRAV_PUSH_DOWN, TRAV_ROPES, TRAV_GRID, TRAV_GRID2, TRAV_KINDS };
 #define TRACE_SHORT_STACK 4
 
+/* The rays of a packet by axis (lane i: ray i), as the traversal unit holds them for a walk. */
+typedef struct {
+    f24h o[3], d[3];
+} trav_rays;
+
 typedef struct {
     uint32_t nodes, lists; /* word addresses of the tree */
+    trav_rays rays;        /* the walk's rays, from its start (the stack family's splits read them) */
     trav_entry stack[TRACE_STACK];
     uint32_t sp;
     trav_entry cur;

@@ -33,15 +33,23 @@
 /* ---- stack family (TRAV_STACK, TRAV_SHORT_STACK, TRAV_RESTART, TRAV_PUSH_DOWN): trav_stack.c */
 
 /* One kd-tree entry: prune the rays whose closest hit lies before it, then read the node and
- * split, or report a leaf; then the next entry from the stack, or the restart after a drop. */
-int trav_stack_step(trav_walker *w, const uint32_t *mem, const f24_vec3 o[], const f24_vec3 d[], const f24_t best_t[],
-                    uint32_t alive, unit_op *op, trace_counters *c);
+ * split (the rays held in w->rays since the start), or report a leaf; then the next entry from
+ * the stack, or the restart after a drop. */
+int trav_stack_step(trav_walker *w, const uint32_t *mem, const f24_t best_t[], uint32_t alive, unit_op *op,
+                    trace_counters *c);
 
 /* The restart (trav_restart.c) for the stack walkers that drop entries (w->cap < TRACE_STACK). */
 
-/* After a restart, the rays of a child cell that ends where the ray's last leaf ended (visited
- * already) leave its mask. */
-void trav_restart_drop_done(const trav_walker *w, trav_entry *e);
+/* The rays of e whose cell ends where the ray's last leaf ended (w->t_exit: visited already). */
+uint32_t trav_restart_done(const trav_walker *w, const trav_entry *e);
+
+/* After a restart, the rays of a child cell that ends where the ray's last leaf ended leave its
+ * mask (before any restart, at every inner node, nothing to compare: inline). */
+static inline void trav_restart_drop_done(const trav_walker *w, trav_entry *e)
+{
+    if (w->pass)
+        e->mask &= ~trav_restart_done(w, e);
+}
 
 /* At a leaf (entry e): extends each ray's covered segment (w->t_exit) if the leaf continues it. */
 void trav_restart_leaf(trav_walker *w, const trav_entry *e);

@@ -5,13 +5,15 @@
 
 f24_t cursor_point_on(f24_vec3 o, f24_vec3 d, f24_t t, uint32_t k) { return f24_add(axis_of(o, k), f24_mul(axis_of(d, k), t)); }
 
+/* The rays whose closest hit lies before their position (4 comparators, side by side). */
+static F24Q_FN uint32_t pruned(const trav_walker *w, const f24_t best_t[])
+{
+    return f24q_lt(f24q_of(best_t), f24h_get(&w->cur.tn));
+}
+
 uint32_t cursor_group(trav_walker *w, const f24_t best_t[], uint32_t alive, int *lead)
 {
-    w->cur.mask &= alive;
-prune:
-    for (int i = 0; i < TRACE_PACKET; i++)
-        if (bit(w->cur.mask, i) && f24_lt(best_t[i], w->cur.tn[i]))
-            w->cur.mask &= ~(1u << i);
+    w->cur.mask &= alive & ~pruned(w, best_t);
     *lead = 0;
 lead_ray:
     while (*lead < TRACE_PACKET - 1 && !bit(w->cur.mask, *lead))
@@ -44,12 +46,12 @@ exit_axes:
 
 void cursor_advance(trav_walker *w, int i, uint32_t next, int has_next, f24_t t)
 {
-    if (!has_next || !f24_lt(t, w->cur.tf[i])) {
+    if (!has_next || !f24_lt(t, f24h_lane(&w->cur.tf, i))) {
         w->cur.mask &= ~(1u << i);
         return;
     }
     w->at[i] = next;
-    w->cur.tn[i] = f24_max(w->cur.tn[i], t);
+    f24h_set_lane(&w->cur.tn, i, f24_max(f24h_lane(&w->cur.tn, i), t));
 }
 
 int cursor_list(trav_walker *w, uint32_t group, uint32_t first, uint32_t count, trace_counters *c)
@@ -58,9 +60,7 @@ int cursor_list(trav_walker *w, uint32_t group, uint32_t first, uint32_t count, 
     w->leaf_count = count;
     w->leaf_mask = group;
     w->k = 0;
-cell_entry:
-    for (int i = 0; i < TRACE_PACKET; i++)
-        w->leaf_tn[i] = w->cur.tn[i];
+    f24h_words(&w->cur.tn, w->leaf_tn);
     c->leaves++;
     return count != 0;
 }

@@ -55,7 +55,7 @@ void trav_grid_start(trav_walker *w, const uint32_t *mem, uint32_t grid, const f
     op_read(op, c, MEM_NODES, grid, GRID_WORDS);
 start_rays:
     for (int i = 0; i < TRACE_PACKET; i++)
-        w->at[i] = bit(w->cur.mask, i) ? grid_cell_of(w, o[i], d[i], w->cur.tn[i]) : 0;
+        w->at[i] = bit(w->cur.mask, i) ? grid_cell_of(w, o[i], d[i], f24h_lane(&w->cur.tn, i)) : 0;
 }
 
 /* A cell: each ray of the group steps to the neighbour across the nearest far plane. */

@@ -17,7 +17,15 @@
 #include "trace.h"
 
 /* l and r get the children's intervals and masks (node fields untouched); near_left bit i: ray
- * i's near child is the left one. */
+ * i's near child is the left one. The rays' origins o and directions d as the walk holds them
+ * (trav_rays_of). */
+void trav_node_split_held(const trav_entry *e, uint32_t axis, f24_t split, const trav_rays *rays, trav_entry *l,
+                          trav_entry *r, uint32_t *near_left);
+
+/* The rays by axis. */
+void trav_rays_of(trav_rays *rays, const f24_vec3 o[], const f24_vec3 d[]);
+
+/* trav_node_split_held of the rays o, d: the unit's interface for its HLS top and the benches. */
 void trav_node_split(const trav_entry *e, uint32_t axis, f24_t split, const f24_vec3 o[], const f24_vec3 d[],
                      trav_entry *l, trav_entry *r, uint32_t *near_left);
 

@@ -15,39 +15,38 @@
 #include "trace_ops.h"
 #include "trav_algo.h"
 
-void trav_restart_drop_done(const trav_walker *w, trav_entry *e)
+/* per ray 1 comparator, side by side */
+F24Q_FN uint32_t trav_restart_done(const trav_walker *w, const trav_entry *e)
 {
-    if (!w->pass)
-        return;
-done_cells:
-    for (int i = 0; i < TRACE_PACKET; i++)
-        if (bit(e->mask, i) && f24_le(e->tf[i], w->t_exit[i]))
-            e->mask &= ~(1u << i);
+    return f24q_le(f24h_get(&e->tf), f24q_of(w->t_exit));
 }
 
-void trav_restart_leaf(trav_walker *w, const trav_entry *e)
+F24Q_FN void trav_restart_leaf(trav_walker *w, const trav_entry *e)
 {
-leaf_exit: /* only a leaf that continues a ray's covered segment extends it: in a packet a ray may
-              meet its cells in another order than the first ray */
-    for (int i = 0; i < TRACE_PACKET && w->cap < TRACE_STACK; i++) /* the stack never restarts */
-        if (bit(e->mask, i) && f24_le(e->tn[i], w->t_exit[i]))
-            w->t_exit[i] = f24_max(w->t_exit[i], e->tf[i]);
+    if (w->cap >= TRACE_STACK)
+        return; /* the stack never restarts */
+    /* only a leaf that continues a ray's covered segment extends it: in a packet a ray may meet
+     * its cells in another order than the first ray */
+    const f24q t_exit = f24q_of(w->t_exit);
+    const uint32_t extends = e->mask & f24q_le(f24h_get(&e->tn), t_exit);
+    f24_t ends[TRACE_PACKET];
+    f24q_bits(f24q_max(t_exit, f24h_get(&e->tf)), ends);
+leaf_exit:
+    for (int i = 0; i < TRACE_PACKET; i++)
+        w->t_exit[i] = bit(extends, i) ? ends[i] : w->t_exit[i];
 }
 
 /* A ray is done for good when nothing is left of its interval or its closest hit lies before
  * the rest. */
-void trav_restart(trav_walker *w, const f24_t best_t[])
+F24Q_FN void trav_restart(trav_walker *w, const f24_t best_t[])
 {
     trav_entry e = w->root;
     w->lost = 0;
     w->pass++;
-restart_rays:
-    for (int i = 0; i < TRACE_PACKET; i++) {
-        e.tn[i] = f24_max(e.tn[i], w->t_exit[i]);
-        w->t_exit[i] = e.tn[i]; /* before the restart point's cell the ray has nothing left */
-        if (bit(e.mask, i) && (!f24_lt(e.tn[i], e.tf[i]) || f24_lt(best_t[i], e.tn[i])))
-            e.mask &= ~(1u << i);
-    }
+    const f24q tn = f24q_max(f24h_get(&e.tn), f24q_of(w->t_exit));
+    f24h_put(&e.tn, tn);
+    f24q_bits(tn, w->t_exit); /* before the restart point's cell the ray has nothing left */
+    e.mask &= f24q_lt(tn, f24h_get(&e.tf)) & ~f24q_lt(f24q_of(best_t), tn);
     w->root.mask = e.mask;
     w->cur = e;
     w->have_cur = e.mask != 0;

@@ -38,7 +38,7 @@ descend_rays:
     for (int i = 0; i < TRACE_PACKET; i++) {
         if (!bit(group, i))
             continue;
-        const f24_t p = cursor_point_on(o[i], d[i], w->cur.tn[i], axis);
+        const f24_t p = cursor_point_on(o[i], d[i], f24h_lane(&w->cur.tn, i), axis);
         const int left = f24_lt(p, split) || (!f24_lt(split, p) && f24_sign(axis_of(d[i], axis)));
         w->at[i] = child + (left ? 0u : 1u);
     }
@@ -58,7 +58,7 @@ leave_rays:
             far[k] = mem[rec + (f24_sign(axis_of(d[i], k)) ? k : 3 + k)] & F24_MASK;
         const uint32_t axis = cursor_cell_exit(far, o[i], d[i], &t);
         const uint32_t rope = axis < 3 ? mem[rec + 6 + 2 * axis + (f24_sign(axis_of(d[i], axis)) ? 0u : 1u)] : TRACE_NO_HIT;
-        w->stalls[i] = f24_lt(w->cur.tn[i], t) ? 0u : w->stalls[i] + 1u;
+        w->stalls[i] = f24_lt(f24h_lane(&w->cur.tn, i), t) ? 0u : w->stalls[i] + 1u;
         cursor_advance(w, i, rope, rope != TRACE_NO_HIT && w->stalls[i] <= ROPE_STALL_LIMIT, t);
     }
 }

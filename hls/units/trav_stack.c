@@ -35,15 +35,15 @@ static void walker_push(trav_walker *w, const trav_entry *far)
     w->stack[w->sp++] = *far;
 }
 
-/* An inner node: both children for the rays that need them (trav_node_split); the far side of
+/* An inner node: both children for the rays that need them (trav_node_split_held); the far side of
  * the packet's first ray waits on the stack. With push-down, a node that the whole packet
  * passes through on one side only becomes the new restart point while nothing waits. */
-static void walker_split(trav_walker *w, uint32_t w0, f24_t split, const f24_vec3 o[], const f24_vec3 d[])
+static void walker_split(trav_walker *w, uint32_t w0, f24_t split)
 {
     const uint32_t axis = w0 & 3u, child = w0 >> TRAV_NODE_CHILD_SHIFT, empty = w0 >> 2 & 3u;
     trav_entry l, r;
     uint32_t near_left;
-    trav_node_split(&w->cur, axis, split, o, d, &l, &r, &near_left);
+    trav_node_split_held(&w->cur, axis, split, &w->rays, &l, &r, &near_left);
     /* a side that is an empty leaf is not stored: no ray goes there (no step for an empty cell) */
     l.mask &= bit(empty, 0) ? 0u : 0xFu;
     r.mask &= bit(empty, 1) ? 0u : 0xFu;
@@ -79,11 +79,14 @@ first_ray:
  * by side: every lane compares, the mask keeps the entry's). */
 static F24Q_FN uint32_t entry_rays(const trav_entry *e, const f24_t best_t[], uint32_t alive)
 {
-    return e->mask & alive & ~f24q_lt(f24q_of(best_t), f24q_of(e->tn));
+    return e->mask & alive & ~f24q_lt(f24q_of(best_t), f24h_get(&e->tn));
 }
 
-int trav_stack_step(trav_walker *w, const uint32_t *mem, const f24_vec3 o[], const f24_vec3 d[], const f24_t best_t[],
-                    uint32_t alive, unit_op *op, trace_counters *c)
+/* Where each ray of the leaf at entry e enters it, for the list and rebase units. */
+static F24Q_FN void leaf_entry(trav_walker *w, const trav_entry *e) { f24h_words(&e->tn, w->leaf_tn); }
+
+int trav_stack_step(trav_walker *w, const uint32_t *mem, const f24_t best_t[], uint32_t alive, unit_op *op,
+                    trace_counters *c)
 {
     trav_entry *e = &w->cur;
     int leaf = 0;
@@ -107,15 +110,13 @@ int trav_stack_step(trav_walker *w, const uint32_t *mem, const f24_vec3 o[], con
             w->leaf_count = w0 >> 2;
             w->leaf_mask = e->mask;
             w->k = 0;
-leaf_entry:
-            for (int i = 0; i < TRACE_PACKET; i++)
-                w->leaf_tn[i] = e->tn[i];
+            leaf_entry(w, e);
             c->leaves++;
             leaf = w->leaf_count != 0;
             trav_restart_leaf(w, e);
         } else {
             c->traversal_steps++;
-            walker_split(w, w0, w1, o, d);
+            walker_split(w, w0, w1);
         }
     }
     if (!w->have_cur && w->sp > 0) {

@@ -3,6 +3,7 @@
 
 #include "trace_ops.h"
 #include "trav_algo.h"
+#include "trav_node.h"
 
 /* Slab test of the rays in mask (o, d) against a box of 6 fp24 words, the rays side by side as
  * the unit's per-ray operators are: narrows their [tn, tf] and returns the rays in mask whose
@@ -63,7 +64,7 @@ object_rays:
 
 /* The walker's state for every algorithm: the rays and their intervals at the root, the stack
  * (its capacity by algorithm: 0 for the stackless ones) and the restart state. */
-static void walker_init(trav_walker *w, uint32_t nodes, uint32_t lists, uint32_t mask, const f24_t tn[], const f24_t tf[],
+static F24Q_FN void walker_init(trav_walker *w, uint32_t nodes, uint32_t lists, uint32_t mask, const f24_t tn[], const f24_t tf[],
                         uint32_t algo)
 {
     w->nodes = nodes;
@@ -77,12 +78,11 @@ static void walker_init(trav_walker *w, uint32_t nodes, uint32_t lists, uint32_t
     w->cap = algo == TRAV_STACK ? TRACE_STACK : algo == TRAV_SHORT_STACK ? TRACE_SHORT_STACK : 0;
     w->push_down = algo == TRAV_SHORT_STACK || algo == TRAV_PUSH_DOWN;
     w->lost = w->pass = 0;
+    f24h_of(&w->cur.tn, tn);
+    f24h_of(&w->cur.tf, tf);
 walker_copy:
-    for (int i = 0; i < TRACE_PACKET; i++) {
-        w->cur.tn[i] = tn[i];
-        w->cur.tf[i] = tf[i];
+    for (int i = 0; i < TRACE_PACKET; i++)
         w->t_exit[i] = tn[i];
-    }
     w->root = w->cur;
 }
 
@@ -96,7 +96,9 @@ void trav_start(trav_walker *w, const uint32_t *mem, uint32_t asked, uint32_t ac
     if (asked >= TRAV_GRID && grid != TRACE_NO_HIT)
         algo = TRAV_GRID;
     walker_init(w, nodes, lists, mask, tn, tf, algo);
-    if (algo == TRAV_ROPES)
+    if (algo < TRAV_ROPES)
+        trav_rays_of(&w->rays, o, d); /* the stack family's splits read the rays as held */
+    else if (algo == TRAV_ROPES)
         trav_ropes_start(w);
     else if (algo == TRAV_GRID)
         trav_grid_start(w, mem, grid, o, d, op, c);
@@ -110,5 +112,5 @@ int trav_walk(trav_walker *w, const uint32_t *mem, const f24_vec3 o[], const f24
         return trav_ropes_step(w, mem, o, d, best_t, alive, op, c);
     if (w->algo == TRAV_GRID)
         return trav_grid_step(w, mem, o, d, best_t, alive, op, c);
-    return trav_stack_step(w, mem, o, d, best_t, alive, op, c);
+    return trav_stack_step(w, mem, best_t, alive, op, c);
 }

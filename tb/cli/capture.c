@@ -107,6 +107,14 @@ static void words(FILE *f, const uint32_t *w, int n)
         fprintf(f, "%s%06x", i ? " " : "", w[i]);
 }
 
+/* a held packet value (the traversal's intervals) as its fp24 words */
+static void held_words(FILE *f, const f24h *h)
+{
+    f24_t w[F24Q_LANES];
+    f24h_words(h, w);
+    words(f, w, F24Q_LANES);
+}
+
 /* The wrappers sit on every render's hot path, capturing or not: each tests this flag and
  * tail-calls either the unit or its recording path (CAPTURE_PATH: out of line, so that the
  * wrapper needs no stack frame and keeps no argument). */
@@ -137,13 +145,13 @@ static void end(FILE *f)
 f24_vec3 __real_xform_point(const f24_affine *m, f24_vec3 p);
 f24_vec3 __real_xform_vector(const f24_affine *m, f24_vec3 v);
 isect_result __real_isect_unit_rebased(const f24_triangle *m, f24_vec3x2 p, f24_t te, f24_vec3 d, f24_t tmin, f24_t tmax);
-void __real_trav_node_split(const trav_entry *e, uint32_t axis, f24_t split, const f24_vec3 o[], const f24_vec3 d[],
-                            trav_entry *l, trav_entry *r, uint32_t *near_left);
+void __real_trav_node_split_held(const trav_entry *e, uint32_t axis, f24_t split, const trav_rays *rays, trav_entry *l,
+                                 trav_entry *r, uint32_t *near_left);
 f24_vec3 __wrap_xform_point(const f24_affine *m, f24_vec3 p);
 f24_vec3 __wrap_xform_vector(const f24_affine *m, f24_vec3 v);
 isect_result __wrap_isect_unit_rebased(const f24_triangle *m, f24_vec3x2 p, f24_t te, f24_vec3 d, f24_t tmin, f24_t tmax);
-void __wrap_trav_node_split(const trav_entry *e, uint32_t axis, f24_t split, const f24_vec3 o[], const f24_vec3 d[],
-                            trav_entry *l, trav_entry *r, uint32_t *near_left);
+void __wrap_trav_node_split_held(const trav_entry *e, uint32_t axis, f24_t split, const trav_rays *rays, trav_entry *l,
+                                 trav_entry *r, uint32_t *near_left);
 
 static void record_xform(const f24_affine *m, f24_vec3 v, uint32_t point, f24_vec3 r)
 {
@@ -289,41 +297,49 @@ void __wrap_isect_unit_packet(const f24_triangle *m, uint32_t need, const f24_ve
         __real_isect_unit_packet(m, need, p, te, d, tmin, tmax, r);
 }
 
-CAPTURE_PATH void captured_trav(const trav_entry *e, uint32_t axis, f24_t split, const f24_vec3 o[], const f24_vec3 d[],
-                                trav_entry *l, trav_entry *r, uint32_t *near_left)
+/* the rays' components by axis as fp24 words, ray by ray */
+static void held_rays(FILE *f, const f24h v[3])
 {
-    __real_trav_node_split(e, axis, split, o, d, l, r, near_left);
+    f24_t c[3][TRACE_PACKET];
+    for (int k = 0; k < 3; k++)
+        f24h_words(&v[k], c[k]);
+    for (int i = 0; i < TRACE_PACKET; i++)
+        fprintf(f, " %06x %06x %06x", c[0][i], c[1][i], c[2][i]);
+}
+
+CAPTURE_PATH void captured_trav(const trav_entry *e, uint32_t axis, f24_t split, const trav_rays *rays, trav_entry *l,
+                                trav_entry *r, uint32_t *near_left)
+{
+    __real_trav_node_split_held(e, axis, split, rays, l, r, near_left);
     FILE *f = begin(CAP_TRAV);
     if (!f)
         return;
     const uint32_t head[3] = { axis, split, e->mask };
     words(f, head, 3);
-    for (int i = 0; i < TRACE_PACKET; i++)
-        fprintf(f, " %06x %06x %06x", o[i].x, o[i].y, o[i].z);
-    for (int i = 0; i < TRACE_PACKET; i++)
-        fprintf(f, " %06x %06x %06x", d[i].x, d[i].y, d[i].z);
+    held_rays(f, rays->o);
+    held_rays(f, rays->d);
     fputc(' ', f);
-    words(f, e->tn, TRACE_PACKET);
+    held_words(f, &e->tn);
     fputc(' ', f);
-    words(f, e->tf, TRACE_PACKET);
+    held_words(f, &e->tf);
     fprintf(f, " %06x %06x %06x ", l->mask, r->mask, *near_left);
-    words(f, l->tn, TRACE_PACKET);
+    held_words(f, &l->tn);
     fputc(' ', f);
-    words(f, l->tf, TRACE_PACKET);
+    held_words(f, &l->tf);
     fputc(' ', f);
-    words(f, r->tn, TRACE_PACKET);
+    held_words(f, &r->tn);
     fputc(' ', f);
-    words(f, r->tf, TRACE_PACKET);
+    held_words(f, &r->tf);
     end(f);
 }
 
-void __wrap_trav_node_split(const trav_entry *e, uint32_t axis, f24_t split, const f24_vec3 o[], const f24_vec3 d[],
-                            trav_entry *l, trav_entry *r, uint32_t *near_left)
+void __wrap_trav_node_split_held(const trav_entry *e, uint32_t axis, f24_t split, const trav_rays *rays, trav_entry *l,
+                                 trav_entry *r, uint32_t *near_left)
 {
     if (capturing())
-        captured_trav(e, axis, split, o, d, l, r, near_left);
+        captured_trav(e, axis, split, rays, l, r, near_left);
     else
-        __real_trav_node_split(e, axis, split, o, d, l, r, near_left);
+        __real_trav_node_split_held(e, axis, split, rays, l, r, near_left);
 }
 
 /* ---- list unit: list_unit_entry and list_mailboxes_clear, per trace_state ---- */
@@ -838,7 +854,7 @@ static void vec_words(uint32_t out[12], const f24_vec3 v[])
 }
 
 static void record_trav(const char *base, uint32_t level, const trav_cap_in *in, uint32_t ret, const trav_walker *w,
-                        uint32_t leaf, const trav_entry *out)
+                        uint32_t leaf, uint32_t node, uint32_t mask, const f24_t tn[4], const f24_t tf[4])
 {
     FILE *f = begin(CAP_TRAV_UNIT);
     if (!f)
@@ -858,10 +874,10 @@ static void record_trav(const char *base, uint32_t level, const trav_cap_in *in,
     fprintf(f, " %x %x %x %x %x %x %x", in->mask, in->nodes, in->algo, in->read[0], in->read[1], in->read[2], ret);
     fprintf(f, " %x %x %x %x %x ", w->have_cur, leaf, w->leaf_first, w->leaf_count, w->leaf_mask);
     words(f, w->leaf_tn, 4);
-    fprintf(f, " %x %x %x ", w->sp, out->node, out->mask);
-    words(f, out->tn, 4);
+    fprintf(f, " %x %x %x ", w->sp, node, mask);
+    words(f, tn, 4);
     fputc(' ', f);
-    words(f, out->tf, 4);
+    words(f, tf, 4);
     fprintf(f, " %x %x", w->lost, w->pass);
     end(f);
 }
@@ -876,11 +892,8 @@ CAPTURE_PATH uint32_t captured_scene_clip(const uint32_t *bounds, const ray_pack
     vec_words(in.d, rays->d);
     memcpy(in.tn, rays->tmin, sizeof in.tn);
     memcpy(in.tf, rays->tmax, sizeof in.tf);
-    trav_entry out = { .mask = mask };
-    memcpy(out.tn, tn, sizeof out.tn);
-    memcpy(out.tf, tf, sizeof out.tf);
     const trav_walker none = { 0 };
-    record_trav((const char *)rays - offsetof(trace_state, rays), 0, &in, mask, &none, 0, &out);
+    record_trav((const char *)rays - offsetof(trace_state, rays), 0, &in, mask, &none, 0, 0, mask, tn, tf);
     return mask;
 }
 
@@ -895,12 +908,19 @@ CAPTURE_PATH uint32_t captured_object_clip(const uint32_t *bounds, const f24_vec
     vec_words(in.d, d);
     for (int i = 0; i < TRACE_PACKET; i++) /* the rays outside need: not read by the unit */
         in.tn[i] = need >> i & 1u ? tmin[i] : 0, in.tf[i] = need >> i & 1u ? best_t[i] : 0;
-    trav_entry out = { .mask = mask };
-    memcpy(out.tn, tn, sizeof out.tn);
-    memcpy(out.tf, tf, sizeof out.tf);
     const trav_walker none = { 0 };
-    record_trav((const char *)o - offsetof(trace_state, o), 1, &in, mask, &none, 0, &out);
+    record_trav((const char *)o - offsetof(trace_state, o), 1, &in, mask, &none, 0, 0, mask, tn, tf);
     return mask;
+}
+
+/* record_trav after an operation of walker w, its current entry as the result */
+static void record_walker(const char *base, uint32_t level, const trav_cap_in *in, uint32_t ret, const trav_walker *w,
+                          uint32_t leaf)
+{
+    f24_t tn[TRACE_PACKET], tf[TRACE_PACKET];
+    f24h_words(&w->cur.tn, tn);
+    f24h_words(&w->cur.tf, tf);
+    record_trav(base, level, in, ret, w, leaf, w->cur.node, w->cur.mask, tn, tf);
 }
 
 /* The trace_state and level of walker w: level 1 if that state is known, else level 0. */
@@ -925,7 +945,7 @@ CAPTURE_PATH void captured_start(trav_walker *w, const uint32_t *mem, uint32_t a
     memcpy(in.tf, tf, sizeof in.tf);
     uint32_t level;
     const char *base = walker_base(w, &level);
-    record_trav(base, level, &in, 0, w, 0, &w->cur);
+    record_walker(base, level, &in, 0, w, 0);
 }
 
 CAPTURE_PATH int captured_walk(trav_walker *w, const uint32_t *mem, const f24_vec3 o[], const f24_vec3 d[],
@@ -944,7 +964,7 @@ CAPTURE_PATH int captured_walk(trav_walker *w, const uint32_t *mem, const f24_ve
         }
     uint32_t level;
     const char *base = walker_base(w, &level);
-    record_trav(base, level, &in, (uint32_t)ret, w, c->leaves != leaves, &w->cur);
+    record_walker(base, level, &in, (uint32_t)ret, w, c->leaves != leaves);
     return ret;
 }
 

@@ -42,7 +42,7 @@
  * rgs_spawn_children: the material's words 13..15, the ray's weight, e, the T_R origin, D^, N^,
  * t_hat, entering, tint, base; the reflection and the transmission ray's o, d, weight, active bit).
  * The hls/ units are not touched: the program is linked with --wrap for xform_point, xform_vector,
- * isect_unit_rebased, isect_unit_packet (recorded ray by ray), trav_node_split, list_unit_entry,
+ * isect_unit_rebased, isect_unit_packet (recorded ray by ray), trav_node_split_held, list_unit_entry,
  * list_mailboxes_clear, mem_iface_read, mem_iface_flush, mem_iface_new_frame, rgs_block_begin,
  * rebase_origin, xform_point_wide, xform_vector_wide (called from trace.c, in another object),
  * trav_scene_clip, trav_object_clip, trav_start, trav_walk, trace_begin, trace_step,

@@ -256,6 +256,11 @@ static inline uint32_t f24w_sign(f24w a) { return __builtin_signbit(a) != 0; }
 #ifdef F24_SIM_LANES /* the packet values of hls/fp24/f24.h are the vectors above */
 typedef f24v f24q;
 #define F24Q_FN F24V_FN
+#define F24Q_INLINE F24V_INLINE
+/* held in the units' state (f24h): at 8-byte alignment, as the words were, so that the states'
+ * layout needs no 32-byte alignment (their memory may come from malloc) */
+#define F24_SIM_HELD
+typedef f24v f24h __attribute__((aligned(8)));
 #define f24q_of f24v_of
 #define f24q_splat f24v_splat
 #define f24q_bits f24v_bits

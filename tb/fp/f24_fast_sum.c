@@ -244,40 +244,22 @@ static inline __attribute__((always_inline)) f24v_i dd_lanes(const f24v p[], uin
     return exact & (s - s == 0);
 }
 
-/* f24_fast_sum_exact of the four lanes at once (n <= F24_SUM_TERMS): f24_fast_sum_filter on
- * vectors, the products summed in order, then for the lanes it cannot decide (cancellation: the
- * plane distance of isect_unit.c) the double-double path on vectors; a lane neither decides goes
- * to f24_fast_sum_exact alone. Inlined into f24_fast_sum_exact_lanes once per term count of the
- * units, so that the loops over the terms unroll and the products stay in registers. */
-static inline __attribute__((always_inline)) void sum_lanes(const f24v a[], const f24v b[], uint32_t n,
-                                                            f24_t hi[F24Q_LANES], f24_t lo[F24Q_LANES])
+/* The lanes the filter of sum_lanes left undecided (ok 0): the double-double path on vectors, a
+ * lane it cannot decide either f24_fast_sum_exact alone. Out of line, its vectors passed by
+ * address: the common case needs none of its stack. */
+static F24V_FN __attribute__((noinline)) void undecided_lanes(const f24v a[], const f24v b[], uint32_t n,
+                                                              const f24v_i *window, const f24v_i *ok,
+                                                              f24_t hi[F24Q_LANES], f24_t lo[F24Q_LANES])
 {
-    const f24v zero = { 0, 0, 0, 0 }, inf = zero + __builtin_inf();
-    f24v sum = -zero, mass = zero, least = inf; /* -0: -0 only if all products are -0 */
     f24v p[F24_SUM_TERMS];
-    for (uint32_t k = 0; k < n; k++) {
+    for (uint32_t k = 0; k < n; k++)
         p[k] = a[k] * b[k]; /* exact */
-        const f24v m = abs_lanes(p[k]);
-        sum += p[k];
-        mass += m;
-        least = (f24v)f24v_select((m != 0) & (m < least), (f24v_i)m, (f24v_i)least);
-    }
-    const f24v_i window = mass < least * window_reach, exact = mass < least * __builtin_ldexp(1.0, 50 - 2 * F24_MAN_BITS);
-    const f24v err = (f24v)((f24v_i)(mass * (double)n * 0x1p-50) & ~exact);
-    const f24v hi_d = f24v_round(sum), rest = sum - hi_d; /* exact: |s - hi| <= ulp(hi) / 2 */
-    const f24v_i hi_special = (hi_d == 0) | (abs_lanes(hi_d) == inf); /* flushed (or zero) or overflowed: lo = 0 */
-    const f24v_i ok = window & rounds_alike_lanes(sum, margin_lanes(sum, err, ~exact)) &
-                      (hi_special | rounds_alike_lanes(rest, margin_lanes(rest, err, ~exact))) & (n > 0 ? -1ll : 0);
-    f24v_bits(sum, hi);
-    f24v_bits((f24v)((f24v_i)rest & ~(hi_special | (rest == 0))), lo);
-    if (n > 0 && (ok[0] & ok[1] & ok[2] & ok[3]) != 0)
-        return; /* the common case: every lane decided */
     f24v_i dd = { 0, 0, 0, 0 };
     f24_t dd_hi[F24Q_LANES], dd_lo[F24Q_LANES];
     if (n > 0)
-        dd = window & dd_lanes(p, n, dd_hi, dd_lo);
+        dd = *window & dd_lanes(p, n, dd_hi, dd_lo);
     for (int i = 0; i < F24Q_LANES; i++) {
-        if (ok[i])
+        if ((*ok)[i])
             continue;
         if (dd[i]) {
             hi[i] = dd_hi[i];
@@ -293,6 +275,36 @@ static inline __attribute__((always_inline)) void sum_lanes(const f24v a[], cons
         hi[i] = r.hi;
         lo[i] = r.lo;
     }
+}
+
+/* f24_fast_sum_exact of the four lanes at once (n <= F24_SUM_TERMS): f24_fast_sum_filter on
+ * vectors, the products summed in order, then for the lanes it cannot decide (cancellation: the
+ * plane distance of isect_unit.c) the double-double path on vectors; a lane neither decides goes
+ * to f24_fast_sum_exact alone (undecided_lanes). Inlined into f24_fast_sum_exact_lanes once per term
+ * count of the units, so that the loops over the terms unroll and the products stay in registers. */
+static inline __attribute__((always_inline)) void sum_lanes(const f24v a[], const f24v b[], uint32_t n,
+                                                            f24_t hi[F24Q_LANES], f24_t lo[F24Q_LANES])
+{
+    const f24v zero = { 0, 0, 0, 0 }, inf = zero + __builtin_inf();
+    f24v sum = -zero, mass = zero, least = inf; /* -0: -0 only if all products are -0 */
+    for (uint32_t k = 0; k < n; k++) {
+        const f24v p = a[k] * b[k]; /* exact */
+        const f24v m = abs_lanes(p);
+        sum += p;
+        mass += m;
+        least = (f24v)f24v_select((m != 0) & (m < least), (f24v_i)m, (f24v_i)least);
+    }
+    const f24v_i window = mass < least * window_reach, exact = mass < least * __builtin_ldexp(1.0, 50 - 2 * F24_MAN_BITS);
+    const f24v err = (f24v)((f24v_i)(mass * (double)n * 0x1p-50) & ~exact);
+    const f24v hi_d = f24v_round(sum), rest = sum - hi_d; /* exact: |s - hi| <= ulp(hi) / 2 */
+    const f24v_i hi_special = (hi_d == 0) | (abs_lanes(hi_d) == inf); /* flushed (or zero) or overflowed: lo = 0 */
+    const f24v_i ok = window & rounds_alike_lanes(sum, margin_lanes(sum, err, ~exact)) &
+                      (hi_special | rounds_alike_lanes(rest, margin_lanes(rest, err, ~exact))) & (n > 0 ? -1ll : 0);
+    f24v_bits(sum, hi);
+    f24v_bits((f24v)((f24v_i)rest & ~(hi_special | (rest == 0))), lo);
+    if (n > 0 && (ok[0] & ok[1] & ok[2] & ok[3]) != 0)
+        return; /* the common case: every lane decided */
+    undecided_lanes(a, b, n, &window, &ok, hi, lo);
 }
 
 /* the term counts of the units: a vector's 3 and a point's 8 (xform_unit.c), the rebase's 4
