@@ -39,9 +39,9 @@
 //   A  input: taken unless an operation of the same thread and level is in flight (a bit per
 //      {thread, level}; in the DynRTP a thread has one operation in flight anyway) or SLOTS are;
 //      a start's state is walker_init's, a clip's intervals trav_object_clip's. A start leaves
-//      here: it reads no node and compares nothing, so its state and result are written at once
-//      (in this cycle, or from a one-entry buffer in the first cycle Z writes none; nothing enters
-//      while that buffer is full, so the pipeline drains and the start cannot starve)
+//      here: it reads no node and compares nothing, so its state and result are written from a
+//      one-entry buffer in the next cycle in which Z writes none (nothing enters while that buffer
+//      is full, so the pipeline drains and the start cannot starve)
 //   B  walker state read; C  the stack's top two entries; the prune comparators of the current
 //      entry and of the top one (best_t < tn), the restart's max(tn, t_exit), tn < tf and
 //      best_t < tn, computed ahead in case the step ends in a restart (2 CMP stages, 20
@@ -63,8 +63,8 @@
 // comes round, a node read waits or a start bypasses the pipeline. No stage stalls: the queues
 // hold every operation in flight.
 // Latency at the defaults (trav_node NODE = 21, CMP = 2), memory answering in the cycle after the
-// request, nothing competing: walk step 38 (leaf, inner node or none), start 1 (its result in the
-// output queue's next cycle; 36 when it went down the pipeline), clip 146 (6 x 22 through
+// request, nothing competing: walk step 38 (leaf, inner node or none), start 2 (36 when it went
+// down the pipeline), clip 146 (6 x 22 through
 // trav_node). Throughput: one operation per cycle at the input; trav_node takes one slot
 // per cycle, a clip 6 of them: on the captured room frame (48x32, 64 threads, rtl/tb/tb_trav.cpp;
 // make build/rtl/e7m16/tb_trav; build/rtl/e7m16/tb_trav -n 0 --capture DIR, 2026-11-25)
@@ -613,21 +613,20 @@ module trav_unit #(
   end
 
   // ---- a start bypasses the pipeline: it reads no node and compares nothing, its walker state
-  // (walker_init's, made at A) and its result are all there as it enters. It writes them in the
-  // cycle it is taken unless the pipeline's end (Z4) writes that cycle, else from sb (one entry)
-  // in the first cycle Z4 does not; while sb is full nothing enters (ready_o), so Z4 runs dry.
-  // The busy bit of its {thread, level} keeps the next operation of that walk out until the
-  // result has left, so that operation reads the state the start wrote.
-  logic a_start, s_go;
-  logic [CXW-1:0] sb_cx, s_cx;
-  assign a_start = take && kind_i == K_START;
-  assign s_go = (sb_valid || a_start) && !z4_valid;
-  assign s_cx = sb_valid ? sb_cx : a_cx;
+  // (walker_init's, made at A) and its result are all there as it enters. It goes into sb (one
+  // entry, a register, so that the state memory's and the output queue's write enables come from
+  // registers) and writes them from there in the first cycle the pipeline's end (Z4) does not;
+  // while sb is full nothing enters (ready_o), so Z4 runs dry. The busy bit of its {thread,
+  // level} keeps the next operation of that walk out until the result has left, so that
+  // operation reads the state the start wrote.
+  logic s_go;
+  logic [CXW-1:0] sb_cx;
+  assign s_go = sb_valid && !z4_valid;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) sb_valid <= 1'b0;
-    else sb_valid <= (sb_valid || a_start) && z4_valid;
+    else sb_valid <= (take && kind_i == K_START) || (sb_valid && z4_valid);
   end
-  always_ff @(posedge clk_i) if (a_start) sb_cx <= a_cx;
+  always_ff @(posedge clk_i) if (take && kind_i == K_START) sb_cx <= a_cx;
 
   // ---- the result: the walker state written back (a walk's at Z4, a start's from A or sb), the
   // result into the output queue (results leave in the order they are made: operations of
@@ -635,7 +634,7 @@ module trav_unit #(
   localparam int RW = IW + 2 + ENW + 3 + 64 + 4 + 4 * W + SPW + 2;
   logic [RW-1:0] out_d, out_q;
   logic [CXW-1:0] r_cx;          // the context whose result is written: Z4's, else the start's
-  assign r_cx = z4_valid ? z4x : s_cx;
+  assign r_cx = z4_valid ? z4x : sb_cx;
   assign st_we = (z4_valid && z4_cx[O_KIND + 1]) || s_go;
   assign st_wa = r_cx[O_IDX +: IW];
   assign st_wd = r_cx[O_ST +: STW];
