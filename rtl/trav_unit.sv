@@ -72,10 +72,13 @@
 // down the pipeline; bound from trav_node's slots: 1.50; the operation contexts it
 // replaced: 10.28 with 4 of them, 1.56 with 32).
 // Resources (synth_xilinx at e7m16, THREADS = 64, DEPTH = 64, SLOTS = 64; scripts/synth.py's
-// flow, python3 scripts/synth.py --redo x:trav_unit:e7m16, 2026-11-25):
-// 15839 LUT6 (+ 849 RAM64M of LUT RAM: the queues, 3396 LUTs), 3961 SRL, 24873 flip-flops,
-// 0 DSP48E1, 120 RAMB18 (the walker states and the two stack banks), 1283 CARRY4; 8 LUT6 levels
-// (the goal: at most 8; the unit of CTX = 4 contexts it replaced: 31180 LUT6, 18725 flip-flops, 11).
+// flow, python3 scripts/synth.py --redo x:trav_unit:e7m16, 2026-11-25; with the start's bypass
+// scripts/synth.py's xilinx('trav_unit', 7, 16)): 16144 LUT6 (+ 849 RAM64M of LUT RAM: the
+// queues, 3396 LUTs), 3961 SRL, 25204 flip-flops, 0 DSP48E1, 120 RAMB18 (the walker states and
+// the two stack banks), 1283 CARRY4; 8 LUT6 levels (the goal: at most 8; before the bypass 15839
+// LUT6 and 24873 flip-flops, 8 levels; a bypass writing the start in the cycle it is taken had
+// 11, the write enables then depending on the input's handshake; the unit of CTX = 4 contexts it
+// replaced: 31180 LUT6, 18725 flip-flops, 11).
 // Handshake: valid/ready at the operation input, the result output and the node read request
 // (node_thread_o, node_level_o: whose node); the node response (node_rsp_valid_i with w0, w1) is
 // taken when it comes, in request order.
