@@ -64,9 +64,8 @@
 // hold every operation in flight.
 // Latency at the defaults (trav_node NODE = 21, CMP = 2), memory answering in the cycle after the
 // request, nothing competing: walk step 38 (leaf, inner node or none), start 2 (36 when it went
-// down the pipeline), clip 146 (6 x 22 through
-// trav_node). Throughput: one operation per cycle at the input; trav_node takes one slot
-// per cycle, a clip 6 of them: on the captured room frame (48x32, 64 threads, rtl/tb/tb_trav.cpp;
+// down the pipeline), clip 146 (6 x 22 through trav_node). Throughput: one operation per cycle at
+// the input; trav_node takes one slot per cycle, a clip 6 of them: on the captured room frame (48x32, 64 threads, rtl/tb/tb_trav.cpp;
 // make build/rtl/e7m16/tb_trav; build/rtl/e7m16/tb_trav -n 0 --capture DIR, 2026-11-25)
 // 1.71 cycles per operation, a start 2.9 from offer to result (1.77 and 62.8 when starts went
 // down the pipeline; bound from trav_node's slots: 1.50; the operation contexts it
@@ -631,9 +630,10 @@ module trav_unit #(
   end
   always_ff @(posedge clk_i) if (take && kind_i == K_START) sb_cx <= a_cx;
 
-  // ---- the result: the walker state written back (a walk's at Z4, a start's from A or sb), the
+  // ---- the result: the walker state written back (a walk's at Z4, a start's from sb), the
   // result into the output queue (results leave in the order they are made: operations of
-  // different threads overtake each other where a clip comes round or a node read waits)
+  // different threads overtake each other where a clip comes round, a node read waits or a start
+  // bypasses the pipeline)
   localparam int RW = IW + 2 + ENW + 3 + 64 + 4 + 4 * W + SPW + 2;
   logic [RW-1:0] out_d, out_q;
   logic [CXW-1:0] r_cx;          // the context whose result is written: Z4's, else the start's
