@@ -67,7 +67,7 @@
 // down the pipeline), clip 146 (6 x 22 through trav_node). Throughput: one operation per cycle at
 // the input; trav_node takes one slot per cycle, a clip 6 of them: on the captured room frame (48x32, 64 threads, rtl/tb/tb_trav.cpp;
 // make build/rtl/e7m16/tb_trav; build/rtl/e7m16/tb_trav -n 0 --capture DIR, 2026-11-25)
-// 1.71 cycles per operation, a start 2.9 from offer to result (1.77 and 62.8 when starts went
+// 1.72 cycles per operation, a start 3.9 from offer to result (1.77 and 62.8 when starts went
 // down the pipeline; bound from trav_node's slots: 1.50; the operation contexts it
 // replaced: 10.28 with 4 of them, 1.56 with 32).
 // Resources (synth_xilinx at e7m16, THREADS = 64, DEPTH = 64, SLOTS = 64; scripts/synth.py's
