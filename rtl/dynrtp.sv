@@ -30,8 +30,8 @@
 // cycle model: at once); the RGS's reads are word by word (the cycle model: by records).
 // Counters (the usage counted inside the RTL): cycles_o counts the cycles from the frame taken at
 // frame_valid_i until frame_done_o (the last block's pixels taken); issues_o per unit of
-// trace_core the operations issued in that time (thread_sched: trav, list, rebase, wide, xform,
-// isect, add, sum, 64 bits each); packets_o the packets traced; reads_o per cache the reads it
+// trace_core the operations issued in that time (thread_sched: trav, list, rebase, wide, isect
+// (isect_rebased: a triangle's transformation and test), add, 64 bits each); packets_o the packets traced; reads_o per cache the reads it
 // took (kd nodes, list entries, descriptor responses of RW words, shading words).
 // Latency and throughput: tile_ctrl 1 block per cycle; rgs_ctrl a block per its sequence
 // (rtl/README.md), RGS_BLOCKS at once; the core's; the memory port 1 transfer per cycle.
@@ -112,7 +112,7 @@ module dynrtp #(
   input  logic [DW-1:0]          mem_rsp_data_i,
   // counters
   output logic [63:0]            cycles_o,
-  output logic [8*64-1:0]        issues_o,
+  output logic [6*64-1:0]        issues_o,
   output logic [63:0]            packets_o,
   output logic [4*64-1:0]        reads_o
 );
@@ -220,7 +220,7 @@ module dynrtp #(
   logic [31:0] word_addr, node_addr, list_addr, list_data;
   logic [32*RW-1:0] word_data;
   logic [63:0] node_data;
-  logic [7:0] issue;
+  logic [5:0] issue;
   logic hits_taken;
   always_comb begin
     hits_taken = 1'b0;
@@ -340,7 +340,7 @@ module dynrtp #(
       end else if (running) begin
         running <= !frame_done_o;
         cycles_o <= cycles_o + 64'd1;
-        for (int u = 0; u < 8; u++) issues_o[64*u +: 64] <= issues_o[64*u +: 64] + 64'(issue[u]);
+        for (int u = 0; u < 6; u++) issues_o[64*u +: 64] <= issues_o[64*u +: 64] + 64'(issue[u]);
         packets_o <= packets_o + 64'(valid_o && hits_taken);
         reads_o[0 +: 64] <= reads_o[0 +: 64] + 64'(node_req && node_ready);
         reads_o[64 +: 64] <= reads_o[64 +: 64] + 64'(lreq_q && lreq_ready);

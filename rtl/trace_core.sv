@@ -2,9 +2,8 @@
 // threads (trace_thread: each one packet's state and the FSM of hls/units/trace.c's trace_step)
 // share the units that have RTL: trav_unit (clips, walk start, walk steps; the stacks of every
 // thread and level), list_unit (the mailboxes), rebase_unit, xform_wide (instances, path d),
-// xform_unit (triangle directions, path e; rows 0 and 1 of the intersection's origin path), 3
-// f24_add (the origin's offset from the vertex, the relative distances, best_t = t0 + t), an
-// f24_sum_exact of 9 terms (the plane distance) and isect_unit. A packet of 4 rays enters a free
+// isect_rebased (a triangle's transformation, origin path, intersection and best_t = t0 + t, path
+// e) and 2 f24_add (the relative distances). A packet of 4 rays enters a free
 // thread with its TRACE_* flags (TRACE_SKIP_TOP, TRACE_ANY_HIT for shadow packets,
 // TRACE_IDENTITY) and leaves with its 4 closest (or any) hits and its trace_counters, bit for bit
 // those of trace_begin + trace_step to TP_DONE. The traversal algorithm is TRAV_STACK only (the
@@ -16,8 +15,7 @@
 // slots holds the unit for its thread s cycles, one ray step a cycle (feed_left, feed_thread), as
 // the cycle model charges an operation of n rays n issue slots. Each unit takes one step per
 // cycle, so steps of different threads are in flight in every unit at once; the units without a
-// thread id of their own (rebase, wide and narrow transformation, adders, exact sum,
-// intersection) carry the issued thread beside their pipeline in an f24_pipe of their latency
+// thread id of their own (rebase, wide transformation, the triangle test, adders) carry the issued thread beside their pipeline in an f24_pipe of their latency
 // (their outputs are always taken, so the latency is fixed). Results go to their thread alone, in
 // the order its steps went in.
 // Memory: the header's fields (the instance count, the region table's addresses, the scene bounds)
@@ -32,11 +30,12 @@
 // Latency: per packet the sum of its operations' unit latencies, waits and reads (rtl/tb/tb_core.cpp
 // reports cycles per packet and the operations in flight; a record read is one or two responses,
 // the header's read once per image HDR_RSP); measured (tb_core --capture of cornell 32x24's 327
-// packets, 2 shared AMD EPYC cores, 2026-11-25): 8 threads 64,680 cycles, 197.8 per packet
-// (91,517 and 279.9 when each thread ran its rays one after another), 1 thread (--threads 1)
-// 390,875, 1195.3 per packet (704,541 and 2154.6); throughput: up to one ray step per unit and
+// packets, 2 shared AMD EPYC cores, 2026-11-25): 8 threads 52,844 cycles, 161.6 per packet
+// (58,491 and 178.9 with the triangle as six batches on shared operators and the traversal
+// unit's starts down its pipeline, 55,684 and 170.3 with the starts bypassing it), 1 thread
+// (--threads 1) 415,578, 1270.9 per packet (459,070 and 1403.9; 436,985 and 1336.3); throughput: up to one ray step per unit and
 // cycle, one word port request per cycle, THREADS packets in flight.
-// Resources: the units' (rtl/README.md), thread_sched (8 units, 4-bit slot counters), per unit a
+// Resources: the units' (rtl/README.md), thread_sched (6 units, 4-bit slot counters), per unit a
 // 4-bit feed counter and a thread id, THREADS trace_thread (each 5718
 // LUTs and 6183 flip-flops with synth_xilinx at e7m16 before its header and 20 buffer words came
 // out: its state in registers), the header's fields (5 words and the 6 W-bit bounds, once), the
@@ -103,14 +102,18 @@ module trace_core #(
   input  logic [31:0]                 list_rdata_i,
   input  logic                        list_rvalid_i, // list_rdata_i holds the last read's word
   // the units' issues this cycle (thread_sched: trav, list, rebase, wide, xform, isect, add, sum)
-  output logic [7:0]                  issue_o
+  output logic [5:0]                  issue_o
 );
   localparam int W = 1 + E + M;
   localparam int TW = $clog2(THREADS);
-  localparam int UNITS = 8;
-  localparam int U_TRAV = 0, U_LIST = 1, U_RB = 2, U_XW = 3, U_XF = 4, U_IS = 5, U_ADD = 6, U_SUM = 7;
+  localparam int UNITS = 6;
+  localparam int U_TRAV = 0, U_LIST = 1, U_RB = 2, U_XW = 3, U_IS = 4, U_ADD = 5;
   localparam int XF_LATENCY = MUL_STAGES + 3 * ADD_STAGES;
   localparam int IS_LATENCY = DIV_STAGES + MUL_STAGES + 2 * ADD_STAGES + CMP_STAGES;
+  // isect_rebased's (its header): the origin's rows and plane distance meet, then the test, t0 + t
+  localparam int TRI_JOIN = 2 * ADD_STAGES + XF_LATENCY > ADD_STAGES + SUM_STAGES ?
+                            2 * ADD_STAGES + XF_LATENCY : ADD_STAGES + SUM_STAGES;
+  localparam int TRI_LATENCY = TRI_JOIN + IS_LATENCY + ADD_STAGES;
   if (THREADS < 2) begin : g_threads_check
     $error("trace_core: THREADS >= 2 (the units index their state by a thread id of $clog2(THREADS) bits)");
   end
@@ -129,26 +132,27 @@ module trace_core #(
   logic [UNITS*THREADS-1:0] set;
   // operands per thread
   logic [1:0] t_trav_kind [THREADS];
-  logic [THREADS-1:0] t_trav_level, t_list_level, t_list_clear, t_xw_point, t_add_sub;
+  logic [THREADS-1:0] t_trav_level, t_list_level, t_list_clear, t_xw_point;
   logic [4*3*W-1:0] t_trav_o [THREADS], t_trav_d [THREADS];
   logic [4*W-1:0] t_trav_tn [THREADS], t_trav_tf [THREADS], t_trav_best [THREADS];
   logic [3:0] t_trav_mask [THREADS], t_list_leaf_mask [THREADS], t_list_alive [THREADS];
   logic [6*W-1:0] t_trav_box [THREADS];
   logic [31:0] t_trav_nodes [THREADS], t_list_lists [THREADS], t_list_first [THREADS], t_list_k [THREADS];
   logic [3*W-1:0] t_rb_o_hi [THREADS], t_rb_o_lo [THREADS], t_rb_d_hi [THREADS], t_rb_d_lo [THREADS];
-  logic [W-1:0] t_rb_t [THREADS], t_is_te [THREADS], t_is_tmin [THREADS], t_is_tmax [THREADS];
-  logic [12*W-1:0] t_xw_m [THREADS], t_xf_m [THREADS];
-  logic [3*W-1:0] t_xw_tlo [THREADS], t_xw_p_hi [THREADS], t_xw_p_lo [THREADS], t_xf_v [THREADS];
-  logic [3*W-1:0] t_is_o [THREADS], t_is_d [THREADS], t_add_a [THREADS], t_add_b [THREADS];
+  logic [W-1:0] t_rb_t [THREADS], t_is_te [THREADS], t_is_tmin [THREADS], t_is_tmax [THREADS], t_is_t0 [THREADS];
+  logic [12*W-1:0] t_xw_m [THREADS], t_is_m [THREADS];
+  logic [3*W-1:0] t_xw_tlo [THREADS], t_xw_p_hi [THREADS], t_xw_p_lo [THREADS];
+  logic [3*W-1:0] t_is_c_lo [THREADS], t_is_p_hi [THREADS], t_is_p_lo [THREADS], t_is_d [THREADS];
+  logic [2*W-1:0] t_add_a [THREADS], t_add_b [THREADS];
   logic [2:0] t_is_shared [THREADS];
-  logic [9*W-1:0] t_sum_a [THREADS], t_sum_b [THREADS];
   // the units' results (to every thread; done says whose)
   logic [3:0] trav_mask, trav_leaf_mask, list_need, list_skip;
   logic [4*W-1:0] trav_tn, trav_tf, trav_leaf_tn;
   logic trav_have_cur, trav_leaf, is_hit;
   logic [31:0] trav_leaf_first, trav_leaf_count, list_key, list_k;
-  logic [3*W-1:0] rb_p_hi, rb_p_lo, xw_hi, xw_lo, xf_r, add_r;
-  logic [W-1:0] rb_te, is_t, is_u, is_v, is_cos, sum_hi;
+  logic [3*W-1:0] rb_p_hi, rb_p_lo, xw_hi, xw_lo;
+  logic [2*W-1:0] add_r;
+  logic [W-1:0] rb_te, is_t, is_u, is_v, is_cos, is_t_world;
   // the word port: this cycle's request (the header's load, hdr_req, or thread word_sel), the
   // requester of the oldest response (word_head; its top bit the header's load)
   logic hdr_req, word_take;
@@ -191,15 +195,13 @@ module trace_core #(
       .xw_req_o(req[U_XW][t]), .xw_grant_i(grant[U_XW][t]), .xw_m_o(t_xw_m[t]), .xw_tlo_o(t_xw_tlo[t]),
       .xw_p_hi_o(t_xw_p_hi[t]), .xw_p_lo_o(t_xw_p_lo[t]), .xw_point_o(t_xw_point[t]), .xw_done_i(done[U_XW][t]),
       .xw_hi_i(xw_hi), .xw_lo_i(xw_lo),
-      .xf_req_o(req[U_XF][t]), .xf_grant_i(grant[U_XF][t]), .xf_m_o(t_xf_m[t]), .xf_v_o(t_xf_v[t]),
-      .xf_done_i(done[U_XF][t]), .xf_r_i(xf_r),
-      .is_req_o(req[U_IS][t]), .is_grant_i(grant[U_IS][t]), .is_o_o(t_is_o[t]), .is_d_o(t_is_d[t]),
-      .is_te_o(t_is_te[t]), .is_tmin_o(t_is_tmin[t]), .is_tmax_o(t_is_tmax[t]), .is_shared_o(t_is_shared[t]),
+      .is_req_o(req[U_IS][t]), .is_grant_i(grant[U_IS][t]), .is_m_o(t_is_m[t]), .is_c_lo_o(t_is_c_lo[t]),
+      .is_shared_o(t_is_shared[t]), .is_p_hi_o(t_is_p_hi[t]), .is_p_lo_o(t_is_p_lo[t]), .is_d_o(t_is_d[t]),
+      .is_te_o(t_is_te[t]), .is_tmin_o(t_is_tmin[t]), .is_tmax_o(t_is_tmax[t]), .is_t0_o(t_is_t0[t]),
       .is_done_i(done[U_IS][t]), .is_hit_i(is_hit), .is_t_i(is_t), .is_u_i(is_u), .is_v_i(is_v), .is_cos_i(is_cos),
+      .is_t_world_i(is_t_world),
       .add_req_o(req[U_ADD][t]), .add_grant_i(grant[U_ADD][t]), .add_a_o(t_add_a[t]), .add_b_o(t_add_b[t]),
-      .add_sub_o(t_add_sub[t]), .add_done_i(done[U_ADD][t]), .add_r_i(add_r),
-      .sum_req_o(req[U_SUM][t]), .sum_grant_i(grant[U_SUM][t]), .sum_a_o(t_sum_a[t]), .sum_b_o(t_sum_b[t]),
-      .sum_done_i(done[U_SUM][t]), .sum_hi_i(sum_hi));
+      .add_done_i(done[U_ADD][t]), .add_r_i(add_r));
   end
 
   // ---- issue: a thread's request raises its ready bit once; a refused issue raises it again ----
@@ -280,7 +282,7 @@ module trace_core #(
   logic [UNITS-1:U_RB] out_valid;
   logic [TW-1:0] out_thread [UNITS];
   for (genvar u = U_RB; u < UNITS; u++) begin : g_tag
-    localparam int LAT = u == U_XF ? XF_LATENCY : u == U_IS ? IS_LATENCY : u == U_ADD ? ADD_STAGES : SUM_STAGES;
+    localparam int LAT = u == U_IS ? TRI_LATENCY : u == U_ADD ? ADD_STAGES : SUM_STAGES;  // rebase, wide: SUM
     f24_pipe #(.W(TW), .STAGES(LAT)) u_tag (
       .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(unit_valid[u] && unit_ready[u]), .data_i(sel[u]),
       .valid_o(), .data_o(out_thread[u]));
@@ -299,32 +301,25 @@ module trace_core #(
     .p_lo_i(t_xw_p_lo[sel[U_XW]]), .point_i(t_xw_point[sel[U_XW]]), .valid_o(out_valid[U_XW]), .ready_i(1'b1),
     .r_hi_o(xw_hi), .r_lo_o(xw_lo));
 
-  xform_unit #(.E(E), .M(M), .ADD_STAGES(ADD_STAGES), .MUL_STAGES(MUL_STAGES)) u_xform (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(unit_valid[U_XF]), .ready_o(unit_ready[U_XF]),
-    .m_i(t_xf_m[sel[U_XF]]), .v_i(t_xf_v[sel[U_XF]]), .point_i(1'b0), .valid_o(out_valid[U_XF]), .ready_i(1'b1),
-    .r_o(xf_r));
+  assign unit_ready[U_IS] = 1'b1;  // no stall
+  isect_rebased #(.E(E), .M(M), .ADD_STAGES(ADD_STAGES), .MUL_STAGES(MUL_STAGES), .DIV_STAGES(DIV_STAGES),
+                  .CMP_STAGES(CMP_STAGES), .SUM_STAGES(SUM_STAGES)) u_isect (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(unit_valid[U_IS]), .m_i(t_is_m[sel[U_IS]]),
+    .c_lo_i(t_is_c_lo[sel[U_IS]]), .shared_i(t_is_shared[sel[U_IS]]), .p_hi_i(t_is_p_hi[sel[U_IS]]),
+    .p_lo_i(t_is_p_lo[sel[U_IS]]), .d_i(t_is_d[sel[U_IS]]), .te_i(t_is_te[sel[U_IS]]),
+    .tmin_i(t_is_tmin[sel[U_IS]]), .tmax_i(t_is_tmax[sel[U_IS]]), .t0_i(t_is_t0[sel[U_IS]]),
+    .valid_o(out_valid[U_IS]), .hit_o(is_hit), .t_o(is_t), .u_o(is_u), .v_o(is_v), .cos_o(is_cos),
+    .t_world_o(is_t_world));
 
-  isect_unit #(.E(E), .M(M), .ADD_STAGES(ADD_STAGES), .MUL_STAGES(MUL_STAGES), .DIV_STAGES(DIV_STAGES),
-               .CMP_STAGES(CMP_STAGES)) u_isect (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(unit_valid[U_IS]), .ready_o(unit_ready[U_IS]),
-    .o_i(t_is_o[sel[U_IS]]), .d_i(t_is_d[sel[U_IS]]), .te_i(t_is_te[sel[U_IS]]), .tmin_i(t_is_tmin[sel[U_IS]]),
-    .tmax_i(t_is_tmax[sel[U_IS]]), .shared_i(t_is_shared[sel[U_IS]]), .valid_o(out_valid[U_IS]), .ready_i(1'b1),
-    .hit_o(is_hit), .t_o(is_t), .u_o(is_u), .v_o(is_v), .cos_o(is_cos));
-
-  logic [2:0] add_valid;
+  logic [1:0] add_valid;
   assign unit_ready[U_ADD] = 1'b1;  // the operators have no stall
-  for (genvar j = 0; j < 3; j++) begin : g_add
+  for (genvar j = 0; j < 2; j++) begin : g_add
     f24_add #(.E(E), .M(M), .STAGES(ADD_STAGES)) u_add (
       .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(unit_valid[U_ADD]),
-      .a_i(t_add_a[sel[U_ADD]][j*W +: W]), .b_i(t_add_b[sel[U_ADD]][j*W +: W]), .sub_i(t_add_sub[sel[U_ADD]]),
+      .a_i(t_add_a[sel[U_ADD]][j*W +: W]), .b_i(t_add_b[sel[U_ADD]][j*W +: W]), .sub_i(1'b1),
       .valid_o(add_valid[j]), .res_o(add_r[j*W +: W]));
   end
   assign out_valid[U_ADD] = &add_valid;
-
-  assign unit_ready[U_SUM] = 1'b1;
-  f24_sum_exact #(.E(E), .M(M), .N(9), .STAGES(SUM_STAGES)) u_sum (
-    .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(unit_valid[U_SUM]), .a_i(t_sum_a[sel[U_SUM]]),
-    .b_i(t_sum_b[sel[U_SUM]]), .valid_o(out_valid[U_SUM]), .hi_o(sum_hi), .lo_o());
   /* verilator lint_on PINCONNECTEMPTY */
 
   // ---- kd-node reads: whose they are, in request order ----

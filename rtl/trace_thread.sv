@@ -8,15 +8,14 @@
 // slots (slots_o) and waits for the core's grant (*_grant_i: the unit took it), then for the
 // result, which the core delivers to this thread alone (*_done_i with the result ports, shared by
 // all threads). The traversal and list units take one operation per packet; the per-ray units
-// (rebase, wide and narrow transformation, adders, exact sum, intersection) take a batch: one step
-// of each ray of a mask, in one or two passes (an instance's origins then directions, a triangle's
-// directions then offsets), issued on consecutive cycles while the core holds the unit for the
-// thread (slots_o = the batch's steps), and its results collected as they come back, in issue
-// order; the next batch starts when the last result is in. A triangle: the offsets' two
-// subtractions (8 steps), their addition (4), the directions and offsets through xform_unit (8), the
-// plane distances (4), the intersections (4), best_t of the hits; so the packet's 4 rays flow
-// through the pipelined units back to back, as the cycle model times an operation of n rays (n
-// issue slots, the latency once). The header's fields (hdr_*_i: the instance count, the region
+// (rebase, wide transformation, the relative distances' subtractors, the triangle test
+// isect_rebased) take a batch: one step of each ray of a mask, in one or two passes (an
+// instance's origins then directions), issued on consecutive cycles while the core holds the unit
+// for the thread (slots_o = the batch's steps), and its results collected as they come back, in
+// issue order; the next batch starts when the last result is in. A triangle is one batch of a
+// step per ray on isect_rebased (its transformation, intersection and best_t = t0 + t); so the
+// packet's 4 rays flow through the pipelined units back to back, as the cycle model times an
+// operation of n rays (n issue slots, the latency once). The header's fields (hdr_*_i: the instance count, the region
 // table's addresses, the scene bounds) are the core's, read once per memory image and shared by all threads (the thread
 // waits in S_HDR until hdr_ok_i); the instance, object and triangle records come through the wide
 // word port, RW consecutive words (one matrix cache line, one packed triangle record) per response,
@@ -24,9 +23,8 @@
 // algorithm trav_unit has). The stacks and mailboxes live in trav_unit and list_unit.
 // Latency: the sum of the packet's unit operations and batches (a batch: its issue slots plus the
 // unit's latency), their waits for the units and the reads.
-// Resources: the state registers, 36 W bits per ray and 12 W bits per ray of the intersection's
-// intermediate values (the offsets, the transformed direction and origin, the plane distance: 3 W
-// bits per ray before the batches), a descriptor buffer of LBUF words (two responses: 20 at
+// Resources: the state registers, 36 W bits per ray (the triangle's intermediate values, 12 W
+// bits per ray with the batches, stay in isect_rebased's pipeline), a descriptor buffer of LBUF words (two responses: 20 at
 // e7m16), about 15 words of routing state and 10 counters of 32 bits; the record unpacking
 // (f24_vertex_lo) and the identity mapping (xform_identity) in wires. Yosys 0.23 synth_xilinx at e7m16 (before the header
 // moved to the core and the buffer shrank from 40 words to 20): 5718 LUTs, 6183 flip-flops, 4
@@ -138,43 +136,33 @@ module trace_thread #(
   input  logic                        xw_done_i,
   input  logic [3*(E+M+1)-1:0]        xw_hi_i,
   input  logic [3*(E+M+1)-1:0]        xw_lo_i,
-  // the transformation unit (directions, and rows 0 and 1 of the origin path)
-  output logic                        xf_req_o,
-  input  logic                        xf_grant_i,
-  output logic [12*(E+M+1)-1:0]       xf_m_o,
-  output logic [3*(E+M+1)-1:0]        xf_v_o,
-  input  logic                        xf_done_i,
-  input  logic [3*(E+M+1)-1:0]        xf_r_i,
-  // the intersection unit
+  // the triangle test (isect_rebased: the origin path, the transformations, the intersection, t0 + t)
   output logic                        is_req_o,
   input  logic                        is_grant_i,
-  output logic [3*(E+M+1)-1:0]        is_o_o,
+  output logic [12*(E+M+1)-1:0]       is_m_o,
+  output logic [3*(E+M+1)-1:0]        is_c_lo_o,
+  output logic [2:0]                  is_shared_o,
+  output logic [3*(E+M+1)-1:0]        is_p_hi_o,
+  output logic [3*(E+M+1)-1:0]        is_p_lo_o,
   output logic [3*(E+M+1)-1:0]        is_d_o,
   output logic [E+M:0]                is_te_o,
   output logic [E+M:0]                is_tmin_o,
   output logic [E+M:0]                is_tmax_o,
-  output logic [2:0]                  is_shared_o,
+  output logic [E+M:0]                is_t0_o,
   input  logic                        is_done_i,
   input  logic                        is_hit_i,
   input  logic [E+M:0]                is_t_i,
   input  logic [E+M:0]                is_u_i,
   input  logic [E+M:0]                is_v_i,
   input  logic [E+M:0]                is_cos_i,
-  // 3 adders (one operation on 3 lanes)
+  input  logic [E+M:0]                is_t_world_i,
+  // 2 subtractors (one operation on 2 lanes: the relative distances)
   output logic                        add_req_o,
   input  logic                        add_grant_i,
-  output logic [3*(E+M+1)-1:0]        add_a_o,
-  output logic [3*(E+M+1)-1:0]        add_b_o,
-  output logic                        add_sub_o,
+  output logic [2*(E+M+1)-1:0]        add_a_o,
+  output logic [2*(E+M+1)-1:0]        add_b_o,
   input  logic                        add_done_i,
-  input  logic [3*(E+M+1)-1:0]        add_r_i,
-  // the exact sum of 9 products (the plane distance)
-  output logic                        sum_req_o,
-  input  logic                        sum_grant_i,
-  output logic [9*(E+M+1)-1:0]        sum_a_o,
-  output logic [9*(E+M+1)-1:0]        sum_b_o,
-  input  logic                        sum_done_i,
-  input  logic [E+M:0]                sum_hi_i
+  input  logic [2*(E+M+1)-1:0]        add_r_i
 );
   localparam logic [E-1:0] EXP_MAX = '1;
   localparam logic [W-1:0] POS_INF = {1'b0, EXP_MAX, {M{1'b0}}};
@@ -211,14 +199,9 @@ module trace_thread #(
     B_RB_INST = 4'd1,  // rebase: the world rays to the top-level leaf (op_inst_xform)
     B_XW = 4'd2,       // xform_wide: pass 0 the rebased origins, pass 1 the directions (op_inst_xform)
     B_IC_ADD = 4'd3,   // adders: best_rel = best_t - t0, tmin_rel = tmin - t0 (relative_distances)
-    B_OFS = 4'd4,      // adders: pass 0 l = p_lo - C_lo, pass 1 h = p_hi - C_hi (the origin's offset)
-    B_OFS2 = 4'd5,     // adders: c = h + l
-    B_XF = 4'd6,       // xform_unit: pass 0 the directions, pass 1 the offsets c (rows 0 and 1)
-    B_SUM = 4'd7,      // the exact sum: the plane distance O'z
-    B_IS = 4'd8,       // isect_unit (op_tri_isect)
-    B_HIT = 4'd9;      // adders: best_t = t0 + t of the rays that hit
+    B_TRI = 4'd4;      // isect_rebased: op_tri_xform and op_tri_isect, and best_t = t0 + t of a hit
   logic [3:0] bop;
-  logic [3:0] bmask, itodo, ctodo, hitm;  // the batch's rays; the pass's rays to issue, to collect; its hits
+  logic [3:0] bmask, itodo, ctodo;        // the batch's rays; the pass's rays to issue, to collect
   logic ipass, cpass, idone;              // the issue's and the collection's pass; all issued
 
   logic [2:0] flags;
@@ -239,10 +222,6 @@ module trace_thread #(
   logic [31:0] lbuf [LBUF];
   logic [31:0] ld_base;
   logic [1:0] ld_n, ld_sent, ld_got;
-  // the intersection's intermediate values per ray (ofs_hi: h, then the offset c = h + l)
-  logic [3*W-1:0] dd [4], ofs_lo [4], ofs_hi [4];
-  logic [2*W-1:0] oxy [4];
-  logic [W-1:0] oz [4];
 
   // ---- the batch's issue ray (ir, lowest of itodo) and collection ray (cr, lowest of ctodo) ----
   function automatic logic [1:0] lowest(input logic [3:0] m);
@@ -262,7 +241,7 @@ module trace_thread #(
   always_comb
     for (int i = 0; i < TRI_WORDS; i++) rec[i*32 +: 32] = lbuf[i];
   logic [12*W-1:0] tri_m, inst_m;
-  logic [3*W-1:0] c_hi, c_lo, neg_c_hi, inst_tlo;
+  logic [3*W-1:0] c_lo, inst_tlo;
   logic [2:0] tri_shared;
   // f24_vertex_lo: the low part k 2^-8 ulp(hi) of a vertex component from its 9-bit field
   function automatic logic [W-1:0] vertex_lo(input logic [8:0] field, input logic [E-1:0] he);
@@ -284,9 +263,7 @@ module trace_thread #(
     tri_m = rec[0 +: 12*W];
     for (int i = 0; i < 12; i++) inst_m[i*W +: W] = lbuf[i][W-1:0];
     for (int j = 0; j < 3; j++) begin
-      c_hi[j*W +: W] = tri_m[(4*j+3)*W +: W];
-      neg_c_hi[j*W +: W] = c_hi[j*W +: W] ^ {1'b1, {(W-1){1'b0}}};
-      c_lo[j*W +: W] = vertex_lo(rec[12*W + 9*j +: 9], c_hi[j*W + M +: E]);
+      c_lo[j*W +: W] = vertex_lo(rec[12*W + 9*j +: 9], tri_m[(4*j+3)*W + M +: E]);  // C_hi's exponent
       inst_tlo[j*W +: W] = lbuf[14 + j][W-1:0];
     end
     tri_shared = rec[12*W + 27 +: 3];
@@ -375,7 +352,7 @@ module trace_thread #(
   // ---- the batches' requests and operands (ray ir of pass ipass) ----
   logic batch_req;
   assign batch_req = st == S_BATCH && !idone;
-  assign slots_o = st == S_BATCH ? 4'(popcount(bmask)) << (bop == B_XW || bop == B_OFS || bop == B_XF) : 4'd1;
+  assign slots_o = st == S_BATCH ? 4'(popcount(bmask)) << (bop == B_XW) : 4'd1;
   // rebase: the leaf's origins (rebase_leaf, level 1) or the world ray to the top-level leaf (op_inst_xform)
   logic rb_leaf;
   assign rb_leaf = bop == B_RB_LEAF;
@@ -391,49 +368,22 @@ module trace_thread #(
   assign xw_p_hi_o = ipass ? rd[ir] : p_hi[ir];
   assign xw_p_lo_o = p_lo[ir];
   assign xw_point_o = !ipass;
-  assign xf_req_o = batch_req && bop == B_XF;
-  assign xf_m_o = tri_m;
-  assign xf_v_o = ipass ? ofs_hi[ir] : sd[ir];
-  // the plane distance O'z: n.p_hi + n.(-C_hi) + n.(p_lo - C_lo) in one exact sum
-  assign sum_req_o = batch_req && bop == B_SUM;
-  assign sum_a_o = {3{tri_m[8*W +: 3*W]}};
-  assign sum_b_o = {ofs_lo[ir], neg_c_hi, p_hi[ir]};
-  assign is_req_o = batch_req && bop == B_IS;
-  assign is_o_o = {oz[ir], oxy[ir]};
-  assign is_d_o = dd[ir];
+  assign is_req_o = batch_req && bop == B_TRI;
+  assign is_m_o = tri_m;
+  assign is_c_lo_o = c_lo;
+  assign is_shared_o = tri_shared;
+  assign is_p_hi_o = p_hi[ir];
+  assign is_p_lo_o = p_lo[ir];
+  assign is_d_o = sd[ir];
   assign is_te_o = te[ir];
   assign is_tmin_o = tmin_rel[ir];
   assign is_tmax_o = best_rel[ir];
-  assign is_shared_o = tri_shared;
+  assign is_t0_o = t0[ir];
 
-  // ---- the adders' operands, by the batch ----
-  always_comb begin
-    add_req_o = batch_req && (bop == B_IC_ADD || bop == B_OFS || bop == B_OFS2 || bop == B_HIT);
-    add_sub_o = 1'b1;
-    add_a_o = '0;
-    add_b_o = '0;
-    unique case (bop)
-      B_IC_ADD: begin  // best_rel = best_t - t0, tmin_rel = tmin - t0
-        add_a_o[0 +: 2*W] = {tmin[ir], best_t[ir]};
-        add_b_o[0 +: 2*W] = {t0[ir], t0[ir]};
-      end
-      B_OFS: begin  // l = p_lo - C_lo, h = p_hi - C_hi
-        add_a_o = ipass ? p_hi[ir] : p_lo[ir];
-        add_b_o = ipass ? c_hi : c_lo;
-      end
-      B_OFS2: begin  // c = h + l
-        add_sub_o = 1'b0;
-        add_a_o = ofs_hi[ir];
-        add_b_o = ofs_lo[ir];
-      end
-      B_HIT: begin  // best_t = t0 + t (best_rel holds the hit's t)
-        add_sub_o = 1'b0;
-        add_a_o[0 +: W] = t0[ir];
-        add_b_o[0 +: W] = best_rel[ir];
-      end
-      default: ;
-    endcase
-  end
+  // the subtractors: best_rel = best_t - t0, tmin_rel = tmin - t0
+  assign add_req_o = batch_req && bop == B_IC_ADD;
+  assign add_a_o = {tmin[ir], best_t[ir]};
+  assign add_b_o = {t0[ir], t0[ir]};
 
   // the batch's results: done of its unit, for ray cr of pass cpass
   logic batch_grant, batch_done;
@@ -442,16 +392,14 @@ module trace_thread #(
     batch_done = rb_done_i;
     unique case (bop)
       B_XW: begin batch_grant = xw_grant_i; batch_done = xw_done_i; end
-      B_IC_ADD, B_OFS, B_OFS2, B_HIT: begin batch_grant = add_grant_i; batch_done = add_done_i; end
-      B_XF: begin batch_grant = xf_grant_i; batch_done = xf_done_i; end
-      B_SUM: begin batch_grant = sum_grant_i; batch_done = sum_done_i; end
-      B_IS: begin batch_grant = is_grant_i; batch_done = is_done_i; end
+      B_IC_ADD: begin batch_grant = add_grant_i; batch_done = add_done_i; end
+      B_TRI: begin batch_grant = is_grant_i; batch_done = is_done_i; end
       default: ;
     endcase
   end
   // the last step of the batch: the last ray of the last pass
   logic two_pass, i_last, c_last;
-  assign two_pass = bop == B_XW || bop == B_OFS || bop == B_XF;
+  assign two_pass = bop == B_XW;
   assign i_last = itodo == (4'd1 << ir) && ipass == two_pass;
   assign c_last = ctodo == (4'd1 << cr) && cpass == two_pass;
 
@@ -492,7 +440,6 @@ module trace_thread #(
     ipass <= 1'b0;
     cpass <= 1'b0;
     idone <= 1'b0;
-    hitm <= '0;
     st <= S_BATCH;
   endtask
 
@@ -655,29 +602,18 @@ module trace_thread #(
                 best_rel[cr] <= add_r_i[0 +: W];
                 tmin_rel[cr] <= add_r_i[W +: W];
               end
-              B_OFS:
-                if (cpass) ofs_hi[cr] <= add_r_i;
-                else ofs_lo[cr] <= add_r_i;
-              B_OFS2: ofs_hi[cr] <= add_r_i;
-              B_XF:
-                if (cpass) oxy[cr] <= xf_r_i[0 +: 2*W];
-                else dd[cr] <= xf_r_i;
-              B_SUM: oz[cr] <= sum_hi_i;
-              B_IS:
+              B_TRI:
                 if (is_hit_i) begin
                   best_rel[cr] <= is_t_i;
+                  best_t[cr] <= is_t_world_i;
+                  h_t[cr] <= is_t_world_i;
                   h_inst[cr] <= inst;
                   h_tri[cr] <= tri_ix;
                   h_u[cr] <= is_u_i;
                   h_v[cr] <= is_v_i;
                   h_cos[cr] <= is_cos_i;
-                  hitm[cr] <= 1'b1;
                   if (flags[1]) alive[cr] <= 1'b0;
                 end
-              B_HIT: begin
-                best_t[cr] <= add_r_i[0 +: W];
-                h_t[cr] <= add_r_i[0 +: W];
-              end
               default: ;
             endcase
             // the batch's last result: what follows it
@@ -687,14 +623,7 @@ module trace_thread #(
                 B_RB_INST: batch(B_XW, need);
                 B_XW: st <= S_IC_LOAD;
                 B_IC_ADD: st <= S_IC_CLIP;
-                B_OFS: batch(B_OFS2, need);
-                B_OFS2: batch(B_XF, need);
-                B_XF: batch(B_SUM, need);
-                B_SUM: batch(B_IS, need);
-                B_IS:
-                  if ((hitm | (is_hit_i ? 4'd1 << cr : 4'd0)) != 0) batch(B_HIT, hitm | (is_hit_i ? 4'd1 << cr : 4'd0));
-                  else st <= S_ROUTE;
-                default: st <= S_ROUTE;  // B_HIT
+                default: st <= S_ROUTE;  // B_TRI
               endcase
           end
         end
@@ -736,7 +665,7 @@ module trace_thread #(
           cnt[C_MATRICES] <= cnt[C_MATRICES] + TRI_WORDS;
           cnt[C_XFORMS] <= cnt[C_XFORMS] + popcount(need);
           cnt[C_ISECTS] <= cnt[C_ISECTS] + popcount(need);
-          batch(B_OFS, need);
+          batch(B_TRI, need);
           load(tris + TRI_WORDS * tri_ix, 2'd1, S_BATCH);
         end
         S_DONE: if (ready_i) st <= S_IDLE;

@@ -38,7 +38,10 @@
 // each operation's context (operands, walker state, step results) flows down it:
 //   A  input: taken unless an operation of the same thread and level is in flight (a bit per
 //      {thread, level}; in the DynRTP a thread has one operation in flight anyway) or SLOTS are;
-//      a start's state is walker_init's, a clip's intervals trav_object_clip's
+//      a start's state is walker_init's, a clip's intervals trav_object_clip's. A start leaves
+//      here: it reads no node and compares nothing, so its state and result are written from a
+//      one-entry buffer in the next cycle in which Z writes none (nothing enters while that buffer
+//      is full, so the pipeline drains and the start cannot starve)
 //   B  walker state read; C  the stack's top two entries; the prune comparators of the current
 //      entry and of the top one (best_t < tn), the restart's max(tn, t_exit), tn < tf and
 //      best_t < tn, computed ahead in case the step ends in a restart (2 CMP stages, 20
@@ -57,19 +60,24 @@
 //      top of the stack (the first or second entry read in C), or the restart; the state written
 //      back, the result into the output queue
 // Results leave in the order they are made: different threads overtake each other where a clip
-// comes round or a node read waits. No stage stalls: the queues hold every operation in flight.
+// comes round, a node read waits or a start bypasses the pipeline. No stage stalls: the queues
+// hold every operation in flight.
 // Latency at the defaults (trav_node NODE = 21, CMP = 2), memory answering in the cycle after the
-// request, nothing competing: walk step 38 (leaf, inner node or none), start 36, clip 146 (6 x 22
-// through trav_node). Throughput: one operation per cycle at the input; trav_node takes one slot
-// per cycle, a clip 6 of them: on the captured room frame (48x32, 64 threads, rtl/tb/tb_trav.cpp;
+// request, nothing competing: walk step 38 (leaf, inner node or none), start 2 (36 when it went
+// down the pipeline), clip 146 (6 x 22 through trav_node). Throughput: one operation per cycle at
+// the input; trav_node takes one slot per cycle, a clip 6 of them: on the captured room frame (48x32, 64 threads, rtl/tb/tb_trav.cpp;
 // make build/rtl/e7m16/tb_trav; build/rtl/e7m16/tb_trav -n 0 --capture DIR, 2026-11-25)
-// 1.77 cycles per operation (bound from trav_node's slots: 1.50; the operation contexts it
+// 1.72 cycles per operation, a start 3.9 from offer to result (1.77 and 62.8 when starts went
+// down the pipeline; bound from trav_node's slots: 1.50; the operation contexts it
 // replaced: 10.28 with 4 of them, 1.56 with 32).
 // Resources (synth_xilinx at e7m16, THREADS = 64, DEPTH = 64, SLOTS = 64; scripts/synth.py's
-// flow, python3 scripts/synth.py --redo x:trav_unit:e7m16, 2026-11-25):
-// 15839 LUT6 (+ 849 RAM64M of LUT RAM: the queues, 3396 LUTs), 3961 SRL, 24873 flip-flops,
-// 0 DSP48E1, 120 RAMB18 (the walker states and the two stack banks), 1283 CARRY4; 8 LUT6 levels
-// (the goal: at most 8; the unit of CTX = 4 contexts it replaced: 31180 LUT6, 18725 flip-flops, 11).
+// flow, python3 scripts/synth.py --redo x:trav_unit:e7m16, 2026-11-25; with the start's bypass
+// scripts/synth.py's xilinx('trav_unit', 7, 16)): 16144 LUT6 (+ 849 RAM64M of LUT RAM: the
+// queues, 3396 LUTs), 3961 SRL, 25204 flip-flops, 0 DSP48E1, 120 RAMB18 (the walker states and
+// the two stack banks), 1283 CARRY4; 8 LUT6 levels (the goal: at most 8; before the bypass 15839
+// LUT6 and 24873 flip-flops, 8 levels; a bypass writing the start in the cycle it is taken had
+// 11, the write enables then depending on the input's handshake; the unit of CTX = 4 contexts it
+// replaced: 31180 LUT6, 18725 flip-flops, 11).
 // Handshake: valid/ready at the operation input, the result output and the node read request
 // (node_thread_o, node_level_o: whose node); the node response (node_rsp_valid_i with w0, w1) is
 // taken when it comes, in request order.
@@ -197,7 +205,10 @@ module trav_unit #(
   logic [NW-1:0] in_flight;
   logic take, out_pop;
   logic [IW-1:0] out_idx;
-  assign ready_o = !busy[{thread_i, level_i}] && in_flight != NW'(SLOTS);
+  // sb_valid: a start waits for the state memory's write port and the output queue (below); no
+  // operation enters meanwhile, so the pipeline drains and the start cannot wait forever
+  logic sb_valid;
+  assign ready_o = !busy[{thread_i, level_i}] && in_flight != NW'(SLOTS) && !sb_valid;
   assign take = valid_i && ready_o;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -244,7 +255,7 @@ module trav_unit #(
   logic [CXW-1:0] b_cx, bx;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) b_valid <= 1'b0;
-    else b_valid <= take;
+    else b_valid <= take && kind_i != K_START;
   end
   always_ff @(posedge clk_i) begin
     if (take) b_cx <= a_cx;
@@ -603,19 +614,38 @@ module trav_unit #(
     end
   end
 
-  // ---- the result: the walker state written back (start, walk), the result into the output
-  // queue (results leave in the order they are made: operations of different threads overtake
-  // each other where a clip comes round or a node read waits)
+  // ---- a start bypasses the pipeline: it reads no node and compares nothing, its walker state
+  // (walker_init's, made at A) and its result are all there as it enters. It goes into sb (one
+  // entry, a register, so that the state memory's and the output queue's write enables come from
+  // registers) and writes them from there in the first cycle the pipeline's end (Z4) does not;
+  // while sb is full nothing enters (ready_o), so Z4 runs dry. The busy bit of its {thread,
+  // level} keeps the next operation of that walk out until the result has left, so that
+  // operation reads the state the start wrote.
+  logic s_go;
+  logic [CXW-1:0] sb_cx;
+  assign s_go = sb_valid && !z4_valid;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) sb_valid <= 1'b0;
+    else sb_valid <= (take && kind_i == K_START) || (sb_valid && z4_valid);
+  end
+  always_ff @(posedge clk_i) if (take && kind_i == K_START) sb_cx <= a_cx;
+
+  // ---- the result: the walker state written back (a walk's at Z4, a start's from sb), the
+  // result into the output queue (results leave in the order they are made: operations of
+  // different threads overtake each other where a clip comes round, a node read waits or a start
+  // bypasses the pipeline)
   localparam int RW = IW + 2 + ENW + 3 + 64 + 4 + 4 * W + SPW + 2;
   logic [RW-1:0] out_d, out_q;
-  assign st_we = z4_valid && z4_cx[O_KIND + 1];
-  assign st_wa = z4_cx[O_IDX +: IW];
-  assign st_wd = z4x[O_ST +: STW];
-  assign out_d = {z4x[O_IDX +: IW], z4x[O_KIND +: 2], z4x[S_CUR +: ENW], z4x[S_HAVE], z4x[O_LEAF], z4x[O_LIST],
-                  z4x[O_W1 +: 32], z4x[O_W0 +: 32], z4x[O_LEAF_MASK +: 4], z4x[O_LEAF_TN +: 4 * W],
-                  z4x[S_SP +: SPW], z4x[S_LOST], z4x[S_RESTARTED]};
+  logic [CXW-1:0] r_cx;          // the context whose result is written: Z4's, else the start's
+  assign r_cx = z4_valid ? z4x : sb_cx;
+  assign st_we = (z4_valid && z4_cx[O_KIND + 1]) || s_go;
+  assign st_wa = r_cx[O_IDX +: IW];
+  assign st_wd = r_cx[O_ST +: STW];
+  assign out_d = {r_cx[O_IDX +: IW], r_cx[O_KIND +: 2], r_cx[S_CUR +: ENW], r_cx[S_HAVE], r_cx[O_LEAF],
+                  r_cx[O_LIST], r_cx[O_W1 +: 32], r_cx[O_W0 +: 32], r_cx[O_LEAF_MASK +: 4],
+                  r_cx[O_LEAF_TN +: 4 * W], r_cx[S_SP +: SPW], r_cx[S_LOST], r_cx[S_RESTARTED]};
   /* verilator lint_off PINCONNECTEMPTY */
-  sync_fifo #(.W(RW), .DEPTH(SLOTS)) u_out (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(z4_valid), .ready_o(),
+  sync_fifo #(.W(RW), .DEPTH(SLOTS)) u_out (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(z4_valid || s_go), .ready_o(),
     .data_i(out_d), .valid_o(valid_o), .ready_i(ready_i), .data_o(out_q));
   /* verilator lint_on PINCONNECTEMPTY */
   /* verilator lint_off UNUSEDSIGNAL */

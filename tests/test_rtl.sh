@@ -38,8 +38,8 @@
 # moves on, a scheduler whose pointer never moves on, a walk that pushes the near child, a
 # square root without its sticky bit, a pixel centre without its + 1/2, a tile controller stepping
 # past the region's edge, a vector mode whose unused terms are +0, a rebase that moves by t = Inf,
-# a core thread that walks on before the rest of a leaf's entries, a core thread storing a batch's
-# results by the wrong pass, a normal decoder folding the
+# a core thread that walks on before the rest of a leaf's entries, a triangle unit whose plane
+# distance meets the ray before's origin, a normal decoder folding the
 # lower hemisphere with the wrong sign, a bilinear blend that truncates, a shading normal turned
 # away from the ray, a highlight squared once too often, a transmission ray leaving from behind
 # the surface when eta = 1, a surface's vertex colours truncated instead of rounded and a ray
@@ -375,7 +375,7 @@ t_core() {
 }
 
 t_core_mutant_caught() { # route_after_list walking on before the rest of its leaf's entries; a record's responses;
-  # a batch's collection
+  # the triangle unit's pipeline
   [[ -f "$T/core_cornell/trace.hex" ]] || "$BIN" render cornell -o "$T/core_cornell.png" --width 32 --height 24 \
     --capture-unit-io "$T/core_cornell" --capture-limit 1000 >/dev/null
   mutant core trace_thread.sv "s/else if (k\[level\] < leaf_count\[level\]) st <= S_LIST_GO;/else if (k[level] < leaf_count[level] \&\& !have_cur[level]) st <= S_LIST_GO;/" \
@@ -383,8 +383,9 @@ t_core_mutant_caught() { # route_after_list walking on before the rest of its le
     # an object record read in one response, not two (its bounds' last words stale)
     mutant core trace_thread.sv "s/OBJ_RSP = (OBJ_READ + RW - 1) \/ RW/OBJ_RSP = OBJ_READ \/ RW/" \
       --capture "$T/core_cornell" --packets 60 &&
-    # a two-pass batch's results stored by the wrong pass (the offsets' transformation as the directions)
-    mutant core trace_thread.sv "s/if (cpass) oxy\[cr\]/if (!cpass) oxy[cr]/" --capture "$T/core_cornell" --packets 60
+    # the triangle unit's plane distance joining its origin's rows a cycle early (the ray before's)
+    mutant core isect_rebased.sv "s/STAGES(T_JOIN - ADD_STAGES - SUM_STAGES)/STAGES(T_JOIN - ADD_STAGES - SUM_STAGES - 1)/" \
+      --capture "$T/core_cornell" --packets 60
 }
 
 # the DynRTP top (rtl/dynrtp.sv) rendering the cornell box at 16x12 through its harness: $T/dyn

@@ -46,7 +46,7 @@ module tb_core #(
   output logic [31:0]                 list_addr_o,
   input  logic [31:0]                 list_rdata_i,
   input  logic                        list_rvalid_i,
-  output logic [7:0]                  issue_o
+  output logic [5:0]                  issue_o
 );
   trace_core #(.E(E), .M(M), .THREADS(THREADS)) u_core (.*);
 endmodule

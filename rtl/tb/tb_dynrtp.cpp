@@ -49,7 +49,7 @@ constexpr uint32_t RGS_BLOCKS = 8;      // tb_dynrtp.sv's: the blocks in flight 
 constexpr uint64_t FX = 65536;
 constexpr uint64_t FLUSH = 1024;        // cycles after reset: the caches empty their tags (512 lines at most)
 constexpr uint64_t TIMEOUT = 1u << 22;  // cycles without a packet or a block out before the harness gives up
-const char *const UNIT[8] = { "trav", "list", "rebase", "wide", "xform", "isect", "add", "sum" };
+const char *const UNIT[6] = { "trav", "list", "rebase", "wide", "isect", "add" };
 const char *const PORT[4] = { "nodes", "lists", "words", "shading" }; // the caches
 const char *const HIT[6] = { "instance", "triangle", "t", "u", "v", "cos" };
 const char *const COUNTER[10] = { "traversal_steps", "leaves", "list_entries", "mailbox_skips", "transformations",
@@ -270,7 +270,7 @@ int main(int argc, char **argv)
     }
     std::fprintf(st, "cycles %llu\npackets %llu\nthreads %u\n", (unsigned long long)top.cycles_o,
                  (unsigned long long)top.packets_o, blocks);
-    for (int u = 0; u < 8; u++)
+    for (int u = 0; u < 6; u++)
         std::fprintf(st, "issues_%s %llu\n", UNIT[u],
                      (unsigned long long)((uint64_t)top.issues_o[2 * u] | (uint64_t)top.issues_o[2 * u + 1] << 32));
     for (int k = 0; k < 4; k++)

@@ -61,7 +61,7 @@ module tb_dynrtp #(
   input  logic                mem_rsp_valid_i,
   input  logic [DW-1:0]       mem_rsp_data_i,
   output logic [63:0]         cycles_o,
-  output logic [8*64-1:0]     issues_o,
+  output logic [6*64-1:0]     issues_o,
   output logic [63:0]         packets_o,
   output logic [4*64-1:0]     reads_o
 );

@@ -50,7 +50,7 @@ typedef struct {
 /* --mode rtl: the counters of the RTL (rtl/dynrtp.sv): cycles of the frame, operations issued per
  * unit of trace_core, packets traced, reads per cache (the core's kd nodes, list entries and
  * descriptor words, the RGS's shading words), the memory port's transfers. */
-enum { RTL_UNITS = 8, RTL_PORTS = 4 };
+enum { RTL_UNITS = 6, RTL_PORTS = 4 };
 extern const char *const rtl_unit_names[RTL_UNITS];
 extern const char *const rtl_port_names[RTL_PORTS];
 typedef struct {

@@ -21,7 +21,7 @@
 
 extern char **environ;
 
-const char *const rtl_unit_names[RTL_UNITS] = { "trav", "list", "rebase", "wide", "xform", "isect", "add", "sum" };
+const char *const rtl_unit_names[RTL_UNITS] = { "trav", "list", "rebase", "wide", "isect", "add" };
 const char *const rtl_port_names[RTL_PORTS] = { "nodes", "lists", "words", "shading" };
 
 /* <build>/rtl/eEmM/tb_dynrtp beside this program (build/saarcor or build/w/eEmM/saarcor). */
