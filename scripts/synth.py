@@ -484,7 +484,8 @@ def dynrtp(parts):
         new = dynrtp_xilinx() if part == "xilinx" else dynrtp_ice40()
         # read after measuring: a run of the other part may have written its figures meanwhile
         res = json.load(open(DYNRTP_JSON)) if os.path.exists(DYNRTP_JSON) else {}
-        res.update(new, date=time.strftime("%Y-%m-%d", time.gmtime()))
+        rtl = subprocess.run(["git", "-C", ROOT, "log", "-1", "--format=%h", "--", "rtl"], capture_output=True, text=True)
+        res.update(new, date=time.strftime("%Y-%m-%d", time.gmtime()), rtl_commit=rtl.stdout.strip() or "?")
         json.dump(res, open(DYNRTP_JSON, "w"), indent=1)
         print(f"synth: dynrtp {part}: {res}", file=sys.stderr, flush=True)
     return res
@@ -774,7 +775,7 @@ def dynrtp_section():
     md = ["", "## The whole DynRTP beside the prototype (issue 23, goal 4)", "",
           f"rtl/dynrtp.sv at the paper's configuration ({cfg}; RGS_BLOCKS and the rest at their defaults), "
           "synthesized per module without flattening (`python3 scripts/synth.py --dynrtp`, part of `make synth` "
-          f"and `make check-full`; {d.get('date', '?')}; "
+          f"and `make check-full`; {d.get('date', '?')}, rtl/ as of commit {d.get('rtl_commit', '?')}; "
           + ", ".join(f"{n} {d[k]:,} s" for n, k in (("7-series", "xilinx_seconds"), ("iCE40", "ice40_seconds")) if k in d)
           + "): a module is mapped once and counted once per instance.", "",
           "| | this DynRTP | the prototype (one pipe, 64 threads, whole chip) |", "|---|---:|---:|",
