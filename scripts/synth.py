@@ -94,6 +94,31 @@ def cells(log):
     return out
 
 
+def luts_of(c):
+    return sum(v for k, v in c.items() if re.fullmatch(r"LUT\d", k))
+
+
+def ffs_of(c):
+    return sum(v for k, v in c.items() if re.fullmatch(r"FD[RSCP]E(_1)?", k))
+
+
+LUTRAM_BITS = {"RAM32M": 64 * 2, "RAM64M": 64 * 3, "RAM32X1D": 32, "RAM64X1D": 64, "RAM128X1D": 128,
+               "RAM256X1S": 256, "RAM64X1S": 64, "RAM32X1S": 32, "RAM128X1S": 128}
+
+
+def top_module(mods):
+    """The name of the top module of a Yosys write_json netlist (it carries the parameters)."""
+    return next(n for n, v in mods.items() if int(v.get("attributes", {}).get("top", "0"), 2))
+
+
+def xilinx_flow(top, flatten):
+    """synth_xilinx without its SAT-based `share` pass, which takes tens of minutes on the
+    transformation unit's 9 multiply-add chains and finds nothing to share in these datapaths."""
+    f = " -flatten" if flatten else ""
+    return (f"synth_xilinx -top {top}{f} -run :coarse; techmap -map +/cmp2lut.v -map +/cmp2lcu.v -D LUT_WIDTH=6; "
+            f"alumacc; opt; memory -nomap; opt_clean; synth_xilinx -top {top}{f} -run map_memory:")
+
+
 # 7-series cells a register-to-register path passes through: LUTs and LUT RAM reads count one
 # level each; carry chains, wide-function muxes, inverters and DSP48E1 slices (registers off)
 # count none (dedicated logic, not LUT levels); everything else (flip-flops, SRLs, block RAM) and
@@ -105,8 +130,8 @@ LEVEL_CELLS = {**{f"LUT{k}": 1 for k in range(1, 7)}, **{k: 1 for k in ("RAM32M"
 
 def lut_levels(js):
     """The most LUT levels between two registers (or ports) of the flattened netlist js."""
-    mods = json.load(open(js))["modules"]  # the top (its name carries the parameters) and the cell library
-    mod = next(v for v in mods.values() if int(v.get("attributes", {}).get("top", "0"), 2))
+    mods = json.load(open(js))["modules"]  # the top and the cell library
+    mod = mods[top_module(mods)]
     driver, cells = {}, mod["cells"]
     for name, c in cells.items():
         for port, bits in c["connections"].items():
@@ -141,17 +166,12 @@ def lut_levels(js):
 def xilinx(top, e, m, edge_eps=0, terms=0):
     log = os.path.join(OUT, f"{top}_e{e}m{m}{f'_edge{edge_eps}' if edge_eps else ''}{f'_n{terms}' if terms else ''}_xilinx.log")
     reads = " ".join(f"read_verilog -sv {f};" for f in RTL)
-    # synth_xilinx without its SAT-based `share` pass, which takes tens of minutes on the
-    # transformation unit's 9 multiply-add chains and finds nothing to share in these datapaths
-    flow = (f"synth_xilinx -top {top} -flatten -run :coarse; techmap -map +/cmp2lut.v -map +/cmp2lcu.v -D LUT_WIDTH=6; "
-            f"alumacc; opt; memory -nomap; opt_clean; synth_xilinx -top {top} -flatten -run map_memory:")
+    flow = xilinx_flow(top, flatten=True)
     extra = (f" -set EDGE_EPS {edge_eps}" if edge_eps else "") + (f" -set N {terms}" if terms else "")
     js = log[:-len(".log")] + ".json"
     c = cells(yosys(f"{reads} chparam -set E {e} -set M {m}{extra} {top}; {flow}; stat; write_json {js}", log))
-    luts = sum(v for k, v in c.items() if re.fullmatch(r"LUT\d", k))
     srl = sum(v for k, v in c.items() if k.startswith("SRL"))
-    ffs = sum(v for k, v in c.items() if re.fullmatch(r"FD[RSCP]E(_1)?", k))
-    return {"luts": luts, "srl": srl, "ffs": ffs, "dsp": c.get("DSP48E1", 0),
+    return {"luts": luts_of(c), "srl": srl, "ffs": ffs_of(c), "dsp": c.get("DSP48E1", 0),
             "bram": c.get("RAMB18E1", 0) + 2 * c.get("RAMB36E1", 0), "carry4": c.get("CARRY4", 0),
             "lut6_levels": lut_levels(js)}
 
@@ -239,12 +259,10 @@ def control(name, top, params):
                      os.path.join(OUT, f"ctl_{tag}_xilinx.log")))
     ci = cells(yosys(f"{reads} chparam {chp} {top}; synth_ice40 -top {top}; stat",
                      os.path.join(OUT, f"ctl_{tag}_ice40.log")))
-    lutram = {"RAM32M": 64 * 2, "RAM64M": 64 * 3, "RAM32X1D": 32, "RAM64X1D": 64, "RAM128X1D": 128, "RAM256X1S": 256,
-              "RAM64X1S": 64, "RAM32X1S": 32, "RAM128X1S": 128}
-    return {"xilinx_luts": sum(v for k, v in cx.items() if re.fullmatch(r"LUT\d", k)),
-            "xilinx_lutram_cells": sum(v for k, v in cx.items() if k in lutram),
-            "xilinx_lutram_bits": sum(v * lutram[k] for k, v in cx.items() if k in lutram),
-            "xilinx_ffs": sum(v for k, v in cx.items() if re.fullmatch(r"FD[RSCP]E(_1)?", k)),
+    return {"xilinx_luts": luts_of(cx),
+            "xilinx_lutram_cells": sum(v for k, v in cx.items() if k in LUTRAM_BITS),
+            "xilinx_lutram_bits": sum(v * LUTRAM_BITS[k] for k, v in cx.items() if k in LUTRAM_BITS),
+            "xilinx_ffs": ffs_of(cx),
             "xilinx_bram18": cx.get("RAMB18E1", 0) + 2 * cx.get("RAMB36E1", 0), "lut6_levels": lut_levels(js),
             "ice40_lut4": ci.get("SB_LUT4", 0), "ice40_ff": sum(v for k, v in ci.items() if k.startswith("SB_DFF")),
             "ice40_bram": ci.get("SB_RAM40_4K", 0), "ice40_bram_bits": 4096 * ci.get("SB_RAM40_4K", 0)}
@@ -257,8 +275,6 @@ def control(name, top, params):
 # of the logic: about 37,800 LUT4; 78% of the memory) and Table 2's 75 KB of memory stand beside it.
 DYNRTP_PARAMS = {"E": 7, "M": 16, "THREADS": 64, "NODE_KB": 4, "LIST_KB": 2, "MAT_KB": 6, "SHADE_KB": 4}
 PROTOTYPE_LUT4, TABLE2_BITS = 37800, 75 * 1024 * 8
-LUTRAM_BITS = {"RAM32M": 64 * 2, "RAM64M": 64 * 3, "RAM32X1D": 32, "RAM64X1D": 64, "RAM128X1D": 128,
-               "RAM256X1S": 256, "RAM64X1S": 64, "RAM32X1S": 32, "RAM128X1S": 128}
 DYNRTP_JSON = os.path.join(OUT, "dynrtp.json")  # the measured figures, merged into synth.json's "dynrtp"
 
 
@@ -300,15 +316,11 @@ def hierarchy_totals(own, top):
     return {name: total(name) for name in own}, total(top)
 
 
-def luts_of(c):
-    return sum(v for k, v in c.items() if re.fullmatch(r"LUT\d", k))
-
-
 def hier_lut_levels(mods, top):
-    """The most LUT levels between two registers (or the top's ports) of a hierarchical 7-series netlist,
-    paths through module ports included: per module, the levels from its registers to each output bit,
-    from each input bit to each output bit it reaches without a register, and from each input bit to a
-    register inside, composed at every instance (LEVEL_CELLS as lut_levels)."""
+    """Per module of top's hierarchy: the most LUT levels between two registers (or its ports) of a
+    hierarchical 7-series netlist, paths through module ports included. Per module, the levels from its
+    registers to each output bit, from each input bit to each output bit it reaches without a register,
+    and from each input bit to a register inside, composed at every instance (LEVEL_CELLS as lut_levels)."""
     summary = {}
 
     def summarize(name):
@@ -423,23 +435,18 @@ def hier_lut_levels(mods, top):
     visit(top)
     for name in order:
         summarize(name)
-    s = summary[top]
-    ports = [s["inside"]] + list(s["reg_out"].values()) + list(s["in_to_reg"].values()) + \
-        [v for t in s["through"].values() for v in t.values()]
-    return max(ports)
 
-
-def dynrtp_top(mods):
-    return next(n for n, v in mods.items() if int(v.get("attributes", {}).get("top", "0"), 2))
+    def levels(s):  # the module as a top: its ports end paths too
+        return max([s["inside"]] + list(s["reg_out"].values()) + list(s["in_to_reg"].values()) +
+                   [v for t in s["through"].values() for v in t.values()])
+    return {name: levels(s) for name, s in summary.items()}
 
 
 def dynrtp_xilinx():
     """synth_xilinx of the whole DynRTP, hierarchical (xilinx_figures)."""
     log, js = os.path.join(OUT, "dynrtp_xilinx.log"), os.path.join(OUT, "dynrtp_xilinx.json")
-    flow = ("synth_xilinx -top dynrtp -run :coarse; techmap -map +/cmp2lut.v -map +/cmp2lcu.v -D LUT_WIDTH=6; "
-            "alumacc; opt; memory -nomap; opt_clean; synth_xilinx -top dynrtp -run map_memory:")
     t0 = time.time()
-    yosys(dynrtp_script(flow, f"stat; write_json {js}"), log)
+    yosys(dynrtp_script(xilinx_flow("dynrtp", flatten=False), f"stat; write_json {js}"), log)
     return dict(xilinx_figures(js), xilinx_seconds=round(time.time() - t0))
 
 
@@ -448,19 +455,20 @@ def xilinx_figures(js):
     the top (each with its submodules, all instances) its LUT6 and its own LUT6 levels (its ports as
     path ends): which unit dominates, and where the deepest paths are."""
     mods = json.load(open(js))["modules"]
-    top = dynrtp_top(mods)
+    top = top_module(mods)
     own = module_cells(mods)
     sub, tot = hierarchy_totals(own, top)
+    depth = hier_lut_levels(mods, top)
     units, levels = {}, {}
     for typ, n in own[top].items():
         if typ in own:
             units[key_name(typ)] = units.get(key_name(typ), 0) + n * luts_of(sub[typ])
-            levels[key_name(typ)] = max(levels.get(key_name(typ), 0), hier_lut_levels(mods, typ))
-    return {"xilinx_lut6": luts_of(tot), "xilinx_ff": sum(v for k, v in tot.items() if re.fullmatch(r"FD[RSCP]E(_1)?", k)),
+            levels[key_name(typ)] = max(levels.get(key_name(typ), 0), depth[typ])
+    return {"xilinx_lut6": luts_of(tot), "xilinx_ff": ffs_of(tot),
             "xilinx_srl": sum(v for k, v in tot.items() if k.startswith("SRL")), "xilinx_dsp": tot.get("DSP48E1", 0),
             "xilinx_bram18": tot.get("RAMB18E1", 0) + 2 * tot.get("RAMB36E1", 0),
             "xilinx_lutram_bits": sum(v * LUTRAM_BITS[k] for k, v in tot.items() if k in LUTRAM_BITS),
-            "max_lut6_levels": hier_lut_levels(mods, top), "xilinx_units_lut6": units, "xilinx_units_lut6_levels": levels}
+            "max_lut6_levels": depth[top], "xilinx_units_lut6": units, "xilinx_units_lut6_levels": levels}
 
 
 def key_name(module):

@@ -83,10 +83,10 @@ sys.path.insert(0, "scripts")
 import synth as S
 t = sys.argv[1]
 mods = json.load(open(f"{t}/h.json"))["modules"]
-top = S.dynrtp_top(mods)
+top = S.top_module(mods)
 _, tot = S.hierarchy_totals(S.module_cells(mods), top)
 flat = S.cells(open(f"{t}/h.log").read())
-h, f = S.hier_lut_levels(mods, top), S.lut_levels(f"{t}/f.json")
+h, f = S.hier_lut_levels(mods, top)[top], S.lut_levels(f"{t}/f.json")
 print(f"cache_read: {S.luts_of(tot)} LUTs summed over the hierarchy, {S.luts_of(flat)} by stat; "
       f"LUT6 levels {h} across module ports, {f} flattened")
 sys.exit(0 if (h, S.luts_of(tot)) == (f, S.luts_of(flat)) else 1)
