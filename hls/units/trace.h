@@ -113,7 +113,7 @@ static inline uint32_t op_kind_unit(uint32_t kind)
  * emissive, its entry and 4 texels). */
 #define UNIT_OP_READS (15 * TRACE_PACKET)
 typedef struct {
-    uint32_t unit, kind, slots, n_reads; /* unit = op_kind_unit(kind) */
+    uint32_t kind, slots, n_reads; /* its unit: op_kind_unit(kind) */
     struct { uint32_t kind, addr, words; } read[UNIT_OP_READS];
 } unit_op;
 

@@ -17,7 +17,6 @@ static inline uint32_t count_rays(uint32_t mask) { return bit(mask, 0) + bit(mas
 
 static inline void op_set(unit_op *op, uint32_t kind, uint32_t slots)
 {
-    op->unit = op_kind_unit(kind);
     op->kind = kind;
     op->slots = slots;
     op->n_reads = 0;

@@ -196,7 +196,7 @@ static void leave_state(pipe_state *p, thread *t)
         break;
     case TH_QUEUED:
         p->st.thread_cycles[ST_UNIT_QUEUE] += d;
-        p->st.wait_unit[t->op.unit] += d;
+        p->st.wait_unit[op_kind_unit(t->op.kind)] += d;
         break;
     case TH_UNIT: p->st.thread_cycles[ST_UNIT_BUSY] += d; break;
     default: p->st.thread_cycles[ST_NO_WORK] += d; break;
@@ -284,7 +284,7 @@ next_op:
         heap_push(p, ready, id);
     } else {
         t->state = TH_QUEUED;
-        enqueue(p, (int)t->op.unit, id);
+        enqueue(p, (int)op_kind_unit(t->op.kind), id);
     }
 }
 
@@ -339,7 +339,7 @@ static void pipe_cycle(pipe_state *p)
         if (t->state == TH_MEMORY) { /* data is here: join the unit's queue */
             leave_state(p, t);
             t->state = TH_QUEUED;
-            enqueue(p, (int)t->op.unit, p->arrived[i]);
+            enqueue(p, (int)op_kind_unit(t->op.kind), p->arrived[i]);
         } else {
             advance(p, p->arrived[i]);
         }
