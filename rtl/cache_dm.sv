@@ -2,16 +2,17 @@
 // kd-node, list and matrix caches of the DynRTC, 4/2/6 KB in the prototype; here also the shading
 // cache) with the semantics of the cycle model's caches (tb/cycle/mem_iface.c), lookup for lookup:
 //   * one request is one line lookup (req_line_i: the byte address / LINE_BYTES; a read across
-//     lines is one request per line, as mem_iface_read loops over them); the line's index is
-//     req_line_i mod LINES (LINES = SIZE_BYTES / LINE_BYTES; a bit field when LINES is a power of
-//     two, else a constant modulo, the matrix cache's 153 lines of 40 bytes at e7m16, as a sum of
-//     per-chunk residues);
+//     lines is one request per line, as mem_iface_read loops over them) at the line's index
+//     req_idx_i = req_line_i mod LINES (LINES = SIZE_BYTES / LINE_BYTES), which the requester
+//     computes: a bit field when LINES is a power of two, else a constant modulo that cache_read
+//     computes in a stage of its own with its division by the line's words (the matrix cache's
+//     153 lines of 40 bytes at e7m16);
 //   * hit: the tag of the index holds the line. A miss tags the index at once and requests the
 //     line from memory (one transfer of LINE_BYTES at byte address line * LINE_BYTES); a second
 //     lookup of a line whose fill is still under way is a hit that waits for that fill (no second
 //     transfer), the youngest fill of the line;
 //   * the response (rsp_id_o = req_id_i, rsp_hit_o, the line's data) leaves as soon as the data is
-//     there: a hit on a filled line two cycles after the request (three with stage SI, below), a
+//     there: a hit on a filled line two cycles after the request, a
 //     lookup that waits for a fill in the cycle after the fill arrived; responses leave in any
 //     order (only the requests that wait for memory wait: hits under misses), round robin over the
 //     table's entries.
@@ -21,13 +22,11 @@
 // it and into the data array). A request is taken only if the table has room, so the lookup never
 // stalls; with the table full req_ready_o is low. After reset and flush_i the tags are cleared, one
 // index per cycle (LINES cycles, req_ready_o low), as mem_iface_flush empties the caches.
-// Pipeline: with a line count that is not a power of two, SI (request cycle) computes the index
-// (a sum of table lookups and a final reduction: more LUT levels than a stage has) and S0 follows
-// a cycle later; else S0 is the request cycle. S0 reads the tag and data arrays (synchronous block
+// Pipeline: S0 (the request cycle) reads the tag and data arrays at req_idx_i (synchronous block
 // RAM, with forwarding of the tag written and of the fill written in the cycle before); S1 compares
 // the tag, searches the fill FIFO (one line-address comparator per slot), writes the tag on a miss
-// and the table; the table's ready entries are offered at rsp_valid_o. Latency: hit 2 cycles (3
-// with SI), miss 1 cycle after the fill arrives; throughput one lookup per cycle.
+// and the table; the table's ready entries are offered at rsp_valid_o. Latency: hit 2 cycles,
+// miss 1 cycle after the fill arrives; throughput one lookup per cycle.
 // Every choice among the table's entries and the fill FIFO's slots is a one-hot vector (the free
 // entry and the response's round robin isolated on carry chains, rr_pick; the youngest fill of a
 // line marked by a bit per slot, cleared when a younger fill of its line is requested), so no
@@ -40,7 +39,9 @@ module cache_dm #(
   parameter int SIZE_BYTES = 4096,
   parameter int AW = 32,           // byte address width (line addresses use AW bits too)
   parameter int IDW = 8,           // request id width (the requester's thread or tag)
-  parameter int OUTSTANDING = 16   // requests in flight (table entries, fills)
+  parameter int OUTSTANDING = 16,  // requests in flight (table entries, fills)
+  localparam int LINES = SIZE_BYTES / LINE_BYTES,
+  localparam int IXW = LINES > 1 ? $clog2(LINES) : 1
 ) (
   input  logic                     clk_i,
   input  logic                     rst_ni,
@@ -49,6 +50,7 @@ module cache_dm #(
   output logic                     req_ready_o,
   input  logic [IDW-1:0]           req_id_i,
   input  logic [AW-1:0]            req_line_i,
+  input  logic [IXW-1:0]           req_idx_i,     // req_line_i mod LINES
   output logic                     rsp_valid_o,
   input  logic                     rsp_ready_i,
   output logic [IDW-1:0]           rsp_id_o,
@@ -60,19 +62,8 @@ module cache_dm #(
   input  logic                     mem_rsp_valid_i,  // fills, in request order
   input  logic [8*LINE_BYTES-1:0]  mem_rsp_data_i
 );
-  localparam int LINES = SIZE_BYTES / LINE_BYTES;
-  localparam int IXW = LINES > 1 ? $clog2(LINES) : 1;
   localparam int DW = 8 * LINE_BYTES;
   localparam int OW = OUTSTANDING > 1 ? $clog2(OUTSTANDING) : 1;
-  localparam bit POW2 = (LINES & (LINES - 1)) == 0;
-
-  localparam int CB = 5;                // bits per chunk of the index's residue sum
-  localparam int CHUNKS = (AW + CB - 1) / CB;
-  localparam int SW = $clog2(CHUNKS * LINES + 1);
-  function automatic int weight(input int k); // 2^(CB k) mod LINES
-    weight = 1 % LINES;
-    for (int i = 0; i < k; i++) weight = (weight * (1 << CB)) % LINES;
-  endfunction
 
   // ---- flush: clear the tags one index per cycle ----
   logic flushing;
@@ -98,16 +89,14 @@ module cache_dm #(
   // all per-entry selections by one-hot vectors: free entries and grants isolated on carry chains
   logic [OUTSTANDING-1:0] rt_free, rt_alloc, rt_grant, rt_after, rt_after_next;
   logic [OW-1:0] rt_out;
-  logic rt_out_any, rt_room1, rt_room2, rt_room3;
-  logic [OUTSTANDING-1:0] rt_free2, rt_free3; // the free entries but the lowest one, two
+  logic rt_out_any, rt_room1, rt_room2;
+  logic [OUTSTANDING-1:0] rt_free2; // the free entries but the lowest one
   always_comb begin
     rt_free = ~rt_valid;
     rt_alloc = rt_free & (~rt_free + OUTSTANDING'(1));             // the lowest free entry
     rt_free2 = rt_free & (rt_free - OUTSTANDING'(1));
-    rt_free3 = rt_free2 & (rt_free2 - OUTSTANDING'(1));
     rt_room1 = |rt_free;
     rt_room2 = |rt_free2;
-    rt_room3 = |rt_free3;
   end
   // round robin from the entry after the last one answered: no response waits for more than
   // OUTSTANDING others
@@ -134,66 +123,18 @@ module cache_dm #(
   logic take, s1_valid;
   logic [IDW-1:0] s1_id;
   logic [AW-1:0] s1_line;
-  logic [IXW-1:0] idx0, s1_idx;
-  // the request as it reads the arrays (S0): the request itself, or with a line count that is not
-  // a power of two, the request and its index a cycle later (stage SI)
+  logic [IXW-1:0] s1_idx;
+  // the request as it reads the arrays (S0)
   logic a_valid;
   logic [IDW-1:0] a_id;
   logic [AW-1:0] a_line;
   logic [IXW-1:0] a_idx;
-  // The line's index, line mod LINES, without a divider (a constant modulo of AW bits is a
-  // 58-level LUT network): line = sum of its CB-bit chunks c_k 2^(CB k), so line = sum of
-  // (c_k 2^(CB k)) mod LINES (mod LINES). Each term is a table of 2^CB constants, their sum is
-  // below CHUNKS LINES, and its residue is the sum less the largest multiple of LINES not above it
-  // (comparisons against constants on carry chains, one subtraction). Yosys maps the stage to 10
-  // LUT6 levels (docs/synth.md), hence its own cycle.
-  if (POW2) begin : g_index_bits
-    assign idx0 = req_line_i[IXW-1:0];
-    assign a_valid = take;
-    assign a_id = req_id_i;
-    assign a_line = req_line_i;
-    assign a_idx = idx0;
-  end else begin : g_index_mod
-    logic [CB*CHUNKS-1:0] chunks;
-    logic [CHUNKS*IXW-1:0] terms;
-    /* verilator lint_off UNUSEDSIGNAL */
-    logic [SW-1:0] sum, r; // r below LINES
-    /* verilator lint_on UNUSEDSIGNAL */
-    assign chunks = (CB * CHUNKS)'(req_line_i);
-    for (genvar k = 0; k < CHUNKS; k++) begin : g_chunk
-      logic [(1<<CB)*IXW-1:0] table_k;
-      for (genvar v = 0; v < (1 << CB); v++) begin : g_entry
-        assign table_k[v*IXW +: IXW] = IXW'((v * weight(k)) % LINES);
-      end
-      assign terms[k*IXW +: IXW] = table_k[chunks[CB*k +: CB]*IXW +: IXW];
-    end
-    // the multiple of LINES to take away is a function of the comparisons' thermometer code (one
-    // LUT level), so the residue is one subtraction, not a choice among CHUNKS differences
-    logic [SW-1:0] multiple;
-    always_comb begin
-      sum = '0;
-      for (int k = 0; k < CHUNKS; k++) sum = sum + SW'(terms[k*IXW +: IXW]);
-      multiple = '0;
-      for (int q = 1; q < CHUNKS; q++)
-        if (sum >= SW'(q * LINES)) multiple = SW'(q * LINES);
-      r = sum - multiple;
-    end
-    assign idx0 = r[IXW-1:0];
-    always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) a_valid <= 1'b0;
-      else a_valid <= take;
-    end
-    always_ff @(posedge clk_i) begin
-      if (take) begin
-        a_id <= req_id_i;
-        a_line <= req_line_i;
-        a_idx <= idx0;
-      end
-    end
-  end
-  // room in the table for the requests in SI and S1 and this one: they never stall
-  assign req_ready_o = !flushing && !flush_i && ((POW2 || !a_valid) ? (s1_valid ? rt_room2 : rt_room1)
-                                                                    : (s1_valid ? rt_room3 : rt_room2));
+  assign a_valid = take;
+  assign a_id = req_id_i;
+  assign a_line = req_line_i;
+  assign a_idx = req_idx_i;
+  // room in the table for the request in S1 and this one: they never stall
+  assign req_ready_o = !flushing && !flush_i && (s1_valid ? rt_room2 : rt_room1);
   assign take = req_valid_i && req_ready_o;
 
   logic [AW:0] tag_mem [LINES];  // {valid, line}

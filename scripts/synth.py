@@ -128,6 +128,13 @@ LEVEL_CELLS = {**{f"LUT{k}": 1 for k in range(1, 7)}, **{k: 1 for k in ("RAM32M"
                "CARRY4": 0, "MUXF7": 0, "MUXF8": 0, "INV": 0, "DSP48E1": 0}
 
 
+def comb_input(ctype, port):
+    """Whether a cell's input port reaches its outputs without a clock edge: a LUT RAM's read
+    addresses do (ADDRA..ADDRD, DPRA, A); its write data and enable are written at the edge, so a
+    path ends there as at a flip-flop."""
+    return ctype not in LUTRAM_BITS or port.startswith(("ADDR", "DPRA")) or re.fullmatch(r"A\d*", port) is not None
+
+
 def lut_levels(js):
     """The most LUT levels between two registers (or ports) of the flattened netlist js."""
     mods = json.load(open(js))["modules"]  # the top and the cell library
@@ -152,7 +159,8 @@ def lut_levels(js):
                 stack.pop()
                 continue
             ins = [driver[b] for p, bits in c["connections"].items()
-                   if c.get("port_directions", {}).get(p) == "input" for b in bits if b in driver]
+                   if c.get("port_directions", {}).get(p) == "input" and comb_input(c["type"], p)
+                   for b in bits if b in driver]
             todo = [d for d in ins if d not in depth and d != n]
             if todo:
                 stack.extend(todo)
@@ -237,8 +245,10 @@ CONTROL = [
     ("list_unit", "list_unit", {"THREADS": 64}, "3"),
     ("cache_dm kd nodes 4 KB / 8 B", "cache_dm", {"LINE_BYTES": 8, "SIZE_BYTES": 4096}, "hit 2"),
     ("cache_dm lists 2 KB / 4 B", "cache_dm", {"LINE_BYTES": 4, "SIZE_BYTES": 2048}, "hit 2"),
-    (f"cache_dm matrices 6 KB / {MB_E7M16} B", "cache_dm", {"LINE_BYTES": MB_E7M16, "SIZE_BYTES": 6144}, "hit 3"),
+    (f"cache_dm matrices 6 KB / {MB_E7M16} B", "cache_dm", {"LINE_BYTES": MB_E7M16, "SIZE_BYTES": 6144}, "hit 2"),
     ("cache_dm shading 4 KB / 16 B", "cache_dm", {"LINE_BYTES": 16, "SIZE_BYTES": 4096}, "hit 2"),
+    (f"cache_read matrices 6 KB / {MB_E7M16} B, {MB_E7M16 // 4} words", "cache_read",
+     {"LINE_BYTES": MB_E7M16, "SIZE_BYTES": 6144, "WORDS": MB_E7M16 // 4, "OUTSTANDING": 16}, "hit 4"),
     ("mem_port 4 requesters", "mem_port", {"N": 4, "DW": 8 * MB_E7M16}, "0"),
     ("thread_sched 64 threads, 5 units", "thread_sched", {"THREADS": 64, "UNITS": 5}, "1"),
     ("tile_ctrl", "tile_ctrl", {}, "1"),
@@ -365,7 +375,8 @@ def hier_lut_levels(mods, top):
                     continue
                 if sub is None:
                     ins = [x for p, bits in c["connections"].items()
-                           if c.get("port_directions", {}).get(p) == "input" for x in bits]
+                           if c.get("port_directions", {}).get(p) == "input" and comb_input(c["type"], p)
+                           for x in bits]
                     need = [(x, 0) for x in ins]
                 else:
                     reg, thr = sub["reg_out"].get((port, i), NONE), sub["through"].get((port, i), {})
@@ -406,9 +417,10 @@ def hier_lut_levels(mods, top):
                         for i, b in enumerate(bits):
                             if (port, i) in sub["in_to_reg"]:
                                 endpoint(b, sub["in_to_reg"][(port, i)])
-            elif c["type"] not in LEVEL_CELLS:
+            else:  # a register's inputs, a LUT RAM's written ones
                 for port, bits in c["connections"].items():
-                    if c.get("port_directions", {}).get(port) == "input":
+                    if c.get("port_directions", {}).get(port) == "input" and \
+                            (c["type"] not in LEVEL_CELLS or not comb_input(c["type"], port)):
                         for b in bits:
                             endpoint(b, 0)
         reg_out, through = {}, {}
@@ -720,9 +732,10 @@ def control_section(res):
     md += ["", f"The four caches and the port together: {tot['xilinx_luts']} LUTs, {tot['xilinx_ffs']} FFs, "
            f"{tot['xilinx_bram18']} RAMB18 (7-series), {tot['ice40_lut4']} iCE40 LUT4s. Most of it is the caches' "
            "request tables, which hold a whole line per outstanding request (16 x 320 bits in the matrix cache) so "
-           "that hits can pass misses and a line refilled meanwhile cannot change an answer; the matrix cache also "
-           "computes its index as the line address modulo 153, in a stage of its own (hit latency 3): a sum of per-chunk "
-           "residues from tables of constants and one subtraction, not a divider. A "
+           "that hits can pass misses and a line refilled meanwhile cannot change an answer. The matrix cache's read "
+           "port (cache_read, not in the sums) finds a read's line, its index modulo 153 and its offset in the "
+           "40-byte line without a divider, in a stage of its own (hit latency 4 with its ring): per-chunk tables of "
+           "constants, three adder trees, the remainders' carry and one reduction by comparisons. A "
            "table without the data (answers read from the data array, a conflicting fill held back while an answer "
            "waits) would take a fraction of this; the list unit's mailboxes are block RAM as intended (one RAMB18 "
            "per ray and slot; iCE40: 68 of 4 Kbit, more than an HX8K's 32)."]

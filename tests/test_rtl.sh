@@ -91,6 +91,36 @@ print(f"cache_read: {S.luts_of(tot)} LUTs summed over the hierarchy, {S.luts_of(
       f"LUT6 levels {h} across module ports, {f} flattened")
 sys.exit(0 if (h, S.luts_of(tot)) == (f, S.luts_of(flat)) else 1)
 PY
+  # a LUT RAM's write ends a path as a flip-flop's D does: a product written into a LUT RAM has
+  # the levels of the same product written into a register (counting on through the write to a
+  # later read would add the read's level)
+  cat > "$T/lr.sv" <<'SV'
+module lr #(parameter bit MEM = 1) (input logic clk_i, input logic [4:0] wa_i, ra_i, input logic [15:0] a_i, b_i,
+                                     output logic [15:0] q_o);
+  logic [15:0] a, b, w;
+  logic [15:0] m [32];
+  always_ff @(posedge clk_i) begin
+    a <= a_i;
+    b <= b_i;
+    if (MEM) m[wa_i] <= a * b; else w <= a * b;
+    q_o <= MEM ? m[ra_i] : w;
+  end
+endmodule
+SV
+  for mem in 1 0; do
+    yosys -q -l "$T/lr$mem.log" -p "read_verilog -sv $T/lr.sv; chparam -set MEM $mem lr; synth_xilinx -top lr -nodsp -flatten; stat; write_json $T/lr$mem.json" \
+      >/dev/null 2>&1 || return 1
+  done
+  grep -q RAM32M "$T/lr1.log" || { echo "the memory is not LUT RAM"; return 1; }
+  python3 - "$T" <<'PY'
+import sys
+sys.path.insert(0, "scripts")
+import synth as S
+t = sys.argv[1]
+ram, reg = S.lut_levels(f"{t}/lr1.json"), S.lut_levels(f"{t}/lr0.json")
+print(f"a product into LUT RAM: {ram} LUT6 levels, into a register: {reg}")
+sys.exit(0 if ram == reg else 1)
+PY
 }
 
 t_operators() {

@@ -43,7 +43,7 @@ module tb_cache #(
     cache_dm #(.LINE_BYTES(LB[c]), .SIZE_BYTES(SZ[c]), .OUTSTANDING(OUTSTANDING)) u_cache (
       .clk_i(clk_i), .rst_ni(rst_ni), .flush_i(flush_i),
       .req_valid_i(req_valid_i[c]), .req_ready_o(req_ready_o[c]), .req_id_i(req_id_i[c*8 +: 8]),
-      .req_line_i(req_line_i[c*32 +: 32]),
+      .req_line_i(req_line_i[c*32 +: 32]), .req_idx_i($bits(u_cache.req_idx_i)'(req_line_i[c*32 +: 32] % 32'(SZ[c] / LB[c]))),
       .rsp_valid_o(rsp_valid_o[c]), .rsp_ready_i(1'b1), .rsp_id_o(rsp_id_o[c*8 +: 8]), .rsp_hit_o(rsp_hit_o[c]),
       .rsp_data_o(data_all[OFF +: 8*LB[c]]),
       .mem_req_valid_o(mreq_valid[c]), .mem_req_ready_i(mreq_ready[c]), .mem_req_addr_o(mreq_addr[c*32 +: 32]),
