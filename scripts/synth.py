@@ -571,6 +571,11 @@ def redo(keys):
 
 
 def main():
+    args = sys.argv[1:]
+    if args and (args[0] in ("-h", "--help") or args[0] not in ("--only-control", "--redo", "--dynrtp")):
+        # a full run takes hours: an unknown argument is an error, never a start
+        print(__doc__)
+        sys.exit(0 if args[0] in ("-h", "--help") else f"synth.py: unknown argument {args[0]} (see above)")
     os.makedirs(OUT, exist_ok=True)
     if "--only-control" in sys.argv[1:]:
         if not os.path.exists(SYNTH_JSON):
