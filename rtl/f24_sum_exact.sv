@@ -11,7 +11,7 @@
 // them (PULP FPnew style; the last cut always gets one, so the outputs are registered); every
 // 128-bit carry chain is split into two 64-bit halves in consecutive segments:
 //   1 classes, specials, exponent sums, partial products (6-bit slices as f24_mul)
-//   2 products, the largest live product exponent (a max tree)
+//   2 products, the largest live product exponent (a comparison matrix)
 //   3-5 alignment: right shift of each product by 64, 32 | 16, 8, 4 | 2, 1 with sticky; negative
 //       terms as ones' complement
 //   6-7 carry-save sum of the N terms and the count of negative terms (3:2 compressors)
@@ -109,6 +109,7 @@ module f24_sum_exact #(
   logic [N*NP*PW-1:0] pp2;
   logic [N*PB-1:0] prod2;
   logic [XW-1:0] key [N];
+  logic [N-1:0] top;
   logic [XW-1:0] emax2;
   always_comb begin
     {sp2, sgn2, live2, ex2, pp2} = d1;
@@ -118,10 +119,16 @@ module f24_sum_exact #(
         prod2[k*PB +: PB] = prod2[k*PB +: PB] + (PB'(pp2[(k*NP+j)*PW +: PW]) << (j * SL));
       key[k] = live2[k] ? ex2[k*XW +: XW] : '0;   // a live exponent sum is at least 2
     end
-    for (int s = 1; s < N; s = 2 * s)             // max tree
-      for (int k = 0; k + s < N; k += 2 * s)
-        if (key[k + s] > key[k]) key[k] = key[k + s];
-    emax2 = key[0];
+    // the largest by a comparison matrix, all N (N - 1) comparisons side by side: the keys not
+    // below any other are the maximum (ties agree on the value), ORed together; a max tree's
+    // log2 N compare-and-select levels in a row are more LUT levels than a segment has
+    emax2 = '0;
+    for (int k = 0; k < N; k++) begin
+      top[k] = 1'b1;
+      for (int j = 0; j < N; j++)
+        if (j != k && key[j] > key[k]) top[k] = 1'b0;
+      emax2 = emax2 | (top[k] ? key[k] : '0);
+    end
   end
 
   localparam int B2 = SP + 2 * N + N * XW + XW + N * PB;
