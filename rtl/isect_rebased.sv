@@ -23,11 +23,12 @@
 // third row is unused: synthesis drops it), an f24_sum_exact of 9 terms, an isect_unit, and
 // delay lines for the operands that join later (the matrix 2 ADD, the rays' distances T).
 // synth_xilinx at e7m16 (scripts/synth.py's flow, xilinx('isect_rebased', 7, 16), 2026-11-25):
-// 24189 LUT6, 1487 SRL, 16978 flip-flops, 78 DSP48E1, 1447 CARRY4; 10 LUT6 levels, those of its
-// f24_sum_exact of 9 terms (alone: 10222 LUT6, 27 DSP48E1, 10 levels: the max tree of 9 product
-// exponents, 4 compare-and-select levels in one segment; the core's sum had them before). What it
-// replaces in trace_core (xform_unit, isect_unit, the 9-term sum, one of 3 adders) was 22151
-// LUT6 and 60 DSP48E1 with the 3 adders; the core now has it and 2 adders: 25537 and 78.
+// 24859 LUT6, 1487 SRL, 16978 flip-flops, 78 DSP48E1, 1511 CARRY4; 9 LUT6 levels (10 before its
+// f24_sum_exact of 9 terms found the largest product exponent by a comparison matrix instead of
+// a max tree of 4 compare-and-select levels in one segment: the sum alone 10 -> 7 levels, 10378
+// LUT6, 27 DSP48E1). What it replaces in trace_core (xform_unit, isect_unit, the 9-term sum, one
+// of 3 adders) was 22151 LUT6 and 60 DSP48E1 with the 3 adders; the core now has it and 2
+// adders: 25537 and 78 (before the comparison matrix).
 // Handshake: valid_i in, valid_o LATENCY cycles later; no back pressure (trace_core takes every
 // result, as from its other per-ray units).
 module isect_rebased #(
