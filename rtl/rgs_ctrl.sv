@@ -27,10 +27,12 @@
 // e7m16, the current packet, its surfaces, sums and shadow packet) in registers; the DynRTP's 64
 // threads will keep it in block RAM with several blocks in flight. The tag given with the block
 // goes out with its trace requests and its pixels (the top routes the hits back by it).
-// Latency: a sequence per block, its operations one after another (each unit pipelined inside but
-// fed by this control one operation at a time): about 20 + 4 x `rgs_surface` + per light (20 +
-// `rgs_light` 87 + 4 `rgs_add_light`) + 4 x `rgs_accum` 67 cycles per packet, plus the trace; the
-// bench measures it. Throughput: one block per its latency. Resources: `rgs_raygen`,
+// Latency: a sequence per block, its phases one after another, the 4 rays streamed through each
+// phase's unit: about 20 + `rgs_surface` (the 4 rays offered as it takes them: its steps per hit,
+// the last frame's 118 overlapped by none) + per light (`rgs_light` 87 + 4, after its 16 words
+// unless the record held is that light's: one light is read once) + 4 `rgs_add_light` + 4 +
+// `rgs_accum` 67 cycles per packet, plus the trace; the bench measures it (cornell 32x24: 764
+// cycles a block, per state with tb_rgs_ctrl). Throughput: one block per its latency. Resources: `rgs_raygen`,
 // `rgs_surface`, `rgs_light`, `rgs_light_colour`, `rgs_add_light`, `rgs_accum`, one `f24_add`,
 // `f24_cmp`, `f24_div` (frame set-up), the block's registers (the stack dominates: RGS_STACK x 4
 // rays x (6 W + 48) bits).
