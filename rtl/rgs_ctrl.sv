@@ -27,10 +27,12 @@
 // e7m16, the current packet, its surfaces, sums and shadow packet) in registers; the DynRTP's 64
 // threads will keep it in block RAM with several blocks in flight. The tag given with the block
 // goes out with its trace requests and its pixels (the top routes the hits back by it).
-// Latency: a sequence per block, its operations one after another (each unit pipelined inside but
-// fed by this control one operation at a time): about 20 + 4 x `rgs_surface` + per light (20 +
-// `rgs_light` 87 + 4 `rgs_add_light`) + 4 x `rgs_accum` 67 cycles per packet, plus the trace; the
-// bench measures it. Throughput: one block per its latency. Resources: `rgs_raygen`,
+// Latency: a sequence per block, its phases one after another, the 4 rays streamed through each
+// phase's unit: about 20 + `rgs_surface` (the 4 rays offered as it takes them: its steps per hit,
+// the last frame's 118 overlapped by none) + per light (`rgs_light` 87 + 4, after its 16 words
+// unless the record held is that light's: one light is read once) + 4 `rgs_add_light` + 4 +
+// `rgs_accum` 67 cycles per packet, plus the trace; the bench measures it (cornell 32x24: 764
+// cycles a block, per state with tb_rgs_ctrl). Throughput: one block per its latency. Resources: `rgs_raygen`,
 // `rgs_surface`, `rgs_light`, `rgs_light_colour`, `rgs_add_light`, `rgs_accum`, one `f24_add`,
 // `f24_cmp`, `f24_div` (frame set-up), the block's registers (the stack dominates: RGS_STACK x 4
 // rays x (6 W + 48) bits).
@@ -155,7 +157,8 @@ module rgs_ctrl #(
   logic [12:0] kd_q [4], kr_q [4], kt_q [4], ks_q [4];
   logic [47:0] base_q [4], emis_q [4], tint_q [4];
   // the light and its shadow packet
-  logic [31:0] light_q, lrec_q [13];
+  logic [31:0] light_q, lrec_q [13], lrec_at_q;  // lrec_q holds light lrec_at_q's record if lrec_ok_q
+  logic lrec_ok_q;
   logic [V-1:0] sho_q [4], shd_q [4];
   logic [W-1:0] shmin_q [4], shmax_q [4];
   logic [3:0] shact_q, visible_q;
@@ -207,7 +210,7 @@ module rgs_ctrl #(
     .ADD_STAGES(ADD_STAGES), .SQRT_STAGES(SQRT_STAGES), .DIV_STAGES(DIV_STAGES), .CMP_STAGES(CMP_STAGES),
     .TOI_STAGES(TOI_STAGES), .MOD_STAGES(MOD_STAGES)) u_surface (
     .clk_i(clk_i), .rst_ni(rst_ni), .inst_base_i(inst_base_q), .obj_base_i(obj_base_q), .mat_base_i(mat_base_q),
-    .tex_base_i(tex_base_q), .n_tex_i(n_tex_q), .valid_i(st == S_SURF && in_q < 3'd4 && in_q == out_q),
+    .tex_base_i(tex_base_q), .n_tex_i(n_tex_q), .valid_i(st == S_SURF && in_q < 3'd4),
     .ready_o(sf_ready), .tid_i(1'b0), .active_i(cact_q[in_q[1:0]]), .o_i(co_q[in_q[1:0]]), .d_i(cd_q[in_q[1:0]]),
     .inst_i(hinst_q[in_q[1:0]]), .tri_i(htri_q[in_q[1:0]]), .t_i(ht_q[in_q[1:0]]), .u_i(hu_q[in_q[1:0]]),
     .v_i(hv_q[in_q[1:0]]), .cos_n_i(hcos_q[in_q[1:0]]), .mem_req_valid_o(sf_req_valid),
@@ -243,11 +246,12 @@ module rgs_ctrl #(
 
   // the visible rays' sums, one ray at a time
   logic al_valid;
+  logic [1:0] al_tid;
   logic [47:0] al_dif, al_hil;
-  rgs_add_light #(.TID_BITS(1)) u_add (.clk_i(clk_i), .rst_ni(rst_ni),
-    .valid_i(st == S_ADD && in_q < 3'd4 && in_q == out_q && visible_q[in_q[1:0]]), .ready_o(), .tid_i(1'b0),
+  rgs_add_light #(.TID_BITS(2)) u_add (.clk_i(clk_i), .rst_ni(rst_ni),
+    .valid_i(st == S_ADD && in_q < 3'd4 && visible_q[in_q[1:0]]), .ready_o(), .tid_i(in_q[1:0]),
     .diffuse_i(dif_q[in_q[1:0]]), .highlight_i(hil_q[in_q[1:0]]), .diff_i(diff_q[in_q[1:0]]),
-    .spec_i(spec_q[in_q[1:0]]), .colour_i(colour_q), .valid_o(al_valid), .ready_i(1'b1), .tid_o(),
+    .spec_i(spec_q[in_q[1:0]]), .colour_i(colour_q), .valid_o(al_valid), .ready_i(1'b1), .tid_o(al_tid),
     .diffuse_o(al_dif), .highlight_o(al_hil));
 
   // the accumulation of the active rays, streamed
@@ -303,6 +307,7 @@ module rgs_ctrl #(
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       st <= S_RESET;
+      lrec_ok_q <= 1'b0;
       rd_left_q <= '0;
       rsp_left_q <= '0;
     end else begin
@@ -435,7 +440,7 @@ module rgs_ctrl #(
             st <= S_SURF;
           end
         S_SURF: begin
-          if (in_q < 3'd4 && in_q == out_q && sf_ready) in_q <= in_q + 3'd1;
+          if (in_q < 3'd4 && sf_ready) in_q <= in_q + 3'd1;  // the next ray while the last is shaded
           if (sf_valid) begin
             sfv_q[out_q[1:0]] <= sf_sfv;
             sp_p_q[out_q[1:0]] <= sf_p;
@@ -477,6 +482,11 @@ module rgs_ctrl #(
               tw_q[i] <= '0;
             end
             st <= S_ACCUM;
+          end else if (lrec_ok_q && lrec_at_q == light_q) begin  // held (a scene of one light: always)
+            in_q <= '0;
+            out_q <= '0;
+            colour_done_q <= 1'b0;
+            st <= S_LCALC;
           end else begin
             rd_addr_q <= light_base_q + 32'd16 * light_q;
             rd_left_q <= 6'd16;
@@ -487,6 +497,8 @@ module rgs_ctrl #(
         S_LREC:
           if (burst_done) begin
             for (int k = 0; k < 13; k++) lrec_q[k] <= buf_q[k];
+            lrec_at_q <= light_q;
+            lrec_ok_q <= 1'b1;
             in_q <= '0;
             out_q <= '0;
             colour_done_q <= 1'b0;
@@ -523,21 +535,17 @@ module rgs_ctrl #(
               if (hit_inst_i[32*i +: 32] != NO_HIT) visible_q[i] <= 1'b0;
             st <= S_ADD;
           end
-        S_ADD:
-          if (out_q == 3'd4) begin
+        S_ADD: begin  // a visible ray a cycle; rgs_add_light's sum of the last comes as in_q reaches 4
+          if (in_q < 3'd4) in_q <= in_q + 3'd1;
+          if (al_valid) begin
+            dif_q[al_tid] <= al_dif;
+            hil_q[al_tid] <= al_hil;
+          end
+          if (in_q == 3'd4) begin
             light_q <= light_q + 32'd1;
             st <= S_LIGHT;
-          end else if (in_q == out_q && !visible_q[in_q[1:0]]) begin
-            in_q <= in_q + 3'd1;
-            out_q <= out_q + 3'd1;
-          end else begin
-            if (in_q == out_q) in_q <= in_q + 3'd1;
-            if (al_valid) begin
-              dif_q[out_q[1:0]] <= al_dif;
-              hil_q[out_q[1:0]] <= al_hil;
-              out_q <= out_q + 3'd1;
-            end
           end
+        end
         S_ACCUM: begin
           if (in_q < 3'd4 && (!cact_q[in_q[1:0]] || ac_ready)) in_q <= in_q + 3'd1;
           if (ac_valid) begin

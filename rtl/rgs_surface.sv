@@ -1,6 +1,7 @@
 // rgs_surface: the surface the RGS shades at a hit (paper sections 2.2 and 3, Figure 2 path g:
 // the shading's reads and the surface's geometry and colours; hls/units/rgs_surface.c
-// `rgs_surface_at`), bit for bit as the C, one surface at a time in this order:
+// `rgs_surface_at`), bit for bit as the C, its reads and steps one surface at a time in this order
+// (the frame and the conversions beside them, see Latency):
 //   reads   the instance's 13 words (the world-to-object 3x3, the object index), the object
 //           descriptor's words 2..7 (triangle and shading record addresses, flags), the triangle's
 //           shading record (shade_rec_words(flags) words, up to 19) on the word read port
@@ -8,11 +9,13 @@
 //           interpolated per component (`rgs_lerp`, as `rgs_lerp_normal`); the squared length
 //           (`f24_dot3`, the C's `rgs_dot3(n, n)`): if its exponent is zero, the geometric normal
 //           (values 8..10 of the triangle record, F24_RECORD_SPAN(8, 3) words read)
-//   frame   d^, n^ facing the ray, t_hat, P, entering (`rgs_frame`)
+//   frame   d^, n^ facing the ray, t_hat, P, entering (`rgs_frame`): issued here, its result
+//           joins the surface at the output while the next steps and surfaces go on
 //   material  its 16 words read (address: the object's material or the record tail's); unlit,
 //           the highlight exponent k (shader word 0, bits 26..29), the index of refraction and the
 //           kd, kr, kt, ks fields (words 13..15) for the accumulation
-//   colours  9 conversions to Q12 on one `q12_of` (base and emissive factors, metallic, u, v);
+//   colours  9 conversions to Q12 on one `q12_of` (u, v issued while the instance is read, the
+//           base and emissive factors and metallic as the material's words arrive);
 //           vertex colours (`modulate_colours`: weights q(u), q(v), 1 - both, the bytes widened,
 //           the C's uint32 arithmetic); per texture (base colour, then emissive) if its index is
 //           below the header's texture count and the object has texture coordinates: s, t
@@ -26,14 +29,16 @@
 // Reads: valid/ready request of one word address, responses in order (valid, no back pressure: the
 // unit takes one every cycle), as trace_core's word port; the read sequence is the C's (op reads).
 // Latency: about 20 + the reads (13 + 6 + record + material + per texture 8 words) + the chain of the
-// operators used (decode 42 + 2 lerp 24 + dot 16 + frame 118 + 9 conversions 20 + per texture lerp
-// 24 + sample 44): about 300 cycles for a textured hit with a memory answering in the next cycle
-// (the bench measures it); throughput one surface per latency (II = latency): the control is a
-// sequence, the units inside are pipelined and idle between their uses. A pipelined form with
-// several surfaces in flight (the packet's 4) is the next step. The thread id travels with the
-// surface. Resources: one each of `shade_rec_decode`, `rgs_lerp`, `f24_dot3`, `rgs_frame`,
+// operators used (decode 42 + 2 lerp 24 + dot 16 (only with vertex normals) + the conversions'
+// tail after the material's last factor (about 17) + per texture lerp 24 + sample 44) + the frame
+// (118), which the next surface's steps overlap. Throughput: a surface per its steps without the
+// frame (about 90 cycles for a flat untextured hit with a memory answering in the next cycle),
+// up to SLOTS surfaces between the frame's issue and the output; a miss or an inactive ray joins
+// the queue in one cycle. Results leave in the order the surfaces came in, with their thread id.
+// Resources: one each of `shade_rec_decode`, `rgs_lerp`, `f24_dot3`, `rgs_frame`,
 // `q12_of`, `tex_bilinear`; 3 `q12_mul`; the record (19 words), a read buffer (16 words), the
-// matrix (9 W bits) and the surface's registers; a 608-bit funnel shifter for the record's tail
+// matrix (9 W bits) and the surface's registers; the output queue (SLOTS x (TID_BITS + W + 234)
+// bits: the fields of the surfaces in the frame); a 608-bit funnel shifter for the record's tail
 // fields.
 module rgs_surface #(
   parameter int E = 7,
@@ -46,7 +51,8 @@ module rgs_surface #(
   parameter int DIV_STAGES = 11,
   parameter int CMP_STAGES = 2,
   parameter int TOI_STAGES = 2,
-  parameter int MOD_STAGES = 16
+  parameter int MOD_STAGES = 16,
+  parameter int SLOTS = 4         // surfaces between the frame's issue and the output (a power of 2)
 ) (
   input  logic                 clk_i,
   input  logic                 rst_ni,
@@ -113,7 +119,7 @@ module rgs_surface #(
 
   typedef enum logic [4:0] {
     S_IDLE, S_INST, S_OBJ, S_REC, S_DEC, S_LERPN, S_DOT, S_GN, S_FRAME, S_MAT, S_Q, S_TEX, S_TLERP, S_TENTRY,
-    S_TSAMPLE, S_TINT, S_OUT
+    S_TSAMPLE, S_TINT
   } state_t;
   state_t st;
 
@@ -213,7 +219,7 @@ module rgs_surface #(
   logic [W-1:0] dot_r;  // its exponent: the zero test
   /* verilator lint_on UNUSEDSIGNAL */
   f24_dot3 #(.E(E), .M(M), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES)) u_dot (
-    .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(st == S_DOT && in_q == 2'd0), .a_i(n_q), .b_i(n_q),
+    .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(st == S_DOT && in_q == 2'd0 && has_n), .a_i(n_q), .b_i(n_q),
     .valid_o(dot_ovalid), .res_o(dot_r));
 
   logic fr_ready, fr_ovalid, fr_entering;
@@ -221,23 +227,22 @@ module rgs_surface #(
   logic [W-1:0] fr_t_hat;
   rgs_frame #(.E(E), .M(M), .TID_BITS(1), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES),
     .SQRT_STAGES(SQRT_STAGES), .DIV_STAGES(DIV_STAGES)) u_frame (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(st == S_FRAME && in_q == 2'd0), .ready_o(fr_ready), .tid_i(1'b0),
-    .o_i(o_q), .d_i(d_q), .t_i(t_q), .cos_n_i(cos_q), .n_i(n_q), .w2o_i(w2o_q), .valid_o(fr_ovalid), .ready_i(1'b1),
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(st == S_FRAME), .ready_o(fr_ready), .tid_i(1'b0),
+    .o_i(o_q), .d_i(d_q), .t_i(t_q), .cos_n_i(cos_q), .n_i(n_q), .w2o_i(w2o_q), .valid_o(fr_ovalid), .ready_i(fr_take),
     .tid_o(), .d_o(fr_d), .n_o(fr_n), .entering_o(fr_entering), .t_hat_o(fr_t_hat), .p_o(fr_p));
 
-  // the material's fields: factors base 0..2, emission 4..6, metallic 10 (q12_of inputs 0..6), then u, v
-  logic [W-1:0] mf_q [7];
+  // the 9 conversions to Q12, off the sequence's path: u and v while the instance is read, the
+  // material's factors (words base 0..2, emission 4..6, metallic 10) as their words arrive; the
+  // results in that order into qres_q 7, 8, then 0..6 (S_Q waits for the last)
   logic [31:0] tex_idx_q [2];
   logic [W-1:0] q_x;
-  logic q_ovalid;
+  logic q_valid, q_ovalid, q_factor;
   logic [15:0] q_r, qres_q [9];
-  always_comb begin
-    if (qin_q < 4'd7) q_x = mf_q[qin_q[2:0]];
-    else if (qin_q == 4'd7) q_x = u_q;
-    else q_x = v_q;
-  end
+  assign q_factor = rsp_idx_q == 5'd10 || (rsp_idx_q < 5'd7 && rsp_idx_q != 5'd3);
+  assign q_valid = (st == S_INST && qin_q < 4'd2) || (st == S_MAT && mem_rsp_valid_i && rsp_left_q != 5'd0 && q_factor);
+  assign q_x = st == S_INST ? (qin_q[0] ? v_q : u_q) : mem_rdata_i[W-1:0];
   q12_of #(.E(E), .M(M), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES), .TOI_STAGES(TOI_STAGES)) u_q12 (
-    .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(st == S_Q && qin_q != 4'd9), .x_i(q_x),
+    .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(q_valid), .x_i(q_x),
     .valid_o(q_ovalid), .q_o(q_r));
 
   logic tx_ready, tx_ovalid;
@@ -286,36 +291,58 @@ module rgs_surface #(
   logic [15:0] metal_c;
   assign metal_c = qres_q[6] < ONE ? qres_q[6] : ONE;
 
-  // ---- outputs ----
-  logic sfv_q, ent_q, unlit_q;
-  logic [V-1:0] p_q, dd_q, nn_q;
-  logic [W-1:0] th_q;
-  logic [31:0] mat_q;
+  // ---- outputs: a queue of SLOTS surfaces in order, the frame's results beside ----
+  // The frame (118 cycles) runs while the material, its colours and the next surfaces' reads and
+  // normals are worked on: a hit's geometry goes into rgs_frame as soon as its normal is known, and
+  // the rest of its surface (tid, the material's fields, its colours) joins the queue when they are
+  // done; a miss or an inactive ray joins at once without the frame. The frame's results come in
+  // issue order, so its oldest one belongs to the queue's first hit: the head leaves with it (a hit)
+  // or alone (a miss; the frame waits meanwhile).
+  logic unlit_q;
   logic [3:0] k_q;
   logic [W-1:0] eta_q;
   logic [12:0] kd_q, kr_q, kt_q, ks_q;
-  logic [15:0] tint_q [3];
-  assign ready_o = st == S_IDLE;
-  assign valid_o = st == S_OUT;
-  assign tid_o = tid_q;
-  assign sf_valid_o = sfv_q;
-  assign p_o = p_q;
-  assign d_o = dd_q;
-  assign n_o = nn_q;
-  assign t_hat_o = th_q;
-  assign entering_o = ent_q;
-  assign mat_o = mat_q;
-  assign unlit_o = unlit_q;
-  assign k_o = k_q;
-  assign eta_o = eta_q;
-  assign kd_o = kd_q;
-  assign kr_o = kr_q;
-  assign kt_o = kt_q;
-  assign ks_o = ks_q;
-  for (genvar k = 0; k < 3; k++) begin : g_out
-    assign base_o[16*k +: 16] = base_q[k];
-    assign emission_o[16*k +: 16] = emis_q[k];
-    assign tint_o[16*k +: 16] = tint_q[k];
+  localparam int QW = TID_BITS + 1 + 32 + 1 + 4 + W + 4 * 13 + 3 * 48;
+  localparam int SW = $clog2(SLOTS);
+  logic [QW-1:0] q_mem [SLOTS], q_in, q_head;
+  logic [SW-1:0] q_wr, q_rd;
+  logic [SW:0] q_cnt;
+  logic q_push, q_pop, q_hit, fr_take;
+  logic [47:0] base_v, emis_v, tint_v;
+  for (genvar k = 0; k < 3; k++) begin : g_pack
+    assign base_v[16*k +: 16] = base_q[k];
+    assign emis_v[16*k +: 16] = emis_q[k];
+    assign tint_v[16*k +: 16] = q_sat32({16'd0, ONE - metal_c} + {16'd0, qm_p[k]});  // the C's tint
+  end
+  // a miss joins from S_IDLE with zero fields; a hit at the end of its colours (S_TINT)
+  assign q_push = st == S_TINT || (st == S_IDLE && valid_i && q_cnt != (SW+1)'(SLOTS) && (!active_i || inst_i == NO_HIT));
+  assign q_in = st == S_TINT ? {tid_q, 1'b1, mat_addr, unlit_q, k_q, eta_q, kd_q, kr_q, kt_q, ks_q, base_v, emis_v, tint_v}
+                             : {tid_i, (QW - TID_BITS)'(0)};
+  assign q_head = q_mem[q_rd];
+  assign q_hit = q_head[QW-TID_BITS-1];
+  assign valid_o = q_cnt != '0 && (!q_hit || fr_ovalid);
+  assign q_pop = valid_o && ready_i;
+  assign fr_take = q_cnt != '0 && q_hit && ready_i;
+  assign ready_o = st == S_IDLE && q_cnt != (SW+1)'(SLOTS);
+  assign {tid_o, sf_valid_o, mat_o, unlit_o, k_o, eta_o, kd_o, kr_o, kt_o, ks_o, base_o, emission_o, tint_o} = q_head;
+  assign p_o = q_hit ? fr_p : '0;
+  assign d_o = q_hit ? fr_d : '0;
+  assign n_o = q_hit ? fr_n : '0;
+  assign t_hat_o = q_hit ? fr_t_hat : '0;
+  assign entering_o = q_hit && fr_entering;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      q_wr <= '0;
+      q_rd <= '0;
+      q_cnt <= '0;
+    end else begin
+      if (q_push) begin
+        q_mem[q_wr] <= q_in;
+        q_wr <= q_wr + SW'(1);
+      end
+      if (q_pop) q_rd <= q_rd + SW'(1);
+      q_cnt <= q_cnt + (SW+1)'(q_push) - (SW+1)'(q_pop);
+    end
   end
 
   // ---- the sequence ----
@@ -334,6 +361,11 @@ module rgs_surface #(
         rd_addr_q <= rd_addr_q + 32'd1;
         rd_left_q <= rd_left_q - 5'd1;
       end
+      if (q_valid) qin_q <= qin_q + 4'd1;
+      if (q_ovalid) begin
+        qres_q[qout_q < 4'd2 ? qout_q + 4'd7 : qout_q - 4'd2] <= q_r;
+        qout_q <= qout_q + 4'd1;
+      end
       if (!tex_port && mem_rsp_valid_i && rsp_left_q != 5'd0) begin
         if (st == S_REC) rec_q[rsp_idx_q] <= mem_rdata_i;
         else buf_q[rsp_idx_q[3:0]] <= mem_rdata_i;
@@ -341,8 +373,8 @@ module rgs_surface #(
         rsp_left_q <= rsp_left_q - 5'd1;
       end
       unique case (st)
-        S_IDLE:
-          if (valid_i) begin
+        S_IDLE:  // a miss or an inactive ray has joined the queue (q_push)
+          if (valid_i && ready_o) begin
             tid_q <= tid_i;
             o_q <= o_i;
             d_q <= d_i;
@@ -351,27 +383,9 @@ module rgs_surface #(
             u_q <= u_i;
             v_q <= v_i;
             cos_q <= cos_n_i;
-            sfv_q <= 1'b0;
-            p_q <= '0;
-            dd_q <= '0;
-            nn_q <= '0;
-            th_q <= '0;
-            ent_q <= 1'b0;
-            mat_q <= '0;
-            unlit_q <= 1'b0;
-            k_q <= '0;
-            eta_q <= '0;
-            kd_q <= '0;
-            kr_q <= '0;
-            kt_q <= '0;
-            ks_q <= '0;
-            for (int k = 0; k < 3; k++) begin
-              base_q[k] <= '0;
-              emis_q[k] <= '0;
-              tint_q[k] <= '0;
-            end
-            if (!active_i || inst_i == NO_HIT) st <= S_OUT;
-            else begin
+            qin_q <= '0;
+            qout_q <= '0;
+            if (active_i && inst_i != NO_HIT) begin
               rd_addr_q <= inst_base_i + 32'(INST_WORDS) * inst_i;
               rd_left_q <= 5'd13;
               rsp_left_q <= 5'd13;
@@ -430,11 +444,11 @@ module rgs_surface #(
             end
           end
         end
-        S_DOT: begin
+        S_DOT: begin  // without vertex normals n is zero: its square is, no need to ask the unit
           if (in_q == 2'd0) in_q <= 2'd1;
-          if (dot_ovalid) begin
+          if (!has_n || dot_ovalid) begin
             in_q <= '0;
-            if (dot_r[W-2:M] == '0) begin  // f24_is_zero: the geometric normal
+            if (!has_n || dot_r[W-2:M] == '0) begin  // f24_is_zero: the geometric normal
               rd_addr_q <= tri_base_q + 32'(TRI_WORDS) * tri_q + 32'(GN_WORD);
               rd_left_q <= 5'(GN_SPAN);
               rsp_left_q <= 5'(GN_SPAN);
@@ -448,30 +462,16 @@ module rgs_surface #(
             for (int c = 0; c < 3; c++) n_q[W*c +: W] <= W'({buf_q[2], buf_q[1], buf_q[0]} >> (GN_SHIFT + W * c));
             st <= S_FRAME;
           end
-        S_FRAME: begin
-          if (in_q == 2'd0 && fr_ready) in_q <= 2'd1;
-          if (fr_ovalid) begin
-            sfv_q <= 1'b1;
-            dd_q <= fr_d;
-            nn_q <= fr_n;
-            p_q <= fr_p;
-            th_q <= fr_t_hat;
-            ent_q <= fr_entering;
-            mat_q <= mat_addr;
+        S_FRAME:  // the geometry into the frame; the material's read meanwhile
+          if (fr_ready) begin
             rd_addr_q <= mat_addr;
             rd_left_q <= 5'd16;
             rsp_left_q <= 5'd16;
             rsp_idx_q <= '0;
             st <= S_MAT;
           end
-        end
         S_MAT:
           if (burst_done) begin
-            for (int k = 0; k < 3; k++) begin
-              mf_q[k] <= buf_q[k][W-1:0];
-              mf_q[3+k] <= buf_q[4+k][W-1:0];
-            end
-            mf_q[6] <= buf_q[10][W-1:0];
             tex_idx_q[0] <= buf_q[7];
             tex_idx_q[1] <= buf_q[12];
             unlit_q <= buf_q[8][3];
@@ -481,16 +481,9 @@ module rgs_surface #(
             kr_q <= buf_q[14][25:13];
             kt_q <= buf_q[15][12:0];
             ks_q <= buf_q[15][25:13];
-            qin_q <= '0;
-            qout_q <= '0;
             st <= S_Q;
           end
         S_Q: begin
-          if (qin_q != 4'd9) qin_q <= qin_q + 4'd1;
-          if (q_ovalid) begin
-            qres_q[qout_q] <= q_r;
-            qout_q <= qout_q + 4'd1;
-          end
           if (qout_q == 4'd9) begin
             for (int k = 0; k < 3; k++) begin
               base_q[k] <= has_col ? vc_base[k] : qres_q[k];
@@ -539,12 +532,7 @@ module rgs_surface #(
             end
           end
         end
-        S_TINT: begin
-          for (int k = 0; k < 3; k++) tint_q[k] <= q_sat32({16'd0, ONE - metal_c} + {16'd0, qm_p[k]});
-          st <= S_OUT;
-        end
-        S_OUT:
-          if (ready_i) st <= S_IDLE;
+        S_TINT: st <= S_IDLE;  // the surface joins the queue (q_push)
         default: st <= S_IDLE;
       endcase
     end

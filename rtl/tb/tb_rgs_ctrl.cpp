@@ -120,6 +120,7 @@ int main(int argc, char **argv)
     std::size_t next = 0, done = 0, packet = 0, packets = 0;
     uint64_t mismatches = 0, idle = 0, hits_due = 0, block_start = 0, block_cycles = 0;
     bool in_block = false, hits_pending = false;
+    uint64_t state_cycles[32] = {};  // a block's cycles by rgs_ctrl state (its state_t order)
     block_ref want;
     trace_state ts;
     hit_record hits[4];
@@ -252,6 +253,8 @@ int main(int argc, char **argv)
             next++;
             fired = true;
         }
+        if (in_block)
+            state_cycles[top.st_o & 31u]++;
         idle = fired ? 0 : idle + 1;
         top.clk_i = 1;
         top.eval();
@@ -260,5 +263,13 @@ int main(int argc, char **argv)
         std::printf("MISMATCH rgs_ctrl: block %zu did not finish (nothing moved for 200000 cycles)\n", done);
     std::printf("rgs_ctrl %zu blocks checked (%zu packets, %.1f cycles per block), %llu mismatches\n", done, packets,
                 done ? (double)block_cycles / (double)done : 0.0, (unsigned long long)mismatches);
+    static const char *const STATE[] = { "RESET", "SETUP", "CAMERA", "EXTENT", "MAX", "EPS", "IDLE", "GEN", "NEXT",
+                                         "TRACE", "HITS", "SURF", "LIGHT", "LREC", "LCALC", "STRACE", "SHITS", "ADD",
+                                         "ACCUM", "PUSH_R", "DONE" };
+    std::printf("rgs_ctrl cycles per block by state:");
+    for (int s = 0; s < 21; s++)
+        if (state_cycles[s] && done)
+            std::printf(" %s %.1f", STATE[s], (double)state_cycles[s] / (double)done);
+    std::printf("\n");
     return mismatches ? 1 : 0;
 }
