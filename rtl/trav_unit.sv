@@ -64,11 +64,13 @@
 // hold every operation in flight.
 // Latency at the defaults (trav_node NODE = 21, CMP = 2), memory answering in the cycle after the
 // request, nothing competing: walk step 38 (leaf, inner node or none), start 2 (36 when it went
-// down the pipeline), clip 41 (146 when its planes came round through trav_node one after
-// another: 6 x 22; now the walk step's path and its 5 more slots). Throughput: one operation per cycle at
-// the input; trav_node takes one slot per cycle, a clip 6 of them: on the captured room frame (48x32, 64 threads, rtl/tb/tb_trav.cpp;
-// make build/rtl/e7m16/tb_trav; build/rtl/e7m16/tb_trav -n 0 --capture DIR, 2026-11-25)
-// 1.72 cycles per operation, a start 3.9 from offer to result (1.77 and 62.8 when starts went
+// down the pipeline), clip 41: the walk step's path and its 5 more slots (151 when its planes came
+// round through trav_node one after another; build/rtl/e7m16/tb_trav -n 0 on a room 16x12 capture
+// at --threads-per-pipe 1, one operation in flight, 2026-11-28). Throughput: one operation per
+// cycle at the input; trav_node takes one slot per cycle, a clip 6 of them: on the captured room
+// frame (48x32, 64 threads, rtl/tb/tb_trav.cpp; make build/rtl/e7m16/tb_trav;
+// build/rtl/e7m16/tb_trav -n 0 --capture DIR, 2026-11-25) 1.72 cycles per operation (1.71 with
+// trav_clip, the same capture, 2026-11-28), a start 3.9 from offer to result (1.77 and 62.8 when starts went
 // down the pipeline; bound from trav_node's slots: 1.50; the operation contexts it
 // replaced: 10.28 with 4 of them, 1.56 with 32).
 // Resources (synth_xilinx at e7m16, THREADS = 64, DEPTH = 64, SLOTS = 64; scripts/synth.py's
@@ -78,7 +80,9 @@
 // the two stack banks), 1283 CARRY4; 8 LUT6 levels (the goal: at most 8; before the bypass 15839
 // LUT6 and 24873 flip-flops, 8 levels; a bypass writing the start in the cycle it is taken had
 // 11, the write enables then depending on the input's handshake; the unit of CTX = 4 contexts it
-// replaced: 31180 LUT6, 18725 flip-flops, 11).
+// replaced: 31180 LUT6, 18725 flip-flops, 11)
+// Not synthesized again since trav_clip (2026-11-28: 12 comparators more; the round trip's
+// register and its mux in front of N gone).
 // Handshake: valid/ready at the operation input, the result output and the node read request
 // (node_thread_o, node_level_o: whose node); the node response (node_rsp_valid_i with w0, w1) is
 // taken when it comes, in request order.
@@ -404,17 +408,18 @@ module trav_unit #(
   // planes' distances in hls/units order (the chain's step per axis is the only dependency).
   logic n_valid, n_go, g_valid, g_go, g_clip, n_clip;
   logic [2:0] n_pass;             // the head clip's next plane
+  logic n_last;                   // n_pass == 5, registered (the queue's pop stays one LUT level)
   logic [CXW-1:0] nx, g_cx;
   logic [1:0] n_axis, g_axis;
   logic [W-1:0] n_split, g_split;
   logic [3:0] n_mask, g_mask;
   assign n_clip = !q_cx[O_KIND + 1];
   assign n_valid = q_valid && (!q_cx[O_NEED] || rsp_valid);
-  assign q_pop = n_valid && (!n_clip || n_pass == 3'd5);
+  assign q_pop = n_valid && (!n_clip || n_last);
   assign rsp_pop = q_pop && q_cx[O_NEED];
   always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) n_pass <= '0;
-    else if (n_valid && n_clip) n_pass <= n_pass == 3'd5 ? 3'd0 : n_pass + 3'd1;
+    if (!rst_ni) {n_pass, n_last} <= '0;
+    else if (n_valid && n_clip) {n_pass, n_last} <= n_last ? 4'b0000 : {n_pass + 3'd1, n_pass == 3'd4};
   end
   always_comb begin
     nx = q_cx;
