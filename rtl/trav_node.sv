@@ -6,7 +6,9 @@
 // interval comparators, all pipelined (rtl/f24_*.sv); the operands that join later wait in
 // f24_pipe delay lines. Latency LATENCY = ADD_STAGES + DIV_STAGES + 2 CMP_STAGES (default
 // 6 + 11 + 2 x 2 = 21), one node per cycle (II = 1); the clock is that of the operators
-// (docs/synth.md). Handshake: valid/ready.
+// (docs/synth.md). Handshake: valid/ready. ts_o, tn_q_o, tf_q_o: the slot's plane distances and
+// its [tn, tf] at stage ADD_STAGES + DIV_STAGES, for trav_unit's clip chain (rtl/trav_clip.sv),
+// which takes the 6 slab planes of a box in 6 slots back to back.
 module trav_node #(
   parameter int E = 7,
   parameter int M = 16,
@@ -33,7 +35,10 @@ module trav_node #(
   output logic [4*(E+M+1)-1:0]    l_tn_o,
   output logic [4*(E+M+1)-1:0]    l_tf_o,
   output logic [4*(E+M+1)-1:0]    r_tn_o,
-  output logic [4*(E+M+1)-1:0]    r_tf_o
+  output logic [4*(E+M+1)-1:0]    r_tf_o,
+  output logic [4*(E+M+1)-1:0]    ts_o,
+  output logic [4*(E+M+1)-1:0]    tn_q_o,
+  output logic [4*(E+M+1)-1:0]    tf_q_o
 );
   localparam int W = 1 + E + M;
   localparam int LATENCY = ADD_STAGES + DIV_STAGES + 2 * CMP_STAGES;
@@ -76,6 +81,9 @@ module trav_node #(
       .valid_i(1'b0), .a_i(ltn), .b_i(ltf), .valid_o(), .flags_o(fl), .min_o(), .max_o());
     f24_cmp #(.E(E), .M(M), .STAGES(CMP_STAGES)) u_cr (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en),
       .valid_i(1'b0), .a_i(rtn), .b_i(rtf), .valid_o(), .flags_o(fr), .min_o(), .max_o());
+    assign ts_o[i*W +: W] = ts;
+    assign tn_q_o[i*W +: W] = tn_q;
+    assign tf_q_o[i*W +: W] = tf_q;
     assign fl_le[i] = fl[1];
     assign fr_le[i] = fr[1];
     f24_pipe #(.W(4 * W), .STAGES(CMP_STAGES)) u_d_out (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en),

@@ -49,25 +49,28 @@
 //   D  the prune's outcome (pop and the popped entry's prune), the node address; E into the
 //      queue of operations and, if it reads a node, the queue of node requests (SLOTS each; the
 //      responses, taken when they come, in a third)
-//   N  into trav_node: a clip's next slab plane coming round (first), else the queue's head once
-//      its node's words are there (in request order); a leaf ends its entry here. A clip passes
-//      its 6 planes through trav_node in turn (the lo plane of an axis narrows [n, f] as the
-//      node's right child does, the hi plane as its left child, so that every max and min happens
-//      in hls/units order), every other operation passes beside it in one slot
-//   X  a clip's plane comes round or ends (the rays outside its mask keep their interval); an
+//   N  into trav_node: the queue's head once its node's words are there (in request order); a
+//      leaf ends its entry here. A clip takes 6 slots in a row, its 6 slab planes back to back
+//      (a plane's distances depend only on the ray); trav_clip narrows its [n, f] from them in
+//      hls/units order, an axis's step per 2 slots, the result beside trav_node's last slot's;
+//      every other operation passes beside trav_node in one slot
+//   X  a clip ends with its last plane (the rays outside its mask keep their interval); an
 //      inner node's children; Y  the restarted pass's drop of done cells (8 comparators)
 //   Z  walker_split's choice; the push (stack write) and the new current entry; the end: the
 //      top of the stack (the first or second entry read in C), or the restart; the state written
 //      back, the result into the output queue
-// Results leave in the order they are made: different threads overtake each other where a clip
-// comes round, a node read waits or a start bypasses the pipeline. No stage stalls: the queues
+// Results leave in the order they are made: different threads overtake each other where a node
+// read waits or a start bypasses the pipeline. No stage stalls: the queues
 // hold every operation in flight.
 // Latency at the defaults (trav_node NODE = 21, CMP = 2), memory answering in the cycle after the
 // request, nothing competing: walk step 38 (leaf, inner node or none), start 2 (36 when it went
-// down the pipeline), clip 146 (6 x 22 through trav_node). Throughput: one operation per cycle at
-// the input; trav_node takes one slot per cycle, a clip 6 of them: on the captured room frame (48x32, 64 threads, rtl/tb/tb_trav.cpp;
-// make build/rtl/e7m16/tb_trav; build/rtl/e7m16/tb_trav -n 0 --capture DIR, 2026-11-25)
-// 1.72 cycles per operation, a start 3.9 from offer to result (1.77 and 62.8 when starts went
+// down the pipeline), clip 41: the walk step's path and its 5 more slots (151 when its planes came
+// round through trav_node one after another; build/rtl/e7m16/tb_trav -n 0 on a room 16x12 capture
+// at --threads-per-pipe 1, one operation in flight, 2026-11-28). Throughput: one operation per
+// cycle at the input; trav_node takes one slot per cycle, a clip 6 of them: on the captured room
+// frame (48x32, 64 threads, rtl/tb/tb_trav.cpp; make build/rtl/e7m16/tb_trav;
+// build/rtl/e7m16/tb_trav -n 0 --capture DIR, 2026-11-25) 1.72 cycles per operation (1.71 with
+// trav_clip, the same capture, 2026-11-28), a start 3.9 from offer to result (1.77 and 62.8 when starts went
 // down the pipeline; bound from trav_node's slots: 1.50; the operation contexts it
 // replaced: 10.28 with 4 of them, 1.56 with 32).
 // Resources (synth_xilinx at e7m16, THREADS = 64, DEPTH = 64, SLOTS = 64; scripts/synth.py's
@@ -77,7 +80,9 @@
 // the two stack banks), 1283 CARRY4; 8 LUT6 levels (the goal: at most 8; before the bypass 15839
 // LUT6 and 24873 flip-flops, 8 levels; a bypass writing the start in the cycle it is taken had
 // 11, the write enables then depending on the input's handshake; the unit of CTX = 4 contexts it
-// replaced: 31180 LUT6, 18725 flip-flops, 11).
+// replaced: 31180 LUT6, 18725 flip-flops, 11)
+// Not synthesized again since trav_clip (2026-11-28: 12 comparators more; the round trip's
+// register and its mux in front of N gone).
 // Handshake: valid/ready at the operation input, the result output and the node read request
 // (node_thread_o, node_level_o: whose node); the node response (node_rsp_valid_i with w0, w1) is
 // taken when it comes, in request order.
@@ -396,23 +401,30 @@ module trav_unit #(
     .data_i({node_w1_i, node_w0_i}), .valid_o(rsp_valid), .ready_i(rsp_pop), .data_o(rsp));
   /* verilator lint_on PINCONNECTEMPTY */
 
-  // ---- N: into the per-node datapath, one operation per cycle: a clip's next slab plane first
-  // (it comes round from trav_node's output), else the queue's head once its node's words are
-  // there. A leaf ends the entry here; an inner node and a clip's plane pass trav_node, the other
-  // operations beside it (the lo plane of an axis narrows [n, f] as the node's right child does,
-  // the hi plane as its left child, so that every max and min happens in hls/units order).
-  logic rc_valid, n_valid, g_valid, g_go, n_go;
-  logic [CXW-1:0] rc_cx, nx, g_cx;
+  // ---- N: into the per-node datapath, one operation per cycle: the queue's head once its node's
+  // words are there; a clip takes 6 slots in a row, its slab planes one after another, and leaves
+  // the queue with the last. A leaf ends the entry here; an inner node and a clip's planes pass
+  // trav_node, the other operations beside it. trav_clip narrows the clip's [n, f] from the
+  // planes' distances in hls/units order (the chain's step per axis is the only dependency).
+  logic n_valid, n_go, g_valid, g_go, g_clip, n_clip;
+  logic [2:0] n_pass;             // the head clip's next plane
+  logic n_last;                   // n_pass == 5, registered (the queue's pop stays one LUT level)
+  logic [CXW-1:0] nx, g_cx;
   logic [1:0] n_axis, g_axis;
   logic [W-1:0] n_split, g_split;
   logic [3:0] n_mask, g_mask;
-  assign q_pop = q_valid && (!q_cx[O_NEED] || rsp_valid) && !rc_valid;
+  assign n_clip = !q_cx[O_KIND + 1];
+  assign n_valid = q_valid && (!q_cx[O_NEED] || rsp_valid);
+  assign q_pop = n_valid && (!n_clip || n_last);
   assign rsp_pop = q_pop && q_cx[O_NEED];
-  assign n_valid = rc_valid || q_pop;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) {n_pass, n_last} <= '0;
+    else if (n_valid && n_clip) {n_pass, n_last} <= n_last ? 4'b0000 : {n_pass + 3'd1, n_pass == 3'd4};
+  end
   always_comb begin
-    logic [2:0] pass;
-    nx = rc_valid ? rc_cx : q_cx;
-    if (!rc_valid && q_cx[O_NEED]) begin
+    nx = q_cx;
+    if (n_clip) nx[O_PASS +: 3] = n_pass;
+    if (q_cx[O_NEED]) begin
       nx[O_W0 +: 32] = rsp[31:0];
       nx[O_W1 +: 32] = rsp[63:32];
       if (rsp[1:0] == 2'd3) begin        // a leaf: its list range and rays
@@ -423,20 +435,19 @@ module trav_unit #(
         nx[O_LEAF_TN +: 4 * W] = q_cx[S_CTN +: 4 * W];
       end
     end
-    pass = nx[O_PASS +: 3];
-    n_go = !nx[O_KIND + 1] || (nx[O_NEED] && !nx[O_LEAF]);
-    n_axis = nx[O_KIND + 1] ? nx[O_W0 +: 2] : pass[2:1];
+    n_go = n_clip || (nx[O_NEED] && !nx[O_LEAF]);
+    n_axis = n_clip ? n_pass[2:1] : nx[O_W0 +: 2];
     // the plane's word by a 6-way select on constant offsets (a variable offset times W became a
     // multiplier and a shifter)
     n_split = nx[O_W1 +: W];
     for (int k = 0; k < 6; k++)
-      if (!nx[O_KIND + 1] && {pass[0], pass[2:1]} == (k < 3 ? {1'b0, 2'(k)} : {1'b1, 2'(k - 3)}))
-        n_split = nx[O_BOX + k * W +: W];
-    n_mask = nx[O_KIND + 1] ? nx[S_CMASK +: 4] : 4'hF;
+      if (n_clip && {n_pass[0], n_pass[2:1]} == (k < 3 ? {1'b0, 2'(k)} : {1'b1, 2'(k - 3)}))
+        n_split = q_cx[O_BOX + k * W +: W];
+    n_mask = n_clip ? 4'hF : nx[S_CMASK +: 4];
   end
   always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) {g_valid, g_go} <= '0;
-    else {g_valid, g_go} <= {n_valid, n_valid && n_go};
+    if (!rst_ni) {g_valid, g_go, g_clip} <= '0;
+    else {g_valid, g_go, g_clip} <= {n_valid, n_valid && n_go, n_valid && n_clip};
   end
   always_ff @(posedge clk_i) begin
     if (n_valid) begin
@@ -449,54 +460,62 @@ module trav_unit #(
 
   logic x_valid;
   logic [3:0] nd_l_mask, nd_r_mask, nd_near_left;
-  logic [4*W-1:0] nd_l_tn, nd_l_tf, nd_r_tn, nd_r_tf;
+  logic [4*W-1:0] nd_l_tn, nd_l_tf, nd_r_tn, nd_r_tf, nd_ts, nd_tn_q, nd_tf_q;
   logic [CXW-1:0] x_cx;
   /* verilator lint_off PINCONNECTEMPTY */
   trav_node #(.E(E), .M(M), .ADD_STAGES(ADD_STAGES), .DIV_STAGES(DIV_STAGES), .CMP_STAGES(CMP_STAGES)) u_node (
     .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(g_go), .ready_o(), .axis_i(g_axis), .split_i(g_split),
     .mask_i(g_mask), .o_i(g_cx[O_O +: 12 * W]), .d_i(g_cx[O_D +: 12 * W]), .tn_i(g_cx[S_CTN +: 4 * W]),
     .tf_i(g_cx[S_CTF +: 4 * W]), .valid_o(), .ready_i(1'b1), .l_mask_o(nd_l_mask), .r_mask_o(nd_r_mask),
-    .near_left_o(nd_near_left), .l_tn_o(nd_l_tn), .l_tf_o(nd_l_tf), .r_tn_o(nd_r_tn), .r_tf_o(nd_r_tf));
+    .near_left_o(nd_near_left), .l_tn_o(nd_l_tn), .l_tf_o(nd_l_tf), .r_tn_o(nd_r_tn), .r_tf_o(nd_r_tf),
+    .ts_o(nd_ts), .tn_q_o(nd_tn_q), .tf_q_o(nd_tf_q));
   /* verilator lint_on PINCONNECTEMPTY */
   f24_pipe #(.W(CXW), .STAGES(NODE_LATENCY)) u_beside (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1),
     .valid_i(g_valid), .data_i(g_cx), .valid_o(x_valid), .data_o(x_cx));
+  // a clip plane's pass and the sign bits of the rays' direction on its axis, to the distances
+  logic [3:0] g_neg, t_neg;
+  logic [2:0] t_pass;
+  logic t_clip;
+  always_comb
+    for (int i = 0; i < 4; i++)
+      g_neg[i] = g_axis == 2'd0 ? g_cx[O_D + (3 * i + 1) * W - 1] : g_axis == 2'd1 ? g_cx[O_D + (3 * i + 2) * W - 1]
+               : g_cx[O_D + (3 * i + 3) * W - 1];
+  f24_pipe #(.W(7), .STAGES(ADD_STAGES + DIV_STAGES)) u_clip_d (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1),
+    .valid_i(g_clip), .data_i({g_cx[O_PASS +: 3], g_neg}), .valid_o(t_clip), .data_o({t_pass, t_neg}));
+  logic [4*W-1:0] cl_n, cl_f;
+  logic [3:0] cl_le;
+  trav_clip #(.E(E), .M(M), .CMP_STAGES(CMP_STAGES)) u_clip (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(t_clip),
+    .pass_i(t_pass), .neg_i(t_neg), .ts_i(nd_ts), .tn_i(nd_tn_q), .tf_i(nd_tf_q), .tn_o(cl_n), .tf_o(cl_f),
+    .le_o(cl_le));
 
-  // ---- X: a clip's plane comes round for the next one (pass 5, the last, narrows as the left
-  // child: its mask is the clip's, then the rays outside the clip's mask keep their interval); an
-  // inner node's children (a side that is an empty leaf is not stored)
-  logic x_clip, x_round, y_valid;
+  // ---- X: a clip ends with its last plane (its earlier slots end here; the rays outside the
+  // clip's mask keep their interval); an inner node's children (a side that is an empty leaf is
+  // not stored)
+  logic x_clip, x_drop, y_valid;
   logic [CXW-1:0] xx, y_cx;
   logic [ENW-1:0] x_l, x_r, y_l, y_r;
   logic [3:0] y_near_left;
   assign x_clip = !x_cx[O_KIND + 1];
-  assign x_round = x_valid && x_clip && x_cx[O_PASS +: 3] != 3'd5;
+  assign x_drop = x_clip && x_cx[O_PASS +: 3] != 3'd5;
   always_comb begin
     logic [31:0] w0;
-    logic [2:0] pass;
     w0 = x_cx[O_W0 +: 32];
-    pass = x_cx[O_PASS +: 3];
     xx = x_cx;
     x_l = {AW'(w0 >> 4), nd_l_mask & {4{!w0[2]}}, nd_l_tn, nd_l_tf};
     x_r = {AW'(w0 >> 4) + AW'(!w0[2]), nd_r_mask & {4{!w0[3]}}, nd_r_tn, nd_r_tf};
     if (x_clip) begin
-      xx[S_CTN +: 4 * W] = pass[0] ? nd_l_tn : nd_r_tn;
-      xx[S_CTF +: 4 * W] = pass[0] ? nd_l_tf : nd_r_tf;
-      xx[O_PASS +: 3] = pass + 3'd1;
-      if (pass == 3'd5) begin
-        for (int i = 0; i < 4; i++) begin
-          xx[S_CTN + i * W +: W] = x_cx[O_AMASK + i] ? lane(nd_l_tn, i) : lane(x_cx[S_RTN +: 4 * W], i);
-          xx[S_CTF + i * W +: W] = x_cx[O_AMASK + i] ? lane(nd_l_tf, i) : lane(x_cx[S_RTF +: 4 * W], i);
-        end
-        xx[S_CMASK +: 4] = nd_l_mask & x_cx[O_AMASK +: 4];
+      for (int i = 0; i < 4; i++) begin
+        xx[S_CTN + i * W +: W] = x_cx[O_AMASK + i] ? lane(cl_n, i) : lane(x_cx[S_RTN +: 4 * W], i);
+        xx[S_CTF + i * W +: W] = x_cx[O_AMASK + i] ? lane(cl_f, i) : lane(x_cx[S_RTF +: 4 * W], i);
       end
+      xx[S_CMASK +: 4] = cl_le & x_cx[O_AMASK +: 4];
     end
   end
   always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) {rc_valid, y_valid} <= '0;
-    else {rc_valid, y_valid} <= {x_round, x_valid && !x_round};
+    if (!rst_ni) y_valid <= 1'b0;
+    else y_valid <= x_valid && !x_drop;
   end
   always_ff @(posedge clk_i) begin
-    if (x_round) rc_cx <= xx;
     if (x_valid) begin
       y_cx <= xx;
       y_l <= x_l;
@@ -632,8 +651,8 @@ module trav_unit #(
 
   // ---- the result: the walker state written back (a walk's at Z4, a start's from sb), the
   // result into the output queue (results leave in the order they are made: operations of
-  // different threads overtake each other where a clip comes round, a node read waits or a start
-  // bypasses the pipeline)
+  // different threads overtake each other where a node read waits or a start bypasses the
+  // pipeline)
   localparam int RW = IW + 2 + ENW + 3 + 64 + 4 + 4 * W + SPW + 2;
   logic [RW-1:0] out_d, out_q;
   logic [CXW-1:0] r_cx;          // the context whose result is written: Z4's, else the start's

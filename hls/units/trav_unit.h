@@ -39,6 +39,10 @@
  * stored empty leaves), which the restarting walkers cannot walk: they measure a ray's progress by
  * the cells it leaves. */
 enum { ACCEL_ROPES = 1, ACCEL_GRID = 2, ACCEL_TOP_GRID = 4, ACCEL_COMPACT = 8 };
+/* The traversal unit's issue slots of a clip (scene or object): its box's 6 slab planes pass
+ * trav_node one a cycle (rtl/trav_unit.sv, trav_clip.sv); a kd-tree entry takes one slot. */
+#define TRAV_CLIP_SLOTS 6u
+
 #define ACCEL_SHIFT 16
 
 /* Scene clip: each ray's [tmin, tmax] against the scene bounds (6 fp24 words) into [tn, tf];

@@ -28,7 +28,9 @@ void cycle_config_default(cycle_config *c)
     c->latency[OP_INSTANCE] = 50; /* rebase_unit 25, then xform_wide 25 (the origins' chain) */
     c->latency[OP_SHADOW] = 1;    /* rgs_light forms the shadow rays: its register to the trace port */
     c->latency[OP_CHILDREN] = 1;  /* rgs_spawn (in rgs_accum) forms the child rays: the stack's register */
-    c->latency[OP_TRAV] = 21;     /* trav_node: sub 6 + div 11 + min/max 2 + cmp 2 */
+    c->latency[OP_TRAV] = 36;     /* trav_unit: state and stack read, prune 4, queue 2, trav_node 21 (sub 6 + div 11 +
+                                   * min/max 2 + cmp 2), split and push 6, output 1; the node read before it (a clip: 6
+                                   * slots, one per slab plane, then the same 36) */
     c->latency[OP_LIST] = 3;      /* list_unit: read, compare, update */
     c->latency[OP_LEAF] = 25;     /* rebase_unit after the list entry's slot (the entry's 3 beside it) */
     c->latency[OP_ISECT] = 29;    /* isect_unit: div 11 + mul 4 + 2 add + cmp 2 */
