@@ -303,11 +303,8 @@ module rgs_surface #(
   logic [W-1:0] eta_q;
   logic [12:0] kd_q, kr_q, kt_q, ks_q;
   localparam int QW = TID_BITS + 1 + 32 + 1 + 4 + W + 4 * 13 + 3 * 48;
-  localparam int SW = $clog2(SLOTS);
-  logic [QW-1:0] q_mem [SLOTS], q_in, q_head;
-  logic [SW-1:0] q_wr, q_rd;
-  logic [SW:0] q_cnt;
-  logic q_push, q_pop, q_hit, fr_take;
+  logic [QW-1:0] q_in, q_head;
+  logic q_push, q_room, q_any, q_hit, fr_take;
   logic [47:0] base_v, emis_v, tint_v;
   for (genvar k = 0; k < 3; k++) begin : g_pack
     assign base_v[16*k +: 16] = base_q[k];
@@ -315,35 +312,23 @@ module rgs_surface #(
     assign tint_v[16*k +: 16] = q_sat32({16'd0, ONE - metal_c} + {16'd0, qm_p[k]});  // the C's tint
   end
   // a miss joins from S_IDLE with zero fields; a hit at the end of its colours (S_TINT)
-  assign q_push = st == S_TINT || (st == S_IDLE && valid_i && q_cnt != (SW+1)'(SLOTS) && (!active_i || inst_i == NO_HIT));
+  assign q_push = st == S_TINT || (st == S_IDLE && valid_i && q_room && (!active_i || inst_i == NO_HIT));
   assign q_in = st == S_TINT ? {tid_q, 1'b1, mat_addr, unlit_q, k_q, eta_q, kd_q, kr_q, kt_q, ks_q, base_v, emis_v, tint_v}
                              : {tid_i, (QW - TID_BITS)'(0)};
-  assign q_head = q_mem[q_rd];
+  sync_fifo #(.W(QW), .DEPTH(SLOTS)) u_queue (
+    .clk_i, .rst_ni, .valid_i(q_push), .ready_o(q_room), .data_i(q_in),
+    .valid_o(q_any), .ready_i(ready_i && (!q_hit || fr_ovalid)), .data_o(q_head)
+  );
   assign q_hit = q_head[QW-TID_BITS-1];
-  assign valid_o = q_cnt != '0 && (!q_hit || fr_ovalid);
-  assign q_pop = valid_o && ready_i;
-  assign fr_take = q_cnt != '0 && q_hit && ready_i;
-  assign ready_o = st == S_IDLE && q_cnt != (SW+1)'(SLOTS);
+  assign valid_o = q_any && (!q_hit || fr_ovalid);
+  assign fr_take = q_any && q_hit && ready_i;
+  assign ready_o = st == S_IDLE && q_room;
   assign {tid_o, sf_valid_o, mat_o, unlit_o, k_o, eta_o, kd_o, kr_o, kt_o, ks_o, base_o, emission_o, tint_o} = q_head;
   assign p_o = q_hit ? fr_p : '0;
   assign d_o = q_hit ? fr_d : '0;
   assign n_o = q_hit ? fr_n : '0;
   assign t_hat_o = q_hit ? fr_t_hat : '0;
   assign entering_o = q_hit && fr_entering;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      q_wr <= '0;
-      q_rd <= '0;
-      q_cnt <= '0;
-    end else begin
-      if (q_push) begin
-        q_mem[q_wr] <= q_in;
-        q_wr <= q_wr + SW'(1);
-      end
-      if (q_pop) q_rd <= q_rd + SW'(1);
-      q_cnt <= q_cnt + (SW+1)'(q_push) - (SW+1)'(q_pop);
-    end
-  end
 
   // ---- the sequence ----
   logic [31:0] rec_addr, mat_addr;
