@@ -9,6 +9,7 @@ PACKAGES=(
   libmpfr-dev                        # correctly rounded reference for fp24 verification
   libcmocka-dev                      # unit-test framework
   libopenimageio-dev openimageio-tools  # image I/O, compare, idiff
+  libpng-dev                         # PNG writing without OpenImageIO (host/image/img_png.c)
   libtinygltf-dev                    # glTF 2.0 scene loading (host/)
   libembree-dev                      # reference ray tracer (accuracy baseline)
   verilator iverilog yosys nextpnr-ice40 fpga-icestorm  # RTL simulation and synthesis

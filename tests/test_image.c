@@ -1,7 +1,8 @@
 /*
- * Tests of the image plumbing (host/image): write/read round trips through OpenImageIO (PNG
- * 8-bit, EXR half), the comparison metrics against hand-computed values, and against OIIO's own
- * `idiff` tool on the same files.
+ * Tests of the image plumbing (host/image): write/read round trips (PNG 8-bit through libpng,
+ * EXR half through OpenImageIO), PNG files of libpng and of OpenImageIO decoding to the same
+ * pixels around every rounding tie, the comparison metrics against hand-computed values, and
+ * against OIIO's own `idiff` tool on the same files.
  */
 #define _GNU_SOURCE /* popen, mkdtemp */
 #include <setjmp.h>
@@ -19,6 +20,7 @@
 #include <unistd.h>
 
 #include "img.h"
+#include "img_api.h"
 
 enum { W = 16, H = 8, C = 3 };
 
@@ -184,7 +186,47 @@ static void errors_are_reported(void **state)
     img_free(&small);
 }
 
-
+/* The values next to every 8-bit rounding tie (n + 1/2) / 255, a few ulps each way, and the
+ * clamped ones: libpng's file (img_write, host/image/img_png.c) and OpenImageIO's PNG writer
+ * decode to the same bytes, in grey and RGB (images with alpha are OpenImageIO's: it divides
+ * the colours by alpha before it quantizes). */
+static void png_quantized_as_oiio(void **state)
+{
+    (void)state;
+    enum { ULPS = 6, N = 256 * (2 * ULPS + 1) + 6 };
+    static float v[N];
+    int n = 0;
+    for (int t = 0; t < 256; t++)
+        for (int k = -ULPS; k <= ULPS; k++) {
+            float x = ((float)t + 0.5f) / 255.0f;
+            for (int j = 0; j < (k < 0 ? -k : k); j++)
+                x = nextafterf(x, k < 0 ? -1.0f : 2.0f);
+            v[n++] = x;
+        }
+    const float edges[] = { -1.0f, -0.0f, 1.0f, 1.5f, INFINITY, -INFINITY };
+    for (int i = 0; i < 6; i++)
+        v[n++] = edges[i];
+    char err[256];
+    for (int c = 1; c <= 3; c += 2) {
+        img_t img = { N / c, 1, c, v }, ours, theirs;
+        char ours_name[32], theirs_name[32]; /* a name per file: OpenImageIO caches what it read */
+        snprintf(ours_name, sizeof ours_name, "ours%d.png", c);
+        snprintf(theirs_name, sizeof theirs_name, "theirs%d.png", c);
+        write_or_fail(tmp(ours_name), &img);
+        if (img_oiio_api()->write(tmp(theirs_name), &img, NULL, err, sizeof err) != 0)
+            fail_msg("%s", err);
+        assert_int_equal(img_read(tmp(ours_name), &ours, err, sizeof err), 0);
+        assert_int_equal(img_read(tmp(theirs_name), &theirs, err, sizeof err), 0);
+        assert_int_equal(ours.channels, c);
+        assert_int_equal(theirs.channels, c);
+        for (int i = 0; i < (N / c) * c; i++)
+            if (ours.pixels[i] != theirs.pixels[i])
+                fail_msg("%d channels: %.9g written as %.0f by libpng, %.0f by OpenImageIO", c, (double)v[i],
+                         255.0 * ours.pixels[i], 255.0 * theirs.pixels[i]);
+        img_free(&ours);
+        img_free(&theirs);
+    }
+}
 
 int main(void)
 {
@@ -193,6 +235,7 @@ int main(void)
         cmocka_unit_test(compare_hand_computed),
         cmocka_unit_test(agrees_with_idiff),
         cmocka_unit_test(errors_are_reported),
+        cmocka_unit_test(png_quantized_as_oiio),
     };
     return cmocka_run_group_tests_name("image", tests, test_tmpdir_setup, test_tmpdir_teardown);
 }

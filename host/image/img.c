@@ -8,6 +8,7 @@
  */
 #define _GNU_SOURCE
 #include "img_api.h"
+#include "img_png.h"
 
 #include <dlfcn.h>
 #include <stdio.h>
@@ -75,6 +76,8 @@ int img_read(const char *path, img_t *out, char *err, size_t errlen)
 
 int img_write(const char *path, const img_t *img, char *err, size_t errlen)
 {
+    if (img_png_writes(path, img->channels))
+        return img_png_write(path, img, err, errlen);
     return api() ? loaded->write(path, img, NULL, err, errlen) : unavailable(err, errlen);
 }
 
@@ -83,10 +86,12 @@ int img_write_channels(const char *path, const img_t *img, const char *const *na
     return api() ? loaded->write(path, img, names, err, errlen) : unavailable(err, errlen);
 }
 
+/* The pixels of img_read (std::malloc in the shim) and of the callers' own images (malloc):
+ * freed without loading the library for them. */
 void img_free(img_t *img)
 {
-    if (api())
-        loaded->free_pixels(img);
+    free(img->pixels);
+    img->pixels = NULL;
 }
 
 int img_compare(const char *path_a, const char *path_b, double threshold, const char *diff_path,
@@ -96,5 +101,10 @@ int img_compare(const char *path_a, const char *path_b, double threshold, const 
 }
 
 int img_ready(char *err, size_t errlen) { return api() ? 0 : unavailable(err, errlen); }
+
+int img_ready_for(const char *path, char *err, size_t errlen)
+{
+    return !path || img_png_path(path) ? 0 : img_ready(err, errlen);
+}
 
 const char *img_library_version(void) { return api() ? loaded->version() : "(libsaarcor_img.so not loaded)"; }

@@ -1,7 +1,9 @@
 /*
  * Image input/output and comparison for the host, through OpenImageIO (a thin C++ shim,
- * img_oiio.cpp, with this extern "C" API). PNG and other 8-bit formats are written as 8-bit,
- * EXR as half floats; pixels are float RGB(A) in [0,1] for 8-bit formats.
+ * img_oiio.cpp, with this extern "C" API), except 8-bit PNG writing, which libpng does alone
+ * (img_png.c: no OpenImageIO load for a render that writes only PNG files). PNG and other 8-bit
+ * formats are written as 8-bit, EXR as half floats; pixels are float RGB(A) in [0,1] for 8-bit
+ * formats.
  */
 #ifndef SAARCOR_IMG_H
 #define SAARCOR_IMG_H
@@ -43,6 +45,10 @@ const char *img_library_version(void);
 /* 0 if images can be read and written; else -1 with a one-line err (the saarcor program loads the
  * image library on demand: commands that will write images check it before the long work). */
 int img_ready(char *err, size_t errlen);
+
+/* img_ready for a command that will write an RGB image to path (NULL: none): 0 without loading
+ * the library when img_write writes path's format itself (PNG, host/image/img_png.c). */
+int img_ready_for(const char *path, char *err, size_t errlen);
 
 #ifdef __cplusplus
 }

@@ -46,7 +46,7 @@ static int read_image(const char *path, img_t *out, char *err, size_t errlen)
             return -1;
         const ImageSpec &spec = buf.spec();
         const size_t n = (size_t)spec.width * spec.height * spec.nchannels;
-        float *px = (float *)std::malloc(n * sizeof(float));
+        float *px = (float *)std::malloc(n * sizeof(float)); // img_free's free()
         if (!px) {
             set_error(err, errlen, "out of memory");
             return -1;
@@ -114,12 +114,6 @@ static int write_pixels(const char *path, const img_t *img, const char *const *n
     return rc;
 }
 
-static void free_image(img_t *img)
-{
-    std::free(img->pixels);
-    img->pixels = nullptr;
-}
-
 static int compare_images(const char *path_a, const char *path_b, double threshold, const char *diff_path,
                           img_compare_result *res, char *err, size_t errlen)
 {
@@ -169,6 +163,6 @@ static const char *library_version(void) { return OIIO_VERSION_STRING; }
 
 extern "C" const img_api *img_oiio_api(void)
 {
-    static const img_api api = { read_image, write_pixels, free_image, compare_images, library_version };
+    static const img_api api = { read_image, write_pixels, compare_images, library_version };
     return &api;
 }
