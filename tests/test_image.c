@@ -21,6 +21,7 @@
 
 #include "img.h"
 #include "img_api.h"
+#include "img_png.h"
 
 enum { W = 16, H = 8, C = 3 };
 
@@ -148,8 +149,20 @@ static void agrees_with_idiff(void **state)
     out[n] = '\0';
     pclose(p);
 
-    img_compare_result r;
+    img_compare_result r, o;
     char err[256];
+    assert_int_equal(img_compare(tmp("ia.png"), tmp("ib.png"), 0.0, NULL, &r, err, sizeof err), 0);
+    /* the PNG pair is compared without OpenImageIO (host/image/img.c): its own metrics agree */
+    for (int t = 0; t < 2; t++) {
+        const double threshold = t ? 1.5 / 255.0 : 0.0;
+        assert_int_equal(img_compare(tmp("ia.png"), tmp("ib.png"), threshold, NULL, &r, err, sizeof err), 0);
+        assert_int_equal(img_oiio_api()->compare(tmp("ia.png"), tmp("ib.png"), threshold, NULL, &o, err, sizeof err), 0);
+        assert_float_equal(r.psnr, o.psnr, 1e-9);
+        assert_float_equal(r.mean_error, o.mean_error, 1e-12);
+        assert_float_equal(r.rms_error, o.rms_error, 1e-12);
+        assert_true(r.max_error == o.max_error && r.max_x == o.max_x && r.max_y == o.max_y &&
+                    r.max_channel == o.max_channel && r.pixels == o.pixels && r.differing_pixels == o.differing_pixels);
+    }
     assert_int_equal(img_compare(tmp("ia.png"), tmp("ib.png"), 0.0, NULL, &r, err, sizeof err), 0);
     assert_float_equal(r.psnr, idiff_value(out, "Peak SNR"), 1e-3);
     assert_float_equal(r.max_error, idiff_value(out, "Max error"), 1e-6);
@@ -184,6 +197,25 @@ static void errors_are_reported(void **state)
     assert_int_equal(img_read(tmp("garbage.png"), &a, err, sizeof err) == -1 ? -1 : 0, -1);
     assert_int_equal(img_write("/nonexistent-dir/x.png", &small, err, sizeof err), -1);
     img_free(&small);
+}
+
+/* Every 8-bit value read from a PNG file without OpenImageIO (host/image/img_png.c) is the float
+ * OpenImageIO reads. */
+static void png_read_as_oiio(void **state)
+{
+    (void)state;
+    static float v[256 * 3];
+    for (int i = 0; i < 256 * 3; i++)
+        v[i] = (float)(i % 256) / 255.0f;
+    img_t img = { 256, 1, 3, v }, ours, theirs;
+    write_or_fail(tmp("all.png"), &img);
+    char err[256];
+    assert_int_equal(img_png_read(tmp("all.png"), &ours), 0);
+    assert_int_equal(img_oiio_api()->read(tmp("all.png"), &theirs, err, sizeof err), 0);
+    assert_true(ours.width == 256 && ours.height == 1 && ours.channels == 3);
+    assert_memory_equal(ours.pixels, theirs.pixels, sizeof v);
+    img_free(&ours);
+    img_free(&theirs);
 }
 
 /* The values next to every 8-bit rounding tie (n + 1/2) / 255, a few ulps each way, and the
@@ -236,6 +268,7 @@ int main(void)
         cmocka_unit_test(agrees_with_idiff),
         cmocka_unit_test(errors_are_reported),
         cmocka_unit_test(png_quantized_as_oiio),
+        cmocka_unit_test(png_read_as_oiio),
     };
     return cmocka_run_group_tests_name("image", tests, test_tmpdir_setup, test_tmpdir_teardown);
 }

@@ -11,6 +11,7 @@
 #include "img_png.h"
 
 #include <dlfcn.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -71,6 +72,8 @@ static int unavailable(char *err, size_t errlen)
 
 int img_read(const char *path, img_t *out, char *err, size_t errlen)
 {
+    if (img_png_read(path, out) == 0)
+        return 0;
     return api() ? loaded->read(path, out, err, errlen) : unavailable(err, errlen);
 }
 
@@ -94,9 +97,53 @@ void img_free(img_t *img)
     img->pixels = NULL;
 }
 
+/* OpenImageIO's metrics (ImageBufAlgo::compare, img_oiio.cpp) over two images of equal size: the
+ * absolute difference of each channel value (a binary32 difference), its sum and sum of squares
+ * in binary64, the first largest with its place, the pixels with a channel over the threshold. */
+static void compare_pixels(const img_t *a, const img_t *b, double threshold, img_compare_result *res)
+{
+    const size_t pixels = (size_t)a->width * (size_t)a->height, c = (size_t)a->channels;
+    double sum = 0, sum_sq = 0;
+    *res = (img_compare_result){ .pixels = pixels };
+    for (size_t p = 0; p < pixels; p++) {
+        int over = 0;
+        for (size_t k = 0; k < c; k++) {
+            const double f = fabsf(a->pixels[p * c + k] - b->pixels[p * c + k]);
+            sum += f;
+            sum_sq += f * f;
+            if (f > res->max_error) {
+                res->max_error = f;
+                res->max_x = (int)(p % (size_t)a->width);
+                res->max_y = (int)(p / (size_t)a->width);
+                res->max_channel = (int)k;
+            }
+            over |= f > (float)threshold; /* OpenImageIO takes it as binary32 */
+        }
+        res->differing_pixels += (uint64_t)over;
+    }
+    const double values = (double)(pixels * c);
+    res->mean_error = values > 0 ? sum / values : 0;
+    res->rms_error = values > 0 ? sqrt(sum_sq / values) : 0;
+    res->psnr = res->rms_error > 0 ? 20.0 * log10(1.0 / res->rms_error) : INFINITY;
+}
+
+/* Two 8-bit PNG files (every render's) are compared here without loading the library; any other
+ * pair, or one with a difference image to write, by OpenImageIO. */
 int img_compare(const char *path_a, const char *path_b, double threshold, const char *diff_path,
                 img_compare_result *res, char *err, size_t errlen)
 {
+    img_t a, b;
+    if (!diff_path && img_png_read(path_a, &a) == 0) {
+        const int native = img_png_read(path_b, &b) == 0;
+        const int same = native && a.width == b.width && a.height == b.height && a.channels == b.channels;
+        if (same)
+            compare_pixels(&a, &b, threshold, res);
+        img_free(&a);
+        if (native)
+            img_free(&b);
+        if (same)
+            return 0;
+    }
     return api() ? loaded->compare(path_a, path_b, threshold, diff_path, res, err, errlen) : unavailable(err, errlen);
 }
 

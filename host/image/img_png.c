@@ -1,5 +1,5 @@
 /*
- * 8-bit PNG files through libpng's simplified API (img_png.h says why not OpenImageIO). The file
+ * 8-bit PNG files through libpng's simplified API (img_png.h says why not OpenImageIO). A file
  * is written as path.tmp and renamed when complete, as img_oiio.cpp does, so an interrupted write
  * never leaves a truncated image under the real name.
  */
@@ -57,5 +57,35 @@ int img_png_write(const char *path, const img_t *img, char *err, size_t errlen)
         remove(tmp);
         return -1;
     }
+    return 0;
+}
+
+/* The file's pixels when they are 8-bit grey or RGB without alpha, palette or a colour space
+ * other than sRGB (what img_png_write writes): then libpng hands them over unconverted. */
+int img_png_read(const char *path, img_t *out)
+{
+    if (!img_png_path(path))
+        return 1;
+    png_image im;
+    memset(&im, 0, sizeof im);
+    im.version = PNG_IMAGE_VERSION;
+    if (!png_image_begin_read_from_file(&im, path))
+        return 1;
+    const png_uint_32 other = PNG_FORMAT_FLAG_ALPHA | PNG_FORMAT_FLAG_LINEAR | PNG_FORMAT_FLAG_COLORMAP;
+    const int channels = im.format == PNG_FORMAT_RGB ? 3 : im.format == PNG_FORMAT_GRAY ? 1 : 0;
+    const size_t n = (size_t)im.width * im.height * (size_t)channels;
+    unsigned char *bytes = channels && !(im.format & other) && !(im.flags & PNG_IMAGE_FLAG_COLORSPACE_NOT_sRGB)
+                               ? malloc(n ? n : 1) : NULL;
+    float *px = bytes ? malloc((n ? n : 1) * sizeof *px) : NULL;
+    if (!px || !png_image_finish_read(&im, NULL, bytes, 0, NULL)) {
+        png_image_free(&im);
+        free(bytes);
+        free(px);
+        return 1;
+    }
+    for (size_t i = 0; i < n; i++)
+        px[i] = (float)bytes[i] * (1.0f / 255.0f); /* OpenImageIO's 8-bit-to-float conversion */
+    free(bytes);
+    *out = (img_t){ (int)im.width, (int)im.height, channels, px };
     return 0;
 }

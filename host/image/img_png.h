@@ -22,6 +22,11 @@ int img_png_writes(const char *path, int channels);
  * err holds a one-line message and -1 is returned. */
 int img_png_write(const char *path, const img_t *img, char *err, size_t errlen);
 
+/* Reads path into out (img_free releases it) and returns 0 if it is an 8-bit grey or RGB PNG file
+ * in sRGB (what img_png_write writes), with OpenImageIO's values; 1 (nothing read) for any other
+ * file, which is OpenImageIO's to read or to reject with its message. */
+int img_png_read(const char *path, img_t *out);
+
 /* OpenImageIO's float-to-8-bit conversion: v * 255 in binary32, clamped to [0, 255], rounded to
  * nearest with ties away from zero; NaN to 0. */
 unsigned char img_png_quantize(float v);
