@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <limits>
 #include <string>
 
@@ -34,6 +35,23 @@ bool read_buf(const char *path, ImageBuf &buf, char *err, size_t errlen)
         return false;
     }
     return true;
+}
+
+// SOURCE_DATE_EPOCH (the reproducible-builds convention: seconds since 1970) set: the file's
+// DateTime is that time, not now, so two runs write the same bytes (a testbench compares them
+// with cmp); unset, OpenImageIO's writers date the file as before.
+void set_date(ImageSpec &spec)
+{
+    const char *epoch = std::getenv("SOURCE_DATE_EPOCH");
+    char *end = nullptr;
+    const long long s = epoch ? std::strtoll(epoch, &end, 10) : -1;
+    if (!epoch || end == epoch || *end || s < 0)
+        return;
+    const std::time_t t = (std::time_t)s;
+    std::tm tm;
+    char date[32];
+    if (gmtime_r(&t, &tm) && std::strftime(date, sizeof date, "%Y:%m:%d %H:%M:%S", &tm))
+        spec.attribute("DateTime", date);
 }
 
 } // namespace
@@ -79,6 +97,7 @@ static int write_file(const char *path, const char *tmp, const img_t *img, const
         }
         const TypeDesc type = names ? TypeDesc::FLOAT : out->supports("floatpixels") ? TypeDesc::HALF : TypeDesc::UINT8;
         ImageSpec spec(img->width, img->height, img->channels, type);
+        set_date(spec);
         if (names) {
             spec.channelnames.clear();
             for (int c = 0; c < img->channels; c++)
