@@ -129,9 +129,9 @@ module rgs_surface #(
   localparam logic [15:0] ONE = 16'd4096;
 
   // the back's states (the order tb_rgs_ctrl's histogram names them; S_INST, S_OBJ, S_REC and S_MAT
-  // are the front's now and unused here)
+  // are the front's now, S_LERPN and S_DOT rgs_normal's: unused here)
   typedef enum logic [4:0] {
-    S_IDLE, S_INST, S_OBJ, S_REC, S_DEC, S_LERPN, S_DOT, S_GN, S_FRAME, S_MAT, S_Q, S_TEX, S_TLERP, S_TENTRY,
+    S_IDLE, S_INST, S_OBJ, S_REC, S_NORM, S_LERPN, S_DOT, S_GN, S_FRAME, S_MAT, S_Q, S_TEX, S_TLERP, S_TENTRY,
     S_TSAMPLE, S_TINT
   } state_t;
   state_t st;
@@ -225,46 +225,33 @@ module rgs_surface #(
   // ---- the units ----
   logic [1:0] in_q, out_q;   // operations issued and results collected in the current state
   logic [3:0] qin_q, qout_q; // the conversions
-  logic dec_valid, dec_ready, dec_ovalid;
-  logic [41:0] dec_code;
-  logic [V-1:0] dec_n, nv_q [3], n_q;
-  /* verilator lint_off PINCONNECTEMPTY */
-  assign dec_valid = st == S_DEC && in_q != 2'd3;
-  assign dec_code = rec_flat[42*in_q +: 42];
-  shade_rec_decode #(.E(E), .M(M), .TID_BITS(1), .CVT_STAGES(CVT_STAGES), .MUL_STAGES(MUL_STAGES),
-    .ADD_STAGES(ADD_STAGES), .SQRT_STAGES(SQRT_STAGES), .DIV_STAGES(DIV_STAGES)) u_dec (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(dec_valid), .ready_o(dec_ready), .tid_i(1'b0), .code_i(dec_code),
-    .valid_o(dec_ovalid), .ready_i(1'b1), .tid_o(), .n_o(dec_n));
+  // the interpolated vertex normals, a stream of the front's hits (its records' codes, u, v) in
+  // order; the back takes its hit's normal and zero test
+  logic nrm_valid, nrm_ready, nrm_ovalid, nrm_zero, nrm_take;
+  logic [V-1:0] nrm_n, n_q;
+  logic [125:0] f_codes;  // the 3 codes in the record's 4 normal words
+  assign f_codes = {f_rec[3][29:0], f_rec[2], f_rec[1], f_rec[0]};
+  rgs_normal #(.E(E), .M(M), .CVT_STAGES(CVT_STAGES), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES),
+    .SQRT_STAGES(SQRT_STAGES), .DIV_STAGES(DIV_STAGES)) u_nrm (
+    .clk_i, .rst_ni, .valid_i(nrm_valid), .ready_o(nrm_ready), .codes_i(f_codes), .u_i(f_u), .v_i(f_v),
+    .valid_o(nrm_ovalid), .ready_i(nrm_take), .n_o(nrm_n), .zero_o(nrm_zero));
+  assign nrm_take = st == S_NORM && nrm_ovalid;
+  assign nrm_valid = f_st == F_REC && f_done && f_flags[0];
 
-  // the interpolation: a normal's components, then a texture's s and t (tail coordinates i, 2+i, 4+i)
+  /* verilator lint_off PINCONNECTEMPTY */
+  // the interpolation of a texture's s and t (tail coordinates i, 2+i, 4+i)
   logic tsel_q;              // the texture: 0 base colour, 1 emissive
   logic [31:0] uv_at;
   assign uv_at = mat_bits + (has_euv && tsel_q ? 32'(6 * W) : 32'd0);
   logic lerp_valid, lerp_ready, lerp_ovalid;
   logic [W-1:0] la, lb, lc, lerp_r, lr_q [3];
-  assign lerp_valid = (st == S_LERPN && in_q != 2'd3) || (st == S_TLERP && in_q != 2'd2);
-  always_comb begin
-    if (st == S_LERPN) begin
-      la = nv_q[0][W*in_q +: W];
-      lb = nv_q[1][W*in_q +: W];
-      lc = nv_q[2][W*in_q +: W];
-    end else begin
-      la = W'(tail_field(tail, uv_at + 32'(W) * 32'(in_q)));
-      lb = W'(tail_field(tail, uv_at + 32'(W) * (32'd2 + 32'(in_q))));
-      lc = W'(tail_field(tail, uv_at + 32'(W) * (32'd4 + 32'(in_q))));
-    end
-  end
+  assign lerp_valid = st == S_TLERP && in_q != 2'd2;
+  assign la = W'(tail_field(tail, uv_at + 32'(W) * 32'(in_q)));
+  assign lb = W'(tail_field(tail, uv_at + 32'(W) * (32'd2 + 32'(in_q))));
+  assign lc = W'(tail_field(tail, uv_at + 32'(W) * (32'd4 + 32'(in_q))));
   rgs_lerp #(.E(E), .M(M), .TID_BITS(1), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES)) u_lerp (
     .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(lerp_valid), .ready_o(lerp_ready), .tid_i(1'b0), .a_i(la), .b_i(lb),
     .c_i(lc), .u_i(u_q), .v_i(v_q), .valid_o(lerp_ovalid), .ready_i(1'b1), .tid_o(), .r_o(lerp_r));
-
-  logic dot_ovalid;
-  /* verilator lint_off UNUSEDSIGNAL */
-  logic [W-1:0] dot_r;  // its exponent: the zero test
-  /* verilator lint_on UNUSEDSIGNAL */
-  f24_dot3 #(.E(E), .M(M), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES)) u_dot (
-    .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(st == S_DOT && in_q == 2'd0 && has_n), .a_i(n_q), .b_i(n_q),
-    .valid_o(dot_ovalid), .res_o(dot_r));
 
   logic fr_ready, fr_ovalid, fr_entering;
   logic [V-1:0] fr_d, fr_n, fr_p;
@@ -452,7 +439,7 @@ module rgs_surface #(
             f_st <= F_REC;
           end
         F_REC:
-          if (f_done) begin
+          if (f_done && (!f_flags[0] || nrm_ready)) begin  // with vertex normals into rgs_normal
             f_n <= '0;
             if (!f_flags[0]) begin  // no vertex normals: the geometric normal, as the C reads it next
               f_burst(f_tri_base + 32'(TRI_WORDS) * f_tri + 32'(GN_WORD), 5'(GN_SPAN));
@@ -530,50 +517,24 @@ module rgs_surface #(
             qout_q <= '0;
             in_q <= '0;
             out_q <= '0;
-            st <= f_flags[0] ? S_DEC : S_FRAME;
+            st <= f_flags[0] ? S_NORM : S_FRAME;
           end
-        S_DEC: begin
-          if (dec_valid && dec_ready) in_q <= in_q + 2'd1;
-          if (dec_ovalid) begin
-            nv_q[out_q] <= dec_n;
-            out_q <= out_q + 2'd1;
-            if (out_q == 2'd2) begin
-              in_q <= '0;
-              out_q <= '0;
-              st <= S_LERPN;
-            end
-          end
-        end
-        S_LERPN: begin
-          if (lerp_valid && lerp_ready) in_q <= in_q + 2'd1;
-          if (lerp_ovalid) begin
-            n_q[W*out_q +: W] <= lerp_r;
-            out_q <= out_q + 2'd1;
-            if (out_q == 2'd2) begin
-              in_q <= '0;
-              out_q <= '0;
-              st <= S_DOT;
-            end
-          end
-        end
-        S_DOT: begin  // reached with vertex normals only
-          if (in_q == 2'd0) in_q <= 2'd1;
-          if (dot_ovalid) begin
-            in_q <= '0;
-            // f24_is_zero: the geometric normal, read here (the conversions of the material's
-            // words in buf_q 0..10 are done: the decoding alone takes longer than the 9)
-            if (dot_r[W-2:M] == '0) begin
+        S_NORM:  // the hit's normal from rgs_normal (its chain started as the front had the record)
+          if (nrm_ovalid) begin
+            n_q <= nrm_n;
+            // f24_is_zero: the geometric normal, read here into buf_q 12.. (the conversions may
+            // still read the material's words 0..10)
+            if (nrm_zero) begin
               rd_addr_q <= tri_base_q + 32'(TRI_WORDS) * tri_q + 32'(GN_WORD);
               rd_left_q <= 5'(GN_SPAN);
               rsp_left_q <= 5'(GN_SPAN);
-              rsp_idx_q <= '0;
+              rsp_idx_q <= 5'd12;
               st <= S_GN;
             end else st <= S_FRAME;
           end
-        end
         S_GN:
           if (burst_done) begin
-            for (int c = 0; c < 3; c++) n_q[W*c +: W] <= W'({buf_q[2], buf_q[1], buf_q[0]} >> (GN_SHIFT + W * c));
+            for (int c = 0; c < 3; c++) n_q[W*c +: W] <= W'({buf_q[14], buf_q[13], buf_q[12]} >> (GN_SHIFT + W * c));
             st <= S_FRAME;
           end
         S_FRAME:  // the geometry into the frame

@@ -274,7 +274,7 @@ int main(int argc, char **argv)
         if (state_cycles[s] && done)
             std::printf(" %s %.1f", STATE[s], (double)state_cycles[s] / (double)done);
     std::printf("\n");
-    static const char *const SSTATE[] = { "IDLE", "INST", "OBJ", "REC", "DEC", "LERPN", "DOT", "GN", "FRAME", "MAT",
+    static const char *const SSTATE[] = { "IDLE", "INST", "OBJ", "REC", "NORM", "LERPN", "DOT", "GN", "FRAME", "MAT",
                                           "Q", "TEX", "TLERP", "TENTRY", "TSAMPLE", "TINT" };
     std::printf("rgs_surface cycles per block in SURF by state:");
     for (int s = 0; s < 16; s++)
