@@ -9,11 +9,12 @@
 //           normals the geometric normal (values 8..10 of the triangle record,
 //           F24_RECORD_SPAN(8, 3) words), the material's 16 words (address: the object's material
 //           or the record tail's); each burst's address comes from the words before, so they go
-//           one after another, into the front's registers, which the back takes when it is idle
-//   back    normal: with vertex normals the 3 codes decoded (`shade_rec_decode`, one a cycle) and
-//           interpolated per component (`rgs_lerp`, as `rgs_lerp_normal`); the squared length
-//           (`f24_dot3`, the C's `rgs_dot3(n, n)`): if its exponent is zero, the geometric normal
-//           read here; without vertex normals the front's geometric normal at once
+//           one after another, into the front's registers, which the back takes when it is idle;
+//           with vertex normals the record's 3 codes and u, v go into `rgs_normal` as the record
+//           is there (decoded, interpolated as `rgs_lerp_normal`, the squared length's zero test
+//           as the C's `f24_is_zero(rgs_dot3(n, n))`: a stream, the next hits' behind)
+//   back    normal: with vertex normals its hit's from `rgs_normal` (in order): if its squared
+//           length is zero, the geometric normal read here; without vertex normals the front's
 //   frame   d^, n^ facing the ray, t_hat, P, entering (`rgs_frame`): issued here, its result
 //           joins the surface at the output while the next steps and surfaces go on
 //   material  unlit, the highlight exponent k (shader word 0, bits 26..29), the index of
@@ -36,18 +37,21 @@
 // A surface's words are the C's (op reads), in the C's order but for a geometric normal that the
 // back reads after the material (vertex normals interpolated to zero length); the two stages'
 // reads interleave.
-// Latency: about 20 + the reads (13 + 6 + record + material + per texture 8 words, each burst
-// waiting for the one before) + the chain of the operators used (decode 42 + 2 lerp 24 + dot 16
-// (only with vertex normals) + the conversions' tail (about 20 from the back's taking it) + per
-// texture lerp 24 + sample 44) + the frame (118), which the next surfaces' steps overlap.
-// Throughput: a surface per the longer of its front (its reads, about 45 cycles for a flat hit with
-// a memory answering in the next cycle) and its back without the frame (about 90 cycles with
-// vertex normals, 25 without, more with textures), up to SLOTS surfaces between the frame's issue
-// and the output; a miss or an inactive ray passes both stages in a cycle each. Results leave in
+// Latency: about 20 + the reads up to the record (13 + 6 + record words, each burst waiting for the
+// one before) + `rgs_normal` (87, only with vertex normals; without: the geometric normal's and the
+// material's reads) + the conversions' tail (about 20 from the back's taking it) + per texture
+// lerp 24 + entry 4 + sample 44) + the frame (118), which the next surfaces' steps overlap.
+// Throughput: a surface per its front's reads (about 45 to 60 cycles for a flat hit with a memory
+// answering in 1 to 4 cycles) while the back's part is shorter (about 10 cycles untextured once
+// its normal is there); the front holds a hit until the back takes it, so with vertex normals a
+// hit's normal chain overlaps the next hit's reads but not the one after; up to SLOTS surfaces
+// between the frame's issue and the output; a miss or an inactive ray passes both stages in a
+// cycle each. Results leave in
 // the order the surfaces came in, with their thread id.
-// Resources: one each of `shade_rec_decode`, `rgs_lerp`, `f24_dot3`, `rgs_frame`, `q12_of`,
-// `tex_bilinear`; 3 `q12_mul`; per stage the record (19 words), a read buffer (16 words: the
-// material's in the back), the matrix (9 W bits), the ray and hit; the output queue (SLOTS x
+// Resources: one each of `rgs_normal` (its own `rgs_lerp` for the normals), `rgs_lerp` (texture
+// coordinates), `rgs_frame`, `q12_of`, `tex_bilinear`; 3 `q12_mul`; per stage the record (19
+// words), a read buffer (16 words: the material's in the back), the matrix (9 W bits), the ray and
+// hit (the front's about 1.8 Kbit); the output queue (SLOTS x
 // (TID_BITS + W + 234) bits: the fields of the surfaces in the frame); the request FIFO (SRC_DEPTH
 // bits); a 608-bit funnel shifter for the record's tail fields.
 module rgs_surface #(
@@ -500,8 +504,8 @@ module rgs_surface #(
             w2o_q <= f_w2o;
             tri_base_q <= f_tri_base;
             flags_q <= f_flags;
-            rec_q <= f_rec;
-            buf_q <= f_buf;  // the material's words
+            for (int k = 0; k < REC_MAX; k++) rec_q[k] <= f_rec[k];
+            for (int k = 0; k < BUF; k++) buf_q[k] <= f_buf[k];  // the material's words
             mat_q <= f_mat_addr;
             tex_idx_q[0] <= f_buf[7];
             tex_idx_q[1] <= f_buf[12];
