@@ -185,7 +185,9 @@ mutant() {
 }
 
 # builds DIR/tb, the model of tb_NAME from the given rtl/ sources with the Verilator options OPTS
-# (e.g. other parameters of the bench's wrapper), its C++ at -O0
+# (e.g. other parameters of the bench's wrapper), its C++ at -O0, linked with the units in the
+# hardware arithmetic as make's benches are (the fast build's objects hold other structures: a
+# bench's trace_state overflowed, and the rgs_ctrl mutant "was caught" by a crash at main's return)
 model() {
   local name=$1 d=$2 opts=$3; shift 3
   # shellcheck disable=SC2086 # OPTS are words
@@ -193,7 +195,7 @@ model() {
     -MAKEFLAGS OPT_FAST=-O0 -MAKEFLAGS OPT_SLOW=-O0 -MAKEFLAGS OPT_GLOBAL=-O0 -MAKEFLAGS VM_GLOBAL_FAST= \
     -o "$d/tb" "$@" "$PWD/rtl/tb/tb_$name.sv" "$PWD/rtl/tb/tb_$name.cpp" \
     -CFLAGS "-DF24_EXP_BITS=7 -DF24_MAN_BITS=16 $(printf -- "-I$PWD/%s " hls hls/fp24 hls/units tb/fp host/memimage host/kdtree host/scene)" \
-    -LDFLAGS "$(ls "$PWD/$B"/obj/e7m16/hls/fp24/*.o "$PWD/$B"/obj/e7m16/hls/units/*.o "$PWD/$B"/obj/e7m16/tb/fp/*.o \
+    -LDFLAGS "$(ls "$PWD/$B"/obj/e7m16/hls/fp24/*.o "$PWD/$B"/obj/hw/e7m16/hls/units/*.o "$PWD/$B"/obj/e7m16/tb/fp/*.o \
       "$PWD/$B"/rtl/verilated/*.o | tr '\n' ' ') -lmpfr -lgmp -lm" >/dev/null
 }
 
