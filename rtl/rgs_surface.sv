@@ -1,45 +1,59 @@
 // rgs_surface: the surface the RGS shades at a hit (paper sections 2.2 and 3, Figure 2 path g:
 // the shading's reads and the surface's geometry and colours; hls/units/rgs_surface.c
-// `rgs_surface_at`), bit for bit as the C, its reads and steps one surface at a time in this order
-// (the frame and the conversions beside them, see Latency):
-//   reads   the instance's 13 words (the world-to-object 3x3, the object index), the object
-//           descriptor's words 2..7 (triangle and shading record addresses, flags), the triangle's
-//           shading record (shade_rec_words(flags) words, up to 19) on the word read port
-//   normal  with vertex normals: the 3 codes decoded (`shade_rec_decode`, one a cycle) and
-//           interpolated per component (`rgs_lerp`, as `rgs_lerp_normal`); the squared length
-//           (`f24_dot3`, the C's `rgs_dot3(n, n)`): if its exponent is zero, the geometric normal
-//           (values 8..10 of the triangle record, F24_RECORD_SPAN(8, 3) words read)
+// `rgs_surface_at`), bit for bit as the C, in two stages that work on consecutive surfaces at once
+// (a front reading the next hit's records while the back shades the one before; the frame and the
+// conversions beside the back, see Latency):
+//   front   the reads: the instance's 13 words (the world-to-object 3x3, the object index), the
+//           object descriptor's words 2..7 (triangle and shading record addresses, flags), the
+//           triangle's shading record (shade_rec_words(flags) words, up to 19), without vertex
+//           normals the geometric normal (values 8..10 of the triangle record,
+//           F24_RECORD_SPAN(8, 3) words), the material's 16 words (address: the object's material
+//           or the record tail's); each burst's address comes from the words before, so they go
+//           one after another, into the front's registers, which the back takes when it is idle;
+//           with vertex normals the record's 3 codes and u, v go into `rgs_normal` as the record
+//           is there (decoded, interpolated as `rgs_lerp_normal`, the squared length's zero test
+//           as the C's `f24_is_zero(rgs_dot3(n, n))`: a stream, the next hits' behind)
+//   back    normal: with vertex normals its hit's from `rgs_normal` (in order): if its squared
+//           length is zero, the geometric normal read here; without vertex normals the front's
 //   frame   d^, n^ facing the ray, t_hat, P, entering (`rgs_frame`): issued here, its result
 //           joins the surface at the output while the next steps and surfaces go on
-//   material  its 16 words read (address: the object's material or the record tail's); unlit,
-//           the highlight exponent k (shader word 0, bits 26..29), the index of refraction and the
-//           kd, kr, kt, ks fields (words 13..15) for the accumulation
-//   colours  9 conversions to Q12 on one `q12_of` (u, v issued while the instance is read, the
-//           base and emissive factors and metallic as the material's words arrive);
-//           vertex colours (`modulate_colours`: weights q(u), q(v), 1 - both, the bytes widened,
-//           the C's uint32 arithmetic); per texture (base colour, then emissive) if its index is
-//           below the header's texture count and the object has texture coordinates: s, t
-//           interpolated (`rgs_lerp`), the entry's 4 words read, `tex_bilinear` sampling through
-//           the same read port (its 4 texel reads), the colour times the sample (`q_mul`); the tint
-//           (1 - m) + m base with m clamped to one (`q_mul`, `q_add`)
+//   material  unlit, the highlight exponent k (shader word 0, bits 26..29), the index of
+//           refraction and the kd, kr, kt, ks fields (words 13..15) for the accumulation
+//   colours  9 conversions to Q12 on one `q12_of`, one a cycle from the back's taking the hit (u,
+//           v, the base and emissive factors, metallic); vertex colours (`modulate_colours`:
+//           weights q(u), q(v), 1 - both, the bytes widened, the C's uint32 arithmetic); per texture
+//           (base colour, then emissive) if its index is below the header's texture count and the
+//           object has texture coordinates: s, t interpolated (`rgs_lerp`), the entry's 4 words
+//           read, `tex_bilinear` sampling through the same read port (its 4 texel reads), the colour
+//           times the sample (`q_mul`); the tint (1 - m) + m base with m clamped to one (`q_mul`,
+//           `q_add`)
 // An inactive ray or a miss gives the invalid surface (all zero) without a read. T_R is wiring
 // (d^, n^ and the ray's origin, which the caller keeps). The header's words the C reads as
 // constants (the instance, object, material and texture regions' starts, the texture count) are
 // inputs: the block control loads them once per frame.
 // Reads: valid/ready request of one word address, responses in order (valid, no back pressure: the
-// unit takes one every cycle), as trace_core's word port; the read sequence is the C's (op reads).
-// Latency: about 20 + the reads (13 + 6 + record + material + per texture 8 words) + the chain of the
-// operators used (decode 42 + 2 lerp 24 + dot 16 (only with vertex normals) + the conversions'
-// tail after the material's last factor (about 17) + per texture lerp 24 + sample 44) + the frame
-// (118), which the next surface's steps overlap. Throughput: a surface per its steps without the
-// frame (about 90 cycles for a flat untextured hit with a memory answering in the next cycle),
-// up to SLOTS surfaces between the frame's issue and the output; a miss or an inactive ray joins
-// the queue in one cycle. Results leave in the order the surfaces came in, with their thread id.
-// Resources: one each of `shade_rec_decode`, `rgs_lerp`, `f24_dot3`, `rgs_frame`,
-// `q12_of`, `tex_bilinear`; 3 `q12_mul`; the record (19 words), a read buffer (16 words), the
-// matrix (9 W bits) and the surface's registers; the output queue (SLOTS x (TID_BITS + W + 234)
-// bits: the fields of the surfaces in the frame); a 608-bit funnel shifter for the record's tail
-// fields.
+// unit takes one every cycle), as trace_core's word port. The back's requests go first (its
+// surface is the older one); a FIFO of SRC_DEPTH bits notes each request's stage for its response.
+// A surface's words are the C's (op reads), in the C's order but for a geometric normal that the
+// back reads after the material (vertex normals interpolated to zero length); the two stages'
+// reads interleave.
+// Latency: about 20 + the reads up to the record (13 + 6 + record words, each burst waiting for the
+// one before) + `rgs_normal` (87, only with vertex normals; without: the geometric normal's and the
+// material's reads) + the conversions' tail (about 20 from the back's taking it) + per texture
+// lerp 24 + entry 4 + sample 44) + the frame (118), which the next surfaces' steps overlap.
+// Throughput: a surface per its front's reads (about 45 to 60 cycles for a flat hit with a memory
+// answering in 1 to 4 cycles) while the back's part is shorter (about 10 cycles untextured once
+// its normal is there); the front holds a hit until the back takes it, so with vertex normals a
+// hit's normal chain overlaps the next hit's reads but not the one after; up to SLOTS surfaces
+// between the frame's issue and the output; a miss or an inactive ray passes both stages in a
+// cycle each. Results leave in
+// the order the surfaces came in, with their thread id.
+// Resources: one each of `rgs_normal` (its own `rgs_lerp` for the normals), `rgs_lerp` (texture
+// coordinates), `rgs_frame`, `q12_of`, `tex_bilinear`; 3 `q12_mul`; per stage the record (19
+// words), a read buffer (16 words: the material's in the back), the matrix (9 W bits), the ray and
+// hit (the front's about 1.8 Kbit); the output queue (SLOTS x
+// (TID_BITS + W + 234) bits: the fields of the surfaces in the frame); the request FIFO (SRC_DEPTH
+// bits); a 608-bit funnel shifter for the record's tail fields.
 module rgs_surface #(
   parameter int E = 7,
   parameter int M = 16,
@@ -52,7 +66,8 @@ module rgs_surface #(
   parameter int CMP_STAGES = 2,
   parameter int TOI_STAGES = 2,
   parameter int MOD_STAGES = 16,
-  parameter int SLOTS = 4         // surfaces between the frame's issue and the output (a power of 2)
+  parameter int SLOTS = 4,        // surfaces between the frame's issue and the output (a power of 2)
+  parameter int SRC_DEPTH = 32    // reads under way (a power of 2; more wait)
 ) (
   input  logic                 clk_i,
   input  logic                 rst_ni,
@@ -117,11 +132,15 @@ module rgs_surface #(
   localparam logic [31:0] NO_HIT = 32'hFFFFFFFF;
   localparam logic [15:0] ONE = 16'd4096;
 
+  // the back's states (the order tb_rgs_ctrl's histogram names them; S_INST, S_OBJ, S_REC and S_MAT
+  // are the front's now, S_LERPN and S_DOT rgs_normal's: unused here)
   typedef enum logic [4:0] {
-    S_IDLE, S_INST, S_OBJ, S_REC, S_DEC, S_LERPN, S_DOT, S_GN, S_FRAME, S_MAT, S_Q, S_TEX, S_TLERP, S_TENTRY,
+    S_IDLE, S_INST, S_OBJ, S_REC, S_NORM, S_LERPN, S_DOT, S_GN, S_FRAME, S_MAT, S_Q, S_TEX, S_TLERP, S_TENTRY,
     S_TSAMPLE, S_TINT
   } state_t;
   state_t st;
+  typedef enum logic [2:0] { F_IDLE, F_INST, F_OBJ, F_REC, F_GN, F_MAT, F_FULL } fstate_t;
+  fstate_t f_st;
 
   // ---- the transaction's inputs ----
   logic [TID_BITS-1:0] tid_q;
@@ -129,7 +148,21 @@ module rgs_surface #(
   logic [31:0] tri_q;
   logic [W-1:0] t_q, u_q, v_q, cos_q;
 
-  // ---- reads: a burst of n words from addr; responses into the record or the buffer ----
+  // ---- the front: a hit's reads, the instance's 13 words, the object's 6, the record, the
+  // geometric normal if the object has no vertex normals, the material's 16, into its own
+  // registers, while the back works on the surface before; the back takes them (f_take) ----
+  logic [TID_BITS-1:0] f_tid;
+  logic f_hit;
+  logic [V-1:0] f_o, f_d, f_n;
+  logic [31:0] f_tri, f_tri_base, f_flags, f_mat_addr;
+  logic [W-1:0] f_t, f_u, f_v, f_cos;
+  logic [V*3-1:0] f_w2o;
+  logic [31:0] f_rd_addr, f_buf [BUF], f_rec [REC_MAX];
+  logic [4:0] f_rd_left, f_rsp_left, f_rsp_idx;
+  logic f_done, f_take;
+  assign f_done = f_rsp_left == 5'd0;
+
+  // ---- the back's reads (a zero interpolated normal's geometric normal, a texture's entry) ----
   logic [31:0] rd_addr_q, buf_q [BUF], rec_q [REC_MAX];
   logic [4:0] rd_left_q, rsp_left_q, rsp_idx_q;
   logic burst_done, tex_port;
@@ -140,8 +173,23 @@ module rgs_surface #(
   /* verilator lint_on UNUSEDSIGNAL */
   logic [31:0] tex_req_addr;
   assign tex_port = st == S_TSAMPLE;
-  assign mem_req_valid_o = tex_port ? tex_req_valid : rd_left_q != 5'd0;
-  assign mem_addr_o = tex_port ? tex_req_addr : rd_addr_q;
+
+  // ---- the word port, shared: the back's requests first (its surface is the older one); the
+  // responses come in request order, so a FIFO of each request's side (1: the back) routes them ----
+  logic b_req, f_req, src_room, src_head, rsp_b, rsp_f, port_go;
+  assign b_req = tex_port ? tex_req_valid : rd_left_q != 5'd0;
+  assign f_req = f_rd_left != 5'd0;
+  assign mem_req_valid_o = (b_req || f_req) && src_room;
+  assign mem_addr_o = b_req ? (tex_port ? tex_req_addr : rd_addr_q) : f_rd_addr;
+  assign port_go = src_room && mem_req_ready_i;  // a request offered now is taken
+  /* verilator lint_off PINCONNECTEMPTY */
+  sync_fifo #(.W(1), .DEPTH(SRC_DEPTH)) u_src (
+    .clk_i, .rst_ni, .valid_i(mem_req_valid_o && mem_req_ready_i), .ready_o(src_room), .data_i(b_req),
+    .valid_o(), .ready_i(mem_rsp_valid_i), .data_o(src_head)
+  );
+  /* verilator lint_on PINCONNECTEMPTY */
+  assign rsp_b = mem_rsp_valid_i && src_head;
+  assign rsp_f = mem_rsp_valid_i && !src_head;
 
   // ---- the object's flags and the record's fields (shade_rec.h) ----
   /* verilator lint_off UNUSEDSIGNAL */
@@ -181,46 +229,33 @@ module rgs_surface #(
   // ---- the units ----
   logic [1:0] in_q, out_q;   // operations issued and results collected in the current state
   logic [3:0] qin_q, qout_q; // the conversions
-  logic dec_valid, dec_ready, dec_ovalid;
-  logic [41:0] dec_code;
-  logic [V-1:0] dec_n, nv_q [3], n_q;
-  /* verilator lint_off PINCONNECTEMPTY */
-  assign dec_valid = st == S_DEC && in_q != 2'd3;
-  assign dec_code = rec_flat[42*in_q +: 42];
-  shade_rec_decode #(.E(E), .M(M), .TID_BITS(1), .CVT_STAGES(CVT_STAGES), .MUL_STAGES(MUL_STAGES),
-    .ADD_STAGES(ADD_STAGES), .SQRT_STAGES(SQRT_STAGES), .DIV_STAGES(DIV_STAGES)) u_dec (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(dec_valid), .ready_o(dec_ready), .tid_i(1'b0), .code_i(dec_code),
-    .valid_o(dec_ovalid), .ready_i(1'b1), .tid_o(), .n_o(dec_n));
+  // the interpolated vertex normals, a stream of the front's hits (its records' codes, u, v) in
+  // order; the back takes its hit's normal and zero test
+  logic nrm_valid, nrm_ready, nrm_ovalid, nrm_zero, nrm_take;
+  logic [V-1:0] nrm_n, n_q;
+  logic [125:0] f_codes;  // the 3 codes in the record's 4 normal words
+  assign f_codes = {f_rec[3][29:0], f_rec[2], f_rec[1], f_rec[0]};
+  rgs_normal #(.E(E), .M(M), .CVT_STAGES(CVT_STAGES), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES),
+    .SQRT_STAGES(SQRT_STAGES), .DIV_STAGES(DIV_STAGES)) u_nrm (
+    .clk_i, .rst_ni, .valid_i(nrm_valid), .ready_o(nrm_ready), .codes_i(f_codes), .u_i(f_u), .v_i(f_v),
+    .valid_o(nrm_ovalid), .ready_i(nrm_take), .n_o(nrm_n), .zero_o(nrm_zero));
+  assign nrm_take = st == S_NORM && nrm_ovalid;
+  assign nrm_valid = f_st == F_REC && f_done && f_flags[0];
 
-  // the interpolation: a normal's components, then a texture's s and t (tail coordinates i, 2+i, 4+i)
+  /* verilator lint_off PINCONNECTEMPTY */
+  // the interpolation of a texture's s and t (tail coordinates i, 2+i, 4+i)
   logic tsel_q;              // the texture: 0 base colour, 1 emissive
   logic [31:0] uv_at;
   assign uv_at = mat_bits + (has_euv && tsel_q ? 32'(6 * W) : 32'd0);
   logic lerp_valid, lerp_ready, lerp_ovalid;
   logic [W-1:0] la, lb, lc, lerp_r, lr_q [3];
-  assign lerp_valid = (st == S_LERPN && in_q != 2'd3) || (st == S_TLERP && in_q != 2'd2);
-  always_comb begin
-    if (st == S_LERPN) begin
-      la = nv_q[0][W*in_q +: W];
-      lb = nv_q[1][W*in_q +: W];
-      lc = nv_q[2][W*in_q +: W];
-    end else begin
-      la = W'(tail_field(tail, uv_at + 32'(W) * 32'(in_q)));
-      lb = W'(tail_field(tail, uv_at + 32'(W) * (32'd2 + 32'(in_q))));
-      lc = W'(tail_field(tail, uv_at + 32'(W) * (32'd4 + 32'(in_q))));
-    end
-  end
+  assign lerp_valid = st == S_TLERP && in_q != 2'd2;
+  assign la = W'(tail_field(tail, uv_at + 32'(W) * 32'(in_q)));
+  assign lb = W'(tail_field(tail, uv_at + 32'(W) * (32'd2 + 32'(in_q))));
+  assign lc = W'(tail_field(tail, uv_at + 32'(W) * (32'd4 + 32'(in_q))));
   rgs_lerp #(.E(E), .M(M), .TID_BITS(1), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES)) u_lerp (
     .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(lerp_valid), .ready_o(lerp_ready), .tid_i(1'b0), .a_i(la), .b_i(lb),
     .c_i(lc), .u_i(u_q), .v_i(v_q), .valid_o(lerp_ovalid), .ready_i(1'b1), .tid_o(), .r_o(lerp_r));
-
-  logic dot_ovalid;
-  /* verilator lint_off UNUSEDSIGNAL */
-  logic [W-1:0] dot_r;  // its exponent: the zero test
-  /* verilator lint_on UNUSEDSIGNAL */
-  f24_dot3 #(.E(E), .M(M), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES)) u_dot (
-    .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(st == S_DOT && in_q == 2'd0 && has_n), .a_i(n_q), .b_i(n_q),
-    .valid_o(dot_ovalid), .res_o(dot_r));
 
   logic fr_ready, fr_ovalid, fr_entering;
   logic [V-1:0] fr_d, fr_n, fr_p;
@@ -231,16 +266,28 @@ module rgs_surface #(
     .o_i(o_q), .d_i(d_q), .t_i(t_q), .cos_n_i(cos_q), .n_i(n_q), .w2o_i(w2o_q), .valid_o(fr_ovalid), .ready_i(fr_take),
     .tid_o(), .d_o(fr_d), .n_o(fr_n), .entering_o(fr_entering), .t_hat_o(fr_t_hat), .p_o(fr_p));
 
-  // the 9 conversions to Q12, off the sequence's path: u and v while the instance is read, the
-  // material's factors (words base 0..2, emission 4..6, metallic 10) as their words arrive; the
-  // results in that order into qres_q 7, 8, then 0..6 (S_Q waits for the last)
+  // the 9 conversions to Q12, off the sequence's path: issued one a cycle from the back's taking a
+  // hit on (its normal's chain or the frame's issue meanwhile), u, v, then the material's factors
+  // (words base 0..2, emission 4..6, metallic 10, which the front read); the results in that order
+  // into qres_q 7, 8, then 0..6 (S_Q waits for the last)
   logic [31:0] tex_idx_q [2];
   logic [W-1:0] q_x;
-  logic q_valid, q_ovalid, q_factor;
+  logic q_valid, q_ovalid;
   logic [15:0] q_r, qres_q [9];
-  assign q_factor = rsp_idx_q == 5'd10 || (rsp_idx_q < 5'd7 && rsp_idx_q != 5'd3);
-  assign q_valid = (st == S_INST && qin_q < 4'd2) || (st == S_MAT && mem_rsp_valid_i && rsp_left_q != 5'd0 && q_factor);
-  assign q_x = st == S_INST ? (qin_q[0] ? v_q : u_q) : mem_rdata_i[W-1:0];
+  logic [3:0] q_word;
+  always_comb begin
+    unique case (qin_q)
+      4'd2: q_word = 4'd0;
+      4'd3: q_word = 4'd1;
+      4'd4: q_word = 4'd2;
+      4'd5: q_word = 4'd4;
+      4'd6: q_word = 4'd5;
+      4'd7: q_word = 4'd6;
+      default: q_word = 4'd10;
+    endcase
+  end
+  assign q_valid = st != S_IDLE && qin_q < 4'd9;
+  assign q_x = qin_q == 4'd0 ? u_q : qin_q == 4'd1 ? v_q : buf_q[q_word][W-1:0];
   q12_of #(.E(E), .M(M), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES), .TOI_STAGES(TOI_STAGES)) u_q12 (
     .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(q_valid), .x_i(q_x),
     .valid_o(q_ovalid), .q_o(q_r));
@@ -251,8 +298,8 @@ module rgs_surface #(
     .ADD_STAGES(ADD_STAGES), .CMP_STAGES(CMP_STAGES), .TOI_STAGES(TOI_STAGES), .MOD_STAGES(MOD_STAGES)) u_tex (
     .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(st == S_TSAMPLE && in_q == 2'd0), .ready_o(tx_ready), .tid_i(1'b0),
     .s_i(lr_q[0]), .t_i(lr_q[1]), .width_i(buf_q[0]), .height_i(buf_q[1]), .addr_i(buf_q[2]),
-    .req_valid_o(tex_req_valid), .req_ready_i(tex_port && mem_req_ready_i), .req_addr_o(tex_req_addr),
-    .rsp_valid_i(tex_port && mem_rsp_valid_i), .rsp_ready_o(tex_rsp_ready), .rsp_data_i(mem_rdata_i),
+    .req_valid_o(tex_req_valid), .req_ready_i(tex_port && port_go), .req_addr_o(tex_req_addr),
+    .rsp_valid_i(tex_port && rsp_b), .rsp_ready_o(tex_rsp_ready), .rsp_data_i(mem_rdata_i),
     .valid_o(tx_ovalid), .ready_i(1'b1), .tid_o(), .rgb_o(tx_rgb));
   /* verilator lint_on PINCONNECTEMPTY */
 
@@ -299,6 +346,7 @@ module rgs_surface #(
   // issue order, so its oldest one belongs to the queue's first hit: the head leaves with it (a hit)
   // or alone (a miss; the frame waits meanwhile).
   logic unlit_q;
+  logic [31:0] mat_q;
   logic [3:0] k_q;
   logic [W-1:0] eta_q;
   logic [12:0] kd_q, kr_q, kt_q, ks_q;
@@ -311,10 +359,12 @@ module rgs_surface #(
     assign emis_v[16*k +: 16] = emis_q[k];
     assign tint_v[16*k +: 16] = q_sat32({16'd0, ONE - metal_c} + {16'd0, qm_p[k]});  // the C's tint
   end
-  // a miss joins from S_IDLE with zero fields; a hit at the end of its colours (S_TINT)
-  assign q_push = st == S_TINT || (st == S_IDLE && valid_i && q_room && (!active_i || inst_i == NO_HIT));
-  assign q_in = st == S_TINT ? {tid_q, 1'b1, mat_addr, unlit_q, k_q, eta_q, kd_q, kr_q, kt_q, ks_q, base_v, emis_v, tint_v}
-                             : {tid_i, (QW - TID_BITS)'(0)};
+  // a miss joins as the back takes it from the front, with zero fields; a hit at the end of its
+  // colours (S_TINT)
+  assign f_take = st == S_IDLE && f_st == F_FULL && q_room;
+  assign q_push = st == S_TINT || (f_take && !f_hit);
+  assign q_in = st == S_TINT ? {tid_q, 1'b1, mat_q, unlit_q, k_q, eta_q, kd_q, kr_q, kt_q, ks_q, base_v, emis_v, tint_v}
+                             : {f_tid, (QW - TID_BITS)'(0)};
   sync_fifo #(.W(QW), .DEPTH(SLOTS)) u_queue (
     .clk_i, .rst_ni, .valid_i(q_push), .ready_o(q_room), .data_i(q_in),
     .valid_o(q_any), .ready_i(ready_i && (!q_hit || fr_ovalid)), .data_o(q_head)
@@ -322,7 +372,7 @@ module rgs_surface #(
   assign q_hit = q_head[QW-TID_BITS-1];
   assign valid_o = q_any && (!q_hit || fr_ovalid);
   assign fr_take = q_any && q_hit && ready_i;
-  assign ready_o = st == S_IDLE && q_room;
+  assign ready_o = f_st == F_IDLE;
   assign {tid_o, sf_valid_o, mat_o, unlit_o, k_o, eta_o, kd_o, kr_o, kt_o, ks_o, base_o, emission_o, tint_o} = q_head;
   assign p_o = q_hit ? fr_p : '0;
   assign d_o = q_hit ? fr_d : '0;
@@ -330,11 +380,95 @@ module rgs_surface #(
   assign t_hat_o = q_hit ? fr_t_hat : '0;
   assign entering_o = q_hit && fr_entering;
 
-  // ---- the sequence ----
-  logic [31:0] rec_addr, mat_addr;
-  assign rec_addr = buf_q[1] + 32'(rec_words(buf_q[5][5:0])) * tri_q;
-  assign mat_addr = mat_base_i + 32'd16 * (one_mat ? {16'd0, flags_q[31:16]} : {16'd0, tail[15:0]});
+  // ---- the front's sequence ----
+  logic [31:0] rec_addr, f_mat_at;
+  assign rec_addr = f_buf[1] + 32'(rec_words(f_buf[5][5:0])) * f_tri;
+  // the material: the object's (flags 16..31) or the record tail's first 16 bits
+  assign f_mat_at = mat_base_i + 32'd16 * (f_flags[3] ? {16'd0, f_flags[31:16]}
+                                                       : {16'd0, f_rec[f_flags[0] ? 4 : 0][15:0]});
 
+  // a burst of n words from a: the front's next read
+  task automatic f_burst(input logic [31:0] a, input logic [4:0] n);
+    f_rd_addr <= a;
+    f_rd_left <= n;
+    f_rsp_left <= n;
+    f_rsp_idx <= '0;
+  endtask
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      f_st <= F_IDLE;
+      f_rd_left <= '0;
+      f_rsp_left <= '0;
+    end else begin
+      if (f_req && !b_req && port_go) begin
+        f_rd_addr <= f_rd_addr + 32'd1;
+        f_rd_left <= f_rd_left - 5'd1;
+      end
+      if (rsp_f && f_rsp_left != 5'd0) begin
+        if (f_st == F_REC) f_rec[f_rsp_idx] <= mem_rdata_i;
+        else f_buf[f_rsp_idx[3:0]] <= mem_rdata_i;
+        f_rsp_idx <= f_rsp_idx + 5'd1;
+        f_rsp_left <= f_rsp_left - 5'd1;
+      end
+      unique case (f_st)
+        F_IDLE:
+          if (valid_i) begin
+            f_tid <= tid_i;
+            f_o <= o_i;
+            f_d <= d_i;
+            f_tri <= tri_i;
+            f_t <= t_i;
+            f_u <= u_i;
+            f_v <= v_i;
+            f_cos <= cos_n_i;
+            f_hit <= active_i && inst_i != NO_HIT;
+            if (active_i && inst_i != NO_HIT) begin
+              f_burst(inst_base_i + 32'(INST_WORDS) * inst_i, 5'd13);
+              f_st <= F_INST;
+            end else f_st <= F_FULL;
+          end
+        F_INST:
+          if (f_done) begin
+            for (int k = 0; k < 3; k++)
+              for (int r = 0; r < 3; r++) f_w2o[W*(3*k+r) +: W] <= f_buf[4*k+r][W-1:0];
+            f_burst(obj_base_i + 32'd16 * f_buf[12] + 32'd2, 5'd6);
+            f_st <= F_OBJ;
+          end
+        F_OBJ:
+          if (f_done) begin
+            f_tri_base <= f_buf[0];
+            f_flags <= f_buf[5];
+            f_burst(rec_addr, rec_words(f_buf[5][5:0]));
+            f_st <= F_REC;
+          end
+        F_REC:
+          if (f_done && (!f_flags[0] || nrm_ready)) begin  // with vertex normals into rgs_normal
+            f_n <= '0;
+            if (!f_flags[0]) begin  // no vertex normals: the geometric normal, as the C reads it next
+              f_burst(f_tri_base + 32'(TRI_WORDS) * f_tri + 32'(GN_WORD), 5'(GN_SPAN));
+              f_st <= F_GN;
+            end else begin
+              f_mat_addr <= f_mat_at;
+              f_burst(f_mat_at, 5'd16);
+              f_st <= F_MAT;
+            end
+          end
+        F_GN:
+          if (f_done) begin
+            for (int c = 0; c < 3; c++) f_n[W*c +: W] <= W'({f_buf[2], f_buf[1], f_buf[0]} >> (GN_SHIFT + W * c));
+            f_mat_addr <= f_mat_at;
+            f_burst(f_mat_at, 5'd16);
+            f_st <= F_MAT;
+          end
+        F_MAT: if (f_done) f_st <= F_FULL;
+        F_FULL: if (f_take) f_st <= F_IDLE;
+        default: f_st <= F_IDLE;
+      endcase
+    end
+  end
+
+  // ---- the back's sequence ----
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       st <= S_IDLE;
@@ -342,7 +476,7 @@ module rgs_surface #(
       rsp_left_q <= '0;
     end else begin
       // the burst's requests and responses (not while the texture sample owns the port)
-      if (!tex_port && rd_left_q != 5'd0 && mem_req_ready_i) begin
+      if (!tex_port && rd_left_q != 5'd0 && port_go) begin
         rd_addr_q <= rd_addr_q + 32'd1;
         rd_left_q <= rd_left_q - 5'd1;
       end
@@ -351,123 +485,64 @@ module rgs_surface #(
         qres_q[qout_q < 4'd2 ? qout_q + 4'd7 : qout_q - 4'd2] <= q_r;
         qout_q <= qout_q + 4'd1;
       end
-      if (!tex_port && mem_rsp_valid_i && rsp_left_q != 5'd0) begin
-        if (st == S_REC) rec_q[rsp_idx_q] <= mem_rdata_i;
-        else buf_q[rsp_idx_q[3:0]] <= mem_rdata_i;
+      if (!tex_port && rsp_b && rsp_left_q != 5'd0) begin
+        buf_q[rsp_idx_q[3:0]] <= mem_rdata_i;
         rsp_idx_q <= rsp_idx_q + 5'd1;
         rsp_left_q <= rsp_left_q - 5'd1;
       end
       unique case (st)
-        S_IDLE:  // a miss or an inactive ray has joined the queue (q_push)
-          if (valid_i && ready_o) begin
-            tid_q <= tid_i;
-            o_q <= o_i;
-            d_q <= d_i;
-            tri_q <= tri_i;
-            t_q <= t_i;
-            u_q <= u_i;
-            v_q <= v_i;
-            cos_q <= cos_n_i;
+        S_IDLE:  // a miss has joined the queue as it was taken (q_push)
+          if (f_take && f_hit) begin
+            tid_q <= f_tid;
+            o_q <= f_o;
+            d_q <= f_d;
+            tri_q <= f_tri;
+            t_q <= f_t;
+            u_q <= f_u;
+            v_q <= f_v;
+            cos_q <= f_cos;
+            w2o_q <= f_w2o;
+            tri_base_q <= f_tri_base;
+            flags_q <= f_flags;
+            for (int k = 0; k < REC_MAX; k++) rec_q[k] <= f_rec[k];
+            for (int k = 0; k < BUF; k++) buf_q[k] <= f_buf[k];  // the material's words
+            mat_q <= f_mat_addr;
+            tex_idx_q[0] <= f_buf[7];
+            tex_idx_q[1] <= f_buf[12];
+            unlit_q <= f_buf[8][3];
+            k_q <= f_buf[14][29:26];
+            eta_q <= f_buf[13][W-1:0];
+            kd_q <= f_buf[14][12:0];
+            kr_q <= f_buf[14][25:13];
+            kt_q <= f_buf[15][12:0];
+            ks_q <= f_buf[15][25:13];
+            n_q <= f_n;  // the geometric normal without vertex normals
             qin_q <= '0;
             qout_q <= '0;
-            if (active_i && inst_i != NO_HIT) begin
-              rd_addr_q <= inst_base_i + 32'(INST_WORDS) * inst_i;
-              rd_left_q <= 5'd13;
-              rsp_left_q <= 5'd13;
-              rsp_idx_q <= '0;
-              st <= S_INST;
-            end
-          end
-        S_INST:
-          if (burst_done) begin
-            for (int k = 0; k < 3; k++)
-              for (int r = 0; r < 3; r++) w2o_q[W*(3*k+r) +: W] <= buf_q[4*k+r][W-1:0];
-            rd_addr_q <= obj_base_i + 32'd16 * buf_q[12] + 32'd2;
-            rd_left_q <= 5'd6;
-            rsp_left_q <= 5'd6;
-            rsp_idx_q <= '0;
-            st <= S_OBJ;
-          end
-        S_OBJ:
-          if (burst_done) begin
-            tri_base_q <= buf_q[0];
-            flags_q <= buf_q[5];
-            rd_addr_q <= rec_addr;
-            rd_left_q <= rec_words(buf_q[5][5:0]);
-            rsp_left_q <= rec_words(buf_q[5][5:0]);
-            rsp_idx_q <= '0;
-            st <= S_REC;
-          end
-        S_REC:
-          if (burst_done) begin
             in_q <= '0;
             out_q <= '0;
-            n_q <= '0;
-            st <= has_n ? S_DEC : S_DOT;
+            st <= f_flags[0] ? S_NORM : S_FRAME;
           end
-        S_DEC: begin
-          if (dec_valid && dec_ready) in_q <= in_q + 2'd1;
-          if (dec_ovalid) begin
-            nv_q[out_q] <= dec_n;
-            out_q <= out_q + 2'd1;
-            if (out_q == 2'd2) begin
-              in_q <= '0;
-              out_q <= '0;
-              st <= S_LERPN;
-            end
-          end
-        end
-        S_LERPN: begin
-          if (lerp_valid && lerp_ready) in_q <= in_q + 2'd1;
-          if (lerp_ovalid) begin
-            n_q[W*out_q +: W] <= lerp_r;
-            out_q <= out_q + 2'd1;
-            if (out_q == 2'd2) begin
-              in_q <= '0;
-              out_q <= '0;
-              st <= S_DOT;
-            end
-          end
-        end
-        S_DOT: begin  // without vertex normals n is zero: its square is, no need to ask the unit
-          if (in_q == 2'd0) in_q <= 2'd1;
-          if (!has_n || dot_ovalid) begin
-            in_q <= '0;
-            if (!has_n || dot_r[W-2:M] == '0) begin  // f24_is_zero: the geometric normal
+        S_NORM:  // the hit's normal from rgs_normal (its chain started as the front had the record)
+          if (nrm_ovalid) begin
+            n_q <= nrm_n;
+            // f24_is_zero: the geometric normal, read here into buf_q 12.. (the conversions may
+            // still read the material's words 0..10)
+            if (nrm_zero) begin
               rd_addr_q <= tri_base_q + 32'(TRI_WORDS) * tri_q + 32'(GN_WORD);
               rd_left_q <= 5'(GN_SPAN);
               rsp_left_q <= 5'(GN_SPAN);
-              rsp_idx_q <= '0;
+              rsp_idx_q <= 5'd12;
               st <= S_GN;
             end else st <= S_FRAME;
           end
-        end
         S_GN:
           if (burst_done) begin
-            for (int c = 0; c < 3; c++) n_q[W*c +: W] <= W'({buf_q[2], buf_q[1], buf_q[0]} >> (GN_SHIFT + W * c));
+            for (int c = 0; c < 3; c++) n_q[W*c +: W] <= W'({buf_q[14], buf_q[13], buf_q[12]} >> (GN_SHIFT + W * c));
             st <= S_FRAME;
           end
-        S_FRAME:  // the geometry into the frame; the material's read meanwhile
-          if (fr_ready) begin
-            rd_addr_q <= mat_addr;
-            rd_left_q <= 5'd16;
-            rsp_left_q <= 5'd16;
-            rsp_idx_q <= '0;
-            st <= S_MAT;
-          end
-        S_MAT:
-          if (burst_done) begin
-            tex_idx_q[0] <= buf_q[7];
-            tex_idx_q[1] <= buf_q[12];
-            unlit_q <= buf_q[8][3];
-            k_q <= buf_q[14][29:26];
-            eta_q <= buf_q[13][W-1:0];
-            kd_q <= buf_q[14][12:0];
-            kr_q <= buf_q[14][25:13];
-            kt_q <= buf_q[15][12:0];
-            ks_q <= buf_q[15][25:13];
-            st <= S_Q;
-          end
+        S_FRAME:  // the geometry into the frame
+          if (fr_ready) st <= S_Q;
         S_Q: begin
           if (qout_q == 4'd9) begin
             for (int k = 0; k < 3; k++) begin

@@ -29,8 +29,9 @@
 # (textured), the cornell box and (from ../shared/scenes, if present) subpass_scene_opaque and
 # CesiumMilkTruck (textured) with shadows and reflections, and 2 x 10^4 random ones of each; the
 # surface at a hit (rtl/rgs_surface.sv: its reads, normal, frame, colours, textures) matches
-# rgs_surface_at on the surfaces of those frames and the built-in vertex-colour and emissive
-# scenes, word by word in its reads, and a ray's accumulation (rtl/rgs_accum.sv) matches
+# rgs_surface_at on the surfaces of those frames, the built-in vertex-colour and emissive
+# scenes and cornell without vertex normals and with zero ones (the geometric normal), up to 8
+# surfaces in flight, its reads the C's words, and a ray's accumulation (rtl/rgs_accum.sv) matches
 # rgs_accumulate_ray (these two with SAARCOR_RTL_MUTANTS=all, as make rtl-test runs it); the per-block control (rtl/rgs_ctrl.sv) matches rgs_render_block's pixels and
 # primary hits and rgs_step's packets on every block of cornell and part of the room; the
 # benches catch mutants (a rounder that never rounds ties to even; with SAARCOR_RTL_MUTANTS=all, as
@@ -187,7 +188,9 @@ mutant() {
 }
 
 # builds DIR/tb, the model of tb_NAME from the given rtl/ sources with the Verilator options OPTS
-# (e.g. other parameters of the bench's wrapper), its C++ at -O0
+# (e.g. other parameters of the bench's wrapper), its C++ at -O0, linked with the units in the
+# hardware arithmetic as make's benches are (the fast build's objects hold other structures: a
+# bench's trace_state overflowed, and the rgs_ctrl mutant "was caught" by a crash at main's return)
 model() {
   local name=$1 d=$2 opts=$3; shift 3
   # shellcheck disable=SC2086 # OPTS are words
@@ -195,7 +198,7 @@ model() {
     -MAKEFLAGS OPT_FAST=-O0 -MAKEFLAGS OPT_SLOW=-O0 -MAKEFLAGS OPT_GLOBAL=-O0 -MAKEFLAGS VM_GLOBAL_FAST= \
     -o "$d/tb" "$@" "$PWD/rtl/tb/tb_$name.sv" "$PWD/rtl/tb/tb_$name.cpp" \
     -CFLAGS "-DF24_EXP_BITS=7 -DF24_MAN_BITS=16 $(printf -- "-I$PWD/%s " hls hls/fp24 hls/units tb/fp host/memimage host/kdtree host/scene)" \
-    -LDFLAGS "$(ls "$PWD/$B"/obj/e7m16/hls/fp24/*.o "$PWD/$B"/obj/e7m16/hls/units/*.o "$PWD/$B"/obj/e7m16/tb/fp/*.o \
+    -LDFLAGS "$(ls "$PWD/$B"/obj/e7m16/hls/fp24/*.o "$PWD/$B"/obj/hw/e7m16/hls/units/*.o "$PWD/$B"/obj/e7m16/tb/fp/*.o \
       "$PWD/$B"/rtl/verilated/*.o | tr '\n' ' ') -lmpfr -lgmp -lm" >/dev/null
 }
 
@@ -320,15 +323,31 @@ t_surface() {
     "$B/rtl/e7m16/tb_surface" -n 200 --capture "$d" >"$d.log" || { cat "$d.log"; false; }
     cat "$d.log"
   done
+  # the geometric normal: cornell without vertex normals (read by the front after the record) and
+  # with its first mesh's normals zero (read by the back after the zero-length test)
+  "$BIN" gen cornell -o "$T/surface_cornell.gltf" >/dev/null
+  for s in drop zero; do
+    d="$T/surface_normals_$s"
+    python3 scripts/vertex_normals.py "$T/surface_cornell.gltf" "$d.gltf" "$s"
+    "$BIN" render "$d.gltf" -o "$d.png" --width 32 --height 24 --max-depth 2 --capture-unit-io "$d" --capture-limit 400 \
+      >/dev/null 2>&1
+    "$B/rtl/e7m16/tb_surface" -n 200 --capture "$d" >"$d.log" || { cat "$d.log"; false; }
+    cat "$d.log"
+    grep -Eq " [1-9][0-9]* with the geometric normal" "$d.log" || return 1
+  done
   grep -Eq "; [1-9][0-9]* valid, [1-9][0-9]* with vertex colours" "$T/surface_vertex_colours.log" &&
     grep -Eq " [1-9][0-9]* texture samples\), 0 mismatches, 0 wrong reads" "$T/surface_emissive.log"
 }
 
-# the vertex colours' weighted sum truncated instead of rounded (no + 2048 before the shift by 12)
+# the vertex colours' weighted sum truncated instead of rounded (no + 2048 before the shift by 12);
+# rgs_normal's barycentrics leaving their queue after a hit's first component instead of its last
+# (the next hit's u, v for the other two)
 t_surface_mutant_caught() {
   [[ -f "$T/surface_vertex_colours/surface.hex" ]] || "$BIN" render vertex_colours -o "$T/vc.png" --width 32 --height 24 \
     --max-depth 2 --capture-unit-io "$T/surface_vertex_colours" --capture-limit 400 >/dev/null 2>&1
-  mutant surface rgs_surface.sv "s/((sum + 32'd2048) >> 12)/(sum >> 12)/" -n 0 --capture "$T/surface_vertex_colours"
+  mutant surface rgs_surface.sv "s/((sum + 32'd2048) >> 12)/(sum >> 12)/" -n 0 --capture "$T/surface_vertex_colours" &&
+    mutant surface rgs_normal.sv "s/assign uv_pop = lerp_on_q \&\& lk_q == 2'd2;/assign uv_pop = lerp_on_q \&\& lk_q == 2'd0;/" \
+      -n 0 --capture "$T/surface_vertex_colours"
 }
 
 # an active ray's share of the accumulation (rgs_accum: the pixel's colour, the child rays through

@@ -121,6 +121,7 @@ int main(int argc, char **argv)
     uint64_t mismatches = 0, idle = 0, hits_due = 0, block_start = 0, block_cycles = 0;
     bool in_block = false, hits_pending = false;
     uint64_t state_cycles[32] = {};  // a block's cycles by rgs_ctrl state (its state_t order)
+    uint64_t surf_cycles[32] = {};   // SURF's cycles by rgs_surface state
     block_ref want;
     trace_state ts;
     hit_record hits[4];
@@ -255,6 +256,8 @@ int main(int argc, char **argv)
         }
         if (in_block)
             state_cycles[top.st_o & 31u]++;
+        if (in_block && top.st_o == 11u)
+            surf_cycles[top.sst_o & 31u]++;
         idle = fired ? 0 : idle + 1;
         top.clk_i = 1;
         top.eval();
@@ -270,6 +273,13 @@ int main(int argc, char **argv)
     for (int s = 0; s < 21; s++)
         if (state_cycles[s] && done)
             std::printf(" %s %.1f", STATE[s], (double)state_cycles[s] / (double)done);
+    std::printf("\n");
+    static const char *const SSTATE[] = { "IDLE", "INST", "OBJ", "REC", "NORM", "LERPN", "DOT", "GN", "FRAME", "MAT",
+                                          "Q", "TEX", "TLERP", "TENTRY", "TSAMPLE", "TINT" };
+    std::printf("rgs_surface cycles per block in SURF by state:");
+    for (int s = 0; s < 16; s++)
+        if (surf_cycles[s] && done)
+            std::printf(" %s %.1f", SSTATE[s], (double)surf_cycles[s] / (double)done);
     std::printf("\n");
     return mismatches ? 1 : 0;
 }

@@ -46,9 +46,11 @@ module tb_rgs_ctrl #(
   output logic [4*(E+M+1)-1:0]      px_u_o,
   output logic [4*(E+M+1)-1:0]      px_v_o,
   output logic [4*(E+M+1)-1:0]      px_cos_o,
-  output logic [4:0]                st_o        // the control's state: the bench's cycles per state
+  output logic [4:0]                st_o,       // the control's state: the bench's cycles per state
+  output logic [4:0]                sst_o       // rgs_surface's state (its cycles per state in SURF)
 );
   assign st_o = u_dut.st;
+  assign sst_o = u_dut.u_surface.st;
   rgs_ctrl #(.E(E), .M(M), .TAG_BITS(6)) u_dut (
     .clk_i(clk_i), .rst_ni(rst_ni), .max_depth_i(max_depth_i), .shadows_i(shadows_i), .blk_valid_i(blk_valid_i),
     .blk_ready_o(blk_ready_o), .blk_tag_i(blk_tag_i), .blk_x_i(blk_x_i), .blk_y_i(blk_y_i), .tr_valid_o(tr_valid_o),

@@ -1,9 +1,11 @@
 // Co-simulation of rgs_surface (rtl/rgs_surface.sv), the surface the RGS shades at a hit, against
 // rgs_surface_at (hls/units/rgs_surface.c): every field of the surface (valid, P, D^, N^, t_hat,
 // entering, the material's address, unlit, its exponent k, the Q12 base colour, emission and tint)
-// and every word the unit reads, in the C's order (the reads rgs_surface_at notes in its unit_op,
-// word by word: instance, object descriptor, shading record, geometric normal, material, texture
-// entries and texels).
+// and every word the unit reads (the reads rgs_surface_at notes in its unit_op, word by word:
+// instance, object descriptor, shading record, geometric normal, material, texture entries and
+// texels): the unit works on several surfaces at once (its front reads the next hit's records
+// while its back shades one), so a read must be one the C makes for a surface in flight, and at
+// the end every word the C reads must have been read as often.
 // Captured transactions (saarcor render --capture-unit-io DIR: DIR/surface.hex, every
 // rgs_surface_at call: the memory image (DIR/image_N.bin), the ray's active bit, o, d, the hit's
 // instance, triangle, t, u, v, cos_n, the reads noted, the surface) come first and are checked
@@ -12,7 +14,7 @@
 // that wrap, vertex colour weights that saturate), another distance or cos_n, an inactive ray or a
 // miss. The bench is the memory: it takes requests with random gaps in every other epoch of 1024
 // cycles and answers in order after 1 cycle (1 to 4 in those epochs), and gives the output random
-// back pressure. Each transaction has a thread id (its number modulo 64) that must come out with
+// back pressure; up to 8 surfaces are in flight. Each transaction has a thread id (its number modulo 64) that must come out with
 // it. A mismatch prints the unit, the transaction, the cycle, the thread, the field and both
 // values; exit code 1 on any mismatch, wrong read, or a surface lost or invented.
 // usage: tb_surface [-n N] [--seed S] [--capture DIR]
@@ -21,6 +23,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <deque>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -209,12 +212,15 @@ int main(int argc, char **argv)
     top.eval();
     top.rst_ni = 1;
 
-    std::vector<uint32_t> mem, want, want_reads;
+    std::vector<uint32_t> mem;
     uint32_t image = UINT32_MAX;
-    std::size_t next = 0, checked = 0, vs_capture = 0, read_pos = 0;
+    std::size_t next = 0, checked = 0, vs_capture = 0;
     coverage cov;
-    uint64_t mismatches = 0, bad_reads = 0, idle = 0, cycles_busy = 0, latency_max = 0, started = 0;
-    bool in_flight = false;
+    uint64_t mismatches = 0, bad_reads = 0, idle = 0, cycles_busy = 0, latency_max = 0;
+    struct flight { std::size_t t; uint64_t started; std::vector<uint32_t> want, reads; };
+    std::deque<flight> in_flight;      // surfaces taken, in order
+    std::map<uint32_t, long> due_reads; // the words the C reads for them, not yet read by the RTL
+    const std::size_t MAX_IN_FLIGHT = 8;
     struct response { uint64_t due; uint32_t word; };
     std::deque<response> rsp;
     auto report = [&](std::size_t t, const char *what, const char *field, uint32_t got, uint32_t exp, uint32_t tid) {
@@ -222,12 +228,13 @@ int main(int argc, char **argv)
             std::printf("MISMATCH rgs_surface transaction %zu cycle %llu thread %u %s: %s %06x, expected %06x (%s)\n", t,
                         (unsigned long long)g_cycle, tid, field, "rtl", got, exp, what);
     };
-    for (; (next < tx.size() || in_flight) && idle < 20000; g_cycle++) {
+    for (; (next < tx.size() || !in_flight.empty()) && idle < 20000; g_cycle++) {
         const bool calm = (g_cycle / 1024) % 2 == 0;
         top.clk_i = 0;
-        // inputs
+        // inputs (a new memory image only with nothing in flight)
         top.valid_i = 0;
-        if (!in_flight && next < tx.size() && (calm || rnd() % 3 == 0)) {
+        if (next < tx.size() && in_flight.size() < MAX_IN_FLIGHT && (calm || rnd() % 3 == 0) &&
+            (tx[next].image == image || in_flight.empty())) {
             const surface_tx &x = tx[next];
             if (x.image != image) {
                 if (!load_image("tb_surface", capture, x.image, mem))
@@ -260,25 +267,25 @@ int main(int argc, char **argv)
         const bool out_fire = top.valid_o && top.ready_i;
         if (top.mem_req_valid_o && top.mem_req_ready_i) {
             const uint32_t a = top.mem_addr_o;
-            const std::size_t t = next - 1;
-            if (!in_flight || read_pos >= want_reads.size() || want_reads[read_pos] != a) {
+            auto w = due_reads.find(a);
+            if (w == due_reads.end()) {
                 if (bad_reads++ < 20)
-                    std::printf("MISMATCH rgs_surface transaction %zu cycle %llu read %zu: address %x, expected %s\n", t,
-                                (unsigned long long)g_cycle, read_pos, a,
-                                in_flight && read_pos < want_reads.size() ? std::to_string(want_reads[read_pos]).c_str()
-                                                                          : "no read");
-            }
-            read_pos++;
+                    std::printf("MISMATCH rgs_surface cycle %llu: read of address %x, which the C does not read for the "
+                                "%zu surfaces in flight (transactions up to %zu)\n",
+                                (unsigned long long)g_cycle, a, in_flight.size(), next);
+            } else if (--w->second == 0)
+                due_reads.erase(w);
             const uint64_t lat = calm ? 1 : 1 + rnd() % 4;
             const uint64_t due = std::max<uint64_t>(g_cycle + lat, rsp.empty() ? 0 : rsp.back().due);
             rsp.push_back({ due, a < mem.size() ? mem[a] : 0u });
         }
         if (out_fire) {
-            const std::size_t t = next - 1;
-            if (!in_flight) {
+            if (in_flight.empty()) {
                 if (mismatches++ < 20)
                     std::printf("MISMATCH rgs_surface cycle %llu: a surface nobody asked for\n", (unsigned long long)g_cycle);
             } else {
+                const flight &f = in_flight.front();
+                const std::size_t t = f.t;
                 const uint32_t tid = top.tid_o;
                 uint32_t got[OUT_WORDS];
                 got[O_VALID] = top.sf_valid_o;
@@ -293,42 +300,48 @@ int main(int argc, char **argv)
                 if (tid != t % 64)
                     report(t, "thread id", "tid", tid, (uint32_t)(t % 64), tid);
                 for (int k = 0; k < OUT_WORDS; k++)
-                    if (got[k] != want[k])
-                        report(t, "C model", field_name(k), got[k], want[k], tid);
+                    if (got[k] != f.want[k])
+                        report(t, "C model", field_name(k), got[k], f.want[k], tid);
                 if (t < captured) {
                     vs_capture++;
                     for (int k = 0; k < O_K; k++)
-                        if (tx[t].out[k] != want[k])
-                            report(t, "capture vs C model", field_name(k), tx[t].out[k], want[k], tid);
-                    if (tx[t].reads != want_reads && mismatches++ < 20)
+                        if (tx[t].out[k] != f.want[k])
+                            report(t, "capture vs C model", field_name(k), tx[t].out[k], f.want[k], tid);
+                    if (tx[t].reads != f.reads && mismatches++ < 20)
                         std::printf("MISMATCH rgs_surface transaction %zu: the recorded reads differ from the C's\n", t);
                 }
-                if (read_pos != want_reads.size() && bad_reads++ < 20)
-                    std::printf("MISMATCH rgs_surface transaction %zu: %zu words read, expected %zu\n", t, read_pos,
-                                want_reads.size());
                 checked++;
-                latency_max = std::max<uint64_t>(latency_max, g_cycle - started);
-                in_flight = false;
+                latency_max = std::max<uint64_t>(latency_max, g_cycle - f.started);
+                in_flight.pop_front();
+                // the oldest surface is out: every word the C reads for it has been read (the words
+                // still due belong to the surfaces after it, if any)
+                if (in_flight.empty() && !due_reads.empty()) {
+                    if (bad_reads++ < 20)
+                        std::printf("MISMATCH rgs_surface transaction %zu: %zu addresses the C reads were not read (%x first)\n",
+                                    t, due_reads.size(), due_reads.begin()->first);
+                    due_reads.clear();
+                }
             }
         }
         if (in_fire) {
-            model(mem, tx[next], want, want_reads, cov);
-            read_pos = 0;
-            in_flight = true;
-            started = g_cycle;
+            flight f{ next, g_cycle, {}, {} };
+            model(mem, tx[next], f.want, f.reads, cov);
+            for (uint32_t a : f.reads)
+                due_reads[a]++;
+            in_flight.push_back(std::move(f));
             next++;
         }
-        cycles_busy += in_flight;
+        cycles_busy += !in_flight.empty();
         idle = (in_fire || out_fire) ? 0 : idle + 1;
         top.clk_i = 1;
         top.eval();
     }
-    const bool lost = next < tx.size() || in_flight;
+    const bool lost = next < tx.size() || !in_flight.empty();
     if (lost)
         std::printf("MISMATCH rgs_surface: stuck at transaction %zu (no result in 20000 cycles)\n", next);
     std::printf("rgs_surface %zu surfaces checked (%zu captured, %zu vs capture, %zu random; %zu valid, %zu with vertex "
                 "colours, %zu with the geometric normal, %zu texture samples), %llu mismatches, %llu wrong reads, %.1f cycles "
-                "per surface, at most %llu\n",
+                "per surface (up to 8 in flight), at most %llu from input to output\n",
                 checked, captured, vs_capture, tx.size() - captured, cov.valid, cov.colours, cov.geometric, cov.samples / 4, (unsigned long long)mismatches,
                 (unsigned long long)bad_reads, checked ? (double)cycles_busy / (double)checked : 0.0,
                 (unsigned long long)latency_max);
