@@ -132,18 +132,15 @@ static void compare_pixels(const img_t *a, const img_t *b, double threshold, img
 int img_compare(const char *path_a, const char *path_b, double threshold, const char *diff_path,
                 img_compare_result *res, char *err, size_t errlen)
 {
-    img_t a, b;
-    if (!diff_path && img_png_read(path_a, &a) == 0) {
-        const int native = img_png_read(path_b, &b) == 0;
-        const int same = native && a.width == b.width && a.height == b.height && a.channels == b.channels;
-        if (same)
-            compare_pixels(&a, &b, threshold, res);
-        img_free(&a);
-        if (native)
-            img_free(&b);
-        if (same)
-            return 0;
-    }
+    img_t a = { 0 }, b = { 0 };
+    const int native = !diff_path && img_png_read(path_a, &a) == 0 && img_png_read(path_b, &b) == 0;
+    const int same = native && a.width == b.width && a.height == b.height && a.channels == b.channels;
+    if (same)
+        compare_pixels(&a, &b, threshold, res);
+    img_free(&a);
+    img_free(&b);
+    if (same)
+        return 0;
     return api() ? loaded->compare(path_a, path_b, threshold, diff_path, res, err, errlen) : unavailable(err, errlen);
 }
 

@@ -21,7 +21,9 @@ int img_png_path(const char *path)
 
 int img_png_writes(const char *path, int channels) { return img_png_path(path) && (channels == 1 || channels == 3); }
 
-unsigned char img_png_quantize(float v)
+/* OpenImageIO's float-to-8-bit conversion: v * 255 in binary32, clamped to [0, 255], rounded to
+ * nearest with ties away from zero; NaN to 0. */
+static unsigned char quantize(float v)
 {
     const float s = v * 255.0f; /* a binary32 product, as OpenImageIO's conversion */
     return s >= 255.0f ? 255 : s > 0.0f ? (unsigned char)roundf(s) : 0; /* NaN fails both tests */
@@ -33,12 +35,12 @@ int img_png_write(const char *path, const img_t *img, char *err, size_t errlen)
     unsigned char *bytes = malloc(n ? n : 1);
     char tmp[4200];
     if (!bytes || snprintf(tmp, sizeof tmp, "%s.tmp", path) >= (int)sizeof tmp) {
-        free(bytes);
         snprintf(err, errlen, "cannot write '%s': %s", path, bytes ? "path too long" : "out of memory");
+        free(bytes);
         return -1;
     }
     for (size_t i = 0; i < n; i++)
-        bytes[i] = img_png_quantize(img->pixels[i]);
+        bytes[i] = quantize(img->pixels[i]);
     png_image im;
     memset(&im, 0, sizeof im);
     im.version = PNG_IMAGE_VERSION;

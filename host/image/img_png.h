@@ -27,8 +27,4 @@ int img_png_write(const char *path, const img_t *img, char *err, size_t errlen);
  * file, which is OpenImageIO's to read or to reject with its message. */
 int img_png_read(const char *path, img_t *out);
 
-/* OpenImageIO's float-to-8-bit conversion: v * 255 in binary32, clamped to [0, 255], rounded to
- * nearest with ties away from zero; NaN to 0. */
-unsigned char img_png_quantize(float v);
-
 #endif
