@@ -10,7 +10,7 @@ F=${SAARCOR_FUZZ_DIR:-build/asan/fuzz-replay} # make fuzz-build: SAARCOR_FUZZ_DI
 T=$(mktemp -d /tmp/saarcor-test-fuzz-XXXXXX)
 trap 'rm -rf "$T"' EXIT
 source tests/case_lib.sh
-export ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+export ASAN_OPTIONS=detect_leaks=1:malloc_context_size=8:quarantine_size_mb=32 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 
 # run_inputs TARGET FILE...: each input once (libFuzzer's file mode); output silenced unless it fails
 run_inputs() {

@@ -15,7 +15,7 @@ set -u
 cd "$(dirname "$0")/.."
 ASAN_BIN=${SAARCOR_ASAN_BIN:-build/asan/saarcor}
 [[ -x $ASAN_BIN ]] || { echo "test_golden_asan: $ASAN_BIN is missing (make BUILD=build/asan SAN=1 build/asan/saarcor)"; exit 1; }
-export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=0:exitcode=99}
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=0:exitcode=99:malloc_context_size=8:quarantine_size_mb=32} # as tests/run.sh
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 export SAARCOR_GOLDEN_CASES=${SAARCOR_GOLDEN_CASES:-cornell room animated bunny emissive vertex_colours}
 SAARCOR_BIN=$ASAN_BIN SAARCOR_HW_BIN= SAARCOR_GOLDEN_PREFIX=golden_asan_ exec bash tests/test_golden.sh
