@@ -71,7 +71,7 @@ CFG_FLAGS ?=
 CFLAGS := -std=c11 $(WARN) $(OPT) -ffp-contract=off -fno-math-errno $(SANFLAGS) $(CFG_FLAGS) -MMD -MP
 CXXFLAGS := -std=c++17 $(WARN) $(OPT) $(SANFLAGS) -MMD -MP
 INCLUDES := -Ihls -Ihls/fp24 -Ihls/units -Ihost/fp24 -Itb/fp -Itb/ref -Itb/cycle -Itb/cli -Ihost/image -Ihost/scene -Ihost/kdtree -Ihost/memimage -Iscenes -Itb/mpi
-LDLIBS := -lmpfr -lgmp -ltinygltf -lpng -lOpenImageIO -lOpenImageIO_Util -lstdc++ -lm -ldl
+LDLIBS := -lmpfr -lgmp -ltinygltf -lpng -lOpenEXRCore-3_1 -lOpenImageIO -lOpenImageIO_Util -lstdc++ -lm -ldl
 TEST_LDLIBS := -lcmocka $(LDLIBS)
 
 # ---- sources -------------------------------------------------------------------------------

@@ -10,6 +10,7 @@ PACKAGES=(
   libcmocka-dev                      # unit-test framework
   libopenimageio-dev openimageio-tools  # image I/O, compare, idiff
   libpng-dev                         # PNG writing without OpenImageIO (host/image/img_png.c)
+  libopenexr-dev                     # EXR writing without OpenImageIO (host/image/img_exr.c)
   libtinygltf-dev                    # glTF 2.0 scene loading (host/)
   libembree-dev                      # reference ray tracer (accuracy baseline)
   verilator iverilog yosys nextpnr-ice40 fpga-icestorm  # RTL simulation and synthesis

@@ -80,15 +80,20 @@ t_image_library() {
   [[ -f $lib ]] || lib=$(dirname "$(readlink -f "$BIN")")/../libsaarcor_img.so
   mkdir -p "$T/alone"; cp "$BIN" "$T/alone/saarcor"
   expect 0 "$T/alone/saarcor" info cornell
-  # PNG files need no library (libpng); an EXR file does, and says so before the render
-  expect 0 "$T/alone/saarcor" render cornell --width 8 --height 8 -o "$T/alone.png"
+  # PNG files (libpng) and written EXR files (the OpenEXR core library) need no library; another
+  # format does, and says so before the render
+  expect 0 "$T/alone/saarcor" render cornell --width 8 --height 8 -o "$T/alone.png" --aov "$T/alone.exr"
   expect 0 "$T/alone/saarcor" compare "$T/alone.png" "$T/alone.png"
-  expect 4 "$T/alone/saarcor" render cornell --width 8 --height 8 -o "$T/alone2.png" --aov "$T/alone.exr"; one_line_error
+  expect 0 "$T/alone/saarcor" reference cornell --width 8 --height 8 -o "$T/alone_ref.exr" --png "$T/alone_ref.png"
+  expect 4 "$T/alone/saarcor" render cornell --width 8 --height 8 -o "$T/alone2.png" --aov "$T/alone.tif"; one_line_error
   has 'libsaarcor_img.so' "$T/err"
-  [[ ! -e $T/alone2.png && ! -e $T/alone.exr ]]
-  expect 4 "$T/alone/saarcor" reference cornell --width 8 --height 8 -o "$T/alone.exr"; one_line_error
-  SAARCOR_IMG_LIB=$lib expect 0 "$T/alone/saarcor" render cornell --width 8 --height 8 -o "$T/alone2.png" --aov "$T/alone.exr"
+  [[ ! -e $T/alone2.png && ! -e $T/alone.tif ]]
+  expect 4 "$T/alone/saarcor" reference cornell --width 8 --height 8 -o "$T/alone.tif"; one_line_error
+  # reading an EXR file is OpenImageIO's
+  expect 3 "$T/alone/saarcor" compare "$T/alone.exr" "$T/alone.exr"; one_line_error
+  SAARCOR_IMG_LIB=$lib expect 0 "$T/alone/saarcor" render cornell --width 8 --height 8 -o "$T/alone2.png" --aov "$T/alone.tif"
   expect 0 "$BIN" compare "$T/alone.exr" "$T/alone.exr"
+  expect 0 "$BIN" compare "$T/alone_ref.exr" "$T/alone_ref.exr"
 }
 
 t_f24_eval() {

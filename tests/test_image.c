@@ -1,8 +1,8 @@
 /*
  * Tests of the image plumbing (host/image): write/read round trips (PNG 8-bit through libpng,
- * EXR half through OpenImageIO), PNG files of libpng and of OpenImageIO decoding to the same
- * pixels around every rounding tie, the comparison metrics against hand-computed values, and
- * against OIIO's own `idiff` tool on the same files.
+ * EXR half through the OpenEXR core library), PNG and EXR files of ours and of OpenImageIO
+ * decoding to the same pixels around every rounding tie, the comparison metrics against
+ * hand-computed values, and against OIIO's own `idiff` tool on the same files.
  */
 #define _GNU_SOURCE /* popen, mkdtemp */
 #include <setjmp.h>
@@ -21,6 +21,7 @@
 
 #include "img.h"
 #include "img_api.h"
+#include "img_exr.h"
 #include "img_png.h"
 
 enum { W = 16, H = 8, C = 3 };
@@ -260,6 +261,114 @@ static void png_quantized_as_oiio(void **state)
     }
 }
 
+/* img_write, or OpenImageIO's writer (theirs), to path; then read back by OpenImageIO. */
+static void write_read(const char *path, const img_t *img, const char *const *names, int theirs, img_t *back)
+{
+    char err[256];
+    const int rc = theirs ? img_oiio_api()->write(path, img, names, err, sizeof err)
+                          : names ? img_write_channels(path, img, names, err, sizeof err) : img_write(path, img, err, sizeof err);
+    if (rc != 0)
+        fail_msg("%s", err);
+    assert_int_equal(img_read(path, back, err, sizeof err), 0);
+    assert_true(back->width == img->width && back->height == img->height && back->channels == img->channels);
+}
+
+/* Our EXR file (host/image/img_exr.c) and OpenImageIO's read back to the same float bits. */
+static void exr_as_oiio(const char *name, const img_t *img, const char *const *names)
+{
+    char ours_name[64], theirs_name[64]; /* a name per file: OpenImageIO caches what it read */
+    snprintf(ours_name, sizeof ours_name, "ours_%s.exr", name);
+    snprintf(theirs_name, sizeof theirs_name, "theirs_%s.exr", name);
+    img_t ours, theirs;
+    write_read(tmp(ours_name), img, names, 0, &ours);
+    write_read(tmp(theirs_name), img, names, 1, &theirs);
+    const size_t n = (size_t)img->width * img->height * img->channels;
+    for (size_t i = 0; i < n; i++)
+        if (memcmp(&ours.pixels[i], &theirs.pixels[i], sizeof(float)) != 0)
+            fail_msg("%s: value %zu, %.9g, read back as %.9g from ours, %.9g from OpenImageIO's", name, i,
+                     (double)img->pixels[i], (double)ours.pixels[i], (double)theirs.pixels[i]);
+    img_free(&ours);
+    img_free(&theirs);
+}
+
+/* binary16 bits to binary32 (the test's own decoding: 1 sign, 5 exponent, 10 fraction bits) */
+static float half_value(unsigned h)
+{
+    const float mag = (h >> 10 & 31) ? ldexpf(1.0f + (float)(h & 1023) / 1024.0f, (int)(h >> 10 & 31) - 15)
+                                     : ldexpf((float)(h & 1023), -24);
+    return h & 0x8000 ? -mag : mag;
+}
+
+/* Half floats (RGB EXR, img_write): every rounding tie between two neighbouring binary16 values,
+ * of both signs, subnormals included, with the floats next to it, and the edges (overflow to
+ * infinity, below the smallest subnormal, infinities, NaN). */
+static void exr_half_as_oiio(void **state)
+{
+    (void)state;
+    enum { PAIRS = 2 * 31743, N = 3 * PAIRS + 9 };
+    float *v = malloc(N * sizeof *v);
+    int n = 0;
+    for (unsigned sign = 0; sign <= 0x8000; sign += 0x8000)
+        for (unsigned h = 0; h < 0x7BFF; h++) { /* 0 .. below the largest finite half, 0x7BFF */
+            const float tie = (half_value(sign | h) + half_value(sign | (h + 1))) / 2.0f; /* exact */
+            v[n++] = nextafterf(tie, -INFINITY);
+            v[n++] = tie;
+            v[n++] = nextafterf(tie, INFINITY);
+        }
+    const float edges[] = { 65504.0f, 65519.996f, 65520.0f, 1e-9f, -1e-9f, INFINITY, -INFINITY, NAN, -0.0f };
+    for (int i = 0; i < 9; i++)
+        v[n++] = edges[i];
+    assert_int_equal(n, N);
+    const img_t img = { N / 3, 1, 3, v };
+    exr_as_oiio("half", &img, NULL);
+    const img_t rgba = { N / 4, 1, 4, v };
+    exr_as_oiio("half_rgba", &rgba, NULL);
+    free(v);
+}
+
+/* Full floats with channel names (render --aov, reference -o): every bit pattern class, the
+ * channels named out of EXR's sorted order, so each must land in its own channel. */
+static void exr_channels_as_oiio(void **state)
+{
+    (void)state;
+    enum { PX = 64 * 16, CH = 5 };
+    static float v[PX * CH];
+    uint32_t x = 12345;
+    for (int i = 0; i < PX * CH; i++) {
+        x = x * 1664525u + 1013904223u;
+        memcpy(&v[i], &x, sizeof x);
+    }
+    v[0] = NAN;
+    v[1] = -INFINITY;
+    const char *const names[CH] = { "t", "N.X", "triangle", "N.Z", "A" };
+    const img_t img = { 64, 16, CH, v };
+    exr_as_oiio("channels", &img, names);
+}
+
+/* With SOURCE_DATE_EPOCH, two EXR files of the same pixels have the same bytes; without it, the
+ * date is now. */
+static void exr_dated_by_source_date_epoch(void **state)
+{
+    (void)state;
+    img_t img;
+    make_image(&img);
+    setenv("SOURCE_DATE_EPOCH", "0", 1);
+    write_or_fail(tmp("d1.exr"), &img);
+    setenv("SOURCE_DATE_EPOCH", "86400", 1);
+    write_or_fail(tmp("d2.exr"), &img);
+    setenv("SOURCE_DATE_EPOCH", "0", 1);
+    write_or_fail(tmp("d3.exr"), &img);
+    unsetenv("SOURCE_DATE_EPOCH");
+    char cmd[512];
+    snprintf(cmd, sizeof cmd, "cmp -s '%s' '%s'", tmp("d1.exr"), tmp("d3.exr"));
+    assert_int_equal(system(cmd), 0);
+    snprintf(cmd, sizeof cmd, "cmp -s '%s' '%s'", tmp("d1.exr"), tmp("d2.exr"));
+    assert_int_not_equal(system(cmd), 0);
+    snprintf(cmd, sizeof cmd, "iinfo -v '%s' | grep -q 'DateTime: \"1970:01:02 00:00:00\"'", tmp("d2.exr"));
+    assert_int_equal(system(cmd), 0);
+    free(img.pixels);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -269,6 +378,9 @@ int main(void)
         cmocka_unit_test(errors_are_reported),
         cmocka_unit_test(png_quantized_as_oiio),
         cmocka_unit_test(png_read_as_oiio),
+        cmocka_unit_test(exr_half_as_oiio),
+        cmocka_unit_test(exr_channels_as_oiio),
+        cmocka_unit_test(exr_dated_by_source_date_epoch),
     };
     return cmocka_run_group_tests_name("image", tests, test_tmpdir_setup, test_tmpdir_teardown);
 }

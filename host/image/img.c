@@ -8,9 +8,11 @@
  */
 #define _GNU_SOURCE
 #include "img_api.h"
+#include "img_exr.h"
 #include "img_png.h"
 
 #include <dlfcn.h>
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -81,12 +83,34 @@ int img_write(const char *path, const img_t *img, char *err, size_t errlen)
 {
     if (img_png_writes(path, img->channels))
         return img_png_write(path, img, err, errlen);
+    if (img_exr_writes(path, img->channels, NULL))
+        return img_exr_write(path, img, NULL, err, errlen);
     return api() ? loaded->write(path, img, NULL, err, errlen) : unavailable(err, errlen);
 }
 
 int img_write_channels(const char *path, const img_t *img, const char *const *names, char *err, size_t errlen)
 {
+    if (img_exr_writes(path, img->channels, names))
+        return img_exr_write(path, img, names, err, errlen);
     return api() ? loaded->write(path, img, names, err, errlen) : unavailable(err, errlen);
+}
+
+int img_tmp_path(const char *path, char *tmp, size_t len, char *err, size_t errlen)
+{
+    if (snprintf(tmp, len, "%s.tmp", path) < (int)len)
+        return 0;
+    snprintf(err, errlen, "cannot write '%s': path too long", path);
+    return -1;
+}
+
+int img_tmp_commit(const char *tmp, const char *path, int written, char *err, size_t errlen)
+{
+    if (written && rename(tmp, path) == 0)
+        return 0;
+    if (written)
+        snprintf(err, errlen, "cannot write '%s': rename failed: %s", path, strerror(errno));
+    remove(tmp);
+    return -1;
 }
 
 /* The pixels of img_read (std::malloc in the shim) and of the callers' own images (malloc):
@@ -146,9 +170,10 @@ int img_compare(const char *path_a, const char *path_b, double threshold, const 
 
 int img_ready(char *err, size_t errlen) { return api() ? 0 : unavailable(err, errlen); }
 
-int img_ready_for(const char *path, char *err, size_t errlen)
+int img_ready_for(const char *path, int named, char *err, size_t errlen)
 {
-    return !path || img_png_path(path) ? 0 : img_ready(err, errlen);
+    const int native = !path || img_exr_path(path) || (!named && img_png_path(path));
+    return native ? 0 : img_ready(err, errlen);
 }
 
 const char *img_library_version(void) { return api() ? loaded->version() : "(libsaarcor_img.so not loaded)"; }

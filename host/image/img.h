@@ -1,9 +1,10 @@
 /*
  * Image input/output and comparison for the host, through OpenImageIO (a thin C++ shim,
- * img_oiio.cpp, with this extern "C" API), except 8-bit PNG writing, which libpng does alone
- * (img_png.c: no OpenImageIO load for a render that writes only PNG files). PNG and other 8-bit
- * formats are written as 8-bit, EXR as half floats; pixels are float RGB(A) in [0,1] for 8-bit
- * formats.
+ * img_oiio.cpp, with this extern "C" API), except what the program writes and reads most: 8-bit
+ * PNG files through libpng (img_png.c) and EXR writing through the OpenEXR core library
+ * (img_exr.c), so a render that writes PNG and EXR files never loads OpenImageIO. PNG and other
+ * 8-bit formats are written as 8-bit, EXR as half floats; pixels are float RGB(A) in [0,1] for
+ * 8-bit formats.
  */
 #ifndef SAARCOR_IMG_H
 #define SAARCOR_IMG_H
@@ -46,9 +47,10 @@ const char *img_library_version(void);
  * image library on demand: commands that will write images check it before the long work). */
 int img_ready(char *err, size_t errlen);
 
-/* img_ready for a command that will write an RGB image to path (NULL: none): 0 without loading
- * the library when img_write writes path's format itself (PNG, host/image/img_png.c). */
-int img_ready_for(const char *path, char *err, size_t errlen);
+/* img_ready for a command that will write to path (NULL: none) an RGB image (img_write, named 0)
+ * or one with named channels (img_write_channels, named 1): 0 without loading the library when the
+ * program writes that itself (PNG: host/image/img_png.c, RGB only; EXR: img_exr.c). */
+int img_ready_for(const char *path, int named, char *err, size_t errlen);
 
 #ifdef __cplusplus
 }

@@ -20,6 +20,14 @@ typedef struct {
     const char *(*version)(void);
 } img_api;
 
+/* Every image file is written as path.tmp and renamed when complete, so an interrupted or failed
+ * write never leaves a truncated image under the real name (render sequences stopped by Ctrl-C
+ * keep only whole frames). img_tmp_path: path.tmp into tmp (0; -1 with err set if too long).
+ * img_tmp_commit: renames tmp to path when written (0), else removes it; -1 when not written
+ * (err set by the writer) or the rename failed (err set here). Defined in img.c. */
+int img_tmp_path(const char *path, char *tmp, size_t len, char *err, size_t errlen);
+int img_tmp_commit(const char *tmp, const char *path, int written, char *err, size_t errlen);
+
 /* Defined in img_oiio.cpp: in the program when it is linked in, else in libsaarcor_img.so. */
 const img_api *img_oiio_api(void);
 

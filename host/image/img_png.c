@@ -1,9 +1,9 @@
 /*
  * 8-bit PNG files through libpng's simplified API (img_png.h says why not OpenImageIO). A file
- * is written as path.tmp and renamed when complete, as img_oiio.cpp does, so an interrupted write
- * never leaves a truncated image under the real name.
+ * is written as path.tmp and renamed when complete (img_api.h), as every image file of the program.
  */
 #include "img_png.h"
+#include "img_api.h"
 
 #include <errno.h>
 #include <math.h>
@@ -32,11 +32,12 @@ static unsigned char quantize(float v)
 int img_png_write(const char *path, const img_t *img, char *err, size_t errlen)
 {
     const size_t n = (size_t)img->width * (size_t)img->height * (size_t)img->channels;
-    unsigned char *bytes = malloc(n ? n : 1);
     char tmp[4200];
-    if (!bytes || snprintf(tmp, sizeof tmp, "%s.tmp", path) >= (int)sizeof tmp) {
-        snprintf(err, errlen, "cannot write '%s': %s", path, bytes ? "path too long" : "out of memory");
-        free(bytes);
+    if (img_tmp_path(path, tmp, sizeof tmp, err, errlen) != 0)
+        return -1;
+    unsigned char *bytes = malloc(n ? n : 1);
+    if (!bytes) {
+        snprintf(err, errlen, "cannot write '%s': out of memory", path);
         return -1;
     }
     for (size_t i = 0; i < n; i++)
@@ -49,17 +50,9 @@ int img_png_write(const char *path, const img_t *img, char *err, size_t errlen)
     im.format = img->channels == 3 ? PNG_FORMAT_RGB : PNG_FORMAT_GRAY;
     const int ok = png_image_write_to_file(&im, tmp, 0, bytes, 0, NULL);
     free(bytes);
-    if (!ok) {
+    if (!ok)
         snprintf(err, errlen, "cannot write '%s': %s", path, im.message);
-        remove(tmp);
-        return -1;
-    }
-    if (rename(tmp, path) != 0) {
-        snprintf(err, errlen, "cannot write '%s': rename failed: %s", path, strerror(errno));
-        remove(tmp);
-        return -1;
-    }
-    return 0;
+    return img_tmp_commit(tmp, path, ok, err, errlen);
 }
 
 /* The file's pixels when they are 8-bit grey or RGB without alpha, palette or a colour space

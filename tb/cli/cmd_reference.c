@@ -172,7 +172,9 @@ int cmd_reference(int argc, char **argv)
     mi_builder *b;
     ref_scene r;
     char err[600];
-    if (!cli_parse_only && img_ready(err, sizeof err) != 0) { /* before the render, not after it */
+    /* before the render, not after it: -o and --aov are written with named channels */
+    if (!cli_parse_only && (img_ready_for(out, 1, err, sizeof err) != 0 || img_ready_for(png, 0, err, sizeof err) != 0 ||
+                            img_ready_for(aov, 1, err, sizeof err) != 0)) {
         cli_error("reference", "%s", err);
         return SAARCOR_EXIT_INTERNAL;
     }

@@ -716,9 +716,9 @@ int cmd_render(int argc, char **argv)
     if (ro.mpi && !mpi_run)
         return SAARCOR_EXIT_INTERNAL;
     char err[600];
-    /* before the render, not after it; the AOVs are EXR files with named channels (OpenImageIO) */
-    if (img_ready_for(ro.out, err, sizeof err) != 0 || img_ready_for(ro.heatmap, err, sizeof err) != 0 ||
-        (ro.aov && img_ready(err, sizeof err) != 0)) {
+    /* before the render, not after it */
+    if (img_ready_for(ro.out, 0, err, sizeof err) != 0 || img_ready_for(ro.heatmap, 0, err, sizeof err) != 0 ||
+        img_ready_for(ro.aov, 1, err, sizeof err) != 0) {
         cli_error("render", "%s", err);
         return SAARCOR_EXIT_INTERNAL;
     }
