@@ -139,7 +139,7 @@ module rgs_surface #(
     S_TSAMPLE, S_TINT
   } state_t;
   state_t st;
-  typedef enum logic [2:0] { F_IDLE, F_INST, F_OBJ, F_REC, F_GN, F_MAT, F_FULL } fstate_t;
+  typedef enum logic [2:0] { F_IDLE, F_INST, F_OBJ, F_REC, F_W2O, F_GN, F_MAT, F_FULL } fstate_t;
   fstate_t f_st;
 
   // ---- the transaction's inputs ----
@@ -154,7 +154,7 @@ module rgs_surface #(
   logic [TID_BITS-1:0] f_tid;
   logic f_hit;
   logic [V-1:0] f_o, f_d, f_n;
-  logic [31:0] f_tri, f_tri_base, f_flags, f_mat_addr;
+  logic [31:0] f_tri, f_tri_base, f_flags, f_mat_addr, f_inst_addr;
   logic [W-1:0] f_t, f_u, f_v, f_cos;
   logic [V*3-1:0] f_w2o;
   logic [31:0] f_rd_addr, f_buf [BUF], f_rec [REC_MAX];
@@ -423,16 +423,17 @@ module rgs_surface #(
             f_v <= v_i;
             f_cos <= cos_n_i;
             f_hit <= active_i && inst_i != NO_HIT;
+            // the instance's object index (word 12) alone first: the object's, the record's reads
+            // and the normal's chain wait on it, the matrix (words 0..11) only on the frame
+            f_inst_addr <= inst_base_i + 32'(INST_WORDS) * inst_i;
             if (active_i && inst_i != NO_HIT) begin
-              f_burst(inst_base_i + 32'(INST_WORDS) * inst_i, 5'd13);
+              f_burst(inst_base_i + 32'(INST_WORDS) * inst_i + 32'd12, 5'd1);
               f_st <= F_INST;
             end else f_st <= F_FULL;
           end
         F_INST:
           if (f_done) begin
-            for (int k = 0; k < 3; k++)
-              for (int r = 0; r < 3; r++) f_w2o[W*(3*k+r) +: W] <= f_buf[4*k+r][W-1:0];
-            f_burst(obj_base_i + 32'd16 * f_buf[12] + 32'd2, 5'd6);
+            f_burst(obj_base_i + 32'd16 * f_buf[0] + 32'd2, 5'd6);
             f_st <= F_OBJ;
           end
         F_OBJ:
@@ -445,6 +446,13 @@ module rgs_surface #(
         F_REC:
           if (f_done && (!f_flags[0] || nrm_ready)) begin  // with vertex normals into rgs_normal
             f_n <= '0;
+            f_burst(f_inst_addr, 5'd12);  // the instance's matrix (the word 12 read, 13 in all)
+            f_st <= F_W2O;
+          end
+        F_W2O:
+          if (f_done) begin
+            for (int k = 0; k < 3; k++)
+              for (int r = 0; r < 3; r++) f_w2o[W*(3*k+r) +: W] <= f_buf[4*k+r][W-1:0];
             if (!f_flags[0]) begin  // no vertex normals: the geometric normal, as the C reads it next
               f_burst(f_tri_base + 32'(TRI_WORDS) * f_tri + 32'(GN_WORD), 5'(GN_SPAN));
               f_st <= F_GN;
