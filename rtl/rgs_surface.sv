@@ -3,9 +3,10 @@
 // `rgs_surface_at`), bit for bit as the C, in two stages that work on consecutive surfaces at once
 // (a front reading the next hit's records while the back shades the one before; the frame and the
 // conversions beside the back, see Latency):
-//   front   the reads: the instance's 13 words (the world-to-object 3x3, the object index), the
+//   front   the reads: the instance's object index (word 12), the
 //           object descriptor's words 2..7 (triangle and shading record addresses, flags), the
-//           triangle's shading record (shade_rec_words(flags) words, up to 19), without vertex
+//           triangle's shading record (shade_rec_words(flags) words, up to 19), the instance's
+//           words 0..11 (the world-to-object 3x3, which only the frame needs), without vertex
 //           normals the geometric normal (values 8..10 of the triangle record,
 //           F24_RECORD_SPAN(8, 3) words), the material's 16 words (address: the object's material
 //           or the record tail's); each burst's address comes from the words before, so they go
@@ -37,7 +38,7 @@
 // A surface's words are the C's (op reads), in the C's order but for a geometric normal that the
 // back reads after the material (vertex normals interpolated to zero length); the two stages'
 // reads interleave.
-// Latency: about 20 + the reads up to the record (13 + 6 + record words, each burst waiting for the
+// Latency: about 20 + the reads up to the record (1 + 6 + record words, each burst waiting for the
 // one before) + `rgs_normal` (87, only with vertex normals; without: the geometric normal's and the
 // material's reads) + the conversions' tail (about 20 from the back's taking it) + per texture
 // lerp 24 + entry 4 + sample 44) + the frame (118), which the next surfaces' steps overlap.
