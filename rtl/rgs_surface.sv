@@ -3,9 +3,10 @@
 // `rgs_surface_at`), bit for bit as the C, in two stages that work on consecutive surfaces at once
 // (a front reading the next hit's records while the back shades the one before; the frame and the
 // conversions beside the back, see Latency):
-//   front   the reads: the instance's 13 words (the world-to-object 3x3, the object index), the
+//   front   the reads: the instance's object index (word 12), the
 //           object descriptor's words 2..7 (triangle and shading record addresses, flags), the
-//           triangle's shading record (shade_rec_words(flags) words, up to 19), without vertex
+//           triangle's shading record (shade_rec_words(flags) words, up to 19), the instance's
+//           words 0..11 (the world-to-object 3x3, which only the frame needs), without vertex
 //           normals the geometric normal (values 8..10 of the triangle record,
 //           F24_RECORD_SPAN(8, 3) words), the material's 16 words (address: the object's material
 //           or the record tail's); each burst's address comes from the words before, so they go
@@ -37,7 +38,7 @@
 // A surface's words are the C's (op reads), in the C's order but for a geometric normal that the
 // back reads after the material (vertex normals interpolated to zero length); the two stages'
 // reads interleave.
-// Latency: about 20 + the reads up to the record (13 + 6 + record words, each burst waiting for the
+// Latency: about 20 + the reads up to the record (1 + 6 + record words, each burst waiting for the
 // one before) + `rgs_normal` (87, only with vertex normals; without: the geometric normal's and the
 // material's reads) + the conversions' tail (about 20 from the back's taking it) + per texture
 // lerp 24 + entry 4 + sample 44) + the frame (118), which the next surfaces' steps overlap.
@@ -139,7 +140,7 @@ module rgs_surface #(
     S_TSAMPLE, S_TINT
   } state_t;
   state_t st;
-  typedef enum logic [2:0] { F_IDLE, F_INST, F_OBJ, F_REC, F_GN, F_MAT, F_FULL } fstate_t;
+  typedef enum logic [2:0] { F_IDLE, F_INST, F_OBJ, F_REC, F_W2O, F_GN, F_MAT, F_FULL } fstate_t;
   fstate_t f_st;
 
   // ---- the transaction's inputs ----
@@ -154,7 +155,7 @@ module rgs_surface #(
   logic [TID_BITS-1:0] f_tid;
   logic f_hit;
   logic [V-1:0] f_o, f_d, f_n;
-  logic [31:0] f_tri, f_tri_base, f_flags, f_mat_addr;
+  logic [31:0] f_tri, f_tri_base, f_flags, f_mat_addr, f_inst_addr;
   logic [W-1:0] f_t, f_u, f_v, f_cos;
   logic [V*3-1:0] f_w2o;
   logic [31:0] f_rd_addr, f_buf [BUF], f_rec [REC_MAX];
@@ -423,16 +424,17 @@ module rgs_surface #(
             f_v <= v_i;
             f_cos <= cos_n_i;
             f_hit <= active_i && inst_i != NO_HIT;
+            // the instance's object index (word 12) alone first: the object's, the record's reads
+            // and the normal's chain wait on it, the matrix (words 0..11) only on the frame
+            f_inst_addr <= inst_base_i + 32'(INST_WORDS) * inst_i;
             if (active_i && inst_i != NO_HIT) begin
-              f_burst(inst_base_i + 32'(INST_WORDS) * inst_i, 5'd13);
+              f_burst(inst_base_i + 32'(INST_WORDS) * inst_i + 32'd12, 5'd1);
               f_st <= F_INST;
             end else f_st <= F_FULL;
           end
         F_INST:
           if (f_done) begin
-            for (int k = 0; k < 3; k++)
-              for (int r = 0; r < 3; r++) f_w2o[W*(3*k+r) +: W] <= f_buf[4*k+r][W-1:0];
-            f_burst(obj_base_i + 32'd16 * f_buf[12] + 32'd2, 5'd6);
+            f_burst(obj_base_i + 32'd16 * f_buf[0] + 32'd2, 5'd6);
             f_st <= F_OBJ;
           end
         F_OBJ:
@@ -445,6 +447,13 @@ module rgs_surface #(
         F_REC:
           if (f_done && (!f_flags[0] || nrm_ready)) begin  // with vertex normals into rgs_normal
             f_n <= '0;
+            f_burst(f_inst_addr, 5'd12);  // the instance's matrix (the word 12 read, 13 in all)
+            f_st <= F_W2O;
+          end
+        F_W2O:
+          if (f_done) begin
+            for (int k = 0; k < 3; k++)
+              for (int r = 0; r < 3; r++) f_w2o[W*(3*k+r) +: W] <= f_buf[4*k+r][W-1:0];
             if (!f_flags[0]) begin  // no vertex normals: the geometric normal, as the C reads it next
               f_burst(f_tri_base + 32'(TRI_WORDS) * f_tri + 32'(GN_WORD), 5'(GN_SPAN));
               f_st <= F_GN;
