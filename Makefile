@@ -362,9 +362,15 @@ RTL_FORMATS := e7m8 e7m12 e7m16 e7m20 e7m23 e8m23
 # compilation, 0.52 against 0.77 s on the cornell 32x24 capture); the Verilator run-time library
 # (verilated.cpp, verilated_threads.cpp: 4 s of compilation) is compiled once into
 # $(BUILD)/rtl/verilated/ and linked into every model instead of once per model (VM_GLOBAL_FAST=).
+# A model's C++ is compiled as one translation unit (VM_PARALLEL_BUILDS=0: Verilator's __ALL.cpp
+# including its 10-60 files): each file compiled on its own parsed verilated.h and the model's
+# headers again, about 1 s of CPU per file at -O1, most of a large model's compilation; make test's
+# 12 models 346 -> 145 s of CPU (tb_rgs_ctrl 84 -> 32, tb_shade 80 -> 32, tb_core 64 -> 28), their
+# benches as fast (tb_core on cornell 32x24 0.50 s both ways). make -j2 over the models keeps both
+# cores busy (make test's order or the largest first: the same wall time, 112 against 114 s).
 VLT_CXX := clang++
 VERILATOR_FLAGS := --cc --exe --build -j 2 -Wall -Wno-fatal -O2 --x-assign fast --x-initial fast \
-  -MAKEFLAGS OPT_FAST=-O1 -MAKEFLAGS OPT_SLOW=-O1 -MAKEFLAGS OPT_GLOBAL=-O1 -MAKEFLAGS VM_GLOBAL_FAST= \
+  -MAKEFLAGS OPT_FAST=-O1 -MAKEFLAGS OPT_SLOW=-O1 -MAKEFLAGS OPT_GLOBAL=-O1 -MAKEFLAGS VM_GLOBAL_FAST= -MAKEFLAGS VM_PARALLEL_BUILDS=0 \
   -MAKEFLAGS CXX=$(VLT_CXX) -MAKEFLAGS LINK=$(VLT_CXX)
 VLT_INCLUDE := $(shell verilator --getenv VERILATOR_ROOT 2>/dev/null)/include
 VLT_RUNTIME := $(BUILD)/rtl/verilated/verilated.o $(BUILD)/rtl/verilated/verilated_threads.o
