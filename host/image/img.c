@@ -79,20 +79,31 @@ int img_read(const char *path, img_t *out, char *err, size_t errlen)
     return api() ? loaded->read(path, out, err, errlen) : unavailable(err, errlen);
 }
 
+/* Through the library, as path.tmp renamed when complete (img_api.h). */
+static int library_write(const char *path, const img_t *img, const char *const *names, char *err, size_t errlen)
+{
+    char tmp[4200];
+    if (!api())
+        return unavailable(err, errlen);
+    if (img_tmp_path(path, tmp, sizeof tmp, err, errlen) != 0)
+        return -1;
+    return img_tmp_commit(tmp, path, loaded->write(path, tmp, img, names, err, errlen) == 0, err, errlen);
+}
+
 int img_write(const char *path, const img_t *img, char *err, size_t errlen)
 {
     if (img_png_writes(path, img->channels))
         return img_png_write(path, img, err, errlen);
-    if (img_exr_writes(path, img->channels, NULL))
+    if (img_exr_writes(path, img->channels, 0))
         return img_exr_write(path, img, NULL, err, errlen);
-    return api() ? loaded->write(path, img, NULL, err, errlen) : unavailable(err, errlen);
+    return library_write(path, img, NULL, err, errlen);
 }
 
 int img_write_channels(const char *path, const img_t *img, const char *const *names, char *err, size_t errlen)
 {
-    if (img_exr_writes(path, img->channels, names))
+    if (img_exr_writes(path, img->channels, 1))
         return img_exr_write(path, img, names, err, errlen);
-    return api() ? loaded->write(path, img, names, err, errlen) : unavailable(err, errlen);
+    return library_write(path, img, names, err, errlen);
 }
 
 int img_tmp_path(const char *path, char *tmp, size_t len, char *err, size_t errlen)
@@ -170,9 +181,10 @@ int img_compare(const char *path_a, const char *path_b, double threshold, const 
 
 int img_ready(char *err, size_t errlen) { return api() ? 0 : unavailable(err, errlen); }
 
-int img_ready_for(const char *path, int named, char *err, size_t errlen)
+int img_ready_for(const char *path, int channels, int named, char *err, size_t errlen)
 {
-    const int native = !path || img_exr_path(path) || (!named && img_png_path(path));
+    /* the writers' own tests: img_write tries PNG then EXR, img_write_channels EXR */
+    const int native = !path || img_exr_writes(path, channels, named) || (!named && img_png_writes(path, channels));
     return native ? 0 : img_ready(err, errlen);
 }
 

@@ -47,10 +47,11 @@ const char *img_library_version(void);
  * image library on demand: commands that will write images check it before the long work). */
 int img_ready(char *err, size_t errlen);
 
-/* img_ready for a command that will write to path (NULL: none) an RGB image (img_write, named 0)
- * or one with named channels (img_write_channels, named 1): 0 without loading the library when the
- * program writes that itself (PNG: host/image/img_png.c, RGB only; EXR: img_exr.c). */
-int img_ready_for(const char *path, int named, char *err, size_t errlen);
+/* img_ready for a command that will write to path (NULL: none) an unnamed image of that many
+ * channels (img_write, named 0) or one with named channels (img_write_channels, named 1, any count): 0 without loading the
+ * library when the program writes that itself (PNG: host/image/img_png.c, grey or RGB; EXR:
+ * img_exr.c, RGB, RGBA or named channels), by the same rule as the writers. */
+int img_ready_for(const char *path, int channels, int named, char *err, size_t errlen);
 
 #ifdef __cplusplus
 }

@@ -13,8 +13,10 @@ extern "C" {
 
 typedef struct {
     int (*read)(const char *path, img_t *out, char *err, size_t errlen);
-    /* names NULL: img_write, else img_write_channels */
-    int (*write)(const char *path, const img_t *img, const char *const *names, char *err, size_t errlen);
+    /* the image into file (path.tmp, img_tmp_path) in the format of path's extension; names NULL:
+     * img_write, else img_write_channels */
+    int (*write)(const char *path, const char *file, const img_t *img, const char *const *names, char *err,
+                 size_t errlen);
     int (*compare)(const char *path_a, const char *path_b, double threshold, const char *diff_path,
                    img_compare_result *res, char *err, size_t errlen);
     const char *(*version)(void);

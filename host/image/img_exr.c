@@ -22,9 +22,9 @@ int img_exr_path(const char *path)
     return n >= 4 && strcasecmp(path + n - 4, ".exr") == 0;
 }
 
-int img_exr_writes(const char *path, int channels, const char *const *names)
+int img_exr_writes(const char *path, int channels, int named)
 {
-    return img_exr_path(path) && (names || channels == 3 || channels == 4);
+    return img_exr_path(path) && (named || channels == 3 || channels == 4);
 }
 
 /* The library's last message (its default handler prints to stderr; the program reports it in

@@ -15,8 +15,8 @@
 /* 1 if path names an OpenEXR file (extension .exr, any case). */
 int img_exr_path(const char *path);
 
-/* 1 if img_exr_write writes path: an EXR file with channel names, or unnamed RGB or RGBA. */
-int img_exr_writes(const char *path, int channels, const char *const *names);
+/* 1 if img_exr_write writes path: an EXR file with channel names (named 1), or unnamed RGB or RGBA. */
+int img_exr_writes(const char *path, int channels, int named);
 
 /* Writes img to path: names NULL, as half floats in channels R, G, B (and A); else full floats in
  * the channels names[0 .. channels-1]. 0 on success; on failure err holds a one-line message and

@@ -85,8 +85,10 @@ static int read_image(const char *path, img_t *out, char *err, size_t errlen)
     }
 }
 
-// One image into tmp, in the format of path's extension (see write_pixels).
-static int write_file(const char *path, const char *tmp, const img_t *img, const char *const *names, char *err,
+// Writes float pixels into file (img.c's path.tmp), in the format of path's extension: create()
+// picks the plugin by name, open() writes any file name. names == nullptr: 8-bit for formats
+// without float pixels (PNG) and half floats otherwise (EXR); with channel names: full floats.
+static int write_file(const char *path, const char *file, const img_t *img, const char *const *names, char *err,
                       size_t errlen)
 {
     try {
@@ -103,7 +105,7 @@ static int write_file(const char *path, const char *tmp, const img_t *img, const
             for (int c = 0; c < img->channels; c++)
                 spec.channelnames.push_back(names[c]);
         }
-        if (!out->open(tmp, spec) || !out->write_image(TypeDesc::FLOAT, img->pixels) || !out->close()) {
+        if (!out->open(file, spec) || !out->write_image(TypeDesc::FLOAT, img->pixels) || !out->close()) {
             set_error(err, errlen, std::string("cannot write '") + path + "': " + out->geterror());
             return -1;
         }
@@ -112,25 +114,6 @@ static int write_file(const char *path, const char *tmp, const img_t *img, const
         set_error(err, errlen, e.what());
         return -1;
     }
-}
-
-// Writes float pixels; names == nullptr: 8-bit for formats without float pixels (PNG) and half
-// floats otherwise (EXR); with channel names: full floats. The file is written as path.tmp and
-// renamed when complete, so an interrupted or failed write never leaves a truncated image under
-// the real name (render sequences stopped by Ctrl-C keep only whole frames). The format comes
-// from path's extension: create() picks the plugin by name, open() writes any file name.
-static int write_pixels(const char *path, const img_t *img, const char *const *names, char *err, size_t errlen)
-{
-    const std::string tmp = std::string(path) + ".tmp";
-    const int rc = write_file(path, tmp.c_str(), img, names, err, errlen);
-    if (rc == 0 && std::rename(tmp.c_str(), path) != 0) {
-        set_error(err, errlen, std::string("cannot write '") + path + "': rename failed: " + std::strerror(errno));
-        std::remove(tmp.c_str());
-        return -1;
-    }
-    if (rc != 0)
-        std::remove(tmp.c_str());
-    return rc;
 }
 
 static int compare_images(const char *path_a, const char *path_b, double threshold, const char *diff_path,
@@ -182,6 +165,6 @@ static const char *library_version(void) { return OIIO_VERSION_STRING; }
 
 extern "C" const img_api *img_oiio_api(void)
 {
-    static const img_api api = { read_image, write_pixels, compare_images, library_version };
+    static const img_api api = { read_image, write_file, compare_images, library_version };
     return &api;
 }

@@ -717,8 +717,8 @@ int cmd_render(int argc, char **argv)
         return SAARCOR_EXIT_INTERNAL;
     char err[600];
     /* before the render, not after it */
-    if (img_ready_for(ro.out, 0, err, sizeof err) != 0 || img_ready_for(ro.heatmap, 0, err, sizeof err) != 0 ||
-        img_ready_for(ro.aov, 1, err, sizeof err) != 0) {
+    if (img_ready_for(ro.out, 3, 0, err, sizeof err) != 0 || img_ready_for(ro.heatmap, 3, 0, err, sizeof err) != 0 ||
+        img_ready_for(ro.aov, 0, 1, err, sizeof err) != 0) {
         cli_error("render", "%s", err);
         return SAARCOR_EXIT_INTERNAL;
     }
