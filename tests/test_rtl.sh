@@ -81,7 +81,7 @@ t_lint() {
 t_synth_levels() { # make synth's totals and LUT6 levels of a hierarchical netlist (the whole DynRTP's method)
   # against Yosys's own stat and the levels of the same netlist flattened after mapping, on a small
   # hierarchy whose paths cross module ports (cache_read: cache_dm and the combinational rr_pick)
-  yosys -q -l "$T/h.log" -p "$(for f in rtl/*.sv; do printf 'read_verilog -sv %s; ' "$f"; done) chparam -set SIZE_BYTES 256 \
+  yosys -q -l "$T/h.log" -p "read_verilog -sv rtl/cache_read.sv rtl/cache_dm.sv rtl/rr_pick.sv; chparam -set SIZE_BYTES 256 \
     -set OUTSTANDING 4 cache_read; synth_xilinx -top cache_read; stat; write_json $T/h.json" >/dev/null 2>&1 || return 1
   yosys -q -p "read_json $T/h.json; flatten; write_json $T/f.json" >/dev/null 2>&1 || return 1
   python3 - "$T" <<'PY'

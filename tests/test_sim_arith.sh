@@ -36,13 +36,21 @@ print(json.dumps(s, indent=0, sort_keys=True))
 PY
 }
 
-same() { # name scene options...: both programs ($FAST_BIN or $BIN), same image, AOVs and counters
+# name scene options...: both programs ($FAST_BIN or $BIN), same image, AOVs and counters; with
+# HW_FROM=CASE the integer arithmetic's files of that earlier case with the same scene and options
+# (the baseline cases reuse the functional ones': the same hw render, 8 renders fewer)
+same() {
   local name=$1 scene=$2
   shift 2
   local b
   for b in fast hw; do
     local bin=${FAST_BIN:-$BIN}
     [[ $b == hw ]] && bin=$HW_BIN
+    if [[ $b == hw && -n ${HW_FROM:-} && -f $T/$HW_FROM.hw.txt ]]; then
+      local f
+      for f in png exr txt; do cp "$T/$HW_FROM.hw.$f" "$T/$name.hw.$f"; done
+      continue
+    fi
     "$bin" render "$scene" --width 48 --height 36 --threads 2 "$@" -o "$T/$name.$b.png" --aov "$T/$name.$b.exr" \
       --stats "$T/$name.$b.json" >/dev/null || { echo "$name: $bin render failed"; return 1; }
     counters "$T/$name.$b.json" >"$T/$name.$b.txt"
@@ -78,7 +86,7 @@ while IFS='|' read -r name scene opts; do
   done
   [[ $scene == ../shared/* && ! -f $scene ]] && continue
   case_name="sim_arith_${name}_baseline"
-  eval "t_$case_name() { FAST_BIN=$BASE_BIN same $case_name $scene --mode functional $opts; }"
+  eval "t_$case_name() { FAST_BIN=$BASE_BIN HW_FROM=sim_arith_${name}_functional same $case_name $scene --mode functional $opts; }"
   run_case "$case_name" "t_$case_name"
 done <<<"$SCENES"
 
