@@ -186,8 +186,13 @@ mutant() {
   local srcs=()
   for f in rtl/*.sv; do [[ $f == "rtl/$file" ]] || srcs+=("$PWD/$f"); done
   model "$name" "$d" "" "${srcs[@]}" "$d/$file"
-  if "$d/tb" "$@" >"$d/log"; then echo "the mutant $file passed tb_$name"; return 1; fi
-  grep -c MISMATCH "$d/log" | sed "s/^/mutant $file caught by tb_$name: /; s/$/ mismatch lines shown/"
+  local rc=0
+  "$d/tb" "$@" >"$d/log" 2>&1 || rc=$?
+  [[ $rc -ne 0 ]] || { echo "the mutant $file passed tb_$name"; return 1; }
+  # caught only as the benches report a wrong result: exit 1 (2 is a usage or input error, above
+  # 128 a signal); a crash of the bench is not the comparison catching the mutant
+  [[ $rc -eq 1 ]] || { tail -5 "$d/log"; echo "the mutant $file made tb_$name exit $rc, not fail a comparison"; return 1; }
+  echo "mutant $file caught by tb_$name: $(grep -c MISMATCH "$d/log") mismatch lines shown"
 }
 
 # builds DIR/tb, the model of tb_NAME from the given rtl/ sources with the Verilator options OPTS
