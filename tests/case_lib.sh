@@ -7,7 +7,10 @@ fails=0
 run_case() { # name, function
   local t0=$EPOCHREALTIME rc=0 sec
   echo "[ RUN      ] $1"
-  ( set -e; "$2" ) >"$T/case.log" 2>&1 || rc=$?
+  # a plain command: as part of `||` or `if`, bash would ignore set -e inside the case (every
+  # command but the last could fail unnoticed)
+  ( set -e; "$2" ) >"$T/case.log" 2>&1
+  rc=$?
   sec=$(awk -v a="$t0" -v b="$EPOCHREALTIME" 'BEGIN { printf "%.1f", b - a }')
   if [[ $rc -eq 0 ]]; then tail -1 "$T/case.log"; echo "[       OK ] $1 ($sec s)"
   else cat "$T/case.log"; echo "[  FAILED  ] $1 ($sec s)"; fails=$((fails + 1)); fi

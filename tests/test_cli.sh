@@ -7,21 +7,8 @@ cd "$(dirname "$0")/.."
 BIN=${SAARCOR_BIN:-build/saarcor}
 T=$(mktemp -d /tmp/saarcor-test-cli-XXXXXX)
 trap 'rm -rf "$T"' EXIT
-fails=0
-
-run_case() { # name, function
-  echo "[ RUN      ] $1"
-  # a plain command, not part of `if`/`||`: otherwise bash ignores set -e inside the case
-  ( set -e; "$2" ) >"$T/case.log" 2>&1
-  local rc=$?
-  if [[ $rc -eq 0 ]]; then
-    echo "[       OK ] $1"
-  else
-    cat "$T/case.log"
-    echo "[  FAILED  ] $1"
-    fails=$((fails + 1))
-  fi
-}
+# shellcheck source=case_lib.sh
+source tests/case_lib.sh
 
 # expect CODE CMD...: runs CMD, checks the exit code; stdout in $T/out, stderr in $T/err
 expect() {
