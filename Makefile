@@ -54,7 +54,7 @@ fmt_flags = -DF24_EXP_BITS=$(word 1,$(subst m, ,$(subst e,,$(1)))) -DF24_MAN_BIT
 VERSION := 0.1.0+$(shell git describe --always --dirty 2>/dev/null || echo unknown)
 
 WARN := -Wall -Wextra -Werror -Wshadow -Wno-unused-label
-OPT := -O2 -g
+OPT := -O2
 # the simulator's objects (SIM_SRCS: units, memory image, cycle model, reference, command line;
 # the fp24 arithmetic's: hls/fp24, tb/fp) at
 # -O3: its loop unswitching, peeling and vectorization take 6.8% of a functional render's
@@ -68,10 +68,12 @@ SANFLAGS := $(if $(filter 1,$(SAN)),$(SAN_ON))
 # no fused multiply-add: the fast fp24 path relies on one binary64 rounding per operation
 # CFG_FLAGS: hls/config.h settings of this build folder (e.g. the robust edge option, make robust)
 CFG_FLAGS ?=
-# DBG: a debug level after OPT's -g; make test's other builds (ASan, hw, baseline, robust, -O0)
-# take -g1, line tables only: sanitizer reports and backtraces keep their file:line, and their
-# compilation takes 20-35% less CPU (isect_unit.o under ASan 7.0 -> 4.6 s)
-DBG ?=
+# DBG: the debug information, line tables by default: backtraces, sanitizer reports, perf and
+# callgrind keep their file:line, and compiling takes 20-35% less CPU than with -g (gltf_load.o
+# 5.8 -> 4.2 s, isect_unit.o under ASan 7.0 -> 4.6 s; make test compiles about 1000 objects);
+# make DBG=-g for variables and types in a debugger (in its own BUILD folder: make does not
+# rebuild objects for changed flags)
+DBG ?= -g1
 CFLAGS := -std=c11 $(WARN) $(OPT) $(DBG) -ffp-contract=off -fno-math-errno $(SANFLAGS) $(CFG_FLAGS) -MMD -MP
 CXXFLAGS := -std=c++17 $(WARN) $(OPT) $(DBG) $(SANFLAGS) -MMD -MP
 INCLUDES := -Ihls -Ihls/fp24 -Ihls/units -Ihost/fp24 -Itb/fp -Itb/ref -Itb/cycle -Itb/cli -Ihost/image -Ihost/scene -Ihost/kdtree -Ihost/memimage -Iscenes -Itb/mpi
@@ -220,7 +222,7 @@ mpi: $(BUILD)/libsaarcor_mpi.so
 $(BUILD)/libsaarcor_mpi.so: tb/mpi/saarcor_mpi.c tb/mpi/saarcor_mpi.h
 	@mkdir -p $(@D)
 	@echo "  MPICC $@"
-	$(Q)$(if $(MPICC),mpicc,$(error make mpi needs mpicc: install libopenmpi-dev (make deps))) -std=c11 $(WARN) $(OPT) $(SANFLAGS) -fPIC -shared -Itb/mpi $< -o $@
+	$(Q)$(if $(MPICC),mpicc,$(error make mpi needs mpicc: install libopenmpi-dev (make deps))) -std=c11 $(WARN) $(OPT) $(DBG) $(SANFLAGS) -fPIC -shared -Itb/mpi $< -o $@
 widths: $(foreach f,$(FORMATS),$(BUILD)/w/$(f)/saarcor)
 
 deps:
@@ -267,7 +269,6 @@ O0_BUILD := $(BUILD)/O0
 # The fp32 program: tests/test_mpi.sh's jobs of two formats (not built under ASan, whose build of
 # the simulator at a second format cost make test 25 s and was run by no test).
 TEST_RTL_BENCHES := f24_ops units sum list cache sched rgs wide trav core shade rgs_ctrl
-TEST_DBG := DBG=-g1
 .PHONY: test-builds test-build-host test-build-main test-build-asan test-build-hw test-build-baseline test-build-robust test-build-O0
 test-builds: test-build-asan test-build-main test-build-hw test-build-baseline test-build-robust test-build-O0
 test-build-host:
@@ -276,15 +277,15 @@ test-build-main: test-build-host
 	@$(MAKE) --no-print-directory test-programs $(BUILD)/w/e8m23/saarcor mpi $(BUILD)/valgrind/hwy_timer_shim.so \
 	  $(addprefix $(BUILD)/rtl/$(DEFAULT_FMT)/tb_,$(TEST_RTL_BENCHES))
 test-build-asan:
-	@$(MAKE) --no-print-directory BUILD=build/asan SAN=1 $(TEST_DBG) FORMATS="$(ASAN_TEST_FORMATS)" test-programs fuzz-replay
+	@$(MAKE) --no-print-directory BUILD=build/asan SAN=1 FORMATS="$(ASAN_TEST_FORMATS)" test-programs fuzz-replay
 test-build-hw: test-build-host
-	@$(MAKE) --no-print-directory BUILD=$(BUILD)/hw HOST_BUILD=$(BUILD) SIM_ARITH=hw $(TEST_DBG) $(BUILD)/hw/saarcor
+	@$(MAKE) --no-print-directory BUILD=$(BUILD)/hw HOST_BUILD=$(BUILD) SIM_ARITH=hw $(BUILD)/hw/saarcor
 test-build-baseline: test-build-host
-	@$(MAKE) --no-print-directory BUILD=$(BUILD)/baseline HOST_BUILD=$(BUILD) SIM_LANES=baseline $(TEST_DBG) $(BUILD)/baseline/saarcor
+	@$(MAKE) --no-print-directory BUILD=$(BUILD)/baseline HOST_BUILD=$(BUILD) SIM_LANES=baseline $(BUILD)/baseline/saarcor
 test-build-robust: test-build-host
-	@$(MAKE) --no-print-directory $(TEST_DBG) robust
+	@$(MAKE) --no-print-directory robust
 test-build-O0:
-	@$(MAKE) --no-print-directory BUILD=$(O0_BUILD) OPT='-O0 -g1' $(O0_BUILD)/saarcor
+	@$(MAKE) --no-print-directory BUILD=$(O0_BUILD) OPT=-O0 $(O0_BUILD)/saarcor
 
 test: deps
 	@$(MAKE) --no-print-directory -j$$(nproc) test-builds
