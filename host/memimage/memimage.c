@@ -842,14 +842,19 @@ static int object_write(mi_builder *b, const scene *s, const mi_object *o)
     uint64_t *codes = m->normals ? normal_codes(m) : NULL; /* the object has normals if its mesh has */
     if (m->normals && !codes)
         return -1;
-    uint32_t *w = b->words + o->base;
-    memset(w, 0, o->words * sizeof *w); /* the padding, deterministic */
+    /* Zeroed here, so that the padding is deterministic: the tree's words up to the records, and
+     * the grid's after them. The records (2/3 of the gallery's block) zero themselves
+     * (put_triangle, shade_encode_record) on the for_parts threads: their first touch of the
+     * image's fresh pages is then not on one thread (a memset of the whole block was). */
+    uint32_t *w = b->words + o->base, *end = b->words + o->base + o->words;
+    memset(w, 0, (triangles_at(o) - o->base) * sizeof *w);
     put_tree(w, w + MI_NODE_WORDS * o->n_slots, &o->tree, o->ropes, o->slot);
     w = b->words + triangles_at(o);
     records_job job = { m, o, s, codes, w, w + (size_t)MI_TRIANGLE_WORDS * o->n_valid };
     for_parts(o->n_valid, records_part, &job);
     free(codes);
     w = job.shading + (size_t)shade_rec_words(o->shade_flags) * o->n_valid;
+    memset(w, 0, (size_t)(end - w) * sizeof *w);
     if (o->grid.n[0])
         put_grid(w, &o->grid, (uint32_t)(w - b->words));
     return 0;
