@@ -61,6 +61,7 @@
  */
 #define _GNU_SOURCE /* clock_gettime, sched_getaffinity */
 #include "kdtree.h"
+#include "huge_pages.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -349,7 +350,7 @@ static void *reserve(void *p, uint32_t *cap, uint64_t need, size_t size)
     if (need > UINT32_MAX)
         return NULL;
     const uint64_t c = need > UINT32_MAX / 2 ? UINT32_MAX : 2 * need;
-    void *q = realloc(p, (size_t)c * size);
+    void *q = huge_pages_realloc(p, (size_t)c * size);
     if (q)
         *cap = (uint32_t)c;
     return q;
@@ -437,7 +438,7 @@ static void sort_events(event *e, uint32_t n, event *tmp)
  * distribute() writes one entry past the events it keeps). */
 static int events_alloc(prim_set *s, size_t per_axis)
 {
-    if (!(s->ev[0] = malloc(3 * (per_axis + 1) * sizeof(event))))
+    if (!(s->ev[0] = huge_pages_malloc(3 * (per_axis + 1) * sizeof(event))))
         return -1;
     s->ev[1] = s->ev[0] + per_axis + 1;
     s->ev[2] = s->ev[1] + per_axis + 1;
@@ -685,8 +686,8 @@ static void radix_sort_events(event *e, uint32_t n, event *tmp)
 static int root_events(const builder *b, prim_set *s, aabb *root)
 {
     const uint32_t n = b->src->count;
-    aabb *bx = malloc(((size_t)n + 1) * sizeof *bx);
-    event *tmp = malloc((2 * (size_t)n + 1) * sizeof *tmp);
+    aabb *bx = huge_pages_malloc(((size_t)n + 1) * sizeof *bx);
+    event *tmp = huge_pages_malloc((2 * (size_t)n + 1) * sizeof *tmp);
     if (!bx || !tmp || events_alloc(s, 2 * (size_t)n)) {
         free(bx);
         free(tmp);

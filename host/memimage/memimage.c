@@ -13,6 +13,7 @@
 #include "shade_encode.h"
 #include "shading_model.h"
 #include "ugrid.h"
+#include "huge_pages.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -505,7 +506,7 @@ static int object_transform(mi_builder *b, const scene_mesh *m, mi_object *o)
 {
     object_release(o);
     o->valid = malloc(((size_t)m->n_triangles + 1) * sizeof *o->valid);
-    o->xf = malloc(((size_t)m->n_triangles + 1) * sizeof *o->xf);
+    o->xf = huge_pages_malloc(((size_t)m->n_triangles + 1) * sizeof *o->xf);
     o->shared = malloc((size_t)m->n_triangles + 1);
     uint8_t *ok = malloc((size_t)m->n_triangles + 1);
     if (!o->valid || !o->xf || !o->shared || !ok) {
@@ -1294,7 +1295,7 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
     if (place_regions(b, len, off, err, errlen) != 0)
         return -1;
     const uint32_t total = off[MI_REGION_COUNT - 1] + (uint32_t)len[MI_REGION_COUNT - 1];
-    uint32_t *w = realloc(b->words, ((size_t)total + 1) * sizeof *w);
+    uint32_t *w = huge_pages_realloc(b->words, ((size_t)total + 1) * sizeof *w);
     if (!w)
         goto oom;
     b->words = w;
