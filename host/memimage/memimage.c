@@ -525,15 +525,37 @@ static int object_transform(mi_builder *b, const scene_mesh *m, mi_object *o)
     return 0;
 }
 
+typedef struct {
+    const scene_mesh *m;
+    mi_object *o;
+    int rc; /* mi_shared_edges' */
+} edges_job;
+
+static void *edges_run(void *arg)
+{
+    edges_job *j = arg;
+    j->rc = mi_shared_edges(j->m, j->o->valid, j->o->n_valid, j->o->shared);
+    return NULL;
+}
+
 /* Stage 2: o's shared edges, tree (parameters q), ropes and grid: 0, or an mi_failure. Reads b,
- * writes only o: objects run concurrently. */
+ * writes only o: objects run concurrently. An object built with several threads (bunny.glb)
+ * finds its shared edges on a thread of their own beside the tree, whose start (the root's events
+ * and sort, the first splits) runs on one thread; the flags do not depend on the tree. */
 static int object_tree(const mi_builder *b, const scene_mesh *m, mi_object *o, const kd_params *q)
 {
-    if (mi_shared_edges(m, o->valid, o->n_valid, o->shared) != 0)
-        return MI_FAIL_OTHER;
+    edges_job e = { m, o, 0 };
+    pthread_t tid;
+    const int beside = q->threads > 1 && pthread_create(&tid, NULL, edges_run, &e) == 0;
+    if (!beside)
+        edges_run(&e);
     const tri_source src = { m, o->valid, o->centre };
     const kd_source ks = { o->n_valid, &src, tri_bounds, tri_clip };
     const int kd = kd_build(&ks, q, &o->tree);
+    if (beside)
+        pthread_join(tid, NULL);
+    if (e.rc != 0)
+        return MI_FAIL_OTHER;
     if (kd != 0)
         return kd == KD_TOO_MANY_NODES ? MI_FAIL_NODE_LIMIT : MI_FAIL_OTHER;
     const aabb root = device_box(&o->tree.bounds, OBJECT_BOUNDS_MARGIN_ULPS);
