@@ -49,7 +49,8 @@
  * snapped candidate that would move the sweep backwards.
  *
  * Threads: sources of at least PAR_MIN_COUNT primitives are built on params.threads threads (0: all
- * CPUs; at most PAR_MAX_THREADS), in every mode: subtrees are built concurrently into separate arrays, which are
+ * CPUs; at most PAR_MAX_THREADS), in every mode (exact mode also sorts the root's last axis beside
+ * the other two): subtrees are built concurrently into separate arrays, which are
  * then merged in a fixed order into exactly the layout of the single-threaded build, so the tree
  * is the same bit for bit, whatever the thread timing. Such a build calls bounds, clip and
  * quantize from several threads at a time: they must be pure functions (thread-safe). If no
@@ -61,6 +62,7 @@
  */
 #define _GNU_SOURCE /* clock_gettime, sched_getaffinity */
 #include "kdtree.h"
+#include "huge_pages.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -349,7 +351,7 @@ static void *reserve(void *p, uint32_t *cap, uint64_t need, size_t size)
     if (need > UINT32_MAX)
         return NULL;
     const uint64_t c = need > UINT32_MAX / 2 ? UINT32_MAX : 2 * need;
-    void *q = realloc(p, (size_t)c * size);
+    void *q = huge_pages_realloc(p, (size_t)c * size);
     if (q)
         *cap = (uint32_t)c;
     return q;
@@ -437,7 +439,7 @@ static void sort_events(event *e, uint32_t n, event *tmp)
  * distribute() writes one entry past the events it keeps). */
 static int events_alloc(prim_set *s, size_t per_axis)
 {
-    if (!(s->ev[0] = malloc(3 * (per_axis + 1) * sizeof(event))))
+    if (!(s->ev[0] = huge_pages_malloc(3 * (per_axis + 1) * sizeof(event))))
         return -1;
     s->ev[1] = s->ev[0] + per_axis + 1;
     s->ev[2] = s->ev[1] + per_axis + 1;
@@ -679,14 +681,46 @@ static void radix_sort_events(event *e, uint32_t n, event *tmp)
         memcpy(e, src, n * sizeof *e);
 }
 
-/* Root set: bounds of every primitive (no clipping needed: they lie in the root box). The events
- * of an axis are written by type, then primitive, and sorted stably by position: event_less
- * order. */
-static int root_events(const builder *b, prim_set *s, aabb *root)
+/* The root's events of axis a from the primitives' bounds bx[0..n), written by type, then
+ * primitive, and sorted stably by position: event_less order. tmp: room for 2 n events. */
+static void root_axis(const aabb *bx, uint32_t n, int a, prim_set *s, event *tmp)
+{
+    event *e = s->ev[a];
+    uint32_t m = 0;
+    for (uint32_t type = EV_END; type < EV_TYPES; type++)
+        for (uint32_t i = 0; i < n; i++) {
+            const int flat = bx[i].lo[a] == bx[i].hi[a];
+            if (flat ? type == EV_PLANAR : type != EV_PLANAR)
+                e[m++] = (event){ type == EV_END ? bx[i].hi[a] : bx[i].lo[a], i, type };
+        }
+    s->n_ev[a] = m;
+    radix_sort_events(e, m, tmp);
+}
+
+typedef struct {
+    const aabb *bx;
+    uint32_t n;
+    prim_set *s;
+    event *tmp;
+} root_axis_job;
+
+static void *root_last_axis(void *arg)
+{
+    const root_axis_job *j = arg;
+    root_axis(j->bx, j->n, 2, j->s, j->tmp);
+    return NULL;
+}
+
+/* Root set: bounds of every primitive (no clipping needed: they lie in the root box) and the
+ * events of the three axes. With threads > 1 the last axis is sorted on a thread of its own (the
+ * axes are independent; the root's lists are the build's longest and run before any other work
+ * can), with its own scratch list. */
+static int root_events(const builder *b, prim_set *s, aabb *root, uint32_t threads)
 {
     const uint32_t n = b->src->count;
-    aabb *bx = malloc(((size_t)n + 1) * sizeof *bx);
-    event *tmp = malloc((2 * (size_t)n + 1) * sizeof *tmp);
+    const size_t scratch = 2 * (size_t)n + 1, lists = threads > 1 ? 2 : 1;
+    aabb *bx = huge_pages_malloc(((size_t)n + 1) * sizeof *bx);
+    event *tmp = huge_pages_malloc(lists * scratch * sizeof *tmp);
     if (!bx || !tmp || events_alloc(s, 2 * (size_t)n)) {
         free(bx);
         free(tmp);
@@ -696,18 +730,15 @@ static int root_events(const builder *b, prim_set *s, aabb *root)
         bx[i] = b->src->bounds(b->src->user, i);
         box_union(root, &bx[i]);
     }
-    for (int a = 0; a < 3; a++) {
-        event *e = s->ev[a];
-        uint32_t m = 0;
-        for (uint32_t type = EV_END; type < EV_TYPES; type++)
-            for (uint32_t i = 0; i < n; i++) {
-                const int flat = bx[i].lo[a] == bx[i].hi[a];
-                if (flat ? type == EV_PLANAR : type != EV_PLANAR)
-                    e[m++] = (event){ type == EV_END ? bx[i].hi[a] : bx[i].lo[a], i, type };
-            }
-        s->n_ev[a] = m;
-        radix_sort_events(e, m, tmp);
-    }
+    root_axis_job last = { bx, n, s, tmp + (lists - 1) * scratch };
+    pthread_t tid;
+    const int beside = lists > 1 && pthread_create(&tid, NULL, root_last_axis, &last) == 0;
+    for (int a = 0; a < 2; a++)
+        root_axis(bx, n, a, s, tmp);
+    if (beside)
+        pthread_join(tid, NULL);
+    else
+        root_last_axis(&last);
     s->n = n;
     free(bx);
     free(tmp);
@@ -1742,13 +1773,13 @@ static void *shrink(void *p, size_t bytes)
 }
 
 /* Scratch arrays and the root primitive set. */
-static int start(builder *b, prim_set *s, aabb *root)
+static int start(builder *b, prim_set *s, aabb *root, uint32_t threads)
 {
     const aabb empty = { { INFINITY, INFINITY, INFINITY }, { -INFINITY, -INFINITY, -INFINITY } };
     *root = empty;
     if (!binned(b) && b->src->count > UINT32_MAX / 2)
         return -1; /* 2 events per primitive and axis must fit in 32 bits */
-    if (scratch_alloc(b) || (binned(b) ? root_refs(b, s, root) : root_events(b, s, root)))
+    if (scratch_alloc(b) || (binned(b) ? root_refs(b, s, root) : root_events(b, s, root, threads)))
         return -1;
     if (b->src->count == 0)
         *root = (aabb){ { 0, 0, 0 }, { 0, 0, 0 } }; /* no primitives: a point at the origin */
@@ -1767,11 +1798,11 @@ int kd_build(const kd_source *src, const kd_params *p, kd_tree *out)
     b.max_depth = kd_depth_bound(p, src->count);
     prim_set s = { 0 };
     aabb root;
-    int rc = start(&b, &s, &root);
-    b.kind = measure_of(&root);
-    b.root_measure = measure(b.kind, &root);
     const uint32_t asked = p->threads ? p->threads : kd_thread_count();
     const uint32_t threads = src->count < PAR_MIN_COUNT ? 1 : asked < PAR_MAX_THREADS ? asked : PAR_MAX_THREADS;
+    int rc = start(&b, &s, &root, threads);
+    b.kind = measure_of(&root);
+    b.root_measure = measure(b.kind, &root);
     subtree_sum sum = { 0.0, 0 };
     if (rc == 0 && threads > 1)
         rc = build_parallel(&b, &root, &s, threads, &sum.sum); /* frees s */

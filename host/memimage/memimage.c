@@ -13,6 +13,7 @@
 #include "shade_encode.h"
 #include "shading_model.h"
 #include "ugrid.h"
+#include "huge_pages.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -505,7 +506,7 @@ static int object_transform(mi_builder *b, const scene_mesh *m, mi_object *o)
 {
     object_release(o);
     o->valid = malloc(((size_t)m->n_triangles + 1) * sizeof *o->valid);
-    o->xf = malloc(((size_t)m->n_triangles + 1) * sizeof *o->xf);
+    o->xf = huge_pages_malloc(((size_t)m->n_triangles + 1) * sizeof *o->xf);
     o->shared = malloc((size_t)m->n_triangles + 1);
     uint8_t *ok = malloc((size_t)m->n_triangles + 1);
     if (!o->valid || !o->xf || !o->shared || !ok) {
@@ -524,15 +525,37 @@ static int object_transform(mi_builder *b, const scene_mesh *m, mi_object *o)
     return 0;
 }
 
+typedef struct {
+    const scene_mesh *m;
+    mi_object *o;
+    int rc; /* mi_shared_edges' */
+} edges_job;
+
+static void *edges_run(void *arg)
+{
+    edges_job *j = arg;
+    j->rc = mi_shared_edges(j->m, j->o->valid, j->o->n_valid, j->o->shared);
+    return NULL;
+}
+
 /* Stage 2: o's shared edges, tree (parameters q), ropes and grid: 0, or an mi_failure. Reads b,
- * writes only o: objects run concurrently. */
+ * writes only o: objects run concurrently. An object built with several threads (bunny.glb)
+ * finds its shared edges on a thread of their own beside the tree, whose start (the root's events
+ * and sort, the first splits) runs on one thread; the flags do not depend on the tree. */
 static int object_tree(const mi_builder *b, const scene_mesh *m, mi_object *o, const kd_params *q)
 {
-    if (mi_shared_edges(m, o->valid, o->n_valid, o->shared) != 0)
-        return MI_FAIL_OTHER;
+    edges_job e = { m, o, 0 };
+    pthread_t tid;
+    const int beside = q->threads > 1 && pthread_create(&tid, NULL, edges_run, &e) == 0;
+    if (!beside)
+        edges_run(&e);
     const tri_source src = { m, o->valid, o->centre };
     const kd_source ks = { o->n_valid, &src, tri_bounds, tri_clip };
     const int kd = kd_build(&ks, q, &o->tree);
+    if (beside)
+        pthread_join(tid, NULL);
+    if (e.rc != 0)
+        return MI_FAIL_OTHER;
     if (kd != 0)
         return kd == KD_TOO_MANY_NODES ? MI_FAIL_NODE_LIMIT : MI_FAIL_OTHER;
     const aabb root = device_box(&o->tree.bounds, OBJECT_BOUNDS_MARGIN_ULPS);
@@ -842,14 +865,19 @@ static int object_write(mi_builder *b, const scene *s, const mi_object *o)
     uint64_t *codes = m->normals ? normal_codes(m) : NULL; /* the object has normals if its mesh has */
     if (m->normals && !codes)
         return -1;
-    uint32_t *w = b->words + o->base;
-    memset(w, 0, o->words * sizeof *w); /* the padding, deterministic */
+    /* Zeroed here, so that the padding is deterministic: the tree's words up to the records, and
+     * the grid's after them. The records (2/3 of the gallery's block) zero themselves
+     * (put_triangle, shade_encode_record) on the for_parts threads: their first touch of the
+     * image's fresh pages is then not on one thread (a memset of the whole block was). */
+    uint32_t *w = b->words + o->base, *end = b->words + o->base + o->words;
+    memset(w, 0, (triangles_at(o) - o->base) * sizeof *w);
     put_tree(w, w + MI_NODE_WORDS * o->n_slots, &o->tree, o->ropes, o->slot);
     w = b->words + triangles_at(o);
     records_job job = { m, o, s, codes, w, w + (size_t)MI_TRIANGLE_WORDS * o->n_valid };
     for_parts(o->n_valid, records_part, &job);
     free(codes);
     w = job.shading + (size_t)shade_rec_words(o->shade_flags) * o->n_valid;
+    memset(w, 0, (size_t)(end - w) * sizeof *w);
     if (o->grid.n[0])
         put_grid(w, &o->grid, (uint32_t)(w - b->words));
     return 0;
@@ -1289,7 +1317,7 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
     if (place_regions(b, len, off, err, errlen) != 0)
         return -1;
     const uint32_t total = off[MI_REGION_COUNT - 1] + (uint32_t)len[MI_REGION_COUNT - 1];
-    uint32_t *w = realloc(b->words, ((size_t)total + 1) * sizeof *w);
+    uint32_t *w = huge_pages_realloc(b->words, ((size_t)total + 1) * sizeof *w);
     if (!w)
         goto oom;
     b->words = w;
