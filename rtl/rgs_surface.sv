@@ -140,7 +140,9 @@ module rgs_surface #(
     S_TSAMPLE, S_TINT
   } state_t;
   state_t st;
-  typedef enum logic [2:0] { F_IDLE, F_INST, F_OBJ, F_REC, F_W2O, F_GN, F_MAT, F_FULL } fstate_t;
+  typedef enum logic [2:0] { F_IDLE, F_INST, F_OBJ, F_REC, F_MISS } fstate_t;
+  typedef enum logic [2:0] { H_EMPTY, H_W2O, H_GN, H_MAT, H_FULL } hstate_t;
+  hstate_t h_st;
   fstate_t f_st;
 
   // ---- the transaction's inputs ----
@@ -154,14 +156,28 @@ module rgs_surface #(
   // registers, while the back works on the surface before; the back takes them (f_take) ----
   logic [TID_BITS-1:0] f_tid;
   logic f_hit;
-  logic [V-1:0] f_o, f_d, f_n;
-  logic [31:0] f_tri, f_tri_base, f_flags, f_mat_addr, f_inst_addr;
+  logic [V-1:0] f_o, f_d;
+  logic [31:0] f_tri, f_tri_base, f_flags, f_inst_addr;
   logic [W-1:0] f_t, f_u, f_v, f_cos;
-  logic [V*3-1:0] f_w2o;
-  logic [31:0] f_rd_addr, f_buf [BUF], f_rec [REC_MAX];
+  logic [31:0] f_rd_addr, f_buf [6], f_rec [REC_MAX];
   logic [4:0] f_rd_left, f_rsp_left, f_rsp_idx;
   logic f_done, f_take;
   assign f_done = f_rsp_left == 5'd0;
+  // the front's second stage (h_): a hit whose record is read (its normal's chain started) reads
+  // its matrix, geometric normal and material while the first stage (f_) reads the next hit's
+  // instance, object and record, so the next chains start without waiting for these reads
+  logic [TID_BITS-1:0] h_tid;
+  logic h_hit, h_load;
+  logic [V-1:0] h_o, h_d, h_n;
+  logic [31:0] h_tri, h_tri_base, h_flags, h_mat_addr, h_inst_addr;
+  logic [W-1:0] h_t, h_u, h_v, h_cos;
+  logic [V*3-1:0] h_w2o;
+  logic [31:0] h_rd_addr, h_buf [BUF], h_rec [REC_MAX];
+  logic [4:0] h_rd_left, h_rsp_left, h_rsp_idx;
+  logic h_done;
+  assign h_done = h_rsp_left == 5'd0;
+  // the first stage's hit (with its record, its normal's chain starting) or miss moves on
+  assign h_load = h_st == H_EMPTY && (f_st == F_MISS || f_st == F_REC && f_done && (!f_flags[0] || nrm_ready));
 
   // ---- the back's reads (a zero interpolated normal's geometric normal, a texture's entry) ----
   logic [31:0] rd_addr_q, buf_q [BUF], rec_q [REC_MAX];
@@ -177,20 +193,24 @@ module rgs_surface #(
 
   // ---- the word port, shared: the back's requests first (its surface is the older one); the
   // responses come in request order, so a FIFO of each request's side (1: the back) routes them ----
-  logic b_req, f_req, src_room, src_head, rsp_b, rsp_f, port_go;
+  logic b_req, f_req, h_req, src_room, rsp_b, rsp_f, rsp_h, port_go;
+  logic [1:0] src_head;  // 2: the back, 1: the front's first stage, 0: its second
   assign b_req = tex_port ? tex_req_valid : rd_left_q != 5'd0;
   assign f_req = f_rd_left != 5'd0;
-  assign mem_req_valid_o = (b_req || f_req) && src_room;
-  assign mem_addr_o = b_req ? (tex_port ? tex_req_addr : rd_addr_q) : f_rd_addr;
+  assign h_req = h_rd_left != 5'd0;
+  assign mem_req_valid_o = (b_req || f_req || h_req) && src_room;
+  assign mem_addr_o = b_req ? (tex_port ? tex_req_addr : rd_addr_q) : f_req ? f_rd_addr : h_rd_addr;
   assign port_go = src_room && mem_req_ready_i;  // a request offered now is taken
   /* verilator lint_off PINCONNECTEMPTY */
-  sync_fifo #(.W(1), .DEPTH(SRC_DEPTH)) u_src (
-    .clk_i, .rst_ni, .valid_i(mem_req_valid_o && mem_req_ready_i), .ready_o(src_room), .data_i(b_req),
+  sync_fifo #(.W(2), .DEPTH(SRC_DEPTH)) u_src (
+    .clk_i, .rst_ni, .valid_i(mem_req_valid_o && mem_req_ready_i), .ready_o(src_room),
+    .data_i(b_req ? 2'd2 : f_req ? 2'd1 : 2'd0),
     .valid_o(), .ready_i(mem_rsp_valid_i), .data_o(src_head)
   );
   /* verilator lint_on PINCONNECTEMPTY */
-  assign rsp_b = mem_rsp_valid_i && src_head;
-  assign rsp_f = mem_rsp_valid_i && !src_head;
+  assign rsp_b = mem_rsp_valid_i && src_head == 2'd2;
+  assign rsp_f = mem_rsp_valid_i && src_head == 2'd1;
+  assign rsp_h = mem_rsp_valid_i && src_head == 2'd0;
 
   // ---- the object's flags and the record's fields (shade_rec.h) ----
   /* verilator lint_off UNUSEDSIGNAL */
@@ -241,7 +261,7 @@ module rgs_surface #(
     .clk_i, .rst_ni, .valid_i(nrm_valid), .ready_o(nrm_ready), .codes_i(f_codes), .u_i(f_u), .v_i(f_v),
     .valid_o(nrm_ovalid), .ready_i(nrm_take), .n_o(nrm_n), .zero_o(nrm_zero));
   assign nrm_take = st == S_NORM && nrm_ovalid;
-  assign nrm_valid = f_st == F_REC && f_done && f_flags[0];
+  assign nrm_valid = h_load && f_st == F_REC && f_flags[0];
 
   /* verilator lint_off PINCONNECTEMPTY */
   // the interpolation of a texture's s and t (tail coordinates i, 2+i, 4+i)
@@ -362,10 +382,10 @@ module rgs_surface #(
   end
   // a miss joins as the back takes it from the front, with zero fields; a hit at the end of its
   // colours (S_TINT)
-  assign f_take = st == S_IDLE && f_st == F_FULL && q_room;
-  assign q_push = st == S_TINT || (f_take && !f_hit);
+  assign f_take = st == S_IDLE && h_st == H_FULL && q_room;
+  assign q_push = st == S_TINT || (f_take && !h_hit);
   assign q_in = st == S_TINT ? {tid_q, 1'b1, mat_q, unlit_q, k_q, eta_q, kd_q, kr_q, kt_q, ks_q, base_v, emis_v, tint_v}
-                             : {f_tid, (QW - TID_BITS)'(0)};
+                             : {h_tid, (QW - TID_BITS)'(0)};
   sync_fifo #(.W(QW), .DEPTH(SLOTS)) u_queue (
     .clk_i, .rst_ni, .valid_i(q_push), .ready_o(q_room), .data_i(q_in),
     .valid_o(q_any), .ready_i(ready_i && (!q_hit || fr_ovalid)), .data_o(q_head)
@@ -382,11 +402,11 @@ module rgs_surface #(
   assign entering_o = q_hit && fr_entering;
 
   // ---- the front's sequence ----
-  logic [31:0] rec_addr, f_mat_at;
+  logic [31:0] rec_addr, h_mat_at;
   assign rec_addr = f_buf[1] + 32'(rec_words(f_buf[5][5:0])) * f_tri;
   // the material: the object's (flags 16..31) or the record tail's first 16 bits
-  assign f_mat_at = mat_base_i + 32'd16 * (f_flags[3] ? {16'd0, f_flags[31:16]}
-                                                       : {16'd0, f_rec[f_flags[0] ? 4 : 0][15:0]});
+  assign h_mat_at = mat_base_i + 32'd16 * (h_flags[3] ? {16'd0, h_flags[31:16]}
+                                                       : {16'd0, h_rec[h_flags[0] ? 4 : 0][15:0]});
 
   // a burst of n words from a: the front's next read
   task automatic f_burst(input logic [31:0] a, input logic [4:0] n);
@@ -408,7 +428,7 @@ module rgs_surface #(
       end
       if (rsp_f && f_rsp_left != 5'd0) begin
         if (f_st == F_REC) f_rec[f_rsp_idx] <= mem_rdata_i;
-        else f_buf[f_rsp_idx[3:0]] <= mem_rdata_i;
+        else f_buf[f_rsp_idx[2:0]] <= mem_rdata_i;
         f_rsp_idx <= f_rsp_idx + 5'd1;
         f_rsp_left <= f_rsp_left - 5'd1;
       end
@@ -430,7 +450,7 @@ module rgs_surface #(
             if (active_i && inst_i != NO_HIT) begin
               f_burst(inst_base_i + 32'(INST_WORDS) * inst_i + 32'd12, 5'd1);
               f_st <= F_INST;
-            end else f_st <= F_FULL;
+            end else f_st <= F_MISS;
           end
         F_INST:
           if (f_done) begin
@@ -444,35 +464,71 @@ module rgs_surface #(
             f_burst(rec_addr, rec_words(f_buf[5][5:0]));
             f_st <= F_REC;
           end
-        F_REC:
-          if (f_done && (!f_flags[0] || nrm_ready)) begin  // with vertex normals into rgs_normal
-            f_n <= '0;
-            f_burst(f_inst_addr, 5'd12);  // the instance's matrix (the word 12 read, 13 in all)
-            f_st <= F_W2O;
+        F_REC, F_MISS: if (h_load) f_st <= F_IDLE;  // into the second stage
+        default: f_st <= F_IDLE;
+      endcase
+    end
+  end
+
+  // a burst of n words from a: the second stage's next read
+  task automatic h_burst(input logic [31:0] a, input logic [4:0] n);
+    h_rd_addr <= a;
+    h_rd_left <= n;
+    h_rsp_left <= n;
+    h_rsp_idx <= '0;
+  endtask
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      h_st <= H_EMPTY;
+      h_rd_left <= '0;
+      h_rsp_left <= '0;
+    end else begin
+      if (h_req && !b_req && !f_req && port_go) begin
+        h_rd_addr <= h_rd_addr + 32'd1;
+        h_rd_left <= h_rd_left - 5'd1;
+      end
+      if (rsp_h && h_rsp_left != 5'd0) begin
+        h_buf[h_rsp_idx[3:0]] <= mem_rdata_i;
+        h_rsp_idx <= h_rsp_idx + 5'd1;
+        h_rsp_left <= h_rsp_left - 5'd1;
+      end
+      unique case (h_st)
+        H_EMPTY:
+          if (h_load) begin
+            {h_tid, h_hit, h_o, h_d, h_tri, h_tri_base, h_flags, h_inst_addr} <=
+              {f_tid, f_hit, f_o, f_d, f_tri, f_tri_base, f_flags, f_inst_addr};
+            {h_t, h_u, h_v, h_cos} <= {f_t, f_u, f_v, f_cos};
+            h_rec <= f_rec;
+            h_n <= '0;
+            if (f_st == F_REC) begin
+              h_burst(f_inst_addr, 5'd12);  // the instance's matrix (the word 12 read, 13 in all)
+              h_st <= H_W2O;
+            end else h_st <= H_FULL;
           end
-        F_W2O:
-          if (f_done) begin
+        H_W2O:
+          if (h_done) begin
             for (int k = 0; k < 3; k++)
-              for (int r = 0; r < 3; r++) f_w2o[W*(3*k+r) +: W] <= f_buf[4*k+r][W-1:0];
-            if (!f_flags[0]) begin  // no vertex normals: the geometric normal, as the C reads it next
-              f_burst(f_tri_base + 32'(TRI_WORDS) * f_tri + 32'(GN_WORD), 5'(GN_SPAN));
-              f_st <= F_GN;
+              for (int r = 0; r < 3; r++) h_w2o[W*(3*k+r) +: W] <= h_buf[4*k+r][W-1:0];
+            if (!h_flags[0]) begin  // no vertex normals: the geometric normal, as the C reads it next
+              h_burst(h_tri_base + 32'(TRI_WORDS) * h_tri + 32'(GN_WORD), 5'(GN_SPAN));
+              h_st <= H_GN;
             end else begin
-              f_mat_addr <= f_mat_at;
-              f_burst(f_mat_at, 5'd16);
-              f_st <= F_MAT;
+              h_mat_addr <= h_mat_at;
+              h_burst(h_mat_at, 5'd16);
+              h_st <= H_MAT;
             end
           end
-        F_GN:
-          if (f_done) begin
-            for (int c = 0; c < 3; c++) f_n[W*c +: W] <= W'({f_buf[2], f_buf[1], f_buf[0]} >> (GN_SHIFT + W * c));
-            f_mat_addr <= f_mat_at;
-            f_burst(f_mat_at, 5'd16);
-            f_st <= F_MAT;
+        H_GN:
+          if (h_done) begin
+            for (int c = 0; c < 3; c++) h_n[W*c +: W] <= W'({h_buf[2], h_buf[1], h_buf[0]} >> (GN_SHIFT + W * c));
+            h_mat_addr <= h_mat_at;
+            h_burst(h_mat_at, 5'd16);
+            h_st <= H_MAT;
           end
-        F_MAT: if (f_done) f_st <= F_FULL;
-        F_FULL: if (f_take) f_st <= F_IDLE;
-        default: f_st <= F_IDLE;
+        H_MAT: if (h_done) h_st <= H_FULL;
+        H_FULL: if (f_take) h_st <= H_EMPTY;
+        default: h_st <= H_EMPTY;
       endcase
     end
   end
@@ -501,36 +557,36 @@ module rgs_surface #(
       end
       unique case (st)
         S_IDLE:  // a miss has joined the queue as it was taken (q_push)
-          if (f_take && f_hit) begin
-            tid_q <= f_tid;
-            o_q <= f_o;
-            d_q <= f_d;
-            tri_q <= f_tri;
-            t_q <= f_t;
-            u_q <= f_u;
-            v_q <= f_v;
-            cos_q <= f_cos;
-            w2o_q <= f_w2o;
-            tri_base_q <= f_tri_base;
-            flags_q <= f_flags;
-            for (int k = 0; k < REC_MAX; k++) rec_q[k] <= f_rec[k];
-            for (int k = 0; k < BUF; k++) buf_q[k] <= f_buf[k];  // the material's words
-            mat_q <= f_mat_addr;
-            tex_idx_q[0] <= f_buf[7];
-            tex_idx_q[1] <= f_buf[12];
-            unlit_q <= f_buf[8][3];
-            k_q <= f_buf[14][29:26];
-            eta_q <= f_buf[13][W-1:0];
-            kd_q <= f_buf[14][12:0];
-            kr_q <= f_buf[14][25:13];
-            kt_q <= f_buf[15][12:0];
-            ks_q <= f_buf[15][25:13];
-            n_q <= f_n;  // the geometric normal without vertex normals
+          if (f_take && h_hit) begin
+            tid_q <= h_tid;
+            o_q <= h_o;
+            d_q <= h_d;
+            tri_q <= h_tri;
+            t_q <= h_t;
+            u_q <= h_u;
+            v_q <= h_v;
+            cos_q <= h_cos;
+            w2o_q <= h_w2o;
+            tri_base_q <= h_tri_base;
+            flags_q <= h_flags;
+            for (int k = 0; k < REC_MAX; k++) rec_q[k] <= h_rec[k];
+            for (int k = 0; k < BUF; k++) buf_q[k] <= h_buf[k];  // the material's words
+            mat_q <= h_mat_addr;
+            tex_idx_q[0] <= h_buf[7];
+            tex_idx_q[1] <= h_buf[12];
+            unlit_q <= h_buf[8][3];
+            k_q <= h_buf[14][29:26];
+            eta_q <= h_buf[13][W-1:0];
+            kd_q <= h_buf[14][12:0];
+            kr_q <= h_buf[14][25:13];
+            kt_q <= h_buf[15][12:0];
+            ks_q <= h_buf[15][25:13];
+            n_q <= h_n;  // the geometric normal without vertex normals
             qin_q <= '0;
             qout_q <= '0;
             in_q <= '0;
             out_q <= '0;
-            st <= f_flags[0] ? S_NORM : S_FRAME;
+            st <= h_flags[0] ? S_NORM : S_FRAME;
           end
         S_NORM:  // the hit's normal from rgs_normal (its chain started as the front had the record)
           if (nrm_ovalid) begin
