@@ -1,19 +1,21 @@
 // rgs_surface: the surface the RGS shades at a hit (paper sections 2.2 and 3, Figure 2 path g:
 // the shading's reads and the surface's geometry and colours; hls/units/rgs_surface.c
 // `rgs_surface_at`), bit for bit as the C, in two stages that work on consecutive surfaces at once
-// (a front reading the next hit's records while the back shades the one before; the frame and the
+// (a front reading the next hits' records while the back shades the one before; the frame and the
 // conversions beside the back, see Latency):
-//   front   the reads: the instance's object index (word 12), the
-//           object descriptor's words 2..7 (triangle and shading record addresses, flags), the
-//           triangle's shading record (shade_rec_words(flags) words, up to 19), the instance's
-//           words 0..11 (the world-to-object 3x3, which only the frame needs), without vertex
-//           normals the geometric normal (values 8..10 of the triangle record,
-//           F24_RECORD_SPAN(8, 3) words), the material's 16 words (address: the object's material
-//           or the record tail's); each burst's address comes from the words before, so they go
-//           one after another, into the front's registers, which the back takes when it is idle;
-//           with vertex normals the record's 3 codes and u, v go into `rgs_normal` as the record
-//           is there (decoded, interpolated as `rgs_lerp_normal`, the squared length's zero test
-//           as the C's `f24_is_zero(rgs_dot3(n, n))`: a stream, the next hits' behind)
+//   front   the reads, in two stages that work on consecutive hits at once (the first's reads go
+//           before the second's: they start the normals' chains):
+//           first (f_): the instance's object index (word 12), the object descriptor's words
+//           2..7 (triangle and shading record addresses, flags), the triangle's shading record
+//           (shade_rec_words(flags) words, up to 19); with vertex normals the record's 3 codes
+//           and u, v go into `rgs_normal` as the hit moves to the second stage (decoded,
+//           interpolated as `rgs_lerp_normal`, the squared length's zero test as the C's
+//           `f24_is_zero(rgs_dot3(n, n))`: a stream, the next hits' behind);
+//           second (h_): the instance's words 0..11 (the world-to-object 3x3, which only the frame
+//           needs), without vertex normals the geometric normal (values 8..10 of the triangle
+//           record, F24_RECORD_SPAN(8, 3) words), the material's 16 words (address: the object's
+//           material or the record tail's), into its registers, which the back takes when idle;
+//           each burst's address comes from the words before, so a stage's go one after another
 //   back    normal: with vertex normals its hit's from `rgs_normal` (in order): if its squared
 //           length is zero, the geometric normal read here; without vertex normals the front's
 //   frame   d^, n^ facing the ray, t_hat, P, entering (`rgs_frame`): issued here, its result
@@ -34,7 +36,8 @@
 // inputs: the block control loads them once per frame.
 // Reads: valid/ready request of one word address, responses in order (valid, no back pressure: the
 // unit takes one every cycle), as trace_core's word port. The back's requests go first (its
-// surface is the older one); a FIFO of SRC_DEPTH bits notes each request's stage for its response.
+// surface is the older one), then the front's first stage's, then its second's; a FIFO of
+// SRC_DEPTH x 2 bits notes each request's stage for its response.
 // A surface's words are the C's (op reads), in the C's order but for a geometric normal that the
 // back reads after the material (vertex normals interpolated to zero length); the two stages'
 // reads interleave.
@@ -44,17 +47,20 @@
 // lerp 24 + entry 4 + sample 44) + the frame (118), which the next surfaces' steps overlap.
 // Throughput: a surface per its front's reads (about 45 to 60 cycles for a flat hit with a memory
 // answering in 1 to 4 cycles) while the back's part is shorter (about 10 cycles untextured once
-// its normal is there); the front holds a hit until the back takes it, so with vertex normals a
-// hit's normal chain overlaps the next hit's reads but not the one after; up to SLOTS surfaces
+// its normal is there); the second stage holds a hit until the back takes it, the first one
+// until the second is free, so with vertex normals a hit's normal chain overlaps the next hit's
+// reads and the record reads of the one after (whose chain starts as the second stage takes it);
+// up to SLOTS surfaces
 // between the frame's issue and the output; a miss or an inactive ray passes both stages in a
 // cycle each. Results leave in
 // the order the surfaces came in, with their thread id.
 // Resources: one each of `rgs_normal` (its own `rgs_lerp` for the normals), `rgs_lerp` (texture
-// coordinates), `rgs_frame`, `q12_of`, `tex_bilinear`; 3 `q12_mul`; per stage the record (19
-// words), a read buffer (16 words: the material's in the back), the matrix (9 W bits), the ray and
-// hit (the front's about 1.8 Kbit); the output queue (SLOTS x
+// coordinates), `rgs_frame`, `q12_of`, `tex_bilinear`; 3 `q12_mul`; per stage (the front's two
+// and the back) the ray and hit (about 0.4 Kbit) and the record (19 words); the front's second
+// stage and the back a read buffer (16 words: the material's in the back) and the matrix (9 W
+// bits), its first stage a 6-word buffer (the object's words); the output queue (SLOTS x
 // (TID_BITS + W + 234) bits: the fields of the surfaces in the frame); the request FIFO (SRC_DEPTH
-// bits); a 608-bit funnel shifter for the record's tail fields.
+// x 2 bits); a 608-bit funnel shifter for the record's tail fields.
 module rgs_surface #(
   parameter int E = 7,
   parameter int M = 16,
