@@ -175,7 +175,7 @@ module rgs_surface #(
   logic [TID_BITS-1:0] h_tid;
   logic h_hit, h_load;
   logic [V-1:0] h_o, h_d, h_n;
-  logic [31:0] h_tri, h_tri_base, h_flags, h_mat_addr, h_inst_addr;
+  logic [31:0] h_tri, h_tri_base, h_flags, h_mat_addr;
   logic [W-1:0] h_t, h_u, h_v, h_cos;
   logic [V*3-1:0] h_w2o;
   logic [31:0] h_rd_addr, h_buf [BUF], h_rec [REC_MAX];
@@ -502,8 +502,7 @@ module rgs_surface #(
       unique case (h_st)
         H_EMPTY:
           if (h_load) begin
-            {h_tid, h_hit, h_o, h_d, h_tri, h_tri_base, h_flags, h_inst_addr} <=
-              {f_tid, f_hit, f_o, f_d, f_tri, f_tri_base, f_flags, f_inst_addr};
+            {h_tid, h_hit, h_o, h_d, h_tri, h_tri_base, h_flags} <= {f_tid, f_hit, f_o, f_d, f_tri, f_tri_base, f_flags};
             {h_t, h_u, h_v, h_cos} <= {f_t, f_u, f_v, f_cos};
             h_rec <= f_rec;
             h_n <= '0;
