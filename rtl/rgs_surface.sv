@@ -504,7 +504,7 @@ module rgs_surface #(
           if (h_load) begin
             {h_tid, h_hit, h_o, h_d, h_tri, h_tri_base, h_flags} <= {f_tid, f_hit, f_o, f_d, f_tri, f_tri_base, f_flags};
             {h_t, h_u, h_v, h_cos} <= {f_t, f_u, f_v, f_cos};
-            h_rec <= f_rec;
+            for (int k = 0; k < REC_MAX; k++) h_rec[k] <= f_rec[k];
             h_n <= '0;
             if (f_st == F_REC) begin
               h_burst(f_inst_addr, 5'd12);  // the instance's matrix (the word 12 read, 13 in all)
