@@ -1,19 +1,21 @@
 // rgs_surface: the surface the RGS shades at a hit (paper sections 2.2 and 3, Figure 2 path g:
 // the shading's reads and the surface's geometry and colours; hls/units/rgs_surface.c
 // `rgs_surface_at`), bit for bit as the C, in two stages that work on consecutive surfaces at once
-// (a front reading the next hit's records while the back shades the one before; the frame and the
+// (a front reading the next hits' records while the back shades the one before; the frame and the
 // conversions beside the back, see Latency):
-//   front   the reads: the instance's object index (word 12), the
-//           object descriptor's words 2..7 (triangle and shading record addresses, flags), the
-//           triangle's shading record (shade_rec_words(flags) words, up to 19), the instance's
-//           words 0..11 (the world-to-object 3x3, which only the frame needs), without vertex
-//           normals the geometric normal (values 8..10 of the triangle record,
-//           F24_RECORD_SPAN(8, 3) words), the material's 16 words (address: the object's material
-//           or the record tail's); each burst's address comes from the words before, so they go
-//           one after another, into the front's registers, which the back takes when it is idle;
-//           with vertex normals the record's 3 codes and u, v go into `rgs_normal` as the record
-//           is there (decoded, interpolated as `rgs_lerp_normal`, the squared length's zero test
-//           as the C's `f24_is_zero(rgs_dot3(n, n))`: a stream, the next hits' behind)
+//   front   the reads, in two stages that work on consecutive hits at once (the first's reads go
+//           before the second's: they start the normals' chains):
+//           first (f_): the instance's object index (word 12), the object descriptor's words
+//           2..7 (triangle and shading record addresses, flags), the triangle's shading record
+//           (shade_rec_words(flags) words, up to 19); with vertex normals the record's 3 codes
+//           and u, v go into `rgs_normal` as the hit moves to the second stage (decoded,
+//           interpolated as `rgs_lerp_normal`, the squared length's zero test as the C's
+//           `f24_is_zero(rgs_dot3(n, n))`: a stream, the next hits' behind);
+//           second (h_): the instance's words 0..11 (the world-to-object 3x3, which only the frame
+//           needs), without vertex normals the geometric normal (values 8..10 of the triangle
+//           record, F24_RECORD_SPAN(8, 3) words), the material's 16 words (address: the object's
+//           material or the record tail's), into its registers, which the back takes when idle;
+//           each burst's address comes from the words before, so a stage's go one after another
 //   back    normal: with vertex normals its hit's from `rgs_normal` (in order): if its squared
 //           length is zero, the geometric normal read here; without vertex normals the front's
 //   frame   d^, n^ facing the ray, t_hat, P, entering (`rgs_frame`): issued here, its result
@@ -34,7 +36,8 @@
 // inputs: the block control loads them once per frame.
 // Reads: valid/ready request of one word address, responses in order (valid, no back pressure: the
 // unit takes one every cycle), as trace_core's word port. The back's requests go first (its
-// surface is the older one); a FIFO of SRC_DEPTH bits notes each request's stage for its response.
+// surface is the older one), then the front's first stage's, then its second's; a FIFO of
+// SRC_DEPTH x 2 bits notes each request's stage for its response.
 // A surface's words are the C's (op reads), in the C's order but for a geometric normal that the
 // back reads after the material (vertex normals interpolated to zero length); the two stages'
 // reads interleave.
@@ -44,17 +47,20 @@
 // lerp 24 + entry 4 + sample 44) + the frame (118), which the next surfaces' steps overlap.
 // Throughput: a surface per its front's reads (about 45 to 60 cycles for a flat hit with a memory
 // answering in 1 to 4 cycles) while the back's part is shorter (about 10 cycles untextured once
-// its normal is there); the front holds a hit until the back takes it, so with vertex normals a
-// hit's normal chain overlaps the next hit's reads but not the one after; up to SLOTS surfaces
+// its normal is there); the second stage holds a hit until the back takes it, the first one
+// until the second is free, so with vertex normals a hit's normal chain overlaps the next hit's
+// reads and the record reads of the one after (whose chain starts as the second stage takes it);
+// up to SLOTS surfaces
 // between the frame's issue and the output; a miss or an inactive ray passes both stages in a
 // cycle each. Results leave in
 // the order the surfaces came in, with their thread id.
 // Resources: one each of `rgs_normal` (its own `rgs_lerp` for the normals), `rgs_lerp` (texture
-// coordinates), `rgs_frame`, `q12_of`, `tex_bilinear`; 3 `q12_mul`; per stage the record (19
-// words), a read buffer (16 words: the material's in the back), the matrix (9 W bits), the ray and
-// hit (the front's about 1.8 Kbit); the output queue (SLOTS x
+// coordinates), `rgs_frame`, `q12_of`, `tex_bilinear`; 3 `q12_mul`; per stage (the front's two
+// and the back) the ray and hit (about 0.4 Kbit) and the record (19 words); the front's second
+// stage and the back a read buffer (16 words: the material's in the back) and the matrix (9 W
+// bits), its first stage a 6-word buffer (the object's words); the output queue (SLOTS x
 // (TID_BITS + W + 234) bits: the fields of the surfaces in the frame); the request FIFO (SRC_DEPTH
-// bits); a 608-bit funnel shifter for the record's tail fields.
+// x 2 bits); a 608-bit funnel shifter for the record's tail fields.
 module rgs_surface #(
   parameter int E = 7,
   parameter int M = 16,
@@ -140,7 +146,9 @@ module rgs_surface #(
     S_TSAMPLE, S_TINT
   } state_t;
   state_t st;
-  typedef enum logic [2:0] { F_IDLE, F_INST, F_OBJ, F_REC, F_W2O, F_GN, F_MAT, F_FULL } fstate_t;
+  typedef enum logic [2:0] { F_IDLE, F_INST, F_OBJ, F_REC, F_MISS } fstate_t;
+  typedef enum logic [2:0] { H_EMPTY, H_W2O, H_GN, H_MAT, H_FULL } hstate_t;
+  hstate_t h_st;
   fstate_t f_st;
 
   // ---- the transaction's inputs ----
@@ -154,14 +162,28 @@ module rgs_surface #(
   // registers, while the back works on the surface before; the back takes them (f_take) ----
   logic [TID_BITS-1:0] f_tid;
   logic f_hit;
-  logic [V-1:0] f_o, f_d, f_n;
-  logic [31:0] f_tri, f_tri_base, f_flags, f_mat_addr, f_inst_addr;
+  logic [V-1:0] f_o, f_d;
+  logic [31:0] f_tri, f_tri_base, f_flags, f_inst_addr;
   logic [W-1:0] f_t, f_u, f_v, f_cos;
-  logic [V*3-1:0] f_w2o;
-  logic [31:0] f_rd_addr, f_buf [BUF], f_rec [REC_MAX];
+  logic [31:0] f_rd_addr, f_buf [6], f_rec [REC_MAX];
   logic [4:0] f_rd_left, f_rsp_left, f_rsp_idx;
   logic f_done, f_take;
   assign f_done = f_rsp_left == 5'd0;
+  // the front's second stage (h_): a hit whose record is read (its normal's chain started) reads
+  // its matrix, geometric normal and material while the first stage (f_) reads the next hit's
+  // instance, object and record, so the next chains start without waiting for these reads
+  logic [TID_BITS-1:0] h_tid;
+  logic h_hit, h_load;
+  logic [V-1:0] h_o, h_d, h_n;
+  logic [31:0] h_tri, h_tri_base, h_flags, h_mat_addr;
+  logic [W-1:0] h_t, h_u, h_v, h_cos;
+  logic [V*3-1:0] h_w2o;
+  logic [31:0] h_rd_addr, h_buf [BUF], h_rec [REC_MAX];
+  logic [4:0] h_rd_left, h_rsp_left, h_rsp_idx;
+  logic h_done;
+  assign h_done = h_rsp_left == 5'd0;
+  // the first stage's hit (with its record, its normal's chain starting) or miss moves on
+  assign h_load = h_st == H_EMPTY && (f_st == F_MISS || f_st == F_REC && f_done && (!f_flags[0] || nrm_ready));
 
   // ---- the back's reads (a zero interpolated normal's geometric normal, a texture's entry) ----
   logic [31:0] rd_addr_q, buf_q [BUF], rec_q [REC_MAX];
@@ -177,20 +199,24 @@ module rgs_surface #(
 
   // ---- the word port, shared: the back's requests first (its surface is the older one); the
   // responses come in request order, so a FIFO of each request's side (1: the back) routes them ----
-  logic b_req, f_req, src_room, src_head, rsp_b, rsp_f, port_go;
+  logic b_req, f_req, h_req, src_room, rsp_b, rsp_f, rsp_h, port_go;
+  logic [1:0] src_head;  // 2: the back, 1: the front's first stage, 0: its second
   assign b_req = tex_port ? tex_req_valid : rd_left_q != 5'd0;
   assign f_req = f_rd_left != 5'd0;
-  assign mem_req_valid_o = (b_req || f_req) && src_room;
-  assign mem_addr_o = b_req ? (tex_port ? tex_req_addr : rd_addr_q) : f_rd_addr;
+  assign h_req = h_rd_left != 5'd0;
+  assign mem_req_valid_o = (b_req || f_req || h_req) && src_room;
+  assign mem_addr_o = b_req ? (tex_port ? tex_req_addr : rd_addr_q) : f_req ? f_rd_addr : h_rd_addr;
   assign port_go = src_room && mem_req_ready_i;  // a request offered now is taken
   /* verilator lint_off PINCONNECTEMPTY */
-  sync_fifo #(.W(1), .DEPTH(SRC_DEPTH)) u_src (
-    .clk_i, .rst_ni, .valid_i(mem_req_valid_o && mem_req_ready_i), .ready_o(src_room), .data_i(b_req),
+  sync_fifo #(.W(2), .DEPTH(SRC_DEPTH)) u_src (
+    .clk_i, .rst_ni, .valid_i(mem_req_valid_o && mem_req_ready_i), .ready_o(src_room),
+    .data_i(b_req ? 2'd2 : f_req ? 2'd1 : 2'd0),
     .valid_o(), .ready_i(mem_rsp_valid_i), .data_o(src_head)
   );
   /* verilator lint_on PINCONNECTEMPTY */
-  assign rsp_b = mem_rsp_valid_i && src_head;
-  assign rsp_f = mem_rsp_valid_i && !src_head;
+  assign rsp_b = mem_rsp_valid_i && src_head == 2'd2;
+  assign rsp_f = mem_rsp_valid_i && src_head == 2'd1;
+  assign rsp_h = mem_rsp_valid_i && src_head == 2'd0;
 
   // ---- the object's flags and the record's fields (shade_rec.h) ----
   /* verilator lint_off UNUSEDSIGNAL */
@@ -241,7 +267,7 @@ module rgs_surface #(
     .clk_i, .rst_ni, .valid_i(nrm_valid), .ready_o(nrm_ready), .codes_i(f_codes), .u_i(f_u), .v_i(f_v),
     .valid_o(nrm_ovalid), .ready_i(nrm_take), .n_o(nrm_n), .zero_o(nrm_zero));
   assign nrm_take = st == S_NORM && nrm_ovalid;
-  assign nrm_valid = f_st == F_REC && f_done && f_flags[0];
+  assign nrm_valid = h_load && f_st == F_REC && f_flags[0];
 
   /* verilator lint_off PINCONNECTEMPTY */
   // the interpolation of a texture's s and t (tail coordinates i, 2+i, 4+i)
@@ -362,10 +388,10 @@ module rgs_surface #(
   end
   // a miss joins as the back takes it from the front, with zero fields; a hit at the end of its
   // colours (S_TINT)
-  assign f_take = st == S_IDLE && f_st == F_FULL && q_room;
-  assign q_push = st == S_TINT || (f_take && !f_hit);
+  assign f_take = st == S_IDLE && h_st == H_FULL && q_room;
+  assign q_push = st == S_TINT || (f_take && !h_hit);
   assign q_in = st == S_TINT ? {tid_q, 1'b1, mat_q, unlit_q, k_q, eta_q, kd_q, kr_q, kt_q, ks_q, base_v, emis_v, tint_v}
-                             : {f_tid, (QW - TID_BITS)'(0)};
+                             : {h_tid, (QW - TID_BITS)'(0)};
   sync_fifo #(.W(QW), .DEPTH(SLOTS)) u_queue (
     .clk_i, .rst_ni, .valid_i(q_push), .ready_o(q_room), .data_i(q_in),
     .valid_o(q_any), .ready_i(ready_i && (!q_hit || fr_ovalid)), .data_o(q_head)
@@ -382,11 +408,11 @@ module rgs_surface #(
   assign entering_o = q_hit && fr_entering;
 
   // ---- the front's sequence ----
-  logic [31:0] rec_addr, f_mat_at;
+  logic [31:0] rec_addr, h_mat_at;
   assign rec_addr = f_buf[1] + 32'(rec_words(f_buf[5][5:0])) * f_tri;
   // the material: the object's (flags 16..31) or the record tail's first 16 bits
-  assign f_mat_at = mat_base_i + 32'd16 * (f_flags[3] ? {16'd0, f_flags[31:16]}
-                                                       : {16'd0, f_rec[f_flags[0] ? 4 : 0][15:0]});
+  assign h_mat_at = mat_base_i + 32'd16 * (h_flags[3] ? {16'd0, h_flags[31:16]}
+                                                       : {16'd0, h_rec[h_flags[0] ? 4 : 0][15:0]});
 
   // a burst of n words from a: the front's next read
   task automatic f_burst(input logic [31:0] a, input logic [4:0] n);
@@ -408,7 +434,7 @@ module rgs_surface #(
       end
       if (rsp_f && f_rsp_left != 5'd0) begin
         if (f_st == F_REC) f_rec[f_rsp_idx] <= mem_rdata_i;
-        else f_buf[f_rsp_idx[3:0]] <= mem_rdata_i;
+        else f_buf[f_rsp_idx[2:0]] <= mem_rdata_i;
         f_rsp_idx <= f_rsp_idx + 5'd1;
         f_rsp_left <= f_rsp_left - 5'd1;
       end
@@ -430,7 +456,7 @@ module rgs_surface #(
             if (active_i && inst_i != NO_HIT) begin
               f_burst(inst_base_i + 32'(INST_WORDS) * inst_i + 32'd12, 5'd1);
               f_st <= F_INST;
-            end else f_st <= F_FULL;
+            end else f_st <= F_MISS;
           end
         F_INST:
           if (f_done) begin
@@ -444,35 +470,70 @@ module rgs_surface #(
             f_burst(rec_addr, rec_words(f_buf[5][5:0]));
             f_st <= F_REC;
           end
-        F_REC:
-          if (f_done && (!f_flags[0] || nrm_ready)) begin  // with vertex normals into rgs_normal
-            f_n <= '0;
-            f_burst(f_inst_addr, 5'd12);  // the instance's matrix (the word 12 read, 13 in all)
-            f_st <= F_W2O;
+        F_REC, F_MISS: if (h_load) f_st <= F_IDLE;  // into the second stage
+        default: f_st <= F_IDLE;
+      endcase
+    end
+  end
+
+  // a burst of n words from a: the second stage's next read
+  task automatic h_burst(input logic [31:0] a, input logic [4:0] n);
+    h_rd_addr <= a;
+    h_rd_left <= n;
+    h_rsp_left <= n;
+    h_rsp_idx <= '0;
+  endtask
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      h_st <= H_EMPTY;
+      h_rd_left <= '0;
+      h_rsp_left <= '0;
+    end else begin
+      if (h_req && !b_req && !f_req && port_go) begin
+        h_rd_addr <= h_rd_addr + 32'd1;
+        h_rd_left <= h_rd_left - 5'd1;
+      end
+      if (rsp_h && h_rsp_left != 5'd0) begin
+        h_buf[h_rsp_idx[3:0]] <= mem_rdata_i;
+        h_rsp_idx <= h_rsp_idx + 5'd1;
+        h_rsp_left <= h_rsp_left - 5'd1;
+      end
+      unique case (h_st)
+        H_EMPTY:
+          if (h_load) begin
+            {h_tid, h_hit, h_o, h_d, h_tri, h_tri_base, h_flags} <= {f_tid, f_hit, f_o, f_d, f_tri, f_tri_base, f_flags};
+            {h_t, h_u, h_v, h_cos} <= {f_t, f_u, f_v, f_cos};
+            for (int k = 0; k < REC_MAX; k++) h_rec[k] <= f_rec[k];
+            h_n <= '0;
+            if (f_st == F_REC) begin
+              h_burst(f_inst_addr, 5'd12);  // the instance's matrix (the word 12 read, 13 in all)
+              h_st <= H_W2O;
+            end else h_st <= H_FULL;
           end
-        F_W2O:
-          if (f_done) begin
+        H_W2O:
+          if (h_done) begin
             for (int k = 0; k < 3; k++)
-              for (int r = 0; r < 3; r++) f_w2o[W*(3*k+r) +: W] <= f_buf[4*k+r][W-1:0];
-            if (!f_flags[0]) begin  // no vertex normals: the geometric normal, as the C reads it next
-              f_burst(f_tri_base + 32'(TRI_WORDS) * f_tri + 32'(GN_WORD), 5'(GN_SPAN));
-              f_st <= F_GN;
+              for (int r = 0; r < 3; r++) h_w2o[W*(3*k+r) +: W] <= h_buf[4*k+r][W-1:0];
+            if (!h_flags[0]) begin  // no vertex normals: the geometric normal, as the C reads it next
+              h_burst(h_tri_base + 32'(TRI_WORDS) * h_tri + 32'(GN_WORD), 5'(GN_SPAN));
+              h_st <= H_GN;
             end else begin
-              f_mat_addr <= f_mat_at;
-              f_burst(f_mat_at, 5'd16);
-              f_st <= F_MAT;
+              h_mat_addr <= h_mat_at;
+              h_burst(h_mat_at, 5'd16);
+              h_st <= H_MAT;
             end
           end
-        F_GN:
-          if (f_done) begin
-            for (int c = 0; c < 3; c++) f_n[W*c +: W] <= W'({f_buf[2], f_buf[1], f_buf[0]} >> (GN_SHIFT + W * c));
-            f_mat_addr <= f_mat_at;
-            f_burst(f_mat_at, 5'd16);
-            f_st <= F_MAT;
+        H_GN:
+          if (h_done) begin
+            for (int c = 0; c < 3; c++) h_n[W*c +: W] <= W'({h_buf[2], h_buf[1], h_buf[0]} >> (GN_SHIFT + W * c));
+            h_mat_addr <= h_mat_at;
+            h_burst(h_mat_at, 5'd16);
+            h_st <= H_MAT;
           end
-        F_MAT: if (f_done) f_st <= F_FULL;
-        F_FULL: if (f_take) f_st <= F_IDLE;
-        default: f_st <= F_IDLE;
+        H_MAT: if (h_done) h_st <= H_FULL;
+        H_FULL: if (f_take) h_st <= H_EMPTY;
+        default: h_st <= H_EMPTY;
       endcase
     end
   end
@@ -501,36 +562,36 @@ module rgs_surface #(
       end
       unique case (st)
         S_IDLE:  // a miss has joined the queue as it was taken (q_push)
-          if (f_take && f_hit) begin
-            tid_q <= f_tid;
-            o_q <= f_o;
-            d_q <= f_d;
-            tri_q <= f_tri;
-            t_q <= f_t;
-            u_q <= f_u;
-            v_q <= f_v;
-            cos_q <= f_cos;
-            w2o_q <= f_w2o;
-            tri_base_q <= f_tri_base;
-            flags_q <= f_flags;
-            for (int k = 0; k < REC_MAX; k++) rec_q[k] <= f_rec[k];
-            for (int k = 0; k < BUF; k++) buf_q[k] <= f_buf[k];  // the material's words
-            mat_q <= f_mat_addr;
-            tex_idx_q[0] <= f_buf[7];
-            tex_idx_q[1] <= f_buf[12];
-            unlit_q <= f_buf[8][3];
-            k_q <= f_buf[14][29:26];
-            eta_q <= f_buf[13][W-1:0];
-            kd_q <= f_buf[14][12:0];
-            kr_q <= f_buf[14][25:13];
-            kt_q <= f_buf[15][12:0];
-            ks_q <= f_buf[15][25:13];
-            n_q <= f_n;  // the geometric normal without vertex normals
+          if (f_take && h_hit) begin
+            tid_q <= h_tid;
+            o_q <= h_o;
+            d_q <= h_d;
+            tri_q <= h_tri;
+            t_q <= h_t;
+            u_q <= h_u;
+            v_q <= h_v;
+            cos_q <= h_cos;
+            w2o_q <= h_w2o;
+            tri_base_q <= h_tri_base;
+            flags_q <= h_flags;
+            for (int k = 0; k < REC_MAX; k++) rec_q[k] <= h_rec[k];
+            for (int k = 0; k < BUF; k++) buf_q[k] <= h_buf[k];  // the material's words
+            mat_q <= h_mat_addr;
+            tex_idx_q[0] <= h_buf[7];
+            tex_idx_q[1] <= h_buf[12];
+            unlit_q <= h_buf[8][3];
+            k_q <= h_buf[14][29:26];
+            eta_q <= h_buf[13][W-1:0];
+            kd_q <= h_buf[14][12:0];
+            kr_q <= h_buf[14][25:13];
+            kt_q <= h_buf[15][12:0];
+            ks_q <= h_buf[15][25:13];
+            n_q <= h_n;  // the geometric normal without vertex normals
             qin_q <= '0;
             qout_q <= '0;
             in_q <= '0;
             out_q <= '0;
-            st <= f_flags[0] ? S_NORM : S_FRAME;
+            st <= h_flags[0] ? S_NORM : S_FRAME;
           end
         S_NORM:  // the hit's normal from rgs_normal (its chain started as the front had the record)
           if (nrm_ovalid) begin
