@@ -82,7 +82,7 @@ int img_read(const char *path, img_t *out, char *err, size_t errlen)
 /* Through the library, as path.tmp renamed when complete (img_api.h). */
 static int library_write(const char *path, const img_t *img, const char *const *names, char *err, size_t errlen)
 {
-    char tmp[4200];
+    char tmp[IMG_TMP_PATH_MAX];
     if (!api())
         return unavailable(err, errlen);
     if (img_tmp_path(path, tmp, sizeof tmp, err, errlen) != 0)

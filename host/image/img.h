@@ -48,9 +48,10 @@ const char *img_library_version(void);
 int img_ready(char *err, size_t errlen);
 
 /* img_ready for a command that will write to path (NULL: none) an unnamed image of that many
- * channels (img_write, named 0) or one with named channels (img_write_channels, named 1, any count): 0 without loading the
- * library when the program writes that itself (PNG: host/image/img_png.c, grey or RGB; EXR:
- * img_exr.c, RGB, RGBA or named channels), by the same rule as the writers. */
+ * channels (img_write, named 0) or one with named channels (img_write_channels, named 1, any
+ * count): 0 without loading the library when the program writes that itself (PNG:
+ * host/image/img_png.c, grey or RGB; EXR: img_exr.c, RGB, RGBA or named channels), by the
+ * writers' own rule. */
 int img_ready_for(const char *path, int channels, int named, char *err, size_t errlen);
 
 #ifdef __cplusplus

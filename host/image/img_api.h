@@ -27,6 +27,7 @@ typedef struct {
  * keep only whole frames). img_tmp_path: path.tmp into tmp (0; -1 with err set if too long).
  * img_tmp_commit: renames tmp to path when written (0), else removes it; -1 when not written
  * (err set by the writer) or the rename failed (err set here). Defined in img.c. */
+enum { IMG_TMP_PATH_MAX = 4200 }; /* the writers' buffer for path.tmp */
 int img_tmp_path(const char *path, char *tmp, size_t len, char *err, size_t errlen);
 int img_tmp_commit(const char *tmp, const char *path, int written, char *err, size_t errlen);
 

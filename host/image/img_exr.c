@@ -117,7 +117,7 @@ static exr_result_t write_chunks(exr_context_t f, const img_t *img, const char *
 
 int img_exr_write(const char *path, const img_t *img, const char *const *names, char *err, size_t errlen)
 {
-    char tmp[4200];
+    char tmp[IMG_TMP_PATH_MAX];
     if (img_tmp_path(path, tmp, sizeof tmp, err, errlen) != 0)
         return -1;
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;

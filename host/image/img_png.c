@@ -32,7 +32,7 @@ static unsigned char quantize(float v)
 int img_png_write(const char *path, const img_t *img, char *err, size_t errlen)
 {
     const size_t n = (size_t)img->width * (size_t)img->height * (size_t)img->channels;
-    char tmp[4200];
+    char tmp[IMG_TMP_PATH_MAX];
     if (img_tmp_path(path, tmp, sizeof tmp, err, errlen) != 0)
         return -1;
     unsigned char *bytes = malloc(n ? n : 1);

@@ -173,8 +173,9 @@ int cmd_reference(int argc, char **argv)
     ref_scene r;
     char err[600];
     /* before the render, not after it: -o and --aov are written with named channels */
-    if (!cli_parse_only && (img_ready_for(out, 0, 1, err, sizeof err) != 0 || img_ready_for(png, 3, 0, err, sizeof err) != 0 ||
-                            img_ready_for(aov, 0, 1, err, sizeof err) != 0)) {
+    if (!cli_parse_only &&
+        (img_ready_for(out, 0, 1, err, sizeof err) != 0 || img_ready_for(png, 3, 0, err, sizeof err) != 0 ||
+         img_ready_for(aov, 0, 1, err, sizeof err) != 0)) {
         cli_error("reference", "%s", err);
         return SAARCOR_EXIT_INTERNAL;
     }
