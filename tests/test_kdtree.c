@@ -201,7 +201,8 @@ static uint32_t expected_max_depth(const kd_source *src, const kd_params *p)
     if (p->max_depth)
         return p->max_depth;
     const int shallow = p->shallow_from && src->count >= p->shallow_from;
-    const double d = src->count > 1 ? (shallow ? 5.0 : 8.0) + (shallow ? 1.0 : 1.3) * log2((double)src->count) : 8.0;
+    const int binned = p->bins > 0 && src->count >= p->bins_from; /* a binned shallow tree: one level more */
+    const double d = src->count > 1 ? (shallow ? 5.0 + binned : 8.0) + (shallow ? 1.0 : 1.3) * log2((double)src->count) : 8.0;
     return d >= 64 ? 64 : (uint32_t)lround(d);
 }
 
@@ -568,6 +569,40 @@ static void soup_hybrid(void **state)
     free(sp.t);
 }
 
+static void assert_same_tree(const kd_tree *a, const kd_tree *b);
+
+/* bins_from picks the mode per tree: a tree of at least bins_from primitives is binned (and, when
+ * shallow, one level deeper), a smaller one is exact throughout, the same tree as exact mode's. */
+static void bins_from_per_tree(void **state)
+{
+    (void)state;
+    soup so = random_soup(3000, 31);
+    const kd_source src = tri_source(&so);
+    kd_params binned = params(128, grid8), exact = params(0, grid8);
+    binned.exact_max = 48;
+    binned.shallow_from = exact.shallow_from = 1000;
+    kd_params at = binned, above = binned;
+    at.bins_from = 3000;
+    above.bins_from = 3001;
+    assert_int_equal(kd_depth_bound(&binned, 3000), 18); /* round(6 + log2 3000) */
+    assert_int_equal(kd_depth_bound(&at, 3000), 18);
+    assert_int_equal(kd_depth_bound(&above, 3000), 17); /* round(5 + log2 3000), exact's */
+    kd_tree b, a, x, e;
+    assert_int_equal(kd_build(&src, &binned, &b), 0);
+    assert_int_equal(kd_build(&src, &at, &a), 0);
+    assert_int_equal(kd_build(&src, &above, &x), 0);
+    assert_int_equal(kd_build(&src, &exact, &e), 0);
+    check_tree(&src, &binned, &b);
+    assert_same_tree(&b, &a);
+    assert_same_tree(&e, &x);
+    assert_true(b.n_nodes != e.n_nodes || memcmp(b.nodes, e.nodes, b.n_nodes * sizeof *b.nodes) != 0);
+    kd_free(&b);
+    kd_free(&a);
+    kd_free(&x);
+    kd_free(&e);
+    free(so.t);
+}
+
 /* ---- tests: quantized planes ---------------------------------------------------------------- */
 
 static void quantized(void **state)
@@ -890,9 +925,9 @@ static void zero_area_triangles(void **state)
     }
     const kd_source src = tri_source(&so);
     for (uint32_t bins = 0; bins <= 32; bins += 32) {
-        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, NULL, 1, 0, 0, 0, 0, NULL });
-        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, grid8, 1, 0, 0, 0, 0, NULL });
-        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, grid8, 1, 0, 16, 0, 0, NULL });
+        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, NULL, 1, 0, 0, 0, 0, NULL, 0 });
+        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, grid8, 1, 0, 0, 0, 0, NULL, 0 });
+        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, grid8, 1, 0, 16, 0, 0, NULL, 0 });
     }
     free(so.t);
 }
@@ -1082,6 +1117,7 @@ static void defaults(void **state)
     assert_int_equal(p.bins, 0);
     assert_null(p.quantize);
     assert_int_equal(p.exact_max, 0);
+    assert_int_equal(p.bins_from, 0);
 }
 
 /* Exact mode counts events in 32 bits: a source of 2^32 - 1 primitives is refused before anything
@@ -1456,6 +1492,7 @@ int main(void)
         cmocka_unit_test(boxes_binned),
         cmocka_unit_test(soup_binned),
         cmocka_unit_test(soup_hybrid),
+        cmocka_unit_test(bins_from_per_tree),
         cmocka_unit_test(quantized),
         cmocka_unit_test(non_monotone_quantize),
         cmocka_unit_test(sah_beats_median),

@@ -41,7 +41,7 @@ typedef struct {
     double cost_intersection;  /* C_i: cost of one primitive test, default 1.5 */
     double empty_bonus;        /* a split with an empty side costs (1 - empty_bonus) x, default 0.2 */
     uint32_t max_depth;        /* 0: automatic, 8 + 1.3 log2(count) (pbrt's), at most 64; for at least
-                                  shallow_from primitives 5 + log2(count) */
+                                  shallow_from primitives 5 + log2(count), 6 + log2(count) if binned */
     uint32_t leaf_size;        /* never split a node with at most this many primitives, default 1 */
     uint32_t bins;             /* 0: exact SAH over all events; n > 0: binned SAH with n bins per axis */
     /* Snaps a candidate split position to a representable device value (NULL: no snapping).
@@ -63,6 +63,8 @@ typedef struct {
     uint64_t *shared_nodes;    /* NULL (default): max_nodes bounds this tree; else a counter (start
                                   it at 0) that the builds given it charge together, concurrently
                                   or not, so that max_nodes bounds the nodes of all of them */
+    uint32_t bins_from;        /* bins > 0: only trees of at least this many primitives are binned, smaller
+                                  ones are exact throughout; 0 (default): every tree */
 } kd_params;
 
 typedef struct {

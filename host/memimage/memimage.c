@@ -134,15 +134,18 @@ void mi_params_default(mi_params *p)
      * on terrain 194 / 168 / 160; before the instance records were put on cache lines) */
     p->top.cost_intersection = 3.0;
     p->bottom.quantize = quantize;
-    /* the exact event sweep with perfect splits throughout (bins = 0). --kd-bins N bins the nodes
-     * over exact_max triangles instead: 1.5x faster to build (bunny, gallery) and the SAH cost of the
-     * bench-build scenes' trees within +-2% (bunny +1.1%, gallery -0.7%, teapot -4.3%), but other
-     * trees move the leaf entries the rebase unit starts from, and with them the images by a
-     * rounding either way (docs/memory-image.md): the default keeps the trees the golden images
-     * were made with */
-    p->bottom.bins = 0;
+    /* large meshes (from shallow_from triangles, the bunny and the gallery's statues) binned: the
+     * nodes over exact_max triangles into 128 bins, the exact event sweep with perfect splits and
+     * flat face cells below, one level deeper (kd_params.max_depth). Against the exact sweep
+     * throughout: the gallery's trees about 18% faster to build, fewer nodes (bunny.glb 170k ->
+     * 159k), fewer cycles per frame (bunny -2.8%, gallery -1.1%, terrain -5.3%) at a lower SAH
+     * cost (docs/memory-image.md). Smaller meshes keep the exact sweep throughout: their builds take
+     * milliseconds, and binning their upper nodes loses the face cells of walls and floors (the
+     * room: +4.9% cycles with 128 bins over 48). --kd-bins N bins every object's tree. */
+    p->bottom.bins = 128;
+    p->bottom.bins_from = 1u << 15;
     p->bottom.exact_max = 48;
-    /* large meshes at most log2(N) + 5 deep: below that the SAH's levels hold most of the nodes
+    /* large meshes at most log2(N) + 5 deep (+ 6 binned): below that the SAH's levels hold most of the nodes
      * but save neither cycles nor traffic in this hardware (the bunny: 29 levels, 146 bytes per
      * triangle, 6.2 cycles per ray; 22 levels, 87 bytes, 5.9 cycles); smaller meshes keep
      * pbrt's depth (the plants' foliage meshes are faster with it; docs/memory-image.md) */

@@ -114,8 +114,10 @@ int scene_opts_parse(scene_opts *o, const char *cmd, int c, const char *arg)
             cli_usage_error(cmd, "bad --kd-bins '%s' (expected 0 or 2..1024)", arg);
             return -1;
         }
-        if (r > 0)
+        if (r > 0) { /* every object's tree, not only the large meshes' (mi_params_default) */
             o->mi.bottom.bins = u;
+            o->mi.bottom.bins_from = 0;
+        }
         return r;
     default: return 0;
     }
