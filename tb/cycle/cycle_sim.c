@@ -12,8 +12,8 @@
 
 const char *const unit_names[UNIT_KINDS] = { "RGS", "transformation", "traversal", "list", "intersection" };
 const char *const mem_kind_names[MEM_KINDS] = { "kd_nodes", "lists", "matrices", "shading" };
-const char *const op_kind_names[OP_KINDS] = { "raygen", "xform", "instance", "shadow", "children", "trav",
-                                              "list",   "leaf",  "isect",    "surface", "light",   "accum" };
+const char *const op_kind_names[OP_KINDS] = { "raygen", "xform", "instance", "shadow",  "children", "trav",
+                                              "objclip", "list", "leaf",     "isect",   "surface",  "light", "accum" };
 
 void cycle_config_default(cycle_config *c)
 {
@@ -24,18 +24,22 @@ void cycle_config_default(cycle_config *c)
      * (the operators' default stages add 6, mul 4, div 11, cmp 2, sqrt 9, cvt 2: >= 60 MHz on
      * iCE40); docs/cycle-model.md derives each. */
     c->latency[OP_RAYGEN] = 26;   /* rgs_raygen: block register 1 + f24_from_i32 2 + xform_unit 22 + packet 1 */
-    c->latency[OP_XFORM] = 22;    /* xform_unit: mul 4 + 3 add */
+    c->latency[OP_XFORM] = 34;    /* isect_rebased's origin path (l = p.lo - C.lo, c = h + l: 2 add) + xform_unit 22 */
     c->latency[OP_INSTANCE] = 50; /* rebase_unit 25, then xform_wide 25 (the origins' chain) */
     c->latency[OP_SHADOW] = 1;    /* rgs_light forms the shadow rays: its register to the trace port */
     c->latency[OP_CHILDREN] = 1;  /* rgs_spawn (in rgs_accum) forms the child rays: the stack's register */
-    c->latency[OP_TRAV] = 36;     /* trav_unit: state and stack read, prune 4, queue 2, trav_node 21 (sub 6 + div 11 +
-                                   * min/max 2 + cmp 2), split and push 6, output 1; the node read before it (a clip: 6
-                                   * slots, one per slab plane, then the same 36) */
-    c->latency[OP_LIST] = 3;      /* list_unit: read, compare, update */
-    c->latency[OP_LEAF] = 25;     /* rebase_unit after the list entry's slot (the entry's 3 beside it) */
-    c->latency[OP_ISECT] = 29;    /* isect_unit: div 11 + mul 4 + 2 add + cmp 2 */
-    c->latency[OP_SURFACE] = 198; /* rgs_surface pipelined: shade_rec_decode 42 + rgs_lerp 22 + f24_dot3 16 + rgs_frame 118 */
-    c->latency[OP_LIGHT] = 87;    /* rgs_light (rgs_light_colour's 27 beside it) */
+    c->latency[OP_TRAV] = 43;     /* trav_unit 38 (its node read answering in the next cycle) + 2 (the kd-node cache's
+                                   * hit: 3 cycles) + 3 (trace_thread's states from the result to the next request);
+                                   * the scene clip: its 6 slots, trav_clip's chain, the start */
+    c->latency[OP_OBJCLIP] = 64;  /* trace_thread: the object's record (2 matrix cache lines), the mailboxes cleared
+                                   * (a list unit operation), the relative distances (an adder batch), the clip (6
+                                   * slots, trav_clip), the start (a traversal operation of its own) */
+    c->latency[OP_LIST] = 18;     /* list_unit 3, its list word through the list cache (hit 3), trace_thread's states */
+    c->latency[OP_LEAF] = 46;     /* the list entry's 18, then rebase_unit 25 (a batch) and its states */
+    c->latency[OP_ISECT] = 35;    /* isect_unit (div 11 + mul 4 + 2 add + cmp 2) 29 + best_t = t0 + t (add 6) */
+    c->latency[OP_SURFACE] = 223; /* rgs_surface: the first hit's front reads, rgs_normal 87, rgs_frame 118 */
+    c->surface_hit = 17;          /* rgs_surface's front: a hit's reads (instance word, object, record) in turn */
+    c->latency[OP_LIGHT] = 92;    /* rgs_light (rgs_light_colour's 27 beside it) + rgs_ctrl's states */
     c->latency[OP_ACCUM] = 67;    /* rgs_accum: rgs_spawn's */
     c->tile = 16;
     c->epoch = 256;
@@ -304,6 +308,15 @@ static int cmp_u32(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* The cycles from an operation's last issue slot to its result: its kind's latency; a surface
+ * operation's hits pass rgs_surface's front stage one after another (its reads, each burst after
+ * the one its address comes from), so each hit after the first adds surface_hit. */
+static uint32_t op_latency(const cycle_config *cfg, const unit_op *op)
+{
+    const uint32_t further = op->kind == OP_SURFACE && op->slots > 1 ? op->slots - 1 : 0;
+    return cfg->latency[op->kind] + further * cfg->surface_hit;
+}
+
 /* One cycle: compute (each unit picks its issue from the current state), then commit. */
 static void pipe_cycle(pipe_state *p)
 {
@@ -328,7 +341,7 @@ static void pipe_cycle(pipe_state *p)
         p->st.ops[u]++;
         if (p->probe)
             p->probe(p->probe_arg, p->index, SCHED_ISSUE, p->now, (uint32_t)u, issue[u], t->op.slots);
-        heap_push(p, p->now + t->op.slots - 1 + p->cfg->latency[t->op.kind], issue[u]);
+        heap_push(p, p->now + t->op.slots - 1 + op_latency(p->cfg, &t->op), issue[u]);
         if (p->tp) {
             trace_issue(p->tp, u, p->now, issue[u], t->op.slots);
             trace_queue(p->tp, u, p->now, p->queue[u].count);
