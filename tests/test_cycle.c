@@ -254,22 +254,25 @@ static void threads_hide_latency(void **state)
 /* Every operation is charged the latency of its kind (trace.h OP_*): with one thread nothing
  * overlaps (the thread waits for each operation's reads and result before the next), so one more
  * cycle of kind k's latency adds exactly the frame's operations of kind k, counted here by stepping
- * the blocks as the functional mode does. */
+ * the blocks as the functional mode does; and one more cycle of surface_hit adds a cycle per hit
+ * of a surface operation after its first (rgs_surface's front reads the hits in turn). */
 static void latency_per_kind(void **state)
 {
     (void)state;
     static frame f;
     image im;
     image_build(&im, "room");
-    uint64_t count[OP_KINDS] = { 0 };
+    uint64_t count[OP_KINDS] = { 0 }, further_hits = 0;
     for (uint32_t y = 0; y < H; y += 2)
         for (uint32_t x = 0; x < W; x += 2) {
             static rgs_block b;
             unit_op op;
             rgs_counters c = { 0 };
             rgs_block_begin(im.mem, x, y, &b);
-            while (rgs_step(im.mem, &full, &b, &op, &c))
+            while (rgs_step(im.mem, &full, &b, &op, &c)) {
                 count[op.kind]++;
+                further_hits += op.kind == OP_SURFACE ? op.slots - 1 : 0;
+            }
         }
     cycle_config cfg;
     cycle_config_default(&cfg);
@@ -283,6 +286,10 @@ static void latency_per_kind(void **state)
         cfg.latency[k]--;
         assert_int_equal(more.cycles - base.cycles, count[k]);
     }
+    assert_true(further_hits > 0);
+    cfg.surface_hit++;
+    cycle_with(&cfg, im.mem, &full, &f, &more);
+    assert_int_equal(more.cycles - base.cycles, further_hits);
     image_free(&im);
 }
 

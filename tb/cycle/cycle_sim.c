@@ -103,6 +103,7 @@ typedef struct {
     thread *th;
     ready_set queue[UNIT_KINDS];
     uint64_t free_at[UNIT_KINDS];
+    uint64_t shade_port_free; /* the RGS's word port to the shading cache is free from this cycle on */
     uint64_t *heap; /* events: cycle << 16 | thread, min first */
     uint32_t heap_n;
     uint32_t tiles[TILE_QUEUE], n_tiles; /* tile queue filled by the controller */
@@ -317,6 +318,21 @@ static uint32_t op_latency(const cycle_config *cfg, const unit_op *op)
     return cfg->latency[op->kind] + further * cfg->surface_hit;
 }
 
+/* The cycle a surface operation issued now starts: the RGS's block controllers read their
+ * surfaces' words through one port to the shading cache, a word a cycle (rtl/dynrtp.sv's
+ * mem_port), so its words follow those of the surfaces issued before it. Other operations: now. */
+static uint64_t shade_port_start(pipe_state *p, const unit_op *op)
+{
+    if (op->kind != OP_SURFACE)
+        return p->now;
+    uint64_t words = 0;
+    for (uint32_t r = 0; r < op->n_reads; r++)
+        words += op->read[r].kind == MEM_SHADING ? op->read[r].words : 0u;
+    const uint64_t start = p->shade_port_free > p->now ? p->shade_port_free : p->now;
+    p->shade_port_free = start + words;
+    return start;
+}
+
 /* One cycle: compute (each unit picks its issue from the current state), then commit. */
 static void pipe_cycle(pipe_state *p)
 {
@@ -341,7 +357,7 @@ static void pipe_cycle(pipe_state *p)
         p->st.ops[u]++;
         if (p->probe)
             p->probe(p->probe_arg, p->index, SCHED_ISSUE, p->now, (uint32_t)u, issue[u], t->op.slots);
-        heap_push(p, p->now + t->op.slots - 1 + op_latency(p->cfg, &t->op), issue[u]);
+        heap_push(p, shade_port_start(p, &t->op) + t->op.slots - 1 + op_latency(p->cfg, &t->op), issue[u]);
         if (p->tp) {
             trace_issue(p->tp, u, p->now, issue[u], t->op.slots);
             trace_queue(p->tp, u, p->now, p->queue[u].count);
@@ -555,6 +571,7 @@ static void pipe_reset(pipe_state *p, const uint32_t *mem, const rgs_config *rcf
         memset(p->queue[u].ready, 0, ready_words(p->cfg->threads_per_pipe) * sizeof(uint64_t));
         p->free_at[u] = 0;
     }
+    p->shade_port_free = 0;
     p->heap_n = p->n_tiles = p->have_tile = p->active = 0;
     p->now = p->last_event = 0;
     memset(&p->counters, 0, sizeof p->counters);
