@@ -85,6 +85,7 @@ typedef struct {
     uint32_t state, x0, y0, wait_kind;
     uint64_t since; /* cycle the current state began */
     uint64_t began; /* cycle it took its block (per-pixel cycles) */
+    uint32_t light_held; /* the light record its block controller holds (rgs_ctrl; UINT32_MAX: none) */
     pixel_cost cost[TRACE_PACKET]; /* its block's per-pixel cost so far (if kept) */
 } thread;
 
@@ -324,19 +325,42 @@ static uint32_t op_latency(const cycle_config *cfg, const unit_op *op)
     return cfg->latency[op->kind] + further * cfg->surface_hit;
 }
 
-/* The cycle a surface operation issued now starts: the RGS's block controllers read their
- * surfaces' words through one port to the shading cache, a word a cycle (rtl/dynrtp.sv's
- * mem_port), so its words follow those of the surfaces issued before it. Other operations: now. */
-static uint64_t shade_port_start(pipe_state *p, const unit_op *op)
+/* The shading words an operation reads (on the RGS's word port in the RTL). */
+static uint64_t shading_words(const unit_op *op)
 {
-    if (op->kind != OP_SURFACE)
-        return p->now;
     uint64_t words = 0;
     for (uint32_t r = 0; r < op->n_reads; r++)
         words += op->read[r].kind == MEM_SHADING ? op->read[r].words : 0u;
+    return words;
+}
+
+/* Takes `words` cycles of the RGS's word port to the shading cache from its first free cycle at
+ * or after now, and returns that cycle: the RGS's block controllers share one port, a word a
+ * cycle (rtl/dynrtp.sv: mem_port onto the shading cache_read). */
+static uint64_t shade_port_take(pipe_state *p, uint64_t words)
+{
     const uint64_t start = p->shade_port_free > p->now ? p->shade_port_free : p->now;
     p->shade_port_free = start + words;
     return start;
+}
+
+#define SHADE_HIT 3u /* cycles from a word's request to its answer on a shading cache hit (cache_read) */
+
+/* The cycle the RGS operation t issues now starts its work. A surface reads all its words
+ * through the port as its front and back go (its latency counts their bursts), so it starts when
+ * the port has taken the words of the operations before it. A light: rgs_ctrl reads the light's
+ * record (S_LREC, a word a cycle) before rgs_light starts, unless it holds that light's record
+ * from its last light operation (a scene of one light reads it once per controller). Others: now. */
+static uint64_t rgs_start(pipe_state *p, thread *t)
+{
+    const unit_op *op = &t->op;
+    if (op->kind == OP_SURFACE)
+        return shade_port_take(p, shading_words(op));
+    if (op->kind != OP_LIGHT || !op->n_reads || op->read[0].addr == t->light_held)
+        return p->now;
+    t->light_held = op->read[0].addr;
+    const uint64_t words = shading_words(op);
+    return shade_port_take(p, words) + SHADE_HIT + words - 1;
 }
 
 /* One cycle: compute (each unit picks its issue from the current state), then commit. */
@@ -363,7 +387,7 @@ static void pipe_cycle(pipe_state *p)
         p->st.ops[u]++;
         if (p->probe)
             p->probe(p->probe_arg, p->index, SCHED_ISSUE, p->now, (uint32_t)u, issue[u], t->op.slots);
-        heap_push(p, shade_port_start(p, &t->op) + t->op.slots - 1 + op_latency(p->cfg, &t->op), issue[u]);
+        heap_push(p, rgs_start(p, t) + t->op.slots - 1 + op_latency(p->cfg, &t->op), issue[u]);
         if (p->tp) {
             trace_issue(p->tp, u, p->now, issue[u], t->op.slots);
             trace_queue(p->tp, u, p->now, p->queue[u].count);
@@ -571,7 +595,7 @@ static void pipe_reset(pipe_state *p, const uint32_t *mem, const rgs_config *rcf
     p->hits = hits;
     p->costs = costs;
     for (uint32_t i = 0; i < p->cfg->threads_per_pipe; i++)
-        p->th[i] = (thread){ .state = TH_IDLE };
+        p->th[i] = (thread){ .state = TH_IDLE, .light_held = UINT32_MAX };
     for (int u = 0; u < UNIT_KINDS; u++) {
         p->queue[u].count = p->queue[u].ptr = 0;
         memset(p->queue[u].ready, 0, ready_words(p->cfg->threads_per_pipe) * sizeof(uint64_t));
