@@ -293,6 +293,46 @@ static void latency_per_kind(void **state)
     image_free(&im);
 }
 
+/* rgs_ctrl holds the record of its last light and reads another light's before rgs_light starts:
+ * with one thread, one more cycle of the shading cache's hit adds a cycle per light operation
+ * whose light differs from the one before it: once per frame in cornell (one light), every light
+ * operation in the room (2 lights, each packet's in turn). */
+static void light_record_held(void **state)
+{
+    (void)state;
+    static frame f;
+    const char *const scenes[2] = { "cornell", "room" };
+    for (int k = 0; k < 2; k++) {
+        image im;
+        image_build(&im, scenes[k]);
+        uint64_t lights = 0, reads = 0;
+        uint32_t held = UINT32_MAX;
+        for (uint32_t y = 0; y < H; y += 2)
+            for (uint32_t x = 0; x < W; x += 2) {
+                static rgs_block b;
+                unit_op op;
+                rgs_counters c = { 0 };
+                rgs_block_begin(im.mem, x, y, &b);
+                while (rgs_step(im.mem, &full, &b, &op, &c))
+                    if (op.kind == OP_LIGHT) {
+                        lights++;
+                        reads += op.read[0].addr != held;
+                        held = op.read[0].addr;
+                    }
+            }
+        assert_true(k == 0 ? reads == 1 && lights > 1 : reads == lights);
+        cycle_config cfg;
+        cycle_config_default(&cfg);
+        cfg.threads_per_pipe = 1;
+        cycle_stats base, more;
+        cycle_with(&cfg, im.mem, &full, &f, &base);
+        cfg.shade_hit++;
+        cycle_with(&cfg, im.mem, &full, &f, &more);
+        assert_int_equal(more.cycles - base.cycles, reads);
+        image_free(&im);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -302,6 +342,7 @@ int main(void)
         cmocka_unit_test(shading_cache_pattern),
         cmocka_unit_test(threads_hide_latency),
         cmocka_unit_test(latency_per_kind),
+        cmocka_unit_test(light_record_held),
     };
     return cmocka_run_group_tests_name("cycle model (tb/cycle)", tests, NULL, NULL);
 }

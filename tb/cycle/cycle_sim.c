@@ -45,6 +45,7 @@ void cycle_config_default(cycle_config *c)
     c->latency[OP_SURFACE] = 223; /* rgs_surface: the first hit's front reads (instance word, object, record: about 18
                                    * through the shading cache), rgs_normal 87, rgs_frame 118 */
     c->surface_hit = 17;          /* each further hit's front reads, beside its issue slot */
+    c->shade_hit = 3;             /* the shading cache_read's hit */
     c->latency[OP_LIGHT] = 92;    /* rgs_light 87 (rgs_light_colour's 27 beside it) + rgs_ctrl's state (LCALC 92) */
     c->latency[OP_ACCUM] = 67;    /* rgs_accum: rgs_spawn's */
     c->tile = 16;
@@ -344,8 +345,6 @@ static uint64_t shade_port_take(pipe_state *p, uint64_t words)
     return start;
 }
 
-#define SHADE_HIT 3u /* cycles from a word's request to its answer on a shading cache hit (cache_read) */
-
 /* The cycle the RGS operation t issues now starts its work. A surface reads all its words
  * through the port as its front and back go (its latency counts their bursts), so it starts when
  * the port has taken the words of the operations before it. A light: rgs_ctrl reads the light's
@@ -360,7 +359,7 @@ static uint64_t rgs_start(pipe_state *p, thread *t)
         return p->now;
     t->light_held = op->read[0].addr;
     const uint64_t words = shading_words(op);
-    return shade_port_take(p, words) + SHADE_HIT + words - 1;
+    return shade_port_take(p, words) + p->cfg->shade_hit + words - 1;
 }
 
 /* One cycle: compute (each unit picks its issue from the current state), then commit. */
