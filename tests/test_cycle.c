@@ -337,6 +337,26 @@ static void light_record_held(void **state)
     }
 }
 
+/* The RGS's block controllers share one word port to the shading cache: one thread never waits
+ * for it (its last surface's words are read long before its next), 8 threads do. */
+static void shading_port_shared(void **state)
+{
+    (void)state;
+    static frame f;
+    image im;
+    image_build(&im, "cornell");
+    cycle_config cfg;
+    cycle_config_default(&cfg);
+    cycle_stats one, eight;
+    cfg.threads_per_pipe = 1;
+    cycle_with(&cfg, im.mem, &full, &f, &one);
+    cfg.threads_per_pipe = 8;
+    cycle_with(&cfg, im.mem, &full, &f, &eight);
+    assert_int_equal(one.shade_port_wait, 0);
+    assert_true(eight.shade_port_wait > 0);
+    image_free(&im);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -347,6 +367,7 @@ int main(void)
         cmocka_unit_test(threads_hide_latency),
         cmocka_unit_test(latency_per_kind),
         cmocka_unit_test(light_record_held),
+        cmocka_unit_test(shading_port_shared),
     };
     return cmocka_run_group_tests_name("cycle model (tb/cycle)", tests, NULL, NULL);
 }

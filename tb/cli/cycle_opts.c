@@ -210,9 +210,12 @@ void cycle_report_json(FILE *f, const cycle_config *cfg, const cycle_stats *st, 
                 fprintf(f, "%s\"%s\": %u", n++ ? ", " : "", op_kind_names[k], cfg->latency[k]);
         if (u == UNIT_RGS)
             fprintf(f, ", \"surface_hit\": %u", cfg->surface_hit);
-        fprintf(f, "}, \"busy_cycles\": %llu, \"operations\": %llu, \"usage\": %.6f, \"queued_thread_cycles\": %llu}",
+        fprintf(f, "}, \"busy_cycles\": %llu, \"operations\": %llu, \"usage\": %.6f, \"queued_thread_cycles\": %llu",
                 (unsigned long long)st->busy[u], (unsigned long long)st->ops[u], usage(cfg, st, u) / 100.0,
                 (unsigned long long)st->wait_unit[u]);
+        if (u == UNIT_RGS) /* its operations' waits for the block controllers' one word port to the shading cache */
+            fprintf(f, ", \"shading_port_wait_cycles\": %llu", (unsigned long long)st->shade_port_wait);
+        fputc('}', f);
     }
     fprintf(f, "}, \"memory\": {\"latency\": %u, \"mbps_per_pipe\": %g", cfg->mem.latency, cfg->mem.mbps);
     for (int k = 0; k < MEM_KINDS; k++) {

@@ -342,6 +342,7 @@ static uint64_t shade_port_take(pipe_state *p, uint64_t words)
 {
     const uint64_t start = p->shade_port_free > p->now ? p->shade_port_free : p->now;
     p->shade_port_free = start + words;
+    p->st.shade_port_wait += start - p->now;
     return start;
 }
 
@@ -626,6 +627,7 @@ void cycle_stats_add(cycle_stats *sum, const cycle_stats *s)
         sum->mem.bytes[k] += s->mem.bytes[k];
         sum->mem.requests[k] += s->mem.requests[k];
     }
+    sum->shade_port_wait += s->shade_port_wait;
     sum->blocks += s->blocks;
     sum->tiles += s->tiles;
 }
