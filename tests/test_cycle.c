@@ -202,7 +202,8 @@ static void caches(void **state)
 
 /* The shading cache on a known pattern (64 bytes, 16-byte lines: 4 lines, word w in line w / 4
  * at index (w / 4) % 4): misses fill whole lines, a read spanning two lines looks up both, a line
- * 64 bytes further evicts, and a hit while the line is in flight waits for its arrival. */
+ * 64 bytes further evicts, a hit while the line is in flight waits for its arrival, and a hit
+ * after a miss waits for the miss's answer (answers in request order). */
 static void shading_cache_pattern(void **state)
 {
     (void)state;
@@ -217,10 +218,13 @@ static void shading_cache_pattern(void **state)
     assert_true(second > fill);
     assert_int_equal(mem_iface_read(&m, MEM_SHADING, 4, 1, fill), second); /* line 1 in flight */
     assert_int_equal(mem_iface_read(&m, MEM_SHADING, 2, 1, 1000), 1000); /* arrived: a hit costs nothing */
-    mem_iface_read(&m, MEM_SHADING, 16, 1, 1000); /* line 4 evicts line 0 */
+    const uint64_t evict = mem_iface_read(&m, MEM_SHADING, 16, 1, 1000); /* line 4 evicts line 0 */
+    assert_true(evict > 1000);
+    /* answers leave in request order (rtl/cache_read.sv): a hit after the miss waits for it */
+    assert_int_equal(mem_iface_read(&m, MEM_SHADING, 4, 1, 1001), evict); /* line 1: a hit */
     mem_iface_read(&m, MEM_SHADING, 0, 1, 1000);  /* miss again */
-    assert_int_equal(m.stats.lookups[MEM_SHADING], 8);
-    assert_int_equal(m.stats.hits[MEM_SHADING], 4);
+    assert_int_equal(m.stats.lookups[MEM_SHADING], 9);
+    assert_int_equal(m.stats.hits[MEM_SHADING], 5);
     assert_int_equal(m.stats.requests[MEM_SHADING], 4);
     assert_int_equal(m.stats.bytes[MEM_SHADING], 4 * 16);
     assert_int_equal(m.stats.lookups[MEM_NODES], 0); /* the other kinds are untouched */
@@ -254,22 +258,25 @@ static void threads_hide_latency(void **state)
 /* Every operation is charged the latency of its kind (trace.h OP_*): with one thread nothing
  * overlaps (the thread waits for each operation's reads and result before the next), so one more
  * cycle of kind k's latency adds exactly the frame's operations of kind k, counted here by stepping
- * the blocks as the functional mode does. */
+ * the blocks as the functional mode does; and one more cycle of surface_hit adds a cycle per hit
+ * of a surface operation after its first (rgs_surface's front reads the hits in turn). */
 static void latency_per_kind(void **state)
 {
     (void)state;
     static frame f;
     image im;
     image_build(&im, "room");
-    uint64_t count[OP_KINDS] = { 0 };
+    uint64_t count[OP_KINDS] = { 0 }, further_hits = 0;
     for (uint32_t y = 0; y < H; y += 2)
         for (uint32_t x = 0; x < W; x += 2) {
             static rgs_block b;
             unit_op op;
             rgs_counters c = { 0 };
             rgs_block_begin(im.mem, x, y, &b);
-            while (rgs_step(im.mem, &full, &b, &op, &c))
+            while (rgs_step(im.mem, &full, &b, &op, &c)) {
                 count[op.kind]++;
+                further_hits += op.kind == OP_SURFACE ? op.slots - 1 : 0;
+            }
         }
     cycle_config cfg;
     cycle_config_default(&cfg);
@@ -283,6 +290,70 @@ static void latency_per_kind(void **state)
         cfg.latency[k]--;
         assert_int_equal(more.cycles - base.cycles, count[k]);
     }
+    assert_true(further_hits > 0);
+    cfg.surface_hit++;
+    cycle_with(&cfg, im.mem, &full, &f, &more);
+    assert_int_equal(more.cycles - base.cycles, further_hits);
+    image_free(&im);
+}
+
+/* rgs_ctrl holds the record of its last light and reads another light's before rgs_light starts:
+ * with one thread, one more cycle of the shading cache's hit adds a cycle per light operation
+ * whose light differs from the one before it: once per frame in cornell (one light), every light
+ * operation in the room (2 lights, each packet's in turn). */
+static void light_record_held(void **state)
+{
+    (void)state;
+    static frame f;
+    const char *const scenes[2] = { "cornell", "room" };
+    for (int k = 0; k < 2; k++) {
+        image im;
+        image_build(&im, scenes[k]);
+        uint64_t lights = 0, reads = 0;
+        uint32_t held = UINT32_MAX;
+        for (uint32_t y = 0; y < H; y += 2)
+            for (uint32_t x = 0; x < W; x += 2) {
+                static rgs_block b;
+                unit_op op;
+                rgs_counters c = { 0 };
+                rgs_block_begin(im.mem, x, y, &b);
+                while (rgs_step(im.mem, &full, &b, &op, &c))
+                    if (op.kind == OP_LIGHT) {
+                        lights++;
+                        reads += op.read[0].addr != held;
+                        held = op.read[0].addr;
+                    }
+            }
+        assert_true(k == 0 ? reads == 1 && lights > 1 : reads == lights);
+        cycle_config cfg;
+        cycle_config_default(&cfg);
+        cfg.threads_per_pipe = 1;
+        cycle_stats base, more;
+        cycle_with(&cfg, im.mem, &full, &f, &base);
+        cfg.shade_hit++;
+        cycle_with(&cfg, im.mem, &full, &f, &more);
+        assert_int_equal(more.cycles - base.cycles, reads);
+        image_free(&im);
+    }
+}
+
+/* The RGS's block controllers share one word port to the shading cache: one thread never waits
+ * for it (its last surface's words are read long before its next), 8 threads do. */
+static void shading_port_shared(void **state)
+{
+    (void)state;
+    static frame f;
+    image im;
+    image_build(&im, "cornell");
+    cycle_config cfg;
+    cycle_config_default(&cfg);
+    cycle_stats one, eight;
+    cfg.threads_per_pipe = 1;
+    cycle_with(&cfg, im.mem, &full, &f, &one);
+    cfg.threads_per_pipe = 8;
+    cycle_with(&cfg, im.mem, &full, &f, &eight);
+    assert_int_equal(one.shade_port_wait, 0);
+    assert_true(eight.shade_port_wait > 0);
     image_free(&im);
 }
 
@@ -295,6 +366,8 @@ int main(void)
         cmocka_unit_test(shading_cache_pattern),
         cmocka_unit_test(threads_hide_latency),
         cmocka_unit_test(latency_per_kind),
+        cmocka_unit_test(light_record_held),
+        cmocka_unit_test(shading_port_shared),
     };
     return cmocka_run_group_tests_name("cycle model (tb/cycle)", tests, NULL, NULL);
 }

@@ -193,7 +193,7 @@ static void op_inst_xform(const uint32_t *mem, trace_state *s, unit_op *op, trac
     const f24_affine w2o = f24_affine_load(mem, ia);
     const int identity = mem[ia + INST_FLAGS] & INST_IDENTITY;
     s->obj = region_start(mem, R_OBJECTS) + OBJ_WORDS * mem[ia + 12];
-    op_set(op, identity ? OP_TRAV : OP_INSTANCE, identity ? TRAV_CLIP_SLOTS : 2u * count_rays(s->need));
+    op_set(op, identity ? OP_OBJCLIP : OP_INSTANCE, identity ? TRAV_CLIP_SLOTS : 2u * count_rays(s->need));
     op_read(op, c, MEM_MATRICES, ia, INST_READ);  /* matrix, object index, flags, translation low words */
     op_read(op, c, MEM_MATRICES, s->obj, obj_read(s->flags)); /* object descriptor: tree, triangles, bounds */
     c->transformations += identity ? 0u : op->slots;
@@ -228,7 +228,7 @@ to_object_space:
 /* Traversal unit: clip the object-space rays to the object's bounds and start its tree (path b). */
 static void op_inst_clip(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
 {
-    op_set(op, OP_TRAV, TRAV_CLIP_SLOTS);
+    op_set(op, OP_OBJCLIP, TRAV_CLIP_SLOTS);
     inst_clip(mem, s, op, c);
 }
 

@@ -87,7 +87,9 @@ enum {
     OP_INSTANCE, /* transformation unit: an instance's rays rebased, then in the wide mode (rebase_unit, xform_wide) */
     OP_SHADOW,   /* transformation unit: a light's shadow rays, T_shadow (the RTL forms them in rgs_light) */
     OP_CHILDREN, /* transformation unit: T_R steps of the child rays (the RTL forms them in rgs_spawn) */
-    OP_TRAV,     /* traversal unit: a clip or a kd-tree entry (rtl/trav_node.sv) */
+    OP_TRAV,     /* traversal unit: the scene clip or a kd-tree entry (rtl/trav_unit.sv) */
+    OP_OBJCLIP,  /* traversal unit: an object's clip, its tree's start (trace_thread: the object's record read,
+                  * the mailboxes cleared, the relative distances, the clip, the start) */
     OP_LIST,     /* list unit: a leaf-list entry (rtl/list_unit.sv) */
     OP_LEAF,     /* list unit: the entry that opens a bottom-level leaf, its rays through the rebase unit */
     OP_ISECT,    /* intersection unit: a triangle's rays (rtl/isect_unit.sv) */

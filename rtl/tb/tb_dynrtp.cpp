@@ -18,6 +18,10 @@
 // rays by kind and the dropped packets of the C reference blocks: the RTL core's counters summed
 // over the frame must equal them, and the RTL's equal pixels and primary hits stand for its equal
 // ray trees).
+// With TB_DYNRTP_LOG=FILE in the environment it also writes the frame's timing to FILE for the
+// comparison with the cycle model (docs/cycle-model.md): per packet a line
+// "P number thread cycle_in cycle_out" and per kind of operation (OP_*) of the C core's steps its
+// count and issue slots; per block "B x0 y0 cycle_out" and the same counts of rgs_step's operations.
 // usage: tb_dynrtp DIR   (DIR/image.bin, DIR/params as saarcor writes them); exit 0, 1 (a
 // mismatch or a hang), 2 (bad input)
 #include <algorithm>
@@ -57,7 +61,8 @@ const char *const COUNTER[10] = { "traversal_steps", "leaves", "list_entries", "
 
 struct packet { // the packet a core thread traces and the C core's run of it
     bool busy = false;
-    uint64_t number = 0;
+    uint64_t number = 0, in = 0;
+    uint32_t ops[OP_KINDS] = {}, slots[OP_KINDS] = {}; // the C core's operations by kind (TB_DYNRTP_LOG)
     trace_state ref;
     trace_counters ref_c;
 };
@@ -78,6 +83,28 @@ template <std::size_t N> uint32_t rgb_of(const VlWide<N> &v, int i)
 }
 
 uint64_t g_mismatches = 0;
+
+// the counts and issue slots of a run of operations by kind, as a log line's tail
+void log_ops(FILE *f, const uint32_t *ops, const uint32_t *slots)
+{
+    for (int k = 0; k < OP_KINDS; k++)
+        std::fprintf(f, " %u %u", ops[k], slots[k]);
+    std::fputc('\n', f);
+}
+
+// a block's operations by kind (rgs_step's, the core's among them), for the log
+void block_ops(const std::vector<uint32_t> &mem, const rgs_config *cfg, uint32_t x0, uint32_t y0, FILE *f)
+{
+    static rgs_block b;
+    uint32_t ops[OP_KINDS] = {}, slots[OP_KINDS] = {};
+    rgs_counters c;
+    std::memset(&c, 0, sizeof c);
+    unit_op op;
+    rgs_block_begin(mem.data(), x0, y0, &b);
+    while (rgs_step(mem.data(), cfg, &b, &op, &c))
+        ops[op.kind]++, slots[op.kind] += op.slots;
+    log_ops(f, ops, slots);
+}
 
 } // namespace
 
@@ -137,6 +164,8 @@ int main(int argc, char **argv)
     top.rst_ni = 1;
 
     std::vector<packet> core(std::size_t{1} << 8);
+    const char *log_path = std::getenv("TB_DYNRTP_LOG");
+    FILE *log = log_path ? std::fopen(log_path, "w") : nullptr;
     rgs_counters counters, ref; // the RTL core's counters; the C reference blocks' (rays, drops, core counters)
     std::memset(&counters, 0, sizeof counters);
     std::memset(&ref, 0, sizeof ref);
@@ -202,6 +231,11 @@ int main(int argc, char **argv)
                 cw[k] += v;
             }
             checked++;
+            if (log) {
+                std::fprintf(log, "P %llu %u %llu %llu", (unsigned long long)s.number, t, (unsigned long long)s.in,
+                             (unsigned long long)cycle);
+                log_ops(log, s.ops, s.slots);
+            }
             s.busy = false;
             last_out = cycle;
         }
@@ -217,9 +251,12 @@ int main(int argc, char **argv)
             trace_begin(&rays, top.tr_flags_o, &s.ref);
             std::memset(&s.ref_c, 0, sizeof s.ref_c);
             unit_op op;
+            std::memset(s.ops, 0, sizeof s.ops);
+            std::memset(s.slots, 0, sizeof s.slots);
             while (trace_step(mem.data(), &s.ref, &op, &s.ref_c))
-                ;
+                s.ops[op.kind]++, s.slots[op.kind] += op.slots;
             s.busy = true;
+            s.in = cycle;
             s.number = packets++;
         }
         if (top.px_valid_o && top.px_ready_i) { // a block's pixels: as rgs_render_block's
@@ -246,6 +283,10 @@ int main(int argc, char **argv)
                                     x0, y0, (unsigned long long)cycle, i, HIT[f], v[f], c[f]);
                 std::memcpy(&hits[6 * p], v, sizeof v);
             }
+            if (log) {
+                std::fprintf(log, "B %u %u %llu", x0, y0, (unsigned long long)cycle);
+                block_ops(mem, &cfg, x0, y0, log);
+            }
             done++;
             last_out = cycle;
         }
@@ -257,6 +298,8 @@ int main(int argc, char **argv)
             break;
     }
 
+    if (log)
+        std::fclose(log);
     auto write = [&](const char *name, const std::vector<uint32_t> &v) {
         const std::string path = dir + "/" + name;
         FILE *f = std::fopen(path.c_str(), "wb");

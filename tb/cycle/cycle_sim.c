@@ -12,8 +12,8 @@
 
 const char *const unit_names[UNIT_KINDS] = { "RGS", "transformation", "traversal", "list", "intersection" };
 const char *const mem_kind_names[MEM_KINDS] = { "kd_nodes", "lists", "matrices", "shading" };
-const char *const op_kind_names[OP_KINDS] = { "raygen", "xform", "instance", "shadow", "children", "trav",
-                                              "list",   "leaf",  "isect",    "surface", "light",   "accum" };
+const char *const op_kind_names[OP_KINDS] = { "raygen", "xform", "instance", "shadow",  "children", "trav",
+                                              "objclip", "list", "leaf",     "isect",   "surface",  "light", "accum" };
 
 void cycle_config_default(cycle_config *c)
 {
@@ -22,20 +22,31 @@ void cycle_config_default(cycle_config *c)
     c->threads_per_pipe = 32;
     /* Each kind of operation takes the latency of the RTL module(s) that do it when pipelined
      * (the operators' default stages add 6, mul 4, div 11, cmp 2, sqrt 9, cvt 2: >= 60 MHz on
-     * iCE40); docs/cycle-model.md derives each. */
+     * iCE40) and what the DynRTP around them adds (a dependent read's cache hit, trace_thread's
+     * states, the operations its thread issues that the C has inside one), measured per kind on
+     * the DynRTP (tb_dynrtp's TB_DYNRTP_LOG); docs/cycle-model.md derives each. */
     c->latency[OP_RAYGEN] = 26;   /* rgs_raygen: block register 1 + f24_from_i32 2 + xform_unit 22 + packet 1 */
-    c->latency[OP_XFORM] = 22;    /* xform_unit: mul 4 + 3 add */
+    c->latency[OP_XFORM] = 34;    /* isect_rebased's origin path (l = p.lo - C.lo, c = h + l: 2 add) + xform_unit 22 */
     c->latency[OP_INSTANCE] = 50; /* rebase_unit 25, then xform_wide 25 (the origins' chain) */
     c->latency[OP_SHADOW] = 1;    /* rgs_light forms the shadow rays: its register to the trace port */
     c->latency[OP_CHILDREN] = 1;  /* rgs_spawn (in rgs_accum) forms the child rays: the stack's register */
-    c->latency[OP_TRAV] = 36;     /* trav_unit: state and stack read, prune 4, queue 2, trav_node 21 (sub 6 + div 11 +
-                                   * min/max 2 + cmp 2), split and push 6, output 1; the node read before it (a clip: 6
-                                   * slots, one per slab plane, then the same 36) */
-    c->latency[OP_LIST] = 3;      /* list_unit: read, compare, update */
-    c->latency[OP_LEAF] = 25;     /* rebase_unit after the list entry's slot (the entry's 3 beside it) */
-    c->latency[OP_ISECT] = 29;    /* isect_unit: div 11 + mul 4 + 2 add + cmp 2 */
-    c->latency[OP_SURFACE] = 198; /* rgs_surface pipelined: shade_rec_decode 42 + rgs_lerp 22 + f24_dot3 16 + rgs_frame 118 */
-    c->latency[OP_LIGHT] = 87;    /* rgs_light (rgs_light_colour's 27 beside it) */
+    c->latency[OP_TRAV] = 43;     /* trav_unit 38 (state and stack read, prune, queue, trav_node 21, split and push,
+                                   * its node read answering in the next cycle) + 2 (the kd-node cache's hit: 3) + 3
+                                   * (trace_thread's states from the result to the next request) - the issue slot;
+                                   * the scene clip: 6 slots, trav_clip's chain, the start */
+    c->latency[OP_OBJCLIP] = 64;  /* trace_thread: the object's record (2 matrix cache lines), the mailboxes cleared
+                                   * (a list unit operation), the relative distances (an adder batch), the clip (6
+                                   * slots, trav_clip), the start (a traversal operation of its own) */
+    c->latency[OP_LIST] = 18;     /* list_unit 3, its word through dynrtp's registers and the list cache (hit 3),
+                                   * trace_thread's request and result states */
+    c->latency[OP_LEAF] = 46;     /* the list entry's 18, then rebase_unit 25 (a batch) and its states */
+    c->latency[OP_ISECT] = 35;    /* isect_rebased's second half: isect_unit 29 (div 11 + mul 4 + 2 add + cmp 2) +
+                                   * best_t = t0 + t (add 6) */
+    c->latency[OP_SURFACE] = 223; /* rgs_surface: the first hit's front reads (instance word, object, record: about 18
+                                   * through the shading cache), rgs_normal 87, rgs_frame 118 */
+    c->surface_hit = 17;          /* each further hit's front reads, beside its issue slot */
+    c->shade_hit = 3;             /* the shading cache_read's hit */
+    c->latency[OP_LIGHT] = 92;    /* rgs_light 87 (rgs_light_colour's 27 beside it) + rgs_ctrl's state (LCALC 92) */
     c->latency[OP_ACCUM] = 67;    /* rgs_accum: rgs_spawn's */
     c->tile = 16;
     c->epoch = 256;
@@ -75,6 +86,7 @@ typedef struct {
     uint32_t state, x0, y0, wait_kind;
     uint64_t since; /* cycle the current state began */
     uint64_t began; /* cycle it took its block (per-pixel cycles) */
+    uint32_t light_held; /* the light record its block controller holds (rgs_ctrl; UINT32_MAX: none) */
     pixel_cost cost[TRACE_PACKET]; /* its block's per-pixel cost so far (if kept) */
 } thread;
 
@@ -99,6 +111,7 @@ typedef struct {
     thread *th;
     ready_set queue[UNIT_KINDS];
     uint64_t free_at[UNIT_KINDS];
+    uint64_t shade_port_free; /* the RGS's word port to the shading cache is free from this cycle on */
     uint64_t *heap; /* events: cycle << 16 | thread, min first */
     uint32_t heap_n;
     uint32_t tiles[TILE_QUEUE], n_tiles; /* tile queue filled by the controller */
@@ -304,6 +317,52 @@ static int cmp_u32(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* The cycles from an operation's last issue slot to its result: its kind's latency; a surface
+ * operation's hits pass rgs_surface's front stage one after another (its reads, each burst after
+ * the one its address comes from), so each hit after the first adds surface_hit. */
+static uint32_t op_latency(const cycle_config *cfg, const unit_op *op)
+{
+    const uint32_t further = op->kind == OP_SURFACE && op->slots > 1 ? op->slots - 1 : 0;
+    return cfg->latency[op->kind] + further * cfg->surface_hit;
+}
+
+/* The shading words an operation reads (on the RGS's word port in the RTL). */
+static uint64_t shading_words(const unit_op *op)
+{
+    uint64_t words = 0;
+    for (uint32_t r = 0; r < op->n_reads; r++)
+        words += op->read[r].kind == MEM_SHADING ? op->read[r].words : 0u;
+    return words;
+}
+
+/* Takes `words` cycles of the RGS's word port to the shading cache from its first free cycle at
+ * or after now, and returns that cycle: the RGS's block controllers share one port, a word a
+ * cycle (rtl/dynrtp.sv: mem_port onto the shading cache_read). */
+static uint64_t shade_port_take(pipe_state *p, uint64_t words)
+{
+    const uint64_t start = p->shade_port_free > p->now ? p->shade_port_free : p->now;
+    p->shade_port_free = start + words;
+    p->st.shade_port_wait += start - p->now;
+    return start;
+}
+
+/* The cycle the RGS operation t issues now starts its work. A surface reads all its words
+ * through the port as its front and back go (its latency counts their bursts), so it starts when
+ * the port has taken the words of the operations before it. A light: rgs_ctrl reads the light's
+ * record (S_LREC, a word a cycle) before rgs_light starts, unless it holds that light's record
+ * from its last light operation (a scene of one light reads it once per controller). Others: now. */
+static uint64_t rgs_start(pipe_state *p, thread *t)
+{
+    const unit_op *op = &t->op;
+    if (op->kind == OP_SURFACE)
+        return shade_port_take(p, shading_words(op));
+    if (op->kind != OP_LIGHT || !op->n_reads || op->read[0].addr == t->light_held)
+        return p->now;
+    t->light_held = op->read[0].addr;
+    const uint64_t words = shading_words(op);
+    return shade_port_take(p, words) + p->cfg->shade_hit + words - 1;
+}
+
 /* One cycle: compute (each unit picks its issue from the current state), then commit. */
 static void pipe_cycle(pipe_state *p)
 {
@@ -328,7 +387,7 @@ static void pipe_cycle(pipe_state *p)
         p->st.ops[u]++;
         if (p->probe)
             p->probe(p->probe_arg, p->index, SCHED_ISSUE, p->now, (uint32_t)u, issue[u], t->op.slots);
-        heap_push(p, p->now + t->op.slots - 1 + p->cfg->latency[t->op.kind], issue[u]);
+        heap_push(p, rgs_start(p, t) + t->op.slots - 1 + op_latency(p->cfg, &t->op), issue[u]);
         if (p->tp) {
             trace_issue(p->tp, u, p->now, issue[u], t->op.slots);
             trace_queue(p->tp, u, p->now, p->queue[u].count);
@@ -536,12 +595,13 @@ static void pipe_reset(pipe_state *p, const uint32_t *mem, const rgs_config *rcf
     p->hits = hits;
     p->costs = costs;
     for (uint32_t i = 0; i < p->cfg->threads_per_pipe; i++)
-        p->th[i] = (thread){ .state = TH_IDLE };
+        p->th[i] = (thread){ .state = TH_IDLE, .light_held = UINT32_MAX };
     for (int u = 0; u < UNIT_KINDS; u++) {
         p->queue[u].count = p->queue[u].ptr = 0;
         memset(p->queue[u].ready, 0, ready_words(p->cfg->threads_per_pipe) * sizeof(uint64_t));
         p->free_at[u] = 0;
     }
+    p->shade_port_free = 0;
     p->heap_n = p->n_tiles = p->have_tile = p->active = 0;
     p->now = p->last_event = 0;
     memset(&p->counters, 0, sizeof p->counters);
@@ -567,6 +627,7 @@ void cycle_stats_add(cycle_stats *sum, const cycle_stats *s)
         sum->mem.bytes[k] += s->mem.bytes[k];
         sum->mem.requests[k] += s->mem.requests[k];
     }
+    sum->shade_port_wait += s->shade_port_wait;
     sum->blocks += s->blocks;
     sum->tiles += s->tiles;
 }

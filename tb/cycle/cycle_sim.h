@@ -34,6 +34,10 @@
 typedef struct {
     uint32_t pipes, threads_per_pipe; /* P DynRTPs, T threads each */
     uint32_t latency[OP_KINDS];       /* pipeline latency of each kind of operation (trace.h), cycles */
+    uint32_t surface_hit;             /* a surface operation's cycles per hit after the first (rgs_surface's front
+                                       * reads its hits one after another: docs/cycle-model.md) */
+    uint32_t shade_hit;               /* cycles from a word's request to its answer on a shading cache hit (the
+                                       * first word of a light record rgs_ctrl reads) */
     uint32_t tile;                    /* tile edge in pixels (even) handed out by the controller */
     uint32_t epoch;                   /* cycles between controller refills */
     uint32_t host_threads;            /* simulator threads (no effect on any result) */
@@ -55,6 +59,7 @@ typedef struct {
     uint64_t thread_cycles[ST_KINDS];         /* over all threads of all pipes */
     uint64_t wait_unit[UNIT_KINDS];           /* thread-cycles queued at each unit */
     uint64_t wait_mem[MEM_KINDS];             /* thread-cycles waiting for memory, by data type */
+    uint64_t shade_port_wait;                 /* cycles RGS operations waited for the shading word port */
     uint64_t blocks, tiles;
     mem_stats mem;                            /* summed over pipes */
 } cycle_stats;

@@ -51,6 +51,7 @@ void mem_iface_new_frame(mem_iface *m)
         if (m->cache[k].lines)
             memset(m->cache[k].valid_at, 0, m->cache[k].lines * sizeof *m->cache[k].valid_at);
     m->port_free = 0;
+    memset(m->answer_at, 0, sizeof m->answer_at);
     memset(&m->stats, 0, sizeof m->stats);
 }
 
@@ -89,5 +90,8 @@ uint64_t mem_iface_read(mem_iface *m, uint32_t kind, uint32_t word_addr, uint32_
             m->probe(m->probe_arg, kind, hit ? MI_HIT : MI_MISS, now, at);
         ready = at > ready ? at : ready;
     }
+    /* rtl/cache_read.sv answers in request order: a read after a miss waits for the miss's line */
+    ready = m->answer_at[kind] > ready ? m->answer_at[kind] : ready;
+    m->answer_at[kind] = ready;
     return ready;
 }

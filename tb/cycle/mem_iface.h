@@ -52,6 +52,7 @@ typedef struct {
     mem_config cfg;
     dm_cache cache[MI_CACHED_KINDS];
     uint64_t port_free;     /* cycle the port is free, x 65536 */
+    uint64_t answer_at[MI_CACHED_KINDS]; /* the cycle of each cache's last answer: answers leave in request order */
     uint64_t fx_per_byte;   /* port occupancy per byte, x 65536 cycles */
     mem_stats stats;
     mem_probe_fn probe; /* NULL: none */
