@@ -33,6 +33,11 @@ build/synth/synth.json (the other modules' figures as they were) before writing 
 `python3 scripts/synth.py --redo i:f24_sum_exact:e7m16 [KEY ...]` measures only the given entries of
 build/synth/synth.json again (keys as in that file, or new ones such as x:rebase_unit:e7m16) and
 rewrites it and docs/synth.md.
+`python3 scripts/synth.py --levels MODULE [PARAM=VALUE ...] [--hier]` prints one module's most LUT6
+levels between registers and ports as the DynRTP's are counted (synth_xilinx per module,
+hier_lut_levels), its deepest path flattened after mapping (cell type, a net it drives; not with
+--hier, for modules too large to flatten), and per submodule its levels and its own cells' deepest
+path (the named nets); it writes only build/synth/levels_*.
 """
 import concurrent.futures as cf, json, os, re, shlex, subprocess, sys, tempfile, time
 
@@ -137,15 +142,22 @@ def comb_input(ctype, port):
 
 def lut_levels(js):
     """The most LUT levels between two registers (or ports) of the flattened netlist js."""
+    return lut_path(js)[0]
+
+
+def lut_path(js, module=None):
+    """lut_levels and its deepest path: the levels and the path's level cells, first to last, each as
+    (cell type, the name of a net it drives). With module (of a hierarchical netlist): that module's
+    own cells, its submodules' ports ending paths as registers do."""
     mods = json.load(open(js))["modules"]  # the top and the cell library
-    mod = mods[top_module(mods)]
+    mod = mods[module or top_module(mods)]
     driver, cells = {}, mod["cells"]
     for name, c in cells.items():
         for port, bits in c["connections"].items():
             if c.get("port_directions", {}).get(port) == "output":
                 for b in bits:
                     driver[b] = name
-    depth = {}
+    depth, prev = {}, {}
     for start in cells:  # longest path by depth-first search with an explicit stack (no recursion limit)
         stack = [start]
         while stack:
@@ -165,10 +177,55 @@ def lut_levels(js):
             if todo:
                 stack.extend(todo)
                 continue
-            feed = [depth[d] for d in ins if cells[d]["type"] in LEVEL_CELLS and d != n]
-            depth[n] = LEVEL_CELLS[c["type"]] + max(feed, default=0)
+            feed = [(depth[d], d) for d in ins if cells[d]["type"] in LEVEL_CELLS and d != n]
+            best = max(feed, default=(0, None))
+            depth[n], prev[n] = LEVEL_CELLS[c["type"]] + best[0], best[1]
             stack.pop()
-    return max(depth.values(), default=0)
+    if not depth:
+        return 0, []
+    n = max(depth, key=depth.get)
+    names = {}  # a net's name: the shortest user-given one (Yosys's own names start with $)
+    for net, d in mod.get("netnames", {}).items():
+        for b in d["bits"]:
+            if isinstance(b, int) and (b not in names or (names[b].startswith("$"), len(names[b])) >
+                                       (net.startswith("$"), len(net))):
+                names[b] = net
+    path = []
+    while n is not None:
+        c = cells[n]
+        outs = [b for p, bits in c["connections"].items() if c.get("port_directions", {}).get(p) == "output"
+                for b in bits]
+        path.append((c["type"], names.get(outs[0], "?") if outs else "?"))
+        n = prev.get(n)
+    return depth[max(depth, key=depth.get)], path[::-1]
+
+
+def module_levels(top, params, flat=True):
+    """--levels: one module's LUT6 levels from its registers and ports as the DynRTP's are measured
+    (xilinx_flow per module; hier_lut_levels, and flattened after mapping its deepest path), each
+    submodule's levels alone and the deepest path of its own cells (submodule ports as path ends)."""
+    tag = re.sub(r"[^A-Za-z0-9]+", "_", "_".join([top] + [f"{k}{v}" for k, v in params.items()]))
+    reads = " ".join(f"read_verilog -sv {f};" for f in RTL)
+    chp = f"chparam {' '.join(f'-set {k} {v}' for k, v in params.items())} {top}; " if params else ""
+    log, js = os.path.join(OUT, f"levels_{tag}.log"), os.path.join(OUT, f"levels_{tag}.json")
+    hier = js[:-len(".json")] + "_hier.json"
+    t0 = time.time()
+    tail = f"; flatten; stat; write_json {js}" if flat else "; stat"
+    c = cells(yosys(f"{reads} {chp}{xilinx_flow(top, flatten=False)}; write_json {hier}{tail}", log))
+    mods = json.load(open(hier))["modules"]
+    depth = hier_lut_levels(mods, top_module(mods))
+    print(f"{top} {' '.join(f'{k}={v}' for k, v in params.items())}: {depth[top_module(mods)]} LUT6 levels, "
+          f"{luts_of(c)} LUT6, {ffs_of(c)} FF ({round(time.time() - t0)} s; {log})")
+    if flat:
+        levels, path = lut_path(js)
+        print(f"  deepest path ({levels}), flattened:")
+        for typ, net in path:
+            if LEVEL_CELLS.get(typ):
+                print(f"    {typ:8} {net}")
+    for name, v in sorted(depth.items(), key=lambda x: -x[1]):
+        own, path = lut_path(hier, name)
+        print(f"  {key_name(name)}: {v} levels with its submodules; its own cells {own}: " +
+              " > ".join(f"{t}:{n}" for t, n in path if LEVEL_CELLS.get(t) and not n.startswith("$")))
 
 
 def xilinx(top, e, m, edge_eps=0, terms=0):
@@ -572,7 +629,7 @@ def redo(keys):
 
 def main():
     args = sys.argv[1:]
-    if args and (args[0] in ("-h", "--help") or args[0] not in ("--only-control", "--redo", "--dynrtp")):
+    if args and (args[0] in ("-h", "--help") or args[0] not in ("--only-control", "--redo", "--dynrtp", "--levels")):
         # a full run takes hours: an unknown argument is an error, never a start
         print(__doc__)
         sys.exit(0 if args[0] in ("-h", "--help") else f"synth.py: unknown argument {args[0]} (see above)")
@@ -589,6 +646,9 @@ def main():
         save_results(res)
         write(res)
         return
+    if len(sys.argv) > 2 and sys.argv[1] == "--levels":
+        return module_levels(sys.argv[2], dict(a.split("=", 1) for a in sys.argv[3:] if a != "--hier"),
+                             "--hier" not in sys.argv[3:])
     if len(sys.argv) > 2 and sys.argv[1] == "--redo":
         return redo(sys.argv[2:])
     if len(sys.argv) > 1 and sys.argv[1] == "--dynrtp":
