@@ -126,18 +126,58 @@ def xilinx_flow(top, flatten):
 
 # 7-series cells a register-to-register path passes through: LUTs and LUT RAM reads count one
 # level each; carry chains, wide-function muxes, inverters and DSP48E1 slices (registers off)
-# count none (dedicated logic, not LUT levels); everything else (flip-flops, SRLs, block RAM) and
-# the ports end a path.
+# count none (dedicated logic, not LUT levels; a DSP48E1's inputs whose way has one of its registers
+# end a path, comb_input); everything else (flip-flops, SRLs, block RAM) and the ports end a path.
 LEVEL_CELLS = {**{f"LUT{k}": 1 for k in range(1, 7)}, **{k: 1 for k in ("RAM32M", "RAM64M", "RAM32X1D", "RAM64X1D",
                "RAM128X1D", "RAM256X1S", "RAM64X1S", "RAM32X1S", "RAM128X1S")},
                "CARRY4": 0, "MUXF7": 0, "MUXF8": 0, "INV": 0, "DSP48E1": 0}
 
 
-def comb_input(ctype, port):
+def comb_input(cell, port):
     """Whether a cell's input port reaches its outputs without a clock edge: a LUT RAM's read
     addresses do (ADDRA..ADDRD, DPRA, A); its write data and enable are written at the edge, so a
-    path ends there as at a flip-flop."""
+    path ends there as at a flip-flop. A DSP48E1's data and control inputs do when none of the
+    slice's registers on their way to its outputs is used (dsp_comb); its clock enables and resets
+    never (they steer its registers)."""
+    ctype = cell["type"]
+    if ctype == "DSP48E1":
+        return dsp_comb(cell.get("parameters", {}), port)
     return ctype not in LUTRAM_BITS or port.startswith(("ADDR", "DPRA")) or re.fullmatch(r"A\d*", port) is not None
+
+
+# DSP48E1: the registers between each input and the outputs (the A, B and D registers, the
+# pre-adder's, the multiplier's where it is used, the output's); xilinx_dsp packs flip-flops of the
+# RTL into them, so a slice with one is a register on those inputs' paths, as a flip-flop would be
+DSP_INPUT_REGS = {"A": ("AREG", "MREG", "PREG"), "ACIN": ("AREG", "MREG", "PREG"), "B": ("BREG", "MREG", "PREG"),
+                  "BCIN": ("BREG", "MREG", "PREG"), "C": ("CREG", "PREG"), "D": ("DREG", "ADREG", "MREG", "PREG"),
+                  "PCIN": ("PREG",), "CARRYCASCIN": ("PREG",), "MULTSIGNIN": ("PREG",),
+                  "OPMODE": ("OPMODEREG", "PREG"), "ALUMODE": ("ALUMODEREG", "PREG"),
+                  "INMODE": ("INMODEREG", "MREG", "PREG"), "CARRYIN": ("CARRYINREG", "PREG"),
+                  "CARRYINSEL": ("CARRYINSELREG", "PREG")}
+
+
+def dsp_registered(cell):
+    """A DSP48E1 with a register on some data input's way: its outputs start paths as a flip-flop's."""
+    return cell["type"] == "DSP48E1" and any(
+        not dsp_comb(cell.get("parameters", {}), p) for p in DSP_INPUT_REGS if p in cell["connections"])
+
+
+def dsp_comb(params, port):
+    """Whether a DSP48E1 input reaches its outputs without a register (DSP_INPUT_REGS; a parameter
+    Yosys leaves out has the cell library's default: every register on, the multiplier used, no
+    pre-adder)."""
+    def value(k, default):
+        v = params.get(k)
+        if v is None:
+            return default
+        v = v.strip() if isinstance(v, str) else v
+        return int(v, 2) if isinstance(v, str) and v and set(v) <= {"0", "1"} else v
+    mult = value("USE_MULT", "MULTIPLY") != "NONE"
+    dport = value("USE_DPORT", "FALSE") == "TRUE"
+    regs = DSP_INPUT_REGS.get(port)
+    if regs is None:  # CLK, CE*, RST*
+        return False
+    return not any(value(r, 1) for r in regs if (r != "MREG" or mult) and (r != "ADREG" or dport))
 
 
 def lut_levels(js):
@@ -171,7 +211,7 @@ def lut_path(js, module=None):
                 stack.pop()
                 continue
             ins = [driver[b] for p, bits in c["connections"].items()
-                   if c.get("port_directions", {}).get(p) == "input" and comb_input(c["type"], p)
+                   if c.get("port_directions", {}).get(p) == "input" and comb_input(c, p)
                    for b in bits if b in driver]
             todo = [d for d in ins if d not in depth and d != n]
             if todo:
@@ -432,7 +472,7 @@ def hier_lut_levels(mods, top):
                     continue
                 if sub is None:
                     ins = [x for p, bits in c["connections"].items()
-                           if c.get("port_directions", {}).get(p) == "input" and comb_input(c["type"], p)
+                           if c.get("port_directions", {}).get(p) == "input" and comb_input(c, p)
                            for x in bits]
                     need = [(x, 0) for x in ins]
                 else:
@@ -443,7 +483,7 @@ def hier_lut_levels(mods, top):
                     stack.extend(todo)
                     continue
                 step = LEVEL_CELLS[c["type"]] if sub is None else 0
-                r, d = (NONE if sub is None else reg), {}
+                r, d = (reg if sub is not None else 0 if dsp_registered(c) else NONE), {}
                 for x, l in need:
                     if not isinstance(x, int):
                         continue
@@ -477,7 +517,7 @@ def hier_lut_levels(mods, top):
             else:  # a register's inputs, a LUT RAM's written ones
                 for port, bits in c["connections"].items():
                     if c.get("port_directions", {}).get(port) == "input" and \
-                            (c["type"] not in LEVEL_CELLS or not comb_input(c["type"], port)):
+                            (c["type"] not in LEVEL_CELLS or not comb_input(c, port)):
                         for b in bits:
                             endpoint(b, 0)
         reg_out, through = {}, {}
