@@ -891,6 +891,22 @@ def accuracy_section(res):
     return md
 
 
+# Per unit of the DynRTP measured alone since the whole run above (python3 scripts/synth.py --levels),
+# shown after its table until the whole DynRTP is synthesized again
+UNIT_LEVELS_NOTE = [
+    "", "Each unit alone again (2026-11-29, `python3 scripts/synth.py --levels MODULE PARAM=VALUE ...`: "
+    "synth_xilinx per module as above, `hier_lut_levels`, its ports as path ends; from this date a DSP48E1 "
+    "with one of its registers on an input's way ends that input's paths, as a flip-flop does):", "",
+    "| unit | parameters | LUT6 levels | where the deepest path is |", "|---|---|---:|---|",
+    "| cache_read (matrices) | LINE_BYTES=40 SIZE_BYTES=6144 WORDS=10 OUTSTANDING=16 | 8 (12 on the RTL of "
+    "168e94a; the 70 above are from before commit 22770fd) | cache_dm's response choice (rr_pick, 3), its table's "
+    "multiplexer (2), read_ring's bookkeeping (3) |",
+    "| cache_read (kd nodes) | LINE_BYTES=8 SIZE_BYTES=4096 WORDS=2 OUTSTANDING=16 | 8 | the same |",
+    "| rgs_ctrl | TAG_BITS=6 | 16 | rgs_normal: the code chosen by k_q, shade_rec_decode's unfolding, "
+    "f24_from_i32's first segment (8 levels alone) |",
+    "| trace_core | THREADS=64 | 18 | trace_core's own logic (12 levels) between its threads and its units |"]
+
+
 def dynrtp_section():
     """The whole DynRTP at the paper's configuration beside the prototype (issue 23, goal 4)."""
     if not os.path.exists(DYNRTP_JSON):
@@ -926,7 +942,7 @@ def dynrtp_section():
                "from its registers to each output bit, from each input bit to the output bits it reaches without a "
                "register, and from each input bit to a register inside; on a small hierarchy it gives the count of "
                "`lut_levels` on the same netlist flattened after mapping."]
-    return md
+    return md + UNIT_LEVELS_NOTE
 
 
 if __name__ == "__main__":
