@@ -904,7 +904,7 @@ UNIT_LEVELS_NOTE = [
     "| cache_read (kd nodes) | LINE_BYTES=8 SIZE_BYTES=4096 WORDS=2 OUTSTANDING=16 | 8 | the same |",
     "| rgs_ctrl | TAG_BITS=6 | 16 | rgs_normal: the code chosen by k_q, shade_rec_decode's unfolding, "
     "f24_from_i32's first segment (8 levels alone) |",
-    "| trace_core | THREADS=64 | 18 | trace_core's own logic (12 levels) between its threads and its units |"]
+    "| trace_core | THREADS=64 | 18 | trace_core's own logic, 12 levels: the word port's lowest requesting thread (`lowest()`, a priority loop over the 64 threads, 8 LUT6) into each thread's mem_req_ready_i; then its units f24_sum_exact, isect_rebased, xform_wide 9 each, trace_thread 8 |"]
 
 
 def dynrtp_section():
