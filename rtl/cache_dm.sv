@@ -82,6 +82,8 @@ module cache_dm #(
   end
 
   // ---- request table ----
+  // rt_ready: the entry is valid and its data is here (cleared when it is answered), so that the
+  // response's pick reads registers only
   logic [OUTSTANDING-1:0] rt_valid, rt_ready, rt_hit;
   logic [IDW-1:0] rt_id [OUTSTANDING];
   logic [OW-1:0] rt_slot [OUTSTANDING];
@@ -90,18 +92,15 @@ module cache_dm #(
   logic [OUTSTANDING-1:0] rt_free, rt_alloc, rt_grant, rt_after, rt_after_next;
   logic [OW-1:0] rt_out;
   logic rt_out_any, rt_room1, rt_room2;
-  logic [OUTSTANDING-1:0] rt_free2; // the free entries but the lowest one
+  logic [OW:0] rt_used, rt_used_next;  // valid entries, counted
   always_comb begin
     rt_free = ~rt_valid;
     rt_alloc = rt_free & (~rt_free + OUTSTANDING'(1));             // the lowest free entry
-    rt_free2 = rt_free & (rt_free - OUTSTANDING'(1));
-    rt_room1 = |rt_free;
-    rt_room2 = |rt_free2;
   end
   // round robin from the entry after the last one answered: no response waits for more than
   // OUTSTANDING others
   rr_pick #(.N(OUTSTANDING)) u_out (
-    .req_i(rt_valid & rt_ready), .after_i(rt_after), .any_o(rt_out_any), .grant_o(rt_grant),
+    .req_i(rt_ready), .after_i(rt_after), .any_o(rt_out_any), .grant_o(rt_grant),
     .index_o(rt_out), .after_o(rt_after_next)
   );
   assign rsp_valid_o = rt_out_any;
@@ -134,6 +133,9 @@ module cache_dm #(
   assign a_line = req_line_i;
   assign a_idx = req_idx_i;
   // room in the table for the request in S1 and this one: they never stall
+  // room for one (two) more: registers, from the count of valid entries (not an OR over the free
+  // entries in the request's cycle: req_ready_o reaches the requester's logic)
+  assign rt_used_next = rt_used + (OW + 1)'(s1_valid) - (OW + 1)'(rsp_valid_o && rsp_ready_i);
   assign req_ready_o = !flushing && !flush_i && (s1_valid ? rt_room2 : rt_room1);
   assign take = req_valid_i && req_ready_o;
 
@@ -189,6 +191,10 @@ module cache_dm #(
     if (!rst_ni) begin
       s1_valid <= 1'b0;
       rt_valid <= '0;
+      rt_ready <= '0;
+      rt_used <= '0;
+      rt_room1 <= 1'b1;
+      rt_room2 <= OUTSTANDING > 1;
       rt_after <= '0;
       ff_head <= '0;
       ff_send <= '0;
@@ -219,7 +225,11 @@ module cache_dm #(
       // request table: a fill completes the requests waiting on it; the response frees its entry
       for (int e = 0; e < OUTSTANDING; e++)
         if (fill_now && rt_valid[e] && !rt_ready[e] && rt_slot[e] == ff_head) rt_ready[e] <= 1'b1;
+        else if (rsp_valid_o && rsp_ready_i && rt_grant[e]) rt_ready[e] <= 1'b0;
       if (rsp_valid_o && rsp_ready_i) rt_after <= rt_after_next;
+      rt_used <= rt_used_next;
+      rt_room1 <= rt_used_next < (OW + 1)'(OUTSTANDING);
+      rt_room2 <= rt_used_next < (OW + 1)'(OUTSTANDING - 1);
       rt_valid <= (rt_valid & ~(rsp_valid_o && rsp_ready_i ? rt_grant : '0)) | (s1_valid ? rt_alloc : '0);
       for (int e = 0; e < OUTSTANDING; e++)
         if (s1_valid && rt_alloc[e]) rt_ready[e] <= !wait_fill || (fill_now && match_head && !miss);

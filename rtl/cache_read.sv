@@ -3,11 +3,11 @@
 // units read through their caches; tb/cycle/mem_iface.c mem_iface_read, one lookup per line the
 // read touches). The units' ports (trav_unit's kd-node port, the core's descriptor word port,
 // list_unit's read port) take their answers in request order, while cache_dm answers as soon as a
-// line is there (hits under misses): each read gets a slot of a ring of OUTSTANDING, its lookups
-// carry {slot, part} as their id, and the words are collected into the slot; the oldest slot
-// leaves when all its lookups are back. A read that crosses a line boundary (a kd node at an odd
-// word address) makes a second lookup of the next line in the following cycle, as mem_iface_read
-// loops over the lines.
+// line is there (hits under misses): each read gets a slot of a ring of OUTSTANDING (read_ring),
+// its lookups carry {off, slot, part} as their id, and the words are collected into the slot; the
+// oldest slot leaves when all its lookups are back. A read that crosses a line boundary (a kd node
+// at an odd word address) makes a second lookup of the next line in the following cycle, as
+// mem_iface_read loops over the lines.
 // The front: a read's line (word address / LW, LW = LINE_BYTES / 4 words), the line's index in
 // the cache (line mod LINES) and the read's offset in the line (word address mod LW). With LW and
 // LINES powers of two they are bit fields and the first lookup is made in the request cycle. Else
@@ -15,20 +15,22 @@
 // divider, whose constant division of 32 bits is a 70-level LUT network: the address is a sum of
 // CB-bit chunks c_k 2^(CB k), and per chunk three tables give floor(c_k 2^(CB k) / LW), that mod
 // LINES, and c_k 2^(CB k) mod LW. Stage F (the request cycle) looks them up and adds each kind as
-// a balanced tree; the next cycle adds the remainders' carry floor(sum r / LW) to the line and to
-// its residue, reduces the residue mod LINES by comparisons with its multiples and makes the first
-// lookup, its index read straight into the cache's arrays (cache_dm's S0). So the matrix cache
-// keeps the latency it had when cache_dm took a cycle for the index.
-// The words: a response's line is rotated once by the read's offset, which its lookup's id
-// carries with {slot, part} (word j of the read is the line's word (off + j) mod LW, from the
-// second line when off + j >= LW) and written into the slot's words that lie in it; each word of
-// the ring is a column of OUTSTANDING entries in distributed RAM, written at the responding slot
-// and read at the oldest.
+// a balanced tree; the next cycle adds the remainders' carry floor(sum r / LW) to the line, and
+// finds the line's residue mod LINES among the candidates a_m + carry - k LINES by comparisons on
+// carry chains (no adder before them), and makes the first lookup, its index read straight into
+// the cache's arrays (cache_dm's S0). So the matrix cache keeps the latency it had when cache_dm
+// took a cycle for the index. The second line's index is the first's + 1 (mod LINES), from a
+// register in the second lookup's cycle.
+// The words: read_ring rotates a response's line by the read's offset, which the lookup's id
+// carries, into the slot's words (LUT RAM); its own module, so that its logic after the cache's
+// late response stays short (docs/synth.md: LUT6 levels).
 // Latency: the cache's (hit 2 cycles; a miss its fill + 1) + 1 for the ring, + 1 for stage F
 // (the matrix cache: hit 4); throughput 1 read per cycle (a read of two lines: 1 per 2 cycles).
-// Resources: cache_dm's (its ids log2 LW + log2 OUTSTANDING + 1 bits); the ring WORDS x
-// OUTSTANDING x 32 bits of LUT RAM and OUTSTANDING x 4 flip-flops; the rotation WORDS x 32 LW-to-1 multiplexers; stage F 3 x 7 tables of
-// 32 entries, three adder trees and its registers.
+// LUT6 levels (synth_xilinx per module, scripts/synth.py --levels): 8 for the matrix cache (the
+// cache's response choice, its table's multiplexer, read_ring's bookkeeping).
+// Resources: cache_dm's (its ids log2 LW + log2 OUTSTANDING + 1 bits); read_ring's (WORDS x
+// OUTSTANDING x 32 bits of LUT RAM); stage F 3 x 7 tables of 32 entries, three adder trees and
+// its registers; the next cycle up to 9 comparisons of MW + 1 bits.
 module cache_read #(
   parameter int LINE_BYTES = 8,
   parameter int SIZE_BYTES = 4096,
@@ -59,12 +61,9 @@ module cache_read #(
     $error("cache_read: WORDS 1 .. LINE_BYTES / 4 (a read touches at most two lines), OUTSTANDING a power of two");
   end
 
-  // ---- the ring of reads ----
-  logic [SW-1:0] head, tail;
-  logic [SW:0] used;
-  logic [1:0] need [OUTSTANDING], got [OUTSTANDING];
+  // ---- the ring of reads (read_ring) ----
+  logic [SW-1:0] tail;
   logic room, take;
-  assign room = used != (SW + 1)'(OUTSTANDING);
 
   // ---- the front: the read whose first lookup is next (f_*) ----
   logic f_valid, first;
@@ -135,26 +134,47 @@ module cache_read #(
     if (CHUNKS != 7) begin : g_chunks
       $error("cache_read: the adder trees are written for 7 chunks of 5 bits");
     end
-    // the next cycle: the remainders' carry into the line and its residue, the residue mod LINES
+    // the next cycle: the remainders' carry into the line and its residue, the residue mod LINES.
+    // t = a_m + carry <= TMAX; its index is t - k LINES for the k with k LINES <= t < (k + 1) LINES.
+    // Each candidate a_m - (k LINES - carry) is one carry chain whose carry out says t >= k LINES,
+    // and k LINES - carry is a table of a_r (as carry is): no adder before the comparisons. The
+    // candidates (at most 9: 7 chunks of residues below LINES) are chosen by the comparisons in
+    // two steps of 3 (each a LUT6 of 2 comparisons and 3 candidates), not by a priority chain.
+    localparam int TMAX = CHUNKS * (LINES - 1) + (CHUNKS * (LW - 1)) / LW;
+    localparam int KS = TMAX / LINES + 1;                   // candidates k = 0 .. KS - 1
+    if (KS > 9) begin : g_ks
+      $error("cache_read: the residue's choice is written for at most 9 candidates");
+    end
     logic [OW-1:0] carry;
-    logic [MW-1:0] t, multiple;
+    logic [MW:0] minus [KS];       // k LINES - carry, per candidate
+    logic [MW:0] diff [KS];        // a_m - (k LINES - carry); bit MW set: t < k LINES
+    logic [IXW-1:0] cand [9];      // the candidates' indices (0 beyond KS)
+    logic [8:0] ge;                // t >= k LINES (0 beyond KS)
+    logic [IXW-1:0] grp [3];       // the candidate among 3 k .. 3 k + 2
     always_comb begin
       carry = '0;
       f_off = '0;
+      for (int k = 0; k < KS; k++) minus[k] = '0;
       for (int v = 0; v < (1 << RW); v++)
         if (a_r == RW'(v)) begin
           carry = OW'(v / LW);
           f_off = OW'(v % LW);
+          for (int k = 0; k < KS; k++) minus[k] = (MW + 1)'(k * LINES - v / LW);
         end
-      t = a_m + MW'(carry);
-      multiple = '0;
-      for (int k = 1; k * LINES < (1 << MW); k++)
-        if (t >= MW'(k * LINES)) multiple = MW'(k * LINES);
+      ge = '0;
+      for (int k = 0; k < 9; k++) cand[k] = '0;
+      for (int k = 0; k < KS; k++) begin
+        diff[k] = {1'b0, a_m} - minus[k];
+        ge[k] = !diff[k][MW];
+        cand[k] = IXW'(diff[k]);
+      end
+      for (int g = 0; g < 3; g++)
+        grp[g] = ge[3 * g + 2] ? cand[3 * g + 2] : ge[3 * g + 1] ? cand[3 * g + 1] : cand[3 * g];
+      f_idx = ge[6] ? grp[2] : ge[3] ? grp[1] : grp[0];
     end
     assign f_valid = a_valid;
     assign f_slot = a_slot;
     assign f_line = a_q + 32'(carry);
-    assign f_idx = IXW'(t - multiple);
     assign req_ready_o = room && (!a_valid || first);
   end
   assign take = req_valid_i && req_ready_o;
@@ -163,7 +183,7 @@ module cache_read #(
   logic [SW-1:0] second_slot;
   logic [OW-1:0] second_off;
   logic [31:0] second_line;
-  logic [IXW-1:0] second_idx;
+  logic [IXW-1:0] second_idx;  // the first line's (the second's is next_idx)
   logic two, c_valid, c_rsp_valid;
   logic [OW+SW:0] c_id, c_rsp_id;
   logic [8*LINE_BYTES-1:0] c_rsp_data;
@@ -171,70 +191,35 @@ module cache_read #(
   assign first = f_valid && !second_q && c_ready;
   assign c_valid = second_q || f_valid;
   assign c_id = second_q ? {second_off, second_slot, 1'b1} : {f_off, f_slot, 1'b0};
+  // the second line's index, from the first's register (not before it: f_idx comes late)
+  logic [IXW-1:0] next_idx;
+  assign next_idx = second_idx == IXW'(LINES - 1) ? '0 : second_idx + 1'b1;
 
   /* verilator lint_off PINCONNECTEMPTY */
   cache_dm #(.LINE_BYTES(LINE_BYTES), .SIZE_BYTES(SIZE_BYTES), .IDW(OW + SW + 1), .OUTSTANDING(OUTSTANDING)) u_cache (
     .clk_i(clk_i), .rst_ni(rst_ni), .flush_i(flush_i), .req_valid_i(c_valid), .req_ready_o(c_ready),
-    .req_id_i(c_id), .req_line_i(second_q ? second_line : f_line), .req_idx_i(second_q ? second_idx : f_idx),
+    .req_id_i(c_id), .req_line_i(second_q ? second_line : f_line), .req_idx_i(second_q ? next_idx : f_idx),
     .rsp_valid_o(c_rsp_valid), .rsp_ready_i(1'b1), .rsp_id_o(c_rsp_id), .rsp_hit_o(), .rsp_data_o(c_rsp_data),
     .mem_req_valid_o(mem_req_valid_o), .mem_req_ready_i(mem_req_ready_i), .mem_req_addr_o(mem_req_addr_o),
     .mem_rsp_valid_i(mem_rsp_valid_i), .mem_rsp_data_i(mem_rsp_data_i));
   /* verilator lint_on PINCONNECTEMPTY */
 
-  assign rsp_valid_o = used != 0 && got[head] == need[head];
+  read_ring #(.LW(LW), .WORDS(WORDS), .OUTSTANDING(OUTSTANDING)) u_ring (
+    .clk_i(clk_i), .rst_ni(rst_ni), .room_o(room), .tail_o(tail), .take_i(take), .look_i(first), .look_slot_i(f_slot),
+    .two_i(two), .rsp_valid_i(c_rsp_valid), .rsp_off_i(c_rsp_id[OW+SW:SW+1]), .rsp_slot_i(c_rsp_id[SW:1]),
+    .rsp_part_i(c_rsp_id[0]), .rsp_line_i(c_rsp_data), .out_valid_o(rsp_valid_o), .out_data_o(rsp_data_o));
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      head <= '0;
-      tail <= '0;
-      used <= '0;
-      second_q <= 1'b0;
-    end else begin
-      if (take) tail <= tail + 1'b1;
-      if (first) second_q <= two;
-      else if (second_q && c_ready) second_q <= 1'b0;
-      if (rsp_valid_o) head <= head + 1'b1;
-      used <= used + (SW + 1)'(take) - (SW + 1)'(rsp_valid_o);
-    end
+    if (!rst_ni) second_q <= 1'b0;
+    else if (first) second_q <= two;
+    else if (second_q && c_ready) second_q <= 1'b0;
   end
 
-  // a read's lookups are known when its first is made: until then it waits for both parts
-  logic [OW-1:0] r_off;
-  logic [SW-1:0] r_slot;
-  logic r_part;
-  assign {r_off, r_slot, r_part} = c_rsp_id;
-  always_ff @(posedge clk_i) begin
+  always_ff @(posedge clk_i)
     if (first) begin
       second_slot <= f_slot;
       second_off <= f_off;
       second_line <= f_line + 32'd1;
-      second_idx <= f_idx == IXW'(LINES - 1) ? '0 : f_idx + 1'b1;
+      second_idx <= f_idx;
     end
-    for (int s = 0; s < OUTSTANDING; s++) begin
-      if (first && f_slot == SW'(s)) need[s] <= two ? 2'b11 : 2'b01;
-      else if (take && tail == SW'(s)) need[s] <= 2'b11;
-      if (take && tail == SW'(s)) got[s] <= 2'b00;
-      else if (c_rsp_valid && r_slot == SW'(s)) got[s][r_part] <= 1'b1;
-    end
-  end
-
-  // the response's line rotated by the read's offset (carried in the lookup's id): word j of the
-  // read is the line's word off + j, in the second line from LW on; per word a table of the
-  // offset gives the line's word, an LW-to-1 multiplexer takes it
-  logic [31:0] line_word [LW];
-  for (genvar w = 0; w < LW; w++) begin : g_line
-    assign line_word[w] = c_rsp_data[32*w +: 32];
-  end
-  for (genvar j = 0; j < WORDS; j++) begin : g_word
-    logic [OW-1:0] at [1 << OW];
-    logic [(1 << OW)-1:0] second;
-    for (genvar o = 0; o < (1 << OW); o++) begin : g_at
-      assign at[o] = OW'((o + j) % LW);
-      assign second[o] = o + j >= LW;
-    end
-    logic [31:0] column [OUTSTANDING];
-    always_ff @(posedge clk_i)
-      if (c_rsp_valid && second[r_off] == r_part) column[r_slot] <= line_word[at[r_off]];
-    assign rsp_data_o[32*j +: 32] = column[head];
-  end
 endmodule

@@ -33,6 +33,11 @@ build/synth/synth.json (the other modules' figures as they were) before writing 
 `python3 scripts/synth.py --redo i:f24_sum_exact:e7m16 [KEY ...]` measures only the given entries of
 build/synth/synth.json again (keys as in that file, or new ones such as x:rebase_unit:e7m16) and
 rewrites it and docs/synth.md.
+`python3 scripts/synth.py --levels MODULE [PARAM=VALUE ...] [--hier]` prints one module's most LUT6
+levels between registers and ports as the DynRTP's are counted (synth_xilinx per module,
+hier_lut_levels), its deepest path flattened after mapping (cell type, a net it drives; not with
+--hier, for modules too large to flatten), and per submodule its levels and its own cells' deepest
+path (the named nets); it writes only build/synth/levels_*.
 """
 import concurrent.futures as cf, json, os, re, shlex, subprocess, sys, tempfile, time
 
@@ -121,31 +126,78 @@ def xilinx_flow(top, flatten):
 
 # 7-series cells a register-to-register path passes through: LUTs and LUT RAM reads count one
 # level each; carry chains, wide-function muxes, inverters and DSP48E1 slices (registers off)
-# count none (dedicated logic, not LUT levels); everything else (flip-flops, SRLs, block RAM) and
-# the ports end a path.
+# count none (dedicated logic, not LUT levels; a DSP48E1's inputs whose way has one of its registers
+# end a path, comb_input); everything else (flip-flops, SRLs, block RAM) and the ports end a path.
 LEVEL_CELLS = {**{f"LUT{k}": 1 for k in range(1, 7)}, **{k: 1 for k in ("RAM32M", "RAM64M", "RAM32X1D", "RAM64X1D",
                "RAM128X1D", "RAM256X1S", "RAM64X1S", "RAM32X1S", "RAM128X1S")},
                "CARRY4": 0, "MUXF7": 0, "MUXF8": 0, "INV": 0, "DSP48E1": 0}
 
 
-def comb_input(ctype, port):
+def comb_input(cell, port):
     """Whether a cell's input port reaches its outputs without a clock edge: a LUT RAM's read
     addresses do (ADDRA..ADDRD, DPRA, A); its write data and enable are written at the edge, so a
-    path ends there as at a flip-flop."""
+    path ends there as at a flip-flop. A DSP48E1's data and control inputs do when none of the
+    slice's registers on their way to its outputs is used (dsp_comb); its clock enables and resets
+    never (they steer its registers)."""
+    ctype = cell["type"]
+    if ctype == "DSP48E1":
+        return dsp_comb(cell.get("parameters", {}), port)
     return ctype not in LUTRAM_BITS or port.startswith(("ADDR", "DPRA")) or re.fullmatch(r"A\d*", port) is not None
+
+
+# DSP48E1: the registers between each input and the outputs (the A, B and D registers, the
+# pre-adder's, the multiplier's where it is used, the output's); xilinx_dsp packs flip-flops of the
+# RTL into them, so a slice with one is a register on those inputs' paths, as a flip-flop would be
+DSP_INPUT_REGS = {"A": ("AREG", "MREG", "PREG"), "ACIN": ("AREG", "MREG", "PREG"), "B": ("BREG", "MREG", "PREG"),
+                  "BCIN": ("BREG", "MREG", "PREG"), "C": ("CREG", "PREG"), "D": ("DREG", "ADREG", "MREG", "PREG"),
+                  "PCIN": ("PREG",), "CARRYCASCIN": ("PREG",), "MULTSIGNIN": ("PREG",),
+                  "OPMODE": ("OPMODEREG", "PREG"), "ALUMODE": ("ALUMODEREG", "PREG"),
+                  "INMODE": ("INMODEREG", "MREG", "PREG"), "CARRYIN": ("CARRYINREG", "PREG"),
+                  "CARRYINSEL": ("CARRYINSELREG", "PREG")}
+
+
+def dsp_registered(cell):
+    """A DSP48E1 with a register on some data input's way: its outputs start paths as a flip-flop's."""
+    return cell["type"] == "DSP48E1" and any(
+        not dsp_comb(cell.get("parameters", {}), p) for p in DSP_INPUT_REGS if p in cell["connections"])
+
+
+def dsp_comb(params, port):
+    """Whether a DSP48E1 input reaches its outputs without a register (DSP_INPUT_REGS; a parameter
+    Yosys leaves out has the cell library's default: every register on, the multiplier used, no
+    pre-adder)."""
+    def value(k, default):
+        v = params.get(k)
+        if v is None:
+            return default
+        v = v.strip() if isinstance(v, str) else v
+        return int(v, 2) if isinstance(v, str) and v and set(v) <= {"0", "1"} else v
+    mult = value("USE_MULT", "MULTIPLY") != "NONE"
+    dport = value("USE_DPORT", "FALSE") == "TRUE"
+    regs = DSP_INPUT_REGS.get(port)
+    if regs is None:  # CLK, CE*, RST*
+        return False
+    return not any(value(r, 1) for r in regs if (r != "MREG" or mult) and (r != "ADREG" or dport))
 
 
 def lut_levels(js):
     """The most LUT levels between two registers (or ports) of the flattened netlist js."""
+    return lut_path(js)[0]
+
+
+def lut_path(js, module=None):
+    """lut_levels and its deepest path: the levels and the path's level cells, first to last, each as
+    (cell type, the name of a net it drives). With module (of a hierarchical netlist): that module's
+    own cells, its submodules' ports ending paths as registers do."""
     mods = json.load(open(js))["modules"]  # the top and the cell library
-    mod = mods[top_module(mods)]
+    mod = mods[module or top_module(mods)]
     driver, cells = {}, mod["cells"]
     for name, c in cells.items():
         for port, bits in c["connections"].items():
             if c.get("port_directions", {}).get(port) == "output":
                 for b in bits:
                     driver[b] = name
-    depth = {}
+    depth, prev = {}, {}
     for start in cells:  # longest path by depth-first search with an explicit stack (no recursion limit)
         stack = [start]
         while stack:
@@ -159,16 +211,61 @@ def lut_levels(js):
                 stack.pop()
                 continue
             ins = [driver[b] for p, bits in c["connections"].items()
-                   if c.get("port_directions", {}).get(p) == "input" and comb_input(c["type"], p)
+                   if c.get("port_directions", {}).get(p) == "input" and comb_input(c, p)
                    for b in bits if b in driver]
             todo = [d for d in ins if d not in depth and d != n]
             if todo:
                 stack.extend(todo)
                 continue
-            feed = [depth[d] for d in ins if cells[d]["type"] in LEVEL_CELLS and d != n]
-            depth[n] = LEVEL_CELLS[c["type"]] + max(feed, default=0)
+            feed = [(depth[d], d) for d in ins if cells[d]["type"] in LEVEL_CELLS and d != n]
+            best = max(feed, default=(0, None))
+            depth[n], prev[n] = LEVEL_CELLS[c["type"]] + best[0], best[1]
             stack.pop()
-    return max(depth.values(), default=0)
+    if not depth:
+        return 0, []
+    n = max(depth, key=depth.get)
+    names = {}  # a net's name: the shortest user-given one (Yosys's own names start with $)
+    for net, d in mod.get("netnames", {}).items():
+        for b in d["bits"]:
+            if isinstance(b, int) and (b not in names or (names[b].startswith("$"), len(names[b])) >
+                                       (net.startswith("$"), len(net))):
+                names[b] = net
+    path = []
+    while n is not None:
+        c = cells[n]
+        outs = [b for p, bits in c["connections"].items() if c.get("port_directions", {}).get(p) == "output"
+                for b in bits]
+        path.append((c["type"], names.get(outs[0], "?") if outs else "?"))
+        n = prev.get(n)
+    return depth[max(depth, key=depth.get)], path[::-1]
+
+
+def module_levels(top, params, flat=True):
+    """--levels: one module's LUT6 levels from its registers and ports as the DynRTP's are measured
+    (xilinx_flow per module; hier_lut_levels, and flattened after mapping its deepest path), each
+    submodule's levels alone and the deepest path of its own cells (submodule ports as path ends)."""
+    tag = re.sub(r"[^A-Za-z0-9]+", "_", "_".join([top] + [f"{k}{v}" for k, v in params.items()]))
+    reads = " ".join(f"read_verilog -sv {f};" for f in RTL)
+    chp = f"chparam {' '.join(f'-set {k} {v}' for k, v in params.items())} {top}; " if params else ""
+    log, js = os.path.join(OUT, f"levels_{tag}.log"), os.path.join(OUT, f"levels_{tag}.json")
+    hier = js[:-len(".json")] + "_hier.json"
+    t0 = time.time()
+    tail = f"; flatten; stat; write_json {js}" if flat else "; stat"
+    c = cells(yosys(f"{reads} {chp}{xilinx_flow(top, flatten=False)}; write_json {hier}{tail}", log))
+    mods = json.load(open(hier))["modules"]
+    depth = hier_lut_levels(mods, top_module(mods))
+    print(f"{top} {' '.join(f'{k}={v}' for k, v in params.items())}: {depth[top_module(mods)]} LUT6 levels, "
+          f"{luts_of(c)} LUT6, {ffs_of(c)} FF ({round(time.time() - t0)} s; {log})")
+    if flat:
+        levels, path = lut_path(js)
+        print(f"  deepest path ({levels}), flattened:")
+        for typ, net in path:
+            if LEVEL_CELLS.get(typ):
+                print(f"    {typ:8} {net}")
+    for name, v in sorted(depth.items(), key=lambda x: -x[1]):
+        own, path = lut_path(hier, name)
+        print(f"  {key_name(name)}: {v} levels with its submodules; its own cells {own}: " +
+              " > ".join(f"{t}:{n}" for t, n in path if LEVEL_CELLS.get(t) and not n.startswith("$")))
 
 
 def xilinx(top, e, m, edge_eps=0, terms=0):
@@ -375,7 +472,7 @@ def hier_lut_levels(mods, top):
                     continue
                 if sub is None:
                     ins = [x for p, bits in c["connections"].items()
-                           if c.get("port_directions", {}).get(p) == "input" and comb_input(c["type"], p)
+                           if c.get("port_directions", {}).get(p) == "input" and comb_input(c, p)
                            for x in bits]
                     need = [(x, 0) for x in ins]
                 else:
@@ -386,7 +483,7 @@ def hier_lut_levels(mods, top):
                     stack.extend(todo)
                     continue
                 step = LEVEL_CELLS[c["type"]] if sub is None else 0
-                r, d = (NONE if sub is None else reg), {}
+                r, d = (reg if sub is not None else 0 if dsp_registered(c) else NONE), {}
                 for x, l in need:
                     if not isinstance(x, int):
                         continue
@@ -420,7 +517,7 @@ def hier_lut_levels(mods, top):
             else:  # a register's inputs, a LUT RAM's written ones
                 for port, bits in c["connections"].items():
                     if c.get("port_directions", {}).get(port) == "input" and \
-                            (c["type"] not in LEVEL_CELLS or not comb_input(c["type"], port)):
+                            (c["type"] not in LEVEL_CELLS or not comb_input(c, port)):
                         for b in bits:
                             endpoint(b, 0)
         reg_out, through = {}, {}
@@ -572,7 +669,7 @@ def redo(keys):
 
 def main():
     args = sys.argv[1:]
-    if args and (args[0] in ("-h", "--help") or args[0] not in ("--only-control", "--redo", "--dynrtp")):
+    if args and (args[0] in ("-h", "--help") or args[0] not in ("--only-control", "--redo", "--dynrtp", "--levels")):
         # a full run takes hours: an unknown argument is an error, never a start
         print(__doc__)
         sys.exit(0 if args[0] in ("-h", "--help") else f"synth.py: unknown argument {args[0]} (see above)")
@@ -589,6 +686,9 @@ def main():
         save_results(res)
         write(res)
         return
+    if len(sys.argv) > 2 and sys.argv[1] == "--levels":
+        return module_levels(sys.argv[2], dict(a.split("=", 1) for a in sys.argv[3:] if a != "--hier"),
+                             "--hier" not in sys.argv[3:])
     if len(sys.argv) > 2 and sys.argv[1] == "--redo":
         return redo(sys.argv[2:])
     if len(sys.argv) > 1 and sys.argv[1] == "--dynrtp":
@@ -791,6 +891,22 @@ def accuracy_section(res):
     return md
 
 
+# Per unit of the DynRTP measured alone since the whole run above (python3 scripts/synth.py --levels),
+# shown after its table until the whole DynRTP is synthesized again
+UNIT_LEVELS_NOTE = [
+    "", "Each unit alone again (2026-11-29, `python3 scripts/synth.py --levels MODULE PARAM=VALUE ...`: "
+    "synth_xilinx per module as above, `hier_lut_levels`, its ports as path ends; from this date a DSP48E1 "
+    "with one of its registers on an input's way ends that input's paths, as a flip-flop does):", "",
+    "| unit | parameters | LUT6 levels | where the deepest path is |", "|---|---|---:|---|",
+    "| cache_read (matrices) | LINE_BYTES=40 SIZE_BYTES=6144 WORDS=10 OUTSTANDING=16 | 8 (12 on the RTL of "
+    "168e94a; the 70 above are from before commit 22770fd) | cache_dm's response choice (rr_pick, 3), its table's "
+    "multiplexer (2), read_ring's bookkeeping (3) |",
+    "| cache_read (kd nodes) | LINE_BYTES=8 SIZE_BYTES=4096 WORDS=2 OUTSTANDING=16 | 8 | the same |",
+    "| rgs_ctrl | TAG_BITS=6 | 16 | rgs_normal: the code chosen by k_q, shade_rec_decode's unfolding, "
+    "f24_from_i32's first segment (8 levels alone) |",
+    "| trace_core | THREADS=64 | 18 | trace_core's own logic, 12 levels: the word port's lowest requesting thread (`lowest()`, a priority loop over the 64 threads, 8 LUT6) into each thread's mem_req_ready_i; then its units f24_sum_exact, isect_rebased, xform_wide 9 each, trace_thread 8 |"]
+
+
 def dynrtp_section():
     """The whole DynRTP at the paper's configuration beside the prototype (issue 23, goal 4)."""
     if not os.path.exists(DYNRTP_JSON):
@@ -826,7 +942,7 @@ def dynrtp_section():
                "from its registers to each output bit, from each input bit to the output bits it reaches without a "
                "register, and from each input bit to a register inside; on a small hierarchy it gives the count of "
                "`lut_levels` on the same netlist flattened after mapping."]
-    return md
+    return md + UNIT_LEVELS_NOTE
 
 
 if __name__ == "__main__":

@@ -84,10 +84,10 @@ t_lint() {
 t_synth_levels() { # make synth's totals and LUT6 levels of a hierarchical netlist (the whole DynRTP's method)
   # against Yosys's own stat and the levels of the same netlist flattened after mapping, on a small
   # hierarchy whose paths cross module ports (cache_read: cache_dm and the combinational rr_pick)
-  yosys -q -l "$T/h.log" -p "read_verilog -sv rtl/cache_read.sv rtl/cache_dm.sv rtl/rr_pick.sv; chparam -set SIZE_BYTES 256 \
+  yosys -q -l "$T/h.log" -p "read_verilog -sv rtl/cache_read.sv rtl/cache_dm.sv rtl/rr_pick.sv rtl/read_ring.sv; chparam -set SIZE_BYTES 256 \
     -set OUTSTANDING 4 cache_read; synth_xilinx -top cache_read; stat; write_json $T/h.json" >/dev/null 2>&1 || return 1
   yosys -q -p "read_json $T/h.json; flatten; write_json $T/f.json" >/dev/null 2>&1 || return 1
-  python3 - "$T" <<'PY'
+  python3 - "$T" <<'PY' || return 1
 import json, sys
 sys.path.insert(0, "scripts")
 import synth as S
@@ -122,7 +122,7 @@ SV
       >/dev/null 2>&1 || return 1
   done
   grep -q RAM32M "$T/lr1.log" || { echo "the memory is not LUT RAM"; return 1; }
-  python3 - "$T" <<'PY'
+  python3 - "$T" <<'PY' || return 1
 import sys
 sys.path.insert(0, "scripts")
 import synth as S
@@ -130,6 +130,36 @@ t = sys.argv[1]
 ram, reg = S.lut_levels(f"{t}/lr1.json"), S.lut_levels(f"{t}/lr0.json")
 print(f"a product into LUT RAM: {ram} LUT6 levels, into a register: {reg}")
 sys.exit(0 if ram == reg else 1)
+PY
+  # a DSP48E1 with a register on an input's way (xilinx_dsp packs the RTL's flip-flops into it) ends
+  # that input's paths and starts its outputs' as a flip-flop does; without one it is passed through
+  # at no level: LUT > DSP > LUT between two flip-flops is 1 level with its A register, 2 without
+  python3 - <<'PY'
+import json, os, sys, tempfile
+sys.path.insert(0, "scripts")
+import synth as S
+def netlist(areg):
+    io = {"I0": "input", "O": "output"}
+    cells = {"f0": {"type": "FDRE", "port_directions": {"D": "input", "Q": "output"}, "connections": {"D": [2], "Q": [3]}},
+             "l1": {"type": "LUT1", "port_directions": io, "connections": {"I0": [3], "O": [4]}},
+             "d": {"type": "DSP48E1", "parameters": {k: format(areg if k == "AREG" else 0, "032b") for k in
+                   ("AREG", "BREG", "CREG", "DREG", "ADREG", "MREG", "PREG", "OPMODEREG", "ALUMODEREG", "INMODEREG",
+                    "CARRYINREG", "CARRYINSELREG")} | {"USE_MULT": "NONE"},
+                   "port_directions": {"A": "input", "CEA2": "input", "P": "output"}, "connections": {"A": [4], "CEA2": [2], "P": [5]}},
+             "l2": {"type": "LUT1", "port_directions": io, "connections": {"I0": [5], "O": [6]}},
+             "f1": {"type": "FDRE", "port_directions": {"D": "input", "Q": "output"}, "connections": {"D": [6], "Q": [7]}}}
+    return {"modules": {"t": {"attributes": {"top": "1"}, "ports": {"i": {"direction": "input", "bits": [2]},
+                              "o": {"direction": "output", "bits": [7]}}, "cells": cells, "netnames": {}}}}
+got = []
+for areg in (1, 0):
+    f = tempfile.NamedTemporaryFile("w", suffix=".json", delete=False)
+    json.dump(netlist(areg), f)
+    f.close()
+    mods = json.load(open(f.name))["modules"]
+    got.append((S.lut_levels(f.name), S.hier_lut_levels(mods, "t")["t"]))
+    os.unlink(f.name)
+print(f"LUT > DSP48E1 > LUT: {got[0][0]} level(s) with its A register, {got[1][0]} without (flat); hierarchical {got[0][1]}, {got[1][1]}")
+sys.exit(0 if got == [(1, 1), (2, 2)] else 1)
 PY
 }
 
