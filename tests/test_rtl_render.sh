@@ -50,6 +50,9 @@ t_vcd_matches_stats() {
   "$BIN" render "${VCD_FRAME[@]}" -o "$T/v.png" --stats "$T/v.json" --vcd "$T/all.vcd" --vcd-cycles 0:1000000000 >/dev/null
   "$BIN" render "${VCD_FRAME[@]}" -o "$T/w.png" --vcd "$T/w.vcd" --vcd-cycles 1000:1500 >/dev/null
   cmp "$T/n.png" "$T/v.png" && cmp "$T/n.png" "$T/w.png"
+  local rc=0  # a file that cannot be written: one line, exit 3, as in cycle mode
+  "$BIN" render "${VCD_FRAME[@]}" -o "$T/u.png" --vcd "$T/no/such/dir.vcd" 2>"$T/err" >/dev/null || rc=$?
+  [[ $rc -eq 3 && $(wc -l <"$T/err") -eq 1 ]] || { echo "unwritable --vcd: exit $rc"; cat "$T/err"; return 1; }
   PYTHONPATH=tests python3 - "$T" <<'PY'
 import json, sys, vcd_reader
 T = sys.argv[1]
@@ -84,7 +87,8 @@ assert 0 < total("rgs", "busy") < c["cycles"] and total("rgs", "issue") > 0, tot
 assert w.times[0] == 1000 * P and w.times[-1] == 1500 * P, (w.times[0], w.times[-1])
 for ident, (scope, name, _) in w.vars.items():  # the window holds the whole run's values
     assert w.integral(ident, 1000 * P, 1500 * P) == a.integral(a.find(scope, name), 1000 * P, 1500 * P), (scope, name)
-print("%d cycles: issues, lookups and misses equal --stats; window 1000:1500 as the whole run" % c["cycles"])
+print("%d cycles: issues and lookups equal --stats, %d misses of %d transfers; window 1000:1500 as the whole run"
+      % (c["cycles"], misses, c["mem_transfers"]))
 PY
 }
 
@@ -100,8 +104,8 @@ t_missing_model() { # a saarcor whose build folder has no rtl/ model
 t_bad_inputs() { # one line and exit 2 each: a traversal algorithm without RTL, several pipes, other caches, bad
   # --vcd-cycles, --usage-plot
   local rc a
-  for a in "--traversal ropes" "--pipes 2" "--cache-kb 8,2,6" "--unit-latency list=4" "--vcd x.vcd --vcd-cycles 5:5" \
-           "--vcd x.vcd --vcd-cycles 7" "--vcd x.vcd --vcd-cycles a:9" "--usage-plot x.svg"; do
+  for a in "--traversal ropes" "--pipes 2" "--cache-kb 8,2,6" "--unit-latency list=4" "--vcd $T/x.vcd --vcd-cycles 5:5" \
+           "--vcd $T/x.vcd --vcd-cycles 7" "--vcd $T/x.vcd --vcd-cycles a:9" "--usage-plot $T/x.svg"; do
     rc=0
     # shellcheck disable=SC2086 # the option and its value
     "$BIN" render cornell --width 8 --height 8 --mode rtl $a -o "$T/y.png" 2>"$T/err" >/dev/null || rc=$?
