@@ -142,7 +142,9 @@ module dynrtp #(
   assign blk_ready = |free;
 
   // ---- the RGS: RGS_BLOCKS block controllers ----
-  logic [B-1:0] tr_valid /*verilator public_flat_rd*/, tr_ready, hit_ready /*verilator public_flat_rd*/, rd_valid, rd_ready, rd_rsp, px_valid, px_ready;
+  logic [B-1:0] tr_ready, rd_valid, rd_ready, rd_rsp, px_valid, px_ready;
+  // public_flat_rd (these, rb_ready, busy_q, the caches' ports): read by tb_dynrtp for --mode rtl --vcd
+  logic [B-1:0] tr_valid /*verilator public_flat_rd*/, hit_ready /*verilator public_flat_rd*/;
   // per controller: unpacked arrays (Yosys 0.23 reads no packed arrays of more than one dimension)
   logic [TW-1:0] tr_tag [B], px_tag [B];
   logic [2:0] tr_flags [B];
@@ -216,7 +218,9 @@ module dynrtp #(
   end
 
   // ---- the core ----
-  logic word_req /*verilator public_flat_rd*/, word_ready /*verilator public_flat_rd*/, word_rsp, node_req /*verilator public_flat_rd*/, node_ready /*verilator public_flat_rd*/, node_rsp, list_re, list_valid;
+  logic word_rsp, node_rsp, list_re, list_valid;
+  logic word_req /*verilator public_flat_rd*/, word_ready /*verilator public_flat_rd*/;
+  logic node_req /*verilator public_flat_rd*/, node_ready /*verilator public_flat_rd*/;
   logic [31:0] word_addr, node_addr, list_addr, list_data;
   logic [32*RW-1:0] word_data;
   logic [63:0] node_data;
@@ -241,7 +245,8 @@ module dynrtp #(
   /* verilator lint_on PINCONNECTEMPTY */
 
   // ---- the caches ----
-  logic [3:0] mreq_valid /*verilator public_flat_rd*/, mreq_ready /*verilator public_flat_rd*/, mrsp_valid /*verilator public_flat_rd*/;
+  logic [3:0] mreq_valid /*verilator public_flat_rd*/, mreq_ready /*verilator public_flat_rd*/;
+  logic [3:0] mrsp_valid /*verilator public_flat_rd*/;
   logic [4*32-1:0] mreq_addr;
   logic [DW-1:0] mrsp_data;
   cache_read #(.LINE_BYTES(8), .SIZE_BYTES(1024 * NODE_KB), .WORDS(2), .OUTSTANDING(OUTSTANDING)) u_nodes (

@@ -128,6 +128,7 @@ module trace_core #(
   logic [THREADS-1:0] req [UNITS], req_q [UNITS], grant [UNITS], done [UNITS];
   logic [UNITS-1:0] unit_ready, issue_valid;
   logic [UNITS*TW-1:0] issue_thread;
+  // public_flat_rd (sel, unit_valid): read by tb_dynrtp for render --mode rtl --vcd
   logic [TW-1:0] sel [UNITS] /*verilator public_flat_rd*/;
   logic [UNITS*THREADS-1:0] set;
   // operands per thread
