@@ -130,7 +130,7 @@ module dynrtp #(
     .y0_i(y0_i), .x1_i(x1_i), .y1_i(y1_i), .tile_i(tile_i), .blk_valid_o(blk_valid), .blk_ready_i(blk_ready),
     .blk_x_o(blk_x), .blk_y_o(blk_y), .done_o(blk_done));
 
-  logic [B-1:0] rb_ready, free;
+  logic [B-1:0] rb_ready /*verilator public_flat_rd*/, free;
   logic [BW-1:0] dealt;
   always_comb begin
     dealt = '0;
@@ -142,7 +142,9 @@ module dynrtp #(
   assign blk_ready = |free;
 
   // ---- the RGS: RGS_BLOCKS block controllers ----
-  logic [B-1:0] tr_valid, tr_ready, hit_ready, rd_valid, rd_ready, rd_rsp, px_valid, px_ready;
+  logic [B-1:0] tr_ready, rd_valid, rd_ready, rd_rsp, px_valid, px_ready;
+  // public_flat_rd (these, rb_ready, busy_q, the caches' ports): read by tb_dynrtp for --mode rtl --vcd
+  logic [B-1:0] tr_valid /*verilator public_flat_rd*/, hit_ready /*verilator public_flat_rd*/;
   // per controller: unpacked arrays (Yosys 0.23 reads no packed arrays of more than one dimension)
   logic [TW-1:0] tr_tag [B], px_tag [B];
   logic [2:0] tr_flags [B];
@@ -216,11 +218,13 @@ module dynrtp #(
   end
 
   // ---- the core ----
-  logic word_req, word_ready, word_rsp, node_req, node_ready, node_rsp, list_re, list_valid;
+  logic word_rsp, node_rsp, list_re, list_valid;
+  logic word_req /*verilator public_flat_rd*/, word_ready /*verilator public_flat_rd*/;
+  logic node_req /*verilator public_flat_rd*/, node_ready /*verilator public_flat_rd*/;
   logic [31:0] word_addr, node_addr, list_addr, list_data;
   logic [32*RW-1:0] word_data;
   logic [63:0] node_data;
-  logic [5:0] issue;
+  logic [5:0] issue /*verilator public_flat_rd*/;
   logic hits_taken;
   always_comb begin
     hits_taken = 1'b0;
@@ -241,7 +245,8 @@ module dynrtp #(
   /* verilator lint_on PINCONNECTEMPTY */
 
   // ---- the caches ----
-  logic [3:0] mreq_valid, mreq_ready, mrsp_valid;
+  logic [3:0] mreq_valid /*verilator public_flat_rd*/, mreq_ready /*verilator public_flat_rd*/;
+  logic [3:0] mrsp_valid /*verilator public_flat_rd*/;
   logic [4*32-1:0] mreq_addr;
   logic [DW-1:0] mrsp_data;
   cache_read #(.LINE_BYTES(8), .SIZE_BYTES(1024 * NODE_KB), .WORDS(2), .OUTSTANDING(OUTSTANDING)) u_nodes (
@@ -251,7 +256,7 @@ module dynrtp #(
     .mem_rsp_data_i(mrsp_data[0 +: 64]));
   // list_unit's read is a pulse with its address: held until the cache takes it; its word is held
   // from the answer until the next read (list_unit waits for it with list_valid)
-  logic lreq_q, lrsp;
+  logic lreq_q /*verilator public_flat_rd*/, lrsp;
   logic [31:0] laddr_q, lword;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -268,7 +273,7 @@ module dynrtp #(
     if (list_re) laddr_q <= list_addr;
     if (lrsp) list_data <= lword;
   end
-  logic lreq_ready;
+  logic lreq_ready /*verilator public_flat_rd*/;
   cache_read #(.LINE_BYTES(4), .SIZE_BYTES(1024 * LIST_KB), .WORDS(1), .OUTSTANDING(OUTSTANDING)) u_lists (
     .clk_i(clk_i), .rst_ni(rst_ni), .flush_i(flush_i), .req_valid_i(lreq_q), .req_ready_o(lreq_ready),
     .req_addr_i(laddr_q), .rsp_valid_o(lrsp), .rsp_data_o(lword), .mem_req_valid_o(mreq_valid[1]),
@@ -283,7 +288,7 @@ module dynrtp #(
 
   // the RGS's word reads: the controllers' ports merged round robin, answers routed back in order,
   // through the shading cache
-  logic sh_req, sh_ready, sh_rsp;
+  logic sh_req /*verilator public_flat_rd*/, sh_ready /*verilator public_flat_rd*/, sh_rsp;
   logic [31:0] sh_addr, sh_word;
   /* verilator lint_off PINCONNECTEMPTY */
   mem_port #(.N(B), .DW(32), .DEPTH(OUTSTANDING)) u_rgs_reads (
@@ -309,7 +314,7 @@ module dynrtp #(
 
   // ---- the frame's end: every block dealt and its pixels taken ----
   logic running, dealt_all_q;
-  logic [BW:0] busy_q;  // blocks in the controllers
+  logic [BW:0] busy_q /*verilator public_flat_rd*/;  // blocks in the controllers
   assign frame_done_o = running && dealt_all_q && busy_q == '0;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin

@@ -34,7 +34,8 @@ module thread_sched #(
   output logic [UNITS*TW-1:0]            issue_thread_o,
   output logic [UNITS*SLOT_BITS-1:0]     issue_slots_o
 );
-  logic [THREADS-1:0] ready_q [UNITS];
+  // public_flat_rd: read by tb_dynrtp for render --mode rtl --vcd (queue_depth)
+  logic [THREADS-1:0] ready_q [UNITS] /*verilator public_flat_rd*/;
   logic [THREADS-1:0] after_q [UNITS];   // the threads after the one issued last (the pointer as a mask)
   logic [SLOT_BITS-1:0] busy_q [UNITS];  // cycles the unit's issue slots stay taken after this one
 

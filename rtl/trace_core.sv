@@ -128,7 +128,8 @@ module trace_core #(
   logic [THREADS-1:0] req [UNITS], req_q [UNITS], grant [UNITS], done [UNITS];
   logic [UNITS-1:0] unit_ready, issue_valid;
   logic [UNITS*TW-1:0] issue_thread;
-  logic [TW-1:0] sel [UNITS];
+  // public_flat_rd (sel, unit_valid): read by tb_dynrtp for render --mode rtl --vcd
+  logic [TW-1:0] sel [UNITS] /*verilator public_flat_rd*/;
   logic [UNITS*THREADS-1:0] set;
   // operands per thread
   logic [1:0] t_trav_kind [THREADS];
@@ -213,7 +214,7 @@ module trace_core #(
   logic [THREADS-1:0] one [THREADS];
   logic [3:0] issue_slots [UNITS], feed_left [UNITS];
   logic [TW-1:0] feed_thread [UNITS];
-  logic [UNITS-1:0] feeding, accept, unit_valid;
+  logic [UNITS-1:0] feeding, accept, unit_valid /*verilator public_flat_rd*/;
   logic [UNITS*4-1:0] issue_slots_v;
   always_comb
     for (int t = 0; t < THREADS; t++) one[t] = THREADS'(1) << t;

@@ -22,8 +22,10 @@
 // comparison with the cycle model (docs/cycle-model.md): per packet a line
 // "P number thread cycle_in cycle_out" and per kind of operation (OP_*) of the C core's steps its
 // count and issue slots; per block "B x0 y0 cycle_out" and the same counts of rgs_step's operations.
-// usage: tb_dynrtp DIR   (DIR/image.bin, DIR/params as saarcor writes them); exit 0, 1 (a
-// mismatch or a hang), 2 (bad input)
+// With VCD (render --vcd) it writes the waveform of the frame's cycles vcd_from up to vcd_to
+// (DIR/params) there (struct waves below; docs/cycle-model.md has the signals).
+// usage: tb_dynrtp DIR [VCD]  (DIR/image.bin, DIR/params as saarcor writes them); exit 0, 1 (a
+// mismatch or a hang), 2 (bad input), 3 (VCD cannot be written)
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -35,8 +37,10 @@
 #include <vector>
 
 #include "Vtb_dynrtp.h"
+#include "Vtb_dynrtp___024root.h"
 #include "tb_common.h"
 #include "tb_rays.h"
+#include "tb_vcd.h"
 #include "verilated.h"
 
 extern "C" {
@@ -106,12 +110,95 @@ void block_ops(const std::vector<uint32_t> &mem, const rgs_config *cfg, uint32_t
     log_ops(f, ops, slots);
 }
 
+// The waveform of --vcd (tb_vcd.h) in cycle mode's names where the RTL has the same thing
+// (docs/cycle-model.md has the mapping), RTL-only signals under their own: read from the harness's
+// memory queue and the signals of dynrtp, trace_core and thread_sched marked
+// /*verilator public_flat_rd*/.
+struct waves {
+    enum { BUSY, ISSUE, QUEUE, TID };
+    enum { LOOKUPS, MISSES, FILLS };
+    cosim::vcd_writer vcd;
+    int unit[6][4] = {}, rgs[4] = {}, cache[4][3] = {}, outstanding = 0, in_flight = 0;
+    uint32_t fills[4] = {}; // per cache: line requests the memory port took and has not answered
+    uint32_t computing_q = 0;
+
+    // the signals, in the scopes of cycle mode's file; the rgs scope has no queue_depth (every block
+    // controller has its own units: no thread waits for them) and counts its busy controllers
+    bool open(const char *path, uint64_t from, uint64_t to, double mhz, uint32_t blocks)
+    {
+        static const char *const unit_sig[4] = { "busy", "issue", "queue_depth", "thread_id" };
+        static const char *const cache_sig[3] = { "lookups", "misses", "fills" };
+        static const char *const cache_name[4] = { "kd_nodes", "lists", "matrices", "shading" }; // mem_kind_names
+        const std::string pipe = "dynrtc.pipe0";
+        const uint32_t widths[4] = { 1, 1, 6, 5 }; // 32 threads: a depth up to 32, ids 0..31
+        rgs[BUSY] = vcd.add(pipe + ".rgs", "busy", 1);
+        rgs[ISSUE] = vcd.add(pipe + ".rgs", "issue", 4);
+        rgs[TID] = vcd.add(pipe + ".rgs", "thread_id", 5);
+        rgs[QUEUE] = vcd.add(pipe + ".rgs", "controllers_busy", 4); // RTL only
+        for (int u = 0; u < 6; u++)
+            for (int k = 0; k < 4; k++)
+                unit[u][k] = vcd.add(pipe + "." + UNIT[u], unit_sig[k], widths[k]);
+        for (int c = 0; c < 4; c++)
+            for (int k = 0; k < 3; k++)
+                cache[c][k] = vcd.add(pipe + ".cache_" + cache_name[c], cache_sig[k], 32);
+        outstanding = vcd.add(pipe + ".mem_port", "outstanding", 32);
+        in_flight = vcd.add(pipe, "threads_in_flight", 4);
+        char comment[160];
+        std::snprintf(comment, sizeof comment, "the RTL DynRTP (rtl/dynrtp.sv): 1 pipe x 32 threads, %u blocks in "
+                      "flight at %g MHz", blocks, mhz);
+        return vcd.open(path, from, to, mhz, comment);
+    }
+
+    // the cycle's values (every cycle: the fills run from reset on), written for frame cycle
+    // `frame_cycle` when in_frame
+    void sample(Vtb_dynrtp &top, uint32_t blocks, std::size_t port_queue, bool in_frame, uint64_t frame_cycle)
+    {
+        const auto *r = top.rootp;
+        const uint32_t issue = r->tb_dynrtp__DOT__u_dynrtp__DOT__issue;
+        const uint32_t valid = r->tb_dynrtp__DOT__u_dynrtp__DOT__u_core__DOT__unit_valid;
+        for (int u = 0; u < 6; u++) {
+            vcd.set(unit[u][BUSY], valid >> u & 1);
+            vcd.set(unit[u][ISSUE], issue >> u & 1);
+            vcd.set(unit[u][QUEUE], (uint64_t)__builtin_popcount(
+                                        r->tb_dynrtp__DOT__u_dynrtp__DOT__u_core__DOT__u_sched__DOT__ready_q[u]));
+            vcd.set(unit[u][TID], valid >> u & 1 ? r->tb_dynrtp__DOT__u_dynrtp__DOT__u_core__DOT__sel[u]
+                                                  : cosim::vcd_writer::X);
+        }
+        // a block controller computes while it holds a block, not waiting for the core to take its
+        // packet or to give back its hits
+        const uint32_t mask = (1u << blocks) - 1;
+        const uint32_t computing = ~r->tb_dynrtp__DOT__u_dynrtp__DOT__rb_ready & ~r->tb_dynrtp__DOT__u_dynrtp__DOT__tr_valid &
+                                   ~r->tb_dynrtp__DOT__u_dynrtp__DOT__hit_ready & mask;
+        vcd.set(rgs[BUSY], computing != 0);
+        vcd.set(rgs[ISSUE], (uint64_t)__builtin_popcount(computing & ~computing_q));
+        vcd.set(rgs[TID], computing ? (uint64_t)__builtin_ctz(computing) : cosim::vcd_writer::X);
+        vcd.set(rgs[QUEUE], (uint64_t)__builtin_popcount(computing));
+        computing_q = computing;
+        const bool look[4] = { r->tb_dynrtp__DOT__u_dynrtp__DOT__node_req && r->tb_dynrtp__DOT__u_dynrtp__DOT__node_ready,
+                               r->tb_dynrtp__DOT__u_dynrtp__DOT__lreq_q && r->tb_dynrtp__DOT__u_dynrtp__DOT__lreq_ready,
+                               r->tb_dynrtp__DOT__u_dynrtp__DOT__word_req && r->tb_dynrtp__DOT__u_dynrtp__DOT__word_ready,
+                               r->tb_dynrtp__DOT__u_dynrtp__DOT__sh_req && r->tb_dynrtp__DOT__u_dynrtp__DOT__sh_ready };
+        const uint32_t miss = r->tb_dynrtp__DOT__u_dynrtp__DOT__mreq_valid & r->tb_dynrtp__DOT__u_dynrtp__DOT__mreq_ready;
+        for (int c = 0; c < 4; c++) {
+            fills[c] += (miss >> c & 1) - (r->tb_dynrtp__DOT__u_dynrtp__DOT__mrsp_valid >> c & 1);
+            vcd.set(cache[c][LOOKUPS], look[c]);
+            vcd.set(cache[c][MISSES], miss >> c & 1);
+            vcd.set(cache[c][FILLS], fills[c]);
+        }
+        vcd.set(outstanding, port_queue);
+        vcd.set(in_flight, r->tb_dynrtp__DOT__u_dynrtp__DOT__busy_q);
+        if (in_frame)
+            vcd.sample(frame_cycle);
+    }
+};
+
 } // namespace
 
 int main(int argc, char **argv)
 {
-    if (argc != 2) {
-        std::printf("usage: tb_dynrtp DIR (DIR/image.bin, DIR/params from saarcor render --mode rtl)\n");
+    if (argc != 2 && argc != 3) {
+        std::printf("usage: tb_dynrtp DIR [VCD] (DIR/image.bin, DIR/params from saarcor render --mode rtl; VCD: "
+                    "the waveform of the frame's cycles vcd_from up to vcd_to of DIR/params)\n");
         return 2;
     }
     const std::string dir = argv[1];
@@ -147,6 +234,12 @@ int main(int argc, char **argv)
     uint32_t w, h;
     rgs_image_size(mem.data(), &w, &h);
     std::vector<uint32_t> pixels((std::size_t)w * h, 0), hits((std::size_t)w * h * 6, 0);
+    static waves wave; // static: its destructor drops an unfinished file at exit
+    const bool vcd = argc == 3;
+    if (vcd && !wave.open(argv[2], (uint64_t)par["vcd_from"], (uint64_t)par["vcd_to"], par["clock_mhz"], blocks)) {
+        std::printf("tb_dynrtp: cannot write '%s'\n", argv[2]);
+        return 3;
+    }
 
     VerilatedContext ctx;
     Vtb_dynrtp top{ &ctx };
@@ -170,7 +263,7 @@ int main(int argc, char **argv)
     std::memset(&counters, 0, sizeof counters);
     std::memset(&ref, 0, sizeof ref);
     std::deque<transfer> port;
-    uint64_t cycle = 0, port_free = 0, last_out = 0, packets = 0, transfers = 0, bytes = 0, checked = 0, done = 0;
+    uint64_t cycle = 0, frame_at = 0, port_free = 0, last_out = 0, packets = 0, transfers = 0, bytes = 0, checked = 0, done = 0;
     bool frame_taken = false, ended = false;
 
     while (!ended) {
@@ -194,7 +287,7 @@ int main(int argc, char **argv)
         top.eval();
         // ---- what the cycle did ----
         if (top.frame_valid_i && top.frame_ready_o)
-            frame_taken = true, last_out = cycle;
+            frame_taken = true, last_out = frame_at = cycle;
         if (top.mem_req_valid_o) {
             const uint64_t start = std::max(port_free, cycle * FX);
             port_free = start + top.mem_req_bytes_o * fxpb;
@@ -290,6 +383,8 @@ int main(int argc, char **argv)
             done++;
             last_out = cycle;
         }
+        if (vcd) // frame cycle 0 is the first that cycles_o counts, the one after the frame was taken
+            wave.sample(top, blocks, port.size(), frame_taken && cycle > frame_at, cycle - frame_at - 1);
         ended = top.frame_done_o;
         top.clk_i = 1;
         top.eval();
@@ -334,6 +429,10 @@ int main(int argc, char **argv)
     std::fprintf(st, "dropped %llu\nchecked %llu\nmismatches %llu\n", (unsigned long long)ref.dropped,
                  (unsigned long long)checked, (unsigned long long)g_mismatches);
     std::fclose(st);
+    if (vcd && !g_mismatches && !wave.vcd.close(top.cycles_o)) { // with mismatches: dropped at exit
+        std::printf("tb_dynrtp: cannot write '%s'\n", argv[2]);
+        return 3;
+    }
     std::printf("tb_dynrtp: %ux%u, %llu blocks (%u in flight) and %llu packets in %llu cycles, %llu packets checked "
                 "against the C core and %llu blocks against rgs_render_block, %llu mismatches\n", w, h,
                 (unsigned long long)done, blocks, (unsigned long long)top.packets_o, (unsigned long long)top.cycles_o,

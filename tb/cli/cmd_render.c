@@ -108,9 +108,11 @@ static int usage(void)
            "                     host_rss_kb, host_peak_rss_kb: this program's memory after the frame;\n"
            "                     \"host\": upload_bytes, geometry_upload_bytes (of deforming objects),\n"
            "                     rebuilt_objects, seconds: what bringing the image to the frame cost the host\n"
-           "  --vcd FILE.vcd     cycle mode: waveforms of the model (IEEE 1364 VCD, e.g. for GTKWave): per pipe\n"
-           "                     and unit busy, issue, queue_depth, thread_id; per cache lookups, misses, fills;\n"
-           "                     the memory port's outstanding transfers; threads in flight (docs/cycle-model.md)\n"
+           "  --vcd FILE.vcd     waveforms of the model (IEEE 1364 VCD, e.g. for GTKWave; cycle or rtl mode):\n"
+           "                     per pipe and unit busy, issue, queue_depth, thread_id; per cache lookups,\n"
+           "                     misses, fills; the memory port's outstanding transfers; threads in flight\n"
+           "                     (rtl mode: these where the RTL has the same thing, and its own units;\n"
+           "                     docs/cycle-model.md)\n"
            "  --vcd-cycles A:B   the cycles written: A up to but not including B (default 0:20000)\n"
            "  --usage-plot FILE.svg  cycle mode: each unit's utilisation per epoch as an SVG chart\n"
            "  --capture-unit-io DIR  record the transformation (also its wide mode), intersection,\n"
@@ -684,8 +686,10 @@ int cmd_render(int argc, char **argv)
         return cli_usage_error("render", "expected one SCENE");
     if (ro.heatmap_of == PC_CYCLES && !ro.cycle)
         return cli_usage_error("render", "--heatmap-of cycles needs --mode cycle");
-    if ((ro.vcd || ro.usage_plot) && !ro.cycle)
-        return cli_usage_error("render", "--vcd and --usage-plot need --mode cycle");
+    if (ro.vcd && !ro.cycle && !ro.rtl)
+        return cli_usage_error("render", "--vcd needs --mode cycle or rtl");
+    if (ro.usage_plot && !ro.cycle)
+        return cli_usage_error("render", "--usage-plot needs --mode cycle");
     if (ro.heatmap_of >= 0 && !ro.heatmap)
         return cli_usage_error("render", "--heatmap-of needs --heatmap FILE.png");
     int rc = limit_check(&o.lim, "render", LIMIT_RAY_DEPTH, ro.cfg.max_depth, "--max-depth");

@@ -56,8 +56,8 @@ int render_rtl_check(const render_opts *ro)
             ro->cc.mem.cache[k].line_bytes != d.mem.cache[k].line_bytes)
             return cli_usage_error("render", "--mode rtl: the RTL's caches are 4,2,6,4 KB with lines 8, 4, one triangle "
                                              "record and 16 (rtl/dynrtp.sv; no --cache-kb or --line-bytes)");
-    if (ro->vcd || ro->usage_plot || ro->heatmap || ro->capture || ro->mpi || ro->sequence)
-        return cli_usage_error("render", "--mode rtl renders one frame without --vcd, --usage-plot, --heatmap, "
+    if (ro->usage_plot || ro->heatmap || ro->capture || ro->mpi || ro->sequence)
+        return cli_usage_error("render", "--mode rtl renders one frame without --usage-plot, --heatmap, "
                                          "--capture-unit-io, --mpi or --frames");
     char path[1200];
     if (model_path(path, sizeof path) != 0 || access(path, X_OK) != 0) {
@@ -160,22 +160,26 @@ int render_rtl(const uint32_t *mem, uint32_t n, const render_opts *ro, uint32_t 
     if (!(pf = fopen(path, "w")))
         goto out;
     fprintf(pf, "tile %u\nthreads %u\nmax_depth %u\nshadows %u\ntraversal %u\nmem_latency %u\nmem_mbps %.17g\n"
-                "clock_mhz %.17g\n", ro->cc.tile, ro->cc.threads_per_pipe, ro->cfg.max_depth, ro->cfg.shadows,
-            ro->cfg.traversal, ro->cc.mem.latency, ro->cc.mem.mbps, ro->cc.mem.clock_mhz);
+                "clock_mhz %.17g\nvcd_from %llu\nvcd_to %llu\n", ro->cc.tile, ro->cc.threads_per_pipe, ro->cfg.max_depth,
+            ro->cfg.shadows, ro->cfg.traversal, ro->cc.mem.latency, ro->cc.mem.mbps, ro->cc.mem.clock_mhz,
+            (unsigned long long)ro->vcd_from, (unsigned long long)ro->vcd_to);
     if (fclose(pf) != 0)
         goto out;
     snprintf(log, sizeof log, "%s/log", dir);
     posix_spawn_file_actions_t fa;
     posix_spawn_file_actions_init(&fa);
     posix_spawn_file_actions_addopen(&fa, 1, log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    char *const args[] = { model, dir, NULL };
+    char *const args[] = { model, dir, (char *)ro->vcd, NULL }; /* --vcd: the model writes it (NULL: none) */
     pid_t pid;
     int status = -1;
     const int spawned = posix_spawn(&pid, model, &fa, NULL, args, environ) == 0;
     posix_spawn_file_actions_destroy(&fa);
     if (!spawned || waitpid(pid, &status, 0) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
         report_failure(log, WIFEXITED(status) ? WEXITSTATUS(status) : -1);
-        rc = WIFEXITED(status) && WEXITSTATUS(status) == 2 ? SAARCOR_EXIT_USAGE : SAARCOR_EXIT_FAIL;
+        rc = !WIFEXITED(status)            ? SAARCOR_EXIT_FAIL
+           : WEXITSTATUS(status) == 2      ? SAARCOR_EXIT_USAGE
+           : WEXITSTATUS(status) == 3      ? SAARCOR_EXIT_INPUT /* --vcd cannot be written */
+                                           : SAARCOR_EXIT_FAIL;
         goto out;
     }
     snprintf(path, sizeof path, "%s/pixels.bin", dir);
