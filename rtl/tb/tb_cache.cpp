@@ -54,6 +54,7 @@ struct line_req {
 struct c_model {
     uint32_t size[KINDS], line[KINDS], latency;
     uint64_t fxpb, port_free = 0;
+    uint64_t answer_at[KINDS] = {}; // each cache's last answer: answers leave in request order (cache_read's ring)
     std::vector<uint64_t> tag[KINDS], valid_at[KINDS];
     uint64_t transfer(uint64_t bytes, uint64_t now)
     {
@@ -150,8 +151,10 @@ int main(int argc, char **argv)
             } else { // mem_iface_new_frame: the port and the cycle count
                 frames++;
                 cm.port_free = 0;
-                for (int k = 0; k < KINDS; k++)
+                for (int k = 0; k < KINDS; k++) {
                     std::fill(cm.valid_at[k].begin(), cm.valid_at[k].end(), 0);
+                    cm.answer_at[k] = 0;
+                }
             }
             continue;
         }
@@ -187,6 +190,8 @@ int main(int argc, char **argv)
             segs.back().q[kind].push_back(r);
             segs.back().lookups++;
         }
+        ready = std::max(ready, cm.answer_at[kind]); // a read after a miss waits for the miss's line
+        cm.answer_at[kind] = ready;
         c_hits[kind] += hits;
         if (nl != last - first + 1 || nh != hits || at != ready) {
             if (g_mismatches++ < 10)
