@@ -260,24 +260,40 @@ static void threads_hide_latency(void **state)
  * cycle of kind k's latency adds exactly the frame's operations of kind k, counted here by stepping
  * the blocks as the functional mode does; and one more cycle of surface_hit adds a cycle per hit
  * of a surface operation after its first (rgs_surface's front reads the hits in turn). */
+/* Steps every block of the frame as the functional mode does, handing each operation to visit. */
+static void for_each_op(const image *im, void (*visit)(const unit_op *op, void *ctx), void *ctx)
+{
+    for (uint32_t y = 0; y < H; y += 2)
+        for (uint32_t x = 0; x < W; x += 2) {
+            static rgs_block b;
+            unit_op op;
+            rgs_counters c = { 0 };
+            rgs_block_begin(im->mem, x, y, &b);
+            while (rgs_step(im->mem, &full, &b, &op, &c))
+                visit(&op, ctx);
+        }
+}
+
+typedef struct {
+    uint64_t count[OP_KINDS], further_hits;
+} kind_counts;
+
+static void count_kind(const unit_op *op, void *ctx)
+{
+    kind_counts *k = ctx;
+    k->count[op->kind]++;
+    k->further_hits += op->kind == OP_SURFACE ? op->slots - 1 : 0;
+}
+
 static void latency_per_kind(void **state)
 {
     (void)state;
     static frame f;
     image im;
     image_build(&im, "room");
-    uint64_t count[OP_KINDS] = { 0 }, further_hits = 0;
-    for (uint32_t y = 0; y < H; y += 2)
-        for (uint32_t x = 0; x < W; x += 2) {
-            static rgs_block b;
-            unit_op op;
-            rgs_counters c = { 0 };
-            rgs_block_begin(im.mem, x, y, &b);
-            while (rgs_step(im.mem, &full, &b, &op, &c)) {
-                count[op.kind]++;
-                further_hits += op.kind == OP_SURFACE ? op.slots - 1 : 0;
-            }
-        }
+    kind_counts ops = { { 0 }, 0 };
+    for_each_op(&im, count_kind, &ops);
+    const uint64_t *count = ops.count, further_hits = ops.further_hits;
     cycle_config cfg;
     cycle_config_default(&cfg);
     cfg.threads_per_pipe = 1;
@@ -301,6 +317,21 @@ static void latency_per_kind(void **state)
  * with one thread, one more cycle of the shading cache's hit adds a cycle per light operation
  * whose light differs from the one before it: once per frame in cornell (one light), every light
  * operation in the room (2 lights, each packet's in turn). */
+typedef struct {
+    uint64_t lights, reads;
+    uint32_t held;
+} light_reads;
+
+static void count_light_read(const unit_op *op, void *ctx)
+{
+    light_reads *l = ctx;
+    if (op->kind != OP_LIGHT)
+        return;
+    l->lights++;
+    l->reads += op->read[0].addr != l->held;
+    l->held = op->read[0].addr;
+}
+
 static void light_record_held(void **state)
 {
     (void)state;
@@ -309,21 +340,9 @@ static void light_record_held(void **state)
     for (int k = 0; k < 2; k++) {
         image im;
         image_build(&im, scenes[k]);
-        uint64_t lights = 0, reads = 0;
-        uint32_t held = UINT32_MAX;
-        for (uint32_t y = 0; y < H; y += 2)
-            for (uint32_t x = 0; x < W; x += 2) {
-                static rgs_block b;
-                unit_op op;
-                rgs_counters c = { 0 };
-                rgs_block_begin(im.mem, x, y, &b);
-                while (rgs_step(im.mem, &full, &b, &op, &c))
-                    if (op.kind == OP_LIGHT) {
-                        lights++;
-                        reads += op.read[0].addr != held;
-                        held = op.read[0].addr;
-                    }
-            }
+        light_reads l = { 0, 0, UINT32_MAX };
+        for_each_op(&im, count_light_read, &l);
+        const uint64_t lights = l.lights, reads = l.reads;
         assert_true(k == 0 ? reads == 1 && lights > 1 : reads == lights);
         cycle_config cfg;
         cycle_config_default(&cfg);
