@@ -257,18 +257,19 @@ t_render_rays() {
 t_render_cycle() {
   expect 0 "$BIN" render room -o "$T/fn.png" --width 64 --height 48 --max-depth 1
   expect 0 "$BIN" render room -o "$T/cy.png" --width 64 --height 48 --max-depth 1 --mode cycle --pipes 2 \
-    --threads-per-pipe 8 --cache-kb 1,1,1 --line-bytes 8,8,48 --unit-latency trav=5,isect=20,surface_hit=9 --stats "$T/cy.json"
+    --threads-per-pipe 8 --cache-kb 1,1,1 --line-bytes 8,8,48 --unit-latency trav=5,isect=20,surface_hit=9,surface_miss=4 --stats "$T/cy.json"
   cmp "$T/fn.png" "$T/cy.png"
   has '^frame: [0-9]* cycles' "$T/out"; has 'usage rate' "$T/out"; has 'cache hit rate' "$T/out"
   python3 -c "import json; c=json.load(open('$T/cy.json'))['cycle']; assert c['pipes'] == 2 and c['cycles'] > 0 \
 and c['units']['trav']['latencies']['trav'] == 5 and c['units']['rgs']['latencies']['surface'] == 223 \
-and c['units']['rgs']['latencies']['surface_hit'] == 9 and c['memory']['kd_nodes']['cache_bytes'] == 1024, c"
+and c['units']['rgs']['latencies']['surface_hit'] == 9 \
+and c['units']['rgs']['latencies']['surface_miss'] == 4 and c['memory']['kd_nodes']['cache_bytes'] == 1024, c"
   expect 0 "$BIN" render room -o "$T/cy1.png" --width 64 --height 48 --max-depth 1 --mode cycle --pipes 2 \
     --threads-per-pipe 8 --cache-kb 1,1,1 --line-bytes 8,8,48 --unit-latency trav=5,isect=20 --threads 1
   cmp "$T/cy.png" "$T/cy1.png"
   for bad in "--mode fast" "--mode cycle --pipes 0" "--mode cycle --threads-per-pipe 5000" "--mode cycle --cache-kb 4,2" \
              "--mode cycle --line-bytes 6,16,48" "--mode cycle --unit-latency warp=3" "--mode cycle --tile 7" \
-             "--mode cycle --unit-latency surface_hit=x"; do
+             "--mode cycle --unit-latency surface_hit=x" "--mode cycle --unit-latency surface_miss=1001"; do
     # shellcheck disable=SC2086
     expect 2 "$BIN" render room $bad; one_line_error
   done

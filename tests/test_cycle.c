@@ -258,8 +258,10 @@ static void threads_hide_latency(void **state)
 /* Every operation is charged the latency of its kind (trace.h OP_*): with one thread nothing
  * overlaps (the thread waits for each operation's reads and result before the next), so one more
  * cycle of kind k's latency adds exactly the frame's operations of kind k, counted here by stepping
- * the blocks as the functional mode does; and one more cycle of surface_hit adds a cycle per hit
- * of a surface operation after its first (rgs_surface's front reads the hits in turn). */
+ * the blocks as the functional mode does. A surface operation is charged its latency only when a
+ * ray hit: one more cycle of surface_hit adds a cycle per hit after its first (rgs_surface's front
+ * reads the hits in turn), one more of surface_miss a cycle per surface operation without a hit
+ * (its misses pass rgs_surface in a cycle each). */
 /* Steps every block of the frame as the functional mode does, handing each operation to visit. */
 static void for_each_op(const image *im, void (*visit)(const unit_op *op, void *ctx), void *ctx)
 {
@@ -275,42 +277,57 @@ static void for_each_op(const image *im, void (*visit)(const unit_op *op, void *
 }
 
 typedef struct {
-    uint64_t count[OP_KINDS], further_hits;
+    uint64_t count[OP_KINDS], further_hits, misses; /* count[OP_SURFACE]: the surface operations with a hit */
 } kind_counts;
 
 static void count_kind(const unit_op *op, void *ctx)
 {
     kind_counts *k = ctx;
-    k->count[op->kind]++;
-    k->further_hits += op->kind == OP_SURFACE ? op->slots - 1 : 0;
+    const int miss = op->kind == OP_SURFACE && op->hits == 0;
+    k->count[op->kind] += !miss;
+    k->misses += miss;
+    k->further_hits += op->kind == OP_SURFACE && op->hits ? op->hits - 1 : 0;
 }
 
-static void latency_per_kind(void **state)
+/* One more cycle of each latency adds the cycles kind_counts predicts; `every_kind`: the scene has
+ * operations of every kind and surfaces with several hits. Returns the surfaces without a hit. */
+static uint64_t check_latencies(const char *name, int every_kind)
 {
-    (void)state;
     static frame f;
     image im;
-    image_build(&im, "room");
-    kind_counts ops = { { 0 }, 0 };
+    image_build(&im, name);
+    kind_counts ops = { { 0 }, 0, 0 };
     for_each_op(&im, count_kind, &ops);
-    const uint64_t *count = ops.count, further_hits = ops.further_hits;
     cycle_config cfg;
     cycle_config_default(&cfg);
     cfg.threads_per_pipe = 1;
     cycle_stats base, more;
     cycle_with(&cfg, im.mem, &full, &f, &base);
     for (int k = 0; k < OP_KINDS; k++) {
-        assert_true(count[k] > 0); /* the room has every kind: instances, leaves, shadows, children */
+        assert_true(!every_kind || ops.count[k] > 0); /* the room: instances, leaves, shadows, children */
         cfg.latency[k]++;
         cycle_with(&cfg, im.mem, &full, &f, &more);
         cfg.latency[k]--;
-        assert_int_equal(more.cycles - base.cycles, count[k]);
+        assert_int_equal(more.cycles - base.cycles, ops.count[k]);
     }
-    assert_true(further_hits > 0);
-    cfg.surface_hit++;
-    cycle_with(&cfg, im.mem, &full, &f, &more);
-    assert_int_equal(more.cycles - base.cycles, further_hits);
+    assert_true(!every_kind || ops.further_hits > 0);
+    uint32_t *extra[2] = { &cfg.surface_hit, &cfg.surface_miss };
+    const uint64_t want[2] = { ops.further_hits, ops.misses };
+    for (int e = 0; e < 2; e++) {
+        ++*extra[e];
+        cycle_with(&cfg, im.mem, &full, &f, &more);
+        --*extra[e];
+        assert_int_equal(more.cycles - base.cycles, want[e]);
+    }
     image_free(&im);
+    return ops.misses;
+}
+
+static void latency_per_kind(void **state)
+{
+    (void)state;
+    check_latencies("room", 1);
+    assert_true(check_latencies("cornell", 0) > 0); /* rays past the box: packets without a hit */
 }
 
 /* rgs_ctrl holds the record of its last light and reads another light's before rgs_light starts:

@@ -97,6 +97,7 @@ static void op_surfaces(const uint32_t *mem, rgs_block *b, unit_op *op, rgs_coun
 surfaces:
     for (int i = 0; i < TRACE_PACKET; i++) {
         b->sf[i] = rgs_surface_at(mem, &b->cur.rays, i, &b->trace.hits[i], op, &c->trace);
+        op->hits += b->sf[i].valid;
         b->k_of[i] = b->sf[i].valid ? rgs_mat_k(&mem[b->sf[i].mat]) : 0u;
         for (int k = 0; k < 3; k++) {
             b->diffuse[i][k] = b->sf[i].unlit ? RGS_Q12_ONE : Q12_AMBIENT; /* unlit: kd B alone */

@@ -116,6 +116,8 @@ static inline uint32_t op_kind_unit(uint32_t kind)
 #define UNIT_OP_READS (15 * TRACE_PACKET)
 typedef struct {
     uint32_t kind, slots, n_reads; /* its unit: op_kind_unit(kind) */
+    uint32_t hits;                 /* a surface operation's rays with a hit: the RGS reads and shades those, a miss
+                                    * passes rgs_surface in a cycle (rtl/rgs_surface.sv) */
     struct { uint32_t kind, addr, words; } read[UNIT_OP_READS];
 } unit_op;
 

@@ -20,6 +20,7 @@ static inline void op_set(unit_op *op, uint32_t kind, uint32_t slots)
     op->kind = kind;
     op->slots = slots;
     op->n_reads = 0;
+    op->hits = 0;
 }
 
 static inline void op_read(unit_op *op, trace_counters *c, uint32_t kind, uint32_t addr, uint32_t words)

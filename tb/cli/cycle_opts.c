@@ -19,7 +19,8 @@ const char CYCLE_OPTIONS_HELP[] =
     "  --mem-mbps B          memory port bandwidth per pipe in MB/s (default 1000)\n"
     "  --unit-latency LIST   pipeline latency of each kind of operation, e.g. trav=21,isect=29; kinds raygen\n"
     "                        xform instance shadow children (transformation unit), trav objclip, list leaf,\n"
-    "                        isect, surface light accum (RGS); surface_hit: a surface's cycles per further hit\n"
+    "                        isect, surface light accum (RGS); surface_hit: a surface's cycles per further hit,\n"
+    "                        surface_miss: a surface operation's without a hit\n"
     "  --tile N              tile edge in pixels handed out by the controller (even, default 16)\n";
 
 static const char *const unit_keys[UNIT_KINDS] = { "rgs", "xform", "trav", "list", "isect" };
@@ -47,10 +48,13 @@ static int parse_latencies(cycle_config *cfg, const char *arg)
         if (!eq)
             return 0;
         *eq = 0;
-        if (strcmp(tok, "surface_hit") == 0) { /* not a kind: the surface's cycles per further hit */
+        uint32_t *extra = strcmp(tok, "surface_hit") == 0  ? &cfg->surface_hit  /* not kinds: per further hit, */
+                        : strcmp(tok, "surface_miss") == 0 ? &cfg->surface_miss /* a packet without hits */
+                                                           : NULL;
+        if (extra) {
             if (!cli_parse_u64(eq + 1, 0, 1000, &v))
                 return 0;
-            cfg->surface_hit = (uint32_t)v;
+            *extra = (uint32_t)v;
             continue;
         }
         int kind = -1;
@@ -115,7 +119,7 @@ int cycle_opts_parse(cycle_config *cfg, const char *cmd, int c, const char *arg)
         if (!parse_latencies(cfg, arg))
             return cli_usage_error(cmd, "bad --unit-latency '%s' (e.g. trav=12,isect=14; kinds raygen xform "
                                         "instance shadow children trav objclip list leaf isect surface light accum, "
-                                        "1..1000 cycles; surface_hit 0..1000)", arg), -1;
+                                        "1..1000 cycles; surface_hit, surface_miss 0..1000)", arg), -1;
         return 1;
     case 8:
         if (!cli_parse_u64(arg, 2, 4096, &v) || v % 2)
@@ -209,7 +213,7 @@ void cycle_report_json(FILE *f, const cycle_config *cfg, const cycle_stats *st, 
             if (op_kind_unit((uint32_t)k) == (uint32_t)u)
                 fprintf(f, "%s\"%s\": %u", n++ ? ", " : "", op_kind_names[k], cfg->latency[k]);
         if (u == UNIT_RGS)
-            fprintf(f, ", \"surface_hit\": %u", cfg->surface_hit);
+            fprintf(f, ", \"surface_hit\": %u, \"surface_miss\": %u", cfg->surface_hit, cfg->surface_miss);
         fprintf(f, "}, \"busy_cycles\": %llu, \"operations\": %llu, \"usage\": %.6f, \"queued_thread_cycles\": %llu",
                 (unsigned long long)st->busy[u], (unsigned long long)st->ops[u], usage(cfg, st, u) / 100.0,
                 (unsigned long long)st->wait_unit[u]);

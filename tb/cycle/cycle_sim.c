@@ -44,7 +44,8 @@ void cycle_config_default(cycle_config *c)
                                    * best_t = t0 + t (add 6) */
     c->latency[OP_SURFACE] = 223; /* rgs_surface: the first hit's front reads (instance word, object, record: about 18
                                    * through the shading cache), rgs_normal 87, rgs_frame 118 */
-    c->surface_hit = 17;          /* each further hit's front reads, beside its issue slot */
+    c->surface_hit = 48;          /* each further hit: the front's reads of it, one burst after another */
+    c->surface_miss = 12;         /* a packet without hits: rgs_surface's stages and queue, nothing read */
     c->shade_hit = 3;             /* the shading cache_read's hit */
     c->latency[OP_LIGHT] = 92;    /* rgs_light 87 (rgs_light_colour's 27 beside it) + rgs_ctrl's state (LCALC 92) */
     c->latency[OP_ACCUM] = 67;    /* rgs_accum: rgs_spawn's */
@@ -319,11 +320,13 @@ static int cmp_u32(const void *a, const void *b)
 
 /* The cycles from an operation's last issue slot to its result: its kind's latency; a surface
  * operation's hits pass rgs_surface's front stage one after another (its reads, each burst after
- * the one its address comes from), so each hit after the first adds surface_hit. */
+ * the one its address comes from), so each hit after the first adds surface_hit, while its misses
+ * pass in a cycle each: a packet without hits takes surface_miss. */
 static uint32_t op_latency(const cycle_config *cfg, const unit_op *op)
 {
-    const uint32_t further = op->kind == OP_SURFACE && op->slots > 1 ? op->slots - 1 : 0;
-    return cfg->latency[op->kind] + further * cfg->surface_hit;
+    if (op->kind != OP_SURFACE)
+        return cfg->latency[op->kind];
+    return op->hits ? cfg->latency[OP_SURFACE] + (op->hits - 1) * cfg->surface_hit : cfg->surface_miss;
 }
 
 /* The shading words an operation reads (on the RGS's word port in the RTL). */

@@ -36,6 +36,8 @@ typedef struct {
     uint32_t latency[OP_KINDS];       /* pipeline latency of each kind of operation (trace.h), cycles */
     uint32_t surface_hit;             /* a surface operation's cycles per hit after the first (rgs_surface's front
                                        * reads its hits one after another: docs/cycle-model.md) */
+    uint32_t surface_miss;            /* a surface operation's cycles after its last slot when no ray hit (its
+                                       * misses pass rgs_surface in a cycle each, nothing is read) */
     uint32_t shade_hit;               /* cycles from a word's request to its answer on a shading cache hit (the
                                        * first word of a light record rgs_ctrl reads) */
     uint32_t tile;                    /* tile edge in pixels (even) handed out by the controller */
