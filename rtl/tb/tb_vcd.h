@@ -16,11 +16,13 @@
 #include <string>
 #include <vector>
 
+#include "../../tb/cycle/vcd_format.h"
+
 namespace cosim {
 
 class vcd_writer {
   public:
-    static constexpr uint64_t X = UINT64_MAX; // an undefined value (a unit's thread_id while it is idle)
+    static constexpr uint64_t X = VCD_X; // an undefined value (a unit's thread_id while it is idle)
 
     ~vcd_writer() { abort(); }
 
@@ -104,17 +106,12 @@ class vcd_writer {
     uint64_t from_ = 0, to_ = 0, half_ = 1, at_ = 0; // at_: the cycle whose rising edge was written last
     bool started_ = false;
 
-    // identifier of signal s ("!" is the clock): printable characters but '#' and '$'
+    // identifier of signal s ("!" is the clock)
     static std::string id(size_t s)
     {
-        static const char digits[] = "!\"%&'()*+,-./0123456789:;<=>?@ABCDEFGHIJKLMNOPQRSTUVWXYZ[\\]^_`"
-                                     "abcdefghijklmnopqrstuvwxyz{|}~";
-        std::string r;
-        for (size_t n = s;; n /= sizeof digits - 1) {
-            r += digits[n % (sizeof digits - 1)];
-            if (n < sizeof digits - 1)
-                return r;
-        }
+        char r[VCD_ID_CHARS];
+        vcd_id(s, r);
+        return r;
     }
 
     // the scopes opened and closed between consecutive signals' dotted scopes
@@ -149,19 +146,8 @@ class vcd_writer {
 
     void value(size_t s)
     {
-        const uint64_t v = cur_[s];
-        last_[s] = v;
-        if (sigs_[s].width == 1) {
-            std::fprintf(f_, "%c%s\n", v == X ? 'x' : v ? '1' : '0', id(s + 1).c_str());
-            return;
-        }
-        char b[66] = "x";
-        int n = v == X;
-        for (int i = 63; v != X && i >= 0; i--)
-            if (n || (v >> i & 1) || i == 0)
-                b[n++] = (char)('0' + (v >> i & 1));
-        b[n] = 0;
-        std::fprintf(f_, "b%s %s\n", b, id(s + 1).c_str());
+        last_[s] = cur_[s];
+        vcd_value(f_, sigs_[s].width, cur_[s], id(s + 1).c_str());
     }
 
     void start(uint64_t c)

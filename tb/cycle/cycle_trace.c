@@ -1,6 +1,7 @@
 /* Waveforms of the cycle model: see cycle_trace.h. */
 #define _GNU_SOURCE
 #include "cycle_trace.h"
+#include "vcd_format.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -16,7 +17,7 @@ enum { S_LOOKUPS, S_MISSES, S_FILLS, SIG_PER_CACHE };
 #define SIGS (SIG_THREADS + 1)
 
 #define NEVER UINT64_MAX
-#define VAL_X UINT64_MAX /* an undefined value: thread_id while the unit is idle */
+#define VAL_X VCD_X /* an undefined value: thread_id while the unit is idle */
 #define DEAD UINT32_MAX  /* an event undone by a later change in the same cycle */
 #define CLOCK_ID "!"      /* the clock's identifier: number 0 of sig_id */
 
@@ -289,43 +290,12 @@ static uint32_t sig_width(const cycle_trace *tr, uint32_t s)
     }
 }
 
-/* VCD identifier of signal s of pipe p (0 is the clock): printable characters but '#' and '$',
- * which some readers take for a timestamp or a keyword at the start of a token. */
-static void sig_id(uint32_t p, uint32_t s, char id[8])
-{
-    static const char digits[] = "!\"%&'()*+,-./0123456789:;<=>?@ABCDEFGHIJKLMNOPQRSTUVWXYZ[\\]^_`"
-                                 "abcdefghijklmnopqrstuvwxyz{|}~";
-    const uint64_t base = sizeof digits - 1;
-    uint64_t n = (uint64_t)p * SIGS + s + 1;
-    int k = 0;
-    do {
-        id[k++] = digits[n % base];
-        n /= base;
-    } while (n && k < 7);
-    id[k] = 0;
-}
-
-static void write_value(FILE *f, uint32_t width, uint64_t v, const char *id)
-{
-    if (width == 1) {
-        fprintf(f, "%c%s\n", v == VAL_X ? 'x' : v ? '1' : '0', id);
-        return;
-    }
-    if (v == VAL_X) {
-        fprintf(f, "bx %s\n", id);
-        return;
-    }
-    char b[65];
-    int n = 0;
-    for (int i = (int)bits_for(v) - 1; i >= 0; i--)
-        b[n++] = (char)('0' + (v >> i & 1));
-    b[n] = 0;
-    fprintf(f, "b%s %s\n", b, id);
-}
+/* VCD identifier of signal s of pipe p (number 0 is the clock). */
+static void sig_id(uint32_t p, uint32_t s, char id[VCD_ID_CHARS]) { vcd_id((uint64_t)p * SIGS + s + 1, id); }
 
 static void var(FILE *f, uint32_t width, uint32_t p, uint32_t s, const char *name)
 {
-    char id[8];
+    char id[VCD_ID_CHARS];
     sig_id(p, s, id);
     fprintf(f, "$var wire %u %s %s $end\n", width, id, name);
 }
@@ -370,9 +340,9 @@ static void write_start(cycle_trace *tr)
     fprintf(tr->vcd, "#%llu\n$dumpvars\n1%s\n", (unsigned long long)(tr->from * 2 * tr->half_ps), CLOCK_ID);
     for (uint32_t p = 0; p < tr->cfg.pipes; p++)
         for (uint32_t s = 0; s < SIGS; s++) {
-            char id[8];
+            char id[VCD_ID_CHARS];
             sig_id(p, s, id);
-            write_value(tr->vcd, sig_width(tr, s), tr->pipes[p].sig[s].start, id);
+            vcd_value(tr->vcd, sig_width(tr, s), tr->pipes[p].sig[s].start, id);
         }
     fprintf(tr->vcd, "$end\n");
     tr->cur = tr->from;
@@ -422,10 +392,10 @@ static void write_events(cycle_trace *tr)
     }
     qsort(tr->m, n, sizeof *tr->m, cmp_merged);
     for (size_t i = 0; i < n; i++) {
-        char id[8];
+        char id[VCD_ID_CHARS];
         time_to(tr, tr->m[i].t);
         sig_id(tr->m[i].pipe, tr->m[i].e->sig, id);
-        write_value(tr->vcd, sig_width(tr, tr->m[i].e->sig), tr->m[i].e->v, id);
+        vcd_value(tr->vcd, sig_width(tr, tr->m[i].e->sig), tr->m[i].e->v, id);
     }
     for (uint32_t p = 0; p < tr->cfg.pipes; p++) {
         tr->pipes[p].n = 0;
