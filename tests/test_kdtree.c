@@ -1046,6 +1046,51 @@ static void parallel_deterministic(void **state)
     free(so.t);
 }
 
+/* kd_build_many builds several trees on one pool of threads, a thread done with one tree taking
+ * subtrees of the others: every tree must be the one kd_build makes, on any number of threads,
+ * with the small and empty ones among them; a tree over its node budget fails alone. */
+static void build_many_same_trees(void **state)
+{
+    (void)state;
+    box_set inst = instance_boxes(20000, 71), mixed = random_boxes(5000, 72), few = random_boxes(40, 74);
+    soup so = random_soup(6000, 73);
+    kd_params hybrid = params(32, grid8), exact = params(0, to_float);
+    hybrid.exact_max = 64;
+    enum { N = 6 };
+    /* the largest last: the threads done with the others take its subtrees */
+    const kd_source src[N] = { box_source(&few), tri_source(&so), { 0, NULL, NULL, NULL }, box_source(&mixed),
+                               tri_source(&so), box_source(&inst) };
+    kd_params p[N] = { exact, hybrid, exact, params(32, grid8), exact, params(32, to_float) };
+    kd_tree alone[N], many[N];
+    for (int i = 0; i < N; i++)
+        assert_int_equal(kd_build(&src[i], &p[i], &alone[i]), 0);
+    for (uint32_t threads = 0; threads <= 3; threads++) { /* 0: all CPUs */
+        int rc[N];
+        assert_int_equal(kd_build_many(src, p, N, threads, many, rc), 0);
+        for (int i = 0; i < N; i++) {
+            assert_int_equal(rc[i], 0);
+            assert_same_tree(&alone[i], &many[i]);
+            kd_free(&many[i]);
+        }
+    }
+    kd_params limited[N];
+    memcpy(limited, p, sizeof limited);
+    limited[1].max_nodes = alone[1].n_nodes - 1;
+    int rc[N];
+    assert_int_equal(kd_build_many(src, limited, N, 2, many, rc), 0);
+    for (int i = 0; i < N; i++) {
+        assert_int_equal(rc[i], i == 1 ? KD_TOO_MANY_NODES : 0);
+        if (i != 1)
+            assert_same_tree(&alone[i], &many[i]);
+        kd_free(&many[i]);
+        kd_free(&alone[i]);
+    }
+    free(inst.b);
+    free(mixed.b);
+    free(few.b);
+    free(so.t);
+}
+
 /* ---- tests: parameters ---------------------------------------------------------------------- */
 
 static void parameters(void **state)
@@ -1499,6 +1544,7 @@ int main(void)
         cmocka_unit_test(root_split_is_optimal),
         cmocka_unit_test(empty_and_single),
         cmocka_unit_test(identical_boxes),
+        cmocka_unit_test(build_many_same_trees),
         cmocka_unit_test(duplicates),
         cmocka_unit_test(all_in_one_plane),
         cmocka_unit_test(planar_in_candidate_planes),

@@ -110,6 +110,14 @@ uint32_t kd_thread_count(void);
  * p->max_nodes (out is then empty). count may be 0. */
 int kd_build(const kd_source *src, const kd_params *p, kd_tree *out);
 
+/* Builds the trees out[0..n) of src[i] with p[i] (p[i].threads is not used) together, on
+ * `threads` threads (0: kd_thread_count(), at most 8), so that a thread that has finished one
+ * tree helps with the subtrees of the others instead of waiting for the last one. Each tree is
+ * bit for bit the one kd_build makes; rc[i] is what kd_build would return for it (a tree that
+ * fails leaves the others unharmed); stats.build_seconds is the time of the whole call. Returns
+ * 0, or -1 if memory ran out before any tree was started (the rc[] are then not set). */
+int kd_build_many(const kd_source *src, const kd_params *p, uint32_t n, uint32_t threads, kd_tree *out, int *rc);
+
 void kd_free(kd_tree *t);
 
 /* Clips triangle (a, b, c) to box (Sutherland-Hodgman against the six planes) and returns the
