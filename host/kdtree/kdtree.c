@@ -917,8 +917,8 @@ static int split_refs(const builder *b, const prim_set *s, const split *sp, cons
         nl += side != SIDE_RIGHT;
         nr += side != SIDE_LEFT;
     }
-    l->ref = malloc((nl + 1) * sizeof *l->ref);
-    r->ref = malloc((nr + 1) * sizeof *r->ref);
+    l->ref = huge_pages_malloc((nl + 1) * sizeof *l->ref);
+    r->ref = huge_pages_malloc((nr + 1) * sizeof *r->ref);
     if (!l->ref || !r->ref)
         return -1;
     for (uint32_t i = 0; i < s->n; i++) {
@@ -934,7 +934,7 @@ static int split_refs(const builder *b, const prim_set *s, const split *sp, cons
 
 static int root_refs(const builder *b, prim_set *s, aabb *root)
 {
-    if (!(s->ref = malloc(((size_t)b->src->count + 1) * sizeof *s->ref)))
+    if (!(s->ref = huge_pages_malloc(((size_t)b->src->count + 1) * sizeof *s->ref)))
         return -1;
     for (uint32_t i = 0; i < b->src->count; i++) {
         s->ref[i] = (prim_ref){ i, b->src->bounds(b->src->user, i) };
@@ -1236,8 +1236,8 @@ static int split_refs_parallel(const builder *b, const prim_set *s, const split 
         nl += j.nl[i];
         nr += j.nr[i];
     }
-    l->ref = malloc((nl + 1) * sizeof *l->ref);
-    r->ref = malloc((nr + 1) * sizeof *r->ref);
+    l->ref = huge_pages_malloc((nl + 1) * sizeof *l->ref);
+    r->ref = huge_pages_malloc((nr + 1) * sizeof *r->ref);
     if (!l->ref || !r->ref)
         return -1;
     pool_for(b->pool, PAR_PARTS, copy_part, &j);
@@ -1645,8 +1645,8 @@ static void merge_trees(pool *pl, task *roots, uint32_t n, int *rc, double *sah)
     for (uint32_t i = 0; i < n; i++) {
         rc[i] = pl->failed[i] || !out || !count ? -1 : 0;
         if (rc[i] == 0 && count[2 * i] <= UINT32_MAX && count[2 * i + 1] < UINT32_MAX) {
-            out[i].nodes = malloc((size_t)count[2 * i] * sizeof *out[i].nodes);
-            out[i].prims = malloc(((size_t)count[2 * i + 1] + 1) * sizeof *out[i].prims);
+            out[i].nodes = huge_pages_malloc((size_t)count[2 * i] * sizeof *out[i].nodes);
+            out[i].prims = huge_pages_malloc(((size_t)count[2 * i + 1] + 1) * sizeof *out[i].prims);
         }
         if (rc[i] == 0 && out[i].nodes && out[i].prims) {
             out[i].n_nodes = 1;
