@@ -1072,6 +1072,10 @@ static void build_many_same_trees(void **state)
             assert_same_tree(&alone[i], &many[i]);
             kd_free(&many[i]);
         }
+        assert_int_equal(kd_build_many(src + N - 1, p + N - 1, 1, threads, many, rc), 0); /* one tree */
+        assert_int_equal(rc[0], 0);
+        assert_same_tree(&alone[N - 1], &many[0]);
+        kd_free(&many[0]);
     }
     kd_params limited[N];
     memcpy(limited, p, sizeof limited);

@@ -1910,6 +1910,12 @@ int kd_build(const kd_source *src, const kd_params *p, kd_tree *out)
 
 int kd_build_many(const kd_source *src, const kd_params *p, uint32_t n, uint32_t threads, kd_tree *out, int *rc)
 {
+    if (n == 1) { /* kd_build starts the root on this thread with the others' help (root_events) */
+        kd_params q = p[0];
+        q.threads = threads;
+        rc[0] = kd_build(&src[0], &q, &out[0]);
+        return 0;
+    }
     const double t0 = now();
     task *roots = calloc((size_t)n + 1, sizeof *roots);
     node_budget *budget = calloc((size_t)n + 1, sizeof *budget);
