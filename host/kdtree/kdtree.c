@@ -55,7 +55,9 @@
  * then merged in a fixed order into exactly the layout of the single-threaded build, so the tree
  * is the same bit for bit, whatever the thread timing. Such a build calls bounds, clip and
  * quantize from several threads at a time: they must be pure functions (thread-safe). If no
- * thread can be started, the calling thread builds alone.
+ * thread can be started, the calling thread builds alone. kd_build_many puts several trees' roots
+ * into one such pool (build_pool): the threads take them in turn, and one that finds none left
+ * takes subtrees of the trees still building; each tree is merged into its own layout, the same.
  *
  * Statistics are gathered while building; the SAH cost sums every subtree as its node's term plus
  * (left sum + right sum), so that subtrees built in different threads give the same bits as
