@@ -344,6 +344,27 @@ static int part_in_box(const builder *b, uint32_t id, const aabb *outer, const a
     return box_intersect(&part, box, out);
 }
 
+/* The parts of primitive id in the halves lb, rb of a node box (lb->hi[axis] == rb->lo[axis]), as
+ * part_in_box gives them, into out[0..1]; returns bit c set if half c holds a part. One call of the
+ * source's clip_split where it has one (the halves' common planes clipped once). */
+static int parts_in_halves(const builder *b, uint32_t id, const aabb *outer, uint32_t axis, const aabb *lb,
+                           const aabb *rb, aabb out[2])
+{
+    const aabb *const half[2] = { lb, rb };
+    int mask = 0;
+    if (b->src->clip_split) {
+        aabb box = *lb, part[2];
+        box.hi[axis] = rb->hi[axis];
+        const int m = b->src->clip_split(b->src->user, id, &box, axis, lb->hi[axis], part);
+        for (int c = 0; c < 2; c++)
+            mask |= ((m >> c & 1) && box_intersect(&part[c], half[c], &out[c])) << c;
+        return mask;
+    }
+    for (int c = 0; c < 2; c++)
+        mask |= part_in_box(b, id, outer, half[c], &out[c]) << c;
+    return mask;
+}
+
 /* ---- output arrays ------------------------------------------------------------------------- */
 
 /* p with room for need elements of size bytes: p itself, or p reallocated to twice the need.
@@ -565,14 +586,15 @@ static int clip_straddlers(builder *b, const prim_set *s, const split *sp, const
         list[n] = split_ev[i].prim;
         n += (split_ev[i].type == EV_START) & (b->side[split_ev[i].prim] == SIDE_BOTH);
     }
-    for (uint32_t i = 0; i < n; i++)
-        for (int c = 0; c < 2; c++) {
-            aabb part;
-            if (part_in_box(b, list[i], NULL, cb[c], &part)) {
-                put_events(ev[c], k[c], list[i], &part);
+    for (uint32_t i = 0; i < n; i++) {
+        aabb part[2];
+        const int in = parts_in_halves(b, list[i], NULL, sp->axis, cb[0], cb[1], part);
+        for (int c = 0; c < 2; c++)
+            if (in >> c & 1) {
+                put_events(ev[c], k[c], list[i], &part[c]);
                 kept[c]++;
             }
-        }
+    }
     for (int c = 0; c < 2; c++)
         for (int a = 0; a < 3; a++)
             sort_events(ev[c][a], k[c][a], scratch + 12 * (size_t)nb);
@@ -897,12 +919,22 @@ static void small_axis(const builder *b, const prim_set *s, const aabb *box, uin
     consider_chunk(&t, q, nl, np, nr, m, best);
 }
 
-/* Appends primitive pr to child c, clipped to box (NULL: it lies on one side, keep it as is). */
-static void keep_ref(const builder *b, prim_set *c, const prim_ref *pr, const aabb *box)
+/* Appends primitive pr (side: SIDE_*) to the children l, r it goes to; a straddler clipped to
+ * their boxes lb, rb. */
+static void keep_sides(const builder *b, prim_set *l, prim_set *r, const prim_ref *pr, int side, uint32_t axis,
+                       const aabb *lb, const aabb *rb)
 {
-    prim_ref out = *pr;
-    if (!box || part_in_box(b, pr->id, &pr->b, box, &out.b))
-        c->ref[c->n++] = out;
+    if (side != SIDE_BOTH) {
+        prim_set *c = side == SIDE_LEFT ? l : r;
+        c->ref[c->n++] = *pr;
+        return;
+    }
+    aabb part[2];
+    const int in = parts_in_halves(b, pr->id, &pr->b, axis, lb, rb, part);
+    if (in & 1)
+        l->ref[l->n++] = (prim_ref){ pr->id, part[0] };
+    if (in & 2)
+        r->ref[r->n++] = (prim_ref){ pr->id, part[1] };
 }
 
 static int split_refs_parallel(const builder *b, const prim_set *s, const split *sp, const aabb *lb, const aabb *rb,
@@ -925,11 +957,7 @@ static int split_refs(const builder *b, const prim_set *s, const split *sp, cons
         return -1;
     for (uint32_t i = 0; i < s->n; i++) {
         const prim_ref *pr = &s->ref[i];
-        const int side = side_of(pr->b.lo[sp->axis], pr->b.hi[sp->axis], sp);
-        if (side != SIDE_RIGHT)
-            keep_ref(b, l, pr, side == SIDE_BOTH ? lb : NULL);
-        if (side != SIDE_LEFT)
-            keep_ref(b, r, pr, side == SIDE_BOTH ? rb : NULL);
+        keep_sides(b, l, r, pr, side_of(pr->b.lo[sp->axis], pr->b.hi[sp->axis], sp), sp->axis, lb, rb);
     }
     return 0;
 }
@@ -1205,11 +1233,8 @@ static void copy_part(void *arg, uint32_t i)
     prim_set l = { .ref = j->l->ref + j->offl[i] }, r = { .ref = j->r->ref + j->offr[i] };
     for (uint32_t e = (uint32_t)(n * i / PAR_PARTS); e < (uint32_t)(n * (i + 1) / PAR_PARTS); e++) {
         const prim_ref *pr = &j->s->ref[e];
-        const int side = side_of(pr->b.lo[j->sp->axis], pr->b.hi[j->sp->axis], j->sp);
-        if (side != SIDE_RIGHT)
-            keep_ref(j->b, &l, pr, side == SIDE_BOTH ? j->lb : NULL);
-        if (side != SIDE_LEFT)
-            keep_ref(j->b, &r, pr, side == SIDE_BOTH ? j->rb : NULL);
+        keep_sides(j->b, &l, &r, pr, side_of(pr->b.lo[j->sp->axis], pr->b.hi[j->sp->axis], j->sp), j->sp->axis, j->lb,
+                   j->rb);
     }
     j->nl[i] = l.n;
     j->nr[i] = r.n;
@@ -2027,40 +2052,83 @@ static inline __attribute__((always_inline)) int clip_plane(const polygon *src, 
     return 1;
 }
 
-/* The planes in a fixed order (the result's rounding depends on it): x >= lo, x <= hi, y >= lo,
- * ... Each call has constant axis and side, so that the compiler specializes clip_plane. */
-#define CLIP_PLANE(axis, above, d)                                                                                     \
+/* Clips p[*cur] by the planes [from, to) of box, in the fixed order (the result's rounding depends
+ * on it) plane 2a: x_a >= lo, plane 2a + 1: x_a <= hi, a = x, y, z; 0 if nothing is left. Each
+ * plane's clip_plane has constant axis and side, so that the compiler specializes it. */
+#define CLIP_PLANE(plane, axis, above, d)                                                                              \
     do {                                                                                                               \
-        if (clip_plane(&p[cur], axis, d, above, &p[1 - cur])) {                                                        \
-            cur = 1 - cur;                                                                                             \
-            if (p[cur].n == 0)                                                                                         \
+        if (from <= (plane) && (plane) < to && clip_plane(&p[*cur], axis, d, above, &p[1 - *cur])) {                   \
+            *cur = 1 - *cur;                                                                                           \
+            if (p[*cur].n == 0)                                                                                        \
                 return 0;                                                                                              \
         }                                                                                                              \
     } while (0)
 
+static inline __attribute__((always_inline)) int clip_planes(polygon p[2], int *cur, const aabb *box, int from, int to)
+{
+    CLIP_PLANE(0, 0, 1, box->lo[0]);
+    CLIP_PLANE(1, 0, 0, box->hi[0]);
+    CLIP_PLANE(2, 1, 1, box->lo[1]);
+    CLIP_PLANE(3, 1, 0, box->hi[1]);
+    CLIP_PLANE(4, 2, 1, box->lo[2]);
+    CLIP_PLANE(5, 2, 0, box->hi[2]);
+    return 1;
+}
+
+/* Bounds of polygon p: minima and maxima in vertex order from infinity, so that of equal values
+ * (-0 and +0) the same one wins as when they were kept per added vertex. After clipping: exact
+ * inside tests, crossings on their plane and within their edge, so the polygon lies in the box. */
+static aabb poly_bounds(const polygon *p)
+{
+    aabb r = { { INFINITY, INFINITY, INFINITY }, { -INFINITY, -INFINITY, -INFINITY } };
+    for (int i = 0; i < p->n; i++)
+        for (int k = 0; k < 3; k++) {
+            r.lo[k] = dmin(r.lo[k], p->v[i][k]);
+            r.hi[k] = dmax(r.hi[k], p->v[i][k]);
+        }
+    return r;
+}
+
+static void poly_triangle(polygon *p, const double a[3], const double b[3], const double c[3])
+{
+    p->n = 0;
+    poly_add(p, a);
+    poly_add(p, b);
+    poly_add(p, c);
+}
+
 int kd_clip_triangle(const double a[3], const double b[3], const double c[3], const aabb *box, aabb *out)
 {
     polygon p[2];
-    p[0].n = 0;
-    poly_add(&p[0], a);
-    poly_add(&p[0], b);
-    poly_add(&p[0], c);
     int cur = 0;
-    CLIP_PLANE(0, 1, box->lo[0]);
-    CLIP_PLANE(0, 0, box->hi[0]);
-    CLIP_PLANE(1, 1, box->lo[1]);
-    CLIP_PLANE(1, 0, box->hi[1]);
-    CLIP_PLANE(2, 1, box->lo[2]);
-    CLIP_PLANE(2, 0, box->hi[2]);
-    /* exact inside tests, crossings on their plane and within their edge: the polygon lies in box.
-     * Its bounds: minima and maxima in vertex order from infinity, so that of equal values (-0
-     * and +0) the same one wins as before */
-    aabb r = { { INFINITY, INFINITY, INFINITY }, { -INFINITY, -INFINITY, -INFINITY } };
-    for (int i = 0; i < p[cur].n; i++)
-        for (int k = 0; k < 3; k++) {
-            r.lo[k] = dmin(r.lo[k], p[cur].v[i][k]);
-            r.hi[k] = dmax(r.hi[k], p[cur].v[i][k]);
-        }
-    *out = r;
+    poly_triangle(&p[0], a, b, c);
+    if (!clip_planes(p, &cur, box, 0, 6))
+        return 0;
+    *out = poly_bounds(&p[cur]);
     return 1;
+}
+
+int kd_clip_triangle_split(const double a[3], const double b[3], const double c[3], const aabb *box, uint32_t axis,
+                           double pos, aabb out[2])
+{
+    polygon p[2], q[2];
+    int cur = 0;
+    poly_triangle(&p[0], a, b, c);
+    const int first = 2 * (int)axis; /* the first plane where the halves differ */
+    if (!clip_planes(p, &cur, box, 0, first))
+        return 0;
+    q[0].n = p[cur].n; /* the upper half's copy: the lower half's clipping overwrites p */
+    memcpy(q[0].v, p[cur].v, (size_t)p[cur].n * sizeof q[0].v[0]);
+    aabb half[2] = { *box, *box };
+    half[0].hi[axis] = half[1].lo[axis] = pos;
+    int mask = 0, qcur = 0;
+    if (clip_planes(p, &cur, &half[0], first, 6)) {
+        out[0] = poly_bounds(&p[cur]);
+        mask |= 1;
+    }
+    if (clip_planes(q, &qcur, &half[1], first, 6)) {
+        out[1] = poly_bounds(&q[qcur]);
+        mask |= 2;
+    }
+    return mask;
 }

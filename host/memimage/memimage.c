@@ -304,6 +304,16 @@ static int tri_clip(const void *user, uint32_t i, const aabb *box, aabb *out)
     return kd_clip_triangle(a, b, c, box, out);
 }
 
+static int tri_clip_split(const void *user, uint32_t i, const aabb *box, uint32_t axis, double pos, aabb out[2])
+{
+    const tri_source *s = user;
+    double a[3], b[3], c[3];
+    tri_vertex(s->m, s->centre, s->valid[i], 0, a);
+    tri_vertex(s->m, s->centre, s->valid[i], 1, b);
+    tri_vertex(s->m, s->centre, s->valid[i], 2, c);
+    return kd_clip_triangle_split(a, b, c, box, axis, pos, out);
+}
+
 static void object_release(mi_object *o)
 {
     kd_free(&o->tree);
@@ -599,7 +609,7 @@ static int object_tree(const mi_builder *b, const scene_mesh *m, mi_object *o, c
     pthread_t tid;
     const int beside = q->threads > 1 ? edges_beside(&l, &tid) == 0 : (edges_run(&l), 0);
     const tri_source src = { m, o->valid, o->centre };
-    const kd_source ks = { o->n_valid, &src, tri_bounds, tri_clip };
+    const kd_source ks = { o->n_valid, &src, tri_bounds, tri_clip, tri_clip_split };
     const int kd = kd_build(&ks, q, &o->tree);
     if (beside)
         pthread_join(tid, NULL);
@@ -650,7 +660,7 @@ static void trees_build(const mi_builder *b, const scene *s, uint32_t *list, uin
         mi_object *o = &b->obj[list[k]];
         const scene_mesh *m = obj_mesh(b, s, o);
         src[k] = (tri_source){ m, o->valid, o->centre };
-        ks[k] = (kd_source){ o->n_valid, &src[k], tri_bounds, tri_clip };
+        ks[k] = (kd_source){ o->n_valid, &src[k], tri_bounds, tri_clip, tri_clip_split };
         ps[k] = *q;
         e[k] = (edges_job){ m, o, 0 };
     }
@@ -1323,7 +1333,7 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
         goto oom;
     inst_source is = { s, b };
     kd_free(&b->top);
-    const kd_source ks = { b->n_inst, &is, instance_bounds, NULL };
+    const kd_source ks = { b->n_inst, &is, instance_bounds, NULL, NULL };
     const int rc = build_tree(b, &ks, &b->p.top, &b->top);
     if (rc == MI_FAIL_NODE_LIMIT)
         return node_limit_error(b, "the top-level tree", err, errlen);
