@@ -1080,8 +1080,8 @@ static void clip_split_same_trees(void **state)
 static void build_many_same_trees(void **state)
 {
     (void)state;
-    box_set inst = instance_boxes(20000, 71), mixed = random_boxes(5000, 72), few = random_boxes(40, 74);
-    soup so = random_soup(6000, 73);
+    box_set inst = instance_boxes(4000, 71), mixed = random_boxes(2000, 72), few = random_boxes(40, 74);
+    soup so = random_soup(2000, 73);
     kd_params hybrid = params(32, grid8), exact = params(0, to_float);
     hybrid.exact_max = 64;
     enum { N = 6 };
