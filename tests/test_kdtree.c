@@ -76,6 +76,12 @@ static int tri_clip(const void *user, uint32_t i, const aabb *box, aabb *out)
     return kd_clip_triangle(t->v[0], t->v[1], t->v[2], box, out);
 }
 
+static int tri_clip_split(const void *user, uint32_t i, const aabb *box, uint32_t axis, double pos, aabb out[2])
+{
+    const tri *t = &((const soup *)user)->t[i];
+    return kd_clip_triangle_split(t->v[0], t->v[1], t->v[2], box, axis, pos, out);
+}
+
 static soup soup_new(uint32_t n)
 {
     soup s = { calloc(n + 1u, sizeof(tri)), n };
@@ -150,8 +156,8 @@ static box_set random_boxes(uint32_t n, uint64_t s)
     return r;
 }
 
-static kd_source tri_source(const soup *s) { return (kd_source){ s->n, s, tri_bounds, tri_clip }; }
-static kd_source box_source(const box_set *s) { return (kd_source){ s->n, s, box_bounds, NULL }; }
+static kd_source tri_source(const soup *s) { return (kd_source){ s->n, s, tri_bounds, tri_clip, tri_clip_split }; }
+static kd_source box_source(const box_set *s) { return (kd_source){ s->n, s, box_bounds, NULL, NULL }; }
 
 static double grid8(double x) { return round(x * 8.0) / 8.0; }
 static double grid2(double x) { return round(x * 2.0) / 2.0; }
@@ -767,7 +773,7 @@ static void empty_and_single(void **state)
     for (uint32_t bins = 0; bins <= 32; bins += 32) {
         const kd_params p = params(bins, grid8);
         for (uint32_t n = 0; n <= 1; n++) {
-            const kd_source src = { n, &so, tri_bounds, tri_clip };
+            const kd_source src = { n, &so, tri_bounds, tri_clip, NULL };
             kd_tree t;
             assert_int_equal(kd_build(&src, &p, &t), 0);
             check_tree(&src, &p, &t);
@@ -1046,6 +1052,77 @@ static void parallel_deterministic(void **state)
     free(so.t);
 }
 
+/* A source's clip_split gives the halves' parts as clip does, so the trees are the same with and
+ * without it: exact mode (the straddlers' events) and binned mode (the straddling references). */
+static void clip_split_same_trees(void **state)
+{
+    (void)state;
+    soup so = random_soup(3000, 75);
+    kd_params hybrid = params(32, grid8), exact = params(0, to_float);
+    hybrid.exact_max = 64;
+    const kd_params ps[] = { exact, hybrid, params(32, grid8) };
+    kd_source with = tri_source(&so), without = with;
+    without.clip_split = NULL;
+    for (size_t i = 0; i < sizeof ps / sizeof ps[0]; i++) {
+        kd_tree a, b;
+        assert_int_equal(kd_build(&with, &ps[i], &a), 0);
+        assert_int_equal(kd_build(&without, &ps[i], &b), 0);
+        assert_same_tree(&a, &b);
+        kd_free(&a);
+        kd_free(&b);
+    }
+    free(so.t);
+}
+
+/* kd_build_many builds several trees on one pool of threads, a thread done with one tree taking
+ * subtrees of the others: every tree must be the one kd_build makes, on any number of threads,
+ * with the small and empty ones among them; a tree over its node budget fails alone. */
+static void build_many_same_trees(void **state)
+{
+    (void)state;
+    box_set inst = instance_boxes(4000, 71), mixed = random_boxes(2000, 72), few = random_boxes(40, 74);
+    soup so = random_soup(2000, 73);
+    kd_params hybrid = params(32, grid8), exact = params(0, to_float);
+    hybrid.exact_max = 64;
+    enum { N = 6 };
+    /* the largest last: the threads done with the others take its subtrees */
+    const kd_source src[N] = { box_source(&few), tri_source(&so), { 0, NULL, NULL, NULL, NULL }, box_source(&mixed),
+                               tri_source(&so), box_source(&inst) };
+    kd_params p[N] = { exact, hybrid, exact, params(32, grid8), exact, params(32, to_float) };
+    kd_tree alone[N], many[N];
+    for (int i = 0; i < N; i++)
+        assert_int_equal(kd_build(&src[i], &p[i], &alone[i]), 0);
+    for (uint32_t threads = 0; threads <= 3; threads++) { /* 0: all CPUs */
+        int rc[N];
+        assert_int_equal(kd_build_many(src, p, N, threads, many, rc), 0);
+        for (int i = 0; i < N; i++) {
+            assert_int_equal(rc[i], 0);
+            assert_same_tree(&alone[i], &many[i]);
+            kd_free(&many[i]);
+        }
+        assert_int_equal(kd_build_many(src + N - 1, p + N - 1, 1, threads, many, rc), 0); /* one tree */
+        assert_int_equal(rc[0], 0);
+        assert_same_tree(&alone[N - 1], &many[0]);
+        kd_free(&many[0]);
+    }
+    kd_params limited[N];
+    memcpy(limited, p, sizeof limited);
+    limited[1].max_nodes = alone[1].n_nodes - 1;
+    int rc[N];
+    assert_int_equal(kd_build_many(src, limited, N, 2, many, rc), 0);
+    for (int i = 0; i < N; i++) {
+        assert_int_equal(rc[i], i == 1 ? KD_TOO_MANY_NODES : 0);
+        if (i != 1)
+            assert_same_tree(&alone[i], &many[i]);
+        kd_free(&many[i]);
+        kd_free(&alone[i]);
+    }
+    free(inst.b);
+    free(mixed.b);
+    free(few.b);
+    free(so.t);
+}
+
 /* ---- tests: parameters ---------------------------------------------------------------------- */
 
 static void parameters(void **state)
@@ -1133,7 +1210,7 @@ static aabb never_called(const void *user, uint32_t i)
 static void too_many_primitives(void **state)
 {
     (void)state;
-    const kd_source src = { UINT32_MAX, NULL, never_called, NULL };
+    const kd_source src = { UINT32_MAX, NULL, never_called, NULL, NULL };
     const kd_params p = params(0, NULL);
     kd_tree t;
     memset(&t, 0x5A, sizeof t);
@@ -1344,6 +1421,18 @@ static void clip_triangle_random(void **state)
         }
         aabb out;
         const int hit = kd_clip_triangle(v[0], v[1], v[2], &box, &out);
+        for (uint32_t axis = 0; axis < 3; axis++) { /* the split clip: each half as kd_clip_triangle */
+            const double pos = box.lo[axis] + urand() * (box.hi[axis] - box.lo[axis]);
+            aabb half[2] = { box, box }, part[2], one;
+            half[0].hi[axis] = half[1].lo[axis] = pos;
+            const int in = kd_clip_triangle_split(v[0], v[1], v[2], &box, axis, pos, part);
+            for (int c = 0; c < 2; c++) {
+                const int alone = kd_clip_triangle(v[0], v[1], v[2], &half[c], &one);
+                assert_int_equal(in >> c & 1, alone);
+                if (alone)
+                    assert_memory_equal(&part[c], &one, sizeof one);
+            }
+        }
         for (int s = 0; s < 30; s++) {
             double u = urand(), w = urand();
             if (u + w > 1) {
@@ -1499,6 +1588,8 @@ int main(void)
         cmocka_unit_test(root_split_is_optimal),
         cmocka_unit_test(empty_and_single),
         cmocka_unit_test(identical_boxes),
+        cmocka_unit_test(build_many_same_trees),
+        cmocka_unit_test(clip_split_same_trees),
         cmocka_unit_test(duplicates),
         cmocka_unit_test(all_in_one_plane),
         cmocka_unit_test(planar_in_candidate_planes),

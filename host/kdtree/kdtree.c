@@ -55,7 +55,9 @@
  * then merged in a fixed order into exactly the layout of the single-threaded build, so the tree
  * is the same bit for bit, whatever the thread timing. Such a build calls bounds, clip and
  * quantize from several threads at a time: they must be pure functions (thread-safe). If no
- * thread can be started, the calling thread builds alone.
+ * thread can be started, the calling thread builds alone. kd_build_many puts several trees' roots
+ * into one such pool (build_pool): the threads take them in turn, and one that finds none left
+ * takes subtrees of the trees still building; each tree is merged into its own layout, the same.
  *
  * Statistics are gathered while building; the SAH cost sums every subtree as its node's term plus
  * (left sum + right sum), so that subtrees built in different threads give the same bits as
@@ -188,6 +190,7 @@ typedef struct {
     uint32_t n_pend, cap_pend;
     pool *pool;       /* parallel build (binned mode): where to hand subtrees; NULL: single-threaded */
     node_budget *budget; /* shared by the tree's builders */
+    uint32_t tree;       /* parallel build: the tree of the pool's (kd_build_many) this builder's subtree is in */
     hole *holes;      /* subtrees handed away, in the order they were due */
     uint32_t n_holes, cap_holes, holes_owed; /* owed: handed away, not yet due (room reserved) */
 } builder;
@@ -339,6 +342,27 @@ static int part_in_box(const builder *b, uint32_t id, const aabb *outer, const a
         part = outer ? *outer : b->src->bounds(b->src->user, id);
     }
     return box_intersect(&part, box, out);
+}
+
+/* The parts of primitive id in the halves lb, rb of a node box (lb->hi[axis] == rb->lo[axis]), as
+ * part_in_box gives them, into out[0..1]; returns bit c set if half c holds a part. One call of the
+ * source's clip_split where it has one (the halves' common planes clipped once). */
+static int parts_in_halves(const builder *b, uint32_t id, const aabb *outer, uint32_t axis, const aabb *lb,
+                           const aabb *rb, aabb out[2])
+{
+    const aabb *const half[2] = { lb, rb };
+    int mask = 0;
+    if (b->src->clip_split) {
+        aabb box = *lb, part[2];
+        box.hi[axis] = rb->hi[axis];
+        const int m = b->src->clip_split(b->src->user, id, &box, axis, lb->hi[axis], part);
+        for (int c = 0; c < 2; c++)
+            mask |= ((m >> c & 1) && box_intersect(&part[c], half[c], &out[c])) << c;
+        return mask;
+    }
+    for (int c = 0; c < 2; c++)
+        mask |= part_in_box(b, id, outer, half[c], &out[c]) << c;
+    return mask;
 }
 
 /* ---- output arrays ------------------------------------------------------------------------- */
@@ -562,14 +586,15 @@ static int clip_straddlers(builder *b, const prim_set *s, const split *sp, const
         list[n] = split_ev[i].prim;
         n += (split_ev[i].type == EV_START) & (b->side[split_ev[i].prim] == SIDE_BOTH);
     }
-    for (uint32_t i = 0; i < n; i++)
-        for (int c = 0; c < 2; c++) {
-            aabb part;
-            if (part_in_box(b, list[i], NULL, cb[c], &part)) {
-                put_events(ev[c], k[c], list[i], &part);
+    for (uint32_t i = 0; i < n; i++) {
+        aabb part[2];
+        const int in = parts_in_halves(b, list[i], NULL, sp->axis, cb[0], cb[1], part);
+        for (int c = 0; c < 2; c++)
+            if (in >> c & 1) {
+                put_events(ev[c], k[c], list[i], &part[c]);
                 kept[c]++;
             }
-        }
+    }
     for (int c = 0; c < 2; c++)
         for (int a = 0; a < 3; a++)
             sort_events(ev[c][a], k[c][a], scratch + 12 * (size_t)nb);
@@ -894,12 +919,22 @@ static void small_axis(const builder *b, const prim_set *s, const aabb *box, uin
     consider_chunk(&t, q, nl, np, nr, m, best);
 }
 
-/* Appends primitive pr to child c, clipped to box (NULL: it lies on one side, keep it as is). */
-static void keep_ref(const builder *b, prim_set *c, const prim_ref *pr, const aabb *box)
+/* Appends primitive pr (side: SIDE_*) to the children l, r it goes to; a straddler clipped to
+ * their boxes lb, rb. */
+static void keep_sides(const builder *b, prim_set *l, prim_set *r, const prim_ref *pr, int side, uint32_t axis,
+                       const aabb *lb, const aabb *rb)
 {
-    prim_ref out = *pr;
-    if (!box || part_in_box(b, pr->id, &pr->b, box, &out.b))
-        c->ref[c->n++] = out;
+    if (side != SIDE_BOTH) {
+        prim_set *c = side == SIDE_LEFT ? l : r;
+        c->ref[c->n++] = *pr;
+        return;
+    }
+    aabb part[2];
+    const int in = parts_in_halves(b, pr->id, &pr->b, axis, lb, rb, part);
+    if (in & 1)
+        l->ref[l->n++] = (prim_ref){ pr->id, part[0] };
+    if (in & 2)
+        r->ref[r->n++] = (prim_ref){ pr->id, part[1] };
 }
 
 static int split_refs_parallel(const builder *b, const prim_set *s, const split *sp, const aabb *lb, const aabb *rb,
@@ -916,24 +951,20 @@ static int split_refs(const builder *b, const prim_set *s, const split *sp, cons
         nl += side != SIDE_RIGHT;
         nr += side != SIDE_LEFT;
     }
-    l->ref = malloc((nl + 1) * sizeof *l->ref);
-    r->ref = malloc((nr + 1) * sizeof *r->ref);
+    l->ref = huge_pages_malloc((nl + 1) * sizeof *l->ref);
+    r->ref = huge_pages_malloc((nr + 1) * sizeof *r->ref);
     if (!l->ref || !r->ref)
         return -1;
     for (uint32_t i = 0; i < s->n; i++) {
         const prim_ref *pr = &s->ref[i];
-        const int side = side_of(pr->b.lo[sp->axis], pr->b.hi[sp->axis], sp);
-        if (side != SIDE_RIGHT)
-            keep_ref(b, l, pr, side == SIDE_BOTH ? lb : NULL);
-        if (side != SIDE_LEFT)
-            keep_ref(b, r, pr, side == SIDE_BOTH ? rb : NULL);
+        keep_sides(b, l, r, pr, side_of(pr->b.lo[sp->axis], pr->b.hi[sp->axis], sp), sp->axis, lb, rb);
     }
     return 0;
 }
 
 static int root_refs(const builder *b, prim_set *s, aabb *root)
 {
-    if (!(s->ref = malloc(((size_t)b->src->count + 1) * sizeof *s->ref)))
+    if (!(s->ref = huge_pages_malloc(((size_t)b->src->count + 1) * sizeof *s->ref)))
         return -1;
     for (uint32_t i = 0; i < b->src->count; i++) {
         s->ref[i] = (prim_ref){ i, b->src->bounds(b->src->user, i) };
@@ -1028,6 +1059,7 @@ typedef struct {
     prim_set s; /* freed by the build */
     uint32_t depth;
     subtree_sum sum; /* of the subtree */
+    int started;     /* 0: a tree's root whose primitive set start() has yet to make (kd_build_many) */
     uint32_t out_root, out_first, out_first_prim; /* layout(): where nodes 0, 1 and prims[0] go */
 } task;
 
@@ -1037,11 +1069,11 @@ struct pool {
     pthread_mutex_t mu;
     pthread_cond_t cv;   /* any change: a task or loop item to run, one finished, shutdown */
     atomic_uint changes; /* counts the changes, for waiting threads that spin before they sleep */
-    task **tasks;        /* [0]: the root; [next, n_tasks): waiting to run */
-    uint32_t n_tasks, next;
+    task **tasks;        /* [0, n_trees): the trees' roots; [next, n_tasks): waiting to run */
+    uint32_t n_tasks, next, max_tasks;
     uint32_t unfinished; /* tasks not yet finished: when 0, the build is over */
     uint32_t idle;       /* threads waiting for work */
-    int failed;          /* a task ran out of memory: the remaining tasks only free their input */
+    uint8_t *failed;     /* per tree: a task of it failed, its remaining tasks only free their input */
     int shutdown;        /* the threads other than the caller return */
     /* one parallel loop at a time (pool_for): items [for_next, for_n) wait, for_left unfinished */
     for_fn fn;
@@ -1201,11 +1233,8 @@ static void copy_part(void *arg, uint32_t i)
     prim_set l = { .ref = j->l->ref + j->offl[i] }, r = { .ref = j->r->ref + j->offr[i] };
     for (uint32_t e = (uint32_t)(n * i / PAR_PARTS); e < (uint32_t)(n * (i + 1) / PAR_PARTS); e++) {
         const prim_ref *pr = &j->s->ref[e];
-        const int side = side_of(pr->b.lo[j->sp->axis], pr->b.hi[j->sp->axis], j->sp);
-        if (side != SIDE_RIGHT)
-            keep_ref(j->b, &l, pr, side == SIDE_BOTH ? j->lb : NULL);
-        if (side != SIDE_LEFT)
-            keep_ref(j->b, &r, pr, side == SIDE_BOTH ? j->rb : NULL);
+        keep_sides(j->b, &l, &r, pr, side_of(pr->b.lo[j->sp->axis], pr->b.hi[j->sp->axis], j->sp), j->sp->axis, j->lb,
+                   j->rb);
     }
     j->nl[i] = l.n;
     j->nr[i] = r.n;
@@ -1234,8 +1263,8 @@ static int split_refs_parallel(const builder *b, const prim_set *s, const split 
         nl += j.nl[i];
         nr += j.nr[i];
     }
-    l->ref = malloc((nl + 1) * sizeof *l->ref);
-    r->ref = malloc((nr + 1) * sizeof *r->ref);
+    l->ref = huge_pages_malloc((nl + 1) * sizeof *l->ref);
+    r->ref = huge_pages_malloc((nr + 1) * sizeof *r->ref);
     if (!l->ref || !r->ref)
         return -1;
     pool_for(b->pool, PAR_PARTS, copy_part, &j);
@@ -1250,7 +1279,7 @@ static uint32_t offload(builder *b, const aabb *box, prim_set *s, uint32_t depth
 {
     pool *pl = b->pool;
     pthread_mutex_lock(&pl->mu);
-    const int wanted = pl->idle > pl->n_tasks - pl->next && pl->n_tasks < PAR_MAX_TASKS && !pl->failed;
+    const int wanted = pl->idle > pl->n_tasks - pl->next && pl->n_tasks < pl->max_tasks && !pl->failed[b->tree];
     pthread_mutex_unlock(&pl->mu);
     if (!wanted)
         return UINT32_MAX;
@@ -1261,7 +1290,7 @@ static uint32_t offload(builder *b, const aabb *box, prim_set *s, uint32_t depth
     task *t = calloc(1, sizeof *t);
     if (t) {
         t->b = (builder){ .src = b->src, .p = b->p, .max_depth = b->max_depth, .kind = b->kind,
-                          .root_measure = b->root_measure, .pool = pl, .budget = b->budget };
+                          .root_measure = b->root_measure, .pool = pl, .budget = b->budget, .tree = b->tree };
         t->b.prims = reserve(NULL, &t->b.cap_prims, (uint64_t)s->n + 1, sizeof *t->b.prims); /* never NULL after */
         uint32_t root;
         if (!t->b.prims || add_nodes(&t->b, 1, 0, &root) != 0) {
@@ -1276,6 +1305,7 @@ static uint32_t offload(builder *b, const aabb *box, prim_set *s, uint32_t depth
     t->box = *box;
     t->s = *s;
     t->depth = depth;
+    t->started = 1;
     memset(s, 0, sizeof *s);
     pthread_mutex_lock(&pl->mu);
     const uint32_t id = pl->n_tasks++;
@@ -1429,6 +1459,24 @@ static void task_free(task *t)
     memset(&t->b, 0, sizeof t->b);
 }
 
+static int start(builder *b, prim_set *s, aabb *root, uint32_t threads);
+static measure_kind measure_of(const aabb *root);
+
+/* Builds the subtree of task t, with scratch only while it runs (one set per thread, not per
+ * task); a tree's root not yet started first gets its primitive set, on this thread. */
+static int task_run(task *t)
+{
+    if (!t->started) {
+        if (start(&t->b, &t->s, &t->box, 1) != 0)
+            return -1;
+        t->b.kind = measure_of(&t->box);
+        t->b.root_measure = measure(t->b.kind, &t->box);
+    } else if (scratch_alloc(&t->b) != 0) {
+        return -1;
+    }
+    return build_node(&t->b, 0, &t->box, &t->s, t->depth, &t->sum);
+}
+
 /* Runs loop items and tasks: the caller until every task has finished, the other threads until
  * shutdown. */
 static void work(pool *pl, int caller)
@@ -1441,14 +1489,13 @@ static void work(pool *pl, int caller)
         }
         if (pl->next < pl->n_tasks) {
             task *t = pl->tasks[pl->next++];
-            const int skip = pl->failed;
+            const int skip = pl->failed[t->b.tree];
             pthread_mutex_unlock(&pl->mu);
-            /* scratch only while the task runs: one set per thread, not per task */
-            const int rc = skip || scratch_alloc(&t->b) ? -1 : build_node(&t->b, 0, &t->box, &t->s, t->depth, &t->sum);
+            const int rc = skip ? -1 : task_run(t);
             set_free(&t->s);
             scratch_free(&t->b);
             pthread_mutex_lock(&pl->mu);
-            pl->failed |= rc != 0;
+            pl->failed[t->b.tree] |= rc != 0;
             if (--pl->unfinished == 0)
                 notify(pl);
             continue;
@@ -1551,16 +1598,19 @@ enum { COPY_PARTS = 4 };
 
 typedef struct {
     pool *pl;
-    kd_tree *out;
+    kd_tree *out; /* per tree (nodes NULL: the tree failed, nothing to copy) */
 } copy_ctx;
 
 static void copy_item(void *arg, uint32_t i)
 {
     const copy_ctx *c = arg;
     const task *t = c->pl->tasks[i / COPY_PARTS];
+    const kd_tree *out = &c->out[t->b.tree];
+    if (!out->nodes)
+        return;
     const uint64_t part = i % COPY_PARTS, n = t->b.n_nodes, np = t->b.n_prims;
-    copy_nodes(t, (uint32_t)(n * part / COPY_PARTS), (uint32_t)(n * (part + 1) / COPY_PARTS), c->out->nodes);
-    copy_prims(t, (uint32_t)(np * part / COPY_PARTS), (uint32_t)(np * (part + 1) / COPY_PARTS), c->out->prims);
+    copy_nodes(t, (uint32_t)(n * part / COPY_PARTS), (uint32_t)(n * (part + 1) / COPY_PARTS), out->nodes);
+    copy_prims(t, (uint32_t)(np * part / COPY_PARTS), (uint32_t)(np * (part + 1) / COPY_PARTS), out->prims);
 }
 
 /* SAH sum of the subtree at node (box) of task id: the sums left pending by holes, finished. */
@@ -1603,18 +1653,79 @@ uint32_t kd_thread_count(void)
     return n <= 1 ? 1u : n >= PAR_MAX_THREADS ? (uint32_t)PAR_MAX_THREADS : (uint32_t)n;
 }
 
-/* Builds b's tree from the root (box, s) with a pool of threads (the caller being one of them),
- * like build_node(b, 0, box, s, 0, ...), and frees s; *sah: the tree's SAH sum. A thread that
- * cannot be started is done without; with none, the caller builds the tree alone. -1: no memory;
- * b's output is then freed. */
-static int build_parallel(builder *b, const aabb *box, prim_set *s, uint32_t threads, double *sah)
+/* Merges the outputs of the tasks of a finished pool into each tree's layout, in roots[i].b
+ * (nodes, prims, their counts and statistics; the tasks' outputs freed), with sah[i] its SAH
+ * sum; rc[i]: 0, or -1 if the tree failed (its output is then empty). */
+static void merge_trees(pool *pl, task *roots, uint32_t n, int *rc, double *sah)
 {
-    pool pl = { .n_tasks = 1, .unfinished = 1 };
+    kd_tree *out = calloc(n, sizeof *out);
+    uint64_t *count = calloc(2 * (size_t)n, sizeof *count); /* per tree: nodes, leaf entries */
+    for (uint32_t i = 0; i < n && count; i++)
+        count[2 * i] = 1;
+    for (uint32_t j = 0; j < pl->n_tasks && count; j++) {
+        const builder *b = &pl->tasks[j]->b;
+        count[2 * b->tree] += b->n_nodes - 1u;
+        count[2 * b->tree + 1] += b->n_prims;
+        if (j >= n)
+            stats_add(&roots[b->tree].b.st, &b->st);
+    }
+    for (uint32_t i = 0; i < n; i++) {
+        rc[i] = pl->failed[i] || !out || !count ? -1 : 0;
+        if (rc[i] == 0 && count[2 * i] <= UINT32_MAX && count[2 * i + 1] < UINT32_MAX) {
+            out[i].nodes = huge_pages_malloc((size_t)count[2 * i] * sizeof *out[i].nodes);
+            out[i].prims = huge_pages_malloc(((size_t)count[2 * i + 1] + 1) * sizeof *out[i].prims);
+        }
+        if (rc[i] == 0 && out[i].nodes && out[i].prims) {
+            out[i].n_nodes = 1;
+            layout(pl, i, 0, &out[i].n_nodes, &out[i].n_prims);
+        } else if (out) {
+            free(out[i].nodes);
+            free(out[i].prims);
+            out[i] = (kd_tree){ 0 };
+            rc[i] = -1;
+        }
+    }
+    if (out) {
+        copy_ctx c = { pl, out };
+        pool_for(pl, pl->n_tasks * COPY_PARTS, copy_item, &c);
+    }
+    for (uint32_t i = 0; i < n; i++)
+        sah[i] = rc[i] == 0 ? resolve(pl, i, 0, &roots[i].box) : 0.0;
+    for (uint32_t j = n; j < pl->n_tasks; j++) {
+        task_free(pl->tasks[j]);
+        free(pl->tasks[j]);
+    }
+    for (uint32_t i = 0; i < n; i++) {
+        builder *b = &roots[i].b;
+        free(b->nodes);
+        free(b->prims);
+        free(b->holes);
+        free(b->pend);
+        b->holes = NULL;
+        b->pend = NULL;
+        b->n_holes = b->n_pend = 0;
+        b->nodes = out ? out[i].nodes : NULL;
+        b->n_nodes = b->cap_nodes = out ? out[i].n_nodes : 0;
+        b->prims = out ? out[i].prims : NULL;
+        b->n_prims = b->cap_prims = out ? out[i].n_prims : 0;
+    }
+    free(out);
+    free(count);
+}
+
+/* Builds the trees of the tasks roots[0..n) (started, or not: task_run) with one pool of threads
+ * (the caller being one of them), so that a thread done with one tree helps with the others'
+ * subtrees; each tree comes out as the single-threaded build_node(b, 0, box, s, 0, ...) makes it,
+ * in roots[i].b (merge_trees), and the primitive sets are freed. rc[i]: 0, or -1 (no memory,
+ * or the node budget: see the builder's budget). A thread that cannot be started is done without;
+ * with none, the caller builds the trees alone. */
+static void build_pool(task *roots, uint32_t n, uint32_t threads, int *rc, double *sah)
+{
+    pool pl = { .n_tasks = n, .unfinished = n, .max_tasks = n + PAR_MAX_TASKS };
     atomic_init(&pl.changes, 0);
-    task root = { .b = *b, .box = *box, .s = *s, .depth = 0 };
-    memset(s, 0, sizeof *s);
-    pl.tasks = malloc(PAR_MAX_TASKS * sizeof *pl.tasks);
-    int ok = pl.tasks != NULL;
+    pl.tasks = malloc(pl.max_tasks * sizeof *pl.tasks);
+    pl.failed = calloc(n, 1);
+    int ok = pl.tasks && pl.failed;
     if (ok && pthread_mutex_init(&pl.mu, NULL) != 0)
         ok = 0;
     if (ok && pthread_cond_init(&pl.cv, NULL) != 0) {
@@ -1623,45 +1734,28 @@ static int build_parallel(builder *b, const aabb *box, prim_set *s, uint32_t thr
     }
     if (!ok) { /* single-threaded after all */
         free(pl.tasks);
-        const int rc = build_node(&root.b, 0, &root.box, &root.s, 0, &root.sum);
-        *b = root.b;
-        *sah = root.sum.sum;
-        return rc;
+        free(pl.failed);
+        for (uint32_t i = 0; i < n; i++) {
+            roots[i].b.pool = NULL;
+            rc[i] = task_run(&roots[i]);
+            set_free(&roots[i].s);
+            scratch_free(&roots[i].b);
+            sah[i] = roots[i].sum.sum;
+        }
+        return;
     }
-    pl.tasks[0] = &root;
-    root.b.pool = &pl;
+    for (uint32_t i = 0; i < n; i++) {
+        pl.tasks[i] = &roots[i];
+        roots[i].b.pool = &pl;
+        roots[i].b.tree = i;
+    }
     pthread_t tid[PAR_MAX_THREADS];
     uint32_t started = 0;
     for (uint32_t i = 1; i < threads; i++)
         if (pthread_create(&tid[started], NULL, worker, &pl) == 0)
             started++;
     work(&pl, 1);
-
-    int rc = pl.failed ? -1 : 0;
-    kd_tree out = { 0 };
-    uint64_t n_nodes = 1, n_prims = 0;
-    for (uint32_t i = 0; i < pl.n_tasks; i++) {
-        n_nodes += pl.tasks[i]->b.n_nodes - 1u;
-        n_prims += pl.tasks[i]->b.n_prims;
-        if (i > 0)
-            stats_add(&root.b.st, &pl.tasks[i]->b.st);
-    }
-    if (rc == 0 && n_nodes <= UINT32_MAX && n_prims < UINT32_MAX) {
-        out.nodes = malloc((size_t)n_nodes * sizeof *out.nodes);
-        out.prims = malloc(((size_t)n_prims + 1) * sizeof *out.prims);
-    }
-    if (out.nodes && out.prims) {
-        out.n_nodes = 1;
-        layout(&pl, 0, 0, &out.n_nodes, &out.n_prims);
-        copy_ctx c = { &pl, &out };
-        pool_for(&pl, pl.n_tasks * COPY_PARTS, copy_item, &c);
-        *sah = resolve(&pl, 0, 0, box);
-    } else {
-        free(out.nodes);
-        free(out.prims);
-        out = (kd_tree){ 0 };
-        rc = -1;
-    }
+    merge_trees(&pl, roots, n, rc, sah);
 
     pthread_mutex_lock(&pl.mu);
     pl.shutdown = 1;
@@ -1671,25 +1765,10 @@ static int build_parallel(builder *b, const aabb *box, prim_set *s, uint32_t thr
         pthread_join(tid[i], NULL);
     pthread_cond_destroy(&pl.cv);
     pthread_mutex_destroy(&pl.mu);
-    for (uint32_t i = 1; i < pl.n_tasks; i++) {
-        task_free(pl.tasks[i]);
-        free(pl.tasks[i]);
-    }
     free(pl.tasks);
-    free(root.b.nodes);
-    free(root.b.prims);
-    free(root.b.holes);
-    free(root.b.pend);
-    b->st = root.b.st;
-    b->scratch = root.b.scratch; /* b's scratch (perhaps grown) stays the caller's to free */
-    b->cap_scratch = root.b.cap_scratch;
-    b->straddlers = root.b.straddlers;
-    b->cap_straddlers = root.b.cap_straddlers;
-    b->nodes = out.nodes;
-    b->n_nodes = b->cap_nodes = out.n_nodes;
-    b->prims = out.prims;
-    b->n_prims = b->cap_prims = out.n_prims;
-    return rc;
+    free(pl.failed);
+    for (uint32_t i = 0; i < n; i++)
+        roots[i].b.pool = NULL;
 }
 
 /* ---- statistics ----------------------------------------------------------------------------- */
@@ -1798,39 +1877,106 @@ static int start(builder *b, prim_set *s, aabb *root, uint32_t threads)
     return b->prims ? add_nodes(b, 1, 1, &first) : -1;
 }
 
+/* A tree's builder before start(), with the parameters as the build uses them. */
+static builder tree_builder(const kd_source *src, const kd_params *p, node_budget *budget)
+{
+    builder b = { .src = src, .p = *p, .budget = budget };
+    b.p.bins = binned_tree(p, src->count) ? p->bins : 0;
+    b.max_depth = kd_depth_bound(p, src->count);
+    return b;
+}
+
+/* Threads of a build of count primitives: the asked ones (0: kd_thread_count()), at most
+ * PAR_MAX_THREADS, and 1 for a small one. */
+static uint32_t build_threads(uint32_t asked, uint64_t count)
+{
+    asked = asked ? asked : kd_thread_count();
+    return count < PAR_MIN_COUNT ? 1 : asked < PAR_MAX_THREADS ? asked : PAR_MAX_THREADS;
+}
+
+/* The tree of root (the build's rc, sah its SAH sum) into out, the builder's scratch freed: 0,
+ * -1 (memory) or KD_TOO_MANY_NODES. */
+static int tree_finish(task *root, int rc, double sah, double t0, kd_tree *out)
+{
+    builder *b = &root->b;
+    set_free(&root->s);
+    scratch_free(b);
+    if (rc != 0) {
+        free(b->nodes);
+        free(b->prims);
+        return atomic_load(&b->budget->exceeded) ? KD_TOO_MANY_NODES : -1;
+    }
+    *out = (kd_tree){ shrink(b->nodes, b->n_nodes * sizeof *b->nodes), b->n_nodes,
+                      shrink(b->prims, ((size_t)b->n_prims + 1) * sizeof *b->prims), b->n_prims, root->box, { 0 } };
+    out->stats = b->st;
+    out->stats.sah_cost = sah;
+    out->stats.build_seconds = now() - t0;
+    return 0;
+}
+
 int kd_build(const kd_source *src, const kd_params *p, kd_tree *out)
 {
     const double t0 = now();
     memset(out, 0, sizeof *out);
     uint64_t own_nodes = 0;
     node_budget budget = { p->shared_nodes ? p->shared_nodes : &own_nodes, 0 };
-    builder b = { .src = src, .p = *p, .budget = &budget };
-    b.p.bins = binned_tree(p, src->count) ? p->bins : 0;
-    b.max_depth = kd_depth_bound(p, src->count);
-    prim_set s = { 0 };
-    aabb root;
-    const uint32_t asked = p->threads ? p->threads : kd_thread_count();
-    const uint32_t threads = src->count < PAR_MIN_COUNT ? 1 : asked < PAR_MAX_THREADS ? asked : PAR_MAX_THREADS;
-    int rc = start(&b, &s, &root, threads);
-    b.kind = measure_of(&root);
-    b.root_measure = measure(b.kind, &root);
+    const uint32_t threads = build_threads(p->threads, src->count);
+    task root = { .b = tree_builder(src, p, &budget), .started = 1 };
+    int rc = start(&root.b, &root.s, &root.box, threads);
+    root.b.kind = measure_of(&root.box);
+    root.b.root_measure = measure(root.b.kind, &root.box);
     subtree_sum sum = { 0.0, 0 };
-    if (rc == 0 && threads > 1)
-        rc = build_parallel(&b, &root, &s, threads, &sum.sum); /* frees s */
-    else if (rc == 0)
-        rc = build_node(&b, 0, &root, &s, 0, &sum); /* frees s */
-    set_free(&s);
-    scratch_free(&b);
-    if (rc != 0) {
-        free(b.nodes);
-        free(b.prims);
-        return atomic_load(&budget.exceeded) ? KD_TOO_MANY_NODES : -1;
+    if (rc == 0 && threads > 1) {
+        scratch_free(&root.b); /* the pool's thread that runs the root allocates its own */
+        build_pool(&root, 1, threads, &rc, &sum.sum); /* frees s */
+    } else if (rc == 0) {
+        rc = build_node(&root.b, 0, &root.box, &root.s, 0, &sum); /* frees s */
     }
-    *out = (kd_tree){ shrink(b.nodes, b.n_nodes * sizeof *b.nodes), b.n_nodes,
-                      shrink(b.prims, ((size_t)b.n_prims + 1) * sizeof *b.prims), b.n_prims, root, { 0 } };
-    out->stats = b.st;
-    out->stats.sah_cost = sum.sum;
-    out->stats.build_seconds = now() - t0;
+    return tree_finish(&root, rc, sum.sum, t0, out);
+}
+
+int kd_build_many(const kd_source *src, const kd_params *p, uint32_t n, uint32_t threads, kd_tree *out, int *rc)
+{
+    if (n == 1) { /* kd_build starts the root on this thread with the others' help (root_events) */
+        kd_params q = p[0];
+        q.threads = threads;
+        rc[0] = kd_build(&src[0], &q, &out[0]);
+        return 0;
+    }
+    const double t0 = now();
+    task *roots = calloc((size_t)n + 1, sizeof *roots);
+    node_budget *budget = calloc((size_t)n + 1, sizeof *budget);
+    uint64_t *own_nodes = calloc((size_t)n + 1, sizeof *own_nodes), count = 0;
+    double *sah = calloc((size_t)n + 1, sizeof *sah);
+    if (!roots || !budget || !own_nodes || !sah) {
+        free(roots);
+        free(budget);
+        free(own_nodes);
+        free(sah);
+        return -1;
+    }
+    for (uint32_t i = 0; i < n; i++) {
+        memset(&out[i], 0, sizeof out[i]);
+        budget[i].used = p[i].shared_nodes ? p[i].shared_nodes : &own_nodes[i];
+        atomic_init(&budget[i].exceeded, 0);
+        roots[i].b = tree_builder(&src[i], &p[i], &budget[i]); /* not started: task_run starts it */
+        count += src[i].count;
+    }
+    threads = build_threads(threads, count);
+    if (threads > 1) {
+        build_pool(roots, n, threads, rc, sah);
+    } else {
+        for (uint32_t i = 0; i < n; i++) {
+            rc[i] = task_run(&roots[i]);
+            sah[i] = roots[i].sum.sum;
+        }
+    }
+    for (uint32_t i = 0; i < n; i++)
+        rc[i] = tree_finish(&roots[i], rc[i], sah[i], t0, &out[i]);
+    free(roots);
+    free(budget);
+    free(own_nodes);
+    free(sah);
     return 0;
 }
 
@@ -1852,30 +1998,21 @@ enum { CLIP_MAX = 16 };
 typedef struct {
     double v[CLIP_MAX][3];
     int n;
-    aabb b; /* bounds of v[0..n), kept by poly_add (the same minima and maxima, in the same order, as
-               a pass over the vertices) */
 } polygon;
-
-static void poly_clear(polygon *p)
-{
-    p->n = 0;
-    p->b = (aabb){ { INFINITY, INFINITY, INFINITY }, { -INFINITY, -INFINITY, -INFINITY } };
-}
 
 static inline void poly_add(polygon *p, const double v[3])
 {
     if (p->n == CLIP_MAX)
         return;
-    memcpy(p->v[p->n++], v, sizeof p->v[0]);
-    for (int k = 0; k < 3; k++) {
-        p->b.lo[k] = dmin(p->b.lo[k], v[k]);
-        p->b.hi[k] = dmax(p->b.hi[k], v[k]);
-    }
+    double *w = p->v[p->n++];
+    w[0] = v[0];
+    w[1] = v[1];
+    w[2] = v[2];
 }
 
 /* Point where segment in-out crosses x[axis] = d, computed from the inside end so that an edge
  * shared by two triangles gives the same point both ways; kept within the segment's bounds. */
-static void crossing(const double in[3], const double out[3], int axis, double d, double p[3])
+static inline __attribute__((always_inline)) void crossing(const double in[3], const double out[3], int axis, double d, double p[3])
 {
     const double t = (d - in[axis]) / (out[axis] - in[axis]);
     for (int k = 0; k < 3; k++) {
@@ -1885,45 +2022,113 @@ static void crossing(const double in[3], const double out[3], int axis, double d
     p[axis] = d;
 }
 
-/* Keeps the part of src with x[axis] >= d (keep_above) or <= d; points on the plane are kept. */
-static void clip_plane(const polygon *src, int axis, double d, int keep_above, polygon *dst)
+static inline int kept_side(double x, double d, int keep_above) { return keep_above ? x >= d : x <= d; }
+
+/* Keeps the part of src with x[axis] >= d (keep_above) or <= d; points on the plane are kept.
+ * Returns 0 without touching dst if every vertex is on the kept side already (most planes of a
+ * node box): the polygon stays src. */
+static inline __attribute__((always_inline)) int clip_plane(const polygon *src, int axis, double d, int keep_above, polygon *dst)
 {
-    poly_clear(dst);
+    int in[CLIP_MAX], all = 1;
     for (int i = 0; i < src->n; i++) {
-        const double *a = src->v[i], *c = src->v[i + 1 < src->n ? i + 1 : 0];
-        const int ain = keep_above ? a[axis] >= d : a[axis] <= d;
-        const int cin = keep_above ? c[axis] >= d : c[axis] <= d;
-        if (ain)
+        in[i] = kept_side(src->v[i][axis], d, keep_above);
+        all &= in[i];
+    }
+    if (all)
+        return 0;
+    dst->n = 0;
+    for (int i = 0; i < src->n; i++) {
+        const int j = i + 1 < src->n ? i + 1 : 0;
+        const double *a = src->v[i], *c = src->v[j];
+        if (in[i])
             poly_add(dst, a);
         /* a crossing only between strict sides: a vertex on the plane is the crossing itself */
-        if (ain != cin && a[axis] != d && c[axis] != d) {
+        if (in[i] != in[j] && a[axis] != d && c[axis] != d) {
             double p[3];
-            crossing(ain ? a : c, ain ? c : a, axis, d, p);
+            crossing(in[i] ? a : c, in[i] ? c : a, axis, d, p);
             poly_add(dst, p);
         }
     }
+    return 1;
+}
+
+/* Clips p[*cur] by the planes [from, to) of box, in the fixed order (the result's rounding depends
+ * on it) plane 2a: x_a >= lo, plane 2a + 1: x_a <= hi, a = x, y, z; 0 if nothing is left. Each
+ * plane's clip_plane has constant axis and side, so that the compiler specializes it. */
+#define CLIP_PLANE(plane, axis, above, d)                                                                              \
+    do {                                                                                                               \
+        if (from <= (plane) && (plane) < to && clip_plane(&p[*cur], axis, d, above, &p[1 - *cur])) {                   \
+            *cur = 1 - *cur;                                                                                           \
+            if (p[*cur].n == 0)                                                                                        \
+                return 0;                                                                                              \
+        }                                                                                                              \
+    } while (0)
+
+static inline __attribute__((always_inline)) int clip_planes(polygon p[2], int *cur, const aabb *box, int from, int to)
+{
+    CLIP_PLANE(0, 0, 1, box->lo[0]);
+    CLIP_PLANE(1, 0, 0, box->hi[0]);
+    CLIP_PLANE(2, 1, 1, box->lo[1]);
+    CLIP_PLANE(3, 1, 0, box->hi[1]);
+    CLIP_PLANE(4, 2, 1, box->lo[2]);
+    CLIP_PLANE(5, 2, 0, box->hi[2]);
+    return 1;
+}
+
+/* Bounds of polygon p: minima and maxima in vertex order from infinity, so that of equal values
+ * (-0 and +0) the same one wins as when they were kept per added vertex. After clipping: exact
+ * inside tests, crossings on their plane and within their edge, so the polygon lies in the box. */
+static aabb poly_bounds(const polygon *p)
+{
+    aabb r = { { INFINITY, INFINITY, INFINITY }, { -INFINITY, -INFINITY, -INFINITY } };
+    for (int i = 0; i < p->n; i++)
+        for (int k = 0; k < 3; k++) {
+            r.lo[k] = dmin(r.lo[k], p->v[i][k]);
+            r.hi[k] = dmax(r.hi[k], p->v[i][k]);
+        }
+    return r;
+}
+
+static void poly_triangle(polygon *p, const double a[3], const double b[3], const double c[3])
+{
+    p->n = 0;
+    poly_add(p, a);
+    poly_add(p, b);
+    poly_add(p, c);
 }
 
 int kd_clip_triangle(const double a[3], const double b[3], const double c[3], const aabb *box, aabb *out)
 {
     polygon p[2];
-    poly_clear(&p[0]);
-    poly_add(&p[0], a);
-    poly_add(&p[0], b);
-    poly_add(&p[0], c);
     int cur = 0;
-    for (int plane = 0; plane < 6; plane++) {
-        const int axis = plane / 2, above = plane % 2 == 0;
-        const double d = above ? box->lo[axis] : box->hi[axis];
-        const aabb *bounds = &p[cur].b;
-        if (above ? bounds->lo[axis] >= d : bounds->hi[axis] <= d)
-            continue; /* every vertex on the kept side (most planes of a node box): clip_plane would copy p */
-        clip_plane(&p[cur], axis, d, above, &p[1 - cur]);
-        cur = 1 - cur;
-        if (p[cur].n == 0)
-            return 0;
-    }
-    /* exact inside tests, crossings on their plane and within their edge: the polygon lies in box */
-    *out = p[cur].b;
+    poly_triangle(&p[0], a, b, c);
+    if (!clip_planes(p, &cur, box, 0, 6))
+        return 0;
+    *out = poly_bounds(&p[cur]);
     return 1;
+}
+
+int kd_clip_triangle_split(const double a[3], const double b[3], const double c[3], const aabb *box, uint32_t axis,
+                           double pos, aabb out[2])
+{
+    polygon p[2], q[2];
+    int cur = 0;
+    poly_triangle(&p[0], a, b, c);
+    const int first = 2 * (int)axis; /* the first plane where the halves differ */
+    if (!clip_planes(p, &cur, box, 0, first))
+        return 0;
+    q[0].n = p[cur].n; /* the upper half's copy: the lower half's clipping overwrites p */
+    memcpy(q[0].v, p[cur].v, (size_t)p[cur].n * sizeof q[0].v[0]);
+    aabb half[2] = { *box, *box };
+    half[0].hi[axis] = half[1].lo[axis] = pos;
+    int mask = 0, qcur = 0;
+    if (clip_planes(p, &cur, &half[0], first, 6)) {
+        out[0] = poly_bounds(&p[cur]);
+        mask |= 1;
+    }
+    if (clip_planes(q, &qcur, &half[1], first, 6)) {
+        out[1] = poly_bounds(&q[qcur]);
+        mask |= 2;
+    }
+    return mask;
 }

@@ -34,6 +34,11 @@ typedef struct {
     /* Bounds of the part of primitive i inside box; returns 0 if it does not overlap box.
      * NULL: the intersection of bounds(i) with box is used (exact for box primitives). */
     int (*clip)(const void *user, uint32_t i, const aabb *box, aabb *out);
+    /* Optional (NULL: clip is called for each half): the parts of primitive i in the two halves of
+     * box split at pos on axis, bit for bit what clip gives for each half, into out[0] (below)
+     * and out[1] (above); returns bit c set if half c holds a part. Lets the source share the
+     * work the halves have in common (kd_clip_triangle_split). */
+    int (*clip_split)(const void *user, uint32_t i, const aabb *box, uint32_t axis, double pos, aabb out[2]);
 } kd_source;
 
 typedef struct {
@@ -110,11 +115,25 @@ uint32_t kd_thread_count(void);
  * p->max_nodes (out is then empty). count may be 0. */
 int kd_build(const kd_source *src, const kd_params *p, kd_tree *out);
 
+/* Builds the trees out[0..n) of src[i] with p[i] (p[i].threads is not used) together, on
+ * `threads` threads (0: kd_thread_count(), at most 8), so that a thread that has finished one
+ * tree helps with the subtrees of the others instead of waiting for the last one. Each tree is
+ * bit for bit the one kd_build makes; rc[i] is what kd_build would return for it (a tree that
+ * fails leaves the others unharmed); stats.build_seconds is the time of the whole call. Returns
+ * 0, or -1 if memory ran out before any tree was started (the rc[] are then not set). */
+int kd_build_many(const kd_source *src, const kd_params *p, uint32_t n, uint32_t threads, kd_tree *out, int *rc);
+
 void kd_free(kd_tree *t);
 
 /* Clips triangle (a, b, c) to box (Sutherland-Hodgman against the six planes) and returns the
  * bounds of the clipped polygon; 0 if nothing is left. For kd_source.clip of triangle meshes. */
 int kd_clip_triangle(const double a[3], const double b[3], const double c[3], const aabb *box, aabb *out);
+
+/* kd_clip_triangle to the halves of box below and above pos on axis, out[0] and out[1], the same
+ * bits; returns bit c set if half c holds a part. The planes before the split axis's (the clipping
+ * order is x, y, z) are clipped once for both. For kd_source.clip_split. */
+int kd_clip_triangle_split(const double a[3], const double b[3], const double c[3], const aabb *box, uint32_t axis,
+                           double pos, aabb out[2]);
 
 /* Ropes (Popov et al. 2007): per leaf its box and, per face -x +x -y +y -z +z, the smallest
  * node beyond that face covering all of it, or KD_NO_ROPE on the root box's boundary. */

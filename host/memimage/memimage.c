@@ -42,6 +42,8 @@ typedef struct {
     ugrid grid;         /* with MI_ACCEL_GRID */
     uint32_t base, words; /* geometry block in the image */
     double centre[3];   /* the object's space is the mesh's moved by -centre (choose_centres) */
+    uint64_t *normal_codes; /* its mesh's normal_codes, made beside the trees (edges_run) and freed by
+                               object_write; NULL: object_write makes them */
 } mi_object;
 
 struct mi_builder {
@@ -302,6 +304,16 @@ static int tri_clip(const void *user, uint32_t i, const aabb *box, aabb *out)
     return kd_clip_triangle(a, b, c, box, out);
 }
 
+static int tri_clip_split(const void *user, uint32_t i, const aabb *box, uint32_t axis, double pos, aabb out[2])
+{
+    const tri_source *s = user;
+    double a[3], b[3], c[3];
+    tri_vertex(s->m, s->centre, s->valid[i], 0, a);
+    tri_vertex(s->m, s->centre, s->valid[i], 1, b);
+    tri_vertex(s->m, s->centre, s->valid[i], 2, c);
+    return kd_clip_triangle_split(a, b, c, box, axis, pos, out);
+}
+
 static void object_release(mi_object *o)
 {
     kd_free(&o->tree);
@@ -313,9 +325,11 @@ static void object_release(mi_object *o)
     free(o->valid);
     free(o->xf);
     free(o->shared);
+    free(o->normal_codes);
     o->valid = NULL;
     o->xf = NULL;
     o->shared = NULL;
+    o->normal_codes = NULL;
     o->n_valid = 0;
 }
 
@@ -534,39 +548,73 @@ typedef struct {
     int rc; /* mi_shared_edges' */
 } edges_job;
 
+/* The shared edges of jobs j[0..n). */
+typedef struct {
+    edges_job *j;
+    uint32_t n;
+} edges_list;
+
+static uint64_t *normal_codes(const scene_mesh *m, int parallel);
+
+/* The shared edges and normal codes of each job's object: the writing of the image needs the
+ * codes, and making them here, beside the trees, takes them off the writing's wall time (the
+ * gallery: 0.57 G instructions, as much as the records). Without memory for the codes, they
+ * are made at writing. */
 static void *edges_run(void *arg)
 {
-    edges_job *j = arg;
-    j->rc = mi_shared_edges(j->m, j->o->valid, j->o->n_valid, j->o->shared);
+    const edges_list *l = arg;
+    for (uint32_t k = 0; k < l->n; k++) {
+        edges_job *j = &l->j[k];
+        j->rc = mi_shared_edges(j->m, j->o->valid, j->o->n_valid, j->o->shared);
+        if (j->m->normals && !j->o->normal_codes)
+            j->o->normal_codes = normal_codes(j->m, 0);
+    }
     return NULL;
 }
 
-/* Stage 2: o's shared edges, tree (parameters q), ropes and grid: 0, or an mi_failure. Reads b,
- * writes only o: objects run concurrently. An object built with several threads (bunny.glb)
- * finds its shared edges on a thread of their own beside the tree, whose start (the root's events
- * and sort, the first splits) runs on one thread; the flags do not depend on the tree. */
-static int object_tree(const mi_builder *b, const scene_mesh *m, mi_object *o, const kd_params *q)
+/* Runs the edges of l on a thread of its own, if one can be started (0), else here (-1). */
+static int edges_beside(edges_list *l, pthread_t *tid)
 {
-    edges_job e = { m, o, 0 };
-    pthread_t tid;
-    const int beside = q->threads > 1 && pthread_create(&tid, NULL, edges_run, &e) == 0;
-    if (!beside)
-        edges_run(&e);
-    const tri_source src = { m, o->valid, o->centre };
-    const kd_source ks = { o->n_valid, &src, tri_bounds, tri_clip };
-    const int kd = kd_build(&ks, q, &o->tree);
-    if (beside)
-        pthread_join(tid, NULL);
-    if (e.rc != 0)
-        return MI_FAIL_OTHER;
-    if (kd != 0)
-        return kd == KD_TOO_MANY_NODES ? MI_FAIL_NODE_LIMIT : MI_FAIL_OTHER;
+    if (pthread_create(tid, NULL, edges_run, l) == 0)
+        return 0;
+    edges_run(l);
+    return -1;
+}
+
+/* o's ropes and grid after its tree (source ks): 0, or MI_FAIL_OTHER. */
+static int object_finish(const mi_builder *b, const kd_source *ks, mi_object *o)
+{
     const aabb root = device_box(&o->tree.bounds, OBJECT_BOUNDS_MARGIN_ULPS);
     int fail = 0;
     o->ropes = build_ropes(b, &o->tree, &root, &fail);
-    if (fail || ((b->p.accel & MI_ACCEL_GRID) && build_grid(&ks, &root, &o->grid) != 0))
+    if (fail || ((b->p.accel & MI_ACCEL_GRID) && build_grid(ks, &root, &o->grid) != 0))
         return MI_FAIL_OTHER;
     return 0;
+}
+
+/* The mi_failure of an object from its shared edges' and kd_build's return values. */
+static int tree_failure(int edges, int kd)
+{
+    return edges != 0 ? MI_FAIL_OTHER : kd == 0 ? 0 : kd == KD_TOO_MANY_NODES ? MI_FAIL_NODE_LIMIT : MI_FAIL_OTHER;
+}
+
+/* Stage 2 for one object: o's shared edges, tree (parameters q), ropes and grid: 0, or an
+ * mi_failure. Reads b, writes only o. With several threads the shared edges run on a thread of
+ * their own beside the tree, whose start (the root's events and sort, the first splits) runs on
+ * one thread; the flags do not depend on the tree. */
+static int object_tree(const mi_builder *b, const scene_mesh *m, mi_object *o, const kd_params *q)
+{
+    edges_job e = { m, o, 0 };
+    edges_list l = { &e, 1 };
+    pthread_t tid;
+    const int beside = q->threads > 1 ? edges_beside(&l, &tid) == 0 : (edges_run(&l), 0);
+    const tri_source src = { m, o->valid, o->centre };
+    const kd_source ks = { o->n_valid, &src, tri_bounds, tri_clip, tri_clip_split };
+    const int kd = kd_build(&ks, q, &o->tree);
+    if (beside)
+        pthread_join(tid, NULL);
+    const int rc = tree_failure(e.rc, kd);
+    return rc != 0 ? rc : object_finish(b, &ks, o);
 }
 
 /* Stage 3: o's node slots, shading flags and size in the image: 0, or -1 (memory). */
@@ -582,63 +630,63 @@ static int object_size(mi_builder *b, const scene *s, const scene_mesh *m, mi_ob
     return 0;
 }
 
-/* Stage 2 over the objects list[0..n) (largest first) for several threads: each takes the next
- * object of the list and builds its tree single-threaded. */
-typedef struct {
-    const mi_builder *b;
-    const scene *s;
-    const uint32_t *list;
-    uint32_t n;
-    kd_params q;
-    int *rc;             /* per object of the image */
-    atomic_uint next;
-} trees_job;
-
-static void *trees_worker(void *arg)
-{
-    trees_job *j = arg;
-    for (uint32_t k; (k = atomic_fetch_add(&j->next, 1)) < j->n;) {
-        mi_object *o = &j->b->obj[j->list[k]];
-        j->rc[j->list[k]] = object_tree(j->b, obj_mesh(j->b, j->s, o), o, &j->q);
-    }
-    return NULL;
-}
-
-/* Stage 2 over list[0..n), sorted largest first, with `threads` threads: an object of at least
- * 1/threads of the triangles still to build, or the last one, is built alone with every thread
- * (bunny.glb is one object), the others concurrently, one thread each (the gallery's seven). */
+/* Stage 2 over the objects list[0..n) with `threads` threads: their trees in one kd_build_many
+ * (largest first: a thread done with one object's tree helps with the others' subtrees, so that
+ * none waits idle for the last object; the gallery's seven objects are 100k to 23k triangles,
+ * and its smallest costs the most per triangle), their shared edges on a thread beside it, then
+ * their ropes and grids. rc[list[k]]: an mi_failure or 0. */
 static void trees_build(const mi_builder *b, const scene *s, uint32_t *list, uint32_t n, const kd_params *q,
                         uint32_t threads, int *rc)
 {
-    enum { MAX_WORKERS = 8 }; /* kd_build's most */
-    threads = threads < MAX_WORKERS ? threads : MAX_WORKERS;
-    uint64_t total = 0;
     for (uint32_t k = 0; k < n; k++) { /* insertion sort: a few objects; ties in object order */
         const uint32_t i = list[k];
         uint32_t at = k;
         for (; at > 0 && b->obj[list[at - 1]].n_valid < b->obj[i].n_valid; at--)
             list[at] = list[at - 1];
         list[at] = i;
-        total += b->obj[i].n_valid;
     }
-    uint32_t big = 0;
-    for (; big < n && (threads == 1 || big + 1 == n || (uint64_t)b->obj[list[big]].n_valid * threads >= total);
-         big++) {
-        mi_object *o = &b->obj[list[big]];
-        total -= o->n_valid;
-        kd_params all = *q;
-        all.threads = threads;
-        rc[list[big]] = object_tree(b, obj_mesh(b, s, o), o, &all);
+    tri_source *src = malloc(((size_t)n + 1) * sizeof *src);
+    kd_source *ks = malloc(((size_t)n + 1) * sizeof *ks);
+    kd_params *ps = malloc(((size_t)n + 1) * sizeof *ps);
+    kd_tree *trees = malloc(((size_t)n + 1) * sizeof *trees);
+    edges_job *e = malloc(((size_t)n + 1) * sizeof *e);
+    int *kd = malloc(((size_t)n + 1) * sizeof *kd);
+    if (!src || !ks || !ps || !trees || !e || !kd) {
+        for (uint32_t k = 0; k < n; k++)
+            rc[list[k]] = MI_FAIL_OTHER;
+        goto done;
     }
-    trees_job j = { b, s, list + big, n - big, *q, rc, 0 };
-    j.q.threads = 1;
-    pthread_t tid[MAX_WORKERS];
-    uint32_t started = 0;
-    for (uint32_t t = 1; t < threads && t < j.n; t++)
-        started += pthread_create(&tid[started], NULL, trees_worker, &j) == 0;
-    trees_worker(&j);
-    for (uint32_t t = 0; t < started; t++)
-        pthread_join(tid[t], NULL);
+    for (uint32_t k = 0; k < n; k++) {
+        mi_object *o = &b->obj[list[k]];
+        const scene_mesh *m = obj_mesh(b, s, o);
+        src[k] = (tri_source){ m, o->valid, o->centre };
+        ks[k] = (kd_source){ o->n_valid, &src[k], tri_bounds, tri_clip, tri_clip_split };
+        ps[k] = *q;
+        e[k] = (edges_job){ m, o, 0 };
+    }
+    edges_list l = { e, n };
+    pthread_t tid;
+    const int beside = threads > 1 ? edges_beside(&l, &tid) == 0 : (edges_run(&l), 0);
+    if (kd_build_many(ks, ps, n, threads, trees, kd) != 0)
+        for (uint32_t k = 0; k < n; k++)
+            kd[k] = -1;
+    if (beside)
+        pthread_join(tid, NULL);
+    for (uint32_t k = 0; k < n; k++) {
+        mi_object *o = &b->obj[list[k]];
+        if (kd[k] == 0)
+            o->tree = trees[k];
+        rc[list[k]] = tree_failure(e[k].rc, kd[k]);
+        if (rc[list[k]] == 0)
+            rc[list[k]] = object_finish(b, &ks[k], o);
+    }
+done:
+    free(src);
+    free(ks);
+    free(ps);
+    free(trees);
+    free(e);
+    free(kd);
 }
 
 /* Builds the objects list[0..n) of b (their geometry and trees) in the three stages: 0, or an
@@ -779,11 +827,14 @@ static void normals_part(void *ctx, uint32_t from, uint32_t to)
     }
 }
 
-static uint64_t *normal_codes(const scene_mesh *m)
+/* On all CPUs (for_parts) if parallel, else on this thread. */
+static uint64_t *normal_codes(const scene_mesh *m, int parallel)
 {
     normals_job job = { m, malloc(((size_t)m->n_vertices + 1) * sizeof *job.codes) };
-    if (job.codes)
+    if (job.codes && parallel)
         for_parts(m->n_vertices, normals_part, &job);
+    else if (job.codes)
+        normals_part(&job, 0, m->n_vertices);
     return job.codes;
 }
 
@@ -862,10 +913,12 @@ static void records_part(void *ctx, uint32_t from, uint32_t to)
 
 /* Geometry block: nodes, leaf lists, padding, triangle transformations, shading records. 0, or
  * -1 if memory ran out. */
-static int object_write(mi_builder *b, const scene *s, const mi_object *o)
+static int object_write(mi_builder *b, const scene *s, mi_object *o)
 {
     const scene_mesh *m = obj_mesh(b, s, o);
-    uint64_t *codes = m->normals ? normal_codes(m) : NULL; /* the object has normals if its mesh has */
+    /* the object has normals if its mesh has */
+    uint64_t *codes = o->normal_codes ? o->normal_codes : m->normals ? normal_codes(m, 1) : NULL;
+    o->normal_codes = NULL;
     if (m->normals && !codes)
         return -1;
     /* Zeroed here, so that the padding is deterministic: the tree's words up to the records, and
@@ -1280,7 +1333,7 @@ static int write_frame(mi_builder *b, const scene *s, int full, int dynamic_chan
         goto oom;
     inst_source is = { s, b };
     kd_free(&b->top);
-    const kd_source ks = { b->n_inst, &is, instance_bounds, NULL };
+    const kd_source ks = { b->n_inst, &is, instance_bounds, NULL, NULL };
     const int rc = build_tree(b, &ks, &b->p.top, &b->top);
     if (rc == MI_FAIL_NODE_LIMIT)
         return node_limit_error(b, "the top-level tree", err, errlen);

@@ -574,7 +574,7 @@ static void bench_top(const char *name, const aabb *boxes, uint32_t n, top_resul
 {
     mi_params mp;
     mi_params_default(&mp);
-    const kd_source src = { n, boxes, box_bounds, NULL };
+    const kd_source src = { n, boxes, box_bounds, NULL, NULL };
     double t[TOP_REPS];
     memset(r, 0, sizeof *r);
     r->name = name;
