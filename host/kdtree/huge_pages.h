@@ -26,15 +26,6 @@ void *huge_pages_malloc(size_t bytes);
  * mapped and keeps its pages); NULL if memory ran out (p is then unchanged). */
 void *huge_pages_realloc(void *p, size_t bytes);
 
-/* Grows the main thread's malloc heap (glibc) by about `bytes` of address space advised for huge
- * pages (no memory is used until touched), serves blocks up to 32 MB from it and never gives its
- * top back: the glTF loader's vectors (tinygltf's file and buffer copies, the accessors) and the
- * other buffers of the main thread then take one fault per 2 MB, and reuse what they freed.
- * saarcor calls it first thing with 256 MB: `saarcor info gallery_ccby_503k.glb` 36,600 ->
- * 13,300 page faults, 3.30 -> 2.95 s of CPU (perf stat, a loaded machine). The price: the
- * process keeps its peak heap until it exits. Nothing under AddressSanitizer. */
-void huge_pages_heap(size_t bytes);
-
 #ifdef __cplusplus
 }
 #endif

@@ -11,7 +11,6 @@
 #include <getopt.h>
 
 #include "cli.h"
-#include "huge_pages.h"
 
 static const saarcor_cmd commands[] = {
     { "version", "print the version, the fp24 format and the arithmetic path", cmd_version },
@@ -112,7 +111,6 @@ int cli_wants_help(int argc, char **argv)
 
 int main(int argc, char **argv)
 {
-    huge_pages_heap((size_t)256 << 20); /* page faults cost ~20 us each on the project's VM (huge_pages.h) */
     if (argc < 2) {
         usage(stderr);
         return SAARCOR_EXIT_USAGE;
