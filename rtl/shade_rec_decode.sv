@@ -48,7 +48,10 @@ module shade_rec_decode #(
   assign ready_o = en;
 
   // ---- the octahedral unfolding (shade_rec_normal's integers)
-  logic signed [31:0] x, y, ax, ay, z, fx, fy;
+  logic signed [31:0] x, y, ax, ay, z;
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic signed [31:0] fx, fy;  // |fx|, |fy| <= 2^20: their low UW bits go on
+  /* verilator lint_on UNUSEDSIGNAL */
   logic missing;
   always_comb begin
     x = 32'(signed'(code_i[OCT-1:0]));
@@ -69,10 +72,10 @@ module shade_rec_decode #(
   // converter's first segment (8) are one path without it, 16 levels in the RGS (docs/synth.md)
   localparam int UW = OCT + 1;                // bits of an unfolded component (signed): |z| <= 2^20 + 1
   logic [3*UW-1:0] comp_q;
+  /* verilator lint_off PINCONNECTEMPTY */
   f24_pipe #(.W(3 * UW), .STAGES(1)) u_unfold (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en), .valid_i(1'b0),
     .data_i({UW'(z), UW'(fy), UW'(fx)}), .valid_o(), .data_o(comp_q));
 
-  /* verilator lint_off PINCONNECTEMPTY */
   logic missing_q;
   logic [3*W-1:0] n;
   logic [W-1:0] n_q [3];
