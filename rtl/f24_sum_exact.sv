@@ -10,7 +10,8 @@
 // 25 combinational segments with STAGES pipeline registers spread evenly over the cuts after
 // them (PULP FPnew style; the last cut always gets one, so the outputs are registered); every
 // 128-bit carry chain is split into two 64-bit halves in consecutive segments:
-//   1 classes, specials, exponent sums, partial products (6-bit slices as f24_mul)
+//   1 classes, specials, exponent sums and the comparison keys (0 for a dead term), partial
+//     products (6-bit slices as f24_mul)
 //   2 products, the largest live product exponent (a comparison matrix)
 //   3-5 alignment: right shift of each product by 64, 32 | 16, 8, 4 | 2, 1 with sticky; negative
 //       terms as ones' complement
@@ -61,7 +62,7 @@ module f24_sum_exact #(
   // ---- segment 1: classes, specials, exponent sums, partial products
   logic [E-1:0] ea [N], eb [N];
   logic [N-1:0] sgn1, live1, is_nan, is_inf;
-  logic [N*XW-1:0] ex1;
+  logic [N*XW-1:0] ex1, key1;
   logic [N*NP*PW-1:0] pp1;
   for (genvar k = 0; k < N; k++) begin : g_term
     logic [NP*SL-1:0] mb;
@@ -72,6 +73,8 @@ module f24_sum_exact #(
     assign is_inf[k] = ea[k] == EMAX || eb[k] == EMAX;
     assign live1[k] = !is_inf[k] && ea[k] != 0 && eb[k] != 0;
     assign ex1[k*XW +: XW] = XW'(ea[k]) + XW'(eb[k]);
+    // the comparison key here, not in segment 2: there it was one LUT6 level too many
+    assign key1[k*XW +: XW] = live1[k] ? ex1[k*XW +: XW] : '0;   // a live exponent sum is at least 2
     assign mb = (NP*SL)'({1'b1, b_i[k*W +: M]});
     for (genvar j = 0; j < NP; j++) begin : g_pp
       assign pp1[(k*NP+j)*PW +: PW] = PW'({1'b1, a_i[k*W +: M]}) * PW'(mb[j*SL +: SL]);
@@ -96,28 +99,28 @@ module f24_sum_exact #(
   end
 
   localparam int SP = 4;                     // specials: nan, inf, inf_sign, zero_sign
-  localparam int B1 = SP + 2 * N + N * XW + N * NP * PW;
+  localparam int B1 = SP + 2 * N + 2 * N * XW + N * NP * PW;
   logic v1;
   logic [B1-1:0] d1;
   f24_pipe #(.W(B1), .STAGES(regs(1))) u_c1 (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en_i), .valid_i(valid_i),
-    .data_i({nan1, inf1, inf_sign1, zero_sign1, sgn1, live1, ex1, pp1}), .valid_o(v1), .data_o(d1));
+    .data_i({nan1, inf1, inf_sign1, zero_sign1, sgn1, live1, ex1, key1, pp1}), .valid_o(v1), .data_o(d1));
 
   // ---- segment 2: products, the largest live product exponent
   logic [SP-1:0] sp2;
   logic [N-1:0] sgn2, live2;
-  logic [N*XW-1:0] ex2;
+  logic [N*XW-1:0] ex2, key2;
   logic [N*NP*PW-1:0] pp2;
   logic [N*PB-1:0] prod2;
   logic [XW-1:0] key [N];
   logic [N-1:0] top;
   logic [XW-1:0] emax2;
   always_comb begin
-    {sp2, sgn2, live2, ex2, pp2} = d1;
+    {sp2, sgn2, live2, ex2, key2, pp2} = d1;
     for (int k = 0; k < N; k++) begin
       prod2[k*PB +: PB] = '0;
       for (int j = 0; j < NP; j++)
         prod2[k*PB +: PB] = prod2[k*PB +: PB] + (PB'(pp2[(k*NP+j)*PW +: PW]) << (j * SL));
-      key[k] = live2[k] ? ex2[k*XW +: XW] : '0;   // a live exponent sum is at least 2
+      key[k] = key2[k*XW +: XW];
     end
     // the largest by a comparison matrix, all N (N - 1) comparisons side by side: the keys not
     // below any other are the maximum (ties agree on the value), ORed together; a max tree's

@@ -10,7 +10,7 @@
 //           component c of the 3 normals, weights u, v)
 //   dot     once its 3 components are out, the squared length (`f24_dot3`): zero_o where its
 //           exponent is zero (the caller then takes the geometric normal)
-// Latency 3 + decode (42) + 3 + lerp (22) + dot (16) + 1 = 87 cycles at the default operator depths;
+// Latency 3 + decode (43) + 3 + lerp (22) + dot (16) + 1 = 88 cycles at the default operator depths;
 // throughput a hit every 4 cycles (its 3 codes, then the next is taken); results in input order. The units run without stalls: a hit is
 // taken only while fewer than DEPTH are inside or waiting at the output, so the queues never fill.
 // Resources: one each of `shade_rec_decode`, `rgs_lerp`, `f24_dot3`; the input (126 + 2 W bits),

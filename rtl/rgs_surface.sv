@@ -42,7 +42,7 @@
 // back reads after the material (vertex normals interpolated to zero length); the two stages'
 // reads interleave.
 // Latency: about 20 + the reads up to the record (1 + 6 + record words, each burst waiting for the
-// one before) + `rgs_normal` (87, only with vertex normals; without: the geometric normal's and the
+// one before) + `rgs_normal` (88, only with vertex normals; without: the geometric normal's and the
 // material's reads) + the conversions' tail (about 20 from the back's taking it) + per texture
 // lerp 24 + entry 4 + sample 44) + the frame (118), which the next surfaces' steps overlap.
 // Throughput: a surface per its front's reads (about 45 to 60 cycles for a flat hit with a memory

@@ -6,7 +6,8 @@
 // bit of the doubled vector {req, req & after} (c & -c on one 2N-bit carry chain, no N-input OR
 // deciding between the halves), the grant the OR of its halves; the index follows from the one-hot
 // grant by OR trees. The grant is 2 LUT6 levels from req_i and after_i (docs/synth.md).
-// Used by the thread scheduler (one per unit) and by the caches' response selection.
+// Used by the thread scheduler (one per unit), by the caches' response selection and, with no
+// pointer (after_i = 0: the lowest requester), by trace_core's word port and packet output.
 // Combinational. Resources: a 2N-bit carry chain (isolation) and an N-bit one (the next mask), an
 // N-input OR, log2 N OR trees of N/2 inputs.
 module rr_pick #(

@@ -4,14 +4,15 @@
 // `hit_normal` (hls/units/rgs.c): a hit decodes the 3 normals of its triangle, one a cycle.
 // The 42-bit octahedral code (x in bits 0..20, y in 21..41, signed) is unfolded in integers:
 // |x|, |y|, z = 2^20 - 1 - |x| - |y| and, for z < 0 (the lower hemisphere), x and y folded over
-// the diagonals (4 adders of 22 bits, 2 sign muxes; combinational, in front of the converters);
+// the diagonals (4 adders of 22 bits, 2 sign muxes; registered in front of the converters, so that
+// the unfolding and a converter's first segment are not one path of 16 LUT6 levels);
 // then 3 `f24_from_i32` (SCALE 0), 1 / sqrt((x x + y y) + z z) in the C's order (`f24_inv_length`:
 // `f24_dot3`, `f24_sqrt`, `f24_div`) and the 3 products
 // with the converted components (3 `f24_mul`; the components wait in an `f24_pipe`). The code
 // x = -2^20 (SHADE_NO_NORMAL: the vertex has no normal) gives (+0, +0, +0) as the C does.
 // The thread id (TID_BITS) travels beside the datapath with the valid bit.
-// Latency LATENCY = CVT_STAGES + 2 MUL_STAGES + 2 ADD_STAGES + SQRT_STAGES + DIV_STAGES
-// (default 2 + 8 + 12 + 9 + 11 = 42) cycles, one normal per cycle (II = 1); handshake valid/ready,
+// Latency LATENCY = 1 + CVT_STAGES + 2 MUL_STAGES + 2 ADD_STAGES + SQRT_STAGES + DIV_STAGES
+// (default 1 + 2 + 8 + 12 + 9 + 11 = 43; 42 before the unfolding's register) cycles, one normal per cycle (II = 1); handshake valid/ready,
 // the pipeline advances when the output is free or taken. Resources (the operators'): 3 int-to-fp24
 // converters, 6 multipliers, 2 adders, 1 square root, 1 divider, the integer unfolding, delay
 // lines for the components (3 W bits x (MUL + 2 ADD + SQRT + DIV) stages), the missing flag and the thread id (LATENCY stages).
@@ -39,7 +40,7 @@ module shade_rec_decode #(
   localparam int W = 1 + E + M;
   localparam int OCT = 21;                    // SHADE_OCT_BITS
   localparam int LEN_STAGES = MUL_STAGES + 2 * ADD_STAGES;
-  localparam int LATENCY = CVT_STAGES + 2 * MUL_STAGES + 2 * ADD_STAGES + SQRT_STAGES + DIV_STAGES;
+  localparam int LATENCY = 1 + CVT_STAGES + 2 * MUL_STAGES + 2 * ADD_STAGES + SQRT_STAGES + DIV_STAGES;
   localparam logic signed [31:0] OCT_ONE = (32'sd1 <<< (OCT - 1)) - 32'sd1;
 
   logic en;
@@ -47,7 +48,10 @@ module shade_rec_decode #(
   assign ready_o = en;
 
   // ---- the octahedral unfolding (shade_rec_normal's integers)
-  logic signed [31:0] x, y, ax, ay, z, fx, fy;
+  logic signed [31:0] x, y, ax, ay, z;
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic signed [31:0] fx, fy;  // |fx|, |fy| <= 2^20: their low UW bits go on
+  /* verilator lint_on UNUSEDSIGNAL */
   logic missing;
   always_comb begin
     x = 32'(signed'(code_i[OCT-1:0]));
@@ -64,16 +68,23 @@ module shade_rec_decode #(
     end
   end
 
+  // the unfolded components registered: the unfolding (8 LUT6 levels from the code) and a
+  // converter's first segment (8) are one path without it, 16 levels in the RGS (docs/synth.md)
+  localparam int UW = OCT + 1;                // bits of an unfolded component (signed): |z| <= 2^20 + 1
+  logic [3*UW-1:0] comp_q;
   /* verilator lint_off PINCONNECTEMPTY */
+  f24_pipe #(.W(3 * UW), .STAGES(1)) u_unfold (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en), .valid_i(1'b0),
+    .data_i({UW'(z), UW'(fy), UW'(fx)}), .valid_o(), .data_o(comp_q));
+
   logic missing_q;
   logic [3*W-1:0] n;
   logic [W-1:0] n_q [3];
   logic [W-1:0] prod [3];
   logic [W-1:0] inv;
   logic [31:0] comp [3];
-  assign comp[0] = fx;
-  assign comp[1] = fy;
-  assign comp[2] = z;
+  for (genvar k = 0; k < 3; k++) begin : g_sext
+    assign comp[k] = 32'(signed'(comp_q[k*UW +: UW]));
+  end
   for (genvar k = 0; k < 3; k++) begin : g_comp
     f24_from_i32 #(.E(E), .M(M), .SCALE(0), .STAGES(CVT_STAGES)) u_cvt (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(en),
       .valid_i(1'b0), .a_i(comp[k]), .valid_o(), .res_o(n[k*W +: W]));

@@ -39,8 +39,9 @@
 // 4-bit feed counter and a thread id, THREADS trace_thread (each 5718
 // LUTs and 6183 flip-flops with synth_xilinx at e7m16 before its header and 20 buffer words came
 // out: its state in registers), the header's fields (5 words and the 6 W-bit bounds, once), the
-// word port's FIFO of 2 THREADS requesters of TW + 1 bits, the operand multiplexers (THREADS to 1
-// per unit); the whole core is not yet synthesized.
+// word port's FIFO of 2 THREADS requesters of TW + 1 bits, two rr_pick without a pointer (the word
+// port's and the output's lowest thread), the operand multiplexers (THREADS to 1 per unit); the
+// whole core is not yet synthesized.
 // Handshake: valid/ready at the packet input (into thread thread_i: ready_o when it is free) and
 // at the result output (the lowest finished thread first); word port valid/ready with responses in
 // request order; trav_unit's node port and list_unit's read port as those units define them (the
@@ -158,6 +159,7 @@ module trace_core #(
   // requester of the oldest response (word_head; its top bit the header's load)
   logic hdr_req, word_take;
   logic [TW-1:0] word_sel;
+  logic [THREADS-1:0] word_grant;  // one-hot word_sel
   logic [TW:0] word_head;
   // the header's fields, shared by all threads
   logic hdr_ok;
@@ -174,7 +176,7 @@ module trace_core #(
       .hdr_want_o(t_hdr_want[t]), .hdr_ok_i(hdr_ok), .hdr_instances_i(hdr_instances), .hdr_objects_i(hdr_objects),
       .hdr_inst_i(hdr_inst), .hdr_top_nodes_i(hdr_top_nodes), .hdr_top_lists_i(hdr_top_lists),
       .scene_box_i(scene_box),
-      .mem_req_valid_o(t_mem_req[t]), .mem_req_ready_i(!hdr_req && word_sel == TW'(t) && word_take),
+      .mem_req_valid_o(t_mem_req[t]), .mem_req_ready_i(!hdr_req && word_grant[t] && word_take),
       .mem_addr_o(t_mem_addr[t]), .mem_rsp_valid_i(mem_rsp_valid_i && word_head == {1'b0, TW'(t)}),
       .mem_rdata_i(mem_rdata_i), .node_rsp_i(t_node_rsp[t]), .waiting_o(t_waiting[t]),
       .slots_o(t_slots[t*4 +: 4]),
@@ -339,13 +341,6 @@ module trace_core #(
     end
   assign t_node_rsp = node_rsp_valid_i ? one[node_q[node_rd[TW-1:0]]] : '0;
 
-  // the lowest thread of a set (the word port's next request, the next packet out)
-  function automatic logic [TW-1:0] lowest(input logic [THREADS-1:0] m);
-    lowest = '0;
-    for (int t = THREADS - 1; t >= 0; t--)
-      if (m[t]) lowest = TW'(t);
-  endfunction
-
   // ---- the header: read once per image when a thread first waits for it ----
   // memory image layout (docs/memory-image.md; hls/units/trace.c): the fields' word addresses
   localparam int H_INSTANCES = 7, H_BOUNDS = 12, H_OBJECTS_AT = 18 + 2 * 5, H_INST_AT = 18 + 2 * 8;
@@ -392,7 +387,12 @@ module trace_core #(
   logic [TW:0] word_q [2**QB];
   logic [QB:0] word_wr, word_rd;
   assign hdr_req = hdr_load && hdr_sent != HB'(HDR_RSP);
-  assign word_sel = lowest(t_mem_req);
+  // the lowest requesting thread, one-hot on a carry chain and its index by OR trees (rr_pick with
+  // no pointer): a priority loop over 64 threads was 8 LUT6 levels in front of each thread's ready
+  /* verilator lint_off PINCONNECTEMPTY */
+  rr_pick #(.N(THREADS)) u_word_pick (.req_i(t_mem_req), .after_i('0), .any_o(), .grant_o(word_grant),
+                                      .index_o(word_sel), .after_o());
+  /* verilator lint_on PINCONNECTEMPTY */
   assign mem_req_valid_o = (hdr_req || |t_mem_req) && word_wr - word_rd != (QB + 1)'(2**QB);
   assign mem_addr_o = hdr_req ? 32'(RW) * 32'(hdr_sent) : t_mem_addr[word_sel];
   assign word_take = mem_req_valid_o && mem_req_ready_i;
@@ -411,10 +411,13 @@ module trace_core #(
 
   // ---- packets in and out ----
   logic [TW-1:0] out_sel;
-  assign out_sel = lowest(t_valid);
+  logic [THREADS-1:0] out_grant;
+  /* verilator lint_off PINCONNECTEMPTY */
+  rr_pick #(.N(THREADS)) u_out_pick (.req_i(t_valid), .after_i('0), .any_o(valid_o), .grant_o(out_grant),
+                                     .index_o(out_sel), .after_o());
+  /* verilator lint_on PINCONNECTEMPTY */
   assign ready_o = t_ready[thread_i];
-  assign valid_o = |t_valid;
-  assign t_out_ready = ready_i && valid_o ? one[out_sel] : '0;
+  assign t_out_ready = ready_i ? out_grant : '0;
   assign thread_o = out_sel;
   assign inst_o = t_inst[out_sel];
   assign tri_o = t_tri[out_sel];

@@ -370,7 +370,13 @@ module trace_thread #(
   assign xw_point_o = !ipass;
   assign is_req_o = batch_req && bop == B_TRI;
   assign is_m_o = tri_m;
-  assign is_c_lo_o = c_lo;
+  // the vertices' low parts registered (vertex_lo is 8 LUT6 levels; with the core's operand
+  // multiplexer and isect_rebased's first segment it was a path of 13 at 4 threads). They follow
+  // the record a cycle late, never read then: the triangle's issue comes at least two cycles after
+  // the record's last word (the batch's request, the scheduler's set, its issue)
+  logic [3*W-1:0] c_lo_q;
+  always_ff @(posedge clk_i) c_lo_q <= c_lo;
+  assign is_c_lo_o = c_lo_q;
   assign is_shared_o = tri_shared;
   assign is_p_hi_o = p_hi[ir];
   assign is_p_lo_o = p_lo[ir];

@@ -902,9 +902,14 @@ UNIT_LEVELS_NOTE = [
     "168e94a; the 70 above are from before commit 22770fd) | cache_dm's response choice (rr_pick, 3), its table's "
     "multiplexer (2), read_ring's bookkeeping (3) |",
     "| cache_read (kd nodes) | LINE_BYTES=8 SIZE_BYTES=4096 WORDS=2 OUTSTANDING=16 | 8 | the same |",
-    "| rgs_ctrl | TAG_BITS=6 | 16 | rgs_normal: the code chosen by k_q, shade_rec_decode's unfolding, "
-    "f24_from_i32's first segment (8 levels alone) |",
-    "| trace_core | THREADS=64 | 18 | trace_core's own logic, 12 levels: the word port's lowest requesting thread (`lowest()`, a priority loop over the 64 threads, 8 LUT6) into each thread's mem_req_ready_i; then its units f24_sum_exact, isect_rebased, xform_wide 9 each, trace_thread 8 |"]
+    "| rgs_ctrl | TAG_BITS=6 | 16 on the RTL of 3a0de35 (not remeasured since e6bdf47) | rgs_normal: the code chosen by k_q, shade_rec_decode's unfolding, f24_from_i32's first segment (8 levels alone); rgs_normal now 8 (below) |",
+    "| rgs_normal (2026-11-29, e6bdf47) | defaults | 8 (16 before) | shade_rec_decode's unfolding from the code chosen by k_q (8), registered since e6bdf47 (its latency 42 -> 43); f24_from_i32's first segment (8: the 32-bit leading-zero loop, the shift) |",
+    "| trace_core | THREADS=64 | 18 on the RTL of 3a0de35 (not remeasured since e6bdf47: 42 minutes) | trace_core's own logic, 12 levels: the word port's lowest requesting thread (`lowest()`, a priority loop over the 64 threads, 8 LUT6) into each thread's mem_req_ready_i; then its units f24_sum_exact, isect_rebased, xform_wide 9 each (now 6, below), trace_thread 8 |",
+    "| trace_core's word port and packet output (2026-11-29, e6bdf47; a wrapper of that logic alone, its inputs registered: scripts/zz_pick_wrap.sv) | THREADS=64 | 8 (12 with `lowest()`) | rr_pick's one-hot lowest requester and its index (4), the 64-to-1 address multiplexer (4) to mem_addr_o; each thread's mem_req_ready_i from the one-hot grant |",
+    "| f24_sum_exact (2026-11-29, e6bdf47) | N=9 | 6 (9 before) | segment 2's comparison matrix (the keys now from segment 1: their live-or-zero masking was 3 of the 9) |",
+    "| xform_wide (2026-11-29, e6bdf47) | defaults | 6 (9 before) | f24_sum_exact's specials in segment 1; segment 2 as above |",
+    "| isect_rebased (2026-11-29, e6bdf47) | defaults | 6 (9 before) | f24_div's and f24_sum_exact's segments, 6 each |",
+    "| trace_core (2026-11-29, daa922f; `--hier`, 1571 s) | THREADS=4 | 13 | across module ports (the units alone at most 8: trace_thread 8, the exact sums 6; trace_core's own cells 3): trace_thread's is_c_lo_o, 8 levels from its line buffer (`vertex_lo`: the 9-bit field's magnitude, its leading one, the shift, combinational), the 4-to-1 operand multiplexer (1), isect_rebased's c_lo_i (4 to its first register); next (not flattened, composed from the per-module summaries): trace_thread's operand outputs of 4 levels (xw_p_lo_o, rb_t_o, ...) through the multiplexer into xform_wide's p_lo_i (6), 11. At 64 threads the multiplexers are 64 to 1 on the same paths: c_lo registered in trace_thread (done after this measurement: trace_thread alone still 8, `python3 scripts/synth.py --levels trace_thread`; trace_core not re-synthesized, its next path 11 as composed above) and a register after the operand multiplexers (a cycle of issue) are the next steps |"]
 
 
 def dynrtp_section():

@@ -42,8 +42,8 @@ void cycle_config_default(cycle_config *c)
     c->latency[OP_LEAF] = 46;     /* the list entry's 18, then rebase_unit 25 (a batch) and its states */
     c->latency[OP_ISECT] = 35;    /* isect_rebased's second half: isect_unit 29 (div 11 + mul 4 + 2 add + cmp 2) +
                                    * best_t = t0 + t (add 6) */
-    c->latency[OP_SURFACE] = 223; /* rgs_surface: the first hit's front reads (instance word, object, record: about 18
-                                   * through the shading cache), rgs_normal 87, rgs_frame 118 */
+    c->latency[OP_SURFACE] = 224; /* rgs_surface: the first hit's front reads (instance word, object, record: about 18
+                                   * through the shading cache), rgs_normal 88, rgs_frame 118 */
     c->surface_hit = 48;          /* each further hit: the front's reads of it, one burst after another */
     c->surface_miss = 12;         /* a packet without hits: rgs_surface's stages and queue, nothing read */
     c->shade_hit = 3;             /* the shading cache_read's hit */
