@@ -154,7 +154,7 @@ module dynrtp #(
   logic [B*32-1:0] rd_addr;  // the read ports' mem_port takes the B addresses side by side
   logic [4*24-1:0] px_rgb [B];
   logic [4*32-1:0] px_inst [B], px_tri [B];
-  logic [31:0] rd_word;
+  logic [127:0] rd_line;  // the shading cache's line (4 words) to every controller
   logic [31:0] bx_q [THREADS], by_q [THREADS];  // the corner of thread k's block
   logic core_ready;
   for (genvar k = 0; k < B; k++) begin : g_rgs
@@ -166,7 +166,7 @@ module dynrtp #(
       .tr_tmin_o(tr_tmin[k]), .tr_tmax_o(tr_tmax[k]), .hit_valid_i(valid_o && thread_o == TW'(k)),
       .hit_ready_o(hit_ready[k]), .hit_inst_i(inst_o), .hit_tri_i(tri_o), .hit_t_i(t_o), .hit_u_i(u_o),
       .hit_v_i(v_o), .hit_cos_i(cos_o), .mem_req_valid_o(rd_valid[k]), .mem_req_ready_i(rd_ready[k]),
-      .mem_addr_o(rd_addr[k*32 +: 32]), .mem_rsp_valid_i(rd_rsp[k]), .mem_rdata_i(rd_word), .px_valid_o(px_valid[k]),
+      .mem_addr_o(rd_addr[k*32 +: 32]), .mem_rsp_valid_i(rd_rsp[k]), .mem_rdata_i(rd_line), .px_valid_o(px_valid[k]),
       .px_ready_i(px_ready[k]), .px_tag_o(px_tag[k]), .px_rgb_o(px_rgb[k]), .px_inst_o(px_inst[k]),
       .px_tri_o(px_tri[k]), .px_t_o(px_t[k]), .px_u_o(px_u[k]), .px_v_o(px_v[k]), .px_cos_o(px_cos[k]));
   end
@@ -286,21 +286,23 @@ module dynrtp #(
     .mem_req_ready_i(mreq_ready[2]), .mem_req_addr_o(mreq_addr[64 +: 32]), .mem_rsp_valid_i(mrsp_valid[2]),
     .mem_rsp_data_i(mrsp_data));
 
-  // the RGS's word reads: the controllers' ports merged round robin, answers routed back in order,
-  // through the shading cache
+  // the RGS's line reads: the controllers' ports merged round robin, answers routed back in order,
+  // through the shading cache, a whole 16-byte line a request (the controllers ask for lines by
+  // their first word's address and take the words they need)
   logic sh_req /*verilator public_flat_rd*/, sh_ready /*verilator public_flat_rd*/, sh_rsp;
-  logic [31:0] sh_addr, sh_word;
+  logic [31:0] sh_addr;
+  logic [127:0] sh_line;
   /* verilator lint_off PINCONNECTEMPTY */
-  mem_port #(.N(B), .DW(32), .DEPTH(OUTSTANDING)) u_rgs_reads (
+  mem_port #(.N(B), .DW(128), .DEPTH(OUTSTANDING)) u_rgs_reads (
     .clk_i(clk_i), .rst_ni(rst_ni), .req_valid_i(rd_valid), .req_ready_o(rd_ready), .req_addr_i(rd_addr),
-    .req_bytes_i({B{8'd4}}), .rsp_valid_o(rd_rsp), .rsp_data_o(rd_word), .mem_req_valid_o(sh_req),
+    .req_bytes_i({B{8'd16}}), .rsp_valid_o(rd_rsp), .rsp_data_o(rd_line), .mem_req_valid_o(sh_req),
     .mem_req_ready_i(sh_ready), .mem_req_addr_o(sh_addr), .mem_req_bytes_o(), .mem_req_src_o(),
-    .mem_rsp_valid_i(sh_rsp), .mem_rsp_data_i(sh_word));
+    .mem_rsp_valid_i(sh_rsp), .mem_rsp_data_i(sh_line));
   /* verilator lint_on PINCONNECTEMPTY */
   
-  cache_read #(.LINE_BYTES(16), .SIZE_BYTES(1024 * SHADE_KB), .WORDS(1), .OUTSTANDING(OUTSTANDING)) u_shading (
+  cache_read #(.LINE_BYTES(16), .SIZE_BYTES(1024 * SHADE_KB), .WORDS(4), .OUTSTANDING(OUTSTANDING)) u_shading (
     .clk_i(clk_i), .rst_ni(rst_ni), .flush_i(flush_i), .req_valid_i(sh_req), .req_ready_o(sh_ready),
-    .req_addr_i(sh_addr), .rsp_valid_o(sh_rsp), .rsp_data_o(sh_word), .mem_req_valid_o(mreq_valid[3]),
+    .req_addr_i(sh_addr), .rsp_valid_o(sh_rsp), .rsp_data_o(sh_line), .mem_req_valid_o(mreq_valid[3]),
     .mem_req_ready_i(mreq_ready[3]), .mem_req_addr_o(mreq_addr[96 +: 32]), .mem_rsp_valid_i(mrsp_valid[3]),
     .mem_rsp_data_i(mrsp_data[0 +: 128]));
 

@@ -115,7 +115,7 @@ int main(int argc, char **argv)
     top.max_depth_i = cfg.max_depth;
     top.shadows_i = cfg.shadows;
 
-    struct response { uint64_t due; uint32_t word; };
+    struct response { uint64_t due; uint32_t line[4]; };  // the port answers a line of 4 words
     std::deque<response> rsp;
     std::size_t next = 0, done = 0, packet = 0, packets = 0;
     uint64_t mismatches = 0, idle = 0, hits_due = 0, block_start = 0, block_cycles = 0;
@@ -143,7 +143,8 @@ int main(int argc, char **argv)
         top.mem_rsp_valid_i = 0;
         if (!rsp.empty() && rsp.front().due <= g_cycle) {
             top.mem_rsp_valid_i = 1;
-            top.mem_rdata_i = rsp.front().word;
+            for (int j = 0; j < 4; j++)
+                top.mem_rdata_i[j] = rsp.front().line[j];
             rsp.pop_front();
         }
         top.tr_ready_i = !hits_pending;
@@ -159,10 +160,14 @@ int main(int argc, char **argv)
         bool fired = false;
         if (top.mem_req_valid_o && top.mem_req_ready_i) {
             const uint32_t a = top.mem_addr_o;
-            if (a >= mem.size() && mismatches++ < 20)
-                std::printf("MISMATCH rgs_ctrl cycle %llu: read of %x beyond the image\n", (unsigned long long)g_cycle, a);
+            if ((a >= mem.size() || a % 4) && mismatches++ < 20)
+                std::printf("MISMATCH rgs_ctrl cycle %llu: read of %x beyond the image or not a line's start\n",
+                            (unsigned long long)g_cycle, a);
             const uint64_t due = std::max<uint64_t>(g_cycle + (calm ? 1 : 1 + rnd() % 4), rsp.empty() ? 0 : rsp.back().due);
-            rsp.push_back({ due, a < mem.size() ? mem[a] : 0u });
+            response r{ due, {} };
+            for (uint32_t j = 0; j < 4; j++)
+                r.line[j] = a + j < mem.size() ? mem[a + j] : 0u;
+            rsp.push_back(r);
             fired = true;
         }
         if (top.tr_valid_o && top.tr_ready_i) {
