@@ -7,15 +7,15 @@
 // direct-mapped caches (cache_read around cache_dm, the cycle model's default configuration
 // tb/cycle/cycle_sim.c cycle_config_default: kd nodes NODE_KB KB in lines of one node (8 bytes),
 // lists LIST_KB KB in lines of one entry (4 bytes), matrices MAT_KB KB in lines of one packed
-// triangle record) and the RGS's word reads (header, camera, instances, shading records,
+// triangle record) and the RGS's reads (header, camera, instances, shading records,
 // materials, lights, texels) through the shading cache (SHADE_KB KB in lines of 16 bytes, the
-// cycle model's MEM_SHADING cache), all four on one memory port (mem_port) to an external memory
+// cycle model's MEM_SHADING cache; a request names a line, its answer is the line's 4 words), all four on one memory port (mem_port) to an external memory
 // with valid/ready and in-order answers.
 // The RGS: one rgs_ctrl holds one block (its ray-tree stack in registers), so RGS_BLOCKS of them
 // give RGS_BLOCKS blocks in flight, each with at most one packet in the core: rgs_ctrl k traces on
 // the core's thread k (its tag), so the core's hits go back to the controller of thread_o. A block
 // goes to the lowest idle controller below blocks_i (--threads-per-pipe: the blocks the harness
-// lets run); the controllers' packets enter the core round robin (rr_pick), their word reads are
+// lets run); the controllers' packets enter the core round robin (rr_pick), their line reads are
 // merged round robin by a second mem_port (N = RGS_BLOCKS, the answers routed back in order) onto
 // the shading cache, their pixels leave round robin on the px_* port with the block's corner.
 // Every controller reads the frame's header and camera once after reset, before it takes a block.
@@ -27,12 +27,13 @@
 // read across two lines takes two lookups; the cycle model looks the lines up at once); list_unit's entry waits in its pipeline for the list word (the cycle model parks the
 // thread before the unit); every cache has OUTSTANDING reads in flight (the cycle model: no
 // limit); the caches answer a hit after 2 cycles (3 with the matrix cache's index stage, the
-// cycle model: at once); the RGS's reads are word by word (the cycle model: by records).
+// cycle model: at once); the RGS's reads are line by line, a burst's lines one a cycle on the
+// controllers' one port (the cycle model: the same lines on its shading port).
 // Counters (the usage counted inside the RTL): cycles_o counts the cycles from the frame taken at
 // frame_valid_i until frame_done_o (the last block's pixels taken); issues_o per unit of
 // trace_core the operations issued in that time (thread_sched: trav, list, rebase, wide, isect
 // (isect_rebased: a triangle's transformation and test), add, 64 bits each); packets_o the packets traced; reads_o per cache the reads it
-// took (kd nodes, list entries, descriptor responses of RW words, shading words).
+// took (kd nodes, list entries, descriptor responses of RW words, shading lines).
 // Latency and throughput: tile_ctrl 1 block per cycle; rgs_ctrl a block per its sequence
 // (rtl/README.md), RGS_BLOCKS at once; the core's; the memory port 1 transfer per cycle.
 // Resources: trace_core's, RGS_BLOCKS x rgs_ctrl (each with its own shading units and a stack of

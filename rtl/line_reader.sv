@@ -7,7 +7,7 @@
 // matrix, a material each in 1 to 5 lines. Word k of the burst (address a + k) is word
 // (a mod LW + k) mod LW of response (a mod LW + k) / LW; only the burst's n words are written, so
 // the buffer holds what a word-by-word burst left there.
-// Protocol: start_i (only while done_o) takes addr_i and n_i (1 .. MAXW); req_valid_o /
+// Protocol: start_i (only while done_o) takes addr_i and n_i (0 .. MAXW; 0: no request, done); req_valid_o /
 // req_ready_i (the port takes the request) with the line's first word address req_addr_o;
 // rsp_valid_i: the next of this reader's responses (in request order, always taken), rsp_line_i its
 // words (word j at bits 32 j). done_o: every response of the burst is in, words_o (word k at bits
@@ -53,9 +53,9 @@ module line_reader #(
     if (!rst_ni) begin
       req_left_q <= '0;
       rsp_left_q <= '0;
-    end else if (start_i) begin
-      req_left_q <= CW'((32'(off) + 32'(n_i) + LW - 1) / LW);
-      rsp_left_q <= CW'((32'(off) + 32'(n_i) + LW - 1) / LW);
+    end else if (start_i) begin  // no line for no word (a shading record of 0 words)
+      req_left_q <= n_i == '0 ? '0 : CW'((32'(off) + 32'(n_i) + LW - 1) / LW);
+      rsp_left_q <= n_i == '0 ? '0 : CW'((32'(off) + 32'(n_i) + LW - 1) / LW);
     end else begin
       if (req_valid_o && req_ready_i) req_left_q <= req_left_q - 1'b1;
       if (rsp_valid_i && !done_o) rsp_left_q <= rsp_left_q - 1'b1;

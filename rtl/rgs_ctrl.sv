@@ -10,9 +10,9 @@
 //            unless it is empty or RGS_MAX_PACKETS packets were started: then RB_DONE
 //   RB_TRACE the packet out on the trace port (tmin 0, tmax +Inf, TRACE_* flags of the profile),
 //            its hits back; the first packet's hits are the block's primary hits
-//   RB_SURFACES  the 4 surfaces (`rgs_surface`, which owns the word port meanwhile), their
+//   RB_SURFACES  the 4 surfaces (`rgs_surface`, which owns the line port meanwhile), their
 //            exponents, diffuse sums at the ambient 0.15 (one for unlit), highlights zero
-//   RB_LIGHT per light: its 16 words read, `rgs_light` on the 4 surfaces, `rgs_light_colour`;
+//   RB_LIGHT per light: its 16 words read (4 or 5 lines), `rgs_light` on the 4 surfaces, `rgs_light_colour`;
 //            RB_SHADOW_TRACE with shadows and an active shadow ray: the shadow packet traced
 //            (TRACE_ANY_HIT under PROFILE_ANY_HIT), light reaching the rays without a hit;
 //            `rgs_add_light` adds it to the visible rays
@@ -29,7 +29,7 @@
 // goes out with its trace requests and its pixels (the top routes the hits back by it).
 // Latency: a sequence per block, its phases one after another, the 4 rays streamed through each
 // phase's unit: about 20 + `rgs_surface` (the 4 rays offered as it takes them: its steps per hit,
-// the last frame's 118 overlapped by none) + per light (`rgs_light` 87 + 4, after its 16 words
+// the last frame's 118 overlapped by none) + per light (`rgs_light` 87 + 4, after its 16 words' 4 or 5 lines
 // unless the record held is that light's: one light is read once) + 4 `rgs_add_light` + 4 +
 // `rgs_accum` 67 cycles per packet, plus the trace; the bench measures it (cornell 32x24: 764
 // cycles a block, per state with tb_rgs_ctrl). Throughput: one block per its latency. Resources: `rgs_raygen`,

@@ -34,19 +34,25 @@
 // (d^, n^ and the ray's origin, which the caller keeps). The header's words the C reads as
 // constants (the instance, object, material and texture regions' starts, the texture count) are
 // inputs: the block control loads them once per frame.
-// Reads: valid/ready request of one word address, responses in order (valid, no back pressure: the
-// unit takes one every cycle), as trace_core's word port. The back's requests go first (its
-// surface is the older one), then the front's first stage's, then its second's; a FIFO of
-// SRC_DEPTH x 2 bits notes each request's stage for its response.
+// Reads: a line port (the shading cache's 16-byte lines, LW = 4 words): valid/ready request of the
+// line's first word address, the response is the whole line, in order (valid, no back pressure:
+// the unit takes one every cycle). Each of the three readers (the front's two stages, the back) is
+// a `line_reader`: a burst of n words from word address a takes ceil((a mod LW + n) / LW) line
+// requests, the words it needs taken from each line (a flat hit's instance word, object words 2..7
+// and record about 1 + 2 + 3 lines instead of 1 + 6 + 10 words). tex_bilinear's texel reads are
+// words: its request's line goes out, the word's offset in it waits in the source FIFO beside the
+// stage and picks the word from the response. The back's requests go first (its surface is the
+// older one), then the front's first stage's, then its second's; a FIFO of SRC_DEPTH x (2 + 2)
+// bits notes each request's stage (and a texel's offset) for its response.
 // A surface's words are the C's (op reads), in the C's order but for a geometric normal that the
 // back reads after the material (vertex normals interpolated to zero length); the two stages'
-// reads interleave.
-// Latency: about 20 + the reads up to the record (1 + 6 + record words, each burst waiting for the
-// one before) + `rgs_normal` (87, only with vertex normals; without: the geometric normal's and the
+// reads interleave; a line also brings the words beside the burst's, which are not kept.
+// Latency: about 20 + the reads up to the record (3 bursts of 1, 2 and 1 to 5 lines, each waiting
+// for the one before: its address comes from the words of the one before) + `rgs_normal` (87, only with vertex normals; without: the geometric normal's and the
 // material's reads) + the conversions' tail (about 20 from the back's taking it) + per texture
 // lerp 24 + entry 4 + sample 44) + the frame (118), which the next surfaces' steps overlap.
-// Throughput: a surface per its front's reads (about 45 to 60 cycles for a flat hit with a memory
-// answering in 1 to 4 cycles) while the back's part is shorter (about 10 cycles untextured once
+// Throughput: a surface per its front's reads (3 dependent bursts of lines: about 15 to 25 cycles
+// for a flat hit with a memory answering in 1 to 4 cycles) while the back's part is shorter (about 10 cycles untextured once
 // its normal is there); the second stage holds a hit until the back takes it, the first one
 // until the second is free, so with vertex normals a hit's normal chain overlaps the next hit's
 // reads and the record reads of the one after (whose chain starts as the second stage takes it);
@@ -56,11 +62,13 @@
 // the order the surfaces came in, with their thread id.
 // Resources: one each of `rgs_normal` (its own `rgs_lerp` for the normals), `rgs_lerp` (texture
 // coordinates), `rgs_frame`, `q12_of`, `tex_bilinear`; 3 `q12_mul`; per stage (the front's two
-// and the back) the ray and hit (about 0.4 Kbit) and the record (19 words); the front's second
-// stage and the back a read buffer (16 words: the material's in the back) and the matrix (9 W
-// bits), its first stage a 6-word buffer (the object's words); the output queue (SLOTS x
+// and the back) the ray and hit (about 0.4 Kbit) and the record (19 words: the first stage's in
+// its reader's buffer); the back a 16-word buffer (the material's) and the matrix (9 W bits), the
+// front's second stage the matrix; three `line_reader`s (their buffers: the first stage's 19 words,
+// the object's words and then the record, the second stage's 16, the back's 4: a geometric normal
+// or a texture entry; each buffer word a 4-way multiplexer of the line); the output queue (SLOTS x
 // (TID_BITS + W + 234) bits: the fields of the surfaces in the frame); the request FIFO (SRC_DEPTH
-// x 2 bits); a 608-bit funnel shifter for the record's tail fields.
+// x 4 bits); a 608-bit funnel shifter for the record's tail fields.
 module rgs_surface #(
   parameter int E = 7,
   parameter int M = 16,

@@ -285,6 +285,13 @@ int main(int argc, char **argv)
                 std::printf("MISMATCH rgs_surface cycle %llu: read of the line at %x, which holds no word the C reads for "
                             "the %zu surfaces in flight (transactions up to %zu), or is not a line's start\n",
                             (unsigned long long)g_cycle, a, in_flight.size(), next);
+            if (!wanted && getenv("TB_SURFACE_DEBUG")) { // which words the C reads for the surfaces in flight
+                for (const flight &g : in_flight) {
+                    std::printf("  tx %zu:", g.t);
+                    for (uint32_t w : g.reads) std::printf(" %x", w);
+                    std::printf("\n");
+                }
+            }
             const uint64_t lat = calm ? 1 : 1 + rnd() % 4;
             const uint64_t due = std::max<uint64_t>(g_cycle + lat, rsp.empty() ? 0 : rsp.back().due);
             response r{ due, {} };

@@ -329,41 +329,44 @@ static uint32_t op_latency(const cycle_config *cfg, const unit_op *op)
     return op->hits ? cfg->latency[OP_SURFACE] + (op->hits - 1) * cfg->surface_hit : cfg->surface_miss;
 }
 
-/* The shading words an operation reads (on the RGS's word port in the RTL). */
-static uint64_t shading_words(const unit_op *op)
+/* The shading cache lines an operation's reads take on the RGS's line port in the RTL: a read of
+ * n words from word address a, ceil((a mod L + n) / L) lines of L words (the shading cache's). */
+static uint64_t shading_lines(const cycle_config *cfg, const unit_op *op)
 {
-    uint64_t words = 0;
+    const uint64_t lw = cfg->mem.cache[MEM_SHADING].line_bytes >= 8 ? cfg->mem.cache[MEM_SHADING].line_bytes / 4 : 1;
+    uint64_t lines = 0;
     for (uint32_t r = 0; r < op->n_reads; r++)
-        words += op->read[r].kind == MEM_SHADING ? op->read[r].words : 0u;
-    return words;
+        if (op->read[r].kind == MEM_SHADING && op->read[r].words)
+            lines += (op->read[r].addr % lw + op->read[r].words + lw - 1) / lw;
+    return lines;
 }
 
-/* Takes `words` cycles of the RGS's word port to the shading cache from its first free cycle at
- * or after now, and returns that cycle: the RGS's block controllers share one port, a word a
- * cycle (rtl/dynrtp.sv: mem_port onto the shading cache_read). */
-static uint64_t shade_port_take(pipe_state *p, uint64_t words)
+/* Takes `lines` cycles of the RGS's line port to the shading cache from its first free cycle at
+ * or after now, and returns that cycle: the RGS's block controllers share one port, a line a
+ * cycle (rtl/dynrtp.sv: mem_port onto the shading cache_read, a 16-byte line a response). */
+static uint64_t shade_port_take(pipe_state *p, uint64_t lines)
 {
     const uint64_t start = p->shade_port_free > p->now ? p->shade_port_free : p->now;
-    p->shade_port_free = start + words;
+    p->shade_port_free = start + lines;
     p->st.shade_port_wait += start - p->now;
     return start;
 }
 
-/* The cycle the RGS operation t issues now starts its work. A surface reads all its words
+/* The cycle the RGS operation t issues now starts its work. A surface reads all its lines
  * through the port as its front and back go (its latency counts their bursts), so it starts when
- * the port has taken the words of the operations before it. A light: rgs_ctrl reads the light's
- * record (S_LREC, a word a cycle) before rgs_light starts, unless it holds that light's record
+ * the port has taken the lines of the operations before it. A light: rgs_ctrl reads the light's
+ * record (S_LREC, a line a cycle) before rgs_light starts, unless it holds that light's record
  * from its last light operation (a scene of one light reads it once per controller). Others: now. */
 static uint64_t rgs_start(pipe_state *p, thread *t)
 {
     const unit_op *op = &t->op;
     if (op->kind == OP_SURFACE)
-        return shade_port_take(p, shading_words(op));
+        return shade_port_take(p, shading_lines(p->cfg, op));
     if (op->kind != OP_LIGHT || !op->n_reads || op->read[0].addr == t->light_held)
         return p->now;
     t->light_held = op->read[0].addr;
-    const uint64_t words = shading_words(op);
-    return shade_port_take(p, words) + p->cfg->shade_hit + words - 1;
+    const uint64_t lines = shading_lines(p->cfg, op);
+    return shade_port_take(p, lines) + p->cfg->shade_hit + lines - 1;
 }
 
 /* One cycle: compute (each unit picks its issue from the current state), then commit. */
