@@ -329,9 +329,7 @@ static uint32_t op_latency(const cycle_config *cfg, const unit_op *op)
     return op->hits ? cfg->latency[OP_SURFACE] + (op->hits - 1) * cfg->surface_hit : cfg->surface_miss;
 }
 
-/* The shading cache lines an operation's reads take on the RGS's line port in the RTL: a read of
- * n words from word address a, ceil((a mod L + n) / L) lines of L words (the shading cache's). */
-static uint64_t shading_lines(const cycle_config *cfg, const unit_op *op)
+uint64_t cycle_shading_lines(const cycle_config *cfg, const unit_op *op)
 {
     const uint64_t lw = cfg->mem.cache[MEM_SHADING].line_bytes >= 8 ? cfg->mem.cache[MEM_SHADING].line_bytes / 4 : 1;
     uint64_t lines = 0;
@@ -361,11 +359,11 @@ static uint64_t rgs_start(pipe_state *p, thread *t)
 {
     const unit_op *op = &t->op;
     if (op->kind == OP_SURFACE)
-        return shade_port_take(p, shading_lines(p->cfg, op));
+        return shade_port_take(p, cycle_shading_lines(p->cfg, op));
     if (op->kind != OP_LIGHT || !op->n_reads || op->read[0].addr == t->light_held)
         return p->now;
     t->light_held = op->read[0].addr;
-    const uint64_t lines = shading_lines(p->cfg, op);
+    const uint64_t lines = cycle_shading_lines(p->cfg, op);
     return shade_port_take(p, lines) + p->cfg->shade_hit + lines - 1;
 }
 
