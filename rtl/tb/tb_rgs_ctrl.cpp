@@ -122,6 +122,11 @@ int main(int argc, char **argv)
     bool in_block = false, hits_pending = false;
     uint64_t state_cycles[32] = {};  // a block's cycles by rgs_ctrl state (its state_t order)
     uint64_t surf_cycles[32] = {};   // SURF's cycles by rgs_surface state
+    // SURF's cycles per packet by its hits (0..4): the cycle model's surface, surface_hit and
+    // surface_miss are fitted on these (docs/cycle-model.md)
+    uint64_t surf_by_hits[5] = {}, surf_packets[5] = {}, surf_now = 0;
+    int last_hits = 0;
+    bool in_surf = false;
     block_ref want;
     trace_state ts;
     hit_record hits[4];
@@ -210,8 +215,9 @@ int main(int argc, char **argv)
             trace_counters c{};
             for (uint32_t n = 0; n < (1u << 30) && trace_step(mem.data(), &ts, &op, &c); n++)
                 ;
+            last_hits = 0;
             for (int i = 0; i < 4; i++)
-                hits[i] = ts.hits[i];
+                hits[i] = ts.hits[i], last_hits += ts.hits[i].instance != TRACE_NO_HIT;
             hits_pending = true;
             hits_due = g_cycle + 1 + (calm ? 0 : rnd() % 40);
             packet++;
@@ -262,7 +268,10 @@ int main(int argc, char **argv)
         if (in_block)
             state_cycles[top.st_o & 31u]++;
         if (in_block && top.st_o == 11u)
-            surf_cycles[top.sst_o & 31u]++;
+            surf_cycles[top.sst_o & 31u]++, surf_now++;
+        if (in_surf && top.st_o != 11u)  // a packet's surfaces are done
+            surf_by_hits[last_hits] += surf_now, surf_packets[last_hits]++, surf_now = 0;
+        in_surf = in_block && top.st_o == 11u;
         idle = fired ? 0 : idle + 1;
         top.clk_i = 1;
         top.eval();
@@ -285,6 +294,12 @@ int main(int argc, char **argv)
     for (int s = 0; s < 16; s++)
         if (surf_cycles[s] && done)
             std::printf(" %s %.1f", SSTATE[s], (double)surf_cycles[s] / (double)done);
+    std::printf("\n");
+    std::printf("rgs_ctrl SURF cycles per packet by its hits:");
+    for (int h = 0; h < 5; h++)
+        if (surf_packets[h])
+            std::printf(" %d: %.1f (%llu)", h, (double)surf_by_hits[h] / (double)surf_packets[h],
+                        (unsigned long long)surf_packets[h]);
     std::printf("\n");
     return mismatches ? 1 : 0;
 }

@@ -42,9 +42,10 @@ void cycle_config_default(cycle_config *c)
     c->latency[OP_LEAF] = 46;     /* the list entry's 18, then rebase_unit 25 (a batch) and its states */
     c->latency[OP_ISECT] = 35;    /* isect_rebased's second half: isect_unit 29 (div 11 + mul 4 + 2 add + cmp 2) +
                                    * best_t = t0 + t (add 6) */
-    c->latency[OP_SURFACE] = 223; /* rgs_surface: the first hit's front reads (instance word, object, record: about 18
-                                   * through the shading cache), rgs_normal 87, rgs_frame 118 */
-    c->surface_hit = 48;          /* each further hit: the front's reads of it, one burst after another */
+    c->latency[OP_SURFACE] = 213; /* rgs_surface: the first hit's front reads (instance word, object, record: 3
+                                   * bursts of 1, 2 and 1 to 5 lines through the shading cache, about 8), rgs_normal
+                                   * 87, rgs_frame 118 */
+    c->surface_hit = 39;          /* each further hit: the front's reads of it, one burst of lines after another */
     c->surface_miss = 12;         /* a packet without hits: rgs_surface's stages and queue, nothing read */
     c->shade_hit = 3;             /* the shading cache_read's hit */
     c->latency[OP_LIGHT] = 92;    /* rgs_light 87 (rgs_light_colour's 27 beside it) + rgs_ctrl's state (LCALC 92) */
