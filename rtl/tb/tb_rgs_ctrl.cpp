@@ -4,12 +4,15 @@
 // (active bits, o, d, tmin, tmax of the 4 rays, the TRACE_* flags) against the packets the C's
 // rgs_step begins for the block (the primary and secondary packets as next_packet takes them, the
 // shadow packets of op_shadow_gen), in order. The bench is the memory (the image of a capture,
-// DIR/image_0.bin of saarcor render --capture-unit-io DIR; requests with random gaps in every
-// other epoch of 1024 cycles, answers in order after 1 to 4 cycles) and the ray tracing core: each
+// DIR/image_0.bin of saarcor render --capture-unit-io DIR; requests of a 4-word line's first
+// word address with random gaps in every other epoch of 1024 cycles, the line answered in order
+// after 1 to 4 cycles) and the ray tracing core: each
 // packet is traced by the C (trace_begin, trace_step to the end on the image) and its hits come
 // back after 1 to 40 cycles, so the RGS is checked alone. The pixel output gets random back
 // pressure. A mismatch prints the block, the packet, the field and both values; exit code 1 on any
-// mismatch, a packet too many or too few, or a block that does not finish.
+// mismatch, a packet too many or too few, or a block that does not finish. It prints the cycles a
+// block spends in each rgs_ctrl state, rgs_surface's states in SURF, and SURF's cycles per packet
+// by its hits (what the cycle model's surface, surface_hit and surface_miss are fitted on).
 // usage: tb_rgs_ctrl --capture DIR [--max-depth D] [--no-shadows] [--blocks N] [--seed S]
 #include <algorithm>
 #include <cstdio>
