@@ -7,15 +7,15 @@
 // direct-mapped caches (cache_read around cache_dm, the cycle model's default configuration
 // tb/cycle/cycle_sim.c cycle_config_default: kd nodes NODE_KB KB in lines of one node (8 bytes),
 // lists LIST_KB KB in lines of one entry (4 bytes), matrices MAT_KB KB in lines of one packed
-// triangle record) and the RGS's word reads (header, camera, instances, shading records,
+// triangle record) and the RGS's reads (header, camera, instances, shading records,
 // materials, lights, texels) through the shading cache (SHADE_KB KB in lines of 16 bytes, the
-// cycle model's MEM_SHADING cache), all four on one memory port (mem_port) to an external memory
+// cycle model's MEM_SHADING cache; a request names a line, its answer is the line's 4 words), all four on one memory port (mem_port) to an external memory
 // with valid/ready and in-order answers.
 // The RGS: one rgs_ctrl holds one block (its ray-tree stack in registers), so RGS_BLOCKS of them
 // give RGS_BLOCKS blocks in flight, each with at most one packet in the core: rgs_ctrl k traces on
 // the core's thread k (its tag), so the core's hits go back to the controller of thread_o. A block
 // goes to the lowest idle controller below blocks_i (--threads-per-pipe: the blocks the harness
-// lets run); the controllers' packets enter the core round robin (rr_pick), their word reads are
+// lets run); the controllers' packets enter the core round robin (rr_pick), their line reads are
 // merged round robin by a second mem_port (N = RGS_BLOCKS, the answers routed back in order) onto
 // the shading cache, their pixels leave round robin on the px_* port with the block's corner.
 // Every controller reads the frame's header and camera once after reset, before it takes a block.
@@ -27,12 +27,13 @@
 // read across two lines takes two lookups; the cycle model looks the lines up at once); list_unit's entry waits in its pipeline for the list word (the cycle model parks the
 // thread before the unit); every cache has OUTSTANDING reads in flight (the cycle model: no
 // limit); the caches answer a hit after 2 cycles (3 with the matrix cache's index stage, the
-// cycle model: at once); the RGS's reads are word by word (the cycle model: by records).
+// cycle model: at once); the RGS's reads are line by line, a burst's lines one a cycle on the
+// controllers' one port (the cycle model: the same lines on its shading port).
 // Counters (the usage counted inside the RTL): cycles_o counts the cycles from the frame taken at
 // frame_valid_i until frame_done_o (the last block's pixels taken); issues_o per unit of
 // trace_core the operations issued in that time (thread_sched: trav, list, rebase, wide, isect
 // (isect_rebased: a triangle's transformation and test), add, 64 bits each); packets_o the packets traced; reads_o per cache the reads it
-// took (kd nodes, list entries, descriptor responses of RW words, shading words).
+// took (kd nodes, list entries, descriptor responses of RW words, shading lines).
 // Latency and throughput: tile_ctrl 1 block per cycle; rgs_ctrl a block per its sequence
 // (rtl/README.md), RGS_BLOCKS at once; the core's; the memory port 1 transfer per cycle.
 // Resources: trace_core's, RGS_BLOCKS x rgs_ctrl (each with its own shading units and a stack of
@@ -154,7 +155,7 @@ module dynrtp #(
   logic [B*32-1:0] rd_addr;  // the read ports' mem_port takes the B addresses side by side
   logic [4*24-1:0] px_rgb [B];
   logic [4*32-1:0] px_inst [B], px_tri [B];
-  logic [31:0] rd_word;
+  logic [127:0] rd_line;  // the shading cache's line (4 words) to every controller
   logic [31:0] bx_q [THREADS], by_q [THREADS];  // the corner of thread k's block
   logic core_ready;
   for (genvar k = 0; k < B; k++) begin : g_rgs
@@ -166,7 +167,7 @@ module dynrtp #(
       .tr_tmin_o(tr_tmin[k]), .tr_tmax_o(tr_tmax[k]), .hit_valid_i(valid_o && thread_o == TW'(k)),
       .hit_ready_o(hit_ready[k]), .hit_inst_i(inst_o), .hit_tri_i(tri_o), .hit_t_i(t_o), .hit_u_i(u_o),
       .hit_v_i(v_o), .hit_cos_i(cos_o), .mem_req_valid_o(rd_valid[k]), .mem_req_ready_i(rd_ready[k]),
-      .mem_addr_o(rd_addr[k*32 +: 32]), .mem_rsp_valid_i(rd_rsp[k]), .mem_rdata_i(rd_word), .px_valid_o(px_valid[k]),
+      .mem_addr_o(rd_addr[k*32 +: 32]), .mem_rsp_valid_i(rd_rsp[k]), .mem_rdata_i(rd_line), .px_valid_o(px_valid[k]),
       .px_ready_i(px_ready[k]), .px_tag_o(px_tag[k]), .px_rgb_o(px_rgb[k]), .px_inst_o(px_inst[k]),
       .px_tri_o(px_tri[k]), .px_t_o(px_t[k]), .px_u_o(px_u[k]), .px_v_o(px_v[k]), .px_cos_o(px_cos[k]));
   end
@@ -286,21 +287,23 @@ module dynrtp #(
     .mem_req_ready_i(mreq_ready[2]), .mem_req_addr_o(mreq_addr[64 +: 32]), .mem_rsp_valid_i(mrsp_valid[2]),
     .mem_rsp_data_i(mrsp_data));
 
-  // the RGS's word reads: the controllers' ports merged round robin, answers routed back in order,
-  // through the shading cache
+  // the RGS's line reads: the controllers' ports merged round robin, answers routed back in order,
+  // through the shading cache, a whole 16-byte line a request (the controllers ask for lines by
+  // their first word's address and take the words they need)
   logic sh_req /*verilator public_flat_rd*/, sh_ready /*verilator public_flat_rd*/, sh_rsp;
-  logic [31:0] sh_addr, sh_word;
+  logic [31:0] sh_addr;
+  logic [127:0] sh_line;
   /* verilator lint_off PINCONNECTEMPTY */
-  mem_port #(.N(B), .DW(32), .DEPTH(OUTSTANDING)) u_rgs_reads (
+  mem_port #(.N(B), .DW(128), .DEPTH(OUTSTANDING)) u_rgs_reads (
     .clk_i(clk_i), .rst_ni(rst_ni), .req_valid_i(rd_valid), .req_ready_o(rd_ready), .req_addr_i(rd_addr),
-    .req_bytes_i({B{8'd4}}), .rsp_valid_o(rd_rsp), .rsp_data_o(rd_word), .mem_req_valid_o(sh_req),
+    .req_bytes_i({B{8'd16}}), .rsp_valid_o(rd_rsp), .rsp_data_o(rd_line), .mem_req_valid_o(sh_req),
     .mem_req_ready_i(sh_ready), .mem_req_addr_o(sh_addr), .mem_req_bytes_o(), .mem_req_src_o(),
-    .mem_rsp_valid_i(sh_rsp), .mem_rsp_data_i(sh_word));
+    .mem_rsp_valid_i(sh_rsp), .mem_rsp_data_i(sh_line));
   /* verilator lint_on PINCONNECTEMPTY */
   
-  cache_read #(.LINE_BYTES(16), .SIZE_BYTES(1024 * SHADE_KB), .WORDS(1), .OUTSTANDING(OUTSTANDING)) u_shading (
+  cache_read #(.LINE_BYTES(16), .SIZE_BYTES(1024 * SHADE_KB), .WORDS(4), .OUTSTANDING(OUTSTANDING)) u_shading (
     .clk_i(clk_i), .rst_ni(rst_ni), .flush_i(flush_i), .req_valid_i(sh_req), .req_ready_o(sh_ready),
-    .req_addr_i(sh_addr), .rsp_valid_o(sh_rsp), .rsp_data_o(sh_word), .mem_req_valid_o(mreq_valid[3]),
+    .req_addr_i(sh_addr), .rsp_valid_o(sh_rsp), .rsp_data_o(sh_line), .mem_req_valid_o(mreq_valid[3]),
     .mem_req_ready_i(mreq_ready[3]), .mem_req_addr_o(mreq_addr[96 +: 32]), .mem_rsp_valid_i(mrsp_valid[3]),
     .mem_rsp_data_i(mrsp_data[0 +: 128]));
 

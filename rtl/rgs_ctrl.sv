@@ -10,9 +10,9 @@
 //            unless it is empty or RGS_MAX_PACKETS packets were started: then RB_DONE
 //   RB_TRACE the packet out on the trace port (tmin 0, tmax +Inf, TRACE_* flags of the profile),
 //            its hits back; the first packet's hits are the block's primary hits
-//   RB_SURFACES  the 4 surfaces (`rgs_surface`, which owns the word port meanwhile), their
+//   RB_SURFACES  the 4 surfaces (`rgs_surface`, which owns the line port meanwhile), their
 //            exponents, diffuse sums at the ambient 0.15 (one for unlit), highlights zero
-//   RB_LIGHT per light: its 16 words read, `rgs_light` on the 4 surfaces, `rgs_light_colour`;
+//   RB_LIGHT per light: its 16 words read (4 or 5 lines), `rgs_light` on the 4 surfaces, `rgs_light_colour`;
 //            RB_SHADOW_TRACE with shadows and an active shadow ray: the shadow packet traced
 //            (TRACE_ANY_HIT under PROFILE_ANY_HIT), light reaching the rays without a hit;
 //            `rgs_add_light` adds it to the visible rays
@@ -29,7 +29,7 @@
 // goes out with its trace requests and its pixels (the top routes the hits back by it).
 // Latency: a sequence per block, its phases one after another, the 4 rays streamed through each
 // phase's unit: about 20 + `rgs_surface` (the 4 rays offered as it takes them: its steps per hit,
-// the last frame's 118 overlapped by none) + per light (`rgs_light` 87 + 4, after its 16 words
+// the last frame's 118 overlapped by none) + per light (`rgs_light` 87 + 4, after its 16 words' 4 or 5 lines
 // unless the record held is that light's: one light is read once) + 4 `rgs_add_light` + 4 +
 // `rgs_accum` 67 cycles per packet, plus the trace; the bench measures it (cornell 32x24: 764
 // cycles a block, per state with tb_rgs_ctrl). Throughput: one block per its latency. Resources: `rgs_raygen`,
@@ -48,7 +48,8 @@ module rgs_ctrl #(
   parameter int DIV_STAGES = 11,
   parameter int CMP_STAGES = 2,
   parameter int TOI_STAGES = 2,
-  parameter int MOD_STAGES = 16
+  parameter int MOD_STAGES = 16,
+  parameter int LW = 4            // words per line of the read port (the shading cache's 16 bytes)
 ) (
   input  logic                     clk_i,
   input  logic                     rst_ni,
@@ -78,12 +79,12 @@ module rgs_ctrl #(
   input  logic [4*(E+M+1)-1:0]     hit_u_i,
   input  logic [4*(E+M+1)-1:0]     hit_v_i,
   input  logic [4*(E+M+1)-1:0]     hit_cos_i,
-  // word read port
+  // line read port: a request names a line by its first word's address, the response is its LW words
   output logic                     mem_req_valid_o,
   input  logic                     mem_req_ready_i,
   output logic [31:0]              mem_addr_o,
   input  logic                     mem_rsp_valid_i,
-  input  logic [31:0]              mem_rdata_i,
+  input  logic [32*LW-1:0]         mem_rdata_i,
   // the block's pixels and primary hits
   output logic                     px_valid_o,
   input  logic                     px_ready_i,
@@ -115,16 +116,31 @@ module rgs_ctrl #(
   } state_t;
   state_t st;
 
-  // ---- reads of the control: bursts of n words into buf_q ----
-  logic [31:0] rd_addr_q, buf_q [SETUP_WORDS];
-  logic [5:0] rd_left_q, rsp_left_q, rsp_idx_q;
-  logic burst_done, sf_port;
-  assign burst_done = rsp_left_q == 6'd0;
+  // ---- reads of the control: bursts of n words into buf_q (line_reader), the port rgs_surface's
+  // in S_SURF ----
+  logic [31:0] buf_q [SETUP_WORDS], rd_at, rd_addr;
+  logic [32*SETUP_WORDS-1:0] rd_words;
+  logic burst_done, sf_port, rd_start, rd_req;
+  logic [4:0] cam_q;  // the camera word into rgs_raygen next
   logic sf_req_valid;
   logic [31:0] sf_req_addr;
   assign sf_port = st == S_SURF;
-  assign mem_req_valid_o = sf_port ? sf_req_valid : rd_left_q != 6'd0;
-  assign mem_addr_o = sf_port ? sf_req_addr : rd_addr_q;
+  assign mem_req_valid_o = sf_port ? sf_req_valid : rd_req;
+  assign mem_addr_o = sf_port ? sf_req_addr : rd_addr;
+  // a burst starts in the cycle its address is known: the header's words 9..34 after reset, then the
+  // camera block (its address among them), a light's record
+  logic light_read;
+  assign light_read = st == S_LIGHT && light_q < n_lights_q && !(lrec_ok_q && lrec_at_q == light_q);
+  assign rd_start = st == S_RESET || (st == S_SETUP && burst_done) || light_read;
+  assign rd_at = st == S_RESET ? 32'(SETUP_AT) : st == S_SETUP ? buf_q[18 + 2 * 6 - SETUP_AT]
+                                                                : light_base_q + 32'd16 * light_q;
+  line_reader #(.MAXW(SETUP_WORDS), .LW(LW)) u_rd (
+    .clk_i, .rst_ni, .start_i(rd_start), .addr_i(rd_at), .n_i(st == S_RESET ? 5'(SETUP_WORDS) : 5'd16),
+    .req_valid_o(rd_req), .req_ready_i(!sf_port && mem_req_ready_i), .req_addr_o(rd_addr),
+    .rsp_valid_i(!sf_port && mem_rsp_valid_i), .rsp_line_i(mem_rdata_i), .done_o(burst_done), .words_o(rd_words));
+  for (genvar k = 0; k < SETUP_WORDS; k++) begin : g_buf
+    assign buf_q[k] = rd_words[32*k +: 32];
+  end
 
   // ---- the frame's constants ----
   logic [31:0] n_tex_q, n_lights_q, inst_base_q, obj_base_q, mat_base_q, tex_base_q, light_base_q;
@@ -176,10 +192,10 @@ module rgs_ctrl #(
   logic cam_valid, rg_blk_ready, rg_valid;
   logic [3:0] rg_active;
   logic [4*V-1:0] rg_o, rg_d;
-  assign cam_valid = st == S_CAMERA && mem_rsp_valid_i;
+  assign cam_valid = st == S_CAMERA && burst_done && cam_q < 5'd16;  // from the burst's words, one a cycle
   rgs_raygen #(.E(E), .M(M), .ADD_STAGES(ADD_STAGES), .MUL_STAGES(MUL_STAGES), .CVT_STAGES(CVT_STAGES)) u_gen (
-    .clk_i(clk_i), .rst_ni(rst_ni), .cam_valid_i(cam_valid), .cam_ready_o(), .cam_idx_i(rsp_idx_q[3:0]),
-    .cam_word_i(mem_rdata_i), .blk_valid_i(st == S_IDLE && blk_valid_i), .blk_ready_o(rg_blk_ready),
+    .clk_i(clk_i), .rst_ni(rst_ni), .cam_valid_i(cam_valid), .cam_ready_o(), .cam_idx_i(cam_q[3:0]),
+    .cam_word_i(buf_q[cam_q]), .blk_valid_i(st == S_IDLE && blk_valid_i), .blk_ready_o(rg_blk_ready),
     .blk_x_i(blk_x_i), .blk_y_i(blk_y_i), .pkt_valid_o(rg_valid), .pkt_ready_i(st == S_GEN),
     .pkt_active_o(rg_active), .pkt_o_o(rg_o), .pkt_d_o(rg_d), .pkt_tmin_o(), .pkt_tmax_o());
 
@@ -308,26 +324,10 @@ module rgs_ctrl #(
     if (!rst_ni) begin
       st <= S_RESET;
       lrec_ok_q <= 1'b0;
-      rd_left_q <= '0;
-      rsp_left_q <= '0;
     end else begin
-      if (!sf_port && rd_left_q != 6'd0 && mem_req_ready_i) begin
-        rd_addr_q <= rd_addr_q + 32'd1;
-        rd_left_q <= rd_left_q - 6'd1;
-      end
-      if (!sf_port && mem_rsp_valid_i && rsp_left_q != 6'd0) begin
-        buf_q[rsp_idx_q[4:0]] <= mem_rdata_i;
-        rsp_idx_q <= rsp_idx_q + 6'd1;
-        rsp_left_q <= rsp_left_q - 6'd1;
-      end
+      if (cam_valid) cam_q <= cam_q + 5'd1;
       unique case (st)
-        S_RESET: begin
-          rd_addr_q <= 32'(SETUP_AT);
-          rd_left_q <= 6'(SETUP_WORDS);
-          rsp_left_q <= 6'(SETUP_WORDS);
-          rsp_idx_q <= '0;
-          st <= S_SETUP;
-        end
+        S_RESET: st <= S_SETUP;  // the header's words (rd_start)
         S_SETUP:  // words 9..34: buf_q[w - 9]
           if (burst_done) begin
             n_tex_q <= buf_q[0];
@@ -337,15 +337,12 @@ module rgs_ctrl #(
             obj_base_q <= buf_q[18 + 2 * 5 - SETUP_AT];
             light_base_q <= buf_q[18 + 2 * 7 - SETUP_AT];
             inst_base_q <= buf_q[18 + 2 * 8 - SETUP_AT];
-            rd_addr_q <= buf_q[18 + 2 * 6 - SETUP_AT];
-            rd_left_q <= 6'd16;
-            rsp_left_q <= 6'd16;
-            rsp_idx_q <= '0;
+            cam_q <= '0;  // the camera's words (rd_start)
             for (int k = 0; k < 6; k++) bnd_q[k] <= buf_q[12 + k - SETUP_AT][W-1:0];
             st <= S_CAMERA;
           end
-        S_CAMERA:  // into rgs_raygen as the words arrive; the profile is word 3
-          if (burst_done) begin
+        S_CAMERA:  // into rgs_raygen once read; the profile is word 3
+          if (burst_done && cam_q == 5'd16) begin
             profile_q <= buf_q[3][4:0];
             in_q <= '0;
             out_q <= '0;
@@ -487,13 +484,7 @@ module rgs_ctrl #(
             out_q <= '0;
             colour_done_q <= 1'b0;
             st <= S_LCALC;
-          end else begin
-            rd_addr_q <= light_base_q + 32'd16 * light_q;
-            rd_left_q <= 6'd16;
-            rsp_left_q <= 6'd16;
-            rsp_idx_q <= '0;
-            st <= S_LREC;
-          end
+          end else st <= S_LREC;  // its record (light_read)
         S_LREC:
           if (burst_done) begin
             for (int k = 0; k < 13; k++) lrec_q[k] <= buf_q[k];

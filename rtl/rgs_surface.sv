@@ -34,19 +34,25 @@
 // (d^, n^ and the ray's origin, which the caller keeps). The header's words the C reads as
 // constants (the instance, object, material and texture regions' starts, the texture count) are
 // inputs: the block control loads them once per frame.
-// Reads: valid/ready request of one word address, responses in order (valid, no back pressure: the
-// unit takes one every cycle), as trace_core's word port. The back's requests go first (its
-// surface is the older one), then the front's first stage's, then its second's; a FIFO of
-// SRC_DEPTH x 2 bits notes each request's stage for its response.
+// Reads: a line port (the shading cache's 16-byte lines, LW = 4 words): valid/ready request of the
+// line's first word address, the response is the whole line, in order (valid, no back pressure:
+// the unit takes one every cycle). Each of the three readers (the front's two stages, the back) is
+// a `line_reader`: a burst of n words from word address a takes ceil((a mod LW + n) / LW) line
+// requests, the words it needs taken from each line (a flat hit's instance word, object words 2..7
+// and record about 1 + 2 + 3 lines instead of 1 + 6 + 10 words). tex_bilinear's texel reads are
+// words: its request's line goes out, the word's offset in it waits in the source FIFO beside the
+// stage and picks the word from the response. The back's requests go first (its surface is the
+// older one), then the front's first stage's, then its second's; a FIFO of SRC_DEPTH x (2 + 2)
+// bits notes each request's stage (and a texel's offset) for its response.
 // A surface's words are the C's (op reads), in the C's order but for a geometric normal that the
 // back reads after the material (vertex normals interpolated to zero length); the two stages'
-// reads interleave.
-// Latency: about 20 + the reads up to the record (1 + 6 + record words, each burst waiting for the
-// one before) + `rgs_normal` (88, only with vertex normals; without: the geometric normal's and the
+// reads interleave; a line also brings the words beside the burst's, which are not kept.
+// Latency: about 20 + the reads up to the record (3 bursts of 1, 2 and 1 to 5 lines, each waiting
+// for the one before: its address comes from the words of the one before) + `rgs_normal` (88, only with vertex normals; without: the geometric normal's and the
 // material's reads) + the conversions' tail (about 20 from the back's taking it) + per texture
 // lerp 24 + entry 4 + sample 44) + the frame (118), which the next surfaces' steps overlap.
-// Throughput: a surface per its front's reads (about 45 to 60 cycles for a flat hit with a memory
-// answering in 1 to 4 cycles) while the back's part is shorter (about 10 cycles untextured once
+// Throughput: a surface per its front's reads (3 dependent bursts of lines: about 15 to 25 cycles
+// for a flat hit with a memory answering in 1 to 4 cycles) while the back's part is shorter (about 10 cycles untextured once
 // its normal is there); the second stage holds a hit until the back takes it, the first one
 // until the second is free, so with vertex normals a hit's normal chain overlaps the next hit's
 // reads and the record reads of the one after (whose chain starts as the second stage takes it);
@@ -56,11 +62,13 @@
 // the order the surfaces came in, with their thread id.
 // Resources: one each of `rgs_normal` (its own `rgs_lerp` for the normals), `rgs_lerp` (texture
 // coordinates), `rgs_frame`, `q12_of`, `tex_bilinear`; 3 `q12_mul`; per stage (the front's two
-// and the back) the ray and hit (about 0.4 Kbit) and the record (19 words); the front's second
-// stage and the back a read buffer (16 words: the material's in the back) and the matrix (9 W
-// bits), its first stage a 6-word buffer (the object's words); the output queue (SLOTS x
+// and the back) the ray and hit (about 0.4 Kbit) and the record (19 words: the first stage's in
+// its reader's buffer); the back a 16-word buffer (the material's) and the matrix (9 W bits), the
+// front's second stage the matrix; three `line_reader`s (their buffers: the first stage's 19 words,
+// the object's words and then the record, the second stage's 16, the back's 4: a geometric normal
+// or a texture entry; each buffer word a 4-way multiplexer of the line); the output queue (SLOTS x
 // (TID_BITS + W + 234) bits: the fields of the surfaces in the frame); the request FIFO (SRC_DEPTH
-// x 2 bits); a 608-bit funnel shifter for the record's tail fields.
+// x 4 bits); a 608-bit funnel shifter for the record's tail fields.
 module rgs_surface #(
   parameter int E = 7,
   parameter int M = 16,
@@ -74,7 +82,8 @@ module rgs_surface #(
   parameter int TOI_STAGES = 2,
   parameter int MOD_STAGES = 16,
   parameter int SLOTS = 4,        // surfaces between the frame's issue and the output (a power of 2)
-  parameter int SRC_DEPTH = 32    // reads under way (a power of 2; more wait)
+  parameter int SRC_DEPTH = 32,   // reads under way (a power of 2; more wait)
+  parameter int LW = 4            // words per line of the read port (the shading cache's 16 bytes)
 ) (
   input  logic                 clk_i,
   input  logic                 rst_ni,
@@ -97,12 +106,12 @@ module rgs_surface #(
   input  logic [E+M:0]         u_i,
   input  logic [E+M:0]         v_i,
   input  logic [E+M:0]         cos_n_i,
-  // word read port
+  // line read port: a request names a line by its first word's address, the response is its LW words
   output logic                 mem_req_valid_o,
   input  logic                 mem_req_ready_i,
   output logic [31:0]          mem_addr_o,
   input  logic                 mem_rsp_valid_i,
-  input  logic [31:0]          mem_rdata_i,
+  input  logic [32*LW-1:0]     mem_rdata_i,
   // the surface (hls/units/rgs.h `surface`, and the material's fields the accumulation needs)
   output logic                 valid_o,
   input  logic                 ready_i,
@@ -165,10 +174,10 @@ module rgs_surface #(
   logic [V-1:0] f_o, f_d;
   logic [31:0] f_tri, f_tri_base, f_flags, f_inst_addr;
   logic [W-1:0] f_t, f_u, f_v, f_cos;
-  logic [31:0] f_rd_addr, f_buf [6], f_rec [REC_MAX];
-  logic [4:0] f_rd_left, f_rsp_left, f_rsp_idx;
-  logic f_done, f_take;
-  assign f_done = f_rsp_left == 5'd0;
+  // the first stage's reads: one buffer for the instance word, the object's 6 words and the record
+  logic [31:0] f_buf [REC_MAX], f_rd_at;
+  logic [4:0] f_rd_n;
+  logic f_start, f_done, f_take;
   // the front's second stage (h_): a hit whose record is read (its normal's chain started) reads
   // its matrix, geometric normal and material while the first stage (f_) reads the next hit's
   // instance, object and record, so the next chains start without waiting for these reads
@@ -178,18 +187,18 @@ module rgs_surface #(
   logic [31:0] h_tri, h_tri_base, h_flags, h_mat_addr;
   logic [W-1:0] h_t, h_u, h_v, h_cos;
   logic [V*3-1:0] h_w2o;
-  logic [31:0] h_rd_addr, h_buf [BUF], h_rec [REC_MAX];
-  logic [4:0] h_rd_left, h_rsp_left, h_rsp_idx;
-  logic h_done;
-  assign h_done = h_rsp_left == 5'd0;
+  logic [31:0] h_buf [BUF], h_rec [REC_MAX], h_rd_at;
+  logic [4:0] h_rd_n;
+  logic h_start, h_done;
   // the first stage's hit (with its record, its normal's chain starting) or miss moves on
   assign h_load = h_st == H_EMPTY && (f_st == F_MISS || f_st == F_REC && f_done && (!f_flags[0] || nrm_ready));
 
   // ---- the back's reads (a zero interpolated normal's geometric normal, a texture's entry) ----
-  logic [31:0] rd_addr_q, buf_q [BUF], rec_q [REC_MAX];
-  logic [4:0] rd_left_q, rsp_left_q, rsp_idx_q;
-  logic burst_done, tex_port;
-  assign burst_done = rsp_left_q == 5'd0;
+  localparam int BBUF = GN_SPAN > 4 ? GN_SPAN : 4;  // the back's bursts: a normal or a texture entry
+  localparam int BNW = $clog2(BBUF + 1);
+  logic [31:0] buf_q [BUF], rec_q [REC_MAX], b_buf [BBUF], b_rd_at;
+  logic [BNW-1:0] b_rd_n;
+  logic b_start, burst_done, tex_port;
   logic tex_req_valid;
   /* verilator lint_off UNUSEDSIGNAL */
   logic tex_rsp_ready;  // always set: the sample's result is taken at once, so the texels are too
@@ -197,26 +206,57 @@ module rgs_surface #(
   logic [31:0] tex_req_addr;
   assign tex_port = st == S_TSAMPLE;
 
-  // ---- the word port, shared: the back's requests first (its surface is the older one); the
-  // responses come in request order, so a FIFO of each request's side (1: the back) routes them ----
-  logic b_req, f_req, h_req, src_room, rsp_b, rsp_f, rsp_h, port_go;
+  // ---- the line port, shared: the back's requests first (its surface is the older one); the
+  // responses come in request order, so a FIFO of each request's side (2: the back) routes them,
+  // with a texel read's word in its line (tex_bilinear reads words) ----
+  localparam int OW = LW > 1 ? $clog2(LW) : 1;
+  logic b_req, f_req, h_req, src_room, rsp_b, rsp_f, rsp_h, port_go, b_rd_req;
+  logic [31:0] b_rd_addr, f_rd_addr, h_rd_addr, tex_word;
   logic [1:0] src_head;  // 2: the back, 1: the front's first stage, 0: its second
-  assign b_req = tex_port ? tex_req_valid : rd_left_q != 5'd0;
-  assign f_req = f_rd_left != 5'd0;
-  assign h_req = h_rd_left != 5'd0;
+  logic [OW-1:0] tex_off, tex_off_head;
+  assign b_req = tex_port ? tex_req_valid : b_rd_req;
   assign mem_req_valid_o = (b_req || f_req || h_req) && src_room;
-  assign mem_addr_o = b_req ? (tex_port ? tex_req_addr : rd_addr_q) : f_req ? f_rd_addr : h_rd_addr;
+  assign mem_addr_o = b_req ? (tex_port ? tex_req_addr & ~32'(LW - 1) : b_rd_addr) : f_req ? f_rd_addr : h_rd_addr;
   assign port_go = src_room && mem_req_ready_i;  // a request offered now is taken
+  assign tex_off = OW'(tex_req_addr & 32'(LW - 1));
   /* verilator lint_off PINCONNECTEMPTY */
-  sync_fifo #(.W(2), .DEPTH(SRC_DEPTH)) u_src (
+  sync_fifo #(.W(2 + OW), .DEPTH(SRC_DEPTH)) u_src (
     .clk_i, .rst_ni, .valid_i(mem_req_valid_o && mem_req_ready_i), .ready_o(src_room),
-    .data_i(b_req ? 2'd2 : f_req ? 2'd1 : 2'd0),
-    .valid_o(), .ready_i(mem_rsp_valid_i), .data_o(src_head)
+    .data_i({tex_off, b_req ? 2'd2 : f_req ? 2'd1 : 2'd0}),
+    .valid_o(), .ready_i(mem_rsp_valid_i), .data_o({tex_off_head, src_head})
   );
   /* verilator lint_on PINCONNECTEMPTY */
   assign rsp_b = mem_rsp_valid_i && src_head == 2'd2;
   assign rsp_f = mem_rsp_valid_i && src_head == 2'd1;
   assign rsp_h = mem_rsp_valid_i && src_head == 2'd0;
+  assign tex_word = mem_rdata_i[32*tex_off_head +: 32];
+
+  // the three burst readers: the back's (not while the texture sample owns the port), the front's
+  // first stage's, its second's, in that priority on the port
+  logic [32*BBUF-1:0] b_words;
+  logic [32*REC_MAX-1:0] f_words;
+  logic [32*BUF-1:0] h_words;
+  line_reader #(.MAXW(BBUF), .LW(LW)) u_b_rd (
+    .clk_i, .rst_ni, .start_i(b_start), .addr_i(b_rd_at), .n_i(b_rd_n), .req_valid_o(b_rd_req),
+    .req_ready_i(!tex_port && port_go), .req_addr_o(b_rd_addr), .rsp_valid_i(!tex_port && rsp_b), .rsp_line_i(mem_rdata_i),
+    .done_o(burst_done), .words_o(b_words));
+  line_reader #(.MAXW(REC_MAX), .LW(LW)) u_f_rd (
+    .clk_i, .rst_ni, .start_i(f_start), .addr_i(f_rd_at), .n_i(f_rd_n), .req_valid_o(f_req),
+    .req_ready_i(!b_req && port_go), .req_addr_o(f_rd_addr), .rsp_valid_i(rsp_f), .rsp_line_i(mem_rdata_i),
+    .done_o(f_done), .words_o(f_words));
+  line_reader #(.MAXW(BUF), .LW(LW)) u_h_rd (
+    .clk_i, .rst_ni, .start_i(h_start), .addr_i(h_rd_at), .n_i(h_rd_n), .req_valid_o(h_req),
+    .req_ready_i(!b_req && !f_req && port_go), .req_addr_o(h_rd_addr), .rsp_valid_i(rsp_h), .rsp_line_i(mem_rdata_i),
+    .done_o(h_done), .words_o(h_words));
+  for (genvar k = 0; k < BBUF; k++) begin : g_b_buf
+    assign b_buf[k] = b_words[32*k +: 32];
+  end
+  for (genvar k = 0; k < REC_MAX; k++) begin : g_f_buf
+    assign f_buf[k] = f_words[32*k +: 32];
+  end
+  for (genvar k = 0; k < BUF; k++) begin : g_h_buf
+    assign h_buf[k] = h_words[32*k +: 32];
+  end
 
   // ---- the object's flags and the record's fields (shade_rec.h) ----
   /* verilator lint_off UNUSEDSIGNAL */
@@ -261,7 +301,7 @@ module rgs_surface #(
   logic nrm_valid, nrm_ready, nrm_ovalid, nrm_zero, nrm_take;
   logic [V-1:0] nrm_n, n_q;
   logic [125:0] f_codes;  // the 3 codes in the record's 4 normal words
-  assign f_codes = {f_rec[3][29:0], f_rec[2], f_rec[1], f_rec[0]};
+  assign f_codes = {f_buf[3][29:0], f_buf[2], f_buf[1], f_buf[0]};
   rgs_normal #(.E(E), .M(M), .CVT_STAGES(CVT_STAGES), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES),
     .SQRT_STAGES(SQRT_STAGES), .DIV_STAGES(DIV_STAGES)) u_nrm (
     .clk_i, .rst_ni, .valid_i(nrm_valid), .ready_o(nrm_ready), .codes_i(f_codes), .u_i(f_u), .v_i(f_v),
@@ -324,9 +364,9 @@ module rgs_surface #(
   tex_bilinear #(.E(E), .M(M), .TID_BITS(1), .CVT_STAGES(CVT_STAGES), .MUL_STAGES(MUL_STAGES),
     .ADD_STAGES(ADD_STAGES), .CMP_STAGES(CMP_STAGES), .TOI_STAGES(TOI_STAGES), .MOD_STAGES(MOD_STAGES)) u_tex (
     .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(st == S_TSAMPLE && in_q == 2'd0), .ready_o(tx_ready), .tid_i(1'b0),
-    .s_i(lr_q[0]), .t_i(lr_q[1]), .width_i(buf_q[0]), .height_i(buf_q[1]), .addr_i(buf_q[2]),
+    .s_i(lr_q[0]), .t_i(lr_q[1]), .width_i(b_buf[0]), .height_i(b_buf[1]), .addr_i(b_buf[2]),
     .req_valid_o(tex_req_valid), .req_ready_i(tex_port && port_go), .req_addr_o(tex_req_addr),
-    .rsp_valid_i(tex_port && rsp_b), .rsp_ready_o(tex_rsp_ready), .rsp_data_i(mem_rdata_i),
+    .rsp_valid_i(tex_port && rsp_b), .rsp_ready_o(tex_rsp_ready), .rsp_data_i(tex_word),
     .valid_o(tx_ovalid), .ready_i(1'b1), .tid_o(), .rgb_o(tx_rgb));
   /* verilator lint_on PINCONNECTEMPTY */
 
@@ -414,30 +454,32 @@ module rgs_surface #(
   assign h_mat_at = mat_base_i + 32'd16 * (h_flags[3] ? {16'd0, h_flags[31:16]}
                                                        : {16'd0, h_rec[h_flags[0] ? 4 : 0][15:0]});
 
-  // a burst of n words from a: the front's next read
-  task automatic f_burst(input logic [31:0] a, input logic [4:0] n);
-    f_rd_addr <= a;
-    f_rd_left <= n;
-    f_rsp_left <= n;
-    f_rsp_idx <= '0;
-  endtask
+  // the front's bursts, started in the cycle their address is known (each from the words before)
+  always_comb begin
+    f_start = 1'b0;
+    f_rd_at = inst_base_i + 32'(INST_WORDS) * inst_i + 32'd12;
+    f_rd_n = 5'd1;
+    unique case (f_st)
+      // the instance's object index (word 12) alone first: the object's, the record's reads and
+      // the normal's chain wait on it, the matrix (words 0..11) only on the frame
+      F_IDLE: f_start = valid_i && active_i && inst_i != NO_HIT;
+      F_INST: begin
+        f_start = f_done;
+        f_rd_at = obj_base_i + 32'd16 * f_buf[0] + 32'd2;
+        f_rd_n = 5'd6;
+      end
+      F_OBJ: begin
+        f_start = f_done;
+        f_rd_at = rec_addr;
+        f_rd_n = rec_words(f_buf[5][5:0]);
+      end
+      default: ;
+    endcase
+  end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      f_st <= F_IDLE;
-      f_rd_left <= '0;
-      f_rsp_left <= '0;
-    end else begin
-      if (f_req && !b_req && port_go) begin
-        f_rd_addr <= f_rd_addr + 32'd1;
-        f_rd_left <= f_rd_left - 5'd1;
-      end
-      if (rsp_f && f_rsp_left != 5'd0) begin
-        if (f_st == F_REC) f_rec[f_rsp_idx] <= mem_rdata_i;
-        else f_buf[f_rsp_idx[2:0]] <= mem_rdata_i;
-        f_rsp_idx <= f_rsp_idx + 5'd1;
-        f_rsp_left <= f_rsp_left - 5'd1;
-      end
+    if (!rst_ni) f_st <= F_IDLE;
+    else begin
       unique case (f_st)
         F_IDLE:
           if (valid_i) begin
@@ -450,24 +492,14 @@ module rgs_surface #(
             f_v <= v_i;
             f_cos <= cos_n_i;
             f_hit <= active_i && inst_i != NO_HIT;
-            // the instance's object index (word 12) alone first: the object's, the record's reads
-            // and the normal's chain wait on it, the matrix (words 0..11) only on the frame
             f_inst_addr <= inst_base_i + 32'(INST_WORDS) * inst_i;
-            if (active_i && inst_i != NO_HIT) begin
-              f_burst(inst_base_i + 32'(INST_WORDS) * inst_i + 32'd12, 5'd1);
-              f_st <= F_INST;
-            end else f_st <= F_MISS;
+            f_st <= active_i && inst_i != NO_HIT ? F_INST : F_MISS;
           end
-        F_INST:
-          if (f_done) begin
-            f_burst(obj_base_i + 32'd16 * f_buf[0] + 32'd2, 5'd6);
-            f_st <= F_OBJ;
-          end
+        F_INST: if (f_done) f_st <= F_OBJ;
         F_OBJ:
           if (f_done) begin
             f_tri_base <= f_buf[0];
             f_flags <= f_buf[5];
-            f_burst(rec_addr, rec_words(f_buf[5][5:0]));
             f_st <= F_REC;
           end
         F_REC, F_MISS: if (h_load) f_st <= F_IDLE;  // into the second stage
@@ -476,59 +508,52 @@ module rgs_surface #(
     end
   end
 
-  // a burst of n words from a: the second stage's next read
-  task automatic h_burst(input logic [31:0] a, input logic [4:0] n);
-    h_rd_addr <= a;
-    h_rd_left <= n;
-    h_rsp_left <= n;
-    h_rsp_idx <= '0;
-  endtask
+  // the second stage's bursts: the matrix, without vertex normals the geometric normal, the material
+  always_comb begin
+    h_start = 1'b0;
+    h_rd_at = h_mat_at;
+    h_rd_n = 5'd16;
+    unique case (h_st)
+      H_EMPTY: begin
+        h_start = h_load && f_st == F_REC;
+        h_rd_at = f_inst_addr;  // the instance's matrix (the word 12 read, 13 in all)
+        h_rd_n = 5'd12;
+      end
+      H_W2O: begin
+        h_start = h_done;
+        if (!h_flags[0]) begin  // no vertex normals: the geometric normal, as the C reads it next
+          h_rd_at = h_tri_base + 32'(TRI_WORDS) * h_tri + 32'(GN_WORD);
+          h_rd_n = 5'(GN_SPAN);
+        end
+      end
+      H_GN: h_start = h_done;
+      default: ;
+    endcase
+  end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      h_st <= H_EMPTY;
-      h_rd_left <= '0;
-      h_rsp_left <= '0;
-    end else begin
-      if (h_req && !b_req && !f_req && port_go) begin
-        h_rd_addr <= h_rd_addr + 32'd1;
-        h_rd_left <= h_rd_left - 5'd1;
-      end
-      if (rsp_h && h_rsp_left != 5'd0) begin
-        h_buf[h_rsp_idx[3:0]] <= mem_rdata_i;
-        h_rsp_idx <= h_rsp_idx + 5'd1;
-        h_rsp_left <= h_rsp_left - 5'd1;
-      end
+    if (!rst_ni) h_st <= H_EMPTY;
+    else begin
       unique case (h_st)
         H_EMPTY:
           if (h_load) begin
             {h_tid, h_hit, h_o, h_d, h_tri, h_tri_base, h_flags} <= {f_tid, f_hit, f_o, f_d, f_tri, f_tri_base, f_flags};
             {h_t, h_u, h_v, h_cos} <= {f_t, f_u, f_v, f_cos};
-            for (int k = 0; k < REC_MAX; k++) h_rec[k] <= f_rec[k];
+            for (int k = 0; k < REC_MAX; k++) h_rec[k] <= f_buf[k];
             h_n <= '0;
-            if (f_st == F_REC) begin
-              h_burst(f_inst_addr, 5'd12);  // the instance's matrix (the word 12 read, 13 in all)
-              h_st <= H_W2O;
-            end else h_st <= H_FULL;
+            h_st <= f_st == F_REC ? H_W2O : H_FULL;
           end
         H_W2O:
           if (h_done) begin
             for (int k = 0; k < 3; k++)
               for (int r = 0; r < 3; r++) h_w2o[W*(3*k+r) +: W] <= h_buf[4*k+r][W-1:0];
-            if (!h_flags[0]) begin  // no vertex normals: the geometric normal, as the C reads it next
-              h_burst(h_tri_base + 32'(TRI_WORDS) * h_tri + 32'(GN_WORD), 5'(GN_SPAN));
-              h_st <= H_GN;
-            end else begin
-              h_mat_addr <= h_mat_at;
-              h_burst(h_mat_at, 5'd16);
-              h_st <= H_MAT;
-            end
+            if (h_flags[0]) h_mat_addr <= h_mat_at;
+            h_st <= h_flags[0] ? H_MAT : H_GN;
           end
         H_GN:
           if (h_done) begin
             for (int c = 0; c < 3; c++) h_n[W*c +: W] <= W'({h_buf[2], h_buf[1], h_buf[0]} >> (GN_SHIFT + W * c));
             h_mat_addr <= h_mat_at;
-            h_burst(h_mat_at, 5'd16);
             h_st <= H_MAT;
           end
         H_MAT: if (h_done) h_st <= H_FULL;
@@ -538,27 +563,28 @@ module rgs_surface #(
     end
   end
 
+  // the back's bursts: a zero interpolated normal's geometric normal, a texture's entry
+  always_comb begin
+    b_start = 1'b0;
+    b_rd_at = tri_base_q + 32'(TRI_WORDS) * tri_q + 32'(GN_WORD);
+    b_rd_n = BNW'(GN_SPAN);
+    if (st == S_NORM) b_start = nrm_ovalid && nrm_zero;
+    else if (st == S_TLERP) begin
+      b_start = lerp_ovalid && out_q == 2'd1;
+      b_rd_at = tex_base_i + 32'd4 * tex_idx_q[tsel_q];
+      b_rd_n = BNW'(4);
+    end
+  end
+
   // ---- the back's sequence ----
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       st <= S_IDLE;
-      rd_left_q <= '0;
-      rsp_left_q <= '0;
     end else begin
-      // the burst's requests and responses (not while the texture sample owns the port)
-      if (!tex_port && rd_left_q != 5'd0 && port_go) begin
-        rd_addr_q <= rd_addr_q + 32'd1;
-        rd_left_q <= rd_left_q - 5'd1;
-      end
       if (q_valid) qin_q <= qin_q + 4'd1;
       if (q_ovalid) begin
         qres_q[qout_q < 4'd2 ? qout_q + 4'd7 : qout_q - 4'd2] <= q_r;
         qout_q <= qout_q + 4'd1;
-      end
-      if (!tex_port && rsp_b && rsp_left_q != 5'd0) begin
-        buf_q[rsp_idx_q[3:0]] <= mem_rdata_i;
-        rsp_idx_q <= rsp_idx_q + 5'd1;
-        rsp_left_q <= rsp_left_q - 5'd1;
       end
       unique case (st)
         S_IDLE:  // a miss has joined the queue as it was taken (q_push)
@@ -596,19 +622,12 @@ module rgs_surface #(
         S_NORM:  // the hit's normal from rgs_normal (its chain started as the front had the record)
           if (nrm_ovalid) begin
             n_q <= nrm_n;
-            // f24_is_zero: the geometric normal, read here into buf_q 12.. (the conversions may
-            // still read the material's words 0..10)
-            if (nrm_zero) begin
-              rd_addr_q <= tri_base_q + 32'(TRI_WORDS) * tri_q + 32'(GN_WORD);
-              rd_left_q <= 5'(GN_SPAN);
-              rsp_left_q <= 5'(GN_SPAN);
-              rsp_idx_q <= 5'd12;
-              st <= S_GN;
-            end else st <= S_FRAME;
+            // f24_is_zero: the geometric normal, read here (b_start)
+            st <= nrm_zero ? S_GN : S_FRAME;
           end
         S_GN:
           if (burst_done) begin
-            for (int c = 0; c < 3; c++) n_q[W*c +: W] <= W'({buf_q[14], buf_q[13], buf_q[12]} >> (GN_SHIFT + W * c));
+            for (int c = 0; c < 3; c++) n_q[W*c +: W] <= W'({b_buf[2], b_buf[1], b_buf[0]} >> (GN_SHIFT + W * c));
             st <= S_FRAME;
           end
         S_FRAME:  // the geometry into the frame
@@ -635,13 +654,7 @@ module rgs_surface #(
           if (lerp_ovalid) begin
             lr_q[out_q] <= lerp_r;
             out_q <= out_q + 2'd1;
-            if (out_q == 2'd1) begin
-              rd_addr_q <= tex_base_i + 32'd4 * tex_idx_q[tsel_q];
-              rd_left_q <= 5'd4;
-              rsp_left_q <= 5'd4;
-              rsp_idx_q <= '0;
-              st <= S_TENTRY;
-            end
+            if (out_q == 2'd1) st <= S_TENTRY;  // the entry's 4 words (b_start)
           end
         end
         S_TENTRY:

@@ -393,6 +393,33 @@ static void shading_port_shared(void **state)
     image_free(&im);
 }
 
+/* The RGS's port carries the shading cache's lines: a read of n words from word address a takes
+ * ceil((a mod 4 + n) / 4) of its 16-byte lines (a light's 16 words 4 or 5, a word 1, none 0), other
+ * kinds none; 8-byte lines take twice as many. */
+static void shading_port_lines(void **state)
+{
+    (void)state;
+    cycle_config cfg;
+    cycle_config_default(&cfg);
+    unit_op op = { 0 };
+    const uint32_t reads[][3] = { { MEM_SHADING, 64, 16 }, { MEM_SHADING, 65, 16 }, { MEM_SHADING, 7, 1 },
+                                  { MEM_SHADING, 9, 0 }, { MEM_MATRICES, 0, 10 }, { MEM_SHADING, 3, 2 } };
+    const uint64_t lines16[] = { 4, 5, 1, 0, 0, 2 }, lines8[] = { 8, 9, 1, 0, 0, 2 };
+    for (uint32_t k = 0; k < sizeof reads / sizeof reads[0]; k++) {
+        op.n_reads = 1;
+        op.read[0].kind = reads[k][0], op.read[0].addr = reads[k][1], op.read[0].words = reads[k][2];
+        cfg.mem.cache[MEM_SHADING].line_bytes = 16;
+        assert_int_equal(cycle_shading_lines(&cfg, &op), lines16[k]);
+        cfg.mem.cache[MEM_SHADING].line_bytes = 8;
+        assert_int_equal(cycle_shading_lines(&cfg, &op), lines8[k]);
+    }
+    op.n_reads = 3; /* an operation's reads add up */
+    for (uint32_t k = 0; k < 3; k++)
+        op.read[k].kind = reads[k][0], op.read[k].addr = reads[k][1], op.read[k].words = reads[k][2];
+    cfg.mem.cache[MEM_SHADING].line_bytes = 16;
+    assert_int_equal(cycle_shading_lines(&cfg, &op), 4 + 5 + 1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -404,6 +431,7 @@ int main(void)
         cmocka_unit_test(latency_per_kind),
         cmocka_unit_test(light_record_held),
         cmocka_unit_test(shading_port_shared),
+        cmocka_unit_test(shading_port_lines),
     };
     return cmocka_run_group_tests_name("cycle model (tb/cycle)", tests, NULL, NULL);
 }

@@ -4,12 +4,15 @@
 // (active bits, o, d, tmin, tmax of the 4 rays, the TRACE_* flags) against the packets the C's
 // rgs_step begins for the block (the primary and secondary packets as next_packet takes them, the
 // shadow packets of op_shadow_gen), in order. The bench is the memory (the image of a capture,
-// DIR/image_0.bin of saarcor render --capture-unit-io DIR; requests with random gaps in every
-// other epoch of 1024 cycles, answers in order after 1 to 4 cycles) and the ray tracing core: each
+// DIR/image_0.bin of saarcor render --capture-unit-io DIR; requests of a 4-word line's first
+// word address with random gaps in every other epoch of 1024 cycles, the line answered in order
+// after 1 to 4 cycles) and the ray tracing core: each
 // packet is traced by the C (trace_begin, trace_step to the end on the image) and its hits come
 // back after 1 to 40 cycles, so the RGS is checked alone. The pixel output gets random back
 // pressure. A mismatch prints the block, the packet, the field and both values; exit code 1 on any
-// mismatch, a packet too many or too few, or a block that does not finish.
+// mismatch, a packet too many or too few, or a block that does not finish. It prints the cycles a
+// block spends in each rgs_ctrl state, rgs_surface's states in SURF, and SURF's cycles per packet
+// by its hits (what the cycle model's surface, surface_hit and surface_miss are fitted on).
 // usage: tb_rgs_ctrl --capture DIR [--max-depth D] [--no-shadows] [--blocks N] [--seed S]
 #include <algorithm>
 #include <cstdio>
@@ -115,13 +118,18 @@ int main(int argc, char **argv)
     top.max_depth_i = cfg.max_depth;
     top.shadows_i = cfg.shadows;
 
-    struct response { uint64_t due; uint32_t word; };
+    struct response { uint64_t due; uint32_t line[4]; };  // the port answers a line of 4 words
     std::deque<response> rsp;
     std::size_t next = 0, done = 0, packet = 0, packets = 0;
     uint64_t mismatches = 0, idle = 0, hits_due = 0, block_start = 0, block_cycles = 0;
     bool in_block = false, hits_pending = false;
     uint64_t state_cycles[32] = {};  // a block's cycles by rgs_ctrl state (its state_t order)
     uint64_t surf_cycles[32] = {};   // SURF's cycles by rgs_surface state
+    // SURF's cycles per packet by its hits (0..4): the cycle model's surface, surface_hit and
+    // surface_miss are fitted on these (docs/cycle-model.md)
+    uint64_t surf_by_hits[5] = {}, surf_packets[5] = {}, surf_now = 0;
+    int last_hits = 0;
+    bool in_surf = false;
     block_ref want;
     trace_state ts;
     hit_record hits[4];
@@ -143,7 +151,8 @@ int main(int argc, char **argv)
         top.mem_rsp_valid_i = 0;
         if (!rsp.empty() && rsp.front().due <= g_cycle) {
             top.mem_rsp_valid_i = 1;
-            top.mem_rdata_i = rsp.front().word;
+            for (int j = 0; j < 4; j++)
+                top.mem_rdata_i[j] = rsp.front().line[j];
             rsp.pop_front();
         }
         top.tr_ready_i = !hits_pending;
@@ -159,10 +168,14 @@ int main(int argc, char **argv)
         bool fired = false;
         if (top.mem_req_valid_o && top.mem_req_ready_i) {
             const uint32_t a = top.mem_addr_o;
-            if (a >= mem.size() && mismatches++ < 20)
-                std::printf("MISMATCH rgs_ctrl cycle %llu: read of %x beyond the image\n", (unsigned long long)g_cycle, a);
+            if ((a >= mem.size() || a % 4) && mismatches++ < 20)
+                std::printf("MISMATCH rgs_ctrl cycle %llu: read of %x beyond the image or not a line's start\n",
+                            (unsigned long long)g_cycle, a);
             const uint64_t due = std::max<uint64_t>(g_cycle + (calm ? 1 : 1 + rnd() % 4), rsp.empty() ? 0 : rsp.back().due);
-            rsp.push_back({ due, a < mem.size() ? mem[a] : 0u });
+            response r{ due, {} };
+            for (uint32_t j = 0; j < 4; j++)
+                r.line[j] = a + j < mem.size() ? mem[a + j] : 0u;
+            rsp.push_back(r);
             fired = true;
         }
         if (top.tr_valid_o && top.tr_ready_i) {
@@ -205,8 +218,9 @@ int main(int argc, char **argv)
             trace_counters c{};
             for (uint32_t n = 0; n < (1u << 30) && trace_step(mem.data(), &ts, &op, &c); n++)
                 ;
+            last_hits = 0;
             for (int i = 0; i < 4; i++)
-                hits[i] = ts.hits[i];
+                hits[i] = ts.hits[i], last_hits += ts.hits[i].instance != TRACE_NO_HIT;
             hits_pending = true;
             hits_due = g_cycle + 1 + (calm ? 0 : rnd() % 40);
             packet++;
@@ -257,7 +271,10 @@ int main(int argc, char **argv)
         if (in_block)
             state_cycles[top.st_o & 31u]++;
         if (in_block && top.st_o == 11u)
-            surf_cycles[top.sst_o & 31u]++;
+            surf_cycles[top.sst_o & 31u]++, surf_now++;
+        if (in_surf && top.st_o != 11u)  // a packet's surfaces are done
+            surf_by_hits[last_hits] += surf_now, surf_packets[last_hits]++, surf_now = 0;
+        in_surf = in_block && top.st_o == 11u;
         idle = fired ? 0 : idle + 1;
         top.clk_i = 1;
         top.eval();
@@ -280,6 +297,12 @@ int main(int argc, char **argv)
     for (int s = 0; s < 16; s++)
         if (surf_cycles[s] && done)
             std::printf(" %s %.1f", SSTATE[s], (double)surf_cycles[s] / (double)done);
+    std::printf("\n");
+    std::printf("rgs_ctrl SURF cycles per packet by its hits:");
+    for (int h = 0; h < 5; h++)
+        if (surf_packets[h])
+            std::printf(" %d: %.1f (%llu)", h, (double)surf_by_hits[h] / (double)surf_packets[h],
+                        (unsigned long long)surf_packets[h]);
     std::printf("\n");
     return mismatches ? 1 : 0;
 }

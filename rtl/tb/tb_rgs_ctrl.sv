@@ -35,7 +35,7 @@ module tb_rgs_ctrl #(
   input  logic                      mem_req_ready_i,
   output logic [31:0]               mem_addr_o,
   input  logic                      mem_rsp_valid_i,
-  input  logic [31:0]               mem_rdata_i,
+  input  logic [127:0]              mem_rdata_i,   // a line of 4 words
   output logic                      px_valid_o,
   input  logic                      px_ready_i,
   output logic [5:0]                px_tag_o,

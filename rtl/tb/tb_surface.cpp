@@ -1,11 +1,13 @@
 // Co-simulation of rgs_surface (rtl/rgs_surface.sv), the surface the RGS shades at a hit, against
 // rgs_surface_at (hls/units/rgs_surface.c): every field of the surface (valid, P, D^, N^, t_hat,
 // entering, the material's address, unlit, its exponent k, the Q12 base colour, emission and tint)
-// and every word the unit reads (the reads rgs_surface_at notes in its unit_op, word by word:
-// instance, object descriptor, shading record, geometric normal, material, texture entries and
-// texels): the unit works on several surfaces at once (its front reads the next hit's records
-// while its back shades one), so a read must be one the C makes for a surface in flight, and at
-// the end every word the C reads must have been read as often.
+// and every line the unit reads (its port names a 4-word line by its first word's address and is
+// answered the line; the reads rgs_surface_at notes in its unit_op, word by word: instance, object
+// descriptor, shading record, geometric normal, material, texture entries and texels): the unit
+// works on several surfaces at once (its front reads the next hit's records while its back shades
+// one), so a line read must start a line and hold a word the C reads for a surface in flight, and
+// by the time no surface is in flight every word the C reads must have been in lines read as often
+// (a line's due words count as read once per line read).
 // Captured transactions (saarcor render --capture-unit-io DIR: DIR/surface.hex, every
 // rgs_surface_at call: the memory image (DIR/image_N.bin), the ray's active bit, o, d, the hit's
 // instance, triangle, t, u, v, cos_n, the reads noted, the surface) come first and are checked
@@ -219,9 +221,11 @@ int main(int argc, char **argv)
     uint64_t mismatches = 0, bad_reads = 0, idle = 0, cycles_busy = 0, latency_max = 0;
     struct flight { std::size_t t; uint64_t started; std::vector<uint32_t> want, reads; };
     std::deque<flight> in_flight;      // surfaces taken, in order
-    std::map<uint32_t, long> due_reads; // the words the C reads for them, not yet read by the RTL
+    std::map<uint32_t, long> due_reads; // the words the C reads for them, not yet in a line the RTL read
+    std::map<uint32_t, long> live;      // the words the C reads for them (a line may be read again:
+                                        // two texels in one line, an instance's two bursts)
     const std::size_t MAX_IN_FLIGHT = 8;
-    struct response { uint64_t due; uint32_t word; };
+    struct response { uint64_t due; uint32_t line[4]; };  // the port answers a line of 4 words
     std::deque<response> rsp;
     auto report = [&](std::size_t t, const char *what, const char *field, uint32_t got, uint32_t exp, uint32_t tid) {
         if (mismatches++ < 20)
@@ -258,7 +262,8 @@ int main(int argc, char **argv)
         top.mem_rsp_valid_i = 0;
         if (!rsp.empty() && rsp.front().due <= g_cycle) {
             top.mem_rsp_valid_i = 1;
-            top.mem_rdata_i = rsp.front().word;
+            for (int j = 0; j < 4; j++)
+                top.mem_rdata_i[j] = rsp.front().line[j];
             rsp.pop_front();
         }
         top.eval();
@@ -266,18 +271,33 @@ int main(int argc, char **argv)
         const bool in_fire = top.valid_i && top.ready_o;
         const bool out_fire = top.valid_o && top.ready_i;
         if (top.mem_req_valid_o && top.mem_req_ready_i) {
+            // a line: it must hold a word the C reads for a surface in flight; the words it holds
+            // that are still due are read (once each)
             const uint32_t a = top.mem_addr_o;
-            auto w = due_reads.find(a);
-            if (w == due_reads.end()) {
-                if (bad_reads++ < 20)
-                    std::printf("MISMATCH rgs_surface cycle %llu: read of address %x, which the C does not read for the "
-                                "%zu surfaces in flight (transactions up to %zu)\n",
-                                (unsigned long long)g_cycle, a, in_flight.size(), next);
-            } else if (--w->second == 0)
-                due_reads.erase(w);
+            bool wanted = false;
+            for (uint32_t j = 0; j < 4; j++) {
+                wanted = wanted || live.count(a + j);
+                auto w = due_reads.find(a + j);
+                if (w != due_reads.end() && --w->second == 0)
+                    due_reads.erase(w);
+            }
+            if ((!wanted || a % 4) && bad_reads++ < 20)
+                std::printf("MISMATCH rgs_surface cycle %llu: read of the line at %x, which holds no word the C reads for "
+                            "the %zu surfaces in flight (transactions up to %zu), or is not a line's start\n",
+                            (unsigned long long)g_cycle, a, in_flight.size(), next);
+            if (!wanted && getenv("TB_SURFACE_DEBUG")) { // which words the C reads for the surfaces in flight
+                for (const flight &g : in_flight) {
+                    std::printf("  tx %zu:", g.t);
+                    for (uint32_t w : g.reads) std::printf(" %x", w);
+                    std::printf("\n");
+                }
+            }
             const uint64_t lat = calm ? 1 : 1 + rnd() % 4;
             const uint64_t due = std::max<uint64_t>(g_cycle + lat, rsp.empty() ? 0 : rsp.back().due);
-            rsp.push_back({ due, a < mem.size() ? mem[a] : 0u });
+            response r{ due, {} };
+            for (uint32_t j = 0; j < 4; j++)
+                r.line[j] = a + j < mem.size() ? mem[a + j] : 0u;
+            rsp.push_back(r);
         }
         if (out_fire) {
             if (in_flight.empty()) {
@@ -312,6 +332,11 @@ int main(int argc, char **argv)
                 }
                 checked++;
                 latency_max = std::max<uint64_t>(latency_max, g_cycle - f.started);
+                for (uint32_t w : f.reads) {
+                    auto l = live.find(w);
+                    if (--l->second == 0)
+                        live.erase(l);
+                }
                 in_flight.pop_front();
                 // the oldest surface is out: every word the C reads for it has been read (the words
                 // still due belong to the surfaces after it, if any)
@@ -327,7 +352,7 @@ int main(int argc, char **argv)
             flight f{ next, g_cycle, {}, {} };
             model(mem, tx[next], f.want, f.reads, cov);
             for (uint32_t a : f.reads)
-                due_reads[a]++;
+                due_reads[a]++, live[a]++;
             in_flight.push_back(std::move(f));
             next++;
         }

@@ -28,7 +28,7 @@ module tb_surface #(
   input  logic                      mem_req_ready_i,
   output logic [31:0]               mem_addr_o,
   input  logic                      mem_rsp_valid_i,
-  input  logic [31:0]               mem_rdata_i,
+  input  logic [127:0]              mem_rdata_i,   // a line of 4 words
   output logic                      valid_o,
   input  logic                      ready_i,
   output logic [5:0]                tid_o,

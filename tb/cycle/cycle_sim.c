@@ -42,9 +42,10 @@ void cycle_config_default(cycle_config *c)
     c->latency[OP_LEAF] = 46;     /* the list entry's 18, then rebase_unit 25 (a batch) and its states */
     c->latency[OP_ISECT] = 35;    /* isect_rebased's second half: isect_unit 29 (div 11 + mul 4 + 2 add + cmp 2) +
                                    * best_t = t0 + t (add 6) */
-    c->latency[OP_SURFACE] = 224; /* rgs_surface: the first hit's front reads (instance word, object, record: about 18
-                                   * through the shading cache), rgs_normal 88, rgs_frame 118 */
-    c->surface_hit = 48;          /* each further hit: the front's reads of it, one burst after another */
+    c->latency[OP_SURFACE] = 214; /* rgs_surface: the first hit's front reads (instance word, object, record: 3
+                                   * bursts of 1, 2 and 1 to 5 lines through the shading cache, about 8), rgs_normal
+                                   * 88, rgs_frame 118 */
+    c->surface_hit = 39;          /* each further hit: the front's reads of it, one burst of lines after another */
     c->surface_miss = 12;         /* a packet without hits: rgs_surface's stages and queue, nothing read */
     c->shade_hit = 3;             /* the shading cache_read's hit */
     c->latency[OP_LIGHT] = 92;    /* rgs_light 87 (rgs_light_colour's 27 beside it) + rgs_ctrl's state (LCALC 92) */
@@ -329,41 +330,42 @@ static uint32_t op_latency(const cycle_config *cfg, const unit_op *op)
     return op->hits ? cfg->latency[OP_SURFACE] + (op->hits - 1) * cfg->surface_hit : cfg->surface_miss;
 }
 
-/* The shading words an operation reads (on the RGS's word port in the RTL). */
-static uint64_t shading_words(const unit_op *op)
+uint64_t cycle_shading_lines(const cycle_config *cfg, const unit_op *op)
 {
-    uint64_t words = 0;
+    const uint64_t lw = cfg->mem.cache[MEM_SHADING].line_bytes >= 8 ? cfg->mem.cache[MEM_SHADING].line_bytes / 4 : 1;
+    uint64_t lines = 0;
     for (uint32_t r = 0; r < op->n_reads; r++)
-        words += op->read[r].kind == MEM_SHADING ? op->read[r].words : 0u;
-    return words;
+        if (op->read[r].kind == MEM_SHADING && op->read[r].words)
+            lines += (op->read[r].addr % lw + op->read[r].words + lw - 1) / lw;
+    return lines;
 }
 
-/* Takes `words` cycles of the RGS's word port to the shading cache from its first free cycle at
- * or after now, and returns that cycle: the RGS's block controllers share one port, a word a
- * cycle (rtl/dynrtp.sv: mem_port onto the shading cache_read). */
-static uint64_t shade_port_take(pipe_state *p, uint64_t words)
+/* Takes `lines` cycles of the RGS's line port to the shading cache from its first free cycle at
+ * or after now, and returns that cycle: the RGS's block controllers share one port, a line a
+ * cycle (rtl/dynrtp.sv: mem_port onto the shading cache_read, a 16-byte line a response). */
+static uint64_t shade_port_take(pipe_state *p, uint64_t lines)
 {
     const uint64_t start = p->shade_port_free > p->now ? p->shade_port_free : p->now;
-    p->shade_port_free = start + words;
+    p->shade_port_free = start + lines;
     p->st.shade_port_wait += start - p->now;
     return start;
 }
 
-/* The cycle the RGS operation t issues now starts its work. A surface reads all its words
+/* The cycle the RGS operation t issues now starts its work. A surface reads all its lines
  * through the port as its front and back go (its latency counts their bursts), so it starts when
- * the port has taken the words of the operations before it. A light: rgs_ctrl reads the light's
- * record (S_LREC, a word a cycle) before rgs_light starts, unless it holds that light's record
+ * the port has taken the lines of the operations before it. A light: rgs_ctrl reads the light's
+ * record (S_LREC, a line a cycle) before rgs_light starts, unless it holds that light's record
  * from its last light operation (a scene of one light reads it once per controller). Others: now. */
 static uint64_t rgs_start(pipe_state *p, thread *t)
 {
     const unit_op *op = &t->op;
     if (op->kind == OP_SURFACE)
-        return shade_port_take(p, shading_words(op));
+        return shade_port_take(p, cycle_shading_lines(p->cfg, op));
     if (op->kind != OP_LIGHT || !op->n_reads || op->read[0].addr == t->light_held)
         return p->now;
     t->light_held = op->read[0].addr;
-    const uint64_t words = shading_words(op);
-    return shade_port_take(p, words) + p->cfg->shade_hit + words - 1;
+    const uint64_t lines = cycle_shading_lines(p->cfg, op);
+    return shade_port_take(p, lines) + p->cfg->shade_hit + lines - 1;
 }
 
 /* One cycle: compute (each unit picks its issue from the current state), then commit. */

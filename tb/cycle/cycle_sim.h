@@ -50,6 +50,10 @@ typedef struct {
 /* The defaults of docs/cycle-model.md (the prototype's caches, 1 GB/s at 90 MHz). */
 void cycle_config_default(cycle_config *c);
 
+/* The shading cache lines an operation's reads take on the RGS's line port (rtl/dynrtp.sv): a read
+ * of n words from word address a, ceil((a mod L + n) / L) lines of the shading cache's L words. */
+uint64_t cycle_shading_lines(const cycle_config *cfg, const unit_op *op);
+
 /* Where a thread's time went, in thread-cycles. */
 enum { ST_UNIT_QUEUE, ST_UNIT_BUSY, ST_MEMORY, ST_NO_WORK, ST_KINDS };
 
