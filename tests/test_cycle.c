@@ -373,7 +373,7 @@ static void light_record_held(void **state)
     }
 }
 
-/* The RGS's block controllers share one word port to the shading cache: one thread never waits
+/* The RGS's block controllers share one line port to the shading cache: one thread never waits
  * for it (its last surface's words are read long before its next), 8 threads do. */
 static void shading_port_shared(void **state)
 {

@@ -113,7 +113,7 @@ typedef struct {
     thread *th;
     ready_set queue[UNIT_KINDS];
     uint64_t free_at[UNIT_KINDS];
-    uint64_t shade_port_free; /* the RGS's word port to the shading cache is free from this cycle on */
+    uint64_t shade_port_free; /* the RGS's line port to the shading cache is free from this cycle on */
     uint64_t *heap; /* events: cycle << 16 | thread, min first */
     uint32_t heap_n;
     uint32_t tiles[TILE_QUEUE], n_tiles; /* tile queue filled by the controller */

@@ -65,7 +65,7 @@ typedef struct {
     uint64_t thread_cycles[ST_KINDS];         /* over all threads of all pipes */
     uint64_t wait_unit[UNIT_KINDS];           /* thread-cycles queued at each unit */
     uint64_t wait_mem[MEM_KINDS];             /* thread-cycles waiting for memory, by data type */
-    uint64_t shade_port_wait;                 /* cycles RGS operations waited for the shading word port */
+    uint64_t shade_port_wait;                 /* cycles RGS operations waited for the shading line port */
     uint64_t blocks, tiles;
     mem_stats mem;                            /* summed over pipes */
 } cycle_stats;
