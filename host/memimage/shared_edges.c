@@ -73,7 +73,10 @@ static int shared_with(const edge_source *s, uint32_t e, uint32_t f)
 }
 
 /* One pass: every edge is inserted at the first free slot of its probe sequence, after the
- * edges with its position pair that came before it, so it meets each of them on the way. */
+ * edges with its position pair that came before it, so it meets each of them on the way. A slot
+ * holds the edge and the high half of its hash: equal position pairs hash alike, so only edges
+ * with the same tag can be shared, and the others are passed without reading their triangles'
+ * positions (scattered loads, most of the time this took). */
 int mi_shared_edges(const scene_mesh *m, const uint32_t *tri, uint32_t n, uint8_t *flags)
 {
     const edge_source s = { m, tri };
@@ -81,19 +84,22 @@ int mi_shared_edges(const scene_mesh *m, const uint32_t *tri, uint32_t n, uint8_
     size_t size = 2;
     while (size < 2 * (size_t)edges)
         size *= 2;
-    uint32_t *slot = malloc(size * sizeof *slot); /* open addressing, linear probing, load <= 1/2 */
+    uint64_t *slot = malloc(size * sizeof *slot); /* open addressing, linear probing, load <= 1/2 */
     if (!slot)
         return -1;
-    memset(slot, 0xFF, size * sizeof *slot);
+    memset(slot, 0xFF, size * sizeof *slot); /* empty: edge UINT32_MAX, never one of the 3 n */
     memset(flags, 0, n);
     for (uint32_t e = 0; e < edges; e++) {
-        size_t i = (size_t)hash_edge(&s, e) & (size - 1);
-        for (; slot[i] != UINT32_MAX; i = (i + 1) & (size - 1))
-            if (shared_with(&s, e, slot[i])) {
+        const uint64_t h = hash_edge(&s, e), tag = h & 0xFFFFFFFF00000000ull;
+        size_t i = (size_t)h & (size - 1);
+        for (; (uint32_t)slot[i] != UINT32_MAX; i = (i + 1) & (size - 1)) {
+            const uint32_t f = (uint32_t)slot[i];
+            if ((slot[i] & 0xFFFFFFFF00000000ull) == tag && shared_with(&s, e, f)) {
                 flags[e / 3] |= (uint8_t)(1u << (e % 3));
-                flags[slot[i] / 3] |= (uint8_t)(1u << (slot[i] % 3));
+                flags[f / 3] |= (uint8_t)(1u << (f % 3));
             }
-        slot[i] = e;
+        }
+        slot[i] = tag | e;
     }
     free(slot);
     return 0;
