@@ -554,6 +554,68 @@ static void gpu_instancing(void **state)
     scene_free(&s);
 }
 
+/* A mesh of three primitives where only the middle one has normals, texture coordinates
+ * (normalized shorts: the loader's general path) and colours (normalized bytes): the vertices of
+ * the others get the defaults, before and after it (the loader fills an attribute's array only
+ * once a primitive has it, and pads the vertices before). */
+static void mixed_primitives(void **state)
+{
+    (void)state;
+    unsigned char buf[104] = { 0 };
+    const float pos[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, nrm[9] = { 0, 0, 1, 0, 0, 1, 0, 0, 1 };
+    const uint16_t idx[3] = { 0, 1, 2 }, uv[6] = { 0, 65535, 32768, 0, 0, 65535 };
+    const unsigned char rgba[12] = { 255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255 };
+    memcpy(buf, pos, 36);
+    memcpy(buf + 36, idx, 6);
+    memcpy(buf + 44, nrm, 36);
+    memcpy(buf + 80, uv, 12);
+    memcpy(buf + 92, rgba, 12);
+    char b64[160], path[128];
+    base64(buf, sizeof buf, b64);
+    snprintf(path, sizeof path, "%s/mixed.gltf", test_dir);
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fprintf(f,
+            "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}],"
+            "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1},"
+            "{\"attributes\":{\"POSITION\":0,\"NORMAL\":2,\"TEXCOORD_0\":3,\"COLOR_0\":4},\"indices\":1},"
+            "{\"attributes\":{\"POSITION\":0},\"indices\":1}]}],"
+            "\"buffers\":[{\"byteLength\":104,\"uri\":\"data:application/octet-stream;base64,%s\"}],"
+            "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":36},{\"buffer\":0,\"byteOffset\":36,\"byteLength\":6},"
+            "{\"buffer\":0,\"byteOffset\":44,\"byteLength\":36},{\"buffer\":0,\"byteOffset\":80,\"byteLength\":12},"
+            "{\"buffer\":0,\"byteOffset\":92,\"byteLength\":12}],"
+            "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\",\"max\":[1,1,0],\"min\":[0,0,0]},"
+            "{\"bufferView\":1,\"componentType\":5123,\"count\":3,\"type\":\"SCALAR\"},"
+            "{\"bufferView\":2,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"},"
+            "{\"bufferView\":3,\"componentType\":5123,\"normalized\":true,\"count\":3,\"type\":\"VEC2\"},"
+            "{\"bufferView\":4,\"componentType\":5121,\"normalized\":true,\"count\":3,\"type\":\"VEC4\"}]}",
+            b64);
+    fclose(f);
+    scene s;
+    char err[512];
+    if (scene_load_gltf(path, &s, err, sizeof err) != 0)
+        fail_msg("%s", err);
+    assert_int_equal(s.n_meshes, 1);
+    const scene_mesh *m = &s.meshes[0];
+    assert_int_equal(m->n_vertices, 9);
+    assert_int_equal(m->n_triangles, 3);
+    assert_non_null(m->normals);
+    assert_non_null(m->texcoords);
+    assert_non_null(m->colours);
+    assert_null(m->texcoords1);
+    for (uint32_t v = 0; v < 9; v++) {
+        const int mid = v >= 3 && v < 6;
+        expect_vertex(&m->positions[3 * v], pos[3 * (v % 3)], pos[3 * (v % 3) + 1], pos[3 * (v % 3) + 2]);
+        expect_vertex(&m->normals[3 * v], 0, 0, mid);
+        assert_true(m->texcoords[2 * v] == (mid ? (float)(uv[2 * (v % 3)] / 65535.0) : 0.0f));
+        assert_true(m->texcoords[2 * v + 1] == (mid ? (float)(uv[2 * (v % 3) + 1] / 65535.0) : 0.0f));
+        for (int c = 0; c < 3; c++)
+            assert_true(m->colours[3 * v + c] == (mid ? (c == (int)(v % 3) ? 1.0f : 0.0f) : 1.0f));
+        assert_int_equal(m->indices[v], v);
+    }
+    scene_free(&s);
+}
+
 /* Without a camera the view is raised and turned: it looks down at a plane at y = 0 (the old
  * view along -Z saw it edge-on) and its forward axis points at the box centre. */
 static void default_camera(void **state)
@@ -575,7 +637,7 @@ int main(void)
         cmocka_unit_test(shared_scene_counts), cmocka_unit_test(instancing), cmocka_unit_test(animation),
         cmocka_unit_test(affine_algebra), cmocka_unit_test(malformed_files), cmocka_unit_test(truncated_glb),
         cmocka_unit_test(required_extensions), cmocka_unit_test(ignored_features), cmocka_unit_test(gpu_instancing),
-        cmocka_unit_test(default_camera),
+        cmocka_unit_test(default_camera), cmocka_unit_test(mixed_primitives),
         cmocka_unit_test(skinning), cmocka_unit_test(skinned_fox),
     };
     return cmocka_run_group_tests_name("scene", tests, test_tmpdir_setup, test_tmpdir_teardown);

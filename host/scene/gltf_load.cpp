@@ -189,9 +189,13 @@ class Loader {
         }
     }
 
-    // Reads `count` elements of `ncomp` components from a buffer view, bounds-checked.
-    void read_view(int view_index, size_t offset, size_t count, int ctype, int ncomp, bool normalized,
-                   const std::string &what, double *out)
+    // The first of `count` elements of `ncomp` components in a buffer view and their stride,
+    // bounds-checked: every read of an accessor's elements goes through here.
+    struct view_span {
+        const unsigned char *base;
+        size_t stride;
+    };
+    view_span view(int view_index, size_t offset, size_t count, int ctype, int ncomp, const std::string &what)
     {
         if (view_index < 0 || (size_t)view_index >= m_.bufferViews.size())
             fail(what + ": buffer view out of range");
@@ -209,21 +213,70 @@ class Loader {
         if (count && (offset > bv.byteLength || (count - 1) > (bv.byteLength - offset) / stride ||
                       (count - 1) * stride + elem > bv.byteLength - offset))
             fail(what + ": accessor exceeds its buffer view");
-        const unsigned char *base = data.data() + bv.byteOffset + offset;
+        return { data.data() + bv.byteOffset + offset, stride };
+    }
+
+    // Reads `count` elements of `ncomp` components from a buffer view, bounds-checked.
+    void read_view(int view_index, size_t offset, size_t count, int ctype, int ncomp, bool normalized,
+                   const std::string &what, double *out)
+    {
+        const view_span v = view(view_index, offset, count, ctype, ncomp, what);
+        const int csize = tinygltf::GetComponentSizeInBytes((uint32_t)ctype);
         for (size_t i = 0; i < count; i++)
             for (int c = 0; c < ncomp; c++)
-                out[i * (size_t)ncomp + (size_t)c] = read_component(base + i * stride + (size_t)c * (size_t)csize, ctype, normalized);
+                out[i * (size_t)ncomp + (size_t)c] = read_component(v.base + i * v.stride + (size_t)c * (size_t)csize, ctype, normalized);
+    }
+
+    // Accessor `index` as read() checks it: its components per element.
+    int checked_components(const tinygltf::Accessor &a, int want_type, const std::string &what)
+    {
+        const int nc = components(a.type);
+        if (a.type != want_type || nc == 0)
+            fail(what + ": accessor has the wrong type");
+        if (a.count > (1u << 28))
+            fail(what + ": accessor too large");
+        return nc;
+    }
+
+    // The elements of accessor a, if they are stored one after the other without sparse
+    // substitution, as components of type ctype (nullptr if not, or if a is not of that type):
+    // such accessors (most files' positions, normals and indices) are read straight from the
+    // buffer, with read()'s checks and values, without its vector of doubles.
+    const unsigned char *packed(const tinygltf::Accessor &a, int want_type, int ctype, const std::string &what)
+    {
+        const int nc = checked_components(a, want_type, what);
+        if (a.componentType != ctype || a.sparse.isSparse || a.bufferView < 0)
+            return nullptr;
+        const view_span v = view(a.bufferView, a.byteOffset, a.count, a.componentType, nc, what);
+        const size_t elem = (size_t)tinygltf::GetComponentSizeInBytes((uint32_t)ctype) * (size_t)nc;
+        return v.stride == elem ? v.base : nullptr;
+    }
+
+    // Accessor `index`'s components appended to dst as floats, (float) of read()'s values: 0, or
+    // the number appended. Packed floats are copied as they are, the same bits (a float converts
+    // to double and back exactly).
+    size_t append_floats(int index, int want_type, const std::string &what, std::vector<float> &dst)
+    {
+        const tinygltf::Accessor &a = accessor(index, what.c_str());
+        if (const unsigned char *p = packed(a, want_type, TINYGLTF_COMPONENT_TYPE_FLOAT, what)) {
+            const size_t n = (size_t)a.count * (size_t)components(want_type), at = dst.size();
+            reserve_more(dst, n);
+            dst.resize(at + n);
+            std::memcpy(dst.data() + at, p, n * sizeof(float));
+            return n;
+        }
+        const std::vector<double> v = read(index, want_type, what);
+        reserve_more(dst, v.size());
+        for (double x : v)
+            dst.push_back((float)x);
+        return v.size();
     }
 
     // Accessor as doubles, ncomp per element, with sparse substitution applied.
     std::vector<double> read(int index, int want_type, const std::string &what)
     {
         const tinygltf::Accessor &a = accessor(index, what.c_str());
-        const int nc = components(a.type);
-        if (a.type != want_type || nc == 0)
-            fail(what + ": accessor has the wrong type");
-        if (a.count > (1u << 28))
-            fail(what + ": accessor too large");
+        const int nc = checked_components(a, want_type, what);
         std::vector<double> v((size_t)a.count * (size_t)nc, 0.0);
         if (a.bufferView >= 0)
             read_view(a.bufferView, a.byteOffset, a.count, a.componentType, nc, a.normalized, what, v.data());
@@ -250,10 +303,16 @@ class Loader {
     std::vector<double> read_finite(int index, int want_type, const std::string &what)
     {
         std::vector<double> v = read(index, want_type, what);
-        for (size_t i = 0; i < v.size(); i++)
+        require_finite(v.data(), v.size(), want_type, what);
+        return v;
+    }
+
+    // Fails on the first NaN/Inf of v[0..n), components of elements of type want_type.
+    template <class T> void require_finite(const T *v, size_t n, int want_type, const std::string &what)
+    {
+        for (size_t i = 0; i < n; i++)
             if (!std::isfinite(v[i]))
                 fail(what + ": non-finite value at element " + std::to_string(i / (size_t)components(want_type)));
-        return v;
     }
 
     // ---- materials and textures ---------------------------------------------------------
@@ -410,8 +469,10 @@ class Loader {
     {
         auto j = p.attributes.find("JOINTS_0"), w = p.attributes.find("WEIGHTS_0");
         if (j == p.attributes.end() || w == p.attributes.end()) {
-            b.joints.resize(b.pos.size() / 3 * 4, 0);
-            b.weights.resize(b.pos.size() / 3 * 4, 0.0f);
+            if (b.any_skin) { // empty until a primitive has influences, as fill()'s attributes
+                b.joints.resize(b.pos.size() / 3 * 4, 0);
+                b.weights.resize(b.pos.size() / 3 * 4, 0.0f);
+            }
             return;
         }
         if (p.attributes.count("JOINTS_1"))
@@ -423,6 +484,8 @@ class Loader {
         const std::vector<double> wv = read_finite(w->second, TINYGLTF_TYPE_VEC4, what + " WEIGHTS_0");
         if (jv.size() != nv * 4 || wv.size() != nv * 4)
             fail(what + ": JOINTS_0/WEIGHTS_0 count differs from POSITION count");
+        b.joints.resize((b.pos.size() / 3 - nv) * 4, 0);
+        b.weights.resize((b.pos.size() / 3 - nv) * 4, 0.0f);
         for (size_t i = 0; i < jv.size(); i++) {
             b.joints.push_back((uint16_t)jv[i]);
             b.weights.push_back((float)std::fmax(wv[i], 0.0)); // negative weights are invalid glTF
@@ -446,29 +509,28 @@ class Loader {
         auto pos_it = p.attributes.find("POSITION");
         if (pos_it == p.attributes.end())
             fail(what + ": primitive has no POSITION");
-        const std::vector<double> pos = read_finite(pos_it->second, TINYGLTF_TYPE_VEC3, what + " POSITION");
-        const size_t nv = pos.size() / 3;
-        const uint32_t base = (uint32_t)(b.pos.size() / 3);
-        if (b.pos.size() / 3 + nv > (1u << 30))
+        const size_t at = b.pos.size(); // a float is finite iff the double it came from is
+        const size_t nv = append_floats(pos_it->second, TINYGLTF_TYPE_VEC3, what + " POSITION", b.pos) / 3;
+        require_finite(b.pos.data() + at, 3 * nv, TINYGLTF_TYPE_VEC3, what + " POSITION");
+        const uint32_t base = (uint32_t)(at / 3);
+        if (at / 3 + nv > (1u << 30))
             fail(what + ": too many vertices");
-        reserve_more(b.pos, pos.size());
-        for (double x : pos)
-            b.pos.push_back((float)x);
+        // An attribute's array stays empty until a primitive has it (then the earlier vertices
+        // get the default): a mesh without texture coordinates fills none.
         auto fill = [&](const char *name, int type, int nc, std::vector<float> &dst, bool &any) {
             auto it = p.attributes.find(name);
-            dst.resize((size_t)base * (size_t)nc, 0.0f);
             if (it == p.attributes.end()) {
-                dst.resize((size_t)(base + nv) * (size_t)nc, 0.0f);
+                if (any)
+                    dst.resize((size_t)(base + nv) * (size_t)nc, 0.0f);
                 return;
             }
-            std::vector<double> v = read(it->second, type, what + " " + name);
-            if (v.size() != nv * (size_t)nc)
+            dst.resize((size_t)base * (size_t)nc, 0.0f);
+            if (append_floats(it->second, type, what + " " + name, dst) != nv * (size_t)nc)
                 fail(what + ": " + name + " count differs from POSITION count");
             size_t bad = 0;
-            reserve_more(dst, v.size());
-            for (double x : v) {
-                bad += !std::isfinite(x);
-                dst.push_back(std::isfinite(x) ? (float)x : 0.0f); // zero normal: shade with the geometric one
+            for (size_t i = (size_t)base * (size_t)nc; i < dst.size(); i++) {
+                bad += !std::isfinite(dst[i]);
+                dst[i] = std::isfinite(dst[i]) ? dst[i] : 0.0f; // zero normal: shade with the geometric one
             }
             if (bad)
                 warn(what + ": " + std::to_string(bad) + " non-finite " + name + " components replaced by 0");
@@ -487,18 +549,27 @@ class Loader {
                 a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
                 a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
                 fail(what + ": indices must be unsigned integers");
-            reserve_more(idx, a.count);
-            for (double x : read_finite(p.indices, TINYGLTF_TYPE_SCALAR, what + " indices")) {
+            auto add = [&](double x) {
                 if (!(x >= 0 && x < (double)nv))
                     fail(what + ": vertex index " + std::to_string((long long)x) + " out of range (" +
                          std::to_string(nv) + " vertices)");
                 idx.push_back((uint32_t)x);
+            };
+            reserve_more(idx, a.count);
+            if (const unsigned char *q = packed(a, TINYGLTF_TYPE_SCALAR, a.componentType, what + " indices")) {
+                const size_t csize = (size_t)tinygltf::GetComponentSizeInBytes((uint32_t)a.componentType);
+                for (size_t i = 0; i < a.count; i++) // integers: finite
+                    add(read_component(q + i * csize, a.componentType, a.normalized));
+            } else {
+                for (double x : read_finite(p.indices, TINYGLTF_TYPE_SCALAR, what + " indices"))
+                    add(x);
             }
         } else {
             for (uint32_t i = 0; i < nv; i++)
                 idx.push_back(i);
         }
-        idx = triangulate(idx, p.mode);
+        if (p.mode != TINYGLTF_MODE_TRIANGLES)
+            idx = triangulate(idx, p.mode);
         if (idx.size() % 3)
             fail(what + ": index count is not a multiple of 3");
         const uint32_t material = p.material >= 0 && (size_t)p.material < m_.materials.size() ? (uint32_t)p.material + 1 : 0;
@@ -524,12 +595,13 @@ class Loader {
     // primitive without it, as the specification's default.
     void add_colours(mesh_build &b, const tinygltf::Primitive &p, size_t nv, const std::string &what)
     {
-        b.rgb.resize((b.pos.size() / 3 - nv) * 3, 1.0f);
         auto it = p.attributes.find("COLOR_0");
         if (it == p.attributes.end()) {
-            b.rgb.resize(b.pos.size(), 1.0f);
+            if (b.any_rgb) // empty until a primitive has colours, as fill()'s attributes
+                b.rgb.resize(b.pos.size(), 1.0f);
             return;
         }
+        b.rgb.resize((b.pos.size() / 3 - nv) * 3, 1.0f);
         const int type = accessor(it->second, (what + " COLOR_0").c_str()).type;
         if (type != TINYGLTF_TYPE_VEC3 && type != TINYGLTF_TYPE_VEC4)
             fail(what + ": COLOR_0 must be VEC3 or VEC4");
