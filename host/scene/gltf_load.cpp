@@ -549,20 +549,23 @@ class Loader {
                 a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
                 a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
                 fail(what + ": indices must be unsigned integers");
-            auto add = [&](double x) {
+            auto put = [&](size_t i, double x) { // indexed stores: push_back's checks cost as much as the rest
                 if (!(x >= 0 && x < (double)nv))
                     fail(what + ": vertex index " + std::to_string((long long)x) + " out of range (" +
                          std::to_string(nv) + " vertices)");
-                idx.push_back((uint32_t)x);
+                idx[i] = (uint32_t)x;
             };
             reserve_more(idx, a.count);
             if (const unsigned char *q = packed(a, TINYGLTF_TYPE_SCALAR, a.componentType, what + " indices")) {
                 const size_t csize = (size_t)tinygltf::GetComponentSizeInBytes((uint32_t)a.componentType);
+                idx.resize(a.count);
                 for (size_t i = 0; i < a.count; i++) // integers: finite
-                    add(read_component(q + i * csize, a.componentType, a.normalized));
+                    put(i, read_component(q + i * csize, a.componentType, a.normalized));
             } else {
-                for (double x : read_finite(p.indices, TINYGLTF_TYPE_SCALAR, what + " indices"))
-                    add(x);
+                const std::vector<double> v = read_finite(p.indices, TINYGLTF_TYPE_SCALAR, what + " indices");
+                idx.resize(v.size());
+                for (size_t i = 0; i < v.size(); i++)
+                    put(i, v[i]);
             }
         } else {
             for (uint32_t i = 0; i < nv; i++)
@@ -573,9 +576,11 @@ class Loader {
         if (idx.size() % 3)
             fail(what + ": index count is not a multiple of 3");
         const uint32_t material = p.material >= 0 && (size_t)p.material < m_.materials.size() ? (uint32_t)p.material + 1 : 0;
+        const size_t first = b.idx.size();
         reserve_more(b.idx, idx.size());
-        for (uint32_t i : idx)
-            b.idx.push_back(base + i);
+        b.idx.resize(first + idx.size());
+        for (size_t i = 0; i < idx.size(); i++)
+            b.idx[first + i] = base + idx[i];
         b.mat.insert(b.mat.end(), idx.size() / 3, material);
 
         std::vector<std::vector<double>> deltas;
