@@ -554,10 +554,11 @@ static void gpu_instancing(void **state)
     scene_free(&s);
 }
 
-/* A mesh of three primitives where only the middle one has normals, texture coordinates
- * (normalized shorts: the loader's general path) and colours (normalized bytes): the vertices of
- * the others get the defaults, before and after it (the loader fills an attribute's array only
- * once a primitive has it, and pads the vertices before). */
+/* A mesh of five primitives where only the second has normals, texture coordinates (normalized
+ * shorts: the loader's general path) and colours (normalized bytes): the vertices of the others
+ * get the defaults, before and after it (the loader fills an attribute's array only once a
+ * primitive has it, and pads the vertices before). The fourth is an indexed triangle strip and the
+ * fifth a fan without indices: each one triangle, whose indices continue the list. */
 static void mixed_primitives(void **state)
 {
     (void)state;
@@ -579,7 +580,8 @@ static void mixed_primitives(void **state)
             "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}],"
             "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1},"
             "{\"attributes\":{\"POSITION\":0,\"NORMAL\":2,\"TEXCOORD_0\":3,\"COLOR_0\":4},\"indices\":1},"
-            "{\"attributes\":{\"POSITION\":0},\"indices\":1}]}],"
+            "{\"attributes\":{\"POSITION\":0},\"indices\":1},{\"attributes\":{\"POSITION\":0},\"indices\":1,\"mode\":5},"
+            "{\"attributes\":{\"POSITION\":0},\"mode\":6}]}],"
             "\"buffers\":[{\"byteLength\":104,\"uri\":\"data:application/octet-stream;base64,%s\"}],"
             "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":36},{\"buffer\":0,\"byteOffset\":36,\"byteLength\":6},"
             "{\"buffer\":0,\"byteOffset\":44,\"byteLength\":36},{\"buffer\":0,\"byteOffset\":80,\"byteLength\":12},"
@@ -597,13 +599,13 @@ static void mixed_primitives(void **state)
         fail_msg("%s", err);
     assert_int_equal(s.n_meshes, 1);
     const scene_mesh *m = &s.meshes[0];
-    assert_int_equal(m->n_vertices, 9);
-    assert_int_equal(m->n_triangles, 3);
+    assert_int_equal(m->n_vertices, 15);
+    assert_int_equal(m->n_triangles, 5);
     assert_non_null(m->normals);
     assert_non_null(m->texcoords);
     assert_non_null(m->colours);
     assert_null(m->texcoords1);
-    for (uint32_t v = 0; v < 9; v++) {
+    for (uint32_t v = 0; v < 15; v++) {
         const int mid = v >= 3 && v < 6;
         expect_vertex(&m->positions[3 * v], pos[3 * (v % 3)], pos[3 * (v % 3) + 1], pos[3 * (v % 3) + 2]);
         expect_vertex(&m->normals[3 * v], 0, 0, mid);

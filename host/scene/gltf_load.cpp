@@ -3,6 +3,7 @@
 // features (Draco, meshopt, KTX2, points and lines) one-line warnings, never a crash.
 #include "scene.h"
 #include "gltf_util.h"
+#include "huge_pages.h"
 
 #include <tiny_gltf.h>
 #include <algorithm>
@@ -16,6 +17,7 @@
 #include <iterator>
 #include <stdexcept>
 #include <string>
+#include <sys/stat.h>
 #include <vector>
 
 namespace {
@@ -31,7 +33,7 @@ struct load_error : std::runtime_error {
 // Room in v for `extra` more elements before a loop of push_backs: one allocation instead of the
 // doublings' copies (the gallery's 1.5 M indices; every copy touches fresh pages), and at least
 // doubling, so that a mesh of many primitives still grows in amortized O(1).
-template <class T> void reserve_more(std::vector<T> &v, size_t extra)
+template <class V> void reserve_more(V &v, size_t extra)
 {
     if (v.capacity() - v.size() < extra)
         v.reserve(std::max(v.size() + extra, 2 * v.capacity()));
@@ -70,13 +72,41 @@ template <typename T> T *alloc_array(size_t n)
     return p;
 }
 
-template <typename T> T *copy_array(const std::vector<T> &v)
+// The scene's copy of v (malloc'd, as scene_free frees it), in huge pages where large.
+template <class V> typename V::value_type *copy_array(const V &v)
 {
-    T *p = alloc_array<T>(v.size());
-    if (p)
-        std::memcpy(p, v.data(), v.size() * sizeof(T));
+    using T = typename V::value_type;
+    if (v.empty())
+        return nullptr;
+    T *p = static_cast<T *>(huge_pages_malloc(v.size() * sizeof(T)));
+    if (!p)
+        throw std::bad_alloc();
+    std::memcpy(p, v.data(), v.size() * sizeof(T));
     return p;
 }
+
+// An allocator whose large blocks ask for huge pages (huge_pages.h). The loader's phase runs on
+// one thread before any other work, and its arrays are written once, front to back: at 4 KB pages
+// the gallery's load took 8,800 page faults, each a costly trap on this project's VM, where a 2 MB
+// page takes one.
+template <class T> struct huge_allocator {
+    using value_type = T;
+    huge_allocator() = default;
+    template <class U> huge_allocator(const huge_allocator<U> &) {}
+    T *allocate(size_t n)
+    {
+        void *p = n <= SIZE_MAX / sizeof(T) ? huge_pages_malloc(n ? n * sizeof(T) : 1) : nullptr;
+        if (!p)
+            throw std::bad_alloc();
+        return static_cast<T *>(p);
+    }
+    void deallocate(T *p, size_t) { std::free(p); }
+};
+template <class T, class U> bool operator==(const huge_allocator<T> &, const huge_allocator<U> &) { return true; }
+template <class T, class U> bool operator!=(const huge_allocator<T> &, const huge_allocator<U> &) { return false; }
+
+// The mesh arrays while they grow.
+template <class T> using mesh_array = std::vector<T, huge_allocator<T>>;
 
 class Loader {
   public:
@@ -255,7 +285,7 @@ class Loader {
     // Accessor `index`'s components appended to dst as floats, (float) of read()'s values: 0, or
     // the number appended. Packed floats are copied as they are, the same bits (a float converts
     // to double and back exactly).
-    size_t append_floats(int index, int want_type, const std::string &what, std::vector<float> &dst)
+    size_t append_floats(int index, int want_type, const std::string &what, mesh_array<float> &dst)
     {
         const tinygltf::Accessor &a = accessor(index, what.c_str());
         if (const unsigned char *p = packed(a, want_type, TINYGLTF_COMPONENT_TYPE_FLOAT, what)) {
@@ -439,20 +469,20 @@ class Loader {
     // ---- meshes --------------------------------------------------------------------------
 
     struct mesh_build {
-        std::vector<float> pos, nrm, uv, uv1, rgb;
-        std::vector<uint32_t> idx, mat;
-        std::vector<uint16_t> joints;  // 4 per vertex (JOINTS_0)
-        std::vector<float> weights;    // 4 per vertex (WEIGHTS_0)
+        mesh_array<float> pos, nrm, uv, uv1, rgb;
+        mesh_array<uint32_t> idx, mat;
+        mesh_array<uint16_t> joints;  // 4 per vertex (JOINTS_0)
+        mesh_array<float> weights;    // 4 per vertex (WEIGHTS_0)
         bool any_normals = false, any_uv = false, any_uv1 = false, any_rgb = false, any_skin = false;
         uint32_t n_targets = 0;
         std::vector<std::pair<uint32_t, std::vector<std::vector<double>>>> prim_targets; // first vertex, deltas
     };
 
-    static std::vector<uint32_t> triangulate(const std::vector<uint32_t> &v, int mode)
+    static mesh_array<uint32_t> triangulate(const mesh_array<uint32_t> &v, int mode)
     {
         if (mode == TINYGLTF_MODE_TRIANGLES)
             return v;
-        std::vector<uint32_t> t;
+        mesh_array<uint32_t> t;
         for (size_t i = 2; i < v.size(); i++) {
             if (mode == TINYGLTF_MODE_TRIANGLE_STRIP)
                 t.insert(t.end(), i % 2 ? std::initializer_list<uint32_t>{ v[i - 1], v[i - 2], v[i] }
@@ -517,7 +547,7 @@ class Loader {
             fail(what + ": too many vertices");
         // An attribute's array stays empty until a primitive has it (then the earlier vertices
         // get the default): a mesh without texture coordinates fills none.
-        auto fill = [&](const char *name, int type, int nc, std::vector<float> &dst, bool &any) {
+        auto fill = [&](const char *name, int type, int nc, mesh_array<float> &dst, bool &any) {
             auto it = p.attributes.find(name);
             if (it == p.attributes.end()) {
                 if (any)
@@ -542,7 +572,14 @@ class Loader {
         add_colours(b, p, nv, what);
         add_influences(b, p, nv, what);
 
-        std::vector<uint32_t> idx;
+        // A triangle list's indices go straight into b.idx, the base added as they are read (one
+        // pass over fresh memory); a strip's or a fan's into a list of their own, triangulated.
+        const bool list = p.mode == TINYGLTF_MODE_TRIANGLES;
+        const size_t start = b.idx.size();
+        mesh_array<uint32_t> strip;
+        mesh_array<uint32_t> &idx = list ? b.idx : strip;
+        const size_t first = idx.size();
+        const uint32_t off = list ? base : 0;
         if (p.indices >= 0) {
             const tinygltf::Accessor &a = accessor(p.indices, (what + " indices").c_str());
             if (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
@@ -553,35 +590,36 @@ class Loader {
                 if (!(x >= 0 && x < (double)nv))
                     fail(what + ": vertex index " + std::to_string((long long)x) + " out of range (" +
                          std::to_string(nv) + " vertices)");
-                idx[i] = (uint32_t)x;
+                idx[first + i] = off + (uint32_t)x;
             };
             reserve_more(idx, a.count);
             if (const unsigned char *q = packed(a, TINYGLTF_TYPE_SCALAR, a.componentType, what + " indices")) {
                 const size_t csize = (size_t)tinygltf::GetComponentSizeInBytes((uint32_t)a.componentType);
-                idx.resize(a.count);
+                idx.resize(first + a.count);
                 for (size_t i = 0; i < a.count; i++) // integers: finite
                     put(i, read_component(q + i * csize, a.componentType, a.normalized));
             } else {
                 const std::vector<double> v = read_finite(p.indices, TINYGLTF_TYPE_SCALAR, what + " indices");
-                idx.resize(v.size());
+                idx.resize(first + v.size());
                 for (size_t i = 0; i < v.size(); i++)
                     put(i, v[i]);
             }
         } else {
+            reserve_more(idx, nv);
             for (uint32_t i = 0; i < nv; i++)
-                idx.push_back(i);
+                idx.push_back(off + i);
         }
-        if (p.mode != TINYGLTF_MODE_TRIANGLES)
-            idx = triangulate(idx, p.mode);
-        if (idx.size() % 3)
+        if (!list) {
+            strip = triangulate(strip, p.mode);
+            reserve_more(b.idx, strip.size());
+            for (uint32_t i : strip)
+                b.idx.push_back(base + i);
+        }
+        const size_t n_idx = b.idx.size() - start;
+        if (n_idx % 3)
             fail(what + ": index count is not a multiple of 3");
         const uint32_t material = p.material >= 0 && (size_t)p.material < m_.materials.size() ? (uint32_t)p.material + 1 : 0;
-        const size_t first = b.idx.size();
-        reserve_more(b.idx, idx.size());
-        b.idx.resize(first + idx.size());
-        for (size_t i = 0; i < idx.size(); i++)
-            b.idx[first + i] = base + idx[i];
-        b.mat.insert(b.mat.end(), idx.size() / 3, material);
+        b.mat.insert(b.mat.end(), n_idx / 3, material);
 
         std::vector<std::vector<double>> deltas;
         for (size_t t = 0; t < p.targets.size(); t++) {
@@ -1023,6 +1061,11 @@ bool sandboxed_read(std::vector<unsigned char> *out, std::string *err, const std
         if (err)
             *err += "refers to '" + file + "' outside its directory (refused)\n";
         return false;
+    }
+    struct stat st; // the file's buffer in huge pages: reserved and advised before the read writes it
+    if (stat(file.c_str(), &st) == 0 && st.st_size > 0 && (uint64_t)st.st_size < (uint64_t)out->max_size()) {
+        out->reserve((size_t)st.st_size);
+        huge_pages_advise(out->data(), out->capacity());
     }
     return tinygltf::ReadWholeFile(out, err, file, nullptr);
 }
