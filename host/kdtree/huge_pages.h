@@ -19,11 +19,14 @@ extern "C" {
  * (a hint: ignored where unsupported). Call it before the buffer is first written. */
 void huge_pages_advise(void *p, size_t bytes);
 
-/* malloc(bytes) with huge_pages_advise; NULL if memory ran out. */
+/* malloc(bytes) with huge_pages_advise; NULL if memory ran out. From 2 MB on, the block is
+ * aligned to 2 MB and rounded up to a multiple of it (posix_memalign), so that all of it gets
+ * huge pages; free() releases it. */
 void *huge_pages_malloc(size_t bytes);
 
-/* realloc(p, bytes) with huge_pages_advise over the whole new block (the part p held is already
- * mapped and keeps its pages); NULL if memory ran out (p is then unchanged). */
+/* realloc(p, bytes) for p from malloc or huge_pages_malloc; NULL if memory ran out (p is then
+ * unchanged). Below 2 MB realloc with huge_pages_advise; from 2 MB on p itself if it has room
+ * (it is not shrunk), else a new huge_pages_malloc block that p is copied into. */
 void *huge_pages_realloc(void *p, size_t bytes);
 
 #ifdef __cplusplus
