@@ -6,6 +6,7 @@
  * silhouette. Vertices are welded by position, not by index: meshes often repeat a vertex per
  * face for its normal or texture coordinates.
  */
+#include "huge_pages.h"
 #include "memimage.h"
 
 #include <stdlib.h>
@@ -84,7 +85,8 @@ int mi_shared_edges(const scene_mesh *m, const uint32_t *tri, uint32_t n, uint8_
     size_t size = 2;
     while (size < 2 * (size_t)edges)
         size *= 2;
-    uint64_t *slot = malloc(size * sizeof *slot); /* open addressing, linear probing, load <= 1/2 */
+    /* open addressing, linear probing, load <= 1/2; huge pages: the gallery's tables are 2-8 MB */
+    uint64_t *slot = huge_pages_malloc(size * sizeof *slot);
     if (!slot)
         return -1;
     memset(slot, 0xFF, size * sizeof *slot); /* empty: edge UINT32_MAX, never one of the 3 n */
