@@ -85,28 +85,79 @@ template <class V> typename V::value_type *copy_array(const V &v)
     return p;
 }
 
-// An allocator whose large blocks ask for huge pages (huge_pages.h). The loader's phase runs on
-// one thread before any other work, and its arrays are written once, front to back: at 4 KB pages
-// the gallery's load took 8,800 page faults, each a costly trap on this project's VM, where a 2 MB
-// page takes one.
-template <class T> struct huge_allocator {
+// A mesh array while it grows: one malloc'd block (huge_pages_realloc: large ones in huge pages)
+// that the scene takes over when the mesh is done (release(); scene_free frees it) instead of a
+// copy. The loader runs on one thread before any other work, and its fresh pages are most of its
+// time: each first touch of a 4 KB page is a costly trap on this project's VM (the gallery's load
+// took 8,800 of them). T is a plain number type.
+template <class T> class mesh_array {
+  public:
     using value_type = T;
-    huge_allocator() = default;
-    template <class U> huge_allocator(const huge_allocator<U> &) {}
-    T *allocate(size_t n)
+    mesh_array() = default;
+    mesh_array(const mesh_array &o) { append(o.p_, o.n_); }
+    mesh_array(mesh_array &&o) noexcept : p_(o.p_), n_(o.n_), cap_(o.cap_) { o.p_ = nullptr, o.n_ = o.cap_ = 0; }
+    mesh_array &operator=(mesh_array o) noexcept
     {
-        void *p = n <= SIZE_MAX / sizeof(T) ? huge_pages_malloc(n ? n * sizeof(T) : 1) : nullptr;
-        if (!p)
-            throw std::bad_alloc();
-        return static_cast<T *>(p);
+        std::swap(p_, o.p_), std::swap(n_, o.n_), std::swap(cap_, o.cap_);
+        return *this;
     }
-    void deallocate(T *p, size_t) { std::free(p); }
-};
-template <class T, class U> bool operator==(const huge_allocator<T> &, const huge_allocator<U> &) { return true; }
-template <class T, class U> bool operator!=(const huge_allocator<T> &, const huge_allocator<U> &) { return false; }
+    ~mesh_array() { std::free(p_); }
+    size_t size() const { return n_; }
+    size_t capacity() const { return cap_; }
+    bool empty() const { return n_ == 0; }
+    T *data() { return p_; }
+    const T *data() const { return p_; }
+    T &operator[](size_t i) { return p_[i]; }
+    const T &operator[](size_t i) const { return p_[i]; }
+    const T *begin() const { return p_; }
+    const T *end() const { return p_ + n_; }
+    void reserve(size_t c)
+    {
+        if (c <= cap_)
+            return;
+        T *q = c <= SIZE_MAX / sizeof(T) ? static_cast<T *>(huge_pages_realloc(p_, c * sizeof(T))) : nullptr;
+        if (!q)
+            throw std::bad_alloc();
+        p_ = q, cap_ = c;
+    }
+    void resize(size_t n, T v = T())
+    {
+        grow(n);
+        for (size_t i = n_; i < n; i++)
+            p_[i] = v;
+        n_ = n;
+    }
+    void push_back(T v)
+    {
+        grow(n_ + 1);
+        p_[n_++] = v;
+    }
+    void append(const void *v, size_t n) // n elements' bytes: v need not be aligned
+    {
+        grow(n_ + n);
+        if (n)
+            std::memcpy(p_ + n_, v, n * sizeof(T));
+        n_ += n;
+    }
+    // The block, for the scene to own (nullptr if empty); the array is empty after.
+    T *release()
+    {
+        T *p = n_ ? p_ : nullptr;
+        if (!n_)
+            std::free(p_);
+        p_ = nullptr, n_ = cap_ = 0;
+        return p;
+    }
 
-// The mesh arrays while they grow.
-template <class T> using mesh_array = std::vector<T, huge_allocator<T>>;
+  private:
+    void grow(size_t n) // at least doubling, as std::vector: amortized O(1) push_back
+    {
+        if (n > cap_)
+            reserve(std::max(n, 2 * cap_));
+    }
+    T *p_ = nullptr;
+    size_t n_ = 0, cap_ = 0;
+};
 
 class Loader {
   public:
@@ -289,10 +340,9 @@ class Loader {
     {
         const tinygltf::Accessor &a = accessor(index, what.c_str());
         if (const unsigned char *p = packed(a, want_type, TINYGLTF_COMPONENT_TYPE_FLOAT, what)) {
-            const size_t n = (size_t)a.count * (size_t)components(want_type), at = dst.size();
+            const size_t n = (size_t)a.count * (size_t)components(want_type);
             reserve_more(dst, n);
-            dst.resize(at + n);
-            std::memcpy(dst.data() + at, p, n * sizeof(float));
+            dst.append(p, n);
             return n;
         }
         const std::vector<double> v = read(index, want_type, what);
@@ -485,10 +535,11 @@ class Loader {
         mesh_array<uint32_t> t;
         for (size_t i = 2; i < v.size(); i++) {
             if (mode == TINYGLTF_MODE_TRIANGLE_STRIP)
-                t.insert(t.end(), i % 2 ? std::initializer_list<uint32_t>{ v[i - 1], v[i - 2], v[i] }
-                                        : std::initializer_list<uint32_t>{ v[i - 2], v[i - 1], v[i] });
+                for (size_t k : { i - 2 + i % 2, i - 1 - i % 2, i }) // odd i: i - 1, i - 2, i; even: i - 2, i - 1, i
+                    t.push_back(v[k]);
             else
-                t.insert(t.end(), { v[0], v[i - 1], v[i] });
+                for (size_t k : { (size_t)0, i - 1, i })
+                    t.push_back(v[k]);
         }
         return t;
     }
@@ -619,7 +670,7 @@ class Loader {
         if (n_idx % 3)
             fail(what + ": index count is not a multiple of 3");
         const uint32_t material = p.material >= 0 && (size_t)p.material < m_.materials.size() ? (uint32_t)p.material + 1 : 0;
-        b.mat.insert(b.mat.end(), n_idx / 3, material);
+        b.mat.resize(b.mat.size() + n_idx / 3, material);
 
         std::vector<std::vector<double>> deltas;
         for (size_t t = 0; t < p.targets.size(); t++) {
@@ -671,40 +722,41 @@ class Loader {
                 add_primitive(b, gm.primitives[pi], "mesh " + std::to_string(mi) + " primitive " + std::to_string(pi));
             scene_mesh &sm = s_->meshes[mi];
             std::snprintf(sm.name, sizeof sm.name, "%s", gm.name.empty() ? ("mesh" + std::to_string(mi)).c_str() : gm.name.c_str());
-            sm.n_vertices = (uint32_t)(b.pos.size() / 3);
+            const size_t n_pos = b.pos.size();
+            sm.n_vertices = (uint32_t)(n_pos / 3);
             sm.n_triangles = (uint32_t)(b.idx.size() / 3);
-            sm.positions = copy_array(b.pos);
-            sm.normals = b.any_normals ? copy_array(b.nrm) : nullptr;
-            sm.texcoords = b.any_uv ? copy_array(b.uv) : nullptr;
-            sm.texcoords1 = b.any_uv1 ? copy_array(b.uv1) : nullptr;
-            sm.colours = b.any_rgb ? copy_array(b.rgb) : nullptr;
-            sm.indices = copy_array(b.idx);
-            sm.material = copy_array(b.mat);
             sm.skin = SCENE_NONE; // set by load_skins for a mesh a skinned node shows
-            if (b.any_skin) {
-                sm.joints = copy_array(b.joints);
-                sm.joint_weights = copy_array(b.weights);
+            if (b.any_skin) { // the copies first: the scene takes the arrays themselves
                 sm.bind_normals = b.any_normals ? copy_array(b.nrm) : nullptr;
                 sm.base_positions = copy_array(b.pos);
+                sm.joints = b.joints.release();
+                sm.joint_weights = b.weights.release();
             }
+            if (b.n_targets && !sm.base_positions)
+                sm.base_positions = copy_array(b.pos);
+            sm.positions = b.pos.release();
+            sm.normals = b.any_normals ? b.nrm.release() : nullptr;
+            sm.texcoords = b.any_uv ? b.uv.release() : nullptr;
+            sm.texcoords1 = b.any_uv1 ? b.uv1.release() : nullptr;
+            sm.colours = b.any_rgb ? b.rgb.release() : nullptr;
+            sm.indices = b.idx.release();
+            sm.material = b.mat.release();
             if (b.n_targets == 0)
                 continue;
             sm.n_targets = b.n_targets;
-            if (!sm.base_positions)
-                sm.base_positions = copy_array(b.pos);
-            sm.target_deltas = alloc_array<float>((size_t)b.n_targets * b.pos.size());
+            sm.target_deltas = alloc_array<float>((size_t)b.n_targets * n_pos);
             for (auto &pt : b.prim_targets)
                 for (size_t t = 0; t < pt.second.size(); t++)
                     for (size_t k = 0; k < pt.second[t].size(); k++)
-                        sm.target_deltas[t * b.pos.size() + (size_t)pt.first * 3 + k] = (float)pt.second[t][k];
+                        sm.target_deltas[t * n_pos + (size_t)pt.first * 3 + k] = (float)pt.second[t][k];
             sm.weights = alloc_array<float>(b.n_targets);
             for (uint32_t t = 0; t < b.n_targets && t < gm.weights.size(); t++)
                 sm.weights[t] = (float)gm.weights[t];
             // positions reflect the default weights
-            for (size_t v = 0; v < b.pos.size(); v++) {
-                double p = b.pos[v];
+            for (size_t v = 0; v < n_pos; v++) {
+                double p = sm.positions[v];
                 for (uint32_t t = 0; t < b.n_targets; t++)
-                    p += (double)sm.weights[t] * sm.target_deltas[t * b.pos.size() + v];
+                    p += (double)sm.weights[t] * sm.target_deltas[t * n_pos + v];
                 sm.positions[v] = (float)p;
             }
         }
