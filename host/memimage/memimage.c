@@ -534,7 +534,8 @@ static int object_transform(mi_builder *b, const scene_mesh *m, mi_object *o)
     for_parts(m->n_triangles, transform_part, &job);
     for (uint32_t t = 0; t < m->n_triangles; t++) /* the kept ones, in order */
         if (ok[t]) {
-            o->xf[o->n_valid] = o->xf[t];
+            if (o->n_valid != t) /* in place until the first dropped one: mostly all of them */
+                o->xf[o->n_valid] = o->xf[t];
             o->valid[o->n_valid++] = t;
         }
     free(ok);
