@@ -333,9 +333,9 @@ class Loader {
         return v.stride == elem ? v.base : nullptr;
     }
 
-    // Accessor `index`'s components appended to dst as floats, (float) of read()'s values: 0, or
-    // the number appended. Packed floats are copied as they are, the same bits (a float converts
-    // to double and back exactly).
+    // Accessor `index`'s components appended to dst as floats, (float) of read()'s values; returns
+    // how many. Packed floats are copied as they are, the same bits (a float converts to double
+    // and back exactly).
     size_t append_floats(int index, int want_type, const std::string &what, mesh_array<float> &dst)
     {
         const tinygltf::Accessor &a = accessor(index, what.c_str());
