@@ -126,8 +126,7 @@ typedef int32_t f24v_s __attribute__((vector_size(16)));
 typedef float f24v_f __attribute__((vector_size(16)));
 F24V_INLINE f24v f24v_of(const f24_t a[F24Q_LANES])
 {
-    f24v_s x;
-    memcpy(&x, a, sizeof x);
+    const f24v_s x = { (int32_t)a[0], (int32_t)a[1], (int32_t)a[2], (int32_t)a[3] };
     const f24v_s mag = x & (int32_t)F24_ABS_MASK; /* below 2^31: signed comparisons are exact */
     const f24v_s sign = (f24v_s)((f24v_u)x >> (F24_EXP_BITS + F24_MAN_BITS) << 31);
     const f24v_s normal = (mag << (23 - F24_MAN_BITS)) + (int32_t)((127u - F24_BIAS) << 23);
@@ -205,8 +204,7 @@ F24V_INLINE f24v f24v_sqrt(f24v a)
 }
 F24V_INLINE f24v f24v_from_i32(const int32_t a[F24Q_LANES]) /* exact in binary64, then rounded */
 {
-    f24v_s x;
-    memcpy(&x, a, sizeof x);
+    const f24v_s x = { a[0], a[1], a[2], a[3] };
     return f24v_round((f24v){ x[0], x[1], x[2], x[3] }); /* one vcvtdq2pd, as f24v_of's widening */
 }
 F24V_INLINE f24v f24v_min(f24v a, f24v b) { return f24v_minmax(a, b, 0); }
