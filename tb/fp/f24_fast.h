@@ -224,6 +224,9 @@ F24V_INLINE uint32_t f24v_sign(f24v a) { return f24v_mask((f24v_i)a < 0); }
 /* f24q_sum_exact (hls/fp24/f24.h) on vectors (tb/fp/f24_fast_sum.c): the terms' lanes are
  * working values, so that a unit passes the ones it holds decoded and decodes a repeated term once */
 void f24_fast_sum_exact_lanes(const f24v a[], const f24v b[], uint32_t n, f24_t hi[F24Q_LANES], f24_t lo[F24Q_LANES]);
+/* its hi alone (f24q_sum_exact_hi): the filter then needs no bound on the remainder, so that a sum
+ * cancelling down to its last bits is decided by its rounding alone more often */
+void f24_fast_sum_exact_hi_lanes(const f24v a[], const f24v b[], uint32_t n, f24_t hi[F24Q_LANES]);
 #endif
 
 #ifdef F24_FAST_SIM
@@ -277,6 +280,7 @@ typedef f24v f24h __attribute__((aligned(8)));
 #define f24q_lt f24v_lt
 #define f24q_sign f24v_sign
 #define f24q_sum_exact f24_fast_sum_exact_lanes
+#define f24q_sum_exact_hi f24_fast_sum_exact_hi_lanes
 #endif
 
 
