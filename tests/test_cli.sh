@@ -83,6 +83,37 @@ t_image_library() {
   expect 0 "$BIN" compare "$T/alone_ref.exr" "$T/alone_ref.exr"
 }
 
+# --capture-unit-io: the program holds no capture wrappers and runs its capture build (capture/saarcor
+# beside it) with the same command line, which records what calling that build does and changes no
+# bit of the image; without the build, one line naming it (exit 2) and nothing written
+t_capture_build() {
+  local cap
+  cap=$(dirname "$(readlink -f "$BIN")")/capture/saarcor
+  [[ -x $cap ]] || { echo "no capture build at $cap"; return 1; }
+  if nm "$BIN" | grep -q ' __wrap_'; then echo "$BIN holds the capture wrappers"; return 1; fi
+  nm "$cap" | grep -q ' T __wrap_trace_step$'
+  local args=(render cornell --width 16 --height 12 --threads 1 --capture-limit 50)
+  expect 0 "$BIN" "${args[@]}" -o "$T/cap_p.png" --capture-unit-io "$T/cap_p"
+  has '^captured unit transactions in .*trace [1-9]' "$T/out"
+  expect 0 "$cap" "${args[@]}" -o "$T/cap_c.png" --capture-unit-io "$T/cap_c"
+  # trav_unit.hex without the leaf fields a walk start has not written yet (leaf_first, leaf_mask,
+  # leaf_tn: left over from the state's memory, they differ between any two runs, capture build or not)
+  local d
+  for d in cap_p cap_c; do
+    cut -d' ' -f1-54,56,62- "$T/$d/trav_unit.hex" >"$T/$d.trav_unit"
+    rm "$T/$d/trav_unit.hex"
+  done
+  diff -r "$T/cap_p" "$T/cap_c"
+  cmp "$T/cap_p.trav_unit" "$T/cap_c.trav_unit"
+  cmp "$T/cap_p.png" "$T/cap_c.png"
+  expect 0 "$BIN" "${args[@]}" -o "$T/plain.png"
+  cmp "$T/plain.png" "$T/cap_p.png"
+  mkdir -p "$T/nocap"; cp "$BIN" "$T/nocap/saarcor"
+  expect 2 "$T/nocap/saarcor" "${args[@]}" -o "$T/nocap.png" --capture-unit-io "$T/nocap_dir"; one_line_error
+  has 'capture/saarcor' "$T/err"
+  [[ ! -e $T/nocap_dir && ! -e $T/nocap.png ]]
+}
+
 t_f24_eval() {
   expect 0 "$BIN" f24 add 1 2;        grep -q '= 3  \[0x408000\]' "$T/out"
   expect 0 "$BIN" f24 div 1 3;        has '\[0x3D5555\]' "$T/out"
@@ -516,6 +547,7 @@ run_case cli_help t_help
 run_case cli_bad_usage_exit_2_one_line t_bad_usage
 run_case cli_version t_version
 run_case cli_image_library t_image_library
+run_case cli_capture_build t_capture_build
 run_case cli_f24_eval t_f24_eval
 run_case cli_f24gen_format t_f24gen_format
 run_case cli_f24verify t_f24verify

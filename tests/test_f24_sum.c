@@ -270,7 +270,8 @@ static void fast_path_filter(void **state)
 }
 
 #ifdef F24_FAST_VECTORS
-/* f24_fast_sum_exact_lanes (f24q_sum_exact in the simulation build): four sums side by side, on
+/* f24_fast_sum_exact_lanes (f24q_sum_exact in the simulation build) and f24_fast_sum_exact_hi_lanes
+ * (f24q_sum_exact_hi: its hi alone, the same bits): four sums side by side, on
  * the decoded lanes (f24v_of: subnormal encodings, NaNs with their payloads),
  * lanes of every kind above mixed in one call (the vector filter decides some lanes and hands
  * the others on), each lane bit for bit the integer operator's. */
@@ -295,7 +296,9 @@ static void fast_path_lanes(void **state)
             av[k] = f24v_of(a[k]);
             bv[k] = f24v_of(b[k]);
         }
+        f24_t hi_alone[F24Q_LANES];
         f24_fast_sum_exact_lanes(av, bv, n, hi, lo);
+        f24_fast_sum_exact_hi_lanes(av, bv, n, hi_alone);
         for (int l = 0; l < F24Q_LANES; l++) {
             f24_t al[F24_SUM_TERMS], bl[F24_SUM_TERMS];
             for (uint32_t k = 0; k < n; k++) {
@@ -303,8 +306,9 @@ static void fast_path_lanes(void **state)
                 bl[k] = b[k][l];
             }
             const f24x2 ref = f24_sum_exact(al, bl, n);
-            if (hi[l] != ref.hi || lo[l] != ref.lo) {
-                print_message("n %u lane %d: lanes %06x %06x, integer %06x %06x\n", n, l, hi[l], lo[l], ref.hi, ref.lo);
+            if (hi[l] != ref.hi || lo[l] != ref.lo || hi_alone[l] != ref.hi) {
+                print_message("n %u lane %d: lanes %06x %06x (hi alone %06x), integer %06x %06x\n", n, l, hi[l], lo[l],
+                              hi_alone[l], ref.hi, ref.lo);
                 bad++;
             }
         }
@@ -361,7 +365,9 @@ static void fast_path_lanes_cancelling(void **state)
             av[k] = f24v_of(a[k]);
             bv[k] = f24v_of(b[k]);
         }
+        f24_t hi_alone[F24Q_LANES];
         f24_fast_sum_exact_lanes(av, bv, 9, hi, lo);
+        f24_fast_sum_exact_hi_lanes(av, bv, 9, hi_alone);
         for (int l = 0; l < F24Q_LANES; l++) {
             f24_t al[9], bl[9];
             double p[9];
@@ -373,8 +379,9 @@ static void fast_path_lanes_cancelling(void **state)
             f24x2 r;
             handed_on += !f24_fast_sum_filter(p, 9, &r);
             const f24x2 ref = f24_sum_exact(al, bl, 9);
-            if (hi[l] != ref.hi || lo[l] != ref.lo) {
-                print_message("lane %d: lanes %06x %06x, integer %06x %06x\n", l, hi[l], lo[l], ref.hi, ref.lo);
+            if (hi[l] != ref.hi || lo[l] != ref.lo || hi_alone[l] != ref.hi) {
+                print_message("lane %d: lanes %06x %06x (hi alone %06x), integer %06x %06x\n", l, hi[l], lo[l], hi_alone[l],
+                              ref.hi, ref.lo);
                 bad++;
             }
         }

@@ -245,6 +245,12 @@ lanes_sum:
         lo[i] = r.lo;
     }
 }
+/* Their high words alone (the intersection's plane distance): the same hi bits. */
+static inline void f24q_sum_exact_hi(const f24q a[], const f24q b[], uint32_t n, f24_t hi[F24Q_LANES])
+{
+    f24_t lo[F24Q_LANES];
+    f24q_sum_exact(a, b, n, hi, lo);
+}
 #endif
 
 #endif

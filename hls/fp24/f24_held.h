@@ -26,6 +26,17 @@ typedef f24_t f24h[F24Q_LANES];
 static inline f24q f24h_get(const f24h *h) { return f24q_of(*h); }
 static inline void f24h_put(f24h *h, f24q q) { f24q_bits(q, *h); }
 #endif
+/* a held value copied as it is (the hardware's register move: the words, not their values) */
+#ifdef F24_SIM_WORKING
+static inline void f24h_copy(f24h *dst, const f24h *src) { *dst = *src; }
+#else
+static inline void f24h_copy(f24h *dst, const f24h *src)
+{
+held_copy:
+    for (int i = 0; i < F24Q_LANES; i++)
+        (*dst)[i] = (*src)[i];
+}
+#endif
 /* the lanes of h from fp24 words, and back */
 F24Q_INLINE void f24h_of(f24h *h, const f24_t a[F24Q_LANES]) { f24h_put(h, f24q_of(a)); }
 F24Q_INLINE void f24h_words(const f24h *h, f24_t out[F24Q_LANES]) { f24q_bits(f24h_get(h), out); }

@@ -159,8 +159,8 @@ packet_offset:
         b[3 + k] = f24q_splat(f24_neg(m[k][3]));
         b[6 + k] = l;
     }
-    f24_t oz[F24Q_LANES], oz_lo[F24Q_LANES], neg_oz[F24Q_LANES];
-    f24q_sum_exact(a, b, 9, oz, oz_lo);
+    f24_t oz[F24Q_LANES], neg_oz[F24Q_LANES];
+    f24q_sum_exact_hi(a, b, 9, oz); /* plane_distance: the high word alone */
 packet_neg:
     for (int i = 0; i < F24Q_LANES; i++)
         neg_oz[i] = f24_neg(oz[i]);

@@ -128,6 +128,17 @@ typedef struct {
     f24h tn, tf;
 } trav_entry;
 
+/* dst = src field by field: the walk copies the children trav_node_split_held has just written,
+ * and a copy of the whole struct would read them in chunks that straddle its separate field
+ * stores (on the host, a stalled store-to-load forward each: 5% of a render's time). */
+static inline void trav_entry_copy(trav_entry *dst, const trav_entry *src)
+{
+    dst->node = src->node;
+    dst->mask = src->mask;
+    f24h_copy(&dst->tn, &src->tn);
+    f24h_copy(&dst->tf, &src->tf);
+}
+
 /* Traversal algorithms of the traversal unit (docs/traversal.md; make bench-peers compares them):
  * the paper's stack of TRACE_STACK entries; a short stack of TRACE_SHORT_STACK entries that drops
  * its oldest entry when full and restarts when it runs dry after a drop, with push-down (Horn

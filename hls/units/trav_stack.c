@@ -32,7 +32,7 @@ static void walker_push(trav_walker *w, const trav_entry *far)
         w->sp--;
         w->lost = 1;
     }
-    w->stack[w->sp++] = *far;
+    trav_entry_copy(&w->stack[w->sp++], far);
 }
 
 /* An inner node: both children for the rays that need them (trav_node_split_held); the far side of
@@ -63,11 +63,11 @@ first_ray:
         first_near_left = !first_near_left;
     if (l.mask && r.mask) {
         walker_push(w, first_near_left ? &r : &l);
-        w->cur = first_near_left ? l : r;
+        trav_entry_copy(&w->cur, first_near_left ? &l : &r);
     } else {
-        w->cur = l.mask ? l : r;
+        trav_entry_copy(&w->cur, l.mask ? &l : &r);
         if (w->push_down && w->sp == 0 && !w->lost)
-            w->root = w->cur;
+            trav_entry_copy(&w->root, &w->cur);
     }
 }
 

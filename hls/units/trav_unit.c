@@ -83,7 +83,7 @@ static F24Q_FN void walker_init(trav_walker *w, uint32_t nodes, uint32_t lists, 
 walker_copy:
     for (int i = 0; i < TRACE_PACKET; i++)
         w->t_exit[i] = tn[i];
-    w->root = w->cur;
+    trav_entry_copy(&w->root, &w->cur);
 }
 
 void trav_start(trav_walker *w, const uint32_t *mem, uint32_t asked, uint32_t accel, uint32_t nodes, uint32_t lists,

@@ -25,8 +25,9 @@ extern const img_api *img_oiio_api(void) __attribute__((weak));
 static const img_api *loaded;
 static char load_error[512];
 
-/* The library next to the program, or up to three folders up (build/hw/saarcor,
- * build/w/FMT/saarcor and build/hw/w/FMT/saarcor use build/'s); SAARCOR_IMG_LIB names it. */
+/* The library next to the program, or up to four folders up (build/hw/saarcor,
+ * build/w/FMT/saarcor, build/hw/w/FMT/saarcor and its capture build build/hw/w/FMT/capture/saarcor
+ * use build/'s); SAARCOR_IMG_LIB names it. */
 static void *open_library(void)
 {
     const char *env = getenv("SAARCOR_IMG_LIB");
@@ -38,7 +39,7 @@ static void *open_library(void)
         return NULL;
     self[len] = 0;
     *strrchr(self, '/') = 0;
-    static const char *const up[] = { "", "/..", "/../..", "/../../.." };
+    static const char *const up[] = { "", "/..", "/../..", "/../../..", "/../../../.." };
     for (size_t i = 0; i < sizeof up / sizeof up[0]; i++) {
         snprintf(path, sizeof path, "%s%s/libsaarcor_img.so", self, up[i]);
         if (access(path, F_OK) == 0)

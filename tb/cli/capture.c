@@ -115,7 +115,8 @@ static void held_words(FILE *f, const f24h *h)
     words(f, w, F24Q_LANES);
 }
 
-/* The wrappers sit on every render's hot path, capturing or not: each tests this flag and
+/* The wrappers sit on every render's path in the capture build, capturing or not (the default
+ * program has none and runs the capture build for --capture-unit-io): each tests this flag and
  * tail-calls either the unit or its recording path (CAPTURE_PATH: out of line, so that the
  * wrapper needs no stack frame and keeps no argument). */
 static inline int capturing(void) { return __builtin_expect(cap.on, 0); }

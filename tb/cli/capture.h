@@ -41,7 +41,8 @@
  * before, diff, spec, the colour; the sums after), DIR/spawn.hex (the child rays of each surface,
  * rgs_spawn_children: the material's words 13..15, the ray's weight, e, the T_R origin, D^, N^,
  * t_hat, entering, tint, base; the reflection and the transmission ray's o, d, weight, active bit).
- * The hls/ units are not touched: the program is linked with --wrap for xform_point, xform_vector,
+ * The hls/ units are not touched: the capture build of the program (CAPTURE_DIR/saarcor beside it,
+ * which the program runs for --capture-unit-io; the only one that links this file) is linked with --wrap for xform_point, xform_vector,
  * isect_unit_rebased, isect_unit_packet (recorded ray by ray), trav_node_split_held, list_unit_entry,
  * list_mailboxes_clear, mem_iface_read, mem_iface_flush, mem_iface_new_frame, rgs_block_begin,
  * rebase_origin, xform_point_wide, xform_vector_wide (called from trace.c, in another object),
@@ -57,20 +58,29 @@
 
 #include <stdint.h>
 
+/* The capture build's folder, beside the program it stands for (build/capture/saarcor; the
+ * Makefile's CAPTURE_DIR). */
+#define CAPTURE_DIR "capture"
+
+/* Weak: this file's functions are linked only into the capture build (tb/cli/capture.c with the
+ * units' --wrap wrappers), which keeps the wrappers off every other render's path; in the program
+ * they are NULL, and render runs the capture build instead. */
+#define CAPTURE_API __attribute__((weak))
+
 /* 0, or -1 with a message in err if DIR cannot be made or its files written. */
-int capture_start(const char *dir, uint64_t limit, char *err, unsigned errlen);
+CAPTURE_API int capture_start(const char *dir, uint64_t limit, char *err, unsigned errlen);
 
 /* Transactions recorded per unit (DIR/NAME.hex for each name): xform, isect, trav, list, mem, sched, rgs,
  * rebase, wide, trav_unit, trace, shade_rec, tex, frame, light, lerp, colour, accum, spawn, surface, accumulate. */
 #define CAPTURE_UNITS 21
-extern const char *const capture_unit_names[CAPTURE_UNITS];
-void capture_counts(uint64_t out[CAPTURE_UNITS]);
+CAPTURE_API extern const char *const capture_unit_names[CAPTURE_UNITS];
+CAPTURE_API void capture_counts(uint64_t out[CAPTURE_UNITS]);
 
 /* The cycle model's scheduler probe (cycle_set_sched_probe) that writes DIR/sched.hex. */
-void capture_sched_probe(void *arg, uint32_t pipe, int what, uint64_t cycle, uint32_t unit, uint32_t thread,
+CAPTURE_API void capture_sched_probe(void *arg, uint32_t pipe, int what, uint64_t cycle, uint32_t unit, uint32_t thread,
                          uint32_t slots);
 
 /* Closes the files; 0, or -1 if writing failed. */
-int capture_stop(void);
+CAPTURE_API int capture_stop(void);
 
 #endif

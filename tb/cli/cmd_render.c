@@ -121,7 +121,8 @@ static int usage(void)
            "                     (and in cycle mode the memory reads and the scheduler's issues) as hex vectors\n"
            "                     for the RTL co-simulation (DIR/xform.hex, isect.hex, trav.hex, list.hex,\n"
            "                     rgs.hex, rebase.hex, wide.hex, trav_unit.hex, trace.hex + image_N.bin,\n"
-           "                     mem.hex, sched.hex; at most --capture-limit N per unit, default 100000)\n"
+           "                     mem.hex, sched.hex; at most --capture-limit N per unit, default 100000),\n"
+           "                     run by the capture build beside the program (capture/saarcor; make builds it)\n"
            "  --frame N          frame N of the animation at --fps (time N / fps), to -o\n"
            "  --frames A:B       frames A..B of the animation at --fps (default 30) to OUT_NNNN.png (and\n"
            "                     AOV/stats files numbered alike), rebuilding per frame only what changed\n"
@@ -551,16 +552,28 @@ static int parse_precision(const char *arg, int *e, int *m)
 
 /* The units are compiled for one number format per program (build/w/eEmM/saarcor): a render
  * in another format runs that program with the same arguments. Returns only on error. */
+/* The folder of this program, or of the program whose capture build this is (build/capture/saarcor
+ * and build/w/eEmM/capture/saarcor stand for build/saarcor and build/w/eEmM/saarcor); 0, or -1. */
+static int program_dir(char *dir, size_t len)
+{
+    const ssize_t n = readlink("/proc/self/exe", dir, len - 1);
+    if (n <= 0)
+        return -1;
+    dir[n] = 0;
+    *strrchr(dir, '/') = 0;
+    const char *last = strrchr(dir, '/');
+    if (last && strcmp(last, "/" CAPTURE_DIR) == 0)
+        *strrchr(dir, '/') = 0;
+    return 0;
+}
+
+/* render --precision eEmM: the same command line run by the program of that format. */
 static int run_format(int e, int m, char **argv)
 {
     char self[1024], path[1200];
-    const ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
-    if (n <= 0)
+    if (program_dir(self, sizeof self) != 0)
         return cli_error("render", "cannot locate this program to find the e%dm%d build", e, m), SAARCOR_EXIT_INTERNAL;
-    self[n] = 0;
-    char *slash = strrchr(self, '/');
-    *slash = 0; /* build/ or build/w/eEmM/ */
-    const char *dir = strrchr(self, '/');
+    const char *dir = strrchr(self, '/'); /* build/ or build/w/eEmM/ */
     int fe, fm;
     char tail;
     if (dir && sscanf(dir + 1, "e%dm%d%c", &fe, &fm, &tail) == 2)
@@ -569,6 +582,19 @@ static int run_format(int e, int m, char **argv)
         snprintf(path, sizeof path, "%s/w/e%dm%d/saarcor", self, e, m);
     execv(path, argv);
     cli_error("render", "--precision e%dm%d: no program for that format at %s (build it with make widths)", e, m, path);
+    return SAARCOR_EXIT_USAGE;
+}
+
+/* render --capture-unit-io in a program without the capture: the same command line run by the
+ * capture build beside it (CAPTURE_DIR/saarcor), which records as if it had been called. */
+static int run_capture(char **argv)
+{
+    char self[1024], path[1200];
+    if (program_dir(self, sizeof self) != 0)
+        return cli_error("render", "cannot locate this program to find its capture build"), SAARCOR_EXIT_INTERNAL;
+    snprintf(path, sizeof path, "%s/" CAPTURE_DIR "/saarcor", self);
+    execv(path, argv);
+    cli_error("render", "--capture-unit-io needs the capture build %s (make builds it beside each program)", path);
     return SAARCOR_EXIT_USAGE;
 }
 
@@ -701,6 +727,8 @@ int cmd_render(int argc, char **argv)
         return SAARCOR_EXIT_OK;
     if (prec_e != F24_EXP_BITS || prec_m != F24_MAN_BITS)
         return run_format(prec_e, prec_m, argv - 1);
+    if (ro.capture && !capture_start)
+        return run_capture(argv - 1);
     o.scene = argv[optind];
     if (ro.rtl && (rc = render_rtl_check(&ro)) != SAARCOR_EXIT_OK)
         return rc;

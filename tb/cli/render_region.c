@@ -1,7 +1,9 @@
 /*
- * The functional frame of `saarcor render` (render.h): host threads take block rows of a region
- * in a fixed interleaved order, each 2x2 block runs its whole ray tree (pc_render_block) and
- * writes its own pixels, so the image is bit-identical for any thread count. In a file of its
+ * The functional frame of `saarcor render` (render.h): host threads take the region's block rows
+ * one at a time, the next free one as they finish one (so that a thread the machine runs slower
+ * takes fewer rows instead of holding up the frame), each 2x2 block runs its whole ray tree
+ * (pc_render_block) and writes its own pixels, and the counters are integer sums, so the image
+ * and the counters are bit-identical for any thread count and any order. In a file of its
  * own so that make bench-peers times exactly this path beside Embree (tests/bench/bench_peers.c)
  * without linking the command line.
  */
@@ -30,7 +32,8 @@ typedef struct {
     uint32_t x0, y0, x1, y1, stride; /* the region rendered (even x0, y0), the image's width */
     uint32_t thread, threads;
     uint32_t *pixels;
-    rgs_counters counters;
+    rgs_counters counters;  /* this thread's, written when it is done */
+    atomic_uint *next_row;  /* the next block row to take (0: the region's first) */
     atomic_uint *rows_done; /* block rows finished by all threads, for the progress line */
     hit_record *hits;       /* per pixel primary hit, for --aov (NULL: not kept) */
     pixel_cost *costs;      /* per pixel cost, for --aov and --heatmap (NULL: not kept) */
@@ -51,12 +54,17 @@ static void *render_rows(void *arg)
 {
     render_job *j = arg;
     double last = now();
-    for (uint32_t y = j->y0 + 2 * j->thread; y < j->y1 && !interrupt_signal(); y += 2 * j->threads) {
+    /* counted on this thread's stack: the jobs' counters share cache lines with each other's */
+    rgs_counters counters = { { 0 }, { 0 }, 0 };
+    for (;;) {
+        const uint32_t y = j->y0 + 2 * atomic_fetch_add(j->next_row, 1u);
+        if (y >= j->y1 || interrupt_signal())
+            break;
         for (uint32_t x = j->x0; x < j->x1; x += 2) {
             hit_record h[TRACE_PACKET];
             uint32_t rgb[TRACE_PACKET];
             pixel_cost cost[TRACE_PACKET];
-            pc_render_block(j->mem, j->cfg, x, y, rgb, h, &j->counters, j->costs ? cost : NULL);
+            pc_render_block(j->mem, j->cfg, x, y, rgb, h, &counters, j->costs ? cost : NULL);
             if (j->costs)
                 pc_store_block(j->costs, cost, x, y, j->stride, j->y1);
             for (int i = 0; i < TRACE_PACKET; i++) {
@@ -71,6 +79,7 @@ static void *render_rows(void *arg)
         atomic_fetch_add(j->rows_done, 1u);
         progress(j, &last);
     }
+    j->counters = counters;
     if (j->thread == 0 && isatty(2))
         fprintf(stderr, "\r%*s\r", 14, ""); /* clear the progress line */
     return NULL;
@@ -82,7 +91,7 @@ int render_region(const uint32_t *mem, const rgs_config *cfg, uint32_t threads, 
     uint32_t w, h;
     rgs_image_size(mem, &w, &h);
     const uint32_t x1 = region[2] < w ? region[2] : w, y1 = region[3] < h ? region[3] : h;
-    atomic_uint rows_done = 0;
+    atomic_uint next_row = 0, rows_done = 0;
     render_job *jobs = calloc(threads, sizeof *jobs);
     pthread_t *tid = calloc(threads, sizeof *tid);
     if (!jobs || !tid) {
@@ -91,19 +100,15 @@ int render_region(const uint32_t *mem, const rgs_config *cfg, uint32_t threads, 
         return -1;
     }
     for (uint32_t t = 0; t < threads; t++) {
-        jobs[t] = (render_job){ mem, cfg, region[0], region[1], x1, y1, w, t, threads, pixels, { { 0 }, { 0 }, 0 }, &rows_done, hits, costs };
+        jobs[t] = (render_job){ mem, cfg, region[0], region[1], x1, y1, w, t, threads, pixels, { { 0 }, { 0 }, 0 }, &next_row, &rows_done, hits, costs };
         if (t > 0 && pthread_create(&tid[t], NULL, render_rows, &jobs[t]) != 0)
-            jobs[t].threads = 0; /* could not start: done below in this thread */
+            jobs[t].threads = 0; /* could not start: the others take its rows */
     }
     render_rows(&jobs[0]);
     memset(sum, 0, sizeof *sum);
     for (uint32_t t = 0; t < threads; t++) {
         if (t > 0 && jobs[t].threads)
             pthread_join(tid[t], NULL);
-        else if (t > 0) {
-            jobs[t].threads = threads;
-            render_rows(&jobs[t]);
-        }
         rgs_counters_add(sum, &jobs[t].counters);
     }
     free(jobs);

@@ -126,8 +126,7 @@ typedef int32_t f24v_s __attribute__((vector_size(16)));
 typedef float f24v_f __attribute__((vector_size(16)));
 F24V_INLINE f24v f24v_of(const f24_t a[F24Q_LANES])
 {
-    f24v_s x;
-    memcpy(&x, a, sizeof x);
+    const f24v_s x = { (int32_t)a[0], (int32_t)a[1], (int32_t)a[2], (int32_t)a[3] };
     const f24v_s mag = x & (int32_t)F24_ABS_MASK; /* below 2^31: signed comparisons are exact */
     const f24v_s sign = (f24v_s)((f24v_u)x >> (F24_EXP_BITS + F24_MAN_BITS) << 31);
     const f24v_s normal = (mag << (23 - F24_MAN_BITS)) + (int32_t)((127u - F24_BIAS) << 23);
@@ -205,8 +204,7 @@ F24V_INLINE f24v f24v_sqrt(f24v a)
 }
 F24V_INLINE f24v f24v_from_i32(const int32_t a[F24Q_LANES]) /* exact in binary64, then rounded */
 {
-    f24v_s x;
-    memcpy(&x, a, sizeof x);
+    const f24v_s x = { a[0], a[1], a[2], a[3] };
     return f24v_round((f24v){ x[0], x[1], x[2], x[3] }); /* one vcvtdq2pd, as f24v_of's widening */
 }
 F24V_INLINE f24v f24v_min(f24v a, f24v b) { return f24v_minmax(a, b, 0); }
@@ -226,6 +224,9 @@ F24V_INLINE uint32_t f24v_sign(f24v a) { return f24v_mask((f24v_i)a < 0); }
 /* f24q_sum_exact (hls/fp24/f24.h) on vectors (tb/fp/f24_fast_sum.c): the terms' lanes are
  * working values, so that a unit passes the ones it holds decoded and decodes a repeated term once */
 void f24_fast_sum_exact_lanes(const f24v a[], const f24v b[], uint32_t n, f24_t hi[F24Q_LANES], f24_t lo[F24Q_LANES]);
+/* its hi alone (f24q_sum_exact_hi): the filter then needs no bound on the remainder, so that a sum
+ * cancelling down to its last bits is decided by its rounding alone more often */
+void f24_fast_sum_exact_hi_lanes(const f24v a[], const f24v b[], uint32_t n, f24_t hi[F24Q_LANES]);
 #endif
 
 #ifdef F24_FAST_SIM
@@ -279,6 +280,7 @@ typedef f24v f24h __attribute__((aligned(8)));
 #define f24q_lt f24v_lt
 #define f24q_sign f24v_sign
 #define f24q_sum_exact f24_fast_sum_exact_lanes
+#define f24q_sum_exact_hi f24_fast_sum_exact_hi_lanes
 #endif
 
 

@@ -283,7 +283,7 @@ static F24V_FN __attribute__((noinline)) void undecided_lanes(const f24v a[], co
  * to f24_fast_sum_exact alone (undecided_lanes). Inlined into f24_fast_sum_exact_lanes once per term
  * count of the units, so that the loops over the terms unroll and the products stay in registers. */
 static inline __attribute__((always_inline)) void sum_lanes(const f24v a[], const f24v b[], uint32_t n,
-                                                            f24_t hi[F24Q_LANES], f24_t lo[F24Q_LANES])
+                                                            f24_t hi[F24Q_LANES], f24_t lo[F24Q_LANES], int want_lo)
 {
     const f24v zero = { 0, 0, 0, 0 }, inf = zero + __builtin_inf();
     f24v sum = -zero, mass = zero, least = inf; /* -0: -0 only if all products are -0 */
@@ -298,10 +298,12 @@ static inline __attribute__((always_inline)) void sum_lanes(const f24v a[], cons
     const f24v err = (f24v)((f24v_i)(mass * (double)n * 0x1p-50) & ~exact);
     const f24v hi_d = f24v_round(sum), rest = sum - hi_d; /* exact: |s - hi| <= ulp(hi) / 2 */
     const f24v_i hi_special = (hi_d == 0) | (abs_lanes(hi_d) == inf); /* flushed (or zero) or overflowed: lo = 0 */
-    const f24v_i ok = window & rounds_alike_lanes(sum, margin_lanes(sum, err, ~exact)) &
-                      (hi_special | rounds_alike_lanes(rest, margin_lanes(rest, err, ~exact))) & (n > 0 ? -1ll : 0);
+    /* hi alone: every value within the bound of s rounds as s does, whatever lo would be */
+    const f24v_i lo_ok = want_lo ? hi_special | rounds_alike_lanes(rest, margin_lanes(rest, err, ~exact)) : (f24v_i){ 0 } - 1;
+    const f24v_i ok = window & rounds_alike_lanes(sum, margin_lanes(sum, err, ~exact)) & lo_ok & (n > 0 ? -1ll : 0);
     f24v_bits(sum, hi);
-    f24v_bits((f24v)((f24v_i)rest & ~(hi_special | (rest == 0))), lo);
+    if (want_lo)
+        f24v_bits((f24v)((f24v_i)rest & ~(hi_special | (rest == 0))), lo);
     if (n > 0 && (ok[0] & ok[1] & ok[2] & ok[3]) != 0)
         return; /* the common case: every lane decided */
     undecided_lanes(a, b, n, &window, &ok, hi, lo);
@@ -312,11 +314,21 @@ static inline __attribute__((always_inline)) void sum_lanes(const f24v a[], cons
 F24V_FN void f24_fast_sum_exact_lanes(const f24v a[], const f24v b[], uint32_t n, f24_t hi[F24Q_LANES], f24_t lo[F24Q_LANES])
 {
     switch (n) {
-    case 3: sum_lanes(a, b, 3, hi, lo); break;
-    case 4: sum_lanes(a, b, 4, hi, lo); break;
-    case 8: sum_lanes(a, b, 8, hi, lo); break;
-    case 9: sum_lanes(a, b, 9, hi, lo); break;
-    default: sum_lanes(a, b, n, hi, lo); break;
+    case 3: sum_lanes(a, b, 3, hi, lo, 1); break;
+    case 4: sum_lanes(a, b, 4, hi, lo, 1); break;
+    case 8: sum_lanes(a, b, 8, hi, lo, 1); break;
+    case 9: sum_lanes(a, b, 9, hi, lo, 1); break;
+    default: sum_lanes(a, b, n, hi, lo, 1); break;
     }
+}
+
+/* the plane distance's 9 terms (isect_unit.c) */
+F24V_FN void f24_fast_sum_exact_hi_lanes(const f24v a[], const f24v b[], uint32_t n, f24_t hi[F24Q_LANES])
+{
+    f24_t lo[F24Q_LANES]; /* the undecided lanes' (undecided_lanes), not read */
+    if (n == 9)
+        sum_lanes(a, b, 9, hi, lo, 0);
+    else
+        sum_lanes(a, b, n, hi, lo, 0);
 }
 #endif
