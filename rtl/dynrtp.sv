@@ -1,9 +1,7 @@
 // dynrtp: one DynRTP (paper section 3, Figure 2): the tile controller (tile_ctrl) deals the
-// frame's 2x2 blocks to the RGS, RGS_BLOCKS block controllers (rgs_ctrl: the control of ray
-// generation, surfaces, lights and shadow rays, accumulation and secondary rays of hls/units/rgs.c
-// rgs_step / rgs_block_finish) around one set of shared datapaths (rgs_units: the frame set-up of
-// rgs_block_begin, rgs_raygen, rgs_surface, rgs_light, rgs_light_colour, rgs_add_light, rgs_accum,
-// each taking the controllers' operands round robin), whose packets the ray tracing core (trace_core:
+// frame's 2x2 blocks to the RGS, RGS_BLOCKS block controllers (rgs_ctrl: ray generation,
+// surfaces, lights and shadow rays, accumulation and secondary rays of hls/units/rgs.c
+// rgs_block_begin / rgs_step / rgs_block_finish) whose packets the ray tracing core (trace_core:
 // THREADS threads, the traversal, list, rebase, transformation and intersection units,
 // thread_sched) traces, and the memory side: the core's three ports read through the paper's
 // direct-mapped caches (cache_read around cache_dm, the cycle model's default configuration
@@ -17,11 +15,10 @@
 // give RGS_BLOCKS blocks in flight, each with at most one packet in the core: rgs_ctrl k traces on
 // the core's thread k (its tag), so the core's hits go back to the controller of thread_o. A block
 // goes to the lowest idle controller below blocks_i (--threads-per-pipe: the blocks the harness
-// lets run); the controllers' packets enter the core round robin (rr_pick), the controllers' light
-// record reads and rgs_units' (the set-up's, then rgs_surface's) line reads are merged round robin
-// by a second mem_port (N = RGS_BLOCKS + 1, the answers routed back in order) onto the shading
-// cache, their pixels leave round robin on the px_* port with the block's corner. rgs_units reads
-// the frame's header and camera once after reset; the controllers take blocks from then on.
+// lets run); the controllers' packets enter the core round robin (rr_pick), their line reads are
+// merged round robin by a second mem_port (N = RGS_BLOCKS, the answers routed back in order) onto
+// the shading cache, their pixels leave round robin on the px_* port with the block's corner.
+// Every controller reads the frame's header and camera once after reset, before it takes a block.
 // The core's packet input and its hits are also outputs (tr_*, valid_o ...) for the harness, which
 // checks every packet against the C core.
 // Where the memory interface differs from the cycle model (docs/cycle-model.md): the core's
@@ -39,8 +36,8 @@
 // took (kd nodes, list entries, descriptor responses of RW words, shading lines).
 // Latency and throughput: tile_ctrl 1 block per cycle; rgs_ctrl a block per its sequence
 // (rtl/README.md), RGS_BLOCKS at once; the core's; the memory port 1 transfer per cycle.
-// Resources: trace_core's, rgs_units (one set of the RGS's datapaths), RGS_BLOCKS x rgs_ctrl (the
-// control and a stack of about 8 Kbit in registers each), 4 x cache_read
+// Resources: trace_core's, RGS_BLOCKS x rgs_ctrl (each with its own shading units and a stack of
+// about 8 Kbit in registers: the RGS dominates the area beside the core), 4 x cache_read
 // (NODE_KB + LIST_KB + MAT_KB + SHADE_KB KB of data arrays and their tags), 2 x mem_port,
 // 2 x rr_pick, tile_ctrl, RGS_BLOCKS x 64 bits of block corners, 14 x 64-bit counters.
 module dynrtp #(
@@ -165,9 +162,9 @@ module dynrtp #(
   // the shared units' ports: per controller k its operand at bits k x the operand's width, its
   // valid bit k; the results on one bus to all (rgs_units)
   localparam int V = 3 * W;
-  localparam int SF_DW = 67 + 2 * V + 4 * W, LI_DW = 40 + 5 * V + 2 * W, AL_DW = 178, AC_DW = 393 + 3 * V + 2 * W;
+  localparam int LI_DW = 40 + 5 * V + 2 * W, AL_DW = 178, AC_DW = 393 + 3 * V + 2 * W;
   logic frame_ok;
-  logic [31:0] n_lights, light_base;
+  logic [31:0] n_tex, n_lights, inst_base, obj_base, mat_base, tex_base, light_base;
   logic [4:0] profile;
   logic [B-1:0] gen_req, gen_ack, gen_valid, li_req, li_ack, li_valid, lc_req, lc_ack, lc_valid;
   logic [B-1:0] al_req, al_ack, al_valid, ac_req, ac_ack, ac_valid;
@@ -184,23 +181,11 @@ module dynrtp #(
   logic [15:0] li_diff, li_spec;
   logic [47:0] lc_q, al_dif, al_hil, ac_acc, ac_rw, ac_tw;
   logic li_active, ac_ract, ac_tact;
-  logic [B-1:0] sf_req, sf_ack, sf_valid;
-  logic [B*SF_DW-1:0] sf_data;
-  logic sf_sfv, sf_ent, sf_unlit;
-  logic [1:0] sf_ray;
-  logic [V-1:0] sf_p, sf_d, sf_n;
-  logic [W-1:0] sf_that, sf_eta;
-  logic [3:0] sf_k;
-  logic [12:0] sf_kd, sf_kr, sf_kt, sf_ks;
-  logic [47:0] sf_base, sf_emis, sf_tint;
   rgs_units #(.E(E), .M(M), .N(B)) u_units (
     .clk_i(clk_i), .rst_ni(rst_ni), .mem_req_valid_o(rd_valid[B]), .mem_req_ready_i(rd_ready[B]),
     .mem_addr_o(rd_addr[B*32 +: 32]), .mem_rsp_valid_i(rd_rsp[B]), .mem_rdata_i(rd_line), .frame_ok_o(frame_ok),
-    .n_lights_o(n_lights), .light_base_o(light_base), .profile_o(profile),
-    .sf_req_i(sf_req), .sf_data_i(sf_data), .sf_ack_o(sf_ack), .sf_valid_o(sf_valid), .sf_ray_o(sf_ray),
-    .sf_sfv_o(sf_sfv), .sf_p_o(sf_p), .sf_d_o(sf_d), .sf_n_o(sf_n), .sf_that_o(sf_that), .sf_ent_o(sf_ent),
-    .sf_unlit_o(sf_unlit), .sf_k_o(sf_k), .sf_eta_o(sf_eta), .sf_kd_o(sf_kd), .sf_kr_o(sf_kr), .sf_kt_o(sf_kt),
-    .sf_ks_o(sf_ks), .sf_base_o(sf_base), .sf_emis_o(sf_emis), .sf_tint_o(sf_tint),
+    .n_tex_o(n_tex), .n_lights_o(n_lights), .inst_base_o(inst_base), .obj_base_o(obj_base), .mat_base_o(mat_base),
+    .tex_base_o(tex_base), .light_base_o(light_base), .profile_o(profile),
     .gen_req_i(gen_req), .gen_data_i(gen_data), .gen_ack_o(gen_ack), .gen_valid_o(gen_valid),
     .gen_active_o(gen_active), .gen_o_o(gen_o), .gen_d_o(gen_d),
     .li_req_i(li_req), .li_data_i(li_data), .li_ack_o(li_ack), .li_valid_o(li_valid), .li_ray_o(li_ray),
@@ -215,11 +200,9 @@ module dynrtp #(
   for (genvar k = 0; k < B; k++) begin : g_rgs
     rgs_ctrl #(.E(E), .M(M), .TAG_BITS(TW)) u_rgs (
       .clk_i(clk_i), .rst_ni(rst_ni), .max_depth_i(max_depth_i), .shadows_i(shadows_i),
-      .frame_ok_i(frame_ok), .n_lights_i(n_lights), .light_base_i(light_base), .profile_i(profile),
-      .sf_req_o(sf_req[k]), .sf_ack_i(sf_ack[k]), .sf_data_o(sf_data[k*SF_DW +: SF_DW]), .sf_valid_i(sf_valid[k]),
-      .sf_ray_i(sf_ray), .sf_sfv_i(sf_sfv), .sf_p_i(sf_p), .sf_d_i(sf_d), .sf_n_i(sf_n), .sf_that_i(sf_that),
-      .sf_ent_i(sf_ent), .sf_unlit_i(sf_unlit), .sf_k_i(sf_k), .sf_eta_i(sf_eta), .sf_kd_i(sf_kd), .sf_kr_i(sf_kr),
-      .sf_kt_i(sf_kt), .sf_ks_i(sf_ks), .sf_base_i(sf_base), .sf_emis_i(sf_emis), .sf_tint_i(sf_tint),
+      .frame_ok_i(frame_ok), .n_tex_i(n_tex), .n_lights_i(n_lights), .inst_base_i(inst_base),
+      .obj_base_i(obj_base), .mat_base_i(mat_base), .tex_base_i(tex_base), .light_base_i(light_base),
+      .profile_i(profile),
       .gen_req_o(gen_req[k]), .gen_ack_i(gen_ack[k]), .gen_data_o(gen_data[k*64 +: 64]), .gen_valid_i(gen_valid[k]),
       .gen_active_i(gen_active), .gen_o_i(gen_o), .gen_d_i(gen_d),
       .li_req_o(li_req[k]), .li_ack_i(li_ack[k]), .li_data_o(li_data[k*LI_DW +: LI_DW]), .li_valid_i(li_valid[k]),

@@ -1,44 +1,38 @@
 // rgs_units: the RGS's shared datapaths (paper section 3, Figure 2: ONE ray generation and shading
 // unit serving the RGS's threads; hls/units/rgs.c `rgs_block_begin`, `rgs_step`): the frame set-up
-// and one each of rgs_raygen, rgs_surface, rgs_light, rgs_light_colour, rgs_add_light and rgs_accum
-// for the N block controllers (rgs_ctrl) of the DynRTP. The controllers keep their FSM and block
-// state (stack, packet, surfaces, sums) and hand their operands here; per unit an rgs_arb picks one
-// controller's operand a cycle round robin, the controller's index travels as the high bits of the
-// unit's thread id (beside the ray's index in the packet), and the result comes back to that
-// controller only (valid_o bit k). A controller waits in the state of its step for all its results
-// and takes each as it comes (the units run with ready_i = 1), so sharing changes when an operand
-// enters a unit, never what it computes.
-//   frame set-up  once after reset (the C's `rgs_block_begin` constants; each rgs_ctrl did it for
-//            itself before): the header's texture and light counts (at most 64 lights), the scene
-//            bounds and the region starts (words 9..34), the camera block (loaded into rgs_raygen,
-//            its profile word kept); e = max of the bounds' extents / 2^10 (the C's f24_sub,
-//            f24_max from 0 and f24_div on one f24_add, f24_cmp, f24_div); then frame_ok_o and the
-//            constants held (the light count and records' start, the profile out to the
-//            controllers; the other regions' starts and the texture count for rgs_surface)
+// and one each of rgs_raygen, rgs_light, rgs_light_colour, rgs_add_light and rgs_accum for the N
+// block controllers (rgs_ctrl) of the DynRTP. The controllers keep their FSM and block state (stack,
+// packet, surfaces, sums) and hand their operands here; per unit an rgs_arb picks one controller's
+// operand a cycle round robin, the controller's index travels as the high bits of the unit's thread
+// id (beside the ray's index in the packet), and the result comes back to that controller only
+// (valid_o bit k). A controller waits in the state of its step for all its results and takes each
+// as it comes (the units run with ready_i = 1), so sharing changes when an operand enters a unit,
+// never what it computes.
+//   frame set-up  once after reset (the C's `rgs_block_begin` constants, as rgs_ctrl did per
+//            controller before): the header's texture and light counts (at most 64 lights), the
+//            scene bounds and the region starts (words 9..34), the camera block (loaded into
+//            rgs_raygen, its profile word kept); e = max of the bounds' extents / 2^10 (the C's
+//            f24_sub, f24_max from 0 and f24_div on one f24_add, f24_cmp, f24_div); then
+//            frame_ok_o and the constants held for the controllers
 //   gen      a controller's block corner (x0, y0) into rgs_raygen; the packets come out in the
 //            order of the blocks, so a FIFO of the controllers' indices (one block per controller
 //            at most) routes them back
-//   surface  a ray and its hit into rgs_surface, which takes the next ray (any controller's) while
-//            it reads and shades the ones before and gives the surfaces back in order; the line
-//            read port is the set-up's until frame_ok_o, then rgs_surface's
 //   light    `rgs_light` on a ray's surface and the controller's light record; `rgs_light_colour`
 //            on the light's colour; `rgs_add_light` on a visible ray's sums; `rgs_accum` on an
 //            active ray (e and the profile's live bit from the set-up, spawn from the controller)
 // Operand layouts (each controller packs its operand in this order, the highest field first):
-//   gen {y0, x0}; surface {ray, active, o, d, inst, tri, t, u, v, cos_n}; light {ray, type, L_pos,
-//   L_dir, cos_in, cos_out, sf_valid, unlit, P, N^, D^, k}; colour {B, G, R}; add {ray, diffuse,
-//   highlight, diff, spec, colour}; accum {ray, eta, kd, kr, kt, ks, sf_valid, o, D^, N^, t_hat,
-//   entering, base, emission, tint, weight, diffuse, highlight, acc, spawn}.
-// Latency: the units' own (rgs_raygen 29, rgs_surface 214 for a packet's first hit + about 39 a
-// further hit, rgs_light 87, rgs_light_colour 27, rgs_add_light 1, rgs_accum 67 cycles) plus the
-// cycles an operand waits for other controllers' in the same unit (rgs_surface's front takes a hit
-// after the reads of the one before); the set-up about 60 cycles after reset plus its reads.
-// Throughput: per unit one operand per cycle (II = 1) but rgs_surface (a hit per its front's
-// reads) and rgs_raygen (a packet per 4 cycles).
-// Resources: one rgs_raygen, rgs_surface, rgs_light, rgs_light_colour, rgs_add_light, rgs_accum;
-// 6 rgs_arb (N-to-1 multiplexers of 64, ~380, ~570, 72, 178 and ~650 bits at e7m16, N flip-flops
-// each); a FIFO of N controller indices; the set-up's line_reader (26 words), f24_add, f24_cmp,
-// f24_div and the frame's constants (7 x 32 + 10 x W + 5 bits).
+//   gen {y0, x0}; light {ray, type, L_pos, L_dir, cos_in, cos_out, sf_valid, unlit, P, N^, D^, k};
+//   colour {B, G, R}; add {ray, diffuse, highlight, diff, spec, colour}; accum {ray, eta, kd, kr,
+//   kt, ks, sf_valid, o, D^, N^, t_hat, entering, base, emission, tint, weight, diffuse, highlight,
+//   acc, spawn}.
+// Latency: the units' own (rgs_raygen 29, rgs_light 87, rgs_light_colour 27, rgs_add_light 1,
+// rgs_accum 67 cycles) plus the cycles an operand waits for another controller's in the same unit
+// (a unit takes one operand a cycle; rgs_raygen one ray a cycle, a packet per 4); the set-up about
+// 60 cycles after reset plus its reads. Throughput: per unit one operand per cycle (II = 1).
+// Resources: one rgs_raygen, rgs_light, rgs_light_colour, rgs_add_light, rgs_accum; 5 rgs_arb
+// (N-to-1 multiplexers of 64, ~570, 72, 178 and ~650 bits at e7m16, N flip-flops each); a FIFO of
+// N controller indices; the set-up's line_reader (26 words), f24_add, f24_cmp, f24_div and the
+// frame's constants (7 x 32 + 10 x W + 5 bits).
 module rgs_units #(
   parameter int E = 7,
   parameter int M = 16,
@@ -50,14 +44,11 @@ module rgs_units #(
   parameter int DIV_STAGES = 11,
   parameter int CMP_STAGES = 2,
   parameter int TOI_STAGES = 2,
-  parameter int MOD_STAGES = 16,
-  parameter int SURF_SLOTS = 16,  // rgs_surface's surfaces in its frame (the controllers' hits in flight)
   parameter int LW = 4,           // words per line of the read port (the shading cache's 16 bytes)
   localparam int NW = N > 1 ? $clog2(N) : 1,
   localparam int W = 1 + E + M,
   localparam int V = 3 * W,
   localparam int GEN_DW = 64,
-  localparam int SF_DW = 67 + 2 * V + 4 * W,
   localparam int LI_DW = 40 + 5 * V + 2 * W,
   localparam int LC_DW = V,
   localparam int AL_DW = 178,
@@ -65,16 +56,20 @@ module rgs_units #(
 ) (
   input  logic                 clk_i,
   input  logic                 rst_ni,
-  // the line read port of the set-up, then of rgs_surface: a request names a line by its first
-  // word's address, the answer is the line's LW words, in order
+  // the set-up's line read port: a request names a line by its first word's address
   output logic                 mem_req_valid_o,
   input  logic                 mem_req_ready_i,
   output logic [31:0]          mem_addr_o,
   input  logic                 mem_rsp_valid_i,
   input  logic [32*LW-1:0]     mem_rdata_i,
-  // the frame's constants the controllers need, valid from frame_ok_o on
+  // the frame's constants, valid from frame_ok_o on
   output logic                 frame_ok_o,
+  output logic [31:0]          n_tex_o,
   output logic [31:0]          n_lights_o,
+  output logic [31:0]          inst_base_o,
+  output logic [31:0]          obj_base_o,
+  output logic [31:0]          mat_base_o,
+  output logic [31:0]          tex_base_o,
   output logic [31:0]          light_base_o,
   output logic [4:0]           profile_o,
   // primary packets: operand {y0, x0}
@@ -85,28 +80,6 @@ module rgs_units #(
   output logic [3:0]           gen_active_o,
   output logic [4*V-1:0]       gen_o_o,
   output logic [4*V-1:0]       gen_d_o,
-  // a ray's surface at its hit (rgs_surface)
-  input  logic [N-1:0]         sf_req_i,
-  input  logic [N*SF_DW-1:0]   sf_data_i,
-  output logic [N-1:0]         sf_ack_o,
-  output logic [N-1:0]         sf_valid_o,
-  output logic [1:0]           sf_ray_o,
-  output logic                 sf_sfv_o,
-  output logic [V-1:0]         sf_p_o,
-  output logic [V-1:0]         sf_d_o,
-  output logic [V-1:0]         sf_n_o,
-  output logic [W-1:0]         sf_that_o,
-  output logic                 sf_ent_o,
-  output logic                 sf_unlit_o,
-  output logic [3:0]           sf_k_o,
-  output logic [W-1:0]         sf_eta_o,
-  output logic [12:0]          sf_kd_o,
-  output logic [12:0]          sf_kr_o,
-  output logic [12:0]          sf_kt_o,
-  output logic [12:0]          sf_ks_o,
-  output logic [47:0]          sf_base_o,
-  output logic [47:0]          sf_emis_o,
-  output logic [47:0]          sf_tint_o,
   // a light at a ray's surface (rgs_light)
   input  logic [N-1:0]         li_req_i,
   input  logic [N*LI_DW-1:0]   li_data_i,
@@ -164,21 +137,14 @@ module rgs_units #(
   logic cam_valid;
   logic [2:0] in_q, out_q;
   logic [W-1:0] eps_q, ext_q [3], bnd_q [6];  // e; the extents, the scene bounds (lo, hi)
-  logic [31:0] n_tex_q, inst_base_q, obj_base_q, mat_base_q, tex_base_q;  // rgs_surface's constants
-  logic rd_req, sf_req, sf_port;
-  logic [31:0] rd_addr, sf_addr;
   // a burst starts in the cycle its address is known: the header's words after reset, then the
   // camera block (its address among them)
   assign rd_start = fs == F_RESET || (fs == F_SETUP && burst_done);
   assign rd_at = fs == F_RESET ? 32'(SETUP_AT) : buf_q[18 + 2 * 6 - SETUP_AT];
   line_reader #(.MAXW(SETUP_WORDS), .LW(LW)) u_rd (
     .clk_i, .rst_ni, .start_i(rd_start), .addr_i(rd_at), .n_i(fs == F_RESET ? 5'(SETUP_WORDS) : 5'd16),
-    .req_valid_o(rd_req), .req_ready_i(!sf_port && mem_req_ready_i), .req_addr_o(rd_addr),
-    .rsp_valid_i(!sf_port && mem_rsp_valid_i), .rsp_line_i(mem_rdata_i), .done_o(burst_done), .words_o(rd_words));
-  // the port is the set-up's until it is done, then rgs_surface's (no surface before a block)
-  assign sf_port = fs == F_DONE;
-  assign mem_req_valid_o = sf_port ? sf_req : rd_req;
-  assign mem_addr_o = sf_port ? sf_addr : rd_addr;
+    .req_valid_o(mem_req_valid_o), .req_ready_i(mem_req_ready_i), .req_addr_o(mem_addr_o),
+    .rsp_valid_i(mem_rsp_valid_i), .rsp_line_i(mem_rdata_i), .done_o(burst_done), .words_o(rd_words));
   for (genvar k = 0; k < SETUP_WORDS; k++) begin : g_buf
     assign buf_q[k] = rd_words[32*k +: 32];
   end
@@ -205,13 +171,13 @@ module rgs_units #(
         F_RESET: fs <= F_SETUP;  // the header's words (rd_start)
         F_SETUP:  // words 9..34: buf_q[w - 9]
           if (burst_done) begin
-            n_tex_q <= buf_q[0];
+            n_tex_o <= buf_q[0];
             n_lights_o <= buf_q[1] < 32'd64 ? buf_q[1] : 32'd64;
-            mat_base_q <= buf_q[18 + 2 * 1 - SETUP_AT];
-            tex_base_q <= buf_q[18 + 2 * 2 - SETUP_AT];
-            obj_base_q <= buf_q[18 + 2 * 5 - SETUP_AT];
+            mat_base_o <= buf_q[18 + 2 * 1 - SETUP_AT];
+            tex_base_o <= buf_q[18 + 2 * 2 - SETUP_AT];
+            obj_base_o <= buf_q[18 + 2 * 5 - SETUP_AT];
             light_base_o <= buf_q[18 + 2 * 7 - SETUP_AT];
-            inst_base_q <= buf_q[18 + 2 * 8 - SETUP_AT];
+            inst_base_o <= buf_q[18 + 2 * 8 - SETUP_AT];
             cam_q <= '0;  // the camera's words (rd_start)
             for (int k = 0; k < 6; k++) bnd_q[k] <= buf_q[12 + k - SETUP_AT][W-1:0];
             fs <= F_CAMERA;
@@ -276,31 +242,6 @@ module rgs_units #(
     .valid_i(gen_valid && rg_blk_ready), .ready_o(who_ready), .data_i(gen_idx), .valid_o(who_valid),
     .ready_i(rg_valid), .data_o(who));
 
-  // ---- the surfaces: the rays and hits round robin into rgs_surface, which takes the next ray while
-  // it reads and shades the ones before (several controllers' rays in flight, in order) ----
-  logic sf_in, sf_take, sf_out;
-  logic [NW-1:0] sf_idx, sf_who;
-  logic [SF_DW-1:0] sf_op;
-  /* verilator lint_off UNUSEDSIGNAL */
-  logic [31:0] sf_mat;  // the accumulation takes the material's fields from the surface
-  /* verilator lint_on UNUSEDSIGNAL */
-  rgs_arb #(.N(N), .DW(SF_DW)) u_sf_arb (.clk_i(clk_i), .rst_ni(rst_ni), .req_i(sf_req_i), .data_i(sf_data_i),
-    .ack_o(sf_ack_o), .valid_o(sf_in), .ready_i(sf_take), .index_o(sf_idx), .data_o(sf_op));
-  // the operand from the top: ray, active, o, d, inst, tri, t, u, v, cos_n
-  rgs_surface #(.E(E), .M(M), .TID_BITS(NW + 2), .CVT_STAGES(CVT_STAGES), .MUL_STAGES(MUL_STAGES),
-    .ADD_STAGES(ADD_STAGES), .SQRT_STAGES(SQRT_STAGES), .DIV_STAGES(DIV_STAGES), .CMP_STAGES(CMP_STAGES),
-    .TOI_STAGES(TOI_STAGES), .MOD_STAGES(MOD_STAGES), .SLOTS(SURF_SLOTS), .LW(LW)) u_surface (
-    .clk_i(clk_i), .rst_ni(rst_ni), .inst_base_i(inst_base_q), .obj_base_i(obj_base_q), .mat_base_i(mat_base_q),
-    .tex_base_i(tex_base_q), .n_tex_i(n_tex_q), .valid_i(sf_in), .ready_o(sf_take),
-    .tid_i({sf_idx, sf_op[SF_DW-1 -: 2]}), .active_i(sf_op[SF_DW-3]), .o_i(sf_op[SF_DW-4 -: V]),
-    .d_i(sf_op[SF_DW-4-V -: V]), .inst_i(sf_op[4*W + 32 +: 32]), .tri_i(sf_op[4*W +: 32]), .t_i(sf_op[3*W +: W]),
-    .u_i(sf_op[2*W +: W]), .v_i(sf_op[W +: W]), .cos_n_i(sf_op[0 +: W]), .mem_req_valid_o(sf_req),
-    .mem_req_ready_i(sf_port && mem_req_ready_i), .mem_addr_o(sf_addr), .mem_rsp_valid_i(sf_port && mem_rsp_valid_i),
-    .mem_rdata_i(mem_rdata_i), .valid_o(sf_out), .ready_i(1'b1), .tid_o({sf_who, sf_ray_o}), .sf_valid_o(sf_sfv_o),
-    .p_o(sf_p_o), .d_o(sf_d_o), .n_o(sf_n_o), .t_hat_o(sf_that_o), .entering_o(sf_ent_o), .mat_o(sf_mat),
-    .unlit_o(sf_unlit_o), .k_o(sf_k_o), .eta_o(sf_eta_o), .kd_o(sf_kd_o), .kr_o(sf_kr_o), .kt_o(sf_kt_o),
-    .ks_o(sf_ks_o), .base_o(sf_base_o), .emission_o(sf_emis_o), .tint_o(sf_tint_o));
-
   // ---- a light at the rays' surfaces, its colour, the visible rays' sums, the accumulation ----
   logic li_in, lc_in, al_in, ac_in;
   logic [NW-1:0] li_idx, lc_idx, al_idx, ac_idx, li_who, lc_who, al_who, ac_who;
@@ -357,7 +298,6 @@ module rgs_units #(
   // ---- each result to the controller whose index it carries ----
   for (genvar k = 0; k < N; k++) begin : g_back
     assign gen_valid_o[k] = rg_valid && who_valid && who == NW'(k);
-    assign sf_valid_o[k] = sf_out && sf_who == NW'(k);
     assign li_valid_o[k] = li_out && li_who == NW'(k);
     assign lc_valid_o[k] = lc_out && lc_who == NW'(k);
     assign al_valid_o[k] = al_out && al_who == NW'(k);
