@@ -1,7 +1,10 @@
 // dynrtp: one DynRTP (paper section 3, Figure 2): the tile controller (tile_ctrl) deals the
-// frame's 2x2 blocks to the RGS, RGS_BLOCKS block controllers (rgs_ctrl: ray generation,
-// surfaces, lights and shadow rays, accumulation and secondary rays of hls/units/rgs.c
-// rgs_block_begin / rgs_step / rgs_block_finish) whose packets the ray tracing core (trace_core:
+// frame's 2x2 blocks to the RGS, RGS_BLOCKS block controllers (rgs_ctrl: the control of ray
+// generation, surfaces (each its rgs_surface), lights and shadow rays, accumulation and secondary
+// rays of hls/units/rgs.c rgs_step / rgs_block_finish) around one set of the RGS's other datapaths
+// (rgs_units: the frame set-up of rgs_block_begin, rgs_raygen, rgs_light, rgs_light_colour,
+// rgs_add_light, rgs_accum, each taking the controllers' operands round robin), whose packets the
+// ray tracing core (trace_core:
 // THREADS threads, the traversal, list, rebase, transformation and intersection units,
 // thread_sched) traces, and the memory side: the core's three ports read through the paper's
 // direct-mapped caches (cache_read around cache_dm, the cycle model's default configuration
@@ -15,10 +18,11 @@
 // give RGS_BLOCKS blocks in flight, each with at most one packet in the core: rgs_ctrl k traces on
 // the core's thread k (its tag), so the core's hits go back to the controller of thread_o. A block
 // goes to the lowest idle controller below blocks_i (--threads-per-pipe: the blocks the harness
-// lets run); the controllers' packets enter the core round robin (rr_pick), their line reads are
-// merged round robin by a second mem_port (N = RGS_BLOCKS, the answers routed back in order) onto
-// the shading cache, their pixels leave round robin on the px_* port with the block's corner.
-// Every controller reads the frame's header and camera once after reset, before it takes a block.
+// lets run); the controllers' packets enter the core round robin (rr_pick), their line reads and
+// rgs_units' (the set-up's) are merged round robin by a second mem_port (N = RGS_BLOCKS + 1, the
+// answers routed back in order) onto the shading cache, their pixels leave round robin on the px_*
+// port with the block's corner. rgs_units reads the frame's header and camera once after reset;
+// the controllers take blocks from then on.
 // The core's packet input and its hits are also outputs (tr_*, valid_o ...) for the harness, which
 // checks every packet against the C core.
 // Where the memory interface differs from the cycle model (docs/cycle-model.md): the core's
@@ -36,8 +40,8 @@
 // took (kd nodes, list entries, descriptor responses of RW words, shading lines).
 // Latency and throughput: tile_ctrl 1 block per cycle; rgs_ctrl a block per its sequence
 // (rtl/README.md), RGS_BLOCKS at once; the core's; the memory port 1 transfer per cycle.
-// Resources: trace_core's, RGS_BLOCKS x rgs_ctrl (each with its own shading units and a stack of
-// about 8 Kbit in registers: the RGS dominates the area beside the core), 4 x cache_read
+// Resources: trace_core's, rgs_units (one set of the RGS's datapaths but the surface), RGS_BLOCKS x
+// rgs_ctrl (its rgs_surface and a stack of about 8 Kbit in registers each), 4 x cache_read
 // (NODE_KB + LIST_KB + MAT_KB + SHADE_KB KB of data arrays and their tags), 2 x mem_port,
 // 2 x rr_pick, tile_ctrl, RGS_BLOCKS x 64 bits of block corners, 14 x 64-bit counters.
 module dynrtp #(

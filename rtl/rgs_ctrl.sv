@@ -1,21 +1,22 @@
 // rgs_ctrl: the RGS's per-block control (paper sections 2.2 and 3, Figure 2: the RGS's thread of a
-// 2x2 pixel block; hls/units/rgs.c `rgs_block_begin`, `rgs_step`, `rgs_block_finish`), bit for bit
-// as `rgs_render_block`:
-//   frame    once after reset: the header's texture and light counts (at most 64 lights), the
-//            scene bounds and the region starts (words 9..34), the camera block (loaded into
-//            `rgs_raygen`, its profile word kept); e = max of the bounds' extents / 2^10 (the C's
-//            f24_sub, f24_max from 0 and f24_div on one `f24_add`, `f24_cmp`, `f24_div`)
-//   RB_GEN   a block (x0, y0) in: its primary packet from `rgs_raygen`, pushed with weights one
+// 2x2 pixel block; hls/units/rgs.c `rgs_step`, `rgs_block_finish`), bit for bit as
+// `rgs_render_block`. Its only datapath is its `rgs_surface`; the other steps hand their rays to
+// the RGS's one set of shared units (`rgs_units`: `rgs_raygen`, `rgs_light`, `rgs_light_colour`,
+// `rgs_add_light`, `rgs_accum`; an operand offered until taken, req/ack, each result back with the
+// ray's index), which also did the frame set-up once after reset (the header's constants, the
+// camera, e: frame_ok_i and the constants in).
+//   RB_GEN   a block (x0, y0) in: its corner to `rgs_raygen`, its primary packet back, pushed
+//            with weights one
 //   RB_NEXT  pop the ray-tree stack (RGS_STACK = MAX_DEPTH + 2 tasks: rays, Q12 weights, depth),
 //            unless it is empty or RGS_MAX_PACKETS packets were started: then RB_DONE
 //   RB_TRACE the packet out on the trace port (tmin 0, tmax +Inf, TRACE_* flags of the profile),
 //            its hits back; the first packet's hits are the block's primary hits
 //   RB_SURFACES  the 4 surfaces (`rgs_surface`, which owns the line port meanwhile), their
 //            exponents, diffuse sums at the ambient 0.15 (one for unlit), highlights zero
-//   RB_LIGHT per light: its 16 words read (4 or 5 lines), `rgs_light` on the 4 surfaces, `rgs_light_colour`;
-//            RB_SHADOW_TRACE with shadows and an active shadow ray: the shadow packet traced
-//            (TRACE_ANY_HIT under PROFILE_ANY_HIT), light reaching the rays without a hit;
-//            `rgs_add_light` adds it to the visible rays
+//   RB_LIGHT per light: its 16 words read (4 or 5 lines), `rgs_light` on the 4 surfaces,
+//            `rgs_light_colour`; RB_SHADOW_TRACE with shadows and an active shadow ray: the shadow
+//            packet traced (TRACE_ANY_HIT under PROFILE_ANY_HIT), light reaching the rays without
+//            a hit; `rgs_add_light` adds it to the visible rays
 //   RB_ACCUM `rgs_accum` for each active ray (pixel sums, children while the depth + 1 is at most
 //            max_depth_i and MAX_DEPTH and the profile has secondary rays); the transmission task,
 //            then the reflection task pushed if they have an active ray (dropped on a full stack)
@@ -27,15 +28,19 @@
 // e7m16, the current packet, its surfaces, sums and shadow packet) in registers; the DynRTP's 64
 // threads will keep it in block RAM with several blocks in flight. The tag given with the block
 // goes out with its trace requests and its pixels (the top routes the hits back by it).
+// Why its own rgs_surface: one surface unit takes a hit every 40 to 80 cycles (its front reads a
+// hit's dependent bursts, its back shades one surface at a time), so one shared by 8 controllers
+// bounds them (rtl/README.md "The RGS shared": cornell 32x24 at 8 blocks +13% cycles).
 // Latency: a sequence per block, its phases one after another, the 4 rays streamed through each
 // phase's unit: about 20 + `rgs_surface` (the 4 rays offered as it takes them: its steps per hit,
-// the last frame's 118 overlapped by none) + per light (`rgs_light` 87 + 4, after its 16 words' 4 or 5 lines
-// unless the record held is that light's: one light is read once) + 4 `rgs_add_light` + 4 +
-// `rgs_accum` 67 cycles per packet, plus the trace; the bench measures it (cornell 32x24: 764
-// cycles a block, per state with tb_rgs_ctrl). Throughput: one block per its latency. Resources: `rgs_raygen`,
-// `rgs_surface`, `rgs_light`, `rgs_light_colour`, `rgs_add_light`, `rgs_accum`, one `f24_add`,
-// `f24_cmp`, `f24_div` (frame set-up), the block's registers (the stack dominates: RGS_STACK x 4
-// rays x (6 W + 48) bits).
+// the last frame's 118 overlapped by none) + per light (`rgs_light` 87 + 4, after its 16 words' 4
+// or 5 lines unless the record held is that light's: one light is read once) + 4 `rgs_add_light`
+// + 4 + `rgs_accum` 67 cycles per packet, plus the trace, plus the cycles its operands wait for
+// other controllers' in the shared units; the bench measures it alone (cornell 32x24, depth 3:
+// 488 cycles a block, per state with tb_rgs_ctrl). Throughput: one block per its latency.
+// Resources: `rgs_surface`, the block's registers (the stack dominates: RGS_STACK x 4 rays x
+// (6 W + 48) bits), a `line_reader` of 16 words (the light record), the operand multiplexers (the
+// packet's ray in_q into each shared unit's operand).
 module rgs_ctrl #(
   parameter int E = 7,
   parameter int M = 16,

@@ -1,19 +1,20 @@
 // rgs_units: the RGS's shared datapaths (paper section 3, Figure 2: ONE ray generation and shading
 // unit serving the RGS's threads; hls/units/rgs.c `rgs_block_begin`, `rgs_step`): the frame set-up
 // and one each of rgs_raygen, rgs_light, rgs_light_colour, rgs_add_light and rgs_accum for the N
-// block controllers (rgs_ctrl) of the DynRTP. The controllers keep their FSM and block state (stack,
-// packet, surfaces, sums) and hand their operands here; per unit an rgs_arb picks one controller's
-// operand a cycle round robin, the controller's index travels as the high bits of the unit's thread
-// id (beside the ray's index in the packet), and the result comes back to that controller only
-// (valid_o bit k). A controller waits in the state of its step for all its results and takes each
-// as it comes (the units run with ready_i = 1), so sharing changes when an operand enters a unit,
-// never what it computes.
-//   frame set-up  once after reset (the C's `rgs_block_begin` constants, as rgs_ctrl did per
-//            controller before): the header's texture and light counts (at most 64 lights), the
-//            scene bounds and the region starts (words 9..34), the camera block (loaded into
-//            rgs_raygen, its profile word kept); e = max of the bounds' extents / 2^10 (the C's
-//            f24_sub, f24_max from 0 and f24_div on one f24_add, f24_cmp, f24_div); then
-//            frame_ok_o and the constants held for the controllers
+// block controllers (rgs_ctrl) of the DynRTP. The controllers keep their FSM, block state (stack,
+// packet, surfaces, sums) and rgs_surface (one surface unit takes a hit every 40 to 80 cycles: one
+// for all would bound them, rtl/README.md "The RGS shared") and hand their operands here; per unit
+// an rgs_arb picks one controller's operand a cycle round robin, the controller's index travels as
+// the high bits of the unit's thread id (beside the ray's index in the packet), and the result comes
+// back to that controller only (valid_o bit k). A controller waits in the state of its step for all
+// its results and takes each as it comes (the units run with ready_i = 1), so sharing changes when
+// an operand enters a unit, never what it computes.
+//   frame set-up  once after reset (the C's `rgs_block_begin` constants; each rgs_ctrl did it for
+//            itself before): the header's texture and light counts (at most 64 lights), the scene
+//            bounds and the region starts (words 9..34), the camera block (loaded into rgs_raygen,
+//            its profile word kept); e = max of the bounds' extents / 2^10 (the C's f24_sub,
+//            f24_max from 0 and f24_div on one f24_add, f24_cmp, f24_div); then frame_ok_o and the
+//            constants held for the controllers
 //   gen      a controller's block corner (x0, y0) into rgs_raygen; the packets come out in the
 //            order of the blocks, so a FIFO of the controllers' indices (one block per controller
 //            at most) routes them back
@@ -28,7 +29,8 @@
 // Latency: the units' own (rgs_raygen 29, rgs_light 87, rgs_light_colour 27, rgs_add_light 1,
 // rgs_accum 67 cycles) plus the cycles an operand waits for another controller's in the same unit
 // (a unit takes one operand a cycle; rgs_raygen one ray a cycle, a packet per 4); the set-up about
-// 60 cycles after reset plus its reads. Throughput: per unit one operand per cycle (II = 1).
+// 60 cycles after reset plus its reads (the header's 26 words, the camera's 16: 7 + 4 or 5 lines).
+// Throughput: per unit one operand per cycle (II = 1), rgs_raygen a packet per 4 cycles.
 // Resources: one rgs_raygen, rgs_light, rgs_light_colour, rgs_add_light, rgs_accum; 5 rgs_arb
 // (N-to-1 multiplexers of 64, ~570, 72, 178 and ~650 bits at e7m16, N flip-flops each); a FIFO of
 // N controller indices; the set-up's line_reader (26 words), f24_add, f24_cmp, f24_div and the
