@@ -40,7 +40,8 @@
 // 488 cycles a block, per state with tb_rgs_ctrl). Throughput: one block per its latency.
 // Resources: `rgs_surface`, the block's registers (the stack dominates: RGS_STACK x 4 rays x
 // (6 W + 48) bits), a `line_reader` of 16 words (the light record), the operand multiplexers (the
-// packet's ray in_q into each shared unit's operand).
+// packet's ray in_q into each shared unit's operand); Yosys synth_xilinx per module at e7m16,
+// TAG_BITS = 6: 67,187 LUT6, of them rgs_surface 55,243 (137,850 with all the datapaths).
 module rgs_ctrl #(
   parameter int E = 7,
   parameter int M = 16,

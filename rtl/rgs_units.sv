@@ -32,9 +32,10 @@
 // 60 cycles after reset plus its reads (the header's 26 words, the camera's 16: 7 + 4 or 5 lines).
 // Throughput: per unit one operand per cycle (II = 1), rgs_raygen a packet per 4 cycles.
 // Resources: one rgs_raygen, rgs_light, rgs_light_colour, rgs_add_light, rgs_accum; 5 rgs_arb
-// (N-to-1 multiplexers of 64, ~570, 72, 178 and ~650 bits at e7m16, N flip-flops each); a FIFO of
-// N controller indices; the set-up's line_reader (26 words), f24_add, f24_cmp, f24_div and the
-// frame's constants (7 x 32 + 10 x W + 5 bits).
+// (N-to-1 multiplexers of 64, 448, 72, 178 and 657 bits at e7m16, N flip-flops each: 4,407 LUT6 at
+// N = 8); a FIFO of N controller indices; the set-up's line_reader (26 words), f24_add, f24_cmp,
+// f24_div and the frame's constants (7 x 32 + 10 x W + 5 bits). Yosys synth_xilinx per module at
+// e7m16, N = 8: about 81,300 LUT6 (rtl/README.md "The RGS shared").
 module rgs_units #(
   parameter int E = 7,
   parameter int M = 16,
