@@ -1,7 +1,10 @@
 // dynrtp: one DynRTP (paper section 3, Figure 2): the tile controller (tile_ctrl) deals the
-// frame's 2x2 blocks to the RGS, RGS_BLOCKS block controllers (rgs_ctrl: ray generation,
-// surfaces, lights and shadow rays, accumulation and secondary rays of hls/units/rgs.c
-// rgs_block_begin / rgs_step / rgs_block_finish) whose packets the ray tracing core (trace_core:
+// frame's 2x2 blocks to the RGS, RGS_BLOCKS block controllers (rgs_ctrl: the control of ray
+// generation, surfaces (each its rgs_surface), lights and shadow rays, accumulation and secondary
+// rays of hls/units/rgs.c rgs_step / rgs_block_finish) around one set of the RGS's other datapaths
+// (rgs_units: the frame set-up of rgs_block_begin, rgs_raygen, rgs_light, rgs_light_colour,
+// rgs_add_light, rgs_accum, each taking the controllers' operands round robin), whose packets the
+// ray tracing core (trace_core:
 // THREADS threads, the traversal, list, rebase, transformation and intersection units,
 // thread_sched) traces, and the memory side: the core's three ports read through the paper's
 // direct-mapped caches (cache_read around cache_dm, the cycle model's default configuration
@@ -15,10 +18,11 @@
 // give RGS_BLOCKS blocks in flight, each with at most one packet in the core: rgs_ctrl k traces on
 // the core's thread k (its tag), so the core's hits go back to the controller of thread_o. A block
 // goes to the lowest idle controller below blocks_i (--threads-per-pipe: the blocks the harness
-// lets run); the controllers' packets enter the core round robin (rr_pick), their line reads are
-// merged round robin by a second mem_port (N = RGS_BLOCKS, the answers routed back in order) onto
-// the shading cache, their pixels leave round robin on the px_* port with the block's corner.
-// Every controller reads the frame's header and camera once after reset, before it takes a block.
+// lets run); the controllers' packets enter the core round robin (rr_pick), their line reads and
+// rgs_units' (the set-up's) are merged round robin by a second mem_port (N = RGS_BLOCKS + 1, the
+// answers routed back in order) onto the shading cache, their pixels leave round robin on the px_*
+// port with the block's corner. rgs_units reads the frame's header and camera once after reset;
+// the controllers take blocks from then on.
 // The core's packet input and its hits are also outputs (tr_*, valid_o ...) for the harness, which
 // checks every packet against the C core.
 // Where the memory interface differs from the cycle model (docs/cycle-model.md): the core's
@@ -36,8 +40,8 @@
 // took (kd nodes, list entries, descriptor responses of RW words, shading lines).
 // Latency and throughput: tile_ctrl 1 block per cycle; rgs_ctrl a block per its sequence
 // (rtl/README.md), RGS_BLOCKS at once; the core's; the memory port 1 transfer per cycle.
-// Resources: trace_core's, RGS_BLOCKS x rgs_ctrl (each with its own shading units and a stack of
-// about 8 Kbit in registers: the RGS dominates the area beside the core), 4 x cache_read
+// Resources: trace_core's, rgs_units (one set of the RGS's datapaths but the surface), RGS_BLOCKS x
+// rgs_ctrl (its rgs_surface and a stack of about 8 Kbit in registers each), 4 x cache_read
 // (NODE_KB + LIST_KB + MAT_KB + SHADE_KB KB of data arrays and their tags), 2 x mem_port,
 // 2 x rr_pick, tile_ctrl, RGS_BLOCKS x 64 bits of block corners, 14 x 64-bit counters.
 module dynrtp #(
@@ -142,8 +146,9 @@ module dynrtp #(
   end
   assign blk_ready = |free;
 
-  // ---- the RGS: RGS_BLOCKS block controllers ----
-  logic [B-1:0] tr_ready, rd_valid, rd_ready, rd_rsp, px_valid, px_ready;
+  // ---- the RGS: RGS_BLOCKS block controllers around one set of shared units (rgs_units) ----
+  logic [B-1:0] tr_ready, px_valid, px_ready;
+  logic [B:0] rd_valid, rd_ready, rd_rsp;  // the controllers' read ports, then the set-up's
   // public_flat_rd (these, rb_ready, busy_q, the caches' ports): read by tb_dynrtp for --mode rtl --vcd
   logic [B-1:0] tr_valid /*verilator public_flat_rd*/, hit_ready /*verilator public_flat_rd*/;
   // per controller: unpacked arrays (Yosys 0.23 reads no packed arrays of more than one dimension)
@@ -152,15 +157,68 @@ module dynrtp #(
   logic [3:0] tr_active [B];
   logic [4*3*W-1:0] tr_o [B], tr_d [B];
   logic [4*W-1:0] tr_tmin [B], tr_tmax [B], px_t [B], px_u [B], px_v [B], px_cos [B];
-  logic [B*32-1:0] rd_addr;  // the read ports' mem_port takes the B addresses side by side
+  logic [(B+1)*32-1:0] rd_addr;  // the read ports' mem_port takes the B + 1 addresses side by side
   logic [4*24-1:0] px_rgb [B];
   logic [4*32-1:0] px_inst [B], px_tri [B];
   logic [127:0] rd_line;  // the shading cache's line (4 words) to every controller
   logic [31:0] bx_q [THREADS], by_q [THREADS];  // the corner of thread k's block
   logic core_ready;
+  // the shared units' ports: per controller k its operand at bits k x the operand's width, its
+  // valid bit k; the results on one bus to all (rgs_units)
+  localparam int V = 3 * W;
+  localparam int LI_DW = 40 + 5 * V + 2 * W, AL_DW = 178, AC_DW = 393 + 3 * V + 2 * W;
+  logic frame_ok;
+  logic [31:0] n_tex, n_lights, inst_base, obj_base, mat_base, tex_base, light_base;
+  logic [4:0] profile;
+  logic [B-1:0] gen_req, gen_ack, gen_valid, li_req, li_ack, li_valid, lc_req, lc_ack, lc_valid;
+  logic [B-1:0] al_req, al_ack, al_valid, ac_req, ac_ack, ac_valid;
+  logic [B*64-1:0] gen_data;
+  logic [B*LI_DW-1:0] li_data;
+  logic [B*V-1:0] lc_data;
+  logic [B*AL_DW-1:0] al_data;
+  logic [B*AC_DW-1:0] ac_data;
+  logic [3:0] gen_active;
+  logic [4*V-1:0] gen_o, gen_d;
+  logic [1:0] li_ray, al_ray, ac_ray;
+  logic [V-1:0] li_o, li_d, ac_ro, ac_rd, ac_to, ac_td;
+  logic [W-1:0] li_tmin, li_tmax;
+  logic [15:0] li_diff, li_spec;
+  logic [47:0] lc_q, al_dif, al_hil, ac_acc, ac_rw, ac_tw;
+  logic li_active, ac_ract, ac_tact;
+  rgs_units #(.E(E), .M(M), .N(B)) u_units (
+    .clk_i(clk_i), .rst_ni(rst_ni), .mem_req_valid_o(rd_valid[B]), .mem_req_ready_i(rd_ready[B]),
+    .mem_addr_o(rd_addr[B*32 +: 32]), .mem_rsp_valid_i(rd_rsp[B]), .mem_rdata_i(rd_line), .frame_ok_o(frame_ok),
+    .n_tex_o(n_tex), .n_lights_o(n_lights), .inst_base_o(inst_base), .obj_base_o(obj_base), .mat_base_o(mat_base),
+    .tex_base_o(tex_base), .light_base_o(light_base), .profile_o(profile),
+    .gen_req_i(gen_req), .gen_data_i(gen_data), .gen_ack_o(gen_ack), .gen_valid_o(gen_valid),
+    .gen_active_o(gen_active), .gen_o_o(gen_o), .gen_d_o(gen_d),
+    .li_req_i(li_req), .li_data_i(li_data), .li_ack_o(li_ack), .li_valid_o(li_valid), .li_ray_o(li_ray),
+    .li_o_o(li_o), .li_d_o(li_d), .li_tmin_o(li_tmin), .li_tmax_o(li_tmax), .li_active_o(li_active),
+    .li_diff_o(li_diff), .li_spec_o(li_spec),
+    .lc_req_i(lc_req), .lc_data_i(lc_data), .lc_ack_o(lc_ack), .lc_valid_o(lc_valid), .lc_q_o(lc_q),
+    .al_req_i(al_req), .al_data_i(al_data), .al_ack_o(al_ack), .al_valid_o(al_valid), .al_ray_o(al_ray),
+    .al_dif_o(al_dif), .al_hil_o(al_hil),
+    .ac_req_i(ac_req), .ac_data_i(ac_data), .ac_ack_o(ac_ack), .ac_valid_o(ac_valid), .ac_ray_o(ac_ray),
+    .ac_acc_o(ac_acc), .ac_ro_o(ac_ro), .ac_rd_o(ac_rd), .ac_rw_o(ac_rw), .ac_ract_o(ac_ract), .ac_to_o(ac_to),
+    .ac_td_o(ac_td), .ac_tw_o(ac_tw), .ac_tact_o(ac_tact));
   for (genvar k = 0; k < B; k++) begin : g_rgs
     rgs_ctrl #(.E(E), .M(M), .TAG_BITS(TW)) u_rgs (
       .clk_i(clk_i), .rst_ni(rst_ni), .max_depth_i(max_depth_i), .shadows_i(shadows_i),
+      .frame_ok_i(frame_ok), .n_tex_i(n_tex), .n_lights_i(n_lights), .inst_base_i(inst_base),
+      .obj_base_i(obj_base), .mat_base_i(mat_base), .tex_base_i(tex_base), .light_base_i(light_base),
+      .profile_i(profile),
+      .gen_req_o(gen_req[k]), .gen_ack_i(gen_ack[k]), .gen_data_o(gen_data[k*64 +: 64]), .gen_valid_i(gen_valid[k]),
+      .gen_active_i(gen_active), .gen_o_i(gen_o), .gen_d_i(gen_d),
+      .li_req_o(li_req[k]), .li_ack_i(li_ack[k]), .li_data_o(li_data[k*LI_DW +: LI_DW]), .li_valid_i(li_valid[k]),
+      .li_ray_i(li_ray), .li_o_i(li_o), .li_d_i(li_d), .li_tmin_i(li_tmin), .li_tmax_i(li_tmax),
+      .li_active_i(li_active), .li_diff_i(li_diff), .li_spec_i(li_spec),
+      .lc_req_o(lc_req[k]), .lc_ack_i(lc_ack[k]), .lc_data_o(lc_data[k*V +: V]), .lc_valid_i(lc_valid[k]),
+      .lc_q_i(lc_q),
+      .al_req_o(al_req[k]), .al_ack_i(al_ack[k]), .al_data_o(al_data[k*AL_DW +: AL_DW]), .al_valid_i(al_valid[k]),
+      .al_ray_i(al_ray), .al_dif_i(al_dif), .al_hil_i(al_hil),
+      .ac_req_o(ac_req[k]), .ac_ack_i(ac_ack[k]), .ac_data_o(ac_data[k*AC_DW +: AC_DW]), .ac_valid_i(ac_valid[k]),
+      .ac_ray_i(ac_ray), .ac_acc_i(ac_acc), .ac_ro_i(ac_ro), .ac_rd_i(ac_rd), .ac_rw_i(ac_rw), .ac_ract_i(ac_ract),
+      .ac_to_i(ac_to), .ac_td_i(ac_td), .ac_tw_i(ac_tw), .ac_tact_i(ac_tact),
       .blk_valid_i(blk_valid && free[k] && dealt == BW'(k)), .blk_ready_o(rb_ready[k]), .blk_tag_i(TW'(k)),
       .blk_x_i(blk_x), .blk_y_i(blk_y), .tr_valid_o(tr_valid[k]), .tr_ready_i(tr_ready[k]), .tr_tag_o(tr_tag[k]),
       .tr_flags_o(tr_flags[k]), .tr_active_o(tr_active[k]), .tr_o_o(tr_o[k]), .tr_d_o(tr_d[k]),
@@ -294,9 +352,9 @@ module dynrtp #(
   logic [31:0] sh_addr;
   logic [127:0] sh_line;
   /* verilator lint_off PINCONNECTEMPTY */
-  mem_port #(.N(B), .DW(128), .DEPTH(OUTSTANDING)) u_rgs_reads (
+  mem_port #(.N(B + 1), .DW(128), .DEPTH(OUTSTANDING)) u_rgs_reads (
     .clk_i(clk_i), .rst_ni(rst_ni), .req_valid_i(rd_valid), .req_ready_o(rd_ready), .req_addr_i(rd_addr),
-    .req_bytes_i({B{8'd16}}), .rsp_valid_o(rd_rsp), .rsp_data_o(rd_line), .mem_req_valid_o(sh_req),
+    .req_bytes_i({(B + 1){8'd16}}), .rsp_valid_o(rd_rsp), .rsp_data_o(rd_line), .mem_req_valid_o(sh_req),
     .mem_req_ready_i(sh_ready), .mem_req_addr_o(sh_addr), .mem_req_bytes_o(), .mem_req_src_o(),
     .mem_rsp_valid_i(sh_rsp), .mem_rsp_data_i(sh_line));
   /* verilator lint_on PINCONNECTEMPTY */

@@ -1,21 +1,22 @@
 // rgs_ctrl: the RGS's per-block control (paper sections 2.2 and 3, Figure 2: the RGS's thread of a
-// 2x2 pixel block; hls/units/rgs.c `rgs_block_begin`, `rgs_step`, `rgs_block_finish`), bit for bit
-// as `rgs_render_block`:
-//   frame    once after reset: the header's texture and light counts (at most 64 lights), the
-//            scene bounds and the region starts (words 9..34), the camera block (loaded into
-//            `rgs_raygen`, its profile word kept); e = max of the bounds' extents / 2^10 (the C's
-//            f24_sub, f24_max from 0 and f24_div on one `f24_add`, `f24_cmp`, `f24_div`)
-//   RB_GEN   a block (x0, y0) in: its primary packet from `rgs_raygen`, pushed with weights one
+// 2x2 pixel block; hls/units/rgs.c `rgs_step`, `rgs_block_finish`), bit for bit as
+// `rgs_render_block`. Its only datapath is its `rgs_surface`; the other steps hand their rays to
+// the RGS's one set of shared units (`rgs_units`: `rgs_raygen`, `rgs_light`, `rgs_light_colour`,
+// `rgs_add_light`, `rgs_accum`; an operand offered until taken, req/ack, each result back with the
+// ray's index), which also did the frame set-up once after reset (the header's constants, the
+// camera, e: frame_ok_i and the constants in).
+//   RB_GEN   a block (x0, y0) in: its corner to `rgs_raygen`, its primary packet back, pushed
+//            with weights one
 //   RB_NEXT  pop the ray-tree stack (RGS_STACK = MAX_DEPTH + 2 tasks: rays, Q12 weights, depth),
 //            unless it is empty or RGS_MAX_PACKETS packets were started: then RB_DONE
 //   RB_TRACE the packet out on the trace port (tmin 0, tmax +Inf, TRACE_* flags of the profile),
 //            its hits back; the first packet's hits are the block's primary hits
 //   RB_SURFACES  the 4 surfaces (`rgs_surface`, which owns the line port meanwhile), their
 //            exponents, diffuse sums at the ambient 0.15 (one for unlit), highlights zero
-//   RB_LIGHT per light: its 16 words read (4 or 5 lines), `rgs_light` on the 4 surfaces, `rgs_light_colour`;
-//            RB_SHADOW_TRACE with shadows and an active shadow ray: the shadow packet traced
-//            (TRACE_ANY_HIT under PROFILE_ANY_HIT), light reaching the rays without a hit;
-//            `rgs_add_light` adds it to the visible rays
+//   RB_LIGHT per light: its 16 words read (4 or 5 lines), `rgs_light` on the 4 surfaces,
+//            `rgs_light_colour`; RB_SHADOW_TRACE with shadows and an active shadow ray: the shadow
+//            packet traced (TRACE_ANY_HIT under PROFILE_ANY_HIT), light reaching the rays without
+//            a hit; `rgs_add_light` adds it to the visible rays
 //   RB_ACCUM `rgs_accum` for each active ray (pixel sums, children while the depth + 1 is at most
 //            max_depth_i and MAX_DEPTH and the profile has secondary rays); the transmission task,
 //            then the reflection task pushed if they have an active ray (dropped on a full stack)
@@ -27,15 +28,20 @@
 // e7m16, the current packet, its surfaces, sums and shadow packet) in registers; the DynRTP's 64
 // threads will keep it in block RAM with several blocks in flight. The tag given with the block
 // goes out with its trace requests and its pixels (the top routes the hits back by it).
+// Why its own rgs_surface: one surface unit takes a hit every 40 to 80 cycles (its front reads a
+// hit's dependent bursts, its back shades one surface at a time), so one shared by 8 controllers
+// bounds them (rtl/README.md "The RGS shared": cornell 32x24 at 8 blocks +13% cycles).
 // Latency: a sequence per block, its phases one after another, the 4 rays streamed through each
 // phase's unit: about 20 + `rgs_surface` (the 4 rays offered as it takes them: its steps per hit,
-// the last frame's 118 overlapped by none) + per light (`rgs_light` 87 + 4, after its 16 words' 4 or 5 lines
-// unless the record held is that light's: one light is read once) + 4 `rgs_add_light` + 4 +
-// `rgs_accum` 67 cycles per packet, plus the trace; the bench measures it (cornell 32x24: 764
-// cycles a block, per state with tb_rgs_ctrl). Throughput: one block per its latency. Resources: `rgs_raygen`,
-// `rgs_surface`, `rgs_light`, `rgs_light_colour`, `rgs_add_light`, `rgs_accum`, one `f24_add`,
-// `f24_cmp`, `f24_div` (frame set-up), the block's registers (the stack dominates: RGS_STACK x 4
-// rays x (6 W + 48) bits).
+// the last frame's 118 overlapped by none) + per light (`rgs_light` 87 + 4, after its 16 words' 4
+// or 5 lines unless the record held is that light's: one light is read once) + 4 `rgs_add_light`
+// + 4 + `rgs_accum` 67 cycles per packet, plus the trace, plus the cycles its operands wait for
+// other controllers' in the shared units; the bench measures it alone (cornell 32x24, depth 3:
+// 488 cycles a block, per state with tb_rgs_ctrl). Throughput: one block per its latency.
+// Resources: `rgs_surface`, the block's registers (the stack dominates: RGS_STACK x 4 rays x
+// (6 W + 48) bits), a `line_reader` of 16 words (the light record), the operand multiplexers (the
+// packet's ray in_q into each shared unit's operand); Yosys synth_xilinx per module at e7m16,
+// TAG_BITS = 6: 67,187 LUT6, of them rgs_surface 55,243 (137,850 with all the datapaths).
 module rgs_ctrl #(
   parameter int E = 7,
   parameter int M = 16,
@@ -49,12 +55,76 @@ module rgs_ctrl #(
   parameter int CMP_STAGES = 2,
   parameter int TOI_STAGES = 2,
   parameter int MOD_STAGES = 16,
-  parameter int LW = 4            // words per line of the read port (the shading cache's 16 bytes)
+  parameter int LW = 4,           // words per line of the read port (the shading cache's 16 bytes)
+  localparam int W = 1 + E + M,
+  localparam int V = 3 * W,
+  localparam int LI_DW = 40 + 5 * V + 2 * W,  // rgs_units' operand layouts
+  localparam int AL_DW = 178,
+  localparam int AC_DW = 393 + 3 * V + 2 * W
 ) (
   input  logic                     clk_i,
   input  logic                     rst_ni,
   input  logic [3:0]               max_depth_i,  // rgs_config: secondary levels, shadow rays
   input  logic                     shadows_i,
+  // the frame's constants (rgs_units' set-up), valid from frame_ok_i on
+  input  logic                     frame_ok_i,
+  input  logic [31:0]              n_tex_i,
+  input  logic [31:0]              n_lights_i,
+  input  logic [31:0]              inst_base_i,
+  input  logic [31:0]              obj_base_i,
+  input  logic [31:0]              mat_base_i,
+  input  logic [31:0]              tex_base_i,
+  input  logic [31:0]              light_base_i,
+  /* verilator lint_off UNUSEDSIGNAL */
+  input  logic [4:0]               profile_i,     // bit 3 (live children) is rgs_accum's, in rgs_units
+  /* verilator lint_on UNUSEDSIGNAL */
+  // the shared units (rgs_units): per unit an operand out (req until ack; layouts in rgs_units)
+  // and this controller's results back (valid)
+  output logic                     gen_req_o,     // rgs_raygen: the block's corner {y0, x0}
+  input  logic                     gen_ack_i,
+  output logic [63:0]              gen_data_o,
+  input  logic                     gen_valid_i,
+  input  logic [3:0]               gen_active_i,
+  input  logic [4*V-1:0]           gen_o_i,
+  input  logic [4*V-1:0]           gen_d_i,
+  output logic                     li_req_o,      // rgs_light: a ray's surface and the light
+  input  logic                     li_ack_i,
+  output logic [LI_DW-1:0]         li_data_o,
+  input  logic                     li_valid_i,
+  input  logic [1:0]               li_ray_i,
+  input  logic [V-1:0]             li_o_i,
+  input  logic [V-1:0]             li_d_i,
+  input  logic [W-1:0]             li_tmin_i,
+  input  logic [W-1:0]             li_tmax_i,
+  input  logic                     li_active_i,
+  input  logic [15:0]              li_diff_i,
+  input  logic [15:0]              li_spec_i,
+  output logic                     lc_req_o,      // rgs_light_colour: the light's colour
+  input  logic                     lc_ack_i,
+  output logic [V-1:0]             lc_data_o,
+  input  logic                     lc_valid_i,
+  input  logic [47:0]              lc_q_i,
+  output logic                     al_req_o,      // rgs_add_light: a visible ray's sums
+  input  logic                     al_ack_i,
+  output logic [AL_DW-1:0]         al_data_o,
+  input  logic                     al_valid_i,
+  input  logic [1:0]               al_ray_i,
+  input  logic [47:0]              al_dif_i,
+  input  logic [47:0]              al_hil_i,
+  output logic                     ac_req_o,      // rgs_accum: an active ray
+  input  logic                     ac_ack_i,
+  output logic [AC_DW-1:0]         ac_data_o,
+  input  logic                     ac_valid_i,
+  input  logic [1:0]               ac_ray_i,
+  input  logic [47:0]              ac_acc_i,
+  input  logic [V-1:0]             ac_ro_i,
+  input  logic [V-1:0]             ac_rd_i,
+  input  logic [47:0]              ac_rw_i,
+  input  logic                     ac_ract_i,
+  input  logic [V-1:0]             ac_to_i,
+  input  logic [V-1:0]             ac_td_i,
+  input  logic [47:0]              ac_tw_i,
+  input  logic                     ac_tact_i,
   // a block from the tile controller
   input  logic                     blk_valid_i,
   output logic                     blk_ready_o,
@@ -97,61 +167,50 @@ module rgs_ctrl #(
   output logic [4*(E+M+1)-1:0]     px_v_o,
   output logic [4*(E+M+1)-1:0]     px_cos_o
 );
-  localparam int W = 1 + E + M;
-  localparam int V = 3 * W;
   localparam int STACK = MAX_DEPTH + 2;
   localparam int SPW = $clog2(STACK + 1);
   localparam int MAX_PACKETS = (1 << (MAX_DEPTH + 1)) - 1;
   localparam int PW = MAX_DEPTH + 2;
-  localparam int BIAS = (1 << (E - 1)) - 1;
   localparam logic [W-1:0] POS_INF = {1'b0, {E{1'b1}}, {M{1'b0}}};
-  localparam logic [W-1:0] F1024 = {1'b0, E'(BIAS + 10), {M{1'b0}}};
   localparam logic [31:0] NO_HIT = 32'hFFFFFFFF;
   localparam logic [15:0] Q_ONE = 16'd4096, Q_AMBIENT = 16'd614;
-  localparam int SETUP_AT = 9, SETUP_WORDS = 26;  // header words 9..34
+  localparam int LREC_WORDS = 16;  // a light's record
 
   typedef enum logic [4:0] {
-    S_RESET, S_SETUP, S_CAMERA, S_EXTENT, S_MAX, S_EPS, S_IDLE, S_GEN, S_NEXT, S_TRACE, S_HITS, S_SURF, S_LIGHT,
-    S_LREC, S_LCALC, S_STRACE, S_SHITS, S_ADD, S_ACCUM, S_PUSH_R, S_DONE
+    S_IDLE, S_GEN, S_NEXT, S_TRACE, S_HITS, S_SURF, S_LIGHT, S_LREC, S_LCALC, S_STRACE, S_SHITS, S_ADD, S_ACCUM,
+    S_PUSH_R, S_DONE
   } state_t;
   state_t st;
 
-  // ---- reads of the control: bursts of n words into buf_q (line_reader), the port rgs_surface's
-  // in S_SURF ----
-  logic [31:0] buf_q [SETUP_WORDS], rd_at, rd_addr;
-  logic [32*SETUP_WORDS-1:0] rd_words;
+  // ---- reads of the control: a light's record, a burst of 16 words (line_reader), on the port
+  // rgs_surface's in S_SURF ----
+  logic [31:0] buf_q [LREC_WORDS], rd_addr;
+  logic [32*LREC_WORDS-1:0] rd_words;
   logic burst_done, sf_port, rd_start, rd_req;
-  logic [4:0] cam_q;  // the camera word into rgs_raygen next
   logic sf_req_valid;
   logic [31:0] sf_req_addr;
   assign sf_port = st == S_SURF;
   assign mem_req_valid_o = sf_port ? sf_req_valid : rd_req;
   assign mem_addr_o = sf_port ? sf_req_addr : rd_addr;
-  // a burst starts in the cycle its address is known: the header's words 9..34 after reset, then the
-  // camera block (its address among them), a light's record
-  logic light_read;
-  assign light_read = st == S_LIGHT && light_q < n_lights_q && !(lrec_ok_q && lrec_at_q == light_q);
-  assign rd_start = st == S_RESET || (st == S_SETUP && burst_done) || light_read;
-  assign rd_at = st == S_RESET ? 32'(SETUP_AT) : st == S_SETUP ? buf_q[18 + 2 * 6 - SETUP_AT]
-                                                                : light_base_q + 32'd16 * light_q;
-  line_reader #(.MAXW(SETUP_WORDS), .LW(LW)) u_rd (
-    .clk_i, .rst_ni, .start_i(rd_start), .addr_i(rd_at), .n_i(st == S_RESET ? 5'(SETUP_WORDS) : 5'd16),
+  // a burst starts in the cycle its address is known: a light's record unless it is the one held
+  assign rd_start = st == S_LIGHT && light_q < n_lights_i && !(lrec_ok_q && lrec_at_q == light_q);
+  line_reader #(.MAXW(LREC_WORDS), .LW(LW)) u_rd (
+    .clk_i, .rst_ni, .start_i(rd_start), .addr_i(light_base_i + 32'd16 * light_q), .n_i(5'(LREC_WORDS)),
     .req_valid_o(rd_req), .req_ready_i(!sf_port && mem_req_ready_i), .req_addr_o(rd_addr),
     .rsp_valid_i(!sf_port && mem_rsp_valid_i), .rsp_line_i(mem_rdata_i), .done_o(burst_done), .words_o(rd_words));
-  for (genvar k = 0; k < SETUP_WORDS; k++) begin : g_buf
+  for (genvar k = 0; k < LREC_WORDS; k++) begin : g_buf
     assign buf_q[k] = rd_words[32*k +: 32];
   end
 
-  // ---- the frame's constants ----
-  logic [31:0] n_tex_q, n_lights_q, inst_base_q, obj_base_q, mat_base_q, tex_base_q, light_base_q;
-  logic [4:0] profile_q;  // PROFILE_* bits
-  logic [W-1:0] eps_q, ext_q [3], bnd_q [6];  // e; the extents, the scene bounds (lo, hi)
+  // ---- the frame's profile ----
   logic [2:0] flags_prim, flags_shadow;
-  assign flags_prim = {profile_q[0] && profile_q[4], 1'b0, profile_q[0]};
-  assign flags_shadow = {profile_q[0] && profile_q[4], profile_q[1], profile_q[0]};
+  assign flags_prim = {profile_i[0] && profile_i[4], 1'b0, profile_i[0]};
+  assign flags_shadow = {profile_i[0] && profile_i[4], profile_i[1], profile_i[0]};
 
   // ---- the block's state ----
   logic [TAG_BITS-1:0] tag_q;
+  logic [31:0] bx_q, by_q;  // the block's corner until rgs_raygen takes it
+  logic gen_sent_q;
   logic [V-1:0] so_q [STACK][4], sd_q [STACK][4];
   logic [3:0] sact_q [STACK];
   logic [47:0] sw_q [STACK][4];
@@ -180,38 +239,21 @@ module rgs_ctrl #(
   logic [3:0] shact_q, visible_q;
   logic [15:0] diff_q [4], spec_q [4];
   logic [47:0] colour_q;
-  logic colour_done_q;
+  logic colour_done_q, colour_sent_q;
   // the children being formed
   logic [V-1:0] ro_q [4], rdir_q [4], to_q [4], tdir_q [4];
   logic [47:0] rw_q [4], tw_q [4];
   logic [3:0] ract_q, tact_q;
   logic [2:0] in_q, out_q;  // rays issued to and collected from the unit of the current step
+  logic [1:0] ri;
+  assign ri = in_q[1:0];    // the ray offered to the unit of the current step
 
-  // ---- units ----
-  /* verilator lint_off PINCONNECTEMPTY */
-  logic cam_valid, rg_blk_ready, rg_valid;
-  logic [3:0] rg_active;
-  logic [4*V-1:0] rg_o, rg_d;
-  assign cam_valid = st == S_CAMERA && burst_done && cam_q < 5'd16;  // from the burst's words, one a cycle
-  rgs_raygen #(.E(E), .M(M), .ADD_STAGES(ADD_STAGES), .MUL_STAGES(MUL_STAGES), .CVT_STAGES(CVT_STAGES)) u_gen (
-    .clk_i(clk_i), .rst_ni(rst_ni), .cam_valid_i(cam_valid), .cam_ready_o(), .cam_idx_i(cam_q[3:0]),
-    .cam_word_i(buf_q[cam_q]), .blk_valid_i(st == S_IDLE && blk_valid_i), .blk_ready_o(rg_blk_ready),
-    .blk_x_i(blk_x_i), .blk_y_i(blk_y_i), .pkt_valid_o(rg_valid), .pkt_ready_i(st == S_GEN),
-    .pkt_active_o(rg_active), .pkt_o_o(rg_o), .pkt_d_o(rg_d), .pkt_tmin_o(), .pkt_tmax_o());
-
-  // frame set-up: the extents (f24_sub), their maximum from 0 (f24_max), / 2^10
-  logic ad_valid, cm_valid, dv_valid;
-  logic [W-1:0] ad_r, cm_max, dv_r;
-  f24_add #(.E(E), .M(M), .STAGES(ADD_STAGES)) u_sub (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1),
-    .valid_i(st == S_EXTENT && in_q < 3'd3), .a_i(bnd_q[3 + in_q]), .b_i(bnd_q[in_q]),
-    .sub_i(1'b1), .valid_o(ad_valid), .res_o(ad_r));
-  f24_cmp #(.E(E), .M(M), .STAGES(CMP_STAGES)) u_max (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1),
-    .valid_i(st == S_MAX && in_q == out_q), .a_i(eps_q), .b_i(ext_q[out_q[1:0]]), .valid_o(cm_valid), .flags_o(),
-    .min_o(), .max_o(cm_max));
-  f24_div #(.E(E), .M(M), .STAGES(DIV_STAGES)) u_div (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1),
-    .valid_i(st == S_EPS && in_q == 3'd0), .a_i(eps_q), .b_i(F1024), .valid_o(dv_valid), .res_o(dv_r));
+  // ---- the shared units' operands (rgs_units), each held until taken ----
+  assign gen_req_o = st == S_GEN && !gen_sent_q;
+  assign gen_data_o = {by_q, bx_q};
 
   // the surfaces
+  /* verilator lint_off PINCONNECTEMPTY */
   logic sf_ready, sf_valid, sf_sfv, sf_ent, sf_unlit;
   logic [V-1:0] sf_p, sf_d, sf_n;
   logic [W-1:0] sf_that;
@@ -225,75 +267,42 @@ module rgs_ctrl #(
   rgs_surface #(.E(E), .M(M), .TID_BITS(1), .CVT_STAGES(CVT_STAGES), .MUL_STAGES(MUL_STAGES),
     .ADD_STAGES(ADD_STAGES), .SQRT_STAGES(SQRT_STAGES), .DIV_STAGES(DIV_STAGES), .CMP_STAGES(CMP_STAGES),
     .TOI_STAGES(TOI_STAGES), .MOD_STAGES(MOD_STAGES)) u_surface (
-    .clk_i(clk_i), .rst_ni(rst_ni), .inst_base_i(inst_base_q), .obj_base_i(obj_base_q), .mat_base_i(mat_base_q),
-    .tex_base_i(tex_base_q), .n_tex_i(n_tex_q), .valid_i(st == S_SURF && in_q < 3'd4),
-    .ready_o(sf_ready), .tid_i(1'b0), .active_i(cact_q[in_q[1:0]]), .o_i(co_q[in_q[1:0]]), .d_i(cd_q[in_q[1:0]]),
-    .inst_i(hinst_q[in_q[1:0]]), .tri_i(htri_q[in_q[1:0]]), .t_i(ht_q[in_q[1:0]]), .u_i(hu_q[in_q[1:0]]),
-    .v_i(hv_q[in_q[1:0]]), .cos_n_i(hcos_q[in_q[1:0]]), .mem_req_valid_o(sf_req_valid),
+    .clk_i(clk_i), .rst_ni(rst_ni), .inst_base_i(inst_base_i), .obj_base_i(obj_base_i), .mat_base_i(mat_base_i),
+    .tex_base_i(tex_base_i), .n_tex_i(n_tex_i), .valid_i(st == S_SURF && in_q < 3'd4),
+    .ready_o(sf_ready), .tid_i(1'b0), .active_i(cact_q[ri]), .o_i(co_q[ri]), .d_i(cd_q[ri]),
+    .inst_i(hinst_q[ri]), .tri_i(htri_q[ri]), .t_i(ht_q[ri]), .u_i(hu_q[ri]),
+    .v_i(hv_q[ri]), .cos_n_i(hcos_q[ri]), .mem_req_valid_o(sf_req_valid),
     .mem_req_ready_i(sf_port && mem_req_ready_i), .mem_addr_o(sf_req_addr),
     .mem_rsp_valid_i(sf_port && mem_rsp_valid_i), .mem_rdata_i(mem_rdata_i), .valid_o(sf_valid), .ready_i(1'b1),
     .tid_o(), .sf_valid_o(sf_sfv), .p_o(sf_p), .d_o(sf_d), .n_o(sf_n), .t_hat_o(sf_that), .entering_o(sf_ent),
     .mat_o(sf_mat), .unlit_o(sf_unlit), .k_o(sf_k), .eta_o(sf_eta), .kd_o(sf_kd), .kr_o(sf_kr),
     .kt_o(sf_kt), .ks_o(sf_ks), .base_o(sf_base), .emission_o(sf_emis), .tint_o(sf_tint));
-
-  // a light: the 4 surfaces streamed through rgs_light, its colour beside
-  logic li_ready, li_valid, li_active, lc_valid;
-  logic [1:0] li_tid;
-  logic [V-1:0] li_o, li_d;
-  logic [W-1:0] li_tmin, li_tmax;
-  logic [15:0] li_diff, li_spec;
-  logic [47:0] lc_q;
-  logic [V-1:0] v_lpos, v_ldir;
-  assign v_lpos = {lrec_q[6][W-1:0], lrec_q[5][W-1:0], lrec_q[4][W-1:0]};
-  assign v_ldir = {lrec_q[9][W-1:0], lrec_q[8][W-1:0], lrec_q[7][W-1:0]};
-  rgs_light #(.E(E), .M(M), .TID_BITS(2), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES),
-    .SQRT_STAGES(SQRT_STAGES), .DIV_STAGES(DIV_STAGES), .CMP_STAGES(CMP_STAGES), .TOI_STAGES(TOI_STAGES)) u_light (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(st == S_LCALC && in_q < 3'd4), .ready_o(li_ready), .tid_i(in_q[1:0]),
-    .type_i(lrec_q[0]), .lpos_i(v_lpos), .ldir_i(v_ldir), .cos_in_i(lrec_q[11][W-1:0]),
-    .cos_out_i(lrec_q[12][W-1:0]), .eps_i(eps_q), .sf_valid_i(sfv_q[in_q[1:0]]), .unlit_i(unlit_q[in_q[1:0]]),
-    .p_i(sp_p_q[in_q[1:0]]), .n_i(sf_n_q[in_q[1:0]]), .d_i(sf_d_q[in_q[1:0]]), .k_i(k_q[in_q[1:0]]),
-    .valid_o(li_valid), .ready_i(1'b1), .tid_o(li_tid), .o_o(li_o), .d_o(li_d), .tmin_o(li_tmin), .tmax_o(li_tmax),
-    .active_o(li_active), .diff_o(li_diff), .spec_o(li_spec));
-  rgs_light_colour #(.E(E), .M(M), .TID_BITS(1), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES),
-    .DIV_STAGES(DIV_STAGES), .CMP_STAGES(CMP_STAGES), .TOI_STAGES(TOI_STAGES)) u_colour (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(st == S_LCALC && in_q == 3'd0), .ready_o(), .tid_i(1'b0),
-    .colour_i({lrec_q[3][W-1:0], lrec_q[2][W-1:0], lrec_q[1][W-1:0]}), .valid_o(lc_valid), .ready_i(1'b1),
-    .tid_o(), .q_o(lc_q));
-
-  // the visible rays' sums, one ray at a time
-  logic al_valid;
-  logic [1:0] al_tid;
-  logic [47:0] al_dif, al_hil;
-  rgs_add_light #(.TID_BITS(2)) u_add (.clk_i(clk_i), .rst_ni(rst_ni),
-    .valid_i(st == S_ADD && in_q < 3'd4 && visible_q[in_q[1:0]]), .ready_o(), .tid_i(in_q[1:0]),
-    .diffuse_i(dif_q[in_q[1:0]]), .highlight_i(hil_q[in_q[1:0]]), .diff_i(diff_q[in_q[1:0]]),
-    .spec_i(spec_q[in_q[1:0]]), .colour_i(colour_q), .valid_o(al_valid), .ready_i(1'b1), .tid_o(al_tid),
-    .diffuse_o(al_dif), .highlight_o(al_hil));
-
-  // the accumulation of the active rays, streamed
-  logic ac_ready, ac_valid, ac_ract, ac_tact, children_on;
-  logic [1:0] ac_tid;
-  logic [47:0] ac_acc, ac_rw, ac_tw;
-  logic [V-1:0] ac_ro, ac_rd, ac_to, ac_td;
-  logic [4:0] depth1;
-  assign depth1 = {1'b0, cdep_q} + 5'd1;
-  assign children_on = depth1 <= {1'b0, max_depth_i} && depth1 <= 5'(MAX_DEPTH) && !profile_q[2];
-  rgs_accum #(.E(E), .M(M), .TID_BITS(2), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES),
-    .SQRT_STAGES(SQRT_STAGES), .DIV_STAGES(DIV_STAGES), .CMP_STAGES(CMP_STAGES)) u_accum (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(st == S_ACCUM && in_q < 3'd4 && cact_q[in_q[1:0]]), .ready_o(ac_ready),
-    .tid_i(in_q[1:0]), .eta_i(eta_q[in_q[1:0]]), .kd_i(kd_q[in_q[1:0]]), .kr_i(kr_q[in_q[1:0]]),
-    .kt_i(kt_q[in_q[1:0]]), .ks_i(ks_q[in_q[1:0]]), .sf_valid_i(sfv_q[in_q[1:0]]),
-    .o_i(co_q[in_q[1:0]]), .d_i(sf_d_q[in_q[1:0]]), .n_i(sf_n_q[in_q[1:0]]), .t_hat_i(that_q[in_q[1:0]]),
-    .entering_i(ent_q[in_q[1:0]]), .base_i(base_q[in_q[1:0]]), .emission_i(emis_q[in_q[1:0]]),
-    .tint_i(tint_q[in_q[1:0]]), .weight_i(cw_q[in_q[1:0]]), .diffuse_i(dif_q[in_q[1:0]]),
-    .highlight_i(hil_q[in_q[1:0]]), .acc_i(acc_q[in_q[1:0]]), .eps_i(eps_q), .spawn_i(children_on),
-    .live_i(profile_q[3]), .valid_o(ac_valid), .ready_i(1'b1), .tid_o(ac_tid), .acc_o(ac_acc), .r_o_o(ac_ro),
-    .r_d_o(ac_rd), .r_w_o(ac_rw), .r_active_o(ac_ract), .t_o_o(ac_to), .t_d_o(ac_td), .t_w_o(ac_tw),
-    .t_active_o(ac_tact), .steps_o());
   /* verilator lint_on PINCONNECTEMPTY */
 
+  // a light: the 4 surfaces streamed through rgs_light, its colour beside (once)
+  assign li_req_o = st == S_LCALC && in_q < 3'd4;
+  assign li_data_o = {ri, lrec_q[0], lrec_q[6][W-1:0], lrec_q[5][W-1:0], lrec_q[4][W-1:0], lrec_q[9][W-1:0],
+                      lrec_q[8][W-1:0], lrec_q[7][W-1:0], lrec_q[11][W-1:0], lrec_q[12][W-1:0], sfv_q[ri],
+                      unlit_q[ri], sp_p_q[ri], sf_n_q[ri], sf_d_q[ri], k_q[ri]};
+  assign lc_req_o = st == S_LCALC && !colour_sent_q;
+  assign lc_data_o = {lrec_q[3][W-1:0], lrec_q[2][W-1:0], lrec_q[1][W-1:0]};
+
+  // the visible rays' sums, one ray at a time
+  assign al_req_o = st == S_ADD && in_q < 3'd4 && visible_q[ri];
+  assign al_data_o = {ri, dif_q[ri], hil_q[ri], diff_q[ri], spec_q[ri], colour_q};
+
+  // the accumulation of the active rays, streamed
+  logic children_on;
+  logic [4:0] depth1;
+  assign depth1 = {1'b0, cdep_q} + 5'd1;
+  assign children_on = depth1 <= {1'b0, max_depth_i} && depth1 <= 5'(MAX_DEPTH) && !profile_i[2];
+  assign ac_req_o = st == S_ACCUM && in_q < 3'd4 && cact_q[ri];
+  assign ac_data_o = {ri, eta_q[ri], kd_q[ri], kr_q[ri], kt_q[ri], ks_q[ri], sfv_q[ri], co_q[ri], sf_d_q[ri],
+                      sf_n_q[ri], that_q[ri], ent_q[ri], base_q[ri], emis_q[ri], tint_q[ri], cw_q[ri], dif_q[ri],
+                      hil_q[ri], acc_q[ri], children_on};
+
   // ---- outputs ----
-  assign blk_ready_o = st == S_IDLE && rg_blk_ready;
+  assign blk_ready_o = st == S_IDLE && frame_ok_i;
   assign tr_valid_o = st == S_TRACE || st == S_STRACE;
   assign tr_tag_o = tag_q;
   assign tr_flags_o = st == S_STRACE ? flags_shadow : flags_prim;
@@ -322,82 +331,34 @@ module rgs_ctrl #(
   // ---- the sequence ----
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      st <= S_RESET;
+      st <= S_IDLE;
       lrec_ok_q <= 1'b0;
     end else begin
-      if (cam_valid) cam_q <= cam_q + 5'd1;
       unique case (st)
-        S_RESET: st <= S_SETUP;  // the header's words (rd_start)
-        S_SETUP:  // words 9..34: buf_q[w - 9]
-          if (burst_done) begin
-            n_tex_q <= buf_q[0];
-            n_lights_q <= buf_q[1] < 32'd64 ? buf_q[1] : 32'd64;
-            mat_base_q <= buf_q[18 + 2 * 1 - SETUP_AT];
-            tex_base_q <= buf_q[18 + 2 * 2 - SETUP_AT];
-            obj_base_q <= buf_q[18 + 2 * 5 - SETUP_AT];
-            light_base_q <= buf_q[18 + 2 * 7 - SETUP_AT];
-            inst_base_q <= buf_q[18 + 2 * 8 - SETUP_AT];
-            cam_q <= '0;  // the camera's words (rd_start)
-            for (int k = 0; k < 6; k++) bnd_q[k] <= buf_q[12 + k - SETUP_AT][W-1:0];
-            st <= S_CAMERA;
-          end
-        S_CAMERA:  // into rgs_raygen once read; the profile is word 3
-          if (burst_done && cam_q == 5'd16) begin
-            profile_q <= buf_q[3][4:0];
-            in_q <= '0;
-            out_q <= '0;
-            st <= S_EXTENT;
-          end
-        S_EXTENT: begin
-          if (in_q < 3'd3) in_q <= in_q + 3'd1;
-          if (ad_valid) begin
-            ext_q[out_q[1:0]] <= ad_r;
-            out_q <= out_q + 3'd1;
-            if (out_q == 3'd2) begin
-              eps_q <= '0;
-              in_q <= '0;
-              out_q <= '0;
-              st <= S_MAX;
-            end
-          end
-        end
-        S_MAX: begin
-          if (in_q == out_q) in_q <= in_q + 3'd1;
-          if (cm_valid) begin
-            eps_q <= cm_max;
-            out_q <= out_q + 3'd1;
-            if (out_q == 3'd2) begin
-              in_q <= '0;
-              st <= S_EPS;
-            end
-          end
-        end
-        S_EPS: begin
-          if (in_q == 3'd0) in_q <= 3'd1;
-          if (dv_valid) begin
-            eps_q <= dv_r;
-            st <= S_IDLE;
-          end
-        end
         S_IDLE:
-          if (blk_valid_i && rg_blk_ready) begin
+          if (blk_valid_i && frame_ok_i) begin
             tag_q <= blk_tag_i;
+            bx_q <= blk_x_i;
+            by_q <= blk_y_i;
+            gen_sent_q <= 1'b0;
             st <= S_GEN;
           end
-        S_GEN:
-          if (rg_valid) begin
+        S_GEN: begin  // the corner to rgs_raygen (gen_req_o), its packet back
+          if (gen_ack_i) gen_sent_q <= 1'b1;
+          if (gen_valid_i) begin
             for (int i = 0; i < 4; i++) begin
-              so_q[0][i] <= rg_o[V*i +: V];
-              sd_q[0][i] <= rg_d[V*i +: V];
+              so_q[0][i] <= gen_o_i[V*i +: V];
+              sd_q[0][i] <= gen_d_i[V*i +: V];
               sw_q[0][i] <= {3{Q_ONE}};
               acc_q[i] <= '0;
             end
-            sact_q[0] <= rg_active;
+            sact_q[0] <= gen_active_i;
             sdep_q[0] <= '0;
             sp_q <= SPW'(1);
             packets_q <= '0;
             st <= S_NEXT;
           end
+        end
         S_NEXT:
           if (sp_q == '0 || packets_q >= PW'(MAX_PACKETS)) st <= S_DONE;
           else begin
@@ -465,7 +426,7 @@ module rgs_ctrl #(
           end
         end
         S_LIGHT:
-          if (light_q >= n_lights_q) begin
+          if (light_q >= n_lights_i) begin
             in_q <= '0;
             out_q <= '0;
             ract_q <= '0;
@@ -483,8 +444,9 @@ module rgs_ctrl #(
             in_q <= '0;
             out_q <= '0;
             colour_done_q <= 1'b0;
+            colour_sent_q <= 1'b0;
             st <= S_LCALC;
-          end else st <= S_LREC;  // its record (light_read)
+          end else st <= S_LREC;  // its record (rd_start)
         S_LREC:
           if (burst_done) begin
             for (int k = 0; k < 13; k++) lrec_q[k] <= buf_q[k];
@@ -493,22 +455,24 @@ module rgs_ctrl #(
             in_q <= '0;
             out_q <= '0;
             colour_done_q <= 1'b0;
+            colour_sent_q <= 1'b0;
             st <= S_LCALC;
           end
         S_LCALC: begin
-          if (in_q < 3'd4 && li_ready) in_q <= in_q + 3'd1;
-          if (lc_valid) begin
-            colour_q <= lc_q;
+          if (li_ack_i) in_q <= in_q + 3'd1;
+          if (lc_ack_i) colour_sent_q <= 1'b1;
+          if (lc_valid_i) begin
+            colour_q <= lc_q_i;
             colour_done_q <= 1'b1;
           end
-          if (li_valid) begin
-            sho_q[li_tid] <= li_o;
-            shd_q[li_tid] <= li_d;
-            shmin_q[li_tid] <= li_tmin;
-            shmax_q[li_tid] <= li_tmax;
-            shact_q[li_tid] <= li_active;
-            diff_q[li_tid] <= li_diff;
-            spec_q[li_tid] <= li_spec;
+          if (li_valid_i) begin
+            sho_q[li_ray_i] <= li_o_i;
+            shd_q[li_ray_i] <= li_d_i;
+            shmin_q[li_ray_i] <= li_tmin_i;
+            shmax_q[li_ray_i] <= li_tmax_i;
+            shact_q[li_ray_i] <= li_active_i;
+            diff_q[li_ray_i] <= li_diff_i;
+            spec_q[li_ray_i] <= li_spec_i;
             out_q <= out_q + 3'd1;
           end
           if (out_q == 3'd4 && colour_done_q) begin
@@ -526,11 +490,12 @@ module rgs_ctrl #(
               if (hit_inst_i[32*i +: 32] != NO_HIT) visible_q[i] <= 1'b0;
             st <= S_ADD;
           end
-        S_ADD: begin  // a visible ray a cycle; rgs_add_light's sum of the last comes as in_q reaches 4
-          if (in_q < 3'd4) in_q <= in_q + 3'd1;
-          if (al_valid) begin
-            dif_q[al_tid] <= al_dif;
-            hil_q[al_tid] <= al_hil;
+        S_ADD: begin  // the visible rays as rgs_add_light takes them (its latency 1: the sum of the last
+          // comes as in_q reaches 4)
+          if (in_q < 3'd4 && (!visible_q[ri] || al_ack_i)) in_q <= in_q + 3'd1;
+          if (al_valid_i) begin
+            dif_q[al_ray_i] <= al_dif_i;
+            hil_q[al_ray_i] <= al_hil_i;
           end
           if (in_q == 3'd4) begin
             light_q <= light_q + 32'd1;
@@ -538,17 +503,17 @@ module rgs_ctrl #(
           end
         end
         S_ACCUM: begin
-          if (in_q < 3'd4 && (!cact_q[in_q[1:0]] || ac_ready)) in_q <= in_q + 3'd1;
-          if (ac_valid) begin
-            acc_q[ac_tid] <= ac_acc;
-            ro_q[ac_tid] <= ac_ro;
-            rdir_q[ac_tid] <= ac_rd;
-            rw_q[ac_tid] <= ac_rw;
-            ract_q[ac_tid] <= ac_ract;
-            to_q[ac_tid] <= ac_to;
-            tdir_q[ac_tid] <= ac_td;
-            tw_q[ac_tid] <= ac_tw;
-            tact_q[ac_tid] <= ac_tact;
+          if (in_q < 3'd4 && (!cact_q[ri] || ac_ack_i)) in_q <= in_q + 3'd1;
+          if (ac_valid_i) begin
+            acc_q[ac_ray_i] <= ac_acc_i;
+            ro_q[ac_ray_i] <= ac_ro_i;
+            rdir_q[ac_ray_i] <= ac_rd_i;
+            rw_q[ac_ray_i] <= ac_rw_i;
+            ract_q[ac_ray_i] <= ac_ract_i;
+            to_q[ac_ray_i] <= ac_to_i;
+            tdir_q[ac_ray_i] <= ac_td_i;
+            tw_q[ac_ray_i] <= ac_tw_i;
+            tact_q[ac_ray_i] <= ac_tact_i;
             out_q <= out_q + 3'd1;
           end
           if (in_q == 3'd4 && out_q == {2'd0, cact_q[0]} + {2'd0, cact_q[1]} + {2'd0, cact_q[2]} + {2'd0, cact_q[3]}) begin

@@ -124,6 +124,7 @@ int main(int argc, char **argv)
     uint64_t mismatches = 0, idle = 0, hits_due = 0, block_start = 0, block_cycles = 0;
     bool in_block = false, hits_pending = false;
     uint64_t state_cycles[32] = {};  // a block's cycles by rgs_ctrl state (its state_t order)
+    const uint32_t S_SURF = 5;       // rgs_ctrl's S_SURF
     uint64_t surf_cycles[32] = {};   // SURF's cycles by rgs_surface state
     // SURF's cycles per packet by its hits (0..4): the cycle model's surface, surface_hit and
     // surface_miss are fitted on these (docs/cycle-model.md)
@@ -270,11 +271,11 @@ int main(int argc, char **argv)
         }
         if (in_block)
             state_cycles[top.st_o & 31u]++;
-        if (in_block && top.st_o == 11u)
+        if (in_block && top.st_o == S_SURF)
             surf_cycles[top.sst_o & 31u]++, surf_now++;
-        if (in_surf && top.st_o != 11u)  // a packet's surfaces are done
+        if (in_surf && top.st_o != S_SURF)  // a packet's surfaces are done
             surf_by_hits[last_hits] += surf_now, surf_packets[last_hits]++, surf_now = 0;
-        in_surf = in_block && top.st_o == 11u;
+        in_surf = in_block && top.st_o == S_SURF;
         idle = fired ? 0 : idle + 1;
         top.clk_i = 1;
         top.eval();
@@ -283,11 +284,10 @@ int main(int argc, char **argv)
         std::printf("MISMATCH rgs_ctrl: block %zu did not finish (nothing moved for 200000 cycles)\n", done);
     std::printf("rgs_ctrl %zu blocks checked (%zu packets, %.1f cycles per block), %llu mismatches\n", done, packets,
                 done ? (double)block_cycles / (double)done : 0.0, (unsigned long long)mismatches);
-    static const char *const STATE[] = { "RESET", "SETUP", "CAMERA", "EXTENT", "MAX", "EPS", "IDLE", "GEN", "NEXT",
-                                         "TRACE", "HITS", "SURF", "LIGHT", "LREC", "LCALC", "STRACE", "SHITS", "ADD",
-                                         "ACCUM", "PUSH_R", "DONE" };
+    static const char *const STATE[] = { "IDLE", "GEN", "NEXT", "TRACE", "HITS", "SURF", "LIGHT", "LREC", "LCALC",
+                                         "STRACE", "SHITS", "ADD", "ACCUM", "PUSH_R", "DONE" };
     std::printf("rgs_ctrl cycles per block by state:");
-    for (int s = 0; s < 21; s++)
+    for (int s = 0; s < 15; s++)
         if (state_cycles[s] && done)
             std::printf(" %s %.1f", STATE[s], (double)state_cycles[s] / (double)done);
     std::printf("\n");

@@ -1,0 +1,42 @@
+// rgs_arb: N requesters onto one pipelined unit of the RGS (rgs_units: the block controllers'
+// operands into the shared rgs_raygen, rgs_light, rgs_light_colour, rgs_add_light, rgs_accum,
+// rgs_surface). Not a paper unit and no C function: the C steps one block at a time, so there is
+// nothing to arbitrate; the pick only decides which controller's operand enters the unit in a cycle,
+// never what it computes (each operand carries its controller's index as the unit's thread id).
+// Round robin (rr_pick on the mask of the requesters after the last one taken), so a controller
+// streaming its 4 rays through a unit alternates with the others instead of holding it.
+// Latency 0 (combinational from req_i to valid_o, data_o and ack_o), one operand per cycle.
+// Handshake: req_i / ack_o per requester (ack: its operand was taken this cycle), valid_o / ready_i
+// to the unit. Resources: rr_pick (2 LUT6 levels), an N-to-1 multiplexer of DW bits on its index
+// (Yosys synth_xilinx at N = 8: 564 LUT6 for DW = 178, 1374 for 448), N flip-flops of the pointer.
+module rgs_arb #(
+  parameter int N = 8,
+  parameter int DW = 32,
+  localparam int NW = N > 1 ? $clog2(N) : 1
+) (
+  input  logic            clk_i,
+  input  logic            rst_ni,
+  input  logic [N-1:0]    req_i,
+  input  logic [N*DW-1:0] data_i,    // requester k's operand at bits DW k
+  output logic [N-1:0]    ack_o,
+  output logic            valid_o,
+  input  logic            ready_i,
+  output logic [NW-1:0]   index_o,   // the unit's thread id: whose operand it is
+  output logic [DW-1:0]   data_o
+);
+  logic [N-1:0] after_q, after, grant;
+  rr_pick #(.N(N)) u_pick (.req_i(req_i), .after_i(after_q), .any_o(valid_o), .grant_o(grant), .index_o(index_o),
+    .after_o(after));
+  assign ack_o = ready_i ? grant : '0;
+  // an array read on the index: an N-to-1 multiplexer (about 3 LUT6 a bit at N = 8); the part-select
+  // data_i[DW*index_o +: DW] mapped to a shifter of up to 34 LUT6 a bit
+  logic [DW-1:0] ops [N];
+  for (genvar k = 0; k < N; k++) begin : g_ops
+    assign ops[k] = data_i[DW*k +: DW];
+  end
+  assign data_o = ops[index_o];
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) after_q <= '0;
+    else if (valid_o && ready_i) after_q <= after;
+  end
+endmodule

@@ -1,0 +1,309 @@
+// rgs_units: the RGS's shared datapaths (paper section 3, Figure 2: ONE ray generation and shading
+// unit serving the RGS's threads; hls/units/rgs.c `rgs_block_begin`, `rgs_step`): the frame set-up
+// and one each of rgs_raygen, rgs_light, rgs_light_colour, rgs_add_light and rgs_accum for the N
+// block controllers (rgs_ctrl) of the DynRTP. The controllers keep their FSM, block state (stack,
+// packet, surfaces, sums) and rgs_surface (one surface unit takes a hit every 40 to 80 cycles: one
+// for all would bound them, rtl/README.md "The RGS shared") and hand their operands here; per unit
+// an rgs_arb picks one controller's operand a cycle round robin, the controller's index travels as
+// the high bits of the unit's thread id (beside the ray's index in the packet), and the result comes
+// back to that controller only (valid_o bit k). A controller waits in the state of its step for all
+// its results and takes each as it comes (the units run with ready_i = 1), so sharing changes when
+// an operand enters a unit, never what it computes.
+//   frame set-up  once after reset (the C's `rgs_block_begin` constants; each rgs_ctrl did it for
+//            itself before): the header's texture and light counts (at most 64 lights), the scene
+//            bounds and the region starts (words 9..34), the camera block (loaded into rgs_raygen,
+//            its profile word kept); e = max of the bounds' extents / 2^10 (the C's f24_sub,
+//            f24_max from 0 and f24_div on one f24_add, f24_cmp, f24_div); then frame_ok_o and the
+//            constants held for the controllers
+//   gen      a controller's block corner (x0, y0) into rgs_raygen; the packets come out in the
+//            order of the blocks, so a FIFO of the controllers' indices (one block per controller
+//            at most) routes them back
+//   light    `rgs_light` on a ray's surface and the controller's light record; `rgs_light_colour`
+//            on the light's colour; `rgs_add_light` on a visible ray's sums; `rgs_accum` on an
+//            active ray (e and the profile's live bit from the set-up, spawn from the controller)
+// Operand layouts (each controller packs its operand in this order, the highest field first):
+//   gen {y0, x0}; light {ray, type, L_pos, L_dir, cos_in, cos_out, sf_valid, unlit, P, N^, D^, k};
+//   colour {B, G, R}; add {ray, diffuse, highlight, diff, spec, colour}; accum {ray, eta, kd, kr,
+//   kt, ks, sf_valid, o, D^, N^, t_hat, entering, base, emission, tint, weight, diffuse, highlight,
+//   acc, spawn}.
+// Latency: the units' own (rgs_raygen 29, rgs_light 87, rgs_light_colour 27, rgs_add_light 1,
+// rgs_accum 67 cycles) plus the cycles an operand waits for another controller's in the same unit
+// (a unit takes one operand a cycle; rgs_raygen one ray a cycle, a packet per 4); the set-up about
+// 60 cycles after reset plus its reads (the header's 26 words, the camera's 16: 7 + 4 or 5 lines).
+// Throughput: per unit one operand per cycle (II = 1), rgs_raygen a packet per 4 cycles.
+// Resources: one rgs_raygen, rgs_light, rgs_light_colour, rgs_add_light, rgs_accum; 5 rgs_arb
+// (N-to-1 multiplexers of 64, 448, 72, 178 and 657 bits at e7m16, N flip-flops each: 4,407 LUT6 at
+// N = 8); a FIFO of N controller indices; the set-up's line_reader (26 words), f24_add, f24_cmp,
+// f24_div and the frame's constants (7 x 32 + 10 x W + 5 bits). Yosys synth_xilinx per module at
+// e7m16, N = 8: about 81,300 LUT6 (rtl/README.md "The RGS shared").
+module rgs_units #(
+  parameter int E = 7,
+  parameter int M = 16,
+  parameter int N = 8,            // block controllers (RGS_BLOCKS)
+  parameter int CVT_STAGES = 2,
+  parameter int MUL_STAGES = 4,
+  parameter int ADD_STAGES = 6,
+  parameter int SQRT_STAGES = 9,
+  parameter int DIV_STAGES = 11,
+  parameter int CMP_STAGES = 2,
+  parameter int TOI_STAGES = 2,
+  parameter int LW = 4,           // words per line of the read port (the shading cache's 16 bytes)
+  localparam int NW = N > 1 ? $clog2(N) : 1,
+  localparam int W = 1 + E + M,
+  localparam int V = 3 * W,
+  localparam int GEN_DW = 64,
+  localparam int LI_DW = 40 + 5 * V + 2 * W,
+  localparam int LC_DW = V,
+  localparam int AL_DW = 178,
+  localparam int AC_DW = 393 + 3 * V + 2 * W
+) (
+  input  logic                 clk_i,
+  input  logic                 rst_ni,
+  // the set-up's line read port: a request names a line by its first word's address
+  output logic                 mem_req_valid_o,
+  input  logic                 mem_req_ready_i,
+  output logic [31:0]          mem_addr_o,
+  input  logic                 mem_rsp_valid_i,
+  input  logic [32*LW-1:0]     mem_rdata_i,
+  // the frame's constants, valid from frame_ok_o on
+  output logic                 frame_ok_o,
+  output logic [31:0]          n_tex_o,
+  output logic [31:0]          n_lights_o,
+  output logic [31:0]          inst_base_o,
+  output logic [31:0]          obj_base_o,
+  output logic [31:0]          mat_base_o,
+  output logic [31:0]          tex_base_o,
+  output logic [31:0]          light_base_o,
+  output logic [4:0]           profile_o,
+  // primary packets: operand {y0, x0}
+  input  logic [N-1:0]         gen_req_i,
+  input  logic [N*GEN_DW-1:0]  gen_data_i,
+  output logic [N-1:0]         gen_ack_o,
+  output logic [N-1:0]         gen_valid_o,
+  output logic [3:0]           gen_active_o,
+  output logic [4*V-1:0]       gen_o_o,
+  output logic [4*V-1:0]       gen_d_o,
+  // a light at a ray's surface (rgs_light)
+  input  logic [N-1:0]         li_req_i,
+  input  logic [N*LI_DW-1:0]   li_data_i,
+  output logic [N-1:0]         li_ack_o,
+  output logic [N-1:0]         li_valid_o,
+  output logic [1:0]           li_ray_o,
+  output logic [V-1:0]         li_o_o,
+  output logic [V-1:0]         li_d_o,
+  output logic [W-1:0]         li_tmin_o,
+  output logic [W-1:0]         li_tmax_o,
+  output logic                 li_active_o,
+  output logic [15:0]          li_diff_o,
+  output logic [15:0]          li_spec_o,
+  // a light's colour (rgs_light_colour)
+  input  logic [N-1:0]         lc_req_i,
+  input  logic [N*LC_DW-1:0]   lc_data_i,
+  output logic [N-1:0]         lc_ack_o,
+  output logic [N-1:0]         lc_valid_o,
+  output logic [47:0]          lc_q_o,
+  // a visible ray's sums (rgs_add_light)
+  input  logic [N-1:0]         al_req_i,
+  input  logic [N*AL_DW-1:0]   al_data_i,
+  output logic [N-1:0]         al_ack_o,
+  output logic [N-1:0]         al_valid_o,
+  output logic [1:0]           al_ray_o,
+  output logic [47:0]          al_dif_o,
+  output logic [47:0]          al_hil_o,
+  // an active ray's accumulation and children (rgs_accum)
+  input  logic [N-1:0]         ac_req_i,
+  input  logic [N*AC_DW-1:0]   ac_data_i,
+  output logic [N-1:0]         ac_ack_o,
+  output logic [N-1:0]         ac_valid_o,
+  output logic [1:0]           ac_ray_o,
+  output logic [47:0]          ac_acc_o,
+  output logic [V-1:0]         ac_ro_o,
+  output logic [V-1:0]         ac_rd_o,
+  output logic [47:0]          ac_rw_o,
+  output logic                 ac_ract_o,
+  output logic [V-1:0]         ac_to_o,
+  output logic [V-1:0]         ac_td_o,
+  output logic [47:0]          ac_tw_o,
+  output logic                 ac_tact_o
+);
+  localparam int BIAS = (1 << (E - 1)) - 1;
+  localparam logic [W-1:0] F1024 = {1'b0, E'(BIAS + 10), {M{1'b0}}};
+  localparam int SETUP_AT = 9, SETUP_WORDS = 26;  // header words 9..34
+
+  // ---- the frame set-up: header words 9..34, the camera block, e ----
+  typedef enum logic [2:0] { F_RESET, F_SETUP, F_CAMERA, F_EXTENT, F_MAX, F_EPS, F_DONE } fstate_t;
+  fstate_t fs;
+  logic [31:0] buf_q [SETUP_WORDS], rd_at;
+  logic [32*SETUP_WORDS-1:0] rd_words;
+  logic burst_done, rd_start;
+  logic [4:0] cam_q;  // the camera word into rgs_raygen next
+  logic cam_valid;
+  logic [2:0] in_q, out_q;
+  logic [W-1:0] eps_q, ext_q [3], bnd_q [6];  // e; the extents, the scene bounds (lo, hi)
+  // a burst starts in the cycle its address is known: the header's words after reset, then the
+  // camera block (its address among them)
+  assign rd_start = fs == F_RESET || (fs == F_SETUP && burst_done);
+  assign rd_at = fs == F_RESET ? 32'(SETUP_AT) : buf_q[18 + 2 * 6 - SETUP_AT];
+  line_reader #(.MAXW(SETUP_WORDS), .LW(LW)) u_rd (
+    .clk_i, .rst_ni, .start_i(rd_start), .addr_i(rd_at), .n_i(fs == F_RESET ? 5'(SETUP_WORDS) : 5'd16),
+    .req_valid_o(mem_req_valid_o), .req_ready_i(mem_req_ready_i), .req_addr_o(mem_addr_o),
+    .rsp_valid_i(mem_rsp_valid_i), .rsp_line_i(mem_rdata_i), .done_o(burst_done), .words_o(rd_words));
+  for (genvar k = 0; k < SETUP_WORDS; k++) begin : g_buf
+    assign buf_q[k] = rd_words[32*k +: 32];
+  end
+  assign frame_ok_o = fs == F_DONE;
+
+  /* verilator lint_off PINCONNECTEMPTY */
+  // the extents (f24_sub), their maximum from 0 (f24_max), / 2^10
+  logic ad_valid, cm_valid, dv_valid;
+  logic [W-1:0] ad_r, cm_max, dv_r;
+  f24_add #(.E(E), .M(M), .STAGES(ADD_STAGES)) u_sub (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1),
+    .valid_i(fs == F_EXTENT && in_q < 3'd3), .a_i(bnd_q[3 + in_q]), .b_i(bnd_q[in_q]),
+    .sub_i(1'b1), .valid_o(ad_valid), .res_o(ad_r));
+  f24_cmp #(.E(E), .M(M), .STAGES(CMP_STAGES)) u_max (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1),
+    .valid_i(fs == F_MAX && in_q == out_q), .a_i(eps_q), .b_i(ext_q[out_q[1:0]]), .valid_o(cm_valid), .flags_o(),
+    .min_o(), .max_o(cm_max));
+  f24_div #(.E(E), .M(M), .STAGES(DIV_STAGES)) u_div (.clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1),
+    .valid_i(fs == F_EPS && in_q == 3'd0), .a_i(eps_q), .b_i(F1024), .valid_o(dv_valid), .res_o(dv_r));
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) fs <= F_RESET;
+    else begin
+      if (cam_valid) cam_q <= cam_q + 5'd1;
+      unique case (fs)
+        F_RESET: fs <= F_SETUP;  // the header's words (rd_start)
+        F_SETUP:  // words 9..34: buf_q[w - 9]
+          if (burst_done) begin
+            n_tex_o <= buf_q[0];
+            n_lights_o <= buf_q[1] < 32'd64 ? buf_q[1] : 32'd64;
+            mat_base_o <= buf_q[18 + 2 * 1 - SETUP_AT];
+            tex_base_o <= buf_q[18 + 2 * 2 - SETUP_AT];
+            obj_base_o <= buf_q[18 + 2 * 5 - SETUP_AT];
+            light_base_o <= buf_q[18 + 2 * 7 - SETUP_AT];
+            inst_base_o <= buf_q[18 + 2 * 8 - SETUP_AT];
+            cam_q <= '0;  // the camera's words (rd_start)
+            for (int k = 0; k < 6; k++) bnd_q[k] <= buf_q[12 + k - SETUP_AT][W-1:0];
+            fs <= F_CAMERA;
+          end
+        F_CAMERA:  // into rgs_raygen once read; the profile is word 3
+          if (burst_done && cam_q == 5'd16) begin
+            profile_o <= buf_q[3][4:0];
+            in_q <= '0;
+            out_q <= '0;
+            fs <= F_EXTENT;
+          end
+        F_EXTENT: begin
+          if (in_q < 3'd3) in_q <= in_q + 3'd1;
+          if (ad_valid) begin
+            ext_q[out_q[1:0]] <= ad_r;
+            out_q <= out_q + 3'd1;
+            if (out_q == 3'd2) begin
+              eps_q <= '0;
+              in_q <= '0;
+              out_q <= '0;
+              fs <= F_MAX;
+            end
+          end
+        end
+        F_MAX: begin
+          if (in_q == out_q) in_q <= in_q + 3'd1;
+          if (cm_valid) begin
+            eps_q <= cm_max;
+            out_q <= out_q + 3'd1;
+            if (out_q == 3'd2) begin
+              in_q <= '0;
+              fs <= F_EPS;
+            end
+          end
+        end
+        F_EPS: begin
+          if (in_q == 3'd0) in_q <= 3'd1;
+          if (dv_valid) begin
+            eps_q <= dv_r;
+            fs <= F_DONE;
+          end
+        end
+        default: fs <= F_DONE;
+      endcase
+    end
+  end
+
+  // ---- primary packets: the blocks' corners round robin into rgs_raygen, the packets back in order ----
+  logic gen_valid, rg_blk_ready, rg_valid, who_ready, who_valid;
+  logic [NW-1:0] gen_idx, who;
+  logic [GEN_DW-1:0] gen_op;
+  assign cam_valid = fs == F_CAMERA && burst_done && cam_q < 5'd16;  // from the burst's words, one a cycle
+  rgs_arb #(.N(N), .DW(GEN_DW)) u_gen_arb (.clk_i(clk_i), .rst_ni(rst_ni), .req_i(gen_req_i), .data_i(gen_data_i),
+    .ack_o(gen_ack_o), .valid_o(gen_valid), .ready_i(rg_blk_ready && who_ready), .index_o(gen_idx), .data_o(gen_op));
+  rgs_raygen #(.E(E), .M(M), .ADD_STAGES(ADD_STAGES), .MUL_STAGES(MUL_STAGES), .CVT_STAGES(CVT_STAGES)) u_gen (
+    .clk_i(clk_i), .rst_ni(rst_ni), .cam_valid_i(cam_valid), .cam_ready_o(), .cam_idx_i(cam_q[3:0]),
+    .cam_word_i(buf_q[cam_q]), .blk_valid_i(gen_valid && who_ready), .blk_ready_o(rg_blk_ready),
+    .blk_x_i(gen_op[31:0]), .blk_y_i(gen_op[63:32]), .pkt_valid_o(rg_valid), .pkt_ready_i(1'b1),
+    .pkt_active_o(gen_active_o), .pkt_o_o(gen_o_o), .pkt_d_o(gen_d_o), .pkt_tmin_o(), .pkt_tmax_o());
+  // whose block is in rgs_raygen, oldest first (a controller waits for its packet: N entries suffice)
+  sync_fifo #(.W(NW), .DEPTH(N > 2 ? 1 << $clog2(N) : 2)) u_who (.clk_i(clk_i), .rst_ni(rst_ni),
+    .valid_i(gen_valid && rg_blk_ready), .ready_o(who_ready), .data_i(gen_idx), .valid_o(who_valid),
+    .ready_i(rg_valid), .data_o(who));
+
+  // ---- a light at the rays' surfaces, its colour, the visible rays' sums, the accumulation ----
+  logic li_in, lc_in, al_in, ac_in;
+  logic [NW-1:0] li_idx, lc_idx, al_idx, ac_idx, li_who, lc_who, al_who, ac_who;
+  logic [LI_DW-1:0] li_op;
+  logic [LC_DW-1:0] lc_op;
+  logic [AL_DW-1:0] al_op;
+  logic [AC_DW-1:0] ac_op;
+  logic li_out, lc_out, al_out, ac_out;
+  rgs_arb #(.N(N), .DW(LI_DW)) u_li_arb (.clk_i(clk_i), .rst_ni(rst_ni), .req_i(li_req_i), .data_i(li_data_i),
+    .ack_o(li_ack_o), .valid_o(li_in), .ready_i(1'b1), .index_o(li_idx), .data_o(li_op));
+  rgs_light #(.E(E), .M(M), .TID_BITS(NW + 2), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES),
+    .SQRT_STAGES(SQRT_STAGES), .DIV_STAGES(DIV_STAGES), .CMP_STAGES(CMP_STAGES), .TOI_STAGES(TOI_STAGES)) u_light (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(li_in), .ready_o(), .tid_i({li_idx, li_op[LI_DW-1 -: 2]}),
+    .type_i(li_op[LI_DW-3 -: 32]), .lpos_i(li_op[LI_DW-35 -: V]), .ldir_i(li_op[LI_DW-35-V -: V]),
+    .cos_in_i(li_op[LI_DW-35-2*V -: W]), .cos_out_i(li_op[LI_DW-35-2*V-W -: W]), .eps_i(eps_q),
+    .sf_valid_i(li_op[4 + 3*V + 1]), .unlit_i(li_op[4 + 3*V]), .p_i(li_op[4 + 2*V +: V]), .n_i(li_op[4 + V +: V]),
+    .d_i(li_op[4 +: V]), .k_i(li_op[3:0]), .valid_o(li_out), .ready_i(1'b1), .tid_o({li_who, li_ray_o}),
+    .o_o(li_o_o), .d_o(li_d_o), .tmin_o(li_tmin_o), .tmax_o(li_tmax_o), .active_o(li_active_o), .diff_o(li_diff_o),
+    .spec_o(li_spec_o));
+
+  rgs_arb #(.N(N), .DW(LC_DW)) u_lc_arb (.clk_i(clk_i), .rst_ni(rst_ni), .req_i(lc_req_i), .data_i(lc_data_i),
+    .ack_o(lc_ack_o), .valid_o(lc_in), .ready_i(1'b1), .index_o(lc_idx), .data_o(lc_op));
+  rgs_light_colour #(.E(E), .M(M), .TID_BITS(NW), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES),
+    .DIV_STAGES(DIV_STAGES), .CMP_STAGES(CMP_STAGES), .TOI_STAGES(TOI_STAGES)) u_colour (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(lc_in), .ready_o(), .tid_i(lc_idx), .colour_i(lc_op),
+    .valid_o(lc_out), .ready_i(1'b1), .tid_o(lc_who), .q_o(lc_q_o));
+
+  rgs_arb #(.N(N), .DW(AL_DW)) u_al_arb (.clk_i(clk_i), .rst_ni(rst_ni), .req_i(al_req_i), .data_i(al_data_i),
+    .ack_o(al_ack_o), .valid_o(al_in), .ready_i(1'b1), .index_o(al_idx), .data_o(al_op));
+  rgs_add_light #(.TID_BITS(NW + 2)) u_add (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(al_in), .ready_o(),
+    .tid_i({al_idx, al_op[177:176]}), .diffuse_i(al_op[175:128]), .highlight_i(al_op[127:80]),
+    .diff_i(al_op[79:64]), .spec_i(al_op[63:48]), .colour_i(al_op[47:0]), .valid_o(al_out), .ready_i(1'b1),
+    .tid_o({al_who, al_ray_o}), .diffuse_o(al_dif_o), .highlight_o(al_hil_o));
+
+  // the accumulation's operand from the top: ray, eta, the 4 shader fields, sf_valid, o, D^, N^,
+  // t_hat, entering, then 7 sums of 48 bits and the spawn bit
+  localparam int AC_S = 1 + 7 * 48;  // the sums and spawn, at the bottom
+  rgs_arb #(.N(N), .DW(AC_DW)) u_ac_arb (.clk_i(clk_i), .rst_ni(rst_ni), .req_i(ac_req_i), .data_i(ac_data_i),
+    .ack_o(ac_ack_o), .valid_o(ac_in), .ready_i(1'b1), .index_o(ac_idx), .data_o(ac_op));
+  rgs_accum #(.E(E), .M(M), .TID_BITS(NW + 2), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES),
+    .SQRT_STAGES(SQRT_STAGES), .DIV_STAGES(DIV_STAGES), .CMP_STAGES(CMP_STAGES)) u_accum (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(ac_in), .ready_o(), .tid_i({ac_idx, ac_op[AC_DW-1 -: 2]}),
+    .eta_i(ac_op[AC_DW-3 -: W]), .kd_i(ac_op[AC_DW-3-W -: 13]), .kr_i(ac_op[AC_DW-16-W -: 13]),
+    .kt_i(ac_op[AC_DW-29-W -: 13]), .ks_i(ac_op[AC_DW-42-W -: 13]), .sf_valid_i(ac_op[AC_DW-55-W]),
+    .o_i(ac_op[AC_S + W + 1 + 2*V +: V]), .d_i(ac_op[AC_S + W + 1 + V +: V]), .n_i(ac_op[AC_S + W + 1 +: V]),
+    .t_hat_i(ac_op[AC_S + 1 +: W]), .entering_i(ac_op[AC_S]), .base_i(ac_op[1 + 6*48 +: 48]),
+    .emission_i(ac_op[1 + 5*48 +: 48]), .tint_i(ac_op[1 + 4*48 +: 48]), .weight_i(ac_op[1 + 3*48 +: 48]),
+    .diffuse_i(ac_op[1 + 2*48 +: 48]), .highlight_i(ac_op[1 + 48 +: 48]), .acc_i(ac_op[1 +: 48]), .eps_i(eps_q),
+    .spawn_i(ac_op[0]), .live_i(profile_o[3]), .valid_o(ac_out), .ready_i(1'b1), .tid_o({ac_who, ac_ray_o}),
+    .acc_o(ac_acc_o), .r_o_o(ac_ro_o), .r_d_o(ac_rd_o), .r_w_o(ac_rw_o), .r_active_o(ac_ract_o), .t_o_o(ac_to_o),
+    .t_d_o(ac_td_o), .t_w_o(ac_tw_o), .t_active_o(ac_tact_o), .steps_o());
+  /* verilator lint_on PINCONNECTEMPTY */
+
+  // ---- each result to the controller whose index it carries ----
+  for (genvar k = 0; k < N; k++) begin : g_back
+    assign gen_valid_o[k] = rg_valid && who_valid && who == NW'(k);
+    assign li_valid_o[k] = li_out && li_who == NW'(k);
+    assign lc_valid_o[k] = lc_out && lc_who == NW'(k);
+    assign al_valid_o[k] = al_out && al_who == NW'(k);
+    assign ac_valid_o[k] = ac_out && ac_who == NW'(k);
+  end
+endmodule
