@@ -96,15 +96,7 @@ t_capture_build() {
   expect 0 "$BIN" "${args[@]}" -o "$T/cap_p.png" --capture-unit-io "$T/cap_p"
   has '^captured unit transactions in .*trace [1-9]' "$T/out"
   expect 0 "$cap" "${args[@]}" -o "$T/cap_c.png" --capture-unit-io "$T/cap_c"
-  # trav_unit.hex without the leaf fields a walk start has not written yet (leaf_first, leaf_mask,
-  # leaf_tn: left over from the state's memory, they differ between any two runs, capture build or not)
-  local d
-  for d in cap_p cap_c; do
-    cut -d' ' -f1-54,56,62- "$T/$d/trav_unit.hex" >"$T/$d.trav_unit"
-    rm "$T/$d/trav_unit.hex"
-  done
   diff -r "$T/cap_p" "$T/cap_c"
-  cmp "$T/cap_p.trav_unit" "$T/cap_c.trav_unit"
   cmp "$T/cap_p.png" "$T/cap_c.png"
   expect 0 "$BIN" "${args[@]}" -o "$T/plain.png"
   cmp "$T/plain.png" "$T/cap_p.png"

@@ -73,7 +73,9 @@ static F24Q_FN void walker_init(trav_walker *w, uint32_t nodes, uint32_t lists, 
     w->have_cur = 1;
     w->cur.node = 0;
     w->cur.mask = mask;
-    w->leaf_count = w->k = 0;
+    /* the leaf fields too, though no walk reads them before it finds a leaf: the walker's whole state
+     * is what --capture-unit-io records, and a capture must not depend on the memory it was made in */
+    w->leaf_first = w->leaf_count = w->leaf_mask = w->k = 0;
     w->algo = algo;
     w->cap = algo == TRAV_STACK ? TRACE_STACK : algo == TRAV_SHORT_STACK ? TRACE_SHORT_STACK : 0;
     w->push_down = algo == TRAV_SHORT_STACK || algo == TRAV_PUSH_DOWN;
@@ -81,8 +83,10 @@ static F24Q_FN void walker_init(trav_walker *w, uint32_t nodes, uint32_t lists, 
     f24h_of(&w->cur.tn, tn);
     f24h_of(&w->cur.tf, tf);
 walker_copy:
-    for (int i = 0; i < TRACE_PACKET; i++)
+    for (int i = 0; i < TRACE_PACKET; i++) {
         w->t_exit[i] = tn[i];
+        w->leaf_tn[i] = 0;
+    }
     trav_entry_copy(&w->root, &w->cur);
 }
 
