@@ -181,8 +181,8 @@ typedef struct {
     uint32_t cap_scratch;
     uint32_t *straddlers; /* exact mode: the straddlers of the node being split (clip_straddlers) */
     uint32_t cap_straddlers;
-    double *cand;     /* binned mode: candidate planes of one axis */
-    uint32_t *counts; /* binned mode: 3 x (bins + 1) counters */
+    double *cand;     /* binned mode: candidate planes of the three axes (planes_of) */
+    uint32_t *counts; /* binned mode: 3 axes x count_stride counters */
     measure_kind kind;   /* of SAH weights: measure(kind, node box) / root_measure */
     double root_measure;
     kd_stats st;         /* of the nodes built here: counts, depth (sah_cost: see build_node) */
@@ -785,30 +785,43 @@ static int leaf_from_events(builder *b, uint32_t node, const prim_set *s)
 
 /* ---- binned mode ---------------------------------------------------------------------------- */
 
-/* Snapped bin boundaries of axis k strictly inside box, sorted and distinct, into c (bins - 1). */
+/* Snapped bin boundaries of axis k strictly inside box, sorted and distinct, into c[0..m) (m <=
+ * bins - 1), returns m; c[-1] and c[m] get the sentinels -inf and +inf, which every position is
+ * above and below (rank_of). */
 static uint32_t bin_planes(const builder *b, const aabb *box, uint32_t k, double *c)
 {
     const double w = (box->hi[k] - box->lo[k]) / b->p.bins;
     uint32_t m = 0;
+    int sorted = 1; /* c[0..m) sorted and distinct so far */
+    c[-1] = -INFINITY;
     for (uint32_t j = 1; j < b->p.bins; j++) {
         const double q = snap(b, box->lo[k] + j * w);
-        if (!strictly_inside(box, k, q))
+        const double last = (c + m)[-1]; /* -inf while m = 0 */
+        if (!strictly_inside(box, k, q) || q == last)
             continue;
-        uint32_t i = m++; /* insertion sort: O(1) per plane when quantize is monotone */
+        if (q > last) { /* the rule when quantize is monotone */
+            c[m++] = q;
+            continue;
+        }
+        sorted = 0;
+        uint32_t i = m++; /* insertion sort */
         for (; i > 0 && c[i - 1] > q; i--)
             c[i] = c[i - 1];
         c[i] = q;
     }
-    uint32_t u = 0;
-    for (uint32_t i = 0; i < m; i++)
-        if (u == 0 || c[i] != c[u - 1])
-            c[u++] = c[i];
+    uint32_t u = m;
+    if (!sorted) /* a planes lying out of order may repeat an earlier one */
+        for (uint32_t i = u = 0; i < m; i++)
+            if (u == 0 || c[i] != c[u - 1])
+                c[u++] = c[i];
+    c[u] = INFINITY;
     return u;
 }
 
-static int below(double c, double x, int inclusive) { return c < x || (inclusive && c == x); }
+/* Number of planes c[0..m) below x (c < x), or at most x if inclusive. */
+static inline int below(double c, double x, int inclusive) { return inclusive ? c <= x : c < x; }
 
-/* Number of planes c[0..m) below x (c < x), or at most x if inclusive: binary search. */
+/* The same by binary search. */
 static uint32_t rank_search(const double *c, uint32_t m, double x, int inclusive)
 {
     uint32_t lo = 0, hi = m;
@@ -823,32 +836,59 @@ static uint32_t rank_search(const double *c, uint32_t m, double x, int inclusive
 }
 
 /* The same, trying first the bin of x, floor(f) (f >= 0: parts lie in the node box), which is
- * the answer unless snapping moved planes. */
+ * the answer unless snapping moved planes; c has bin_planes' sentinels at c[-1] and c[m]. */
 static inline uint32_t rank_of(const double *c, uint32_t m, double x, int inclusive, double f)
 {
     const uint32_t g = f < m ? (uint32_t)f : m;
-    if ((g == 0 || below(c[g - 1], x, inclusive)) && (g == m || !below(c[g], x, inclusive)))
+    if (below((c + g)[-1], x, inclusive) && !below(c[g], x, inclusive))
         return g;
     return rank_search(c, m, x, inclusive);
 }
 
-/* Exact counts at the planes c[0..m) of axis k, of primitives [from, to) of s, added to ns (starts
- * at ns), ne (ends, at ns + m + 1) and np (planar, at ns + 2 (m + 1)). A primitive with rank
- * s = #(planes <= lo) is left of planes s, s+1, ...; with e = #(planes < hi) it is right of planes
- * 0..e-1; a flat primitive lying in plane s-1 is in neither and counted as planar there. */
-static void count_planes(const prim_set *s, uint32_t from, uint32_t to, const aabb *box, uint32_t k, const double *c,
-                         uint32_t m, uint32_t *ns)
+/* The bin planes of a binned node: axis k's at c[k][0..m[k]) with bin_planes' sentinels. */
+typedef struct {
+    double *c[3];
+    uint32_t m[3];
+} plane_set;
+
+/* Counters per axis: starts, ends and planar primitives at up to bins - 1 planes (count_planes). */
+static size_t count_stride(const builder *b) { return 3 * ((size_t)b->p.bins + 1); }
+
+/* plane_set of box in cand, which has room for 3 (bins + 1) values. */
+static plane_set planes_of(const builder *b, const aabb *box, double *cand)
 {
-    uint32_t *ne = ns + m + 1, *np = ne + m + 1;
-    const double scale = (m + 1) / (box->hi[k] - box->lo[k]); /* planes per unit length */
-    for (uint32_t i = from; i < to; i++) {
-        const double lo = s->ref[i].b.lo[k], hi = s->ref[i].b.hi[k];
-        const uint32_t rs = rank_of(c, m, lo, 1, (lo - box->lo[k]) * scale);
-        ns[rs]++;
-        ne[rank_of(c, m, hi, 0, (hi - box->lo[k]) * scale)]++;
-        if (lo == hi && rs > 0 && c[rs - 1] == lo)
-            np[rs - 1]++;
+    plane_set ps;
+    for (uint32_t k = 0; k < 3; k++) {
+        ps.c[k] = cand + k * ((size_t)b->p.bins + 1) + 1;
+        ps.m[k] = bin_planes(b, box, k, ps.c[k]);
     }
+    return ps;
+}
+
+/* Exact counts at the planes ps of the three axes, of primitives [from, to) of s, added to the
+ * counters at ns + k stride for axis k: starts at ns, ends at ne = ns + m + 1, planar at ne + m + 1
+ * (m = ps.m[k]). A primitive with rank s = #(planes <= lo) is left of planes s, s+1, ...; with
+ * e = #(planes < hi) it is right of planes 0..e-1; a flat primitive lying in plane s-1 is in
+ * neither and counted as planar there. All axes in one pass over the references: a large node's
+ * list is read once, not three times. */
+static void count_planes(const prim_set *s, uint32_t from, uint32_t to, const aabb *box, const plane_set *ps,
+                         uint32_t *counts, size_t stride)
+{
+    double scale[3]; /* planes per unit length */
+    for (uint32_t k = 0; k < 3; k++)
+        scale[k] = (ps->m[k] + 1) / (box->hi[k] - box->lo[k]);
+    for (uint32_t i = from; i < to; i++)
+        for (uint32_t k = 0; k < 3; k++) {
+            const double *c = ps->c[k];
+            const uint32_t m = ps->m[k];
+            uint32_t *ns = counts + k * stride, *ne = ns + m + 1, *np = ne + m + 1;
+            const double lo = s->ref[i].b.lo[k], hi = s->ref[i].b.hi[k];
+            const uint32_t rs = rank_of(c, m, lo, 1, (lo - box->lo[k]) * scale[k]);
+            ns[rs]++;
+            ne[rank_of(c, m, hi, 0, (hi - box->lo[k]) * scale[k])]++;
+            if (lo == hi && (c + rs)[-1] == lo) /* (never the sentinel -inf: rs > 0) */
+                np[rs - 1]++;
+        }
 }
 
 /* The candidates c[0..m) of axis k with the counts of count_planes over all of s. */
@@ -870,15 +910,17 @@ static void eval_planes(const builder *b, const prim_set *s, const aabb *box, ui
     }
 }
 
-/* The bin planes of axis k, counted exactly. */
-static void binned_axis(const builder *b, const prim_set *s, const aabb *box, uint32_t k, split *best)
+/* The bin planes of all three axes, counted exactly (in one pass) and tried axis by axis. */
+static void binned_split(const builder *b, const prim_set *s, const aabb *box, split *best)
 {
-    const uint32_t m = bin_planes(b, box, k, b->cand);
-    if (m == 0)
-        return;
-    memset(b->counts, 0, 3 * ((size_t)m + 1) * sizeof *b->counts);
-    count_planes(s, 0, s->n, box, k, b->cand, m, b->counts);
-    eval_planes(b, s, box, k, b->cand, m, b->counts, best);
+    const plane_set ps = planes_of(b, box, b->cand);
+    const size_t stride = count_stride(b);
+    for (uint32_t k = 0; k < 3; k++)
+        memset(b->counts + k * stride, 0, 3 * ((size_t)ps.m[k] + 1) * sizeof *b->counts);
+    count_planes(s, 0, s->n, box, &ps, b->counts, stride);
+    for (uint32_t k = 0; k < 3; k++)
+        if (ps.m[k] > 0)
+            eval_planes(b, s, box, k, ps.c[k], ps.m[k], b->counts + k * stride, best);
 }
 
 /* Pairs of doubles (GCC and Clang vector extension, SSE2 on x86-64); a comparison gives -1 (true)
@@ -1028,13 +1070,15 @@ static void find_split(const builder *b, const prim_set *s, const aabb *box, spl
     /* large binned nodes (never small ones) in parts on several threads, unless memory ran out */
     if (b->pool && has_refs(s) && s->n >= PAR_SPLIT_MIN && find_split_parallel(b, s, box, best) == 0)
         return;
+    if (has_refs(s) && !(s->n <= SMALL_NODE && 2 * s->n < b->p.bins - 1)) {
+        binned_split(b, s, box, best);
+        return;
+    }
     for (uint32_t k = 0; k < 3; k++) {
         if (!has_refs(s))
             sweep_axis(b, s, box, k, best);
-        else if (s->n <= SMALL_NODE && 2 * s->n < b->p.bins - 1)
-            small_axis(b, s, box, k, best);
         else
-            binned_axis(b, s, box, k, best);
+            small_axis(b, s, box, k, best);
     }
 }
 
@@ -1151,50 +1195,40 @@ static void pool_for(pool *pl, uint32_t n, for_fn fn, void *ctx)
 }
 
 /* Binned SAH of a large node, counted in parts by the waiting threads: the same counts, the same
- * candidates in the same order as binned_axis() on each axis, so the same split. */
+ * candidates in the same order as binned_split(), so the same split. */
 typedef struct {
     const prim_set *s;
     const aabb *box;
-    const double *cand; /* 3 x bins: the planes of each axis */
-    uint32_t m[3], bins;
-    size_t stride;      /* counters per axis: 3 (m + 1) <= 3 (bins + 1) */
-    uint32_t *counts;   /* PAR_PARTS x 3 axes x stride */
+    plane_set ps;
+    size_t stride;    /* counters per axis (count_stride) */
+    uint32_t *counts; /* PAR_PARTS x 3 axes x stride */
 } count_job;
 
 static void count_part(void *arg, uint32_t i)
 {
     const count_job *j = arg;
     const uint64_t n = j->s->n;
-    for (uint32_t k = 0; k < 3; k++)
-        if (j->m[k] > 0)
-            count_planes(j->s, (uint32_t)(n * i / PAR_PARTS), (uint32_t)(n * (i + 1) / PAR_PARTS), j->box, k,
-                         j->cand + (size_t)k * j->bins, j->m[k], j->counts + (3 * (size_t)i + k) * j->stride);
+    count_planes(j->s, (uint32_t)(n * i / PAR_PARTS), (uint32_t)(n * (i + 1) / PAR_PARTS), j->box, &j->ps,
+                 j->counts + 3 * (size_t)i * j->stride, j->stride);
 }
 
 static int find_split_parallel(const builder *b, const prim_set *s, const aabb *box, split *best)
 {
-    count_job j = { s, box, NULL, { 0, 0, 0 }, b->p.bins, 3 * ((size_t)b->p.bins + 1), NULL };
-    double *cand = malloc(3 * (size_t)b->p.bins * sizeof *cand);
+    count_job j = { s, box, { { NULL, NULL, NULL }, { 0, 0, 0 } }, count_stride(b), NULL };
     j.counts = calloc(PAR_PARTS * 3 * j.stride, sizeof *j.counts);
-    if (!cand || !j.counts) {
-        free(cand);
-        free(j.counts);
+    if (!j.counts)
         return -1;
-    }
-    j.cand = cand;
-    for (uint32_t k = 0; k < 3; k++)
-        j.m[k] = bin_planes(b, box, k, cand + (size_t)k * b->p.bins);
+    j.ps = planes_of(b, box, b->cand);
     pool_for(b->pool, PAR_PARTS, count_part, &j);
     for (uint32_t k = 0; k < 3; k++) {
-        if (j.m[k] == 0)
+        if (j.ps.m[k] == 0)
             continue;
         uint32_t *sum = j.counts + k * j.stride;
         for (uint32_t i = 1; i < PAR_PARTS; i++)
-            for (size_t c = 0; c < 3 * ((size_t)j.m[k] + 1); c++)
+            for (size_t c = 0; c < 3 * ((size_t)j.ps.m[k] + 1); c++)
                 sum[c] += j.counts[(3 * (size_t)i + k) * j.stride + c];
-        eval_planes(b, s, box, k, cand + (size_t)k * b->p.bins, j.m[k], sum, best);
+        eval_planes(b, s, box, k, j.ps.c[k], j.ps.m[k], sum, best);
     }
-    free(cand);
     free(j.counts);
     return 0;
 }
@@ -1422,8 +1456,8 @@ static int build_node(builder *b, uint32_t node, const aabb *box, prim_set *s, u
 static int scratch_alloc(builder *b)
 {
     if (binned(b)) {
-        b->cand = malloc((size_t)b->p.bins * sizeof *b->cand);
-        b->counts = malloc(3 * ((size_t)b->p.bins + 1) * sizeof *b->counts);
+        b->cand = malloc(3 * ((size_t)b->p.bins + 1) * sizeof *b->cand);
+        b->counts = malloc(3 * count_stride(b) * sizeof *b->counts);
         if (!b->cand || !b->counts)
             return -1;
     }
