@@ -179,7 +179,7 @@ typedef struct {
     uint8_t *side;    /* exact mode: SIDE_* of each primitive of the node being split */
     event *scratch;   /* exact mode: the straddlers' events (clip_straddlers) */
     uint32_t cap_scratch;
-    uint32_t *straddlers; /* exact mode: the straddlers of the node being split (clip_straddlers) */
+    uint32_t *straddlers; /* exact mode: the straddlers of the node being split (classify lists them) */
     uint32_t cap_straddlers;
     double *cand;     /* binned mode: candidate planes of the three axes (planes_of) */
     uint32_t *counts; /* binned mode: 3 axes x count_stride counters */
@@ -544,19 +544,21 @@ typedef struct {
 
 /* Sets b->side for the primitives of s from their events on the split axis (a primitive's start
  * comes before its end): a start at or above the plane means right only, an end at or below it
- * left only, the rest straddles; a planar event goes by side_of. Without branches on the events'
+ * left only, the rest straddles; a planar event goes by side_of. Lists the straddlers, in the
+ * order of their end events, in straddlers (room for s->n + 1). Without branches on the events'
  * types and positions, which follow no pattern. */
-static side_counts classify(builder *b, const prim_set *s, const split *sp)
+static side_counts classify(builder *b, const prim_set *s, const split *sp, uint32_t *straddlers)
 {
     const event *ev = s->ev[sp->axis];
     const uint32_t m = s->n_ev[sp->axis];
     const double q = sp->pos;
     const uint8_t in_plane = sp->planar_left ? SIDE_LEFT : SIDE_RIGHT;
-    uint32_t left = 0, right = 0;
+    uint32_t left = 0, right = 0, both = 0;
     for (uint32_t i = 0; i < m; i++) {
         const double x = ev[i].pos;
         const uint32_t t = ev[i].type;
-        uint8_t *side = &b->side[ev[i].prim];
+        const uint32_t prim = ev[i].prim;
+        uint8_t *side = &b->side[prim];
         const uint8_t planar = x == q ? in_plane : x < q ? SIDE_LEFT : SIDE_RIGHT;
         const uint8_t start = x >= q ? SIDE_RIGHT : SIDE_BOTH;
         const uint8_t end = x <= q ? SIDE_LEFT : *side; /* above: as its start said */
@@ -565,8 +567,10 @@ static side_counts classify(builder *b, const prim_set *s, const split *sp)
         *side = v;
         left += (t != EV_START) & (v == SIDE_LEFT); /* counted at the end (or planar) event */
         right += (t != EV_END) & (v == SIDE_RIGHT); /* at the start (or planar) event */
+        straddlers[both] = prim;                     /* listed at the end event, where the side is final */
+        both += (t == EV_END) & (v == SIDE_BOTH);
     }
-    return (side_counts){ left, right, s->n - left - right };
+    return (side_counts){ left, right, both };
 }
 
 /* Where the straddlers' events for child c on axis a go in b->scratch (nb straddlers). */
@@ -575,9 +579,10 @@ static event *clipped_events(const builder *b, uint32_t nb, int c, int a)
     return b->scratch + (3 * (size_t)c + (size_t)a) * 2 * nb;
 }
 
-/* The events of the nb straddlers' parts in the child boxes cb[0..1], sorted, at
- * clipped_events(b, nb, c, a), k[c][a] of them; kept[c]: straddlers with a part in child c. */
-static int clip_straddlers(builder *b, const prim_set *s, const split *sp, const aabb *const cb[2], uint32_t nb,
+/* The events of the nb straddlers list[0..nb)' parts in the child boxes cb[0..1], sorted, at
+ * clipped_events(b, nb, c, a), k[c][a] of them; kept[c]: straddlers with a part in child c. The
+ * straddlers' order does not matter: no two of their events are equal in the sort's order. */
+static int clip_straddlers(builder *b, const uint32_t *list, const split *sp, const aabb *const cb[2], uint32_t nb,
                            uint32_t k[2][3], uint32_t kept[2])
 {
     /* 2 nb events per child and axis, and nb to sort with */
@@ -589,18 +594,7 @@ static int clip_straddlers(builder *b, const prim_set *s, const split *sp, const
     for (int c = 0; c < 2; c++)
         for (int a = 0; a < 3; a++)
             ev[c][a] = clipped_events(b, nb, c, a);
-    uint32_t *list = reserve(b->straddlers, &b->cap_straddlers, (uint64_t)nb + 1, sizeof *list);
-    if (!list)
-        return -1;
-    b->straddlers = list;
-    /* the straddlers, listed without branches (their order does not matter: the events are sorted) */
-    const event *split_ev = s->ev[sp->axis];
-    uint32_t n = 0;
-    for (uint32_t i = 0; i < s->n_ev[sp->axis]; i++) {
-        list[n] = split_ev[i].prim;
-        n += (split_ev[i].type == EV_START) & (b->side[split_ev[i].prim] == SIDE_BOTH);
-    }
-    for (uint32_t i = 0; i < n; i++) {
+    for (uint32_t i = 0; i < nb; i++) {
         aabb part[2];
         const int in = parts_in_halves(b, list[i], NULL, sp->axis, cb[0], cb[1], part);
         for (int c = 0; c < 2; c++)
@@ -649,10 +643,14 @@ static void distribute(const builder *b, const event *ev, uint32_t n, event *con
 static int split_events(builder *b, const prim_set *s, const split *sp, const aabb *lb, const aabb *rb,
                         prim_set *l, prim_set *r)
 {
-    const side_counts n = classify(b, s, sp);
+    uint32_t *list = reserve(b->straddlers, &b->cap_straddlers, (uint64_t)s->n + 1, sizeof *list);
+    if (!list)
+        return -1;
+    b->straddlers = list;
+    const side_counts n = classify(b, s, sp, list);
     const aabb *const cb[2] = { lb, rb };
     uint32_t k[2][3] = { { 0, 0, 0 }, { 0, 0, 0 } }, kept[2] = { 0, 0 };
-    if (clip_straddlers(b, s, sp, cb, n.both, k, kept))
+    if (clip_straddlers(b, list, sp, cb, n.both, k, kept))
         return -1;
     prim_set *const child[2] = { l, r };
     const uint32_t one_sided[2] = { n.left, n.right };
