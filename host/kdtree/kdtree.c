@@ -603,9 +603,10 @@ static int clip_straddlers(builder *b, const uint32_t *list, const split *sp, co
                 kept[c]++;
             }
     }
-    for (int c = 0; c < 2; c++)
-        for (int a = 0; a < 3; a++)
-            sort_events(ev[c][a], k[c][a], scratch + 12 * (size_t)nb);
+    if (nb > 1) /* one straddler's events are in order: a start below its end, or one planar event */
+        for (int c = 0; c < 2; c++)
+            for (int a = 0; a < 3; a++)
+                sort_events(ev[c][a], k[c][a], scratch + 12 * (size_t)nb);
     return 0;
 }
 
