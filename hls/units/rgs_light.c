@@ -3,7 +3,9 @@
  * rgs_light_packet, rgs_light_colour and rgs_add_light. */
 #include "rgs_ops.h"
 
-#define Q12_DIFFUSE 3482u /* 0.85 */
+#ifdef F24_SIM_LANES
+#define rgs_light_packet rgs_light_packet_per_ray /* the simulation build's is side by side (rgs_ops.h) */
+#endif
 
 void rgs_light_packet(const uint32_t *l, const surface sf[], f24_t eps, ray_packet *sh, uint32_t diff[], uint32_t spec[],
                       const uint32_t k_of[])
@@ -36,7 +38,7 @@ shadow_rays:
             const f24w f = f24w_div(f24w_sub(c, f24w_of(l[12])), f24w_sub(f24w_of(l[11]), f24w_of(l[12])));
             w = f24w_mul(w, f24w_max(zero, f24w_min(f, f24w_of(F24_ONE))));
         }
-        diff[i] = q_mul(rgs_q_of_w(w), Q12_DIFFUSE);
+        diff[i] = q_mul(rgs_q_of_w(w), RGS_Q12_DIFFUSE);
         const f24w_vec3 mirror = f24w_vec3_of(rgs_reflect(sf[i].d, sf[i].n));
         uint32_t s = rgs_q_of_w(f24w_max(zero, f24w_div(f24w_dot3(mirror, to_light), dist)));
     phong_power:

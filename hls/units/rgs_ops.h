@@ -15,6 +15,7 @@
 #include "trace_ops.h"
 
 #define RGS_Q12_MAX 65535u
+#define RGS_Q12_DIFFUSE 3482u /* 0.85: the weight of a light's diffuse term */
 
 /* material words (docs/memory-image.md): the index of refraction, the shader words kd | kr << 13 |
  * k << 26 and kt | ks << 13 */
@@ -109,6 +110,13 @@ surface rgs_surface_at(const uint32_t *mem, const ray_packet *rp, int i, const h
  * traced. k_of: the surfaces' highlight exponents (cos^(2^k)). */
 void rgs_light_packet(const uint32_t *l, const surface sf[], f24_t eps, ray_packet *sh, uint32_t diff[], uint32_t spec[],
                       const uint32_t k_of[]);
+#ifdef F24_SIM_LANES
+/* A simulation build with vector packet values computes the rays of rgs_light_packet side by side
+ * instead of one after the other (its own definition of that name, the same bits); the per-ray
+ * datapath of rgs_light.c, the truth, then keeps this name, for the test that compares the two. */
+void rgs_light_packet_per_ray(const uint32_t *l, const surface sf[], f24_t eps, ray_packet *sh, uint32_t diff[],
+                              uint32_t spec[], const uint32_t k_of[]);
+#endif
 
 /* Light colour (the record's words 1..3) scaled to a maximum component of one, in Q12. */
 void rgs_light_colour(const uint32_t *l, uint32_t out[3]);
