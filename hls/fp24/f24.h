@@ -188,6 +188,16 @@ lanes_from_i32:
         q.l[i] = f24w_from_i32(a[i]);
     return q;
 }
+/* The columns of a matrix of 3 rows and 4 columns: lane r of col[k] is m[r][k], lane 3 zero (the
+ * rows side by side, as the transformation unit's per-row datapaths read them). */
+static inline void f24q_columns(const f24_t m[3][4], f24q col[4])
+{
+lanes_columns:
+    for (int k = 0; k < 4; k++) {
+        const f24_t c[F24Q_LANES] = { m[0][k], m[1][k], m[2][k], 0u };
+        col[k] = f24q_of(c);
+    }
+}
 static inline f24w f24q_lane(f24q a, int i) { return a.l[i]; }
 static inline f24q f24q_broadcast(f24q a, int i) /* lane i in every lane */
 {
