@@ -53,28 +53,13 @@ static void light_rays(const uint32_t *l, const surface sf[], f24_t eps, const f
                        const f24_t tmin[], uint32_t lit, const double w[], const double highlight[], ray_packet *sh,
                        uint32_t diff[], uint32_t spec[], const uint32_t k_of[])
 {
-    const int directional = l[0] == 0;
     sh->active = 0;
     for (int i = 0; i < TRACE_PACKET; i++) {
-        diff[i] = spec[i] = 0;
-        sh->o[i] = sh->d[i] = (f24_vec3){ 0, 0, 0 };
-        sh->tmin[i] = sh->tmax[i] = 0;
-        if (!sf[i].valid || sf[i].unlit)
-            continue; /* an unlit surface takes no light */
-        sh->o[i] = sf[i].p;
-        sh->d[i] = directional ? neg3((f24_vec3){ l[7], l[8], l[9] }) : (f24_vec3){ dir[0][i], dir[1][i], dir[2][i] };
-        sh->tmin[i] = directional ? eps : tmin[i];
-        sh->tmax[i] = directional ? F24_POS_INF : F24_ONE;
-        if (!(lit >> i & 1u))
-            continue; /* the light is behind the surface */
-        diff[i] = q_mul(rgs_q_of_w(w[i]), RGS_Q12_DIFFUSE);
-        uint32_t s = rgs_q_of_w(highlight[i]);
-        for (uint32_t j = 0; j < 8; j++)
-            if (j < k_of[i])
-                s = q_mul(s, s); /* cos^(2^k): k squarings */
-        spec[i] = s;
-        if (diff[i] | spec[i])
-            sh->active |= 1u << i;
+        if (!rgs_takes_light(&sf[i], sh, diff, spec, i))
+            continue;
+        rgs_shadow_ray(l, &sf[i], eps, (f24_vec3){ dir[0][i], dir[1][i], dir[2][i] }, tmin[i], sh, i);
+        if ((lit >> i & 1u) && rgs_light_weights(w[i], highlight[i], k_of[i], &diff[i], &spec[i]))
+            sh->active |= 1u << i; /* else the light is behind the surface, or its weights are zero */
     }
 }
 
