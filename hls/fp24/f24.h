@@ -103,6 +103,12 @@ int32_t f24_to_i32(f24_t a); /* toward zero, saturating, NaN -> 0 */
 #ifdef F24_SIM_HEADER
 #include F24_SIM_HEADER
 #endif
+/* Functions a simulation build keeps out of line (its F24_SIM_HEADER may define this as a
+ * compiler attribute): a unit's rare operations beside its frequent one. Nothing in the C an HLS
+ * tool reads. */
+#ifndef F24_SIM_NOINLINE
+#define F24_SIM_NOINLINE
+#endif
 
 /* Working values. A chain of operations inside a unit (a row of a matrix, a ray against a
  * plane) reads its fp24 inputs with f24w_of, computes with the f24w_ operations (the f24_ ones,

@@ -22,6 +22,7 @@
 #include <stdint.h>
 
 #ifdef F24_FAST_SIM
+#define F24_SIM_NOINLINE __attribute__((noinline)) /* f24.h: the rare operations out of line */
 #define F24_SIM_WORKING /* f24.h then leaves the working values to this header */
 #ifndef __clang__
 #define F24_SIM_LANES /* and the packet values (the vectors below; clang keeps f24.h's lanes) */
