@@ -12,10 +12,9 @@
  * every value; a NaN's sign, which it may not keep, reaches no result: every operation on a NaN
  * gives the default NaN, and a comparison with one is false).
  */
-#include "f24_fast.h"
+#include "rgs_ops.h" /* (its f24.h reads the build's F24_SIM_HEADER, which defines F24_SIM_LANES) */
 
 #ifdef F24_SIM_LANES
-#include "rgs_ops.h"
 
 /* ((a.x b.x + a.y b.y) + a.z b.z) per lane: f24w_dot3 (vec3.h) of each ray */
 F24V_INLINE f24v dot3_lanes(const f24v a[3], const f24v b[3])
