@@ -98,6 +98,9 @@ REF := $(sort $(wildcard tb/ref/*.c))
 MEMIMAGE := $(sort $(wildcard host/memimage/*.c))
 HLS_UNITS := $(sort $(wildcard hls/units/*.c))
 CYCLE := $(sort $(wildcard tb/cycle/*.c))
+# faster simulation versions of unit functions (the rays of a packet as vector lanes), compiled
+# with the units' flags: the fast build takes them, the hardware-arithmetic one compiles them empty
+SIM_UNITS := $(sort $(wildcard tb/sim/*.c))
 
 # the simulator (units, memory image, reference, command line) computes fp24 with the host fast
 # path unless SIM_ARITH=hw; hls/fp24 and tb/fp always hold the integer reference
@@ -110,7 +113,7 @@ SIM_LANES ?= clones
 CFLAGS += $(if $(filter baseline,$(SIM_LANES)),-DF24_SIM_BASELINE)
 FAST_SIM_FLAGS := -DF24_FAST_SIM -DF24_SIM_HEADER='"f24_fast.h"'
 SIM_FLAGS := $(if $(filter fast,$(SIM_ARITH)),$(FAST_SIM_FLAGS),$(if $(filter hw,$(SIM_ARITH)),,$(error SIM_ARITH must be fast or hw)))
-SIM_SRCS = $(MEMIMAGE) $(HLS_UNITS) $(CYCLE) $(REF) $(CLI) $(CAPTURE_SRC)
+SIM_SRCS = $(MEMIMAGE) $(HLS_UNITS) $(SIM_UNITS) $(CYCLE) $(REF) $(CLI) $(CAPTURE_SRC)
 
 comma := ,
 CAPTURE_WRAP := $(addprefix -Wl$(comma)--wrap=,xform_point xform_vector isect_unit_rebased isect_unit_packet trav_node_split_held \
@@ -122,7 +125,7 @@ CAPTURE_WRAP := $(addprefix -Wl$(comma)--wrap=,xform_point xform_vector isect_un
 
 # per-format objects: everything that depends on the fp24 parameters
 fp_objs = $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(HLS_FP24) $(TB_FP))
-fmt_objs = $(call fp_objs,$(1)) $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(MEMIMAGE) $(HLS_UNITS) $(CYCLE) $(REF))
+fmt_objs = $(call fp_objs,$(1)) $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(MEMIMAGE) $(HLS_UNITS) $(SIM_UNITS) $(CYCLE) $(REF))
 # HOST_BUILD: where the host objects (loader, kd-trees, images; neither number format nor
 # SIM_ARITH nor CFG_FLAGS changes them) are taken from; make test's hw and robust builds share
 # those of the main build instead of compiling the C++ loader again

@@ -63,7 +63,8 @@ static void mapped_comparisons_on_edges(void **state)
  * f24w_from_i32, f24w_to_i32) against the integer operators, the packet values' decoding (f24v_of,
  * through binary32 lanes) against the scalar decoding bit for bit (a NaN: a NaN of its sign), and their sqrt and from_i32
  * (the vertex normals' datapath) against the integer operators, on the edge sets
- * (subnormal encodings, Inf, NaN of both signs, bits above the format) and random operands. */
+ * (subnormal encodings, Inf, NaN of both signs, bits above the format) and random operands; and a
+ * matrix's columns as vectors (f24v_columns) against the decoded words. */
 static void working_values_and_lanes(void **state)
 {
     (void)state;
@@ -91,6 +92,17 @@ static void working_values_and_lanes(void **state)
             assert_true(f24_fast_same(d[k], want));
             assert_memory_equal(&roots[k], &root, sizeof root);
             assert_memory_equal(&from_ints[k], &from_int, sizeof from_int);
+        }
+        /* a matrix's columns (f24q_columns: rows decoded, then transposed): lane r of column k is
+         * m[r][k], lane 3 +0 */
+        const f24_t m[3][4] = { { v.a, v.b, f24_neg(v.a), v.a ^ v.b }, { v.b, v.a | ~F24_MASK, F24_ONE, f24_neg(v.b) },
+                                { v.a + 1u, v.b - 1u, 0u, F24_SIGN_BIT } };
+        f24v col[4];
+        f24v_columns(m, col);
+        for (int k = 0; k < 4; k++) {
+            for (int r = 0; r < 3; r++)
+                assert_true(f24_fast_same(col[k][r], f24_fast_decode(m[r][k])));
+            assert_true(f24_fast_same(col[k][3], 0.0));
         }
 #endif
     }

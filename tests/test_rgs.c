@@ -21,6 +21,7 @@
 #include "f24_fast.h"
 #include "memimage.h"
 #include "rgs.h"
+#include "rgs_ops.h"
 #include "scenes.h"
 
 static double D(f24_t x) { return f24_fast_decode(x); }
@@ -384,11 +385,77 @@ static void glass_transmits(void **state)
     scene_free(&s);
 }
 
+/* A random fp24 word: mostly a value of about unit size (either sign), sometimes any 24 bits
+ * (zeros, subnormal encodings, Inf, NaN of both signs, huge and tiny values). */
+static f24_t random_word(unsigned *seed)
+{
+    const int kind = rand_r(seed) % 8;
+    if (kind == 0)
+        return (f24_t)rand_r(seed) & F24_MASK;
+    if (kind == 1) {
+        const f24_t special[4] = { 0, F24_SIGN_BIT, F24_POS_INF, F24_POS_INF | F24_SIGN_BIT }; /* +-0, +-Inf */
+        return special[rand_r(seed) % 4];
+    }
+    return f24_fast_encode(4.0 * rand_r(seed) / RAND_MAX - 2);
+}
+
+static f24_vec3 random_vec(unsigned *seed)
+{
+    const f24_t x = random_word(seed), y = random_word(seed);
+    return (f24_vec3){ x, y, random_word(seed) };
+}
+
+/* The simulation build's rgs_light_packet computes the rays of a packet side by side
+ * (tb/sim/rgs_light_lanes.c): the same shadow packet, weights and bits as the per-ray datapath of
+ * hls/units/rgs_light.c, for directional, point and spot lights, surfaces valid, invalid and unlit,
+ * on unit-size and arbitrary words. */
+static void light_packet_lanes(void **state)
+{
+    (void)state;
+#ifndef F24_SIM_LANES
+    skip(); /* one definition only: the per-ray one */
+#else
+    unsigned seed = 11;
+    for (int t = 0; t < 20000; t++) {
+        uint32_t l[16] = { 0 };
+        l[0] = (uint32_t)(t % 3); /* directional, point, spot */
+        for (int k = 1; k < 13; k++)
+            l[k] = random_word(&seed);
+        surface sf[TRACE_PACKET];
+        uint32_t k_of[TRACE_PACKET];
+        memset(sf, 0, sizeof sf);
+        for (int i = 0; i < TRACE_PACKET; i++) {
+            const int kind = rand_r(&seed) % 6;
+            sf[i].valid = kind != 0;
+            sf[i].unlit = kind == 1;
+            sf[i].p = random_vec(&seed);
+            sf[i].n = random_vec(&seed);
+            sf[i].d = random_vec(&seed);
+            k_of[i] = (uint32_t)(rand_r(&seed) % 9);
+        }
+        const f24_t eps = random_word(&seed);
+        ray_packet got, want;
+        uint32_t gd[TRACE_PACKET], gs[TRACE_PACKET], wd[TRACE_PACKET], ws[TRACE_PACKET];
+        memset(&got, 0x55, sizeof got);
+        memset(&want, 0x55, sizeof want);
+        rgs_light_packet(l, sf, eps, &got, gd, gs, k_of);
+        rgs_light_packet_per_ray(l, sf, eps, &want, wd, ws, k_of);
+        assert_int_equal(got.active, want.active);
+        assert_memory_equal(got.o, want.o, sizeof got.o);
+        assert_memory_equal(got.d, want.d, sizeof got.d);
+        assert_memory_equal(got.tmin, want.tmin, sizeof got.tmin);
+        assert_memory_equal(got.tmax, want.tmax, sizeof got.tmax);
+        assert_memory_equal(gd, wd, sizeof gd);
+        assert_memory_equal(gs, ws, sizeof gs);
+    }
+#endif
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = { cmocka_unit_test(primary_rays), cmocka_unit_test(shading),
                                         cmocka_unit_test(reflection_geometry), cmocka_unit_test(refraction_snell),
                                         cmocka_unit_test(bilinear_texture), cmocka_unit_test(mirror_reflects),
-                                        cmocka_unit_test(glass_transmits) };
+                                        cmocka_unit_test(glass_transmits), cmocka_unit_test(light_packet_lanes) };
     return cmocka_run_group_tests_name("rgs", tests, NULL, NULL);
 }

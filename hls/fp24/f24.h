@@ -103,6 +103,12 @@ int32_t f24_to_i32(f24_t a); /* toward zero, saturating, NaN -> 0 */
 #ifdef F24_SIM_HEADER
 #include F24_SIM_HEADER
 #endif
+/* Functions a simulation build keeps out of line (its F24_SIM_HEADER may define this as a
+ * compiler attribute): a unit's rare operations beside its frequent one. Nothing in the C an HLS
+ * tool reads. */
+#ifndef F24_SIM_NOINLINE
+#define F24_SIM_NOINLINE
+#endif
 
 /* Working values. A chain of operations inside a unit (a row of a matrix, a ray against a
  * plane) reads its fp24 inputs with f24w_of, computes with the f24w_ operations (the f24_ ones,
@@ -187,6 +193,16 @@ lanes_from_i32:
     for (int i = 0; i < F24Q_LANES; i++)
         q.l[i] = f24w_from_i32(a[i]);
     return q;
+}
+/* The columns of a matrix of 3 rows and 4 columns: lane r of col[k] is m[r][k], lane 3 zero (the
+ * rows side by side, as the transformation unit's per-row datapaths read them). */
+static inline void f24q_columns(const f24_t m[3][4], f24q col[4])
+{
+lanes_columns:
+    for (int k = 0; k < 4; k++) {
+        const f24_t c[F24Q_LANES] = { m[0][k], m[1][k], m[2][k], 0u };
+        col[k] = f24q_of(c);
+    }
 }
 static inline f24w f24q_lane(f24q a, int i) { return a.l[i]; }
 static inline f24q f24q_broadcast(f24q a, int i) /* lane i in every lane */

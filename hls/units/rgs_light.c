@@ -3,7 +3,9 @@
  * rgs_light_packet, rgs_light_colour and rgs_add_light. */
 #include "rgs_ops.h"
 
-#define Q12_DIFFUSE 3482u /* 0.85 */
+#ifdef F24_SIM_LANES
+#define rgs_light_packet rgs_light_packet_per_ray /* the simulation build's is side by side (rgs_ops.h) */
+#endif
 
 void rgs_light_packet(const uint32_t *l, const surface sf[], f24_t eps, ray_packet *sh, uint32_t diff[], uint32_t spec[],
                       const uint32_t k_of[])
@@ -15,18 +17,12 @@ void rgs_light_packet(const uint32_t *l, const surface sf[], f24_t eps, ray_pack
     sh->active = 0;
 shadow_rays:
     for (int i = 0; i < TRACE_PACKET; i++) {
-        diff[i] = spec[i] = 0;
-        sh->o[i] = sh->d[i] = (f24_vec3){ 0, 0, 0 };
-        sh->tmin[i] = sh->tmax[i] = 0;
-        if (!sf[i].valid || sf[i].unlit)
-            continue; /* an unlit surface takes no light */
-        sh->o[i] = sf[i].p;
+        if (!rgs_takes_light(&sf[i], sh, diff, spec, i))
+            continue;
         /* the direction to the light (a directional light's is its words' negation, not rounded) */
         const f24w_vec3 to_light = directional ? neg3_w(ldir_w) : sub3_w(lpos_w, f24w_vec3_of(sf[i].p));
-        sh->d[i] = directional ? neg3(ldir) : f24w_vec3_bits(to_light);
         const f24w dist = rgs_length3_w(to_light);
-        sh->tmin[i] = directional ? eps : f24w_bits(f24w_div(eps_w, dist));
-        sh->tmax[i] = directional ? F24_POS_INF : F24_ONE;
+        rgs_shadow_ray(l, &sf[i], eps, f24w_vec3_bits(to_light), f24w_bits(f24w_div(eps_w, dist)), sh, i);
         /* cosines of the light direction with the normal, the cone axis, the mirror direction */
         f24w w = f24w_div(f24w_dot3(f24w_vec3_of(sf[i].n), to_light), dist);
         if (!f24w_lt(zero, w))
@@ -36,15 +32,9 @@ shadow_rays:
             const f24w f = f24w_div(f24w_sub(c, f24w_of(l[12])), f24w_sub(f24w_of(l[11]), f24w_of(l[12])));
             w = f24w_mul(w, f24w_max(zero, f24w_min(f, f24w_of(F24_ONE))));
         }
-        diff[i] = q_mul(rgs_q_of_w(w), Q12_DIFFUSE);
         const f24w_vec3 mirror = f24w_vec3_of(rgs_reflect(sf[i].d, sf[i].n));
-        uint32_t s = rgs_q_of_w(f24w_max(zero, f24w_div(f24w_dot3(mirror, to_light), dist)));
-    phong_power:
-        for (uint32_t j = 0; j < 8; j++)
-            if (j < k_of[i])
-                s = q_mul(s, s); /* cos^(2^k): k squarings */
-        spec[i] = s;
-        if (diff[i] | spec[i])
+        const f24w h = f24w_max(zero, f24w_div(f24w_dot3(mirror, to_light), dist));
+        if (rgs_light_weights(w, h, k_of[i], &diff[i], &spec[i]))
             sh->active |= 1u << i;
     }
 }

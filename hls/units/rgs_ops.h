@@ -15,6 +15,7 @@
 #include "trace_ops.h"
 
 #define RGS_Q12_MAX 65535u
+#define RGS_Q12_DIFFUSE 3482u /* 0.85: the weight of a light's diffuse term */
 
 /* material words (docs/memory-image.md): the index of refraction, the shader words kd | kr << 13 |
  * k << 26 and kt | ks << 13 */
@@ -109,6 +110,51 @@ surface rgs_surface_at(const uint32_t *mem, const ray_packet *rp, int i, const h
  * traced. k_of: the surfaces' highlight exponents (cos^(2^k)). */
 void rgs_light_packet(const uint32_t *l, const surface sf[], f24_t eps, ray_packet *sh, uint32_t diff[], uint32_t spec[],
                       const uint32_t k_of[]);
+#ifdef F24_SIM_LANES
+/* A simulation build with vector packet values computes the rays of rgs_light_packet side by side
+ * instead of one after the other (its own definition of that name, the same bits); the per-ray
+ * datapath of rgs_light.c, the truth, then keeps this name, for the test that compares the two. */
+void rgs_light_packet_per_ray(const uint32_t *l, const surface sf[], f24_t eps, ray_packet *sh, uint32_t diff[],
+                              uint32_t spec[], const uint32_t k_of[]);
+#endif
+
+/* Clears ray i's weights and shadow ray; returns whether its surface takes light (a valid one that
+ * is not unlit). */
+static inline int rgs_takes_light(const surface *sf, ray_packet *sh, uint32_t diff[], uint32_t spec[], int i)
+{
+    diff[i] = spec[i] = 0;
+    sh->o[i] = sh->d[i] = (f24_vec3){ 0, 0, 0 };
+    sh->tmin[i] = sh->tmax[i] = 0;
+    return sf->valid && !sf->unlit; /* an unlit surface takes no light */
+}
+
+/* Ray i of a light's shadow packet, from surface sf's hit point: along a directional light's
+ * negated direction words (light record l) from eps on, or over [eps / |L|, 1] of the vector L to a
+ * point or spot light (dir: L's words, tmin: eps / |L|). */
+static inline void rgs_shadow_ray(const uint32_t *l, const surface *sf, f24_t eps, f24_vec3 dir, f24_t tmin, ray_packet *sh,
+                                  int i)
+{
+    const int directional = l[0] == 0;
+    sh->o[i] = sf->p;
+    sh->d[i] = directional ? neg3((f24_vec3){ l[7], l[8], l[9] }) : dir;
+    sh->tmin[i] = directional ? eps : tmin;
+    sh->tmax[i] = directional ? F24_POS_INF : F24_ONE;
+}
+
+/* A lit surface's Q12 weights for a light: the diffuse one from the cosine w with the normal, the
+ * highlight from the cosine h with the mirror direction to the power 2^k (k squarings); returns
+ * whether either is nonzero (the shadow ray is then traced). */
+static inline uint32_t rgs_light_weights(f24w w, f24w h, uint32_t k, uint32_t *diff, uint32_t *spec)
+{
+    uint32_t s = rgs_q_of_w(h);
+phong_power:
+    for (uint32_t j = 0; j < 8; j++)
+        if (j < k)
+            s = q_mul(s, s); /* cos^(2^k): k squarings */
+    *diff = q_mul(rgs_q_of_w(w), RGS_Q12_DIFFUSE);
+    *spec = s;
+    return (*diff | s) != 0;
+}
 
 /* Light colour (the record's words 1..3) scaled to a maximum component of one, in Q12. */
 void rgs_light_colour(const uint32_t *l, uint32_t out[3]);

@@ -72,6 +72,10 @@ route_levels:
 
 /* ---- the operations ------------------------------------------------------------------------ */
 
+/* trace_step runs one of these per call, most often the walk's (op_walk, inlined into it); the
+ * simulation build keeps the others out of line (F24_SIM_NOINLINE), so that a walk step does not
+ * pay the registers and stack frame of all of them. */
+
 /* The one object of a PROFILE_SINGLE_OBJECT scene: the packet goes straight to its
  * transformation, as the one-leaf top-level tree would send it. With PROFILE_IDENTITY that
  * transformation is wiring (xform_identity gives the bits xform_point/xform_vector give for an
@@ -107,7 +111,7 @@ identity_rays:
 }
 
 /* Traversal unit: clip the packet to the scene bounds; rays that miss them never enter traversal. */
-static void op_scene_clip(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
+static F24_SIM_NOINLINE void op_scene_clip(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
 {
     f24_t tn[TRACE_PACKET], tf[TRACE_PACKET];
     op_set(op, OP_TRAV, TRAV_CLIP_SLOTS);
@@ -157,7 +161,7 @@ rebase_rays:
 }
 
 /* List unit: one entry of the current leaf (an instance at the top level, a triangle below). */
-static void op_list(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
+static F24_SIM_NOINLINE void op_list(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
 {
     uint32_t key;
     const int opens = s->level == 1 && s->walk[1].k == 0;
@@ -187,7 +191,7 @@ static void inst_clip(const uint32_t *mem, trace_state *s, unit_op *op, trace_co
  * front of this one) and maps it in the wide mode: the object-space ray in double words whose
  * high words the traversal walks with are then the exact ray to about the object's size times
  * 2^-(M+1), not the distance's (docs/numerics.md). Rebased origins differ per ray: two steps each. */
-static void op_inst_xform(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
+static F24_SIM_NOINLINE void op_inst_xform(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
 {
     const uint32_t ia = region_start(mem, R_INSTANCES) + INST_WORDS * s->inst;
     const f24_affine w2o = f24_affine_load(mem, ia);
@@ -226,7 +230,7 @@ to_object_space:
 }
 
 /* Traversal unit: clip the object-space rays to the object's bounds and start its tree (path b). */
-static void op_inst_clip(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
+static F24_SIM_NOINLINE void op_inst_clip(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
 {
     op_set(op, OP_OBJCLIP, TRAV_CLIP_SLOTS);
     inst_clip(mem, s, op, c);
@@ -270,7 +274,7 @@ static void inst_clip(const uint32_t *mem, trace_state *s, unit_op *op, trace_co
  * space (path e), one step per ray; their rebased origins go through the triangle's matrix in the
  * intersection unit (isect_unit.h), since no two rays of a packet share one. The transformed rays
  * are computed with the intersection below, which needs them only then. */
-static void op_tri_xform(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
+static F24_SIM_NOINLINE void op_tri_xform(const uint32_t *mem, trace_state *s, unit_op *op, trace_counters *c)
 {
     const uint32_t a = s->tris + TRI_WORDS * s->tri;
     s->tx = f24_triangle_load(mem, a);
@@ -281,7 +285,7 @@ static void op_tri_xform(const uint32_t *mem, trace_state *s, unit_op *op, trace
 }
 
 /* Intersection unit: one ray per slot; closest hits back to the traversal (path f). */
-static void op_tri_isect(trace_state *s, unit_op *op, trace_counters *c)
+static F24_SIM_NOINLINE void op_tri_isect(trace_state *s, unit_op *op, trace_counters *c)
 {
     op_set(op, OP_ISECT, count_rays(s->need));
     isect_result r[TRACE_PACKET];

@@ -21,17 +21,14 @@ f24_t xform_row(const f24_t row[4], f24_vec3 p, int with_translation)
  * ((m0 x + m1 y) + m2 z) (+ t). */
 static F24Q_FN f24_vec3 xform_step(const f24_affine *m, f24_vec3 p, int with_translation)
 {
-    f24_t col[4][F24Q_LANES];
-step_columns:
-    for (int k = 0; k < 4; k++)
-        for (int r = 0; r < F24Q_LANES; r++)
-            col[k][r] = r < 3 ? m->m[r][k] : 0u;
+    f24q col[4];
+    f24q_columns(m->m, col);
     const f24_t pw[F24Q_LANES] = { p.x, p.y, p.z, 0 };
     const f24q pq = f24q_of(pw); /* p's components decoded together, each broadcast to the rows */
-    f24q s = f24q_add(f24q_add(f24q_mul(f24q_of(col[0]), f24q_broadcast(pq, 0)), f24q_mul(f24q_of(col[1]), f24q_broadcast(pq, 1))),
-                      f24q_mul(f24q_of(col[2]), f24q_broadcast(pq, 2)));
+    f24q s = f24q_add(f24q_add(f24q_mul(col[0], f24q_broadcast(pq, 0)), f24q_mul(col[1], f24q_broadcast(pq, 1))),
+                      f24q_mul(col[2], f24q_broadcast(pq, 2)));
     if (with_translation)
-        s = f24q_add(s, f24q_of(col[3]));
+        s = f24q_add(s, col[3]);
     f24_t out[F24Q_LANES];
     f24q_bits(s, out);
     const f24_vec3 r = { out[0], out[1], out[2] };
@@ -47,16 +44,13 @@ f24_vec3 xform_vector(const f24_affine *m, f24_vec3 v) { return xform_step(m, v,
  * m0 x + m1 y + m2 z of their high words (directions come in single words). */
 static F24Q_FN f24_vec3x2 xform_step_wide(const f24_affine *m, f24_vec3 tlo, f24_vec3x2 p, int with_translation)
 {
-    f24_t col[4][F24Q_LANES];
-wide_columns:
-    for (int k = 0; k < 4; k++)
-        for (int r = 0; r < F24Q_LANES; r++)
-            col[k][r] = r < 3 ? m->m[r][k] : 0u;
+    f24q col[4];
+    f24q_columns(m->m, col);
     const f24_t t_lo[F24Q_LANES] = { tlo.x, tlo.y, tlo.z, 0 };
     f24q a[8], b[8];
-    a[0] = a[3] = f24q_of(col[0]);
-    a[1] = a[4] = f24q_of(col[1]);
-    a[2] = a[5] = f24q_of(col[2]);
+    a[0] = a[3] = col[0];
+    a[1] = a[4] = col[1];
+    a[2] = a[5] = col[2];
     /* p's words decoded together, each broadcast to the rows */
     const f24_t p_hi[F24Q_LANES] = { p.hi.x, p.hi.y, p.hi.z, 0 }, p_lo[F24Q_LANES] = { p.lo.x, p.lo.y, p.lo.z, 0 };
     const f24q hq = f24q_of(p_hi);
@@ -66,7 +60,7 @@ wide_columns:
     const uint32_t n = with_translation ? 8u : 3u; /* a vector's terms: its high words' three */
     if (with_translation) {
         const f24q lq = f24q_of(p_lo);
-        a[6] = f24q_of(col[3]);
+        a[6] = col[3];
         a[7] = f24q_of(t_lo);
         b[3] = f24q_broadcast(lq, 0);
         b[4] = f24q_broadcast(lq, 1);

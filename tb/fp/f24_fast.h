@@ -22,6 +22,7 @@
 #include <stdint.h>
 
 #ifdef F24_FAST_SIM
+#define F24_SIM_NOINLINE __attribute__((noinline)) /* f24.h: the rare operations out of line */
 #define F24_SIM_WORKING /* f24.h then leaves the working values to this header */
 #ifndef __clang__
 #define F24_SIM_LANES /* and the packet values (the vectors below; clang keeps f24.h's lanes) */
@@ -209,6 +210,19 @@ F24V_INLINE f24v f24v_from_i32(const int32_t a[F24Q_LANES]) /* exact in binary64
 }
 F24V_INLINE f24v f24v_min(f24v a, f24v b) { return f24v_minmax(a, b, 0); }
 F24V_INLINE f24v f24v_max(f24v a, f24v b) { return f24v_minmax(a, b, 1); }
+/* f24q_columns: the three rows decoded (a row's words lie side by side), then transposed, instead
+ * of four columns gathered word by word and decoded */
+F24V_INLINE void f24v_columns(const f24_t m[3][4], f24v col[4])
+{
+    const f24v r0 = f24v_of(m[0]), r1 = f24v_of(m[1]), r2 = f24v_of(m[2]), zero = { 0, 0, 0, 0 };
+    const f24v_i even = { 0, 4, 2, 6 }, odd = { 1, 5, 3, 7 }, low = { 0, 1, 4, 5 }, high = { 2, 3, 6, 7 };
+    const f24v t0 = __builtin_shuffle(r0, r1, even), t1 = __builtin_shuffle(r0, r1, odd);
+    const f24v t2 = __builtin_shuffle(r2, zero, even), t3 = __builtin_shuffle(r2, zero, odd);
+    col[0] = __builtin_shuffle(t0, t2, low);
+    col[1] = __builtin_shuffle(t1, t3, low);
+    col[2] = __builtin_shuffle(t0, t2, high);
+    col[3] = __builtin_shuffle(t1, t3, high);
+}
 F24V_INLINE double f24v_lane(f24v a, int i) { return a[i]; }
 /* one permutation, where a splat of an fp24 word decodes it alone */
 F24V_INLINE f24v f24v_broadcast(f24v a, int i) { return (f24v){ a[i], a[i], a[i], a[i] }; }
@@ -274,6 +288,7 @@ typedef f24v f24h __attribute__((aligned(8)));
 #define f24q_sqrt f24v_sqrt
 #define f24q_from_i32 f24v_from_i32
 #define f24q_lane f24v_lane
+#define f24q_columns f24v_columns
 #define f24q_broadcast f24v_broadcast
 #define f24q_select f24v_pick
 #define f24q_le f24v_le
