@@ -2,7 +2,7 @@
 // frame's 2x2 blocks to the RGS, RGS_BLOCKS block controllers (rgs_ctrl: the control of ray
 // generation, surfaces, lights and shadow rays, accumulation and secondary rays of hls/units/rgs.c
 // rgs_step / rgs_block_finish) around one set of shared datapaths (rgs_units: the frame set-up of
-// rgs_block_begin, rgs_raygen, rgs_surface, rgs_light, rgs_light_colour, rgs_add_light, rgs_accum,
+// rgs_block_begin, rgs_raygen, SURF_UNITS rgs_surface, rgs_light, rgs_light_colour, rgs_add_light, rgs_accum,
 // each taking the controllers' operands round robin), whose packets the ray tracing core (trace_core:
 // THREADS threads, the traversal, list, rebase, transformation and intersection units,
 // thread_sched) traces, and the memory side: the core's three ports read through the paper's
@@ -18,8 +18,8 @@
 // the core's thread k (its tag), so the core's hits go back to the controller of thread_o. A block
 // goes to the lowest idle controller below blocks_i (--threads-per-pipe: the blocks the harness
 // lets run); the controllers' packets enter the core round robin (rr_pick), the controllers' light
-// record reads and rgs_units' (the set-up's, then rgs_surface's) line reads are merged round robin
-// by a second mem_port (N = RGS_BLOCKS + 1, the answers routed back in order) onto the shading
+// record reads and rgs_units' (the set-up's, then its surfaces', a port each) line reads are merged
+// round robin by a second mem_port (N = RGS_BLOCKS + SURF_UNITS, the answers routed back in order) onto the shading
 // cache, their pixels leave round robin on the px_* port with the block's corner. rgs_units reads
 // the frame's header and camera once after reset; the controllers take blocks from then on.
 // The core's packet input and its hits are also outputs (tr_*, valid_o ...) for the harness, which
@@ -39,7 +39,7 @@
 // took (kd nodes, list entries, descriptor responses of RW words, shading lines).
 // Latency and throughput: tile_ctrl 1 block per cycle; rgs_ctrl a block per its sequence
 // (rtl/README.md), RGS_BLOCKS at once; the core's; the memory port 1 transfer per cycle.
-// Resources: trace_core's, rgs_units (one set of the RGS's datapaths), RGS_BLOCKS x rgs_ctrl (the
+// Resources: trace_core's, rgs_units (one set of the RGS's datapaths, SURF_UNITS surfaces), RGS_BLOCKS x rgs_ctrl (the
 // control and a stack of about 8 Kbit in registers each), 4 x cache_read
 // (NODE_KB + LIST_KB + MAT_KB + SHADE_KB KB of data arrays and their tags), 2 x mem_port,
 // 2 x rr_pick, tile_ctrl, RGS_BLOCKS x 64 bits of block corners, 14 x 64-bit counters.

@@ -1,9 +1,9 @@
 // rgs_ctrl: the RGS's per-block control (paper sections 2.2 and 3, Figure 2: the RGS's thread of a
 // 2x2 pixel block; hls/units/rgs.c `rgs_step`, `rgs_block_finish`), bit for bit as
 // `rgs_render_block`. The datapaths are not here: every step hands its rays to the RGS's one set of
-// shared units (`rgs_units`: `rgs_raygen`, `rgs_surface`, `rgs_light`, `rgs_light_colour`,
-// `rgs_add_light`, `rgs_accum`; an operand offered until taken, req/ack, each result back with the
-// ray's index), which also did the frame set-up once after reset (the header's constants, the
+// shared units (`rgs_units`: `rgs_raygen`, one of its SURF_UNITS `rgs_surface`s, `rgs_light`,
+// `rgs_light_colour`, `rgs_add_light`, `rgs_accum`; an operand offered until taken, req/ack, each
+// result back with the ray's index), which also did the frame set-up once after reset (the header's constants, the
 // camera, e: frame_ok_i and the constants in).
 //   RB_GEN   a block (x0, y0) in: its corner to `rgs_raygen`, its primary packet back, pushed
 //            with weights one

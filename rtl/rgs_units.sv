@@ -1,26 +1,32 @@
 // rgs_units: the RGS's shared datapaths (paper section 3, Figure 2: ONE ray generation and shading
-// unit serving the RGS's threads; hls/units/rgs.c `rgs_block_begin`, `rgs_step`): the frame set-up
-// and one each of rgs_raygen, rgs_surface, rgs_light, rgs_light_colour, rgs_add_light and rgs_accum
-// for the N block controllers (rgs_ctrl) of the DynRTP. The controllers keep their FSM and block
-// state (stack, packet, surfaces, sums) and hand their operands here; per unit an rgs_arb picks one
-// controller's operand a cycle round robin, the controller's index travels as the high bits of the
-// unit's thread id (beside the ray's index in the packet), and the result comes back to that
-// controller only (valid_o bit k). A controller waits in the state of its step for all its results
-// and takes each as it comes (the units run with ready_i = 1), so sharing changes when an operand
-// enters a unit, never what it computes.
+// unit serving the RGS's threads; hls/units/rgs.c `rgs_block_begin`, `rgs_step`): the frame set-up,
+// one each of rgs_raygen, rgs_light, rgs_light_colour, rgs_add_light and rgs_accum, and SURF_UNITS
+// rgs_surface for the N block controllers (rgs_ctrl) of the DynRTP. The controllers keep their FSM
+// and block state (stack, packet, surfaces, sums) and hand their operands here; per unit an rgs_arb
+// picks one controller's operand a cycle round robin, the controller's index travels as the high
+// bits of the unit's thread id (beside the ray's index in the packet), and the result comes back to
+// that controller only (valid_o bit k). A controller waits in the state of its step for all its
+// results and takes each as it comes (the units run with ready_i = 1), so sharing changes when an
+// operand enters a unit, never what it computes.
 //   frame set-up  once after reset (the C's `rgs_block_begin` constants; each rgs_ctrl did it for
 //            itself before): the header's texture and light counts (at most 64 lights), the scene
 //            bounds and the region starts (words 9..34), the camera block (loaded into rgs_raygen,
 //            its profile word kept); e = max of the bounds' extents / 2^10 (the C's f24_sub,
 //            f24_max from 0 and f24_div on one f24_add, f24_cmp, f24_div); then frame_ok_o and the
 //            constants held (the light count and records' start, the profile out to the
-//            controllers; the other regions' starts and the texture count for rgs_surface)
+//            controllers; the other regions' starts and the texture count for the surfaces)
 //   gen      a controller's block corner (x0, y0) into rgs_raygen; the packets come out in the
 //            order of the blocks, so a FIFO of the controllers' indices (one block per controller
 //            at most) routes them back
-//   surface  a ray and its hit into rgs_surface, which takes the next ray (any controller's) while
-//            it reads and shades the ones before and gives the surfaces back in order; the line
-//            read port is the set-up's until frame_ok_o, then rgs_surface's
+//   surface  a ray and its hit into rgs_surface s = k mod SURF_UNITS (controller k's), which takes
+//            the next ray (any of its controllers') while it reads and shades the ones before and
+//            gives the surfaces back in order, on its result bus (sf_res_o at SR_DW s) to its
+//            controllers. Not one surface for all: one takes a hit every 40 to 80 cycles (its
+//            front's dependent bursts, its back one surface at a time) and bounded 8 controllers
+//            (f876e73: cornell 32x24 T8 +14%); its arbiter HOLDs the grant on a controller while
+//            it offers its packet's rays, so one controller's 4 surfaces are done before the next
+//            one's (round robin would finish both late). Each surface has a line read port
+//            (mem_*[s]); port 0 is the set-up's until frame_ok_o, then surface 0's
 //   light    `rgs_light` on a ray's surface and the controller's light record; `rgs_light_colour`
 //            on the light's colour; `rgs_add_light` on a visible ray's sums; `rgs_accum` on an
 //            active ray (e and the profile's live bit from the set-up, spawn from the controller)
@@ -28,17 +34,22 @@
 //   gen {y0, x0}; surface {ray, active, o, d, inst, tri, t, u, v, cos_n}; light {ray, type, L_pos,
 //   L_dir, cos_in, cos_out, sf_valid, unlit, P, N^, D^, k}; colour {B, G, R}; add {ray, diffuse,
 //   highlight, diff, spec, colour}; accum {ray, eta, kd, kr, kt, ks, sf_valid, o, D^, N^, t_hat,
-//   entering, base, emission, tint, weight, diffuse, highlight, acc, spawn}.
+//   entering, base, emission, tint, weight, diffuse, highlight, acc, spawn}. The surface's result
+//   {ray, sf_valid, P, D^, N^, t_hat, entering, unlit, k, eta, kd, kr, kt, ks, base, emission,
+//   tint} (SR_DW bits).
 // Latency: the units' own (rgs_raygen 29, rgs_surface 214 for a packet's first hit + about 39 a
 // further hit, rgs_light 87, rgs_light_colour 27, rgs_add_light 1, rgs_accum 67 cycles) plus the
-// cycles an operand waits for other controllers' in the same unit (rgs_surface's front takes a hit
-// after the reads of the one before); the set-up about 60 cycles after reset plus its reads.
-// Throughput: per unit one operand per cycle (II = 1) but rgs_surface (a hit per its front's
-// reads) and rgs_raygen (a packet per 4 cycles).
-// Resources: one rgs_raygen, rgs_surface, rgs_light, rgs_light_colour, rgs_add_light, rgs_accum;
-// 6 rgs_arb (N-to-1 multiplexers of 64, ~380, ~570, 72, 178 and ~650 bits at e7m16, N flip-flops
-// each); a FIFO of N controller indices; the set-up's line_reader (26 words), f24_add, f24_cmp,
-// f24_div and the frame's constants (7 x 32 + 10 x W + 5 bits).
+// cycles an operand waits for other controllers' in the same unit (a surface's front takes a hit
+// after the reads of the one before); the set-up about 60 cycles after reset plus its reads (the
+// header's 26 words, the camera's 16: 7 + 4 or 5 lines).
+// Throughput: per unit one operand per cycle (II = 1) but a surface (a hit per its front's reads:
+// SURF_UNITS hits at once) and rgs_raygen (a packet per 4 cycles).
+// Resources: one rgs_raygen, rgs_light, rgs_light_colour, rgs_add_light, rgs_accum; SURF_UNITS
+// rgs_surface (about 55,000 LUT6 each, rtl/README.md "The RGS shared"); 5 rgs_arb of N requesters
+// (N-to-1 multiplexers of 64, 448, 72, 178 and 657 bits at e7m16, N flip-flops each: 4,407 LUT6 at
+// N = 8) and SURF_UNITS of N / SURF_UNITS (307 bits); a FIFO of N controller indices; the set-up's
+// line_reader (26 words), f24_add, f24_cmp, f24_div and the frame's constants (7 x 32 + 10 x W + 5
+// bits).
 module rgs_units #(
   parameter int E = 7,
   parameter int M = 16,
@@ -304,7 +315,7 @@ module rgs_units #(
     logic [3:0] kexp;
     logic [12:0] kd, kr, kt, ks;
     logic [47:0] base, emis, tint;
-    rgs_arb #(.N(NS), .DW(SF_DW)) u_arb (.clk_i(clk_i), .rst_ni(rst_ni), .req_i(req), .data_i(ops),
+    rgs_arb #(.N(NS), .DW(SF_DW), .HOLD(1'b1)) u_arb (.clk_i(clk_i), .rst_ni(rst_ni), .req_i(req), .data_i(ops),
       .ack_o(ack), .valid_o(op_valid), .ready_i(take), .index_o(idx), .data_o(op));
     assign owner = NW'(32'(idx) * S + s);
     // the operand from the top: ray, active, o, d, inst, tri, t, u, v, cos_n
