@@ -48,7 +48,7 @@ module dynrtp #(
   parameter int M = 16,
   parameter int THREADS = 32,
   parameter int RGS_BLOCKS = 8,     // block controllers (rgs_ctrl), at most THREADS
-  parameter int SURF_UNITS = 4,     // rgs_surface units shared by the controllers (divides RGS_BLOCKS)
+  parameter int SURF_UNITS = 4,     // rgs_surface units shared by the controllers (at most RGS_BLOCKS used)
   parameter int NODE_KB = 4,
   parameter int LIST_KB = 2,
   parameter int MAT_KB = 6,
@@ -148,7 +148,7 @@ module dynrtp #(
 
   // ---- the RGS: RGS_BLOCKS block controllers around one set of shared units (rgs_units) ----
   logic [B-1:0] tr_ready, px_valid, px_ready;
-  localparam int S = SURF_UNITS;
+  localparam int S = SURF_UNITS < B ? SURF_UNITS : B;  // a surface unit has a controller at least
   logic [B+S-1:0] rd_valid, rd_ready, rd_rsp;  // the controllers' read ports, then the set-up's
   // public_flat_rd (these, rb_ready, busy_q, the caches' ports): read by tb_dynrtp for --mode rtl --vcd
   logic [B-1:0] tr_valid /*verilator public_flat_rd*/, hit_ready /*verilator public_flat_rd*/;

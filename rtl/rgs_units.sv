@@ -47,7 +47,7 @@
 // Resources: one rgs_raygen, rgs_light, rgs_light_colour, rgs_add_light, rgs_accum; SURF_UNITS
 // rgs_surface (about 55,000 LUT6 each, rtl/README.md "The RGS shared"); 5 rgs_arb of N requesters
 // (N-to-1 multiplexers of 64, 448, 72, 178 and 657 bits at e7m16, N flip-flops each: 4,407 LUT6 at
-// N = 8) and SURF_UNITS of N / SURF_UNITS (307 bits); a FIFO of N controller indices; the set-up's
+// N = 8) and SURF_UNITS of ceil(N / SURF_UNITS) (307 bits); a FIFO of N controller indices; the set-up's
 // line_reader (26 words), f24_add, f24_cmp, f24_div and the frame's constants (7 x 32 + 10 x W + 5
 // bits).
 module rgs_units #(
@@ -62,7 +62,7 @@ module rgs_units #(
   parameter int CMP_STAGES = 2,
   parameter int TOI_STAGES = 2,
   parameter int MOD_STAGES = 16,
-  parameter int SURF_UNITS = 4,   // rgs_surface units, each serving the controllers k = s mod SURF_UNITS
+  parameter int SURF_UNITS = 4,   // rgs_surface units (1 .. N), unit s serving the controllers k = s mod SURF_UNITS
   parameter int SURF_SLOTS = 16,  // per rgs_surface: surfaces in its frame (its controllers' hits in flight)
   parameter int LW = 4,           // words per line of the read port (the shading cache's 16 bytes)
   localparam int NW = N > 1 ? $clog2(N) : 1,
@@ -286,20 +286,28 @@ module rgs_units #(
   // ---- the surfaces: S rgs_surface units, unit s taking the rays and hits of the controllers k = s
   // mod S round robin; each takes the next ray while it reads and shades the ones before (several
   // controllers' rays in flight, in order) and gives a surface back to the controller in its id ----
-  localparam int NS = N / S;  // controllers per surface unit
+  localparam int NS = (N + S - 1) / S;  // controllers per surface unit, at most
   localparam int NSW = NS > 1 ? $clog2(NS) : 1;
-  if (S < 1 || N % S != 0) begin : g_check
-    $error("rgs_units: SURF_UNITS must divide N");
+  if (S < 1 || S > N) begin : g_check
+    $error("rgs_units: SURF_UNITS 1 .. N");
   end
   logic [S-1:0] sf_out;
   logic [NW-1:0] sf_who [S];
   for (genvar s = 0; s < S; s++) begin : g_sf
-    logic [NS-1:0] req, ack;
+    logic [NS-1:0] req;
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic [NS-1:0] ack;  // a missing controller's (N not a multiple of S) is never set
+    /* verilator lint_on UNUSEDSIGNAL */
     logic [NS*SF_DW-1:0] ops;
-    for (genvar j = 0; j < NS; j++) begin : g_in  // controller j S + s
-      assign req[j] = sf_req_i[j*S + s];
-      assign ops[j*SF_DW +: SF_DW] = sf_data_i[(j*S + s)*SF_DW +: SF_DW];
-      assign sf_ack_o[j*S + s] = ack[j];
+    for (genvar j = 0; j < NS; j++) begin : g_in  // controller j S + s, if there is one
+      if (j*S + s < N) begin : g_k
+        assign req[j] = sf_req_i[j*S + s];
+        assign ops[j*SF_DW +: SF_DW] = sf_data_i[(j*S + s)*SF_DW +: SF_DW];
+        assign sf_ack_o[j*S + s] = ack[j];
+      end else begin : g_none
+        assign req[j] = 1'b0;
+        assign ops[j*SF_DW +: SF_DW] = '0;
+      end
     end
     logic op_valid, take;
     logic [NSW-1:0] idx;
