@@ -1,10 +1,9 @@
 // dynrtp: one DynRTP (paper section 3, Figure 2): the tile controller (tile_ctrl) deals the
 // frame's 2x2 blocks to the RGS, RGS_BLOCKS block controllers (rgs_ctrl: the control of ray
-// generation, surfaces (each its rgs_surface), lights and shadow rays, accumulation and secondary
-// rays of hls/units/rgs.c rgs_step / rgs_block_finish) around one set of the RGS's other datapaths
-// (rgs_units: the frame set-up of rgs_block_begin, rgs_raygen, rgs_light, rgs_light_colour,
-// rgs_add_light, rgs_accum, each taking the controllers' operands round robin), whose packets the
-// ray tracing core (trace_core:
+// generation, surfaces, lights and shadow rays, accumulation and secondary rays of hls/units/rgs.c
+// rgs_step / rgs_block_finish) around one set of shared datapaths (rgs_units: the frame set-up of
+// rgs_block_begin, rgs_raygen, SURF_UNITS rgs_surface, rgs_light, rgs_light_colour, rgs_add_light, rgs_accum,
+// each taking the controllers' operands round robin), whose packets the ray tracing core (trace_core:
 // THREADS threads, the traversal, list, rebase, transformation and intersection units,
 // thread_sched) traces, and the memory side: the core's three ports read through the paper's
 // direct-mapped caches (cache_read around cache_dm, the cycle model's default configuration
@@ -18,11 +17,11 @@
 // give RGS_BLOCKS blocks in flight, each with at most one packet in the core: rgs_ctrl k traces on
 // the core's thread k (its tag), so the core's hits go back to the controller of thread_o. A block
 // goes to the lowest idle controller below blocks_i (--threads-per-pipe: the blocks the harness
-// lets run); the controllers' packets enter the core round robin (rr_pick), their line reads and
-// rgs_units' (the set-up's) are merged round robin by a second mem_port (N = RGS_BLOCKS + 1, the
-// answers routed back in order) onto the shading cache, their pixels leave round robin on the px_*
-// port with the block's corner. rgs_units reads the frame's header and camera once after reset;
-// the controllers take blocks from then on.
+// lets run); the controllers' packets enter the core round robin (rr_pick), the controllers' light
+// record reads and rgs_units' (the set-up's, then its surfaces', a port each) line reads are merged
+// round robin by a second mem_port (N = RGS_BLOCKS + SURF_UNITS, the answers routed back in order) onto the shading
+// cache, their pixels leave round robin on the px_* port with the block's corner. rgs_units reads
+// the frame's header and camera once after reset; the controllers take blocks from then on.
 // The core's packet input and its hits are also outputs (tr_*, valid_o ...) for the harness, which
 // checks every packet against the C core.
 // Where the memory interface differs from the cycle model (docs/cycle-model.md): the core's
@@ -40,8 +39,8 @@
 // took (kd nodes, list entries, descriptor responses of RW words, shading lines).
 // Latency and throughput: tile_ctrl 1 block per cycle; rgs_ctrl a block per its sequence
 // (rtl/README.md), RGS_BLOCKS at once; the core's; the memory port 1 transfer per cycle.
-// Resources: trace_core's, rgs_units (one set of the RGS's datapaths but the surface), RGS_BLOCKS x
-// rgs_ctrl (its rgs_surface and a stack of about 8 Kbit in registers each), 4 x cache_read
+// Resources: trace_core's, rgs_units (one set of the RGS's datapaths, SURF_UNITS surfaces), RGS_BLOCKS x rgs_ctrl (the
+// control and a stack of about 8 Kbit in registers each), 4 x cache_read
 // (NODE_KB + LIST_KB + MAT_KB + SHADE_KB KB of data arrays and their tags), 2 x mem_port,
 // 2 x rr_pick, tile_ctrl, RGS_BLOCKS x 64 bits of block corners, 14 x 64-bit counters.
 module dynrtp #(
@@ -49,6 +48,7 @@ module dynrtp #(
   parameter int M = 16,
   parameter int THREADS = 32,
   parameter int RGS_BLOCKS = 8,     // block controllers (rgs_ctrl), at most THREADS
+  parameter int SURF_UNITS = 4,     // rgs_surface units shared by the controllers (at most RGS_BLOCKS used)
   parameter int NODE_KB = 4,
   parameter int LIST_KB = 2,
   parameter int MAT_KB = 6,
@@ -148,7 +148,8 @@ module dynrtp #(
 
   // ---- the RGS: RGS_BLOCKS block controllers around one set of shared units (rgs_units) ----
   logic [B-1:0] tr_ready, px_valid, px_ready;
-  logic [B:0] rd_valid, rd_ready, rd_rsp;  // the controllers' read ports, then the set-up's
+  localparam int S = SURF_UNITS < B ? SURF_UNITS : B;  // a surface unit has a controller at least
+  logic [B+S-1:0] rd_valid, rd_ready, rd_rsp;  // the controllers' read ports, then the set-up's
   // public_flat_rd (these, rb_ready, busy_q, the caches' ports): read by tb_dynrtp for --mode rtl --vcd
   logic [B-1:0] tr_valid /*verilator public_flat_rd*/, hit_ready /*verilator public_flat_rd*/;
   // per controller: unpacked arrays (Yosys 0.23 reads no packed arrays of more than one dimension)
@@ -157,7 +158,7 @@ module dynrtp #(
   logic [3:0] tr_active [B];
   logic [4*3*W-1:0] tr_o [B], tr_d [B];
   logic [4*W-1:0] tr_tmin [B], tr_tmax [B], px_t [B], px_u [B], px_v [B], px_cos [B];
-  logic [(B+1)*32-1:0] rd_addr;  // the read ports' mem_port takes the B + 1 addresses side by side
+  logic [(B+S)*32-1:0] rd_addr;  // the read ports' mem_port takes the B + S addresses side by side
   logic [4*24-1:0] px_rgb [B];
   logic [4*32-1:0] px_inst [B], px_tri [B];
   logic [127:0] rd_line;  // the shading cache's line (4 words) to every controller
@@ -166,9 +167,9 @@ module dynrtp #(
   // the shared units' ports: per controller k its operand at bits k x the operand's width, its
   // valid bit k; the results on one bus to all (rgs_units)
   localparam int V = 3 * W;
-  localparam int LI_DW = 40 + 5 * V + 2 * W, AL_DW = 178, AC_DW = 393 + 3 * V + 2 * W;
+  localparam int SF_DW = 67 + 2 * V + 4 * W, SR_DW = 205 + 3 * V + 2 * W, LI_DW = 40 + 5 * V + 2 * W, AL_DW = 178, AC_DW = 393 + 3 * V + 2 * W;
   logic frame_ok;
-  logic [31:0] n_tex, n_lights, inst_base, obj_base, mat_base, tex_base, light_base;
+  logic [31:0] n_lights, light_base;
   logic [4:0] profile;
   logic [B-1:0] gen_req, gen_ack, gen_valid, li_req, li_ack, li_valid, lc_req, lc_ack, lc_valid;
   logic [B-1:0] al_req, al_ack, al_valid, ac_req, ac_ack, ac_valid;
@@ -185,11 +186,14 @@ module dynrtp #(
   logic [15:0] li_diff, li_spec;
   logic [47:0] lc_q, al_dif, al_hil, ac_acc, ac_rw, ac_tw;
   logic li_active, ac_ract, ac_tact;
-  rgs_units #(.E(E), .M(M), .N(B)) u_units (
-    .clk_i(clk_i), .rst_ni(rst_ni), .mem_req_valid_o(rd_valid[B]), .mem_req_ready_i(rd_ready[B]),
-    .mem_addr_o(rd_addr[B*32 +: 32]), .mem_rsp_valid_i(rd_rsp[B]), .mem_rdata_i(rd_line), .frame_ok_o(frame_ok),
-    .n_tex_o(n_tex), .n_lights_o(n_lights), .inst_base_o(inst_base), .obj_base_o(obj_base), .mat_base_o(mat_base),
-    .tex_base_o(tex_base), .light_base_o(light_base), .profile_o(profile),
+  logic [B-1:0] sf_req, sf_ack, sf_valid;
+  logic [B*SF_DW-1:0] sf_data;
+  logic [S*SR_DW-1:0] sf_res;
+  rgs_units #(.E(E), .M(M), .N(B), .SURF_UNITS(S)) u_units (
+    .clk_i(clk_i), .rst_ni(rst_ni), .mem_req_valid_o(rd_valid[B +: S]), .mem_req_ready_i(rd_ready[B +: S]),
+    .mem_addr_o(rd_addr[B*32 +: S*32]), .mem_rsp_valid_i(rd_rsp[B +: S]), .mem_rdata_i(rd_line), .frame_ok_o(frame_ok),
+    .n_lights_o(n_lights), .light_base_o(light_base), .profile_o(profile),
+    .sf_req_i(sf_req), .sf_data_i(sf_data), .sf_ack_o(sf_ack), .sf_valid_o(sf_valid), .sf_res_o(sf_res),
     .gen_req_i(gen_req), .gen_data_i(gen_data), .gen_ack_o(gen_ack), .gen_valid_o(gen_valid),
     .gen_active_o(gen_active), .gen_o_o(gen_o), .gen_d_o(gen_d),
     .li_req_i(li_req), .li_data_i(li_data), .li_ack_o(li_ack), .li_valid_o(li_valid), .li_ray_o(li_ray),
@@ -204,9 +208,9 @@ module dynrtp #(
   for (genvar k = 0; k < B; k++) begin : g_rgs
     rgs_ctrl #(.E(E), .M(M), .TAG_BITS(TW)) u_rgs (
       .clk_i(clk_i), .rst_ni(rst_ni), .max_depth_i(max_depth_i), .shadows_i(shadows_i),
-      .frame_ok_i(frame_ok), .n_tex_i(n_tex), .n_lights_i(n_lights), .inst_base_i(inst_base),
-      .obj_base_i(obj_base), .mat_base_i(mat_base), .tex_base_i(tex_base), .light_base_i(light_base),
-      .profile_i(profile),
+      .frame_ok_i(frame_ok), .n_lights_i(n_lights), .light_base_i(light_base), .profile_i(profile),
+      .sf_req_o(sf_req[k]), .sf_ack_i(sf_ack[k]), .sf_data_o(sf_data[k*SF_DW +: SF_DW]), .sf_valid_i(sf_valid[k]),
+      .sf_res_i(sf_res[(k % S)*SR_DW +: SR_DW]),
       .gen_req_o(gen_req[k]), .gen_ack_i(gen_ack[k]), .gen_data_o(gen_data[k*64 +: 64]), .gen_valid_i(gen_valid[k]),
       .gen_active_i(gen_active), .gen_o_i(gen_o), .gen_d_i(gen_d),
       .li_req_o(li_req[k]), .li_ack_i(li_ack[k]), .li_data_o(li_data[k*LI_DW +: LI_DW]), .li_valid_i(li_valid[k]),
@@ -352,9 +356,9 @@ module dynrtp #(
   logic [31:0] sh_addr;
   logic [127:0] sh_line;
   /* verilator lint_off PINCONNECTEMPTY */
-  mem_port #(.N(B + 1), .DW(128), .DEPTH(OUTSTANDING)) u_rgs_reads (
+  mem_port #(.N(B + S), .DW(128), .DEPTH(OUTSTANDING)) u_rgs_reads (
     .clk_i(clk_i), .rst_ni(rst_ni), .req_valid_i(rd_valid), .req_ready_o(rd_ready), .req_addr_i(rd_addr),
-    .req_bytes_i({(B + 1){8'd16}}), .rsp_valid_o(rd_rsp), .rsp_data_o(rd_line), .mem_req_valid_o(sh_req),
+    .req_bytes_i({(B + S){8'd16}}), .rsp_valid_o(rd_rsp), .rsp_data_o(rd_line), .mem_req_valid_o(sh_req),
     .mem_req_ready_i(sh_ready), .mem_req_addr_o(sh_addr), .mem_req_bytes_o(), .mem_req_src_o(),
     .mem_rsp_valid_i(sh_rsp), .mem_rsp_data_i(sh_line));
   /* verilator lint_on PINCONNECTEMPTY */

@@ -1,17 +1,21 @@
 // rgs_arb: N requesters onto one pipelined unit of the RGS (rgs_units: the block controllers'
-// operands into the shared rgs_raygen, rgs_light, rgs_light_colour, rgs_add_light, rgs_accum;
-// rgs_surface stays one per controller). Not a paper unit and no C function: the C steps one block at a time, so there is
+// operands into the shared rgs_raygen, rgs_light, rgs_light_colour, rgs_add_light, rgs_accum; a
+// surface unit's controllers into it, with HOLD). Not a paper unit and no C function: the C steps one block at a time, so there is
 // nothing to arbitrate; the pick only decides which controller's operand enters the unit in a cycle,
 // never what it computes (each operand carries its controller's index as the unit's thread id).
 // Round robin (rr_pick on the mask of the requesters after the last one taken), so a controller
 // streaming its 4 rays through a unit alternates with the others instead of holding it.
 // Latency 0 (combinational from req_i to valid_o, data_o and ack_o), one operand per cycle.
 // Handshake: req_i / ack_o per requester (ack: its operand was taken this cycle), valid_o / ready_i
-// to the unit. Resources: rr_pick (2 LUT6 levels), an N-to-1 multiplexer of DW bits on its index
+// to the unit. HOLD: the next pick is the first requester at or after the one taken last, so a
+// controller keeps the unit while it offers operands (its packet's 4 rays into a surface unit,
+// which takes a hit per 40 to 80 cycles: one controller done early rather than all late).
+// Resources: rr_pick (2 LUT6 levels), an N-to-1 multiplexer of DW bits on its index
 // (Yosys synth_xilinx at N = 8: 564 LUT6 for DW = 178, 1374 for 448), N flip-flops of the pointer.
 module rgs_arb #(
   parameter int N = 8,
   parameter int DW = 32,
+  parameter bit HOLD = 1'b0,         // keep the grant on the requester taken last while it requests
   localparam int NW = N > 1 ? $clog2(N) : 1
 ) (
   input  logic            clk_i,
@@ -37,6 +41,6 @@ module rgs_arb #(
   assign data_o = ops[index_o];
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) after_q <= '0;
-    else if (valid_o && ready_i) after_q <= after;
+    else if (valid_o && ready_i) after_q <= HOLD ? after | grant : after;  // at or after it: held
   end
 endmodule

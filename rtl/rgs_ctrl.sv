@@ -1,9 +1,9 @@
 // rgs_ctrl: the RGS's per-block control (paper sections 2.2 and 3, Figure 2: the RGS's thread of a
 // 2x2 pixel block; hls/units/rgs.c `rgs_step`, `rgs_block_finish`), bit for bit as
-// `rgs_render_block`. Its only datapath is its `rgs_surface`; the other steps hand their rays to
-// the RGS's one set of shared units (`rgs_units`: `rgs_raygen`, `rgs_light`, `rgs_light_colour`,
-// `rgs_add_light`, `rgs_accum`; an operand offered until taken, req/ack, each result back with the
-// ray's index), which also did the frame set-up once after reset (the header's constants, the
+// `rgs_render_block`. The datapaths are not here: every step hands its rays to the RGS's one set of
+// shared units (`rgs_units`: `rgs_raygen`, one of its SURF_UNITS `rgs_surface`s, `rgs_light`,
+// `rgs_light_colour`, `rgs_add_light`, `rgs_accum`; an operand offered until taken, req/ack, each
+// result back with the ray's index), which also did the frame set-up once after reset (the header's constants, the
 // camera, e: frame_ok_i and the constants in).
 //   RB_GEN   a block (x0, y0) in: its corner to `rgs_raygen`, its primary packet back, pushed
 //            with weights one
@@ -11,12 +11,12 @@
 //            unless it is empty or RGS_MAX_PACKETS packets were started: then RB_DONE
 //   RB_TRACE the packet out on the trace port (tmin 0, tmax +Inf, TRACE_* flags of the profile),
 //            its hits back; the first packet's hits are the block's primary hits
-//   RB_SURFACES  the 4 surfaces (`rgs_surface`, which owns the line port meanwhile), their
-//            exponents, diffuse sums at the ambient 0.15 (one for unlit), highlights zero
-//   RB_LIGHT per light: its 16 words read (4 or 5 lines), `rgs_light` on the 4 surfaces,
-//            `rgs_light_colour`; RB_SHADOW_TRACE with shadows and an active shadow ray: the shadow
-//            packet traced (TRACE_ANY_HIT under PROFILE_ANY_HIT), light reaching the rays without
-//            a hit; `rgs_add_light` adds it to the visible rays
+//   RB_SURFACES  the 4 rays and hits to `rgs_surface`, their surfaces back: exponents, diffuse
+//            sums at the ambient 0.15 (one for unlit), highlights zero
+//   RB_LIGHT per light: its 16 words read (4 or 5 lines, this controller's line port), `rgs_light`
+//            on the 4 surfaces, `rgs_light_colour`; RB_SHADOW_TRACE with shadows and an active
+//            shadow ray: the shadow packet traced (TRACE_ANY_HIT under PROFILE_ANY_HIT), light
+//            reaching the rays without a hit; `rgs_add_light` adds it to the visible rays
 //   RB_ACCUM `rgs_accum` for each active ray (pixel sums, children while the depth + 1 is at most
 //            max_depth_i and MAX_DEPTH and the profile has secondary rays); the transmission task,
 //            then the reflection task pushed if they have an active ray (dropped on a full stack)
@@ -28,37 +28,27 @@
 // e7m16, the current packet, its surfaces, sums and shadow packet) in registers; the DynRTP's 64
 // threads will keep it in block RAM with several blocks in flight. The tag given with the block
 // goes out with its trace requests and its pixels (the top routes the hits back by it).
-// Why its own rgs_surface: one surface unit takes a hit every 40 to 80 cycles (its front reads a
-// hit's dependent bursts, its back shades one surface at a time), so one shared by 8 controllers
-// bounds them (rtl/README.md "The RGS shared": cornell 32x24 at 8 blocks +13% cycles).
 // Latency: a sequence per block, its phases one after another, the 4 rays streamed through each
-// phase's unit: about 20 + `rgs_surface` (the 4 rays offered as it takes them: its steps per hit,
-// the last frame's 118 overlapped by none) + per light (`rgs_light` 87 + 4, after its 16 words' 4
-// or 5 lines unless the record held is that light's: one light is read once) + 4 `rgs_add_light`
-// + 4 + `rgs_accum` 67 cycles per packet, plus the trace, plus the cycles its operands wait for
-// other controllers' in the shared units; the bench measures it alone (cornell 32x24, depth 3:
-// 488 cycles a block, per state with tb_rgs_ctrl). Throughput: one block per its latency.
-// Resources: `rgs_surface`, the block's registers (the stack dominates: RGS_STACK x 4 rays x
-// (6 W + 48) bits), a `line_reader` of 16 words (the light record), the operand multiplexers (the
-// packet's ray in_q into each shared unit's operand); Yosys synth_xilinx per module at e7m16,
-// TAG_BITS = 6: 67,187 LUT6, of them rgs_surface 55,243 (137,850 with all the datapaths).
+// phase's shared unit: about 20 + `rgs_surface` (the 4 rays offered as it takes them: its steps per
+// hit, the last frame's 118 overlapped by none) + per light (`rgs_light` 87 + 4, after its 16
+// words' 4 or 5 lines unless the record held is that light's: one light is read once) + 4
+// `rgs_add_light` + 4 + `rgs_accum` 67 cycles per packet, plus the trace, plus the cycles its
+// operands wait for other controllers' in the shared units; the bench measures it alone (cornell
+// 32x24: 488 cycles a block, per state with tb_rgs_ctrl). Throughput: one block per its latency.
+// Resources: the block's registers (the stack dominates: RGS_STACK x 4 rays x (6 W + 48) bits), a
+// `line_reader` of 16 words (the light record), the operand multiplexers (the ray in_q of the
+// packet into each unit's operand).
 module rgs_ctrl #(
   parameter int E = 7,
   parameter int M = 16,
   parameter int TAG_BITS = 6,
   parameter int MAX_DEPTH = 8,    // RGS_MAX_DEPTH (SAARCOR_CFG_MAX_DEPTH)
-  parameter int CVT_STAGES = 2,
-  parameter int MUL_STAGES = 4,
-  parameter int ADD_STAGES = 6,
-  parameter int SQRT_STAGES = 9,
-  parameter int DIV_STAGES = 11,
-  parameter int CMP_STAGES = 2,
-  parameter int TOI_STAGES = 2,
-  parameter int MOD_STAGES = 16,
   parameter int LW = 4,           // words per line of the read port (the shading cache's 16 bytes)
   localparam int W = 1 + E + M,
   localparam int V = 3 * W,
-  localparam int LI_DW = 40 + 5 * V + 2 * W,  // rgs_units' operand layouts
+  localparam int SF_DW = 67 + 2 * V + 4 * W,  // rgs_units' operand layouts
+  localparam int SR_DW = 205 + 3 * V + 2 * W,  // rgs_units' surface result
+  localparam int LI_DW = 40 + 5 * V + 2 * W,
   localparam int AL_DW = 178,
   localparam int AC_DW = 393 + 3 * V + 2 * W
 ) (
@@ -68,12 +58,7 @@ module rgs_ctrl #(
   input  logic                     shadows_i,
   // the frame's constants (rgs_units' set-up), valid from frame_ok_i on
   input  logic                     frame_ok_i,
-  input  logic [31:0]              n_tex_i,
   input  logic [31:0]              n_lights_i,
-  input  logic [31:0]              inst_base_i,
-  input  logic [31:0]              obj_base_i,
-  input  logic [31:0]              mat_base_i,
-  input  logic [31:0]              tex_base_i,
   input  logic [31:0]              light_base_i,
   /* verilator lint_off UNUSEDSIGNAL */
   input  logic [4:0]               profile_i,     // bit 3 (live children) is rgs_accum's, in rgs_units
@@ -87,6 +72,12 @@ module rgs_ctrl #(
   input  logic [3:0]               gen_active_i,
   input  logic [4*V-1:0]           gen_o_i,
   input  logic [4*V-1:0]           gen_d_i,
+  output logic                     sf_req_o,      // rgs_surface: a ray and its hit
+  input  logic                     sf_ack_i,
+  output logic [SF_DW-1:0]         sf_data_o,
+  input  logic                     sf_valid_i,
+  input  logic [SR_DW-1:0]         sf_res_i,      // {ray, sf_valid, P, D^, N^, t_hat, entering, unlit, k, eta,
+                                                  //  kd, kr, kt, ks, base, emission, tint}
   output logic                     li_req_o,      // rgs_light: a ray's surface and the light
   input  logic                     li_ack_i,
   output logic [LI_DW-1:0]         li_data_o,
@@ -182,22 +173,16 @@ module rgs_ctrl #(
   } state_t;
   state_t st;
 
-  // ---- reads of the control: a light's record, a burst of 16 words (line_reader), on the port
-  // rgs_surface's in S_SURF ----
-  logic [31:0] buf_q [LREC_WORDS], rd_addr;
+  // ---- reads of the control: a light's record, a burst of 16 words (line_reader) ----
+  logic [31:0] buf_q [LREC_WORDS];
   logic [32*LREC_WORDS-1:0] rd_words;
-  logic burst_done, sf_port, rd_start, rd_req;
-  logic sf_req_valid;
-  logic [31:0] sf_req_addr;
-  assign sf_port = st == S_SURF;
-  assign mem_req_valid_o = sf_port ? sf_req_valid : rd_req;
-  assign mem_addr_o = sf_port ? sf_req_addr : rd_addr;
+  logic burst_done, rd_start;
   // a burst starts in the cycle its address is known: a light's record unless it is the one held
   assign rd_start = st == S_LIGHT && light_q < n_lights_i && !(lrec_ok_q && lrec_at_q == light_q);
   line_reader #(.MAXW(LREC_WORDS), .LW(LW)) u_rd (
     .clk_i, .rst_ni, .start_i(rd_start), .addr_i(light_base_i + 32'd16 * light_q), .n_i(5'(LREC_WORDS)),
-    .req_valid_o(rd_req), .req_ready_i(!sf_port && mem_req_ready_i), .req_addr_o(rd_addr),
-    .rsp_valid_i(!sf_port && mem_rsp_valid_i), .rsp_line_i(mem_rdata_i), .done_o(burst_done), .words_o(rd_words));
+    .req_valid_o(mem_req_valid_o), .req_ready_i(mem_req_ready_i), .req_addr_o(mem_addr_o),
+    .rsp_valid_i(mem_rsp_valid_i), .rsp_line_i(mem_rdata_i), .done_o(burst_done), .words_o(rd_words));
   for (genvar k = 0; k < LREC_WORDS; k++) begin : g_buf
     assign buf_q[k] = rd_words[32*k +: 32];
   end
@@ -252,32 +237,19 @@ module rgs_ctrl #(
   assign gen_req_o = st == S_GEN && !gen_sent_q;
   assign gen_data_o = {by_q, bx_q};
 
-  // the surfaces
-  /* verilator lint_off PINCONNECTEMPTY */
-  logic sf_ready, sf_valid, sf_sfv, sf_ent, sf_unlit;
+  // the surfaces: the 4 rays and their hits out, a surface back
+  logic [1:0] sf_ray;
+  logic sf_sfv, sf_ent, sf_unlit;
   logic [V-1:0] sf_p, sf_d, sf_n;
-  logic [W-1:0] sf_that;
-  /* verilator lint_off UNUSEDSIGNAL */
-  logic [31:0] sf_mat;  // the accumulation takes the material's fields from the surface
-  /* verilator lint_on UNUSEDSIGNAL */
+  logic [W-1:0] sf_that, sf_eta;
   logic [3:0] sf_k;
-  logic [W-1:0] sf_eta;
   logic [12:0] sf_kd, sf_kr, sf_kt, sf_ks;
   logic [47:0] sf_base, sf_emis, sf_tint;
-  rgs_surface #(.E(E), .M(M), .TID_BITS(1), .CVT_STAGES(CVT_STAGES), .MUL_STAGES(MUL_STAGES),
-    .ADD_STAGES(ADD_STAGES), .SQRT_STAGES(SQRT_STAGES), .DIV_STAGES(DIV_STAGES), .CMP_STAGES(CMP_STAGES),
-    .TOI_STAGES(TOI_STAGES), .MOD_STAGES(MOD_STAGES)) u_surface (
-    .clk_i(clk_i), .rst_ni(rst_ni), .inst_base_i(inst_base_i), .obj_base_i(obj_base_i), .mat_base_i(mat_base_i),
-    .tex_base_i(tex_base_i), .n_tex_i(n_tex_i), .valid_i(st == S_SURF && in_q < 3'd4),
-    .ready_o(sf_ready), .tid_i(1'b0), .active_i(cact_q[ri]), .o_i(co_q[ri]), .d_i(cd_q[ri]),
-    .inst_i(hinst_q[ri]), .tri_i(htri_q[ri]), .t_i(ht_q[ri]), .u_i(hu_q[ri]),
-    .v_i(hv_q[ri]), .cos_n_i(hcos_q[ri]), .mem_req_valid_o(sf_req_valid),
-    .mem_req_ready_i(sf_port && mem_req_ready_i), .mem_addr_o(sf_req_addr),
-    .mem_rsp_valid_i(sf_port && mem_rsp_valid_i), .mem_rdata_i(mem_rdata_i), .valid_o(sf_valid), .ready_i(1'b1),
-    .tid_o(), .sf_valid_o(sf_sfv), .p_o(sf_p), .d_o(sf_d), .n_o(sf_n), .t_hat_o(sf_that), .entering_o(sf_ent),
-    .mat_o(sf_mat), .unlit_o(sf_unlit), .k_o(sf_k), .eta_o(sf_eta), .kd_o(sf_kd), .kr_o(sf_kr),
-    .kt_o(sf_kt), .ks_o(sf_ks), .base_o(sf_base), .emission_o(sf_emis), .tint_o(sf_tint));
-  /* verilator lint_on PINCONNECTEMPTY */
+  assign {sf_ray, sf_sfv, sf_p, sf_d, sf_n, sf_that, sf_ent, sf_unlit, sf_k, sf_eta, sf_kd, sf_kr, sf_kt, sf_ks,
+          sf_base, sf_emis, sf_tint} = sf_res_i;
+  assign sf_req_o = st == S_SURF && in_q < 3'd4;
+  assign sf_data_o = {ri, cact_q[ri], co_q[ri], cd_q[ri], hinst_q[ri], htri_q[ri], ht_q[ri], hu_q[ri], hv_q[ri],
+                      hcos_q[ri]};
 
   // a light: the 4 surfaces streamed through rgs_light, its colour beside (once)
   assign li_req_o = st == S_LCALC && in_q < 3'd4;
@@ -398,26 +370,26 @@ module rgs_ctrl #(
             st <= S_SURF;
           end
         S_SURF: begin
-          if (in_q < 3'd4 && sf_ready) in_q <= in_q + 3'd1;  // the next ray while the last is shaded
-          if (sf_valid) begin
-            sfv_q[out_q[1:0]] <= sf_sfv;
-            sp_p_q[out_q[1:0]] <= sf_p;
-            sf_d_q[out_q[1:0]] <= sf_d;
-            sf_n_q[out_q[1:0]] <= sf_n;
-            that_q[out_q[1:0]] <= sf_that;
-            ent_q[out_q[1:0]] <= sf_ent;
-            unlit_q[out_q[1:0]] <= sf_unlit;
-            k_q[out_q[1:0]] <= sf_k;
-            eta_q[out_q[1:0]] <= sf_eta;
-            kd_q[out_q[1:0]] <= sf_kd;
-            kr_q[out_q[1:0]] <= sf_kr;
-            kt_q[out_q[1:0]] <= sf_kt;
-            ks_q[out_q[1:0]] <= sf_ks;
-            base_q[out_q[1:0]] <= sf_base;
-            emis_q[out_q[1:0]] <= sf_emis;
-            tint_q[out_q[1:0]] <= sf_tint;
-            dif_q[out_q[1:0]] <= {3{sf_unlit ? Q_ONE : Q_AMBIENT}};
-            hil_q[out_q[1:0]] <= '0;
+          if (sf_ack_i) in_q <= in_q + 3'd1;  // the next ray while the last is shaded
+          if (sf_valid_i) begin
+            sfv_q[sf_ray] <= sf_sfv;
+            sp_p_q[sf_ray] <= sf_p;
+            sf_d_q[sf_ray] <= sf_d;
+            sf_n_q[sf_ray] <= sf_n;
+            that_q[sf_ray] <= sf_that;
+            ent_q[sf_ray] <= sf_ent;
+            unlit_q[sf_ray] <= sf_unlit;
+            k_q[sf_ray] <= sf_k;
+            eta_q[sf_ray] <= sf_eta;
+            kd_q[sf_ray] <= sf_kd;
+            kr_q[sf_ray] <= sf_kr;
+            kt_q[sf_ray] <= sf_kt;
+            ks_q[sf_ray] <= sf_ks;
+            base_q[sf_ray] <= sf_base;
+            emis_q[sf_ray] <= sf_emis;
+            tint_q[sf_ray] <= sf_tint;
+            dif_q[sf_ray] <= {3{sf_unlit ? Q_ONE : Q_AMBIENT}};
+            hil_q[sf_ray] <= '0;
             out_q <= out_q + 3'd1;
             if (out_q == 3'd3) begin
               light_q <= '0;

@@ -1,41 +1,55 @@
 // rgs_units: the RGS's shared datapaths (paper section 3, Figure 2: ONE ray generation and shading
-// unit serving the RGS's threads; hls/units/rgs.c `rgs_block_begin`, `rgs_step`): the frame set-up
-// and one each of rgs_raygen, rgs_light, rgs_light_colour, rgs_add_light and rgs_accum for the N
-// block controllers (rgs_ctrl) of the DynRTP. The controllers keep their FSM, block state (stack,
-// packet, surfaces, sums) and rgs_surface (one surface unit takes a hit every 40 to 80 cycles: one
-// for all would bound them, rtl/README.md "The RGS shared") and hand their operands here; per unit
-// an rgs_arb picks one controller's operand a cycle round robin, the controller's index travels as
-// the high bits of the unit's thread id (beside the ray's index in the packet), and the result comes
-// back to that controller only (valid_o bit k). A controller waits in the state of its step for all
-// its results and takes each as it comes (the units run with ready_i = 1), so sharing changes when
-// an operand enters a unit, never what it computes.
+// unit serving the RGS's threads; hls/units/rgs.c `rgs_block_begin`, `rgs_step`): the frame set-up,
+// one each of rgs_raygen, rgs_light, rgs_light_colour, rgs_add_light and rgs_accum, and SURF_UNITS
+// rgs_surface for the N block controllers (rgs_ctrl) of the DynRTP. The controllers keep their FSM
+// and block state (stack, packet, surfaces, sums) and hand their operands here; per unit an rgs_arb
+// picks one controller's operand a cycle round robin, the controller's index travels as the high
+// bits of the unit's thread id (beside the ray's index in the packet), and the result comes back to
+// that controller only (valid_o bit k). A controller waits in the state of its step for all its
+// results and takes each as it comes (the units run with ready_i = 1), so sharing changes when an
+// operand enters a unit, never what it computes.
 //   frame set-up  once after reset (the C's `rgs_block_begin` constants; each rgs_ctrl did it for
 //            itself before): the header's texture and light counts (at most 64 lights), the scene
 //            bounds and the region starts (words 9..34), the camera block (loaded into rgs_raygen,
 //            its profile word kept); e = max of the bounds' extents / 2^10 (the C's f24_sub,
 //            f24_max from 0 and f24_div on one f24_add, f24_cmp, f24_div); then frame_ok_o and the
-//            constants held for the controllers
+//            constants held (the light count and records' start, the profile out to the
+//            controllers; the other regions' starts and the texture count for the surfaces)
 //   gen      a controller's block corner (x0, y0) into rgs_raygen; the packets come out in the
 //            order of the blocks, so a FIFO of the controllers' indices (one block per controller
 //            at most) routes them back
+//   surface  a ray and its hit into rgs_surface s = k mod SURF_UNITS (controller k's), which takes
+//            the next ray (any of its controllers') while it reads and shades the ones before and
+//            gives the surfaces back in order, on its result bus (sf_res_o at SR_DW s) to its
+//            controllers. Not one surface for all: one takes a hit every 40 to 80 cycles (its
+//            front's dependent bursts, its back one surface at a time) and bounded 8 controllers
+//            (f876e73: cornell 32x24 T8 +14%); its arbiter HOLDs the grant on a controller while
+//            it offers its packet's rays, so one controller's 4 surfaces are done before the next
+//            one's (round robin would finish both late). Each surface has a line read port
+//            (mem_*[s]); port 0 is the set-up's until frame_ok_o, then surface 0's
 //   light    `rgs_light` on a ray's surface and the controller's light record; `rgs_light_colour`
 //            on the light's colour; `rgs_add_light` on a visible ray's sums; `rgs_accum` on an
 //            active ray (e and the profile's live bit from the set-up, spawn from the controller)
 // Operand layouts (each controller packs its operand in this order, the highest field first):
-//   gen {y0, x0}; light {ray, type, L_pos, L_dir, cos_in, cos_out, sf_valid, unlit, P, N^, D^, k};
-//   colour {B, G, R}; add {ray, diffuse, highlight, diff, spec, colour}; accum {ray, eta, kd, kr,
-//   kt, ks, sf_valid, o, D^, N^, t_hat, entering, base, emission, tint, weight, diffuse, highlight,
-//   acc, spawn}.
-// Latency: the units' own (rgs_raygen 29, rgs_light 87, rgs_light_colour 27, rgs_add_light 1,
-// rgs_accum 67 cycles) plus the cycles an operand waits for another controller's in the same unit
-// (a unit takes one operand a cycle; rgs_raygen one ray a cycle, a packet per 4); the set-up about
-// 60 cycles after reset plus its reads (the header's 26 words, the camera's 16: 7 + 4 or 5 lines).
-// Throughput: per unit one operand per cycle (II = 1), rgs_raygen a packet per 4 cycles.
-// Resources: one rgs_raygen, rgs_light, rgs_light_colour, rgs_add_light, rgs_accum; 5 rgs_arb
+//   gen {y0, x0}; surface {ray, active, o, d, inst, tri, t, u, v, cos_n}; light {ray, type, L_pos,
+//   L_dir, cos_in, cos_out, sf_valid, unlit, P, N^, D^, k}; colour {B, G, R}; add {ray, diffuse,
+//   highlight, diff, spec, colour}; accum {ray, eta, kd, kr, kt, ks, sf_valid, o, D^, N^, t_hat,
+//   entering, base, emission, tint, weight, diffuse, highlight, acc, spawn}. The surface's result
+//   {ray, sf_valid, P, D^, N^, t_hat, entering, unlit, k, eta, kd, kr, kt, ks, base, emission,
+//   tint} (SR_DW bits).
+// Latency: the units' own (rgs_raygen 29, rgs_surface 214 for a packet's first hit + about 39 a
+// further hit, rgs_light 87, rgs_light_colour 27, rgs_add_light 1, rgs_accum 67 cycles) plus the
+// cycles an operand waits for other controllers' in the same unit (a surface's front takes a hit
+// after the reads of the one before); the set-up about 60 cycles after reset plus its reads (the
+// header's 26 words, the camera's 16: 7 + 4 or 5 lines).
+// Throughput: per unit one operand per cycle (II = 1) but a surface (a hit per its front's reads:
+// SURF_UNITS hits at once) and rgs_raygen (a packet per 4 cycles).
+// Resources: one rgs_raygen, rgs_light, rgs_light_colour, rgs_add_light, rgs_accum; SURF_UNITS
+// rgs_surface (about 55,000 LUT6 each, rtl/README.md "The RGS shared"); 5 rgs_arb of N requesters
 // (N-to-1 multiplexers of 64, 448, 72, 178 and 657 bits at e7m16, N flip-flops each: 4,407 LUT6 at
-// N = 8); a FIFO of N controller indices; the set-up's line_reader (26 words), f24_add, f24_cmp,
-// f24_div and the frame's constants (7 x 32 + 10 x W + 5 bits). Yosys synth_xilinx per module at
-// e7m16, N = 8: about 81,300 LUT6 (rtl/README.md "The RGS shared").
+// N = 8) and SURF_UNITS of ceil(N / SURF_UNITS) (307 bits); a FIFO of N controller indices; the set-up's
+// line_reader (26 words), f24_add, f24_cmp, f24_div and the frame's constants (7 x 32 + 10 x W + 5
+// bits).
 module rgs_units #(
   parameter int E = 7,
   parameter int M = 16,
@@ -47,11 +61,17 @@ module rgs_units #(
   parameter int DIV_STAGES = 11,
   parameter int CMP_STAGES = 2,
   parameter int TOI_STAGES = 2,
+  parameter int MOD_STAGES = 16,
+  parameter int SURF_UNITS = 4,   // rgs_surface units (1 .. N), unit s serving the controllers k = s mod SURF_UNITS
+  parameter int SURF_SLOTS = 16,  // per rgs_surface: surfaces in its frame (its controllers' hits in flight)
   parameter int LW = 4,           // words per line of the read port (the shading cache's 16 bytes)
   localparam int NW = N > 1 ? $clog2(N) : 1,
+  localparam int S = SURF_UNITS,
   localparam int W = 1 + E + M,
   localparam int V = 3 * W,
   localparam int GEN_DW = 64,
+  localparam int SF_DW = 67 + 2 * V + 4 * W,
+  localparam int SR_DW = 205 + 3 * V + 2 * W,
   localparam int LI_DW = 40 + 5 * V + 2 * W,
   localparam int LC_DW = V,
   localparam int AL_DW = 178,
@@ -59,20 +79,17 @@ module rgs_units #(
 ) (
   input  logic                 clk_i,
   input  logic                 rst_ni,
-  // the set-up's line read port: a request names a line by its first word's address
-  output logic                 mem_req_valid_o,
-  input  logic                 mem_req_ready_i,
-  output logic [31:0]          mem_addr_o,
-  input  logic                 mem_rsp_valid_i,
+  // S line read ports (port s at bit s, its address at bits 32 s), port s rgs_surface s's, port 0
+  // the set-up's before: a request names a line by its first word's address, the answer is the
+  // line's LW words, in order; the answers' line is common to the ports
+  output logic [S-1:0]         mem_req_valid_o,
+  input  logic [S-1:0]         mem_req_ready_i,
+  output logic [S*32-1:0]      mem_addr_o,
+  input  logic [S-1:0]         mem_rsp_valid_i,
   input  logic [32*LW-1:0]     mem_rdata_i,
-  // the frame's constants, valid from frame_ok_o on
+  // the frame's constants the controllers need, valid from frame_ok_o on
   output logic                 frame_ok_o,
-  output logic [31:0]          n_tex_o,
   output logic [31:0]          n_lights_o,
-  output logic [31:0]          inst_base_o,
-  output logic [31:0]          obj_base_o,
-  output logic [31:0]          mat_base_o,
-  output logic [31:0]          tex_base_o,
   output logic [31:0]          light_base_o,
   output logic [4:0]           profile_o,
   // primary packets: operand {y0, x0}
@@ -83,6 +100,12 @@ module rgs_units #(
   output logic [3:0]           gen_active_o,
   output logic [4*V-1:0]       gen_o_o,
   output logic [4*V-1:0]       gen_d_o,
+  // a ray's surface at its hit (rgs_surface)
+  input  logic [N-1:0]         sf_req_i,
+  input  logic [N*SF_DW-1:0]   sf_data_i,
+  output logic [N-1:0]         sf_ack_o,
+  output logic [N-1:0]         sf_valid_o,
+  output logic [S*SR_DW-1:0]   sf_res_o,    // rgs_surface s's result at bits SR_DW s (for controllers s mod S)
   // a light at a ray's surface (rgs_light)
   input  logic [N-1:0]         li_req_i,
   input  logic [N*LI_DW-1:0]   li_data_i,
@@ -140,14 +163,29 @@ module rgs_units #(
   logic cam_valid;
   logic [2:0] in_q, out_q;
   logic [W-1:0] eps_q, ext_q [3], bnd_q [6];  // e; the extents, the scene bounds (lo, hi)
+  logic [31:0] n_tex_q, inst_base_q, obj_base_q, mat_base_q, tex_base_q;  // rgs_surface's constants
+  logic rd_req, sf_port;
+  logic [31:0] rd_addr;
+  logic [S-1:0] sf_req;
+  logic [S*32-1:0] sf_addr;
   // a burst starts in the cycle its address is known: the header's words after reset, then the
   // camera block (its address among them)
   assign rd_start = fs == F_RESET || (fs == F_SETUP && burst_done);
   assign rd_at = fs == F_RESET ? 32'(SETUP_AT) : buf_q[18 + 2 * 6 - SETUP_AT];
   line_reader #(.MAXW(SETUP_WORDS), .LW(LW)) u_rd (
     .clk_i, .rst_ni, .start_i(rd_start), .addr_i(rd_at), .n_i(fs == F_RESET ? 5'(SETUP_WORDS) : 5'd16),
-    .req_valid_o(mem_req_valid_o), .req_ready_i(mem_req_ready_i), .req_addr_o(mem_addr_o),
-    .rsp_valid_i(mem_rsp_valid_i), .rsp_line_i(mem_rdata_i), .done_o(burst_done), .words_o(rd_words));
+    .req_valid_o(rd_req), .req_ready_i(!sf_port && mem_req_ready_i[0]), .req_addr_o(rd_addr),
+    .rsp_valid_i(!sf_port && mem_rsp_valid_i[0]), .rsp_line_i(mem_rdata_i), .done_o(burst_done), .words_o(rd_words));
+  // port 0 is the set-up's until it is done, then rgs_surface 0's (no surface before a block)
+  assign sf_port = fs == F_DONE;
+  always_comb begin
+    mem_req_valid_o = sf_req;
+    mem_addr_o = sf_addr;
+    if (!sf_port) begin
+      mem_req_valid_o[0] = rd_req;
+      mem_addr_o[31:0] = rd_addr;
+    end
+  end
   for (genvar k = 0; k < SETUP_WORDS; k++) begin : g_buf
     assign buf_q[k] = rd_words[32*k +: 32];
   end
@@ -174,13 +212,13 @@ module rgs_units #(
         F_RESET: fs <= F_SETUP;  // the header's words (rd_start)
         F_SETUP:  // words 9..34: buf_q[w - 9]
           if (burst_done) begin
-            n_tex_o <= buf_q[0];
+            n_tex_q <= buf_q[0];
             n_lights_o <= buf_q[1] < 32'd64 ? buf_q[1] : 32'd64;
-            mat_base_o <= buf_q[18 + 2 * 1 - SETUP_AT];
-            tex_base_o <= buf_q[18 + 2 * 2 - SETUP_AT];
-            obj_base_o <= buf_q[18 + 2 * 5 - SETUP_AT];
+            mat_base_q <= buf_q[18 + 2 * 1 - SETUP_AT];
+            tex_base_q <= buf_q[18 + 2 * 2 - SETUP_AT];
+            obj_base_q <= buf_q[18 + 2 * 5 - SETUP_AT];
             light_base_o <= buf_q[18 + 2 * 7 - SETUP_AT];
-            inst_base_o <= buf_q[18 + 2 * 8 - SETUP_AT];
+            inst_base_q <= buf_q[18 + 2 * 8 - SETUP_AT];
             cam_q <= '0;  // the camera's words (rd_start)
             for (int k = 0; k < 6; k++) bnd_q[k] <= buf_q[12 + k - SETUP_AT][W-1:0];
             fs <= F_CAMERA;
@@ -245,6 +283,67 @@ module rgs_units #(
     .valid_i(gen_valid && rg_blk_ready), .ready_o(who_ready), .data_i(gen_idx), .valid_o(who_valid),
     .ready_i(rg_valid), .data_o(who));
 
+  // ---- the surfaces: S rgs_surface units, unit s taking the rays and hits of the controllers k = s
+  // mod S round robin; each takes the next ray while it reads and shades the ones before (several
+  // controllers' rays in flight, in order) and gives a surface back to the controller in its id ----
+  localparam int NS = (N + S - 1) / S;  // controllers per surface unit, at most
+  localparam int NSW = NS > 1 ? $clog2(NS) : 1;
+  if (S < 1 || S > N) begin : g_check
+    $error("rgs_units: SURF_UNITS 1 .. N");
+  end
+  logic [S-1:0] sf_out;
+  logic [NW-1:0] sf_who [S];
+  for (genvar s = 0; s < S; s++) begin : g_sf
+    logic [NS-1:0] req;
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic [NS-1:0] ack;  // a missing controller's (N not a multiple of S) is never set
+    /* verilator lint_on UNUSEDSIGNAL */
+    logic [NS*SF_DW-1:0] ops;
+    for (genvar j = 0; j < NS; j++) begin : g_in  // controller j S + s, if there is one
+      if (j*S + s < N) begin : g_k
+        assign req[j] = sf_req_i[j*S + s];
+        assign ops[j*SF_DW +: SF_DW] = sf_data_i[(j*S + s)*SF_DW +: SF_DW];
+        assign sf_ack_o[j*S + s] = ack[j];
+      end else begin : g_none
+        assign req[j] = 1'b0;
+        assign ops[j*SF_DW +: SF_DW] = '0;
+      end
+    end
+    logic op_valid, take;
+    logic [NSW-1:0] idx;
+    logic [NW-1:0] owner;
+    logic [SF_DW-1:0] op;
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic [31:0] mat;  // the accumulation takes the material's fields from the surface
+    /* verilator lint_on UNUSEDSIGNAL */
+    logic [1:0] ray;
+    logic sfv, ent, unlit;
+    logic [V-1:0] p, d, n;
+    logic [W-1:0] that, eta;
+    logic [3:0] kexp;
+    logic [12:0] kd, kr, kt, ks;
+    logic [47:0] base, emis, tint;
+    rgs_arb #(.N(NS), .DW(SF_DW), .HOLD(1'b1)) u_arb (.clk_i(clk_i), .rst_ni(rst_ni), .req_i(req), .data_i(ops),
+      .ack_o(ack), .valid_o(op_valid), .ready_i(take), .index_o(idx), .data_o(op));
+    assign owner = NW'(32'(idx) * S + s);
+    // the operand from the top: ray, active, o, d, inst, tri, t, u, v, cos_n
+    rgs_surface #(.E(E), .M(M), .TID_BITS(NW + 2), .CVT_STAGES(CVT_STAGES), .MUL_STAGES(MUL_STAGES),
+      .ADD_STAGES(ADD_STAGES), .SQRT_STAGES(SQRT_STAGES), .DIV_STAGES(DIV_STAGES), .CMP_STAGES(CMP_STAGES),
+      .TOI_STAGES(TOI_STAGES), .MOD_STAGES(MOD_STAGES), .SLOTS(SURF_SLOTS), .LW(LW)) u_surface (
+      .clk_i(clk_i), .rst_ni(rst_ni), .inst_base_i(inst_base_q), .obj_base_i(obj_base_q), .mat_base_i(mat_base_q),
+      .tex_base_i(tex_base_q), .n_tex_i(n_tex_q), .valid_i(op_valid), .ready_o(take),
+      .tid_i({owner, op[SF_DW-1 -: 2]}), .active_i(op[SF_DW-3]), .o_i(op[SF_DW-4 -: V]),
+      .d_i(op[SF_DW-4-V -: V]), .inst_i(op[4*W + 32 +: 32]), .tri_i(op[4*W +: 32]), .t_i(op[3*W +: W]),
+      .u_i(op[2*W +: W]), .v_i(op[W +: W]), .cos_n_i(op[0 +: W]), .mem_req_valid_o(sf_req[s]),
+      .mem_req_ready_i((s != 0 || sf_port) && mem_req_ready_i[s]), .mem_addr_o(sf_addr[s*32 +: 32]),
+      .mem_rsp_valid_i((s != 0 || sf_port) && mem_rsp_valid_i[s]), .mem_rdata_i(mem_rdata_i), .valid_o(sf_out[s]),
+      .ready_i(1'b1), .tid_o({sf_who[s], ray}), .sf_valid_o(sfv), .p_o(p), .d_o(d), .n_o(n), .t_hat_o(that),
+      .entering_o(ent), .mat_o(mat), .unlit_o(unlit), .k_o(kexp), .eta_o(eta), .kd_o(kd), .kr_o(kr), .kt_o(kt),
+      .ks_o(ks), .base_o(base), .emission_o(emis), .tint_o(tint));
+    assign sf_res_o[s*SR_DW +: SR_DW] = {ray, sfv, p, d, n, that, ent, unlit, kexp, eta, kd, kr, kt, ks, base, emis,
+                                         tint};
+  end
+
   // ---- a light at the rays' surfaces, its colour, the visible rays' sums, the accumulation ----
   logic li_in, lc_in, al_in, ac_in;
   logic [NW-1:0] li_idx, lc_idx, al_idx, ac_idx, li_who, lc_who, al_who, ac_who;
@@ -301,6 +400,7 @@ module rgs_units #(
   // ---- each result to the controller whose index it carries ----
   for (genvar k = 0; k < N; k++) begin : g_back
     assign gen_valid_o[k] = rg_valid && who_valid && who == NW'(k);
+    assign sf_valid_o[k] = sf_out[k % S] && sf_who[k % S] == NW'(k);
     assign li_valid_o[k] = li_out && li_who == NW'(k);
     assign lc_valid_o[k] = lc_out && lc_who == NW'(k);
     assign al_valid_o[k] = al_out && al_who == NW'(k);

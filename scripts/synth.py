@@ -896,10 +896,11 @@ def accuracy_section(res):
 # The RGS's structure since the whole run above (its per-module figures in rtl/README.md)
 RGS_SHARED_NOTE = [
     "", "The RGS since 2026-11-29 (after the run above): one `rgs_units` (the frame set-up, `rgs_raygen`, "
-    "`rgs_light`, `rgs_light_colour`, `rgs_add_light`, `rgs_accum`, shared by the block controllers through "
-    "round-robin `rgs_arb`s) and RGS_BLOCKS `rgs_ctrl` (each its FSM, block state and `rgs_surface`): per module "
-    "at RGS_BLOCKS = 8, 8 x 67,187 + 81,287 = 618,783 LUT6 where 8 whole controllers took 8 x 137,850 = "
-    "1,102,800 (rtl/README.md \"The RGS shared\"); the table above is from before."]
+    "`rgs_light`, `rgs_light_colour`, `rgs_add_light`, `rgs_accum` and SURF_UNITS = 4 `rgs_surface`, shared by "
+    "the block controllers through round-robin `rgs_arb`s) and RGS_BLOCKS `rgs_ctrl` (each its FSM and block "
+    "state): per module at RGS_BLOCKS = 8, 8 x 11,898 + 305,905 = 401,089 LUT6 where a surface per controller "
+    "took 8 x 67,187 + 81,287 = 618,783 and 8 whole controllers 8 x 137,850 = 1,102,800 (rtl/README.md "
+    "\"The RGS shared\"); the table above is from before."]
 
 # Per unit of the DynRTP measured alone since the whole run above (python3 scripts/synth.py --levels),
 # shown after its table until the whole DynRTP is synthesized again

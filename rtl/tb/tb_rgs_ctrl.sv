@@ -52,18 +52,21 @@ module tb_rgs_ctrl #(
   output logic [4:0]                sst_o       // rgs_surface's state (its cycles per state in SURF)
 );
   assign st_o = u_dut.st;
-  assign sst_o = u_dut.u_surface.st;
+  assign sst_o = u_units.g_sf[0].u_surface.st;
   localparam int W = 1 + E + M, V = 3 * W;
-  localparam int LI_DW = 40 + 5 * V + 2 * W, AL_DW = 178, AC_DW = 393 + 3 * V + 2 * W;
+  localparam int SF_DW = 67 + 2 * V + 4 * W, SR_DW = 205 + 3 * V + 2 * W, LI_DW = 40 + 5 * V + 2 * W, AL_DW = 178, AC_DW = 393 + 3 * V + 2 * W;
   // the controller's reads and the set-up's (rgs_units) on the bench's one line port
   logic [1:0] rd_valid, rd_ready, rd_rsp;
   logic [63:0] rd_addr;
   // rgs_units with one controller
   logic frame_ok;
-  logic [31:0] n_tex, n_lights, inst_base, obj_base, mat_base, tex_base, light_base;
+  logic [31:0] n_lights, light_base;
   logic [4:0] profile;
   logic gen_req, gen_ack, gen_valid, li_req, li_ack, li_valid, lc_req, lc_ack, lc_valid, al_req, al_ack, al_valid;
   logic ac_req, ac_ack, ac_valid, li_active, ac_ract, ac_tact;
+  logic sf_req, sf_ack, sf_valid;
+  logic [SF_DW-1:0] sf_data;
+  logic [SR_DW-1:0] sf_res;
   logic [63:0] gen_data;
   logic [3:0] gen_active;
   logic [4*V-1:0] gen_o, gen_d;
@@ -82,11 +85,11 @@ module tb_rgs_ctrl #(
     .mem_req_ready_i(mem_req_ready_i), .mem_req_addr_o(mem_addr_o), .mem_req_bytes_o(), .mem_req_src_o(),
     .mem_rsp_valid_i(mem_rsp_valid_i), .mem_rsp_data_i(mem_rdata_i));
   /* verilator lint_on PINCONNECTEMPTY */
-  rgs_units #(.E(E), .M(M), .N(1)) u_units (
+  rgs_units #(.E(E), .M(M), .N(1), .SURF_UNITS(1)) u_units (
     .clk_i(clk_i), .rst_ni(rst_ni), .mem_req_valid_o(rd_valid[1]), .mem_req_ready_i(rd_ready[1]),
     .mem_addr_o(rd_addr[63:32]), .mem_rsp_valid_i(rd_rsp[1]), .mem_rdata_i(mem_rdata_i), .frame_ok_o(frame_ok),
-    .n_tex_o(n_tex), .n_lights_o(n_lights), .inst_base_o(inst_base), .obj_base_o(obj_base), .mat_base_o(mat_base),
-    .tex_base_o(tex_base), .light_base_o(light_base), .profile_o(profile),
+    .n_lights_o(n_lights), .light_base_o(light_base), .profile_o(profile),
+    .sf_req_i(sf_req), .sf_data_i(sf_data), .sf_ack_o(sf_ack), .sf_valid_o(sf_valid), .sf_res_o(sf_res),
     .gen_req_i(gen_req), .gen_data_i(gen_data), .gen_ack_o(gen_ack), .gen_valid_o(gen_valid),
     .gen_active_o(gen_active), .gen_o_o(gen_o), .gen_d_o(gen_d),
     .li_req_i(li_req), .li_data_i(li_data), .li_ack_o(li_ack), .li_valid_o(li_valid), .li_ray_o(li_ray),
@@ -100,8 +103,8 @@ module tb_rgs_ctrl #(
     .ac_td_o(ac_td), .ac_tw_o(ac_tw), .ac_tact_o(ac_tact));
   rgs_ctrl #(.E(E), .M(M), .TAG_BITS(6)) u_dut (
     .clk_i(clk_i), .rst_ni(rst_ni), .max_depth_i(max_depth_i), .shadows_i(shadows_i),
-    .frame_ok_i(frame_ok), .n_tex_i(n_tex), .n_lights_i(n_lights), .inst_base_i(inst_base), .obj_base_i(obj_base),
-    .mat_base_i(mat_base), .tex_base_i(tex_base), .light_base_i(light_base), .profile_i(profile),
+    .frame_ok_i(frame_ok), .n_lights_i(n_lights), .light_base_i(light_base), .profile_i(profile),
+    .sf_req_o(sf_req), .sf_ack_i(sf_ack), .sf_data_o(sf_data), .sf_valid_i(sf_valid), .sf_res_i(sf_res),
     .gen_req_o(gen_req), .gen_ack_i(gen_ack), .gen_data_o(gen_data), .gen_valid_i(gen_valid),
     .gen_active_i(gen_active), .gen_o_i(gen_o), .gen_d_i(gen_d),
     .li_req_o(li_req), .li_ack_i(li_ack), .li_data_o(li_data), .li_valid_i(li_valid), .li_ray_i(li_ray),
