@@ -141,12 +141,14 @@ module trace_core #(
   logic [6*W-1:0] t_trav_box [THREADS];
   logic [31:0] t_trav_nodes [THREADS], t_list_lists [THREADS], t_list_first [THREADS], t_list_k [THREADS];
   logic [3*W-1:0] t_rb_o_hi [THREADS], t_rb_o_lo [THREADS], t_rb_d_hi [THREADS], t_rb_d_lo [THREADS];
-  logic [W-1:0] t_rb_t [THREADS], t_is_te [THREADS], t_is_tmin [THREADS], t_is_tmax [THREADS], t_is_t0 [THREADS];
+  logic [W-1:0] t_rb_t [THREADS], t_is_tmin [THREADS], t_is_tmax [THREADS], t_is_t0 [THREADS];
   logic [12*W-1:0] t_xw_m [THREADS], t_is_m [THREADS];
-  logic [3*W-1:0] t_xw_tlo [THREADS], t_xw_p_hi [THREADS], t_xw_p_lo [THREADS];
-  logic [3*W-1:0] t_is_c_lo [THREADS], t_is_p_hi [THREADS], t_is_p_lo [THREADS], t_is_d [THREADS];
+  logic [3*W-1:0] t_xw_tlo [THREADS], t_xw_d [THREADS];
+  logic [3*W-1:0] t_is_c_lo [THREADS], t_is_d [THREADS];
   logic [2*W-1:0] t_add_a [THREADS], t_add_b [THREADS];
   logic [2:0] t_is_shared [THREADS];
+  logic [1:0] t_ray [THREADS];
+  logic [THREADS-1:0] t_rb_leaf;
   // the units' results (to every thread; done says whose)
   logic [3:0] trav_mask, trav_leaf_mask, list_need, list_skip;
   logic [4*W-1:0] trav_tn, trav_tf, trav_leaf_tn;
@@ -179,7 +181,7 @@ module trace_core #(
       .mem_req_valid_o(t_mem_req[t]), .mem_req_ready_i(!hdr_req && word_grant[t] && word_take),
       .mem_addr_o(t_mem_addr[t]), .mem_rsp_valid_i(mem_rsp_valid_i && word_head == {1'b0, TW'(t)}),
       .mem_rdata_i(mem_rdata_i), .node_rsp_i(t_node_rsp[t]), .waiting_o(t_waiting[t]),
-      .slots_o(t_slots[t*4 +: 4]),
+      .slots_o(t_slots[t*4 +: 4]), .step_ray_o(t_ray[t]),
       .trav_req_o(req[U_TRAV][t]), .trav_grant_i(grant[U_TRAV][t]), .trav_kind_o(t_trav_kind[t]),
       .trav_level_o(t_trav_level[t]), .trav_o_o(t_trav_o[t]), .trav_d_o(t_trav_d[t]), .trav_tn_o(t_trav_tn[t]),
       .trav_tf_o(t_trav_tf[t]), .trav_best_o(t_trav_best[t]), .trav_mask_o(t_trav_mask[t]),
@@ -193,14 +195,14 @@ module trace_core #(
       .list_done_i(done[U_LIST][t]), .list_key_i(list_key), .list_need_i(list_need), .list_skip_i(list_skip),
       .list_k_i(list_k),
       .rb_req_o(req[U_RB][t]), .rb_grant_i(grant[U_RB][t]), .rb_o_hi_o(t_rb_o_hi[t]), .rb_o_lo_o(t_rb_o_lo[t]),
-      .rb_d_hi_o(t_rb_d_hi[t]), .rb_d_lo_o(t_rb_d_lo[t]), .rb_t_o(t_rb_t[t]), .rb_done_i(done[U_RB][t]),
-      .rb_p_hi_i(rb_p_hi), .rb_p_lo_i(rb_p_lo), .rb_te_i(rb_te),
+      .rb_d_hi_o(t_rb_d_hi[t]), .rb_d_lo_o(t_rb_d_lo[t]), .rb_t_o(t_rb_t[t]), .rb_leaf_o(t_rb_leaf[t]),
+      .rb_done_i(done[U_RB][t]), .rb_te_i(rb_te),
       .xw_req_o(req[U_XW][t]), .xw_grant_i(grant[U_XW][t]), .xw_m_o(t_xw_m[t]), .xw_tlo_o(t_xw_tlo[t]),
-      .xw_p_hi_o(t_xw_p_hi[t]), .xw_p_lo_o(t_xw_p_lo[t]), .xw_point_o(t_xw_point[t]), .xw_done_i(done[U_XW][t]),
+      .xw_d_o(t_xw_d[t]), .xw_point_o(t_xw_point[t]), .xw_done_i(done[U_XW][t]),
       .xw_hi_i(xw_hi), .xw_lo_i(xw_lo),
       .is_req_o(req[U_IS][t]), .is_grant_i(grant[U_IS][t]), .is_m_o(t_is_m[t]), .is_c_lo_o(t_is_c_lo[t]),
-      .is_shared_o(t_is_shared[t]), .is_p_hi_o(t_is_p_hi[t]), .is_p_lo_o(t_is_p_lo[t]), .is_d_o(t_is_d[t]),
-      .is_te_o(t_is_te[t]), .is_tmin_o(t_is_tmin[t]), .is_tmax_o(t_is_tmax[t]), .is_t0_o(t_is_t0[t]),
+      .is_shared_o(t_is_shared[t]), .is_d_o(t_is_d[t]),
+      .is_tmin_o(t_is_tmin[t]), .is_tmax_o(t_is_tmax[t]), .is_t0_o(t_is_t0[t]),
       .is_done_i(done[U_IS][t]), .is_hit_i(is_hit), .is_t_i(is_t), .is_u_i(is_u), .is_v_i(is_v), .is_cos_i(is_cos),
       .is_t_world_i(is_t_world),
       .add_req_o(req[U_ADD][t]), .add_grant_i(grant[U_ADD][t]), .add_a_o(t_add_a[t]), .add_b_o(t_add_b[t]),
@@ -280,37 +282,108 @@ module trace_core #(
     .k_o(list_k));
   assign done[U_LIST] = list_valid_o ? one[list_thread] : '0;
 
-  // the units without a thread id: their outputs are always taken, so the issued thread travels
-  // beside them in a delay line of their latency
+  // ---- the per-ray units' issue stage ----
+  // A step of a per-ray unit chosen in cycle s (sel, the thread's grant, its ray t_ray) reads the
+  // rays' fields that trace_core keeps in thread_ram (one word per thread and ray: the rebased
+  // origins p, a leaf's te) and registers its other operands from the threads' multiplexers at the
+  // end of s; the unit takes it in s + 1. So each multiplexer ends at a register, and a batch's
+  // results come a cycle later than an issue straight into the unit would give them.
+  logic [UNITS-1:U_RB] step_q;            // the unit's step this cycle (the issue of the cycle before)
+  logic [TW-1:0] sel_q [UNITS];
+  logic [1:0] ray_q [UNITS];
+  logic rb_leaf_q, xw_point_q;
+  logic [3*W-1:0] rb_o_hi_q, rb_o_lo_q, rb_d_hi_q, rb_d_lo_q, xw_tlo_q, xw_d_q, is_c_lo_q, is_d_q;
+  logic [W-1:0] rb_t_q, is_tmin_q, is_tmax_q, is_t0_q;
+  logic [12*W-1:0] xw_m_q, is_m_q;
+  logic [2:0] is_shared_q;
+  logic [2*W-1:0] add_a_q, add_b_q;
+  always_ff @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) step_q <= '0;
+    else
+      for (int u = U_RB; u < UNITS; u++) step_q[u] <= unit_valid[u] && unit_ready[u];
+  always_ff @(posedge clk_i) begin
+    for (int u = U_RB; u < UNITS; u++) begin
+      sel_q[u] <= sel[u];
+      ray_q[u] <= t_ray[sel[u]];
+    end
+    rb_o_hi_q <= t_rb_o_hi[sel[U_RB]];
+    rb_o_lo_q <= t_rb_o_lo[sel[U_RB]];
+    rb_d_hi_q <= t_rb_d_hi[sel[U_RB]];
+    rb_d_lo_q <= t_rb_d_lo[sel[U_RB]];
+    rb_t_q <= t_rb_t[sel[U_RB]];
+    rb_leaf_q <= t_rb_leaf[sel[U_RB]];
+    xw_m_q <= t_xw_m[sel[U_XW]];
+    xw_tlo_q <= t_xw_tlo[sel[U_XW]];
+    xw_d_q <= t_xw_d[sel[U_XW]];
+    xw_point_q <= t_xw_point[sel[U_XW]];
+    is_m_q <= t_is_m[sel[U_IS]];
+    is_c_lo_q <= t_is_c_lo[sel[U_IS]];
+    is_shared_q <= t_is_shared[sel[U_IS]];
+    is_d_q <= t_is_d[sel[U_IS]];
+    is_tmin_q <= t_is_tmin[sel[U_IS]];
+    is_tmax_q <= t_is_tmax[sel[U_IS]];
+    is_t0_q <= t_is_t0[sel[U_IS]];
+    add_a_q <= t_add_a[sel[U_ADD]];
+    add_b_q <= t_add_b[sel[U_ADD]];
+  end
+
+  // the units without a thread id: their outputs are always taken, so the step's thread (and for
+  // the rebase unit its ray and kind, where its result goes) travels beside them in a delay line
+  // of their latency
   logic [UNITS-1:U_RB] out_valid;
   logic [TW-1:0] out_thread [UNITS];
+  logic [TW+2:0] rb_tag;                  // {leaf, ray, thread} of the rebase unit's result
   for (genvar u = U_RB; u < UNITS; u++) begin : g_tag
     localparam int LAT = u == U_IS ? TRI_LATENCY : u == U_ADD ? ADD_STAGES : SUM_STAGES;  // rebase, wide: SUM
-    f24_pipe #(.W(TW), .STAGES(LAT)) u_tag (
-      .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(unit_valid[u] && unit_ready[u]), .data_i(sel[u]),
-      .valid_o(), .data_o(out_thread[u]));
+    localparam int TAGW = u == U_RB ? TW + 3 : TW;
+    logic [TAGW-1:0] tag;
+    f24_pipe #(.W(TAGW), .STAGES(LAT)) u_tag (
+      .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(step_q[u]),
+      .data_i(TAGW'({rb_leaf_q, ray_q[u], sel_q[u]})), .valid_o(), .data_o(tag));
+    assign out_thread[u] = tag[TW-1:0];
+    if (u == U_RB) begin : g_rb
+      assign rb_tag = tag;
+    end
     assign done[u] = out_valid[u] ? one[out_thread[u]] : '0;
   end
 
-  rebase_unit #(.E(E), .M(M), .SUM_STAGES(SUM_STAGES)) u_rebase (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(unit_valid[U_RB]), .ready_o(unit_ready[U_RB]),
-    .o_hi_i(t_rb_o_hi[sel[U_RB]]), .o_lo_i(t_rb_o_lo[sel[U_RB]]), .d_hi_i(t_rb_d_hi[sel[U_RB]]),
-    .d_lo_i(t_rb_d_lo[sel[U_RB]]), .t_i(t_rb_t[sel[U_RB]]), .valid_o(out_valid[U_RB]), .ready_i(1'b1),
-    .p_hi_o(rb_p_hi), .p_lo_o(rb_p_lo), .te_o(rb_te));
+  // the rebased origins p (rebase_leaf, op_inst_xform) and a leaf's te, per thread and ray:
+  // written by the rebase unit's results, read by the wide transformation's origins (pass 0) and
+  // by the triangle test
+  localparam int RAYS = 4 * THREADS;
+  logic [6*W-1:0] p_xw, p_is;
+  logic [W-1:0] te_is;
+  logic rb_we;
+  logic [TW+1:0] rb_waddr;
+  assign rb_we = out_valid[U_RB];
+  assign rb_waddr = {rb_tag[TW-1:0], rb_tag[TW +: 2]};  // {thread, ray}
+  thread_ram #(.W(6 * W), .DEPTH(RAYS)) u_p_xw (
+    .clk_i(clk_i), .we_i(rb_we), .waddr_i(rb_waddr), .wdata_i({rb_p_hi, rb_p_lo}),
+    .raddr_i({sel[U_XW], t_ray[sel[U_XW]]}), .rdata_o(p_xw));
+  thread_ram #(.W(6 * W), .DEPTH(RAYS)) u_p_is (
+    .clk_i(clk_i), .we_i(rb_we), .waddr_i(rb_waddr), .wdata_i({rb_p_hi, rb_p_lo}),
+    .raddr_i({sel[U_IS], t_ray[sel[U_IS]]}), .rdata_o(p_is));
+  thread_ram #(.W(W), .DEPTH(RAYS)) u_te_is (
+    .clk_i(clk_i), .we_i(rb_we && rb_tag[TW+2]), .waddr_i(rb_waddr), .wdata_i(rb_te),
+    .raddr_i({sel[U_IS], t_ray[sel[U_IS]]}), .rdata_o(te_is));
 
+  rebase_unit #(.E(E), .M(M), .SUM_STAGES(SUM_STAGES)) u_rebase (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(step_q[U_RB]), .ready_o(unit_ready[U_RB]),
+    .o_hi_i(rb_o_hi_q), .o_lo_i(rb_o_lo_q), .d_hi_i(rb_d_hi_q), .d_lo_i(rb_d_lo_q), .t_i(rb_t_q),
+    .valid_o(out_valid[U_RB]), .ready_i(1'b1), .p_hi_o(rb_p_hi), .p_lo_o(rb_p_lo), .te_o(rb_te));
+
+  // pass 0 of an instance's rays transforms the rebased origin, pass 1 the direction
   xform_wide #(.E(E), .M(M), .SUM_STAGES(SUM_STAGES)) u_wide (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(unit_valid[U_XW]), .ready_o(unit_ready[U_XW]),
-    .m_i(t_xw_m[sel[U_XW]]), .tlo_i(t_xw_tlo[sel[U_XW]]), .p_hi_i(t_xw_p_hi[sel[U_XW]]),
-    .p_lo_i(t_xw_p_lo[sel[U_XW]]), .point_i(t_xw_point[sel[U_XW]]), .valid_o(out_valid[U_XW]), .ready_i(1'b1),
-    .r_hi_o(xw_hi), .r_lo_o(xw_lo));
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(step_q[U_XW]), .ready_o(unit_ready[U_XW]),
+    .m_i(xw_m_q), .tlo_i(xw_tlo_q), .p_hi_i(xw_point_q ? p_xw[3*W +: 3*W] : xw_d_q), .p_lo_i(p_xw[0 +: 3*W]),
+    .point_i(xw_point_q), .valid_o(out_valid[U_XW]), .ready_i(1'b1), .r_hi_o(xw_hi), .r_lo_o(xw_lo));
 
   assign unit_ready[U_IS] = 1'b1;  // no stall
   isect_rebased #(.E(E), .M(M), .ADD_STAGES(ADD_STAGES), .MUL_STAGES(MUL_STAGES), .DIV_STAGES(DIV_STAGES),
                   .CMP_STAGES(CMP_STAGES), .SUM_STAGES(SUM_STAGES)) u_isect (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(unit_valid[U_IS]), .m_i(t_is_m[sel[U_IS]]),
-    .c_lo_i(t_is_c_lo[sel[U_IS]]), .shared_i(t_is_shared[sel[U_IS]]), .p_hi_i(t_is_p_hi[sel[U_IS]]),
-    .p_lo_i(t_is_p_lo[sel[U_IS]]), .d_i(t_is_d[sel[U_IS]]), .te_i(t_is_te[sel[U_IS]]),
-    .tmin_i(t_is_tmin[sel[U_IS]]), .tmax_i(t_is_tmax[sel[U_IS]]), .t0_i(t_is_t0[sel[U_IS]]),
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(step_q[U_IS]), .m_i(is_m_q), .c_lo_i(is_c_lo_q),
+    .shared_i(is_shared_q), .p_hi_i(p_is[3*W +: 3*W]), .p_lo_i(p_is[0 +: 3*W]), .d_i(is_d_q), .te_i(te_is),
+    .tmin_i(is_tmin_q), .tmax_i(is_tmax_q), .t0_i(is_t0_q),
     .valid_o(out_valid[U_IS]), .hit_o(is_hit), .t_o(is_t), .u_o(is_u), .v_o(is_v), .cos_o(is_cos),
     .t_world_o(is_t_world));
 
@@ -318,8 +391,8 @@ module trace_core #(
   assign unit_ready[U_ADD] = 1'b1;  // the operators have no stall
   for (genvar j = 0; j < 2; j++) begin : g_add
     f24_add #(.E(E), .M(M), .STAGES(ADD_STAGES)) u_add (
-      .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(unit_valid[U_ADD]),
-      .a_i(t_add_a[sel[U_ADD]][j*W +: W]), .b_i(t_add_b[sel[U_ADD]][j*W +: W]), .sub_i(1'b1),
+      .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(step_q[U_ADD]),
+      .a_i(add_a_q[j*W +: W]), .b_i(add_b_q[j*W +: W]), .sub_i(1'b1),
       .valid_o(add_valid[j]), .res_o(add_r[j*W +: W]));
   end
   assign out_valid[U_ADD] = &add_valid;

@@ -75,6 +75,7 @@ module trace_thread #(
   input  logic                        node_rsp_i,  // a kd-node read of this thread answered
   output logic                        waiting_o,   // an operation of this thread is in a unit
   output logic [3:0]                  slots_o,     // issue slots of the operation requested (thread_sched)
+  output logic [1:0]                  step_ray_o,  // the ray of the batch's next step (the rays' fields in trace_core)
   // traversal unit
   output logic                        trav_req_o,
   input  logic                        trav_grant_i,
@@ -121,17 +122,15 @@ module trace_thread #(
   output logic [3*(E+M+1)-1:0]        rb_d_hi_o,
   output logic [3*(E+M+1)-1:0]        rb_d_lo_o,
   output logic [E+M:0]                rb_t_o,
+  output logic                        rb_leaf_o,   // a leaf's rebase: te (else an instance's: t0)
   input  logic                        rb_done_i,
-  input  logic [3*(E+M+1)-1:0]        rb_p_hi_i,
-  input  logic [3*(E+M+1)-1:0]        rb_p_lo_i,
-  input  logic [E+M:0]                rb_te_i,
+  input  logic [E+M:0]                rb_te_i,     // t0 of an instance's rebase (p and te: trace_core's)
   // the transformation unit's wide mode
   output logic                        xw_req_o,
   input  logic                        xw_grant_i,
   output logic [12*(E+M+1)-1:0]       xw_m_o,
   output logic [3*(E+M+1)-1:0]        xw_tlo_o,
-  output logic [3*(E+M+1)-1:0]        xw_p_hi_o,
-  output logic [3*(E+M+1)-1:0]        xw_p_lo_o,
+  output logic [3*(E+M+1)-1:0]        xw_d_o,      // the direction (pass 1; pass 0's origin p: trace_core's)
   output logic                        xw_point_o,
   input  logic                        xw_done_i,
   input  logic [3*(E+M+1)-1:0]        xw_hi_i,
@@ -142,10 +141,7 @@ module trace_thread #(
   output logic [12*(E+M+1)-1:0]       is_m_o,
   output logic [3*(E+M+1)-1:0]        is_c_lo_o,
   output logic [2:0]                  is_shared_o,
-  output logic [3*(E+M+1)-1:0]        is_p_hi_o,
-  output logic [3*(E+M+1)-1:0]        is_p_lo_o,
-  output logic [3*(E+M+1)-1:0]        is_d_o,
-  output logic [E+M:0]                is_te_o,
+  output logic [3*(E+M+1)-1:0]        is_d_o,      // (p and te: trace_core's)
   output logic [E+M:0]                is_tmin_o,
   output logic [E+M:0]                is_tmax_o,
   output logic [E+M:0]                is_t0_o,
@@ -206,8 +202,8 @@ module trace_thread #(
 
   logic [2:0] flags;
   logic [3:0] active, alive, need;
-  logic [3*W-1:0] ro [4], rd [4], so [4], sd [4], so_lo [4], sd_lo [4], p_hi [4], p_lo [4];
-  logic [W-1:0] tmin [4], best_t [4], best_rel [4], tmin_rel [4], t0 [4], te [4];
+  logic [3*W-1:0] ro [4], rd [4], so [4], sd [4], so_lo [4], sd_lo [4];
+  logic [W-1:0] tmin [4], best_t [4], best_rel [4], tmin_rel [4], t0 [4];
   logic [31:0] h_inst [4], h_tri [4];
   logic [W-1:0] h_t [4], h_u [4], h_v [4], h_cos [4];
   logic level;
@@ -362,11 +358,12 @@ module trace_thread #(
   assign rb_d_hi_o = rb_leaf ? sd[ir] : rd[ir];
   assign rb_d_lo_o = rb_leaf ? sd_lo[ir] : '0;
   assign rb_t_o = leaf_tn[rb_leaf][ir];
+  assign rb_leaf_o = rb_leaf;
+  assign step_ray_o = ir;
   assign xw_req_o = batch_req && bop == B_XW;
   assign xw_m_o = inst_m;
   assign xw_tlo_o = inst_tlo;
-  assign xw_p_hi_o = ipass ? rd[ir] : p_hi[ir];
-  assign xw_p_lo_o = p_lo[ir];
+  assign xw_d_o = rd[ir];
   assign xw_point_o = !ipass;
   assign is_req_o = batch_req && bop == B_TRI;
   assign is_m_o = tri_m;
@@ -378,10 +375,7 @@ module trace_thread #(
   always_ff @(posedge clk_i) c_lo_q <= c_lo;
   assign is_c_lo_o = c_lo_q;
   assign is_shared_o = tri_shared;
-  assign is_p_hi_o = p_hi[ir];
-  assign is_p_lo_o = p_lo[ir];
   assign is_d_o = sd[ir];
-  assign is_te_o = te[ir];
   assign is_tmin_o = tmin_rel[ir];
   assign is_tmax_o = best_rel[ir];
   assign is_t0_o = t0[ir];
@@ -586,16 +580,7 @@ module trace_thread #(
               cpass <= 1'b1;
             end else ctodo[cr] <= 1'b0;
             unique case (bop)
-              B_RB_LEAF: begin
-                p_hi[cr] <= rb_p_hi_i;
-                p_lo[cr] <= rb_p_lo_i;
-                te[cr] <= rb_te_i;
-              end
-              B_RB_INST: begin
-                p_hi[cr] <= rb_p_hi_i;
-                p_lo[cr] <= rb_p_lo_i;
-                t0[cr] <= rb_te_i;
-              end
+              B_RB_INST: t0[cr] <= rb_te_i;  // p and a leaf's te: trace_core's thread_ram
               B_XW:
                 if (cpass) begin
                   sd[cr] <= xw_hi_i;
