@@ -140,15 +140,15 @@ module trace_core #(
   logic [3:0] t_trav_mask [THREADS], t_list_leaf_mask [THREADS], t_list_alive [THREADS];
   logic [6*W-1:0] t_trav_box [THREADS];
   logic [31:0] t_trav_nodes [THREADS], t_list_lists [THREADS], t_list_first [THREADS], t_list_k [THREADS];
-  logic [3*W-1:0] t_rb_o_hi [THREADS], t_rb_o_lo [THREADS], t_rb_d_hi [THREADS], t_rb_d_lo [THREADS];
-  logic [W-1:0] t_rb_t [THREADS], t_is_tmin [THREADS], t_is_tmax [THREADS], t_is_t0 [THREADS];
+  logic [3*W-1:0] t_rb_o_hi [THREADS], t_rb_d_hi [THREADS];
+  logic [W-1:0] t_rb_t [THREADS], t_is_tmin [THREADS], t_is_tmax [THREADS];
   logic [12*W-1:0] t_xw_m [THREADS], t_is_m [THREADS];
   logic [3*W-1:0] t_xw_tlo [THREADS], t_xw_d [THREADS];
   logic [3*W-1:0] t_is_c_lo [THREADS], t_is_d [THREADS];
-  logic [2*W-1:0] t_add_a [THREADS], t_add_b [THREADS];
+  logic [2*W-1:0] t_add_a [THREADS];
   logic [2:0] t_is_shared [THREADS];
   logic [1:0] t_ray [THREADS];
-  logic [THREADS-1:0] t_rb_leaf;
+  logic [THREADS-1:0] t_rb_leaf, t_rb_lo_zero, t_t0_zero;
   // the units' results (to every thread; done says whose)
   logic [3:0] trav_mask, trav_leaf_mask, list_need, list_skip;
   logic [4*W-1:0] trav_tn, trav_tf, trav_leaf_tn;
@@ -194,18 +194,18 @@ module trace_core #(
       .list_k_o(t_list_k[t]), .list_leaf_mask_o(t_list_leaf_mask[t]), .list_alive_o(t_list_alive[t]),
       .list_done_i(done[U_LIST][t]), .list_key_i(list_key), .list_need_i(list_need), .list_skip_i(list_skip),
       .list_k_i(list_k),
-      .rb_req_o(req[U_RB][t]), .rb_grant_i(grant[U_RB][t]), .rb_o_hi_o(t_rb_o_hi[t]), .rb_o_lo_o(t_rb_o_lo[t]),
-      .rb_d_hi_o(t_rb_d_hi[t]), .rb_d_lo_o(t_rb_d_lo[t]), .rb_t_o(t_rb_t[t]), .rb_leaf_o(t_rb_leaf[t]),
-      .rb_done_i(done[U_RB][t]), .rb_te_i(rb_te),
+      .rb_req_o(req[U_RB][t]), .rb_grant_i(grant[U_RB][t]), .rb_o_hi_o(t_rb_o_hi[t]), 
+      .rb_d_hi_o(t_rb_d_hi[t]), .rb_lo_zero_o(t_rb_lo_zero[t]), .t0_zero_o(t_t0_zero[t]), .rb_t_o(t_rb_t[t]), .rb_leaf_o(t_rb_leaf[t]),
+      .rb_done_i(done[U_RB][t]),
       .xw_req_o(req[U_XW][t]), .xw_grant_i(grant[U_XW][t]), .xw_m_o(t_xw_m[t]), .xw_tlo_o(t_xw_tlo[t]),
       .xw_d_o(t_xw_d[t]), .xw_point_o(t_xw_point[t]), .xw_done_i(done[U_XW][t]),
-      .xw_hi_i(xw_hi), .xw_lo_i(xw_lo),
+      .xw_hi_i(xw_hi),
       .is_req_o(req[U_IS][t]), .is_grant_i(grant[U_IS][t]), .is_m_o(t_is_m[t]), .is_c_lo_o(t_is_c_lo[t]),
       .is_shared_o(t_is_shared[t]), .is_d_o(t_is_d[t]),
-      .is_tmin_o(t_is_tmin[t]), .is_tmax_o(t_is_tmax[t]), .is_t0_o(t_is_t0[t]),
+      .is_tmin_o(t_is_tmin[t]), .is_tmax_o(t_is_tmax[t]),
       .is_done_i(done[U_IS][t]), .is_hit_i(is_hit), .is_t_i(is_t), .is_u_i(is_u), .is_v_i(is_v), .is_cos_i(is_cos),
       .is_t_world_i(is_t_world),
-      .add_req_o(req[U_ADD][t]), .add_grant_i(grant[U_ADD][t]), .add_a_o(t_add_a[t]), .add_b_o(t_add_b[t]),
+      .add_req_o(req[U_ADD][t]), .add_grant_i(grant[U_ADD][t]), .add_a_o(t_add_a[t]),
       .add_done_i(done[U_ADD][t]), .add_r_i(add_r));
   end
 
@@ -291,12 +291,13 @@ module trace_core #(
   logic [UNITS-1:U_RB] step_q;            // the unit's step this cycle (the issue of the cycle before)
   logic [TW-1:0] sel_q [UNITS];
   logic [1:0] ray_q [UNITS];
-  logic rb_leaf_q, xw_point_q;
-  logic [3*W-1:0] rb_o_hi_q, rb_o_lo_q, rb_d_hi_q, rb_d_lo_q, xw_tlo_q, xw_d_q, is_c_lo_q, is_d_q;
-  logic [W-1:0] rb_t_q, is_tmin_q, is_tmax_q, is_t0_q;
+  logic rb_leaf_q, rb_lo_zero_q, xw_point_q;
+  logic [3*W-1:0] rb_o_hi_q, rb_d_hi_q, xw_tlo_q, xw_d_q, is_c_lo_q, is_d_q;
+  logic [W-1:0] rb_t_q, is_tmin_q, is_tmax_q;
+  logic is_t0_zero_q, add_t0_zero_q;
   logic [12*W-1:0] xw_m_q, is_m_q;
   logic [2:0] is_shared_q;
-  logic [2*W-1:0] add_a_q, add_b_q;
+  logic [2*W-1:0] add_a_q;
   always_ff @(posedge clk_i or negedge rst_ni)
     if (!rst_ni) step_q <= '0;
     else
@@ -307,11 +308,10 @@ module trace_core #(
       ray_q[u] <= t_ray[sel[u]];
     end
     rb_o_hi_q <= t_rb_o_hi[sel[U_RB]];
-    rb_o_lo_q <= t_rb_o_lo[sel[U_RB]];
     rb_d_hi_q <= t_rb_d_hi[sel[U_RB]];
-    rb_d_lo_q <= t_rb_d_lo[sel[U_RB]];
     rb_t_q <= t_rb_t[sel[U_RB]];
     rb_leaf_q <= t_rb_leaf[sel[U_RB]];
+    rb_lo_zero_q <= t_rb_lo_zero[sel[U_RB]];
     xw_m_q <= t_xw_m[sel[U_XW]];
     xw_tlo_q <= t_xw_tlo[sel[U_XW]];
     xw_d_q <= t_xw_d[sel[U_XW]];
@@ -322,27 +322,29 @@ module trace_core #(
     is_d_q <= t_is_d[sel[U_IS]];
     is_tmin_q <= t_is_tmin[sel[U_IS]];
     is_tmax_q <= t_is_tmax[sel[U_IS]];
-    is_t0_q <= t_is_t0[sel[U_IS]];
+    is_t0_zero_q <= t_t0_zero[sel[U_IS]];
     add_a_q <= t_add_a[sel[U_ADD]];
-    add_b_q <= t_add_b[sel[U_ADD]];
+    add_t0_zero_q <= t_t0_zero[sel[U_ADD]];
   end
 
   // the units without a thread id: their outputs are always taken, so the step's thread (and for
-  // the rebase unit its ray and kind, where its result goes) travels beside them in a delay line
-  // of their latency
+  // the rebase and wide units its ray and kind, where their results go) travels beside them in a
+  // delay line of their latency
   logic [UNITS-1:U_RB] out_valid;
   logic [TW-1:0] out_thread [UNITS];
-  logic [TW+2:0] rb_tag;                  // {leaf, ray, thread} of the rebase unit's result
+  logic [TW+2:0] rb_tag, xw_tag;          // {leaf, ray, thread}, {pass, ray, thread} of their results
   for (genvar u = U_RB; u < UNITS; u++) begin : g_tag
     localparam int LAT = u == U_IS ? TRI_LATENCY : u == U_ADD ? ADD_STAGES : SUM_STAGES;  // rebase, wide: SUM
-    localparam int TAGW = u == U_RB ? TW + 3 : TW;
+    localparam int TAGW = u == U_RB || u == U_XW ? TW + 3 : TW;
     logic [TAGW-1:0] tag;
     f24_pipe #(.W(TAGW), .STAGES(LAT)) u_tag (
       .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(step_q[u]),
-      .data_i(TAGW'({rb_leaf_q, ray_q[u], sel_q[u]})), .valid_o(), .data_o(tag));
+      .data_i(TAGW'({u == U_XW ? !xw_point_q : rb_leaf_q, ray_q[u], sel_q[u]})), .valid_o(), .data_o(tag));
     assign out_thread[u] = tag[TW-1:0];
     if (u == U_RB) begin : g_rb
       assign rb_tag = tag;
+    end else if (u == U_XW) begin : g_xw
+      assign xw_tag = tag;
     end
     assign done[u] = out_valid[u] ? one[out_thread[u]] : '0;
   end
@@ -367,9 +369,41 @@ module trace_core #(
     .clk_i(clk_i), .we_i(rb_we && rb_tag[TW+2]), .waddr_i(rb_waddr), .wdata_i(rb_te),
     .raddr_i({sel[U_IS], t_ray[sel[U_IS]]}), .rdata_o(te_is));
 
+  // the object-space rays' low words so_lo, sd_lo (op_inst_xform) per thread and ray: written by
+  // the wide transformation's results (pass 0 the origin's, pass 1 the direction's), read by a
+  // leaf's rebase; an identity instance's zeros are its thread's lo_zero instead
+  logic [3*W-1:0] so_lo_rb, sd_lo_rb;
+  logic [TW+1:0] xw_waddr, rb_raddr;
+  assign xw_waddr = {xw_tag[TW-1:0], xw_tag[TW +: 2]};
+  assign rb_raddr = {sel[U_RB], t_ray[sel[U_RB]]};
+  thread_ram #(.W(3 * W), .DEPTH(RAYS)) u_so_lo (
+    .clk_i(clk_i), .we_i(out_valid[U_XW] && !xw_tag[TW+2]), .waddr_i(xw_waddr), .wdata_i(xw_lo),
+    .raddr_i(rb_raddr), .rdata_o(so_lo_rb));
+  thread_ram #(.W(3 * W), .DEPTH(RAYS)) u_sd_lo (
+    .clk_i(clk_i), .we_i(out_valid[U_XW] && xw_tag[TW+2]), .waddr_i(xw_waddr), .wdata_i(xw_lo),
+    .raddr_i(rb_raddr), .rdata_o(sd_lo_rb));
+  // t0 (op_inst_xform: the world ray's distance to the top-level leaf) per thread and ray: written
+  // by the rebase unit's results of an instance (not a leaf), read by the adders (the relative
+  // distances) and the triangle test (best_t = t0 + t); a new packet's and an identity instance's
+  // +0 are its thread's t0_zero instead
+  logic [W-1:0] t0_add, t0_is;
+  thread_ram #(.W(W), .DEPTH(RAYS)) u_t0_add (
+    .clk_i(clk_i), .we_i(rb_we && !rb_tag[TW+2]), .waddr_i(rb_waddr), .wdata_i(rb_te),
+    .raddr_i({sel[U_ADD], t_ray[sel[U_ADD]]}), .rdata_o(t0_add));
+  thread_ram #(.W(W), .DEPTH(RAYS)) u_t0_is (
+    .clk_i(clk_i), .we_i(rb_we && !rb_tag[TW+2]), .waddr_i(rb_waddr), .wdata_i(rb_te),
+    .raddr_i({sel[U_IS], t_ray[sel[U_IS]]}), .rdata_o(t0_is));
+  logic [W-1:0] add_t0, is_t0;
+  assign add_t0 = add_t0_zero_q ? '0 : t0_add;
+  assign is_t0 = is_t0_zero_q ? '0 : t0_is;
+
+  logic rb_lo;                            // a leaf's rebase of an instance's rays in double words
+  assign rb_lo = rb_leaf_q && !rb_lo_zero_q;
+
   rebase_unit #(.E(E), .M(M), .SUM_STAGES(SUM_STAGES)) u_rebase (
     .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(step_q[U_RB]), .ready_o(unit_ready[U_RB]),
-    .o_hi_i(rb_o_hi_q), .o_lo_i(rb_o_lo_q), .d_hi_i(rb_d_hi_q), .d_lo_i(rb_d_lo_q), .t_i(rb_t_q),
+    .o_hi_i(rb_o_hi_q), .o_lo_i(rb_lo ? so_lo_rb : '0), .d_hi_i(rb_d_hi_q), .d_lo_i(rb_lo ? sd_lo_rb : '0),
+    .t_i(rb_t_q),
     .valid_o(out_valid[U_RB]), .ready_i(1'b1), .p_hi_o(rb_p_hi), .p_lo_o(rb_p_lo), .te_o(rb_te));
 
   // pass 0 of an instance's rays transforms the rebased origin, pass 1 the direction
@@ -383,7 +417,7 @@ module trace_core #(
                   .CMP_STAGES(CMP_STAGES), .SUM_STAGES(SUM_STAGES)) u_isect (
     .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(step_q[U_IS]), .m_i(is_m_q), .c_lo_i(is_c_lo_q),
     .shared_i(is_shared_q), .p_hi_i(p_is[3*W +: 3*W]), .p_lo_i(p_is[0 +: 3*W]), .d_i(is_d_q), .te_i(te_is),
-    .tmin_i(is_tmin_q), .tmax_i(is_tmax_q), .t0_i(is_t0_q),
+    .tmin_i(is_tmin_q), .tmax_i(is_tmax_q), .t0_i(is_t0),
     .valid_o(out_valid[U_IS]), .hit_o(is_hit), .t_o(is_t), .u_o(is_u), .v_o(is_v), .cos_o(is_cos),
     .t_world_o(is_t_world));
 
@@ -392,7 +426,7 @@ module trace_core #(
   for (genvar j = 0; j < 2; j++) begin : g_add
     f24_add #(.E(E), .M(M), .STAGES(ADD_STAGES)) u_add (
       .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(step_q[U_ADD]),
-      .a_i(add_a_q[j*W +: W]), .b_i(add_b_q[j*W +: W]), .sub_i(1'b1),
+      .a_i(add_a_q[j*W +: W]), .b_i(add_t0), .sub_i(1'b1),
       .valid_o(add_valid[j]), .res_o(add_r[j*W +: W]));
   end
   assign out_valid[U_ADD] = &add_valid;

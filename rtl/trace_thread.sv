@@ -118,13 +118,12 @@ module trace_thread #(
   output logic                        rb_req_o,
   input  logic                        rb_grant_i,
   output logic [3*(E+M+1)-1:0]        rb_o_hi_o,
-  output logic [3*(E+M+1)-1:0]        rb_o_lo_o,
   output logic [3*(E+M+1)-1:0]        rb_d_hi_o,
-  output logic [3*(E+M+1)-1:0]        rb_d_lo_o,
+  output logic                        rb_lo_zero_o, // the ray's object-space low words are zero (else trace_core's)
+  output logic                        t0_zero_o,   // the ray's t0 is +0 (else trace_core's: adders, triangle test)
   output logic [E+M:0]                rb_t_o,
   output logic                        rb_leaf_o,   // a leaf's rebase: te (else an instance's: t0)
-  input  logic                        rb_done_i,
-  input  logic [E+M:0]                rb_te_i,     // t0 of an instance's rebase (p and te: trace_core's)
+  input  logic                        rb_done_i,   // (its results p, te, t0: trace_core's)
   // the transformation unit's wide mode
   output logic                        xw_req_o,
   input  logic                        xw_grant_i,
@@ -133,8 +132,7 @@ module trace_thread #(
   output logic [3*(E+M+1)-1:0]        xw_d_o,      // the direction (pass 1; pass 0's origin p: trace_core's)
   output logic                        xw_point_o,
   input  logic                        xw_done_i,
-  input  logic [3*(E+M+1)-1:0]        xw_hi_i,
-  input  logic [3*(E+M+1)-1:0]        xw_lo_i,
+  input  logic [3*(E+M+1)-1:0]        xw_hi_i,     // (the low words: trace_core's)
   // the triangle test (isect_rebased: the origin path, the transformations, the intersection, t0 + t)
   output logic                        is_req_o,
   input  logic                        is_grant_i,
@@ -144,7 +142,6 @@ module trace_thread #(
   output logic [3*(E+M+1)-1:0]        is_d_o,      // (p and te: trace_core's)
   output logic [E+M:0]                is_tmin_o,
   output logic [E+M:0]                is_tmax_o,
-  output logic [E+M:0]                is_t0_o,
   input  logic                        is_done_i,
   input  logic                        is_hit_i,
   input  logic [E+M:0]                is_t_i,
@@ -156,7 +153,6 @@ module trace_thread #(
   output logic                        add_req_o,
   input  logic                        add_grant_i,
   output logic [2*(E+M+1)-1:0]        add_a_o,
-  output logic [2*(E+M+1)-1:0]        add_b_o,
   input  logic                        add_done_i,
   input  logic [2*(E+M+1)-1:0]        add_r_i
 );
@@ -202,8 +198,14 @@ module trace_thread #(
 
   logic [2:0] flags;
   logic [3:0] active, alive, need;
-  logic [3*W-1:0] ro [4], rd [4], so [4], sd [4], so_lo [4], sd_lo [4];
-  logic [W-1:0] tmin [4], best_t [4], best_rel [4], tmin_rel [4], t0 [4];
+  logic [3*W-1:0] ro [4], rd [4], so [4], sd [4];
+  // the object-space rays' low words so_lo, sd_lo are trace_core's (thread_ram); lo_zero[i]: ray
+  // i's are zero (an identity instance's rays pass as wiring), read as zero in their place
+  logic [3:0] lo_zero;
+  logic [W-1:0] tmin [4], best_t [4], best_rel [4], tmin_rel [4];
+  // t0 (an instance's entry distance, from its rebase) is trace_core's (thread_ram); t0_zero[i]:
+  // ray i's is +0 (a new packet, an identity instance), read as +0 in its place
+  logic [3:0] t0_zero;
   logic [31:0] h_inst [4], h_tri [4];
   logic [W-1:0] h_t [4], h_u [4], h_v [4], h_cos [4];
   logic level;
@@ -354,9 +356,8 @@ module trace_thread #(
   assign rb_leaf = bop == B_RB_LEAF;
   assign rb_req_o = batch_req && (bop == B_RB_LEAF || bop == B_RB_INST);
   assign rb_o_hi_o = rb_leaf ? so[ir] : ro[ir];
-  assign rb_o_lo_o = rb_leaf ? so_lo[ir] : '0;
   assign rb_d_hi_o = rb_leaf ? sd[ir] : rd[ir];
-  assign rb_d_lo_o = rb_leaf ? sd_lo[ir] : '0;
+  assign rb_lo_zero_o = lo_zero[ir];
   assign rb_t_o = leaf_tn[rb_leaf][ir];
   assign rb_leaf_o = rb_leaf;
   assign step_ray_o = ir;
@@ -378,12 +379,11 @@ module trace_thread #(
   assign is_d_o = sd[ir];
   assign is_tmin_o = tmin_rel[ir];
   assign is_tmax_o = best_rel[ir];
-  assign is_t0_o = t0[ir];
+  assign t0_zero_o = t0_zero[ir];
 
   // the subtractors: best_rel = best_t - t0, tmin_rel = tmin - t0
   assign add_req_o = batch_req && bop == B_IC_ADD;
   assign add_a_o = {tmin[ir], best_t[ir]};
-  assign add_b_o = {t0[ir], t0[ir]};
 
   // the batch's results: done of its unit, for ray cr of pass cpass
   logic batch_grant, batch_done;
@@ -467,7 +467,7 @@ module trace_thread #(
               tmin_rel[i] <= tmin_i[i*W +: W];
               best_t[i] <= v_tmax[i*W +: W];
               best_rel[i] <= v_tmax[i*W +: W];
-              t0[i] <= '0;
+              t0_zero[i] <= 1'b1;
               h_inst[i] <= NO_HIT;
               h_tri[i] <= NO_HIT;
               h_t[i] <= POS_INF;
@@ -580,14 +580,14 @@ module trace_thread #(
               cpass <= 1'b1;
             end else ctodo[cr] <= 1'b0;
             unique case (bop)
-              B_RB_INST: t0[cr] <= rb_te_i;  // p and a leaf's te: trace_core's thread_ram
+              B_RB_INST: t0_zero[cr] <= 1'b0;  // t0, p and a leaf's te: trace_core's thread_ram
               B_XW:
                 if (cpass) begin
                   sd[cr] <= xw_hi_i;
-                  sd_lo[cr] <= xw_lo_i;
+                  lo_zero[cr] <= 1'b0;
                 end else begin
                   so[cr] <= xw_hi_i;
-                  so_lo[cr] <= xw_lo_i;
+                  lo_zero[cr] <= 1'b0;
                 end
               B_IC_ADD: begin
                 best_rel[cr] <= add_r_i[0 +: W];
@@ -630,9 +630,8 @@ module trace_thread #(
               if (need[i]) begin
                 so[i] <= identity(inst_m, ro[i], 1'b1);
                 sd[i] <= identity(inst_m, rd[i], 1'b0);
-                so_lo[i] <= '0;
-                sd_lo[i] <= '0;
-                t0[i] <= '0;
+                lo_zero[i] <= 1'b1;
+                t0_zero[i] <= 1'b1;
               end
             st <= S_IC_LOAD;
           end else begin
