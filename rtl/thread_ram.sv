@@ -21,12 +21,13 @@ module thread_ram #(
   input  logic          we_i,
   input  logic [AW-1:0] waddr_i,
   input  logic [W-1:0]  wdata_i,
+  input  logic          re_i,            // the read register takes the word (else holds)
   input  logic [AW-1:0] raddr_i,
   output logic [W-1:0]  rdata_o
 );
   logic [W-1:0] mem [DEPTH];
   always_ff @(posedge clk_i) begin
     if (we_i) mem[waddr_i] <= wdata_i;
-    rdata_o <= mem[raddr_i];
+    if (re_i) rdata_o <= mem[raddr_i];
   end
 endmodule

@@ -123,8 +123,9 @@ module trace_core #(
   logic [THREADS-1:0] t_ready, t_valid, t_out_ready, t_mem_req, t_waiting, t_node_rsp, t_hdr_want;
   logic [THREADS*4-1:0] t_slots;
   logic [31:0] t_mem_addr [THREADS];
-  logic [4*32-1:0] t_inst [THREADS], t_tri [THREADS];
-  logic [4*W-1:0] t_t [THREADS], t_u [THREADS], t_v [THREADS], t_cos [THREADS];
+  logic [31:0] t_is_inst [THREADS], t_is_tri [THREADS];
+  logic [3:0] t_hit [THREADS];
+  logic [4*W-1:0] t_t [THREADS];
   logic [10*32-1:0] t_count [THREADS];
   logic [THREADS-1:0] req [UNITS], req_q [UNITS], grant [UNITS], done [UNITS];
   logic [UNITS-1:0] unit_ready, issue_valid;
@@ -173,8 +174,7 @@ module trace_core #(
     trace_thread #(.E(E), .M(M)) u_thread (
       .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(valid_i && thread_i == TW'(t)), .ready_o(t_ready[t]),
       .flags_i(flags_i), .active_i(active_i), .o_i(o_i), .d_i(d_i), .tmin_i(tmin_i), .tmax_i(tmax_i),
-      .valid_o(t_valid[t]), .ready_i(t_out_ready[t]), .inst_o(t_inst[t]), .tri_o(t_tri[t]), .t_o(t_t[t]),
-      .u_o(t_u[t]), .v_o(t_v[t]), .cos_o(t_cos[t]), .count_o(t_count[t]),
+      .valid_o(t_valid[t]), .ready_i(t_out_ready[t]), .hit_o(t_hit[t]), .t_o(t_t[t]), .count_o(t_count[t]),
       .hdr_want_o(t_hdr_want[t]), .hdr_ok_i(hdr_ok), .hdr_instances_i(hdr_instances), .hdr_objects_i(hdr_objects),
       .hdr_inst_i(hdr_inst), .hdr_top_nodes_i(hdr_top_nodes), .hdr_top_lists_i(hdr_top_lists),
       .scene_box_i(scene_box),
@@ -203,7 +203,7 @@ module trace_core #(
       .is_req_o(req[U_IS][t]), .is_grant_i(grant[U_IS][t]), .is_m_o(t_is_m[t]), .is_c_lo_o(t_is_c_lo[t]),
       .is_shared_o(t_is_shared[t]), .is_d_o(t_is_d[t]),
       .is_tmin_o(t_is_tmin[t]), .is_tmax_o(t_is_tmax[t]),
-      .is_done_i(done[U_IS][t]), .is_hit_i(is_hit), .is_t_i(is_t), .is_u_i(is_u), .is_v_i(is_v), .is_cos_i(is_cos),
+      .is_done_i(done[U_IS][t]), .is_hit_i(is_hit), .is_t_i(is_t), .is_inst_o(t_is_inst[t]), .is_tri_o(t_is_tri[t]),
       .is_t_world_i(is_t_world),
       .add_req_o(req[U_ADD][t]), .add_grant_i(grant[U_ADD][t]), .add_a_o(t_add_a[t]),
       .add_done_i(done[U_ADD][t]), .add_r_i(add_r));
@@ -333,9 +333,10 @@ module trace_core #(
   logic [UNITS-1:U_RB] out_valid;
   logic [TW-1:0] out_thread [UNITS];
   logic [TW+2:0] rb_tag, xw_tag;          // {leaf, ray, thread}, {pass, ray, thread} of their results
+  logic [1:0] is_ray;                     // the triangle test's result's ray
   for (genvar u = U_RB; u < UNITS; u++) begin : g_tag
     localparam int LAT = u == U_IS ? TRI_LATENCY : u == U_ADD ? ADD_STAGES : SUM_STAGES;  // rebase, wide: SUM
-    localparam int TAGW = u == U_RB || u == U_XW ? TW + 3 : TW;
+    localparam int TAGW = u == U_ADD ? TW : u == U_IS ? TW + 2 : TW + 3;
     logic [TAGW-1:0] tag;
     f24_pipe #(.W(TAGW), .STAGES(LAT)) u_tag (
       .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(step_q[u]),
@@ -345,6 +346,8 @@ module trace_core #(
       assign rb_tag = tag;
     end else if (u == U_XW) begin : g_xw
       assign xw_tag = tag;
+    end else if (u == U_IS) begin : g_is
+      assign is_ray = tag[TW +: 2];
     end
     assign done[u] = out_valid[u] ? one[out_thread[u]] : '0;
   end
@@ -361,13 +364,13 @@ module trace_core #(
   assign rb_waddr = {rb_tag[TW-1:0], rb_tag[TW +: 2]};  // {thread, ray}
   thread_ram #(.W(6 * W), .DEPTH(RAYS)) u_p_xw (
     .clk_i(clk_i), .we_i(rb_we), .waddr_i(rb_waddr), .wdata_i({rb_p_hi, rb_p_lo}),
-    .raddr_i({sel[U_XW], t_ray[sel[U_XW]]}), .rdata_o(p_xw));
+    .re_i(1'b1), .raddr_i({sel[U_XW], t_ray[sel[U_XW]]}), .rdata_o(p_xw));
   thread_ram #(.W(6 * W), .DEPTH(RAYS)) u_p_is (
     .clk_i(clk_i), .we_i(rb_we), .waddr_i(rb_waddr), .wdata_i({rb_p_hi, rb_p_lo}),
-    .raddr_i({sel[U_IS], t_ray[sel[U_IS]]}), .rdata_o(p_is));
+    .re_i(1'b1), .raddr_i({sel[U_IS], t_ray[sel[U_IS]]}), .rdata_o(p_is));
   thread_ram #(.W(W), .DEPTH(RAYS)) u_te_is (
     .clk_i(clk_i), .we_i(rb_we && rb_tag[TW+2]), .waddr_i(rb_waddr), .wdata_i(rb_te),
-    .raddr_i({sel[U_IS], t_ray[sel[U_IS]]}), .rdata_o(te_is));
+    .re_i(1'b1), .raddr_i({sel[U_IS], t_ray[sel[U_IS]]}), .rdata_o(te_is));
 
   // the object-space rays' low words so_lo, sd_lo (op_inst_xform) per thread and ray: written by
   // the wide transformation's results (pass 0 the origin's, pass 1 the direction's), read by a
@@ -378,10 +381,10 @@ module trace_core #(
   assign rb_raddr = {sel[U_RB], t_ray[sel[U_RB]]};
   thread_ram #(.W(3 * W), .DEPTH(RAYS)) u_so_lo (
     .clk_i(clk_i), .we_i(out_valid[U_XW] && !xw_tag[TW+2]), .waddr_i(xw_waddr), .wdata_i(xw_lo),
-    .raddr_i(rb_raddr), .rdata_o(so_lo_rb));
+    .re_i(1'b1), .raddr_i(rb_raddr), .rdata_o(so_lo_rb));
   thread_ram #(.W(3 * W), .DEPTH(RAYS)) u_sd_lo (
     .clk_i(clk_i), .we_i(out_valid[U_XW] && xw_tag[TW+2]), .waddr_i(xw_waddr), .wdata_i(xw_lo),
-    .raddr_i(rb_raddr), .rdata_o(sd_lo_rb));
+    .re_i(1'b1), .raddr_i(rb_raddr), .rdata_o(sd_lo_rb));
   // t0 (op_inst_xform: the world ray's distance to the top-level leaf) per thread and ray: written
   // by the rebase unit's results of an instance (not a leaf), read by the adders (the relative
   // distances) and the triangle test (best_t = t0 + t); a new packet's and an identity instance's
@@ -389,10 +392,10 @@ module trace_core #(
   logic [W-1:0] t0_add, t0_is;
   thread_ram #(.W(W), .DEPTH(RAYS)) u_t0_add (
     .clk_i(clk_i), .we_i(rb_we && !rb_tag[TW+2]), .waddr_i(rb_waddr), .wdata_i(rb_te),
-    .raddr_i({sel[U_ADD], t_ray[sel[U_ADD]]}), .rdata_o(t0_add));
+    .re_i(1'b1), .raddr_i({sel[U_ADD], t_ray[sel[U_ADD]]}), .rdata_o(t0_add));
   thread_ram #(.W(W), .DEPTH(RAYS)) u_t0_is (
     .clk_i(clk_i), .we_i(rb_we && !rb_tag[TW+2]), .waddr_i(rb_waddr), .wdata_i(rb_te),
-    .raddr_i({sel[U_IS], t_ray[sel[U_IS]]}), .rdata_o(t0_is));
+    .re_i(1'b1), .raddr_i({sel[U_IS], t_ray[sel[U_IS]]}), .rdata_o(t0_is));
   logic [W-1:0] add_t0, is_t0;
   assign add_t0 = add_t0_zero_q ? '0 : t0_add;
   assign is_t0 = is_t0_zero_q ? '0 : t0_is;
@@ -517,22 +520,49 @@ module trace_core #(
     end
 
   // ---- packets in and out ----
+  // A finished packet leaves its thread into the output register (out_full) when that is free or
+  // being taken (the lowest finished thread first), and its thread is free from the next cycle;
+  // the register holds the thread's hit flags, t and counters, and its hits' records come from
+  // thread_ram read in the same cycle: a packet's hits leave a cycle after its thread finished.
   logic [TW-1:0] out_sel;
   logic [THREADS-1:0] out_grant;
+  logic out_any, out_take, out_full;
   /* verilator lint_off PINCONNECTEMPTY */
-  rr_pick #(.N(THREADS)) u_out_pick (.req_i(t_valid), .after_i('0), .any_o(valid_o), .grant_o(out_grant),
+  rr_pick #(.N(THREADS)) u_out_pick (.req_i(t_valid), .after_i('0), .any_o(out_any), .grant_o(out_grant),
                                      .index_o(out_sel), .after_o());
   /* verilator lint_on PINCONNECTEMPTY */
   assign ready_o = t_ready[thread_i];
-  assign t_out_ready = ready_i ? out_grant : '0;
-  assign thread_o = out_sel;
-  assign inst_o = t_inst[out_sel];
-  assign tri_o = t_tri[out_sel];
-  assign t_o = t_t[out_sel];
-  assign u_o = t_u[out_sel];
-  assign v_o = t_v[out_sel];
-  assign cos_o = t_cos[out_sel];
-  assign count_o = t_count[out_sel];
+  assign out_take = !out_full || ready_i;
+  assign t_out_ready = out_take ? out_grant : '0;
+  logic [3:0] out_hit;
+  always_ff @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) out_full <= 1'b0;
+    else if (out_take) out_full <= out_any;
+  always_ff @(posedge clk_i)
+    if (out_take) begin
+      thread_o <= out_sel;
+      out_hit <= t_hit[out_sel];
+      t_o <= t_t[out_sel];
+      count_o <= t_count[out_sel];
+    end
+  assign valid_o = out_full;
+  // a hit's record per thread, one memory per ray: written by the triangle test's hits (the
+  // instance and triangle from the thread the result is for), read as the packet leaves
+  logic [31:0] is_inst, is_tri;
+  assign is_inst = t_is_inst[out_thread[U_IS]];
+  assign is_tri = t_is_tri[out_thread[U_IS]];
+  localparam logic [31:0] NO_HIT = '1;
+  for (genvar r = 0; r < 4; r++) begin : g_hit
+    logic [64+3*W-1:0] rec;
+    thread_ram #(.W(64 + 3 * W), .DEPTH(THREADS)) u_hit (
+      .clk_i(clk_i), .we_i(out_valid[U_IS] && is_hit && is_ray == 2'(r)), .waddr_i(out_thread[U_IS]),
+      .wdata_i({is_inst, is_tri, is_u, is_v, is_cos}), .re_i(out_take), .raddr_i(out_sel), .rdata_o(rec));
+    assign inst_o[r*32 +: 32] = out_hit[r] ? rec[3*W+32 +: 32] : NO_HIT;
+    assign tri_o[r*32 +: 32] = out_hit[r] ? rec[3*W +: 32] : NO_HIT;
+    assign u_o[r*W +: W] = out_hit[r] ? rec[2*W +: W] : '0;
+    assign v_o[r*W +: W] = out_hit[r] ? rec[W +: W] : '0;
+    assign cos_o[r*W +: W] = out_hit[r] ? rec[0 +: W] : '0;
+  end
   always_comb begin
     inflight_o = '0;
     for (int t = 0; t < THREADS; t++) inflight_o = inflight_o + (TW+1)'(t_waiting[t]);

@@ -50,12 +50,8 @@ module trace_thread #(
   // hits out (TP_DONE)
   output logic                        valid_o,
   input  logic                        ready_i,
-  output logic [4*32-1:0]             inst_o,     // TRACE_NO_HIT for a miss
-  output logic [4*32-1:0]             tri_o,
-  output logic [4*(E+M+1)-1:0]        t_o,
-  output logic [4*(E+M+1)-1:0]        u_o,
-  output logic [4*(E+M+1)-1:0]        v_o,
-  output logic [4*(E+M+1)-1:0]        cos_o,
+  output logic [3:0]                  hit_o,      // the rays with a hit (its record: trace_core's)
+  output logic [4*(E+M+1)-1:0]        t_o,        // +Inf for a miss
   output logic [10*32-1:0]            count_o,    // trace_counters in its order (words: 4 kinds)
   // the header's fields (the core's, hdr_ok_i when read)
   output logic                        hdr_want_o,  // waiting for the header
@@ -145,9 +141,8 @@ module trace_thread #(
   input  logic                        is_done_i,
   input  logic                        is_hit_i,
   input  logic [E+M:0]                is_t_i,
-  input  logic [E+M:0]                is_u_i,
-  input  logic [E+M:0]                is_v_i,
-  input  logic [E+M:0]                is_cos_i,
+  output logic [31:0]                 is_inst_o,   // the triangle's instance and index (a hit's record)
+  output logic [31:0]                 is_tri_o,
   input  logic [E+M:0]                is_t_world_i,
   // 2 subtractors (one operation on 2 lanes: the relative distances)
   output logic                        add_req_o,
@@ -159,7 +154,6 @@ module trace_thread #(
   localparam logic [E-1:0] EXP_MAX = '1;
   localparam logic [W-1:0] POS_INF = {1'b0, EXP_MAX, {M{1'b0}}};
   localparam logic [W-1:0] DNAN = {1'b0, EXP_MAX, 1'b1, {(M-1){1'b0}}};
-  localparam logic [31:0] NO_HIT = '1;
   // memory image layout (docs/memory-image.md; hls/units/trace.c)
   localparam int TRI_WORDS = RW;                            // F24_TRIANGLE_RECORD_WORDS
   localparam int INST_WORDS = TRI_WORDS * ((17 + TRI_WORDS - 1) / TRI_WORDS);
@@ -206,8 +200,9 @@ module trace_thread #(
   // t0 (an instance's entry distance, from its rebase) is trace_core's (thread_ram); t0_zero[i]:
   // ray i's is +0 (a new packet, an identity instance), read as +0 in its place
   logic [3:0] t0_zero;
-  logic [31:0] h_inst [4], h_tri [4];
-  logic [W-1:0] h_t [4], h_u [4], h_v [4], h_cos [4];
+  // the hits: hit[i] says ray i has one, whose t is best_t[i] (both written by each hit); its
+  // instance, triangle, u, v and cos are trace_core's (thread_ram)
+  logic [3:0] hit;
   logic level;
   logic [31:0] lists [2], leaf_first [2], leaf_count [2], k [2];
   logic [3:0] leaf_mask [2];
@@ -377,6 +372,9 @@ module trace_thread #(
   assign is_c_lo_o = c_lo_q;
   assign is_shared_o = tri_shared;
   assign is_d_o = sd[ir];
+  assign is_inst_o = inst;
+  assign is_tri_o = tri_ix;
+  assign hit_o = hit;
   assign is_tmin_o = tmin_rel[ir];
   assign is_tmax_o = best_rel[ir];
   assign t0_zero_o = t0_zero[ir];
@@ -412,12 +410,7 @@ module trace_thread #(
   assign valid_o = st == S_DONE;
   always_comb
     for (int i = 0; i < 4; i++) begin
-      inst_o[i*32 +: 32] = h_inst[i];
-      tri_o[i*32 +: 32] = h_tri[i];
-      t_o[i*W +: W] = h_t[i];
-      u_o[i*W +: W] = h_u[i];
-      v_o[i*W +: W] = h_v[i];
-      cos_o[i*W +: W] = h_cos[i];
+      t_o[i*W +: W] = hit[i] ? best_t[i] : POS_INF;
     end
   always_comb
     for (int c = 0; c < 10; c++) count_o[c*32 +: 32] = cnt[c];
@@ -468,14 +461,9 @@ module trace_thread #(
               best_t[i] <= v_tmax[i*W +: W];
               best_rel[i] <= v_tmax[i*W +: W];
               t0_zero[i] <= 1'b1;
-              h_inst[i] <= NO_HIT;
-              h_tri[i] <= NO_HIT;
-              h_t[i] <= POS_INF;
-              h_u[i] <= '0;
-              h_v[i] <= '0;
-              h_cos[i] <= '0;
             end
             for (int c = 0; c < 10; c++) cnt[c] <= '0;
+            hit <= '0;
             st <= S_CLR0;
           end
         S_CLR0:
@@ -597,12 +585,7 @@ module trace_thread #(
                 if (is_hit_i) begin
                   best_rel[cr] <= is_t_i;
                   best_t[cr] <= is_t_world_i;
-                  h_t[cr] <= is_t_world_i;
-                  h_inst[cr] <= inst;
-                  h_tri[cr] <= tri_ix;
-                  h_u[cr] <= is_u_i;
-                  h_v[cr] <= is_v_i;
-                  h_cos[cr] <= is_cos_i;
+                  hit[cr] <= 1'b1;
                   if (flags[1]) alive[cr] <= 1'b0;
                 end
               default: ;
