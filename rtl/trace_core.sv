@@ -33,17 +33,22 @@
 // packets, 2 shared AMD EPYC cores, 2026-11-25): 8 threads 52,844 cycles, 161.6 per packet
 // (58,491 and 178.9 with the triangle as six batches on shared operators and the traversal
 // unit's starts down its pipeline, 55,684 and 170.3 with the starts bypassing it), 1 thread
-// (--threads 1) 415,578, 1270.9 per packet (459,070 and 1403.9; 436,985 and 1336.3); throughput: up to one ray step per unit and
-// cycle, one word port request per cycle, THREADS packets in flight.
+// (--threads 1) 415,578, 1270.9 per packet (459,070 and 1403.9; 436,985 and 1336.3); since
+// 2026-11-29 a per-ray unit's step goes through the issue stage (a cycle: the operands from
+// thread_ram) and a packet's hits through the output register (a cycle). Throughput: up to one
+// ray step per unit and cycle, one word port request per cycle, THREADS packets in flight.
 // Resources: the units' (rtl/README.md), thread_sched (6 units, 4-bit slot counters), per unit a
-// 4-bit feed counter and a thread id, THREADS trace_thread (each 5718
-// LUTs and 6183 flip-flops with synth_xilinx at e7m16 before its header and 20 buffer words came
-// out: its state in registers), the header's fields (5 words and the 6 W-bit bounds, once), the
-// word port's FIFO of 2 THREADS requesters of TW + 1 bits, two rr_pick without a pointer (the word
-// port's and the output's lowest thread), the operand multiplexers (THREADS to 1 per unit); the
-// whole core is not yet synthesized.
+// 4-bit feed counter and a thread id, THREADS trace_thread (each 5059 LUT6 and 4074 flip-flops
+// with synth_xilinx at e7m16: its control and the fields the traversal unit or the FSM read, in
+// registers), thread_ram of 4 THREADS words per field group and reader (p 6 W bits, for the wide
+// transformation and the triangle test; te W; so_lo, sd_lo 3 W each, for the rebase unit; t0 W,
+// for the adders and the triangle test; 4 x THREADS words of 64 + 3 W bits for the hits' records),
+// the per-ray units' issue stage (their operands, about 41 W bits, registered once), the output
+// register, the header's fields (5 words and the 6 W-bit bounds, once), the word port's FIFO of
+// 2 THREADS requesters of TW + 1 bits, two rr_pick without a pointer (the word port's and the
+// output's lowest thread), the operand multiplexers (THREADS to 1 per unit).
 // Handshake: valid/ready at the packet input (into thread thread_i: ready_o when it is free) and
-// at the result output (the lowest finished thread first); word port valid/ready with responses in
+// at the result output (registered; the lowest finished thread first); word port valid/ready with responses in
 // request order; trav_unit's node port and list_unit's read port as those units define them (the
 // list word with list_rvalid_i: the list cache's answer, 1 for a memory that answers in the next
 // cycle). issue_o: the steps each unit took in this cycle (a batch counts its rays: the DynRTP's

@@ -1,7 +1,10 @@
 // trace_thread: one thread of the ray tracing core (trace_core): the state of its packet
-// (trace_state: the rays, alive, best_t, the hits, the level and per level the leaf, the list
-// address and have_cur, the current instance/object/triangle and need mask, the object-space rays
-// in double words, t0, best_rel, tmin_rel, the rebased origins p and te) and the FSM of
+// (trace_state: the rays, alive, best_t, a hit flag per ray, the level and per level the leaf, the
+// list address and have_cur, the current instance/object/triangle and need mask, the object-space
+// rays' high words, best_rel, tmin_rel; the fields only the per-ray units read or write, the rebased
+// origins p, te, t0, the object-space rays' low words and the hits' records, are trace_core's, in
+// thread_ram indexed by thread and ray, with a flag per ray here where the C sets them to zero:
+// lo_zero, t0_zero) and the FSM of
 // hls/units/trace.c's trace_step (route_after_list, enter_single_object, op_scene_clip, op_walk,
 // rebase_leaf, op_list, op_inst_xform, op_inst_clip, op_tri_xform, op_tri_isect). Per unit it
 // raises a request with the operation's operands (*_req_o and the operand ports) and its issue
@@ -23,12 +26,14 @@
 // algorithm trav_unit has). The stacks and mailboxes live in trav_unit and list_unit.
 // Latency: the sum of the packet's unit operations and batches (a batch: its issue slots plus the
 // unit's latency), their waits for the units and the reads.
-// Resources: the state registers, 36 W bits per ray (the triangle's intermediate values, 12 W
-// bits per ray with the batches, stay in isect_rebased's pipeline), a descriptor buffer of LBUF words (two responses: 20 at
-// e7m16), about 15 words of routing state and 10 counters of 32 bits; the record unpacking
-// (f24_vertex_lo) and the identity mapping (xform_identity) in wires. Yosys 0.23 synth_xilinx at e7m16 (before the header
-// moved to the core and the buffer shrank from 40 words to 20): 5718 LUTs, 6183 flip-flops, 4
-// DSP48E1 (the record addresses' constant multiplications), 205 CARRY4: all in flip-flops, so the paper's 64 threads want this state in block RAM indexed by thread.
+// Resources: the state registers, 22 W bits per ray and 3 flags (the triangle's intermediate
+// values stay in isect_rebased's pipeline; p, te, t0, the low words and the hits' records, 15 W
+// + 64 bits per ray, in trace_core's thread_ram), a descriptor buffer of LBUF words (two
+// responses: 20 at e7m16), about 15 words of routing state and 10 counters of 32 bits; the record
+// unpacking (f24_vertex_lo) and the identity mapping (xform_identity) in wires. Yosys 0.23
+// synth_xilinx at e7m16 (python3 scripts/synth.py --levels trace_thread, 2026-11-29): 5059 LUT6,
+// 4074 flip-flops, 8 LUT6 levels (6449, 5410 and 8 with those fields here; 5718 LUTs and 6183
+// flip-flops before the header moved to the core and the buffer shrank from 40 words to 20).
 // Handshake: valid/ready at the packet input and the result output; request/grant to the units.
 module trace_thread #(
   parameter int E = 7,
