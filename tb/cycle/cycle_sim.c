@@ -44,8 +44,10 @@ void cycle_config_default(cycle_config *c)
                                    * trace_thread's request and result states */
     c->latency[OP_LEAF] = 47;     /* the list entry's 18, then rebase_unit 25 (a batch after trace_core's issue stage
                                    * 1) and its states */
-    c->latency[OP_ISECT] = 35;    /* isect_rebased's second half: isect_unit 29 (div 11 + mul 4 + 2 add + cmp 2) +
-                                   * best_t = t0 + t (add 6) */
+    c->latency[OP_ISECT] = 36;    /* isect_rebased's second half: isect_unit 29 (div 11 + mul 4 + 2 add + cmp 2) +
+                                   * best_t = t0 + t (add 6); + 1 since trace_core's output register (a packet's hits
+                                   * a cycle later), fitted on subpass 32x24 at 8 threads (2026-11-29: 2.2% under the
+                                   * RTL with 35) */
     c->latency[OP_SURFACE] = 214; /* rgs_surface: the first hit's front reads (instance word, object, record: 3
                                    * bursts of 1, 2 and 1 to 5 lines through the shading cache, about 8), rgs_normal
                                    * 88, rgs_frame 118 */
