@@ -33,17 +33,22 @@
 // packets, 2 shared AMD EPYC cores, 2026-11-25): 8 threads 52,844 cycles, 161.6 per packet
 // (58,491 and 178.9 with the triangle as six batches on shared operators and the traversal
 // unit's starts down its pipeline, 55,684 and 170.3 with the starts bypassing it), 1 thread
-// (--threads 1) 415,578, 1270.9 per packet (459,070 and 1403.9; 436,985 and 1336.3); throughput: up to one ray step per unit and
-// cycle, one word port request per cycle, THREADS packets in flight.
+// (--threads 1) 415,578, 1270.9 per packet (459,070 and 1403.9; 436,985 and 1336.3); since
+// 2026-11-29 a per-ray unit's step goes through the issue stage (a cycle: the operands from
+// thread_ram) and a packet's hits through the output register (a cycle). Throughput: up to one
+// ray step per unit and cycle, one word port request per cycle, THREADS packets in flight.
 // Resources: the units' (rtl/README.md), thread_sched (6 units, 4-bit slot counters), per unit a
-// 4-bit feed counter and a thread id, THREADS trace_thread (each 5718
-// LUTs and 6183 flip-flops with synth_xilinx at e7m16 before its header and 20 buffer words came
-// out: its state in registers), the header's fields (5 words and the 6 W-bit bounds, once), the
-// word port's FIFO of 2 THREADS requesters of TW + 1 bits, two rr_pick without a pointer (the word
-// port's and the output's lowest thread), the operand multiplexers (THREADS to 1 per unit); the
-// whole core is not yet synthesized.
+// 4-bit feed counter and a thread id, THREADS trace_thread (each 5297 LUT6 and 3438 flip-flops
+// with synth_xilinx at e7m16: its control and the fields the
+// traversal unit or the FSM read, in registers), thread_ram of 4 THREADS words per field group and reader (p 6 W bits, for the wide
+// transformation and the triangle test; te W; so_lo, sd_lo 3 W each, for the rebase unit; t0 W,
+// for the adders and the triangle test; 4 x THREADS words of 64 + 3 W bits for the hits' records),
+// the per-ray units' issue stage (their operands, about 41 W bits, registered once), the output
+// register, the header's fields (5 words and the 6 W-bit bounds, once), the word port's FIFO of
+// 2 THREADS requesters of TW + 1 bits, two rr_pick without a pointer (the word port's and the
+// output's lowest thread), the operand multiplexers (THREADS to 1 per unit).
 // Handshake: valid/ready at the packet input (into thread thread_i: ready_o when it is free) and
-// at the result output (the lowest finished thread first); word port valid/ready with responses in
+// at the result output (registered; the lowest finished thread first); word port valid/ready with responses in
 // request order; trav_unit's node port and list_unit's read port as those units define them (the
 // list word with list_rvalid_i: the list cache's answer, 1 for a memory that answers in the next
 // cycle). issue_o: the steps each unit took in this cycle (a batch counts its rays: the DynRTP's
@@ -123,8 +128,9 @@ module trace_core #(
   logic [THREADS-1:0] t_ready, t_valid, t_out_ready, t_mem_req, t_waiting, t_node_rsp, t_hdr_want;
   logic [THREADS*4-1:0] t_slots;
   logic [31:0] t_mem_addr [THREADS];
-  logic [4*32-1:0] t_inst [THREADS], t_tri [THREADS];
-  logic [4*W-1:0] t_t [THREADS], t_u [THREADS], t_v [THREADS], t_cos [THREADS];
+  logic [31:0] t_is_inst [THREADS], t_is_tri [THREADS];
+  logic [3:0] t_hit [THREADS];
+  logic [4*W-1:0] t_t [THREADS];
   logic [10*32-1:0] t_count [THREADS];
   logic [THREADS-1:0] req [UNITS], req_q [UNITS], grant [UNITS], done [UNITS];
   logic [UNITS-1:0] unit_ready, issue_valid;
@@ -140,13 +146,15 @@ module trace_core #(
   logic [3:0] t_trav_mask [THREADS], t_list_leaf_mask [THREADS], t_list_alive [THREADS];
   logic [6*W-1:0] t_trav_box [THREADS];
   logic [31:0] t_trav_nodes [THREADS], t_list_lists [THREADS], t_list_first [THREADS], t_list_k [THREADS];
-  logic [3*W-1:0] t_rb_o_hi [THREADS], t_rb_o_lo [THREADS], t_rb_d_hi [THREADS], t_rb_d_lo [THREADS];
-  logic [W-1:0] t_rb_t [THREADS], t_is_te [THREADS], t_is_tmin [THREADS], t_is_tmax [THREADS], t_is_t0 [THREADS];
+  logic [3*W-1:0] t_rb_o_hi [THREADS], t_rb_d_hi [THREADS];
+  logic [W-1:0] t_rb_t [THREADS], t_is_tmin [THREADS], t_is_tmax [THREADS];
   logic [12*W-1:0] t_xw_m [THREADS], t_is_m [THREADS];
-  logic [3*W-1:0] t_xw_tlo [THREADS], t_xw_p_hi [THREADS], t_xw_p_lo [THREADS];
-  logic [3*W-1:0] t_is_c_lo [THREADS], t_is_p_hi [THREADS], t_is_p_lo [THREADS], t_is_d [THREADS];
-  logic [2*W-1:0] t_add_a [THREADS], t_add_b [THREADS];
+  logic [3*W-1:0] t_xw_tlo [THREADS], t_xw_d [THREADS];
+  logic [3*W-1:0] t_is_c_lo [THREADS], t_is_d [THREADS];
+  logic [2*W-1:0] t_add_a [THREADS];
   logic [2:0] t_is_shared [THREADS];
+  logic [1:0] t_ray [THREADS];
+  logic [THREADS-1:0] t_rb_leaf, t_rb_lo_zero, t_t0_zero;
   // the units' results (to every thread; done says whose)
   logic [3:0] trav_mask, trav_leaf_mask, list_need, list_skip;
   logic [4*W-1:0] trav_tn, trav_tf, trav_leaf_tn;
@@ -171,15 +179,14 @@ module trace_core #(
     trace_thread #(.E(E), .M(M)) u_thread (
       .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(valid_i && thread_i == TW'(t)), .ready_o(t_ready[t]),
       .flags_i(flags_i), .active_i(active_i), .o_i(o_i), .d_i(d_i), .tmin_i(tmin_i), .tmax_i(tmax_i),
-      .valid_o(t_valid[t]), .ready_i(t_out_ready[t]), .inst_o(t_inst[t]), .tri_o(t_tri[t]), .t_o(t_t[t]),
-      .u_o(t_u[t]), .v_o(t_v[t]), .cos_o(t_cos[t]), .count_o(t_count[t]),
+      .valid_o(t_valid[t]), .ready_i(t_out_ready[t]), .hit_o(t_hit[t]), .t_o(t_t[t]), .count_o(t_count[t]),
       .hdr_want_o(t_hdr_want[t]), .hdr_ok_i(hdr_ok), .hdr_instances_i(hdr_instances), .hdr_objects_i(hdr_objects),
       .hdr_inst_i(hdr_inst), .hdr_top_nodes_i(hdr_top_nodes), .hdr_top_lists_i(hdr_top_lists),
       .scene_box_i(scene_box),
       .mem_req_valid_o(t_mem_req[t]), .mem_req_ready_i(!hdr_req && word_grant[t] && word_take),
       .mem_addr_o(t_mem_addr[t]), .mem_rsp_valid_i(mem_rsp_valid_i && word_head == {1'b0, TW'(t)}),
       .mem_rdata_i(mem_rdata_i), .node_rsp_i(t_node_rsp[t]), .waiting_o(t_waiting[t]),
-      .slots_o(t_slots[t*4 +: 4]),
+      .slots_o(t_slots[t*4 +: 4]), .step_ray_o(t_ray[t]),
       .trav_req_o(req[U_TRAV][t]), .trav_grant_i(grant[U_TRAV][t]), .trav_kind_o(t_trav_kind[t]),
       .trav_level_o(t_trav_level[t]), .trav_o_o(t_trav_o[t]), .trav_d_o(t_trav_d[t]), .trav_tn_o(t_trav_tn[t]),
       .trav_tf_o(t_trav_tf[t]), .trav_best_o(t_trav_best[t]), .trav_mask_o(t_trav_mask[t]),
@@ -192,18 +199,18 @@ module trace_core #(
       .list_k_o(t_list_k[t]), .list_leaf_mask_o(t_list_leaf_mask[t]), .list_alive_o(t_list_alive[t]),
       .list_done_i(done[U_LIST][t]), .list_key_i(list_key), .list_need_i(list_need), .list_skip_i(list_skip),
       .list_k_i(list_k),
-      .rb_req_o(req[U_RB][t]), .rb_grant_i(grant[U_RB][t]), .rb_o_hi_o(t_rb_o_hi[t]), .rb_o_lo_o(t_rb_o_lo[t]),
-      .rb_d_hi_o(t_rb_d_hi[t]), .rb_d_lo_o(t_rb_d_lo[t]), .rb_t_o(t_rb_t[t]), .rb_done_i(done[U_RB][t]),
-      .rb_p_hi_i(rb_p_hi), .rb_p_lo_i(rb_p_lo), .rb_te_i(rb_te),
+      .rb_req_o(req[U_RB][t]), .rb_grant_i(grant[U_RB][t]), .rb_o_hi_o(t_rb_o_hi[t]), 
+      .rb_d_hi_o(t_rb_d_hi[t]), .rb_lo_zero_o(t_rb_lo_zero[t]), .t0_zero_o(t_t0_zero[t]), .rb_t_o(t_rb_t[t]), .rb_leaf_o(t_rb_leaf[t]),
+      .rb_done_i(done[U_RB][t]),
       .xw_req_o(req[U_XW][t]), .xw_grant_i(grant[U_XW][t]), .xw_m_o(t_xw_m[t]), .xw_tlo_o(t_xw_tlo[t]),
-      .xw_p_hi_o(t_xw_p_hi[t]), .xw_p_lo_o(t_xw_p_lo[t]), .xw_point_o(t_xw_point[t]), .xw_done_i(done[U_XW][t]),
-      .xw_hi_i(xw_hi), .xw_lo_i(xw_lo),
+      .xw_d_o(t_xw_d[t]), .xw_point_o(t_xw_point[t]), .xw_done_i(done[U_XW][t]),
+      .xw_hi_i(xw_hi),
       .is_req_o(req[U_IS][t]), .is_grant_i(grant[U_IS][t]), .is_m_o(t_is_m[t]), .is_c_lo_o(t_is_c_lo[t]),
-      .is_shared_o(t_is_shared[t]), .is_p_hi_o(t_is_p_hi[t]), .is_p_lo_o(t_is_p_lo[t]), .is_d_o(t_is_d[t]),
-      .is_te_o(t_is_te[t]), .is_tmin_o(t_is_tmin[t]), .is_tmax_o(t_is_tmax[t]), .is_t0_o(t_is_t0[t]),
-      .is_done_i(done[U_IS][t]), .is_hit_i(is_hit), .is_t_i(is_t), .is_u_i(is_u), .is_v_i(is_v), .is_cos_i(is_cos),
+      .is_shared_o(t_is_shared[t]), .is_d_o(t_is_d[t]),
+      .is_tmin_o(t_is_tmin[t]), .is_tmax_o(t_is_tmax[t]),
+      .is_done_i(done[U_IS][t]), .is_hit_i(is_hit), .is_t_i(is_t), .is_inst_o(t_is_inst[t]), .is_tri_o(t_is_tri[t]),
       .is_t_world_i(is_t_world),
-      .add_req_o(req[U_ADD][t]), .add_grant_i(grant[U_ADD][t]), .add_a_o(t_add_a[t]), .add_b_o(t_add_b[t]),
+      .add_req_o(req[U_ADD][t]), .add_grant_i(grant[U_ADD][t]), .add_a_o(t_add_a[t]),
       .add_done_i(done[U_ADD][t]), .add_r_i(add_r));
   end
 
@@ -280,37 +287,145 @@ module trace_core #(
     .k_o(list_k));
   assign done[U_LIST] = list_valid_o ? one[list_thread] : '0;
 
-  // the units without a thread id: their outputs are always taken, so the issued thread travels
-  // beside them in a delay line of their latency
+  // ---- the per-ray units' issue stage ----
+  // A step of a per-ray unit chosen in cycle s (sel, the thread's grant, its ray t_ray) reads the
+  // rays' fields that trace_core keeps in thread_ram (one word per thread and ray: the rebased
+  // origins p, a leaf's te) and registers its other operands from the threads' multiplexers at the
+  // end of s; the unit takes it in s + 1. So each multiplexer ends at a register, and a batch's
+  // results come a cycle later than an issue straight into the unit would give them.
+  logic [UNITS-1:U_RB] step_q;            // the unit's step this cycle (the issue of the cycle before)
+  logic [TW-1:0] sel_q [UNITS];
+  logic [1:0] ray_q [UNITS];
+  logic rb_leaf_q, rb_lo_zero_q, xw_point_q;
+  logic [3*W-1:0] rb_o_hi_q, rb_d_hi_q, xw_tlo_q, xw_d_q, is_c_lo_q, is_d_q;
+  logic [W-1:0] rb_t_q, is_tmin_q, is_tmax_q;
+  logic is_t0_zero_q, add_t0_zero_q;
+  logic [12*W-1:0] xw_m_q, is_m_q;
+  logic [2:0] is_shared_q;
+  logic [2*W-1:0] add_a_q;
+  always_ff @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) step_q <= '0;
+    else
+      for (int u = U_RB; u < UNITS; u++) step_q[u] <= unit_valid[u] && unit_ready[u];
+  always_ff @(posedge clk_i) begin
+    for (int u = U_RB; u < UNITS; u++) begin
+      sel_q[u] <= sel[u];
+      ray_q[u] <= t_ray[sel[u]];
+    end
+    rb_o_hi_q <= t_rb_o_hi[sel[U_RB]];
+    rb_d_hi_q <= t_rb_d_hi[sel[U_RB]];
+    rb_t_q <= t_rb_t[sel[U_RB]];
+    rb_leaf_q <= t_rb_leaf[sel[U_RB]];
+    rb_lo_zero_q <= t_rb_lo_zero[sel[U_RB]];
+    xw_m_q <= t_xw_m[sel[U_XW]];
+    xw_tlo_q <= t_xw_tlo[sel[U_XW]];
+    xw_d_q <= t_xw_d[sel[U_XW]];
+    xw_point_q <= t_xw_point[sel[U_XW]];
+    is_m_q <= t_is_m[sel[U_IS]];
+    is_c_lo_q <= t_is_c_lo[sel[U_IS]];
+    is_shared_q <= t_is_shared[sel[U_IS]];
+    is_d_q <= t_is_d[sel[U_IS]];
+    is_tmin_q <= t_is_tmin[sel[U_IS]];
+    is_tmax_q <= t_is_tmax[sel[U_IS]];
+    is_t0_zero_q <= t_t0_zero[sel[U_IS]];
+    add_a_q <= t_add_a[sel[U_ADD]];
+    add_t0_zero_q <= t_t0_zero[sel[U_ADD]];
+  end
+
+  // the units without a thread id: their outputs are always taken, so the step's thread (and for
+  // the rebase and wide units its ray and kind, where their results go) travels beside them in a
+  // delay line of their latency
   logic [UNITS-1:U_RB] out_valid;
   logic [TW-1:0] out_thread [UNITS];
+  logic [TW+2:0] rb_tag, xw_tag;          // {leaf, ray, thread}, {pass, ray, thread} of their results
+  logic [1:0] is_ray;                     // the triangle test's result's ray
   for (genvar u = U_RB; u < UNITS; u++) begin : g_tag
     localparam int LAT = u == U_IS ? TRI_LATENCY : u == U_ADD ? ADD_STAGES : SUM_STAGES;  // rebase, wide: SUM
-    f24_pipe #(.W(TW), .STAGES(LAT)) u_tag (
-      .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(unit_valid[u] && unit_ready[u]), .data_i(sel[u]),
-      .valid_o(), .data_o(out_thread[u]));
+    localparam int TAGW = u == U_ADD ? TW : u == U_IS ? TW + 2 : TW + 3;
+    logic [TAGW-1:0] tag;
+    f24_pipe #(.W(TAGW), .STAGES(LAT)) u_tag (
+      .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(step_q[u]),
+      .data_i(TAGW'({u == U_XW ? !xw_point_q : rb_leaf_q, ray_q[u], sel_q[u]})), .valid_o(), .data_o(tag));
+    assign out_thread[u] = tag[TW-1:0];
+    if (u == U_RB) begin : g_rb
+      assign rb_tag = tag;
+    end else if (u == U_XW) begin : g_xw
+      assign xw_tag = tag;
+    end else if (u == U_IS) begin : g_is
+      assign is_ray = tag[TW +: 2];
+    end
     assign done[u] = out_valid[u] ? one[out_thread[u]] : '0;
   end
 
-  rebase_unit #(.E(E), .M(M), .SUM_STAGES(SUM_STAGES)) u_rebase (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(unit_valid[U_RB]), .ready_o(unit_ready[U_RB]),
-    .o_hi_i(t_rb_o_hi[sel[U_RB]]), .o_lo_i(t_rb_o_lo[sel[U_RB]]), .d_hi_i(t_rb_d_hi[sel[U_RB]]),
-    .d_lo_i(t_rb_d_lo[sel[U_RB]]), .t_i(t_rb_t[sel[U_RB]]), .valid_o(out_valid[U_RB]), .ready_i(1'b1),
-    .p_hi_o(rb_p_hi), .p_lo_o(rb_p_lo), .te_o(rb_te));
+  // the rebased origins p (rebase_leaf, op_inst_xform) and a leaf's te, per thread and ray:
+  // written by the rebase unit's results, read by the wide transformation's origins (pass 0) and
+  // by the triangle test
+  localparam int RAYS = 4 * THREADS;
+  logic [6*W-1:0] p_xw, p_is;
+  logic [W-1:0] te_is;
+  logic rb_we;
+  logic [TW+1:0] rb_waddr;
+  assign rb_we = out_valid[U_RB];
+  assign rb_waddr = {rb_tag[TW-1:0], rb_tag[TW +: 2]};  // {thread, ray}
+  thread_ram #(.W(6 * W), .DEPTH(RAYS)) u_p_xw (
+    .clk_i(clk_i), .we_i(rb_we), .waddr_i(rb_waddr), .wdata_i({rb_p_hi, rb_p_lo}),
+    .re_i(1'b1), .raddr_i({sel[U_XW], t_ray[sel[U_XW]]}), .rdata_o(p_xw));
+  thread_ram #(.W(6 * W), .DEPTH(RAYS)) u_p_is (
+    .clk_i(clk_i), .we_i(rb_we), .waddr_i(rb_waddr), .wdata_i({rb_p_hi, rb_p_lo}),
+    .re_i(1'b1), .raddr_i({sel[U_IS], t_ray[sel[U_IS]]}), .rdata_o(p_is));
+  thread_ram #(.W(W), .DEPTH(RAYS)) u_te_is (
+    .clk_i(clk_i), .we_i(rb_we && rb_tag[TW+2]), .waddr_i(rb_waddr), .wdata_i(rb_te),
+    .re_i(1'b1), .raddr_i({sel[U_IS], t_ray[sel[U_IS]]}), .rdata_o(te_is));
 
+  // the object-space rays' low words so_lo, sd_lo (op_inst_xform) per thread and ray: written by
+  // the wide transformation's results (pass 0 the origin's, pass 1 the direction's), read by a
+  // leaf's rebase; an identity instance's zeros are its thread's lo_zero instead
+  logic [3*W-1:0] so_lo_rb, sd_lo_rb;
+  logic [TW+1:0] xw_waddr, rb_raddr;
+  assign xw_waddr = {xw_tag[TW-1:0], xw_tag[TW +: 2]};
+  assign rb_raddr = {sel[U_RB], t_ray[sel[U_RB]]};
+  thread_ram #(.W(3 * W), .DEPTH(RAYS)) u_so_lo (
+    .clk_i(clk_i), .we_i(out_valid[U_XW] && !xw_tag[TW+2]), .waddr_i(xw_waddr), .wdata_i(xw_lo),
+    .re_i(1'b1), .raddr_i(rb_raddr), .rdata_o(so_lo_rb));
+  thread_ram #(.W(3 * W), .DEPTH(RAYS)) u_sd_lo (
+    .clk_i(clk_i), .we_i(out_valid[U_XW] && xw_tag[TW+2]), .waddr_i(xw_waddr), .wdata_i(xw_lo),
+    .re_i(1'b1), .raddr_i(rb_raddr), .rdata_o(sd_lo_rb));
+  // t0 (op_inst_xform: the world ray's distance to the top-level leaf) per thread and ray: written
+  // by the rebase unit's results of an instance (not a leaf), read by the adders (the relative
+  // distances) and the triangle test (best_t = t0 + t); a new packet's and an identity instance's
+  // +0 are its thread's t0_zero instead
+  logic [W-1:0] t0_add, t0_is;
+  thread_ram #(.W(W), .DEPTH(RAYS)) u_t0_add (
+    .clk_i(clk_i), .we_i(rb_we && !rb_tag[TW+2]), .waddr_i(rb_waddr), .wdata_i(rb_te),
+    .re_i(1'b1), .raddr_i({sel[U_ADD], t_ray[sel[U_ADD]]}), .rdata_o(t0_add));
+  thread_ram #(.W(W), .DEPTH(RAYS)) u_t0_is (
+    .clk_i(clk_i), .we_i(rb_we && !rb_tag[TW+2]), .waddr_i(rb_waddr), .wdata_i(rb_te),
+    .re_i(1'b1), .raddr_i({sel[U_IS], t_ray[sel[U_IS]]}), .rdata_o(t0_is));
+  logic [W-1:0] add_t0, is_t0;
+  assign add_t0 = add_t0_zero_q ? '0 : t0_add;
+  assign is_t0 = is_t0_zero_q ? '0 : t0_is;
+
+  logic rb_lo;                            // a leaf's rebase of an instance's rays in double words
+  assign rb_lo = rb_leaf_q && !rb_lo_zero_q;
+
+  rebase_unit #(.E(E), .M(M), .SUM_STAGES(SUM_STAGES)) u_rebase (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(step_q[U_RB]), .ready_o(unit_ready[U_RB]),
+    .o_hi_i(rb_o_hi_q), .o_lo_i(rb_lo ? so_lo_rb : '0), .d_hi_i(rb_d_hi_q), .d_lo_i(rb_lo ? sd_lo_rb : '0),
+    .t_i(rb_t_q),
+    .valid_o(out_valid[U_RB]), .ready_i(1'b1), .p_hi_o(rb_p_hi), .p_lo_o(rb_p_lo), .te_o(rb_te));
+
+  // pass 0 of an instance's rays transforms the rebased origin, pass 1 the direction
   xform_wide #(.E(E), .M(M), .SUM_STAGES(SUM_STAGES)) u_wide (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(unit_valid[U_XW]), .ready_o(unit_ready[U_XW]),
-    .m_i(t_xw_m[sel[U_XW]]), .tlo_i(t_xw_tlo[sel[U_XW]]), .p_hi_i(t_xw_p_hi[sel[U_XW]]),
-    .p_lo_i(t_xw_p_lo[sel[U_XW]]), .point_i(t_xw_point[sel[U_XW]]), .valid_o(out_valid[U_XW]), .ready_i(1'b1),
-    .r_hi_o(xw_hi), .r_lo_o(xw_lo));
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(step_q[U_XW]), .ready_o(unit_ready[U_XW]),
+    .m_i(xw_m_q), .tlo_i(xw_tlo_q), .p_hi_i(xw_point_q ? p_xw[3*W +: 3*W] : xw_d_q), .p_lo_i(p_xw[0 +: 3*W]),
+    .point_i(xw_point_q), .valid_o(out_valid[U_XW]), .ready_i(1'b1), .r_hi_o(xw_hi), .r_lo_o(xw_lo));
 
   assign unit_ready[U_IS] = 1'b1;  // no stall
   isect_rebased #(.E(E), .M(M), .ADD_STAGES(ADD_STAGES), .MUL_STAGES(MUL_STAGES), .DIV_STAGES(DIV_STAGES),
                   .CMP_STAGES(CMP_STAGES), .SUM_STAGES(SUM_STAGES)) u_isect (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(unit_valid[U_IS]), .m_i(t_is_m[sel[U_IS]]),
-    .c_lo_i(t_is_c_lo[sel[U_IS]]), .shared_i(t_is_shared[sel[U_IS]]), .p_hi_i(t_is_p_hi[sel[U_IS]]),
-    .p_lo_i(t_is_p_lo[sel[U_IS]]), .d_i(t_is_d[sel[U_IS]]), .te_i(t_is_te[sel[U_IS]]),
-    .tmin_i(t_is_tmin[sel[U_IS]]), .tmax_i(t_is_tmax[sel[U_IS]]), .t0_i(t_is_t0[sel[U_IS]]),
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(step_q[U_IS]), .m_i(is_m_q), .c_lo_i(is_c_lo_q),
+    .shared_i(is_shared_q), .p_hi_i(p_is[3*W +: 3*W]), .p_lo_i(p_is[0 +: 3*W]), .d_i(is_d_q), .te_i(te_is),
+    .tmin_i(is_tmin_q), .tmax_i(is_tmax_q), .t0_i(is_t0),
     .valid_o(out_valid[U_IS]), .hit_o(is_hit), .t_o(is_t), .u_o(is_u), .v_o(is_v), .cos_o(is_cos),
     .t_world_o(is_t_world));
 
@@ -318,8 +433,8 @@ module trace_core #(
   assign unit_ready[U_ADD] = 1'b1;  // the operators have no stall
   for (genvar j = 0; j < 2; j++) begin : g_add
     f24_add #(.E(E), .M(M), .STAGES(ADD_STAGES)) u_add (
-      .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(unit_valid[U_ADD]),
-      .a_i(t_add_a[sel[U_ADD]][j*W +: W]), .b_i(t_add_b[sel[U_ADD]][j*W +: W]), .sub_i(1'b1),
+      .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(step_q[U_ADD]),
+      .a_i(add_a_q[j*W +: W]), .b_i(add_t0), .sub_i(1'b1),
       .valid_o(add_valid[j]), .res_o(add_r[j*W +: W]));
   end
   assign out_valid[U_ADD] = &add_valid;
@@ -410,22 +525,49 @@ module trace_core #(
     end
 
   // ---- packets in and out ----
+  // A finished packet leaves its thread into the output register (out_full) when that is free or
+  // being taken (the lowest finished thread first), and its thread is free from the next cycle;
+  // the register holds the thread's hit flags, t and counters, and its hits' records come from
+  // thread_ram read in the same cycle: a packet's hits leave a cycle after its thread finished.
   logic [TW-1:0] out_sel;
   logic [THREADS-1:0] out_grant;
+  logic out_any, out_take, out_full;
   /* verilator lint_off PINCONNECTEMPTY */
-  rr_pick #(.N(THREADS)) u_out_pick (.req_i(t_valid), .after_i('0), .any_o(valid_o), .grant_o(out_grant),
+  rr_pick #(.N(THREADS)) u_out_pick (.req_i(t_valid), .after_i('0), .any_o(out_any), .grant_o(out_grant),
                                      .index_o(out_sel), .after_o());
   /* verilator lint_on PINCONNECTEMPTY */
   assign ready_o = t_ready[thread_i];
-  assign t_out_ready = ready_i ? out_grant : '0;
-  assign thread_o = out_sel;
-  assign inst_o = t_inst[out_sel];
-  assign tri_o = t_tri[out_sel];
-  assign t_o = t_t[out_sel];
-  assign u_o = t_u[out_sel];
-  assign v_o = t_v[out_sel];
-  assign cos_o = t_cos[out_sel];
-  assign count_o = t_count[out_sel];
+  assign out_take = !out_full || ready_i;
+  assign t_out_ready = out_take ? out_grant : '0;
+  logic [3:0] out_hit;
+  always_ff @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) out_full <= 1'b0;
+    else if (out_take) out_full <= out_any;
+  always_ff @(posedge clk_i)
+    if (out_take) begin
+      thread_o <= out_sel;
+      out_hit <= t_hit[out_sel];
+      t_o <= t_t[out_sel];
+      count_o <= t_count[out_sel];
+    end
+  assign valid_o = out_full;
+  // a hit's record per thread, one memory per ray: written by the triangle test's hits (the
+  // instance and triangle from the thread the result is for), read as the packet leaves
+  logic [31:0] is_inst, is_tri;
+  assign is_inst = t_is_inst[out_thread[U_IS]];
+  assign is_tri = t_is_tri[out_thread[U_IS]];
+  localparam logic [31:0] NO_HIT = '1;
+  for (genvar r = 0; r < 4; r++) begin : g_hit
+    logic [64+3*W-1:0] rec;
+    thread_ram #(.W(64 + 3 * W), .DEPTH(THREADS)) u_hit (
+      .clk_i(clk_i), .we_i(out_valid[U_IS] && is_hit && is_ray == 2'(r)), .waddr_i(out_thread[U_IS]),
+      .wdata_i({is_inst, is_tri, is_u, is_v, is_cos}), .re_i(out_take), .raddr_i(out_sel), .rdata_o(rec));
+    assign inst_o[r*32 +: 32] = out_hit[r] ? rec[3*W+32 +: 32] : NO_HIT;
+    assign tri_o[r*32 +: 32] = out_hit[r] ? rec[3*W +: 32] : NO_HIT;
+    assign u_o[r*W +: W] = out_hit[r] ? rec[2*W +: W] : '0;
+    assign v_o[r*W +: W] = out_hit[r] ? rec[W +: W] : '0;
+    assign cos_o[r*W +: W] = out_hit[r] ? rec[0 +: W] : '0;
+  end
   always_comb begin
     inflight_o = '0;
     for (int t = 0; t < THREADS; t++) inflight_o = inflight_o + (TW+1)'(t_waiting[t]);

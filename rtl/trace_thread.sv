@@ -1,7 +1,10 @@
 // trace_thread: one thread of the ray tracing core (trace_core): the state of its packet
-// (trace_state: the rays, alive, best_t, the hits, the level and per level the leaf, the list
-// address and have_cur, the current instance/object/triangle and need mask, the object-space rays
-// in double words, t0, best_rel, tmin_rel, the rebased origins p and te) and the FSM of
+// (trace_state: the rays, alive, best_t, a hit flag per ray, the level and per level the leaf, the
+// list address and have_cur, the current instance/object/triangle and need mask, the object-space
+// rays' high words, best_rel, tmin_rel; the fields only the per-ray units read or write, the rebased
+// origins p, te, t0, the object-space rays' low words and the hits' records, are trace_core's, in
+// thread_ram indexed by thread and ray, with a flag per ray here where the C sets them to zero:
+// lo_zero, t0_zero) and the FSM of
 // hls/units/trace.c's trace_step (route_after_list, enter_single_object, op_scene_clip, op_walk,
 // rebase_leaf, op_list, op_inst_xform, op_inst_clip, op_tri_xform, op_tri_isect). Per unit it
 // raises a request with the operation's operands (*_req_o and the operand ports) and its issue
@@ -23,12 +26,15 @@
 // algorithm trav_unit has). The stacks and mailboxes live in trav_unit and list_unit.
 // Latency: the sum of the packet's unit operations and batches (a batch: its issue slots plus the
 // unit's latency), their waits for the units and the reads.
-// Resources: the state registers, 36 W bits per ray (the triangle's intermediate values, 12 W
-// bits per ray with the batches, stay in isect_rebased's pipeline), a descriptor buffer of LBUF words (two responses: 20 at
-// e7m16), about 15 words of routing state and 10 counters of 32 bits; the record unpacking
-// (f24_vertex_lo) and the identity mapping (xform_identity) in wires. Yosys 0.23 synth_xilinx at e7m16 (before the header
-// moved to the core and the buffer shrank from 40 words to 20): 5718 LUTs, 6183 flip-flops, 4
-// DSP48E1 (the record addresses' constant multiplications), 205 CARRY4: all in flip-flops, so the paper's 64 threads want this state in block RAM indexed by thread.
+// Resources: the state registers, 22 W bits per ray and 3 flags (the triangle's intermediate
+// values stay in isect_rebased's pipeline; p, te, t0, the low words and the hits' records, 15 W
+// + 64 bits per ray, in trace_core's thread_ram), a descriptor buffer of LBUF words (two
+// responses: 20 at e7m16), about 15 words of routing state and 10 counters of 32 bits; the record
+// unpacking (f24_vertex_lo) and the identity mapping (xform_identity) in wires. Yosys 0.23
+// synth_xilinx at e7m16 (python3 scripts/synth.py --levels trace_thread, 2026-11-29): 5297 LUT6,
+// 3438 flip-flops, 8 LUT6 levels (6449, 5410 and 8 with p, te, t0, the low words and the hits'
+// records here; 5718 LUTs and 6183
+// flip-flops before the header moved to the core and the buffer shrank from 40 words to 20).
 // Handshake: valid/ready at the packet input and the result output; request/grant to the units.
 module trace_thread #(
   parameter int E = 7,
@@ -50,12 +56,8 @@ module trace_thread #(
   // hits out (TP_DONE)
   output logic                        valid_o,
   input  logic                        ready_i,
-  output logic [4*32-1:0]             inst_o,     // TRACE_NO_HIT for a miss
-  output logic [4*32-1:0]             tri_o,
-  output logic [4*(E+M+1)-1:0]        t_o,
-  output logic [4*(E+M+1)-1:0]        u_o,
-  output logic [4*(E+M+1)-1:0]        v_o,
-  output logic [4*(E+M+1)-1:0]        cos_o,
+  output logic [3:0]                  hit_o,      // the rays with a hit (its record: trace_core's)
+  output logic [4*(E+M+1)-1:0]        t_o,        // +Inf for a miss
   output logic [10*32-1:0]            count_o,    // trace_counters in its order (words: 4 kinds)
   // the header's fields (the core's, hdr_ok_i when read)
   output logic                        hdr_want_o,  // waiting for the header
@@ -75,6 +77,7 @@ module trace_thread #(
   input  logic                        node_rsp_i,  // a kd-node read of this thread answered
   output logic                        waiting_o,   // an operation of this thread is in a unit
   output logic [3:0]                  slots_o,     // issue slots of the operation requested (thread_sched)
+  output logic [1:0]                  step_ray_o,  // the ray of the batch's next step (the rays' fields in trace_core)
   // traversal unit
   output logic                        trav_req_o,
   input  logic                        trav_grant_i,
@@ -117,57 +120,46 @@ module trace_thread #(
   output logic                        rb_req_o,
   input  logic                        rb_grant_i,
   output logic [3*(E+M+1)-1:0]        rb_o_hi_o,
-  output logic [3*(E+M+1)-1:0]        rb_o_lo_o,
   output logic [3*(E+M+1)-1:0]        rb_d_hi_o,
-  output logic [3*(E+M+1)-1:0]        rb_d_lo_o,
+  output logic                        rb_lo_zero_o, // the ray's object-space low words are zero (else trace_core's)
+  output logic                        t0_zero_o,   // the ray's t0 is +0 (else trace_core's: adders, triangle test)
   output logic [E+M:0]                rb_t_o,
-  input  logic                        rb_done_i,
-  input  logic [3*(E+M+1)-1:0]        rb_p_hi_i,
-  input  logic [3*(E+M+1)-1:0]        rb_p_lo_i,
-  input  logic [E+M:0]                rb_te_i,
+  output logic                        rb_leaf_o,   // a leaf's rebase: te (else an instance's: t0)
+  input  logic                        rb_done_i,   // (its results p, te, t0: trace_core's)
   // the transformation unit's wide mode
   output logic                        xw_req_o,
   input  logic                        xw_grant_i,
   output logic [12*(E+M+1)-1:0]       xw_m_o,
   output logic [3*(E+M+1)-1:0]        xw_tlo_o,
-  output logic [3*(E+M+1)-1:0]        xw_p_hi_o,
-  output logic [3*(E+M+1)-1:0]        xw_p_lo_o,
+  output logic [3*(E+M+1)-1:0]        xw_d_o,      // the direction (pass 1; pass 0's origin p: trace_core's)
   output logic                        xw_point_o,
   input  logic                        xw_done_i,
-  input  logic [3*(E+M+1)-1:0]        xw_hi_i,
-  input  logic [3*(E+M+1)-1:0]        xw_lo_i,
+  input  logic [3*(E+M+1)-1:0]        xw_hi_i,     // (the low words: trace_core's)
   // the triangle test (isect_rebased: the origin path, the transformations, the intersection, t0 + t)
   output logic                        is_req_o,
   input  logic                        is_grant_i,
   output logic [12*(E+M+1)-1:0]       is_m_o,
   output logic [3*(E+M+1)-1:0]        is_c_lo_o,
   output logic [2:0]                  is_shared_o,
-  output logic [3*(E+M+1)-1:0]        is_p_hi_o,
-  output logic [3*(E+M+1)-1:0]        is_p_lo_o,
-  output logic [3*(E+M+1)-1:0]        is_d_o,
-  output logic [E+M:0]                is_te_o,
+  output logic [3*(E+M+1)-1:0]        is_d_o,      // (p and te: trace_core's)
   output logic [E+M:0]                is_tmin_o,
   output logic [E+M:0]                is_tmax_o,
-  output logic [E+M:0]                is_t0_o,
   input  logic                        is_done_i,
   input  logic                        is_hit_i,
   input  logic [E+M:0]                is_t_i,
-  input  logic [E+M:0]                is_u_i,
-  input  logic [E+M:0]                is_v_i,
-  input  logic [E+M:0]                is_cos_i,
+  output logic [31:0]                 is_inst_o,   // the triangle's instance and index (a hit's record)
+  output logic [31:0]                 is_tri_o,
   input  logic [E+M:0]                is_t_world_i,
   // 2 subtractors (one operation on 2 lanes: the relative distances)
   output logic                        add_req_o,
   input  logic                        add_grant_i,
   output logic [2*(E+M+1)-1:0]        add_a_o,
-  output logic [2*(E+M+1)-1:0]        add_b_o,
   input  logic                        add_done_i,
   input  logic [2*(E+M+1)-1:0]        add_r_i
 );
   localparam logic [E-1:0] EXP_MAX = '1;
   localparam logic [W-1:0] POS_INF = {1'b0, EXP_MAX, {M{1'b0}}};
   localparam logic [W-1:0] DNAN = {1'b0, EXP_MAX, 1'b1, {(M-1){1'b0}}};
-  localparam logic [31:0] NO_HIT = '1;
   // memory image layout (docs/memory-image.md; hls/units/trace.c)
   localparam int TRI_WORDS = RW;                            // F24_TRIANGLE_RECORD_WORDS
   localparam int INST_WORDS = TRI_WORDS * ((17 + TRI_WORDS - 1) / TRI_WORDS);
@@ -206,10 +198,17 @@ module trace_thread #(
 
   logic [2:0] flags;
   logic [3:0] active, alive, need;
-  logic [3*W-1:0] ro [4], rd [4], so [4], sd [4], so_lo [4], sd_lo [4], p_hi [4], p_lo [4];
-  logic [W-1:0] tmin [4], best_t [4], best_rel [4], tmin_rel [4], t0 [4], te [4];
-  logic [31:0] h_inst [4], h_tri [4];
-  logic [W-1:0] h_t [4], h_u [4], h_v [4], h_cos [4];
+  logic [3*W-1:0] ro [4], rd [4], so [4], sd [4];
+  // the object-space rays' low words so_lo, sd_lo are trace_core's (thread_ram); lo_zero[i]: ray
+  // i's are zero (an identity instance's rays pass as wiring), read as zero in their place
+  logic [3:0] lo_zero;
+  logic [W-1:0] tmin [4], best_t [4], best_rel [4], tmin_rel [4];
+  // t0 (an instance's entry distance, from its rebase) is trace_core's (thread_ram); t0_zero[i]:
+  // ray i's is +0 (a new packet, an identity instance), read as +0 in its place
+  logic [3:0] t0_zero;
+  // the hits: hit[i] says ray i has one, whose t is best_t[i] (both written by each hit); its
+  // instance, triangle, u, v and cos are trace_core's (thread_ram)
+  logic [3:0] hit;
   logic level;
   logic [31:0] lists [2], leaf_first [2], leaf_count [2], k [2];
   logic [3:0] leaf_mask [2];
@@ -358,15 +357,15 @@ module trace_thread #(
   assign rb_leaf = bop == B_RB_LEAF;
   assign rb_req_o = batch_req && (bop == B_RB_LEAF || bop == B_RB_INST);
   assign rb_o_hi_o = rb_leaf ? so[ir] : ro[ir];
-  assign rb_o_lo_o = rb_leaf ? so_lo[ir] : '0;
   assign rb_d_hi_o = rb_leaf ? sd[ir] : rd[ir];
-  assign rb_d_lo_o = rb_leaf ? sd_lo[ir] : '0;
+  assign rb_lo_zero_o = lo_zero[ir];
   assign rb_t_o = leaf_tn[rb_leaf][ir];
+  assign rb_leaf_o = rb_leaf;
+  assign step_ray_o = ir;
   assign xw_req_o = batch_req && bop == B_XW;
   assign xw_m_o = inst_m;
   assign xw_tlo_o = inst_tlo;
-  assign xw_p_hi_o = ipass ? rd[ir] : p_hi[ir];
-  assign xw_p_lo_o = p_lo[ir];
+  assign xw_d_o = rd[ir];
   assign xw_point_o = !ipass;
   assign is_req_o = batch_req && bop == B_TRI;
   assign is_m_o = tri_m;
@@ -378,18 +377,17 @@ module trace_thread #(
   always_ff @(posedge clk_i) c_lo_q <= c_lo;
   assign is_c_lo_o = c_lo_q;
   assign is_shared_o = tri_shared;
-  assign is_p_hi_o = p_hi[ir];
-  assign is_p_lo_o = p_lo[ir];
   assign is_d_o = sd[ir];
-  assign is_te_o = te[ir];
+  assign is_inst_o = inst;
+  assign is_tri_o = tri_ix;
+  assign hit_o = hit;
   assign is_tmin_o = tmin_rel[ir];
   assign is_tmax_o = best_rel[ir];
-  assign is_t0_o = t0[ir];
+  assign t0_zero_o = t0_zero[ir];
 
   // the subtractors: best_rel = best_t - t0, tmin_rel = tmin - t0
   assign add_req_o = batch_req && bop == B_IC_ADD;
   assign add_a_o = {tmin[ir], best_t[ir]};
-  assign add_b_o = {t0[ir], t0[ir]};
 
   // the batch's results: done of its unit, for ray cr of pass cpass
   logic batch_grant, batch_done;
@@ -418,12 +416,7 @@ module trace_thread #(
   assign valid_o = st == S_DONE;
   always_comb
     for (int i = 0; i < 4; i++) begin
-      inst_o[i*32 +: 32] = h_inst[i];
-      tri_o[i*32 +: 32] = h_tri[i];
-      t_o[i*W +: W] = h_t[i];
-      u_o[i*W +: W] = h_u[i];
-      v_o[i*W +: W] = h_v[i];
-      cos_o[i*W +: W] = h_cos[i];
+      t_o[i*W +: W] = hit[i] ? best_t[i] : POS_INF;
     end
   always_comb
     for (int c = 0; c < 10; c++) count_o[c*32 +: 32] = cnt[c];
@@ -473,15 +466,10 @@ module trace_thread #(
               tmin_rel[i] <= tmin_i[i*W +: W];
               best_t[i] <= v_tmax[i*W +: W];
               best_rel[i] <= v_tmax[i*W +: W];
-              t0[i] <= '0;
-              h_inst[i] <= NO_HIT;
-              h_tri[i] <= NO_HIT;
-              h_t[i] <= POS_INF;
-              h_u[i] <= '0;
-              h_v[i] <= '0;
-              h_cos[i] <= '0;
+              t0_zero[i] <= 1'b1;
             end
             for (int c = 0; c < 10; c++) cnt[c] <= '0;
+            hit <= '0;
             st <= S_CLR0;
           end
         S_CLR0:
@@ -586,23 +574,14 @@ module trace_thread #(
               cpass <= 1'b1;
             end else ctodo[cr] <= 1'b0;
             unique case (bop)
-              B_RB_LEAF: begin
-                p_hi[cr] <= rb_p_hi_i;
-                p_lo[cr] <= rb_p_lo_i;
-                te[cr] <= rb_te_i;
-              end
-              B_RB_INST: begin
-                p_hi[cr] <= rb_p_hi_i;
-                p_lo[cr] <= rb_p_lo_i;
-                t0[cr] <= rb_te_i;
-              end
+              B_RB_INST: t0_zero[cr] <= 1'b0;  // t0, p and a leaf's te: trace_core's thread_ram
               B_XW:
                 if (cpass) begin
                   sd[cr] <= xw_hi_i;
-                  sd_lo[cr] <= xw_lo_i;
+                  lo_zero[cr] <= 1'b0;
                 end else begin
                   so[cr] <= xw_hi_i;
-                  so_lo[cr] <= xw_lo_i;
+                  lo_zero[cr] <= 1'b0;
                 end
               B_IC_ADD: begin
                 best_rel[cr] <= add_r_i[0 +: W];
@@ -612,12 +591,7 @@ module trace_thread #(
                 if (is_hit_i) begin
                   best_rel[cr] <= is_t_i;
                   best_t[cr] <= is_t_world_i;
-                  h_t[cr] <= is_t_world_i;
-                  h_inst[cr] <= inst;
-                  h_tri[cr] <= tri_ix;
-                  h_u[cr] <= is_u_i;
-                  h_v[cr] <= is_v_i;
-                  h_cos[cr] <= is_cos_i;
+                  hit[cr] <= 1'b1;
                   if (flags[1]) alive[cr] <= 1'b0;
                 end
               default: ;
@@ -645,9 +619,8 @@ module trace_thread #(
               if (need[i]) begin
                 so[i] <= identity(inst_m, ro[i], 1'b1);
                 sd[i] <= identity(inst_m, rd[i], 1'b0);
-                so_lo[i] <= '0;
-                sd_lo[i] <= '0;
-                t0[i] <= '0;
+                lo_zero[i] <= 1'b1;
+                t0_zero[i] <= 1'b1;
               end
             st <= S_IC_LOAD;
           end else begin

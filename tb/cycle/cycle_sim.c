@@ -26,22 +26,28 @@ void cycle_config_default(cycle_config *c)
      * states, the operations its thread issues that the C has inside one), measured per kind on
      * the DynRTP (tb_dynrtp's TB_DYNRTP_LOG); docs/cycle-model.md derives each. */
     c->latency[OP_RAYGEN] = 26;   /* rgs_raygen: block register 1 + f24_from_i32 2 + xform_unit 22 + packet 1 */
-    c->latency[OP_XFORM] = 34;    /* isect_rebased's origin path (l = p.lo - C.lo, c = h + l: 2 add) + xform_unit 22 */
-    c->latency[OP_INSTANCE] = 50; /* rebase_unit 25, then xform_wide 25 (the origins' chain) */
+    c->latency[OP_XFORM] = 35;    /* trace_core's issue stage 1 (the operands from thread_ram), isect_rebased's origin
+                                   * path (l = p.lo - C.lo, c = h + l: 2 add) + xform_unit 22 */
+    c->latency[OP_INSTANCE] = 52; /* rebase_unit 25, then xform_wide 25 (the origins' chain), each after trace_core's
+                                   * issue stage 1 */
     c->latency[OP_SHADOW] = 1;    /* rgs_light forms the shadow rays: its register to the trace port */
     c->latency[OP_CHILDREN] = 1;  /* rgs_spawn (in rgs_accum) forms the child rays: the stack's register */
     c->latency[OP_TRAV] = 43;     /* trav_unit 38 (state and stack read, prune, queue, trav_node 21, split and push,
                                    * its node read answering in the next cycle) + 2 (the kd-node cache's hit: 3) + 3
                                    * (trace_thread's states from the result to the next request) - the issue slot;
                                    * the scene clip: 6 slots, trav_clip's chain, the start */
-    c->latency[OP_OBJCLIP] = 64;  /* trace_thread: the object's record (2 matrix cache lines), the mailboxes cleared
-                                   * (a list unit operation), the relative distances (an adder batch), the clip (6
+    c->latency[OP_OBJCLIP] = 65;  /* trace_thread: the object's record (2 matrix cache lines), the mailboxes cleared
+                                   * (a list unit operation), the relative distances (an adder batch after trace_core's
+                                   * issue stage), the clip (6
                                    * slots, trav_clip), the start (a traversal operation of its own) */
     c->latency[OP_LIST] = 18;     /* list_unit 3, its word through dynrtp's registers and the list cache (hit 3),
                                    * trace_thread's request and result states */
-    c->latency[OP_LEAF] = 46;     /* the list entry's 18, then rebase_unit 25 (a batch) and its states */
-    c->latency[OP_ISECT] = 35;    /* isect_rebased's second half: isect_unit 29 (div 11 + mul 4 + 2 add + cmp 2) +
-                                   * best_t = t0 + t (add 6) */
+    c->latency[OP_LEAF] = 47;     /* the list entry's 18, then rebase_unit 25 (a batch after trace_core's issue stage
+                                   * 1) and its states */
+    c->latency[OP_ISECT] = 36;    /* isect_rebased's second half: isect_unit 29 (div 11 + mul 4 + 2 add + cmp 2) +
+                                   * best_t = t0 + t (add 6); + 1 since trace_core's output register (a packet's hits
+                                   * a cycle later), fitted on subpass 32x24 at 8 threads (2026-11-29: 2.2% under the
+                                   * RTL with 35) */
     c->latency[OP_SURFACE] = 214; /* rgs_surface: the first hit's front reads (instance word, object, record: 3
                                    * bursts of 1, 2 and 1 to 5 lines through the shading cache, about 8), rgs_normal
                                    * 88, rgs_frame 118 */
