@@ -361,6 +361,10 @@ module trace_core #(
   // written by the rebase unit's results, read by the wide transformation's origins (pass 0) and
   // by the triangle test
   localparam int RAYS = 4 * THREADS;
+  logic [TW+1:0] raddr [U_RB:UNITS-1];   // {thread, ray} of each per-ray unit's issue: its operands' word
+  for (genvar u = U_RB; u < UNITS; u++) begin : g_raddr
+    assign raddr[u] = {sel[u], t_ray[sel[u]]};
+  end
   logic [6*W-1:0] p_xw, p_is;
   logic [W-1:0] te_is;
   logic rb_we;
@@ -369,27 +373,26 @@ module trace_core #(
   assign rb_waddr = {rb_tag[TW-1:0], rb_tag[TW +: 2]};  // {thread, ray}
   thread_ram #(.W(6 * W), .DEPTH(RAYS)) u_p_xw (
     .clk_i(clk_i), .we_i(rb_we), .waddr_i(rb_waddr), .wdata_i({rb_p_hi, rb_p_lo}),
-    .re_i(1'b1), .raddr_i({sel[U_XW], t_ray[sel[U_XW]]}), .rdata_o(p_xw));
+    .re_i(1'b1), .raddr_i(raddr[U_XW]), .rdata_o(p_xw));
   thread_ram #(.W(6 * W), .DEPTH(RAYS)) u_p_is (
     .clk_i(clk_i), .we_i(rb_we), .waddr_i(rb_waddr), .wdata_i({rb_p_hi, rb_p_lo}),
-    .re_i(1'b1), .raddr_i({sel[U_IS], t_ray[sel[U_IS]]}), .rdata_o(p_is));
+    .re_i(1'b1), .raddr_i(raddr[U_IS]), .rdata_o(p_is));
   thread_ram #(.W(W), .DEPTH(RAYS)) u_te_is (
     .clk_i(clk_i), .we_i(rb_we && rb_tag[TW+2]), .waddr_i(rb_waddr), .wdata_i(rb_te),
-    .re_i(1'b1), .raddr_i({sel[U_IS], t_ray[sel[U_IS]]}), .rdata_o(te_is));
+    .re_i(1'b1), .raddr_i(raddr[U_IS]), .rdata_o(te_is));
 
   // the object-space rays' low words so_lo, sd_lo (op_inst_xform) per thread and ray: written by
   // the wide transformation's results (pass 0 the origin's, pass 1 the direction's), read by a
   // leaf's rebase; an identity instance's zeros are its thread's lo_zero instead
   logic [3*W-1:0] so_lo_rb, sd_lo_rb;
-  logic [TW+1:0] xw_waddr, rb_raddr;
+  logic [TW+1:0] xw_waddr;
   assign xw_waddr = {xw_tag[TW-1:0], xw_tag[TW +: 2]};
-  assign rb_raddr = {sel[U_RB], t_ray[sel[U_RB]]};
   thread_ram #(.W(3 * W), .DEPTH(RAYS)) u_so_lo (
     .clk_i(clk_i), .we_i(out_valid[U_XW] && !xw_tag[TW+2]), .waddr_i(xw_waddr), .wdata_i(xw_lo),
-    .re_i(1'b1), .raddr_i(rb_raddr), .rdata_o(so_lo_rb));
+    .re_i(1'b1), .raddr_i(raddr[U_RB]), .rdata_o(so_lo_rb));
   thread_ram #(.W(3 * W), .DEPTH(RAYS)) u_sd_lo (
     .clk_i(clk_i), .we_i(out_valid[U_XW] && xw_tag[TW+2]), .waddr_i(xw_waddr), .wdata_i(xw_lo),
-    .re_i(1'b1), .raddr_i(rb_raddr), .rdata_o(sd_lo_rb));
+    .re_i(1'b1), .raddr_i(raddr[U_RB]), .rdata_o(sd_lo_rb));
   // t0 (op_inst_xform: the world ray's distance to the top-level leaf) per thread and ray: written
   // by the rebase unit's results of an instance (not a leaf), read by the adders (the relative
   // distances) and the triangle test (best_t = t0 + t); a new packet's and an identity instance's
@@ -397,10 +400,10 @@ module trace_core #(
   logic [W-1:0] t0_add, t0_is;
   thread_ram #(.W(W), .DEPTH(RAYS)) u_t0_add (
     .clk_i(clk_i), .we_i(rb_we && !rb_tag[TW+2]), .waddr_i(rb_waddr), .wdata_i(rb_te),
-    .re_i(1'b1), .raddr_i({sel[U_ADD], t_ray[sel[U_ADD]]}), .rdata_o(t0_add));
+    .re_i(1'b1), .raddr_i(raddr[U_ADD]), .rdata_o(t0_add));
   thread_ram #(.W(W), .DEPTH(RAYS)) u_t0_is (
     .clk_i(clk_i), .we_i(rb_we && !rb_tag[TW+2]), .waddr_i(rb_waddr), .wdata_i(rb_te),
-    .re_i(1'b1), .raddr_i({sel[U_IS], t_ray[sel[U_IS]]}), .rdata_o(t0_is));
+    .re_i(1'b1), .raddr_i(raddr[U_IS]), .rdata_o(t0_is));
   logic [W-1:0] add_t0, is_t0;
   assign add_t0 = add_t0_zero_q ? '0 : t0_add;
   assign is_t0 = is_t0_zero_q ? '0 : t0_is;
