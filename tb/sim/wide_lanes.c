@@ -8,7 +8,8 @@
  * The per-ray datapath sums each ray's three components (rows) side by side, one exact sum
  * (f24q_sum_exact) per ray and step, lane 3 unused; here each sum takes one component (row) of the
  * four rays, one lane each: three sums per step for the packet instead of three per ray, every lane
- * full. The exact sum of a lane depends on that lane's terms only, which are the per-ray version's
+ * full (with 3 or 4 rays; fewer take the per-ray functions, which then sum fewer times). The
+ * exact sum of a lane depends on that lane's terms only, which are the per-ray version's
  * in the same order, decoded by the same f24v_of (tests/test_xform_unit.c enter_rays_lanes and
  * rebase_rays_lanes compare both on random rays, matrices and special words). Rays outside the
  * mask compute zeros (a sum of zeros stays on the sums' fast path) and keep their outputs.
@@ -17,6 +18,10 @@
 #include "xform_unit.h"
 
 #ifdef F24_SIM_LANES
+
+/* Fewer than 3 rays: one ray's sums side by side, ray after ray, take fewer sums than the packet's
+ * components (rebase: 1 a ray against 3; into an instance: 3 a ray against 9). */
+static int few(uint32_t rays) { return (rays & (rays - 1u) & ((rays & (rays - 1u)) - 1u)) == 0; }
 
 /* The rays' vectors v by component, one lane per ray of the mask (zero elsewhere). */
 F24V_INLINE void by_axis(const f24_vec3 v[], uint32_t rays, f24v out[3])
@@ -56,6 +61,10 @@ static f24_vec3 ray_of(const f24_t c[3][F24Q_LANES], int i) { return (f24_vec3){
 F24V_FN void rebase_rays(uint32_t rays, const f24_vec3 o[], const f24_vec3 o_lo[], const f24_vec3 d[],
                          const f24_vec3 d_lo[], const f24_t t[], f24_vec3x2 p[], f24_t te[])
 {
+    if (few(rays)) {
+        rebase_rays_per_ray(rays, o, o_lo, d, d_lo, t, p, te);
+        return;
+    }
     f24_t e[F24Q_LANES], hi[3][F24Q_LANES], lo[3][F24Q_LANES];
     f24v oh[3], ol[3], dh[3], dl[3];
     distances(t, rays, e);
@@ -78,6 +87,10 @@ F24V_FN void xform_enter_rays(const f24_affine *w2o, f24_vec3 t_lo, uint32_t ray
                               const f24_vec3 d[], const f24_t tn[], f24_vec3 o_hi[], f24_vec3 o_lo[], f24_vec3 d_hi[],
                               f24_vec3 d_lo[], f24_t t0[])
 {
+    if (few(rays)) {
+        xform_enter_rays_per_ray(w2o, t_lo, rays, o, d, tn, o_hi, o_lo, d_hi, d_lo, t0);
+        return;
+    }
     f24_t e[F24Q_LANES], ph[3][F24Q_LANES], pl[3][F24Q_LANES];
     f24v oq[3], dq[3];
     distances(tn, rays, e);
