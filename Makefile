@@ -121,7 +121,7 @@ SIM_SRCS = $(MEMIMAGE) $(HLS_UNITS) $(SIM_UNITS) $(CYCLE) $(REF) $(CLI) $(CAPTUR
 comma := ,
 CAPTURE_WRAP := $(addprefix -Wl$(comma)--wrap=,xform_point xform_vector isect_unit_rebased isect_unit_packet trav_node_split_held \
   list_unit_entry list_mailboxes_clear mem_iface_read mem_iface_flush mem_iface_new_frame rgs_block_begin \
-  rebase_origin xform_point_wide xform_vector_wide \
+  rebase_origin xform_point_wide xform_vector_wide xform_enter_rays rebase_rays \
   trav_scene_clip trav_object_clip trav_start trav_walk trace_begin trace_step shade_rec_normals \
   rgs_sample_bilinear rgs_surface_frame rgs_light_packet rgs_lerp rgs_lerp_normal rgs_light_colour rgs_add_light \
   rgs_spawn_children rgs_surface_at rgs_accumulate_ray)

@@ -3,6 +3,7 @@
  * points, the fixed summation order (bit-exact against a step-by-step evaluation), loading from
  * the memory image, and the error bound against double precision on random inputs.
  */
+#define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -11,7 +12,11 @@
 #include <cmocka.h>
 #include <math.h>
 
+#include <stdlib.h>
+#include <string.h>
+
 #include "f24_fast.h"
+#include "rebase_unit.h"
 #include "xform_unit.h"
 
 static f24_t F(double x) { return f24_fast_encode(x); }
@@ -141,11 +146,102 @@ static void identity_shortcut(void **state)
     print_message("identity shortcut: %llu edge vectors equal\n", (unsigned long long)checked);
 }
 
+/* A word of every kind the wide mode meets: raw bits (subnormal encodings, Inf, NaN included),
+ * signed zeros and Infs, unit-size values, and values 2^-17 .. 2^-40 of unit size (low words,
+ * terms that cancel or lie far apart, which the exact sums decide on their slow paths). */
+static f24_t wide_word(unsigned *seed)
+{
+    const int kind = rand_r(seed) % 8;
+    if (kind == 0)
+        return (f24_t)rand_r(seed) & F24_MASK;
+    if (kind == 1) {
+        const f24_t special[5] = { 0, F24_SIGN_BIT, F24_POS_INF, F24_POS_INF | F24_SIGN_BIT, F24_DEFAULT_NAN };
+        return special[rand_r(seed) % 5];
+    }
+    const double x = 4.0 * rand_r(seed) / RAND_MAX - 2;
+    return F(kind == 2 ? ldexp(x, -17 - rand_r(seed) % 24) : kind == 3 ? 1.0 + ldexp(x, -16) : x);
+}
+
+static f24_vec3 wide_vec(unsigned *seed)
+{
+    const f24_t x = wide_word(seed), y = wide_word(seed);
+    return (f24_vec3){ x, y, wide_word(seed) };
+}
+
+#ifdef F24_SIM_LANES
+/* The simulation build's xform_enter_rays and rebase_rays compute the rays of a packet side by
+ * side (tb/sim/wide_lanes.c): the same words as the per-ray datapath of hls/units (the truth) for
+ * every ray of the mask, the other rays' outputs untouched, on random matrices and rays with
+ * special words, low words and cancelling terms. */
+static void enter_rays_lanes(void **state)
+{
+    (void)state;
+    unsigned seed = 19;
+    for (int t = 0; t < 20000; t++) {
+        f24_affine m;
+        for (int r = 0; r < 3; r++)
+            for (int c = 0; c < 4; c++)
+                m.m[r][c] = t & 1 ? F(urand() * 2 - 1) : wide_word(&seed); /* half of them without specials */
+        const f24_vec3 t_lo = wide_vec(&seed);
+        f24_vec3 o[F24Q_LANES], d[F24Q_LANES];
+        f24_t tn[F24Q_LANES];
+        for (int i = 0; i < F24Q_LANES; i++) {
+            o[i] = wide_vec(&seed);
+            d[i] = wide_vec(&seed);
+            tn[i] = wide_word(&seed);
+        }
+        const uint32_t rays = (uint32_t)rand_r(&seed) & 0xFu;
+        struct { f24_vec3 oh[F24Q_LANES], ol[F24Q_LANES], dh[F24Q_LANES], dl[F24Q_LANES]; f24_t t0[F24Q_LANES]; } got, want;
+        memset(&got, 0x55, sizeof got);
+        memset(&want, 0x55, sizeof want);
+        xform_enter_rays(&m, t_lo, rays, o, d, tn, got.oh, got.ol, got.dh, got.dl, got.t0);
+        xform_enter_rays_per_ray(&m, t_lo, rays, o, d, tn, want.oh, want.ol, want.dh, want.dl, want.t0);
+        assert_memory_equal(&got, &want, sizeof got);
+    }
+}
+
+static void rebase_rays_lanes(void **state)
+{
+    (void)state;
+    unsigned seed = 23;
+    for (int t = 0; t < 20000; t++) {
+        f24_vec3 o[F24Q_LANES], ol[F24Q_LANES], d[F24Q_LANES], dl[F24Q_LANES];
+        f24_t tn[F24Q_LANES];
+        for (int i = 0; i < F24Q_LANES; i++) {
+            o[i] = wide_vec(&seed);
+            ol[i] = wide_vec(&seed);
+            d[i] = wide_vec(&seed);
+            dl[i] = wide_vec(&seed);
+            tn[i] = wide_word(&seed);
+        }
+        const uint32_t rays = (uint32_t)rand_r(&seed) & 0xFu;
+        struct { f24_vec3x2 p[F24Q_LANES]; f24_t te[F24Q_LANES]; } got, want;
+        memset(&got, 0x55, sizeof got);
+        memset(&want, 0x55, sizeof want);
+        rebase_rays(rays, o, ol, d, dl, tn, got.p, got.te);
+        rebase_rays_per_ray(rays, o, ol, d, dl, tn, want.p, want.te);
+        assert_memory_equal(&got, &want, sizeof got);
+    }
+}
+#else
+static void enter_rays_lanes(void **state)
+{
+    (void)state;
+    skip(); /* one definition only: the per-ray one */
+}
+
+static void rebase_rays_lanes(void **state)
+{
+    (void)state;
+    skip();
+}
+#endif
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(exact_cases), cmocka_unit_test(summation_order), cmocka_unit_test(load_from_image),
-        cmocka_unit_test(identity_shortcut),
+        cmocka_unit_test(identity_shortcut), cmocka_unit_test(enter_rays_lanes), cmocka_unit_test(rebase_rays_lanes),
     };
     return cmocka_run_group_tests_name("xform_unit", tests, NULL, NULL);
 }

@@ -115,21 +115,14 @@ F24Q_INLINE f24q packet_row(f24q mr, const f24q v[3])
 /* isect_unit_rebased's operations, one lane per ray, every lane through the whole test (also the
  * x/y rows that function skips for a ray outside [tmin, tmax): selects give its miss fields),
  * unless no ray lies within [tmin, tmax], where the packet skips them as that function does. The
- * lanes outside need compute on zeros: none of their inputs is read. A single ray takes
- * isect_unit_rebased itself: in incoherent packets (plants: 1.2 rays a test) the four lanes'
- * whole test costs more than its early-out (measured: 118.1k against 113.9k instructions a pixel). */
+ * lanes outside need compute on zeros: none of their inputs is read. A single ray takes the lanes
+ * too: its early-out in isect_unit_rebased once cost less than four lanes (plants: 1.2 rays a
+ * test), but no longer does (callgrind, render_region, 1 thread: plants 128x96 118,245 -> 114,997,
+ * bunny.glb primary 256x192 17,526 -> 16,766, room 256x192 49,237 -> 49,007 Ir/px). */
 F24Q_FN void isect_unit_packet(const f24_triangle *tri, uint32_t need, const f24_vec3x2 p[F24Q_LANES],
                                const f24_t te[F24Q_LANES], const f24_vec3 d[F24Q_LANES], const f24_t tmin[F24Q_LANES],
                                const f24_t tmax[F24Q_LANES], isect_result r[F24Q_LANES])
 {
-    if (!(need & (need - 1u))) {
-    packet_single:
-        for (int i = 0; i < F24Q_LANES; i++) {
-            const isect_result none = { 0, 0, 0, 0, 0 };
-            r[i] = need >> i & 1u ? isect_unit_rebased(tri, p[i], te[i], d[i], tmin[i], tmax[i]) : none;
-        }
-        return;
-    }
     const f24_t(*m)[4] = tri->m.m;
     const f24_t c_lo[F24Q_LANES] = { tri->c_lo.x, tri->c_lo.y, tri->c_lo.z, 0 };
     /* the triangle's words as lanes, each operand of the per-ray datapaths one of them broadcast */

@@ -1,6 +1,10 @@
 /* Rebase unit: see rebase_unit.h. */
 #include "rebase_unit.h"
 
+#ifdef F24_SIM_LANES
+#define rebase_rays rebase_rays_per_ray /* the simulation build's is side by side (rebase_unit.h) */
+#endif
+
 f24_t rebase_distance(f24_t t) { return f24_exp(t) == F24_EXP_MAX ? 0u : t; }
 
 /* The three components side by side (lane 3 unused): o_hi + o_lo + t d_hi + t d_lo each. */
@@ -14,4 +18,16 @@ F24Q_FN f24_vec3x2 rebase_origin(f24_vec3x2 o, f24_vec3x2 d, f24_t t)
     f24q_sum_exact(a, b, 4, hi, lo);
     const f24_vec3x2 p = { { hi[0], hi[1], hi[2] }, { lo[0], lo[1], lo[2] } };
     return p;
+}
+
+void rebase_rays(uint32_t rays, const f24_vec3 o[], const f24_vec3 o_lo[], const f24_vec3 d[], const f24_vec3 d_lo[],
+                 const f24_t t[], f24_vec3x2 p[], f24_t te[])
+{
+rebase_each:
+    for (int i = 0; i < F24Q_LANES; i++) {
+        if (!(rays >> i & 1u))
+            continue;
+        p[i] = rebase_origin((f24_vec3x2){ o[i], o_lo[i] }, (f24_vec3x2){ d[i], d_lo[i] }, t[i]);
+        te[i] = rebase_distance(t[i]);
+    }
 }

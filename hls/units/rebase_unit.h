@@ -32,4 +32,16 @@ f24_vec3x2 rebase_origin(f24_vec3x2 o, f24_vec3x2 d, f24_t t);
 /* The distance rebase_origin moved by for entry distance t (0 for t not finite). */
 f24_t rebase_distance(f24_t t);
 
+/* The rays of mask rays (of a packet's F24Q_LANES) one after the other, as the list unit issues
+ * them when it opens a leaf: p = rebase_origin((o, o_lo), (d, d_lo), t), te = rebase_distance(t).
+ * The other rays' outputs are untouched. */
+void rebase_rays(uint32_t rays, const f24_vec3 o[], const f24_vec3 o_lo[], const f24_vec3 d[], const f24_vec3 d_lo[],
+                 const f24_t t[], f24_vec3x2 p[], f24_t te[]);
+#ifdef F24_SIM_LANES
+/* The simulation build with vector packet values computes them side by side (tb/sim/wide_lanes.c,
+ * the same bits); the per-ray one, the truth, then keeps this name for the test comparing them. */
+void rebase_rays_per_ray(uint32_t rays, const f24_vec3 o[], const f24_vec3 o_lo[], const f24_vec3 d[],
+                         const f24_vec3 d_lo[], const f24_t t[], f24_vec3x2 p[], f24_t te[]);
+#endif
+
 #endif

@@ -247,52 +247,52 @@ static void next_packet(rgs_block *b)
     b->phase = RB_TRACE;
 }
 
-int rgs_step(const uint32_t *mem, const rgs_config *cfg, rgs_block *b, unit_op *op, rgs_counters *c)
+int rgs_packet_done(rgs_block *b)
 {
-route:
-    for (int guard = 0; guard < 4; guard++) { /* transitions without a unit operation, then one operation */
-        switch (b->phase) {
-        case RB_GEN: /* transformation unit: primary rays T_init, one step per ray (the shared origin, or an
-                      * orthographic packet's shared direction, is a camera word: rtl/rgs_raygen.sv); camera block */
-            b->trav_flags = cfg->traversal << TRACE_TRAV_SHIFT;
-            op_set(op, OP_RAYGEN, TRACE_PACKET);
-            shade_read(op, &c->trace, region_start(mem, R_CAMERA), CAM_WORDS);
-            b->phase = RB_NEXT;
-            return 1;
-        case RB_NEXT: next_packet(b); break;
-        case RB_TRACE:
-            if (trace_step(mem, &b->trace, op, &c->trace))
-                return 1;
-            if (b->packets == 1)
-                for (int i = 0; i < TRACE_PACKET; i++)
-                    b->primary_hits[i] = b->trace.hits[i];
-            b->phase = RB_SURFACES;
-            break;
-        case RB_SURFACES: op_surfaces(mem, b, op, c); return 1;
-        case RB_LIGHT:
-            if (b->light >= b->n_lights) {
-                b->phase = RB_ACCUM;
-                break;
-            }
-            op_light(mem, cfg, b, op, c);
-            return 1;
 #if SAARCOR_CFG_SHADOWS
-        case RB_SHADOW_GEN: op_shadow_gen(b, op, c); return 1;
-        case RB_SHADOW_TRACE:
-            if (trace_step(mem, &b->trace, op, &c->trace))
-                return 1;
-            shadow_done(b);
-            break;
-#endif
-        case RB_ACCUM: op_accumulate(mem, cfg, b, op, c); return 1;
-        case RB_CHILD_GEN: /* transformation unit: T_R steps for the back, ahead and mirror vectors */
-            op_set(op, OP_CHILDREN, 3 * b->children);
-            b->phase = RB_NEXT;
-            return 1;
-        default: return 0;
-        }
+    if (b->phase == RB_SHADOW_TRACE) {
+        shadow_done(b);
+        return RGS_STEP_ON;
     }
-    return 0;
+#endif
+    if (b->packets == 1) {
+    primary_hits:
+        for (int i = 0; i < TRACE_PACKET; i++)
+            b->primary_hits[i] = b->trace.hits[i];
+    }
+    b->phase = RB_SURFACES;
+    return RGS_STEP_ON;
+}
+
+int rgs_phase(const uint32_t *mem, const rgs_config *cfg, rgs_block *b, unit_op *op, rgs_counters *c)
+{
+    switch (b->phase) {
+    case RB_GEN: /* transformation unit: primary rays T_init, one step per ray (the shared origin, or an
+                  * orthographic packet's shared direction, is a camera word: rtl/rgs_raygen.sv); camera block */
+        b->trav_flags = cfg->traversal << TRACE_TRAV_SHIFT;
+        op_set(op, OP_RAYGEN, TRACE_PACKET);
+        shade_read(op, &c->trace, region_start(mem, R_CAMERA), CAM_WORDS);
+        b->phase = RB_NEXT;
+        return RGS_STEP_OP;
+    case RB_NEXT: next_packet(b); return RGS_STEP_ON;
+    case RB_SURFACES: op_surfaces(mem, b, op, c); return RGS_STEP_OP;
+    case RB_LIGHT:
+        if (b->light >= b->n_lights) {
+            b->phase = RB_ACCUM;
+            return RGS_STEP_ON;
+        }
+        op_light(mem, cfg, b, op, c);
+        return RGS_STEP_OP;
+#if SAARCOR_CFG_SHADOWS
+    case RB_SHADOW_GEN: op_shadow_gen(b, op, c); return RGS_STEP_OP;
+#endif
+    case RB_ACCUM: op_accumulate(mem, cfg, b, op, c); return RGS_STEP_OP;
+    case RB_CHILD_GEN: /* transformation unit: T_R steps for the back, ahead and mirror vectors */
+        op_set(op, OP_CHILDREN, 3 * b->children);
+        b->phase = RB_NEXT;
+        return RGS_STEP_OP;
+    default: return RGS_STEP_END;
+    }
 }
 
 void rgs_block_finish(const rgs_block *b, uint32_t rgb[])

@@ -150,14 +150,7 @@ static void rebase_leaf(trace_state *s, unit_op *op)
     op->slots += count_rays(rays);
     if (rays)
         op->kind = OP_LEAF;
-rebase_rays:
-    for (int i = 0; i < TRACE_PACKET; i++) {
-        if (!bit(rays, i))
-            continue;
-        const f24_vec3x2 o = { s->o[i], s->o_lo[i] }, d = { s->d[i], s->d_lo[i] };
-        s->p[i] = rebase_origin(o, d, w->leaf_tn[i]);
-        s->te[i] = rebase_distance(w->leaf_tn[i]);
-    }
+    rebase_rays(rays, s->o, s->o_lo, s->d, s->d_lo, w->leaf_tn, s->p, s->te);
 }
 
 /* List unit: one entry of the current leaf (an instance at the top level, a triangle below). */
@@ -203,26 +196,19 @@ static F24_SIM_NOINLINE void op_inst_xform(const uint32_t *mem, trace_state *s, 
     c->transformations += identity ? 0u : op->slots;
     const f24_vec3 t_lo = { mem[ia + INST_T_LO] & F24_MASK, mem[ia + INST_T_LO + 1] & F24_MASK,
                             mem[ia + INST_T_LO + 2] & F24_MASK };
-to_object_space:
-    for (int i = 0; i < TRACE_PACKET; i++) {
-        if (!bit(s->need, i))
-            continue;
-        if (identity) {
+    if (!identity) {
+        xform_enter_rays(&w2o, t_lo, s->need, s->rays.o, s->rays.d, s->walk[0].leaf_tn, s->o, s->o_lo, s->d, s->d_lo,
+                         s->t0);
+    } else {
+    wiring_rays:
+        for (int i = 0; i < TRACE_PACKET; i++) {
+            if (!bit(s->need, i))
+                continue;
             s->o[i] = xform_identity(&w2o, s->rays.o[i], 1);
             s->d[i] = xform_identity(&w2o, s->rays.d[i], 0);
             s->o_lo[i] = s->d_lo[i] = (f24_vec3){ 0, 0, 0 };
             s->t0[i] = 0;
-            continue;
         }
-        const f24_vec3 none = { 0, 0, 0 };
-        const f24_t t0 = rebase_distance(s->walk[0].leaf_tn[i]);
-        const f24_vec3x2 pw = rebase_origin((f24_vec3x2){ s->rays.o[i], none }, (f24_vec3x2){ s->rays.d[i], none }, t0);
-        const f24_vec3x2 o = xform_point_wide(&w2o, t_lo, pw), d = xform_vector_wide(&w2o, s->rays.d[i]);
-        s->o[i] = o.hi;
-        s->o_lo[i] = o.lo;
-        s->d[i] = d.hi;
-        s->d_lo[i] = d.lo;
-        s->t0[i] = t0;
     }
     s->phase = TP_INST_CLIP;
     if (identity)

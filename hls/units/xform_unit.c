@@ -1,6 +1,12 @@
 /* Transformation unit: see xform_unit.h. */
 #include "xform_unit.h"
 
+#include "rebase_unit.h"
+
+#ifdef F24_SIM_LANES
+#define xform_enter_rays xform_enter_rays_per_ray /* the simulation build's is side by side (xform_unit.h) */
+#endif
+
 /* One row for p = { x, y, z, 1 }: the three products side by side (the unit's multipliers; lane 3
  * is unused), summed in the contract's order. The translation goes through a mux, not an add of
  * zero, so a -0 sum keeps its sign. */
@@ -80,6 +86,25 @@ f24_vec3x2 xform_vector_wide(const f24_affine *m, f24_vec3 v)
     const f24_vec3 none = { 0, 0, 0 };
     const f24_vec3x2 w = { v, none };
     return xform_step_wide(m, none, w, 0);
+}
+
+void xform_enter_rays(const f24_affine *w2o, f24_vec3 t_lo, uint32_t rays, const f24_vec3 o[], const f24_vec3 d[],
+                      const f24_t tn[], f24_vec3 o_hi[], f24_vec3 o_lo[], f24_vec3 d_hi[], f24_vec3 d_lo[], f24_t t0[])
+{
+    const f24_vec3 none = { 0, 0, 0 };
+enter_rays:
+    for (int i = 0; i < F24Q_LANES; i++) {
+        if (!(rays >> i & 1u))
+            continue;
+        const f24_t t = rebase_distance(tn[i]);
+        const f24_vec3x2 p = rebase_origin((f24_vec3x2){ o[i], none }, (f24_vec3x2){ d[i], none }, t);
+        const f24_vec3x2 po = xform_point_wide(w2o, t_lo, p), pd = xform_vector_wide(w2o, d[i]);
+        o_hi[i] = po.hi;
+        o_lo[i] = po.lo;
+        d_hi[i] = pd.hi;
+        d_lo[i] = pd.lo;
+        t0[i] = t;
+    }
 }
 
 f24_vec3 xform_identity(const f24_affine *m, f24_vec3 v, int point)

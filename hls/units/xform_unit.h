@@ -39,6 +39,22 @@ f24_vec3 xform_vector(const f24_affine *m, f24_vec3 v);
 f24_vec3x2 xform_point_wide(const f24_affine *m, f24_vec3 tlo, f24_vec3x2 p);
 f24_vec3x2 xform_vector_wide(const f24_affine *m, f24_vec3 v);
 
+/* The rays of mask rays (of a packet's F24Q_LANES) into an instance's object space, one after the
+ * other as the unit takes them (the core's op_inst_xform, path d): each ray's origin o moved to
+ * where it enters the top-level leaf, t0 = rebase_distance(tn) (the rebase unit in front), then
+ * the origin through xform_point_wide (translation low words t_lo) and the direction through
+ * xform_vector_wide, into o_hi/o_lo, d_hi/d_lo and t0. The other rays' outputs are untouched. */
+void xform_enter_rays(const f24_affine *w2o, f24_vec3 t_lo, uint32_t rays, const f24_vec3 o[], const f24_vec3 d[],
+                      const f24_t tn[], f24_vec3 o_hi[], f24_vec3 o_lo[], f24_vec3 d_hi[], f24_vec3 d_lo[], f24_t t0[]);
+#ifdef F24_SIM_LANES
+/* A simulation build with vector packet values computes the rays of xform_enter_rays side by side
+ * (tb/sim/wide_lanes.c: its own definition of that name, the same bits); the per-ray one here, the
+ * truth, then keeps this name, for the test that compares the two. */
+void xform_enter_rays_per_ray(const f24_affine *w2o, f24_vec3 t_lo, uint32_t rays, const f24_vec3 o[],
+                              const f24_vec3 d[], const f24_t tn[], f24_vec3 o_hi[], f24_vec3 o_lo[], f24_vec3 d_hi[],
+                              f24_vec3 d_lo[], f24_t t0[]);
+#endif
+
 /* What xform_point (point != 0) or xform_vector compute, bit for bit, for a map m that is the
  * identity up to the signs of its zeros (1 on the diagonal, +-0 elsewhere), without an
  * arithmetic operator: a nonzero component passes through; a zero one is the sum of zero

@@ -245,6 +245,66 @@ f24_vec3x2 __wrap_xform_vector_wide(const f24_affine *m, f24_vec3 v)
     return capturing() ? captured_wide(m, none, (f24_vec3x2){ v, none }, 0) : __real_xform_vector_wide(m, v);
 }
 
+/* The packet-level calls of the core (trace.c) into the wide mode: recorded as the per-ray
+ * datapath issues them, each ray's transactions in ray order (rebase, then the origin's and the
+ * direction's wide transformation), recomputed by the units, which give the same bits. The
+ * simulation versions with vector lanes (tb/sim/wide_lanes.c) call no unit; the per-ray ones call
+ * the units of their own object file, which no wrapper sees, except xform_enter_rays's
+ * rebase_origin (rebase_unit.c: its wrapper records it). */
+void __real_xform_enter_rays(const f24_affine *w2o, f24_vec3 t_lo, uint32_t rays, const f24_vec3 o[], const f24_vec3 d[],
+                             const f24_t tn[], f24_vec3 o_hi[], f24_vec3 o_lo[], f24_vec3 d_hi[], f24_vec3 d_lo[],
+                             f24_t t0[]);
+void __wrap_xform_enter_rays(const f24_affine *w2o, f24_vec3 t_lo, uint32_t rays, const f24_vec3 o[], const f24_vec3 d[],
+                             const f24_t tn[], f24_vec3 o_hi[], f24_vec3 o_lo[], f24_vec3 d_hi[], f24_vec3 d_lo[],
+                             f24_t t0[]);
+void __real_rebase_rays(uint32_t rays, const f24_vec3 o[], const f24_vec3 o_lo[], const f24_vec3 d[],
+                        const f24_vec3 d_lo[], const f24_t t[], f24_vec3x2 p[], f24_t te[]);
+void __wrap_rebase_rays(uint32_t rays, const f24_vec3 o[], const f24_vec3 o_lo[], const f24_vec3 d[],
+                        const f24_vec3 d_lo[], const f24_t t[], f24_vec3x2 p[], f24_t te[]);
+
+CAPTURE_PATH void captured_enter_rays(const f24_affine *w2o, f24_vec3 t_lo, uint32_t rays, const f24_vec3 o[],
+                                      const f24_vec3 d[], const f24_t tn[])
+{
+    const f24_vec3 none = { 0, 0, 0 };
+    for (int i = 0; i < F24Q_LANES; i++) {
+        if (!(rays >> i & 1u))
+            continue;
+        const f24_vec3x2 r_o = { o[i], none }, r_d = { d[i], none };
+#ifdef F24_SIM_LANES
+        const f24_vec3x2 p = captured_rebase(r_o, r_d, rebase_distance(tn[i]));
+#else
+        const f24_vec3x2 p = __real_rebase_origin(r_o, r_d, rebase_distance(tn[i])); /* recorded by its wrapper */
+#endif
+        captured_wide(w2o, t_lo, p, 1);
+        captured_wide(w2o, none, (f24_vec3x2){ d[i], none }, 0);
+    }
+}
+
+void __wrap_xform_enter_rays(const f24_affine *w2o, f24_vec3 t_lo, uint32_t rays, const f24_vec3 o[], const f24_vec3 d[],
+                             const f24_t tn[], f24_vec3 o_hi[], f24_vec3 o_lo[], f24_vec3 d_hi[], f24_vec3 d_lo[],
+                             f24_t t0[])
+{
+    __real_xform_enter_rays(w2o, t_lo, rays, o, d, tn, o_hi, o_lo, d_hi, d_lo, t0);
+    if (capturing())
+        captured_enter_rays(w2o, t_lo, rays, o, d, tn);
+}
+
+CAPTURE_PATH void captured_rebase_rays(uint32_t rays, const f24_vec3 o[], const f24_vec3 o_lo[], const f24_vec3 d[],
+                                       const f24_vec3 d_lo[], const f24_t t[])
+{
+    for (int i = 0; i < F24Q_LANES; i++)
+        if (rays >> i & 1u)
+            captured_rebase((f24_vec3x2){ o[i], o_lo[i] }, (f24_vec3x2){ d[i], d_lo[i] }, t[i]);
+}
+
+void __wrap_rebase_rays(uint32_t rays, const f24_vec3 o[], const f24_vec3 o_lo[], const f24_vec3 d[],
+                        const f24_vec3 d_lo[], const f24_t t[], f24_vec3x2 p[], f24_t te[])
+{
+    __real_rebase_rays(rays, o, o_lo, d, d_lo, t, p, te);
+    if (capturing())
+        captured_rebase_rays(rays, o, o_lo, d, d_lo, t);
+}
+
 /* The intersection unit's datapath sees the ray after the triangle's matrix: the origin from the
  * rebased origin (isect_origin), the direction from the transformation unit (recorded as its
  * transaction), then the test, recorded in full (not early-out), whose hit flag equals the one

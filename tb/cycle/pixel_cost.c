@@ -79,11 +79,6 @@ int pc_step(const uint32_t *mem, const rgs_config *cfg, rgs_block *b, unit_op *o
 {
     if (cost)
         return step_costed(mem, cfg, b, op, c, cost);
-    /* a packet in flight: the core's next operation, which rgs_step would pass on in that phase
-     * (most of a frame's steps; rgs_step's dispatch around each was 3.4% of a room frame's
-     * instructions). Once the packet is done, rgs_step finds it done and goes on. */
-    if ((b->phase == RB_TRACE || b->phase == RB_SHADOW_TRACE) && trace_step(mem, &b->trace, op, &c->trace))
-        return 1;
     return rgs_step(mem, cfg, b, op, c);
 }
 

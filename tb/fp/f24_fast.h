@@ -104,6 +104,22 @@ typedef uint32_t f24v_u __attribute__((vector_size(16)));
 /* always inlined, also at -O0: a call would pass the vectors between code with and without AVX */
 #define F24V_INLINE static inline __attribute__((always_inline))
 
+typedef int32_t f24v_s __attribute__((vector_size(16)));
+/* The lanes' constants, read from memory (tb/fp/f24_fast_lanes.c): gcc 12 builds a constant vector
+ * it can see from an immediate in a general register and a broadcast, three instructions per
+ * constant and function, where a memory operand costs none. In binary64 bit positions: the
+ * magnitude mask, the rounding's half-ulp less one and its even bit, the kept bits, the smallest
+ * normal and Inf of fp24, binary64's Inf, the sign, the default NaN decoded; as fp24 words in 64-bit
+ * lanes (f24v_bits): the rebiasing, the smallest normal, Inf, the sign and the default NaN; in
+ * 32-bit lanes (f24v_of): the magnitude mask, the rebiasing to binary32, the smallest normal and Inf
+ * less one (for a greater-than), binary32's exponent field. */
+typedef struct {
+    f24v_i abs52, half52, one, keep52, min52, inf52, inf52_bits, sign52, nan52;
+    f24v_i rebias, min_normal, pos_inf, sign_bit, default_nan;
+    f24v_s abs24, rebias32, min_normal_m1, pos_inf_m1, exp32;
+} f24v_consts;
+extern const f24v_consts f24v_k;
+
 F24V_INLINE f24v_i f24v_select(f24v_i mask, f24v_i a, f24v_i b) { return (a & mask) | (b & ~mask); }
 
 /* lane i's bit at i: the halves or-ed together first (gcc: 6 instructions instead of 11) */
@@ -123,15 +139,14 @@ F24V_INLINE uint32_t f24v_mask(f24v_i m)
  * NaN, f24w_bits writes F24_DEFAULT_NAN with the sign), and it saves the classification of NaN
  * against Inf. The widening is written per element, which gcc compiles to one vcvtps2pd
  * (__builtin_convertvector takes four). */
-typedef int32_t f24v_s __attribute__((vector_size(16)));
 typedef float f24v_f __attribute__((vector_size(16)));
 F24V_INLINE f24v f24v_of(const f24_t a[F24Q_LANES])
 {
     const f24v_s x = { (int32_t)a[0], (int32_t)a[1], (int32_t)a[2], (int32_t)a[3] };
-    const f24v_s mag = x & (int32_t)F24_ABS_MASK; /* below 2^31: signed comparisons are exact */
+    const f24v_s mag = x & f24v_k.abs24; /* below 2^31: signed comparisons are exact */
     const f24v_s sign = (f24v_s)((f24v_u)x >> (F24_EXP_BITS + F24_MAN_BITS) << 31);
-    const f24v_s normal = (mag << (23 - F24_MAN_BITS)) + (int32_t)((127u - F24_BIAS) << 23);
-    const f24v_s bits = sign | (normal & (mag >= (int32_t)F24_MIN_NORMAL)) | ((mag >= (int32_t)F24_POS_INF) & 0x7F800000);
+    const f24v_s normal = (mag << (23 - F24_MAN_BITS)) + f24v_k.rebias32;
+    const f24v_s bits = sign | (normal & (mag > f24v_k.min_normal_m1)) | ((mag > f24v_k.pos_inf_m1) & f24v_k.exp32);
     f24v_f f;
     memcpy(&f, &bits, sizeof f);
     return (f24v){ f[0], f[1], f[2], f[3] };
@@ -155,31 +170,28 @@ F24V_INLINE f24v f24v_splat(f24_t a)
 F24V_INLINE f24v_i f24v_round_bits(f24v_i mag52)
 {
     enum { SHIFT = 52 - F24_MAN_BITS };
-    return mag52 + ((1ll << (SHIFT - 1)) - 1) + (f24v_i)((f24v_l)mag52 >> SHIFT & 1);
+    return mag52 + f24v_k.half52 + ((f24v_i)((f24v_l)mag52 >> SHIFT) & f24v_k.one);
 }
 
 /* f24_fast_round per lane */
 F24V_INLINE f24v f24v_round(f24v d)
 {
-    enum { SHIFT = 52 - F24_MAN_BITS };
-    const int64_t min52 = (int64_t)(1023 - F24_BIAS + 1) << 52, inf52 = (int64_t)(1023 - F24_BIAS + F24_EXP_MAX) << 52;
-    const f24v_i bits = (f24v_i)d, mag52 = bits & 0x7FFFFFFFFFFFFFFFll;
-    const f24v_i r = f24v_round_bits(mag52) & ~((1ll << SHIFT) - 1);
-    const f24v_i ranged = f24v_select(r < min52, (f24v_i){ 0 }, f24v_select(r < inf52, r, (f24v_i){ 0 } + 0x7FF0000000000000ll));
-    const f24v nan = f24v_splat(F24_DEFAULT_NAN);
-    return (f24v)f24v_select(mag52 > 0x7FF0000000000000ll, (f24v_i)nan, (bits & (int64_t)0x8000000000000000ull) | ranged);
+    const f24v_i bits = (f24v_i)d, mag52 = bits & f24v_k.abs52;
+    const f24v_i r = f24v_round_bits(mag52) & f24v_k.keep52;
+    const f24v_i ranged = f24v_select(r < f24v_k.min52, (f24v_i){ 0 }, f24v_select(r < f24v_k.inf52, r, f24v_k.inf52_bits));
+    return (f24v)f24v_select(mag52 > f24v_k.inf52_bits, f24v_k.nan52, (bits & f24v_k.sign52) | ranged);
 }
 
 /* f24w_bits per lane */
 F24V_INLINE void f24v_bits(f24v a, f24_t out[F24Q_LANES])
 {
     enum { SHIFT = 52 - F24_MAN_BITS };
-    const f24v_i bits = (f24v_i)a, mag52 = bits & 0x7FFFFFFFFFFFFFFFll, sign = bits < 0;
-    const f24v_i rebiased = (f24v_i)((f24v_l)f24v_round_bits(mag52) >> SHIFT) - (int64_t)F24_FAST_REBIAS;
-    const f24v_i ranged = f24v_select(rebiased < (int64_t)F24_MIN_NORMAL, (f24v_i){ 0 },
-                                      f24v_select(rebiased < (int64_t)F24_POS_INF, rebiased, (f24v_i){ 0 } + F24_POS_INF));
-    const f24v_i nan = a != a, sign_bit = sign & (int64_t)F24_SIGN_BIT;
-    const f24v_i w = f24v_select(nan, (nan & sign_bit) | F24_DEFAULT_NAN, sign_bit | ranged);
+    const f24v_i bits = (f24v_i)a, mag52 = bits & f24v_k.abs52, sign = bits < 0;
+    const f24v_i rebiased = (f24v_i)((f24v_l)f24v_round_bits(mag52) >> SHIFT) - f24v_k.rebias;
+    const f24v_i ranged = f24v_select(rebiased < f24v_k.min_normal, (f24v_i){ 0 },
+                                      f24v_select(rebiased < f24v_k.pos_inf, rebiased, f24v_k.pos_inf));
+    const f24v_i nan = a != a, sign_bit = sign & f24v_k.sign_bit;
+    const f24v_i w = f24v_select(nan, (nan & sign_bit) | f24v_k.default_nan, sign_bit | ranged);
     /* per element: gcc narrows with one shuffle of the two halves (__builtin_convertvector: five) */
     const f24v_u u = { (uint32_t)w[0], (uint32_t)w[1], (uint32_t)w[2], (uint32_t)w[3] };
     memcpy(out, &u, sizeof u);
@@ -192,7 +204,7 @@ F24V_INLINE f24v f24v_minmax(f24v x, f24v y, int want_max)
     const f24v_i x_first = (x < y) | ((x == y) & (xb < 0)); /* -0 before +0 */
     const f24v_i both = f24v_select(want_max ? ~x_first : x_first, xb, yb);
     const f24v_i one = f24v_select(y_nan, xb, both);
-    return (f24v)f24v_select(x_nan, f24v_select(y_nan, (f24v_i)f24v_splat(F24_DEFAULT_NAN), yb), one);
+    return (f24v)f24v_select(x_nan, f24v_select(y_nan, f24v_k.nan52, yb), one);
 }
 
 F24V_INLINE f24v f24v_add(f24v a, f24v b) { return f24v_round(a + b); }
