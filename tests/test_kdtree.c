@@ -609,6 +609,42 @@ static void bins_from_per_tree(void **state)
     free(so.t);
 }
 
+/* bin_size sets a binned node's bins from its primitives: n / bin_size, at least KD_MIN_BINS (or
+ * bins if fewer) and at most bins. A bin_size no node reaches gives every node the fewest bins,
+ * the tree of 32 bins throughout; with bins under KD_MIN_BINS, every node gets bins; a bin_size
+ * between gives the root and the nodes near it more bins than those below: a tree of its own,
+ * valid, and not one of the two fixed counts'. */
+static void bins_per_node_size(void **state)
+{
+    (void)state;
+    soup so = random_soup(3000, 41);
+    const kd_source src = tri_source(&so);
+    kd_params fewest = params(256, NULL), sixteen = params(16, NULL), mixed = params(128, NULL);
+    fewest.bin_size = UINT32_MAX;
+    sixteen.bin_size = 16;
+    mixed.bin_size = 16; /* the root: 187 bins, capped at 128; below 512 primitives: 32 */
+    const kd_params p32 = params(32, NULL), p16 = params(16, NULL), p128 = params(128, NULL);
+    kd_tree f, t32, s, t16, m, t128;
+    assert_int_equal(kd_build(&src, &fewest, &f), 0);
+    assert_int_equal(kd_build(&src, &p32, &t32), 0);
+    assert_int_equal(kd_build(&src, &sixteen, &s), 0);
+    assert_int_equal(kd_build(&src, &p16, &t16), 0);
+    assert_int_equal(kd_build(&src, &mixed, &m), 0);
+    assert_int_equal(kd_build(&src, &p128, &t128), 0);
+    assert_same_tree(&f, &t32);
+    assert_same_tree(&s, &t16);
+    check_tree(&src, &mixed, &m);
+    assert_true(m.n_nodes != t32.n_nodes || memcmp(m.nodes, t32.nodes, m.n_nodes * sizeof *m.nodes) != 0);
+    assert_true(m.n_nodes != t128.n_nodes || memcmp(m.nodes, t128.nodes, m.n_nodes * sizeof *m.nodes) != 0);
+    kd_free(&f);
+    kd_free(&t32);
+    kd_free(&s);
+    kd_free(&t16);
+    kd_free(&m);
+    kd_free(&t128);
+    free(so.t);
+}
+
 /* ---- tests: quantized planes ---------------------------------------------------------------- */
 
 static void quantized(void **state)
@@ -931,9 +967,9 @@ static void zero_area_triangles(void **state)
     }
     const kd_source src = tri_source(&so);
     for (uint32_t bins = 0; bins <= 32; bins += 32) {
-        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, NULL, 1, 0, 0, 0, 0, NULL, 0 });
-        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, grid8, 1, 0, 0, 0, 0, NULL, 0 });
-        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, grid8, 1, 0, 16, 0, 0, NULL, 0 });
+        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, NULL, 1, 0, 0, 0, 0, NULL, 0, 0 });
+        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, grid8, 1, 0, 0, 0, 0, NULL, 0, 0 });
+        build_and_check(&src, &(kd_params){ 1.0, 1.5, 0.2, 0, 1, bins, grid8, 1, 0, 16, 0, 0, NULL, 0, 0 });
     }
     free(so.t);
 }
@@ -1582,6 +1618,7 @@ int main(void)
         cmocka_unit_test(soup_binned),
         cmocka_unit_test(soup_hybrid),
         cmocka_unit_test(bins_from_per_tree),
+        cmocka_unit_test(bins_per_node_size),
         cmocka_unit_test(quantized),
         cmocka_unit_test(non_monotone_quantize),
         cmocka_unit_test(sah_beats_median),

@@ -29,10 +29,11 @@
  * instructions; same trees; about 5% less CPU time on bunny.glb and the gallery).
  *
  * Binned mode (bins > 0, the per-frame top level): candidates are the bins - 1 evenly spaced
- * planes per axis. Every primitive is ranked against them exactly (its bin, checked against the
- * neighbouring planes), so the counts are exact at the candidate planes: O(n + bins) per node,
- * O(N log N) total. With a clip function, the primitives straddling the chosen plane are
- * clipped to the child boxes, as in exact mode. Small nodes (at most SMALL_NODE primitives, fewer
+ * planes per axis (with bin_size, the bottom level's, a node's own count: a bin per bin_size
+ * primitives, KD_MIN_BINS to bins, node_bins). Every primitive is ranked against them exactly
+ * (its bin, checked against the neighbouring planes), so the counts are exact at the candidate
+ * planes: O(n + bins) per node, O(N log N) total. With a clip function, the primitives straddling
+ * the chosen plane are clipped to the child boxes, as in exact mode. Small nodes (at most SMALL_NODE primitives, fewer
  * bounds than planes) use their primitives' own bounds as candidates, counted directly: exact
  * SAH, and cheaper there.
  *
@@ -798,16 +799,16 @@ static int leaf_from_events(builder *b, uint32_t node, const prim_set *s)
 
 /* ---- binned mode ---------------------------------------------------------------------------- */
 
-/* Snapped bin boundaries of axis k strictly inside box, sorted and distinct, into c[0..m) (m <=
- * bins - 1), returns m; c[-1] and c[m] get the sentinels -inf and +inf, which every position is
- * above and below (rank_of). */
-static uint32_t bin_planes(const builder *b, const aabb *box, uint32_t k, double *c)
+/* Snapped boundaries of `bins` bins of axis k strictly inside box, sorted and distinct, into
+ * c[0..m) (m <= bins - 1), returns m; c[-1] and c[m] get the sentinels -inf and +inf, which every
+ * position is above and below (rank_of). */
+static uint32_t bin_planes(const builder *b, const aabb *box, uint32_t k, uint32_t bins, double *c)
 {
-    const double w = (box->hi[k] - box->lo[k]) / b->p.bins;
+    const double w = (box->hi[k] - box->lo[k]) / bins;
     uint32_t m = 0;
     int sorted = 1; /* c[0..m) sorted and distinct so far */
     c[-1] = -INFINITY;
-    for (uint32_t j = 1; j < b->p.bins; j++) {
+    for (uint32_t j = 1; j < bins; j++) {
         const double q = snap(b, box->lo[k] + j * w);
         const double last = (c + m)[-1]; /* -inf while m = 0 */
         if (!strictly_inside(box, k, q) || q == last)
@@ -858,6 +859,18 @@ static inline uint32_t rank_of(const double *c, uint32_t m, double x, int inclus
     return rank_search(c, m, x, inclusive);
 }
 
+/* Bins per axis of a binned node of n primitives: n / bin_size, at least KD_MIN_BINS and at most
+ * bins (all bins if bin_size is 0). Few bins are enough where few primitives are: a node's cost is
+ * dominated by its bins' planes (snapped, counted and costed on three axes) unless it has many
+ * more primitives than planes, while the nodes near the root, where a plane's position weighs
+ * most, get the most bins (docs/memory-image.md: 16 primitives a bin, 32 to 256 bins). */
+static uint32_t node_bins(const kd_params *p, uint32_t n)
+{
+    const uint32_t least = p->bins < KD_MIN_BINS ? p->bins : KD_MIN_BINS;
+    const uint32_t want = p->bin_size ? n / p->bin_size : p->bins;
+    return want < least ? least : want > p->bins ? p->bins : want;
+}
+
 /* The bin planes of a binned node: axis k's at c[k][0..m[k]) with bin_planes' sentinels. */
 typedef struct {
     double *c[3];
@@ -867,13 +880,14 @@ typedef struct {
 /* Counters per axis: starts, ends and planar primitives at up to bins - 1 planes (count_planes). */
 static size_t count_stride(const builder *b) { return 3 * ((size_t)b->p.bins + 1); }
 
-/* plane_set of box in cand, which has room for 3 (bins + 1) values. */
-static plane_set planes_of(const builder *b, const aabb *box, double *cand)
+/* plane_set of a node (box, n primitives) in cand, which has room for 3 (bins + 1) values. */
+static plane_set planes_of(const builder *b, const aabb *box, uint32_t n, double *cand)
 {
     plane_set ps;
+    const uint32_t bins = node_bins(&b->p, n);
     for (uint32_t k = 0; k < 3; k++) {
         ps.c[k] = cand + k * ((size_t)b->p.bins + 1) + 1;
-        ps.m[k] = bin_planes(b, box, k, ps.c[k]);
+        ps.m[k] = bin_planes(b, box, k, bins, ps.c[k]);
     }
     return ps;
 }
@@ -926,7 +940,7 @@ static void eval_planes(const builder *b, const prim_set *s, const aabb *box, ui
 /* The bin planes of all three axes, counted exactly (in one pass) and tried axis by axis. */
 static void binned_split(const builder *b, const prim_set *s, const aabb *box, split *best)
 {
-    const plane_set ps = planes_of(b, box, b->cand);
+    const plane_set ps = planes_of(b, box, s->n, b->cand);
     const size_t stride = count_stride(b);
     for (uint32_t k = 0; k < 3; k++)
         memset(b->counts + k * stride, 0, 3 * ((size_t)ps.m[k] + 1) * sizeof *b->counts);
@@ -1083,7 +1097,7 @@ static void find_split(const builder *b, const prim_set *s, const aabb *box, spl
     /* large binned nodes (never small ones) in parts on several threads, unless memory ran out */
     if (b->pool && has_refs(s) && s->n >= PAR_SPLIT_MIN && find_split_parallel(b, s, box, best) == 0)
         return;
-    if (has_refs(s) && !(s->n <= SMALL_NODE && 2 * s->n < b->p.bins - 1)) {
+    if (has_refs(s) && !(s->n <= SMALL_NODE && 2 * s->n < node_bins(&b->p, s->n) - 1)) {
         binned_split(b, s, box, best);
         return;
     }
@@ -1231,7 +1245,7 @@ static int find_split_parallel(const builder *b, const prim_set *s, const aabb *
     j.counts = calloc(PAR_PARTS * 3 * j.stride, sizeof *j.counts);
     if (!j.counts)
         return -1;
-    j.ps = planes_of(b, box, b->cand);
+    j.ps = planes_of(b, box, s->n, b->cand);
     pool_for(b->pool, PAR_PARTS, count_part, &j);
     for (uint32_t k = 0; k < 3; k++) {
         if (j.ps.m[k] == 0)

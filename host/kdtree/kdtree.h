@@ -48,7 +48,8 @@ typedef struct {
     uint32_t max_depth;        /* 0: automatic, 8 + 1.3 log2(count) (pbrt's), at most 64; for at least
                                   shallow_from primitives 5 + log2(count), 6 + log2(count) if binned */
     uint32_t leaf_size;        /* never split a node with at most this many primitives, default 1 */
-    uint32_t bins;             /* 0: exact SAH over all events; n > 0: binned SAH with n bins per axis */
+    uint32_t bins;             /* 0: exact SAH over all events; n > 0: binned SAH with n bins per axis
+                                  (at most n: see bin_size) */
     /* Snaps a candidate split position to a representable device value (NULL: no snapping).
      * Must be a pure function: builds of at least 512 primitives use all cores and call it from
      * several threads (the tree is the same as a single-threaded build, bit for bit). */
@@ -70,7 +71,14 @@ typedef struct {
                                   or not, so that max_nodes bounds the nodes of all of them */
     uint32_t bins_from;        /* bins > 0: only trees of at least this many primitives are binned, smaller
                                   ones are exact throughout; 0 (default): every tree */
+    uint32_t bin_size;         /* bins > 0: a binned node of n primitives gets n / bin_size bins per axis,
+                                  at least KD_MIN_BINS (or bins if fewer) and at most bins; 0 (default):
+                                  bins for every node */
 } kd_params;
+
+/* The fewest bins per axis a binned node gets with kd_params.bin_size (as many as Embree's binned
+ * BVH builder uses for every node). */
+#define KD_MIN_BINS 32u
 
 typedef struct {
     uint32_t axis;   /* 0, 1, 2: inner node split axis; KD_LEAF: leaf */

@@ -51,8 +51,9 @@
     "  --kd-max-depth D      kd-tree depth limit (default 0: 8 + 1.3 log2 N)\n"                        \
     "  --leaf-size L         never split nodes with at most L primitives (default 1)\n"               \
     "  --top-bins N          bins of the top-level SAH (default 32)\n"                                 \
-    "  --kd-bins N           bin the objects' tree nodes over 48 triangles into N bins (faster\n" \
-    "                        builds, other trees: images move by a rounding; default 0: the exact sweep)\n" \
+    "  --kd-bins N           bin every object's tree nodes over 48 triangles into up to N bins per\n" \
+    "                        axis, one per 16 triangles, at least min(N, 32) (0: the exact sweep\n"  \
+    "                        throughout; default: meshes of 32768 triangles or more, up to 256)\n" \
     "  --max-condition K     drop triangles whose shape condition number exceeds K (default 2^24)\n" \
     "  --limit NAME=N        raise (or lower) a hard limit: triangles, instances, kd-nodes, kd-depth,\n" \
     "                        texture-size, ray-depth, width, height, frames (docs/limits.md)\n"     \
