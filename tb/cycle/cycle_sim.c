@@ -52,7 +52,8 @@ void cycle_config_default(cycle_config *c)
     c->latency[OP_SURFACE] = 216; /* rgs_arb's register 1, rgs_surface: the first hit's front reads (instance word,
                                    * object, record: 3 bursts of 1, 2 and 1 to 5 lines through the shading cache,
                                    * about 8), rgs_normal 89, rgs_frame 118 */
-    c->surface_hit = 39;          /* each further hit: the front's reads of it, one burst of lines after another */
+    c->surface_hit = 40;          /* each further hit: the front's reads of it, one burst of lines after another, or
+                                   * its normal's chain (rgs_normal 89: 88 before f24_from_i32's third stage) */
     c->surface_miss = 13;         /* a packet without hits: rgs_arb's register, rgs_surface's stages and queue,
                                    * nothing read */
     c->shade_hit = 3;             /* the shading cache_read's hit */
