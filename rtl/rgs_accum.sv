@@ -16,7 +16,7 @@
 // Latency 1 + `rgs_spawn`'s (default 1 + 67 = 68 cycles: the operand's register splits the colour
 // for the LUT6 levels), one ray per cycle (II = 1); handshake valid/ready (the register's ready
 // from `rgs_spawn`'s). Resources: `rgs_spawn`, 15 `q12_mul`, 9 saturating adders, the operand's
-// register (about 850 bits at e7m16), the side band's 50 bits times the latency.
+// register (about 560 bits at e7m16), the side band's 50 bits times the latency.
 module rgs_accum #(
   parameter int E = 7,
   parameter int M = 16,

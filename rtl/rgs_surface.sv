@@ -281,6 +281,12 @@ module rgs_surface #(
            (f[4] ? 32'd72 : 32'd0);
     rec_words = 5'((f[0] ? 32'd4 : 32'd0) + (bits + 32'd31) / 32'd32);
   endfunction
+  // as a table of the 64 flag values (a LUT6 a bit): its adders in front of the record address's
+  // product made that path 9 LUT6 levels into the reader
+  logic [4:0] rw_tab [64];
+  for (genvar f = 0; f < 64; f++) begin : g_rw
+    assign rw_tab[f] = rec_words(6'(f));
+  end
 
   logic [32*REC_MAX-1:0] rec_flat, tail;
   for (genvar k = 0; k < REC_MAX; k++) begin : g_rec
@@ -470,7 +476,7 @@ module rgs_surface #(
 
   // ---- the front's sequence ----
   logic [31:0] rec_addr, h_mat_at;
-  assign rec_addr = f_buf[1] + 32'(rec_words(f_buf[5][5:0])) * f_tri;
+  assign rec_addr = f_buf[1] + 32'(rw_tab[f_buf[5][5:0]]) * f_tri;
   // the material: the object's (flags 16..31) or the record tail's first 16 bits
   assign h_mat_at = mat_base_i + 32'd16 * (h_flags[3] ? {16'd0, h_flags[31:16]}
                                                        : {16'd0, h_rec[h_flags[0] ? 4 : 0][15:0]});
@@ -492,7 +498,7 @@ module rgs_surface #(
       F_OBJ: begin
         f_start = f_done;
         f_rd_at = rec_addr;
-        f_rd_n = rec_words(f_buf[5][5:0]);
+        f_rd_n = rw_tab[f_buf[5][5:0]];
       end
       default: ;
     endcase
