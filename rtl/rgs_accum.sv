@@ -13,9 +13,10 @@
 // The colour is computed as the ray enters and travels with the thread id through `rgs_spawn`'s
 // side band (its TID_BITS widened), so both come out together. The caller feeds only the packet's
 // active rays (the C skips the others) and sums the steps bits (op_accumulate's children).
-// Latency `rgs_spawn`'s (default 67 cycles), one ray per cycle (II = 1); handshake valid/ready as
-// `rgs_spawn`. Resources: `rgs_spawn`, 15 `q12_mul`, 9 saturating adders, the side band's 50 bits
-// times the latency.
+// Latency 1 + `rgs_spawn`'s (default 1 + 67 = 68 cycles: the operand's register splits the colour
+// for the LUT6 levels), one ray per cycle (II = 1); handshake valid/ready (the register's ready
+// from `rgs_spawn`'s). Resources: `rgs_spawn`, 15 `q12_mul`, 9 saturating adders, the operand's
+// register (about 560 bits at e7m16), the side band's 50 bits times the latency.
 module rgs_accum #(
   parameter int E = 7,
   parameter int M = 16,
@@ -67,7 +68,8 @@ module rgs_accum #(
   output logic                 t_active_o,
   output logic                 steps_o
 );
-  localparam int V = 3 * (E + M + 1);
+  localparam int W = E + M + 1;
+  localparam int V = 3 * W;
   localparam int SIDE = TID_BITS + 48 + 2;
 
   function automatic logic [15:0] q_add(input logic [15:0] a, input logic [15:0] b);
@@ -76,17 +78,42 @@ module rgs_accum #(
     q_add = s[16] || s[15:0] == 16'hFFFF ? 16'hFFFF : s[15:0];
   endfunction
 
-  logic [47:0] acc_new;
+  // the colour's first half from the inputs (4 products, 2 saturating sums, the background's
+  // choice), registered with the operand; its second half (the weight's product, the pixel's sum)
+  // from that register into rgs_spawn's side band: 9 LUT6 levels in one cycle otherwise
+  logic [47:0] local_c;
   for (genvar k = 0; k < 3; k++) begin : g_ch
     localparam logic [7:0] BG = BACKGROUND[16-8*k +: 8];
-    logic [15:0] kd_b, kd_b_d, ks_t, ks_t_h, w_local, local_c;
+    logic [15:0] kd_b, kd_b_d, ks_t, ks_t_h;
     q12_mul u_kd (.a_i({3'd0, kd_i}), .b_i(base_i[16*k +: 16]), .p_o(kd_b));
     q12_mul u_kd_d (.a_i(kd_b), .b_i(diffuse_i[16*k +: 16]), .p_o(kd_b_d));
     q12_mul u_ks (.a_i({3'd0, ks_i}), .b_i(tint_i[16*k +: 16]), .p_o(ks_t));
     q12_mul u_ks_h (.a_i(ks_t), .b_i(highlight_i[16*k +: 16]), .p_o(ks_t_h));
-    assign local_c = sf_valid_i ? q_add(q_add(emission_i[16*k +: 16], kd_b_d), ks_t_h) : {4'd0, BG, BG[7:4]};
-    q12_mul u_w (.a_i(weight_i[16*k +: 16]), .b_i(local_c), .p_o(w_local));
-    assign acc_new[16*k +: 16] = q_add(acc_i[16*k +: 16], w_local);
+    assign local_c[16*k +: 16] = sf_valid_i ? q_add(q_add(emission_i[16*k +: 16], kd_b_d), ks_t_h) : {4'd0, BG, BG[7:4]};
+  end
+
+  // ---- the operand's register (1 cycle), then rgs_spawn ----
+  logic in_v, sp_ready, sf_valid, spawn, live, entering;
+  logic [TID_BITS-1:0] tid;
+  logic [W-1:0] eta, eps, t_hat;
+  logic [12:0] kr, kt;
+  logic [V-1:0] o, d, n;
+  logic [47:0] loc, weight, acc, tint, base, acc_new;
+  assign ready_o = !in_v || sp_ready;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) in_v <= 1'b0;
+    else if (ready_o) in_v <= valid_i;
+  end
+  always_ff @(posedge clk_i) begin
+    if (valid_i && ready_o)
+      {tid, eta, kr, kt, sf_valid, o, d, n, t_hat, entering, base, tint, weight, acc, loc, eps, spawn, live} <=
+        {tid_i, eta_i, kr_i, kt_i, sf_valid_i, o_i, d_i, n_i, t_hat_i, entering_i, base_i, tint_i, weight_i, acc_i,
+         local_c, eps_i, spawn_i, live_i};
+  end
+  for (genvar k = 0; k < 3; k++) begin : g_acc
+    logic [15:0] w_local;
+    q12_mul u_w (.a_i(weight[16*k +: 16]), .b_i(loc[16*k +: 16]), .p_o(w_local));
+    assign acc_new[16*k +: 16] = q_add(acc[16*k +: 16], w_local);
   end
 
   logic [SIDE-1:0] side_o;
@@ -96,10 +123,10 @@ module rgs_accum #(
   logic r_act, t_act;
   rgs_spawn #(.E(E), .M(M), .TID_BITS(SIDE), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES),
     .SQRT_STAGES(SQRT_STAGES), .DIV_STAGES(DIV_STAGES), .CMP_STAGES(CMP_STAGES)) u_spawn (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(valid_i), .ready_o(ready_o),
-    .tid_i({sf_valid_i && spawn_i, live_i, acc_new, tid_i}), .eta_i(eta_i), .kr_i(kr_i), .kt_i(kt_i),
-    .weight_i(weight_i), .eps_i(eps_i), .o_i(o_i), .d_i(d_i), .n_i(n_i), .t_hat_i(t_hat_i), .entering_i(entering_i),
-    .tint_i(tint_i), .base_i(base_i), .valid_o(valid_o), .ready_i(ready_i), .tid_o(side_o), .r_o_o(r_o), .r_d_o(r_d),
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(in_v), .ready_o(sp_ready),
+    .tid_i({sf_valid && spawn, live, acc_new, tid}), .eta_i(eta), .kr_i(kr), .kt_i(kt),
+    .weight_i(weight), .eps_i(eps), .o_i(o), .d_i(d), .n_i(n), .t_hat_i(t_hat), .entering_i(entering),
+    .tint_i(tint), .base_i(base), .valid_o(valid_o), .ready_i(ready_i), .tid_o(side_o), .r_o_o(r_o), .r_d_o(r_d),
     .r_w_o(r_w), .r_active_o(r_act), .t_o_o(t_o), .t_d_o(t_d), .t_w_o(t_w), .t_active_o(t_act));
   assign {spawn_q, live_q, acc_o, tid_o} = side_o;
   assign r_o_o = spawn_q ? r_o : '0;

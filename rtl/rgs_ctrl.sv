@@ -32,9 +32,11 @@
 // phase's shared unit: about 20 + `rgs_surface` (the 4 rays offered as it takes them: its steps per
 // hit, the last frame's 118 overlapped by none) + per light (`rgs_light` 87 + 4, after its 16
 // words' 4 or 5 lines unless the record held is that light's: one light is read once) + 4
-// `rgs_add_light` + 4 + `rgs_accum` 67 cycles per packet, plus the trace, plus the cycles its
-// operands wait for other controllers' in the shared units; the bench measures it alone (cornell
-// 32x24: 488 cycles a block, per state with tb_rgs_ctrl). Throughput: one block per its latency.
+// `rgs_add_light` + 4 + `rgs_accum` 68 cycles per packet, each unit's result a cycle later for
+// its arbiter's register in rgs_units (the ADD state waits for its sums since then), plus the
+// trace, plus the cycles its operands wait for other controllers' in the shared units; the bench
+// measures it alone (cornell 32x24: 488 cycles a block before the arbiters' registers, per state
+// with tb_rgs_ctrl). Throughput: one block per its latency.
 // Resources: the block's registers (the stack dominates: RGS_STACK x 4 rays x (6 W + 48) bits), a
 // `line_reader` of 16 words (the light record), the operand multiplexers (the ray in_q of the
 // packet into each unit's operand).
@@ -462,14 +464,16 @@ module rgs_ctrl #(
               if (hit_inst_i[32*i +: 32] != NO_HIT) visible_q[i] <= 1'b0;
             st <= S_ADD;
           end
-        S_ADD: begin  // the visible rays as rgs_add_light takes them (its latency 1: the sum of the last
-          // comes as in_q reaches 4)
+        S_ADD: begin  // the visible rays as rgs_add_light takes them, until their sums are back (the
+          // last one's 2 cycles after its ack: the arbiter's register and the unit's)
           if (in_q < 3'd4 && (!visible_q[ri] || al_ack_i)) in_q <= in_q + 3'd1;
           if (al_valid_i) begin
             dif_q[al_ray_i] <= al_dif_i;
             hil_q[al_ray_i] <= al_hil_i;
+            out_q <= out_q + 3'd1;
           end
-          if (in_q == 3'd4) begin
+          if (in_q == 3'd4 && out_q == {2'd0, visible_q[0]} + {2'd0, visible_q[1]} + {2'd0, visible_q[2]} +
+                                       {2'd0, visible_q[3]}) begin
             light_q <= light_q + 32'd1;
             st <= S_LIGHT;
           end

@@ -2,7 +2,7 @@
 // g; the part of hls/units/rgs_surface.c `hit_normal` with vertex normals: `shade_rec_normals`,
 // `rgs_lerp_normal`, `f24_is_zero(rgs_dot3(n, n))`), bit for bit as the C, as a stream: the hits
 // follow each other through the pipelined units, so that `rgs_surface` can start the next hit's
-// normal while the last one's is under way (its chain, about 88 cycles, is longer than a hit's
+// normal while the last one's is under way (its chain, about 89 cycles, is longer than a hit's
 // reads).
 //   decode  the record's 3 codes (42 bits each from bit 0 of its normal words) one a cycle
 //           (`shade_rec_decode`)
@@ -10,7 +10,7 @@
 //           component c of the 3 normals, weights u, v)
 //   dot     once its 3 components are out, the squared length (`f24_dot3`): zero_o where its
 //           exponent is zero (the caller then takes the geometric normal)
-// Latency 3 + decode (43) + 3 + lerp (22) + dot (16) + 1 = 88 cycles at the default operator depths;
+// Latency 3 + decode (44) + 3 + lerp (22) + dot (16) + 1 = 89 cycles (88 with CVT 2) at the default operator depths;
 // throughput a hit every 4 cycles (its 3 codes, then the next is taken); results in input order. The units run without stalls: a hit is
 // taken only while fewer than DEPTH are inside or waiting at the output, so the queues never fill.
 // Resources: one each of `shade_rec_decode`, `rgs_lerp`, `f24_dot3`; the input (126 + 2 W bits),
@@ -20,7 +20,7 @@
 module rgs_normal #(
   parameter int E = 7,
   parameter int M = 16,
-  parameter int CVT_STAGES = 2,
+  parameter int CVT_STAGES = 3,
   parameter int MUL_STAGES = 4,
   parameter int ADD_STAGES = 6,
   parameter int SQRT_STAGES = 9,

@@ -20,7 +20,7 @@
 // cycle model charges TRACE_PACKET + 1 = 5 steps, docs/cycle-model.md). A block is taken while its
 // predecessor issues its last ray, so back-to-back blocks leave no gap.
 // Latency: block accepted to packet valid 1 + CVT_STAGES + LATENCY_XF + 4 cycles (default
-// 1 + 2 + 22 + 4 = 29); throughput one packet per 4 cycles (one ray per cycle).
+// 1 + 3 + 22 + 4 = 30; 29 at CVT 2 until 2026-11-29); throughput one packet per 4 cycles (one ray per cycle).
 // Handshakes: valid/ready on the camera port, the block input and the packet output; a stalled
 // packet output stops the converters and the transformation unit (one enable).
 // Resources: the xform_unit, two converters, 12 camera words + 2 x 32-bit size registers,
@@ -31,7 +31,7 @@ module rgs_raygen #(
   parameter int M = 16,
   parameter int ADD_STAGES = 6,
   parameter int MUL_STAGES = 4,
-  parameter int CVT_STAGES = 2
+  parameter int CVT_STAGES = 3
 ) (
   input  logic                  clk_i,
   input  logic                  rst_ni,

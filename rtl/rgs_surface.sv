@@ -48,7 +48,7 @@
 // back reads after the material (vertex normals interpolated to zero length); the two stages'
 // reads interleave; a line also brings the words beside the burst's, which are not kept.
 // Latency: about 20 + the reads up to the record (3 bursts of 1, 2 and 1 to 5 lines, each waiting
-// for the one before: its address comes from the words of the one before) + `rgs_normal` (88, only with vertex normals; without: the geometric normal's and the
+// for the one before: its address comes from the words of the one before) + `rgs_normal` (89, only with vertex normals; without: the geometric normal's and the
 // material's reads) + the conversions' tail (about 20 from the back's taking it) + per texture
 // lerp 24 + entry 4 + sample 44) + the frame (118), which the next surfaces' steps overlap.
 // Throughput: a surface per its front's reads (3 dependent bursts of lines: about 15 to 25 cycles
@@ -61,7 +61,8 @@
 // cycle each. Results leave in
 // the order the surfaces came in, with their thread id.
 // Resources: one each of `rgs_normal` (its own `rgs_lerp` for the normals), `rgs_lerp` (texture
-// coordinates), `rgs_frame`, `q12_of`, `tex_bilinear`; 3 `q12_mul`; per stage (the front's two
+// coordinates), `rgs_frame`, `q12_of`, `tex_bilinear`; 6 `q12_mul` (a texture's modulation, the
+// tint); per stage (the front's two
 // and the back) the ray and hit (about 0.4 Kbit) and the record (19 words: the first stage's in
 // its reader's buffer); the back a 16-word buffer (the material's) and the matrix (9 W bits), the
 // front's second stage the matrix; three `line_reader`s (their buffers: the first stage's 19 words,
@@ -73,7 +74,7 @@ module rgs_surface #(
   parameter int E = 7,
   parameter int M = 16,
   parameter int TID_BITS = 6,
-  parameter int CVT_STAGES = 2,
+  parameter int CVT_STAGES = 3,
   parameter int MUL_STAGES = 4,
   parameter int ADD_STAGES = 6,
   parameter int SQRT_STAGES = 9,
@@ -280,6 +281,12 @@ module rgs_surface #(
            (f[4] ? 32'd72 : 32'd0);
     rec_words = 5'((f[0] ? 32'd4 : 32'd0) + (bits + 32'd31) / 32'd32);
   endfunction
+  // as a table of the 64 flag values (a LUT6 a bit): its adders in front of the record address's
+  // product made that path 9 LUT6 levels into the reader
+  logic [4:0] rw_tab [64];
+  for (genvar f = 0; f < 64; f++) begin : g_rw
+    assign rw_tab[f] = rec_words(6'(f));
+  end
 
   logic [32*REC_MAX-1:0] rec_flat, tail;
   for (genvar k = 0; k < REC_MAX; k++) begin : g_rec
@@ -316,10 +323,18 @@ module rgs_surface #(
   assign uv_at = mat_bits + (has_euv && tsel_q ? 32'(6 * W) : 32'd0);
   logic lerp_valid, lerp_ready, lerp_ovalid;
   logic [W-1:0] la, lb, lc, lerp_r, lr_q [3];
+  // the texture's s (i = 0) and t (i = 1) at the 3 vertices, out of the record's tail into free-
+  // running registers (the variable shift and rgs_lerp's first stage were 11 LUT6 levels in one
+  // cycle): tsel_q and the record are stable from the S_TEX cycle before S_TLERP on
+  logic [W-1:0] uvf_q [2][3];
+  always_ff @(posedge clk_i) begin
+    for (int i = 0; i < 2; i++)
+      for (int j = 0; j < 3; j++) uvf_q[i][j] <= W'(tail_field(tail, uv_at + 32'(W) * 32'(2 * j + i)));
+  end
   assign lerp_valid = st == S_TLERP && in_q != 2'd2;
-  assign la = W'(tail_field(tail, uv_at + 32'(W) * 32'(in_q)));
-  assign lb = W'(tail_field(tail, uv_at + 32'(W) * (32'd2 + 32'(in_q))));
-  assign lc = W'(tail_field(tail, uv_at + 32'(W) * (32'd4 + 32'(in_q))));
+  assign la = uvf_q[in_q[0]][0];
+  assign lb = uvf_q[in_q[0]][1];
+  assign lc = uvf_q[in_q[0]][2];
   rgs_lerp #(.E(E), .M(M), .TID_BITS(1), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES)) u_lerp (
     .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(lerp_valid), .ready_o(lerp_ready), .tid_i(1'b0), .a_i(la), .b_i(lb),
     .c_i(lc), .u_i(u_q), .v_i(v_q), .valid_o(lerp_ovalid), .ready_i(1'b1), .tid_o(), .r_o(lerp_r));
@@ -370,12 +385,11 @@ module rgs_surface #(
     .valid_o(tx_ovalid), .ready_i(1'b1), .tid_o(), .rgb_o(tx_rgb));
   /* verilator lint_on PINCONNECTEMPTY */
 
-  // ---- Q12 products (q_mul) on 3 shared multipliers: the texture's modulation or the tint ----
-  logic [15:0] base_q [3], emis_q [3], qm_a [3], qm_b [3], qm_p [3];
+  // ---- Q12 products (q_mul): the texture's modulation on 3 multipliers, the tint on 3 more ----
+  logic [15:0] base_q [3], emis_q [3], qm_a [3], qm_p [3];
   for (genvar k = 0; k < 3; k++) begin : g_qm
-    assign qm_a[k] = st == S_TINT ? qres_q[6] : (tsel_q ? emis_q[k] : base_q[k]);
-    assign qm_b[k] = st == S_TINT ? base_q[k] : tx_rgb[16*k +: 16];
-    q12_mul u_qm (.a_i(qm_a[k]), .b_i(qm_b[k]), .p_o(qm_p[k]));
+    assign qm_a[k] = tsel_q ? emis_q[k] : base_q[k];
+    q12_mul u_qm (.a_i(qm_a[k]), .b_i(tx_rgb[16*k +: 16]), .p_o(qm_p[k]));
   end
 
   // vertex colours (modulate_colours): the C's uint32 sums and product (q_mul of a factor that can
@@ -386,17 +400,24 @@ module rgs_surface #(
   function automatic logic [31:0] q_byte(input logic [7:0] b);
     q_byte = {20'd0, b, 4'd0} | {28'd0, b[7:4]};
   endfunction
+  // Three free-running register stages (the vertex's bytes out of the record; the weighted sum;
+  // the factor's product), so that no part of the chain has more than 8 LUT6 levels (12 in one):
+  // their inputs (rec_q, flags_q from the back's taking the hit; u, v and the base factor from the
+  // conversions) are stable at least 4 cycles before S_Q takes vc_q (qout_q reaches 9 four
+  // results after the last base factor's), so they add no cycle.
   logic [31:0] wa, wb, wc;
-  logic [15:0] vc_base [3];
+  logic [11:0] cb_q [3][3];  // vertex j's channel k, widened to Q12
+  logic [31:0] sum_q [3];
+  logic [15:0] vc_q [3];
   assign wa = {16'd0, qres_q[7]};
   assign wb = {16'd0, qres_q[8]};
   assign wc = wa + wb < 32'(ONE) ? 32'(ONE) - wa - wb : 32'd0;
-  for (genvar k = 0; k < 3; k++) begin : g_vc
-    logic [31:0] sum;
-    assign sum = wa * q_byte(8'(tail_field(tail, colour_at + 32'(8 * k)))) +
-                 wb * q_byte(8'(tail_field(tail, colour_at + 32'(24 + 8 * k)))) +
-                 wc * q_byte(8'(tail_field(tail, colour_at + 32'(48 + 8 * k))));
-    assign vc_base[k] = q_sat32(({16'd0, qres_q[k]} * ((sum + 32'd2048) >> 12) + 32'd2048) >> 12);
+  always_ff @(posedge clk_i) begin
+    for (int k = 0; k < 3; k++) begin
+      for (int j = 0; j < 3; j++) cb_q[j][k] <= 12'(q_byte(8'(tail_field(tail, colour_at + 32'(24 * j + 8 * k)))));
+      sum_q[k] <= wa * 32'(cb_q[0][k]) + wb * 32'(cb_q[1][k]) + wc * 32'(cb_q[2][k]);
+      vc_q[k] <= q_sat32(({16'd0, qres_q[k]} * ((sum_q[k] + 32'd2048) >> 12) + 32'd2048) >> 12);
+    end
   end
 
   // the texture to sample: its index below the header's count, and texture coordinates
@@ -420,11 +441,17 @@ module rgs_surface #(
   localparam int QW = TID_BITS + 1 + 32 + 1 + 4 + W + 4 * 13 + 3 * 48;
   logic [QW-1:0] q_in, q_head;
   logic q_push, q_room, q_any, q_hit, fr_take;
+  // the C's tint (1 - m) + q_mul(m, base) into a free-running register (its product, sum and
+  // saturation into the queue's input were 9 LUT6 levels in S_TINT's one cycle): the metallic
+  // factor is there from S_Q on, the base colour's last write (S_Q, or its texture's sample) is a
+  // cycle or more (S_TEX) before S_TINT
   logic [47:0] base_v, emis_v, tint_v;
   for (genvar k = 0; k < 3; k++) begin : g_pack
+    logic [15:0] tint_p;
+    q12_mul u_tint (.a_i(qres_q[6]), .b_i(base_q[k]), .p_o(tint_p));
+    always_ff @(posedge clk_i) tint_v[16*k +: 16] <= q_sat32({16'd0, ONE - metal_c} + {16'd0, tint_p});
     assign base_v[16*k +: 16] = base_q[k];
     assign emis_v[16*k +: 16] = emis_q[k];
-    assign tint_v[16*k +: 16] = q_sat32({16'd0, ONE - metal_c} + {16'd0, qm_p[k]});  // the C's tint
   end
   // a miss joins as the back takes it from the front, with zero fields; a hit at the end of its
   // colours (S_TINT)
@@ -449,7 +476,7 @@ module rgs_surface #(
 
   // ---- the front's sequence ----
   logic [31:0] rec_addr, h_mat_at;
-  assign rec_addr = f_buf[1] + 32'(rec_words(f_buf[5][5:0])) * f_tri;
+  assign rec_addr = f_buf[1] + 32'(rw_tab[f_buf[5][5:0]]) * f_tri;
   // the material: the object's (flags 16..31) or the record tail's first 16 bits
   assign h_mat_at = mat_base_i + 32'd16 * (h_flags[3] ? {16'd0, h_flags[31:16]}
                                                        : {16'd0, h_rec[h_flags[0] ? 4 : 0][15:0]});
@@ -471,7 +498,7 @@ module rgs_surface #(
       F_OBJ: begin
         f_start = f_done;
         f_rd_at = rec_addr;
-        f_rd_n = rec_words(f_buf[5][5:0]);
+        f_rd_n = rw_tab[f_buf[5][5:0]];
       end
       default: ;
     endcase
@@ -635,7 +662,7 @@ module rgs_surface #(
         S_Q: begin
           if (qout_q == 4'd9) begin
             for (int k = 0; k < 3; k++) begin
-              base_q[k] <= has_col ? vc_base[k] : qres_q[k];
+              base_q[k] <= has_col ? vc_q[k] : qres_q[k];
               emis_q[k] <= qres_q[3+k];
             end
             tsel_q <= 1'b0;

@@ -37,24 +37,27 @@
 //   entering, base, emission, tint, weight, diffuse, highlight, acc, spawn}. The surface's result
 //   {ray, sf_valid, P, D^, N^, t_hat, entering, unlit, k, eta, kd, kr, kt, ks, base, emission,
 //   tint} (SR_DW bits).
-// Latency: the units' own (rgs_raygen 29, rgs_surface 214 for a packet's first hit + about 39 a
-// further hit, rgs_light 87, rgs_light_colour 27, rgs_add_light 1, rgs_accum 67 cycles) plus the
-// cycles an operand waits for other controllers' in the same unit (a surface's front takes a hit
-// after the reads of the one before); the set-up about 60 cycles after reset plus its reads (the
-// header's 26 words, the camera's 16: 7 + 4 or 5 lines).
+// Latency: 1 (the unit's rgs_arb registers the operand) + the units' own (rgs_raygen 30,
+// rgs_surface 215 for a packet's first hit + about 39 a further hit, rgs_light 87,
+// rgs_light_colour 27, rgs_add_light 1, rgs_accum 68 cycles) plus the cycles an operand waits for
+// other controllers' in the same unit (a surface's front takes a hit after the reads of the one
+// before); the set-up about 60 cycles after reset plus its reads (the header's 26 words, the
+// camera's 16: 7 + 4 or 5 lines). The registers in the arbiters, f24_from_i32's third segment,
+// rgs_accum's operand and rgs_surface's vertex colours keep every path between registers at 8
+// LUT6 levels or fewer (synth_xilinx; rtl/README.md "LUT6 levels of the RGS").
 // Throughput: per unit one operand per cycle (II = 1) but a surface (a hit per its front's reads:
 // SURF_UNITS hits at once) and rgs_raygen (a packet per 4 cycles).
 // Resources: one rgs_raygen, rgs_light, rgs_light_colour, rgs_add_light, rgs_accum; SURF_UNITS
 // rgs_surface (about 55,000 LUT6 each, rtl/README.md "The RGS shared"); 5 rgs_arb of N requesters
-// (N-to-1 multiplexers of 64, 448, 72, 178 and 657 bits at e7m16, N flip-flops each: 4,407 LUT6 at
-// N = 8) and SURF_UNITS of ceil(N / SURF_UNITS) (307 bits); a FIFO of N controller indices; the set-up's
+// (N-to-1 multiplexers of 64, 448, 72, 178 and 657 bits at e7m16 into as many flip-flops, N of the
+// pointer each: 4,407 LUT6 at N = 8 before the output registers) and SURF_UNITS of ceil(N / SURF_UNITS) (307 bits); a FIFO of N controller indices; the set-up's
 // line_reader (26 words), f24_add, f24_cmp, f24_div and the frame's constants (7 x 32 + 10 x W + 5
 // bits).
 module rgs_units #(
   parameter int E = 7,
   parameter int M = 16,
   parameter int N = 8,            // block controllers (RGS_BLOCKS)
-  parameter int CVT_STAGES = 2,
+  parameter int CVT_STAGES = 3,
   parameter int MUL_STAGES = 4,
   parameter int ADD_STAGES = 6,
   parameter int SQRT_STAGES = 9,

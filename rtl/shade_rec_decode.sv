@@ -12,7 +12,7 @@
 // x = -2^20 (SHADE_NO_NORMAL: the vertex has no normal) gives (+0, +0, +0) as the C does.
 // The thread id (TID_BITS) travels beside the datapath with the valid bit.
 // Latency LATENCY = 1 + CVT_STAGES + 2 MUL_STAGES + 2 ADD_STAGES + SQRT_STAGES + DIV_STAGES
-// (default 1 + 2 + 8 + 12 + 9 + 11 = 43; 42 before the unfolding's register) cycles, one normal per cycle (II = 1); handshake valid/ready,
+// (default 1 + 3 + 8 + 12 + 9 + 11 = 44; 43 with CVT 2 until 2026-11-29, 42 before the unfolding's register) cycles, one normal per cycle (II = 1); handshake valid/ready,
 // the pipeline advances when the output is free or taken. Resources (the operators'): 3 int-to-fp24
 // converters, 6 multipliers, 2 adders, 1 square root, 1 divider, the integer unfolding, delay
 // lines for the components (3 W bits x (MUL + 2 ADD + SQRT + DIV) stages), the missing flag and the thread id (LATENCY stages).
@@ -20,7 +20,7 @@ module shade_rec_decode #(
   parameter int E = 7,
   parameter int M = 16,
   parameter int TID_BITS = 6,
-  parameter int CVT_STAGES = 2,
+  parameter int CVT_STAGES = 3,
   parameter int MUL_STAGES = 4,
   parameter int ADD_STAGES = 6,
   parameter int SQRT_STAGES = 9,

@@ -12,7 +12,7 @@
 // n must be 1 .. 2^31 - 1 (mi_validate: a texture's texels lie inside the memory image).
 // Anything the caller needs afterwards travels beside the datapath in side_i / side_o (SIDE_W bits).
 // Latency FRONT + BACK with FRONT = CVT + MUL + ADD + TOI + CVT + CMP and BACK = max(CVT + 2 ADD +
-// MUL + TOI, MOD_STAGES) (default 18 + 20 = 38) cycles,
+// MUL + TOI, MOD_STAGES) (default 20 + 21 = 41 at CVT 3; 38 at CVT 2 until 2026-11-29) cycles,
 // one coordinate per cycle (II = 1); clock enable en_i from the unit (it has no handshake of its
 // own). Resources: 3 int-to-fp24 converters, 2 multipliers, 3 adders, 1 comparator, 2 fp24-to-int
 // converters, 32 rows of a 32-bit subtractor and mux (about 1000 adder bits), the 32-bit
@@ -21,7 +21,7 @@ module tex_axis #(
   parameter int E = 7,
   parameter int M = 16,
   parameter int SIDE_W = 1,
-  parameter int CVT_STAGES = 2,
+  parameter int CVT_STAGES = 3,
   parameter int MUL_STAGES = 4,
   parameter int ADD_STAGES = 6,
   parameter int CMP_STAGES = 2,

@@ -14,7 +14,7 @@
 //            >> 16 (integer multipliers of 12 x 9 bits and 21 x 9 bits)
 // Up to OUTSTANDING samples wait for their texels (their fractions and thread ids in a FIFO).
 // Handshake: valid/ready at the input, the memory request and response, and the output.
-// Latency: the axes' (38 at the default operator depths) + 1 to the issuer, 4 request cycles and
+// Latency: the axes' (41 at the default operator depths, 38 at CVT 2) + 1 to the issuer, 4 request cycles and
 // the memory's latency, + 1 for the blend register; throughput one sample per 4 cycles (the
 // memory port's one word per cycle: 4 texel reads, as the C notes them). Resources: 2 `tex_axis`,
 // 2 32 x 32-bit multipliers, 3 32-bit adders for the addresses, 12 small multipliers for the
@@ -25,7 +25,7 @@ module tex_bilinear #(
   parameter int M = 16,
   parameter int TID_BITS = 6,
   parameter int OUTSTANDING = 8,  // samples issued and not yet blended (a power of two)
-  parameter int CVT_STAGES = 2,
+  parameter int CVT_STAGES = 3,
   parameter int MUL_STAGES = 4,
   parameter int ADD_STAGES = 6,
   parameter int CMP_STAGES = 2,

@@ -388,7 +388,7 @@ t_surface() {
 t_surface_mutant_caught() {
   [[ -f "$T/surface_vertex_colours/surface.hex" ]] || "$BIN" render vertex_colours -o "$T/vc.png" --width 32 --height 24 \
     --max-depth 2 --capture-unit-io "$T/surface_vertex_colours" --capture-limit 400 >/dev/null 2>&1
-  mutant surface rgs_surface.sv "s/((sum + 32'd2048) >> 12)/(sum >> 12)/" -n 0 --capture "$T/surface_vertex_colours" &&
+  mutant surface rgs_surface.sv "s/((sum_q\[k\] + 32'd2048) >> 12)/(sum_q[k] >> 12)/" -n 0 --capture "$T/surface_vertex_colours" &&
     mutant surface rgs_normal.sv "s/assign uv_pop = lerp_on_q \&\& lk_q == 2'd2;/assign uv_pop = lerp_on_q \&\& lk_q == 2'd0;/" \
       -n 0 --capture "$T/surface_vertex_colours" &&
     mutant surface line_reader.sv "s/rsp_line_i\[32\*(pos % LW) +: 32\]/rsp_line_i[32*(k % LW) +: 32]/" \

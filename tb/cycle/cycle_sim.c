@@ -21,11 +21,12 @@ void cycle_config_default(cycle_config *c)
     c->pipes = 1;
     c->threads_per_pipe = 32;
     /* Each kind of operation takes the latency of the RTL module(s) that do it when pipelined
-     * (the operators' default stages add 6, mul 4, div 11, cmp 2, sqrt 9, cvt 2: >= 60 MHz on
-     * iCE40) and what the DynRTP around them adds (a dependent read's cache hit, trace_thread's
+     * (the operators' default stages add 6, mul 4, div 11, cmp 2, sqrt 9, cvt 3: >= 60 MHz on
+     * iCE40; the RGS's units 1 more each for rgs_units' arbiter register, rtl/rgs_arb.sv) and what the DynRTP around them adds (a dependent read's cache hit, trace_thread's
      * states, the operations its thread issues that the C has inside one), measured per kind on
      * the DynRTP (tb_dynrtp's TB_DYNRTP_LOG); docs/cycle-model.md derives each. */
-    c->latency[OP_RAYGEN] = 26;   /* rgs_raygen: block register 1 + f24_from_i32 2 + xform_unit 22 + packet 1 */
+    c->latency[OP_RAYGEN] = 28;   /* rgs_arb's register 1, rgs_raygen: block register 1 + f24_from_i32 3 + xform_unit
+                                   * 22 + packet 1 */
     c->latency[OP_XFORM] = 35;    /* trace_core's issue stage 1 (the operands from thread_ram), isect_rebased's origin
                                    * path (l = p.lo - C.lo, c = h + l: 2 add) + xform_unit 22 */
     c->latency[OP_INSTANCE] = 52; /* rebase_unit 25, then xform_wide 25 (the origins' chain), each after trace_core's
@@ -48,14 +49,17 @@ void cycle_config_default(cycle_config *c)
                                    * best_t = t0 + t (add 6); + 1 since trace_core's output register (a packet's hits
                                    * a cycle later), fitted on subpass 32x24 at 8 threads (2026-11-29: 2.2% under the
                                    * RTL with 35) */
-    c->latency[OP_SURFACE] = 214; /* rgs_surface: the first hit's front reads (instance word, object, record: 3
-                                   * bursts of 1, 2 and 1 to 5 lines through the shading cache, about 8), rgs_normal
-                                   * 88, rgs_frame 118 */
-    c->surface_hit = 39;          /* each further hit: the front's reads of it, one burst of lines after another */
-    c->surface_miss = 12;         /* a packet without hits: rgs_surface's stages and queue, nothing read */
+    c->latency[OP_SURFACE] = 216; /* rgs_arb's register 1, rgs_surface: the first hit's front reads (instance word,
+                                   * object, record: 3 bursts of 1, 2 and 1 to 5 lines through the shading cache,
+                                   * about 8), rgs_normal 89, rgs_frame 118 */
+    c->surface_hit = 40;          /* each further hit: the front's reads of it, one burst of lines after another, or
+                                   * its normal's chain (rgs_normal 89: 88 before f24_from_i32's third stage) */
+    c->surface_miss = 13;         /* a packet without hits: rgs_arb's register, rgs_surface's stages and queue,
+                                   * nothing read */
     c->shade_hit = 3;             /* the shading cache_read's hit */
-    c->latency[OP_LIGHT] = 92;    /* rgs_light 87 (rgs_light_colour's 27 beside it) + rgs_ctrl's state (LCALC 92) */
-    c->latency[OP_ACCUM] = 67;    /* rgs_accum: rgs_spawn's */
+    c->latency[OP_LIGHT] = 93;    /* rgs_arb's register 1 + rgs_light 87 (rgs_light_colour's 27 beside it) + rgs_ctrl's
+                                   * state (LCALC 93) */
+    c->latency[OP_ACCUM] = 69;    /* rgs_arb's register 1, rgs_accum: its operand's register 1 + rgs_spawn's 67 */
     c->tile = 16;
     c->epoch = 256;
     c->host_threads = 1;
