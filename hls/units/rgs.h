@@ -31,10 +31,9 @@
  * 2 div), T_R steps on the transformation unit, per light 2 dot products (diffuse and
  * highlight cosines), the spot factor (1 div) and the float-to-Q12 converters. Each RGS operation
  * has its kind (OP_SURFACE, OP_LIGHT, OP_ACCUM) and the cycle model charges each the latency of its
- * pipelined RTL (rgs_surface's longest chain 198, rgs_light 87, rgs_accum 67 cycles;
- * docs/cycle-model.md; rtl/rgs_ctrl.sv, the RTL of the block control, runs the surfaces one after
- * another and is not yet pipelined to it), throughput one shaded ray per cycle (an operation takes
- * as many issue slots as it shades rays, at least 1).
+ * pipelined RTL (rtl/rgs_units.sv's shared rgs_surface, rgs_light, rgs_accum, as measured by their
+ * benches and tb_rgs_ctrl: docs/cycle-model.md's table), throughput one shaded ray per cycle (an
+ * operation takes as many issue slots as it shades rays, at least 1).
  */
 #ifndef SAARCOR_RGS_H
 #define SAARCOR_RGS_H
