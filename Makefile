@@ -287,9 +287,9 @@ $(BUILD)/valgrind/hwy_timer_shim.so: tests/valgrind/hwy_timer_shim.c
 # tests/test_determinism.sh compares the program built with -O0 (only the program: a small cost)
 O0_BUILD := $(BUILD)/O0
 
-# make test's builds, all in one make (make test-builds -j2): the two cores stay busy across what
-# were eight phases one after another (the RTL models' last compilations, the links: 326 s of
-# wall time for 545 s of CPU). The hw, baseline and robust programs take the main build's host
+# make test's builds (all of them alone: make test-builds; make test makes each one a prerequisite
+# of the test programs that need it, below): sub-makes of one make, so the two cores stay busy
+# across what were eight phases one after another (326 s of wall time for 545 s of CPU). The hw, baseline and robust programs take the main build's host
 # objects (HOST_BUILD), so they wait for those; the RTL models link the main build's objects
 # (build/obj/<format>), so their make follows the main one; the ASan build and its fuzz replays
 # are another make.
