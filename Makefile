@@ -432,16 +432,18 @@ RTL_FORMATS := e7m8 e7m12 e7m16 e7m20 e7m23 e8m23
 # compilation, 0.52 against 0.77 s on the cornell 32x24 capture); the Verilator run-time library
 # (verilated.cpp, verilated_threads.cpp: 4 s of compilation) is compiled once into
 # $(BUILD)/rtl/verilated/ and linked into every model instead of once per model (VM_GLOBAL_FAST=).
-# A model's C++ is compiled as one translation unit (VM_PARALLEL_BUILDS=0: Verilator's __ALL.cpp
-# including its 10-60 files): each file compiled on its own parsed verilated.h and the model's
-# headers again, about 1 s of CPU per file at -O1, most of a large model's compilation; make test's
+# A model's C++ is compiled as two translation units (scripts/vlt_make.sh): its fast path (the
+# evaluation of every cycle) at -O1, its slow part (constructors, initial and settle evaluation, run
+# once; a third of a model's C++) at -O0, which takes a quarter of the CPU of -O1 there (the DynRTP's
+# slow part 58 -> 13 s, its cornell 32x24 frame as fast: 9.8 against 10.2 s). Each of Verilator's
+# 10-200 files compiled on its own parsed verilated.h and the model's headers again, about 1 s of
+# CPU per file at -O1, most of a large model's compilation: one unit for the whole took make test's
 # 12 models 346 -> 145 s of CPU (tb_rgs_ctrl 84 -> 32, tb_shade 80 -> 32, tb_core 64 -> 28), their
 # benches as fast (tb_core on cornell 32x24 0.50 s both ways). make -j2 over the models keeps both
 # cores busy (make test's order or the largest first: the same wall time, 112 against 114 s).
 VLT_CXX := clang++
-VERILATOR_FLAGS := --cc --exe --build -j 2 -Wall -Wno-fatal -O2 --x-assign fast --x-initial fast \
-  -MAKEFLAGS OPT_FAST=-O1 -MAKEFLAGS OPT_SLOW=-O1 -MAKEFLAGS OPT_GLOBAL=-O1 -MAKEFLAGS VM_GLOBAL_FAST= -MAKEFLAGS VM_PARALLEL_BUILDS=0 \
-  -MAKEFLAGS CXX=$(VLT_CXX) -MAKEFLAGS LINK=$(VLT_CXX)
+VERILATOR_FLAGS := --cc --exe -Wall -Wno-fatal -O2 --x-assign fast --x-initial fast
+VLT_MAKE_ARGS := -j 2 OPT_FAST=-O1 OPT_SLOW=-O0 OPT_GLOBAL=-O1 VM_GLOBAL_FAST= CXX=$(VLT_CXX) LINK=$(VLT_CXX)
 VLT_INCLUDE := $(shell verilator --getenv VERILATOR_ROOT 2>/dev/null)/include
 VLT_RUNTIME := $(BUILD)/rtl/verilated/verilated.o $(BUILD)/rtl/verilated/verilated_threads.o
 $(BUILD)/rtl/verilated/%.o: $(VLT_INCLUDE)/%.cpp
@@ -466,6 +468,7 @@ $(BUILD)/rtl/$(1)/tb_%: rtl/tb/tb_%.sv rtl/tb/tb_%.cpp $(wildcard rtl/tb/*.h) $(
 	  $(CURDIR)/rtl/tb/tb_$$*.sv $(CURDIR)/rtl/tb/tb_$$*.cpp \
 	  -CFLAGS "$(call fmt_flags,$(1)) $(addprefix -I$(CURDIR)/,hls hls/fp24 hls/units host/fp24 tb/fp host/memimage host/kdtree host/scene)" \
 	  -LDFLAGS "$(addprefix $(CURDIR)/,$(call rtl_c_objs,$(1)) $(VLT_RUNTIME)) -lmpfr -lgmp -lm" >$(BUILD)/rtl/$(1)/build_$$*.log 2>&1 \
+	  && bash scripts/vlt_make.sh $(BUILD)/rtl/$(1)/obj_$$* Vtb_$$* $(VLT_MAKE_ARGS) >>$(BUILD)/rtl/$(1)/build_$$*.log 2>&1 \
 	  || { tail -30 $(BUILD)/rtl/$(1)/build_$$*.log; exit 1; }
 endef
 $(foreach f,$(RTL_FORMATS),$(eval $(call RTL_RULES,$(f))))

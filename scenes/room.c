@@ -164,7 +164,7 @@ int scene_gen_room(scene *out, const scene_gen_params *p, char *err, size_t errl
                               side * (0.72 + geom_range(&rng, 0, 0.12)) };
         double q[4];
         geom_quat_axis(0, 1, 0, (side > 0 ? M_PI : 0) + geom_range(&rng, -0.15, 0.15), q);
-        char name[16];
+        char name[24]; /* room for any int: -O1 checks the format's worst case */
         snprintf(name, sizeof name, "chair%d", k);
         geom_add_node(&g, name, -1, chair, t, q, NULL);
     }
@@ -174,7 +174,7 @@ int scene_gen_room(scene *out, const scene_gen_params *p, char *err, size_t errl
     const uint32_t bowl_node = geom_add_node(&g, "bowl", (int)table_node, bowl, bowl_t, NULL, NULL);
     for (int k = 0; k < 3; k++) {
         const double t[3] = { 0.05 * cos(2.1 * k), 0.012 + 0.01 * k, 0.05 * sin(2.1 * k) };
-        char name[16];
+        char name[24];
         snprintf(name, sizeof name, "fruit%d", k);
         geom_add_node(&g, name, (int)bowl_node, fruit, t, NULL, NULL);
     }
