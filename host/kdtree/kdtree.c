@@ -256,19 +256,6 @@ static double split_cost(const axis_terms *t, double pl, double pr, uint32_t nl,
     return nl == 0 || nr == 0 ? c * t->empty : c;
 }
 
-/* Candidate q with nl primitives below, np in the plane and nr above: the primitives in the plane
- * go to the cheaper side; best keeps the cheapest candidate (the first one on ties). */
-static void consider(const axis_terms *t, double q, uint32_t nl, uint32_t np, uint32_t nr, split *best)
-{
-    const double pl = (t->base + (q - t->lo) * t->slope) * t->inv;
-    const double pr = (t->base + (t->hi - q) * t->slope) * t->inv;
-    const double left = split_cost(t, pl, pr, nl + np, nr);
-    const double right = np ? split_cost(t, pl, pr, nl, nr + np) : INFINITY;
-    const double c = left <= right ? left : right;
-    if (c < best->cost)
-        *best = (split){ c, t->axis, q, left <= right };
-}
-
 /* A plane on a face of the node box that np of its n primitives lie in (walls, floors and table
  * tops at the edge of their node): the flat cell on the face takes those, the rest keeps the
  * whole box. Rays then meet the flat primitives only where they reach the face, instead of in
@@ -287,19 +274,41 @@ static void consider_face(const axis_terms *t, double q, uint32_t np, uint32_t n
         *best = (split){ c, t->axis, q, at_lo };
 }
 
-/* consider() for the candidates q[0..m) in order, m <= CHUNK, with counts nl, np, nr: the same
- * arithmetic, but the costs of all candidates first, without branches (an empty side scales the
- * cost by 1 - empty_bonus, a non-empty one by 1, which is exact), so that they pipeline. */
+/* Pairs of doubles (GCC and Clang vector extension, SSE2 on x86-64); a comparison gives -1 (true)
+ * or 0 in each lane. */
+typedef double v2d __attribute__((vector_size(16)));
+typedef long long v2l __attribute__((vector_size(16)));
+
+/* The costs of candidates a and b of consider_chunk (a == b: the last of an odd count) with the
+ * primitives in the plane on the left, side by side: each lane the same binary64 operations in the
+ * same order as split_cost (an empty side scales the cost by 1 - empty_bonus, a non-empty one by
+ * 1, which is exact). */
+static inline v2d pair_costs(const axis_terms *t, const double *q, const uint32_t *nl, const uint32_t *np,
+                             const uint32_t *nr, uint32_t a, uint32_t b)
+{
+    const v2d x = { q[a], q[b] };
+    const v2d l = { (double)(nl[a] + np[a]), (double)(nl[b] + np[b]) }, r = { (double)nr[a], (double)nr[b] };
+    const v2d pl = (t->base + (x - t->lo) * t->slope) * t->inv;
+    const v2d pr = (t->base + (t->hi - x) * t->slope) * t->inv;
+    const v2l empty = (l == 0.0) | (r == 0.0);
+    const v2d one = { 1.0, 1.0 }, scaled = { t->empty, t->empty };
+    return (t->ct + t->ci * (pl * l + pr * r)) * (v2d)(((v2l)scaled & empty) | ((v2l)one & ~empty));
+}
+
+/* The candidates q[0..m) in order, m <= CHUNK, with nl primitives below, np in the plane and nr
+ * above: the primitives in the plane go to the cheaper side; best keeps the cheapest candidate (the
+ * first one on ties). The costs of all candidates first, two at a time and without branches, so
+ * that they pipeline. */
 enum { CHUNK = 32 };
 static void consider_chunk(const axis_terms *t, const double *q, const uint32_t *nl, const uint32_t *np,
                            const uint32_t *nr, uint32_t m, split *best)
 {
     double cost[CHUNK];
-    for (uint32_t j = 0; j < m; j++) {
-        const double pl = (t->base + (q[j] - t->lo) * t->slope) * t->inv;
-        const double pr = (t->base + (t->hi - q[j]) * t->slope) * t->inv;
-        const uint32_t l = nl[j] + np[j];
-        cost[j] = (t->ct + t->ci * (pl * l + pr * nr[j])) * (l == 0 || nr[j] == 0 ? t->empty : 1.0);
+    for (uint32_t j = 0; j < m; j += 2) {
+        const uint32_t b = j + 1 < m ? j + 1 : j;
+        const v2d c = pair_costs(t, q, nl, np, nr, j, b);
+        cost[j] = c[0];
+        cost[b] = c[1];
     }
     for (uint32_t j = 0; j < m; j++) {
         double c = cost[j];
@@ -503,8 +512,26 @@ static void put_events(event *const ev[3], uint32_t n[3], uint32_t id, const aab
     }
 }
 
+/* The sweep's two counts in one word: an event adds to the high half if its primitive starts (or
+ * lies) there, to the low half if it ends (or lies) there. Neither half passes 2^31 (primitives). */
+static const uint64_t sweep_count[EV_TYPES] = { [EV_END] = 1, [EV_PLANAR] = 1ull << 32 | 1, [EV_START] = 1ull << 32 };
+
+/* Candidates of sweep_axis waiting for consider_chunk. */
+typedef struct {
+    double q[CHUNK];
+    uint32_t nl[CHUNK], np[CHUNK], nr[CHUNK], m;
+} chunk;
+
+static void chunk_flush(const axis_terms *t, chunk *c, split *best)
+{
+    consider_chunk(t, c->q, c->nl, c->np, c->nr, c->m, best);
+    c->m = 0;
+}
+
 /* Sweeps the events of axis k; candidates are the snapped event positions, and the counts at a
- * candidate q come from a second pointer that has passed every event below q. */
+ * candidate q come from a second pointer that has passed every event below q. The candidates are
+ * costed in chunks in their order (consider_chunk), a face candidate after the chunk before it, so
+ * that best is the first cheapest one, as if each were considered on its own. */
 static void sweep_axis(const builder *b, const prim_set *s, const aabb *box, uint32_t k, split *best)
 {
     const event *ev = s->ev[k];
@@ -512,30 +539,44 @@ static void sweep_axis(const builder *b, const prim_set *s, const aabb *box, uin
     const axis_terms t = terms_of(b, box, k);
     const double lo = box->lo[k], hi = box->hi[k]; /* in locals: quantize could change *box, for all the compiler knows */
     const int faces = b->p.face_splits && hi > lo;
-    uint32_t below[EV_TYPES] = { 0 }, j = 0;
-    double last = -INFINITY;
+    uint64_t below = 0; /* sweep_count of the events below the candidate */
+    uint32_t j = 0;
+    double last = -INFINITY, prev = NAN; /* no position equals NAN */
+    chunk c;
+    c.m = 0;
     for (uint32_t i = 0; i < m; i++) {
-        if (i > 0 && ev[i].pos == ev[i - 1].pos)
+        const double x = ev[i].pos;
+        if (x == prev)
             continue;
-        const double q = snap(b, ev[i].pos);
-        const int face = faces && (q == lo || q == hi);
-        if (!(q > last) || !((q > lo && q < hi) || face))
+        prev = x;
+        const double q = snap(b, x);
+        const int inside = q > lo && q < hi, face = !inside && faces && (q == lo || q == hi);
+        if (!(q > last) || !(inside || face))
             continue;
         last = q;
         while (j < m && ev[j].pos < q)
-            below[ev[j++].type]++;
-        uint32_t at[EV_TYPES] = { 0 };
-        while (j < m && ev[j].pos == q)
-            at[ev[j++].type]++;
-        const uint32_t nl = below[EV_START] + below[EV_PLANAR];
-        const uint32_t nr = n - below[EV_END] - below[EV_PLANAR] - at[EV_END] - at[EV_PLANAR];
-        if (face)
-            consider_face(&t, q, at[EV_PLANAR], n, best);
-        else
-            consider(&t, q, nl, at[EV_PLANAR], nr, best);
-        for (int e = 0; e < EV_TYPES; e++)
-            below[e] += at[e];
+            below += sweep_count[ev[j++].type];
+        uint64_t at = 0;
+        uint32_t planar = 0;
+        for (; j < m && ev[j].pos == q; j++) {
+            at += sweep_count[ev[j].type];
+            planar += ev[j].type == EV_PLANAR;
+        }
+        const uint32_t nl = (uint32_t)(below >> 32), nr = n - (uint32_t)below - (uint32_t)at;
+        below += at;
+        if (face) {
+            chunk_flush(&t, &c, best);
+            consider_face(&t, q, planar, n, best);
+            continue;
+        }
+        c.q[c.m] = q;
+        c.nl[c.m] = nl;
+        c.np[c.m] = planar;
+        c.nr[c.m] = nr;
+        if (++c.m == CHUNK)
+            chunk_flush(&t, &c, best);
     }
+    chunk_flush(&t, &c, best);
 }
 
 /* Primitives of a node by where they go. */
@@ -950,10 +991,6 @@ static void binned_split(const builder *b, const prim_set *s, const aabb *box, s
             eval_planes(b, s, box, k, ps.c[k], ps.m[k], b->counts + k * stride, best);
 }
 
-/* Pairs of doubles (GCC and Clang vector extension, SSE2 on x86-64); a comparison gives -1 (true)
- * or 0 in each lane. */
-typedef double v2d __attribute__((vector_size(16)));
-typedef long long v2l __attribute__((vector_size(16)));
 
 /* Small nodes (SMALL_NODE): exact SAH over the snapped bounds of their primitives, counted two
  * primitives at a time. */
