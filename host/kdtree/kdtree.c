@@ -484,8 +484,8 @@ static void sort_events(event *e, uint32_t n, event *tmp)
     memcpy(e + o, tmp + i, (h - i) * sizeof *e);
 }
 
-/* Room for per_axis events on each axis, in one block at ev[0], and one spare (no size is 0, and
- * distribute() writes one entry past the events it keeps). */
+/* Room for per_axis events on each axis, in one block at ev[0], and one spare (no size is 0,
+ * distribute() writes one entry past the events it keeps, and sweep_axis puts a sentinel there). */
 static int events_alloc(prim_set *s, size_t per_axis)
 {
     if (!(s->ev[0] = huge_pages_malloc(3 * (per_axis + 1) * sizeof(event))))
@@ -534,8 +534,9 @@ static void chunk_flush(const axis_terms *t, chunk *c, split *best)
  * that best is the first cheapest one, as if each were considered on its own. */
 static void sweep_axis(const builder *b, const prim_set *s, const aabb *box, uint32_t k, split *best)
 {
-    const event *ev = s->ev[k];
+    event *const ev = s->ev[k];
     const uint32_t m = s->n_ev[k], n = s->n;
+    ev[m].pos = INFINITY; /* in the spare entry (events_alloc): the second pointer stops there, not past m */
     const axis_terms t = terms_of(b, box, k);
     const double lo = box->lo[k], hi = box->hi[k]; /* in locals: quantize could change *box, for all the compiler knows */
     const int faces = b->p.face_splits && hi > lo;
@@ -554,11 +555,11 @@ static void sweep_axis(const builder *b, const prim_set *s, const aabb *box, uin
         if (!(q > last) || !(inside || face))
             continue;
         last = q;
-        while (j < m && ev[j].pos < q)
+        while (ev[j].pos < q) /* q is finite */
             below += sweep_count[ev[j++].type];
         uint64_t at = 0;
         uint32_t planar = 0;
-        for (; j < m && ev[j].pos == q; j++) {
+        for (; ev[j].pos == q; j++) {
             at += sweep_count[ev[j].type];
             planar += ev[j].type == EV_PLANAR;
         }
