@@ -2153,17 +2153,21 @@ static inline __attribute__((always_inline)) int clip_plane(const polygon *src, 
 
 /* Clips p[*cur] by the planes [from, to) of box, in the fixed order (the result's rounding depends
  * on it) plane 2a: x_a >= lo, plane 2a + 1: x_a <= hi, a = x, y, z; 0 if nothing is left. Each
- * plane's clip_plane has constant axis and side, so that the compiler specializes it. */
+ * plane's clip_plane has constant axis and side, so that the compiler specializes it. outer: the
+ * bounds of the triangle, which hold every polygon clipped from it (crossings lie within their
+ * edge): a plane they lie inside keeps every vertex, as clip_plane would find vertex by vertex. */
 #define CLIP_PLANE(plane, axis, above, d)                                                                              \
     do {                                                                                                               \
-        if (from <= (plane) && (plane) < to && clip_plane(&p[*cur], axis, d, above, &p[1 - *cur])) {                   \
+        if (from <= (plane) && (plane) < to && !((above) ? outer->lo[axis] >= (d) : outer->hi[axis] <= (d)) &&        \
+            clip_plane(&p[*cur], axis, d, above, &p[1 - *cur])) {                                                      \
             *cur = 1 - *cur;                                                                                           \
             if (p[*cur].n == 0)                                                                                        \
                 return 0;                                                                                              \
         }                                                                                                              \
     } while (0)
 
-static inline __attribute__((always_inline)) int clip_planes(polygon p[2], int *cur, const aabb *box, int from, int to)
+static inline __attribute__((always_inline)) int clip_planes(polygon p[2], int *cur, const aabb *outer, const aabb *box,
+                                                             int from, int to)
 {
     CLIP_PLANE(0, 0, 1, box->lo[0]);
     CLIP_PLANE(1, 0, 0, box->hi[0]);
@@ -2201,7 +2205,8 @@ int kd_clip_triangle(const double a[3], const double b[3], const double c[3], co
     polygon p[2];
     int cur = 0;
     poly_triangle(&p[0], a, b, c);
-    if (!clip_planes(p, &cur, box, 0, 6))
+    const aabb outer = poly_bounds(&p[0]);
+    if (!clip_planes(p, &cur, &outer, box, 0, 6))
         return 0;
     *out = poly_bounds(&p[cur]);
     return 1;
@@ -2213,19 +2218,20 @@ int kd_clip_triangle_split(const double a[3], const double b[3], const double c[
     polygon p[2], q[2];
     int cur = 0;
     poly_triangle(&p[0], a, b, c);
+    const aabb outer = poly_bounds(&p[0]);
     const int first = 2 * (int)axis; /* the first plane where the halves differ */
-    if (!clip_planes(p, &cur, box, 0, first))
+    if (!clip_planes(p, &cur, &outer, box, 0, first))
         return 0;
     q[0].n = p[cur].n; /* the upper half's copy: the lower half's clipping overwrites p */
     memcpy(q[0].v, p[cur].v, (size_t)p[cur].n * sizeof q[0].v[0]);
     aabb half[2] = { *box, *box };
     half[0].hi[axis] = half[1].lo[axis] = pos;
     int mask = 0, qcur = 0;
-    if (clip_planes(p, &cur, &half[0], first, 6)) {
+    if (clip_planes(p, &cur, &outer, &half[0], first, 6)) {
         out[0] = poly_bounds(&p[cur]);
         mask |= 1;
     }
-    if (clip_planes(q, &qcur, &half[1], first, 6)) {
+    if (clip_planes(q, &qcur, &outer, &half[1], first, 6)) {
         out[1] = poly_bounds(&q[qcur]);
         mask |= 2;
     }
