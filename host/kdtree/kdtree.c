@@ -110,6 +110,7 @@ typedef struct {
     uint32_t n;       /* primitives */
     event *ev[3];     /* exact mode: events per axis, sorted */
     uint32_t n_ev[3];
+    size_t ev_bytes;  /* of the block at ev[0] (events_alloc) */
     prim_ref *ref;    /* binned mode */
 } prim_set;
 
@@ -182,6 +183,8 @@ typedef struct {
     uint32_t cap_scratch;
     uint32_t *straddlers; /* exact mode: the straddlers of the node being split (classify lists them) */
     uint32_t cap_straddlers;
+    event *kept;      /* exact mode: a node's freed event block, for the next lists that fit (set_keep) */
+    size_t kept_bytes;
     double *cand;     /* binned mode: candidate planes of the three axes (planes_of) */
     uint32_t *counts; /* binned mode: 3 axes x count_stride counters */
     measure_kind kind;   /* of SAH weights: measure(kind, node box) / root_measure */
@@ -485,11 +488,18 @@ static void sort_events(event *e, uint32_t n, event *tmp)
 }
 
 /* Room for per_axis events on each axis, in one block at ev[0], and one spare (no size is 0,
- * distribute() writes one entry past the events it keeps, and sweep_axis puts a sentinel there). */
-static int events_alloc(prim_set *s, size_t per_axis)
+ * distribute() writes one entry past the events it keeps, and sweep_axis puts a sentinel there):
+ * the block b keeps if it is large enough (b may be NULL), else a new one. */
+static int events_alloc(builder *b, prim_set *s, size_t per_axis)
 {
-    if (!(s->ev[0] = huge_pages_malloc(3 * (per_axis + 1) * sizeof(event))))
+    s->ev_bytes = 3 * (per_axis + 1) * sizeof(event);
+    if (b && b->kept && b->kept_bytes >= s->ev_bytes) {
+        s->ev[0] = b->kept;
+        s->ev_bytes = b->kept_bytes;
+        b->kept = NULL;
+    } else if (!(s->ev[0] = huge_pages_malloc(s->ev_bytes))) {
         return -1;
+    }
     s->ev[1] = s->ev[0] + per_axis + 1;
     s->ev[2] = s->ev[1] + per_axis + 1;
     return 0;
@@ -702,7 +712,7 @@ static int split_events(builder *b, const prim_set *s, const split *sp, const aa
         uint32_t most = 0; /* straddler events on any axis */
         for (int a = 0; a < 3; a++)
             most = k[c][a] > most ? k[c][a] : most;
-        if (events_alloc(child[c], 2 * (size_t)one_sided[c] + most))
+        if (events_alloc(b, child[c], 2 * (size_t)one_sided[c] + most))
             return -1;
         child[c]->n = one_sided[c] + kept[c];
     }
@@ -803,7 +813,7 @@ static int root_events(const builder *b, prim_set *s, aabb *root, uint32_t threa
     const size_t scratch = 2 * (size_t)n + 1, lists = threads > 1 ? 2 : 1;
     aabb *bx = huge_pages_malloc(((size_t)n + 1) * sizeof *bx);
     event *tmp = huge_pages_malloc(lists * scratch * sizeof *tmp);
-    if (!bx || !tmp || events_alloc(s, 2 * (size_t)n)) {
+    if (!bx || !tmp || events_alloc(NULL, s, 2 * (size_t)n)) {
         free(bx);
         free(tmp);
         return -1;
@@ -1100,6 +1110,23 @@ static void set_free(prim_set *s)
     memset(s, 0, sizeof *s);
 }
 
+/* Blocks of events up to this size are kept for reuse: the exact subtrees' many small nodes
+ * otherwise cost a malloc and a free each (larger blocks are few, and huge-page blocks). */
+enum { KEEP_MAX_BYTES = 1 << 20 };
+
+/* set_free, but s's event block kept in b for the next events_alloc if it is small and larger than
+ * the one b keeps (which is then freed). */
+static void set_keep(builder *b, prim_set *s)
+{
+    if (s->ev[0] && s->ev_bytes <= KEEP_MAX_BYTES && (!b->kept || b->kept_bytes < s->ev_bytes)) {
+        free(b->kept);
+        b->kept = s->ev[0];
+        b->kept_bytes = s->ev_bytes;
+        s->ev[0] = NULL;
+    }
+    set_free(s);
+}
+
 static int binned(const builder *b) { return b->p.bins > 0; }
 
 /* Whether the builder may meet nodes in exact mode's representation (events). */
@@ -1117,7 +1144,7 @@ static int refs_to_events(builder *b, prim_set *s)
     if (!tmp)
         return -1;
     b->scratch = tmp;
-    if (events_alloc(&e, 2 * (size_t)s->n))
+    if (events_alloc(b, &e, 2 * (size_t)s->n))
         return -1;
     for (uint32_t i = 0; i < s->n; i++)
         put_events(e.ev, e.n_ev, s->ref[i].id, &s->ref[i].b);
@@ -1479,7 +1506,7 @@ static int build_node(builder *b, uint32_t node, const aabb *box, prim_set *s, u
             b->st.max_leaf_count = n;
         *sum = (subtree_sum){ b->p.cost_intersection * n * weight, 0 };
         const int rc = has_refs(s) ? leaf_from_refs(b, node, s) : leaf_from_events(b, node, s);
-        set_free(s);
+        set_keep(b, s);
         return rc;
     }
     aabb lb = *box, rb = *box;
@@ -1487,7 +1514,7 @@ static int build_node(builder *b, uint32_t node, const aabb *box, prim_set *s, u
     prim_set l = { 0 }, r = { 0 };
     uint32_t child = 0;
     int rc = has_refs(s) ? split_refs(b, s, &best, &lb, &rb, &l, &r) : split_events(b, s, &best, &lb, &rb, &l, &r);
-    set_free(s); /* before recursing: the parent's lists are the largest */
+    set_keep(b, s); /* before recursing: the parent's lists are the largest */
     if (rc == 0)
         rc = add_nodes(b, 2, 1, &child);
     if (rc != 0) {
@@ -1538,6 +1565,7 @@ static void scratch_free(builder *b)
     free(b->side);
     free(b->scratch);
     free(b->straddlers);
+    free(b->kept);
     b->cand = NULL;
     b->counts = NULL;
     b->side = NULL;
@@ -1545,6 +1573,7 @@ static void scratch_free(builder *b)
     b->cap_scratch = 0;
     b->straddlers = NULL;
     b->cap_straddlers = 0;
+    b->kept = NULL;
 }
 
 static void task_free(task *t)
