@@ -420,6 +420,24 @@ static int add_nodes(builder *b, uint32_t k, int charged, uint32_t *first)
     return 0;
 }
 
+/* The output arrays of a builder of n primitives, with room for about as many nodes and leaf
+ * entries as its trees take (gallery_ccby_503k.glb: 2.6 nodes and 3.9 entries per triangle; at most
+ * p.max_nodes nodes): grown by doubling from one node, each array had been copied into a new block
+ * about 20 times, and the kernel zeroes a new block's pages at their first touch (2% of the
+ * gallery's CPU samples). Room the tree does not use is never touched. Where that much address
+ * space is refused, the arrays start small and grow as before. 0, or -1 (memory). */
+static int output_alloc(builder *b, uint64_t n)
+{
+    const uint64_t nodes = b->p.max_nodes && b->p.max_nodes < 2 * n + 1 ? b->p.max_nodes : 2 * n + 1;
+    b->nodes = reserve(NULL, &b->cap_nodes, nodes, sizeof *b->nodes); /* reserve: twice that */
+    b->prims = reserve(NULL, &b->cap_prims, 3 * n + 1, sizeof *b->prims);
+    if (!b->nodes)
+        b->nodes = reserve(NULL, &b->cap_nodes, 1, sizeof *b->nodes);
+    if (!b->prims)
+        b->prims = reserve(NULL, &b->cap_prims, n + 1, sizeof *b->prims);
+    return b->nodes && b->prims ? 0 : -1;
+}
+
 /* Writes leaf node `node` with a list of n entries at the end of prims; returns the list to fill. */
 static uint32_t *new_leaf(builder *b, uint32_t node, uint32_t n)
 {
@@ -1417,9 +1435,8 @@ static uint32_t offload(builder *b, const aabb *box, prim_set *s, uint32_t depth
     if (t) {
         t->b = (builder){ .src = b->src, .p = b->p, .max_depth = b->max_depth, .kind = b->kind,
                           .root_measure = b->root_measure, .pool = pl, .budget = b->budget, .tree = b->tree };
-        t->b.prims = reserve(NULL, &t->b.cap_prims, (uint64_t)s->n + 1, sizeof *t->b.prims); /* never NULL after */
         uint32_t root;
-        if (!t->b.prims || add_nodes(&t->b, 1, 0, &root) != 0) {
+        if (output_alloc(&t->b, s->n) != 0 || add_nodes(&t->b, 1, 0, &root) != 0) {
             free(t->b.prims);
             free(t->b.nodes);
             free(t);
@@ -2000,9 +2017,8 @@ static int start(builder *b, prim_set *s, aabb *root, uint32_t threads)
         return -1;
     if (b->src->count == 0)
         *root = (aabb){ { 0, 0, 0 }, { 0, 0, 0 } }; /* no primitives: a point at the origin */
-    b->prims = reserve(NULL, &b->cap_prims, (uint64_t)b->src->count + 1, sizeof *b->prims);
     uint32_t first;
-    return b->prims ? add_nodes(b, 1, 1, &first) : -1;
+    return output_alloc(b, b->src->count) == 0 ? add_nodes(b, 1, 1, &first) : -1;
 }
 
 /* A tree's builder before start(), with the parameters as the build uses them. */
