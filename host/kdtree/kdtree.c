@@ -1020,7 +1020,6 @@ static void binned_split(const builder *b, const prim_set *s, const aabb *box, s
             eval_planes(b, s, box, k, ps.c[k], ps.m[k], b->counts + k * stride, best);
 }
 
-
 /* Small nodes (SMALL_NODE): exact SAH over the snapped bounds of their primitives, counted two
  * primitives at a time. */
 static void small_axis(const builder *b, const prim_set *s, const aabb *box, uint32_t k, split *best)
