@@ -919,11 +919,12 @@ static uint32_t rank_search(const double *c, uint32_t m, double x, int inclusive
     return lo;
 }
 
-/* The same, trying first the bin of x, floor(f) (f >= 0: parts lie in the node box), which is
- * the answer unless snapping moved planes; c has bin_planes' sentinels at c[-1] and c[m]. */
-static inline uint32_t rank_of(const double *c, uint32_t m, double x, int inclusive, double f)
+/* The same, trying first the bin of x, floor(f) (f >= 0: parts lie in the node box; at most m,
+ * given as fm = m too), which is the answer unless snapping moved planes; c has bin_planes'
+ * sentinels at c[-1] and c[m]. */
+static inline uint32_t rank_of(const double *c, uint32_t m, double fm, double x, int inclusive, double f)
 {
-    const uint32_t g = f < m ? (uint32_t)f : m;
+    const uint32_t g = (uint32_t)dmin(f, fm); /* f NaN (an axis without extent): m */
     if (below((c + g)[-1], x, inclusive) && !below(c[g], x, inclusive))
         return g;
     return rank_search(c, m, x, inclusive);
@@ -971,18 +972,20 @@ static plane_set planes_of(const builder *b, const aabb *box, uint32_t n, double
 static void count_planes(const prim_set *s, uint32_t from, uint32_t to, const aabb *box, const plane_set *ps,
                          uint32_t *counts, size_t stride)
 {
-    double scale[3]; /* planes per unit length */
-    for (uint32_t k = 0; k < 3; k++)
+    double scale[3], fm[3]; /* planes per unit length; planes */
+    for (uint32_t k = 0; k < 3; k++) {
         scale[k] = (ps->m[k] + 1) / (box->hi[k] - box->lo[k]);
+        fm[k] = ps->m[k];
+    }
     for (uint32_t i = from; i < to; i++)
         for (uint32_t k = 0; k < 3; k++) {
             const double *c = ps->c[k];
             const uint32_t m = ps->m[k];
             uint32_t *ns = counts + k * stride, *ne = ns + m + 1, *np = ne + m + 1;
             const double lo = s->ref[i].b.lo[k], hi = s->ref[i].b.hi[k];
-            const uint32_t rs = rank_of(c, m, lo, 1, (lo - box->lo[k]) * scale[k]);
+            const uint32_t rs = rank_of(c, m, fm[k], lo, 1, (lo - box->lo[k]) * scale[k]);
             ns[rs]++;
-            ne[rank_of(c, m, hi, 0, (hi - box->lo[k]) * scale[k])]++;
+            ne[rank_of(c, m, fm[k], hi, 0, (hi - box->lo[k]) * scale[k])]++;
             if (lo == hi && (c + rs)[-1] == lo) /* (never the sentinel -inf: rs > 0) */
                 np[rs - 1]++;
         }
