@@ -110,6 +110,7 @@ typedef struct {
     uint32_t n;       /* primitives */
     event *ev[3];     /* exact mode: events per axis, sorted */
     uint32_t n_ev[3];
+    size_t ev_bytes;  /* of the block at ev[0] (events_alloc) */
     prim_ref *ref;    /* binned mode */
 } prim_set;
 
@@ -182,6 +183,8 @@ typedef struct {
     uint32_t cap_scratch;
     uint32_t *straddlers; /* exact mode: the straddlers of the node being split (classify lists them) */
     uint32_t cap_straddlers;
+    event *kept;      /* exact mode: a node's freed event block, for the next lists that fit (set_keep) */
+    size_t kept_bytes;
     double *cand;     /* binned mode: candidate planes of the three axes (planes_of) */
     uint32_t *counts; /* binned mode: 3 axes x count_stride counters */
     measure_kind kind;   /* of SAH weights: measure(kind, node box) / root_measure */
@@ -256,19 +259,6 @@ static double split_cost(const axis_terms *t, double pl, double pr, uint32_t nl,
     return nl == 0 || nr == 0 ? c * t->empty : c;
 }
 
-/* Candidate q with nl primitives below, np in the plane and nr above: the primitives in the plane
- * go to the cheaper side; best keeps the cheapest candidate (the first one on ties). */
-static void consider(const axis_terms *t, double q, uint32_t nl, uint32_t np, uint32_t nr, split *best)
-{
-    const double pl = (t->base + (q - t->lo) * t->slope) * t->inv;
-    const double pr = (t->base + (t->hi - q) * t->slope) * t->inv;
-    const double left = split_cost(t, pl, pr, nl + np, nr);
-    const double right = np ? split_cost(t, pl, pr, nl, nr + np) : INFINITY;
-    const double c = left <= right ? left : right;
-    if (c < best->cost)
-        *best = (split){ c, t->axis, q, left <= right };
-}
-
 /* A plane on a face of the node box that np of its n primitives lie in (walls, floors and table
  * tops at the edge of their node): the flat cell on the face takes those, the rest keeps the
  * whole box. Rays then meet the flat primitives only where they reach the face, instead of in
@@ -287,19 +277,41 @@ static void consider_face(const axis_terms *t, double q, uint32_t np, uint32_t n
         *best = (split){ c, t->axis, q, at_lo };
 }
 
-/* consider() for the candidates q[0..m) in order, m <= CHUNK, with counts nl, np, nr: the same
- * arithmetic, but the costs of all candidates first, without branches (an empty side scales the
- * cost by 1 - empty_bonus, a non-empty one by 1, which is exact), so that they pipeline. */
+/* Pairs of doubles (GCC and Clang vector extension, SSE2 on x86-64); a comparison gives -1 (true)
+ * or 0 in each lane. */
+typedef double v2d __attribute__((vector_size(16)));
+typedef long long v2l __attribute__((vector_size(16)));
+
+/* The costs of candidates a and b of consider_chunk (a == b: the last of an odd count) with the
+ * primitives in the plane on the left, side by side: each lane the same binary64 operations in the
+ * same order as split_cost (an empty side scales the cost by 1 - empty_bonus, a non-empty one by
+ * 1, which is exact). */
+static inline v2d pair_costs(const axis_terms *t, const double *q, const uint32_t *nl, const uint32_t *np,
+                             const uint32_t *nr, uint32_t a, uint32_t b)
+{
+    const v2d x = { q[a], q[b] };
+    const v2d l = { (double)(nl[a] + np[a]), (double)(nl[b] + np[b]) }, r = { (double)nr[a], (double)nr[b] };
+    const v2d pl = (t->base + (x - t->lo) * t->slope) * t->inv;
+    const v2d pr = (t->base + (t->hi - x) * t->slope) * t->inv;
+    const v2l empty = (l == 0.0) | (r == 0.0);
+    const v2d one = { 1.0, 1.0 }, scaled = { t->empty, t->empty };
+    return (t->ct + t->ci * (pl * l + pr * r)) * (v2d)(((v2l)scaled & empty) | ((v2l)one & ~empty));
+}
+
+/* The candidates q[0..m) in order, m <= CHUNK, with nl primitives below, np in the plane and nr
+ * above: the primitives in the plane go to the cheaper side; best keeps the cheapest candidate (the
+ * first one on ties). The costs of all candidates first, two at a time and without branches, so
+ * that they pipeline. */
 enum { CHUNK = 32 };
 static void consider_chunk(const axis_terms *t, const double *q, const uint32_t *nl, const uint32_t *np,
                            const uint32_t *nr, uint32_t m, split *best)
 {
     double cost[CHUNK];
-    for (uint32_t j = 0; j < m; j++) {
-        const double pl = (t->base + (q[j] - t->lo) * t->slope) * t->inv;
-        const double pr = (t->base + (t->hi - q[j]) * t->slope) * t->inv;
-        const uint32_t l = nl[j] + np[j];
-        cost[j] = (t->ct + t->ci * (pl * l + pr * nr[j])) * (l == 0 || nr[j] == 0 ? t->empty : 1.0);
+    for (uint32_t j = 0; j < m; j += 2) {
+        const uint32_t b = j + 1 < m ? j + 1 : j;
+        const v2d c = pair_costs(t, q, nl, np, nr, j, b);
+        cost[j] = c[0];
+        cost[b] = c[1];
     }
     for (uint32_t j = 0; j < m; j++) {
         double c = cost[j];
@@ -408,6 +420,24 @@ static int add_nodes(builder *b, uint32_t k, int charged, uint32_t *first)
     return 0;
 }
 
+/* The output arrays of a builder of n primitives, with room for about as many nodes and leaf
+ * entries as its trees take (gallery_ccby_503k.glb: 2.6 nodes and 3.9 entries per triangle; at most
+ * p.max_nodes nodes): grown by doubling from one node, each array had been copied into a new block
+ * about 20 times, and the kernel zeroes a new block's pages at their first touch (2% of the
+ * gallery's CPU samples). Room the tree does not use is never touched. Where that much address
+ * space is refused, the arrays start small and grow as before. 0, or -1 (memory). */
+static int output_alloc(builder *b, uint64_t n)
+{
+    const uint64_t nodes = b->p.max_nodes && b->p.max_nodes < 2 * n + 1 ? b->p.max_nodes : 2 * n + 1;
+    b->nodes = reserve(NULL, &b->cap_nodes, nodes, sizeof *b->nodes); /* reserve: twice that */
+    b->prims = reserve(NULL, &b->cap_prims, 3 * n + 1, sizeof *b->prims);
+    if (!b->nodes)
+        b->nodes = reserve(NULL, &b->cap_nodes, 1, sizeof *b->nodes);
+    if (!b->prims)
+        b->prims = reserve(NULL, &b->cap_prims, n + 1, sizeof *b->prims);
+    return b->nodes && b->prims ? 0 : -1;
+}
+
 /* Writes leaf node `node` with a list of n entries at the end of prims; returns the list to fill. */
 static uint32_t *new_leaf(builder *b, uint32_t node, uint32_t n)
 {
@@ -475,12 +505,19 @@ static void sort_events(event *e, uint32_t n, event *tmp)
     memcpy(e + o, tmp + i, (h - i) * sizeof *e);
 }
 
-/* Room for per_axis events on each axis, in one block at ev[0], and one spare (no size is 0, and
- * distribute() writes one entry past the events it keeps). */
-static int events_alloc(prim_set *s, size_t per_axis)
+/* Room for per_axis events on each axis, in one block at ev[0], and one spare (no size is 0,
+ * distribute() writes one entry past the events it keeps, and sweep_axis puts a sentinel there):
+ * the block b keeps if it is large enough (b may be NULL), else a new one. */
+static int events_alloc(builder *b, prim_set *s, size_t per_axis)
 {
-    if (!(s->ev[0] = huge_pages_malloc(3 * (per_axis + 1) * sizeof(event))))
+    s->ev_bytes = 3 * (per_axis + 1) * sizeof(event);
+    if (b && b->kept && b->kept_bytes >= s->ev_bytes) {
+        s->ev[0] = b->kept;
+        s->ev_bytes = b->kept_bytes;
+        b->kept = NULL;
+    } else if (!(s->ev[0] = huge_pages_malloc(s->ev_bytes))) {
         return -1;
+    }
     s->ev[1] = s->ev[0] + per_axis + 1;
     s->ev[2] = s->ev[1] + per_axis + 1;
     return 0;
@@ -503,39 +540,72 @@ static void put_events(event *const ev[3], uint32_t n[3], uint32_t id, const aab
     }
 }
 
+/* The sweep's two counts in one word: an event adds to the high half if its primitive starts (or
+ * lies) there, to the low half if it ends (or lies) there. Neither half passes 2^31 (primitives). */
+static const uint64_t sweep_count[EV_TYPES] = { [EV_END] = 1, [EV_PLANAR] = 1ull << 32 | 1, [EV_START] = 1ull << 32 };
+
+/* Candidates of sweep_axis waiting for consider_chunk. */
+typedef struct {
+    double q[CHUNK];
+    uint32_t nl[CHUNK], np[CHUNK], nr[CHUNK], m;
+} chunk;
+
+static void chunk_flush(const axis_terms *t, chunk *c, split *best)
+{
+    consider_chunk(t, c->q, c->nl, c->np, c->nr, c->m, best);
+    c->m = 0;
+}
+
 /* Sweeps the events of axis k; candidates are the snapped event positions, and the counts at a
- * candidate q come from a second pointer that has passed every event below q. */
+ * candidate q come from a second pointer that has passed every event below q. The candidates are
+ * costed in chunks in their order (consider_chunk), a face candidate after the chunk before it, so
+ * that best is the first cheapest one, as if each were considered on its own. */
 static void sweep_axis(const builder *b, const prim_set *s, const aabb *box, uint32_t k, split *best)
 {
-    const event *ev = s->ev[k];
+    event *const ev = s->ev[k];
     const uint32_t m = s->n_ev[k], n = s->n;
+    ev[m].pos = INFINITY; /* in the spare entry (events_alloc): the second pointer stops there, not past m */
     const axis_terms t = terms_of(b, box, k);
     const double lo = box->lo[k], hi = box->hi[k]; /* in locals: quantize could change *box, for all the compiler knows */
     const int faces = b->p.face_splits && hi > lo;
-    uint32_t below[EV_TYPES] = { 0 }, j = 0;
-    double last = -INFINITY;
+    uint64_t below = 0; /* sweep_count of the events below the candidate */
+    uint32_t j = 0;
+    double last = -INFINITY, prev = NAN; /* no position equals NAN */
+    chunk c;
+    c.m = 0;
     for (uint32_t i = 0; i < m; i++) {
-        if (i > 0 && ev[i].pos == ev[i - 1].pos)
+        const double x = ev[i].pos;
+        if (x == prev)
             continue;
-        const double q = snap(b, ev[i].pos);
-        const int face = faces && (q == lo || q == hi);
-        if (!(q > last) || !((q > lo && q < hi) || face))
+        prev = x;
+        const double q = snap(b, x);
+        const int inside = q > lo && q < hi, face = !inside && faces && (q == lo || q == hi);
+        if (!(q > last) || !(inside || face))
             continue;
         last = q;
-        while (j < m && ev[j].pos < q)
-            below[ev[j++].type]++;
-        uint32_t at[EV_TYPES] = { 0 };
-        while (j < m && ev[j].pos == q)
-            at[ev[j++].type]++;
-        const uint32_t nl = below[EV_START] + below[EV_PLANAR];
-        const uint32_t nr = n - below[EV_END] - below[EV_PLANAR] - at[EV_END] - at[EV_PLANAR];
-        if (face)
-            consider_face(&t, q, at[EV_PLANAR], n, best);
-        else
-            consider(&t, q, nl, at[EV_PLANAR], nr, best);
-        for (int e = 0; e < EV_TYPES; e++)
-            below[e] += at[e];
+        while (ev[j].pos < q) /* q is finite */
+            below += sweep_count[ev[j++].type];
+        uint64_t at = 0;
+        uint32_t planar = 0;
+        for (; ev[j].pos == q; j++) {
+            at += sweep_count[ev[j].type];
+            planar += ev[j].type == EV_PLANAR;
+        }
+        const uint32_t nl = (uint32_t)(below >> 32), nr = n - (uint32_t)below - (uint32_t)at;
+        below += at;
+        if (face) {
+            chunk_flush(&t, &c, best);
+            consider_face(&t, q, planar, n, best);
+            continue;
+        }
+        c.q[c.m] = q;
+        c.nl[c.m] = nl;
+        c.np[c.m] = planar;
+        c.nr[c.m] = nr;
+        if (++c.m == CHUNK)
+            chunk_flush(&t, &c, best);
     }
+    chunk_flush(&t, &c, best);
 }
 
 /* Primitives of a node by where they go. */
@@ -660,7 +730,7 @@ static int split_events(builder *b, const prim_set *s, const split *sp, const aa
         uint32_t most = 0; /* straddler events on any axis */
         for (int a = 0; a < 3; a++)
             most = k[c][a] > most ? k[c][a] : most;
-        if (events_alloc(child[c], 2 * (size_t)one_sided[c] + most))
+        if (events_alloc(b, child[c], 2 * (size_t)one_sided[c] + most))
             return -1;
         child[c]->n = one_sided[c] + kept[c];
     }
@@ -761,7 +831,7 @@ static int root_events(const builder *b, prim_set *s, aabb *root, uint32_t threa
     const size_t scratch = 2 * (size_t)n + 1, lists = threads > 1 ? 2 : 1;
     aabb *bx = huge_pages_malloc(((size_t)n + 1) * sizeof *bx);
     event *tmp = huge_pages_malloc(lists * scratch * sizeof *tmp);
-    if (!bx || !tmp || events_alloc(s, 2 * (size_t)n)) {
+    if (!bx || !tmp || events_alloc(NULL, s, 2 * (size_t)n)) {
         free(bx);
         free(tmp);
         return -1;
@@ -849,11 +919,12 @@ static uint32_t rank_search(const double *c, uint32_t m, double x, int inclusive
     return lo;
 }
 
-/* The same, trying first the bin of x, floor(f) (f >= 0: parts lie in the node box), which is
- * the answer unless snapping moved planes; c has bin_planes' sentinels at c[-1] and c[m]. */
-static inline uint32_t rank_of(const double *c, uint32_t m, double x, int inclusive, double f)
+/* The same, trying first the bin of x, floor(f) (f >= 0: parts lie in the node box; at most m,
+ * given as fm = m too), which is the answer unless snapping moved planes; c has bin_planes'
+ * sentinels at c[-1] and c[m]. */
+static inline uint32_t rank_of(const double *c, uint32_t m, double fm, double x, int inclusive, double f)
 {
-    const uint32_t g = f < m ? (uint32_t)f : m;
+    const uint32_t g = (uint32_t)dmin(f, fm); /* f NaN (an axis without extent): m */
     if (below((c + g)[-1], x, inclusive) && !below(c[g], x, inclusive))
         return g;
     return rank_search(c, m, x, inclusive);
@@ -901,18 +972,20 @@ static plane_set planes_of(const builder *b, const aabb *box, uint32_t n, double
 static void count_planes(const prim_set *s, uint32_t from, uint32_t to, const aabb *box, const plane_set *ps,
                          uint32_t *counts, size_t stride)
 {
-    double scale[3]; /* planes per unit length */
-    for (uint32_t k = 0; k < 3; k++)
+    double scale[3], fm[3]; /* planes per unit length; planes */
+    for (uint32_t k = 0; k < 3; k++) {
         scale[k] = (ps->m[k] + 1) / (box->hi[k] - box->lo[k]);
+        fm[k] = ps->m[k];
+    }
     for (uint32_t i = from; i < to; i++)
         for (uint32_t k = 0; k < 3; k++) {
             const double *c = ps->c[k];
             const uint32_t m = ps->m[k];
             uint32_t *ns = counts + k * stride, *ne = ns + m + 1, *np = ne + m + 1;
             const double lo = s->ref[i].b.lo[k], hi = s->ref[i].b.hi[k];
-            const uint32_t rs = rank_of(c, m, lo, 1, (lo - box->lo[k]) * scale[k]);
+            const uint32_t rs = rank_of(c, m, fm[k], lo, 1, (lo - box->lo[k]) * scale[k]);
             ns[rs]++;
-            ne[rank_of(c, m, hi, 0, (hi - box->lo[k]) * scale[k])]++;
+            ne[rank_of(c, m, fm[k], hi, 0, (hi - box->lo[k]) * scale[k])]++;
             if (lo == hi && (c + rs)[-1] == lo) /* (never the sentinel -inf: rs > 0) */
                 np[rs - 1]++;
         }
@@ -949,11 +1022,6 @@ static void binned_split(const builder *b, const prim_set *s, const aabb *box, s
         if (ps.m[k] > 0)
             eval_planes(b, s, box, k, ps.c[k], ps.m[k], b->counts + k * stride, best);
 }
-
-/* Pairs of doubles (GCC and Clang vector extension, SSE2 on x86-64); a comparison gives -1 (true)
- * or 0 in each lane. */
-typedef double v2d __attribute__((vector_size(16)));
-typedef long long v2l __attribute__((vector_size(16)));
 
 /* Small nodes (SMALL_NODE): exact SAH over the snapped bounds of their primitives, counted two
  * primitives at a time. */
@@ -1062,6 +1130,23 @@ static void set_free(prim_set *s)
     memset(s, 0, sizeof *s);
 }
 
+/* Blocks of events up to this size are kept for reuse: the exact subtrees' many small nodes
+ * otherwise cost a malloc and a free each (larger blocks are few, and huge-page blocks). */
+enum { KEEP_MAX_BYTES = 1 << 20 };
+
+/* set_free, but s's event block kept in b for the next events_alloc if it is small and larger than
+ * the one b keeps (which is then freed). */
+static void set_keep(builder *b, prim_set *s)
+{
+    if (s->ev[0] && s->ev_bytes <= KEEP_MAX_BYTES && (!b->kept || b->kept_bytes < s->ev_bytes)) {
+        free(b->kept);
+        b->kept = s->ev[0];
+        b->kept_bytes = s->ev_bytes;
+        s->ev[0] = NULL;
+    }
+    set_free(s);
+}
+
 static int binned(const builder *b) { return b->p.bins > 0; }
 
 /* Whether the builder may meet nodes in exact mode's representation (events). */
@@ -1079,7 +1164,7 @@ static int refs_to_events(builder *b, prim_set *s)
     if (!tmp)
         return -1;
     b->scratch = tmp;
-    if (events_alloc(&e, 2 * (size_t)s->n))
+    if (events_alloc(b, &e, 2 * (size_t)s->n))
         return -1;
     for (uint32_t i = 0; i < s->n; i++)
         put_events(e.ev, e.n_ev, s->ref[i].id, &s->ref[i].b);
@@ -1352,9 +1437,8 @@ static uint32_t offload(builder *b, const aabb *box, prim_set *s, uint32_t depth
     if (t) {
         t->b = (builder){ .src = b->src, .p = b->p, .max_depth = b->max_depth, .kind = b->kind,
                           .root_measure = b->root_measure, .pool = pl, .budget = b->budget, .tree = b->tree };
-        t->b.prims = reserve(NULL, &t->b.cap_prims, (uint64_t)s->n + 1, sizeof *t->b.prims); /* never NULL after */
         uint32_t root;
-        if (!t->b.prims || add_nodes(&t->b, 1, 0, &root) != 0) {
+        if (output_alloc(&t->b, s->n) != 0 || add_nodes(&t->b, 1, 0, &root) != 0) {
             free(t->b.prims);
             free(t->b.nodes);
             free(t);
@@ -1441,7 +1525,7 @@ static int build_node(builder *b, uint32_t node, const aabb *box, prim_set *s, u
             b->st.max_leaf_count = n;
         *sum = (subtree_sum){ b->p.cost_intersection * n * weight, 0 };
         const int rc = has_refs(s) ? leaf_from_refs(b, node, s) : leaf_from_events(b, node, s);
-        set_free(s);
+        set_keep(b, s);
         return rc;
     }
     aabb lb = *box, rb = *box;
@@ -1449,7 +1533,7 @@ static int build_node(builder *b, uint32_t node, const aabb *box, prim_set *s, u
     prim_set l = { 0 }, r = { 0 };
     uint32_t child = 0;
     int rc = has_refs(s) ? split_refs(b, s, &best, &lb, &rb, &l, &r) : split_events(b, s, &best, &lb, &rb, &l, &r);
-    set_free(s); /* before recursing: the parent's lists are the largest */
+    set_keep(b, s); /* before recursing: the parent's lists are the largest */
     if (rc == 0)
         rc = add_nodes(b, 2, 1, &child);
     if (rc != 0) {
@@ -1500,6 +1584,7 @@ static void scratch_free(builder *b)
     free(b->side);
     free(b->scratch);
     free(b->straddlers);
+    free(b->kept);
     b->cand = NULL;
     b->counts = NULL;
     b->side = NULL;
@@ -1507,6 +1592,7 @@ static void scratch_free(builder *b)
     b->cap_scratch = 0;
     b->straddlers = NULL;
     b->cap_straddlers = 0;
+    b->kept = NULL;
 }
 
 static void task_free(task *t)
@@ -1933,9 +2019,8 @@ static int start(builder *b, prim_set *s, aabb *root, uint32_t threads)
         return -1;
     if (b->src->count == 0)
         *root = (aabb){ { 0, 0, 0 }, { 0, 0, 0 } }; /* no primitives: a point at the origin */
-    b->prims = reserve(NULL, &b->cap_prims, (uint64_t)b->src->count + 1, sizeof *b->prims);
     uint32_t first;
-    return b->prims ? add_nodes(b, 1, 1, &first) : -1;
+    return output_alloc(b, b->src->count) == 0 ? add_nodes(b, 1, 1, &first) : -1;
 }
 
 /* A tree's builder before start(), with the parameters as the build uses them. */
@@ -2115,17 +2200,21 @@ static inline __attribute__((always_inline)) int clip_plane(const polygon *src, 
 
 /* Clips p[*cur] by the planes [from, to) of box, in the fixed order (the result's rounding depends
  * on it) plane 2a: x_a >= lo, plane 2a + 1: x_a <= hi, a = x, y, z; 0 if nothing is left. Each
- * plane's clip_plane has constant axis and side, so that the compiler specializes it. */
+ * plane's clip_plane has constant axis and side, so that the compiler specializes it. outer: the
+ * bounds of the triangle, which hold every polygon clipped from it (crossings lie within their
+ * edge): a plane they lie inside keeps every vertex, as clip_plane would find vertex by vertex. */
 #define CLIP_PLANE(plane, axis, above, d)                                                                              \
     do {                                                                                                               \
-        if (from <= (plane) && (plane) < to && clip_plane(&p[*cur], axis, d, above, &p[1 - *cur])) {                   \
+        if (from <= (plane) && (plane) < to && !((above) ? outer->lo[axis] >= (d) : outer->hi[axis] <= (d)) &&        \
+            clip_plane(&p[*cur], axis, d, above, &p[1 - *cur])) {                                                      \
             *cur = 1 - *cur;                                                                                           \
             if (p[*cur].n == 0)                                                                                        \
                 return 0;                                                                                              \
         }                                                                                                              \
     } while (0)
 
-static inline __attribute__((always_inline)) int clip_planes(polygon p[2], int *cur, const aabb *box, int from, int to)
+static inline __attribute__((always_inline)) int clip_planes(polygon p[2], int *cur, const aabb *outer, const aabb *box,
+                                                             int from, int to)
 {
     CLIP_PLANE(0, 0, 1, box->lo[0]);
     CLIP_PLANE(1, 0, 0, box->hi[0]);
@@ -2163,7 +2252,8 @@ int kd_clip_triangle(const double a[3], const double b[3], const double c[3], co
     polygon p[2];
     int cur = 0;
     poly_triangle(&p[0], a, b, c);
-    if (!clip_planes(p, &cur, box, 0, 6))
+    const aabb outer = poly_bounds(&p[0]);
+    if (!clip_planes(p, &cur, &outer, box, 0, 6))
         return 0;
     *out = poly_bounds(&p[cur]);
     return 1;
@@ -2175,19 +2265,20 @@ int kd_clip_triangle_split(const double a[3], const double b[3], const double c[
     polygon p[2], q[2];
     int cur = 0;
     poly_triangle(&p[0], a, b, c);
+    const aabb outer = poly_bounds(&p[0]);
     const int first = 2 * (int)axis; /* the first plane where the halves differ */
-    if (!clip_planes(p, &cur, box, 0, first))
+    if (!clip_planes(p, &cur, &outer, box, 0, first))
         return 0;
     q[0].n = p[cur].n; /* the upper half's copy: the lower half's clipping overwrites p */
     memcpy(q[0].v, p[cur].v, (size_t)p[cur].n * sizeof q[0].v[0]);
     aabb half[2] = { *box, *box };
     half[0].hi[axis] = half[1].lo[axis] = pos;
     int mask = 0, qcur = 0;
-    if (clip_planes(p, &cur, &half[0], first, 6)) {
+    if (clip_planes(p, &cur, &outer, &half[0], first, 6)) {
         out[0] = poly_bounds(&p[cur]);
         mask |= 1;
     }
-    if (clip_planes(q, &qcur, &half[1], first, 6)) {
+    if (clip_planes(q, &qcur, &outer, &half[1], first, 6)) {
         out[1] = poly_bounds(&q[qcur]);
         mask |= 2;
     }

@@ -289,9 +289,9 @@ static aabb tri_bounds(const void *user, uint32_t i)
     for (int k = 0; k < 3; k++) {
         double v[3];
         tri_vertex(s->m, s->centre, s->valid[i], k, v);
-        for (int a = 0; a < 3; a++) {
-            b.lo[a] = k ? fmin(b.lo[a], v[a]) : v[a];
-            b.hi[a] = k ? fmax(b.hi[a], v[a]) : v[a];
+        for (int a = 0; a < 3; a++) { /* fmin/fmax of finite values, the first on ties (-0, +0), inline */
+            b.lo[a] = k && !(v[a] < b.lo[a]) ? b.lo[a] : v[a];
+            b.hi[a] = k && !(v[a] > b.hi[a]) ? b.hi[a] : v[a];
         }
     }
     return b;
