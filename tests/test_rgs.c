@@ -451,11 +451,84 @@ static void light_packet_lanes(void **state)
 #endif
 }
 
+/* A random Q12 word: 0..65535, often within 0..4096. */
+static uint32_t random_q12(unsigned *seed)
+{
+    return (uint32_t)rand_r(seed) % (rand_r(seed) % 2 ? 4097u : 65536u);
+}
+
+/* A random surface for op_accumulate with its material record at word 16 i of mem: T_R from its o,
+ * D^, N^ or arbitrary words, any entering, base, emission, tint; the material's index of
+ * refraction 1 (straight transparency), a random word (refraction, total internal reflection,
+ * special words) and random shader words. */
+static surface random_surface(unsigned *seed, uint32_t *mem, int i)
+{
+    surface sf;
+    memset(&sf, 0, sizeof sf);
+    sf.valid = rand_r(seed) % 6 != 0;
+    sf.n = random_vec(seed);
+    sf.d = random_vec(seed);
+    sf.tr = t_r(random_vec(seed), sf.d, sf.n);
+    if (rand_r(seed) % 4 == 0)
+        for (int r = 0; r < 3; r++)
+            for (int k = 0; k < 4; k++)
+                sf.tr.m[r][k] = random_word(seed);
+    sf.t_hat = random_word(seed);
+    sf.entering = rand_r(seed) % 2;
+    for (int k = 0; k < 3; k++)
+        sf.base[k] = random_q12(seed), sf.emission[k] = random_q12(seed), sf.tint[k] = random_q12(seed);
+    sf.mat = 16u * (uint32_t)i;
+    uint32_t *m = &mem[sf.mat];
+    m[M_ETA] = rand_r(seed) % 3 == 0 ? F24_ONE : random_word(seed);
+    m[M_SHADER0] = (uint32_t)rand_r(seed) ^ (uint32_t)rand_r(seed) << 16;
+    m[M_SHADER1] = (uint32_t)rand_r(seed) ^ (uint32_t)rand_r(seed) << 16;
+    return sf;
+}
+
+/* The simulation build's rgs_accumulate_rays computes the child rays' geometry of a packet side by
+ * side (tb/sim/rgs_accum_lanes.c): the same colours, child rays, weights, active bits and T_R step
+ * count as the per-ray loop of hls/units/rgs_accum.c, for any active rays and spawn bits. */
+static void accumulate_rays_lanes(void **state)
+{
+    (void)state;
+#ifndef F24_SIM_LANES
+    skip(); /* one definition only: the per-ray one */
+#else
+    unsigned seed = 19;
+    for (int t = 0; t < 20000; t++) {
+        uint32_t mem[16 * TRACE_PACKET] = { 0 }, weight[TRACE_PACKET][3], diffuse[TRACE_PACKET][3];
+        uint32_t highlight[TRACE_PACKET][3], got_acc[TRACE_PACKET][3], want_acc[TRACE_PACKET][3];
+        surface sf[TRACE_PACKET];
+        for (int i = 0; i < TRACE_PACKET; i++) {
+            sf[i] = random_surface(&seed, mem, i);
+            for (int k = 0; k < 3; k++) {
+                weight[i][k] = random_q12(&seed), diffuse[i][k] = random_q12(&seed);
+                highlight[i][k] = random_q12(&seed), got_acc[i][k] = want_acc[i][k] = random_q12(&seed);
+            }
+        }
+        const uint32_t active = (uint32_t)rand_r(&seed) % 16u, spawn = (uint32_t)rand_r(&seed) % 4u;
+        const f24_t eps = random_word(&seed);
+        rgs_task got[2], want[2];
+        memset(got, 0x55, sizeof got);
+        got[0].rays.active = (uint32_t)rand_r(&seed) % 16u;
+        got[1].rays.active = (uint32_t)rand_r(&seed) % 16u;
+        memcpy(want, got, sizeof got);
+        const uint32_t n = rgs_accumulate_rays(mem, sf, active, weight, diffuse, highlight, eps, spawn, got_acc, &got[0],
+                                               &got[1]);
+        assert_int_equal(n, rgs_accumulate_rays_per_ray(mem, sf, active, weight, diffuse, highlight, eps, spawn,
+                                                        want_acc, &want[0], &want[1]));
+        assert_memory_equal(got_acc, want_acc, sizeof got_acc);
+        assert_memory_equal(got, want, sizeof got);
+    }
+#endif
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = { cmocka_unit_test(primary_rays), cmocka_unit_test(shading),
                                         cmocka_unit_test(reflection_geometry), cmocka_unit_test(refraction_snell),
                                         cmocka_unit_test(bilinear_texture), cmocka_unit_test(mirror_reflects),
-                                        cmocka_unit_test(glass_transmits), cmocka_unit_test(light_packet_lanes) };
+                                        cmocka_unit_test(glass_transmits), cmocka_unit_test(light_packet_lanes),
+                                        cmocka_unit_test(accumulate_rays_lanes) };
     return cmocka_run_group_tests_name("rgs", tests, NULL, NULL);
 }

@@ -169,6 +169,10 @@ void rgs_add_light(uint32_t diffuse[3], uint32_t highlight[3], uint32_t diff, ui
  * reflection), each active if its largest weight component is at least 16 (hls/units/rgs_spawn.c). */
 void rgs_spawn_children(const uint32_t *m, const uint32_t weight[3], f24_t eps, int i, const surface *sf,
                         rgs_task *refl, rgs_task *trans);
+/* rgs_spawn_children's rays from their geometry: the Q12 weights and active bits of ray i's
+ * reflection ray (back, mirror) and transmission ray (t_o, t_d) into refl and trans. */
+void rgs_child_rays(const uint32_t *m, const uint32_t weight[3], int i, const surface *sf, f24_vec3 back,
+                    f24_vec3 mirror, f24_vec3 t_o, f24_vec3 t_d, rgs_task *refl, rgs_task *trans);
 
 /* rgs_accumulate_ray's spawn bits: the packet's depth allows children; the image's
  * PROFILE_LIVE_CHILDREN (only a surface that spawns an active child takes T_R steps). */
@@ -182,6 +186,28 @@ enum { RGS_SPAWN_ON = 1, RGS_SPAWN_LIVE = 2 };
 int rgs_accumulate_ray(const uint32_t *m, const surface *sf, int i, const uint32_t weight[3], const uint32_t diffuse[3],
                        const uint32_t highlight[3], f24_t eps, uint32_t spawn, uint32_t acc[3], rgs_task *refl,
                        rgs_task *trans);
+/* rgs_accumulate_ray's colour alone: the ray's colour times its weight added to acc. */
+void rgs_ray_colour(const uint32_t *m, const surface *sf, const uint32_t weight[3], const uint32_t diffuse[3],
+                    const uint32_t highlight[3], uint32_t acc[3]);
+/* rgs_accumulate_ray's rule after a valid surface spawned (spawned: the tasks' active bits before):
+ * its child rays take T_R steps unless RGS_SPAWN_LIVE and it spawned no active child. */
+static inline int rgs_child_steps(uint32_t spawn, uint32_t spawned, const rgs_task *refl, const rgs_task *trans)
+{
+    return !(spawn & RGS_SPAWN_LIVE) || ((refl->rays.active | trans->rays.active) != spawned);
+}
+/* rgs_accumulate_ray of each ray of the packet in active (surfaces sf, their materials read from
+ * mem); returns the number whose child rays take T_R steps (op_accumulate). */
+uint32_t rgs_accumulate_rays(const uint32_t *mem, const surface sf[], uint32_t active, const uint32_t weight[][3],
+                             const uint32_t diffuse[][3], const uint32_t highlight[][3], f24_t eps, uint32_t spawn,
+                             uint32_t acc[][3], rgs_task *refl, rgs_task *trans);
+#ifdef F24_SIM_LANES
+/* A simulation build with vector packet values computes the child rays' geometry of the packet
+ * side by side (tb/sim/rgs_accum_lanes.c, the same bits); the per-ray loop of rgs_accum.c, the
+ * truth, then keeps this name, for the test that compares the two. */
+uint32_t rgs_accumulate_rays_per_ray(const uint32_t *mem, const surface sf[], uint32_t active,
+                                     const uint32_t weight[][3], const uint32_t diffuse[][3], const uint32_t highlight[][3],
+                                     f24_t eps, uint32_t spawn, uint32_t acc[][3], rgs_task *refl, rgs_task *trans);
+#endif
 
 /* Texel coordinate of texture coordinate s over n texels (1 <= n < 2^31; centres at +1/2): the
  * wrapped integer part i0, its right neighbour i1 and the fraction in Q8 (0..256). */

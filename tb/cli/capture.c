@@ -1260,3 +1260,27 @@ int __wrap_rgs_accumulate_ray(const uint32_t *m, const surface *sf, int i, const
     return capturing() ? captured_accumulate(m, sf, i, weight, diffuse, highlight, eps, spawn, acc, refl, trans)
                        : __real_rgs_accumulate_ray(m, sf, i, weight, diffuse, highlight, eps, spawn, acc, refl, trans);
 }
+
+/* The packet's accumulation (op_accumulate): while capturing, ray by ray through the wrapper above,
+ * as the per-ray datapath issues it (the simulation build's side-by-side version calls no unit,
+ * and the per-ray loop calls rgs_accumulate_ray in its own object file, which no wrapper sees). */
+uint32_t __real_rgs_accumulate_rays(const uint32_t *mem, const surface sf[], uint32_t active, const uint32_t weight[][3],
+                                    const uint32_t diffuse[][3], const uint32_t highlight[][3], f24_t eps,
+                                    uint32_t spawn, uint32_t acc[][3], rgs_task *refl, rgs_task *trans);
+uint32_t __wrap_rgs_accumulate_rays(const uint32_t *mem, const surface sf[], uint32_t active, const uint32_t weight[][3],
+                                    const uint32_t diffuse[][3], const uint32_t highlight[][3], f24_t eps,
+                                    uint32_t spawn, uint32_t acc[][3], rgs_task *refl, rgs_task *trans);
+
+uint32_t __wrap_rgs_accumulate_rays(const uint32_t *mem, const surface sf[], uint32_t active, const uint32_t weight[][3],
+                                    const uint32_t diffuse[][3], const uint32_t highlight[][3], f24_t eps,
+                                    uint32_t spawn, uint32_t acc[][3], rgs_task *refl, rgs_task *trans)
+{
+    if (!capturing())
+        return __real_rgs_accumulate_rays(mem, sf, active, weight, diffuse, highlight, eps, spawn, acc, refl, trans);
+    uint32_t children = 0;
+    for (int i = 0; i < TRACE_PACKET; i++)
+        if (active >> i & 1u)
+            children += (uint32_t)__wrap_rgs_accumulate_ray(sf[i].valid ? &mem[sf[i].mat] : 0, &sf[i], i, weight[i],
+                                                            diffuse[i], highlight[i], eps, spawn, acc[i], refl, trans);
+    return children;
+}
