@@ -523,12 +523,96 @@ static void accumulate_rays_lanes(void **state)
 #endif
 }
 
+/* The simulation build's rgs_surfaces computes the frames of a packet's hits side by side
+ * (tb/sim/rgs_surface_lanes.c): rgs_surface_frames gives rgs_surface_frame's fields for the rays
+ * in valid, on arbitrary words (rays, distances, normals, instance matrices), and leaves the others
+ * as they were. */
+static void surface_frames_lanes(void **state)
+{
+    (void)state;
+#ifndef F24_SIM_LANES
+    skip(); /* one definition only: the per-ray one */
+#else
+    unsigned seed = 23;
+    for (int t = 0; t < 20000; t++) {
+        ray_packet rp;
+        hit_record h[TRACE_PACKET];
+        f24_vec3 n[TRACE_PACKET];
+        f24_affine w2o[TRACE_PACKET];
+        surface got[TRACE_PACKET], want[TRACE_PACKET];
+        memset(h, 0, sizeof h);
+        memset(got, 0x55, sizeof got);
+        memcpy(want, got, sizeof got);
+        const uint32_t valid = (uint32_t)rand_r(&seed) % 16u;
+        for (int i = 0; i < TRACE_PACKET; i++) {
+            rp.o[i] = random_vec(&seed);
+            rp.d[i] = random_vec(&seed);
+            h[i].t = random_word(&seed);
+            h[i].cos_n = random_word(&seed);
+            n[i] = random_vec(&seed);
+            for (int r = 0; r < 3; r++)
+                for (int k = 0; k < 4; k++)
+                    w2o[i].m[r][k] = random_word(&seed);
+            if (valid >> i & 1u)
+                rgs_surface_frame(rp.o[i], rp.d[i], h[i].t, h[i].cos_n, n[i], &w2o[i], &want[i]);
+        }
+        rgs_surface_frames(&rp, h, n, w2o, valid, got);
+        assert_memory_equal(got, want, sizeof got);
+    }
+#endif
+}
+
+/* rgs_surfaces side by side against the per-ray loop on the Cornell box's traced primary hits,
+ * their distances, barycentrics and cosines also replaced by arbitrary words: the same surfaces,
+ * reads and counters. */
+static void surfaces_lanes(void **state)
+{
+    (void)state;
+#ifndef F24_SIM_LANES
+    skip(); /* one definition only: the per-ray one */
+#else
+    scene s;
+    mi_builder *b = build_cornell(&s, 16, 16);
+    uint32_t words;
+    const uint32_t *mem = mi_words(b, &words);
+    unsigned seed = 29;
+    for (uint32_t y = 0; y < 16; y += 2)
+        for (uint32_t x = 0; x < 16; x += 2)
+            for (int v = 0; v < 8; v++) {
+                ray_packet rp;
+                hit_record h[TRACE_PACKET];
+                trace_counters tc = { 0 }, gc = { 0 }, wc = { 0 };
+                rgs_primary(mem, x, y, &rp);
+                trace_packet(mem, &rp, h, &tc);
+                rp.active &= (uint32_t)rand_r(&seed) % 16u | (v == 0 ? 0xFu : 0u);
+                for (int i = 0; i < TRACE_PACKET && v > 1; i++) {
+                    h[i].t = random_word(&seed);
+                    h[i].u = random_word(&seed);
+                    h[i].v = random_word(&seed);
+                    h[i].cos_n = random_word(&seed);
+                }
+                unit_op got_op, want_op;
+                surface got[TRACE_PACKET], want[TRACE_PACKET];
+                memset(&got_op, 0, sizeof got_op);
+                memset(&want_op, 0, sizeof want_op);
+                rgs_surfaces(mem, &rp, h, got, &got_op, &gc);
+                rgs_surfaces_per_ray(mem, &rp, h, want, &want_op, &wc);
+                assert_memory_equal(got, want, sizeof got);
+                assert_memory_equal(&got_op, &want_op, sizeof got_op);
+                assert_memory_equal(&gc, &wc, sizeof gc);
+            }
+    mi_free(b);
+    scene_free(&s);
+#endif
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = { cmocka_unit_test(primary_rays), cmocka_unit_test(shading),
                                         cmocka_unit_test(reflection_geometry), cmocka_unit_test(refraction_snell),
                                         cmocka_unit_test(bilinear_texture), cmocka_unit_test(mirror_reflects),
                                         cmocka_unit_test(glass_transmits), cmocka_unit_test(light_packet_lanes),
-                                        cmocka_unit_test(accumulate_rays_lanes) };
+                                        cmocka_unit_test(accumulate_rays_lanes), cmocka_unit_test(surface_frames_lanes),
+                                        cmocka_unit_test(surfaces_lanes) };
     return cmocka_run_group_tests_name("rgs", tests, NULL, NULL);
 }

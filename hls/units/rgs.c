@@ -94,9 +94,9 @@ static void op_surfaces(const uint32_t *mem, rgs_block *b, unit_op *op, rgs_coun
 {
     c->rays[b->cur.kind] += count_rays(b->cur.rays.active);
     op_set(op, OP_SURFACE, at_least_one(count_rays(b->cur.rays.active)));
-surfaces:
+    rgs_surfaces(mem, &b->cur.rays, b->trace.hits, b->sf, op, &c->trace);
+surface_state:
     for (int i = 0; i < TRACE_PACKET; i++) {
-        b->sf[i] = rgs_surface_at(mem, &b->cur.rays, i, &b->trace.hits[i], op, &c->trace);
         op->hits += b->sf[i].valid;
         b->k_of[i] = b->sf[i].valid ? rgs_mat_k(&mem[b->sf[i].mat]) : 0u;
         for (int k = 0; k < 3; k++) {

@@ -104,6 +104,24 @@ void rgs_surface_frame(f24_vec3 o, f24_vec3 d, f24_t t, f24_t cos_n, f24_vec3 n,
  * (all zero) for an inactive ray or a miss. */
 surface rgs_surface_at(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h, unit_op *op,
                        trace_counters *c);
+/* rgs_surface_at but the frame: its reads, the object-space normal n and the world-to-object
+ * matrix w2o that the frame takes, the material, colours and tint (an invalid surface as it). */
+surface rgs_surface_material(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h, f24_vec3 *n,
+                             f24_affine *w2o, unit_op *op, trace_counters *c);
+/* rgs_surface_at of each ray of packet rp at its hit h[i] into sf[i] (op_surfaces). */
+void rgs_surfaces(const uint32_t *mem, const ray_packet *rp, const hit_record h[], surface sf[], unit_op *op,
+                  trace_counters *c);
+#ifdef F24_SIM_LANES
+/* A simulation build with vector packet values computes the packet's frames side by side
+ * (tb/sim/rgs_surface_lanes.c, the same bits); the per-ray loop of rgs_surface.c, the truth,
+ * then keeps this name, for the test that compares the two. */
+void rgs_surfaces_per_ray(const uint32_t *mem, const ray_packet *rp, const hit_record h[], surface sf[], unit_op *op,
+                          trace_counters *c);
+/* Its frames: rgs_surface_frame of each ray i in valid (rp's o[i] and d[i], h[i]'s t and cos_n,
+ * n[i], w2o[i]) into sf[i], as lanes. */
+void rgs_surface_frames(const ray_packet *rp, const hit_record h[], const f24_vec3 n[], const f24_affine w2o[],
+                        uint32_t valid, surface sf[]);
+#endif
 
 /* Diffuse and highlight weights of light l (its 16-word record) at the packet's surfaces and the
  * shadow packet that tests them (hls/units/rgs_light.c); rays whose weights are zero are not

@@ -1,8 +1,13 @@
-/* The surface the RGS shades at a hit (surface_at): see rgs_ops.h and docs/shading.md. Outside
- * rgs.c so that the unit capture can wrap it (rtl/rgs_surface.sv is checked against it). */
+/* The surface the RGS shades at a hit (surface_at) and the packet's: see rgs_ops.h and
+ * docs/shading.md. Outside rgs.c so that the unit capture can wrap rgs_surface_at
+ * (rtl/rgs_surface.sv is checked against it) and rgs_surfaces. */
 #include "rgs_ops.h"
 
 #include "shade_rec.h"
+
+#ifdef F24_SIM_LANES
+#define rgs_surfaces rgs_surfaces_per_ray /* the simulation build's frames are side by side (rgs_ops.h) */
+#endif
 
 /* Object-space shading normal at the hit (not normalized): the interpolated decoded vertex
  * normals, or the geometric normal (row 2 of the triangle transformation). */
@@ -82,11 +87,12 @@ material_factors:
 #endif
 }
 
-/* Its reads, in this order: instance, object descriptor (words 2..7), shading record, geometric
- * normal if needed, material, and per texture sampled (base colour, emissive) its entry and 4
- * texels: at most 15 (UNIT_OP_READS). */
-surface rgs_surface_at(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h, unit_op *op,
-                       trace_counters *c)
+/* rgs_surface_at but the frame: the reads (instance, object descriptor (words 2..7), shading
+ * record, geometric normal if needed, material, and per texture sampled (base colour, emissive) its
+ * entry and 4 texels: at most 15, UNIT_OP_READS), the object-space normal n and the instance's
+ * world-to-object matrix w2o for the frame, the material, colours and tint. */
+surface rgs_surface_material(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h, f24_vec3 *n,
+                             f24_affine *w2o, unit_op *op, trace_counters *c)
 {
     surface sf = { 0 };
     if (h->instance == TRACE_NO_HIT || !(rp->active >> i & 1u))
@@ -99,8 +105,8 @@ surface rgs_surface_at(const uint32_t *mem, const ray_packet *rp, int i, const h
     shade_read(op, c, obj + O_TRIANGLES, O_FLAGS - O_TRIANGLES + 1);
     shade_read(op, c, shade, shade_rec_words(flags));
     sf.valid = 1;
-    const f24_affine w2o = f24_affine_load(mem, ia);
-    rgs_surface_frame(rp->o[i], rp->d[i], h->t, h->cos_n, hit_normal(mem, h, obj, shade, op, c), &w2o, &sf);
+    *w2o = f24_affine_load(mem, ia);
+    *n = hit_normal(mem, h, obj, shade, op, c);
     sf.mat = region_start(mem, R_MATERIALS) + MAT_WORDS * shade_rec_material(flags, tail);
     shade_read(op, c, sf.mat, MAT_WORDS);
     sf.unlit = (mem[sf.mat + SHADE_M_FLAGS] & SHADE_MAT_UNLIT) != 0;
@@ -112,3 +118,22 @@ tint:
     return sf;
 }
 
+/* The frame reads nothing: computed after the material's reads, the reads keep their order. */
+surface rgs_surface_at(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h, unit_op *op,
+                       trace_counters *c)
+{
+    f24_vec3 n;
+    f24_affine w2o;
+    surface sf = rgs_surface_material(mem, rp, i, h, &n, &w2o, op, c);
+    if (sf.valid)
+        rgs_surface_frame(rp->o[i], rp->d[i], h->t, h->cos_n, n, &w2o, &sf);
+    return sf;
+}
+
+void rgs_surfaces(const uint32_t *mem, const ray_packet *rp, const hit_record h[], surface sf[], unit_op *op,
+                  trace_counters *c)
+{
+surfaces:
+    for (int i = 0; i < TRACE_PACKET; i++)
+        sf[i] = rgs_surface_at(mem, rp, i, &h[i], op, c);
+}

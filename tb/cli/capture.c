@@ -1210,6 +1210,25 @@ surface __wrap_rgs_surface_at(const uint32_t *mem, const ray_packet *rp, int i, 
     return capturing() ? captured_surface(mem, rp, i, h, op, c) : __real_rgs_surface_at(mem, rp, i, h, op, c);
 }
 
+/* The packet's surfaces (op_surfaces): while capturing, ray by ray through the wrapper above (the
+ * simulation build's frames side by side call no rgs_surface_frame, and the per-ray loop calls
+ * rgs_surface_at in its own object file, which no wrapper sees). */
+void __real_rgs_surfaces(const uint32_t *mem, const ray_packet *rp, const hit_record h[], surface sf[], unit_op *op,
+                         trace_counters *c);
+void __wrap_rgs_surfaces(const uint32_t *mem, const ray_packet *rp, const hit_record h[], surface sf[], unit_op *op,
+                         trace_counters *c);
+
+void __wrap_rgs_surfaces(const uint32_t *mem, const ray_packet *rp, const hit_record h[], surface sf[], unit_op *op,
+                         trace_counters *c)
+{
+    if (!capturing()) {
+        __real_rgs_surfaces(mem, rp, h, sf, op, c);
+        return;
+    }
+    for (int i = 0; i < TRACE_PACKET; i++)
+        sf[i] = __wrap_rgs_surface_at(mem, rp, i, &h[i], op, c);
+}
+
 /* Each active ray's share of op_accumulate (for rtl/tb/tb_accum.cpp): the material's words 13..15
  * (0 for an invalid surface), the surface's valid, T_R origin, D^, N^, t_hat, entering, base,
  * emission, tint; the ray i, its weight, diffuse and highlight sums, e, the spawn bits, the pixel's
