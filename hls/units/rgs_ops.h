@@ -104,10 +104,16 @@ void rgs_surface_frame(f24_vec3 o, f24_vec3 d, f24_t t, f24_t cos_n, f24_vec3 n,
  * (all zero) for an inactive ray or a miss. */
 surface rgs_surface_at(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h, unit_op *op,
                        trace_counters *c);
-/* rgs_surface_at but the frame: its reads, the object-space normal n and the world-to-object
- * matrix w2o that the frame takes, the material, colours and tint (an invalid surface as it). */
-surface rgs_surface_material(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h, f24_vec3 *n,
-                             f24_affine *w2o, unit_op *op, trace_counters *c);
+/* rgs_surface_at's steps: the vertex normals of ray i's hit decoded into normals (n[c][k]: component
+ * c of normal k, shade_rec_normals) if it is shaded and its object has them (returns 1, else 0);
+ * then, with their interpolation vn (rgs_lerp_normal, zero without them) and flat (vn's squared
+ * length is zero), everything but the frame: its reads, the object-space normal n (vn, or the
+ * geometric normal if flat) and the world-to-object matrix w2o that the frame takes, the material,
+ * colours and tint (an invalid surface as rgs_surface_at's). */
+int rgs_vertex_normals(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h,
+                       f24_t normals[3][F24Q_LANES]);
+surface rgs_surface_material(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h, f24_vec3 vn,
+                             int flat, f24_vec3 *n, f24_affine *w2o, unit_op *op, trace_counters *c);
 /* rgs_surface_at of each ray of packet rp at its hit h[i] into sf[i] (op_surfaces). */
 void rgs_surfaces(const uint32_t *mem, const ray_packet *rp, const hit_record h[], surface sf[], unit_op *op,
                   trace_counters *c);

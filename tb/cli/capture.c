@@ -600,7 +600,7 @@ void __wrap_rgs_block_begin(const uint32_t *mem, uint32_t x0, uint32_t y0, rgs_b
 }
 
 /* ---- RGS shading: each vertex normal decoded from a compact shading record (surface_at's
- * hit_normal decodes the three side by side, shade_rec_normals; for rtl/tb/tb_shade.cpp a line per
+ * rgs_vertex_normals decodes the three side by side, shade_rec_normals; for rtl/tb/tb_shade.cpp a line per
  * normal): the record's 4 normal words, the vertex k, the unit normal ---- */
 
 void __real_shade_rec_normals(const uint32_t *normals, f24_t out[3][F24Q_LANES]);

@@ -3,12 +3,13 @@
  * build whose packet values are vectors (F24_SIM_LANES, tb/fp/f24_fast.h) takes this definition,
  * and the per-ray loop there keeps the name rgs_surfaces_per_ray (hls/units/rgs_ops.h).
  *
- * Each ray's reads, normal, material and colours stay per ray (rgs_surface_material, the
- * function the per-ray datapath calls); the frames of the packet's hits (rgs_surface_frame: the
- * unit direction, the shading normal through the instance's transposed matrix, turned towards the
- * ray and normalized, t_hat and the hit point through T_R) are computed afterwards as lanes, every
- * operation once for the four rays, in the same order and roundings per lane (the frame reads
- * nothing, so the reads keep their order). tests/test_rgs.c surface_frames_lanes compares the
+ * Each ray's vertex normals are decoded (rgs_vertex_normals) and its reads, material and colours
+ * taken (rgs_surface_material) per ray, the functions the per-ray datapath calls; the normals'
+ * interpolation and its zero-length test before, and the frames of the packet's hits after
+ * (rgs_surface_frame: the unit direction, the shading normal through the instance's transposed
+ * matrix, turned towards the ray and normalized, t_hat and the hit point through T_R) as lanes,
+ * every operation once for the four rays, in the same order and roundings per lane (neither reads
+ * anything, so the reads keep their order). tests/test_rgs.c surface_frames_lanes compares the
  * frames with rgs_surface_frame on random words, surfaces_lanes the packets with the per-ray loop
  * on traced hits.
  */
@@ -91,14 +92,46 @@ F24V_FN void rgs_surface_frames(const ray_packet *rp, const hit_record h[], cons
     }
 }
 
+/* The hits' interpolated vertex normals (rgs_lerp_normal's products and sums per lane; zero for
+ * the rays not in has) into vn, and the rays whose vn has squared length zero (f24_is_zero of
+ * rgs_dot3). */
+static F24V_FN uint32_t vertex_normals_lanes(const f24_t nw[TRACE_PACKET][3][F24Q_LANES], const hit_record h[],
+                                             uint32_t has, f24_vec3 vn[TRACE_PACKET])
+{
+    f24_t u[TRACE_PACKET], v[TRACE_PACKET], w[3][3][TRACE_PACKET];
+    for (int i = 0; i < TRACE_PACKET; i++) {
+        u[i] = h[i].u, v[i] = h[i].v;
+        for (int c = 0; c < 3; c++)
+            for (int k = 0; k < 3; k++)
+                w[c][k][i] = nw[i][c][k];
+    }
+    const f24v zero = f24v_splat(0u), uq = f24v_of(u), vq = f24v_of(v);
+    const f24v wq = f24v_sub(f24v_sub(f24v_splat(F24_ONE), uq), vq);
+    f24v r[3];
+    f24_t out[3][TRACE_PACKET];
+    for (int c = 0; c < 3; c++) {
+        const f24v p0 = f24v_mul(f24v_of(w[c][0]), uq), p1 = f24v_mul(f24v_of(w[c][1]), vq);
+        r[c] = f24v_pick(has, f24v_add(f24v_add(p0, p1), f24v_mul(f24v_of(w[c][2]), wq)), zero);
+        f24v_bits(r[c], out[c]);
+    }
+    for (int i = 0; i < TRACE_PACKET; i++)
+        vn[i] = lane_vec(out, i);
+    const f24v len2 = dot3_lanes(r, r);
+    return f24v_le(len2, zero) & f24v_le(zero, len2); /* == 0, either sign */
+}
+
 void rgs_surfaces(const uint32_t *mem, const ray_packet *rp, const hit_record h[], surface sf[], unit_op *op,
                   trace_counters *c)
 {
-    f24_vec3 n[TRACE_PACKET] = { 0 };
+    f24_t nw[TRACE_PACKET][3][F24Q_LANES] = { 0 };
+    f24_vec3 vn[TRACE_PACKET], n[TRACE_PACKET] = { 0 };
     f24_affine w2o[TRACE_PACKET] = { 0 };
-    uint32_t valid = 0;
+    uint32_t has = 0, valid = 0;
+    for (int i = 0; i < TRACE_PACKET; i++)
+        has |= (uint32_t)rgs_vertex_normals(mem, rp, i, &h[i], nw[i]) << i;
+    const uint32_t flat = vertex_normals_lanes(nw, h, has, vn);
     for (int i = 0; i < TRACE_PACKET; i++) {
-        sf[i] = rgs_surface_material(mem, rp, i, &h[i], &n[i], &w2o[i], op, c);
+        sf[i] = rgs_surface_material(mem, rp, i, &h[i], vn[i], (int)(flat >> i & 1u), &n[i], &w2o[i], op, c);
         valid |= (uint32_t)(sf[i].valid != 0) << i;
     }
     if (valid)
