@@ -165,19 +165,24 @@ static inline void rgs_shadow_ray(const uint32_t *l, const surface *sf, f24_t ep
     sh->tmax[i] = directional ? F24_POS_INF : F24_ONE;
 }
 
-/* A lit surface's Q12 weights for a light: the diffuse one from the cosine w with the normal, the
- * highlight from the cosine h with the mirror direction to the power 2^k (k squarings); returns
- * whether either is nonzero (the shadow ray is then traced). */
-static inline uint32_t rgs_light_weights(f24w w, f24w h, uint32_t k, uint32_t *diff, uint32_t *spec)
+/* A lit surface's Q12 weights for a light from its cosines in Q12 (rgs_q_of_w): the diffuse one
+ * from the cosine qw with the normal, the highlight from the cosine qh with the mirror direction to
+ * the power 2^k (k squarings); returns whether either is nonzero (the shadow ray is then traced). */
+static inline uint32_t rgs_light_weights_q(uint32_t qw, uint32_t qh, uint32_t k, uint32_t *diff, uint32_t *spec)
 {
-    uint32_t s = rgs_q_of_w(h);
+    uint32_t s = qh;
 phong_power:
     for (uint32_t j = 0; j < 8; j++)
         if (j < k)
             s = q_mul(s, s); /* cos^(2^k): k squarings */
-    *diff = q_mul(rgs_q_of_w(w), RGS_Q12_DIFFUSE);
+    *diff = q_mul(qw, RGS_Q12_DIFFUSE);
     *spec = s;
     return (*diff | s) != 0;
+}
+/* The same from the cosines w and h. */
+static inline uint32_t rgs_light_weights(f24w w, f24w h, uint32_t k, uint32_t *diff, uint32_t *spec)
+{
+    return rgs_light_weights_q(rgs_q_of_w(w), rgs_q_of_w(h), k, diff, spec);
 }
 
 /* Light colour (the record's words 1..3) scaled to a maximum component of one, in Q12. */
