@@ -124,7 +124,7 @@ CAPTURE_WRAP := $(addprefix -Wl$(comma)--wrap=,xform_point xform_vector isect_un
   rebase_origin xform_point_wide xform_vector_wide xform_enter_rays rebase_rays \
   trav_scene_clip trav_object_clip trav_start trav_walk trace_begin trace_step shade_rec_normals \
   rgs_sample_bilinear rgs_surface_frame rgs_light_packet rgs_lerp rgs_lerp_normal rgs_light_colour rgs_add_light \
-  rgs_spawn_children rgs_surface_at rgs_accumulate_ray)
+  rgs_spawn_children rgs_surface_at rgs_surfaces rgs_accumulate_ray rgs_accumulate_rays)
 
 # per-format objects: everything that depends on the fp24 parameters
 fp_objs = $(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(HLS_FP24) $(TB_FP))

@@ -1,9 +1,9 @@
 // rgs_normal: a hit's interpolated vertex normal and its zero test (paper section 3, Figure 2 path
-// g; the part of hls/units/rgs_surface.c `hit_normal` with vertex normals: `shade_rec_normals`,
-// `rgs_lerp_normal`, `f24_is_zero(rgs_dot3(n, n))`), bit for bit as the C, as a stream: the hits
-// follow each other through the pipelined units, so that `rgs_surface` can start the next hit's
-// normal while the last one's is under way (its chain, about 89 cycles, is longer than a hit's
-// reads).
+// g; the part of hls/units/rgs_surface.c `rgs_surface_at` with vertex normals:
+// `rgs_vertex_normals`' `shade_rec_normals`, `rgs_lerp_normal`, `f24_is_zero(rgs_dot3(vn, vn))`),
+// bit for bit as the C, as a stream: the hits follow each other through the pipelined units, so
+// that `rgs_surface` can start the next hit's normal while the last one's is under way (its chain,
+// about 89 cycles, is longer than a hit's reads).
 //   decode  the record's 3 codes (42 bits each from bit 0 of its normal words) one a cycle
 //           (`shade_rec_decode`)
 //   lerp    once a hit's 3 normals are out, its 3 components one a cycle (`rgs_lerp`: the

@@ -1,7 +1,8 @@
 // shade_rec_decode: one vertex normal of the compact shading record decoded to a unit fp24 vector
 // (paper section 3, the RGS's shading; hls/units/shade_rec.c `shade_rec_normal`, the record's
 // layout in hls/units/shade_rec.h and docs/memory-image.md), the first step of `surface_at`'s
-// `hit_normal` (hls/units/rgs.c): a hit decodes the 3 normals of its triangle, one a cycle.
+// `rgs_vertex_normals` (hls/units/rgs_surface.c): a hit decodes the 3 normals of its triangle, one
+// a cycle.
 // The 42-bit octahedral code (x in bits 0..20, y in 21..41, signed) is unfolded in integers:
 // |x|, |y|, z = 2^20 - 1 - |x| - |y| and, for z < 0 (the lower hemisphere), x and y folded over
 // the diagonals (4 adders of 22 bits, 2 sign muxes; registered in front of the converters, so that

@@ -26,11 +26,17 @@
 
 static double D(f24_t x) { return f24_fast_decode(x); }
 
-static mi_builder *build_cornell(scene *s, uint32_t w, uint32_t h)
+/* Generated scene name's memory image for a w x h view; with flat, its odd meshes without vertex
+ * normals (no generated scene lacks them). */
+static mi_builder *build_scene(const char *name, scene *s, uint32_t w, uint32_t h, int flat)
 {
     char err[256];
     const scene_gen_params gp = { 1, 0 };
-    assert_int_equal(scene_generator_find("cornell")->build(s, &gp, err, sizeof err), 0);
+    assert_int_equal(scene_generator_find(name)->build(s, &gp, err, sizeof err), 0);
+    for (uint32_t k = 1; flat && k < s->n_meshes; k += 2) {
+        free(s->meshes[k].normals);
+        s->meshes[k].normals = NULL;
+    }
     assert_int_equal(scene_evaluate(s, 0, 0), 0);
     mi_params p;
     mi_params_default(&p);
@@ -40,6 +46,8 @@ static mi_builder *build_cornell(scene *s, uint32_t w, uint32_t h)
     assert_non_null(b);
     return b;
 }
+
+static mi_builder *build_cornell(scene *s, uint32_t w, uint32_t h) { return build_scene("cornell", s, w, h, 0); }
 
 static void primary_rays(void **state)
 {
@@ -451,11 +459,178 @@ static void light_packet_lanes(void **state)
 #endif
 }
 
+/* A random Q12 word: 0..65535, often within 0..4096. */
+static uint32_t random_q12(unsigned *seed)
+{
+    return (uint32_t)rand_r(seed) % (rand_r(seed) % 2 ? 4097u : 65536u);
+}
+
+/* A random surface for op_accumulate with its material record at word 16 i of mem: T_R from its o,
+ * D^, N^ or arbitrary words, any entering, base, emission, tint; the material's index of
+ * refraction 1 (straight transparency), a random word (refraction, total internal reflection,
+ * special words) and random shader words. */
+static surface random_surface(unsigned *seed, uint32_t *mem, int i)
+{
+    surface sf;
+    memset(&sf, 0, sizeof sf);
+    sf.valid = rand_r(seed) % 6 != 0;
+    sf.n = random_vec(seed);
+    sf.d = random_vec(seed);
+    sf.tr = t_r(random_vec(seed), sf.d, sf.n);
+    if (rand_r(seed) % 4 == 0)
+        for (int r = 0; r < 3; r++)
+            for (int k = 0; k < 4; k++)
+                sf.tr.m[r][k] = random_word(seed);
+    sf.t_hat = random_word(seed);
+    sf.entering = rand_r(seed) % 2;
+    for (int k = 0; k < 3; k++)
+        sf.base[k] = random_q12(seed), sf.emission[k] = random_q12(seed), sf.tint[k] = random_q12(seed);
+    sf.mat = 16u * (uint32_t)i;
+    uint32_t *m = &mem[sf.mat];
+    m[M_ETA] = rand_r(seed) % 3 == 0 ? F24_ONE : random_word(seed);
+    m[M_SHADER0] = (uint32_t)rand_r(seed) ^ (uint32_t)rand_r(seed) << 16;
+    m[M_SHADER1] = (uint32_t)rand_r(seed) ^ (uint32_t)rand_r(seed) << 16;
+    return sf;
+}
+
+/* The simulation build's rgs_accumulate_rays computes the child rays' geometry of a packet side by
+ * side (tb/sim/rgs_accum_lanes.c): the same colours, child rays, weights, active bits and T_R step
+ * count as the per-ray loop of hls/units/rgs_accum.c, for any active rays and spawn bits. */
+static void accumulate_rays_lanes(void **state)
+{
+    (void)state;
+#ifndef F24_SIM_LANES
+    skip(); /* one definition only: the per-ray one */
+#else
+    unsigned seed = 19;
+    for (int t = 0; t < 20000; t++) {
+        uint32_t mem[16 * TRACE_PACKET] = { 0 }, weight[TRACE_PACKET][3], diffuse[TRACE_PACKET][3];
+        uint32_t highlight[TRACE_PACKET][3], got_acc[TRACE_PACKET][3], want_acc[TRACE_PACKET][3];
+        surface sf[TRACE_PACKET];
+        for (int i = 0; i < TRACE_PACKET; i++) {
+            sf[i] = random_surface(&seed, mem, i);
+            for (int k = 0; k < 3; k++) {
+                weight[i][k] = random_q12(&seed), diffuse[i][k] = random_q12(&seed);
+                highlight[i][k] = random_q12(&seed), got_acc[i][k] = want_acc[i][k] = random_q12(&seed);
+            }
+        }
+        const uint32_t active = (uint32_t)rand_r(&seed) % 16u, spawn = (uint32_t)rand_r(&seed) % 4u;
+        const f24_t eps = random_word(&seed);
+        rgs_task got[2], want[2];
+        memset(got, 0x55, sizeof got);
+        got[0].rays.active = (uint32_t)rand_r(&seed) % 16u;
+        got[1].rays.active = (uint32_t)rand_r(&seed) % 16u;
+        memcpy(want, got, sizeof got);
+        const uint32_t n = rgs_accumulate_rays(mem, sf, active, weight, diffuse, highlight, eps, spawn, got_acc, &got[0],
+                                               &got[1]);
+        assert_int_equal(n, rgs_accumulate_rays_per_ray(mem, sf, active, weight, diffuse, highlight, eps, spawn,
+                                                        want_acc, &want[0], &want[1]));
+        assert_memory_equal(got_acc, want_acc, sizeof got_acc);
+        assert_memory_equal(got, want, sizeof got);
+    }
+#endif
+}
+
+/* The simulation build's rgs_surfaces computes the frames of a packet's hits side by side
+ * (tb/sim/rgs_surface_lanes.c): rgs_surface_frames gives rgs_surface_frame's fields for the rays
+ * in valid, on arbitrary words (rays, distances, normals, instance matrices), and leaves the others
+ * as they were. */
+static void surface_frames_lanes(void **state)
+{
+    (void)state;
+#ifndef F24_SIM_LANES
+    skip(); /* one definition only: the per-ray one */
+#else
+    unsigned seed = 23;
+    for (int t = 0; t < 20000; t++) {
+        ray_packet rp;
+        hit_record h[TRACE_PACKET];
+        f24_vec3 n[TRACE_PACKET];
+        f24_affine w2o[TRACE_PACKET];
+        surface got[TRACE_PACKET], want[TRACE_PACKET];
+        memset(h, 0, sizeof h);
+        memset(got, 0x55, sizeof got);
+        memcpy(want, got, sizeof got);
+        const uint32_t valid = (uint32_t)rand_r(&seed) % 16u;
+        for (int i = 0; i < TRACE_PACKET; i++) {
+            rp.o[i] = random_vec(&seed);
+            rp.d[i] = random_vec(&seed);
+            h[i].t = random_word(&seed);
+            h[i].cos_n = random_word(&seed);
+            n[i] = random_vec(&seed);
+            for (int r = 0; r < 3; r++)
+                for (int k = 0; k < 4; k++)
+                    w2o[i].m[r][k] = random_word(&seed);
+            if (valid >> i & 1u)
+                rgs_surface_frame(rp.o[i], rp.d[i], h[i].t, h[i].cos_n, n[i], &w2o[i], &want[i]);
+        }
+        rgs_surface_frames(&rp, h, n, w2o, valid, got);
+        assert_memory_equal(got, want, sizeof got);
+    }
+#endif
+}
+
+/* rgs_surfaces side by side against the per-ray loop on the traced primary hits of the Cornell box
+ * and the room (textured), each also with half its meshes without vertex normals, their distances,
+ * barycentrics and cosines also replaced by arbitrary words: the same surfaces, reads and counters. */
+#ifdef F24_SIM_LANES
+static void surfaces_lanes_of(const char *name, int flat)
+{
+    scene s;
+    mi_builder *b = build_scene(name, &s, 16, 16, flat);
+    uint32_t words;
+    const uint32_t *mem = mi_words(b, &words);
+    unsigned seed = 29;
+    for (uint32_t y = 0; y < 16; y += 2)
+        for (uint32_t x = 0; x < 16; x += 2)
+            for (int v = 0; v < 8; v++) {
+                ray_packet rp;
+                hit_record h[TRACE_PACKET];
+                trace_counters tc = { 0 }, gc = { 0 }, wc = { 0 };
+                rgs_primary(mem, x, y, &rp);
+                trace_packet(mem, &rp, h, &tc);
+                rp.active &= (uint32_t)rand_r(&seed) % 16u | (v == 0 ? 0xFu : 0u);
+                for (int i = 0; i < TRACE_PACKET && v > 1; i++) {
+                    h[i].t = random_word(&seed);
+                    h[i].u = random_word(&seed);
+                    h[i].v = random_word(&seed);
+                    h[i].cos_n = random_word(&seed);
+                }
+                unit_op got_op, want_op;
+                surface got[TRACE_PACKET], want[TRACE_PACKET];
+                memset(&got_op, 0, sizeof got_op);
+                memset(&want_op, 0, sizeof want_op);
+                rgs_surfaces(mem, &rp, h, got, &got_op, &gc);
+                rgs_surfaces_per_ray(mem, &rp, h, want, &want_op, &wc);
+                assert_memory_equal(got, want, sizeof got);
+                assert_memory_equal(&got_op, &want_op, sizeof got_op);
+                assert_memory_equal(&gc, &wc, sizeof gc);
+            }
+    mi_free(b);
+    scene_free(&s);
+}
+#endif
+
+static void surfaces_lanes(void **state)
+{
+    (void)state;
+#ifndef F24_SIM_LANES
+    skip(); /* one definition only: the per-ray one */
+#else
+    for (int flat = 0; flat < 2; flat++) {
+        surfaces_lanes_of("cornell", flat);
+        surfaces_lanes_of("room", flat);
+    }
+#endif
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = { cmocka_unit_test(primary_rays), cmocka_unit_test(shading),
                                         cmocka_unit_test(reflection_geometry), cmocka_unit_test(refraction_snell),
                                         cmocka_unit_test(bilinear_texture), cmocka_unit_test(mirror_reflects),
-                                        cmocka_unit_test(glass_transmits), cmocka_unit_test(light_packet_lanes) };
+                                        cmocka_unit_test(glass_transmits), cmocka_unit_test(light_packet_lanes),
+                                        cmocka_unit_test(accumulate_rays_lanes), cmocka_unit_test(surface_frames_lanes),
+                                        cmocka_unit_test(surfaces_lanes) };
     return cmocka_run_group_tests_name("rgs", tests, NULL, NULL);
 }

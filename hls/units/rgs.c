@@ -94,9 +94,9 @@ static void op_surfaces(const uint32_t *mem, rgs_block *b, unit_op *op, rgs_coun
 {
     c->rays[b->cur.kind] += count_rays(b->cur.rays.active);
     op_set(op, OP_SURFACE, at_least_one(count_rays(b->cur.rays.active)));
-surfaces:
+    rgs_surfaces(mem, &b->cur.rays, b->trace.hits, b->sf, op, &c->trace);
+surface_state:
     for (int i = 0; i < TRACE_PACKET; i++) {
-        b->sf[i] = rgs_surface_at(mem, &b->cur.rays, i, &b->trace.hits[i], op, &c->trace);
         op->hits += b->sf[i].valid;
         b->k_of[i] = b->sf[i].valid ? rgs_mat_k(&mem[b->sf[i].mat]) : 0u;
         for (int k = 0; k < 3; k++) {
@@ -212,7 +212,6 @@ task_rays:
 /* RGS: the shaded colours accumulate into the pixels; the child packets are pushed. */
 static void op_accumulate(const uint32_t *mem, const rgs_config *cfg, rgs_block *b, unit_op *op, rgs_counters *c)
 {
-    const surface *sf = b->sf;
     rgs_task refl, trans;
     const uint32_t depth = b->cur.depth + 1;
     const int children = SAARCOR_CFG_SECONDARY && depth <= cfg->max_depth && depth <= RGS_MAX_DEPTH &&
@@ -220,13 +219,9 @@ static void op_accumulate(const uint32_t *mem, const rgs_config *cfg, rgs_block 
     task_init(&refl, depth, RAY_REFLECTION);
     task_init(&trans, depth, RAY_TRANSMISSION);
     op_set(op, OP_ACCUM, at_least_one(count_rays(b->cur.rays.active)));
-    b->children = 0;
     const uint32_t spawn = (children ? RGS_SPAWN_ON : 0u) | ((b->profile & PROFILE_LIVE_CHILDREN) ? RGS_SPAWN_LIVE : 0u);
-accumulate:
-    for (int i = 0; i < TRACE_PACKET; i++)
-        if (b->cur.rays.active >> i & 1u)
-            b->children += rgs_accumulate_ray(sf[i].valid ? &mem[sf[i].mat] : 0, &sf[i], i, b->cur.weight[i],
-                                              b->diffuse[i], b->highlight[i], b->eps, spawn, b->acc[i], &refl, &trans);
+    b->children = rgs_accumulate_rays(mem, b->sf, b->cur.rays.active, b->cur.weight, b->diffuse, b->highlight, b->eps,
+                                      spawn, b->acc, &refl, &trans);
     if (trans.rays.active)
         push(b, &trans, c);
     if (refl.rays.active)

@@ -104,6 +104,30 @@ void rgs_surface_frame(f24_vec3 o, f24_vec3 d, f24_t t, f24_t cos_n, f24_vec3 n,
  * (all zero) for an inactive ray or a miss. */
 surface rgs_surface_at(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h, unit_op *op,
                        trace_counters *c);
+/* rgs_surface_at's steps: the vertex normals of ray i's hit decoded into normals (n[c][k]: component
+ * c of normal k, shade_rec_normals) if it is shaded and its object has them (returns 1, else 0);
+ * then, with their interpolation vn (rgs_lerp_normal, zero without them) and flat (vn's squared
+ * length is zero), everything but the frame: its reads, the object-space normal n (vn, or the
+ * geometric normal if flat) and the world-to-object matrix w2o that the frame takes, the material,
+ * colours and tint (an invalid surface as rgs_surface_at's). */
+int rgs_vertex_normals(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h,
+                       f24_t normals[3][F24Q_LANES]);
+surface rgs_surface_material(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h, f24_vec3 vn,
+                             int flat, f24_vec3 *n, f24_affine *w2o, unit_op *op, trace_counters *c);
+/* rgs_surface_at of each ray of packet rp at its hit h[i] into sf[i] (op_surfaces). */
+void rgs_surfaces(const uint32_t *mem, const ray_packet *rp, const hit_record h[], surface sf[], unit_op *op,
+                  trace_counters *c);
+#ifdef F24_SIM_LANES
+/* A simulation build with vector packet values computes the packet's frames side by side
+ * (tb/sim/rgs_surface_lanes.c, the same bits); the per-ray loop of rgs_surface.c, the truth,
+ * then keeps this name, for the test that compares the two. */
+void rgs_surfaces_per_ray(const uint32_t *mem, const ray_packet *rp, const hit_record h[], surface sf[], unit_op *op,
+                          trace_counters *c);
+/* Its frames: rgs_surface_frame of each ray i in valid (rp's o[i] and d[i], h[i]'s t and cos_n,
+ * n[i], w2o[i]) into sf[i], as lanes. */
+void rgs_surface_frames(const ray_packet *rp, const hit_record h[], const f24_vec3 n[], const f24_affine w2o[],
+                        uint32_t valid, surface sf[]);
+#endif
 
 /* Diffuse and highlight weights of light l (its 16-word record) at the packet's surfaces and the
  * shadow packet that tests them (hls/units/rgs_light.c); rays whose weights are zero are not
@@ -141,19 +165,24 @@ static inline void rgs_shadow_ray(const uint32_t *l, const surface *sf, f24_t ep
     sh->tmax[i] = directional ? F24_POS_INF : F24_ONE;
 }
 
-/* A lit surface's Q12 weights for a light: the diffuse one from the cosine w with the normal, the
- * highlight from the cosine h with the mirror direction to the power 2^k (k squarings); returns
- * whether either is nonzero (the shadow ray is then traced). */
-static inline uint32_t rgs_light_weights(f24w w, f24w h, uint32_t k, uint32_t *diff, uint32_t *spec)
+/* A lit surface's Q12 weights for a light from its cosines in Q12 (rgs_q_of_w): the diffuse one
+ * from the cosine qw with the normal, the highlight from the cosine qh with the mirror direction to
+ * the power 2^k (k squarings); returns whether either is nonzero (the shadow ray is then traced). */
+static inline uint32_t rgs_light_weights_q(uint32_t qw, uint32_t qh, uint32_t k, uint32_t *diff, uint32_t *spec)
 {
-    uint32_t s = rgs_q_of_w(h);
+    uint32_t s = qh;
 phong_power:
     for (uint32_t j = 0; j < 8; j++)
         if (j < k)
             s = q_mul(s, s); /* cos^(2^k): k squarings */
-    *diff = q_mul(rgs_q_of_w(w), RGS_Q12_DIFFUSE);
+    *diff = q_mul(qw, RGS_Q12_DIFFUSE);
     *spec = s;
     return (*diff | s) != 0;
+}
+/* The same from the cosines w and h. */
+static inline uint32_t rgs_light_weights(f24w w, f24w h, uint32_t k, uint32_t *diff, uint32_t *spec)
+{
+    return rgs_light_weights_q(rgs_q_of_w(w), rgs_q_of_w(h), k, diff, spec);
 }
 
 /* Light colour (the record's words 1..3) scaled to a maximum component of one, in Q12. */
@@ -169,6 +198,10 @@ void rgs_add_light(uint32_t diffuse[3], uint32_t highlight[3], uint32_t diff, ui
  * reflection), each active if its largest weight component is at least 16 (hls/units/rgs_spawn.c). */
 void rgs_spawn_children(const uint32_t *m, const uint32_t weight[3], f24_t eps, int i, const surface *sf,
                         rgs_task *refl, rgs_task *trans);
+/* rgs_spawn_children's rays from their geometry: the Q12 weights and active bits of ray i's
+ * reflection ray (back, mirror) and transmission ray (t_o, t_d) into refl and trans. */
+void rgs_child_rays(const uint32_t *m, const uint32_t weight[3], int i, const surface *sf, f24_vec3 back,
+                    f24_vec3 mirror, f24_vec3 t_o, f24_vec3 t_d, rgs_task *refl, rgs_task *trans);
 
 /* rgs_accumulate_ray's spawn bits: the packet's depth allows children; the image's
  * PROFILE_LIVE_CHILDREN (only a surface that spawns an active child takes T_R steps). */
@@ -182,6 +215,28 @@ enum { RGS_SPAWN_ON = 1, RGS_SPAWN_LIVE = 2 };
 int rgs_accumulate_ray(const uint32_t *m, const surface *sf, int i, const uint32_t weight[3], const uint32_t diffuse[3],
                        const uint32_t highlight[3], f24_t eps, uint32_t spawn, uint32_t acc[3], rgs_task *refl,
                        rgs_task *trans);
+/* rgs_accumulate_ray's colour alone: the ray's colour times its weight added to acc. */
+void rgs_ray_colour(const uint32_t *m, const surface *sf, const uint32_t weight[3], const uint32_t diffuse[3],
+                    const uint32_t highlight[3], uint32_t acc[3]);
+/* rgs_accumulate_ray's rule after a valid surface spawned (spawned: the tasks' active bits before):
+ * its child rays take T_R steps unless RGS_SPAWN_LIVE and it spawned no active child. */
+static inline int rgs_child_steps(uint32_t spawn, uint32_t spawned, const rgs_task *refl, const rgs_task *trans)
+{
+    return !(spawn & RGS_SPAWN_LIVE) || ((refl->rays.active | trans->rays.active) != spawned);
+}
+/* rgs_accumulate_ray of each ray of the packet in active (surfaces sf, their materials read from
+ * mem); returns the number whose child rays take T_R steps (op_accumulate). */
+uint32_t rgs_accumulate_rays(const uint32_t *mem, const surface sf[], uint32_t active, const uint32_t weight[][3],
+                             const uint32_t diffuse[][3], const uint32_t highlight[][3], f24_t eps, uint32_t spawn,
+                             uint32_t acc[][3], rgs_task *refl, rgs_task *trans);
+#ifdef F24_SIM_LANES
+/* A simulation build with vector packet values computes the child rays' geometry of the packet
+ * side by side (tb/sim/rgs_accum_lanes.c, the same bits); the per-ray loop of rgs_accum.c, the
+ * truth, then keeps this name, for the test that compares the two. */
+uint32_t rgs_accumulate_rays_per_ray(const uint32_t *mem, const surface sf[], uint32_t active,
+                                     const uint32_t weight[][3], const uint32_t diffuse[][3], const uint32_t highlight[][3],
+                                     f24_t eps, uint32_t spawn, uint32_t acc[][3], rgs_task *refl, rgs_task *trans);
+#endif
 
 /* Texel coordinate of texture coordinate s over n texels (1 <= n < 2^31; centres at +1/2): the
  * wrapped integer part i0, its right neighbour i1 and the fraction in Q8 (0..256). */

@@ -1,26 +1,39 @@
-/* The surface the RGS shades at a hit (surface_at): see rgs_ops.h and docs/shading.md. Outside
- * rgs.c so that the unit capture can wrap it (rtl/rgs_surface.sv is checked against it). */
+/* The surface the RGS shades at a hit (surface_at) and the packet's: see rgs_ops.h and
+ * docs/shading.md. Outside rgs.c so that the unit capture can wrap rgs_surface_at
+ * (rtl/rgs_surface.sv is checked against it) and rgs_surfaces. */
 #include "rgs_ops.h"
 
 #include "shade_rec.h"
 
-/* Object-space shading normal at the hit (not normalized): the interpolated decoded vertex
- * normals, or the geometric normal (row 2 of the triangle transformation). */
-static f24_vec3 hit_normal(const uint32_t *mem, const hit_record *h, uint32_t obj, uint32_t shade, unit_op *op,
-                           trace_counters *c)
+#ifdef F24_SIM_LANES
+#define rgs_surfaces rgs_surfaces_per_ray /* the simulation build's frames are side by side (rgs_ops.h) */
+#endif
+
+/* Ray i of packet rp is active and hit something: the RGS shades it. */
+static int shaded(const ray_packet *rp, int i, const hit_record *h)
 {
-    f24_vec3 n = { 0, 0, 0 };
-    if (mem[obj + O_FLAGS] & SHADE_HAS_NORMALS) {
-        f24_t normals[3][F24Q_LANES];
-        shade_rec_normals(&mem[shade], normals); /* the three side by side, decoded once */
-        n = rgs_lerp_normal(normals, h->u, h->v);
-    }
-    if (f24_is_zero(rgs_dot3(n, n))) {
-        const uint32_t tri = mem[obj + O_TRIANGLES] + TRI_WORDS * h->triangle;
-        n = (f24_vec3){ f24_record_get(mem, tri, 8), f24_record_get(mem, tri, 9), f24_record_get(mem, tri, 10) };
-        shade_read(op, c, tri + 8 * F24_WIDTH / 32, F24_RECORD_SPAN(8, 3));
-    }
-    return n;
+    return h->instance != TRACE_NO_HIT && (rp->active >> i & 1u);
+}
+
+/* The hit's instance (into ia), object descriptor (into obj) and shading record addresses. */
+static uint32_t record_address(const uint32_t *mem, const hit_record *h, uint32_t *ia, uint32_t *obj)
+{
+    *ia = region_start(mem, R_INSTANCES) + INST_WORDS * h->instance;
+    *obj = region_start(mem, R_OBJECTS) + OBJ_WORDS * mem[*ia + 12];
+    return mem[*obj + O_SHADING] + shade_rec_words(mem[*obj + O_FLAGS]) * h->triangle;
+}
+
+int rgs_vertex_normals(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h,
+                       f24_t normals[3][F24Q_LANES])
+{
+    uint32_t ia, obj;
+    if (!shaded(rp, i, h))
+        return 0;
+    const uint32_t shade = record_address(mem, h, &ia, &obj);
+    if (!(mem[obj + O_FLAGS] & SHADE_HAS_NORMALS))
+        return 0;
+    shade_rec_normals(&mem[shade], normals); /* the three side by side, decoded once */
+    return 1;
 }
 
 #if SAARCOR_CFG_TEXTURES
@@ -82,25 +95,31 @@ material_factors:
 #endif
 }
 
-/* Its reads, in this order: instance, object descriptor (words 2..7), shading record, geometric
- * normal if needed, material, and per texture sampled (base colour, emissive) its entry and 4
- * texels: at most 15 (UNIT_OP_READS). */
-surface rgs_surface_at(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h, unit_op *op,
-                       trace_counters *c)
+/* rgs_surface_at but the frame: the reads (instance, object descriptor (words 2..7), shading
+ * record, geometric normal if needed, material, and per texture sampled (base colour, emissive) its
+ * entry and 4 texels: at most 15, UNIT_OP_READS), the object-space normal n (vn, or the geometric
+ * normal, row 2 of the triangle transformation, if flat) and the instance's world-to-object matrix
+ * w2o for the frame, the material, colours and tint. */
+surface rgs_surface_material(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h, f24_vec3 vn,
+                             int flat, f24_vec3 *n, f24_affine *w2o, unit_op *op, trace_counters *c)
 {
     surface sf = { 0 };
-    if (h->instance == TRACE_NO_HIT || !(rp->active >> i & 1u))
+    if (!shaded(rp, i, h))
         return sf;
-    const uint32_t ia = region_start(mem, R_INSTANCES) + INST_WORDS * h->instance;
-    const uint32_t obj = region_start(mem, R_OBJECTS) + OBJ_WORDS * mem[ia + 12], flags = mem[obj + O_FLAGS];
-    const uint32_t shade = mem[obj + O_SHADING] + shade_rec_words(flags) * h->triangle;
+    uint32_t ia, obj;
+    const uint32_t shade = record_address(mem, h, &ia, &obj), flags = mem[obj + O_FLAGS];
     const uint32_t *tail = &mem[shade + shade_rec_tail(flags)];
     shade_read(op, c, ia, 13);
     shade_read(op, c, obj + O_TRIANGLES, O_FLAGS - O_TRIANGLES + 1);
     shade_read(op, c, shade, shade_rec_words(flags));
     sf.valid = 1;
-    const f24_affine w2o = f24_affine_load(mem, ia);
-    rgs_surface_frame(rp->o[i], rp->d[i], h->t, h->cos_n, hit_normal(mem, h, obj, shade, op, c), &w2o, &sf);
+    *w2o = f24_affine_load(mem, ia);
+    *n = vn;
+    if (flat) {
+        const uint32_t tri = mem[obj + O_TRIANGLES] + TRI_WORDS * h->triangle;
+        *n = (f24_vec3){ f24_record_get(mem, tri, 8), f24_record_get(mem, tri, 9), f24_record_get(mem, tri, 10) };
+        shade_read(op, c, tri + 8 * F24_WIDTH / 32, F24_RECORD_SPAN(8, 3));
+    }
     sf.mat = region_start(mem, R_MATERIALS) + MAT_WORDS * shade_rec_material(flags, tail);
     shade_read(op, c, sf.mat, MAT_WORDS);
     sf.unlit = (mem[sf.mat + SHADE_M_FLAGS] & SHADE_MAT_UNLIT) != 0;
@@ -112,3 +131,26 @@ tint:
     return sf;
 }
 
+/* The normal's chain and the frame read nothing: computed before and after the material's reads,
+ * the reads keep their order. */
+surface rgs_surface_at(const uint32_t *mem, const ray_packet *rp, int i, const hit_record *h, unit_op *op,
+                       trace_counters *c)
+{
+    f24_t normals[3][F24Q_LANES];
+    f24_vec3 vn = { 0, 0, 0 }, n;
+    f24_affine w2o;
+    if (rgs_vertex_normals(mem, rp, i, h, normals))
+        vn = rgs_lerp_normal(normals, h->u, h->v);
+    surface sf = rgs_surface_material(mem, rp, i, h, vn, f24_is_zero(rgs_dot3(vn, vn)), &n, &w2o, op, c);
+    if (sf.valid)
+        rgs_surface_frame(rp->o[i], rp->d[i], h->t, h->cos_n, n, &w2o, &sf);
+    return sf;
+}
+
+void rgs_surfaces(const uint32_t *mem, const ray_packet *rp, const hit_record h[], surface sf[], unit_op *op,
+                  trace_counters *c)
+{
+surfaces:
+    for (int i = 0; i < TRACE_PACKET; i++)
+        sf[i] = rgs_surface_at(mem, rp, i, &h[i], op, c);
+}

@@ -38,7 +38,7 @@ static void walker_push(trav_walker *w, const trav_entry *far)
 /* An inner node: both children for the rays that need them (trav_node_split_held); the far side of
  * the packet's first ray waits on the stack. With push-down, a node that the whole packet
  * passes through on one side only becomes the new restart point while nothing waits. */
-static void walker_split(trav_walker *w, uint32_t w0, f24_t split)
+F24Q_INLINE void walker_split(trav_walker *w, uint32_t w0, f24_t split)
 {
     const uint32_t axis = w0 & 3u, child = w0 >> TRAV_NODE_CHILD_SHIFT, empty = w0 >> 2 & 3u;
     trav_entry l, r;
@@ -77,15 +77,15 @@ first_ray:
  * is done. Returns 1 at a leaf with entries. */
 /* The rays of entry e still alive whose closest hit does not lie before it (4 comparators, side
  * by side: every lane compares, the mask keeps the entry's). */
-static F24Q_FN uint32_t entry_rays(const trav_entry *e, const f24_t best_t[], uint32_t alive)
+F24Q_INLINE uint32_t entry_rays(const trav_entry *e, const f24_t best_t[], uint32_t alive)
 {
     return e->mask & alive & ~f24q_lt(f24q_of(best_t), f24h_get(&e->tn));
 }
 
 /* Where each ray of the leaf at entry e enters it, for the list and rebase units. */
-static F24Q_FN void leaf_entry(trav_walker *w, const trav_entry *e) { f24h_words(&e->tn, w->leaf_tn); }
+F24Q_INLINE void leaf_entry(trav_walker *w, const trav_entry *e) { f24h_words(&e->tn, w->leaf_tn); }
 
-int trav_stack_step(trav_walker *w, const uint32_t *mem, const f24_t best_t[], uint32_t alive, unit_op *op,
+F24Q_FN int trav_stack_step(trav_walker *w, const uint32_t *mem, const f24_t best_t[], uint32_t alive, unit_op *op,
                     trace_counters *c)
 {
     trav_entry *e = &w->cur;

@@ -600,7 +600,7 @@ void __wrap_rgs_block_begin(const uint32_t *mem, uint32_t x0, uint32_t y0, rgs_b
 }
 
 /* ---- RGS shading: each vertex normal decoded from a compact shading record (surface_at's
- * hit_normal decodes the three side by side, shade_rec_normals; for rtl/tb/tb_shade.cpp a line per
+ * rgs_vertex_normals decodes the three side by side, shade_rec_normals; for rtl/tb/tb_shade.cpp a line per
  * normal): the record's 4 normal words, the vertex k, the unit normal ---- */
 
 void __real_shade_rec_normals(const uint32_t *normals, f24_t out[3][F24Q_LANES]);
@@ -1210,6 +1210,25 @@ surface __wrap_rgs_surface_at(const uint32_t *mem, const ray_packet *rp, int i, 
     return capturing() ? captured_surface(mem, rp, i, h, op, c) : __real_rgs_surface_at(mem, rp, i, h, op, c);
 }
 
+/* The packet's surfaces (op_surfaces): while capturing, ray by ray through the wrapper above (the
+ * simulation build's frames side by side call no rgs_surface_frame, and the per-ray loop calls
+ * rgs_surface_at in its own object file, which no wrapper sees). */
+void __real_rgs_surfaces(const uint32_t *mem, const ray_packet *rp, const hit_record h[], surface sf[], unit_op *op,
+                         trace_counters *c);
+void __wrap_rgs_surfaces(const uint32_t *mem, const ray_packet *rp, const hit_record h[], surface sf[], unit_op *op,
+                         trace_counters *c);
+
+void __wrap_rgs_surfaces(const uint32_t *mem, const ray_packet *rp, const hit_record h[], surface sf[], unit_op *op,
+                         trace_counters *c)
+{
+    if (!capturing()) {
+        __real_rgs_surfaces(mem, rp, h, sf, op, c);
+        return;
+    }
+    for (int i = 0; i < TRACE_PACKET; i++)
+        sf[i] = __wrap_rgs_surface_at(mem, rp, i, &h[i], op, c);
+}
+
 /* Each active ray's share of op_accumulate (for rtl/tb/tb_accum.cpp): the material's words 13..15
  * (0 for an invalid surface), the surface's valid, T_R origin, D^, N^, t_hat, entering, base,
  * emission, tint; the ray i, its weight, diffuse and highlight sums, e, the spawn bits, the pixel's
@@ -1259,4 +1278,28 @@ int __wrap_rgs_accumulate_ray(const uint32_t *m, const surface *sf, int i, const
 {
     return capturing() ? captured_accumulate(m, sf, i, weight, diffuse, highlight, eps, spawn, acc, refl, trans)
                        : __real_rgs_accumulate_ray(m, sf, i, weight, diffuse, highlight, eps, spawn, acc, refl, trans);
+}
+
+/* The packet's accumulation (op_accumulate): while capturing, ray by ray through the wrapper above,
+ * as the per-ray datapath issues it (the simulation build's side-by-side version calls no unit,
+ * and the per-ray loop calls rgs_accumulate_ray in its own object file, which no wrapper sees). */
+uint32_t __real_rgs_accumulate_rays(const uint32_t *mem, const surface sf[], uint32_t active, const uint32_t weight[][3],
+                                    const uint32_t diffuse[][3], const uint32_t highlight[][3], f24_t eps,
+                                    uint32_t spawn, uint32_t acc[][3], rgs_task *refl, rgs_task *trans);
+uint32_t __wrap_rgs_accumulate_rays(const uint32_t *mem, const surface sf[], uint32_t active, const uint32_t weight[][3],
+                                    const uint32_t diffuse[][3], const uint32_t highlight[][3], f24_t eps,
+                                    uint32_t spawn, uint32_t acc[][3], rgs_task *refl, rgs_task *trans);
+
+uint32_t __wrap_rgs_accumulate_rays(const uint32_t *mem, const surface sf[], uint32_t active, const uint32_t weight[][3],
+                                    const uint32_t diffuse[][3], const uint32_t highlight[][3], f24_t eps,
+                                    uint32_t spawn, uint32_t acc[][3], rgs_task *refl, rgs_task *trans)
+{
+    if (!capturing())
+        return __real_rgs_accumulate_rays(mem, sf, active, weight, diffuse, highlight, eps, spawn, acc, refl, trans);
+    uint32_t children = 0;
+    for (int i = 0; i < TRACE_PACKET; i++)
+        if (active >> i & 1u)
+            children += (uint32_t)__wrap_rgs_accumulate_ray(sf[i].valid ? &mem[sf[i].mat] : 0, &sf[i], i, weight[i],
+                                                            diffuse[i], highlight[i], eps, spawn, acc[i], refl, trans);
+    return children;
 }

@@ -48,7 +48,8 @@
  * rebase_origin, xform_point_wide, xform_vector_wide (called from trace.c, in another object),
  * trav_scene_clip, trav_object_clip, trav_start, trav_walk, trace_begin, trace_step,
  * shade_rec_normals, rgs_sample_bilinear, rgs_lerp, rgs_lerp_normal, rgs_surface_frame, rgs_light_packet,
- * rgs_light_colour, rgs_add_light and rgs_spawn_children (called from rgs.c; trace_packet's own
+ * rgs_light_colour, rgs_add_light, rgs_spawn_children, rgs_surface_at, rgs_surfaces, rgs_accumulate_ray and
+ * rgs_accumulate_rays (a packet's surfaces and accumulation, recorded ray by ray) (called from rgs.c; trace_packet's own
  * calls are not seen), and the wrappers record the calls
  * while capturing is on (at most `limit` transactions per unit; recorded in call order, which with several host threads
  * interleaves).

@@ -6,11 +6,12 @@
  * The per-ray datapath computes the light's weights and shadow ray of each surface in turn, each
  * operation one scalar working value; here every operation of the chain computes the four rays
  * at once, one lane each (about a third of the instructions: tests/test_rgs.c light_packet_lanes
- * compares both on random surfaces and lights). Every lane computes; the surfaces that take light
- * keep their results. A surface's mirror direction is rgs_reflect's T_R product on lanes, and the
- * chain reads its results as the values their words hold (the round trip through the words keeps
- * every value; a NaN's sign, which it may not keep, reaches no result: every operation on a NaN
- * gives the default NaN, and a comparison with one is false).
+ * compares both on random surfaces and lights), the cosines' conversions to Q12 included. Every
+ * lane computes; the surfaces that take light keep their results. A surface's mirror direction
+ * is rgs_reflect's T_R product on lanes, and the chain reads its results as the values their words
+ * hold (the round trip through the words keeps every value; a NaN's sign, which it may not keep,
+ * reaches no result: every operation on a NaN gives the default NaN, and a comparison with one is
+ * false).
  */
 #include "rgs_ops.h" /* (its f24.h reads the build's F24_SIM_HEADER, which defines F24_SIM_LANES) */
 
@@ -47,9 +48,21 @@ F24V_INLINE void surface_lanes(const surface sf[], f24v p[3], f24v n[3], f24v d[
     }
 }
 
-/* The weights and shadow rays of the rays whose surface takes light, from the lanes. */
+/* rgs_q_of_w per lane: x 4096 + 1/2 rounded twice, then f24w_to_i32 (toward zero, NaN 0,
+ * saturating) clamped to [0, 65535], which is the rounded value clamped first, NaN to 0. */
+F24V_INLINE void q_of_lanes(f24v x, uint32_t out[TRACE_PACKET])
+{
+    const int32_t scale[F24Q_LANES] = { 4096, 4096, 4096, 4096 }, one[F24Q_LANES] = { 1, 1, 1, 1 },
+                  two[F24Q_LANES] = { 2, 2, 2, 2 };
+    const f24v y = f24v_add(f24v_mul(x, f24v_from_i32(scale)), f24v_div(f24v_from_i32(one), f24v_from_i32(two)));
+    for (int i = 0; i < TRACE_PACKET; i++)
+        out[i] = !(y[i] > 0) ? 0u : y[i] >= RGS_Q12_MAX ? RGS_Q12_MAX : (uint32_t)y[i];
+}
+
+/* The weights and shadow rays of the rays whose surface takes light, from the lanes (qw, qh: the
+ * cosines in Q12). */
 static void light_rays(const uint32_t *l, const surface sf[], f24_t eps, const f24_t dir[3][TRACE_PACKET],
-                       const f24_t tmin[], uint32_t lit, const double w[], const double highlight[], ray_packet *sh,
+                       const f24_t tmin[], uint32_t lit, const uint32_t qw[], const uint32_t qh[], ray_packet *sh,
                        uint32_t diff[], uint32_t spec[], const uint32_t k_of[])
 {
     sh->active = 0;
@@ -57,7 +70,7 @@ static void light_rays(const uint32_t *l, const surface sf[], f24_t eps, const f
         if (!rgs_takes_light(&sf[i], sh, diff, spec, i))
             continue;
         rgs_shadow_ray(l, &sf[i], eps, (f24_vec3){ dir[0][i], dir[1][i], dir[2][i] }, tmin[i], sh, i);
-        if ((lit >> i & 1u) && rgs_light_weights(w[i], highlight[i], k_of[i], &diff[i], &spec[i]))
+        if ((lit >> i & 1u) && rgs_light_weights_q(qw[i], qh[i], k_of[i], &diff[i], &spec[i]))
             sh->active |= 1u << i; /* else the light is behind the surface, or its weights are zero */
     }
 }
@@ -87,9 +100,9 @@ F24V_FN void rgs_light_packet(const uint32_t *l, const surface sf[], f24_t eps, 
     for (int k = 0; k < 3; k++)
         f24v_bits(to_light[k], dir[k]);
     f24v_bits(f24v_div(f24v_splat(eps), dist), tmin);
-    double wl[TRACE_PACKET], hl[TRACE_PACKET];
-    memcpy(wl, &w, sizeof wl);
-    memcpy(hl, &highlight, sizeof hl);
-    light_rays(l, sf, eps, dir, tmin, lit, wl, hl, sh, diff, spec, k_of);
+    uint32_t qw[TRACE_PACKET], qh[TRACE_PACKET];
+    q_of_lanes(w, qw);
+    q_of_lanes(highlight, qh);
+    light_rays(l, sf, eps, dir, tmin, lit, qw, qh, sh, diff, spec, k_of);
 }
 #endif
