@@ -295,7 +295,10 @@ O0_BUILD := $(BUILD)/O0
 # are another make.
 # The fp32 program: tests/test_mpi.sh's jobs of two formats (not built under ASan, whose build of
 # the simulator at a second format cost make test 25 s and was run by no test).
-TEST_RTL_BENCHES := f24_ops units sum list cache sched rgs wide trav core shade rgs_ctrl
+# The RTL models of make test: the DynRTP first (the longest build: make starts it first), whose
+# frame (tests/test_rtl_render.sh) checks every block of the RGS's controllers and every packet of
+# the core; tb_rgs_ctrl, the controllers' own bench on more blocks, is make rtl-test's.
+TEST_RTL_BENCHES := dynrtp f24_ops units sum list cache sched rgs wide trav core shade
 .PHONY: test-builds test-build-host test-build-main test-build-rtl test-build-asan test-build-hw test-build-baseline test-build-robust test-build-O0
 test-builds: test-build-asan test-build-main test-build-rtl test-build-hw test-build-baseline test-build-robust test-build-O0
 test-build-host:
@@ -334,7 +337,7 @@ $(foreach p,$(TEST_SHELL) $(UNIT_TESTS),$(call test_run,$(p))): test-build-main
 $(foreach p,tests/test_golden_asan.sh tests/test_fuzz.sh $(ASAN_UNIT_TESTS),$(call test_run,$(p))): test-build-asan
 $(call test_run,tests/test_sim_arith.sh): test-build-hw test-build-baseline
 $(call test_run,tests/test_golden.sh): test-build-hw
-$(call test_run,tests/test_rtl.sh): test-build-rtl
+$(call test_run,tests/test_rtl.sh) $(call test_run,tests/test_rtl_render.sh): test-build-rtl
 $(call test_run,tests/test_determinism.sh): test-build-O0
 $(call test_run,tests/test_stress.sh): test-build-robust
 $(TEST_RUNS)/%.done:

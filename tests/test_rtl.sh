@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# RTL tests in make test (the short form of make rtl-test): verilator --lint-only -Wall is clean
-# for every module in rtl/ and Yosys parses them (make synth); make synth's totals and LUT6 levels of
-# a hierarchical netlist (the whole DynRTP's method) equal Yosys's stat and the levels of the netlist
-# flattened after mapping on a small hierarchy (cache_read); the fp24 operators (with the RGS's
+# RTL tests in make test (the short form of make rtl-test): verilator -Wall is clean for the
+# DynRTP, under which every module in rtl/ is instantiated (its model's build), and Yosys parses
+# them (make synth); make synth's totals and LUT6 levels of a hierarchical netlist (the whole
+# DynRTP's method) equal Yosys's stat and the levels of the netlist flattened after mapping on a
+# small hierarchy (cache_read); the fp24 operators (with the RGS's
 # square root and integer conversion) match the C model bit for bit on the edge sets, 10^5 random
 # vectors and the golden hex vectors; the datapath units match on random vectors and on
 # transactions captured while rendering the room (saarcor render --capture-unit-io); the exact dot
@@ -32,8 +33,10 @@
 # rgs_surface_at on the surfaces of those frames, the built-in vertex-colour and emissive
 # scenes and cornell without vertex normals and with zero ones (the geometric normal), up to 8
 # surfaces in flight, its reads the C's words, and a ray's accumulation (rtl/rgs_accum.sv) matches
-# rgs_accumulate_ray (these two with SAARCOR_RTL_MUTANTS=all, as make rtl-test runs it); the per-block control (rtl/rgs_ctrl.sv) matches rgs_render_block's pixels and
-# primary hits and rgs_step's packets on every block of cornell and part of the room; the
+# rgs_accumulate_ray, and the per-block control (rtl/rgs_ctrl.sv) matches rgs_render_block's
+# pixels and primary hits and rgs_step's packets on every block of cornell and part of the room
+# (these three with SAARCOR_RTL_MUTANTS=all, as make rtl-test runs it; make test checks the blocks
+# of cornell through the DynRTP's frame, tests/test_rtl_render.sh); the
 # benches catch mutants (a rounder that never rounds ties to even; with SAARCOR_RTL_MUTANTS=all, as
 # make rtl-test runs it, also a cache without its tag forwarding, a mailbox that never
 # moves on, a scheduler whose pointer never moves on, a walk that pushes the near child, a
@@ -63,18 +66,19 @@ trap 'rm -rf "$T"' EXIT
 source tests/case_lib.sh
 
 t_lint() {
-  # the DynRTP as the top, with 2 block controllers instead of 8 (the same generate loops and
-  # arbiters, 19 s of elaboration instead of 63): every module of rtl/ is instantiated under it, so
-  # each is linted with the parameters the design gives it; -y rtl reads module NAME from
-  # rtl/NAME.sv. make rtl-lint (make rtl-test, make check-full) lints every module as the top with
-  # its default parameters and the DynRTP at 8 (in make test: 40 s of CPU for the 49 runs)
-  local top
+  # Verilator -Wall over the DynRTP (the Makefile's VERILATOR_FLAGS): its model, built for make
+  # test's frame (tests/test_rtl_render.sh), instantiates every module of rtl/ with the parameters
+  # the design gives it (checked here), so its build log is the lint; a separate --lint-only run
+  # took make test 27 s of CPU for the same passes. make rtl-lint (make rtl-test, make check-full)
+  # lints every module as the top with its default parameters.
+  local top log=$B/rtl/e7m16/build_dynrtp.log
   for top in $(basename -s .sv rtl/*.sv); do
     grep -q -E "^\s*$top\s+(#\s*\(|u_[a-z0-9_]*\s*\()" rtl/*.sv || [[ $top == dynrtp ]] ||
       { echo "rtl/$top.sv is instantiated by no module: lint it as a top here"; return 1; }
   done
-  verilator --lint-only -Wall -y rtl rtl/dynrtp.sv --top-module dynrtp -GRGS_BLOCKS=2
-  echo "verilator --lint-only -Wall: the DynRTP and its $(ls rtl/*.sv | wc -l) modules clean"
+  [[ -x $B/rtl/e7m16/tb_dynrtp && -f $log ]] || { echo "$B/rtl/e7m16/tb_dynrtp is not built (make rtl)"; return 1; }
+  ! grep -E "^%(Warning|Error)" "$log" || { echo "verilator -Wall: the DynRTP's build has the warnings above"; return 1; }
+  echo "verilator -Wall: the DynRTP and its $(ls rtl/*.sv | wc -l) modules clean ($log)"
   # make synth reads every module with Yosys, whose SystemVerilog subset is smaller than Verilator's
   yosys -q -p "$(for f in rtl/*.sv; do printf 'read_verilog -sv %s; ' "$f"; done)" >/dev/null 2>"$T/yosys.err" ||
     { grep ERROR "$T/yosys.err"; return 1; }
@@ -520,12 +524,13 @@ run_case rtl_exact_sum_matches_c_model t_exact_sum
 run_case rtl_list_unit_and_caches_match_c_model t_list_and_cache
 run_case rtl_rgs_raygen_and_tile_ctrl_match_c_model t_rgs
 run_case rtl_shade_datapath_matches_c_model_and_capture t_shade
-run_case rtl_rgs_ctrl_matches_c_model t_rgs_ctrl
 if extra_mutants; then
+  # the block controllers on more blocks than make test's DynRTP frame (tests/test_rtl_render.sh)
+  run_case rtl_rgs_ctrl_matches_c_model t_rgs_ctrl
   # make synth's method for the whole DynRTP (make synth runs in make check-full, as this does)
   run_case synth_hierarchy_totals_and_levels t_synth_levels
   # the unit benches of rgs_ctrl's surface and accumulation (make test checks both inside whole
-  # blocks through tb_rgs_ctrl; their models are built by make rtl-test)
+  # blocks through the DynRTP's frame; their models are built by make rtl-test)
   run_case rtl_surface_matches_c_model_and_capture t_surface
   run_case rtl_accum_matches_c_model_and_capture t_accum
   run_case rtl_sqrt_bench_catches_mutant t_sqrt_mutant_caught

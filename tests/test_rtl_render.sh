@@ -19,7 +19,13 @@ source tests/case_lib.sh
 
 SIZE=(--width 32 --height 24 --max-depth 3)
 
+# the model: make test builds it (test-build-rtl, about 2 CPU minutes), as make rtl does
+model_built() {
+  [[ -x $B/rtl/e7m16/tb_dynrtp ]] || { echo "$B/rtl/e7m16/tb_dynrtp is not built (make rtl)"; return 1; }
+}
+
 t_cornell_matches_functional() {
+  model_built
   "$BIN" render cornell "${SIZE[@]}" --mode rtl -o "$T/r.png" --aov "$T/r.exr" --stats "$T/r.json" >"$T/r.log"
   "$BIN" render cornell "${SIZE[@]}" -o "$T/f.png" --aov "$T/f.exr" --stats "$T/f.json" >/dev/null
   cmp "$T/r.png" "$T/f.png"
@@ -46,6 +52,7 @@ PY
 VCD_FRAME=(cornell --width 16 --height 12 --max-depth 1 --mode rtl --clock-mhz 100)
 
 t_vcd_matches_stats() {
+  model_built
   "$BIN" render "${VCD_FRAME[@]}" -o "$T/n.png" --stats "$T/n.json" >/dev/null
   "$BIN" render "${VCD_FRAME[@]}" -o "$T/v.png" --stats "$T/v.json" --vcd "$T/all.vcd" --vcd-cycles 0:1000000000 >/dev/null
   "$BIN" render "${VCD_FRAME[@]}" -o "$T/w.png" --vcd "$T/w.vcd" --vcd-cycles 1000:1500 >/dev/null
@@ -114,17 +121,8 @@ t_bad_inputs() { # one line and exit 2 each: a traversal algorithm without RTL, 
   cat "$T/err"
 }
 
-# the model takes about 7 CPU minutes to build (127 MB of C++ for 8 block controllers and 32
-# threads), more than make test's budget allows: make rtl builds it, make rtl-test runs this case
-if [[ -x $B/rtl/e7m16/tb_dynrtp ]]; then
-  run_case rtl_render_cornell_matches_functional t_cornell_matches_functional
-  run_case rtl_render_vcd_matches_stats t_vcd_matches_stats
-else
-  echo "[ RUN      ] rtl_render_cornell_matches_functional"
-  echo "[  SKIPPED ] rtl_render_cornell_matches_functional: $B/rtl/e7m16/tb_dynrtp is not built (make rtl; make rtl-test runs it)"
-  echo "[ RUN      ] rtl_render_vcd_matches_stats"
-  echo "[  SKIPPED ] rtl_render_vcd_matches_stats: $B/rtl/e7m16/tb_dynrtp is not built"
-fi
+run_case rtl_render_cornell_matches_functional t_cornell_matches_functional
+run_case rtl_render_vcd_matches_stats t_vcd_matches_stats
 run_case rtl_render_without_model_says_make_rtl t_missing_model
 run_case rtl_render_rejects_what_has_no_rtl t_bad_inputs
 exit $((fails != 0))
