@@ -3,7 +3,7 @@
 # 32x24 with shadows and secondary rays gives the PNG, the primary hits (the AOV's t, normal, node,
 # triangle, u, v) and the counters of --mode functional bit for bit, every packet of the frame
 # checked against the C core by the harness, and --stats carries the RTL's cycles and unit usage;
-# --vcd (a 16x12 frame) leaves the PNG and --stats as they are, has cycle mode's names, its issues,
+# --vcd (an 8x8 frame) leaves the PNG and --stats as they are, has cycle mode's names, its issues,
 # lookups and misses add up to --stats and a --vcd-cycles window holds the whole run's values;
 # without the model one line says to run make rtl (exit 2); options the RTL has no hardware for get
 # one-line errors (the frame only where make rtl has built the model). Prints cmocka-style lines.
@@ -49,7 +49,7 @@ PY
 }
 
 # --vcd: a small frame at 100 MHz (a cycle is 10000 ps) with and without the waveform
-VCD_FRAME=(cornell --width 16 --height 12 --max-depth 1 --mode rtl --clock-mhz 100)
+VCD_FRAME=(cornell --width 8 --height 8 --max-depth 1 --mode rtl --clock-mhz 100)
 
 t_vcd_matches_stats() {
   model_built
