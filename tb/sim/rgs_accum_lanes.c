@@ -12,22 +12,9 @@
  * their results, whose weights and active bits rgs_child_rays sets as the per-ray function does.
  * The colours stay per ray (integer Q12, rgs_ray_colour).
  */
-#include "rgs_ops.h" /* (its f24.h reads the build's F24_SIM_HEADER, which defines F24_SIM_LANES) */
+#include "rgs_lanes.h"
 
 #ifdef F24_SIM_LANES
-
-/* Lane i of each vector: component r of ray i's vector. */
-F24V_INLINE void vec_lanes(const f24_vec3 v[TRACE_PACKET], f24v out[3])
-{
-    f24_t w[3][TRACE_PACKET];
-    for (int i = 0; i < TRACE_PACKET; i++)
-        w[0][i] = v[i].x, w[1][i] = v[i].y, w[2][i] = v[i].z;
-    for (int r = 0; r < 3; r++)
-        out[r] = f24v_of(w[r]);
-}
-
-/* Lane i of ray i's vector. */
-F24V_INLINE f24_vec3 lane_vec(const f24_t w[3][TRACE_PACKET], int i) { return (f24_vec3){ w[0][i], w[1][i], w[2][i] }; }
 
 /* A T_R step per lane (xform_step's order and roundings): row r of the surfaces' T_R times
  * (p0, p1, p2) (+ the translation for a point), into words by component. */

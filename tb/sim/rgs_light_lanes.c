@@ -13,15 +13,9 @@
  * reaches no result: every operation on a NaN gives the default NaN, and a comparison with one is
  * false).
  */
-#include "rgs_ops.h" /* (its f24.h reads the build's F24_SIM_HEADER, which defines F24_SIM_LANES) */
+#include "rgs_lanes.h"
 
 #ifdef F24_SIM_LANES
-
-/* ((a.x b.x + a.y b.y) + a.z b.z) per lane: f24w_dot3 (vec3.h) of each ray */
-F24V_INLINE f24v dot3_lanes(const f24v a[3], const f24v b[3])
-{
-    return f24v_add(f24v_add(f24v_mul(a[0], b[0]), f24v_mul(a[1], b[1])), f24v_mul(a[2], b[2]));
-}
 
 /* rgs_reflect (rgs.c) per lane: T_R's rows (d, n, d) times (1, -(c + c), 0) for c = n.d, in
  * xform_vector's order and roundings */
