@@ -7,7 +7,7 @@
 //     units' results and the caches' fills wake them. The bit is seen by the unit's issue logic
 //     from the next cycle on;
 //   * a unit whose issue slots are free issues the first ready thread at or after its pointer,
-//     cyclically (issue_valid_o, issue_thread_o; issue_slots_o is that thread's slots_i, the issue
+//     cyclically (issue_valid_o, issue_thread_o, one-hot in issue_grant_o; issue_slots_o is that thread's slots_i, the issue
 //     slots of its operation: rays transformed, intersected or shaded); the pointer moves past it
 //     and the unit is busy for `slots` cycles (the next issue comes that many cycles later);
 //   * the issued thread's bit is cleared in the same cycle.
@@ -32,6 +32,7 @@ module thread_sched #(
   input  logic [THREADS*SLOT_BITS-1:0]   slots_i,      // per thread: slots of its decided operation
   output logic [UNITS-1:0]               issue_valid_o,
   output logic [UNITS*TW-1:0]            issue_thread_o,
+  output logic [UNITS*THREADS-1:0]       issue_grant_o,  // issue_thread_o one-hot (zero without an issue)
   output logic [UNITS*SLOT_BITS-1:0]     issue_slots_o
 );
   // public_flat_rd: read by tb_dynrtp for render --mode rtl --vcd (queue_depth)
@@ -62,6 +63,9 @@ module thread_sched #(
     assign go = any && busy_q[u] == '0;
 
     assign issue_valid_o[u] = go;
+    // the pick's one-hot grant as it is (a requester implies any): the caller's grants to the
+    // threads need no decoder after the index's OR trees
+    assign issue_grant_o[u*THREADS +: THREADS] = busy_q[u] == '0 ? grant : '0;
     assign issue_slots_o[u*SLOT_BITS +: SLOT_BITS] = slots;
 
     always_ff @(posedge clk_i or negedge rst_ni) begin

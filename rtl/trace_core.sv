@@ -13,7 +13,11 @@
 // 1 for the traversal and list units, the ray steps of a batch for the per-ray units); an issued
 // thread whose unit refuses it (trav_unit with its slots full) raises it again. An issue of s
 // slots holds the unit for its thread s cycles, one ray step a cycle (feed_left, feed_thread), as
-// the cycle model charges an operation of n rays n issue slots. Each unit takes one step per
+// the cycle model charges an operation of n rays n issue slots. A thread's grant is the
+// scheduler's one-hot pick (or the feeding thread's, registered) and the unit's ready, which
+// does not look at the offered operation (trav_unit's and list_unit's ONE_PER_THREAD: a thread
+// waits for its result), so no operand multiplexer lies between a thread's state and its grant
+// (10 LUT6 levels at 2 threads before, docs/synth.md). Each unit takes one step per
 // cycle, so steps of different threads are in flight in every unit at once; the units without a
 // thread id of their own (rebase, wide transformation, the triangle test, adders) carry the issued thread beside their pipeline in an f24_pipe of their latency
 // (their outputs are always taken, so the latency is fixed). Results go to their thread alone, in
@@ -223,6 +227,10 @@ module trace_core #(
   logic [THREADS-1:0] one [THREADS];
   logic [3:0] issue_slots [UNITS], feed_left [UNITS];
   logic [TW-1:0] feed_thread [UNITS];
+  // sel one-hot: the feeding thread's (registered) or the scheduler's pick, so that a thread's
+  // grant is a few LUT6 levels from registers (a decoder after the pick's index was 2 more)
+  logic [THREADS-1:0] feed_grant [UNITS], sel_grant [UNITS];
+  logic [UNITS*THREADS-1:0] issue_grant;
   logic [UNITS-1:0] feeding, accept, unit_valid /*verilator public_flat_rd*/;
   logic [UNITS*4-1:0] issue_slots_v;
   always_comb
@@ -234,9 +242,10 @@ module trace_core #(
     assign unit_valid[u] = issue_valid[u] || feeding[u];
     // the thread whose operands go into the unit: the feeding one, else the issued one
     assign sel[u] = feeding[u] ? feed_thread[u] : issue_thread[u*TW +: TW];
-    assign grant[u] = unit_valid[u] && unit_ready[u] ? one[sel[u]] : '0;
+    assign sel_grant[u] = feeding[u] ? feed_grant[u] : issue_grant[u*THREADS +: THREADS];
+    assign grant[u] = unit_ready[u] ? sel_grant[u] : '0;
     assign set[u*THREADS +: THREADS] = (req[u] & ~req_q[u]) |
-                                       (issue_valid[u] && !accept[u] ? one[issue_thread[u*TW +: TW]] : '0);
+                                       (issue_valid[u] && !accept[u] ? issue_grant[u*THREADS +: THREADS] : '0);
     always_ff @(posedge clk_i or negedge rst_ni)
       if (!rst_ni) begin
         req_q[u] <= '0;
@@ -246,12 +255,13 @@ module trace_core #(
         if (accept[u]) begin
           feed_left[u] <= issue_slots[u] - 4'd1;
           feed_thread[u] <= sel[u];
+          feed_grant[u] <= sel_grant[u];
         end else if (feeding[u] && unit_ready[u]) feed_left[u] <= feed_left[u] - 4'd1;
       end
   end
   thread_sched #(.THREADS(THREADS), .UNITS(UNITS), .SLOT_BITS(4)) u_sched (
     .clk_i(clk_i), .rst_ni(rst_ni), .set_i(set), .slots_i(t_slots), .issue_valid_o(issue_valid),
-    .issue_thread_o(issue_thread), .issue_slots_o(issue_slots_v));
+    .issue_thread_o(issue_thread), .issue_grant_o(issue_grant), .issue_slots_o(issue_slots_v));
 
   // the steps the units took this cycle (a batch counts its rays)
   assign issue_o = unit_valid & unit_ready;
@@ -259,8 +269,8 @@ module trace_core #(
   // ---- the units ----
   logic trav_valid_o;
   logic [TW-1:0] trav_thread, node_thread;
-  trav_unit #(.E(E), .M(M), .THREADS(THREADS), .ADD_STAGES(ADD_STAGES), .DIV_STAGES(DIV_STAGES),
-              .CMP_STAGES(CMP_STAGES)) u_trav (
+  trav_unit #(.E(E), .M(M), .THREADS(THREADS), .ONE_PER_THREAD(1'b1), .ADD_STAGES(ADD_STAGES),
+              .DIV_STAGES(DIV_STAGES), .CMP_STAGES(CMP_STAGES)) u_trav (
     .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(unit_valid[U_TRAV]), .ready_o(unit_ready[U_TRAV]),
     .thread_i(sel[U_TRAV]), .level_i(t_trav_level[sel[U_TRAV]]), .kind_i(t_trav_kind[sel[U_TRAV]]),
     .o_i(t_trav_o[sel[U_TRAV]]), .d_i(t_trav_d[sel[U_TRAV]]), .tn_i(t_trav_tn[sel[U_TRAV]]),
@@ -276,7 +286,7 @@ module trace_core #(
 
   logic list_valid_o;
   logic [TW-1:0] list_thread;
-  list_unit #(.THREADS(THREADS)) u_list (
+  list_unit #(.THREADS(THREADS), .ONE_PER_THREAD(1'b1)) u_list (
     .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(unit_valid[U_LIST]), .ready_o(unit_ready[U_LIST]),
     .thread_i(sel[U_LIST]), .level_i(t_list_level[sel[U_LIST]]), .clear_i(t_list_clear[sel[U_LIST]]),
     .lists_i(t_list_lists[sel[U_LIST]]), .first_i(t_list_first[sel[U_LIST]]), .k_i(t_list_k[sel[U_LIST]]),

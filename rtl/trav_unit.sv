@@ -37,7 +37,8 @@
 // Structure: a linear pipeline, one operation entering per cycle, no per-operation state machine;
 // each operation's context (operands, walker state, step results) flows down it:
 //   A  input: taken unless an operation of the same thread and level is in flight (a bit per
-//      {thread, level}; in the DynRTP a thread has one operation in flight anyway) or SLOTS are;
+//      {thread, level}; in the DynRTP a thread has one operation in flight anyway, and trace_core
+//      sets ONE_PER_THREAD so that this is not checked) or SLOTS are;
 //      a start's state is walker_init's, a clip's intervals trav_object_clip's. A start leaves
 //      here: it reads no node and compares nothing, so its state and result are written from a
 //      one-entry buffer in the next cycle in which Z writes none (nothing enters while that buffer
@@ -92,6 +93,10 @@ module trav_unit #(
   parameter int THREADS = 64,
   parameter int DEPTH = 64,       // TRACE_STACK: stack entries per thread and level (a power of 2)
   parameter int SLOTS = 64,       // operations in flight at most (a power of 2): the queues' depth
+  // 1: the caller never offers an operation of a thread and level while one of them is in flight
+  // (trace_core: a thread waits for its result), so ready_o does not look at thread_i and level_i;
+  // their operand multiplexer stays off the path from the unit's ready to the caller's grant
+  parameter bit ONE_PER_THREAD = 0,
   parameter int AW = 32,          // word addresses and node indices
   parameter int ADD_STAGES = 6,
   parameter int DIV_STAGES = 11,
@@ -205,7 +210,8 @@ module trav_unit #(
   endfunction
 
   // ---- A: the input. An operation enters unless one of its thread and level is in flight (its
-  // walker state is read here and written as its result is made) or SLOTS operations are.
+  // walker state is read here and written as its result is made; not checked with ONE_PER_THREAD)
+  // or SLOTS operations are.
   logic [2*THREADS-1:0] busy;
   logic [NW-1:0] in_flight;
   logic take, out_pop;
@@ -213,7 +219,7 @@ module trav_unit #(
   // sb_valid: a start waits for the state memory's write port and the output queue (below); no
   // operation enters meanwhile, so the pipeline drains and the start cannot wait forever
   logic sb_valid;
-  assign ready_o = !busy[{thread_i, level_i}] && in_flight != NW'(SLOTS) && !sb_valid;
+  assign ready_o = (ONE_PER_THREAD || !busy[{thread_i, level_i}]) && in_flight != NW'(SLOTS) && !sb_valid;
   assign take = valid_i && ready_o;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin

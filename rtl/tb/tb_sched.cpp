@@ -78,11 +78,19 @@ void drive(const uint64_t set[UNITS], const uint32_t slots[THREADS])
     }
 }
 
-// the RTL's issue of unit u in this cycle (THREADS: none) and its slots
+// the RTL's issue of unit u in this cycle (THREADS: none) and its slots; issue_grant_o must be
+// the same thread one-hot (trace_core's grants), else THREADS + 1
 uint32_t rtl_issue(uint32_t u, uint32_t *slots)
 {
     *slots = (uint32_t)(g_top->issue_slots_o >> (u * SLOT_BITS)) & ((1u << SLOT_BITS) - 1);
-    return g_top->issue_valid_o >> u & 1u ? (uint32_t)(g_top->issue_thread_o >> (u * TW)) & (THREADS - 1) : THREADS;
+    const uint32_t got = g_top->issue_valid_o >> u & 1u ? (uint32_t)(g_top->issue_thread_o >> (u * TW)) & (THREADS - 1)
+                                                        : THREADS;
+    for (uint32_t t = 0; t < THREADS; t++) {
+        const uint32_t bit = u * THREADS + t;
+        if ((g_top->issue_grant_o[bit / 32] >> (bit % 32) & 1u) != (t == got))
+            return THREADS + 1;
+    }
+    return got;
 }
 
 void check(const char *phase, uint64_t cycle, uint32_t u, uint32_t want, uint32_t want_slots)
@@ -94,8 +102,9 @@ void check(const char *phase, uint64_t cycle, uint32_t u, uint32_t want, uint32_
     if (g_mismatches++ < 10)
         std::printf("MISMATCH thread_sched (%s) unit %s at cycle %llu: expected %s%u (slots %u), rtl %s%u (slots %u)\n",
                     phase, unit_name[u], (unsigned long long)cycle, want == THREADS ? "no issue " : "thread ",
-                    want == THREADS ? 0 : want, want_slots, got == THREADS ? "no issue " : "thread ",
-                    got == THREADS ? 0 : got, slots);
+                    want == THREADS ? 0 : want, want_slots,
+                    got == THREADS ? "no issue " : got > THREADS ? "issue_grant_o not issue_thread_o one-hot " : "thread ",
+                    got >= THREADS ? 0 : got, slots);
 }
 
 void clock()

@@ -14,6 +14,7 @@ module tb_sched #(
   input  logic [THREADS*SLOT_BITS-1:0]         slots_i,
   output logic [UNITS-1:0]                     issue_valid_o,
   output logic [UNITS*$clog2(THREADS)-1:0]     issue_thread_o,
+  output logic [UNITS*THREADS-1:0]             issue_grant_o,
   output logic [UNITS*SLOT_BITS-1:0]           issue_slots_o
 );
   if (E + M < 0) begin : g_unused
