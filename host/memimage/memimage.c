@@ -937,8 +937,8 @@ static int object_write(mi_builder *b, const scene *s, mi_object *o)
     if (m->normals && !codes)
         return -1;
     /* Zeroed here, so that the padding is deterministic: the tree's words up to the records, and
-     * the grid's after them. The records (2/3 of the gallery's block) zero themselves
-     * (put_triangle, shade_encode_record) on the for_parts threads: their first touch of the
+     * the grid's after them. The records (2/3 of the gallery's block) are written whole
+     * (records_part, shade_encode_record) on the for_parts threads: their first touch of the
      * image's fresh pages is then not on one thread (a memset of the whole block was). */
     uint32_t *w = b->words + o->base, *end = b->words + o->base + o->words;
     memset(w, 0, (triangles_at(o) - o->base) * sizeof *w);
