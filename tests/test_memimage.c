@@ -531,13 +531,20 @@ static void shared_edge_flags(void **state)
     const uint32_t tri[] = { 0, 1, 2 };
     const scene_mesh quad = { .n_vertices = 5, .n_triangles = 3, .positions = (float *)pos, .indices = idx };
     uint8_t f[3];
-    assert_int_equal(mi_shared_edges(&quad, tri, 2, f), 0); /* the quad: its diagonal */
+    assert_int_equal(mi_shared_edges(&quad, tri, 2, f, NULL), 0); /* the quad: its diagonal */
     assert_int_equal(f[0], TRI_SHARED_V);
     assert_int_equal(f[1], TRI_SHARED_W);
-    assert_int_equal(mi_shared_edges(&quad, tri, 3, f), 0); /* and a copy of triangle 0, reversed */
+    assert_int_equal(mi_shared_edges(&quad, tri, 3, f, NULL), 0); /* and a copy of triangle 0, reversed */
     assert_int_equal(f[0], TRI_SHARED_V);
     assert_int_equal(f[1], TRI_SHARED_W);
     assert_int_equal(f[2], TRI_SHARED_V);
+    mi_edge_table table = { 0 }; /* a table kept between calls, larger than the second needs: the same flags */
+    assert_int_equal(mi_shared_edges(&quad, tri, 3, f, &table), 0);
+    assert_int_equal(f[2], TRI_SHARED_V);
+    assert_int_equal(mi_shared_edges(&quad, tri, 2, f, &table), 0);
+    assert_int_equal(f[0], TRI_SHARED_V);
+    assert_int_equal(f[1], TRI_SHARED_W);
+    mi_edge_table_free(&table);
     scene s;
     make_scene(&s, 1, 0);
     mi_builder *b = build(&s, 0);

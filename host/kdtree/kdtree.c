@@ -1698,60 +1698,71 @@ static void layout(pool *pl, uint32_t id, uint32_t root, uint32_t *n_nodes, uint
     *n_prims += b->n_prims - at_prim;
 }
 
-/* Copies nodes [lo, hi) of task t to out, with their final child and first indices. */
+/* Copies nodes [lo, hi) of task t to out, with their final child and first indices. From the
+ * last one down: no node goes below its own index in its tree's layout (holes only insert), so a
+ * tree's root task can be copied onto its own array (merge_trees). */
 static void copy_nodes(const task *t, uint32_t lo, uint32_t hi, kd_node *out)
 {
     const builder *b = &t->b;
     const uint32_t first = t->out_first, first_prim = t->out_first_prim;
-    uint32_t h = 0;
-    while (h < b->n_holes && b->holes[h].at_node <= lo)
-        h++;
-    for (uint32_t i = lo; i < hi; h++) { /* node segments between the holes */
-        const uint32_t end = h < b->n_holes && b->holes[h].at_node < hi ? b->holes[h].at_node : hi;
-        const uint32_t off = h == 0 ? first - 1 : b->holes[h - 1].node_off;
-        for (; i < end; i++) {
-            kd_node n = b->nodes[i];
-            if (n.axis == KD_HOLE)
-                continue; /* written by its task */
-            /* without branches on the kind of node, which is unpredictable */
-            const int leaf = n.axis == KD_LEAF;
-            const uint32_t holes_before = leaf ? n.child : 0;
-            const uint32_t prim_off = holes_before ? b->holes[holes_before - 1].prim_off : first_prim;
-            const uint32_t child = map_node(b, b->n_holes, first, n.child);
-            n.first = leaf ? n.first + prim_off : 0;
-            n.count = leaf ? n.count : 0; /* inner: pending_sum index */
-            n.child = leaf ? 0 : child;
-            out[i == 0 ? t->out_root : i + off] = n;
-        }
+    uint32_t h = b->n_holes; /* holes[0..h): the holes due at or before node i */
+    for (uint32_t i = hi; i-- > lo;) {
+        while (h > 0 && b->holes[h - 1].at_node > i)
+            h--;
+        kd_node n = b->nodes[i];
+        if (n.axis == KD_HOLE)
+            continue; /* written by its task */
+        /* without branches on the kind of node, which is unpredictable */
+        const int leaf = n.axis == KD_LEAF;
+        const uint32_t holes_before = leaf ? n.child : 0;
+        const uint32_t prim_off = holes_before ? b->holes[holes_before - 1].prim_off : first_prim;
+        const uint32_t child = map_node(b, b->n_holes, first, n.child);
+        n.first = leaf ? n.first + prim_off : 0;
+        n.count = leaf ? n.count : 0; /* inner: pending_sum index */
+        n.child = leaf ? 0 : child;
+        out[i == 0 ? t->out_root : i + (h == 0 ? first - 1 : b->holes[h - 1].node_off)] = n;
     }
 }
 
-/* Copies leaf entries [lo, hi) of task t to out. */
+/* Copies leaf entries [lo, hi) of task t to out, the segments between the holes from the last one
+ * down (as copy_nodes: out may be the root task's own array). */
 static void copy_prims(const task *t, uint32_t lo, uint32_t hi, uint32_t *out)
 {
     const builder *b = &t->b;
-    for (uint32_t h = 0, at = 0; h <= b->n_holes && at < hi; h++) { /* segments between the holes */
+    for (uint32_t h = b->n_holes + 1; h-- > 0;) {
+        const uint32_t start = h == 0 ? 0 : b->holes[h - 1].at_prim;
         const uint32_t end = h < b->n_holes ? b->holes[h].at_prim : b->n_prims;
         const uint32_t off = h == 0 ? t->out_first_prim : b->holes[h - 1].prim_off;
-        const uint32_t from = at > lo ? at : lo, to = end < hi ? end : hi;
+        const uint32_t from = start > lo ? start : lo, to = end < hi ? end : hi;
         if (to > from)
-            memcpy(out + from + off, b->prims + from, (size_t)(to - from) * sizeof *out);
-        at = end;
+            memmove(out + from + off, b->prims + from, (size_t)(to - from) * sizeof *out);
     }
 }
 
-/* Copying in parallel: item i copies part i % COPY_PARTS of task i / COPY_PARTS. */
+/* Copying in parallel: the trees' root tasks onto their own arrays, one item each (in place, from
+ * the end); then the other tasks, item i part i % COPY_PARTS of task n_trees + i / COPY_PARTS. */
 enum { COPY_PARTS = 4 };
 
 typedef struct {
     pool *pl;
-    kd_tree *out; /* per tree (nodes NULL: the tree failed, nothing to copy) */
+    kd_tree *out;     /* per tree (nodes NULL: the tree failed, nothing to copy) */
+    uint32_t n_trees; /* copy_item: the first task it copies */
 } copy_ctx;
+
+static void copy_root(void *arg, uint32_t i)
+{
+    const copy_ctx *c = arg;
+    const task *t = c->pl->tasks[i];
+    if (c->out[i].nodes) {
+        copy_nodes(t, 0, t->b.n_nodes, c->out[i].nodes);
+        copy_prims(t, 0, t->b.n_prims, c->out[i].prims);
+    }
+}
 
 static void copy_item(void *arg, uint32_t i)
 {
     const copy_ctx *c = arg;
-    const task *t = c->pl->tasks[i / COPY_PARTS];
+    const task *t = c->pl->tasks[c->n_trees + i / COPY_PARTS];
     const kd_tree *out = &c->out[t->b.tree];
     if (!out->nodes)
         return;
@@ -1802,7 +1813,10 @@ uint32_t kd_thread_count(void)
 
 /* Merges the outputs of the tasks of a finished pool into each tree's layout, in roots[i].b
  * (nodes, prims, their counts and statistics; the tasks' outputs freed), with sah[i] its SAH
- * sum; rc[i]: 0, or -1 if the tree failed (its output is then empty). */
+ * sum; rc[i]: 0, or -1 if the tree failed (its output is then empty). The layout is made in the
+ * root task's arrays, which mostly have room for it already (output_alloc), the other tasks'
+ * subtrees copied into the gaps it leaves: the gallery's merged copies had been 40 MB of fresh
+ * pages, which the kernel zeroes at the first touch (2.8% of its CPU samples). */
 static void merge_trees(pool *pl, task *roots, uint32_t n, int *rc, double *sah)
 {
     kd_tree *out = calloc(n, sizeof *out);
@@ -1817,44 +1831,52 @@ static void merge_trees(pool *pl, task *roots, uint32_t n, int *rc, double *sah)
             stats_add(&roots[b->tree].b.st, &b->st);
     }
     for (uint32_t i = 0; i < n; i++) {
+        builder *b = &roots[i].b;
         rc[i] = pl->failed[i] || !out || !count ? -1 : 0;
         if (rc[i] == 0 && count[2 * i] <= UINT32_MAX && count[2 * i + 1] < UINT32_MAX) {
-            out[i].nodes = huge_pages_malloc((size_t)count[2 * i] * sizeof *out[i].nodes);
-            out[i].prims = huge_pages_malloc(((size_t)count[2 * i + 1] + 1) * sizeof *out[i].prims);
+            kd_node *nodes = reserve(b->nodes, &b->cap_nodes, count[2 * i], sizeof *nodes);
+            b->nodes = nodes ? nodes : b->nodes;
+            uint32_t *prims = reserve(b->prims, &b->cap_prims, count[2 * i + 1] + 1, sizeof *prims);
+            b->prims = prims ? prims : b->prims;
+            out[i].nodes = nodes && prims ? nodes : NULL;
+            out[i].prims = nodes && prims ? prims : NULL;
         }
-        if (rc[i] == 0 && out[i].nodes && out[i].prims) {
+        if (rc[i] == 0 && out[i].nodes) {
             out[i].n_nodes = 1;
             layout(pl, i, 0, &out[i].n_nodes, &out[i].n_prims);
-        } else if (out) {
-            free(out[i].nodes);
-            free(out[i].prims);
-            out[i] = (kd_tree){ 0 };
+            sah[i] = resolve(pl, i, 0, &roots[i].box); /* before the copies: it reads the tasks' nodes */
+        } else {
+            sah[i] = 0.0;
             rc[i] = -1;
+            if (out)
+                out[i] = (kd_tree){ 0 };
         }
     }
     if (out) {
-        copy_ctx c = { pl, out };
-        pool_for(pl, pl->n_tasks * COPY_PARTS, copy_item, &c);
+        copy_ctx c = { pl, out, n };
+        pool_for(pl, n, copy_root, &c);
+        pool_for(pl, (pl->n_tasks - n) * COPY_PARTS, copy_item, &c);
     }
-    for (uint32_t i = 0; i < n; i++)
-        sah[i] = rc[i] == 0 ? resolve(pl, i, 0, &roots[i].box) : 0.0;
     for (uint32_t j = n; j < pl->n_tasks; j++) {
         task_free(pl->tasks[j]);
         free(pl->tasks[j]);
     }
     for (uint32_t i = 0; i < n; i++) {
         builder *b = &roots[i].b;
-        free(b->nodes);
-        free(b->prims);
+        if (rc[i] != 0) {
+            free(b->nodes);
+            free(b->prims);
+            b->nodes = NULL;
+            b->prims = NULL;
+            b->cap_nodes = b->cap_prims = 0;
+        }
         free(b->holes);
         free(b->pend);
         b->holes = NULL;
         b->pend = NULL;
         b->n_holes = b->n_pend = 0;
-        b->nodes = out ? out[i].nodes : NULL;
-        b->n_nodes = b->cap_nodes = out ? out[i].n_nodes : 0;
-        b->prims = out ? out[i].prims : NULL;
-        b->n_prims = b->cap_prims = out ? out[i].n_prims : 0;
+        b->n_nodes = rc[i] == 0 ? out[i].n_nodes : 0;
+        b->n_prims = rc[i] == 0 ? out[i].n_prims : 0;
     }
     free(out);
     free(count);

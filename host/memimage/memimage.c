@@ -32,7 +32,10 @@ typedef struct {
     int dynamic;
     kd_tree tree;       /* leaf entries index valid[] = the object's triangles in the image */
     uint32_t *valid;    /* mesh triangle of each image triangle */
-    affine *xf;         /* triangle transformations of the image triangles */
+    uint32_t *records;  /* triangle records of the image triangles, MI_TRIANGLE_WORDS each, without
+                           their shared-edge flags: the transformations packed when they are made
+                           (40 bytes a triangle at e7m16, where the binary64 matrices took 96, all
+                           fresh pages the kernel zeroes: the gallery's 48 -> 20 MB) */
     uint8_t *shared;    /* their shared-edge flags (mi_shared_edges) */
     uint32_t n_valid;
     uint32_t revision_seen; /* the mesh's revision the geometry was built from (dynamic objects) */
@@ -326,11 +329,11 @@ static void object_release(mi_object *o)
     o->slot = NULL;
     ugrid_free(&o->grid);
     free(o->valid);
-    free(o->xf);
+    free(o->records);
     free(o->shared);
     free(o->normal_codes);
     o->valid = NULL;
-    o->xf = NULL;
+    o->records = NULL;
     o->shared = NULL;
     o->normal_codes = NULL;
     o->n_valid = 0;
@@ -467,6 +470,32 @@ static uint32_t object_shading_flags(const scene *s, const scene_mesh *m, const 
     return flags | (same ? SHADE_ONE_MATERIAL | m->material[o->valid[0]] << SHADE_OBJ_MATERIAL_SHIFT : 0u);
 }
 
+/* The record field of C - hi for a vertex component C with high word hi: the multiple k of
+ * 2^-8 ulp(hi) nearest to it (f24_vertex_lo decodes; exact for a binary32 vertex). */
+static uint32_t vertex_lo_field(double c, f24_t hi)
+{
+    if (f24_exp(hi) == 0 || f24_exp(hi) == F24_EXP_MAX)
+        return 0;
+    const double unit = ldexp(1.0, (int)f24_exp(hi) - F24_BIAS - F24_MAN_BITS - F24_VERTEX_LO_SHIFT);
+    const double k = fmin(fmax(nearbyint((c - f24_fast_decode(hi)) / unit), -256), 255);
+    return (uint32_t)(int32_t)k;
+}
+
+/* The triangle record of a: M^-1 rounded, the vertex C (column 3) in a high word and the low
+ * part's field; its shared-edge flags zero (records_part adds them). */
+static void put_triangle(uint32_t *w, const affine *a)
+{
+    f24_t v[F24_TRIANGLE_VALUES];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 4; j++)
+            v[i * 4 + j] = fp24_word(a->m[i][j]);
+    memset(w, 0, MI_TRIANGLE_WORDS * sizeof *w);
+    f24_record_put(w, v, F24_TRIANGLE_VALUES);
+    for (int i = 0; i < 3; i++)
+        f24_record_put_field(w, F24_TRIANGLE_VALUES * F24_WIDTH + (uint32_t)i * F24_VERTEX_LO_BITS, F24_VERTEX_LO_BITS,
+                             vertex_lo_field(a->m[i][3], v[i * 4 + 3]));
+}
+
 typedef struct {
     const scene_mesh *m;
     mi_object *o;
@@ -474,16 +503,20 @@ typedef struct {
     uint8_t *ok; /* per mesh triangle: its transformation is kept */
 } transform_job;
 
-/* The transformations of mesh triangles [from, to), each at its own index of o->xf. */
+/* The transformations of mesh triangles [from, to), each as its record at its own index of
+ * o->records. */
 static void transform_part(void *ctx, uint32_t from, uint32_t to)
 {
     const transform_job *j = ctx;
     for (uint32_t t = from; t < to; t++) {
         double a[3], bb[3], c[3];
+        affine xf;
         tri_vertex(j->m, j->o->centre, t, 0, a);
         tri_vertex(j->m, j->o->centre, t, 1, bb);
         tri_vertex(j->m, j->o->centre, t, 2, c);
-        j->ok[t] = mi_triangle_transform(a, bb, c, j->max_condition, &j->o->xf[t]) && affine_fits_f24(&j->o->xf[t]);
+        j->ok[t] = mi_triangle_transform(a, bb, c, j->max_condition, &xf) && affine_fits_f24(&xf);
+        if (j->ok[t])
+            put_triangle(j->o->records + (size_t)MI_TRIANGLE_WORDS * t, &xf);
     }
 }
 
@@ -526,10 +559,10 @@ static int object_transform(mi_builder *b, const scene_mesh *m, mi_object *o)
 {
     object_release(o);
     o->valid = malloc(((size_t)m->n_triangles + 1) * sizeof *o->valid);
-    o->xf = huge_pages_malloc(((size_t)m->n_triangles + 1) * sizeof *o->xf);
+    o->records = huge_pages_malloc(((size_t)m->n_triangles + 1) * MI_TRIANGLE_WORDS * sizeof *o->records);
     o->shared = malloc((size_t)m->n_triangles + 1);
     uint8_t *ok = malloc((size_t)m->n_triangles + 1);
-    if (!o->valid || !o->xf || !o->shared || !ok) {
+    if (!o->valid || !o->records || !o->shared || !ok) {
         free(ok);
         return -1;
     }
@@ -538,7 +571,8 @@ static int object_transform(mi_builder *b, const scene_mesh *m, mi_object *o)
     for (uint32_t t = 0; t < m->n_triangles; t++) /* the kept ones, in order */
         if (ok[t]) {
             if (o->n_valid != t) /* in place until the first dropped one: mostly all of them */
-                o->xf[o->n_valid] = o->xf[t];
+                memcpy(o->records + (size_t)MI_TRIANGLE_WORDS * o->n_valid, o->records + (size_t)MI_TRIANGLE_WORDS * t,
+                       MI_TRIANGLE_WORDS * sizeof *o->records);
             o->valid[o->n_valid++] = t;
         }
     free(ok);
@@ -567,12 +601,14 @@ static uint64_t *normal_codes(const scene_mesh *m, int parallel);
 static void *edges_run(void *arg)
 {
     const edges_list *l = arg;
+    mi_edge_table table = { 0 }; /* one for the list (trees_build's: largest first) */
     for (uint32_t k = 0; k < l->n; k++) {
         edges_job *j = &l->j[k];
-        j->rc = mi_shared_edges(j->m, j->o->valid, j->o->n_valid, j->o->shared);
+        j->rc = mi_shared_edges(j->m, j->o->valid, j->o->n_valid, j->o->shared, &table);
         if (j->m->normals && !j->o->normal_codes)
             j->o->normal_codes = normal_codes(j->m, 0);
     }
+    mi_edge_table_free(&table);
     return NULL;
 }
 
@@ -869,33 +905,6 @@ static uint32_t triangles_at(const mi_object *o)
     return (end + MI_TRIANGLE_WORDS - 1) / MI_TRIANGLE_WORDS * MI_TRIANGLE_WORDS;
 }
 
-/* The record field of C - hi for a vertex component C with high word hi: the multiple k of
- * 2^-8 ulp(hi) nearest to it (f24_vertex_lo decodes; exact for a binary32 vertex). */
-static uint32_t vertex_lo_field(double c, f24_t hi)
-{
-    if (f24_exp(hi) == 0 || f24_exp(hi) == F24_EXP_MAX)
-        return 0;
-    const double unit = ldexp(1.0, (int)f24_exp(hi) - F24_BIAS - F24_MAN_BITS - F24_VERTEX_LO_SHIFT);
-    const double k = fmin(fmax(nearbyint((c - f24_fast_decode(hi)) / unit), -256), 255);
-    return (uint32_t)(int32_t)k;
-}
-
-/* M^-1 rounded, the vertex C (column 3) in a high word and the low part's field, the shared-edge
- * flags. */
-static void put_triangle(uint32_t *w, const affine *a, uint32_t shared)
-{
-    f24_t v[F24_TRIANGLE_VALUES];
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 4; j++)
-            v[i * 4 + j] = fp24_word(a->m[i][j]);
-    memset(w, 0, MI_TRIANGLE_WORDS * sizeof *w);
-    f24_record_put(w, v, F24_TRIANGLE_VALUES);
-    for (int i = 0; i < 3; i++)
-        f24_record_put_field(w, F24_TRIANGLE_VALUES * F24_WIDTH + (uint32_t)i * F24_VERTEX_LO_BITS, F24_VERTEX_LO_BITS,
-                             vertex_lo_field(a->m[i][3], v[i * 4 + 3]));
-    f24_record_put_field(w, F24_EDGE_FLAG_BIT, F24_EDGE_FLAG_BITS, shared);
-}
-
 typedef struct {
     const scene_mesh *m;
     const mi_object *o;
@@ -910,7 +919,9 @@ static void records_part(void *ctx, uint32_t from, uint32_t to)
     const records_job *j = ctx;
     const uint32_t stride = shade_rec_words(j->o->shade_flags);
     for (uint32_t i = from; i < to; i++) {
-        put_triangle(j->triangles + (size_t)MI_TRIANGLE_WORDS * i, &j->o->xf[i], j->o->shared[i]);
+        uint32_t *w = j->triangles + (size_t)MI_TRIANGLE_WORDS * i;
+        memcpy(w, j->o->records + (size_t)MI_TRIANGLE_WORDS * i, MI_TRIANGLE_WORDS * sizeof *w);
+        f24_record_put_field(w, F24_EDGE_FLAG_BIT, F24_EDGE_FLAG_BITS, j->o->shared[i]);
         write_shading(j->shading + (size_t)stride * i, j->s, j->m, j->codes, j->o->shade_flags, j->o->valid[i]);
     }
 }
@@ -926,8 +937,8 @@ static int object_write(mi_builder *b, const scene *s, mi_object *o)
     if (m->normals && !codes)
         return -1;
     /* Zeroed here, so that the padding is deterministic: the tree's words up to the records, and
-     * the grid's after them. The records (2/3 of the gallery's block) zero themselves
-     * (put_triangle, shade_encode_record) on the for_parts threads: their first touch of the
+     * the grid's after them. The records (2/3 of the gallery's block) are written whole
+     * (records_part, shade_encode_record) on the for_parts threads: their first touch of the
      * image's fresh pages is then not on one thread (a memset of the whole block was). */
     uint32_t *w = b->words + o->base, *end = b->words + o->base + o->words;
     memset(w, 0, (triangles_at(o) - o->base) * sizeof *w);

@@ -210,9 +210,18 @@ int mi_validate(const uint32_t *words, uint32_t n_words, char *err, size_t errle
 int mi_triangle_transform(const double a[3], const double b[3], const double c[3], double max_condition,
                           affine *t);
 
+/* The hash table of mi_shared_edges, kept between calls (zero-initialized; mi_edge_table_free). */
+typedef struct {
+    uint64_t *slot;
+    size_t size;
+} mi_edge_table;
+
+void mi_edge_table_free(mi_edge_table *t);
+
 /* The shared-edge flags (TRI_SHARED_* of hls/units/vec3.h) of the n triangles tri[] of mesh m:
  * edge k of a triangle is flagged when another of them joins the same two vertex positions and
- * is not its coincident copy. Returns 0, or -1 out of memory. */
-int mi_shared_edges(const scene_mesh *m, const uint32_t *tri, uint32_t n, uint8_t *flags);
+ * is not its coincident copy. Its hash table is t's (grown if too small: a caller with several
+ * meshes gives the largest first), or with t NULL one of its own. Returns 0, or -1 out of memory. */
+int mi_shared_edges(const scene_mesh *m, const uint32_t *tri, uint32_t n, uint8_t *flags, mi_edge_table *t);
 
 #endif

@@ -78,18 +78,42 @@ static int shared_with(const edge_source *s, uint32_t e, uint32_t f)
  * holds the edge and the high half of its hash: equal position pairs hash alike, so only edges
  * with the same tag can be shared, and the others are passed without reading their triangles'
  * positions (scattered loads, most of the time this took). */
-int mi_shared_edges(const scene_mesh *m, const uint32_t *tri, uint32_t n, uint8_t *flags)
+/* t's slots, at least size of them, all empty: its block if that is large enough, else a new one
+ * (the old freed). A block reused between objects is one the kernel need not zero again: the
+ * gallery's seven tables were 30 MB of fresh pages, its largest is 8 MB. NULL: out of memory. */
+static uint64_t *table_slots(mi_edge_table *t, size_t size)
+{
+    if (t->size < size) {
+        free(t->slot);
+        t->size = 0;
+        /* huge pages: the gallery's tables are 2-8 MB */
+        if (!(t->slot = huge_pages_malloc(size * sizeof *t->slot)))
+            return NULL;
+        t->size = size;
+    }
+    memset(t->slot, 0xFF, size * sizeof *t->slot); /* empty: edge UINT32_MAX, never one of the 3 n */
+    return t->slot;
+}
+
+void mi_edge_table_free(mi_edge_table *t)
+{
+    free(t->slot);
+    t->slot = NULL;
+    t->size = 0;
+}
+
+int mi_shared_edges(const scene_mesh *m, const uint32_t *tri, uint32_t n, uint8_t *flags, mi_edge_table *t)
 {
     const edge_source s = { m, tri };
     const uint32_t edges = 3 * n;
     size_t size = 2;
     while (size < 2 * (size_t)edges)
         size *= 2;
-    /* open addressing, linear probing, load <= 1/2; huge pages: the gallery's tables are 2-8 MB */
-    uint64_t *slot = huge_pages_malloc(size * sizeof *slot);
+    /* open addressing, linear probing, load <= 1/2 */
+    mi_edge_table own = { 0 }, *table = t ? t : &own;
+    uint64_t *slot = table_slots(table, size);
     if (!slot)
         return -1;
-    memset(slot, 0xFF, size * sizeof *slot); /* empty: edge UINT32_MAX, never one of the 3 n */
     memset(flags, 0, n);
     for (uint32_t e = 0; e < edges; e++) {
         const uint64_t h = hash_edge(&s, e), tag = h & 0xFFFFFFFF00000000ull;
@@ -103,6 +127,6 @@ int mi_shared_edges(const scene_mesh *m, const uint32_t *tri, uint32_t n, uint8_
         }
         slot[i] = tag | e;
     }
-    free(slot);
+    mi_edge_table_free(&own);
     return 0;
 }
