@@ -530,9 +530,7 @@ PY
 
 run_skinned() {
   if [[ -e ../shared/scenes/Fox.glb ]]; then run_case cli_render_skinned t_render_skinned; return; fi
-  echo "[ RUN      ] cli_render_skinned"
-  echo "cli_render_skinned: skipped, ../shared/scenes/Fox.glb is absent"
-  echo "[  SKIPPED ] cli_render_skinned"
+  skip_case cli_render_skinned "../shared/scenes/Fox.glb is absent"
 }
 
 run_case cli_help t_help

@@ -23,7 +23,8 @@ P=${SAARCOR_GOLDEN_PREFIX:-golden_}
 G=tests/golden/images
 T=$(mktemp -d /tmp/saarcor-golden-XXXXXX)
 trap 'rm -rf "$T"' EXIT
-fails=0
+# shellcheck source=case_lib.sh
+source tests/case_lib.sh
 [[ -z $HW_BIN || -x $HW_BIN ]] || { echo "test_golden: $HW_BIN is missing (make BUILD=build/hw SIM_ARITH=hw build/hw/saarcor)"; exit 1; }
 
 field() { echo "$1" | cut -d'|' -f"$2" | sed 's/^ *//; s/ *$//'; }
@@ -61,12 +62,11 @@ while IFS= read -r line; do
   [[ -z $line || $line == \#* ]] && continue
   name=$(field "$line" 1) scene=$(field "$line" 2) opts=$(field "$line" 3)
   [[ -z $ONLY || " $ONLY " == *" $name "* ]] || continue
-  echo "[ RUN      ] ${P}$name"
   if [[ $scene == ../shared/* && ! -e $scene ]]; then
-    echo "${P}$name: skipped, $scene is absent (../shared not available)"
-    echo "[  SKIPPED ] ${P}$name"
+    skip_case "${P}$name" "$scene is absent (../shared not available)"
     continue
   fi
+  echo "[ RUN      ] ${P}$name"
   if check_case "$name" "$scene" "$opts" "$(field "$line" 4)" "$(field "$line" 5)" >"$T/log" 2>&1; then
     cat "$T/log"
     echo "[       OK ] ${P}$name"

@@ -37,7 +37,7 @@ EOF
 
 if [[ ! -d $S ]]; then
   echo "test_hits: ../shared/scenes is absent: the accuracy cases are skipped"
-  while IFS='|' read -r name _ _; do echo "[  SKIPPED ] hits_$name"; done <<<"$CASES"
+  while IFS='|' read -r name _ _; do skip_case "hits_$name" "../shared/scenes is absent"; done <<<"$CASES"
   exit 0
 fi
 while IFS='|' read -r name scene cam; do

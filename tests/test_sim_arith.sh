@@ -77,8 +77,7 @@ while IFS='|' read -r name scene opts; do
   for mode in functional cycle; do
     case_name="sim_arith_${name}_$mode"
     if [[ $scene == ../shared/* && ! -f $scene ]]; then
-      echo "test_sim_arith: $scene is absent: $case_name skipped"
-      echo "[  SKIPPED ] $case_name"
+      skip_case "$case_name" "$scene is absent"
       continue
     fi
     eval "t_$case_name() { same $case_name $scene --mode $mode $opts; }"
