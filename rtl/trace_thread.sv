@@ -31,10 +31,12 @@
 // + 64 bits per ray, in trace_core's thread_ram), a descriptor buffer of LBUF words (two
 // responses: 20 at e7m16), about 15 words of routing state and 10 counters of 32 bits; the record
 // unpacking (f24_vertex_lo) and the identity mapping (xform_identity) in wires. Yosys 0.23
-// synth_xilinx at e7m16 (python3 scripts/synth.py --levels trace_thread, 2026-11-29): 5297 LUT6,
-// 3438 flip-flops, 8 LUT6 levels (6449, 5410 and 8 with p, te, t0, the low words and the hits'
-// records here; 5718 LUTs and 6183
-// flip-flops before the header moved to the core and the buffer shrank from 40 words to 20).
+// synth_xilinx at e7m16 (python3 scripts/synth.py --levels trace_thread --hier, 2026-11-29): 5040
+// LUT6, 3440 flip-flops (one each for ld_req and done, the word request and the packet's valid
+// straight from flip-flops), 8 LUT6 levels (5048 LUT6, 3439 flip-flops before done; 5297, 3438 on
+// an earlier RTL before ld_req; 6449, 5410 and 8 with p, te, t0, the low words and the hits' records
+// here; 5718 LUTs and 6183 flip-flops before the header moved to the core and the buffer shrank from
+// 40 words to 20). Its ports: valid_o and mem_req_valid_o 0 LUT6 levels from registers (synth.py --ports).
 // Handshake: valid/ready at the packet input and the result output; request/grant to the units.
 module trace_thread #(
   parameter int E = 7,
