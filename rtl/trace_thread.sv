@@ -31,10 +31,12 @@
 // + 64 bits per ray, in trace_core's thread_ram), a descriptor buffer of LBUF words (two
 // responses: 20 at e7m16), about 15 words of routing state and 10 counters of 32 bits; the record
 // unpacking (f24_vertex_lo) and the identity mapping (xform_identity) in wires. Yosys 0.23
-// synth_xilinx at e7m16 (python3 scripts/synth.py --levels trace_thread, 2026-11-29): 5297 LUT6,
-// 3438 flip-flops, 8 LUT6 levels (6449, 5410 and 8 with p, te, t0, the low words and the hits'
-// records here; 5718 LUTs and 6183
-// flip-flops before the header moved to the core and the buffer shrank from 40 words to 20).
+// synth_xilinx at e7m16 (python3 scripts/synth.py --levels trace_thread --hier, 2026-11-29): 5040
+// LUT6, 3440 flip-flops (one each for ld_req and done, the word request and the packet's valid
+// straight from flip-flops), 8 LUT6 levels (5048 LUT6, 3439 flip-flops before done; 5297, 3438 on
+// an earlier RTL before ld_req; 6449, 5410 and 8 with p, te, t0, the low words and the hits' records
+// here; 5718 LUTs and 6183 flip-flops before the header moved to the core and the buffer shrank from
+// 40 words to 20). Its ports: valid_o and mem_req_valid_o 0 LUT6 levels from registers (synth.py --ports).
 // Handshake: valid/ready at the packet input and the result output; request/grant to the units.
 module trace_thread #(
   parameter int E = 7,
@@ -225,6 +227,10 @@ module trace_thread #(
   // own, so that the word port's pick over the threads starts at a flip-flop (3 LUT6 levels later
   // before: with the pick and the port's ready back into ld_sent, 8 at 2 threads, 10 at 64)
   logic ld_req;
+  // done: st == S_DONE in a register of its own (set by finish(), cleared as the packet leaves), so
+  // that trace_core's output pick over the threads starts at a flip-flop (valid_o was 2 LUT6 levels
+  // from st: the packet's path into the output register 10 at 64 threads, 8 from the register)
+  logic done;
 
   // ---- the batch's issue ray (ir, lowest of itodo) and collection ray (cr, lowest of ctodo) ----
   function automatic logic [1:0] lowest(input logic [3:0] m);
@@ -417,7 +423,7 @@ module trace_thread #(
   assign mem_addr_o = ld_base + 32'(RW) * 32'(ld_sent);
   assign hdr_want_o = st == S_HDR;
   assign ready_o = st == S_IDLE;
-  assign valid_o = st == S_DONE;
+  assign valid_o = done;
   always_comb
     for (int i = 0; i < 4; i++) begin
       t_o[i*W +: W] = hit[i] ? best_t[i] : POS_INF;
@@ -435,6 +441,11 @@ module trace_thread #(
     ld_ret <= next;
     st <= S_LOAD;
   endtask
+  // the packet's end: its hits wait in S_DONE for the core's output
+  task automatic finish();
+    done <= 1'b1;
+    st <= S_DONE;
+  endtask
   // a batch of operation op for the rays of mask (not empty)
   task automatic batch(input logic [3:0] op, input logic [3:0] mask);
     bop <= op;
@@ -451,6 +462,7 @@ module trace_thread #(
     if (!rst_ni) begin
       st <= S_IDLE;
       ld_req <= 1'b0;
+      done <= 1'b0;
     end else begin
       if (node_rsp_i) begin
         cnt[C_NODES] <= cnt[C_NODES] + 2;
@@ -513,7 +525,7 @@ module trace_thread #(
             st <= ret;
           end
         S_SC_DONE:  // op_scene_clip
-          if (clip_mask == 0 || hdr_instances_i == 0) st <= S_DONE;
+          if (clip_mask == 0 || hdr_instances_i == 0) finish();
           else if (flags[0]) begin  // enter_single_object: its one-leaf list
             need <= clip_mask;
             leaf_count[0] <= '0;
@@ -536,10 +548,10 @@ module trace_thread #(
           st <= S_IX_LOAD;
         end
         S_ROUTE:  // route_after_list: the next entry, the next walk step, back up, or done
-          if (alive == 0) st <= S_DONE;
+          if (alive == 0) finish();
           else if (k[level] < leaf_count[level]) st <= S_LIST_GO;
           else if (have_cur[level]) st <= S_WALK_GO;
-          else if (!level) st <= S_DONE;
+          else if (!level) finish();
           else level <= 1'b0;
         S_WALK_DONE: begin  // op_walk
           have_cur[level] <= r_have_cur;
@@ -656,7 +668,11 @@ module trace_thread #(
           batch(B_TRI, need);
           load(tris + TRI_WORDS * tri_ix, 2'd1, S_BATCH);
         end
-        S_DONE: if (ready_i) st <= S_IDLE;
+        S_DONE:
+          if (ready_i) begin
+            done <= 1'b0;
+            st <= S_IDLE;
+          end
         default: st <= S_IDLE;
       endcase
     end

@@ -38,6 +38,9 @@ levels between registers and ports as the DynRTP's are counted (synth_xilinx per
 hier_lut_levels), its deepest path flattened after mapping (cell type, a net it drives; not with
 --hier, for modules too large to flatten), and per submodule its levels and its own cells' deepest
 path (the named nets); it writes only build/synth/levels_*.
+`python3 scripts/synth.py --ports build/synth/levels_MODULE_hier.json PORT ...` prints, from a netlist
+that --levels wrote, each port's LUT6 levels from the top's registers, from its inputs and into its
+registers (the top's IBUF/OBUF as wires): the parts of a path composed across modules.
 """
 import concurrent.futures as cf, json, os, re, shlex, subprocess, sys, tempfile, time
 
@@ -423,11 +426,11 @@ def hierarchy_totals(own, top):
     return {name: total(name) for name in own}, total(top)
 
 
-def hier_lut_levels(mods, top):
-    """Per module of top's hierarchy: the most LUT levels between two registers (or its ports) of a
-    hierarchical 7-series netlist, paths through module ports included. Per module, the levels from its
-    registers to each output bit, from each input bit to each output bit it reaches without a register,
-    and from each input bit to a register inside, composed at every instance (LEVEL_CELLS as lut_levels)."""
+def hier_summaries(mods, top):
+    """Per module of top's hierarchy: the most LUT levels between two of its registers ("inside"), the
+    levels from its registers to each output bit ("reg_out"), from each input bit to each output bit it
+    reaches without a register ("through") and from each input bit to a register inside ("in_to_reg"),
+    by (port, bit), submodules composed at every instance (LEVEL_CELLS as lut_levels)."""
     summary = {}
 
     def summarize(name):
@@ -544,11 +547,37 @@ def hier_lut_levels(mods, top):
     visit(top)
     for name in order:
         summarize(name)
+    return summary
 
+
+def hier_lut_levels(mods, top):
+    """Per module of top's hierarchy: the most LUT levels between two registers (or its ports) of a
+    hierarchical 7-series netlist, paths through module ports included (hier_summaries)."""
     def levels(s):  # the module as a top: its ports end paths too
         return max([s["inside"]] + list(s["reg_out"].values()) + list(s["in_to_reg"].values()) +
                    [v for t in s["through"].values() for v in t.values()])
-    return {name: levels(s) for name, s in summary.items()}
+    return {name: levels(s) for name, s in hier_summaries(mods, top).items()}
+
+
+def port_levels(hier, ports):  # hier: a file name, or the netlist's modules (changed here)
+    """--ports: per port of a --levels netlist's top, its most levels from the top's registers, from its
+    inputs and into its registers (None: no such path), the top's IBUF/OBUF as wires."""
+    mods = json.load(open(hier))["modules"] if isinstance(hier, str) else hier
+    top = top_module(mods)
+    mod = mods[top]
+    bufs = [n for n, c in mod["cells"].items() if c["type"] in ("IBUF", "OBUF")]
+    wire = {mod["cells"][n]["connections"]["O"][0]: mod["cells"][n]["connections"]["I"][0] for n in bufs}
+    for n in bufs:
+        del mod["cells"][n]
+    for c in mod["cells"].values():
+        c["connections"] = {p: [wire.get(b, b) for b in bits] for p, bits in c["connections"].items()}
+    for d in mod["ports"].values():
+        d["bits"] = [wire.get(b, b) for b in d["bits"]]
+    s = hier_summaries(mods, top)[top]
+    most = lambda vals: max(vals, default=None)
+    return {port: (most(v for (p, _), v in s["reg_out"].items() if p == port),
+                   most(v for (p, _), t in s["through"].items() if p == port for v in t.values()),
+                   most(v for (p, _), v in s["in_to_reg"].items() if p == port)) for port in ports}
 
 
 def dynrtp_xilinx():
@@ -671,10 +700,14 @@ def redo(keys):
 
 def main():
     args = sys.argv[1:]
-    if args and (args[0] in ("-h", "--help") or args[0] not in ("--only-control", "--redo", "--dynrtp", "--levels")):
+    if args and (args[0] in ("-h", "--help") or args[0] not in ("--only-control", "--redo", "--dynrtp", "--levels", "--ports")):
         # a full run takes hours: an unknown argument is an error, never a start
         print(__doc__)
         sys.exit(0 if args[0] in ("-h", "--help") else f"synth.py: unknown argument {args[0]} (see above)")
+    if len(args) > 1 and args[0] == "--ports":
+        for port, (reg, thr, into) in port_levels(args[1], args[2:]).items():
+            print(f"{port}: from registers {reg}, from inputs {thr}, into registers {into}")
+        return
     os.makedirs(OUT, exist_ok=True)
     if "--only-control" in sys.argv[1:]:
         if not os.path.exists(SYNTH_JSON):
@@ -923,7 +956,8 @@ UNIT_LEVELS_NOTE = [
     "| isect_rebased (2026-11-29, e6bdf47) | defaults | 6 (9 before) | f24_div's and f24_sum_exact's segments, 6 each |",
     "| trace_core (2026-11-29, daa922f; `--hier`, 1571 s) | THREADS=4 | 13 | across module ports (the units alone at most 8: trace_thread 8, the exact sums 6; trace_core's own cells 3): trace_thread's is_c_lo_o, 8 levels from its line buffer (`vertex_lo`: the 9-bit field's magnitude, its leading one, the shift, combinational), the 4-to-1 operand multiplexer (1), isect_rebased's c_lo_i (4 to its first register); next (not flattened, composed from the per-module summaries): trace_thread's operand outputs of 4 levels (xw_p_lo_o, rb_t_o, ...) through the multiplexer into xform_wide's p_lo_i (6), 11. At 64 threads the multiplexers are 64 to 1 on the same paths: c_lo registered in trace_thread (done after this measurement: trace_thread alone still 8, `python3 scripts/synth.py --levels trace_thread`; trace_core not re-synthesized, its next path 11 as composed above) and a register after the operand multiplexers (a cycle of issue) are the next steps |",
     "| trace_core (2026-11-29, 5aed4d4; 2539 s on the loaded machine) | THREADS=2 | 8 (10 on 1a9b9c3; 134,373 LUT6 and 126,947 FF, 136,098 and 126,939 before) | flattened: trace_thread's word request (mem_req_valid_o, 3 levels from its state), the word port's pick (rr_pick, 2), the thread's mem_req_ready_i (1), its load counters (2). Before: trace_thread's state to list_level_o (3), the operand multiplexer (1), list_unit's hazard compare ({thread, level} against S1 and S2, 2) into its ready_o, the grant (1), the thread's FSM (3): trav_unit's and list_unit's ready_o no longer look at the offered thread and level in trace_core (ONE_PER_THREAD: a thread waits for its result) and the grants come from thread_sched's one-hot pick (issue_grant_o), not a decoder after its index (rtl/README.md \"LUT6 levels of the ray tracing core\") |",
-    "| thread_sched (2026-11-29, 5aed4d4; `--hier`, 102 s) | THREADS=64 UNITS=6 SLOT_BITS=4 | 5 (issue_slots_o; issue_grant_o 3, issue_thread_o and issue_valid_o 4) | trace_core at 64 threads, composed: a thread's grant is issue_grant_o (3), trace_core's grant LUT (1) and trace_thread's *_grant_i to its registers (at most 4, in the THREADS=2 netlist): 8, where the decoder after the index was 11; paths known deeper at 64 threads (composed, not fixed): the packet output 10 (the word port 8 and 7 since trace_thread's ld_req register, 11 and 10 before), the traversal and list units' operands 10 or more (rtl/README.md) |"]
+    "| trace_thread (2026-11-29, e7b76fc; `--hier`, 265 s) | defaults | 8 (5,040 LUT6, 3,440 FF; 5,048 and 3,439 before) | per port (`python3 scripts/synth.py --ports build/synth/levels_trace_thread_hier.json PORT ...`): valid_o 0 levels from registers (2 before e7b76fc: st == S_DONE), ready_i 2 into registers (3), mem_req_valid_o 0 (ld_req); trace_core at 64 threads, composed with scripts/zz_pick_wrap.sv OLD=0 (its data inputs unregistered on a copy of the tree, `--levels zz_pick_wrap OLD=0 --hier`, 71 s: data_o 8 from registered valids, 4 from data_i; out_ready_o 3): a finished packet into the output register 8 (10 before), the output's ready back into the thread 5 (8) |",
+    "| thread_sched (2026-11-29, 5aed4d4; `--hier`, 102 s) | THREADS=64 UNITS=6 SLOT_BITS=4 | 5 (issue_slots_o; issue_grant_o 3, issue_thread_o and issue_valid_o 4) | trace_core at 64 threads, composed: a thread's grant is issue_grant_o (3), trace_core's grant LUT (1) and trace_thread's *_grant_i to its registers (at most 4, in the THREADS=2 netlist): 8, where the decoder after the index was 11; the packet output 8 since trace_thread's done register (10 before; the word port 8 and 7 since its ld_req register, 11 and 10 before); known deeper at 64 threads (composed, not fixed): the traversal and list units' operands 10 or more (rtl/README.md) |"]
 
 
 def dynrtp_section():

@@ -138,7 +138,7 @@ PY
   # a DSP48E1 with a register on an input's way (xilinx_dsp packs the RTL's flip-flops into it) ends
   # that input's paths and starts its outputs' as a flip-flop does; without one it is passed through
   # at no level: LUT > DSP > LUT between two flip-flops is 1 level with its A register, 2 without
-  python3 - <<'PY'
+  python3 - <<'PY' || return 1
 import json, os, sys, tempfile
 sys.path.insert(0, "scripts")
 import synth as S
@@ -164,6 +164,22 @@ for areg in (1, 0):
     os.unlink(f.name)
 print(f"LUT > DSP48E1 > LUT: {got[0][0]} level(s) with its A register, {got[1][0]} without (flat); hierarchical {got[0][1]}, {got[1][1]}")
 sys.exit(0 if got == [(1, 1), (2, 2)] else 1)
+PY
+  # --ports: IBUF > LUT1 > FDRE > LUT1 > OBUF, the buffers as wires: i 1 level into a register, o 1
+  # from one (0 and none if a buffer ended the path as a register does)
+  python3 - <<'PY'
+import sys
+sys.path.insert(0, "scripts")
+import synth as S
+cell = lambda typ, i, o, ip="I0", op="O": {"type": typ, "port_directions": {ip: "input", op: "output"},
+                                           "connections": {ip: [i], op: [o]}}
+cells = {"ib": cell("IBUF", 2, 3, "I"), "l1": cell("LUT1", 3, 4), "f": cell("FDRE", 4, 5, "D", "Q"),
+         "l2": cell("LUT1", 5, 6), "ob": cell("OBUF", 6, 7, "I")}
+mods = {"t": {"attributes": {"top": "1"}, "ports": {"i": {"direction": "input", "bits": [2]},
+                                                  "o": {"direction": "output", "bits": [7]}}, "cells": cells}}
+got = S.port_levels(mods, ["i", "o"])
+print(f"--ports through IBUF/OBUF: {got}")
+sys.exit(0 if got == {"i": (None, None, 1), "o": (1, None, None)} else 1)
 PY
 }
 
