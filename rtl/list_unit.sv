@@ -24,8 +24,9 @@
 // answers in the next cycle) the pipeline is the 3 cycles above.
 // A thread has one operation in flight in the DynRTP; should a second operation of the same
 // thread and level arrive while the first is in S1 or S2, ready_o stays low until the first has
-// written its mailboxes (so back-to-back operations of one thread give the C unit's results);
-// with ONE_PER_THREAD the caller guarantees there are none and ready_o does not check.
+// written its mailboxes (so back-to-back operations of one thread give the C unit's results:
+// trace_core's issue FIFO can hold a thread's clear while the unit waits for a list word, and pass
+// that thread's next entry right behind it).
 // Memory read port: mem_rdata_i must hold mem[mem_addr_o] from the cycle mem_valid_i rises after
 // mem_re_o until the next mem_re_o (a block RAM with read enable: mem_valid_i = 1; in the DynRTP
 // the list cache behind a holding register, rtl/dynrtp.sv).
@@ -37,12 +38,7 @@ module list_unit #(
   parameter int THREADS = 64,
   parameter int AW = 32,        // word address width (lists, first, k)
   parameter int KW = 32,        // list entry (key) width: a memory word
-  parameter int LATENCY = 3,    // fixed by the pipeline; documents the cycle model's default
-  // 1: the caller never offers an operation of a thread and level while one of them is in S1 or
-  // S2 (trace_core: a thread waits for its result, and its next list operation after a clear
-  // comes a unit operation later), so ready_o does not look at thread_i and level_i; their operand
-  // multiplexer stays off the path from the unit's ready to the caller's grant
-  parameter bit ONE_PER_THREAD = 0
+  parameter int LATENCY = 3     // fixed by the pipeline; documents the cycle model's default
 ) (
   input  logic                        clk_i,
   input  logic                        rst_ni,
@@ -93,7 +89,7 @@ module list_unit #(
   logic [2:0] s2_next [4];
 
   assign hazard = (s1_valid && s1_idx == idx_in) || (s2_valid && s2_idx == idx_in);
-  assign ready_o = en && (ONE_PER_THREAD || !hazard);
+  assign ready_o = en && !hazard;
   assign take = valid_i && ready_o;
   assign mem_re_o = take && !clear_i;
   assign mem_addr_o = lists_i + first_i + k_i;

@@ -11,13 +11,20 @@
 // Issue: thread_sched (one ready set per unit, round robin): a thread raises its bit of a unit as
 // it decides its next operation there, with the operation's issue slots (trace_thread's slots_o:
 // 1 for the traversal and list units, the ray steps of a batch for the per-ray units); an issued
-// thread whose unit refuses it (trav_unit with its slots full) raises it again. An issue of s
-// slots holds the unit for its thread s cycles, one ray step a cycle (feed_left, feed_thread), as
-// the cycle model charges an operation of n rays n issue slots. A thread's grant is the
-// scheduler's one-hot pick (or the feeding thread's, registered) and the unit's ready, which
-// does not look at the offered operation (trav_unit's and list_unit's ONE_PER_THREAD: a thread
-// waits for its result), so no operand multiplexer lies between a thread's state and its grant
-// (10 LUT6 levels at 2 threads before, docs/synth.md). Each unit takes one step per
+// thread that cannot go (no room in its unit's issue FIFO, a per-ray unit not ready or feeding)
+// raises it again. An issue of s slots holds the unit for its thread s cycles, one ray step a
+// cycle (feed_left, feed_thread), as the cycle model charges an operation of n rays n issue
+// slots. Every unit's operands are registered after the multiplexer over the threads (the issue
+// stage: a cycle): the traversal and list units' in a two-entry FIFO each, from which the unit
+// takes its operation when it is ready (trav_unit refuses while its slots are full, list_unit
+// while it waits for a list word or a clear of the same thread and level is in its pipeline),
+// the per-ray units' in registers the unit always takes. A thread's grant is the scheduler's
+// one-hot pick (or the feeding thread's, registered) and the room in the FIFO (its count) or the
+// per-ray unit's ready, neither of which looks at the offered operation (trav_unit's
+// ONE_PER_THREAD: a thread waits for its result), so no operand multiplexer lies between a
+// thread's state and its grant (10 LUT6 levels at 2 threads before 5aed4d4, docs/synth.md), nor
+// the units' refusals (the traversal and list operands 10 levels or more at 64 threads before
+// the FIFOs, 8 since: rtl/README.md). Each unit takes one step per
 // cycle, so steps of different threads are in flight in every unit at once; the units without a
 // thread id of their own (rebase, wide transformation, the triangle test, adders) carry the issued thread beside their pipeline in an f24_pipe of their latency
 // (their outputs are always taken, so the latency is fixed). Results go to their thread alone, in
@@ -39,7 +46,9 @@
 // unit's starts down its pipeline, 55,684 and 170.3 with the starts bypassing it), 1 thread
 // (--threads 1) 415,578, 1270.9 per packet (459,070 and 1403.9; 436,985 and 1336.3); since
 // 2026-11-29 a per-ray unit's step goes through the issue stage (a cycle: the operands from
-// thread_ram) and a packet's hits through the output register (a cycle). Throughput: up to one
+// thread_ram) and a packet's hits through the output register (a cycle), and a traversal or list
+// operation through its issue FIFO (a cycle; cornell 32x24 at 8 threads in the DynRTP: 51,938
+// cycles before, 52,872 after). Throughput: up to one
 // ray step per unit and cycle, one word port request per cycle, THREADS packets in flight.
 // Resources: the units' (rtl/README.md), thread_sched (6 units, 4-bit slot counters), per unit a
 // 4-bit feed counter and a thread id, THREADS trace_thread (each 5297 LUT6 and 3438 flip-flops
@@ -47,7 +56,8 @@
 // traversal unit or the FSM read, in registers), thread_ram of 4 THREADS words per field group and reader (p 6 W bits, for the wide
 // transformation and the triangle test; te W; so_lo, sd_lo 3 W each, for the rebase unit; t0 W,
 // for the adders and the triangle test; 4 x THREADS words of 64 + 3 W bits for the hits' records),
-// the per-ray units' issue stage (their operands, about 41 W bits, registered once), the output
+// the per-ray units' issue stage (their operands, about 41 W bits, registered once), the
+// traversal and list units' issue FIFOs (two entries of TW + 42 W + 39 and TW + 106 bits), the output
 // register, the header's fields (5 words and the 6 W-bit bounds, once), the word port's FIFO of
 // 2 THREADS requesters of TW + 1 bits, two rr_pick without a pointer (the word port's and the
 // output's lowest thread), the operand multiplexers (THREADS to 1 per unit).
@@ -232,18 +242,21 @@ module trace_core #(
   logic [THREADS-1:0] feed_grant [UNITS], sel_grant [UNITS];
   logic [UNITS*THREADS-1:0] issue_grant;
   logic [UNITS-1:0] feeding, accept, unit_valid /*verilator public_flat_rd*/;
+  logic [UNITS-1:0] issue_ready;  // the issue can go: the unit's ready, or room in its issue stage
   logic [UNITS*4-1:0] issue_slots_v;
   always_comb
     for (int t = 0; t < THREADS; t++) one[t] = THREADS'(1) << t;
   for (genvar u = 0; u < UNITS; u++) begin : g_issue
     assign issue_slots[u] = issue_slots_v[u*4 +: 4];
-    assign feeding[u] = feed_left[u] != '0;
-    assign accept[u] = issue_valid[u] && unit_ready[u] && !feeding[u];
+    // the traversal and list units take one slot per operation (trace_thread's slots_o is 1 but in
+    // S_BATCH), so they never feed: their sel is the scheduler's pick alone
+    assign feeding[u] = u >= U_RB && feed_left[u] != '0;
+    assign accept[u] = issue_valid[u] && issue_ready[u] && !feeding[u];
     assign unit_valid[u] = issue_valid[u] || feeding[u];
     // the thread whose operands go into the unit: the feeding one, else the issued one
     assign sel[u] = feeding[u] ? feed_thread[u] : issue_thread[u*TW +: TW];
     assign sel_grant[u] = feeding[u] ? feed_grant[u] : issue_grant[u*THREADS +: THREADS];
-    assign grant[u] = unit_ready[u] ? sel_grant[u] : '0;
+    assign grant[u] = issue_ready[u] ? sel_grant[u] : '0;
     assign set[u*THREADS +: THREADS] = (req[u] & ~req_q[u]) |
                                        (issue_valid[u] && !accept[u] ? issue_grant[u*THREADS +: THREADS] : '0);
     always_ff @(posedge clk_i or negedge rst_ni)
@@ -256,26 +269,67 @@ module trace_core #(
           feed_left[u] <= issue_slots[u] - 4'd1;
           feed_thread[u] <= sel[u];
           feed_grant[u] <= sel_grant[u];
-        end else if (feeding[u] && unit_ready[u]) feed_left[u] <= feed_left[u] - 4'd1;
+        end else if (feeding[u] && issue_ready[u]) feed_left[u] <= feed_left[u] - 4'd1;
       end
   end
   thread_sched #(.THREADS(THREADS), .UNITS(UNITS), .SLOT_BITS(4)) u_sched (
     .clk_i(clk_i), .rst_ni(rst_ni), .set_i(set), .slots_i(t_slots), .issue_valid_o(issue_valid),
     .issue_thread_o(issue_thread), .issue_grant_o(issue_grant), .issue_slots_o(issue_slots_v));
 
-  // the steps the units took this cycle (a batch counts its rays)
-  assign issue_o = unit_valid & unit_ready;
+  // the steps the units took this cycle (a batch counts its rays; the traversal and list units'
+  // operations as they enter their issue stage)
+  assign issue_o = unit_valid & issue_ready;
+
+  // ---- the traversal and list units' issue stage ----
+  // An operation granted in cycle s is written from the operand multiplexers into its unit's
+  // two-entry FIFO (sync_fifo: the multiplexers end at a register) at the end of s; the unit takes
+  // the FIFO's head from s + 1 on, when it is ready (trav_unit refuses while its slots are full,
+  // list_unit while it waits for a list word or while a clear of the same thread and level is in
+  // its pipeline). The grant waits for room in the FIFO (its count, from registers), not for the
+  // unit's ready: neither the unit's refusal nor its hazard check lies on the grant path, and one
+  // operation per cycle goes in while the unit takes one per cycle. A result comes a cycle later
+  // than an issue straight into the unit would give it.
+  localparam int TRAV_OPW = TW + 1 + 2 + 24 * W + 12 * W + 4 + 6 * W + 32;
+  localparam int LIST_OPW = TW + 2 + 3 * 32 + 8;
+  logic [TRAV_OPW-1:0] trav_op;
+  logic [LIST_OPW-1:0] list_op;
+  logic [U_LIST:U_TRAV] op_valid;
+  logic [TW-1:0] trav_op_thread, list_op_thread;
+  logic trav_op_level, list_op_level, list_op_clear;
+  logic [1:0] trav_op_kind;
+  logic [4*3*W-1:0] trav_op_o, trav_op_d;
+  logic [4*W-1:0] trav_op_tn, trav_op_tf, trav_op_best;
+  logic [3:0] trav_op_mask, list_op_leaf_mask, list_op_alive;
+  logic [6*W-1:0] trav_op_box;
+  logic [31:0] trav_op_nodes, list_op_lists, list_op_first, list_op_k;
+  sync_fifo #(.W(TRAV_OPW), .DEPTH(2)) u_trav_issue (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(accept[U_TRAV]), .ready_o(issue_ready[U_TRAV]),
+    .data_i({sel[U_TRAV], t_trav_level[sel[U_TRAV]], t_trav_kind[sel[U_TRAV]], t_trav_o[sel[U_TRAV]],
+             t_trav_d[sel[U_TRAV]], t_trav_tn[sel[U_TRAV]], t_trav_tf[sel[U_TRAV]], t_trav_best[sel[U_TRAV]],
+             t_trav_mask[sel[U_TRAV]], t_trav_box[sel[U_TRAV]], t_trav_nodes[sel[U_TRAV]]}),
+    .valid_o(op_valid[U_TRAV]), .ready_i(unit_ready[U_TRAV]),
+    .data_o(trav_op));
+  assign {trav_op_thread, trav_op_level, trav_op_kind, trav_op_o, trav_op_d, trav_op_tn, trav_op_tf, trav_op_best,
+          trav_op_mask, trav_op_box, trav_op_nodes} = trav_op;
+  sync_fifo #(.W(LIST_OPW), .DEPTH(2)) u_list_issue (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(accept[U_LIST]), .ready_o(issue_ready[U_LIST]),
+    .data_i({sel[U_LIST], t_list_level[sel[U_LIST]], t_list_clear[sel[U_LIST]], t_list_lists[sel[U_LIST]],
+             t_list_first[sel[U_LIST]], t_list_k[sel[U_LIST]], t_list_leaf_mask[sel[U_LIST]],
+             t_list_alive[sel[U_LIST]]}),
+    .valid_o(op_valid[U_LIST]), .ready_i(unit_ready[U_LIST]),
+    .data_o(list_op));
+  assign {list_op_thread, list_op_level, list_op_clear, list_op_lists, list_op_first, list_op_k, list_op_leaf_mask,
+          list_op_alive} = list_op;
 
   // ---- the units ----
   logic trav_valid_o;
   logic [TW-1:0] trav_thread, node_thread;
   trav_unit #(.E(E), .M(M), .THREADS(THREADS), .ONE_PER_THREAD(1'b1), .ADD_STAGES(ADD_STAGES),
               .DIV_STAGES(DIV_STAGES), .CMP_STAGES(CMP_STAGES)) u_trav (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(unit_valid[U_TRAV]), .ready_o(unit_ready[U_TRAV]),
-    .thread_i(sel[U_TRAV]), .level_i(t_trav_level[sel[U_TRAV]]), .kind_i(t_trav_kind[sel[U_TRAV]]),
-    .o_i(t_trav_o[sel[U_TRAV]]), .d_i(t_trav_d[sel[U_TRAV]]), .tn_i(t_trav_tn[sel[U_TRAV]]),
-    .tf_i(t_trav_tf[sel[U_TRAV]]), .best_i(t_trav_best[sel[U_TRAV]]), .mask_i(t_trav_mask[sel[U_TRAV]]),
-    .box_i(t_trav_box[sel[U_TRAV]]), .nodes_i(t_trav_nodes[sel[U_TRAV]]),
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(op_valid[U_TRAV]), .ready_o(unit_ready[U_TRAV]),
+    .thread_i(trav_op_thread), .level_i(trav_op_level), .kind_i(trav_op_kind), .o_i(trav_op_o), .d_i(trav_op_d),
+    .tn_i(trav_op_tn), .tf_i(trav_op_tf), .best_i(trav_op_best), .mask_i(trav_op_mask), .box_i(trav_op_box),
+    .nodes_i(trav_op_nodes),
     .node_req_valid_o(node_req_valid_o), .node_req_ready_i(node_req_ready_i), .node_addr_o(node_addr_o),
     .node_thread_o(node_thread), .node_level_o(), .node_rsp_valid_i(node_rsp_valid_i), .node_w0_i(node_w0_i),
     .node_w1_i(node_w1_i), .valid_o(trav_valid_o), .ready_i(1'b1), .thread_o(trav_thread), .level_o(), .kind_o(),
@@ -286,11 +340,10 @@ module trace_core #(
 
   logic list_valid_o;
   logic [TW-1:0] list_thread;
-  list_unit #(.THREADS(THREADS), .ONE_PER_THREAD(1'b1)) u_list (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(unit_valid[U_LIST]), .ready_o(unit_ready[U_LIST]),
-    .thread_i(sel[U_LIST]), .level_i(t_list_level[sel[U_LIST]]), .clear_i(t_list_clear[sel[U_LIST]]),
-    .lists_i(t_list_lists[sel[U_LIST]]), .first_i(t_list_first[sel[U_LIST]]), .k_i(t_list_k[sel[U_LIST]]),
-    .leaf_mask_i(t_list_leaf_mask[sel[U_LIST]]), .alive_i(t_list_alive[sel[U_LIST]]),
+  list_unit #(.THREADS(THREADS)) u_list (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(op_valid[U_LIST]), .ready_o(unit_ready[U_LIST]),
+    .thread_i(list_op_thread), .level_i(list_op_level), .clear_i(list_op_clear), .lists_i(list_op_lists),
+    .first_i(list_op_first), .k_i(list_op_k), .leaf_mask_i(list_op_leaf_mask), .alive_i(list_op_alive),
     .mem_re_o(list_re_o), .mem_addr_o(list_addr_o), .mem_rdata_i(list_rdata_i), .mem_valid_i(list_rvalid_i),
     .valid_o(list_valid_o),
     .ready_i(1'b1), .thread_o(list_thread), .level_o(), .key_o(list_key), .need_o(list_need), .skip_o(list_skip),
@@ -341,6 +394,8 @@ module trace_core #(
     add_a_q <= t_add_a[sel[U_ADD]];
     add_t0_zero_q <= t_t0_zero[sel[U_ADD]];
   end
+
+  assign issue_ready[UNITS-1:U_RB] = unit_ready[UNITS-1:U_RB];  // no FIFO: each unit takes its step
 
   // the units without a thread id: their outputs are always taken, so the step's thread (and for
   // the rebase and wide units its ray and kind, where their results go) travels beside them in a

@@ -33,17 +33,19 @@ void cycle_config_default(cycle_config *c)
                                    * issue stage 1 */
     c->latency[OP_SHADOW] = 1;    /* rgs_light forms the shadow rays: its register to the trace port */
     c->latency[OP_CHILDREN] = 1;  /* rgs_spawn (in rgs_accum) forms the child rays: the stack's register */
-    c->latency[OP_TRAV] = 43;     /* trav_unit 38 (state and stack read, prune, queue, trav_node 21, split and push,
-                                   * its node read answering in the next cycle) + 2 (the kd-node cache's hit: 3) + 3
-                                   * (trace_thread's states from the result to the next request) - the issue slot;
-                                   * the scene clip: 6 slots, trav_clip's chain, the start */
-    c->latency[OP_OBJCLIP] = 65;  /* trace_thread: the object's record (2 matrix cache lines), the mailboxes cleared
-                                   * (a list unit operation), the relative distances (an adder batch after trace_core's
-                                   * issue stage), the clip (6
-                                   * slots, trav_clip), the start (a traversal operation of its own) */
-    c->latency[OP_LIST] = 18;     /* list_unit 3, its word through dynrtp's registers and the list cache (hit 3),
-                                   * trace_thread's request and result states */
-    c->latency[OP_LEAF] = 47;     /* the list entry's 18, then rebase_unit 25 (a batch after trace_core's issue stage
+    c->latency[OP_TRAV] = 44;     /* trace_core's issue FIFO 1 + trav_unit 38 (state and stack read, prune, queue,
+                                   * trav_node 21, split and push, its node read answering in the next cycle) + 2
+                                   * (the kd-node cache's hit: 3) + 3 (trace_thread's states from the result to the
+                                   * next request) - the issue slot; the scene clip: 6 slots, trav_clip's chain, the
+                                   * start */
+    c->latency[OP_OBJCLIP] = 67;  /* trace_thread: the object's record (2 matrix cache lines), the mailboxes cleared
+                                   * (a list unit operation, not waited for), the relative distances (an adder batch
+                                   * after trace_core's issue stage), the clip (6 slots, trav_clip), the start (a
+                                   * traversal operation of its own): the clip and the start 1 each through
+                                   * trace_core's issue FIFO */
+    c->latency[OP_LIST] = 19;     /* trace_core's issue FIFO 1, list_unit 3, its word through dynrtp's registers and
+                                   * the list cache (hit 3), trace_thread's request and result states */
+    c->latency[OP_LEAF] = 48;     /* the list entry's 19, then rebase_unit 25 (a batch after trace_core's issue stage
                                    * 1) and its states */
     c->latency[OP_ISECT] = 36;    /* isect_rebased's second half: isect_unit 29 (div 11 + mul 4 + 2 add + cmp 2) +
                                    * best_t = t0 + t (add 6); + 1 since trace_core's output register (a packet's hits
