@@ -24,7 +24,7 @@
 // ONE_PER_THREAD: a thread waits for its result), so no operand multiplexer lies between a
 // thread's state and its grant (10 LUT6 levels at 2 threads before 5aed4d4, docs/synth.md), nor
 // the units' refusals (the traversal and list operands 10 levels or more at 64 threads before
-// the FIFOs, 8 since: rtl/README.md). Each unit takes one step per
+// the FIFOs, 7 since, composed from measured parts: rtl/README.md). Each unit takes one step per
 // cycle, so steps of different threads are in flight in every unit at once; the units without a
 // thread id of their own (rebase, wide transformation, the triangle test, adders) carry the issued thread beside their pipeline in an f24_pipe of their latency
 // (their outputs are always taken, so the latency is fixed). Results go to their thread alone, in
