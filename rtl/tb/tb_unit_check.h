@@ -18,6 +18,7 @@
 #ifndef SAARCOR_RTL_TB_UNIT_CHECK_H
 #define SAARCOR_RTL_TB_UNIT_CHECK_H
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -80,6 +81,7 @@ struct scope {
     std::string path;
     const VerilatedScope *s;
     scope(const VerilatedContext &ctx, const std::string &p) : path(p), s(ctx.scopeFind(("TOP." + p).c_str())) {}
+    bool has(const char *name) const { return s && s->varFind(name); }
     signal operator[](const char *name) const
     {
         const VerilatedVar *v = s ? s->varFind(name) : nullptr;
@@ -146,6 +148,7 @@ struct unit_check {
     // results still due at the frame's end
     void finish(uint64_t cycle, uint64_t &total_mismatches)
     {
+        got.clear();
         for (const pending &x : q)
             report(cycle, &x, "no result by the frame's end", total_mismatches);
         q.clear();
@@ -166,7 +169,8 @@ struct unit_check {
             return;
         print_words("operands", x->ops.data(), x->ops.size());
         print_words("C", x->want.data(), x->defined);
-        print_words("rtl", got.data(), std::min(got.size(), x->defined));
+        if (!got.empty())
+            print_words("rtl", got.data(), std::min(got.size(), x->defined));
     }
 };
 
@@ -182,20 +186,18 @@ inline f24_affine affine_of(const uint32_t *m) // 12 words, row r column c at 4 
     return a;
 }
 
-// ---- trace_core's per-ray units (they carry the issued thread beside their pipelines in
-// trace_core: the thread is the scheduler's pick of the cycle before the step, sel_prev) ----
-
-// the standard handshake of a unit with valid_i/ready_o in and valid_o out
-inline void handshake(unit_check &u, const scope &s, bool has_ready = true)
+// the handshake of a unit: valid_i and ready_o in, valid_o and ready_i out (those it has)
+inline void handshake(unit_check &u, const scope &s)
 {
     const signal v = s["valid_i"], o = s["valid_o"];
-    if (has_ready) {
-        const signal r = s["ready_o"];
-        u.taken = [v, r] { return v.on() && r.on(); };
-    } else
-        u.taken = [v] { return v.on(); };
-    u.given = [o] { return o.on(); };
+    const bool ri = s.has("ready_i"), ro = s.has("ready_o");
+    const signal r_out = ro ? s["ready_o"] : v, r_in = ri ? s["ready_i"] : o; // without a ready: the valid
+    u.taken = [v, r_out] { return v.on() && r_out.on(); };
+    u.given = [o, r_in] { return o.on() && r_in.on(); };
 }
+
+// ---- trace_core's per-ray units (they carry the issued thread beside their pipelines in
+// trace_core: the thread is the scheduler's pick of the cycle before the step, sel_prev) ----
 
 inline unit_check rebase_check(const VerilatedContext &ctx, const std::string &core, const uint32_t &thread)
 {
@@ -241,7 +243,7 @@ inline unit_check isect_check(const VerilatedContext &ctx, const std::string &co
 {
     const scope s(ctx, core + ".u_isect");
     unit_check u{ "isect", s.path };
-    handshake(u, s, false);
+    handshake(u, s);
     u.thread_in = [&thread] { return thread; };
     const signal m = s["m_i"], clo = s["c_lo_i"], sh = s["shared_i"], ph = s["p_hi_i"], pl = s["p_lo_i"], d = s["d_i"];
     const signal te = s["te_i"], tmin = s["tmin_i"], tmax = s["tmax_i"], t0 = s["t0_i"];
