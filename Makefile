@@ -461,14 +461,15 @@ fmt_e = $(word 1,$(subst m, ,$(subst e,,$(1))))
 fmt_m = $(word 2,$(subst m, ,$(subst e,,$(1))))
 
 # build/rtl/<format>/tb_<name>: the Verilator model of rtl/tb/tb_<name>.sv with its C++ bench,
-# linked with the C model of the same format
+# linked with the C model of the same format; rtl/tb/tb_<name>.vlt, where there is one, is its
+# Verilator configuration (tb_dynrtp's: the units' ports its per-unit checks read)
 define RTL_RULES
-$(BUILD)/rtl/$(1)/tb_%: rtl/tb/tb_%.sv rtl/tb/tb_%.cpp $(wildcard rtl/tb/*.h) $(RTL) $(call rtl_c_objs,$(1)) $(VLT_RUNTIME)
+$(BUILD)/rtl/$(1)/tb_%: rtl/tb/tb_%.sv rtl/tb/tb_%.cpp $(wildcard rtl/tb/*.h rtl/tb/*.vlt) $(RTL) $(call rtl_c_objs,$(1)) $(VLT_RUNTIME)
 	@mkdir -p $$(@D)
 	@echo "  VERILATOR $$@"
 	$(Q)verilator $(VERILATOR_FLAGS) -GE=$(call fmt_e,$(1)) -GM=$(call fmt_m,$(1)) --top-module tb_$$* \
 	  -Mdir $(BUILD)/rtl/$(1)/obj_$$* -o $(CURDIR)/$$@ $(addprefix $(CURDIR)/,$(RTL)) \
-	  $(CURDIR)/rtl/tb/tb_$$*.sv $(CURDIR)/rtl/tb/tb_$$*.cpp \
+	  $(CURDIR)/rtl/tb/tb_$$*.sv $(CURDIR)/rtl/tb/tb_$$*.cpp $$(wildcard $(CURDIR)/rtl/tb/tb_$$*.vlt) \
 	  -CFLAGS "$(call fmt_flags,$(1)) $(addprefix -I$(CURDIR)/,hls hls/fp24 hls/units host/fp24 tb/fp host/memimage host/kdtree host/scene)" \
 	  -LDFLAGS "$(addprefix $(CURDIR)/,$(call rtl_c_objs,$(1)) $(VLT_RUNTIME)) -lmpfr -lgmp -lm" >$(BUILD)/rtl/$(1)/build_$$*.log 2>&1 \
 	  && bash scripts/vlt_make.sh $(BUILD)/rtl/$(1)/obj_$$* Vtb_$$* $(VLT_MAKE_ARGS) >>$(BUILD)/rtl/$(1)/build_$$*.log 2>&1 \

@@ -2,7 +2,9 @@
 # saarcor render --mode rtl (the Verilated DynRTP of rtl/dynrtp.sv, make rtl): the cornell box at
 # 32x24 with shadows and secondary rays gives the PNG, the primary hits (the AOV's t, normal, node,
 # triangle, u, v) and the counters of --mode functional bit for bit, every packet of the frame
-# checked against the C core by the harness, and --stats carries the RTL's cycles and unit usage;
+# checked against the C core by the harness and every datapath unit's transactions against its C
+# function (each unit exercised; a flipped bit of a unit's C result fails the frame naming the
+# unit), and --stats carries the RTL's cycles and unit usage;
 # --vcd (an 8x8 frame) leaves the PNG and --stats as they are, has cycle mode's names, its issues,
 # lookups and misses add up to --stats and a --vcd-cycles window holds the whole run's values;
 # without the model one line says to run make rtl (exit 2); options the RTL has no hardware for get
@@ -31,7 +33,8 @@ t_cornell_matches_functional() {
   cmp "$T/r.png" "$T/f.png"
   oiiotool "$T/f.exr" --ch t,N.X,N.Y,N.Z,node,triangle,u,v -o "$T/f_hits.exr"
   idiff -fail 0 -warn 0 "$T/f_hits.exr" "$T/r.exr" >/dev/null
-  python3 - "$T/f.json" "$T/r.json" <<'PY'
+  local checked
+  checked=$(python3 - "$T/f.json" "$T/r.json" <<'PY'
 import json, sys
 f, r = (json.load(open(p)) for p in sys.argv[1:])
 assert r["mode"] == "rtl" and r["rays_by_kind"]["shadow"] > 0, r["rays_by_kind"]
@@ -44,8 +47,32 @@ assert c["cycles"] > 0 and c["packets"] > 0 and c["issues"]["isect"] == r["inter
 # and its object's 31 in four, the header once per frame
 assert c["reads"]["lists"] == r["list_entries"] and 0 < 5 * c["reads"]["words"] < r["words_by_type"]["matrices"], c
 assert all(0 < u < 1 for u in c["usage"].values()), c["usage"]
+# the harness checked every unit's transactions against its C function: each step of trace_core's
+# units but list_unit's (its clears give no result), each read of the core's caches (the shading
+# cache's also before the frame: the RGS's set-up)
+k = c["checked_units"]
+assert len(k) == 16 and all(n > 0 for n in k.values()), k
+assert all(k[u] == c["issues"][u] for u in ("trav", "rebase", "wide", "isect", "add")), (k, c["issues"])
+assert k["list"] == r["list_entries"] and all(k["cache_" + p] == c["reads"][p] for p in ("nodes", "lists", "words")), k
+print(" ".join("%s %d" % x for x in k.items()))
 PY
-  echo "cornell 32x24 --mode rtl: PNG, primary hits and counters as functional; $(grep '^rtl:' "$T/r.log" | cut -d';' -f1)"
+)
+  echo "cornell 32x24 --mode rtl: PNG, primary hits and counters as functional; $(grep '^rtl:' "$T/r.log" | cut -d';' -f1);" \
+       "transactions checked per unit: $checked"
+}
+
+# the per-unit checks can fail: a bit of one unit's C results flipped (TB_DYNRTP_MUTATE: a unit of
+# the core, a stateful one, one of the RGS) fails the frame with a MISMATCH line naming the unit
+t_unit_check_catches_mutant() {
+  model_built
+  local u rc seen=
+  for u in isect trav surface; do
+    rc=0
+    TB_DYNRTP_MUTATE=$u "$BIN" render cornell --width 8 --height 8 --mode rtl -o "$T/m.png" 2>"$T/err" >/dev/null || rc=$?
+    [[ $rc -ne 0 ]] && grep -q "MISMATCH $u (" "$T/err" || { echo "TB_DYNRTP_MUTATE=$u: exit $rc"; cat "$T/err"; return 1; }
+    seen="$seen $(grep -o "MISMATCH $u ([^)]*) cycle [0-9]*" "$T/err"), exit $rc;"
+  done
+  echo "mutants caught:$seen"
 }
 
 # --vcd: a small frame at 100 MHz (a cycle is 10000 ps) with and without the waveform
@@ -122,6 +149,7 @@ t_bad_inputs() { # one line and exit 2 each: a traversal algorithm without RTL, 
 }
 
 run_case rtl_render_cornell_matches_functional t_cornell_matches_functional
+run_case rtl_render_unit_check_catches_mutant t_unit_check_catches_mutant
 run_case rtl_render_vcd_matches_stats t_vcd_matches_stats
 run_case rtl_render_without_model_says_make_rtl t_missing_model
 run_case rtl_render_rejects_what_has_no_rtl t_bad_inputs

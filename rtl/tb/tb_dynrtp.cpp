@@ -11,13 +11,22 @@
 //     (trace_begin + trace_step), and the RTL's hits and counters must equal it; every block's
 //     pixels and primary hits must equal rgs_render_block's (linked C of hls/units/rgs.c); a
 //     mismatch prints the unit (trace_core or rgs_ctrl), the packet or block, the cycle, the
-//     thread, the ray or pixel and field and both values, exit 1.
+//     thread, the ray or pixel and field and both values, exit 1;
+//   * checks every transaction of the units inside the frame (tb_unit_check.h, the ports made
+//     readable by tb_dynrtp.vlt): trace_core's rebase_unit, xform_wide, isect_rebased, its two
+//     f24_add, trav_unit and list_unit (their C units' walkers and mailboxes kept per thread and
+//     level), rgs_units' rgs_raygen, rgs_light, rgs_light_colour, rgs_add_light, rgs_accum and each
+//     rgs_surface, the 4 caches: every result against the unit's C function on the operands the
+//     unit took (and the memory image: rgs_raygen, rgs_surface, trav_unit, list_unit, the caches);
+//     a mismatch prints the unit, its instance, the cycle, the thread, the operands and both
+//     results, exit 1. With TB_DYNRTP_MUTATE=UNIT the C's results of that unit have bit 0 of their
+//     first word flipped (the test that the check can fail).
 // Writes DIR/pixels.bin (0xRRGGBB per pixel), DIR/hits.bin (instance, triangle, t, u, v, cos per
 // pixel: the primary hits) and DIR/stats (key value lines: the RTL's cycles, issues per unit,
 // packets and reads per cache, the memory port's transfers and bytes; the trace counters, the
 // rays by kind and the dropped packets of the C reference blocks: the RTL core's counters summed
 // over the frame must equal them, and the RTL's equal pixels and primary hits stand for its equal
-// ray trees).
+// ray trees); per checked unit checked_UNIT, its transactions checked (the surfaces' summed).
 // With TB_DYNRTP_LOG=FILE in the environment it also writes the frame's timing to FILE for the
 // comparison with the cycle model (docs/cycle-model.md): per packet a line
 // "P number thread cycle_in cycle_out" and per kind of operation (OP_*) of the C core's steps its
@@ -40,6 +49,7 @@
 #include "Vtb_dynrtp___024root.h"
 #include "tb_common.h"
 #include "tb_rays.h"
+#include "tb_unit_check.h"
 #include "tb_vcd.h"
 #include "verilated.h"
 
@@ -59,6 +69,8 @@ constexpr uint64_t FLUSH = 1024;        // cycles after reset: the caches empty 
 constexpr uint64_t TIMEOUT = 1u << 22;  // cycles without a packet or a block out before the harness gives up
 const char *const UNIT[6] = { "trav", "list", "rebase", "wide", "isect", "add" };
 const char *const PORT[4] = { "nodes", "lists", "words", "shading" }; // the caches
+const char *const CACHE[4] = { "u_nodes", "u_lists", "u_matrices", "u_shading" }; // their instances
+const char *const CACHE_UNIT[4] = { "cache_nodes", "cache_lists", "cache_words", "cache_shading" }; // checked as
 const char *const HIT[6] = { "instance", "triangle", "t", "u", "v", "cos" };
 const char *const COUNTER[10] = { "traversal_steps", "leaves", "list_entries", "mailbox_skips", "transformations",
                                   "intersections", "words_nodes", "words_lists", "words_matrices", "words_shading" };
@@ -109,6 +121,66 @@ void block_ops(const std::vector<uint32_t> &mem, const rgs_config *cfg, uint32_t
         ops[op.kind]++, slots[op.kind] += op.slots;
     log_ops(f, ops, slots);
 }
+
+// The per-unit transaction checks (tb_unit_check.h) of the DynRTP's units: trace_core's, rgs_units'
+// (each surface unit on its own) and the caches. With TB_DYNRTP_MUTATE=NAME in the environment the
+// C's results of unit NAME have a bit flipped: the frame must fail there.
+struct unit_checks {
+    const std::string core = "tb_dynrtp.u_dynrtp.u_core", units = "tb_dynrtp.u_dynrtp.u_units";
+    cosim::signal sel;         // trace_core's scheduler's picks (public_flat_rd)
+    uint32_t sel_prev[6] = {}; // the picks of the cycle before: the threads of this cycle's unit steps
+    std::vector<cosim::unit_check> all;
+    std::vector<const char *> names; // in the order of the stats, each once
+
+    unit_checks(const VerilatedContext &ctx, const std::vector<uint32_t> &mem)
+    {
+        using namespace cosim;
+        sel = scope(ctx, core)["sel"];
+        all = { rebase_check(ctx, core, sel_prev[2]), wide_check(ctx, core, sel_prev[3]),
+                isect_check(ctx, core, sel_prev[4]),  add_check(ctx, core, sel_prev[5]),
+                trav_check(ctx, core, mem),           list_check(ctx, core, mem),
+                raygen_check(ctx, units, mem),        light_check(ctx, units),
+                colour_check(ctx, units),             add_light_check(ctx, units),
+                accum_check(ctx, units) };
+        for (int k = 0; ctx.scopeFind(("TOP." + surface_path(k)).c_str()); k++)
+            all.push_back(surface_check(ctx, surface_path(k), mem));
+        for (int k = 0; k < 4; k++)
+            all.push_back(cache_check(ctx, std::string("tb_dynrtp.u_dynrtp.") + CACHE[k], CACHE_UNIT[k], mem));
+        for (const unit_check &u : all)
+            if (names.empty() || std::strcmp(names.back(), u.name))
+                names.push_back(u.name);
+        if (const char *m = std::getenv("TB_DYNRTP_MUTATE")) {
+            bool found = false;
+            for (unit_check &u : all)
+                found |= u.mutate = !std::strcmp(u.name, m);
+            if (!found) {
+                std::printf("tb_dynrtp: TB_DYNRTP_MUTATE=%s: no such unit\n", m);
+                std::exit(2);
+            }
+        }
+    }
+    std::string surface_path(int k) const { return units + ".g_sf[" + std::to_string(k) + "].u_surface"; }
+    void sample(uint64_t cycle)
+    {
+        for (cosim::unit_check &u : all)
+            u.sample(cycle, g_mismatches);
+        for (uint32_t u = 0; u < 6; u++)
+            sel_prev[u] = sel.element(u).bits(0, 8);
+    }
+    void finish(uint64_t cycle)
+    {
+        for (cosim::unit_check &u : all)
+            u.finish(cycle, g_mismatches);
+    }
+    // the transactions checked of the units called name (the surfaces: all of them)
+    uint64_t checked(const char *name) const
+    {
+        uint64_t n = 0;
+        for (const cosim::unit_check &u : all)
+            n += std::strcmp(u.name, name) ? 0 : u.checked;
+        return n;
+    }
+};
 
 // The waveform of --vcd (tb_vcd.h) in cycle mode's names where the RTL has the same thing
 // (docs/cycle-model.md has the mapping), RTL-only signals under their own: read from the harness's
@@ -255,6 +327,7 @@ int main(int argc, char **argv)
     top.mem_req_ready_i = 1, top.mem_rsp_valid_i = 0;
     tick();
     top.rst_ni = 1;
+    unit_checks checks(ctx, mem);
 
     std::vector<packet> core(std::size_t{1} << 8);
     const char *log_path = std::getenv("TB_DYNRTP_LOG");
@@ -383,6 +456,7 @@ int main(int argc, char **argv)
             done++;
             last_out = cycle;
         }
+        checks.sample(cycle);
         if (vcd) // frame cycle 0 is the first that cycles_o counts, the one after the frame was taken
             wave.sample(top, blocks, port.size(), frame_taken && cycle > frame_at, cycle - frame_at - 1);
         ended = top.frame_done_o;
@@ -395,6 +469,8 @@ int main(int argc, char **argv)
 
     if (log)
         std::fclose(log);
+    if (ended)
+        checks.finish(cycle);
     auto write = [&](const char *name, const std::vector<uint32_t> &v) {
         const std::string path = dir + "/" + name;
         FILE *f = std::fopen(path.c_str(), "wb");
@@ -426,6 +502,8 @@ int main(int argc, char **argv)
             std::printf("MISMATCH dynrtp: the frame's %s: rtl %llu, C blocks %llu\n", COUNTER[k],
                         (unsigned long long)cw[k], (unsigned long long)rw[k]);
     }
+    for (const char *u : checks.names)
+        std::fprintf(st, "checked_%s %llu\n", u, (unsigned long long)checks.checked(u));
     std::fprintf(st, "dropped %llu\nchecked %llu\nmismatches %llu\n", (unsigned long long)ref.dropped,
                  (unsigned long long)checked, (unsigned long long)g_mismatches);
     std::fclose(st);
@@ -433,6 +511,10 @@ int main(int argc, char **argv)
         std::printf("tb_dynrtp: cannot write '%s'\n", argv[2]);
         return 3;
     }
+    std::printf("tb_dynrtp: transactions checked per unit against its C function:");
+    for (const char *u : checks.names)
+        std::printf(" %s %llu", u, (unsigned long long)checks.checked(u));
+    std::printf("\n");
     std::printf("tb_dynrtp: %ux%u, %llu blocks (%u in flight) and %llu packets in %llu cycles, %llu packets checked "
                 "against the C core and %llu blocks against rgs_render_block, %llu mismatches\n", w, h,
                 (unsigned long long)done, blocks, (unsigned long long)top.packets_o, (unsigned long long)top.cycles_o,

@@ -49,12 +49,14 @@ typedef struct {
 
 /* --mode rtl: the counters of the RTL (rtl/dynrtp.sv): cycles of the frame, operations issued per
  * unit of trace_core, packets traced, reads per cache (the core's kd nodes, list entries and
- * descriptor words, the RGS's shading words), the memory port's transfers. */
-enum { RTL_UNITS = 6, RTL_PORTS = 4 };
+ * descriptor words, the RGS's shading words), the memory port's transfers; the harness's
+ * transactions checked per datapath unit against its C function (rtl/tb/tb_unit_check.h). */
+enum { RTL_UNITS = 6, RTL_PORTS = 4, RTL_CHECKED = 16 };
 extern const char *const rtl_unit_names[RTL_UNITS];
 extern const char *const rtl_port_names[RTL_PORTS];
+extern const char *const rtl_checked_names[RTL_CHECKED];
 typedef struct {
-    uint64_t cycles, packets, issues[RTL_UNITS], reads[RTL_PORTS], mem_transfers, mem_bytes;
+    uint64_t cycles, packets, issues[RTL_UNITS], reads[RTL_PORTS], checked[RTL_CHECKED], mem_transfers, mem_bytes;
     uint32_t threads;
 } rtl_stats;
 

@@ -23,6 +23,11 @@ extern char **environ;
 
 const char *const rtl_unit_names[RTL_UNITS] = { "trav", "list", "rebase", "wide", "isect", "add" };
 const char *const rtl_port_names[RTL_PORTS] = { "nodes", "lists", "words", "shading" };
+/* the units tb_dynrtp checks (its stats' checked_NAME) */
+const char *const rtl_checked_names[RTL_CHECKED] = { "rebase",      "wide",        "isect",      "add",
+                                                     "trav",        "list",        "raygen",     "light",
+                                                     "colour",      "add_light",   "accum",      "surface",
+                                                     "cache_nodes", "cache_lists", "cache_words", "cache_shading" };
 
 /* <build>/rtl/eEmM/tb_dynrtp beside this program (build/saarcor or build/w/eEmM/saarcor). */
 static int model_path(char *path, size_t n)
@@ -119,6 +124,9 @@ static int read_stats(const char *path, rgs_counters *sum, rtl_stats *st)
         for (k = 0; k < RTL_PORTS; k++)
             if (!strncmp(key, "reads_", 6) && !strcmp(key + 6, rtl_port_names[k]))
                 st->reads[k] = v;
+        for (k = 0; k < RTL_CHECKED; k++)
+            if (!strncmp(key, "checked_", 8) && !strcmp(key + 8, rtl_checked_names[k]))
+                st->checked[k] = v;
         for (k = 0; k < 10; k++)
             if (!strcmp(key, trace_keys[k]))
                 tw[k] = v;
@@ -236,5 +244,8 @@ void rtl_report_json(FILE *f, const render_opts *ro, const rtl_stats *st)
     fprintf(f, "}, \"usage\": {");
     for (int k = 0; k < RTL_UNITS; k++)
         fprintf(f, "%s\"%s\": %.6f", k ? ", " : "", rtl_unit_names[k], (double)st->issues[k] / (double)st->cycles);
+    fprintf(f, "}, \"checked_units\": {");
+    for (int k = 0; k < RTL_CHECKED; k++)
+        fprintf(f, "%s\"%s\": %llu", k ? ", " : "", rtl_checked_names[k], (unsigned long long)st->checked[k]);
     fprintf(f, "}}");
 }
