@@ -462,18 +462,33 @@ fmt_m = $(word 2,$(subst m, ,$(subst e,,$(1))))
 
 # build/rtl/<format>/tb_<name>: the Verilator model of rtl/tb/tb_<name>.sv with its C++ bench,
 # linked with the C model of the same format; rtl/tb/tb_<name>.vlt, where there is one, is its
-# Verilator configuration (tb_dynrtp's: the units' ports its per-unit checks read)
+# Verilator configuration (tb_dynrtp's: the units' ports its per-unit checks read).
+# build/rtl/<format>/b<N>/tb_dynrtp: the DynRTP with N threads and N block controllers (-GTHREADS=N
+# -GRGS_BLOCKS=N; the default model's are 32 and 8), which render --mode rtl --threads-per-pipe N runs
+# (tb/cli/render_rtl.c); dynrtp_params gives a DynRTP model's threads and block controllers to
+# Verilator and to its harness.
+# One recipe for both: the model in $(@D), its bench from its name, RTL_FMT and RTL_PARAMS per rule
+rtl_tb = $(patsubst tb_%,%,$(notdir $@))
+dynrtp_params = -GTHREADS=$(1) -GRGS_BLOCKS=$(2) -CFLAGS -DTB_THREADS=$(1) -CFLAGS -DTB_RGS_BLOCKS=$(2)
+define RTL_MODEL
+@mkdir -p $(@D)
+@echo "  VERILATOR $@"
+$(Q)verilator $(VERILATOR_FLAGS) -GE=$(call fmt_e,$(RTL_FMT)) -GM=$(call fmt_m,$(RTL_FMT)) $(RTL_PARAMS) --top-module tb_$(rtl_tb) \
+  -Mdir $(@D)/obj_$(rtl_tb) -o $(CURDIR)/$@ $(addprefix $(CURDIR)/,$(RTL)) \
+  $(CURDIR)/rtl/tb/tb_$(rtl_tb).sv $(CURDIR)/rtl/tb/tb_$(rtl_tb).cpp $(wildcard $(CURDIR)/rtl/tb/tb_$(rtl_tb).vlt) \
+  -CFLAGS "$(call fmt_flags,$(RTL_FMT)) $(addprefix -I$(CURDIR)/,hls hls/fp24 hls/units host/fp24 tb/fp host/memimage host/kdtree host/scene)" \
+  -LDFLAGS "$(addprefix $(CURDIR)/,$(call rtl_c_objs,$(RTL_FMT)) $(VLT_RUNTIME)) -lmpfr -lgmp -lm" >$(@D)/build_$(rtl_tb).log 2>&1 \
+  && bash scripts/vlt_make.sh $(@D)/obj_$(rtl_tb) Vtb_$(rtl_tb) $(VLT_MAKE_ARGS) >>$(@D)/build_$(rtl_tb).log 2>&1 \
+  || { tail -30 $(@D)/build_$(rtl_tb).log; exit 1; }
+endef
 define RTL_RULES
+$(BUILD)/rtl/$(1)/%: RTL_FMT := $(1)
 $(BUILD)/rtl/$(1)/tb_%: rtl/tb/tb_%.sv rtl/tb/tb_%.cpp $(wildcard rtl/tb/*.h rtl/tb/*.vlt) $(RTL) $(call rtl_c_objs,$(1)) $(VLT_RUNTIME)
-	@mkdir -p $$(@D)
-	@echo "  VERILATOR $$@"
-	$(Q)verilator $(VERILATOR_FLAGS) -GE=$(call fmt_e,$(1)) -GM=$(call fmt_m,$(1)) --top-module tb_$$* \
-	  -Mdir $(BUILD)/rtl/$(1)/obj_$$* -o $(CURDIR)/$$@ $(addprefix $(CURDIR)/,$(RTL)) \
-	  $(CURDIR)/rtl/tb/tb_$$*.sv $(CURDIR)/rtl/tb/tb_$$*.cpp $$(wildcard $(CURDIR)/rtl/tb/tb_$$*.vlt) \
-	  -CFLAGS "$(call fmt_flags,$(1)) $(addprefix -I$(CURDIR)/,hls hls/fp24 hls/units host/fp24 tb/fp host/memimage host/kdtree host/scene)" \
-	  -LDFLAGS "$(addprefix $(CURDIR)/,$(call rtl_c_objs,$(1)) $(VLT_RUNTIME)) -lmpfr -lgmp -lm" >$(BUILD)/rtl/$(1)/build_$$*.log 2>&1 \
-	  && bash scripts/vlt_make.sh $(BUILD)/rtl/$(1)/obj_$$* Vtb_$$* $(VLT_MAKE_ARGS) >>$(BUILD)/rtl/$(1)/build_$$*.log 2>&1 \
-	  || { tail -30 $(BUILD)/rtl/$(1)/build_$$*.log; exit 1; }
+	$$(RTL_MODEL)
+$(BUILD)/rtl/$(1)/tb_dynrtp: RTL_PARAMS = $(call dynrtp_params,32,8)
+$(BUILD)/rtl/$(1)/b%/tb_dynrtp: RTL_PARAMS = $$(call dynrtp_params,$$*,$$*)
+$(BUILD)/rtl/$(1)/b%/tb_dynrtp: rtl/tb/tb_dynrtp.sv rtl/tb/tb_dynrtp.cpp $(wildcard rtl/tb/*.h rtl/tb/*.vlt) $(RTL) $(call rtl_c_objs,$(1)) $(VLT_RUNTIME)
+	$$(RTL_MODEL)
 endef
 $(foreach f,$(RTL_FORMATS),$(eval $(call RTL_RULES,$(f))))
 

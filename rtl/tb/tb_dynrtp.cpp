@@ -63,7 +63,16 @@ namespace {
 
 using cosim::get;
 
-constexpr uint32_t RGS_BLOCKS = 8;      // tb_dynrtp.sv's: the blocks in flight at most
+// the model's threads and block controllers (the blocks in flight at most): the Makefile gives the
+// same values to Verilator (-GTHREADS, -GRGS_BLOCKS) and here
+#if !defined(TB_THREADS) || !defined(TB_RGS_BLOCKS)
+#error "tb_dynrtp: build it by the Makefile (make rtl), which defines TB_THREADS and TB_RGS_BLOCKS"
+#endif
+constexpr uint32_t THREADS = TB_THREADS;
+constexpr uint32_t RGS_BLOCKS = TB_RGS_BLOCKS;
+static_assert(RGS_BLOCKS <= 64, "the harness holds the block controllers' flags in 64 bits");
+// the bits of a counter up to n
+constexpr uint32_t bits(uint32_t n) { return n ? 1 + bits(n >> 1) : 0; }
 constexpr uint64_t FX = 65536;
 constexpr uint64_t FLUSH = 1024;        // cycles after reset: the caches empty their tags (512 lines at most)
 constexpr uint64_t TIMEOUT = 1u << 22;  // cycles without a packet or a block out before the harness gives up
@@ -192,7 +201,7 @@ struct waves {
     cosim::vcd_writer vcd;
     int unit[6][4] = {}, rgs[4] = {}, cache[4][3] = {}, outstanding = 0, in_flight = 0;
     uint32_t fills[4] = {}; // per cache: line requests the memory port took and has not answered
-    uint32_t computing_q = 0;
+    uint64_t computing_q = 0;
 
     // the signals, in the scopes of cycle mode's file; the rgs scope has no queue_depth (every block
     // controller has its own units: no thread waits for them) and counts its busy controllers
@@ -202,11 +211,11 @@ struct waves {
         static const char *const cache_sig[3] = { "lookups", "misses", "fills" };
         static const char *const cache_name[4] = { "kd_nodes", "lists", "matrices", "shading" }; // mem_kind_names
         const std::string pipe = "dynrtc.pipe0";
-        const uint32_t widths[4] = { 1, 1, 6, 5 }; // 32 threads: a depth up to 32, ids 0..31
+        const uint32_t widths[4] = { 1, 1, bits(THREADS), bits(THREADS - 1) }; // a depth up to THREADS, ids
         rgs[BUSY] = vcd.add(pipe + ".rgs", "busy", 1);
-        rgs[ISSUE] = vcd.add(pipe + ".rgs", "issue", 4);
-        rgs[TID] = vcd.add(pipe + ".rgs", "thread_id", 5);
-        rgs[QUEUE] = vcd.add(pipe + ".rgs", "controllers_busy", 4); // RTL only
+        rgs[ISSUE] = vcd.add(pipe + ".rgs", "issue", bits(RGS_BLOCKS));
+        rgs[TID] = vcd.add(pipe + ".rgs", "thread_id", bits(RGS_BLOCKS - 1));
+        rgs[QUEUE] = vcd.add(pipe + ".rgs", "controllers_busy", bits(RGS_BLOCKS)); // RTL only
         for (int u = 0; u < 6; u++)
             for (int k = 0; k < 4; k++)
                 unit[u][k] = vcd.add(pipe + "." + UNIT[u], unit_sig[k], widths[k]);
@@ -214,10 +223,10 @@ struct waves {
             for (int k = 0; k < 3; k++)
                 cache[c][k] = vcd.add(pipe + ".cache_" + cache_name[c], cache_sig[k], 32);
         outstanding = vcd.add(pipe + ".mem_port", "outstanding", 32);
-        in_flight = vcd.add(pipe, "threads_in_flight", 4);
+        in_flight = vcd.add(pipe, "threads_in_flight", bits(RGS_BLOCKS));
         char comment[160];
-        std::snprintf(comment, sizeof comment, "the RTL DynRTP (rtl/dynrtp.sv): 1 pipe x 32 threads, %u blocks in "
-                      "flight at %g MHz", blocks, mhz);
+        std::snprintf(comment, sizeof comment, "the RTL DynRTP (rtl/dynrtp.sv): 1 pipe x %u threads, %u blocks in "
+                      "flight at %g MHz", THREADS, blocks, mhz);
         return vcd.open(path, from, to, mhz, comment);
     }
 
@@ -231,20 +240,20 @@ struct waves {
         for (int u = 0; u < 6; u++) {
             vcd.set(unit[u][BUSY], valid >> u & 1);
             vcd.set(unit[u][ISSUE], issue >> u & 1);
-            vcd.set(unit[u][QUEUE], (uint64_t)__builtin_popcount(
+            vcd.set(unit[u][QUEUE], (uint64_t)__builtin_popcountll(
                                         r->tb_dynrtp__DOT__u_dynrtp__DOT__u_core__DOT__u_sched__DOT__ready_q[u]));
             vcd.set(unit[u][TID], valid >> u & 1 ? r->tb_dynrtp__DOT__u_dynrtp__DOT__u_core__DOT__sel[u]
                                                   : cosim::vcd_writer::X);
         }
         // a block controller computes while it holds a block, not waiting for the core to take its
         // packet or to give back its hits
-        const uint32_t mask = (1u << blocks) - 1;
-        const uint32_t computing = ~r->tb_dynrtp__DOT__u_dynrtp__DOT__rb_ready & ~r->tb_dynrtp__DOT__u_dynrtp__DOT__tr_valid &
+        const uint64_t mask = ~0ull >> (64 - blocks);
+        const uint64_t computing = ~r->tb_dynrtp__DOT__u_dynrtp__DOT__rb_ready & ~r->tb_dynrtp__DOT__u_dynrtp__DOT__tr_valid &
                                    ~r->tb_dynrtp__DOT__u_dynrtp__DOT__hit_ready & mask;
         vcd.set(rgs[BUSY], computing != 0);
-        vcd.set(rgs[ISSUE], (uint64_t)__builtin_popcount(computing & ~computing_q));
-        vcd.set(rgs[TID], computing ? (uint64_t)__builtin_ctz(computing) : cosim::vcd_writer::X);
-        vcd.set(rgs[QUEUE], (uint64_t)__builtin_popcount(computing));
+        vcd.set(rgs[ISSUE], (uint64_t)__builtin_popcountll(computing & ~computing_q));
+        vcd.set(rgs[TID], computing ? (uint64_t)__builtin_ctzll(computing) : cosim::vcd_writer::X);
+        vcd.set(rgs[QUEUE], (uint64_t)__builtin_popcountll(computing));
         computing_q = computing;
         const bool look[4] = { r->tb_dynrtp__DOT__u_dynrtp__DOT__node_req && r->tb_dynrtp__DOT__u_dynrtp__DOT__node_ready,
                                r->tb_dynrtp__DOT__u_dynrtp__DOT__lreq_q && r->tb_dynrtp__DOT__u_dynrtp__DOT__lreq_ready,

@@ -29,8 +29,11 @@ const char *const rtl_checked_names[RTL_CHECKED] = { "rebase",      "wide",     
                                                      "colour",      "add_light",   "accum",      "surface",
                                                      "cache_nodes", "cache_lists", "cache_words", "cache_shading" };
 
-/* <build>/rtl/eEmM/tb_dynrtp beside this program (build/saarcor or build/w/eEmM/saarcor). */
-static int model_path(char *path, size_t n)
+/* The model for `threads` threads per pipe, beside this program (build/saarcor or
+ * build/w/eEmM/saarcor): <build>/rtl/eEmM/b<threads>/tb_dynrtp, built with that many threads and
+ * block controllers (make build/rtl/eEmM/b32/tb_dynrtp), where there is one, else
+ * <build>/rtl/eEmM/tb_dynrtp (make rtl: 8 block controllers, the blocks in flight at most). */
+static int model_path(char *path, size_t n, uint32_t threads)
 {
     char self[1024];
     const ssize_t len = readlink("/proc/self/exe", self, sizeof self - 1);
@@ -42,7 +45,11 @@ static int model_path(char *path, size_t n)
     int e, m;
     char tail;
     const int in_w = dir && sscanf(dir + 1, "e%dm%d%c", &e, &m, &tail) == 2;
-    snprintf(path, n, "%s%s/rtl/e%dm%d/tb_dynrtp", self, in_w ? "/../.." : "", F24_EXP_BITS, F24_MAN_BITS);
+    char models[1100];
+    snprintf(models, sizeof models, "%s%s/rtl/e%dm%d", self, in_w ? "/../.." : "", F24_EXP_BITS, F24_MAN_BITS);
+    snprintf(path, n, "%s/b%u/tb_dynrtp", models, threads);
+    if (access(path, X_OK) != 0)
+        snprintf(path, n, "%s/tb_dynrtp", models);
     return 0;
 }
 
@@ -65,7 +72,7 @@ int render_rtl_check(const render_opts *ro)
         return cli_usage_error("render", "--mode rtl renders one frame without --usage-plot, --heatmap, "
                                          "--capture-unit-io, --mpi or --frames");
     char path[1200];
-    if (model_path(path, sizeof path) != 0 || access(path, X_OK) != 0) {
+    if (model_path(path, sizeof path, ro->cc.threads_per_pipe) != 0 || access(path, X_OK) != 0) {
         if (F24_EXP_BITS == 7 && F24_MAN_BITS == 16) /* make rtl builds the default format's */
             cli_error("render", "--mode rtl: no RTL model at %s: run make rtl", path);
         else
@@ -154,7 +161,7 @@ int render_rtl(const uint32_t *mem, uint32_t n, const render_opts *ro, uint32_t 
                hit_record *hits, rgs_counters *sum, rtl_stats *st)
 {
     char dir[] = "/tmp/saarcor-rtl-XXXXXX", path[1200], model[1200], log[1200];
-    if (!mkdtemp(dir) || model_path(model, sizeof model) != 0) {
+    if (!mkdtemp(dir) || model_path(model, sizeof model, ro->cc.threads_per_pipe) != 0) {
         cli_error("render", "--mode rtl: cannot make a temporary folder: %s", strerror(errno));
         return SAARCOR_EXIT_INTERNAL;
     }
