@@ -51,7 +51,7 @@
 // cycles before, 52,872 after). Throughput: up to one
 // ray step per unit and cycle, one word port request per cycle, THREADS packets in flight.
 // Resources: the units' (rtl/README.md), thread_sched (6 units, 4-bit slot counters), per unit a
-// 4-bit feed counter and a thread id, THREADS trace_thread (each 5297 LUT6 and 3438 flip-flops
+// 4-bit feed counter and a thread id, THREADS trace_thread (each 5040 LUT6 and 3440 flip-flops, its header
 // with synth_xilinx at e7m16: its control and the fields the
 // traversal unit or the FSM read, in registers), thread_ram of 4 THREADS words per field group and reader (p 6 W bits, for the wide
 // transformation and the triangle test; te W; so_lo, sd_lo 3 W each, for the rebase unit; t0 W,
