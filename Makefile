@@ -481,13 +481,15 @@ $(Q)verilator $(VERILATOR_FLAGS) -GE=$(call fmt_e,$(RTL_FMT)) -GM=$(call fmt_m,$
   && bash scripts/vlt_make.sh $(@D)/obj_$(rtl_tb) Vtb_$(rtl_tb) $(VLT_MAKE_ARGS) >>$(@D)/build_$(rtl_tb).log 2>&1 \
   || { tail -30 $(@D)/build_$(rtl_tb).log; exit 1; }
 endef
+# a model's prerequisites: format $(1), bench $(2)
+rtl_deps = rtl/tb/tb_$(2).sv rtl/tb/tb_$(2).cpp $(wildcard rtl/tb/*.h rtl/tb/*.vlt) $(RTL) $(call rtl_c_objs,$(1)) $(VLT_RUNTIME)
 define RTL_RULES
 $(BUILD)/rtl/$(1)/%: RTL_FMT := $(1)
-$(BUILD)/rtl/$(1)/tb_%: rtl/tb/tb_%.sv rtl/tb/tb_%.cpp $(wildcard rtl/tb/*.h rtl/tb/*.vlt) $(RTL) $(call rtl_c_objs,$(1)) $(VLT_RUNTIME)
+$(BUILD)/rtl/$(1)/tb_%: $(call rtl_deps,$(1),%)
 	$$(RTL_MODEL)
 $(BUILD)/rtl/$(1)/tb_dynrtp: RTL_PARAMS = $(call dynrtp_params,32,8)
 $(BUILD)/rtl/$(1)/b%/tb_dynrtp: RTL_PARAMS = $$(call dynrtp_params,$$*,$$*)
-$(BUILD)/rtl/$(1)/b%/tb_dynrtp: rtl/tb/tb_dynrtp.sv rtl/tb/tb_dynrtp.cpp $(wildcard rtl/tb/*.h rtl/tb/*.vlt) $(RTL) $(call rtl_c_objs,$(1)) $(VLT_RUNTIME)
+$(BUILD)/rtl/$(1)/b%/tb_dynrtp: $(call rtl_deps,$(1),dynrtp)
 	$$(RTL_MODEL)
 endef
 $(foreach f,$(RTL_FORMATS),$(eval $(call RTL_RULES,$(f))))

@@ -102,6 +102,18 @@ static int read_file(const char *path, void *data, size_t bytes)
     return ok ? 0 : -1;
 }
 
+/* key = prefix + names[k]: the counter goes to out[k] */
+static void read_named(const char *key, const char *prefix, const char *const names[], int n, uint64_t out[],
+                       unsigned long long v)
+{
+    const size_t len = strlen(prefix);
+    if (strncmp(key, prefix, len) != 0)
+        return;
+    for (int k = 0; k < n; k++)
+        if (!strcmp(key + len, names[k]))
+            out[k] = v;
+}
+
 /* The model's key-value counters into sum and st. */
 static int read_stats(const char *path, rgs_counters *sum, rtl_stats *st)
 {
@@ -125,18 +137,10 @@ static int read_stats(const char *path, rgs_counters *sum, rtl_stats *st)
         else if (!strcmp(key, "mem_bytes")) st->mem_bytes = v;
         else if (!strcmp(key, "dropped")) sum->dropped = v;
         else if (sscanf(key, "rays_%d", &k) == 1 && k >= 0 && k < RAY_KINDS) sum->rays[k] = v;
-        for (k = 0; k < RTL_UNITS; k++)
-            if (!strncmp(key, "issues_", 7) && !strcmp(key + 7, rtl_unit_names[k]))
-                st->issues[k] = v;
-        for (k = 0; k < RTL_PORTS; k++)
-            if (!strncmp(key, "reads_", 6) && !strcmp(key + 6, rtl_port_names[k]))
-                st->reads[k] = v;
-        for (k = 0; k < RTL_CHECKED; k++)
-            if (!strncmp(key, "checked_", 8) && !strcmp(key + 8, rtl_checked_names[k]))
-                st->checked[k] = v;
-        for (k = 0; k < 10; k++)
-            if (!strcmp(key, trace_keys[k]))
-                tw[k] = v;
+        read_named(key, "issues_", rtl_unit_names, RTL_UNITS, st->issues, v);
+        read_named(key, "reads_", rtl_port_names, RTL_PORTS, st->reads, v);
+        read_named(key, "checked_", rtl_checked_names, RTL_CHECKED, st->checked, v);
+        read_named(key, "", trace_keys, 10, tw, v);
     }
     fclose(f);
     return st->cycles ? 0 : -1;
@@ -237,22 +241,26 @@ void rtl_report(FILE *f, const render_opts *ro, const rtl_stats *st)
     fprintf(f, "\n");
 }
 
+/* a JSON object's members "names[k]": values[k] */
+static void json_counts(FILE *f, const char *const names[], const uint64_t values[], int n)
+{
+    for (int k = 0; k < n; k++)
+        fprintf(f, "%s\"%s\": %llu", k ? ", " : "", names[k], (unsigned long long)values[k]);
+}
+
 void rtl_report_json(FILE *f, const render_opts *ro, const rtl_stats *st)
 {
     fprintf(f, "{\"cycles\": %llu, \"fps\": %.6f, \"threads\": %u, \"packets\": %llu, \"mem_transfers\": %llu, "
                "\"mem_bytes\": %llu, \"issues\": {", (unsigned long long)st->cycles,
             ro->cc.mem.clock_mhz * 1e6 / (double)st->cycles, st->threads, (unsigned long long)st->packets,
             (unsigned long long)st->mem_transfers, (unsigned long long)st->mem_bytes);
-    for (int k = 0; k < RTL_UNITS; k++)
-        fprintf(f, "%s\"%s\": %llu", k ? ", " : "", rtl_unit_names[k], (unsigned long long)st->issues[k]);
+    json_counts(f, rtl_unit_names, st->issues, RTL_UNITS);
     fprintf(f, "}, \"reads\": {");
-    for (int k = 0; k < RTL_PORTS; k++)
-        fprintf(f, "%s\"%s\": %llu", k ? ", " : "", rtl_port_names[k], (unsigned long long)st->reads[k]);
+    json_counts(f, rtl_port_names, st->reads, RTL_PORTS);
     fprintf(f, "}, \"usage\": {");
     for (int k = 0; k < RTL_UNITS; k++)
         fprintf(f, "%s\"%s\": %.6f", k ? ", " : "", rtl_unit_names[k], (double)st->issues[k] / (double)st->cycles);
     fprintf(f, "}, \"checked_units\": {");
-    for (int k = 0; k < RTL_CHECKED; k++)
-        fprintf(f, "%s\"%s\": %llu", k ? ", " : "", rtl_checked_names[k], (unsigned long long)st->checked[k]);
+    json_counts(f, rtl_checked_names, st->checked, RTL_CHECKED);
     fprintf(f, "}}");
 }
