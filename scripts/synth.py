@@ -42,7 +42,7 @@ path (the named nets); it writes only build/synth/levels_*.
 that --levels wrote, each port's LUT6 levels from the top's registers, from its inputs and into its
 registers (the top's IBUF/OBUF as wires): the parts of a path composed across modules.
 """
-import concurrent.futures as cf, json, os, re, shlex, subprocess, sys, tempfile, time
+import concurrent.futures as cf, hashlib, json, os, re, shlex, subprocess, sys, tempfile, time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RTL = sorted(os.path.join(ROOT, "rtl", f) for f in os.listdir(os.path.join(ROOT, "rtl")) if f.endswith(".sv"))
@@ -119,10 +119,10 @@ def top_module(mods):
     return next(n for n, v in mods.items() if int(v.get("attributes", {}).get("top", "0"), 2))
 
 
-def xilinx_flow(top, flatten):
+def xilinx_flow(top, flatten, extra=""):
     """synth_xilinx without its SAT-based `share` pass, which takes tens of minutes on the
     transformation unit's 9 multiply-add chains and finds nothing to share in these datapaths."""
-    f = " -flatten" if flatten else ""
+    f = (" -flatten" if flatten else "") + extra
     return (f"synth_xilinx -top {top}{f} -run :coarse; techmap -map +/cmp2lut.v -map +/cmp2lcu.v -D LUT_WIDTH=6; "
             f"alumacc; opt; memory -nomap; opt_clean; synth_xilinx -top {top}{f} -run map_memory:")
 
@@ -388,12 +388,6 @@ PROTOTYPE_LUT4, TABLE2_BITS = 37800, 75 * 1024 * 8
 DYNRTP_JSON = os.path.join(OUT, "dynrtp.json")  # the measured figures, merged into synth.json's "dynrtp"
 
 
-def dynrtp_script(flow, tail):
-    reads = " ".join(f"read_verilog -sv {f};" for f in RTL)
-    chp = " ".join(f"-set {k} {v}" for k, v in DYNRTP_PARAMS.items())
-    return f"{reads} chparam {chp} dynrtp; {flow}; {tail}"
-
-
 def blackbox(m):
     return int(m.get("attributes", {}).get("blackbox", "0") or "0", 2) != 0
 
@@ -580,20 +574,107 @@ def port_levels(hier, ports):  # hier: a file name, or the netlist's modules (ch
                    most(v for (p, _), v in s["in_to_reg"].items() if p == port)) for port in ports}
 
 
+DYNRTP_DIR = os.path.join(OUT, "dynrtp")  # per module: its mapped netlist, named by the hash of what made it
+
+
+def dynrtp_elaborate():
+    """The DynRTP at DYNRTP_PARAMS elaborated (every module derived with its parameters) into one RTLIL
+    file: its path, its modules (rtlil_modules) and the top's name."""
+    os.makedirs(DYNRTP_DIR, exist_ok=True)
+    il = os.path.join(DYNRTP_DIR, "elab.il")
+    reads = " ".join(f"read_verilog -sv {f};" for f in RTL)
+    chp = " ".join(f"-set {k} {v}" for k, v in DYNRTP_PARAMS.items())
+    yosys(f"{reads} chparam {chp} dynrtp; hierarchy -check -top dynrtp; write_rtlil {il}", il + ".log")
+    mods = rtlil_modules(il)
+    return il, mods, next(n for n, text in mods.items() if "attribute \\top 1" in text.split("\nmodule ")[0])
+
+
+def rtlil_modules(path):
+    """The modules of a write_rtlil file: name -> its text, its attributes first (a module's `end` is the
+    only one at the start of a line)."""
+    mods, cur, name = {}, [], None
+    for line in open(path):
+        if name is None and line.startswith("module "):
+            name = line.split()[1]
+        if name is not None or line.startswith("attribute "):
+            cur.append(line)
+        else:
+            cur = []
+        if name is not None and line == "end\n":
+            mods[name], cur, name = "".join(cur), [], None
+    return mods
+
+
+def rtlil_children(text):
+    """The module types a module's cells instantiate (not Yosys's internal $ cells)."""
+    types = (line.split()[1] for line in text.splitlines() if line.startswith("  cell "))
+    return {t for t in types if t.startswith("\\") or t.startswith("$paramod")}
+
+
+def module_flow(part, top):
+    """One module mapped on its own, its submodules black boxes, without I/O or clock buffers (it is not
+    the chip's top): what the whole hierarchy mapped without flattening does to it."""
+    if part == "ice40":  # up to the check label: its autoname renames every object one at a time
+        return f"synth_ice40 -dsp -noflatten -top {top} -run :check"
+    return xilinx_flow(top, flatten=False, extra=" -noiopad -noclkbuf")
+
+
+def dynrtp_netlists(part):
+    """Every module of the DynRTP's hierarchy mapped for part ('xilinx', 'ice40'), each distinct module
+    once, SYNTH_JOBS (default: the CPUs) Yosys processes at a time, largest first. A module's netlist is
+    kept in DYNRTP_DIR under the hash of its RTLIL, its submodules' ports and the flow, so a run stopped
+    midway, or one after an RTL change, maps only what is new. Returns the modules (as a hierarchical
+    write_json has them, the top marked), the top's name and per module its Yosys CPU seconds."""
+    il, texts, top = dynrtp_elaborate()
+    used, todo = set(), [top]
+    while todo:
+        m = todo.pop()
+        if m not in used:
+            used.add(m)
+            todo += [c for c in rtlil_children(texts[m]) if c in texts]
+
+    def ports(m):
+        return "".join(l for l in texts[m].splitlines(True) if re.match(r"\s+wire .*\b(input|output|inout) ", l))
+
+    def key(m):
+        made_of = [module_flow(part, "TOP"), texts[m]] + [ports(c) for c in sorted(rtlil_children(texts[m]))]
+        return hashlib.sha1("\0".join(made_of).encode()).hexdigest()[:20]
+
+    def mapped(m):
+        path = os.path.join(DYNRTP_DIR, f"{part}_{key(m)}.json")
+        if not os.path.exists(path):
+            full, log = path + ".full", path + ".log"
+            cpu = yosys(f"read_rtlil {il}; hierarchy -top {m}; blackbox * {m} %d; hierarchy -top {m}; "
+                        f"{module_flow(part, m)}; write_json {full}", log)
+            cpu = re.search(r"CPU: user ([\d.]+)s system ([\d.]+)s", cpu)
+            cpu = round(float(cpu[1]) + float(cpu[2]))
+            entry = json.load(open(full))["modules"][m]
+            os.remove(full)
+            json.dump({"module": m, "cpu_seconds": cpu, "netlist": entry}, open(path + ".tmp", "w"))
+            os.replace(path + ".tmp", path)  # only a whole netlist is ever found under its name
+            print(f"synth: dynrtp {part}: {key_name(m)} mapped, {cpu} s", file=sys.stderr, flush=True)
+        return json.load(open(path))
+
+    order = sorted(used, key=lambda m: -len(texts[m]))
+    with cf.ThreadPoolExecutor(max_workers=int(os.environ.get("SYNTH_JOBS", os.cpu_count() or 1))) as pool:
+        done = dict(zip(order, pool.map(mapped, order)))
+    mods = {}
+    for m, d in done.items():
+        mods[m] = d["netlist"]
+        mods[m]["attributes"] = dict(d["netlist"].get("attributes", {}), top="1" if m == top else "0")
+    return mods, top, {m: d["cpu_seconds"] for m, d in done.items()}
+
+
 def dynrtp_xilinx():
-    """synth_xilinx of the whole DynRTP, hierarchical (xilinx_figures)."""
-    log, js = os.path.join(OUT, "dynrtp_xilinx.log"), os.path.join(OUT, "dynrtp_xilinx.json")
-    t0 = time.time()
-    yosys(dynrtp_script(xilinx_flow("dynrtp", flatten=False), f"stat; write_json {js}"), log)
-    return dict(xilinx_figures(js), xilinx_seconds=round(time.time() - t0))
+    """synth_xilinx of the whole DynRTP, module by module (xilinx_figures)."""
+    mods, top, cpu = dynrtp_netlists("xilinx")
+    return dict(xilinx_figures(mods, top), xilinx_seconds=sum(cpu.values()))
 
 
-def xilinx_figures(js):
+def xilinx_figures(mods, top):
     """LUT6, flip-flops, DSP48E1, RAM and LUT6 levels of a hierarchical 7-series netlist, and per unit of
     the top (each with its submodules, all instances) its LUT6 and its own LUT6 levels (its ports as
     path ends): which unit dominates, and where the deepest paths are."""
-    mods = json.load(open(js))["modules"]
-    top = top_module(mods)
     own = module_cells(mods)
     sub, tot = hierarchy_totals(own, top)
     depth = hier_lut_levels(mods, top)
@@ -615,15 +696,19 @@ def key_name(module):
 
 
 def dynrtp_ice40():
-    """synth_ice40 -dsp of the whole DynRTP, hierarchical: LUT4, flip-flops, SB_MAC16, block RAM bits."""
-    log = os.path.join(OUT, "dynrtp_ice40.log")
-    t0 = time.time()
-    # up to the check label: its autoname renames every object of a design this size one at a time
-    # (hours at 1.4 M LUT6, after mapping had finished); stat does not need the names
-    c = cells(yosys(dynrtp_script("synth_ice40 -dsp -noflatten -top dynrtp -run :check", "stat"), log))
-    return {"ice40_lut4": c.get("SB_LUT4", 0), "ice40_ff": sum(v for k, v in c.items() if k.startswith("SB_DFF")),
-            "ice40_dsp": c.get("SB_MAC16", 0), "ice40_bram": c.get("SB_RAM40_4K", 0),
-            "bram_bits": 4096 * c.get("SB_RAM40_4K", 0), "ice40_seconds": round(time.time() - t0)}
+    """synth_ice40 -dsp of the whole DynRTP, module by module: LUT4, flip-flops, SB_MAC16, block RAM bits,
+    and per unit of the top (with its submodules, all instances) its LUT4."""
+    mods, top, cpu = dynrtp_netlists("ice40")
+    own = module_cells(mods)
+    sub, tot = hierarchy_totals(own, top)
+    units = {}
+    for typ, n in own[top].items():
+        if typ in own:
+            units[key_name(typ)] = units.get(key_name(typ), 0) + n * sub[typ].get("SB_LUT4", 0)
+    return {"ice40_lut4": tot.get("SB_LUT4", 0), "ice40_ff": sum(v for k, v in tot.items() if k.startswith("SB_DFF")),
+            "ice40_dsp": tot.get("SB_MAC16", 0), "ice40_bram": tot.get("SB_RAM40_4K", 0),
+            "bram_bits": 4096 * tot.get("SB_RAM40_4K", 0), "ice40_units_lut4": units,
+            "ice40_seconds": sum(cpu.values())}
 
 
 def dynrtp(parts):

@@ -213,6 +213,11 @@ int render_rtl(const uint32_t *mem, uint32_t n, const render_opts *ro, uint32_t 
     snprintf(path, sizeof path, "%s/stats", dir);
     if (read_stats(path, sum, st) != 0)
         goto out;
+    if (st->threads < ro->cc.threads_per_pipe) /* not what --mode cycle with the same options times */
+        fprintf(stderr, "saarcor render: warning: --mode rtl: %u of the %u threads per pipe in flight, the model's "
+                        "block controllers (make build/rtl/e%dm%d/b%u/tb_dynrtp builds one with %u)\n",
+                st->threads, ro->cc.threads_per_pipe, F24_EXP_BITS, F24_MAN_BITS, ro->cc.threads_per_pipe,
+                ro->cc.threads_per_pipe);
     rc = SAARCOR_EXIT_OK;
 out:
     if (rc == SAARCOR_EXIT_INTERNAL)
