@@ -584,7 +584,9 @@ def dynrtp_elaborate():
     il = os.path.join(DYNRTP_DIR, "elab.il")
     reads = " ".join(f"read_verilog -sv {f};" for f in RTL)
     chp = " ".join(f"-set {k} {v}" for k, v in DYNRTP_PARAMS.items())
-    yosys(f"{reads} chparam {chp} dynrtp; hierarchy -check -top dynrtp; write_rtlil {il}", il + ".log")
+    # written aside and renamed: another part's run may be reading it (the same text, elaborated alike)
+    yosys(f"{reads} chparam {chp} dynrtp; hierarchy -check -top dynrtp; write_rtlil {il}.tmp", il + ".log")
+    os.replace(il + ".tmp", il)
     mods = rtlil_modules(il)
     return il, mods, next(n for n, text in mods.items() if "attribute \\top 1" in text.split("\nmodule ")[0])
 
