@@ -24,8 +24,10 @@
    sum and the operators.
 6. The whole DynRTP (rtl/dynrtp.sv) at the paper's configuration, per module without flattening:
    7-series and iCE40 (`synth_ice40 -dsp`) totals, block RAM bits, LUT6 levels across module ports,
-   the LUT6 of each unit, beside the prototype (build/synth/synth.json "dynrtp"); over an hour each.
-Runs two Yosys processes at a time; logs in build/synth/.
+   the LUT6 and LUT4 of each unit, beside the prototype (build/synth/synth.json "dynrtp"). Each
+   distinct module is mapped by a Yosys run of its own (its submodules black boxes) and kept in
+   build/synth/dynrtp/ by the hash of its RTL, so a second run maps only the modules that changed.
+Runs two Yosys processes at a time (item 6: SYNTH_JOBS, default the CPUs); logs in build/synth/.
 `scripts/synth.py --dynrtp [xilinx] [ice40]` (make synth-dynrtp) measures only item 6 and rewrites
 docs/synth.md from build/synth/synth.json, or without one only its DynRTP section.
 `scripts/synth.py --only-control` synthesizes only item 4 and merges it into an existing
@@ -577,15 +579,15 @@ def port_levels(hier, ports):  # hier: a file name, or the netlist's modules (ch
 DYNRTP_DIR = os.path.join(OUT, "dynrtp")  # per module: its mapped netlist, named by the hash of what made it
 
 
-def dynrtp_elaborate():
-    """The DynRTP at DYNRTP_PARAMS elaborated (every module derived with its parameters) into one RTLIL
-    file: its path, its modules (rtlil_modules) and the top's name."""
-    os.makedirs(DYNRTP_DIR, exist_ok=True)
-    il = os.path.join(DYNRTP_DIR, "elab.il")
-    reads = " ".join(f"read_verilog -sv {f};" for f in RTL)
-    chp = " ".join(f"-set {k} {v}" for k, v in DYNRTP_PARAMS.items())
+def elaborate(top, params, folder, files):
+    """top with params elaborated (every module derived with its parameters) into one RTLIL file in
+    folder: its path, its modules (rtlil_modules) and the top's derived name."""
+    os.makedirs(folder, exist_ok=True)
+    il = os.path.join(folder, "elab.il")
+    reads = " ".join(f"read_verilog -sv {f};" for f in files)
+    chp = f"chparam {' '.join(f'-set {k} {v}' for k, v in params.items())} {top};" if params else ""
     # written aside and renamed: another part's run may be reading it (the same text, elaborated alike)
-    yosys(f"{reads} chparam {chp} dynrtp; hierarchy -check -top dynrtp; write_rtlil {il}.tmp", il + ".log")
+    yosys(f"{reads} {chp} hierarchy -check -top {top}; write_rtlil {il}.tmp", il + ".log")
     os.replace(il + ".tmp", il)
     mods = rtlil_modules(il)
     return il, mods, next(n for n, text in mods.items() if "attribute \\top 1" in text.split("\nmodule ")[0])
@@ -621,13 +623,14 @@ def module_flow(part, top):
     return xilinx_flow(top, flatten=False, extra=" -noiopad -noclkbuf")
 
 
-def dynrtp_netlists(part):
-    """Every module of the DynRTP's hierarchy mapped for part ('xilinx', 'ice40'), each distinct module
-    once, SYNTH_JOBS (default: the CPUs) Yosys processes at a time, largest first. A module's netlist is
-    kept in DYNRTP_DIR under the hash of its RTLIL, its submodules' ports and the flow, so a run stopped
-    midway, or one after an RTL change, maps only what is new. Returns the modules (as a hierarchical
-    write_json has them, the top marked), the top's name and per module its Yosys CPU seconds."""
-    il, texts, top = dynrtp_elaborate()
+def module_netlists(part, top, params, folder, files=RTL):
+    """Every module of top's hierarchy (with params) mapped for part ('xilinx', 'ice40'), each distinct
+    module once, SYNTH_JOBS (default: the CPUs) Yosys processes at a time, largest first: the whole
+    DynRTP's method. A module's netlist is kept in folder under the hash of its RTLIL, its submodules'
+    ports and the flow, so a run stopped midway, or one after an RTL change, maps only what is new.
+    Returns the modules (as a hierarchical write_json has them, the top marked), the top's name and per
+    module its Yosys CPU seconds."""
+    il, texts, top = elaborate(top, params, folder, files)
     used, todo = set(), [top]
     while todo:
         m = todo.pop()
@@ -643,18 +646,18 @@ def dynrtp_netlists(part):
         return hashlib.sha1("\0".join(made_of).encode()).hexdigest()[:20]
 
     def mapped(m):
-        path = os.path.join(DYNRTP_DIR, f"{part}_{key(m)}.json")
+        path = os.path.join(folder, f"{part}_{key(m)}.json")
         if not os.path.exists(path):
             full, log = path + ".full", path + ".log"
             cpu = yosys(f"read_rtlil {il}; hierarchy -top {m}; blackbox * {m} %d; hierarchy -top {m}; "
                         f"{module_flow(part, m)}; write_json {full}", log)
             cpu = re.search(r"CPU: user ([\d.]+)s system ([\d.]+)s", cpu)
             cpu = round(float(cpu[1]) + float(cpu[2]))
-            entry = json.load(open(full))["modules"][m]
+            entry = json.load(open(full))["modules"][json_name(m)]
             os.remove(full)
             json.dump({"module": m, "cpu_seconds": cpu, "netlist": entry}, open(path + ".tmp", "w"))
             os.replace(path + ".tmp", path)  # only a whole netlist is ever found under its name
-            print(f"synth: dynrtp {part}: {key_name(m)} mapped, {cpu} s", file=sys.stderr, flush=True)
+            print(f"synth: {part}: {key_name(json_name(m))} mapped, {cpu} s", file=sys.stderr, flush=True)
         return json.load(open(path))
 
     order = sorted(used, key=lambda m: -len(texts[m]))
@@ -662,14 +665,19 @@ def dynrtp_netlists(part):
         done = dict(zip(order, pool.map(mapped, order)))
     mods = {}
     for m, d in done.items():
-        mods[m] = d["netlist"]
-        mods[m]["attributes"] = dict(d["netlist"].get("attributes", {}), top="1" if m == top else "0")
-    return mods, top, {m: d["cpu_seconds"] for m, d in done.items()}
+        mods[json_name(m)] = dict(d["netlist"], attributes=dict(d["netlist"].get("attributes", {}),
+                                                                top="1" if m == top else "0"))
+    return mods, json_name(top), {json_name(m): d["cpu_seconds"] for m, d in done.items()}
+
+
+def json_name(m):
+    """A module's name as write_json gives it (a public name without its backslash)."""
+    return m[1:] if m.startswith("\\") else m
 
 
 def dynrtp_xilinx():
     """synth_xilinx of the whole DynRTP, module by module (xilinx_figures)."""
-    mods, top, cpu = dynrtp_netlists("xilinx")
+    mods, top, cpu = module_netlists("xilinx", "dynrtp", DYNRTP_PARAMS, DYNRTP_DIR)
     return dict(xilinx_figures(mods, top), xilinx_seconds=sum(cpu.values()))
 
 
@@ -700,17 +708,36 @@ def key_name(module):
 def dynrtp_ice40():
     """synth_ice40 -dsp of the whole DynRTP, module by module: LUT4, flip-flops, SB_MAC16, block RAM bits,
     and per unit of the top (with its submodules, all instances) its LUT4."""
-    mods, top, cpu = dynrtp_netlists("ice40")
+    mods, top, cpu = module_netlists("ice40", "dynrtp", DYNRTP_PARAMS, DYNRTP_DIR)
     own = module_cells(mods)
     sub, tot = hierarchy_totals(own, top)
-    units = {}
-    for typ, n in own[top].items():
-        if typ in own:
-            units[key_name(typ)] = units.get(key_name(typ), 0) + n * sub[typ].get("SB_LUT4", 0)
-    return {"ice40_lut4": tot.get("SB_LUT4", 0), "ice40_ff": sum(v for k, v in tot.items() if k.startswith("SB_DFF")),
+    lut4 = lambda c: c.get("SB_LUT4", 0)
+    return {"ice40_lut4": lut4(tot), "ice40_ff": sum(v for k, v in tot.items() if k.startswith("SB_DFF")),
             "ice40_dsp": tot.get("SB_MAC16", 0), "ice40_bram": tot.get("SB_RAM40_4K", 0),
-            "bram_bits": 4096 * tot.get("SB_RAM40_4K", 0), "ice40_units_lut4": units,
+            "bram_bits": 4096 * tot.get("SB_RAM40_4K", 0), "ice40_units_lut4": parts_of(own, sub, top, lut4),
+            "ice40_unit_parts_lut4": unit_parts(own, sub, top, lut4),
             "ice40_seconds": sum(cpu.values())}
+
+
+def unit_parts(own, sub, top, count):
+    """parts_of each unit of top, the instances of a unit's modules (several parameter sets) summed."""
+    out = {}
+    for u, n in own[top].items():
+        if u in own:
+            acc = out.setdefault(key_name(u), {})
+            for p, v in parts_of(own, sub, u, count).items():
+                acc[p] = acc.get(p, 0) + n * v
+    return out
+
+
+def parts_of(own, sub, module, count):
+    """A module's count (count: of a cell dict) by its submodules' kinds, each with its own submodules and
+    all instances, and its own cells apart ("(own)"): where a unit's logic is."""
+    parts = {"(own)": count({k: v for k, v in own[module].items() if k not in own})}
+    for typ, n in own[module].items():
+        if typ in own:
+            parts[key_name(typ)] = parts.get(key_name(typ), 0) + n * count(sub[typ])
+    return parts
 
 
 def dynrtp(parts):
@@ -1014,43 +1041,6 @@ def accuracy_section(res):
 
 
 # The RGS's structure since the whole run above (its per-module figures in rtl/README.md)
-RGS_SHARED_NOTE = [
-    "", "The RGS since 2026-11-29 (after the run above): one `rgs_units` (the frame set-up, `rgs_raygen`, "
-    "`rgs_light`, `rgs_light_colour`, `rgs_add_light`, `rgs_accum` and SURF_UNITS = 4 `rgs_surface`, shared by "
-    "the block controllers through round-robin `rgs_arb`s) and RGS_BLOCKS `rgs_ctrl` (each its FSM and block "
-    "state): per module at RGS_BLOCKS = 8, 8 x 11,898 + 305,905 = 401,089 LUT6 where a surface per controller "
-    "took 8 x 67,187 + 81,287 = 618,783 and 8 whole controllers 8 x 137,850 = 1,102,800 (rtl/README.md "
-    "\"The RGS shared\"); the table above is from before."]
-
-# Per unit of the DynRTP measured alone since the whole run above (python3 scripts/synth.py --levels),
-# shown after its table until the whole DynRTP is synthesized again
-UNIT_LEVELS_NOTE = [
-    "", "Each unit alone again (2026-11-29, `python3 scripts/synth.py --levels MODULE PARAM=VALUE ...`: "
-    "synth_xilinx per module as above, `hier_lut_levels`, its ports as path ends; from this date a DSP48E1 "
-    "with one of its registers on an input's way ends that input's paths, as a flip-flop does):", "",
-    "| unit | parameters | LUT6 levels | where the deepest path is |", "|---|---|---:|---|",
-    "| cache_read (matrices) | LINE_BYTES=40 SIZE_BYTES=6144 WORDS=10 OUTSTANDING=16 | 8 (12 on the RTL of "
-    "168e94a; the 70 above are from before commit 22770fd) | cache_dm's response choice (rr_pick, 3), its table's "
-    "multiplexer (2), read_ring's bookkeeping (3) |",
-    "| cache_read (kd nodes) | LINE_BYTES=8 SIZE_BYTES=4096 WORDS=2 OUTSTANDING=16 | 8 | the same |",
-    "| rgs_ctrl | TAG_BITS=6 | 16 on the RTL of 3a0de35 (not remeasured since e6bdf47) | rgs_normal: the code chosen by k_q, shade_rec_decode's unfolding, f24_from_i32's first segment (8 levels alone); rgs_normal now 8 (below) |",
-    "| rgs_normal (2026-11-29, e6bdf47) | defaults | 8 (16 before) | shade_rec_decode's unfolding from the code chosen by k_q (8), registered since e6bdf47 (its latency 42 -> 43); f24_from_i32's first segment (8: the 32-bit leading-zero loop, the shift) |",
-    "| rgs_units (2026-11-29, 2050da9; `--hier`, 465 s) | N=8 | 8 (14 on 0df71ec) | its units at most 8 (rgs_surface, tex_axis, tex_bilinear, rgs_normal 8; rgs_accum, rgs_raygen 7): the arbiters' operands registered (a cycle each), f24_from_i32 in 3 segments (CVT_STAGES 3), rgs_accum's operand registered, rgs_surface's vertex colours, texture s and t and tint in free-running registers, its record's word count a table (rtl/README.md \"LUT6 levels of the RGS's shared datapaths\") |",
-    "| trace_core | THREADS=64 | 18 on the RTL of 3a0de35 (not remeasured since e6bdf47: 42 minutes) | trace_core's own logic, 12 levels: the word port's lowest requesting thread (`lowest()`, a priority loop over the 64 threads, 8 LUT6) into each thread's mem_req_ready_i; then its units f24_sum_exact, isect_rebased, xform_wide 9 each (now 6, below), trace_thread 8 |",
-    "| trace_core's word port and packet output (2026-11-29, e6bdf47; a wrapper of that logic alone, its inputs registered: scripts/zz_pick_wrap.sv) | THREADS=64 | 8 (12 with `lowest()`) | rr_pick's one-hot lowest requester and its index (4), the 64-to-1 address multiplexer (4) to mem_addr_o; each thread's mem_req_ready_i from the one-hot grant |",
-    "| f24_sum_exact (2026-11-29, e6bdf47) | N=9 | 6 (9 before) | segment 2's comparison matrix (the keys now from segment 1: their live-or-zero masking was 3 of the 9) |",
-    "| xform_wide (2026-11-29, e6bdf47) | defaults | 6 (9 before) | f24_sum_exact's specials in segment 1; segment 2 as above |",
-    "| isect_rebased (2026-11-29, e6bdf47) | defaults | 6 (9 before) | f24_div's and f24_sum_exact's segments, 6 each |",
-    "| trace_core (2026-11-29, daa922f; `--hier`, 1571 s) | THREADS=4 | 13 | across module ports (the units alone at most 8: trace_thread 8, the exact sums 6; trace_core's own cells 3): trace_thread's is_c_lo_o, 8 levels from its line buffer (`vertex_lo`: the 9-bit field's magnitude, its leading one, the shift, combinational), the 4-to-1 operand multiplexer (1), isect_rebased's c_lo_i (4 to its first register); next (not flattened, composed from the per-module summaries): trace_thread's operand outputs of 4 levels (xw_p_lo_o, rb_t_o, ...) through the multiplexer into xform_wide's p_lo_i (6), 11. At 64 threads the multiplexers are 64 to 1 on the same paths: c_lo registered in trace_thread (done after this measurement: trace_thread alone still 8, `python3 scripts/synth.py --levels trace_thread`; trace_core not re-synthesized, its next path 11 as composed above) and a register after the operand multiplexers (a cycle of issue) are the next steps |",
-    "| trace_core (2026-11-29, 5aed4d4; 2539 s on the loaded machine) | THREADS=2 | 8 (10 on 1a9b9c3; 134,373 LUT6 and 126,947 FF, 136,098 and 126,939 before) | flattened: trace_thread's word request (mem_req_valid_o, 3 levels from its state), the word port's pick (rr_pick, 2), the thread's mem_req_ready_i (1), its load counters (2). Before: trace_thread's state to list_level_o (3), the operand multiplexer (1), list_unit's hazard compare ({thread, level} against S1 and S2, 2) into its ready_o, the grant (1), the thread's FSM (3): trav_unit's and list_unit's ready_o no longer look at the offered thread and level in trace_core (ONE_PER_THREAD: a thread waits for its result) and the grants come from thread_sched's one-hot pick (issue_grant_o), not a decoder after its index (rtl/README.md \"LUT6 levels of the ray tracing core\") |",
-    "| trace_thread (2026-11-29, e7b76fc; `--hier`, 265 s) | defaults | 8 (5,040 LUT6, 3,440 FF; 5,048 and 3,439 before) | per port (`python3 scripts/synth.py --ports build/synth/levels_trace_thread_hier.json PORT ...`): valid_o 0 levels from registers (2 before e7b76fc: st == S_DONE), ready_i 2 into registers (3), mem_req_valid_o 0 (ld_req); trace_core at 64 threads, composed with scripts/zz_pick_wrap.sv OLD=0 (its data inputs unregistered on a copy of the tree, `--levels zz_pick_wrap OLD=0 --hier`, 71 s: data_o 8 from registered valids, 4 from data_i; out_ready_o 3): a finished packet into the output register 8 (10 before), the output's ready back into the thread 5 (8) |",
-    "| thread_sched (2026-11-29, 5aed4d4; `--hier`, 102 s) | THREADS=64 UNITS=6 SLOT_BITS=4 | 5 (issue_slots_o; issue_grant_o 3, issue_thread_o and issue_valid_o 4) | trace_core at 64 threads, composed: a thread's grant is issue_grant_o (3), trace_core's grant LUT (1) and trace_thread's *_grant_i to its registers (at most 4, in the THREADS=2 netlist): 8, where the decoder after the index was 11; the packet output 8 since trace_thread's done register (10 before; the word port 8 and 7 since its ld_req register, 11 and 10 before); the traversal and list units' operands 7 since their issue FIFOs (3c2e061; 10 or more before: rows below, rtl/README.md) |",
-    "| trace_core (2026-11-29, 3c2e061; `--hier`, 1002 s) | THREADS=2 | 8 (137,189 LUT6, 126,945 FF; 134,760 and 126,949 at ld_req) | trace_thread 8, trace_core's own cells 3; per port (`--ports`): list_addr_o 3 from registers (5 before the issue FIFOs), list_re_o 5 (the FIFO's head, list_unit's hazard check) and 4 from list_rvalid_i, mem_req_valid_o and mem_addr_o 3 |",
-    "| trace_core's traversal and list issue (2026-11-29, 3c2e061; a wrapper of that logic alone: scripts/zz_issue_wrap.sv, `--hier`, 27 s) | THREADS=64 K=4 | 7 (765 LUT6, 520 FF) | thread_sched's issue_thread_o (4) and the 64-to-1 operand multiplexer (3) into the two-entry issue FIFO (sync_fifo); per port: op_i 3 into registers, grant_o 4 from registers, unit_ready_i 1 into registers, op_o and valid_o 1 from registers. trace_core at 64 threads, composed: the operands into the FIFO 7 (trace_thread's trav_o_o 4 from its registers + 3; list_level_o 3 + 3), a thread's grant 4 + trav_grant_i 2 or list_grant_i 3 (trace_thread, `--ports`, 61 s: 8 levels, 5,290 LUT6, 3,440 FF) = 6 or 7, the FIFO's head into trav_unit 1 + 3 and list_unit 1 + 4, the units' ready into the FIFO 2 + 1 (trav) and 1 + 4 + 1 (list: the hazard check); before the FIFOs 10 or more |",
-    "| list_unit (2026-11-29, 3c2e061; `--hier`, 13 s) | THREADS=64 | 4 (974 LUT6, 230 FF) | per port: thread_i 4 into registers (the mailboxes' address), level_i and mem_valid_i 3; ready_o and mem_re_o 4 from its inputs (the hazard check) and from registers; mem_addr_o 2 from its inputs and the carry chain |",
-    "| trav_unit (2026-11-29, 3c2e061; `--hier`, 232 s) | THREADS=64 ONE_PER_THREAD=1 | 6 (26,134 LUT6, 42,982 FF) | f24_div's and trav_node's segments; per port: kind_i 3 into registers, mask_i and valid_i 2, tn_i, tf_i and nodes_i 1, the other operands 0; ready_o 2 from registers |"]
-
-
 def dynrtp_section():
     """The whole DynRTP at the paper's configuration beside the prototype (issue 23, goal 4)."""
     if not os.path.exists(DYNRTP_JSON):
@@ -1061,9 +1051,10 @@ def dynrtp_section():
     md = ["", "## The whole DynRTP beside the prototype (issue 23, goal 4)", "",
           f"rtl/dynrtp.sv at the paper's configuration ({cfg}; RGS_BLOCKS and the rest at their defaults), "
           "synthesized per module without flattening (`python3 scripts/synth.py --dynrtp`, part of `make synth` "
-          f"and `make check-full`; {d.get('date', '?')}, rtl/ as of commit {d.get('rtl_commit', '?')}; "
-          + ", ".join(f"{n} {d[k]:,} s" for n, k in (("7-series", "xilinx_seconds"), ("iCE40", "ice40_seconds")) if k in d)
-          + "): a module is mapped once and counted once per instance.", "",
+          f"and `make check-full`; {d.get('date', '?')}, rtl/ as of commit {d.get('rtl_commit', '?')}): each distinct "
+          "module mapped once by a Yosys run of its own, its submodules black boxes, and counted once per instance ("
+          + ", ".join(f"{n} {d[k]:,} CPU s" for n, k in (("7-series", "xilinx_seconds"), ("iCE40", "ice40_seconds"))
+                      if k in d) + ").", "",
           "| | this DynRTP | the prototype (one pipe, 64 threads, whole chip) |", "|---|---:|---:|",
           f"| iCE40 LUT4 (`synth_ice40 -dsp`) | {get('ice40_lut4')} | about {PROTOTYPE_LUT4:,} (56% of a Virtex-II 6000) |",
           f"| iCE40 flip-flops | {get('ice40_ff')} | - |",
@@ -1074,19 +1065,27 @@ def dynrtp_section():
           f"| 7-series DSP48E1 | {get('xilinx_dsp')} | - |",
           f"| 7-series RAMB18 (RAMB36 as 2) / LUT RAM bits | {get('xilinx_bram18')} / {get('xilinx_lutram_bits')} | - |",
           f"| most LUT6 levels between two registers | {get('max_lut6_levels')} | goal: at most 8 |"]
-    units = sorted(d.get("xilinx_units_lut6", {}).items(), key=lambda kv: -kv[1])
+    lut6, lut4 = d.get("xilinx_units_lut6", {}), d.get("ice40_units_lut4", {})
+    units = sorted(set(lut6) | set(lut4), key=lambda u: -lut4.get(u, lut6.get(u, 0)))
     if units:
-        whole = max(1, d["xilinx_lut6"])
+        share = lambda v, whole: f"{v:,} ({100 * v / max(1, whole):.1f}%)" if v is not None else "-"
         lv = d.get("xilinx_units_lut6_levels", {})
-        md += ["", "Where the LUT6 are (the top's units, each with its submodules, all instances), and each unit's "
+        md += ["", "Where the logic is (the top's units, each with its submodules, all instances), and each unit's "
                "most LUT6 levels on its own (its ports as path ends):", "",
-               "| unit | LUT6 | share | LUT6 levels |", "|---|---:|---:|---:|"]
-        md += [f"| {u} | {v:,} | {100 * v / whole:.1f}% | {lv.get(u, '-')} |" for u, v in units]
-        md += ["", f"{units[0][0]} dominates. LUT6 levels: `hier_lut_levels` composes, per module, the levels "
+               "| unit | iCE40 LUT4 (share) | 7-series LUT6 (share) | LUT6 levels |", "|---|---:|---:|---:|"]
+        md += [f"| {u} | {share(lut4.get(u), d.get('ice40_lut4', 0))} | {share(lut6.get(u), d.get('xilinx_lut6', 0))} "
+               f"| {lv.get(u, '-')} |" for u in units]
+        parts = d.get("ice40_unit_parts_lut4", {})
+        for u in [u for u in units[:2] if u in parts]:
+            whole = max(1, sum(parts[u].values()))
+            md += ["", f"Inside {u} (iCE40 LUT4 by part, all instances; (own): its own cells): "
+                   + ", ".join(f"{p} {v:,} ({100 * v / whole:.1f}%)" for p, v in
+                               sorted(parts[u].items(), key=lambda kv: -kv[1]) if v) + "."]
+        md += ["", f"{units[0]} dominates. LUT6 levels: `hier_lut_levels` composes, per module, the levels "
                "from its registers to each output bit, from each input bit to the output bits it reaches without a "
                "register, and from each input bit to a register inside; on a small hierarchy it gives the count of "
                "`lut_levels` on the same netlist flattened after mapping."]
-    return md + RGS_SHARED_NOTE + UNIT_LEVELS_NOTE
+    return md
 
 
 if __name__ == "__main__":

@@ -92,7 +92,7 @@ t_synth_levels() { # make synth's totals and LUT6 levels of a hierarchical netli
     -set OUTSTANDING 4 cache_read; synth_xilinx -top cache_read; stat; write_json $T/h.json" >/dev/null 2>&1 || return 1
   yosys -q -p "read_json $T/h.json; flatten; write_json $T/f.json" >/dev/null 2>&1 || return 1
   python3 - "$T" <<'PY' || return 1
-import json, sys
+import json, os, sys
 sys.path.insert(0, "scripts")
 import synth as S
 t = sys.argv[1]
@@ -101,9 +101,26 @@ top = S.top_module(mods)
 _, tot = S.hierarchy_totals(S.module_cells(mods), top)
 flat = S.cells(open(f"{t}/h.log").read())
 h, f = S.hier_lut_levels(mods, top)[top], S.lut_levels(f"{t}/f.json")
-print(f"cache_read: {S.luts_of(tot)} LUTs summed over the hierarchy, {S.luts_of(flat)} by stat; "
-      f"LUT6 levels {h} across module ports, {f} flattened")
-sys.exit(0 if (h, S.luts_of(tot)) == (f, S.luts_of(flat)) else 1)
+# the whole DynRTP's way (module_netlists): each module mapped by a Yosys run of its own, its
+# submodules black boxes; against the same elaborated RTL mapped as one hierarchy with the same flow:
+# every module there, the LUTs within 5% (ABC maps a module a little differently with its
+# neighbours black boxes), the same levels; a second call maps nothing and gives the same netlists
+os.environ["SYNTH_JOBS"] = "1"
+files = ["rtl/cache_read.sv", "rtl/cache_dm.sv", "rtl/rr_pick.sv", "rtl/read_ring.sv"]
+args = ("xilinx", "cache_read", {"SIZE_BYTES": 256, "OUTSTANDING": 4}, f"{t}/pm", files)
+pm, pm_top, cpu = S.module_netlists(*args)
+_, pm_tot = S.hierarchy_totals(S.module_cells(pm), pm_top)
+S.yosys(f"read_rtlil {t}/pm/elab.il; {S.xilinx_flow('cache_read', flatten=False)}; write_json {t}/w.json", f"{t}/w.log")
+whole = json.load(open(f"{t}/w.json"))["modules"]
+_, w_tot = S.hierarchy_totals(S.module_cells(whole), "cache_read")
+p, wl = S.hier_lut_levels(pm, pm_top)[pm_top], S.hier_lut_levels(whole, "cache_read")["cache_read"]
+again = S.module_netlists(*args)
+print(f"cache_read: {S.luts_of(tot)} LUTs summed over the hierarchy, {S.luts_of(flat)} by stat; LUT6 levels {h} "
+      f"across module ports, {f} flattened; module by module {S.luts_of(pm_tot)} LUTs and {p} levels, the same RTLIL "
+      f"as one hierarchy {S.luts_of(w_tot)} and {wl}; modules {sorted(S.key_name(m) for m in cpu)}")
+ok = (h, S.luts_of(tot)) == (f, S.luts_of(flat)) and set(pm) == set(k for k, m in whole.items() if not S.blackbox(m))
+ok = ok and abs(S.luts_of(pm_tot) - S.luts_of(w_tot)) <= 0.05 * S.luts_of(w_tot) and p == wl and again[0] == pm
+sys.exit(0 if ok else 1)
 PY
   # a LUT RAM's write ends a path as a flip-flop's D does: a product written into a LUT RAM has
   # the levels of the same product written into a register (counting on through the write to a
