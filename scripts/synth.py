@@ -342,7 +342,7 @@ def ice40(top, e, m):
 # memory interface and list unit: (name, module, parameters, latency)
 MB_E7M16 = 4 * ((12 * 24 + 27 + 31) // 32)  # matrix line bytes: one packed triangle record
 CONTROL = [
-    ("list_unit", "list_unit", {"THREADS": 64}, "3"),
+    ("list_unit", "list_unit", {"THREADS": 64}, "2 after its word"),
     ("cache_dm kd nodes 4 KB / 8 B", "cache_dm", {"LINE_BYTES": 8, "SIZE_BYTES": 4096}, "hit 2"),
     ("cache_dm lists 2 KB / 4 B", "cache_dm", {"LINE_BYTES": 4, "SIZE_BYTES": 2048}, "hit 2"),
     (f"cache_dm matrices 6 KB / {MB_E7M16} B", "cache_dm", {"LINE_BYTES": MB_E7M16, "SIZE_BYTES": 6144}, "hit 2"),
@@ -961,6 +961,7 @@ UNIT_LEVELS_NOTE = [
     "| trace_core (2026-11-29, 3c2e061; `--hier`, 1002 s) | THREADS=2 | 8 (137,189 LUT6, 126,945 FF; 134,760 and 126,949 at ld_req) | trace_thread 8, trace_core's own cells 3; per port (`--ports`): list_addr_o 3 from registers (5 before the issue FIFOs), list_re_o 5 (the FIFO's head, list_unit's hazard check) and 4 from list_rvalid_i, mem_req_valid_o and mem_addr_o 3 |",
     "| trace_core's traversal and list issue (2026-11-29, 3c2e061; a wrapper of that logic alone: scripts/zz_issue_wrap.sv, `--hier`, 27 s) | THREADS=64 K=4 | 7 (765 LUT6, 520 FF) | thread_sched's issue_thread_o (4) and the 64-to-1 operand multiplexer (3) into the two-entry issue FIFO (sync_fifo); per port: op_i 3 into registers, grant_o 4 from registers, unit_ready_i 1 into registers, op_o and valid_o 1 from registers. trace_core at 64 threads, composed: the operands into the FIFO 7 (trace_thread's trav_o_o 4 from its registers + 3; list_level_o 3 + 3), a thread's grant 4 + trav_grant_i 2 or list_grant_i 3 (trace_thread, `--ports`, 61 s: 8 levels, 5,290 LUT6, 3,440 FF) = 6 or 7, the FIFO's head into trav_unit 1 + 3 and list_unit 1 + 4, the units' ready into the FIFO 2 + 1 (trav) and 1 + 4 + 1 (list: the hazard check); before the FIFOs 10 or more |",
     "| list_unit (2026-11-29, 3c2e061; `--hier`, 13 s) | THREADS=64 | 4 (974 LUT6, 230 FF) | per port: thread_i 4 into registers (the mailboxes' address), level_i and mem_valid_i 3; ready_o and mem_re_o 4 from its inputs (the hazard check) and from registers; mem_addr_o 2 from its inputs and the carry chain |",
+    "| list_unit (2026-11-29 night, without blocking: its queue; `--hier`, 14 s) | THREADS=64 | 5 (1,008 LUT6, 287 FF, 32 RAMB18E1, 8 RAM64M, 14 RAM32M; 974, 230, 32, 8, 0 before) | its own cells 4, sync_fifo 1; per port: ready_o 2 from registers (the queue's room, the request register), mem_req_o and mem_addr_o 0 (registers), ready_i 4 into registers (the head's leaving, the mailboxes' read address), mem_req_ready_i 3, valid_i 2, mem_rsp_valid_i 1 |",
     "| trav_unit (2026-11-29, 3c2e061; `--hier`, 232 s) | THREADS=64 ONE_PER_THREAD=1 | 6 (26,134 LUT6, 42,982 FF) | f24_div's and trav_node's segments; per port: kind_i 3 into registers, mask_i and valid_i 2, tn_i, tf_i and nodes_i 1, the other operands 0; ready_o 2 from registers |"]
 
 
