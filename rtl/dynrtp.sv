@@ -27,8 +27,8 @@
 // Where the memory interface differs from the cycle model (docs/cycle-model.md): the core's
 // descriptor word port reads the header once per image (4 responses at e7m16; the cycle model:
 // not at all) and a record in one or two responses of a matrix cache line's RW words each (a
-// read across two lines takes two lookups; the cycle model looks the lines up at once); list_unit's entry waits in its pipeline for the list word (the cycle model parks the
-// thread before the unit); every cache has OUTSTANDING reads in flight (the cycle model: no
+// read across two lines takes two lookups; the cycle model looks the lines up at once); list_unit's entries wait in its queue for their list words, up to 9 reads in flight (the cycle
+// model parks the thread before the unit, any number); every cache has OUTSTANDING reads in flight (the cycle model: no
 // limit); the caches answer a hit after 2 cycles (3 with the matrix cache's index stage, the
 // cycle model: at once); the RGS's reads are line by line, a burst's lines one a cycle on the
 // controllers' one port (the cycle model: the same lines on its shading port).
@@ -281,7 +281,7 @@ module dynrtp #(
   end
 
   // ---- the core ----
-  logic word_rsp, node_rsp, list_re, list_valid;
+  logic word_rsp, node_rsp, list_req /*verilator public_flat_rd*/, list_ready /*verilator public_flat_rd*/, list_rsp;
   logic word_req /*verilator public_flat_rd*/, word_ready /*verilator public_flat_rd*/;
   logic node_req /*verilator public_flat_rd*/, node_ready /*verilator public_flat_rd*/;
   logic [31:0] word_addr, node_addr, list_addr, list_data;
@@ -303,8 +303,8 @@ module dynrtp #(
     .cos_o(cos_o), .count_o(count_o), .inflight_o(), .mem_req_valid_o(word_req), .mem_req_ready_i(word_ready),
     .mem_addr_o(word_addr), .mem_rsp_valid_i(word_rsp), .mem_rdata_i(word_data), .node_req_valid_o(node_req),
     .node_req_ready_i(node_ready), .node_addr_o(node_addr), .node_rsp_valid_i(node_rsp),
-    .node_w0_i(node_data[31:0]), .node_w1_i(node_data[63:32]), .list_re_o(list_re), .list_addr_o(list_addr),
-    .list_rdata_i(list_data), .list_rvalid_i(list_valid), .issue_o(issue));
+    .node_w0_i(node_data[31:0]), .node_w1_i(node_data[63:32]), .list_req_o(list_req), .list_req_ready_i(list_ready),
+    .list_addr_o(list_addr), .list_rsp_valid_i(list_rsp), .list_rdata_i(list_data), .issue_o(issue));
   /* verilator lint_on PINCONNECTEMPTY */
 
   // ---- the caches ----
@@ -317,29 +317,11 @@ module dynrtp #(
     .req_addr_i(node_addr), .rsp_valid_o(node_rsp), .rsp_data_o(node_data), .mem_req_valid_o(mreq_valid[0]),
     .mem_req_ready_i(mreq_ready[0]), .mem_req_addr_o(mreq_addr[0 +: 32]), .mem_rsp_valid_i(mrsp_valid[0]),
     .mem_rsp_data_i(mrsp_data[0 +: 64]));
-  // list_unit's read is a pulse with its address: held until the cache takes it; its word is held
-  // from the answer until the next read (list_unit waits for it with list_valid)
-  logic lreq_q /*verilator public_flat_rd*/, lrsp;
-  logic [31:0] laddr_q, lword;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      lreq_q <= 1'b0;
-      list_valid <= 1'b0;
-    end else begin
-      if (list_re) lreq_q <= 1'b1;
-      else if (lreq_ready) lreq_q <= 1'b0;
-      if (list_re) list_valid <= 1'b0;
-      else if (lrsp) list_valid <= 1'b1;
-    end
-  end
-  always_ff @(posedge clk_i) begin
-    if (list_re) laddr_q <= list_addr;
-    if (lrsp) list_data <= lword;
-  end
-  logic lreq_ready /*verilator public_flat_rd*/;
+  // list_unit's read port: its request register into the cache, the answers (in request order)
+  // into its word queue
   cache_read #(.LINE_BYTES(4), .SIZE_BYTES(1024 * LIST_KB), .WORDS(1), .OUTSTANDING(OUTSTANDING)) u_lists (
-    .clk_i(clk_i), .rst_ni(rst_ni), .flush_i(flush_i), .req_valid_i(lreq_q), .req_ready_o(lreq_ready),
-    .req_addr_i(laddr_q), .rsp_valid_o(lrsp), .rsp_data_o(lword), .mem_req_valid_o(mreq_valid[1]),
+    .clk_i(clk_i), .rst_ni(rst_ni), .flush_i(flush_i), .req_valid_i(list_req), .req_ready_o(list_ready),
+    .req_addr_i(list_addr), .rsp_valid_o(list_rsp), .rsp_data_o(list_data), .mem_req_valid_o(mreq_valid[1]),
     .mem_req_ready_i(mreq_ready[1]), .mem_req_addr_o(mreq_addr[32 +: 32]), .mem_rsp_valid_i(mrsp_valid[1]),
     .mem_rsp_data_i(mrsp_data[0 +: 32]));
 
@@ -413,7 +395,7 @@ module dynrtp #(
         for (int u = 0; u < 6; u++) issues_o[64*u +: 64] <= issues_o[64*u +: 64] + 64'(issue[u]);
         packets_o <= packets_o + 64'(valid_o && hits_taken);
         reads_o[0 +: 64] <= reads_o[0 +: 64] + 64'(node_req && node_ready);
-        reads_o[64 +: 64] <= reads_o[64 +: 64] + 64'(lreq_q && lreq_ready);
+        reads_o[64 +: 64] <= reads_o[64 +: 64] + 64'(list_req && list_ready);
         reads_o[128 +: 64] <= reads_o[128 +: 64] + 64'(word_req && word_ready);
         reads_o[192 +: 64] <= reads_o[192 +: 64] + 64'(sh_req && sh_ready);
       end

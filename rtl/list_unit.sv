@@ -12,33 +12,47 @@
 // pointers, held in 32 memories of 2*THREADS x KW bits (one per ray and slot: a clear writes all of
 // them, an entry writes at most one slot per ray) and 4 of 2*THREADS x 3 bits, each with one
 // synchronous read and one write port (block RAM or LUT RAM).
-// Pipeline (LATENCY 3, one operation per cycle, II = 1):
-//   S0 (input cycle): mailbox memories and memory port addressed (mem_re_o, mem_addr_o);
-//   S1: mailbox words and the list entry (mem_rdata_i) arrive; 32 KW-bit equality comparators;
+// Pipeline (one operation per cycle, II = 1), not blocking on a list word: an entry's read goes
+// out when the unit takes it, and the entry waits for its word in a queue while later entries'
+// reads go out behind it (up to DEPTH + 1 operations in the unit, their reads in flight at once):
+//   F (input cycle): the operation into the queue (a sync_fifo of DEPTH, then the head register
+//       H), an entry's word address a into the read request register (mem_req_o from the next
+//       cycle until mem_req_ready_i takes it);
+//   H: the queue's oldest operation; its mailbox words (key and round-robin pointer memories) are
+//       read while it waits, addressed by the operation that is in H in the next cycle;
+//   C: H leaves when its word is the word queue's head (the answers in request order: a
+//       sync_fifo of 2 DEPTH, more than the reads that can be in flight) and its mailbox words
+//       are read after the last write to them: 32 KW-bit equality comparators;
 //   S2: seen bits registered; need = mask & ~seen, the slot writes (the mailboxes are written at
 //       the end of S2) and the result registers;
 //   S3: valid_o with the result.
-// Memory wait (mem_valid_i): an entry whose list word is not yet at mem_rdata_i waits in S1 (the
-// DynRTP's list cache answers a hit 2 cycles after the read, a miss after its fill, rtl/dynrtp.sv);
-// S2 and the output drain meanwhile, and S0 takes nothing. With mem_valid_i = 1 (a memory that
-// answers in the next cycle) the pipeline is the 3 cycles above.
-// A thread has one operation in flight in the DynRTP; should a second operation of the same
-// thread and level arrive while the first is in S1 or S2, ready_o stays low until the first has
-// written its mailboxes (so back-to-back operations of one thread give the C unit's results:
-// trace_core's issue FIFO can hold a thread's clear while the unit waits for a list word, and pass
-// that thread's next entry right behind it).
-// Memory read port: mem_rdata_i must hold mem[mem_addr_o] from the cycle mem_valid_i rises after
-// mem_re_o until the next mem_re_o (a block RAM with read enable: mem_valid_i = 1; in the DynRTP
-// the list cache behind a holding register, rtl/dynrtp.sv).
-// Resources (THREADS = 64, KW = 32): 32 x 128 x 32 + 4 x 128 x 3 bits of mailbox memory
-// (131,456 bits), 32 KW-bit equality comparators, one 3-input AW-bit adder, one AW-bit
-// incrementer, 4 3-bit incrementers, about 120 + 2 AW flip-flops of pipeline (docs/synth.md).
+// So an entry's result leaves 2 cycles after its word has been answered (mem_rsp_valid_i), as
+// when the unit waited in its pipeline for the word (until 2026-11-29: one read in flight, the
+// unit taking nothing while a list word missed in the DynRTP's list cache), a clear's 2 cycles
+// after it is in H; the results in the order the operations came in. A memory answering in the
+// cycle after the request: 5 cycles from F to valid_o. In the DynRTP (rtl/README.md, "The list unit
+// without blocking"; saarcor render SCENE --width 32 --height 24 --max-depth 3 --mode rtl, 2026-11-29)
+// room at 32 blocks 137,273 -> 129,088 cycles, at 64 153,636 -> 127,993; at one thread the same
+// (cornell 407,290).
+// Order per thread and level: H's mailbox words are its own after every write of an earlier
+// operation: "fresh" (registered) says that the words read in the cycle before are H's and no
+// operation that writes that mailbox was in S2 or leaving C then (a clear and its thread's next
+// entry back to back wait 2 cycles more).
+// Memory read port: a request (mem_req_o, mem_addr_o) held until mem_req_ready_i; the answers in
+// request order, one a cycle, always taken (mem_rsp_valid_i with mem_rdata_i; in the DynRTP the
+// list cache, rtl/dynrtp.sv, hit 3 cycles after the request).
+// Resources (THREADS = 64, KW = 32, DEPTH = 8): 32 x 128 x 32 + 4 x 128 x 3 bits of mailbox
+// memory (131,456 bits), 32 KW-bit equality comparators, one 3-input AW-bit adder, one AW-bit
+// incrementer, 4 3-bit incrementers; the queues DEPTH x (TW + 6 + AW) and 2 DEPTH x KW bits of
+// LUT RAM; about 150 + 3 AW + KW flip-flops of registers. synth_xilinx (scripts/synth.py --levels
+// list_unit THREADS=64 --hier, 2026-11-29): 5 LUT6 levels, 1,008 LUT6, 287 flip-flops, 32 RAMB18E1,
+// 8 RAM64M, 14 RAM32M (before the queue: 4, 974, 230, 32, 8, 0; docs/synth.md).
 // Handshake: valid/ready (the pipeline advances when ready_i or nothing is at the output).
 module list_unit #(
   parameter int THREADS = 64,
   parameter int AW = 32,        // word address width (lists, first, k)
   parameter int KW = 32,        // list entry (key) width: a memory word
-  parameter int LATENCY = 3     // fixed by the pipeline; documents the cycle model's default
+  parameter int DEPTH = 8       // the operation queue (a power of 2): list reads in flight up to DEPTH + 1
 ) (
   input  logic                        clk_i,
   input  logic                        rst_ni,
@@ -52,10 +66,11 @@ module list_unit #(
   input  logic [AW-1:0]               k_i,        // entries of the leaf done
   input  logic [3:0]                  leaf_mask_i,
   input  logic [3:0]                  alive_i,
-  output logic                        mem_re_o,
+  output logic                        mem_req_o,
+  input  logic                        mem_req_ready_i,
   output logic [AW-1:0]               mem_addr_o,
+  input  logic                        mem_rsp_valid_i, // the answers in request order, always taken
   input  logic [KW-1:0]               mem_rdata_i,
-  input  logic                        mem_valid_i, // mem_rdata_i holds the last read's word
   output logic                        valid_o,
   input  logic                        ready_i,
   output logic [$clog2(THREADS)-1:0]  thread_o,
@@ -67,34 +82,74 @@ module list_unit #(
 );
   localparam int TW = $clog2(THREADS);
   localparam int IW = TW + 1;            // mailbox index {thread, level}
+  localparam int OW = IW + 1 + 4 + AW;   // a queued operation: index, clear, mask, k + 1
   localparam int SLOTS = 8;              // TRACE_MAILBOX
   localparam logic [KW-1:0] NO_HIT = '1; // TRACE_NO_HIT
-  if (LATENCY != 3) begin : g_latency_check
-    $error("list_unit: LATENCY is 3 (the pipeline's registers)");
+
+  logic req_free, q_ready, take, q_valid, q_pop, w_valid, out, pop, h_valid, h_clear, fresh;
+  logic [OW-1:0] q_head;
+  logic [KW-1:0] w_head;
+  logic [IW-1:0] h_idx, q_idx, rd_idx;
+  logic [3:0] h_mask;
+  logic [AW-1:0] h_k1;
+
+  // F: the operation into the queue and an entry's read into the request register
+  assign req_free = !mem_req_o || mem_req_ready_i;
+  assign ready_o = req_free && q_ready;
+  assign take = valid_i && ready_o;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) mem_req_o <= 1'b0;
+    else if (req_free) mem_req_o <= take && !clear_i;
   end
+  always_ff @(posedge clk_i) if (take && !clear_i) mem_addr_o <= lists_i + first_i + k_i;
 
-  // out: S2 moves to the output; en: S0 and S1 move too (S1's list word is there)
-  logic out, en, take, hazard;
-  logic [IW-1:0] idx_in;
+  sync_fifo #(.W(OW), .DEPTH(DEPTH)) u_ops (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(valid_i && req_free), .ready_o(q_ready),
+    .data_i({thread_i, level_i, clear_i, leaf_mask_i & alive_i, k_i + AW'(1)}), .valid_o(q_valid), .ready_i(q_pop),
+    .data_o(q_head));
+
+  // the answered words, in request order (the reads in flight never exceed the operations held)
+  /* verilator lint_off PINCONNECTEMPTY */
+  sync_fifo #(.W(KW), .DEPTH(2 * DEPTH)) u_words (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(mem_rsp_valid_i), .ready_o(), .data_i(mem_rdata_i),
+    .valid_o(w_valid), .ready_i(pop && !h_clear), .data_o(w_head));
+  /* verilator lint_on PINCONNECTEMPTY */
+
+  // H: the oldest operation; pop: it leaves (C) with its word and its mailbox words
   assign out = ready_i || !valid_o;
-  assign en = out && (!s1_valid || s1_clear || mem_valid_i);
-  assign idx_in = {thread_i, level_i};
+  assign pop = out && h_valid && fresh && (h_clear || w_valid);
+  assign q_pop = !h_valid || pop;
+  assign q_idx = q_head[OW-1 -: IW];
+  assign rd_idx = q_pop ? q_idx : h_idx;  // the operation in H next cycle
 
-  // pipeline registers
-  logic s1_valid, s1_clear, s2_valid, s2_clear;
-  logic [IW-1:0] s1_idx, s2_idx;
-  logic [3:0] s1_mask, s2_mask, s2_seen;
-  logic [AW-1:0] s1_k1, s2_k1;
+  // S2 registers
+  logic s2_valid, s2_clear;
+  logic [IW-1:0] s2_idx;
+  logic [3:0] s2_mask, s2_seen;
+  logic [AW-1:0] s2_k1;
   logic [KW-1:0] s2_key;
   logic [2:0] s2_next [4];
 
-  assign hazard = (s1_valid && s1_idx == idx_in) || (s2_valid && s2_idx == idx_in);
-  assign ready_o = en && !hazard;
-  assign take = valid_i && ready_o;
-  assign mem_re_o = take && !clear_i;
-  assign mem_addr_o = lists_i + first_i + k_i;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      h_valid <= 1'b0;
+      fresh <= 1'b0;
+      s2_valid <= 1'b0;
+      valid_o <= 1'b0;
+    end else begin
+      if (q_pop) h_valid <= q_valid;
+      // the words read now are the next H's unless an operation of its mailbox writes them later
+      fresh <= (q_pop ? q_valid : h_valid) && !(s2_valid && s2_idx == rd_idx) && !(pop && h_idx == rd_idx);
+      if (out) begin
+        s2_valid <= pop;
+        valid_o <= s2_valid && !s2_clear;
+      end
+    end
+  end
+  always_ff @(posedge clk_i) if (q_pop) {h_idx, h_clear, h_mask, h_k1} <= q_head;
 
-  // mailbox memories: key[ray][slot] and next[ray], read in S0, written at the end of S2
+  // mailbox memories: key[ray][slot] and next[ray], read every cycle for the next H, written at
+  // the end of S2
   logic [KW-1:0] key_rd [4][SLOTS];
   logic [2:0] next_rd [4];
   for (genvar r = 0; r < 4; r++) begin : g_ray
@@ -102,51 +157,35 @@ module list_unit #(
     logic wr;
     assign wr = out && s2_valid && (s2_clear || (s2_mask[r] && !s2_seen[r]));
     always_ff @(posedge clk_i) begin
-      if (en) next_rd[r] <= next_mem[idx_in];
+      next_rd[r] <= next_mem[rd_idx];
       if (wr) next_mem[s2_idx] <= s2_clear ? 3'd0 : s2_next[r] + 3'd1;
     end
     for (genvar j = 0; j < SLOTS; j++) begin : g_slot
       logic [KW-1:0] key_mem [2*THREADS];
       always_ff @(posedge clk_i) begin
-        if (en) key_rd[r][j] <= key_mem[idx_in];
+        key_rd[r][j] <= key_mem[rd_idx];
         if (wr && (s2_clear || s2_next[r] == 3'(j))) key_mem[s2_idx] <= s2_clear ? NO_HIT : s2_key;
       end
     end
   end
 
-  // S1: the comparators
+  // C: the comparators
   logic [3:0] seen;
   always_comb begin
     for (int r = 0; r < 4; r++) begin
       seen[r] = 1'b0;
-      for (int j = 0; j < SLOTS; j++) seen[r] = seen[r] | (key_rd[r][j] == mem_rdata_i);
-    end
-  end
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      s1_valid <= 1'b0;
-      s2_valid <= 1'b0;
-      valid_o <= 1'b0;
-    end else if (out) begin
-      s1_valid <= en ? take : s1_valid;
-      s2_valid <= en && s1_valid;  // a bubble while S1 waits for its word
-      valid_o <= s2_valid && !s2_clear;
+      for (int j = 0; j < SLOTS; j++) seen[r] = seen[r] | (key_rd[r][j] == w_head);
     end
   end
 
   always_ff @(posedge clk_i) begin
-    if (en) begin
-      s1_clear <= clear_i;
-      s1_idx <= idx_in;
-      s1_mask <= leaf_mask_i & alive_i;
-      s1_k1 <= k_i + AW'(1);
-      s2_clear <= s1_clear;
-      s2_idx <= s1_idx;
-      s2_mask <= s1_mask;
+    if (pop) begin
+      s2_clear <= h_clear;
+      s2_idx <= h_idx;
+      s2_mask <= h_mask;
       s2_seen <= seen;
-      s2_key <= mem_rdata_i;
-      s2_k1 <= s1_k1;
+      s2_key <= w_head;
+      s2_k1 <= h_k1;
       for (int r = 0; r < 4; r++) s2_next[r] <= next_rd[r];
     end
     if (out) begin

@@ -17,7 +17,7 @@
 // slots. Every unit's operands are registered after the multiplexer over the threads (the issue
 // stage: a cycle): the traversal and list units' in a two-entry FIFO each, from which the unit
 // takes its operation when it is ready (trav_unit refuses while its slots are full, list_unit
-// while it waits for a list word or a clear of the same thread and level is in its pipeline),
+// while its queue is full or its read request waits for the list cache),
 // the per-ray units' in registers the unit always takes. A thread's grant is the scheduler's
 // one-hot pick (or the feeding thread's, registered) and the room in the FIFO (its count) or the
 // per-ray unit's ready, neither of which looks at the offered operation (trav_unit's
@@ -65,9 +65,9 @@
 // 126,945 flip-flops, 8 LUT6 levels.
 // Handshake: valid/ready at the packet input (into thread thread_i: ready_o when it is free) and
 // at the result output (registered; the lowest finished thread first); word port valid/ready with responses in
-// request order; trav_unit's node port and list_unit's read port as those units define them (the
-// list word with list_rvalid_i: the list cache's answer, 1 for a memory that answers in the next
-// cycle). issue_o: the steps each unit took in this cycle (a batch counts its rays: the DynRTP's
+// request order; trav_unit's node port and list_unit's read port as those units define them (a
+// list request held until list_req_ready_i, the answers in request order, always taken: the list
+// cache's). issue_o: the steps each unit took in this cycle (a batch counts its rays: the DynRTP's
 // usage counters).
 module trace_core #(
   parameter int E = 7,
@@ -119,10 +119,11 @@ module trace_core #(
   input  logic [31:0]                 node_w0_i,
   input  logic [31:0]                 node_w1_i,
   // list_unit's read port
-  output logic                        list_re_o,
+  output logic                        list_req_o,
+  input  logic                        list_req_ready_i,
   output logic [31:0]                 list_addr_o,
+  input  logic                        list_rsp_valid_i, // the answers in request order, always taken
   input  logic [31:0]                 list_rdata_i,
-  input  logic                        list_rvalid_i, // list_rdata_i holds the last read's word
   // the units' issues this cycle (thread_sched: trav, list, rebase, wide, xform, isect, add, sum)
   output logic [5:0]                  issue_o
 );
@@ -286,9 +287,9 @@ module trace_core #(
   // An operation granted in cycle s is written from the operand multiplexers into its unit's
   // two-entry FIFO (sync_fifo: the multiplexers end at a register) at the end of s; the unit takes
   // the FIFO's head from s + 1 on, when it is ready (trav_unit refuses while its slots are full,
-  // list_unit while it waits for a list word or while a clear of the same thread and level is in
-  // its pipeline). The grant waits for room in the FIFO (its count, from registers), not for the
-  // unit's ready: neither the unit's refusal nor its hazard check lies on the grant path, and one
+  // list_unit while its queue is full or its read request waits). The grant waits for room in
+  // the FIFO (its count, from registers), not for the unit's ready: the unit's refusal does not
+  // lie on the grant path, and one
   // operation per cycle goes in while the unit takes one per cycle. A result comes a cycle later
   // than an issue straight into the unit would give it.
   localparam int TRAV_OPW = TW + 1 + 2 + 24 * W + 12 * W + 4 + 6 * W + 32;
@@ -346,7 +347,8 @@ module trace_core #(
     .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(op_valid[U_LIST]), .ready_o(unit_ready[U_LIST]),
     .thread_i(list_op_thread), .level_i(list_op_level), .clear_i(list_op_clear), .lists_i(list_op_lists),
     .first_i(list_op_first), .k_i(list_op_k), .leaf_mask_i(list_op_leaf_mask), .alive_i(list_op_alive),
-    .mem_re_o(list_re_o), .mem_addr_o(list_addr_o), .mem_rdata_i(list_rdata_i), .mem_valid_i(list_rvalid_i),
+    .mem_req_o(list_req_o), .mem_req_ready_i(list_req_ready_i), .mem_addr_o(list_addr_o),
+    .mem_rsp_valid_i(list_rsp_valid_i), .mem_rdata_i(list_rdata_i),
     .valid_o(list_valid_o),
     .ready_i(1'b1), .thread_o(list_thread), .level_o(), .key_o(list_key), .need_o(list_need), .skip_o(list_skip),
     .k_o(list_k));

@@ -344,7 +344,7 @@ def ice40(top, e, m):
 # memory interface and list unit: (name, module, parameters, latency)
 MB_E7M16 = 4 * ((12 * 24 + 27 + 31) // 32)  # matrix line bytes: one packed triangle record
 CONTROL = [
-    ("list_unit", "list_unit", {"THREADS": 64}, "3"),
+    ("list_unit", "list_unit", {"THREADS": 64}, "2 after its word"),
     ("cache_dm kd nodes 4 KB / 8 B", "cache_dm", {"LINE_BYTES": 8, "SIZE_BYTES": 4096}, "hit 2"),
     ("cache_dm lists 2 KB / 4 B", "cache_dm", {"LINE_BYTES": 4, "SIZE_BYTES": 2048}, "hit 2"),
     (f"cache_dm matrices 6 KB / {MB_E7M16} B", "cache_dm", {"LINE_BYTES": MB_E7M16, "SIZE_BYTES": 6144}, "hit 2"),

@@ -7,8 +7,8 @@
 // their order, each into the lowest free thread (--threads T of the model's 8: T packets in
 // flight; packets of another image wait until the core is empty and enter with flush_i, so the core
 // reads that image's header). The bench is the RTL's memory (the descriptor word port, RW words
-// from the requested address per response, and the kd-node port answer one cycle after the request, the list
-// unit's read port holds mem[addr] from the cycle after its read enable). Every packet leaving a
+// from the requested address per response, the kd-node port and the list unit's read port answer one cycle after
+// the request). Every packet leaving a
 // thread is compared with its C result: the hits (instance, triangle, t, u, v, cos per ray) and the
 // counters. A mismatch prints the packet, its thread, the ray, the field and both values; exit
 // code 1 (the bench stops after 20 mismatches). It reports the cycles per packet, the packets'
@@ -166,7 +166,7 @@ int main(int argc, char **argv)
     Vtb_core top{ &ctx };
     top.rst_ni = 0, top.clk_i = 0, top.valid_i = 0, top.flush_i = 0, top.ready_i = 1;
     top.mem_req_ready_i = 1, top.mem_rsp_valid_i = 0, top.node_req_ready_i = 1, top.node_rsp_valid_i = 0;
-    top.list_rvalid_i = 1; // the list word from the cycle after the read
+    top.list_req_ready_i = 1;
     top.eval();
     top.clk_i = 1;
     top.eval();
@@ -174,8 +174,7 @@ int main(int argc, char **argv)
 
     // packets go into free threads in their order; all packets in flight read one image (a packet of
     // the next image waits until the core is empty)
-    std::deque<uint32_t> word_q, node_q; // addresses requested in the last cycle, answered in this one
-    uint32_t list_addr = 0;
+    std::deque<uint32_t> word_q, node_q, list_q; // addresses requested in the last cycle, answered in this one
     std::vector<long> in_thread(threads, -1);
     std::vector<uint64_t> started(threads, 0);
     uint64_t cycle = 0, last_out = 0, inflight_sum = 0, latency_sum = 0, latency_max = 0;
@@ -215,7 +214,9 @@ int main(int argc, char **argv)
         top.node_rsp_valid_i = !node_q.empty();
         top.node_w0_i = node_q.empty() ? 0 : at(node_q.front());
         top.node_w1_i = node_q.empty() ? 0 : at(node_q.front() + 1);
-        top.list_rdata_i = at(list_addr);
+        top.list_rsp_valid_i = !list_q.empty();
+        top.list_rdata_i = list_q.empty() ? 0 : at(list_q.front());
+        list_q.clear();
         if (!word_q.empty())
             word_q.pop_front();
         if (!node_q.empty())
@@ -234,8 +235,8 @@ int main(int argc, char **argv)
             word_q.push_back(top.mem_addr_o);
         if (top.node_req_valid_o)
             node_q.push_back(top.node_addr_o);
-        const bool list_read = top.list_re_o;
-        const uint32_t list_next = top.list_addr_o;
+        if (top.list_req_o)
+            list_q.push_back(top.list_addr_o);
         inflight_sum += top.inflight_o;
         if (top.valid_o) {
             const uint32_t t = top.thread_o;
@@ -266,8 +267,6 @@ int main(int argc, char **argv)
         top.clk_i = 1;
         top.eval();
         cycle++;
-        if (list_read)
-            list_addr = list_next;
     }
     std::printf("tb_core: %zu packets (%llu any-hit) on %u threads, %llu rays hit, %llu unit operations (C trace_step), "
                 "%llu cycles: %.1f cycles per packet, latency %.1f (max %llu), %.2f operations in flight, %.1f cycles "

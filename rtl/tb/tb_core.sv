@@ -42,10 +42,11 @@ module tb_core #(
   input  logic                        node_rsp_valid_i,
   input  logic [31:0]                 node_w0_i,
   input  logic [31:0]                 node_w1_i,
-  output logic                        list_re_o,
+  output logic                        list_req_o,
+  input  logic                        list_req_ready_i,
   output logic [31:0]                 list_addr_o,
+  input  logic                        list_rsp_valid_i,
   input  logic [31:0]                 list_rdata_i,
-  input  logic                        list_rvalid_i,
   output logic [5:0]                  issue_o
 );
   trace_core #(.E(E), .M(M), .THREADS(THREADS)) u_core (.*);

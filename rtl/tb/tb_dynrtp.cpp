@@ -256,7 +256,7 @@ struct waves {
         vcd.set(rgs[QUEUE], (uint64_t)__builtin_popcountll(computing));
         computing_q = computing;
         const bool look[4] = { r->tb_dynrtp__DOT__u_dynrtp__DOT__node_req && r->tb_dynrtp__DOT__u_dynrtp__DOT__node_ready,
-                               r->tb_dynrtp__DOT__u_dynrtp__DOT__lreq_q && r->tb_dynrtp__DOT__u_dynrtp__DOT__lreq_ready,
+                               r->tb_dynrtp__DOT__u_dynrtp__DOT__list_req && r->tb_dynrtp__DOT__u_dynrtp__DOT__list_ready,
                                r->tb_dynrtp__DOT__u_dynrtp__DOT__word_req && r->tb_dynrtp__DOT__u_dynrtp__DOT__word_ready,
                                r->tb_dynrtp__DOT__u_dynrtp__DOT__sh_req && r->tb_dynrtp__DOT__u_dynrtp__DOT__sh_ready };
         const uint32_t miss = r->tb_dynrtp__DOT__u_dynrtp__DOT__mreq_valid & r->tb_dynrtp__DOT__u_dynrtp__DOT__mreq_ready;

@@ -1,7 +1,10 @@
 // Co-simulation of the mailboxed list unit (rtl/list_unit.sv) against the C unit
 // (hls/units/list_unit.c: list_unit_entry, list_mailboxes_clear). The bench is the unit's memory
-// (mem_rdata_i holds mem[mem_addr_o] from the cycle after mem_re_o: the entry the operation read
-// while rendering, at that address only, for the image may change between frames) and keeps the C unit's
+// (each request taken, mem_req_o and mem_req_ready_i, is answered in request order, one answer a
+// cycle, with the entry the operation read while rendering, at that address only, for the image
+// may change between frames; a request for another address is a protocol error; the captured
+// operations' answers come in the cycle after the request, the random ones' after 1 to 4 cycles or
+// now and then 24, with random refusals of the request) and keeps the C unit's
 // mailboxes per thread and level; every operation the RTL accepts is applied to the C unit in the
 // same order, and every result leaving the RTL is compared with the C unit's (thread, level, key,
 // need, skip mask, k after) and, for captured operations (saarcor render --capture-unit-io DIR:
@@ -10,6 +13,7 @@
 // round-robin replacement), with random gaps at the input and random back pressure at the output.
 // A mismatch prints the unit, the transaction, the thread, the cycle and both values; exit code 1.
 // usage: tb_list [-n N] [--seed S] [--capture DIR]
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -32,6 +36,11 @@ struct op {
     uint32_t thread, level, clear, lists, first, k, leaf_mask, alive, entry;
     uint32_t key, need, skips, k_out; // recorded (captured operations)
     bool captured;
+};
+
+struct answer {
+    uint64_t due;
+    uint32_t word;
 };
 
 struct expect {
@@ -175,6 +184,8 @@ int main(int argc, char **argv)
     top.eval();
     top.rst_ni = 1;
     std::deque<expect> q;
+    std::deque<const op *> reads; // the entries taken whose read request has not been taken
+    std::deque<answer> answers;   // the requests taken, in order
     std::size_t next = 0;
     uint64_t results = 0, vs_capture = 0, entries = 0, clears = 0, need_rays = 0, skip_rays = 0, stalls = 0;
     for (; next < ops.size() || !q.empty(); g_cycle++) {
@@ -193,6 +204,9 @@ int main(int argc, char **argv)
             top.first_i = o.first, top.k_i = o.k, top.leaf_mask_i = o.leaf_mask, top.alive_i = o.alive;
         }
         top.ready_i = !random_phase || rnd() % 6 != 0;
+        top.mem_req_ready_i = !random_phase || rnd() % 5 != 0;
+        top.mem_rsp_valid_i = !answers.empty() && answers.front().due <= g_cycle;
+        top.mem_rdata_i = top.mem_rsp_valid_i ? answers.front().word : 0xDEADBEEFu;
         top.eval();
         // this edge's transfers: the result at the output, the operation at the input, the memory read
         if (top.valid_o && top.ready_i) {
@@ -228,6 +242,7 @@ int main(int argc, char **argv)
             const op &o = ops[next];
             if (model(o, next, e)) {
                 q.push_back(e);
+                reads.push_back(&o);
                 entries++;
                 need_rays += (uint32_t)__builtin_popcount(e.need);
                 skip_rays += (uint32_t)__builtin_popcount(e.skip);
@@ -238,20 +253,21 @@ int main(int argc, char **argv)
         } else if (offer) {
             stalls++;
         }
-        const bool re = top.mem_re_o;
-        const uint32_t addr = top.mem_addr_o;
-        uint32_t rdata = 0xDEADBEEFu; // the memory: the operation's entry at its address
-        if (re && offer && top.ready_o) {
-            const op &o = ops[next - 1];
-            if (addr == o.lists + o.first + o.k)
-                rdata = o.entry;
+        if (top.mem_rsp_valid_i)
+            answers.pop_front();
+        if (top.mem_req_o && top.mem_req_ready_i) { // the read of the oldest entry taken and not yet read
+            if (reads.empty() || top.mem_addr_o != reads.front()->lists + reads.front()->first + reads.front()->k) {
+                std::printf("PROTOCOL: list_unit read of %08x at cycle %llu, not the next entry's\n", top.mem_addr_o,
+                            (unsigned long long)g_cycle);
+                return 1;
+            }
+            const uint64_t lat = !random_phase ? 1 : rnd() % 16 == 0 ? 24 : 1 + rnd() % 4;
+            const uint64_t after = answers.empty() ? 0 : answers.back().due + 1;
+            answers.push_back({ std::max(g_cycle + lat, after), reads.front()->entry });
+            reads.pop_front();
         }
         top.clk_i = 1;
         top.eval();
-        if (re) {
-            top.mem_rdata_i = rdata;
-            top.eval();
-        }
     }
     top.final();
     std::printf("tb_list: %zu operations (%zu captured) -> %llu entries, %llu clears, %llu results compared with the "

@@ -17,8 +17,10 @@ module tb_list #(
   input  logic [31:0]                 k_i,
   input  logic [3:0]                  leaf_mask_i,
   input  logic [3:0]                  alive_i,
-  output logic                        mem_re_o,
+  output logic                        mem_req_o,
+  input  logic                        mem_req_ready_i,
   output logic [31:0]                 mem_addr_o,
+  input  logic                        mem_rsp_valid_i,
   input  logic [31:0]                 mem_rdata_i,
   output logic                        valid_o,
   input  logic                        ready_i,
@@ -31,7 +33,5 @@ module tb_list #(
 );
   if (E + M < 0) begin : g_unused
   end
-  logic mem_valid_i;
-  assign mem_valid_i = 1'b1;  // the bench's memory answers in the next cycle
   list_unit #(.THREADS(THREADS)) u_list (.*);
 endmodule

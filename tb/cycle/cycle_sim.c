@@ -5,6 +5,7 @@
 #include "pixel_cost.h"
 
 #include <pthread.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -94,6 +95,15 @@ void rgs_counters_add(rgs_counters *sum, const rgs_counters *c)
 
 enum { TH_IDLE, TH_MEMORY, TH_QUEUED, TH_UNIT };
 
+/* A thread's packet in the core for the CYCLE_LOG file (docs/cycle-model.md): the cycle its first
+ * core operation was decided, its core operations and issue slots by kind, and its thread-cycles
+ * waiting for memory (by data type) and queued (by unit) */
+typedef struct {
+    int in_core;
+    uint64_t in, wait_mem[MEM_KINDS], wait_unit[UNIT_KINDS];
+    uint32_t ops[OP_KINDS], slots[OP_KINDS];
+} packet_log;
+
 typedef struct {
     rgs_block blk;
     unit_op op;
@@ -102,6 +112,7 @@ typedef struct {
     uint64_t began; /* cycle it took its block (per-pixel cycles) */
     uint32_t light_held; /* the light record its block controller holds (rgs_ctrl; UINT32_MAX: none) */
     pixel_cost cost[TRACE_PACKET]; /* its block's per-pixel cost so far (if kept) */
+    packet_log pkt;      /* its packet in the core (CYCLE_LOG only) */
 } thread;
 
 /* A unit's input queue as the RTL scheduler holds it (rtl/thread_sched.sv): one ready bit per
@@ -139,6 +150,8 @@ typedef struct {
     trace_pipe *tp; /* waveform recorder (NULL: none) */
     cycle_sched_probe probe; /* scheduler events (NULL: none) */
     void *probe_arg;
+    FILE *log;        /* CYCLE_LOG (NULL: none) */
+    uint64_t packets; /* packets begun, numbered for the log */
     uint32_t index;   /* the pipe's number */
     int in_cycle;     /* a ready thread joins the set in a cycle's commit: the unit sees it next cycle */
 } pipe_state;
@@ -222,10 +235,12 @@ static void leave_state(pipe_state *p, thread *t)
     case TH_MEMORY:
         p->st.thread_cycles[ST_MEMORY] += d;
         p->st.wait_mem[t->wait_kind] += d;
+        t->pkt.wait_mem[t->wait_kind] += d;
         break;
     case TH_QUEUED:
         p->st.thread_cycles[ST_UNIT_QUEUE] += d;
         p->st.wait_unit[op_kind_unit(t->op.kind)] += d;
+        t->pkt.wait_unit[op_kind_unit(t->op.kind)] += d;
         break;
     case TH_UNIT: p->st.thread_cycles[ST_UNIT_BUSY] += d; break;
     default: p->st.thread_cycles[ST_NO_WORK] += d; break;
@@ -279,6 +294,45 @@ static void finish_block(pipe_state *p, thread *t)
     p->st.blocks++;
 }
 
+/* An operation of the core (trace_step's), not of the RGS (the ray generation, shadow and child
+ * rays, the surfaces, lights and accumulation) */
+static int core_op(uint32_t kind)
+{
+    return kind < OP_SURFACE && kind != OP_RAYGEN && kind != OP_SHADOW && kind != OP_CHILDREN;
+}
+
+/* CYCLE_LOG: thread id has decided its next operation (none: the block is done). A core operation
+ * after an RGS one begins a packet; an RGS operation after core ones ends it, with a line
+ * "P number thread cycle_in cycle_out", per kind of operation (OP_*) its count and issue slots (as
+ * tb_dynrtp's TB_DYNRTP_LOG), then its thread-cycles waiting for memory per data type and queued
+ * per unit. */
+static void log_packet(pipe_state *p, uint32_t id, int core_op)
+{
+    thread *t = &p->th[id];
+    if (core_op && !t->pkt.in_core) {
+        memset(&t->pkt, 0, sizeof t->pkt);
+        t->pkt.in_core = 1;
+        t->pkt.in = p->now;
+    } else if (!core_op && t->pkt.in_core) {
+        t->pkt.in_core = 0;
+        char line[1024]; /* one write per line: the pipes' host threads share the file */
+        int n = snprintf(line, sizeof line, "P %llu %u %llu %llu", (unsigned long long)p->packets++,
+                         p->index * p->cfg->threads_per_pipe + id, (unsigned long long)t->pkt.in,
+                         (unsigned long long)p->now);
+        for (int k = 0; k < OP_KINDS; k++)
+            n += snprintf(line + n, sizeof line - (size_t)n, " %u %u", t->pkt.ops[k], t->pkt.slots[k]);
+        for (int k = 0; k < MEM_KINDS; k++)
+            n += snprintf(line + n, sizeof line - (size_t)n, " %llu", (unsigned long long)t->pkt.wait_mem[k]);
+        for (int u = 0; u < UNIT_KINDS; u++)
+            n += snprintf(line + n, sizeof line - (size_t)n, " %llu", (unsigned long long)t->pkt.wait_unit[u]);
+        fprintf(p->log, "%s\n", line);
+    }
+    if (core_op) {
+        t->pkt.ops[t->op.kind]++;
+        t->pkt.slots[t->op.kind] += t->op.slots;
+    }
+}
+
 /* A thread's result has arrived (or it is idle): it decides its next operation, reads that
  * operation's memory blocks, and waits for them or joins the unit's queue. */
 static void advance_thread(pipe_state *p, uint32_t id)
@@ -287,6 +341,8 @@ static void advance_thread(pipe_state *p, uint32_t id)
     leave_state(p, t);
 next_op:
     while (t->state == TH_IDLE || !pc_step(p->mem, p->rcfg, &t->blk, &t->op, &p->counters, p->costs ? t->cost : NULL)) {
+        if (p->log && t->state != TH_IDLE)
+            log_packet(p, id, 0);
         if (t->state != TH_IDLE) { /* the block is done */
             finish_block(p, t);
             p->active--;
@@ -300,6 +356,8 @@ next_op:
         p->active++;
         t->state = TH_QUEUED; /* holds a block from here on */
     }
+    if (p->log)
+        log_packet(p, id, core_op(t->op.kind));
     uint64_t ready = p->now;
     for (uint32_t r = 0; r < t->op.n_reads; r++) {
         const uint64_t at = mem_iface_read(&p->mi, t->op.read[r].kind, t->op.read[r].addr, t->op.read[r].words, p->now);
@@ -475,6 +533,7 @@ struct cycle_sim {
     pipe_state *pipes;
     pixel_cost *costs;
     cycle_trace *trace;
+    FILE *log; /* the per-packet log: the file CYCLE_LOG names in the environment (NULL: none) */
 };
 
 void cycle_set_costs(cycle_sim *s, pixel_cost *costs) { s->costs = costs; }
@@ -505,12 +564,15 @@ cycle_sim *cycle_create(const cycle_config *cfg)
         return NULL;
     s->cfg = *cfg;
     s->pipes = calloc(cfg->pipes, sizeof *s->pipes);
-    int ok = s->pipes != NULL;
+    const char *log = getenv("CYCLE_LOG");
+    s->log = log ? fopen(log, "w") : NULL;
+    int ok = s->pipes != NULL && (!log || s->log);
     for (uint32_t i = 0; ok && i < cfg->pipes; i++) {
         pipe_state *p = &s->pipes[i];
         const uint32_t n = cfg->threads_per_pipe;
         p->cfg = &s->cfg;
         p->index = i;
+        p->log = s->log;
         p->th = calloc(n, sizeof *p->th);
         p->heap = calloc(n, sizeof *p->heap);
         p->arrived = calloc(n, sizeof *p->arrived);
@@ -538,6 +600,8 @@ void cycle_free(cycle_sim *s)
             free(p->queue[u].ready);
         mem_iface_free(&p->mi);
     }
+    if (s->log)
+        fclose(s->log);
     free(s->pipes);
     free(s);
 }
