@@ -29,8 +29,11 @@ model_built() {
 t_cornell_matches_functional() {
   model_built
   "$BIN" render cornell "${SIZE[@]}" --mode rtl -o "$T/r.png" --aov "$T/r.exr" --stats "$T/r.json" >"$T/r.log" 2>"$T/r.err"
-  # the default 32 threads per pipe on the 8-block model: said on stderr, never silently fewer
-  grep -q "^saarcor render: warning: --mode rtl: 8 of the 32 threads per pipe in flight" "$T/r.err" || { cat "$T/r.err"; return 1; }
+  # the default 32 threads per pipe on the 8-block model (where no 32-block model is built beside
+  # it): said on stderr, never silently fewer
+  if [[ ! -x $B/rtl/e7m16/b32/tb_dynrtp ]]; then
+    grep -q "^saarcor render: warning: --mode rtl: 8 of the 32 threads per pipe in flight" "$T/r.err" || { cat "$T/r.err"; return 1; }
+  fi
   "$BIN" render cornell "${SIZE[@]}" -o "$T/f.png" --aov "$T/f.exr" --stats "$T/f.json" >/dev/null
   cmp "$T/r.png" "$T/f.png"
   oiiotool "$T/f.exr" --ch t,N.X,N.Y,N.Z,node,triangle,u,v -o "$T/f_hits.exr"
