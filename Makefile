@@ -298,7 +298,7 @@ O0_BUILD := $(BUILD)/O0
 # The RTL models of make test: the DynRTP first (the longest build: make starts it first), whose
 # frame (tests/test_rtl_render.sh) checks every block of the RGS's controllers and every packet of
 # the core; tb_rgs_ctrl, the controllers' own bench on more blocks, is make rtl-test's.
-TEST_RTL_BENCHES := dynrtp f24_ops units sum list cache sched rgs wide trav core shade
+TEST_RTL_BENCHES := dynrtp f24_ops units sum list cache sched rgs wide trav core shade fifo
 .PHONY: test-builds test-build-host test-build-main test-build-rtl test-build-asan test-build-hw test-build-baseline test-build-robust test-build-O0
 test-builds: test-build-asan test-build-main test-build-rtl test-build-hw test-build-baseline test-build-robust test-build-O0
 test-build-host:
@@ -510,7 +510,9 @@ rtl-test: deps rtl-lint
 	@$(MAKE) --no-print-directory all $(foreach f,$(RTL_FORMATS),$(BUILD)/rtl/$(f)/tb_f24_ops $(BUILD)/rtl/$(f)/tb_units $(BUILD)/rtl/$(f)/tb_sum \
 	  $(BUILD)/rtl/$(f)/tb_rgs $(BUILD)/rtl/$(f)/tb_wide $(BUILD)/rtl/$(f)/tb_shade $(BUILD)/rtl/$(f)/tb_accum) \
 	  $(foreach f,$(DEFAULT_FMT) e8m23,$(BUILD)/rtl/$(f)/tb_surface $(BUILD)/rtl/$(f)/tb_rgs_ctrl $(BUILD)/rtl/$(f)/tb_list $(BUILD)/rtl/$(f)/tb_cache $(BUILD)/rtl/$(f)/tb_sched $(BUILD)/rtl/$(f)/tb_trav $(BUILD)/rtl/$(f)/tb_core) \
-	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_dynrtp
+	  $(BUILD)/rtl/$(DEFAULT_FMT)/tb_dynrtp $(BUILD)/rtl/$(DEFAULT_FMT)/tb_fifo
+	@# sync_fifo's two storages (LUT RAM, block RAM) against a deque, every output every cycle
+	@$(BUILD)/rtl/$(DEFAULT_FMT)/tb_fifo -n $(RTL_N) | tee $(BUILD)/rtl/fifo.log
 	@mkdir -p $(BUILD)/rtl/capture
 	@set -o pipefail; for f in $(RTL_FORMATS); do \
 	  extra=; [ $$f = $(DEFAULT_FMT) ] && extra=$$(ls tests/golden/f24/{add,sub,mul,div,lt,le,eq,min,max,sqrt,to_i32}.hex); \

@@ -1,14 +1,29 @@
 // sync_fifo: a first-in first-out queue of DEPTH words of W bits, one clock (not a paper unit: the
 // queues between the pipelined traversal unit's stages, rtl/trav_unit.sv, where an operation may
-// wait: for its node's words, for the per-node datapath, at the output). No C function of its own:
-// it only holds words in order. The words sit in a memory with an asynchronous read (LUT RAM):
-// the head is read combinationally, so a word pushed in one cycle may leave in the next.
-// Latency 1 cycle (push to valid_o), throughput one push and one pop per cycle (when full, a push
-// waits for the cycle after a pop). Resources: DEPTH x W bits of LUT RAM, two pointers and a
-// count. Handshake: valid/ready on both sides.
+// wait: for its node's words, for the per-node datapath, at the output; the list unit's, the
+// RGS's and trace_core's issue queues). No C function of its own: it only holds words in order.
+// Two storages, one behaviour (rtl/tb/tb_fifo.sv checks both against a deque every cycle):
+//   * BLOCK_RAM = 0: a memory read asynchronously (LUT RAM on Xilinx), the head read
+//     combinationally. For small queues: the iCE40 has no LUT RAM, so there it is DEPTH x W
+//     flip-flops and a DEPTH-to-1 multiplexer per bit.
+//   * BLOCK_RAM = 1: a memory with a synchronous, registered read (block RAM: RAMB18/36,
+//     SB_RAM40_4K) that reads ahead: every cycle it reads the word that is the head in the next
+//     cycle (the address head + pop, chosen combinationally from this cycle's pop), so the word
+//     is in its output register when it becomes the head. The one word it cannot read is the one
+//     written in the same cycle (a push that becomes the head at once: into an empty queue, or
+//     with a pop of a one-word queue); that word is taken into a bypass register instead and
+//     data_o chooses it in the next cycle. The memory never has to give a word written in the cycle
+//     it is read (no_rw_check: no bypass logic per bit from Yosys). For deep, wide queues.
+// Both: data_o is the word at the head of the memory every cycle (even while empty, once written).
+// Latency 1 cycle (push to valid_o and data_o), throughput one push and one pop per cycle (when
+// full, a push waits for the cycle after a pop: ready_o does not look at ready_i).
+// Resources: two pointers and a count; BLOCK_RAM = 0: DEPTH x W bits of LUT RAM; BLOCK_RAM = 1:
+// DEPTH x W bits of block RAM, W flip-flops (the bypass register) and a 2-to-1 multiplexer per bit.
+// Handshake: valid/ready on both sides.
 module sync_fifo #(
   parameter int W = 32,
-  parameter int DEPTH = 16         // a power of 2
+  parameter int DEPTH = 16,        // a power of 2
+  parameter bit BLOCK_RAM = 1'b0   // the storage (above): the instantiating module chooses
 ) (
   input  logic         clk_i,
   input  logic         rst_ni,
@@ -23,7 +38,6 @@ module sync_fifo #(
   if (DEPTH < 2 || (DEPTH & (DEPTH - 1)) != 0) begin : g_depth_check
     $error("sync_fifo: DEPTH is a power of 2 (the pointers wrap)");
   end
-  logic [W-1:0] mem [DEPTH];
   logic [PW-1:0] head, tail;
   logic [PW:0] count;
   logic push, pop;
@@ -33,7 +47,6 @@ module sync_fifo #(
   assign ready_o = count != (PW + 1)'(DEPTH);
   assign push = valid_i && ready_o;
   assign valid_o = count != 0;
-  assign data_o = mem[head];
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       head <= '0;
@@ -45,5 +58,24 @@ module sync_fifo #(
       count <= count + (PW + 1)'(push) - (PW + 1)'(pop);
     end
   end
-  always_ff @(posedge clk_i) if (push) mem[tail] <= data_i;
+  if (BLOCK_RAM) begin : g_block_ram
+    (* no_rw_check *) logic [W-1:0] mem [DEPTH];
+    logic [W-1:0] rd, pushed;
+    logic bypass;                  // the head was pushed in the last cycle: pushed, not rd
+    always_ff @(posedge clk_i) begin
+      if (push) mem[tail] <= data_i;
+      rd <= mem[head + PW'(pop)];
+      pushed <= data_i;
+    end
+    // the word pushed now is the next head when the queue keeps no other: count == pop
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) bypass <= 1'b0;
+      else bypass <= push && count == (PW + 1)'(pop);
+    end
+    assign data_o = bypass ? pushed : rd;
+  end else begin : g_lut_ram
+    logic [W-1:0] mem [DEPTH];
+    always_ff @(posedge clk_i) if (push) mem[tail] <= data_i;
+    assign data_o = mem[head];
+  end
 endmodule

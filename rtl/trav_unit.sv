@@ -393,17 +393,19 @@ module trav_unit #(
   end
 
   // the queues, each of SLOTS entries (as many as operations in flight: they never refuse): the
-  // operations in order, their node read requests, the node responses (taken when they come)
+  // operations in order, their node read requests, the node responses (taken when they come); in
+  // block RAM (sync_fifo's BLOCK_RAM form, the same cycles: 136 kbit for the operations alone at the
+  // defaults, which the iCE40, without LUT RAM, would build from flip-flops and multiplexers)
   logic q_valid, q_pop, rsp_valid, rsp_pop;
   logic [CXW-1:0] q_cx;
   logic [63:0] rsp;
   /* verilator lint_off PINCONNECTEMPTY */
-  sync_fifo #(.W(CXW), .DEPTH(SLOTS)) u_queue (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(e_valid), .ready_o(),
+  sync_fifo #(.W(CXW), .DEPTH(SLOTS), .BLOCK_RAM(1'b1)) u_queue (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(e_valid), .ready_o(),
     .data_i(e_cx), .valid_o(q_valid), .ready_i(q_pop), .data_o(q_cx));
-  sync_fifo #(.W(AW + IW), .DEPTH(SLOTS)) u_req (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(e_valid && e_cx[O_NEED]),
+  sync_fifo #(.W(AW + IW), .DEPTH(SLOTS), .BLOCK_RAM(1'b1)) u_req (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(e_valid && e_cx[O_NEED]),
     .ready_o(), .data_i({e_addr, e_cx[O_IDX +: IW]}), .valid_o(node_req_valid_o), .ready_i(node_req_ready_i),
     .data_o({node_addr_o, node_thread_o, node_level_o}));
-  sync_fifo #(.W(64), .DEPTH(SLOTS)) u_rsp (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(node_rsp_valid_i), .ready_o(),
+  sync_fifo #(.W(64), .DEPTH(SLOTS), .BLOCK_RAM(1'b1)) u_rsp (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(node_rsp_valid_i), .ready_o(),
     .data_i({node_w1_i, node_w0_i}), .valid_o(rsp_valid), .ready_i(rsp_pop), .data_o(rsp));
   /* verilator lint_on PINCONNECTEMPTY */
 
@@ -670,7 +672,7 @@ module trav_unit #(
                   r_cx[O_LIST], r_cx[O_W1 +: 32], r_cx[O_W0 +: 32], r_cx[O_LEAF_MASK +: 4],
                   r_cx[O_LEAF_TN +: 4 * W], r_cx[S_SP +: SPW], r_cx[S_LOST], r_cx[S_RESTARTED]};
   /* verilator lint_off PINCONNECTEMPTY */
-  sync_fifo #(.W(RW), .DEPTH(SLOTS)) u_out (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(z4_valid || s_go), .ready_o(),
+  sync_fifo #(.W(RW), .DEPTH(SLOTS), .BLOCK_RAM(1'b1)) u_out (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(z4_valid || s_go), .ready_o(),
     .data_i(out_d), .valid_o(valid_o), .ready_i(ready_i), .data_o(out_q));
   /* verilator lint_on PINCONNECTEMPTY */
   /* verilator lint_off UNUSEDSIGNAL */

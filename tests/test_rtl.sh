@@ -15,7 +15,8 @@
 # (rtl/rebase_unit.sv, xform_wide.sv) match rebase_origin and xform_point_wide / xform_vector_wide
 # on the room's captured transactions and 2 x 10^4 random ones; the traversal unit (rtl/trav_unit.sv)
 # matches hls/units/trav_unit.c (TRAV_STACK) on the cycle-mode frame's operations and 2 x 10^4 random
-# ones that overflow its stacks; the RGS's ray generation
+# ones that overflow its stacks, and the queues between its stages (rtl/sync_fifo.sv) in block RAM
+# give the LUT RAM form's and a deque's outputs every cycle (rtl/tb/tb_fifo.sv); the RGS's ray generation
 # (rtl/rgs_raygen.sv) matches rgs_primary and the recorded packets of cycle-mode frames of the room
 # (perspective) and an orthographic cornell box, whose block order the tile controller
 # (rtl/tile_ctrl.sv) reproduces, and of a functional frame on 2 threads, and 2 x 10^4 random blocks
@@ -290,6 +291,13 @@ t_cache_small_table() {
   model cache "$T/cache4" -GOUTSTANDING=4 "$PWD"/rtl/*.sv
   "$T/cache4/tb" --capture "$T/capc" | tee "$T/cache4/log"
   grep -Eq "matrices cache .* [1-9][0-9]* cycles with its request table full" "$T/cache4/log"
+}
+
+t_fifo() { # sync_fifo's two storages (LUT RAM, block RAM) against a deque, every output every cycle
+  local rc=0
+  "$B/rtl/e7m16/tb_fifo" -n 200000 >"$T/fifo.log" || rc=$?
+  cat "$T/fifo.log"
+  return "$rc"
 }
 
 t_trav_unit() {
@@ -577,6 +585,7 @@ if extra_mutants; then
   run_case rtl_list_sched_benches_catch_mutants t_list_sched_mutants_caught
   run_case rtl_cache_bench_catches_mutant t_cache_mutant_caught
 fi
+run_case rtl_fifo_block_ram_matches_lut_ram_and_deque t_fifo
 run_case rtl_trav_unit_matches_c_model_and_capture t_trav_unit
 extra_mutants && run_case rtl_trav_bench_catches_mutant t_trav_mutant_caught
 run_case rtl_core_matches_c_model_and_capture t_core
