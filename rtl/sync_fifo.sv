@@ -12,13 +12,24 @@
 //     is in its output register when it becomes the head. The one word it cannot read is the one
 //     written in the same cycle (a push that becomes the head at once: into an empty queue, or
 //     with a pop of a one-word queue); that word is taken into a bypass register instead and
-//     data_o chooses it in the next cycle. The memory never has to give a word written in the cycle
-//     it is read (no_rw_check: no bypass logic per bit from Yosys). For deep, wide queues.
+//     data_o chooses it in the next cycle. A word read in the cycle it is written is never used
+//     (no_rw_check: no bypass logic per bit from Yosys); ram_style "block" because synth_xilinx
+//     would take LUT RAM and an output register for 64 words. For deep, wide queues (trav_unit's).
 // Both: data_o is the word at the head of the memory every cycle (even while empty, once written).
 // Latency 1 cycle (push to valid_o and data_o), throughput one push and one pop per cycle (when
 // full, a push waits for the cycle after a pop: ready_o does not look at ready_i).
 // Resources: two pointers and a count; BLOCK_RAM = 0: DEPTH x W bits of LUT RAM; BLOCK_RAM = 1:
 // DEPTH x W bits of block RAM, W flip-flops (the bypass register) and a 2-to-1 multiplexer per bit.
+// Measured (Yosys 0.23, DEPTH = 64, sync_fifo alone, 2026-11-29; synth_ice40 -dsp, and synth_xilinx
+// in scripts/synth.py's flow):
+//   W = 2124 (trav_unit's operations): BLOCK_RAM = 1: iCE40 2166 SB_LUT4, 2144 flip-flops, 133
+//     SB_RAM40_4K; 7-series 2140 LUT6, 2144 FF, 59 RAMB18. BLOCK_RAM = 0: 7-series 708 RAM64M
+//     (2832 LUTs of LUT RAM); iCE40 about 106,000 SB_LUT4 and 135,955 flip-flops (from W = 64 and
+//     413 below, 50 LUT4 per bit; its ABC run took over 10 minutes).
+//   W = 413: BLOCK_RAM = 1: iCE40 455 SB_LUT4, 433 FF, 26 SB_RAM40_4K; BLOCK_RAM = 0: iCE40 20,729
+//     SB_LUT4, 26,451 FF; 7-series 138 RAM64M.
+//   W = 64: BLOCK_RAM = 1: iCE40 106 SB_LUT4, 84 FF, 4 SB_RAM40_4K; 7-series 1 RAMB36, 64 + 20 FF;
+//     BLOCK_RAM = 0: iCE40 3267 SB_LUT4, 4115 FF; 7-series 22 RAM64M.
 // Handshake: valid/ready on both sides.
 module sync_fifo #(
   parameter int W = 32,
@@ -59,7 +70,7 @@ module sync_fifo #(
     end
   end
   if (BLOCK_RAM) begin : g_block_ram
-    (* no_rw_check *) logic [W-1:0] mem [DEPTH];
+    (* ram_style = "block", no_rw_check *) logic [W-1:0] mem [DEPTH];
     logic [W-1:0] rd, pushed;
     logic bypass;                  // the head was pushed in the last cycle: pushed, not rd
     always_ff @(posedge clk_i) begin

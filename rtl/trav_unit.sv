@@ -83,7 +83,17 @@
 // 11, the write enables then depending on the input's handshake; the unit of CTX = 4 contexts it
 // replaced: 31180 LUT6, 18725 flip-flops, 11)
 // Not synthesized again since trav_clip (2026-11-28: 12 comparators more; the round trip's
-// register and its mux in front of N gone).
+// register and its mux in front of N gone) but as below.
+// The queues in block RAM (sync_fifo BLOCK_RAM = 1; 2026-11-29, THREADS = 64, ONE_PER_THREAD = 1,
+// module by module as the DynRTP's: python3 scripts/synth.py --levels trav_unit THREADS=64
+// ONE_PER_THREAD=1 --hier; python3 scripts/synth.py --ice40 trav_unit THREADS=64 ONE_PER_THREAD=1):
+// 7-series 28,938 LUT6, 45,626 flip-flops, 195 RAMB18 (59 RAMB18E1, 68 RAMB36E1), no LUT RAM,
+// 6 LUT6 levels; with the queues in LUT RAM (3c2e061) 26,134 LUT6 + 881 RAM64M (3,524 LUTs),
+// 42,982 flip-flops, 120 RAMB18, 6 levels. iCE40 (synth_ice40 -dsp) 35,765 SB_LUT4, 95,785
+// flip-flops, 658 SB_RAM40_4K (the queues 2,809, 2,720 and 166 of them; the f24_pipe delay lines
+// 58,641 flip-flops); with the queues in LUT RAM, which the iCE40 builds from flip-flops and a
+// 64-to-1 multiplexer per bit, about 165,000 SB_LUT4 and 262,000 flip-flops (the queues measured
+// alone, the operations' 2124 bits from 64 and 413: sync_fifo.sv).
 // Handshake: valid/ready at the operation input, the result output and the node read request
 // (node_thread_o, node_level_o: whose node); the node response (node_rsp_valid_i with w0, w1) is
 // taken when it comes, in request order.

@@ -40,6 +40,9 @@ levels between registers and ports as the DynRTP's are counted (synth_xilinx per
 hier_lut_levels), its deepest path flattened after mapping (cell type, a net it drives; not with
 --hier, for modules too large to flatten), and per submodule its levels and its own cells' deepest
 path (the named nets); it writes only build/synth/levels_*.
+`python3 scripts/synth.py --ice40 MODULE [PARAM=VALUE ...]` prints one module's synth_ice40 -dsp totals
+(SB_LUT4, flip-flops, SB_RAM40_4K, SB_MAC16) mapped module by module as the DynRTP's are, and per part
+(its own cells, each kind of submodule); it writes only build/synth/ice40_*/.
 `python3 scripts/synth.py --ports build/synth/levels_MODULE_hier.json PORT ...` prints, from a netlist
 that --levels wrote, each port's LUT6 levels from the top's registers, from its inputs and into its
 registers (the top's IBUF/OBUF as wires): the parts of a path composed across modules.
@@ -271,6 +274,24 @@ def module_levels(top, params, flat=True):
         own, path = lut_path(hier, name)
         print(f"  {key_name(name)}: {v} levels with its submodules; its own cells {own}: " +
               " > ".join(f"{t}:{n}" for t, n in path if LEVEL_CELLS.get(t) and not n.startswith("$")))
+
+
+def module_ice40(top, params):
+    """--ice40: one module's synth_ice40 -dsp totals as the DynRTP's are measured (module by module,
+    module_netlists, its netlists kept in build/synth/ice40_<module and parameters>/) and per part
+    (its own cells, each kind of submodule with all instances: parts_of) LUT4, flip-flops, block RAM."""
+    tag = re.sub(r"[^A-Za-z0-9]+", "_", "_".join([top] + [f"{k}{v}" for k, v in params.items()]))
+    mods, name, cpu = module_netlists("ice40", top, params, os.path.join(OUT, f"ice40_{tag}"))
+    own = module_cells(mods)
+    sub, tot = hierarchy_totals(own, name)
+    counts = {"SB_LUT4": lambda c: c.get("SB_LUT4", 0),
+              "SB_DFF*": lambda c: sum(v for k, v in c.items() if k.startswith("SB_DFF")),
+              "SB_RAM40_4K": lambda c: c.get("SB_RAM40_4K", 0), "SB_MAC16": lambda c: c.get("SB_MAC16", 0)}
+    print(f"{top} {' '.join(f'{k}={v}' for k, v in params.items())}: " +
+          ", ".join(f"{f(tot)} {k}" for k, f in counts.items()) + f" ({sum(cpu.values())} s of Yosys CPU)")
+    parts = {k: parts_of(own, sub, name, f) for k, f in counts.items()}
+    for part in sorted(parts["SB_LUT4"], key=lambda p: -parts["SB_LUT4"][p]):
+        print(f"  {part}: " + ", ".join(f"{parts[k][part]} {k}" for k in counts))
 
 
 def xilinx(top, e, m, edge_eps=0, terms=0):
@@ -814,7 +835,8 @@ def redo(keys):
 
 def main():
     args = sys.argv[1:]
-    if args and (args[0] in ("-h", "--help") or args[0] not in ("--only-control", "--redo", "--dynrtp", "--levels", "--ports")):
+    if args and (args[0] in ("-h", "--help") or
+                 args[0] not in ("--only-control", "--redo", "--dynrtp", "--levels", "--ports", "--ice40")):
         # a full run takes hours: an unknown argument is an error, never a start
         print(__doc__)
         sys.exit(0 if args[0] in ("-h", "--help") else f"synth.py: unknown argument {args[0]} (see above)")
@@ -838,6 +860,8 @@ def main():
     if len(sys.argv) > 2 and sys.argv[1] == "--levels":
         return module_levels(sys.argv[2], dict(a.split("=", 1) for a in sys.argv[3:] if a != "--hier"),
                              "--hier" not in sys.argv[3:])
+    if len(sys.argv) > 2 and sys.argv[1] == "--ice40":
+        return module_ice40(sys.argv[2], dict(a.split("=", 1) for a in sys.argv[3:]))
     if len(sys.argv) > 2 and sys.argv[1] == "--redo":
         return redo(sys.argv[2:])
     if len(sys.argv) > 1 and sys.argv[1] == "--dynrtp":
