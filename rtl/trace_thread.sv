@@ -50,9 +50,7 @@ module trace_thread #(
   input  logic                        valid_i,
   output logic                        ready_o,
   input  logic [2:0]                  flags_i,    // TRACE_SKIP_TOP, TRACE_ANY_HIT, TRACE_IDENTITY
-  input  logic [3:0]                  active_i,
-  input  logic [4*3*(E+M+1)-1:0]      o_i,        // ray i: words 3i .. 3i+2 (x, y, z)
-  input  logic [4*3*(E+M+1)-1:0]      d_i,
+  input  logic [3:0]                  active_i,   // (the rays' o and d: trace_core's)
   input  logic [4*(E+M+1)-1:0]        tmin_i,
   input  logic [4*(E+M+1)-1:0]        tmax_i,
   // hits out (TP_DONE)
@@ -80,13 +78,16 @@ module trace_thread #(
   output logic                        waiting_o,   // an operation of this thread is in a unit
   output logic [3:0]                  slots_o,     // issue slots of the operation requested (thread_sched)
   output logic [1:0]                  step_ray_o,  // the ray of the batch's next step (the rays' fields in trace_core)
+  output logic                        lo_zero_o,   // the step ray's object-space ray is the identity of its world ray
+  output logic [11:0]                 id_sg_o,     // ... with these matrix signs (xform_identity), its low words zero
   // traversal unit
   output logic                        trav_req_o,
   input  logic                        trav_grant_i,
   output logic [1:0]                  trav_kind_o,
   output logic                        trav_level_o,
-  output logic [4*3*(E+M+1)-1:0]      trav_o_o,
-  output logic [4*3*(E+M+1)-1:0]      trav_d_o,
+  output logic                        trav_obj_o,  // the object-space rays (else the world rays; both trace_core's)
+  output logic [3:0]                  trav_lo_zero_o, // per ray: its object-space ray is the identity of the world ray
+  output logic [4*12-1:0]             trav_id_sg_o, // ... with these matrix signs (ray i: bits 12i ..)
   output logic [4*(E+M+1)-1:0]        trav_tn_o,
   output logic [4*(E+M+1)-1:0]        trav_tf_o,
   output logic [4*(E+M+1)-1:0]        trav_best_o,
@@ -121,29 +122,23 @@ module trace_thread #(
   // rebase unit
   output logic                        rb_req_o,
   input  logic                        rb_grant_i,
-  output logic [3*(E+M+1)-1:0]        rb_o_hi_o,
-  output logic [3*(E+M+1)-1:0]        rb_d_hi_o,
-  output logic                        rb_lo_zero_o, // the ray's object-space low words are zero (else trace_core's)
   output logic                        t0_zero_o,   // the ray's t0 is +0 (else trace_core's: adders, triangle test)
   output logic [E+M:0]                rb_t_o,
-  output logic                        rb_leaf_o,   // a leaf's rebase: te (else an instance's: t0)
-  input  logic                        rb_done_i,   // (its results p, te, t0: trace_core's)
+  output logic                        rb_leaf_o,   // a leaf's rebase: the object-space ray, te (else the world ray's: t0)
+  input  logic                        rb_done_i,   // (its operands o, d and results p, te, t0: trace_core's)
   // the transformation unit's wide mode
   output logic                        xw_req_o,
   input  logic                        xw_grant_i,
   output logic [12*(E+M+1)-1:0]       xw_m_o,
-  output logic [3*(E+M+1)-1:0]        xw_tlo_o,
-  output logic [3*(E+M+1)-1:0]        xw_d_o,      // the direction (pass 1; pass 0's origin p: trace_core's)
+  output logic [3*(E+M+1)-1:0]        xw_tlo_o,    // (pass 0's origin p, pass 1's direction: trace_core's)
   output logic                        xw_point_o,
-  input  logic                        xw_done_i,
-  input  logic [3*(E+M+1)-1:0]        xw_hi_i,     // (the low words: trace_core's)
+  input  logic                        xw_done_i,   // (its results, the object-space rays: trace_core's)
   // the triangle test (isect_rebased: the origin path, the transformations, the intersection, t0 + t)
   output logic                        is_req_o,
   input  logic                        is_grant_i,
   output logic [12*(E+M+1)-1:0]       is_m_o,
   output logic [3*(E+M+1)-1:0]        is_c_lo_o,
-  output logic [2:0]                  is_shared_o,
-  output logic [3*(E+M+1)-1:0]        is_d_o,      // (p and te: trace_core's)
+  output logic [2:0]                  is_shared_o, // (p, te and the direction: trace_core's)
   output logic [E+M:0]                is_tmin_o,
   output logic [E+M:0]                is_tmax_o,
   input  logic                        is_done_i,
@@ -161,7 +156,6 @@ module trace_thread #(
 );
   localparam logic [E-1:0] EXP_MAX = '1;
   localparam logic [W-1:0] POS_INF = {1'b0, EXP_MAX, {M{1'b0}}};
-  localparam logic [W-1:0] DNAN = {1'b0, EXP_MAX, 1'b1, {(M-1){1'b0}}};
   // memory image layout (docs/memory-image.md; hls/units/trace.c)
   localparam int TRI_WORDS = RW;                            // F24_TRIANGLE_RECORD_WORDS
   localparam int INST_WORDS = TRI_WORDS * ((17 + TRI_WORDS - 1) / TRI_WORDS);
@@ -200,10 +194,12 @@ module trace_thread #(
 
   logic [2:0] flags;
   logic [3:0] active, alive, need;
-  logic [3*W-1:0] ro [4], rd [4], so [4], sd [4];
-  // the object-space rays' low words so_lo, sd_lo are trace_core's (thread_ram); lo_zero[i]: ray
-  // i's are zero (an identity instance's rays pass as wiring), read as zero in their place
+  // the world rays (ro, rd) and the object-space rays (so, sd: high and low words) are trace_core's
+  // (thread_ram); lo_zero[i]: ray i's object-space ray is xform_identity of its world ray with
+  // the matrix signs id_sg[i] and low words zero (an identity instance's rays pass as wiring),
+  // which trace_core makes as it reads the world ray
   logic [3:0] lo_zero;
+  logic [11:0] id_sg [4];
   logic [W-1:0] tmin [4], best_t [4], best_rel [4], tmin_rel [4];
   // t0 (an instance's entry distance, from its rebase) is trace_core's (thread_ram); t0_zero[i]:
   // ray i's is +0 (a new packet, an identity instance), read as +0 in its place
@@ -277,33 +273,16 @@ module trace_thread #(
     end
     tri_shared = rec[12*W + 27 +: 3];
   end
-  // xform_identity: the bits xform_point/xform_vector give for an identity with signed zeros
-  function automatic logic [3*W-1:0] identity(input logic [12*W-1:0] m, input logic [3*W-1:0] v, input logic point);
-    logic [3*W-1:0] r;
-    for (int kk = 0; kk < 3; kk++) begin
-      logic [W-1:0] c;
-      logic nan, neg;
-      c = v[kk*W +: W];
-      nan = c[M +: E] == EXP_MAX && c[M-1:0] != 0;
-      neg = point ? m[(4*kk+3)*W + W-1] : 1'b1;
-      for (int j = 0; j < 3; j++) begin
-        if (j != kk && v[j*W + M +: E] == EXP_MAX) nan = 1'b1;
-        neg &= j == kk ? v[j*W + W-1] : m[(4*kk+j)*W + W-1] ^ v[j*W + W-1];
-      end
-      r[kk*W +: W] = nan ? DNAN : c[M +: E] != 0 ? c : {neg, {(W-1){1'b0}}};
-    end
-    identity = r;
+  // the matrix's signs, all xform_identity reads of it (trace_core's identity)
+  function automatic logic [11:0] signs(input logic [12*W-1:0] m);
+    for (int j = 0; j < 12; j++) signs[j] = m[j*W + W-1];
   endfunction
 
   // ---- the units ----
-  logic [4*3*W-1:0] ray_o, ray_d, obj_o, obj_d;
   logic [4*W-1:0] v_tmin, v_tmax, v_best_t, v_best_rel, v_tmin_rel;
   always_comb
     for (int i = 0; i < 4; i++) begin
-      ray_o[i*3*W +: 3*W] = ro[i];
-      ray_d[i*3*W +: 3*W] = rd[i];
-      obj_o[i*3*W +: 3*W] = so[i];
-      obj_d[i*3*W +: 3*W] = sd[i];
+      trav_id_sg_o[i*12 +: 12] = id_sg[i];
       v_tmin[i*W +: W] = tmin[i];
       v_best_t[i*W +: W] = best_t[i];
       v_best_rel[i*W +: W] = best_rel[i];
@@ -311,8 +290,8 @@ module trace_thread #(
     end
   assign v_tmax = tmax_i;  // taken with the packet only (best_t holds it afterwards)
   assign trav_req_o = st == S_SC_GO || st == S_START_GO || st == S_WALK_GO || st == S_IC_CLIP;
-  assign trav_o_o = st == S_SC_GO || (st != S_IC_CLIP && !level) ? ray_o : obj_o;
-  assign trav_d_o = st == S_SC_GO || (st != S_IC_CLIP && !level) ? ray_d : obj_d;
+  assign trav_obj_o = !(st == S_SC_GO || (st != S_IC_CLIP && !level));
+  assign trav_lo_zero_o = lo_zero;
   assign trav_best_o = level ? v_best_rel : v_best_t;
   assign trav_box_o = st == S_SC_GO ? scene_box_i : {lbuf[13][W-1:0], lbuf[12][W-1:0], lbuf[11][W-1:0],
                                                lbuf[10][W-1:0], lbuf[9][W-1:0], lbuf[8][W-1:0]};
@@ -366,16 +345,14 @@ module trace_thread #(
   logic rb_leaf;
   assign rb_leaf = bop == B_RB_LEAF;
   assign rb_req_o = batch_req && (bop == B_RB_LEAF || bop == B_RB_INST);
-  assign rb_o_hi_o = rb_leaf ? so[ir] : ro[ir];
-  assign rb_d_hi_o = rb_leaf ? sd[ir] : rd[ir];
-  assign rb_lo_zero_o = lo_zero[ir];
+  assign lo_zero_o = lo_zero[ir];
+  assign id_sg_o = id_sg[ir];
   assign rb_t_o = leaf_tn[rb_leaf][ir];
   assign rb_leaf_o = rb_leaf;
   assign step_ray_o = ir;
   assign xw_req_o = batch_req && bop == B_XW;
   assign xw_m_o = inst_m;
   assign xw_tlo_o = inst_tlo;
-  assign xw_d_o = rd[ir];
   assign xw_point_o = !ipass;
   assign is_req_o = batch_req && bop == B_TRI;
   assign is_m_o = tri_m;
@@ -387,7 +364,6 @@ module trace_thread #(
   always_ff @(posedge clk_i) c_lo_q <= c_lo;
   assign is_c_lo_o = c_lo_q;
   assign is_shared_o = tri_shared;
-  assign is_d_o = sd[ir];
   assign is_inst_o = inst;
   assign is_tri_o = tri_ix;
   assign hit_o = hit;
@@ -478,8 +454,6 @@ module trace_thread #(
             have_cur[0] <= 1'b0;
             have_cur[1] <= 1'b0;
             for (int i = 0; i < 4; i++) begin
-              ro[i] <= o_i[i*3*W +: 3*W];
-              rd[i] <= d_i[i*3*W +: 3*W];
               tmin[i] <= tmin_i[i*W +: W];
               tmin_rel[i] <= tmin_i[i*W +: W];
               best_t[i] <= v_tmax[i*W +: W];
@@ -596,14 +570,7 @@ module trace_thread #(
             end else ctodo[cr] <= 1'b0;
             unique case (bop)
               B_RB_INST: t0_zero[cr] <= 1'b0;  // t0, p and a leaf's te: trace_core's thread_ram
-              B_XW:
-                if (cpass) begin
-                  sd[cr] <= xw_hi_i;
-                  lo_zero[cr] <= 1'b0;
-                end else begin
-                  so[cr] <= xw_hi_i;
-                  lo_zero[cr] <= 1'b0;
-                end
+              B_XW: lo_zero[cr] <= 1'b0;  // so or sd: trace_core's thread_ram
               B_IC_ADD: begin
                 best_rel[cr] <= add_r_i[0 +: W];
                 tmin_rel[cr] <= add_r_i[W +: W];
@@ -638,8 +605,7 @@ module trace_thread #(
           if (lbuf[13][0] || flags[2]) begin
             for (int i = 0; i < 4; i++)
               if (need[i]) begin
-                so[i] <= identity(inst_m, ro[i], 1'b1);
-                sd[i] <= identity(inst_m, rd[i], 1'b0);
+                id_sg[i] <= signs(inst_m);
                 lo_zero[i] <= 1'b1;
                 t0_zero[i] <= 1'b1;
               end
