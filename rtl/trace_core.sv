@@ -163,13 +163,10 @@ module trace_core #(
   logic [4*12-1:0] t_trav_id_sg [THREADS];
   logic [4*W-1:0] t_trav_tn [THREADS], t_trav_tf [THREADS], t_trav_best [THREADS];
   logic [3:0] t_trav_mask [THREADS], t_list_leaf_mask [THREADS], t_list_alive [THREADS];
-  logic [6*W-1:0] t_trav_box [THREADS];
   logic [31:0] t_trav_nodes [THREADS], t_list_lists [THREADS], t_list_first [THREADS], t_list_k [THREADS];
   logic [W-1:0] t_rb_t [THREADS], t_is_tmin [THREADS], t_is_tmax [THREADS];
-  logic [12*W-1:0] t_xw_m [THREADS], t_is_m [THREADS];
-  logic [3*W-1:0] t_xw_tlo [THREADS], t_is_c_lo [THREADS];
   logic [2*W-1:0] t_add_a [THREADS];
-  logic [2:0] t_is_shared [THREADS];
+  logic [1:0] t_ld_got [THREADS];
   logic [1:0] t_ray [THREADS];
   logic [11:0] t_id_sg [THREADS];
   logic [THREADS-1:0] t_rb_leaf, t_lo_zero, t_t0_zero;
@@ -200,16 +197,15 @@ module trace_core #(
       .valid_o(t_valid[t]), .ready_i(t_out_ready[t]), .hit_o(t_hit[t]), .t_o(t_t[t]), .count_o(t_count[t]),
       .hdr_want_o(t_hdr_want[t]), .hdr_ok_i(hdr_ok), .hdr_instances_i(hdr_instances), .hdr_objects_i(hdr_objects),
       .hdr_inst_i(hdr_inst), .hdr_top_nodes_i(hdr_top_nodes), .hdr_top_lists_i(hdr_top_lists),
-      .scene_box_i(scene_box),
       .mem_req_valid_o(t_mem_req[t]), .mem_req_ready_i(!hdr_req && word_grant[t] && word_take),
-      .mem_addr_o(t_mem_addr[t]), .mem_rsp_valid_i(mem_rsp_valid_i && word_head == {1'b0, TW'(t)}),
+      .mem_addr_o(t_mem_addr[t]), .mem_rsp_valid_i(mem_rsp_valid_i && word_head == {1'b0, TW'(t)}), .ld_got_o(t_ld_got[t]),
       .mem_rdata_i(mem_rdata_i), .node_rsp_i(t_node_rsp[t]), .waiting_o(t_waiting[t]),
       .slots_o(t_slots[t*4 +: 4]), .step_ray_o(t_ray[t]), .lo_zero_o(t_lo_zero[t]), .id_sg_o(t_id_sg[t]),
       .trav_req_o(req[U_TRAV][t]), .trav_grant_i(grant[U_TRAV][t]), .trav_kind_o(t_trav_kind[t]),
       .trav_level_o(t_trav_level[t]), .trav_obj_o(t_trav_obj[t]), .trav_lo_zero_o(t_trav_lo_zero[t]),
       .trav_id_sg_o(t_trav_id_sg[t]), .trav_tn_o(t_trav_tn[t]),
       .trav_tf_o(t_trav_tf[t]), .trav_best_o(t_trav_best[t]), .trav_mask_o(t_trav_mask[t]),
-      .trav_box_o(t_trav_box[t]), .trav_nodes_o(t_trav_nodes[t]), .trav_done_i(done[U_TRAV][t]),
+      .trav_nodes_o(t_trav_nodes[t]), .trav_done_i(done[U_TRAV][t]),
       .trav_mask_i(trav_mask), .trav_tn_i(trav_tn), .trav_tf_i(trav_tf), .trav_have_cur_i(trav_have_cur),
       .trav_leaf_i(trav_leaf), .trav_leaf_first_i(trav_leaf_first), .trav_leaf_count_i(trav_leaf_count),
       .trav_leaf_mask_i(trav_leaf_mask), .trav_leaf_tn_i(trav_leaf_tn),
@@ -221,10 +217,10 @@ module trace_core #(
       .rb_req_o(req[U_RB][t]), .rb_grant_i(grant[U_RB][t]), .t0_zero_o(t_t0_zero[t]), .rb_t_o(t_rb_t[t]),
       .rb_leaf_o(t_rb_leaf[t]),
       .rb_done_i(done[U_RB][t]),
-      .xw_req_o(req[U_XW][t]), .xw_grant_i(grant[U_XW][t]), .xw_m_o(t_xw_m[t]), .xw_tlo_o(t_xw_tlo[t]),
+      .xw_req_o(req[U_XW][t]), .xw_grant_i(grant[U_XW][t]), 
       .xw_point_o(t_xw_point[t]), .xw_done_i(done[U_XW][t]),
-      .is_req_o(req[U_IS][t]), .is_grant_i(grant[U_IS][t]), .is_m_o(t_is_m[t]), .is_c_lo_o(t_is_c_lo[t]),
-      .is_shared_o(t_is_shared[t]),
+      .is_req_o(req[U_IS][t]), .is_grant_i(grant[U_IS][t]), 
+     
       .is_tmin_o(t_is_tmin[t]), .is_tmax_o(t_is_tmax[t]),
       .is_done_i(done[U_IS][t]), .is_hit_i(is_hit), .is_t_i(is_t), .is_inst_o(t_is_inst[t]), .is_tri_o(t_is_tri[t]),
       .is_t_world_i(is_t_world),
@@ -294,7 +290,7 @@ module trace_core #(
   // operation per cycle goes in while the unit takes one per cycle. A result comes a cycle later
   // than an issue straight into the unit would give it. The traversal's rays are read from
   // thread_ram (below) in s and come a cycle after the rest of their entry: see trav_rays.
-  localparam int TRAV_OPW = TW + 1 + 2 + 12 * W + 4 + 6 * W + 32;
+  localparam int TRAV_OPW = TW + 1 + 2 + 12 * W + 4 + 32;
   localparam int LIST_OPW = TW + 2 + 3 * 32 + 8;
   logic [TRAV_OPW-1:0] trav_op;
   logic [LIST_OPW-1:0] list_op;
@@ -311,11 +307,11 @@ module trace_core #(
     .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(accept[U_TRAV]), .ready_o(issue_ready[U_TRAV]),
     .data_i({sel[U_TRAV], t_trav_level[sel[U_TRAV]], t_trav_kind[sel[U_TRAV]],
              t_trav_tn[sel[U_TRAV]], t_trav_tf[sel[U_TRAV]], t_trav_best[sel[U_TRAV]],
-             t_trav_mask[sel[U_TRAV]], t_trav_box[sel[U_TRAV]], t_trav_nodes[sel[U_TRAV]]}),
+             t_trav_mask[sel[U_TRAV]], t_trav_nodes[sel[U_TRAV]]}),
     .valid_o(op_valid[U_TRAV]), .ready_i(unit_ready[U_TRAV]),
     .data_o(trav_op));
   assign {trav_op_thread, trav_op_level, trav_op_kind, trav_op_tn, trav_op_tf, trav_op_best,
-          trav_op_mask, trav_op_box, trav_op_nodes} = trav_op;
+          trav_op_mask, trav_op_nodes} = trav_op;
   sync_fifo #(.W(LIST_OPW), .DEPTH(2)) u_list_issue (
     .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(accept[U_LIST]), .ready_o(issue_ready[U_LIST]),
     .data_i({sel[U_LIST], t_list_level[sel[U_LIST]], t_list_clear[sel[U_LIST]], t_list_lists[sel[U_LIST]],
@@ -366,11 +362,8 @@ module trace_core #(
   logic [1:0] ray_q [UNITS];
   logic rb_leaf_q, rb_lo_zero_q, is_lo_zero_q, xw_point_q;
   logic [11:0] rb_id_sg_q, is_id_sg_q;
-  logic [3*W-1:0] xw_tlo_q, is_c_lo_q;
   logic [W-1:0] rb_t_q, is_tmin_q, is_tmax_q;
   logic is_t0_zero_q, add_t0_zero_q;
-  logic [12*W-1:0] xw_m_q, is_m_q;
-  logic [2:0] is_shared_q;
   logic [2*W-1:0] add_a_q;
   always_ff @(posedge clk_i or negedge rst_ni)
     if (!rst_ni) step_q <= '0;
@@ -385,12 +378,7 @@ module trace_core #(
     rb_leaf_q <= t_rb_leaf[sel[U_RB]];
     rb_lo_zero_q <= t_lo_zero[sel[U_RB]];
     rb_id_sg_q <= t_id_sg[sel[U_RB]];
-    xw_m_q <= t_xw_m[sel[U_XW]];
-    xw_tlo_q <= t_xw_tlo[sel[U_XW]];
     xw_point_q <= t_xw_point[sel[U_XW]];
-    is_m_q <= t_is_m[sel[U_IS]];
-    is_c_lo_q <= t_is_c_lo[sel[U_IS]];
-    is_shared_q <= t_is_shared[sel[U_IS]];
     is_lo_zero_q <= t_lo_zero[sel[U_IS]];
     is_id_sg_q <= t_id_sg[sel[U_IS]];
     is_tmin_q <= t_is_tmin[sel[U_IS]];
@@ -483,6 +471,84 @@ module trace_core #(
   assign add_t0 = add_t0_zero_q ? '0 : t0_add;
   assign is_t0 = is_t0_zero_q ? '0 : t0_is;
 
+  // the records' words the units take, per thread (the instance's matrix and translation's low
+  // words for the wide transformation, the object's bounds for the traversal unit, the triangle's
+  // record for the triangle test): written from the word port's responses to a thread (the words
+  // its lbuf takes, which it keeps for its FSM) a cycle late (rsp_*: the response registered, then
+  // the vertices' low parts decoded from it), read in the issue cycle; a thread's batch or
+  // operation that reads them issues at least two cycles after the response (its request, the
+  // scheduler's set, the issue)
+  logic rsp_we;
+  logic [TW-1:0] rsp_thread;
+  logic [1:0] rsp_ix;                     // the response's index in its record
+  logic [32*RW-1:0] rsp_q;
+  always_ff @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) rsp_we <= 1'b0;
+    else rsp_we <= mem_rsp_valid_i && !word_head[TW];
+  always_ff @(posedge clk_i) begin
+    rsp_thread <= word_head[TW-1:0];
+    rsp_ix <= t_ld_got[word_head[TW-1:0]];
+    rsp_q <= mem_rdata_i;
+  end
+  // ranges g of a record's words, W bits each: 0 the instance's matrix (words 0 .. 11), 1 its
+  // translation's low words (14 .. 16), 2 the object's bounds (8 .. 13); per response r a memory
+  // of the range's words in it, read by the wide transformation (g < 2) or the traversal unit
+  function automatic int rec_first(input int g);
+    rec_first = g == 0 ? 0 : g == 1 ? 14 : 8;
+  endfunction
+  function automatic int rec_words(input int g);
+    rec_words = g == 0 ? 12 : g == 1 ? 3 : 6;
+  endfunction
+  logic [21*W-1:0] rec_rd;                // the ranges' words side by side (12, 3, 6 words)
+  for (genvar g = 0; g < 3; g++) begin : g_rec
+    localparam int A = rec_first(g), N = rec_words(g), OFF = g == 0 ? 0 : g == 1 ? 12 : 15;
+    for (genvar r = 0; r < 2; r++) begin : g_rsp
+      localparam int LO = A > r * RW ? A : r * RW;
+      localparam int HI = A + N < (r + 1) * RW ? A + N : (r + 1) * RW;
+      if (HI > LO) begin : g_ram
+        logic [(HI-LO)*W-1:0] wdata, rdata;
+        for (genvar i = 0; i < HI - LO; i++) begin : g_word
+          assign wdata[i*W +: W] = rsp_q[32 * (LO + i - r * RW) +: W];
+        end
+        thread_ram #(.W((HI - LO) * W), .DEPTH(THREADS)) u_w (
+          .clk_i(clk_i), .we_i(rsp_we && rsp_ix == 2'(r)), .waddr_i(rsp_thread), .wdata_i(wdata),
+          .re_i(1'b1), .raddr_i(sel[g < 2 ? U_XW : U_TRAV]), .rdata_o(rdata));
+        assign rec_rd[(OFF + LO - A)*W +: (HI-LO)*W] = rdata;
+      end
+    end
+  end
+  // f24_vertex_lo: the low part k 2^-8 ulp(hi) of a vertex component from its 9-bit field
+  if (M < 8) begin : g_m_check
+    $error("trace_core: M >= 8 (the vertex's low part, 9-bit multiples, converts exactly)");
+  end
+  function automatic logic [W-1:0] vertex_lo(input logic [8:0] field, input logic [E-1:0] he);
+    logic [8:0] mag;
+    logic [M-1:0] frac;
+    int p, e;
+    mag = field[8] ? 9'(-field) : field;
+    p = 0;
+    for (int i = 0; i < 9; i++)
+      if (mag[i]) p = i;
+    frac = M'({{(M-1){1'b0}}, mag} << (M - p));
+    e = {{(32-E){1'b0}}, he};
+    e = e + p - M - 8;
+    if (field == 0 || he == 0 || he == EXP_MAX) vertex_lo = '0;
+    else if (e <= 0) vertex_lo = {field[8], {(E+M){1'b0}}};
+    else vertex_lo = {field[8], e[E-1:0], frac};
+  endfunction
+  // the triangle's record (one response): the matrix, C's low parts, the shared-edge flags
+  localparam int TRIW = 15 * W + 3;
+  logic [TRIW-1:0] tri_wdata, tri_rd;
+  always_comb begin
+    tri_wdata[0 +: 12*W] = rsp_q[0 +: 12*W];
+    for (int j = 0; j < 3; j++)  // C_hi's exponent: the matrix's word 4 j + 3
+      tri_wdata[12*W + j*W +: W] = vertex_lo(rsp_q[12*W + 9*j +: 9], rsp_q[(4*j+3)*W + M +: E]);
+    tri_wdata[15*W +: 3] = rsp_q[12*W + 27 +: 3];
+  end
+  thread_ram #(.W(TRIW), .DEPTH(THREADS)) u_tri (
+    .clk_i(clk_i), .we_i(rsp_we && rsp_ix == 2'd0), .waddr_i(rsp_thread), .wdata_i(tri_wdata),
+    .re_i(1'b1), .raddr_i(sel[U_IS]), .rdata_o(tri_rd));
+
   // the world rays o, d per thread, one memory per ray (a packet's 4 rays enter in one cycle) and
   // reader: k = 0 the traversal unit (o, d of every ray), 1 the rebase unit (o, d of the step's
   // ray), 2 the wide transformation (d), 3 the triangle test (d: an identity instance's);
@@ -539,12 +605,13 @@ module trace_core #(
   // in s + 1, when they are written into their entry's place beside the FIFO (trav_rays, the same
   // slots in the same order) and, if that entry is the FIFO's head, go to the unit directly: no
   // cycle added
-  logic trav_obj_q, trav_wr_q, trav_slot_q, trav_head, trav_tail;
+  logic trav_obj_q, trav_scene_q, trav_wr_q, trav_slot_q, trav_head, trav_tail;
   logic [3:0] trav_lo_zero_q;
   logic [4*12-1:0] trav_id_sg_q;
-  logic [24*W-1:0] trav_rd, trav_rays [2];  // {o, d} of the 4 rays
+  logic [30*W-1:0] trav_rd, trav_rays [2];  // {o, d} of the 4 rays, the box
   always_ff @(posedge clk_i) begin
     trav_obj_q <= t_trav_obj[sel[U_TRAV]];
+    trav_scene_q <= t_trav_kind[sel[U_TRAV]] == 2'd0;  // the scene clip: the scene's bounds
     trav_lo_zero_q <= t_trav_lo_zero[sel[U_TRAV]];
     trav_id_sg_q <= t_trav_id_sg[sel[U_TRAV]];
     trav_slot_q <= trav_tail;
@@ -565,12 +632,13 @@ module trace_core #(
       logic [3*W-1:0] wo, wd;
       wo = w_rd[r*WRD + 3*W +: 3*W];
       wd = w_rd[r*WRD +: 3*W];
-      trav_rd[12*W + r*3*W +: 3*W] = !trav_obj_q ? wo :
+      trav_rd[18*W + r*3*W +: 3*W] = !trav_obj_q ? wo :
         obj_ray(trav_lo_zero_q[r], trav_id_sg_q[r*12 +: 12], wo, obj_trav[r*3*W +: 3*W], 1'b1);
-      trav_rd[r*3*W +: 3*W] = !trav_obj_q ? wd :
+      trav_rd[6*W + r*3*W +: 3*W] = !trav_obj_q ? wd :
         obj_ray(trav_lo_zero_q[r], trav_id_sg_q[r*12 +: 12], wd, obj_trav[(4+r)*3*W +: 3*W], 1'b0);
     end
-  assign {trav_op_o, trav_op_d} = trav_wr_q && trav_slot_q == trav_head ? trav_rd : trav_rays[trav_head];
+  assign trav_rd[0 +: 6*W] = trav_scene_q ? scene_box : rec_rd[15*W +: 6*W];
+  assign {trav_op_o, trav_op_d, trav_op_box} = trav_wr_q && trav_slot_q == trav_head ? trav_rd : trav_rays[trav_head];
 
   // the per-ray units' rays (the step's ray ray_q of the world rays' memories)
   logic [WRD-1:0] rb_w;
@@ -595,14 +663,14 @@ module trace_core #(
   // pass 0 of an instance's rays transforms the rebased origin, pass 1 the direction
   xform_wide #(.E(E), .M(M), .SUM_STAGES(SUM_STAGES)) u_wide (
     .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(step_q[U_XW]), .ready_o(unit_ready[U_XW]),
-    .m_i(xw_m_q), .tlo_i(xw_tlo_q), .p_hi_i(xw_point_q ? p_xw[3*W +: 3*W] : xw_d), .p_lo_i(p_xw[0 +: 3*W]),
+    .m_i(rec_rd[0 +: 12*W]), .tlo_i(rec_rd[12*W +: 3*W]), .p_hi_i(xw_point_q ? p_xw[3*W +: 3*W] : xw_d), .p_lo_i(p_xw[0 +: 3*W]),
     .point_i(xw_point_q), .valid_o(out_valid[U_XW]), .ready_i(1'b1), .r_hi_o(xw_hi), .r_lo_o(xw_lo));
 
   assign unit_ready[U_IS] = 1'b1;  // no stall
   isect_rebased #(.E(E), .M(M), .ADD_STAGES(ADD_STAGES), .MUL_STAGES(MUL_STAGES), .DIV_STAGES(DIV_STAGES),
                   .CMP_STAGES(CMP_STAGES), .SUM_STAGES(SUM_STAGES)) u_isect (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(step_q[U_IS]), .m_i(is_m_q), .c_lo_i(is_c_lo_q),
-    .shared_i(is_shared_q), .p_hi_i(p_is[3*W +: 3*W]), .p_lo_i(p_is[0 +: 3*W]), .d_i(is_d), .te_i(te_is),
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(step_q[U_IS]), .m_i(tri_rd[0 +: 12*W]), .c_lo_i(tri_rd[12*W +: 3*W]),
+    .shared_i(tri_rd[15*W +: 3]), .p_hi_i(p_is[3*W +: 3*W]), .p_lo_i(p_is[0 +: 3*W]), .d_i(is_d), .te_i(te_is),
     .tmin_i(is_tmin_q), .tmax_i(is_tmax_q), .t0_i(is_t0),
     .valid_o(out_valid[U_IS]), .hit_o(is_hit), .t_o(is_t), .u_o(is_u), .v_o(is_v), .cos_o(is_cos),
     .t_world_o(is_t_world));

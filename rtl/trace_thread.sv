@@ -1,10 +1,12 @@
 // trace_thread: one thread of the ray tracing core (trace_core): the state of its packet
-// (trace_state: the rays, alive, best_t, a hit flag per ray, the level and per level the leaf, the
-// list address and have_cur, the current instance/object/triangle and need mask, the object-space
-// rays' high words, best_rel, tmin_rel; the fields only the per-ray units read or write, the rebased
-// origins p, te, t0, the object-space rays' low words and the hits' records, are trace_core's, in
-// thread_ram indexed by thread and ray, with a flag per ray here where the C sets them to zero:
-// lo_zero, t0_zero) and the FSM of
+// (trace_state: alive, best_t, a hit flag per ray, the level and per level the leaf, the list
+// address and have_cur, the current instance/object/triangle and need mask, best_rel, tmin_rel;
+// the rays themselves and the fields only the per-ray units read or write, the world and
+// object-space rays' o and d, the rebased origins p, te, t0 and the hits' records, are
+// trace_core's, in thread_ram indexed by thread (and ray), with a flag per ray here where the C
+// sets them to zero or to a function of other fields: lo_zero (an identity instance's
+// object-space ray, xform_identity of the world ray with the matrix signs id_sg, low words zero),
+// t0_zero) and the FSM of
 // hls/units/trace.c's trace_step (route_after_list, enter_single_object, op_scene_clip, op_walk,
 // rebase_leaf, op_list, op_inst_xform, op_inst_clip, op_tri_xform, op_tri_isect). Per unit it
 // raises a request with the operation's operands (*_req_o and the operand ports) and its issue
@@ -67,12 +69,12 @@ module trace_thread #(
   input  logic [31:0]                 hdr_inst_i,
   input  logic [31:0]                 hdr_top_nodes_i,
   input  logic [31:0]                 hdr_top_lists_i,
-  input  logic [6*(E+M+1)-1:0]        scene_box_i,
   // word read port (descriptors): RW words from the request's word address per response
   output logic                        mem_req_valid_o,
   input  logic                        mem_req_ready_i,
   output logic [31:0]                 mem_addr_o,
   input  logic                        mem_rsp_valid_i,
+  output logic [1:0]                  ld_got_o,    // the index of a response to this thread in its record
   input  logic [32*RW-1:0]            mem_rdata_i,
   input  logic                        node_rsp_i,  // a kd-node read of this thread answered
   output logic                        waiting_o,   // an operation of this thread is in a unit
@@ -92,7 +94,6 @@ module trace_thread #(
   output logic [4*(E+M+1)-1:0]        trav_tf_o,
   output logic [4*(E+M+1)-1:0]        trav_best_o,
   output logic [3:0]                  trav_mask_o,
-  output logic [6*(E+M+1)-1:0]        trav_box_o,
   output logic [31:0]                 trav_nodes_o,
   input  logic                        trav_done_i,
   input  logic [3:0]                  trav_mask_i,
@@ -129,16 +130,13 @@ module trace_thread #(
   // the transformation unit's wide mode
   output logic                        xw_req_o,
   input  logic                        xw_grant_i,
-  output logic [12*(E+M+1)-1:0]       xw_m_o,
-  output logic [3*(E+M+1)-1:0]        xw_tlo_o,    // (pass 0's origin p, pass 1's direction: trace_core's)
+  // (the instance's matrix and translation's low words, pass 0's origin p, pass 1's direction: trace_core's)
   output logic                        xw_point_o,
   input  logic                        xw_done_i,   // (its results, the object-space rays: trace_core's)
   // the triangle test (isect_rebased: the origin path, the transformations, the intersection, t0 + t)
   output logic                        is_req_o,
   input  logic                        is_grant_i,
-  output logic [12*(E+M+1)-1:0]       is_m_o,
-  output logic [3*(E+M+1)-1:0]        is_c_lo_o,
-  output logic [2:0]                  is_shared_o, // (p, te and the direction: trace_core's)
+  // (the triangle's record, p, te and the direction: trace_core's)
   output logic [E+M:0]                is_tmin_o,
   output logic [E+M:0]                is_tmax_o,
   input  logic                        is_done_i,
@@ -165,9 +163,6 @@ module trace_thread #(
   localparam int LBUF = RW * INST_RSP;
   localparam int C_STEPS = 0, C_LEAVES = 1, C_ENTRIES = 2, C_SKIPS = 3, C_XFORMS = 4, C_ISECTS = 5;
   localparam int C_NODES = 6, C_LISTS = 7, C_MATRICES = 8;
-  if (M < 8) begin : g_m_check
-    $error("trace_thread: M >= 8 (the vertex's low part, 9-bit multiples, converts exactly)");
-  end
 
   // ---- state of the packet in flight (trace_state) ----
   // the FSM's states (trace_step's operations and their unit transactions)
@@ -242,40 +237,13 @@ module trace_thread #(
   endfunction
 
   // ---- the records ----
-  logic [TRI_WORDS*32-1:0] rec;
-  always_comb
-    for (int i = 0; i < TRI_WORDS; i++) rec[i*32 +: 32] = lbuf[i];
-  logic [12*W-1:0] tri_m, inst_m;
-  logic [3*W-1:0] c_lo, inst_tlo;
-  logic [2:0] tri_shared;
-  // f24_vertex_lo: the low part k 2^-8 ulp(hi) of a vertex component from its 9-bit field
-  function automatic logic [W-1:0] vertex_lo(input logic [8:0] field, input logic [E-1:0] he);
-    logic [8:0] mag;
-    logic [M-1:0] frac;
-    int p, e;
-    mag = field[8] ? 9'(-field) : field;
-    p = 0;
-    for (int i = 0; i < 9; i++)
-      if (mag[i]) p = i;
-    frac = M'({{(M-1){1'b0}}, mag} << (M - p));
-    e = {{(32-E){1'b0}}, he};
-    e = e + p - M - 8;
-    if (field == 0 || he == 0 || he == EXP_MAX) vertex_lo = '0;
-    else if (e <= 0) vertex_lo = {field[8], {(E+M){1'b0}}};
-    else vertex_lo = {field[8], e[E-1:0], frac};
-  endfunction
-  always_comb begin
-    tri_m = rec[0 +: 12*W];
-    for (int i = 0; i < 12; i++) inst_m[i*W +: W] = lbuf[i][W-1:0];
-    for (int j = 0; j < 3; j++) begin
-      c_lo[j*W +: W] = vertex_lo(rec[12*W + 9*j +: 9], tri_m[(4*j+3)*W + M +: E]);  // C_hi's exponent
-      inst_tlo[j*W +: W] = lbuf[14 + j][W-1:0];
-    end
-    tri_shared = rec[12*W + 27 +: 3];
-  end
+  // lbuf keeps the words the FSM reads (the unit operands among them, the matrices, the
+  // translation's low words, the triangle's record and the object's bounds, are trace_core's, in
+  // thread_ram written from the same responses: the flip-flops of the words read nowhere here
+  // are removed by synthesis)
   // the matrix's signs, all xform_identity reads of it (trace_core's identity)
-  function automatic logic [11:0] signs(input logic [12*W-1:0] m);
-    for (int j = 0; j < 12; j++) signs[j] = m[j*W + W-1];
+  function automatic logic [11:0] signs();
+    for (int j = 0; j < 12; j++) signs[j] = lbuf[j][W-1];
   endfunction
 
   // ---- the units ----
@@ -293,8 +261,6 @@ module trace_thread #(
   assign trav_obj_o = !(st == S_SC_GO || (st != S_IC_CLIP && !level));
   assign trav_lo_zero_o = lo_zero;
   assign trav_best_o = level ? v_best_rel : v_best_t;
-  assign trav_box_o = st == S_SC_GO ? scene_box_i : {lbuf[13][W-1:0], lbuf[12][W-1:0], lbuf[11][W-1:0],
-                                               lbuf[10][W-1:0], lbuf[9][W-1:0], lbuf[8][W-1:0]};
   logic [4*W-1:0] clip_tn, clip_tf, r_leaf_tn;   // the traversal unit's last result
   logic [3:0] clip_mask, r_leaf_mask;
   logic r_have_cur, r_leaf;
@@ -351,19 +317,8 @@ module trace_thread #(
   assign rb_leaf_o = rb_leaf;
   assign step_ray_o = ir;
   assign xw_req_o = batch_req && bop == B_XW;
-  assign xw_m_o = inst_m;
-  assign xw_tlo_o = inst_tlo;
   assign xw_point_o = !ipass;
   assign is_req_o = batch_req && bop == B_TRI;
-  assign is_m_o = tri_m;
-  // the vertices' low parts registered (vertex_lo is 8 LUT6 levels; with the core's operand
-  // multiplexer and isect_rebased's first segment it was a path of 13 at 4 threads). They follow
-  // the record a cycle late, never read then: the triangle's issue comes at least two cycles after
-  // the record's last word (the batch's request, the scheduler's set, its issue)
-  logic [3*W-1:0] c_lo_q;
-  always_ff @(posedge clk_i) c_lo_q <= c_lo;
-  assign is_c_lo_o = c_lo_q;
-  assign is_shared_o = tri_shared;
   assign is_inst_o = inst;
   assign is_tri_o = tri_ix;
   assign hit_o = hit;
@@ -396,6 +351,7 @@ module trace_thread #(
   assign mem_req_valid_o = ld_req;
   assign waiting_o = st == S_TRAV_WAIT || st == S_LIST_WAIT ||
                      (st == S_BATCH && {idone, ipass, itodo} != {1'b0, cpass, ctodo});
+  assign ld_got_o = ld_got;
   assign mem_addr_o = ld_base + 32'(RW) * 32'(ld_sent);
   assign hdr_want_o = st == S_HDR;
   assign ready_o = st == S_IDLE;
@@ -605,7 +561,7 @@ module trace_thread #(
           if (lbuf[13][0] || flags[2]) begin
             for (int i = 0; i < 4; i++)
               if (need[i]) begin
-                id_sg[i] <= signs(inst_m);
+                id_sg[i] <= signs();
                 lo_zero[i] <= 1'b1;
                 t0_zero[i] <= 1'b1;
               end
