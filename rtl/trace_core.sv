@@ -51,18 +51,30 @@
 // cycles before, 52,872 after). Throughput: up to one
 // ray step per unit and cycle, one word port request per cycle, THREADS packets in flight.
 // Resources: the units' (rtl/README.md), thread_sched (6 units, 4-bit slot counters), per unit a
-// 4-bit feed counter and a thread id, THREADS trace_thread (each 5040 LUT6 and 3440 flip-flops, its header
-// with synth_xilinx at e7m16: its control and the fields the
-// traversal unit or the FSM read, in registers), thread_ram of 4 THREADS words per field group and reader (p 6 W bits, for the wide
-// transformation and the triangle test; te W; so_lo, sd_lo 3 W each, for the rebase unit; t0 W,
-// for the adders and the triangle test; 4 x THREADS words of 64 + 3 W bits for the hits' records),
-// the per-ray units' issue stage (their operands, about 41 W bits, registered once), the
-// traversal and list units' issue FIFOs (two entries of TW + 42 W + 39 and TW + 106 bits), the output
-// register, the header's fields (5 words and the 6 W-bit bounds, once), the word port's FIFO of
-// 2 THREADS requesters of TW + 1 bits, two rr_pick without a pointer (the word port's and the
-// output's lowest thread), the operand multiplexers (THREADS to 1 per unit); at THREADS = 2 (synth_xilinx,
-// e7m16, python3 scripts/synth.py --levels trace_core THREADS=2 --hier, 2026-11-29) 137,189 LUT6,
-// 126,945 flip-flops, 8 LUT6 levels.
+// 4-bit feed counter and a thread id, THREADS trace_thread (its control and the fields the
+// traversal unit or the FSM read, in registers), thread_ram per field group and reader: THREADS
+// words per ray for the world rays (6 W for the traversal and rebase units, 3 W (d) for the wide
+// transformation and the triangle test) and the traversal unit's object-space rays (so, sd 3 W
+// each), 4 THREADS words for p (6 W, the wide transformation and the triangle test), te (W),
+// so and sd (6 W each, high and low words, the rebase unit), sd's high words (3 W, the triangle
+// test), t0 (W, the adders and the triangle test), THREADS words for the records' operands (the
+// instance's matrix and translation's low words 15 W, the object's bounds 6 W, the triangle's
+// record 15 W + 3) and 4 x THREADS words of 64 + 3 W bits for the hits' records; the per-ray
+// units' issue stage (their other operands, a few W bits, registered once), the traversal and
+// list units' issue FIFOs (two entries of TW + 12 W + 42 and TW + 106 bits) and the traversal's
+// rays and box beside its FIFO (two entries of 30 W), the registered response (RW words) and one
+// f24_vertex_lo per vertex component, the output register, the header's fields (5 words and the
+// 6 W-bit bounds, once), the word port's FIFO of 2 THREADS requesters of TW + 1 bits, two rr_pick
+// without a pointer (the word port's and the output's lowest thread), the operand multiplexers
+// (THREADS to 1 per unit, now mostly over the threads' flags, masks and distances).
+// synth_ice40 -dsp -noflatten at the paper's 64 threads, e7m16, this module's own cells (its
+// submodules black boxes: mapped as python3 scripts/synth.py --dynrtp ice40 maps each module,
+// 2026-11-29): 61,586 SB_LUT4 and 4,715 flip-flops, its thread_ram 290
+// SB_RAM40_4K; with the rays' o and d in the threads' registers 133,921, 3,897 and 70 (the
+// traversal's issue FIFO 1,064 SB_LUT4 and 2,110 flip-flops then, 344 and 670 now); trace_thread
+// 2,989 SB_LUT4, 1,905 flip-flops (5,871 and 3,437). At THREADS = 2 (synth_xilinx, e7m16, python3
+// scripts/synth.py --levels trace_core THREADS=2 --hier, 2026-11-29, before the rays moved)
+// 137,189 LUT6, 126,945 flip-flops, 8 LUT6 levels.
 // Handshake: valid/ready at the packet input (into thread thread_i: ready_o when it is free) and
 // at the result output (registered; the lowest finished thread first); word port valid/ready with responses in
 // request order; trav_unit's node port and list_unit's read port as those units define them (the

@@ -28,17 +28,21 @@
 // algorithm trav_unit has). The stacks and mailboxes live in trav_unit and list_unit.
 // Latency: the sum of the packet's unit operations and batches (a batch: its issue slots plus the
 // unit's latency), their waits for the units and the reads.
-// Resources: the state registers, 22 W bits per ray and 3 flags (the triangle's intermediate
-// values stay in isect_rebased's pipeline; p, te, t0, the low words and the hits' records, 15 W
-// + 64 bits per ray, in trace_core's thread_ram), a descriptor buffer of LBUF words (two
-// responses: 20 at e7m16), about 15 words of routing state and 10 counters of 32 bits; the record
-// unpacking (f24_vertex_lo) and the identity mapping (xform_identity) in wires. Yosys 0.23
-// synth_xilinx at e7m16 (python3 scripts/synth.py --levels trace_thread --hier, 2026-11-29): 5040
-// LUT6, 3440 flip-flops (one each for ld_req and done, the word request and the packet's valid
-// straight from flip-flops), 8 LUT6 levels (5048 LUT6, 3439 flip-flops before done; 5297, 3438 on
-// an earlier RTL before ld_req; 6449, 5410 and 8 with p, te, t0, the low words and the hits' records
-// here; 5718 LUTs and 6183 flip-flops before the header moved to the core and the buffer shrank from
-// 40 words to 20). Its ports: valid_o and mem_req_valid_o 0 LUT6 levels from registers (synth.py --ports).
+// Resources: the state registers, 9 W bits per ray, 3 flags and 12 matrix signs (the rays' o
+// and d, p, te, t0, the object-space rays' low words, the hits' records and the records' operand
+// words in trace_core's thread_ram; the triangle's intermediate values in isect_rebased's
+// pipeline), of the descriptor buffer the 4 words and 13 bits its FSM reads, about 15 words of
+// routing state and 10 counters of 32 bits. Yosys 0.23 synth_xilinx at e7m16 (python3
+// scripts/synth.py --levels trace_thread --hier, 2026-11-29): 2,269 LUT6, 1,908 flip-flops, 7 LUT6
+// levels; synth_ice40 -dsp -noflatten (the per-module flow of python3 scripts/synth.py --dynrtp
+// ice40, 2026-11-29) 2,989 SB_LUT4, 1,905 flip-flops, 2 SB_MAC16. With the rays' o and d and the
+// records' words here (ro, rd, so, sd, the 20-word buffer, f24_vertex_lo, xform_identity): 5040
+// LUT6, 3440 flip-flops, 8 levels, and 5,871 SB_LUT4, 3,437 flip-flops (5048 LUT6, 3439
+// flip-flops before done; 5297, 3438 before ld_req; 6449, 5410 and 8 with p, te, t0, the low
+// words and the hits' records here; 5718 LUTs and 6183 flip-flops before the header moved to the
+// core and the buffer shrank from 40 words to 20). Its ports (synth.py --ports): valid_o and
+// mem_req_valid_o 0 LUT6 levels from registers, t_o 1, ready_i 3 into registers (2 before the
+// rays and the records' words moved), trav_grant_i 1 (2), list_grant_i 3.
 // Handshake: valid/ready at the packet input and the result output; request/grant to the units.
 module trace_thread #(
   parameter int E = 7,
