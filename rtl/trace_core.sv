@@ -365,9 +365,9 @@ module trace_core #(
 
   // ---- the per-ray units' issue stage ----
   // A step of a per-ray unit chosen in cycle s (sel, the thread's grant, its ray t_ray) reads the
-  // rays' fields that trace_core keeps in thread_ram (one word per thread and ray: the rebased
-  // origins p, a leaf's te) and registers its other operands from the threads' multiplexers at the
-  // end of s; the unit takes it in s + 1. So each multiplexer ends at a register, and a batch's
+  // fields that trace_core keeps in thread_ram (per thread and ray: the rays' o and d, the rebased
+  // origins p, te, t0; per thread: the records' words) and registers its other operands from the
+  // threads' multiplexers at the end of s; the unit takes it in s + 1. So each multiplexer ends at a register, and a batch's
   // results come a cycle later than an issue straight into the unit would give them.
   logic [UNITS-1:U_RB] step_q;            // the unit's step this cycle (the issue of the cycle before)
   logic [TW-1:0] sel_q [UNITS];
