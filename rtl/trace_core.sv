@@ -73,8 +73,10 @@
 // SB_RAM40_4K; with the rays' o and d in the threads' registers 133,921, 3,897 and 70 (the
 // traversal's issue FIFO 1,064 SB_LUT4 and 2,110 flip-flops then, 344 and 670 now); trace_thread
 // 2,989 SB_LUT4, 1,905 flip-flops (5,871 and 3,437). At THREADS = 2 (synth_xilinx, e7m16, python3
-// scripts/synth.py --levels trace_core THREADS=2 --hier, 2026-11-29, before the rays moved)
-// 137,189 LUT6, 126,945 flip-flops, 8 LUT6 levels.
+// scripts/synth.py --levels trace_core THREADS=2 --hier, 2026-11-29) 147,530 LUT6, 126,641
+// flip-flops, 11 LUT6 levels (137,189, 126,945 and 8 before the rays and the records' words
+// moved here: the memories' reads into rebase_unit's rays through xform_identity, and
+// f24_vertex_lo into the triangle record's write, are over the goal of 8: rtl/README.md).
 // Handshake: valid/ready at the packet input (into thread thread_i: ready_o when it is free) and
 // at the result output (registered; the lowest finished thread first); word port valid/ready with responses in
 // request order; trav_unit's node port and list_unit's read port as those units define them (the
