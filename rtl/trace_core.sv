@@ -75,8 +75,8 @@
 // 2,989 SB_LUT4, 1,905 flip-flops (5,871 and 3,437). At THREADS = 2 (synth_xilinx, e7m16, python3
 // scripts/synth.py --levels trace_core THREADS=2 --hier, 2026-11-29) 147,530 LUT6, 126,641
 // flip-flops, 11 LUT6 levels (137,189, 126,945 and 8 before the rays and the records' words
-// moved here: the memories' reads into rebase_unit's rays through xform_identity, and
-// f24_vertex_lo into the triangle record's write, are over the goal of 8: rtl/README.md).
+// moved here; the 11: a world ray's read through a shifter into xform_wide, a 4-to-1 choice
+// since, not re-synthesized: rtl/README.md).
 // Handshake: valid/ready at the packet input (into thread thread_i: ready_o when it is free) and
 // at the result output (registered; the lowest finished thread first); word port valid/ready with responses in
 // request order; trav_unit's node port and list_unit's read port as those units define them (the
@@ -657,13 +657,23 @@ module trace_core #(
   // the per-ray units' rays (the step's ray ray_q of the world rays' memories)
   logic [WRD-1:0] rb_w;
   logic [3*W-1:0] rb_o_hi, rb_d_hi, xw_d, is_d;
-  assign rb_w = w_rd[(4 + 32'(ray_q[U_RB])) * WRD +: WRD];
+  // reader k's word of ray r: a 4-to-1 choice (an index into all of w_rd was a shifter, 5 LUT6
+  // levels in front of xform_wide at 2 threads)
+  function automatic logic [WRD-1:0] world(input int k, input logic [1:0] r);
+    unique case (r)
+      2'd0: world = w_rd[(4*k) * WRD +: WRD];
+      2'd1: world = w_rd[(4*k+1) * WRD +: WRD];
+      2'd2: world = w_rd[(4*k+2) * WRD +: WRD];
+      default: world = w_rd[(4*k+3) * WRD +: WRD];
+    endcase
+  endfunction
+  assign rb_w = world(1, ray_q[U_RB]);
   assign rb_o_hi = rb_leaf_q ? obj_ray(rb_lo_zero_q, rb_id_sg_q, rb_w[3*W +: 3*W], so_rb[3*W +: 3*W], 1'b1)
                              : rb_w[3*W +: 3*W];
   assign rb_d_hi = rb_leaf_q ? obj_ray(rb_lo_zero_q, rb_id_sg_q, rb_w[0 +: 3*W], sd_rb[3*W +: 3*W], 1'b0)
                              : rb_w[0 +: 3*W];
-  assign xw_d = w_rd[(8 + 32'(ray_q[U_XW])) * WRD +: 3*W];
-  assign is_d = obj_ray(is_lo_zero_q, is_id_sg_q, w_rd[(12 + 32'(ray_q[U_IS])) * WRD +: 3*W], sd_is, 1'b0);
+  assign xw_d = (3*W)'(world(2, ray_q[U_XW]));
+  assign is_d = obj_ray(is_lo_zero_q, is_id_sg_q, (3*W)'(world(3, ray_q[U_IS])), sd_is, 1'b0);
 
   logic rb_lo;                            // a leaf's rebase of an instance's rays in double words
   assign rb_lo = rb_leaf_q && !rb_lo_zero_q;
