@@ -1,8 +1,10 @@
 // thread_ram: per-thread state of the ray tracing core in a memory (not a paper unit: the paper's
-// DynRTP keeps its threads' state in block RAM, section 3). trace_core holds the fields of every
-// thread's rays that only the per-ray units read (the rebased origins p, te: trace_state's
-// fields of hls/units/trace.c) here, one word per thread and ray, instead of in each
-// trace_thread's flip-flops: the unit's operand multiplexer over the threads becomes this read.
+// DynRTP keeps its threads' state in block RAM, section 3). trace_core holds here, one word per
+// thread (and ray), instead of in each trace_thread's flip-flops, the fields that its units take
+// as operands: the rays' o and d (world and object space; trace_state's fields of
+// hls/units/trace.c), the rebased origins p, te, t0, the hits' records, and the records' words
+// (the instance's matrix, the triangle's record, the object's bounds): the unit's operand
+// multiplexer over the threads becomes this read.
 // No C function of its own: it only holds words.
 // One write port (the unit whose results the words are), one read port with its output
 // registered, so that Yosys infers block RAM or LUT RAM (synth_xilinx: RAMB18 or RAM64M/RAM32M by
@@ -10,13 +12,17 @@
 // reader, as a block RAM with one read port each would. Read-during-write of one address gives
 // the old word in simulation; trace_core never reads a word in the cycle its thread's result
 // writes it (a thread's batch on a unit starts after the batch that wrote its operands has ended,
-// its hits are read after its last batch), so the memory is marked no_rw_check: without it
+// its hits are read after its last batch, its rays are written as it takes a packet, its
+// records' words two cycles or more before it issues an operation that reads them), so the memory is marked no_rw_check: without it
 // synth_ice40 adds a bypass per bit (a LUT4 and two flip-flops) to give the old word.
 // Latency 1 cycle (address to data), one read and one write per cycle.
 // Resources: DEPTH x W bits of RAM, W flip-flops (the read register, or the block RAM's own).
 // Yosys 0.23: W = 144, DEPTH = 256 (p at 64 threads) 2 RAMB36E1 (synth_xilinx), 9 SB_RAM40_4K
 // (synth_ice40); W = 136, DEPTH = 64 (a ray's hits at 64 threads) 46 RAM64M and 136 FDRE, 9
-// SB_RAM40_4K.
+// SB_RAM40_4K; synth_ice40 -dsp -noflatten (python3 scripts/synth.py's per-module flow,
+// 2026-11-29) W = 144 or 72, DEPTH = 64 (a ray's o and d, or one of them, at 64 threads) 9 or 5
+// SB_RAM40_4K, W = 24, DEPTH = 256 2: an SB_RAM40_4K is 16 bits wide at 256 words or fewer, so at
+// DEPTH = 64 three quarters of its bits are unused.
 module thread_ram #(
   parameter int W = 32,
   parameter int DEPTH = 256,

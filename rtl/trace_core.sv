@@ -51,18 +51,32 @@
 // cycles before, 52,872 after). Throughput: up to one
 // ray step per unit and cycle, one word port request per cycle, THREADS packets in flight.
 // Resources: the units' (rtl/README.md), thread_sched (6 units, 4-bit slot counters), per unit a
-// 4-bit feed counter and a thread id, THREADS trace_thread (each 5040 LUT6 and 3440 flip-flops, its header
-// with synth_xilinx at e7m16: its control and the fields the
-// traversal unit or the FSM read, in registers), thread_ram of 4 THREADS words per field group and reader (p 6 W bits, for the wide
-// transformation and the triangle test; te W; so_lo, sd_lo 3 W each, for the rebase unit; t0 W,
-// for the adders and the triangle test; 4 x THREADS words of 64 + 3 W bits for the hits' records),
-// the per-ray units' issue stage (their operands, about 41 W bits, registered once), the
-// traversal and list units' issue FIFOs (two entries of TW + 42 W + 39 and TW + 106 bits), the output
-// register, the header's fields (5 words and the 6 W-bit bounds, once), the word port's FIFO of
-// 2 THREADS requesters of TW + 1 bits, two rr_pick without a pointer (the word port's and the
-// output's lowest thread), the operand multiplexers (THREADS to 1 per unit); at THREADS = 2 (synth_xilinx,
-// e7m16, python3 scripts/synth.py --levels trace_core THREADS=2 --hier, 2026-11-29) 137,189 LUT6,
-// 126,945 flip-flops, 8 LUT6 levels.
+// 4-bit feed counter and a thread id, THREADS trace_thread (its control and the fields the
+// traversal unit or the FSM read, in registers), thread_ram per field group and reader: THREADS
+// words per ray for the world rays (6 W for the traversal and rebase units, 3 W (d) for the wide
+// transformation and the triangle test) and the traversal unit's object-space rays (so, sd 3 W
+// each), 4 THREADS words for p (6 W, the wide transformation and the triangle test), te (W),
+// so and sd (6 W each, high and low words, the rebase unit), sd's high words (3 W, the triangle
+// test), t0 (W, the adders and the triangle test), THREADS words for the records' operands (the
+// instance's matrix and translation's low words 15 W, the object's bounds 6 W, the triangle's
+// record 15 W + 3) and 4 x THREADS words of 64 + 3 W bits for the hits' records; the per-ray
+// units' issue stage (their other operands, a few W bits, registered once), the traversal and
+// list units' issue FIFOs (two entries of TW + 12 W + 42 and TW + 106 bits) and the traversal's
+// rays and box beside its FIFO (two entries of 30 W), the registered response (RW words) and one
+// f24_vertex_lo per vertex component, the output register, the header's fields (5 words and the
+// 6 W-bit bounds, once), the word port's FIFO of 2 THREADS requesters of TW + 1 bits, two rr_pick
+// without a pointer (the word port's and the output's lowest thread), the operand multiplexers
+// (THREADS to 1 per unit, now mostly over the threads' flags, masks and distances).
+// synth_ice40 -dsp -noflatten at the paper's 64 threads, e7m16, this module's own cells (its
+// submodules black boxes: mapped as python3 scripts/synth.py --dynrtp ice40 maps each module,
+// 2026-11-29): 61,586 SB_LUT4 and 4,715 flip-flops, its thread_ram 290
+// SB_RAM40_4K; with the rays' o and d in the threads' registers 133,921, 3,897 and 70 (the
+// traversal's issue FIFO 1,064 SB_LUT4 and 2,110 flip-flops then, 344 and 670 now); trace_thread
+// 2,989 SB_LUT4, 1,905 flip-flops (5,871 and 3,437). At THREADS = 2 (synth_xilinx, e7m16, python3
+// scripts/synth.py --levels trace_core THREADS=2 --hier, 2026-11-29) 147,530 LUT6, 126,641
+// flip-flops, 11 LUT6 levels (137,189, 126,945 and 8 before the rays and the records' words
+// moved here; the 11: a world ray's read through a shifter into xform_wide, a 4-to-1 choice
+// since, not re-synthesized: rtl/README.md).
 // Handshake: valid/ready at the packet input (into thread thread_i: ready_o when it is free) and
 // at the result output (registered; the lowest finished thread first); word port valid/ready with responses in
 // request order; trav_unit's node port and list_unit's read port as those units define them (a
@@ -128,6 +142,8 @@ module trace_core #(
   output logic [5:0]                  issue_o
 );
   localparam int W = 1 + E + M;
+  localparam logic [E-1:0] EXP_MAX = '1;
+  localparam logic [W-1:0] DNAN = {1'b0, EXP_MAX, 1'b1, {(M-1){1'b0}}};
   localparam int TW = $clog2(THREADS);
   localparam int UNITS = 6;
   localparam int U_TRAV = 0, U_LIST = 1, U_RB = 2, U_XW = 3, U_IS = 4, U_ADD = 5;
@@ -157,21 +173,18 @@ module trace_core #(
   logic [UNITS*THREADS-1:0] set;
   // operands per thread
   logic [1:0] t_trav_kind [THREADS];
-  logic [THREADS-1:0] t_trav_level, t_list_level, t_list_clear, t_xw_point;
-  logic [4*3*W-1:0] t_trav_o [THREADS], t_trav_d [THREADS];
+  logic [THREADS-1:0] t_trav_level, t_trav_obj, t_list_level, t_list_clear, t_xw_point;
+  logic [3:0] t_trav_lo_zero [THREADS];
+  logic [4*12-1:0] t_trav_id_sg [THREADS];
   logic [4*W-1:0] t_trav_tn [THREADS], t_trav_tf [THREADS], t_trav_best [THREADS];
   logic [3:0] t_trav_mask [THREADS], t_list_leaf_mask [THREADS], t_list_alive [THREADS];
-  logic [6*W-1:0] t_trav_box [THREADS];
   logic [31:0] t_trav_nodes [THREADS], t_list_lists [THREADS], t_list_first [THREADS], t_list_k [THREADS];
-  logic [3*W-1:0] t_rb_o_hi [THREADS], t_rb_d_hi [THREADS];
   logic [W-1:0] t_rb_t [THREADS], t_is_tmin [THREADS], t_is_tmax [THREADS];
-  logic [12*W-1:0] t_xw_m [THREADS], t_is_m [THREADS];
-  logic [3*W-1:0] t_xw_tlo [THREADS], t_xw_d [THREADS];
-  logic [3*W-1:0] t_is_c_lo [THREADS], t_is_d [THREADS];
   logic [2*W-1:0] t_add_a [THREADS];
-  logic [2:0] t_is_shared [THREADS];
+  logic [1:0] t_ld_got [THREADS];
   logic [1:0] t_ray [THREADS];
-  logic [THREADS-1:0] t_rb_leaf, t_rb_lo_zero, t_t0_zero;
+  logic [11:0] t_id_sg [THREADS];
+  logic [THREADS-1:0] t_rb_leaf, t_lo_zero, t_t0_zero;
   // the units' results (to every thread; done says whose)
   logic [3:0] trav_mask, trav_leaf_mask, list_need, list_skip;
   logic [4*W-1:0] trav_tn, trav_tf, trav_leaf_tn;
@@ -195,19 +208,19 @@ module trace_core #(
   for (genvar t = 0; t < THREADS; t++) begin : g_thread
     trace_thread #(.E(E), .M(M)) u_thread (
       .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(valid_i && thread_i == TW'(t)), .ready_o(t_ready[t]),
-      .flags_i(flags_i), .active_i(active_i), .o_i(o_i), .d_i(d_i), .tmin_i(tmin_i), .tmax_i(tmax_i),
+      .flags_i(flags_i), .active_i(active_i), .tmin_i(tmin_i), .tmax_i(tmax_i),
       .valid_o(t_valid[t]), .ready_i(t_out_ready[t]), .hit_o(t_hit[t]), .t_o(t_t[t]), .count_o(t_count[t]),
       .hdr_want_o(t_hdr_want[t]), .hdr_ok_i(hdr_ok), .hdr_instances_i(hdr_instances), .hdr_objects_i(hdr_objects),
       .hdr_inst_i(hdr_inst), .hdr_top_nodes_i(hdr_top_nodes), .hdr_top_lists_i(hdr_top_lists),
-      .scene_box_i(scene_box),
       .mem_req_valid_o(t_mem_req[t]), .mem_req_ready_i(!hdr_req && word_grant[t] && word_take),
-      .mem_addr_o(t_mem_addr[t]), .mem_rsp_valid_i(mem_rsp_valid_i && word_head == {1'b0, TW'(t)}),
+      .mem_addr_o(t_mem_addr[t]), .mem_rsp_valid_i(mem_rsp_valid_i && word_head == {1'b0, TW'(t)}), .ld_got_o(t_ld_got[t]),
       .mem_rdata_i(mem_rdata_i), .node_rsp_i(t_node_rsp[t]), .waiting_o(t_waiting[t]),
-      .slots_o(t_slots[t*4 +: 4]), .step_ray_o(t_ray[t]),
+      .slots_o(t_slots[t*4 +: 4]), .step_ray_o(t_ray[t]), .lo_zero_o(t_lo_zero[t]), .id_sg_o(t_id_sg[t]),
       .trav_req_o(req[U_TRAV][t]), .trav_grant_i(grant[U_TRAV][t]), .trav_kind_o(t_trav_kind[t]),
-      .trav_level_o(t_trav_level[t]), .trav_o_o(t_trav_o[t]), .trav_d_o(t_trav_d[t]), .trav_tn_o(t_trav_tn[t]),
+      .trav_level_o(t_trav_level[t]), .trav_obj_o(t_trav_obj[t]), .trav_lo_zero_o(t_trav_lo_zero[t]),
+      .trav_id_sg_o(t_trav_id_sg[t]), .trav_tn_o(t_trav_tn[t]),
       .trav_tf_o(t_trav_tf[t]), .trav_best_o(t_trav_best[t]), .trav_mask_o(t_trav_mask[t]),
-      .trav_box_o(t_trav_box[t]), .trav_nodes_o(t_trav_nodes[t]), .trav_done_i(done[U_TRAV][t]),
+      .trav_nodes_o(t_trav_nodes[t]), .trav_done_i(done[U_TRAV][t]),
       .trav_mask_i(trav_mask), .trav_tn_i(trav_tn), .trav_tf_i(trav_tf), .trav_have_cur_i(trav_have_cur),
       .trav_leaf_i(trav_leaf), .trav_leaf_first_i(trav_leaf_first), .trav_leaf_count_i(trav_leaf_count),
       .trav_leaf_mask_i(trav_leaf_mask), .trav_leaf_tn_i(trav_leaf_tn),
@@ -216,14 +229,13 @@ module trace_core #(
       .list_k_o(t_list_k[t]), .list_leaf_mask_o(t_list_leaf_mask[t]), .list_alive_o(t_list_alive[t]),
       .list_done_i(done[U_LIST][t]), .list_key_i(list_key), .list_need_i(list_need), .list_skip_i(list_skip),
       .list_k_i(list_k),
-      .rb_req_o(req[U_RB][t]), .rb_grant_i(grant[U_RB][t]), .rb_o_hi_o(t_rb_o_hi[t]), 
-      .rb_d_hi_o(t_rb_d_hi[t]), .rb_lo_zero_o(t_rb_lo_zero[t]), .t0_zero_o(t_t0_zero[t]), .rb_t_o(t_rb_t[t]), .rb_leaf_o(t_rb_leaf[t]),
+      .rb_req_o(req[U_RB][t]), .rb_grant_i(grant[U_RB][t]), .t0_zero_o(t_t0_zero[t]), .rb_t_o(t_rb_t[t]),
+      .rb_leaf_o(t_rb_leaf[t]),
       .rb_done_i(done[U_RB][t]),
-      .xw_req_o(req[U_XW][t]), .xw_grant_i(grant[U_XW][t]), .xw_m_o(t_xw_m[t]), .xw_tlo_o(t_xw_tlo[t]),
-      .xw_d_o(t_xw_d[t]), .xw_point_o(t_xw_point[t]), .xw_done_i(done[U_XW][t]),
-      .xw_hi_i(xw_hi),
-      .is_req_o(req[U_IS][t]), .is_grant_i(grant[U_IS][t]), .is_m_o(t_is_m[t]), .is_c_lo_o(t_is_c_lo[t]),
-      .is_shared_o(t_is_shared[t]), .is_d_o(t_is_d[t]),
+      .xw_req_o(req[U_XW][t]), .xw_grant_i(grant[U_XW][t]), 
+      .xw_point_o(t_xw_point[t]), .xw_done_i(done[U_XW][t]),
+      .is_req_o(req[U_IS][t]), .is_grant_i(grant[U_IS][t]), 
+     
       .is_tmin_o(t_is_tmin[t]), .is_tmax_o(t_is_tmax[t]),
       .is_done_i(done[U_IS][t]), .is_hit_i(is_hit), .is_t_i(is_t), .is_inst_o(t_is_inst[t]), .is_tri_o(t_is_tri[t]),
       .is_t_world_i(is_t_world),
@@ -291,8 +303,9 @@ module trace_core #(
   // the FIFO (its count, from registers), not for the unit's ready: the unit's refusal does not
   // lie on the grant path, and one
   // operation per cycle goes in while the unit takes one per cycle. A result comes a cycle later
-  // than an issue straight into the unit would give it.
-  localparam int TRAV_OPW = TW + 1 + 2 + 24 * W + 12 * W + 4 + 6 * W + 32;
+  // than an issue straight into the unit would give it. The traversal's rays are read from
+  // thread_ram (below) in s and come a cycle after the rest of their entry: see trav_rays.
+  localparam int TRAV_OPW = TW + 1 + 2 + 12 * W + 4 + 32;
   localparam int LIST_OPW = TW + 2 + 3 * 32 + 8;
   logic [TRAV_OPW-1:0] trav_op;
   logic [LIST_OPW-1:0] list_op;
@@ -307,13 +320,13 @@ module trace_core #(
   logic [31:0] trav_op_nodes, list_op_lists, list_op_first, list_op_k;
   sync_fifo #(.W(TRAV_OPW), .DEPTH(2)) u_trav_issue (
     .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(accept[U_TRAV]), .ready_o(issue_ready[U_TRAV]),
-    .data_i({sel[U_TRAV], t_trav_level[sel[U_TRAV]], t_trav_kind[sel[U_TRAV]], t_trav_o[sel[U_TRAV]],
-             t_trav_d[sel[U_TRAV]], t_trav_tn[sel[U_TRAV]], t_trav_tf[sel[U_TRAV]], t_trav_best[sel[U_TRAV]],
-             t_trav_mask[sel[U_TRAV]], t_trav_box[sel[U_TRAV]], t_trav_nodes[sel[U_TRAV]]}),
+    .data_i({sel[U_TRAV], t_trav_level[sel[U_TRAV]], t_trav_kind[sel[U_TRAV]],
+             t_trav_tn[sel[U_TRAV]], t_trav_tf[sel[U_TRAV]], t_trav_best[sel[U_TRAV]],
+             t_trav_mask[sel[U_TRAV]], t_trav_nodes[sel[U_TRAV]]}),
     .valid_o(op_valid[U_TRAV]), .ready_i(unit_ready[U_TRAV]),
     .data_o(trav_op));
-  assign {trav_op_thread, trav_op_level, trav_op_kind, trav_op_o, trav_op_d, trav_op_tn, trav_op_tf, trav_op_best,
-          trav_op_mask, trav_op_box, trav_op_nodes} = trav_op;
+  assign {trav_op_thread, trav_op_level, trav_op_kind, trav_op_tn, trav_op_tf, trav_op_best,
+          trav_op_mask, trav_op_nodes} = trav_op;
   sync_fifo #(.W(LIST_OPW), .DEPTH(2)) u_list_issue (
     .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(accept[U_LIST]), .ready_o(issue_ready[U_LIST]),
     .data_i({sel[U_LIST], t_list_level[sel[U_LIST]], t_list_clear[sel[U_LIST]], t_list_lists[sel[U_LIST]],
@@ -356,19 +369,17 @@ module trace_core #(
 
   // ---- the per-ray units' issue stage ----
   // A step of a per-ray unit chosen in cycle s (sel, the thread's grant, its ray t_ray) reads the
-  // rays' fields that trace_core keeps in thread_ram (one word per thread and ray: the rebased
-  // origins p, a leaf's te) and registers its other operands from the threads' multiplexers at the
-  // end of s; the unit takes it in s + 1. So each multiplexer ends at a register, and a batch's
+  // fields that trace_core keeps in thread_ram (per thread and ray: the rays' o and d, the rebased
+  // origins p, te, t0; per thread: the records' words) and registers its other operands from the
+  // threads' multiplexers at the end of s; the unit takes it in s + 1. So each multiplexer ends at a register, and a batch's
   // results come a cycle later than an issue straight into the unit would give them.
   logic [UNITS-1:U_RB] step_q;            // the unit's step this cycle (the issue of the cycle before)
   logic [TW-1:0] sel_q [UNITS];
   logic [1:0] ray_q [UNITS];
-  logic rb_leaf_q, rb_lo_zero_q, xw_point_q;
-  logic [3*W-1:0] rb_o_hi_q, rb_d_hi_q, xw_tlo_q, xw_d_q, is_c_lo_q, is_d_q;
+  logic rb_leaf_q, rb_lo_zero_q, is_lo_zero_q, xw_point_q;
+  logic [11:0] rb_id_sg_q, is_id_sg_q;
   logic [W-1:0] rb_t_q, is_tmin_q, is_tmax_q;
   logic is_t0_zero_q, add_t0_zero_q;
-  logic [12*W-1:0] xw_m_q, is_m_q;
-  logic [2:0] is_shared_q;
   logic [2*W-1:0] add_a_q;
   always_ff @(posedge clk_i or negedge rst_ni)
     if (!rst_ni) step_q <= '0;
@@ -379,19 +390,13 @@ module trace_core #(
       sel_q[u] <= sel[u];
       ray_q[u] <= t_ray[sel[u]];
     end
-    rb_o_hi_q <= t_rb_o_hi[sel[U_RB]];
-    rb_d_hi_q <= t_rb_d_hi[sel[U_RB]];
     rb_t_q <= t_rb_t[sel[U_RB]];
     rb_leaf_q <= t_rb_leaf[sel[U_RB]];
-    rb_lo_zero_q <= t_rb_lo_zero[sel[U_RB]];
-    xw_m_q <= t_xw_m[sel[U_XW]];
-    xw_tlo_q <= t_xw_tlo[sel[U_XW]];
-    xw_d_q <= t_xw_d[sel[U_XW]];
+    rb_lo_zero_q <= t_lo_zero[sel[U_RB]];
+    rb_id_sg_q <= t_id_sg[sel[U_RB]];
     xw_point_q <= t_xw_point[sel[U_XW]];
-    is_m_q <= t_is_m[sel[U_IS]];
-    is_c_lo_q <= t_is_c_lo[sel[U_IS]];
-    is_shared_q <= t_is_shared[sel[U_IS]];
-    is_d_q <= t_is_d[sel[U_IS]];
+    is_lo_zero_q <= t_lo_zero[sel[U_IS]];
+    is_id_sg_q <= t_id_sg[sel[U_IS]];
     is_tmin_q <= t_is_tmin[sel[U_IS]];
     is_tmax_q <= t_is_tmax[sel[U_IS]];
     is_t0_zero_q <= t_t0_zero[sel[U_IS]];
@@ -450,18 +455,23 @@ module trace_core #(
     .clk_i(clk_i), .we_i(rb_we && rb_tag[TW+2]), .waddr_i(rb_waddr), .wdata_i(rb_te),
     .re_i(1'b1), .raddr_i(raddr[U_IS]), .rdata_o(te_is));
 
-  // the object-space rays' low words so_lo, sd_lo (op_inst_xform) per thread and ray: written by
-  // the wide transformation's results (pass 0 the origin's, pass 1 the direction's), read by a
-  // leaf's rebase; an identity instance's zeros are its thread's lo_zero instead
-  logic [3*W-1:0] so_lo_rb, sd_lo_rb;
+  // the object-space rays so, sd (op_inst_xform: high and low words) per thread and ray: written
+  // by the wide transformation's results (pass 0 the origin's, pass 1 the direction's), read by a
+  // leaf's rebase (both words) and the triangle test (the direction's high words); an identity
+  // instance's rays are its thread's lo_zero and id_sg instead (obj_ray)
+  logic [6*W-1:0] so_rb, sd_rb;
+  logic [3*W-1:0] sd_is;
   logic [TW+1:0] xw_waddr;
   assign xw_waddr = {xw_tag[TW-1:0], xw_tag[TW +: 2]};
-  thread_ram #(.W(3 * W), .DEPTH(RAYS)) u_so_lo (
-    .clk_i(clk_i), .we_i(out_valid[U_XW] && !xw_tag[TW+2]), .waddr_i(xw_waddr), .wdata_i(xw_lo),
-    .re_i(1'b1), .raddr_i(raddr[U_RB]), .rdata_o(so_lo_rb));
-  thread_ram #(.W(3 * W), .DEPTH(RAYS)) u_sd_lo (
-    .clk_i(clk_i), .we_i(out_valid[U_XW] && xw_tag[TW+2]), .waddr_i(xw_waddr), .wdata_i(xw_lo),
-    .re_i(1'b1), .raddr_i(raddr[U_RB]), .rdata_o(sd_lo_rb));
+  thread_ram #(.W(6 * W), .DEPTH(RAYS)) u_so_rb (
+    .clk_i(clk_i), .we_i(out_valid[U_XW] && !xw_tag[TW+2]), .waddr_i(xw_waddr), .wdata_i({xw_hi, xw_lo}),
+    .re_i(1'b1), .raddr_i(raddr[U_RB]), .rdata_o(so_rb));
+  thread_ram #(.W(6 * W), .DEPTH(RAYS)) u_sd_rb (
+    .clk_i(clk_i), .we_i(out_valid[U_XW] && xw_tag[TW+2]), .waddr_i(xw_waddr), .wdata_i({xw_hi, xw_lo}),
+    .re_i(1'b1), .raddr_i(raddr[U_RB]), .rdata_o(sd_rb));
+  thread_ram #(.W(3 * W), .DEPTH(RAYS)) u_sd_is (
+    .clk_i(clk_i), .we_i(out_valid[U_XW] && xw_tag[TW+2]), .waddr_i(xw_waddr), .wdata_i(xw_hi),
+    .re_i(1'b1), .raddr_i(raddr[U_IS]), .rdata_o(sd_is));
   // t0 (op_inst_xform: the world ray's distance to the top-level leaf) per thread and ray: written
   // by the rebase unit's results of an instance (not a leaf), read by the adders (the relative
   // distances) and the triangle test (best_t = t0 + t); a new packet's and an identity instance's
@@ -477,26 +487,216 @@ module trace_core #(
   assign add_t0 = add_t0_zero_q ? '0 : t0_add;
   assign is_t0 = is_t0_zero_q ? '0 : t0_is;
 
+  // the records' words the units take, per thread (the instance's matrix and translation's low
+  // words for the wide transformation, the object's bounds for the traversal unit, the triangle's
+  // record for the triangle test): written from the word port's responses to a thread (the words
+  // its lbuf takes, which it keeps for its FSM) a cycle late (rsp_*: the response registered, then
+  // the vertices' low parts decoded from it), read in the issue cycle; a thread's batch or
+  // operation that reads them issues at least two cycles after the response (its request, the
+  // scheduler's set, the issue)
+  logic rsp_we;
+  logic [TW-1:0] rsp_thread;
+  logic [1:0] rsp_ix;                     // the response's index in its record
+  logic [32*RW-1:0] rsp_q;
+  always_ff @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) rsp_we <= 1'b0;
+    else rsp_we <= mem_rsp_valid_i && !word_head[TW];
+  always_ff @(posedge clk_i) begin
+    rsp_thread <= word_head[TW-1:0];
+    rsp_ix <= t_ld_got[word_head[TW-1:0]];
+    rsp_q <= mem_rdata_i;
+  end
+  // ranges g of a record's words, W bits each: 0 the instance's matrix (words 0 .. 11), 1 its
+  // translation's low words (14 .. 16), 2 the object's bounds (8 .. 13); per response r a memory
+  // of the range's words in it, read by the wide transformation (g < 2) or the traversal unit
+  function automatic int rec_first(input int g);
+    rec_first = g == 0 ? 0 : g == 1 ? 14 : 8;
+  endfunction
+  function automatic int rec_words(input int g);
+    rec_words = g == 0 ? 12 : g == 1 ? 3 : 6;
+  endfunction
+  logic [21*W-1:0] rec_rd;                // the ranges' words side by side (12, 3, 6 words)
+  for (genvar g = 0; g < 3; g++) begin : g_rec
+    localparam int A = rec_first(g), N = rec_words(g), OFF = g == 0 ? 0 : g == 1 ? 12 : 15;
+    for (genvar r = 0; r < 2; r++) begin : g_rsp
+      localparam int LO = A > r * RW ? A : r * RW;
+      localparam int HI = A + N < (r + 1) * RW ? A + N : (r + 1) * RW;
+      if (HI > LO) begin : g_ram
+        logic [(HI-LO)*W-1:0] wdata, rdata;
+        for (genvar i = 0; i < HI - LO; i++) begin : g_word
+          assign wdata[i*W +: W] = rsp_q[32 * (LO + i - r * RW) +: W];
+        end
+        thread_ram #(.W((HI - LO) * W), .DEPTH(THREADS)) u_w (
+          .clk_i(clk_i), .we_i(rsp_we && rsp_ix == 2'(r)), .waddr_i(rsp_thread), .wdata_i(wdata),
+          .re_i(1'b1), .raddr_i(sel[g < 2 ? U_XW : U_TRAV]), .rdata_o(rdata));
+        assign rec_rd[(OFF + LO - A)*W +: (HI-LO)*W] = rdata;
+      end
+    end
+  end
+  // f24_vertex_lo: the low part k 2^-8 ulp(hi) of a vertex component from its 9-bit field
+  if (M < 8) begin : g_m_check
+    $error("trace_core: M >= 8 (the vertex's low part, 9-bit multiples, converts exactly)");
+  end
+  function automatic logic [W-1:0] vertex_lo(input logic [8:0] field, input logic [E-1:0] he);
+    logic [8:0] mag;
+    logic [M-1:0] frac;
+    int p, e;
+    mag = field[8] ? 9'(-field) : field;
+    p = 0;
+    for (int i = 0; i < 9; i++)
+      if (mag[i]) p = i;
+    frac = M'({{(M-1){1'b0}}, mag} << (M - p));
+    e = {{(32-E){1'b0}}, he};
+    e = e + p - M - 8;
+    if (field == 0 || he == 0 || he == EXP_MAX) vertex_lo = '0;
+    else if (e <= 0) vertex_lo = {field[8], {(E+M){1'b0}}};
+    else vertex_lo = {field[8], e[E-1:0], frac};
+  endfunction
+  // the triangle's record (one response): the matrix, C's low parts, the shared-edge flags
+  localparam int TRIW = 15 * W + 3;
+  logic [TRIW-1:0] tri_wdata, tri_rd;
+  always_comb begin
+    tri_wdata[0 +: 12*W] = rsp_q[0 +: 12*W];
+    for (int j = 0; j < 3; j++)  // C_hi's exponent: the matrix's word 4 j + 3
+      tri_wdata[12*W + j*W +: W] = vertex_lo(rsp_q[12*W + 9*j +: 9], rsp_q[(4*j+3)*W + M +: E]);
+    tri_wdata[15*W +: 3] = rsp_q[12*W + 27 +: 3];
+  end
+  thread_ram #(.W(TRIW), .DEPTH(THREADS)) u_tri (
+    .clk_i(clk_i), .we_i(rsp_we && rsp_ix == 2'd0), .waddr_i(rsp_thread), .wdata_i(tri_wdata),
+    .re_i(1'b1), .raddr_i(sel[U_IS]), .rdata_o(tri_rd));
+
+  // the world rays o, d per thread, one memory per ray (a packet's 4 rays enter in one cycle) and
+  // reader: k = 0 the traversal unit (o, d of every ray), 1 the rebase unit (o, d of the step's
+  // ray), 2 the wide transformation (d), 3 the triangle test (d: an identity instance's);
+  // w_rd[k][r] = {o, d} (d alone for k >= 2), read in the issue cycle as the per-ray fields
+  localparam int WRD = 6 * W;
+  logic in_take;
+  logic [16*WRD-1:0] w_rd;
+  assign in_take = valid_i && ready_o;
+  for (genvar k = 0; k < 4; k++) begin : g_world
+    localparam int U = k == 0 ? U_TRAV : k == 1 ? U_RB : k == 2 ? U_XW : U_IS;
+    localparam int BW = k < 2 ? 6 * W : 3 * W;
+    for (genvar r = 0; r < 4; r++) begin : g_ray
+      logic [BW-1:0] rdata;
+      thread_ram #(.W(BW), .DEPTH(THREADS)) u_w (
+        .clk_i(clk_i), .we_i(in_take), .waddr_i(thread_i), .wdata_i(BW'({o_i[r*3*W +: 3*W], d_i[r*3*W +: 3*W]})),
+        .re_i(1'b1), .raddr_i(sel[U]), .rdata_o(rdata));
+      assign w_rd[(4*k+r)*WRD +: WRD] = WRD'(rdata);
+    end
+  end
+  // the object-space rays' high words per thread for the traversal unit, one memory per ray and
+  // pass (so, sd)
+  logic [8*3*W-1:0] obj_trav;             // ray r's so at 3W r, its sd at 3W (4 + r)
+  for (genvar k = 0; k < 8; k++) begin : g_obj_trav
+    thread_ram #(.W(3 * W), .DEPTH(THREADS)) u_obj (
+      .clk_i(clk_i), .we_i(out_valid[U_XW] && xw_tag[TW+2] == (k >= 4) && xw_tag[TW +: 2] == 2'(k % 4)),
+      .waddr_i(xw_tag[TW-1:0]), .wdata_i(xw_hi), .re_i(1'b1), .raddr_i(sel[U_TRAV]),
+      .rdata_o(obj_trav[k*3*W +: 3*W]));
+  end
+  // xform_identity (op_inst_xform of an identity instance): the bits xform_point/xform_vector give
+  // for an identity with signed zeros, from the matrix's signs sg
+  function automatic logic [3*W-1:0] identity(input logic [11:0] sg, input logic [3*W-1:0] v, input logic point);
+    logic [3*W-1:0] r;
+    for (int kk = 0; kk < 3; kk++) begin
+      logic [W-1:0] c;
+      logic nan, neg;
+      c = v[kk*W +: W];
+      nan = c[M +: E] == EXP_MAX && c[M-1:0] != 0;
+      neg = point ? sg[4*kk+3] : 1'b1;
+      for (int j = 0; j < 3; j++) begin
+        if (j != kk && v[j*W + M +: E] == EXP_MAX) nan = 1'b1;
+        neg &= j == kk ? v[j*W + W-1] : sg[4*kk+j] ^ v[j*W + W-1];
+      end
+      r[kk*W +: W] = nan ? DNAN : c[M +: E] != 0 ? c : {neg, {(W-1){1'b0}}};
+    end
+    identity = r;
+  endfunction
+  // an object-space ray's high words: the memory's, or an identity instance's from the world ray
+  function automatic logic [3*W-1:0] obj_ray(input logic lo_zero, input logic [11:0] sg, input logic [3*W-1:0] world,
+                                             input logic [3*W-1:0] obj, input logic point);
+    obj_ray = lo_zero ? identity(sg, world, point) : obj;
+  endfunction
+
+  // the traversal unit's rays: read in the cycle s its operation enters the issue FIFO, they come
+  // in s + 1, when they are written into their entry's place beside the FIFO (trav_rays, the same
+  // slots in the same order) and, if that entry is the FIFO's head, go to the unit directly: no
+  // cycle added
+  logic trav_obj_q, trav_scene_q, trav_wr_q, trav_slot_q, trav_head, trav_tail;
+  logic [3:0] trav_lo_zero_q;
+  logic [4*12-1:0] trav_id_sg_q;
+  logic [30*W-1:0] trav_rd, trav_rays [2];  // {o, d} of the 4 rays, the box
+  always_ff @(posedge clk_i) begin
+    trav_obj_q <= t_trav_obj[sel[U_TRAV]];
+    trav_scene_q <= t_trav_kind[sel[U_TRAV]] == 2'd0;  // the scene clip: the scene's bounds
+    trav_lo_zero_q <= t_trav_lo_zero[sel[U_TRAV]];
+    trav_id_sg_q <= t_trav_id_sg[sel[U_TRAV]];
+    trav_slot_q <= trav_tail;
+    if (trav_wr_q) trav_rays[trav_slot_q] <= trav_rd;
+  end
+  always_ff @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) begin
+      trav_wr_q <= 1'b0;
+      trav_head <= 1'b0;
+      trav_tail <= 1'b0;
+    end else begin
+      trav_wr_q <= accept[U_TRAV];
+      if (accept[U_TRAV]) trav_tail <= !trav_tail;
+      if (op_valid[U_TRAV] && unit_ready[U_TRAV]) trav_head <= !trav_head;
+    end
+  always_comb
+    for (int r = 0; r < 4; r++) begin
+      logic [3*W-1:0] wo, wd;
+      wo = w_rd[r*WRD + 3*W +: 3*W];
+      wd = w_rd[r*WRD +: 3*W];
+      trav_rd[18*W + r*3*W +: 3*W] = !trav_obj_q ? wo :
+        obj_ray(trav_lo_zero_q[r], trav_id_sg_q[r*12 +: 12], wo, obj_trav[r*3*W +: 3*W], 1'b1);
+      trav_rd[6*W + r*3*W +: 3*W] = !trav_obj_q ? wd :
+        obj_ray(trav_lo_zero_q[r], trav_id_sg_q[r*12 +: 12], wd, obj_trav[(4+r)*3*W +: 3*W], 1'b0);
+    end
+  assign trav_rd[0 +: 6*W] = trav_scene_q ? scene_box : rec_rd[15*W +: 6*W];
+  assign {trav_op_o, trav_op_d, trav_op_box} = trav_wr_q && trav_slot_q == trav_head ? trav_rd : trav_rays[trav_head];
+
+  // the per-ray units' rays (the step's ray ray_q of the world rays' memories)
+  logic [WRD-1:0] rb_w;
+  logic [3*W-1:0] rb_o_hi, rb_d_hi, xw_d, is_d;
+  // reader k's word of ray r: a 4-to-1 choice (an index into all of w_rd was a shifter, 5 LUT6
+  // levels in front of xform_wide at 2 threads)
+  function automatic logic [WRD-1:0] world(input int k, input logic [1:0] r);
+    unique case (r)
+      2'd0: world = w_rd[(4*k) * WRD +: WRD];
+      2'd1: world = w_rd[(4*k+1) * WRD +: WRD];
+      2'd2: world = w_rd[(4*k+2) * WRD +: WRD];
+      default: world = w_rd[(4*k+3) * WRD +: WRD];
+    endcase
+  endfunction
+  assign rb_w = world(1, ray_q[U_RB]);
+  assign rb_o_hi = rb_leaf_q ? obj_ray(rb_lo_zero_q, rb_id_sg_q, rb_w[3*W +: 3*W], so_rb[3*W +: 3*W], 1'b1)
+                             : rb_w[3*W +: 3*W];
+  assign rb_d_hi = rb_leaf_q ? obj_ray(rb_lo_zero_q, rb_id_sg_q, rb_w[0 +: 3*W], sd_rb[3*W +: 3*W], 1'b0)
+                             : rb_w[0 +: 3*W];
+  assign xw_d = (3*W)'(world(2, ray_q[U_XW]));
+  assign is_d = obj_ray(is_lo_zero_q, is_id_sg_q, (3*W)'(world(3, ray_q[U_IS])), sd_is, 1'b0);
+
   logic rb_lo;                            // a leaf's rebase of an instance's rays in double words
   assign rb_lo = rb_leaf_q && !rb_lo_zero_q;
 
   rebase_unit #(.E(E), .M(M), .SUM_STAGES(SUM_STAGES)) u_rebase (
     .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(step_q[U_RB]), .ready_o(unit_ready[U_RB]),
-    .o_hi_i(rb_o_hi_q), .o_lo_i(rb_lo ? so_lo_rb : '0), .d_hi_i(rb_d_hi_q), .d_lo_i(rb_lo ? sd_lo_rb : '0),
+    .o_hi_i(rb_o_hi), .o_lo_i(rb_lo ? so_rb[0 +: 3*W] : '0), .d_hi_i(rb_d_hi), .d_lo_i(rb_lo ? sd_rb[0 +: 3*W] : '0),
     .t_i(rb_t_q),
     .valid_o(out_valid[U_RB]), .ready_i(1'b1), .p_hi_o(rb_p_hi), .p_lo_o(rb_p_lo), .te_o(rb_te));
 
   // pass 0 of an instance's rays transforms the rebased origin, pass 1 the direction
   xform_wide #(.E(E), .M(M), .SUM_STAGES(SUM_STAGES)) u_wide (
     .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(step_q[U_XW]), .ready_o(unit_ready[U_XW]),
-    .m_i(xw_m_q), .tlo_i(xw_tlo_q), .p_hi_i(xw_point_q ? p_xw[3*W +: 3*W] : xw_d_q), .p_lo_i(p_xw[0 +: 3*W]),
+    .m_i(rec_rd[0 +: 12*W]), .tlo_i(rec_rd[12*W +: 3*W]), .p_hi_i(xw_point_q ? p_xw[3*W +: 3*W] : xw_d), .p_lo_i(p_xw[0 +: 3*W]),
     .point_i(xw_point_q), .valid_o(out_valid[U_XW]), .ready_i(1'b1), .r_hi_o(xw_hi), .r_lo_o(xw_lo));
 
   assign unit_ready[U_IS] = 1'b1;  // no stall
   isect_rebased #(.E(E), .M(M), .ADD_STAGES(ADD_STAGES), .MUL_STAGES(MUL_STAGES), .DIV_STAGES(DIV_STAGES),
                   .CMP_STAGES(CMP_STAGES), .SUM_STAGES(SUM_STAGES)) u_isect (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(step_q[U_IS]), .m_i(is_m_q), .c_lo_i(is_c_lo_q),
-    .shared_i(is_shared_q), .p_hi_i(p_is[3*W +: 3*W]), .p_lo_i(p_is[0 +: 3*W]), .d_i(is_d_q), .te_i(te_is),
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(step_q[U_IS]), .m_i(tri_rd[0 +: 12*W]), .c_lo_i(tri_rd[12*W +: 3*W]),
+    .shared_i(tri_rd[15*W +: 3]), .p_hi_i(p_is[3*W +: 3*W]), .p_lo_i(p_is[0 +: 3*W]), .d_i(is_d), .te_i(te_is),
     .tmin_i(is_tmin_q), .tmax_i(is_tmax_q), .t0_i(is_t0),
     .valid_o(out_valid[U_IS]), .hit_o(is_hit), .t_o(is_t), .u_o(is_u), .v_o(is_v), .cos_o(is_cos),
     .t_world_o(is_t_world));

@@ -1,10 +1,12 @@
 // trace_thread: one thread of the ray tracing core (trace_core): the state of its packet
-// (trace_state: the rays, alive, best_t, a hit flag per ray, the level and per level the leaf, the
-// list address and have_cur, the current instance/object/triangle and need mask, the object-space
-// rays' high words, best_rel, tmin_rel; the fields only the per-ray units read or write, the rebased
-// origins p, te, t0, the object-space rays' low words and the hits' records, are trace_core's, in
-// thread_ram indexed by thread and ray, with a flag per ray here where the C sets them to zero:
-// lo_zero, t0_zero) and the FSM of
+// (trace_state: alive, best_t, a hit flag per ray, the level and per level the leaf, the list
+// address and have_cur, the current instance/object/triangle and need mask, best_rel, tmin_rel;
+// the rays themselves and the fields only the per-ray units read or write, the world and
+// object-space rays' o and d, the rebased origins p, te, t0 and the hits' records, are
+// trace_core's, in thread_ram indexed by thread (and ray), with a flag per ray here where the C
+// sets them to zero or to a function of other fields: lo_zero (an identity instance's
+// object-space ray, xform_identity of the world ray with the matrix signs id_sg, low words zero),
+// t0_zero) and the FSM of
 // hls/units/trace.c's trace_step (route_after_list, enter_single_object, op_scene_clip, op_walk,
 // rebase_leaf, op_list, op_inst_xform, op_inst_clip, op_tri_xform, op_tri_isect). Per unit it
 // raises a request with the operation's operands (*_req_o and the operand ports) and its issue
@@ -26,17 +28,21 @@
 // algorithm trav_unit has). The stacks and mailboxes live in trav_unit and list_unit.
 // Latency: the sum of the packet's unit operations and batches (a batch: its issue slots plus the
 // unit's latency), their waits for the units and the reads.
-// Resources: the state registers, 22 W bits per ray and 3 flags (the triangle's intermediate
-// values stay in isect_rebased's pipeline; p, te, t0, the low words and the hits' records, 15 W
-// + 64 bits per ray, in trace_core's thread_ram), a descriptor buffer of LBUF words (two
-// responses: 20 at e7m16), about 15 words of routing state and 10 counters of 32 bits; the record
-// unpacking (f24_vertex_lo) and the identity mapping (xform_identity) in wires. Yosys 0.23
-// synth_xilinx at e7m16 (python3 scripts/synth.py --levels trace_thread --hier, 2026-11-29): 5040
-// LUT6, 3440 flip-flops (one each for ld_req and done, the word request and the packet's valid
-// straight from flip-flops), 8 LUT6 levels (5048 LUT6, 3439 flip-flops before done; 5297, 3438 on
-// an earlier RTL before ld_req; 6449, 5410 and 8 with p, te, t0, the low words and the hits' records
-// here; 5718 LUTs and 6183 flip-flops before the header moved to the core and the buffer shrank from
-// 40 words to 20). Its ports: valid_o and mem_req_valid_o 0 LUT6 levels from registers (synth.py --ports).
+// Resources: the state registers, 9 W bits per ray, 3 flags and 12 matrix signs (the rays' o
+// and d, p, te, t0, the object-space rays' low words, the hits' records and the records' operand
+// words in trace_core's thread_ram; the triangle's intermediate values in isect_rebased's
+// pipeline), of the descriptor buffer the 4 words and 13 bits its FSM reads, about 15 words of
+// routing state and 10 counters of 32 bits. Yosys 0.23 synth_xilinx at e7m16 (python3
+// scripts/synth.py --levels trace_thread --hier, 2026-11-29): 2,269 LUT6, 1,908 flip-flops, 7 LUT6
+// levels; synth_ice40 -dsp -noflatten (the per-module flow of python3 scripts/synth.py --dynrtp
+// ice40, 2026-11-29) 2,989 SB_LUT4, 1,905 flip-flops, 2 SB_MAC16. With the rays' o and d and the
+// records' words here (ro, rd, so, sd, the 20-word buffer, f24_vertex_lo, xform_identity): 5040
+// LUT6, 3440 flip-flops, 8 levels, and 5,871 SB_LUT4, 3,437 flip-flops (5048 LUT6, 3439
+// flip-flops before done; 5297, 3438 before ld_req; 6449, 5410 and 8 with p, te, t0, the low
+// words and the hits' records here; 5718 LUTs and 6183 flip-flops before the header moved to the
+// core and the buffer shrank from 40 words to 20). Its ports (synth.py --ports): valid_o and
+// mem_req_valid_o 0 LUT6 levels from registers, t_o 1, ready_i 3 into registers (2 before the
+// rays and the records' words moved), trav_grant_i 1 (2), list_grant_i 3.
 // Handshake: valid/ready at the packet input and the result output; request/grant to the units.
 module trace_thread #(
   parameter int E = 7,
@@ -50,9 +56,7 @@ module trace_thread #(
   input  logic                        valid_i,
   output logic                        ready_o,
   input  logic [2:0]                  flags_i,    // TRACE_SKIP_TOP, TRACE_ANY_HIT, TRACE_IDENTITY
-  input  logic [3:0]                  active_i,
-  input  logic [4*3*(E+M+1)-1:0]      o_i,        // ray i: words 3i .. 3i+2 (x, y, z)
-  input  logic [4*3*(E+M+1)-1:0]      d_i,
+  input  logic [3:0]                  active_i,   // (the rays' o and d: trace_core's)
   input  logic [4*(E+M+1)-1:0]        tmin_i,
   input  logic [4*(E+M+1)-1:0]        tmax_i,
   // hits out (TP_DONE)
@@ -69,29 +73,31 @@ module trace_thread #(
   input  logic [31:0]                 hdr_inst_i,
   input  logic [31:0]                 hdr_top_nodes_i,
   input  logic [31:0]                 hdr_top_lists_i,
-  input  logic [6*(E+M+1)-1:0]        scene_box_i,
   // word read port (descriptors): RW words from the request's word address per response
   output logic                        mem_req_valid_o,
   input  logic                        mem_req_ready_i,
   output logic [31:0]                 mem_addr_o,
   input  logic                        mem_rsp_valid_i,
+  output logic [1:0]                  ld_got_o,    // the index of a response to this thread in its record
   input  logic [32*RW-1:0]            mem_rdata_i,
   input  logic                        node_rsp_i,  // a kd-node read of this thread answered
   output logic                        waiting_o,   // an operation of this thread is in a unit
   output logic [3:0]                  slots_o,     // issue slots of the operation requested (thread_sched)
   output logic [1:0]                  step_ray_o,  // the ray of the batch's next step (the rays' fields in trace_core)
+  output logic                        lo_zero_o,   // the step ray's object-space ray is the identity of its world ray
+  output logic [11:0]                 id_sg_o,     // ... with these matrix signs (xform_identity), its low words zero
   // traversal unit
   output logic                        trav_req_o,
   input  logic                        trav_grant_i,
   output logic [1:0]                  trav_kind_o,
   output logic                        trav_level_o,
-  output logic [4*3*(E+M+1)-1:0]      trav_o_o,
-  output logic [4*3*(E+M+1)-1:0]      trav_d_o,
+  output logic                        trav_obj_o,  // the object-space rays (else the world rays; both trace_core's)
+  output logic [3:0]                  trav_lo_zero_o, // per ray: its object-space ray is the identity of the world ray
+  output logic [4*12-1:0]             trav_id_sg_o, // ... with these matrix signs (ray i: bits 12i ..)
   output logic [4*(E+M+1)-1:0]        trav_tn_o,
   output logic [4*(E+M+1)-1:0]        trav_tf_o,
   output logic [4*(E+M+1)-1:0]        trav_best_o,
   output logic [3:0]                  trav_mask_o,
-  output logic [6*(E+M+1)-1:0]        trav_box_o,
   output logic [31:0]                 trav_nodes_o,
   input  logic                        trav_done_i,
   input  logic [3:0]                  trav_mask_i,
@@ -121,29 +127,20 @@ module trace_thread #(
   // rebase unit
   output logic                        rb_req_o,
   input  logic                        rb_grant_i,
-  output logic [3*(E+M+1)-1:0]        rb_o_hi_o,
-  output logic [3*(E+M+1)-1:0]        rb_d_hi_o,
-  output logic                        rb_lo_zero_o, // the ray's object-space low words are zero (else trace_core's)
   output logic                        t0_zero_o,   // the ray's t0 is +0 (else trace_core's: adders, triangle test)
   output logic [E+M:0]                rb_t_o,
-  output logic                        rb_leaf_o,   // a leaf's rebase: te (else an instance's: t0)
-  input  logic                        rb_done_i,   // (its results p, te, t0: trace_core's)
+  output logic                        rb_leaf_o,   // a leaf's rebase: the object-space ray, te (else the world ray's: t0)
+  input  logic                        rb_done_i,   // (its operands o, d and results p, te, t0: trace_core's)
   // the transformation unit's wide mode
   output logic                        xw_req_o,
   input  logic                        xw_grant_i,
-  output logic [12*(E+M+1)-1:0]       xw_m_o,
-  output logic [3*(E+M+1)-1:0]        xw_tlo_o,
-  output logic [3*(E+M+1)-1:0]        xw_d_o,      // the direction (pass 1; pass 0's origin p: trace_core's)
+  // (the instance's matrix and translation's low words, pass 0's origin p, pass 1's direction: trace_core's)
   output logic                        xw_point_o,
-  input  logic                        xw_done_i,
-  input  logic [3*(E+M+1)-1:0]        xw_hi_i,     // (the low words: trace_core's)
+  input  logic                        xw_done_i,   // (its results, the object-space rays: trace_core's)
   // the triangle test (isect_rebased: the origin path, the transformations, the intersection, t0 + t)
   output logic                        is_req_o,
   input  logic                        is_grant_i,
-  output logic [12*(E+M+1)-1:0]       is_m_o,
-  output logic [3*(E+M+1)-1:0]        is_c_lo_o,
-  output logic [2:0]                  is_shared_o,
-  output logic [3*(E+M+1)-1:0]        is_d_o,      // (p and te: trace_core's)
+  // (the triangle's record, p, te and the direction: trace_core's)
   output logic [E+M:0]                is_tmin_o,
   output logic [E+M:0]                is_tmax_o,
   input  logic                        is_done_i,
@@ -161,7 +158,6 @@ module trace_thread #(
 );
   localparam logic [E-1:0] EXP_MAX = '1;
   localparam logic [W-1:0] POS_INF = {1'b0, EXP_MAX, {M{1'b0}}};
-  localparam logic [W-1:0] DNAN = {1'b0, EXP_MAX, 1'b1, {(M-1){1'b0}}};
   // memory image layout (docs/memory-image.md; hls/units/trace.c)
   localparam int TRI_WORDS = RW;                            // F24_TRIANGLE_RECORD_WORDS
   localparam int INST_WORDS = TRI_WORDS * ((17 + TRI_WORDS - 1) / TRI_WORDS);
@@ -171,9 +167,6 @@ module trace_thread #(
   localparam int LBUF = RW * INST_RSP;
   localparam int C_STEPS = 0, C_LEAVES = 1, C_ENTRIES = 2, C_SKIPS = 3, C_XFORMS = 4, C_ISECTS = 5;
   localparam int C_NODES = 6, C_LISTS = 7, C_MATRICES = 8;
-  if (M < 8) begin : g_m_check
-    $error("trace_thread: M >= 8 (the vertex's low part, 9-bit multiples, converts exactly)");
-  end
 
   // ---- state of the packet in flight (trace_state) ----
   // the FSM's states (trace_step's operations and their unit transactions)
@@ -200,10 +193,12 @@ module trace_thread #(
 
   logic [2:0] flags;
   logic [3:0] active, alive, need;
-  logic [3*W-1:0] ro [4], rd [4], so [4], sd [4];
-  // the object-space rays' low words so_lo, sd_lo are trace_core's (thread_ram); lo_zero[i]: ray
-  // i's are zero (an identity instance's rays pass as wiring), read as zero in their place
+  // the world rays (ro, rd) and the object-space rays (so, sd: high and low words) are trace_core's
+  // (thread_ram); lo_zero[i]: ray i's object-space ray is xform_identity of its world ray with
+  // the matrix signs id_sg[i] and low words zero (an identity instance's rays pass as wiring),
+  // which trace_core makes as it reads the world ray
   logic [3:0] lo_zero;
+  logic [11:0] id_sg [4];
   logic [W-1:0] tmin [4], best_t [4], best_rel [4], tmin_rel [4];
   // t0 (an instance's entry distance, from its rebase) is trace_core's (thread_ram); t0_zero[i]:
   // ray i's is +0 (a new packet, an identity instance), read as +0 in its place
@@ -246,64 +241,20 @@ module trace_thread #(
   endfunction
 
   // ---- the records ----
-  logic [TRI_WORDS*32-1:0] rec;
-  always_comb
-    for (int i = 0; i < TRI_WORDS; i++) rec[i*32 +: 32] = lbuf[i];
-  logic [12*W-1:0] tri_m, inst_m;
-  logic [3*W-1:0] c_lo, inst_tlo;
-  logic [2:0] tri_shared;
-  // f24_vertex_lo: the low part k 2^-8 ulp(hi) of a vertex component from its 9-bit field
-  function automatic logic [W-1:0] vertex_lo(input logic [8:0] field, input logic [E-1:0] he);
-    logic [8:0] mag;
-    logic [M-1:0] frac;
-    int p, e;
-    mag = field[8] ? 9'(-field) : field;
-    p = 0;
-    for (int i = 0; i < 9; i++)
-      if (mag[i]) p = i;
-    frac = M'({{(M-1){1'b0}}, mag} << (M - p));
-    e = {{(32-E){1'b0}}, he};
-    e = e + p - M - 8;
-    if (field == 0 || he == 0 || he == EXP_MAX) vertex_lo = '0;
-    else if (e <= 0) vertex_lo = {field[8], {(E+M){1'b0}}};
-    else vertex_lo = {field[8], e[E-1:0], frac};
-  endfunction
-  always_comb begin
-    tri_m = rec[0 +: 12*W];
-    for (int i = 0; i < 12; i++) inst_m[i*W +: W] = lbuf[i][W-1:0];
-    for (int j = 0; j < 3; j++) begin
-      c_lo[j*W +: W] = vertex_lo(rec[12*W + 9*j +: 9], tri_m[(4*j+3)*W + M +: E]);  // C_hi's exponent
-      inst_tlo[j*W +: W] = lbuf[14 + j][W-1:0];
-    end
-    tri_shared = rec[12*W + 27 +: 3];
-  end
-  // xform_identity: the bits xform_point/xform_vector give for an identity with signed zeros
-  function automatic logic [3*W-1:0] identity(input logic [12*W-1:0] m, input logic [3*W-1:0] v, input logic point);
-    logic [3*W-1:0] r;
-    for (int kk = 0; kk < 3; kk++) begin
-      logic [W-1:0] c;
-      logic nan, neg;
-      c = v[kk*W +: W];
-      nan = c[M +: E] == EXP_MAX && c[M-1:0] != 0;
-      neg = point ? m[(4*kk+3)*W + W-1] : 1'b1;
-      for (int j = 0; j < 3; j++) begin
-        if (j != kk && v[j*W + M +: E] == EXP_MAX) nan = 1'b1;
-        neg &= j == kk ? v[j*W + W-1] : m[(4*kk+j)*W + W-1] ^ v[j*W + W-1];
-      end
-      r[kk*W +: W] = nan ? DNAN : c[M +: E] != 0 ? c : {neg, {(W-1){1'b0}}};
-    end
-    identity = r;
+  // lbuf keeps the words the FSM reads (the unit operands among them, the matrices, the
+  // translation's low words, the triangle's record and the object's bounds, are trace_core's, in
+  // thread_ram written from the same responses: the flip-flops of the words read nowhere here
+  // are removed by synthesis)
+  // the matrix's signs, all xform_identity reads of it (trace_core's identity)
+  function automatic logic [11:0] signs();
+    for (int j = 0; j < 12; j++) signs[j] = lbuf[j][W-1];
   endfunction
 
   // ---- the units ----
-  logic [4*3*W-1:0] ray_o, ray_d, obj_o, obj_d;
   logic [4*W-1:0] v_tmin, v_tmax, v_best_t, v_best_rel, v_tmin_rel;
   always_comb
     for (int i = 0; i < 4; i++) begin
-      ray_o[i*3*W +: 3*W] = ro[i];
-      ray_d[i*3*W +: 3*W] = rd[i];
-      obj_o[i*3*W +: 3*W] = so[i];
-      obj_d[i*3*W +: 3*W] = sd[i];
+      trav_id_sg_o[i*12 +: 12] = id_sg[i];
       v_tmin[i*W +: W] = tmin[i];
       v_best_t[i*W +: W] = best_t[i];
       v_best_rel[i*W +: W] = best_rel[i];
@@ -311,11 +262,9 @@ module trace_thread #(
     end
   assign v_tmax = tmax_i;  // taken with the packet only (best_t holds it afterwards)
   assign trav_req_o = st == S_SC_GO || st == S_START_GO || st == S_WALK_GO || st == S_IC_CLIP;
-  assign trav_o_o = st == S_SC_GO || (st != S_IC_CLIP && !level) ? ray_o : obj_o;
-  assign trav_d_o = st == S_SC_GO || (st != S_IC_CLIP && !level) ? ray_d : obj_d;
+  assign trav_obj_o = !(st == S_SC_GO || (st != S_IC_CLIP && !level));
+  assign trav_lo_zero_o = lo_zero;
   assign trav_best_o = level ? v_best_rel : v_best_t;
-  assign trav_box_o = st == S_SC_GO ? scene_box_i : {lbuf[13][W-1:0], lbuf[12][W-1:0], lbuf[11][W-1:0],
-                                               lbuf[10][W-1:0], lbuf[9][W-1:0], lbuf[8][W-1:0]};
   logic [4*W-1:0] clip_tn, clip_tf, r_leaf_tn;   // the traversal unit's last result
   logic [3:0] clip_mask, r_leaf_mask;
   logic r_have_cur, r_leaf;
@@ -366,28 +315,14 @@ module trace_thread #(
   logic rb_leaf;
   assign rb_leaf = bop == B_RB_LEAF;
   assign rb_req_o = batch_req && (bop == B_RB_LEAF || bop == B_RB_INST);
-  assign rb_o_hi_o = rb_leaf ? so[ir] : ro[ir];
-  assign rb_d_hi_o = rb_leaf ? sd[ir] : rd[ir];
-  assign rb_lo_zero_o = lo_zero[ir];
+  assign lo_zero_o = lo_zero[ir];
+  assign id_sg_o = id_sg[ir];
   assign rb_t_o = leaf_tn[rb_leaf][ir];
   assign rb_leaf_o = rb_leaf;
   assign step_ray_o = ir;
   assign xw_req_o = batch_req && bop == B_XW;
-  assign xw_m_o = inst_m;
-  assign xw_tlo_o = inst_tlo;
-  assign xw_d_o = rd[ir];
   assign xw_point_o = !ipass;
   assign is_req_o = batch_req && bop == B_TRI;
-  assign is_m_o = tri_m;
-  // the vertices' low parts registered (vertex_lo is 8 LUT6 levels; with the core's operand
-  // multiplexer and isect_rebased's first segment it was a path of 13 at 4 threads). They follow
-  // the record a cycle late, never read then: the triangle's issue comes at least two cycles after
-  // the record's last word (the batch's request, the scheduler's set, its issue)
-  logic [3*W-1:0] c_lo_q;
-  always_ff @(posedge clk_i) c_lo_q <= c_lo;
-  assign is_c_lo_o = c_lo_q;
-  assign is_shared_o = tri_shared;
-  assign is_d_o = sd[ir];
   assign is_inst_o = inst;
   assign is_tri_o = tri_ix;
   assign hit_o = hit;
@@ -420,6 +355,7 @@ module trace_thread #(
   assign mem_req_valid_o = ld_req;
   assign waiting_o = st == S_TRAV_WAIT || st == S_LIST_WAIT ||
                      (st == S_BATCH && {idone, ipass, itodo} != {1'b0, cpass, ctodo});
+  assign ld_got_o = ld_got;
   assign mem_addr_o = ld_base + 32'(RW) * 32'(ld_sent);
   assign hdr_want_o = st == S_HDR;
   assign ready_o = st == S_IDLE;
@@ -478,8 +414,6 @@ module trace_thread #(
             have_cur[0] <= 1'b0;
             have_cur[1] <= 1'b0;
             for (int i = 0; i < 4; i++) begin
-              ro[i] <= o_i[i*3*W +: 3*W];
-              rd[i] <= d_i[i*3*W +: 3*W];
               tmin[i] <= tmin_i[i*W +: W];
               tmin_rel[i] <= tmin_i[i*W +: W];
               best_t[i] <= v_tmax[i*W +: W];
@@ -596,14 +530,7 @@ module trace_thread #(
             end else ctodo[cr] <= 1'b0;
             unique case (bop)
               B_RB_INST: t0_zero[cr] <= 1'b0;  // t0, p and a leaf's te: trace_core's thread_ram
-              B_XW:
-                if (cpass) begin
-                  sd[cr] <= xw_hi_i;
-                  lo_zero[cr] <= 1'b0;
-                end else begin
-                  so[cr] <= xw_hi_i;
-                  lo_zero[cr] <= 1'b0;
-                end
+              B_XW: lo_zero[cr] <= 1'b0;  // so or sd: trace_core's thread_ram
               B_IC_ADD: begin
                 best_rel[cr] <= add_r_i[0 +: W];
                 tmin_rel[cr] <= add_r_i[W +: W];
@@ -638,8 +565,7 @@ module trace_thread #(
           if (lbuf[13][0] || flags[2]) begin
             for (int i = 0; i < 4; i++)
               if (need[i]) begin
-                so[i] <= identity(inst_m, ro[i], 1'b1);
-                sd[i] <= identity(inst_m, rd[i], 1'b0);
+                id_sg[i] <= signs();
                 lo_zero[i] <= 1'b1;
                 t0_zero[i] <= 1'b1;
               end
