@@ -630,6 +630,14 @@ def rtlil_modules(path):
     return mods
 
 
+def renumbered(text):
+    """A module's RTLIL with Yosys's automatic name numbers ($procmux$1234, ...) counted from 1 in the
+    order they appear: the numbers come from one counter over the whole elaboration, so a change in
+    one module would otherwise change the text of every module elaborated after it."""
+    seen = {}
+    return re.sub(r"\$(\d+)\b", lambda g: "$" + str(seen.setdefault(g[1], len(seen) + 1)), text)
+
+
 def rtlil_children(text):
     """The module types a module's cells instantiate (not Yosys's internal $ cells)."""
     types = (line.split()[1] for line in text.splitlines() if line.startswith("  cell "))
@@ -663,7 +671,7 @@ def module_netlists(part, top, params, folder, files=RTL):
         return "".join(l for l in texts[m].splitlines(True) if re.match(r"\s+wire .*\b(input|output|inout) ", l))
 
     def key(m):
-        made_of = [module_flow(part, "TOP"), texts[m]] + [ports(c) for c in sorted(rtlil_children(texts[m]))]
+        made_of = [module_flow(part, "TOP"), renumbered(texts[m])] + [ports(c) for c in sorted(rtlil_children(texts[m]))]
         return hashlib.sha1("\0".join(made_of).encode()).hexdigest()[:20]
 
     def mapped(m):
