@@ -276,6 +276,12 @@ def module_levels(top, params, flat=True):
               " > ".join(f"{t}:{n}" for t, n in path if LEVEL_CELLS.get(t) and not n.startswith("$")))
 
 
+# iCE40 cell counts of a cell dict (module_cells, hierarchy_totals): logic, flip-flops, block RAM, multipliers
+ICE40_COUNTS = {"SB_LUT4": lambda c: c.get("SB_LUT4", 0),
+                "SB_DFF*": lambda c: sum(v for k, v in c.items() if k.startswith("SB_DFF")),
+                "SB_RAM40_4K": lambda c: c.get("SB_RAM40_4K", 0), "SB_MAC16": lambda c: c.get("SB_MAC16", 0)}
+
+
 def module_ice40(top, params):
     """--ice40: one module's synth_ice40 -dsp totals as the DynRTP's are measured (module by module,
     module_netlists, its netlists kept in build/synth/ice40_<module and parameters>/) and per part
@@ -284,9 +290,7 @@ def module_ice40(top, params):
     mods, name, cpu = module_netlists("ice40", top, params, os.path.join(OUT, f"ice40_{tag}"))
     own = module_cells(mods)
     sub, tot = hierarchy_totals(own, name)
-    counts = {"SB_LUT4": lambda c: c.get("SB_LUT4", 0),
-              "SB_DFF*": lambda c: sum(v for k, v in c.items() if k.startswith("SB_DFF")),
-              "SB_RAM40_4K": lambda c: c.get("SB_RAM40_4K", 0), "SB_MAC16": lambda c: c.get("SB_MAC16", 0)}
+    counts = ICE40_COUNTS
     print(f"{top} {' '.join(f'{k}={v}' for k, v in params.items())}: " +
           ", ".join(f"{f(tot)} {k}" for k, f in counts.items()) + f" ({sum(cpu.values())} s of Yosys CPU)")
     parts = {k: parts_of(own, sub, name, f) for k, f in counts.items()}
@@ -682,11 +686,12 @@ def module_netlists(part, top, params, folder, files=RTL):
                         f"{module_flow(part, m)}; write_json {full}", log)
             cpu = re.search(r"CPU: user ([\d.]+)s system ([\d.]+)s", cpu)
             cpu = round(float(cpu[1]) + float(cpu[2]))
-            entry = json.load(open(full))["modules"][json_name(m)]
+            kept = {"module": m, "cpu_seconds": cpu, "netlist": json.load(open(full))["modules"][json_name(m)]}
             os.remove(full)
-            json.dump({"module": m, "cpu_seconds": cpu, "netlist": entry}, open(path + ".tmp", "w"))
+            json.dump(kept, open(path + ".tmp", "w"))
             os.replace(path + ".tmp", path)  # only a whole netlist is ever found under its name
             print(f"synth: {part}: {key_name(json_name(m))} mapped, {cpu} s", file=sys.stderr, flush=True)
+            return kept
         return json.load(open(path))
 
     order = sorted(used, key=lambda m: -len(texts[m]))
@@ -740,10 +745,11 @@ def dynrtp_ice40():
     mods, top, cpu = module_netlists("ice40", "dynrtp", DYNRTP_PARAMS, DYNRTP_DIR)
     own = module_cells(mods)
     sub, tot = hierarchy_totals(own, top)
-    lut4 = lambda c: c.get("SB_LUT4", 0)
-    return {"ice40_lut4": lut4(tot), "ice40_ff": sum(v for k, v in tot.items() if k.startswith("SB_DFF")),
-            "ice40_dsp": tot.get("SB_MAC16", 0), "ice40_bram": tot.get("SB_RAM40_4K", 0),
-            "bram_bits": 4096 * tot.get("SB_RAM40_4K", 0), "ice40_units_lut4": parts_of(own, sub, top, lut4),
+    c = {k: f(tot) for k, f in ICE40_COUNTS.items()}
+    lut4 = ICE40_COUNTS["SB_LUT4"]
+    return {"ice40_lut4": c["SB_LUT4"], "ice40_ff": c["SB_DFF*"], "ice40_dsp": c["SB_MAC16"],
+            "ice40_bram": c["SB_RAM40_4K"], "bram_bits": 4096 * c["SB_RAM40_4K"],
+            "ice40_units_lut4": parts_of(own, sub, top, lut4),
             "ice40_unit_parts_lut4": unit_parts(own, sub, top, lut4),
             "ice40_seconds": sum(cpu.values())}
 
