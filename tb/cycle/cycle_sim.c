@@ -37,8 +37,8 @@ void cycle_config_default(cycle_config *c)
     c->latency[OP_TRAV] = 44;     /* trace_core's issue FIFO 1 + trav_unit 38 (state and stack read, prune, queue,
                                    * trav_node 21, split and push, its node read answering in the next cycle) + 2
                                    * (the kd-node cache's hit: 3) + 3 (trace_thread's states from the result to the
-                                   * next request) - the issue slot; the scene clip: 6 slots, trav_clip's chain, the
-                                   * start */
+                                   * next request) - the issue slot: 13 of it before its trav_node slot (trav_front
+                                   * + node_read), 31 after; the scene clip: 6 slots, trav_clip's chain, the start */
     c->latency[OP_OBJCLIP] = 67;  /* trace_thread: the object's record (2 matrix cache lines), the mailboxes cleared
                                    * (a list unit operation, not waited for), the relative distances (an adder batch
                                    * after trace_core's issue stage), the clip (6 slots, trav_clip), the start (a
@@ -60,6 +60,14 @@ void cycle_config_default(cycle_config *c)
     c->surface_miss = 13;         /* a packet without hits: rgs_arb's register, rgs_surface's stages and queue,
                                    * nothing read */
     c->shade_hit = 3;             /* the shading cache_read's hit */
+    c->trav_front = 9;            /* trace_core's issue FIFO 1, trav_unit's stages A to E 7 (the walker state's and
+                                   * the stack's read, the prune's comparators 4, D, E), its queue 1: a clip's first
+                                   * slab plane enters trav_node 9 cycles after the issue */
+    c->node_read = 4;             /* a kd-tree entry's node: its request's queue 1, the kd-node cache's hit 3 */
+    c->objclip_front = 22;        /* trace_thread's steps from an object clip's decision to the clip's issue (the
+                                   * records, the mailboxes' clear, the relative distances: 17 + n for an identity
+                                   * instance's n rays, measured on the RTL), so the 36 after its last slot are the
+                                   * RTL's (the clip's 28, the start, the thread's states) */
     c->latency[OP_LIGHT] = 93;    /* rgs_arb's register 1 + rgs_light 87 (rgs_light_colour's 27 beside it) + rgs_ctrl's
                                    * state (LCALC 93) */
     c->latency[OP_ACCUM] = 69;    /* rgs_arb's register 1, rgs_accum: its operand's register 1 + rgs_spawn's 67 */
@@ -93,7 +101,8 @@ void rgs_counters_add(rgs_counters *sum, const rgs_counters *c)
 
 /* ---- one pipe ------------------------------------------------------------------------------ */
 
-enum { TH_IDLE, TH_MEMORY, TH_QUEUED, TH_UNIT };
+/* TH_FRONT: the thread's own steps before its operation joins the unit's queue (op_front) */
+enum { TH_IDLE, TH_MEMORY, TH_FRONT, TH_QUEUED, TH_UNIT };
 
 /* A thread's packet in the core for the CYCLE_LOG file (docs/cycle-model.md): the cycle its first
  * core operation was decided, its core operations and issue slots by kind, and its thread-cycles
@@ -110,6 +119,7 @@ typedef struct {
     uint32_t state, x0, y0, wait_kind;
     uint64_t since; /* cycle the current state began */
     uint64_t began; /* cycle it took its block (per-pixel cycles) */
+    uint64_t node_at; /* its traversal operation can take trav_node's first slot from this cycle on */
     uint32_t light_held; /* the light record its block controller holds (rgs_ctrl; UINT32_MAX: none) */
     pixel_cost cost[TRACE_PACKET]; /* its block's per-pixel cost so far (if kept) */
     packet_log pkt;      /* its packet in the core (CYCLE_LOG only) */
@@ -135,7 +145,9 @@ typedef struct {
     pixel_cost *costs; /* per pixel (NULL: not kept) */
     thread *th;
     ready_set queue[UNIT_KINDS];
-    uint64_t free_at[UNIT_KINDS];
+    uint64_t free_at[UNIT_KINDS]; /* a unit's issue is free from this cycle on */
+    uint32_t *trav_q, trav_head, trav_n; /* the traversal unit's queue: its operations in issue order (a ring) */
+    uint64_t trav_free;                  /* trav_node's slots are free from this cycle on */
     uint64_t shade_port_free; /* the RGS's line port to the shading cache is free from this cycle on */
     uint64_t *heap; /* events: cycle << 16 | thread, min first */
     uint32_t heap_n;
@@ -216,13 +228,18 @@ static void ready_set_take(ready_set *q, uint32_t id, uint32_t threads)
     q->ptr = (id + 1) % threads;
 }
 
+/* The cycles an operation holds its unit's issue: the traversal unit takes an operation a cycle
+ * (trace_core's issue FIFO, trav_unit's queue), its trav_node slots come later (trav_slot); the
+ * other units are held for all its slots (a batch's ray steps, one a cycle; rays shaded). */
+static uint32_t issue_slots(const unit_op *op) { return op_kind_unit(op->kind) == UNIT_TRAV ? 1u : op->slots; }
+
 /* Thread id joins unit u's queue. */
 static void enqueue(pipe_state *p, int u, uint32_t id)
 {
     ready_set_add(&p->queue[u], id);
     if (p->probe)
         p->probe(p->probe_arg, p->index, SCHED_READY, p->now + (p->in_cycle ? 1u : 0u), (uint32_t)u, id,
-                 p->th[id].op.slots);
+                 issue_slots(&p->th[id].op));
     if (p->tp)
         trace_queue(p->tp, u, p->now, p->queue[u].count);
 }
@@ -242,6 +259,7 @@ static void leave_state(pipe_state *p, thread *t)
         p->st.wait_unit[op_kind_unit(t->op.kind)] += d;
         t->pkt.wait_unit[op_kind_unit(t->op.kind)] += d;
         break;
+    case TH_FRONT:
     case TH_UNIT: p->st.thread_cycles[ST_UNIT_BUSY] += d; break;
     default: p->st.thread_cycles[ST_NO_WORK] += d; break;
     }
@@ -333,6 +351,30 @@ static void log_packet(pipe_state *p, uint32_t id, int core_op)
     }
 }
 
+/* The cycles of a thread's own steps before its operation joins the unit's queue, a part of its
+ * latency: an object clip's (trace_thread reads the object's record, clears the mailboxes and
+ * computes the relative distances, then raises the clip), none for the others. */
+static uint32_t op_front(const cycle_config *cfg, const unit_op *op)
+{
+    if (op->kind != OP_OBJCLIP)
+        return 0;
+    return cfg->objclip_front < cfg->latency[op->kind] ? cfg->objclip_front : cfg->latency[op->kind];
+}
+
+/* Thread id's operation (its memory data there) joins its unit's queue, after its own steps. */
+static void join_unit(pipe_state *p, uint32_t id)
+{
+    thread *t = &p->th[id];
+    const uint32_t front = op_front(p->cfg, &t->op);
+    if (front) {
+        t->state = TH_FRONT;
+        heap_push(p, p->now + front, id);
+        return;
+    }
+    t->state = TH_QUEUED;
+    enqueue(p, (int)op_kind_unit(t->op.kind), id);
+}
+
 /* A thread's result has arrived (or it is idle): it decides its next operation, reads that
  * operation's memory blocks, and waits for them or joins the unit's queue. */
 static void advance_thread(pipe_state *p, uint32_t id)
@@ -370,8 +412,7 @@ next_op:
         t->state = TH_MEMORY;
         heap_push(p, ready, id);
     } else {
-        t->state = TH_QUEUED;
-        enqueue(p, (int)op_kind_unit(t->op.kind), id);
+        join_unit(p, id);
     }
 }
 
@@ -438,7 +479,75 @@ static uint64_t rgs_start(pipe_state *p, thread *t)
     return shade_port_take(p, lines) + p->cfg->shade_hit + lines - 1;
 }
 
-/* One cycle: compute (each unit picks its issue from the current state), then commit. */
+/* The cycles from a traversal operation's issue to its first trav_node slot with nothing ahead
+ * of it (trav_unit's stages, and the node's words for a kd-tree entry that reads one): a part of
+ * its latency, at most what its own steps before the issue (op_front) left. */
+static uint32_t node_lead(const cycle_config *cfg, const unit_op *op)
+{
+    const uint32_t left = cfg->latency[op->kind] - op_front(cfg, op);
+    uint32_t e = cfg->trav_front;
+    for (uint32_t r = 0; r < op->n_reads; r++)
+        if (op->read[r].kind == MEM_NODES) {
+            e += cfg->node_read;
+            break;
+        }
+    return e < left ? e : left;
+}
+
+/* Thread id's operation takes its `slots` cycles of its unit's datapath from now on (the
+ * issue's, trav_node's for the traversal): busy, the waveform, and its result `after` cycles
+ * after its work's last slot (work from `start`: now, or when the RGS's line port has taken it). */
+static void occupy(pipe_state *p, uint32_t id, uint64_t start, uint32_t after)
+{
+    const thread *t = &p->th[id];
+    const int u = (int)op_kind_unit(t->op.kind);
+    p->st.busy[u] += t->op.slots;
+    if (p->tp)
+        trace_busy(p->tp, u, p->now, id, t->op.slots);
+    heap_push(p, start + t->op.slots - 1 + after, id);
+}
+
+/* The traversal unit's queue, in issue order: thread id's operation can enter trav_node from
+ * `at` on. */
+static void trav_push(pipe_state *p, uint32_t id, uint64_t at)
+{
+    p->th[id].node_at = at;
+    p->trav_q[(p->trav_head + p->trav_n++) % p->cfg->threads_per_pipe] = id;
+}
+
+/* The queue's head, if it can take trav_node's slots now (UINT32_MAX: none). */
+static uint32_t trav_slot(const pipe_state *p)
+{
+    if (!p->trav_n || p->trav_free > p->now)
+        return UINT32_MAX;
+    const uint32_t id = p->trav_q[p->trav_head];
+    return p->th[id].node_at <= p->now ? id : UINT32_MAX;
+}
+
+/* Unit u issues thread id's operation now. */
+static void issue_op(pipe_state *p, int u, uint32_t id)
+{
+    const uint32_t cap = p->cfg->threads_per_pipe;
+    thread *t = &p->th[id];
+    ready_set_take(&p->queue[u], id, cap);
+    leave_state(p, t);
+    t->state = TH_UNIT;
+    p->free_at[u] = p->now + issue_slots(&t->op);
+    p->st.ops[u]++;
+    if (p->probe)
+        p->probe(p->probe_arg, p->index, SCHED_ISSUE, p->now, (uint32_t)u, id, issue_slots(&t->op));
+    if (p->tp) {
+        trace_issue(p->tp, u, p->now);
+        trace_queue(p->tp, u, p->now, p->queue[u].count);
+    }
+    if (u == UNIT_TRAV)
+        trav_push(p, id, p->now + node_lead(p->cfg, &t->op));
+    else
+        occupy(p, id, rgs_start(p, t), op_latency(p->cfg, &t->op));
+}
+
+/* One cycle: compute (each unit picks its issue, trav_node its operation, from the current
+ * state), then commit. */
 static void pipe_cycle(pipe_state *p)
 {
     const uint32_t cap = p->cfg->threads_per_pipe;
@@ -447,32 +556,28 @@ static void pipe_cycle(pipe_state *p)
         const int u = p->cfg->reverse_order ? UNIT_KINDS - 1 - k : k;
         issue[u] = p->queue[u].count && p->free_at[u] <= p->now ? ready_first(&p->queue[u], cap) : UINT32_MAX;
     }
+    const uint32_t slot = trav_slot(p);
     p->n_arrived = 0;
     while (p->heap_n && p->heap[0] >> 16 == p->now) /* results and memory data arriving now */
         p->arrived[p->n_arrived++] = (uint32_t)(heap_pop(p) & 0xFFFFu);
-    for (int u = 0; u < UNIT_KINDS; u++) { /* phase 2: commit, in a fixed order */
-        if (issue[u] == UINT32_MAX)
-            continue;
-        ready_set_take(&p->queue[u], issue[u], cap);
-        thread *t = &p->th[issue[u]];
-        leave_state(p, t);
-        t->state = TH_UNIT;
-        p->free_at[u] = p->now + t->op.slots;
-        p->st.busy[u] += t->op.slots;
-        p->st.ops[u]++;
-        if (p->probe)
-            p->probe(p->probe_arg, p->index, SCHED_ISSUE, p->now, (uint32_t)u, issue[u], t->op.slots);
-        heap_push(p, rgs_start(p, t) + t->op.slots - 1 + op_latency(p->cfg, &t->op), issue[u]);
-        if (p->tp) {
-            trace_issue(p->tp, u, p->now, issue[u], t->op.slots);
-            trace_queue(p->tp, u, p->now, p->queue[u].count);
-        }
+    for (int u = 0; u < UNIT_KINDS; u++) /* phase 2: commit, in a fixed order */
+        if (issue[u] != UINT32_MAX)
+            issue_op(p, u, issue[u]);
+    if (slot != UINT32_MAX) {
+        const unit_op *op = &p->th[slot].op;
+        p->trav_head = (p->trav_head + 1) % cap;
+        p->trav_n--;
+        p->trav_free = p->now + op->slots;
+        occupy(p, slot, p->now, op_latency(p->cfg, op) - op_front(p->cfg, op) - node_lead(p->cfg, op));
     }
     qsort(p->arrived, p->n_arrived, sizeof *p->arrived, cmp_u32);
     p->in_cycle = 1;
     for (uint32_t i = 0; i < p->n_arrived; i++) {
         thread *t = &p->th[p->arrived[i]];
         if (t->state == TH_MEMORY) { /* data is here: join the unit's queue */
+            leave_state(p, t);
+            join_unit(p, p->arrived[i]);
+        } else if (t->state == TH_FRONT) {
             leave_state(p, t);
             t->state = TH_QUEUED;
             enqueue(p, (int)op_kind_unit(t->op.kind), p->arrived[i]);
@@ -485,15 +590,21 @@ static void pipe_cycle(pipe_state *p)
         p->last_event = p->now;
 }
 
+static uint64_t max_u64(uint64_t a, uint64_t b) { return a > b ? a : b; }
+
 /* The first cycle from p->now on at which anything can happen (UINT64_MAX: nothing pending). */
 static uint64_t next_cycle(const pipe_state *p)
 {
     uint64_t n = p->heap_n ? p->heap[0] >> 16 : UINT64_MAX;
     for (int u = 0; u < UNIT_KINDS; u++)
         if (p->queue[u].count) {
-            const uint64_t f = p->free_at[u] > p->now ? p->free_at[u] : p->now;
+            const uint64_t f = max_u64(p->free_at[u], p->now);
             n = f < n ? f : n;
         }
+    if (p->trav_n) {
+        const uint64_t f = max_u64(max_u64(p->th[p->trav_q[p->trav_head]].node_at, p->trav_free), p->now);
+        n = f < n ? f : n;
+    }
     return n;
 }
 
@@ -576,7 +687,8 @@ cycle_sim *cycle_create(const cycle_config *cfg)
         p->th = calloc(n, sizeof *p->th);
         p->heap = calloc(n, sizeof *p->heap);
         p->arrived = calloc(n, sizeof *p->arrived);
-        ok = p->th && p->heap && p->arrived && mem_iface_init(&p->mi, &cfg->mem) == 0;
+        p->trav_q = calloc(n, sizeof *p->trav_q);
+        ok = p->th && p->heap && p->arrived && p->trav_q && mem_iface_init(&p->mi, &cfg->mem) == 0;
         for (int u = 0; ok && u < UNIT_KINDS; u++)
             ok = (p->queue[u].ready = calloc(ready_words(n), sizeof(uint64_t))) != NULL;
     }
@@ -596,6 +708,7 @@ void cycle_free(cycle_sim *s)
         free(p->th);
         free(p->heap);
         free(p->arrived);
+        free(p->trav_q);
         for (int u = 0; u < UNIT_KINDS; u++)
             free(p->queue[u].ready);
         mem_iface_free(&p->mi);
@@ -682,7 +795,8 @@ static void pipe_reset(pipe_state *p, const uint32_t *mem, const rgs_config *rcf
         memset(p->queue[u].ready, 0, ready_words(p->cfg->threads_per_pipe) * sizeof(uint64_t));
         p->free_at[u] = 0;
     }
-    p->shade_port_free = 0;
+    p->shade_port_free = p->trav_free = 0;
+    p->trav_head = p->trav_n = 0;
     p->heap_n = p->n_tiles = p->have_tile = p->active = 0;
     p->now = p->last_event = 0;
     memset(&p->counters, 0, sizeof p->counters);

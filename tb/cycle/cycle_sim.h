@@ -14,7 +14,12 @@
  *     (the RTL scheduler's policy, rtl/thread_sched.sv) when its issue slots are free; the
  *     operation occupies `slots` issue cycles (transformation steps, rays intersected, rays
  *     shaded) and its result leaves the pipeline `latency` cycles after its last slot, when the
- *     thread decides its next operation (the routing of paths a..g).
+ *     thread decides its next operation (the routing of paths a..g);
+ *   - the traversal unit, as rtl/trav_unit.sv, takes one operation per issue cycle into its
+ *     queue; its datapath (trav_node) takes the queue's operations in issue order, a clip for its
+ *     `slots` (the slab planes), a kd-tree entry for one, each once it got there (trav_front
+ *     cycles after its issue, + node_read for a node's words, + objclip_front for an object
+ *     clip's own steps); the result leaves the rest of its latency after its last slot.
  * Two-phase clock (as in Utah's simtrax): per cycle, every unit decides from the current state
  * whom it issues, then all changes commit in a fixed order (issues, then the threads whose
  * results arrive, in thread order), so nothing depends on the order units are stepped. Cycles in
@@ -40,6 +45,12 @@ typedef struct {
                                        * misses pass rgs_surface in a cycle each, nothing is read) */
     uint32_t shade_hit;               /* cycles from a word's request to its answer on a shading cache hit (the
                                        * first word of a light record rgs_ctrl reads) */
+    uint32_t trav_front;              /* cycles from a traversal operation's issue to its first trav_node slot when
+                                       * nothing is ahead of it (rtl/trav_unit.sv; part of its kind's latency) */
+    uint32_t node_read;               /* ... more for a kd-tree entry that reads its node (trav_unit's N stage waits
+                                       * for the node's words) */
+    uint32_t objclip_front;           /* ... more for an object clip (trace_thread's steps before it issues the clip:
+                                       * the records, the mailboxes' clear, the relative distances) */
     uint32_t tile;                    /* tile edge in pixels (even) handed out by the controller */
     uint32_t epoch;                   /* cycles between controller refills */
     uint32_t host_threads;            /* simulator threads (no effect on any result) */

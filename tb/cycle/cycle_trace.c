@@ -214,11 +214,12 @@ static void settle(trace_pipe *tp, uint64_t until)
     }
 }
 
-void trace_issue(trace_pipe *tp, int u, uint64_t t, uint32_t tid, uint32_t slots)
+void trace_issue(trace_pipe *tp, int u, uint64_t t) { set(tp, (uint32_t)u * SIG_PER_UNIT + S_ISSUE, t, 1, t + 1); }
+
+void trace_busy(trace_pipe *tp, int u, uint64_t t, uint32_t tid, uint32_t slots)
 {
     const uint32_t s = (uint32_t)u * SIG_PER_UNIT;
     set(tp, s + S_BUSY, t, 1, t + slots);
-    set(tp, s + S_ISSUE, t, 1, t + 1);
     set(tp, s + S_TID, t, tid, t + slots);
 }
 

@@ -3,8 +3,9 @@
  * every pipe as a value change dump (IEEE 1364 VCD) for a window of cycles, and each unit's busy
  * cycles per controller epoch for the utilisation plot.
  *
- * Per pipe and unit: busy (an issue slot is in use), issue (an operation issues this cycle),
- * queue_depth and thread_id (of the operation in its issue slots, x when idle); per cache:
+ * Per pipe and unit: busy (an issue slot is in use; the traversal unit's: a trav_node slot),
+ * issue (an operation issues this cycle), queue_depth and thread_id (of the operation in those
+ * slots, x when idle); per cache:
  * lookups and misses in the cycle, fills (lines requested and not arrived); the memory port's
  * outstanding transfers; threads in flight (holding a block).
  *
@@ -49,8 +50,11 @@ uint64_t *cycle_trace_usage(const cycle_trace *tr, int u, size_t *n);
 
 /* ---- the simulator's hooks (one pipe, in its own host thread; t is the current cycle) ---------- */
 
-/* Unit u issues thread tid's operation of `slots` issue slots. */
-void trace_issue(trace_pipe *tp, int u, uint64_t t, uint32_t tid, uint32_t slots);
+/* Unit u issues an operation. */
+void trace_issue(trace_pipe *tp, int u, uint64_t t);
+/* Thread tid's operation holds unit u's datapath for `slots` cycles from t (the issue slots; the
+ * traversal unit's trav_node slots, which come after its issue). */
+void trace_busy(trace_pipe *tp, int u, uint64_t t, uint32_t tid, uint32_t slots);
 void trace_queue(trace_pipe *tp, int u, uint64_t t, uint32_t depth);
 void trace_threads(trace_pipe *tp, uint64_t t, uint32_t active);
 
