@@ -466,7 +466,10 @@ static uint64_t shade_port_take(pipe_state *p, uint64_t lines)
  * through the port as its front and back go (its latency counts their bursts), so it starts when
  * the port has taken the lines of the operations before it. A light: rgs_ctrl reads the light's
  * record (S_LREC, a line a cycle) before rgs_light starts, unless it holds that light's record
- * from its last light operation (a scene of one light reads it once per controller). Others: now. */
+ * from its last light operation (a scene of one light reads it once per controller); its few
+ * lines do not wait for the surfaces' booked before it: dynrtp merges the controllers' record
+ * reads and the surface units' reads round robin a line at a time (u_rgs_reads), so they go
+ * between those, and the surfaces issued after it start that many cycles later. Others: now. */
 static uint64_t rgs_start(pipe_state *p, thread *t)
 {
     const unit_op *op = &t->op;
@@ -476,7 +479,8 @@ static uint64_t rgs_start(pipe_state *p, thread *t)
         return p->now;
     t->light_held = op->read[0].addr;
     const uint64_t lines = cycle_shading_lines(p->cfg, op);
-    return shade_port_take(p, lines) + p->cfg->shade_hit + lines - 1;
+    p->shade_port_free = (p->shade_port_free > p->now ? p->shade_port_free : p->now) + lines;
+    return p->now + p->cfg->shade_hit + lines - 1;
 }
 
 /* The cycles from a traversal operation's issue to its first trav_node slot with nothing ahead
