@@ -18,8 +18,9 @@
  *   - the traversal unit, as rtl/trav_unit.sv, takes one operation per issue cycle into its
  *     queue; its datapath (trav_node) takes the queue's operations in issue order, a clip for its
  *     `slots` (the slab planes), a kd-tree entry for one, each once it got there (trav_front
- *     cycles after its issue, + node_read for a node's words, + objclip_front for an object
- *     clip's own steps); the result leaves the rest of its latency after its last slot.
+ *     cycles after its issue, + node_read for a node's words); the result leaves the rest of its
+ *     latency after its last slot. An object clip joins the ready set objclip_front cycles after
+ *     it is decided (its thread's own steps before it raises the clip).
  * Two-phase clock (as in Utah's simtrax): per cycle, every unit decides from the current state
  * whom it issues, then all changes commit in a fixed order (issues, then the threads whose
  * results arrive, in thread order), so nothing depends on the order units are stepped. Cycles in
@@ -49,8 +50,9 @@ typedef struct {
                                        * nothing is ahead of it (rtl/trav_unit.sv; part of its kind's latency) */
     uint32_t node_read;               /* ... more for a kd-tree entry that reads its node (trav_unit's N stage waits
                                        * for the node's words) */
-    uint32_t objclip_front;           /* ... more for an object clip (trace_thread's steps before it issues the clip:
-                                       * the records, the mailboxes' clear, the relative distances) */
+    uint32_t objclip_front;           /* cycles from an object clip's decision to its joining the traversal unit's
+                                       * ready set (trace_thread's steps before it raises the clip: the records, the
+                                       * mailboxes' clear, the relative distances; part of its latency) */
     uint32_t tile;                    /* tile edge in pixels (even) handed out by the controller */
     uint32_t epoch;                   /* cycles between controller refills */
     uint32_t host_threads;            /* simulator threads (no effect on any result) */
