@@ -495,16 +495,16 @@ static void filter_proves_misses(void **state)
         f24_t te[F24Q_LANES], tmin[F24Q_LANES], tmax[F24Q_LANES];
         for (int i = 0; i < F24Q_LANES; i++)
             packet_ray(&t24, abc, scale, &p[i], &te[i], &d[i], &tmin[i], &tmax[i]);
-        const uint32_t need = 1u + (uint32_t)(urand() * 15) % 15u, sure = isect_packet_proven_misses(&t24, p, te, d, tmin, tmax);
+        const uint32_t need = 1u + (uint32_t)(urand() * 15) % 15u, sure = isect_packet_proven_misses(&t24, need, p, te, d, tmin, tmax);
         isect_result exact[F24Q_LANES], fast[F24Q_LANES];
         isect_unit_packet_exact(&t24, 15u, p, te, d, tmin, tmax, exact);
         isect_unit_packet(&t24, need, p, te, d, tmin, tmax, fast);
         skipped += (need & ~sure) == 0;
         for (int i = 0; i < F24Q_LANES; i++) {
-            lanes++;
-            misses += !exact[i].hit;
+            const int on = need >> i & 1u, bad_proof = (sure >> i & 1u) && (exact[i].hit || !on);
+            lanes += on;
+            misses += on && !exact[i].hit;
             proven += sure >> i & 1u;
-            const int on = need >> i & 1u, bad_proof = (sure >> i & 1u) && exact[i].hit;
             const int bad_fast = fast[i].hit != (on && exact[i].hit) || (fast[i].hit && memcmp(&fast[i], &exact[i], sizeof fast[i]));
             if (bad_proof || bad_fast) {
                 print_message("packet %ld lane %d: proven %d, exact hit %d t %06x u %06x v %06x, proving packet hit %d\n", n, i,

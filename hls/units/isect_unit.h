@@ -91,11 +91,11 @@ void isect_unit_packet(const f24_triangle *tri, uint32_t need, const f24_vec3x2 
 void isect_unit_packet_exact(const f24_triangle *tri, uint32_t need, const f24_vec3x2 p[F24Q_LANES],
                              const f24_t te[F24Q_LANES], const f24_vec3 d[F24Q_LANES], const f24_t tmin[F24Q_LANES],
                              const f24_t tmax[F24Q_LANES], isect_result r[F24Q_LANES]);
-/* The lanes (bit i: ray i, whether needed or not) the binary64 test proves to miss: for each of
- * them isect_unit_packet_exact's hit flag is 0. */
-uint32_t isect_packet_proven_misses(const f24_triangle *tri, const f24_vec3x2 p[F24Q_LANES], const f24_t te[F24Q_LANES],
-                                    const f24_vec3 d[F24Q_LANES], const f24_t tmin[F24Q_LANES],
-                                    const f24_t tmax[F24Q_LANES]);
+/* The rays of need (bit i: lane i) the binary64 test proves to miss: for each of them
+ * isect_unit_packet_exact's hit flag is 0. The other lanes' words are not used. */
+uint32_t isect_packet_proven_misses(const f24_triangle *tri, uint32_t need, const f24_vec3x2 p[F24Q_LANES],
+                                    const f24_t te[F24Q_LANES], const f24_vec3 d[F24Q_LANES],
+                                    const f24_t tmin[F24Q_LANES], const f24_t tmax[F24Q_LANES]);
 #endif
 
 #endif

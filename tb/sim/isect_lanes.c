@@ -46,19 +46,24 @@ F24V_INLINE f24v vabs(f24v x) { return (f24v)((f24v_i)x & f24v_k.abs52); }
 
 F24V_INLINE f24v splat(double x) { return (f24v){ x, x, x, x }; }
 
-/* Component k of the rays' vectors v[i] (i: the lane), decoded. */
-F24V_INLINE f24v lanes_of(const f24_t *v0, const f24_t *v1, const f24_t *v2, const f24_t *v3)
+/* The words of the lanes, decoded; a lane outside keep (all ones or zero) computes on zeros, as in
+ * isect_unit_packet_exact: no word of a ray that does not need the triangle is used. */
+F24V_INLINE f24v lanes_of(f24_t w0, f24_t w1, f24_t w2, f24_t w3, const f24_t keep[F24Q_LANES])
 {
-    const f24_t w[F24Q_LANES] = { *v0, *v1, *v2, *v3 };
+    const f24_t w[F24Q_LANES] = { w0 & keep[0], w1 & keep[1], w2 & keep[2], w3 & keep[3] };
     return f24v_of(w);
+}
+F24V_INLINE f24v words_of(const f24_t a[F24Q_LANES], const f24_t keep[F24Q_LANES])
+{
+    return lanes_of(a[0], a[1], a[2], a[3], keep);
 }
 
 /* The rays' vectors by component, one lane per ray. */
-F24V_INLINE void by_axis(const f24_vec3 *v0, const f24_vec3 *v1, const f24_vec3 *v2, const f24_vec3 *v3, f24v out[3])
+F24V_INLINE void by_axis(f24_vec3 v0, f24_vec3 v1, f24_vec3 v2, f24_vec3 v3, const f24_t keep[F24Q_LANES], f24v out[3])
 {
-    out[0] = lanes_of(&v0->x, &v1->x, &v2->x, &v3->x);
-    out[1] = lanes_of(&v0->y, &v1->y, &v2->y, &v3->y);
-    out[2] = lanes_of(&v0->z, &v1->z, &v2->z, &v3->z);
+    out[0] = lanes_of(v0.x, v1.x, v2.x, v3.x, keep);
+    out[1] = lanes_of(v0.y, v1.y, v2.y, v3.y, keep);
+    out[2] = lanes_of(v0.z, v1.z, v2.z, v3.z, keep);
 }
 
 /* x . y over the three components */
@@ -70,7 +75,7 @@ F24V_INLINE f24v sum_bound(f24v a, f24v b, f24v ea, f24v eb, double u, double ta
     return ea + eb + u * (vabs(a) + vabs(b) + ea + eb) + tau;
 }
 
-F24V_FN uint32_t isect_packet_proven_misses(const f24_triangle *tri, const f24_vec3x2 p[F24Q_LANES],
+F24V_FN uint32_t isect_packet_proven_misses(const f24_triangle *tri, uint32_t need, const f24_vec3x2 p[F24Q_LANES],
                                             const f24_t te[F24Q_LANES], const f24_vec3 d[F24Q_LANES],
                                             const f24_t tmin[F24Q_LANES], const f24_t tmax[F24Q_LANES])
 {
@@ -78,10 +83,11 @@ F24V_FN uint32_t isect_packet_proven_misses(const f24_triangle *tri, const f24_v
     const double safety = 16, limit = __builtin_ldexp(1.0, F24_BIAS - 1);
     const f24_t c_lo[F24Q_LANES] = { tri->c_lo.x, tri->c_lo.y, tri->c_lo.z, 0 };
     const f24v rows[3] = { f24v_of(tri->m.m[0]), f24v_of(tri->m.m[1]), f24v_of(tri->m.m[2]) }, cl = f24v_of(c_lo);
+    const f24_t keep[F24Q_LANES] = { 0u - (need & 1u), 0u - (need >> 1 & 1u), 0u - (need >> 2 & 1u), 0u - (need >> 3 & 1u) };
     f24v m[3][3], am[3][3], hi[3], lo[3], dir[3], adir[3], P[3], Pa[3];
-    by_axis(&p[0].hi, &p[1].hi, &p[2].hi, &p[3].hi, hi);
-    by_axis(&p[0].lo, &p[1].lo, &p[2].lo, &p[3].lo, lo);
-    by_axis(&d[0], &d[1], &d[2], &d[3], dir);
+    by_axis(p[0].hi, p[1].hi, p[2].hi, p[3].hi, keep, hi);
+    by_axis(p[0].lo, p[1].lo, p[2].lo, p[3].lo, keep, lo);
+    by_axis(d[0], d[1], d[2], d[3], keep, dir);
     for (int r = 0; r < 3; r++) {
         const f24v ar = vabs(rows[r]);
         for (int k = 0; k < 3; k++)
@@ -93,7 +99,7 @@ F24V_FN uint32_t isect_packet_proven_misses(const f24_triangle *tri, const f24_v
         Pa[k] = vabs(a) + vabs(b);
         adir[k] = vabs(dir[k]);
     }
-    const f24v *n = m[2], *an = am[2], te_v = f24v_of(te);
+    const f24v *n = m[2], *an = am[2], te_v = words_of(te, keep);
     const f24v OZ = dot(n, P), DZ = dot(n, dir), OZa = dot(an, Pa), DZa = dot(an, adir);
     const f24v e_oz = 2 * u * OZa + tau * (1 + an[0] + an[1] + an[2]), e_dz = 3 * u * DZa + 5 * tau;
     const f24v den = vabs(DZ) - e_dz, TL = -OZ / DZ, aTL = vabs(TL), T = te_v + TL;
@@ -109,17 +115,17 @@ F24V_FN uint32_t isect_packet_proven_misses(const f24_triangle *tri, const f24_v
     }
     const f24v W = U[0] + U[1], e_w = sum_bound(U[0], U[1], e_u[0], e_u[1], u, tau);
     const f24v lo_b = f24v_splat(ISECT_LO(ISECT_SHARED_K)), hi_b = f24v_splat(ISECT_HI(ISECT_SHARED_K));
-    const f24v_i miss = (T + safety * e_t < f24v_of(tmin)) | (T - safety * e_t >= f24v_of(tmax)) |
+    const f24v_i miss = (T + safety * e_t < words_of(tmin, keep)) | (T - safety * e_t >= words_of(tmax, keep)) |
                         (U[0] + safety * e_u[0] < lo_b) | (U[1] + safety * e_u[1] < lo_b) | (W - safety * e_w > hi_b);
     const f24v_i valid = (den > e_dz) & (mag + vabs(W) + e_w < splat(limit));
-    return f24v_mask(miss & valid);
+    return f24v_mask(miss & valid); /* a lane outside need computes on zeros: D'z = 0, not proven */
 }
 
 F24V_FN void isect_unit_packet(const f24_triangle *tri, uint32_t need, const f24_vec3x2 p[F24Q_LANES],
                                const f24_t te[F24Q_LANES], const f24_vec3 d[F24Q_LANES], const f24_t tmin[F24Q_LANES],
                                const f24_t tmax[F24Q_LANES], isect_result r[F24Q_LANES])
 {
-    if (need & ~isect_packet_proven_misses(tri, p, te, d, tmin, tmax)) {
+    if (need & ~isect_packet_proven_misses(tri, need, p, te, d, tmin, tmax)) {
         isect_unit_packet_exact(tri, need, p, te, d, tmin, tmax, r);
         return;
     }
