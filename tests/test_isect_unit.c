@@ -13,12 +13,20 @@
 
 #include <cmocka.h>
 #include <math.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "f24_fast.h"
 #include "isect_unit.h"
 #include "memimage.h"
 #include "rebase_unit.h"
+#include "scene.h"
+#include "scenes.h"
 #include "xform_unit.h"
+
+#ifndef F24_SIM_LANES /* builds without the binary64 proof of misses: the packet function is the exact one */
+#define isect_unit_packet_exact isect_unit_packet
+#endif
 
 static f24_t F(double x) { return f24_fast_encode(x); }
 static double D(f24_t x) { return f24_fast_decode(x); }
@@ -266,8 +274,9 @@ static void small_and_far(void **state)
  * included) and packets of rays aimed near them or at their edges from rebased origins, intervals
  * that hold, cut or miss the hit distance (NaN too), now and then a ray parallel to the plane or
  * a zero direction; every
- * mask of rays that need the triangle. Each needed lane bit for bit the one-ray result, the others
- * zeros. */
+ * mask of rays that need the triangle. Each needed lane of the exact packet function bit for bit
+ * the one-ray result, the others zeros; the simulation build's isect_unit_packet (binary64 proof of
+ * misses first) the same hit flags and hits. */
 static void packet_as_single(void **state)
 {
     (void)state;
@@ -307,9 +316,14 @@ static void packet_as_single(void **state)
             tmax[i] = urand() < 0.5 ? F24_POS_INF : urand() < 0.05 ? F24_DEFAULT_NAN : F(t);
         }
         const uint32_t need = (uint32_t)n % 16u;
-        isect_result r[F24Q_LANES];
-        isect_unit_packet(&t24, need, p, te, d, tmin, tmax, r);
+        isect_result r[F24Q_LANES], fast[F24Q_LANES];
+        isect_unit_packet_exact(&t24, need, p, te, d, tmin, tmax, r);
+        isect_unit_packet(&t24, need, p, te, d, tmin, tmax, fast);
         for (int i = 0; i < F24Q_LANES; i++) {
+            if (fast[i].hit != r[i].hit || (r[i].hit && memcmp(&fast[i], &r[i], sizeof r[i]) != 0)) {
+                print_message("packet %d lane %d: the proving packet function differs on a hit flag or a hit\n", n, i);
+                bad++;
+            }
             const isect_result none = { 0, 0, 0, 0, 0 },
                                ref = need >> i & 1u ? isect_unit_rebased(&t24, p[i], te[i], d[i], tmin[i], tmax[i]) : none;
             lanes += need >> i & 1u;
@@ -326,11 +340,197 @@ static void packet_as_single(void **state)
     assert_true(hits > lanes / 8 && outside > lanes / 8); /* both sides of the early-out well covered */
 }
 
+#ifdef F24_SIM_LANES
+/* ---- the simulation build's binary64 proof of misses (tb/sim/isect_lanes.c) ----------------- */
+
+/* The triangles of a generated scene's meshes (object space): real geometry. */
+static double *scene_triangles(const char *name, uint32_t *count)
+{
+    const scene_generator *g = scene_generator_find(name);
+    assert_non_null(g);
+    scene s;
+    char err[256];
+    const scene_gen_params gp = { 1, 0 };
+    assert_int_equal(g->build(&s, &gp, err, sizeof err), 0);
+    uint32_t n = 0;
+    for (uint32_t m = 0; m < s.n_meshes; m++)
+        n += s.meshes[m].n_triangles;
+    double *v = malloc(sizeof(double) * 9 * n), *w = v;
+    assert_non_null(v);
+    for (uint32_t m = 0; m < s.n_meshes; m++)
+        for (uint32_t t = 0; t < 3 * s.meshes[m].n_triangles; t++)
+            for (int k = 0; k < 3; k++)
+                *w++ = s.meshes[m].positions[3 * s.meshes[m].indices[t] + k];
+    scene_free(&s);
+    *count = n;
+    return v;
+}
+
+/* One of the words that break the rounding model: zeros, a subnormal encoding, the extremes,
+ * Inf, NaN, or any pattern. */
+static f24_t special_word(void)
+{
+    const f24_t w[8] = { 0, F24_SIGN_BIT, 1, F24_MAX_NORMAL, F24_MIN_NORMAL, F24_POS_INF, F24_SIGN_BIT | F24_POS_INF,
+                         F24_DEFAULT_NAN };
+    const int k = (int)(urand() * 9);
+    return k < 8 ? w[k] : (f24_t)(urand() * (double)F24_MASK) & F24_MASK;
+}
+
+/* A word near 2^e in size (either sign), for records without geometric meaning. */
+static f24_t word_near(int e) { return F((urand() < 0.5 ? -1 : 1) * ldexp(0.5 + urand(), e + (int)(urand() * 9) - 4)); }
+
+/* 1 + 2^-k for a barycentric coordinate or distance a few ulps off a boundary. */
+static double nudge(void) { return (urand() < 0.5 ? -1 : 1) * ldexp(1, -(int)(6 + urand() * 20)); }
+
+typedef struct {
+    const double *real;
+    uint32_t n_real;
+} tri_source;
+
+/* A triangle: random, scaled by 2^+-40 and moved far from the origin now and then, a sliver, one
+ * of a real scene's, or a record of random words. Returns the three corners (unused for random
+ * records). */
+static f24_triangle packet_triangle(const tri_source *src, double abc[3][3], double *scale)
+{
+    const int kind = (int)(urand() * 10);
+    f24_triangle t24;
+    *scale = kind < 3 ? ldexp(1, (int)(urand() * 81) - 40) : 1;
+    if (kind == 9) {
+        const int e = (int)(urand() * 41) - 20;
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 4; j++)
+                t24.m.m[i][j] = word_near(j == 3 ? -e : e);
+        t24.c_lo = V(ldexp(urand(), -e - 20), -ldexp(urand(), -e - 20), 0);
+        for (int k = 0; k < 3; k++)
+            abc[0][k] = abc[1][k] = abc[2][k] = 0;
+        *scale = ldexp(1, -e);
+    } else {
+        for (;;) {
+            const double far = urand() < 0.3 ? 1000 * urand() : 0;
+            if (kind >= 6 && kind <= 7 && src->n_real) {
+                const uint32_t t = (uint32_t)(urand() * src->n_real) % src->n_real;
+                memcpy(abc, &src->real[9 * t], sizeof(double) * 9);
+            } else
+                for (int i = 0; i < 3; i++)
+                    for (int k = 0; k < 3; k++)
+                        abc[i][k] = (10 * urand() - 5 + far) * *scale;
+            if (kind == 8) /* a sliver: c near the line through a and b */
+                for (int k = 0; k < 3; k++)
+                    abc[2][k] = abc[0][k] + 0.5 * (abc[1][k] - abc[0][k]) + ldexp(urand(), -12) * *scale;
+            affine tx;
+            if (mi_triangle_transform(abc[0], abc[1], abc[2], kind == 8 ? 1e7 : 64, &tx)) {
+                t24 = record_of(&tx);
+                break;
+            }
+        }
+    }
+    t24.shared = (uint32_t)(urand() * 8) & (TRI_SHARED_U | TRI_SHARED_V | TRI_SHARED_W);
+    return t24;
+}
+
+/* A ray of a packet at the triangle abc: aimed inside, at an edge or a vertex exactly or a few ulps
+ * off, far off, nearly parallel to the plane or with a zero direction, from a rebased origin; an
+ * interval [tmin, tmax) that holds the hit distance, ends a few ulps before or after it, or is any;
+ * now and then one input word that breaks the rounding model. */
+static void packet_ray(const f24_triangle *t24, const double abc[3][3], double scale, f24_vec3x2 *p, f24_t *te,
+                       f24_vec3 *d, f24_t *tmin, f24_t *tmax)
+{
+    const int kind = (int)(urand() * 12);
+    double w0 = 1.2 * urand() - 0.1, w1 = (1.2 - w0) * urand() - 0.05;
+    if (kind < 6) /* edges u = 0, v = 0, u + v = 1 and the vertices, exactly or nudged */
+        w0 = kind % 3 == 0 ? (kind < 3 ? 0 : nudge()) : w0, w1 = kind % 3 == 1 ? (kind < 3 ? 0 : nudge()) : w1;
+    if (kind == 2 || kind == 5)
+        w1 = 1 - w0 + (kind == 5 ? nudge() : 0);
+    if (kind == 6) /* near a vertex */
+        w0 = urand() < 0.5 ? 1 + nudge() : nudge(), w1 = nudge();
+    if (kind == 7)
+        w0 = 6 * urand() - 3, w1 = 6 * urand() - 3;
+    double o[3], dd[3];
+    for (int k = 0; k < 3; k++) {
+        o[k] = (40 * urand() - 20) * scale + abc[2][k];
+        dd[k] = w0 * abc[0][k] + w1 * abc[1][k] + (1 - w0 - w1) * abc[2][k] - o[k];
+    }
+    if (kind == 8) { /* nearly parallel to the plane: along an edge, tilted by a nudge */
+        for (int k = 0; k < 3; k++)
+            dd[k] = (abc[0][k] - abc[2][k]) + nudge() * (abc[1][k] - abc[2][k]) * (urand() < 0.5 ? 0 : 1);
+    }
+    *d = kind == 9 ? V(0, 0, 0) : V(dd[0], dd[1], dd[2]);
+    *te = F(urand() < 0.5 ? 0 : 0.9 * urand());
+    *p = rebased(V(o[0], o[1], o[2]), *d, *te);
+    const isect_result r = isect_unit_rebased(t24, *p, *te, *d, F(0), F24_POS_INF);
+    const int ends = (int)(urand() * 8), ulps = (int)(urand() * 5) - 2;
+    const f24_t at = f24_is_nan(r.t) || f24_is_inf(r.t) ? F(urand()) : r.t;
+    const f24_t near = (f24_t)((int32_t)at + ulps) & F24_MASK;
+    *tmin = ends == 0 ? near : ends == 1 ? F(urand() - 0.5) : 0;
+    *tmax = ends == 2 ? near : ends == 3 ? F(D(at) * (1 + nudge())) : ends == 4 ? F(urand() * 2) : F24_POS_INF;
+    if (urand() < 1.0 / 32) {
+        f24_t *words[11] = { &p->hi.x, &p->hi.y, &p->hi.z, &p->lo.x, &p->lo.y, &p->lo.z, &d->x, &d->y, &d->z, te, tmin };
+        *words[(int)(urand() * 11) % 11] = special_word();
+    }
+}
+
+/* The proof of misses against the exact packet function: on random and adversarial packets (see
+ * packet_triangle, packet_ray), every lane the proof gives is a miss of the exact path, and the
+ * proving isect_unit_packet gives the exact path's hit flags and hits for every mask. */
+static void filter_proves_misses(void **state)
+{
+    (void)state;
+    tri_source src;
+    uint32_t n_room, n_cornell;
+    double *room = scene_triangles("room", &n_room), *cornell = scene_triangles("cornell", &n_cornell);
+    double *all = malloc(sizeof(double) * 9 * (n_room + n_cornell));
+    assert_non_null(all);
+    memcpy(all, room, sizeof(double) * 9 * n_room);
+    memcpy(all + 9 * n_room, cornell, sizeof(double) * 9 * n_cornell);
+    src.real = all;
+    src.n_real = n_room + n_cornell;
+    long lanes = 0, misses = 0, proven = 0, wrong = 0, skipped = 0, packets = 2000000;
+    for (long n = 0; n < packets && wrong < 5; n++) {
+        double abc[3][3], scale;
+        f24_triangle t24 = packet_triangle(&src, abc, &scale);
+        if (urand() < 1.0 / 64)
+            t24.m.m[(int)(urand() * 3) % 3][(int)(urand() * 4) % 4] = special_word();
+        f24_vec3x2 p[F24Q_LANES];
+        f24_vec3 d[F24Q_LANES];
+        f24_t te[F24Q_LANES], tmin[F24Q_LANES], tmax[F24Q_LANES];
+        for (int i = 0; i < F24Q_LANES; i++)
+            packet_ray(&t24, abc, scale, &p[i], &te[i], &d[i], &tmin[i], &tmax[i]);
+        const uint32_t need = 1u + (uint32_t)(urand() * 15) % 15u, sure = isect_packet_proven_misses(&t24, need, p, te, d, tmin, tmax);
+        isect_result exact[F24Q_LANES], fast[F24Q_LANES];
+        isect_unit_packet_exact(&t24, 15u, p, te, d, tmin, tmax, exact);
+        isect_unit_packet(&t24, need, p, te, d, tmin, tmax, fast);
+        skipped += (need & ~sure) == 0;
+        for (int i = 0; i < F24Q_LANES; i++) {
+            const int on = need >> i & 1u, bad_proof = (sure >> i & 1u) && (exact[i].hit || !on);
+            lanes += on;
+            misses += on && !exact[i].hit;
+            proven += sure >> i & 1u;
+            const int bad_fast = fast[i].hit != (on && exact[i].hit) || (fast[i].hit && memcmp(&fast[i], &exact[i], sizeof fast[i]));
+            if (bad_proof || bad_fast) {
+                print_message("packet %ld lane %d: proven %d, exact hit %d t %06x u %06x v %06x, proving packet hit %d\n", n, i,
+                              sure >> i & 1u, exact[i].hit, exact[i].t, exact[i].u, exact[i].v, fast[i].hit);
+                wrong++;
+            }
+        }
+    }
+    print_message("%ld lanes: %ld misses, %ld proven (%.1f%%), %ld packets skipped the exact path\n", lanes, misses,
+                  proven, 100.0 * proven / (double)misses, skipped);
+    free(all);
+    free(room);
+    free(cornell);
+    assert_int_equal(wrong, 0);
+    assert_true(proven > misses / 3 && misses > lanes / 4); /* the proof is tried on both sides */
+}
+#endif
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(hand_cases), cmocka_unit_test(parallel_and_interval), cmocka_unit_test(shared_edges),
         cmocka_unit_test(against_double_precision), cmocka_unit_test(small_and_far), cmocka_unit_test(packet_as_single),
+#ifdef F24_SIM_LANES
+        cmocka_unit_test(filter_proves_misses),
+#endif
     };
     return cmocka_run_group_tests_name("isect_unit", tests, NULL, NULL);
 }

@@ -1,22 +1,14 @@
 /* Unit-triangle intersection unit: see isect_unit.h. */
 #include "isect_unit.h"
 
-#include "config.h"
 #include "xform_unit.h"
+
+#ifdef F24_SIM_LANES
+#define isect_unit_packet isect_unit_packet_exact /* the simulation build's proves misses first (isect_unit.h) */
+#endif
 
 #define F24_ZERO 0u
 
-/* The barycentric bounds -eps and 1 + eps for eps = 2^-k (k = 0: 0 and 1). Constants, so the
- * margins cost no operator and no cycle: only the comparators' constant inputs change, chosen per
- * bound by the triangle's shared-edge flag. */
-#define ISECT_LO(k) ((k) > 0 ? F24_SIGN_BIT | (uint32_t)(F24_BIAS - (k)) << F24_MAN_BITS : F24_ZERO)
-#define ISECT_HI(k) ((k) > 0 ? F24_ONE | 1u << (F24_MAN_BITS - (k)) : F24_ONE)
-/* A shared edge takes the wider of its own margin and the robust option's (0 is no margin). */
-#define ISECT_SHARED_K                                                                                 \
-    (SAARCOR_CFG_EDGE_EPS > 0 &&                                                                       \
-             (SAARCOR_CFG_SHARED_EDGE_EPS == 0 || SAARCOR_CFG_EDGE_EPS < SAARCOR_CFG_SHARED_EDGE_EPS) \
-         ? SAARCOR_CFG_EDGE_EPS                                                                        \
-         : SAARCOR_CFG_SHARED_EDGE_EPS)
 #if SAARCOR_CFG_EDGE_EPS < 0 || SAARCOR_CFG_EDGE_EPS > F24_MAN_BITS || SAARCOR_CFG_EDGE_EPS >= F24_BIAS
 #error "SAARCOR_CFG_EDGE_EPS must be 0 or in 1 .. min(F24_MAN_BITS, bias - 1)"
 #endif

@@ -31,7 +31,21 @@
 #ifndef SAARCOR_ISECT_UNIT_H
 #define SAARCOR_ISECT_UNIT_H
 
+#include "config.h"
 #include "vec3.h"
+
+/* The barycentric bounds -eps and 1 + eps for eps = 2^-k (k = 0: 0 and 1). Constants, so the
+ * margins cost no operator and no cycle: only the comparators' constant inputs change, chosen per
+ * bound by the triangle's shared-edge flag. */
+#define ISECT_LO(k) ((k) > 0 ? F24_SIGN_BIT | (uint32_t)(F24_BIAS - (k)) << F24_MAN_BITS : 0u)
+#define ISECT_HI(k) ((k) > 0 ? F24_ONE | 1u << (F24_MAN_BITS - (k)) : F24_ONE)
+/* A shared edge takes the wider of its own margin and the robust option's (0 is no margin), so
+ * its bounds are the widest of the unit's. */
+#define ISECT_SHARED_K                                                                                 \
+    (SAARCOR_CFG_EDGE_EPS > 0 &&                                                                       \
+             (SAARCOR_CFG_SHARED_EDGE_EPS == 0 || SAARCOR_CFG_EDGE_EPS < SAARCOR_CFG_SHARED_EDGE_EPS) \
+         ? SAARCOR_CFG_EDGE_EPS                                                                        \
+         : SAARCOR_CFG_SHARED_EDGE_EPS)
 
 typedef struct {
     int hit;
@@ -67,5 +81,21 @@ isect_result isect_unit_rebased(const f24_triangle *tri, f24_vec3x2 p, f24_t te,
 void isect_unit_packet(const f24_triangle *tri, uint32_t need, const f24_vec3x2 p[F24Q_LANES], const f24_t te[F24Q_LANES],
                        const f24_vec3 d[F24Q_LANES], const f24_t tmin[F24Q_LANES], const f24_t tmax[F24Q_LANES],
                        isect_result r[F24Q_LANES]);
+#ifdef F24_SIM_LANES
+/* A simulation build with vector packet values first tries to prove in binary64 that every needed
+ * ray misses (tb/sim/isect_lanes.c: its own definition of isect_unit_packet); only the hit flags
+ * and, for hits, the fields are then those of the one-ray function: a proven miss gives zeros,
+ * which nothing reads (op_tri_isect reads a ray's fields only on a hit; the capture build records
+ * the one-ray function). The exact packet function keeps this name, the fallback and the truth
+ * for the test comparing them. */
+void isect_unit_packet_exact(const f24_triangle *tri, uint32_t need, const f24_vec3x2 p[F24Q_LANES],
+                             const f24_t te[F24Q_LANES], const f24_vec3 d[F24Q_LANES], const f24_t tmin[F24Q_LANES],
+                             const f24_t tmax[F24Q_LANES], isect_result r[F24Q_LANES]);
+/* The rays of need (bit i: lane i) the binary64 test proves to miss: for each of them
+ * isect_unit_packet_exact's hit flag is 0. The other lanes' words are not used. */
+uint32_t isect_packet_proven_misses(const f24_triangle *tri, uint32_t need, const f24_vec3x2 p[F24Q_LANES],
+                                    const f24_t te[F24Q_LANES], const f24_vec3 d[F24Q_LANES],
+                                    const f24_t tmin[F24Q_LANES], const f24_t tmax[F24Q_LANES]);
+#endif
 
 #endif
