@@ -456,17 +456,24 @@ t_accum_mutant_caught() {
 }
 
 # the RGS's per-block control (rgs_ctrl): every block of cornell at 32x24 and the first 64 of the
-# room (reflections) with shadows and depth 2, the room without shadows; the bench traces the
-# packets with the C and compares them, the pixels and the primary hits with rgs_render_block
+# room (reflections) with shadows and depth 2, the room without shadows, and cornell of glass
+# (scripts/glass_materials.py) at depth 3, whose packets push transmission tasks under reflection
+# tasks: its stack memory written and popped (109 tasks); the bench traces the packets with the C
+# and compares them, the pixels and the primary hits with rgs_render_block
 t_rgs_ctrl() {
   local s
-  for s in cornell room; do
-    "$BIN" render "$s" -o "$T/ctrl_$s.png" --width 32 --height 24 --capture-unit-io "$T/ctrl_$s" --capture-limit 10 >/dev/null
+  "$BIN" gen cornell -o "$T/cornell.gltf" >/dev/null
+  python3 scripts/glass_materials.py "$T/cornell.gltf" "$T/glass.gltf"
+  for s in cornell room "$T/glass.gltf"; do
+    "$BIN" render "$s" -o "$T/ctrl_$(basename "$s" .gltf).png" --width 32 --height 24 \
+      --capture-unit-io "$T/ctrl_$(basename "$s" .gltf)" --capture-limit 10 >/dev/null
   done
   { "$B/rtl/e7m16/tb_rgs_ctrl" --capture "$T/ctrl_cornell" &&
     "$B/rtl/e7m16/tb_rgs_ctrl" --capture "$T/ctrl_room" --blocks 64 &&
-    "$B/rtl/e7m16/tb_rgs_ctrl" --capture "$T/ctrl_room" --blocks 32 --no-shadows; } | tee "$T/ctrl.log"
-  [[ $(grep -c " 0 mismatches" "$T/ctrl.log") == 3 ]] && grep -q "^rgs_ctrl 192 blocks checked" "$T/ctrl.log"
+    "$B/rtl/e7m16/tb_rgs_ctrl" --capture "$T/ctrl_room" --blocks 32 --no-shadows &&
+    "$B/rtl/e7m16/tb_rgs_ctrl" --capture "$T/ctrl_glass" --max-depth 3; } | tee "$T/ctrl.log"
+  [[ $(grep -c " 0 mismatches" "$T/ctrl.log") == 4 ]] && grep -q "^rgs_ctrl 192 blocks checked" "$T/ctrl.log" &&
+    grep "^rgs_ctrl stack memory" "$T/ctrl.log" | tail -1 | grep -Eq ": [1-9][0-9]* tasks written, [1-9][0-9]* popped"
 }
 
 # children one level short (depth + 1 < max_depth instead of <=): the room without reflections
