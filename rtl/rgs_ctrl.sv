@@ -220,7 +220,7 @@ module rgs_ctrl #(
   logic [TAG_BITS-1:0] tag_q;
   logic [31:0] bx_q, by_q;  // the block's corner until rgs_raygen takes it
   logic gen_sent_q;
-  // the ray-tree stack: the tasks' rays in stack_mem (a task at CH words from CH * its slot), their
+  // the ray-tree stack: the tasks' rays in u_stack (a task at CH words from CH * its slot), their
   // active bits and depths here
   logic [3:0] sact_q [STACK], sdep_q [STACK];
   logic [SPW-1:0] sp_q;

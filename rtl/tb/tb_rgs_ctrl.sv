@@ -51,7 +51,7 @@ module tb_rgs_ctrl #(
   output logic [4:0]                st_o,       // the control's state: the bench's cycles per state
   output logic [4:0]                sst_o,      // rgs_surface's state (its cycles per state in SURF)
   output logic                      stk_wr_o,   // a task's first word written into the stack memory
-  output logic                      stk_pop_o   // S_NEXT with the stack's top as the next task (its rays in the packet's)
+  output logic                      stk_pop_o   // S_NEXT with the stack's top as the next task
 );
   assign st_o = u_dut.st;
   assign stk_wr_o = u_dut.wr_q && u_dut.wc_q == '0;
