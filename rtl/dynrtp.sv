@@ -13,7 +13,7 @@
 // materials, lights, texels) through the shading cache (SHADE_KB KB in lines of 16 bytes, the
 // cycle model's MEM_SHADING cache; a request names a line, its answer is the line's 4 words), all four on one memory port (mem_port) to an external memory
 // with valid/ready and in-order answers.
-// The RGS: one rgs_ctrl holds one block (its ray-tree stack in registers), so RGS_BLOCKS of them
+// The RGS: one rgs_ctrl holds one block (its ray-tree stack in block RAM), so RGS_BLOCKS of them
 // give RGS_BLOCKS blocks in flight, each with at most one packet in the core: rgs_ctrl k traces on
 // the core's thread k (its tag), so the core's hits go back to the controller of thread_o. A block
 // goes to the lowest idle controller below blocks_i (--threads-per-pipe: the blocks the harness
@@ -40,7 +40,7 @@
 // Latency and throughput: tile_ctrl 1 block per cycle; rgs_ctrl a block per its sequence
 // (rtl/README.md), RGS_BLOCKS at once; the core's; the memory port 1 transfer per cycle.
 // Resources: trace_core's, rgs_units (one set of the RGS's datapaths, SURF_UNITS surfaces), RGS_BLOCKS x rgs_ctrl (the
-// control and a stack of about 8 Kbit in registers each), 4 x cache_read
+// control, its block's state in registers and its stack's rays in 2 SB_RAM40_4K each), 4 x cache_read
 // (NODE_KB + LIST_KB + MAT_KB + SHADE_KB KB of data arrays and their tags), 2 x mem_port,
 // 2 x rr_pick, tile_ctrl, RGS_BLOCKS x 64 bits of block corners, 14 x 64-bit counters.
 module dynrtp #(

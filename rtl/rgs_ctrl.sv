@@ -8,7 +8,9 @@
 //   RB_GEN   a block (x0, y0) in: its corner to `rgs_raygen`, its primary packet back, pushed
 //            with weights one
 //   RB_NEXT  pop the ray-tree stack (RGS_STACK = MAX_DEPTH + 2 tasks: rays, Q12 weights, depth),
-//            unless it is empty or RGS_MAX_PACKETS packets were started: then RB_DONE
+//            unless it is empty or RGS_MAX_PACKETS packets were started: then RB_DONE (a task pushed
+//            last is popped at once: it goes from the children's registers to the current packet's;
+//            the stack's top was read into them while rgs_accum computed the last ray)
 //   RB_TRACE the packet out on the trace port (tmin 0, tmax +Inf, TRACE_* flags of the profile),
 //            its hits back; the first packet's hits are the block's primary hits
 //   RB_SURFACES  the 4 rays and hits to `rgs_surface`, their surfaces back: exponents, diffuse
@@ -19,14 +21,22 @@
 //            reaching the rays without a hit; `rgs_add_light` adds it to the visible rays
 //   RB_ACCUM `rgs_accum` for each active ray (pixel sums, children while the depth + 1 is at most
 //            max_depth_i and MAX_DEPTH and the profile has secondary rays); the transmission task,
-//            then the reflection task pushed if they have an active ray (dropped on a full stack)
+//            then the reflection task pushed if they have an active ray (dropped on a full stack; the
+//            transmission task under a reflection task written into the stack memory a word a cycle
+//            while the next packet is traced and shaded)
 //   RB_DONE  the pixels (per channel min(255, (acc 255 + 2048) >> 12), 0xRRGGBB) and the primary
 //            hits out
 // The configuration is the general design (hls/config.h: shadows, secondary rays, refraction,
 // textures) with the traversal unit's stack algorithm (flags bits 4..6 zero).
-// BLOCKS = 1: one block at a time, its state (the stack of RGS_STACK tasks, about 1 Kbit each at
-// e7m16, the current packet, its surfaces, sums and shadow packet) in registers; the DynRTP's 64
-// threads will keep it in block RAM with several blocks in flight. The tag given with the block
+// BLOCKS = 1: one block at a time. The ray-tree stack's rays (RGS_STACK tasks of 4 x (6 W + 48)
+// bits, 768 at e7m16) are in a memory with a registered read (thread_ram: block RAM), a task at
+// CH = 24 words of 32 bits; only the transmission task pushed under a reflection task is written
+// (the task pushed last is the next one and goes straight to the packet's registers), and the top
+// is read a word a cycle into the packet's registers while rgs_accum computes the packet's last
+// ray (CH + 1 cycles within its 68: no cycle added; LIGHT waits for a write still under way, which
+// the trace and the surfaces of the packet between outlast). The rest of the block's state (the
+// current packet, the children being formed, its hits, surfaces, sums and shadow packet, the tasks'
+// active bits and depths) is in registers. The tag given with the block
 // goes out with its trace requests and its pixels (the top routes the hits back by it).
 // Latency: a sequence per block, its phases one after another, the 4 rays streamed through each
 // phase's shared unit: about 20 + `rgs_surface` (the 4 rays offered as it takes them: its steps per
@@ -37,9 +47,13 @@
 // trace, plus the cycles its operands wait for other controllers' in the shared units; the bench
 // measures it alone (cornell 32x24: 488 cycles a block before the arbiters' registers, per state
 // with tb_rgs_ctrl). Throughput: one block per its latency.
-// Resources: the block's registers (the stack dominates: RGS_STACK x 4 rays x (6 W + 48) bits), a
-// `line_reader` of 16 words (the light record), the operand multiplexers (the ray in_q of the
-// packet into each unit's operand).
+// Resources: the stack's rays in STACK x CH words of 32 bits (2 SB_RAM40_4K, 1 RAMB18), the block's
+// registers (the surfaces 1,868 bits, the children 1,544, the hits 1,280, the shadow packet about
+// 1,000, the current packet 776, the sums 576 at e7m16), a `line_reader` of 16 words (the light
+// record), the operand multiplexers (the ray in_q of the packet into each unit's operand).
+// Yosys 0.23 per module (python3 scripts/synth.py --ice40 rgs_ctrl, 2026-11-30): 7,502 SB_LUT4,
+// 8,110 flip-flops, 2 SB_RAM40_4K, 12 SB_MAC16 (21,057 and 15,774 with the stack in registers);
+// synth_xilinx (--levels rgs_ctrl --hier) 6,054 LUT6, 8,111 FF, 1 RAMB18, 5 LUT6 levels.
 module rgs_ctrl #(
   parameter int E = 7,
   parameter int M = 16,
@@ -168,10 +182,18 @@ module rgs_ctrl #(
   localparam logic [31:0] NO_HIT = 32'hFFFFFFFF;
   localparam logic [15:0] Q_ONE = 16'd4096, Q_AMBIENT = 16'd614;
   localparam int LREC_WORDS = 16;  // a light's record
+  // a task's 4 rays (o, d, Q12 weights) in the stack memory: CH words of CW bits (a block RAM's 32-bit
+  // words: 2 SB_RAM40_4K or 1 RAMB18 hold the STACK x CH = 240 words at e7m16)
+  localparam int RB = 2 * V + 48;
+  localparam int CW = 32;
+  localparam int CH = (4 * RB + CW - 1) / CW;
+  localparam int TBP = CH * CW;
+  localparam int SAW = $clog2(STACK * CH);
+  localparam int CHW = $clog2(CH + 2);
 
   typedef enum logic [4:0] {
     S_IDLE, S_GEN, S_NEXT, S_TRACE, S_HITS, S_SURF, S_LIGHT, S_LREC, S_LCALC, S_STRACE, S_SHITS, S_ADD, S_ACCUM,
-    S_PUSH_R, S_DONE
+    S_DONE
   } state_t;
   state_t st;
 
@@ -198,15 +220,16 @@ module rgs_ctrl #(
   logic [TAG_BITS-1:0] tag_q;
   logic [31:0] bx_q, by_q;  // the block's corner until rgs_raygen takes it
   logic gen_sent_q;
-  logic [V-1:0] so_q [STACK][4], sd_q [STACK][4];
-  logic [3:0] sact_q [STACK];
-  logic [47:0] sw_q [STACK][4];
-  logic [3:0] sdep_q [STACK];
+  // the ray-tree stack: the tasks' rays in u_stack (a task at CH words from CH * its slot), their
+  // active bits and depths here
+  logic [3:0] sact_q [STACK], sdep_q [STACK];
   logic [SPW-1:0] sp_q;
   logic [PW-1:0] packets_q;
-  logic [V-1:0] co_q [4], cd_q [4];   // the current packet
-  logic [3:0] cact_q, cdep_q;
+  logic nxt_q;                        // the next task is a child (or the primary packet) in cur_q, not the stack's top
+  logic [TBP-1:0] cur_q;              // the current packet's rays (task layout); the stack's top fetched into it
+  logic [V-1:0] co_q [4], cd_q [4];   // its fields
   logic [47:0] cw_q [4];
+  logic [3:0] cact_q, cdep_q;
   logic [31:0] hinst_q [4], htri_q [4], pinst_q [4], ptri_q [4];
   logic [W-1:0] ht_q [4], hu_q [4], hv_q [4], hcos_q [4], pt_q [4], pu_q [4], pv_q [4], pcos_q [4];
   logic [47:0] acc_q [4], dif_q [4], hil_q [4];
@@ -234,6 +257,44 @@ module rgs_ctrl #(
   logic [2:0] in_q, out_q;  // rays issued to and collected from the unit of the current step
   logic [1:0] ri;
   assign ri = in_q[1:0];    // the ray offered to the unit of the current step
+
+  // ---- the tasks' rays: ray i at bits RB i as {w, d, o} ----
+  logic [TBP-1:0] gen_task, refl_task, trans_task;
+  logic [4*RB-1:0] gen_rays, refl_rays, trans_rays;
+  for (genvar i = 0; i < 4; i++) begin : g_task
+    assign gen_rays[RB*i +: RB] = {{3{Q_ONE}}, gen_d_i[V*i +: V], gen_o_i[V*i +: V]};
+    assign refl_rays[RB*i +: RB] = {rw_q[i], rdir_q[i], ro_q[i]};
+    assign trans_rays[RB*i +: RB] = {tw_q[i], tdir_q[i], to_q[i]};
+    assign co_q[i] = cur_q[RB*i +: V];
+    assign cd_q[i] = cur_q[RB*i + V +: V];
+    assign cw_q[i] = cur_q[RB*i + 2*V +: 48];
+  end
+  assign gen_task = TBP'(gen_rays);
+  assign refl_task = TBP'(refl_rays);
+  assign trans_task = TBP'(trans_rays);
+
+  // ---- the stack memory: a task written a word a cycle (the transmission task pushed under the
+  // reflection task, from its children's registers while the next packet is traced and shaded) and
+  // the top read into cur_q a word a cycle while rgs_accum computes the packet's last ray (cur_q's
+  // rays are then no longer offered): when no child is the next task, the top is there ----
+  logic wr_q;                      // the transmission task is being written, word wc_q, into slot wslot_q
+  logic [CHW-1:0] wc_q, pc_q;      // pc_q: the top's words asked for (CH + 1: all in cur_q)
+  logic [SPW-1:0] wslot_q;
+  logic [CW-1:0] trans_words [CH];
+  logic [CW-1:0] top_word;
+  logic fetch;
+  logic [SAW-1:0] waddr, raddr;
+  logic [SPW-1:0] top;             // the stack's top slot
+  assign top = sp_q - SPW'(1);
+  for (genvar c = 0; c < CH; c++) begin : g_words
+    assign trans_words[c] = trans_task[CW*c +: CW];
+  end
+  assign fetch = st == S_ACCUM && in_q == 3'd4 && sp_q != '0 && pc_q <= CHW'(CH);
+  assign waddr = SAW'(wslot_q) * SAW'(CH) + SAW'(wc_q);
+  assign raddr = SAW'(top) * SAW'(CH) + SAW'(pc_q);
+  thread_ram #(.W(CW), .DEPTH(STACK * CH)) u_stack (
+    .clk_i, .we_i(wr_q), .waddr_i(waddr), .wdata_i(trans_words[wc_q]),
+    .re_i(fetch && pc_q < CHW'(CH)), .raddr_i(raddr), .rdata_o(top_word));
 
   // ---- the shared units' operands (rgs_units), each held until taken ----
   assign gen_req_o = st == S_GEN && !gen_sent_q;
@@ -271,6 +332,10 @@ module rgs_ctrl #(
   assign depth1 = {1'b0, cdep_q} + 5'd1;
   assign children_on = depth1 <= {1'b0, max_depth_i} && depth1 <= 5'(MAX_DEPTH) && !profile_i[2];
   assign ac_req_o = st == S_ACCUM && in_q < 3'd4 && cact_q[ri];
+  // the children's tasks pushed at the packet's end (each dropped on a full stack)
+  logic push_t, push_r;
+  assign push_t = tact_q != '0 && sp_q < SPW'(STACK);
+  assign push_r = ract_q != '0 && sp_q + SPW'(push_t) < SPW'(STACK);
   assign ac_data_o = {ri, eta_q[ri], kd_q[ri], kr_q[ri], kt_q[ri], ks_q[ri], sfv_q[ri], co_q[ri], sf_d_q[ri],
                       sf_n_q[ri], that_q[ri], ent_q[ri], base_q[ri], emis_q[ri], tint_q[ri], cw_q[ri], dif_q[ri],
                       hil_q[ri], acc_q[ri], children_on};
@@ -307,7 +372,12 @@ module rgs_ctrl #(
     if (!rst_ni) begin
       st <= S_IDLE;
       lrec_ok_q <= 1'b0;
+      wr_q <= 1'b0;
     end else begin
+      if (wr_q) begin
+        wc_q <= wc_q + CHW'(1);
+        if (wc_q == CHW'(CH - 1)) wr_q <= 1'b0;
+      end
       unique case (st)
         S_IDLE:
           if (blk_valid_i && frame_ok_i) begin
@@ -319,31 +389,25 @@ module rgs_ctrl #(
           end
         S_GEN: begin  // the corner to rgs_raygen (gen_req_o), its packet back
           if (gen_ack_i) gen_sent_q <= 1'b1;
-          if (gen_valid_i) begin
-            for (int i = 0; i < 4; i++) begin
-              so_q[0][i] <= gen_o_i[V*i +: V];
-              sd_q[0][i] <= gen_d_i[V*i +: V];
-              sw_q[0][i] <= {3{Q_ONE}};
-              acc_q[i] <= '0;
-            end
-            sact_q[0] <= gen_active_i;
-            sdep_q[0] <= '0;
-            sp_q <= SPW'(1);
+          if (gen_valid_i) begin  // the primary packet, with weights one, is the next task
+            for (int i = 0; i < 4; i++) acc_q[i] <= '0;
+            cur_q <= gen_task;
+            cact_q <= gen_active_i;
+            cdep_q <= '0;
+            nxt_q <= 1'b1;
+            sp_q <= '0;
             packets_q <= '0;
             st <= S_NEXT;
           end
         end
-        S_NEXT:
-          if (sp_q == '0 || packets_q >= PW'(MAX_PACKETS)) st <= S_DONE;
+        S_NEXT:  // the next task: a child or the primary packet in cur_q, else the top popped (its rays in cur_q)
+          if ((!nxt_q && sp_q == '0) || packets_q >= PW'(MAX_PACKETS)) st <= S_DONE;
           else begin
-            for (int i = 0; i < 4; i++) begin
-              co_q[i] <= so_q[sp_q - SPW'(1)][i];
-              cd_q[i] <= sd_q[sp_q - SPW'(1)][i];
-              cw_q[i] <= sw_q[sp_q - SPW'(1)][i];
+            if (!nxt_q) begin
+              cact_q <= sact_q[top];
+              cdep_q <= sdep_q[top];
+              sp_q <= top;
             end
-            cact_q <= sact_q[sp_q - SPW'(1)];
-            cdep_q <= sdep_q[sp_q - SPW'(1)];
-            sp_q <= sp_q - SPW'(1);
             packets_q <= packets_q + PW'(1);
             st <= S_TRACE;
           end
@@ -401,19 +465,22 @@ module rgs_ctrl #(
         end
         S_LIGHT:
           if (light_q >= n_lights_i) begin
-            in_q <= '0;
-            out_q <= '0;
-            ract_q <= '0;
-            tact_q <= '0;
-            for (int i = 0; i < 4; i++) begin
-              ro_q[i] <= '0;
-              rdir_q[i] <= '0;
-              to_q[i] <= '0;
-              tdir_q[i] <= '0;
-              rw_q[i] <= '0;
-              tw_q[i] <= '0;
+            if (!wr_q) begin  // the children's registers free: a transmission task pushed is in the stack memory
+              pc_q <= '0;
+              in_q <= '0;
+              out_q <= '0;
+              ract_q <= '0;
+              tact_q <= '0;
+              for (int i = 0; i < 4; i++) begin
+                ro_q[i] <= '0;
+                rdir_q[i] <= '0;
+                to_q[i] <= '0;
+                tdir_q[i] <= '0;
+                rw_q[i] <= '0;
+                tw_q[i] <= '0;
+              end
+              st <= S_ACCUM;
             end
-            st <= S_ACCUM;
           end else if (lrec_ok_q && lrec_at_q == light_q) begin  // held (a scene of one light: always)
             in_q <= '0;
             out_q <= '0;
@@ -492,35 +559,32 @@ module rgs_ctrl #(
             tact_q[ac_ray_i] <= ac_tact_i;
             out_q <= out_q + 3'd1;
           end
-          if (in_q == 3'd4 && out_q == {2'd0, cact_q[0]} + {2'd0, cact_q[1]} + {2'd0, cact_q[2]} + {2'd0, cact_q[3]}) begin
-            // push the transmission task, then the reflection task (popped first)
-            if (tact_q != '0 && sp_q < SPW'(STACK)) begin
-              for (int i = 0; i < 4; i++) begin
-                so_q[sp_q][i] <= to_q[i];
-                sd_q[sp_q][i] <= tdir_q[i];
-                sw_q[sp_q][i] <= tw_q[i];
-              end
+          if (pc_q != '0 && pc_q <= CHW'(CH))  // the top's word asked for in the last cycle
+            for (int c = 0; c < CH; c++)
+              if (pc_q == CHW'(c + 1)) cur_q[CW*c +: CW] <= top_word;
+          if (fetch) pc_q <= pc_q + CHW'(1);
+          if (in_q == 3'd4 && out_q == {2'd0, cact_q[0]} + {2'd0, cact_q[1]} + {2'd0, cact_q[2]} + {2'd0, cact_q[3]} &&
+              (sp_q == '0 || pc_q == CHW'(CH + 1))) begin
+            // the transmission task pushed, then the reflection task: the top, so the next task is the
+            // reflection task (a transmission task pushed under it goes into the stack memory), else the
+            // transmission task, else the stack's top (in cur_q)
+            nxt_q <= push_t || push_r;
+            if (push_t || push_r) begin
+              cur_q <= push_r ? refl_task : trans_task;
+              cact_q <= push_r ? ract_q : tact_q;
+              cdep_q <= depth1[3:0];
+            end
+            if (push_t && push_r) begin
               sact_q[sp_q] <= tact_q;
               sdep_q[sp_q] <= depth1[3:0];
+              wslot_q <= sp_q;
+              wc_q <= '0;
+              wr_q <= 1'b1;
+              sp_q <= sp_q + SPW'(1);
             end
             in_q <= '0;
             st <= S_NEXT;
-            sp_q <= sp_q + SPW'(tact_q != '0 && sp_q < SPW'(STACK));
-            if (ract_q != '0) st <= S_PUSH_R;
           end
-        end
-        S_PUSH_R: begin
-          if (sp_q < SPW'(STACK)) begin
-            for (int i = 0; i < 4; i++) begin
-              so_q[sp_q][i] <= ro_q[i];
-              sd_q[sp_q][i] <= rdir_q[i];
-              sw_q[sp_q][i] <= rw_q[i];
-            end
-            sact_q[sp_q] <= ract_q;
-            sdep_q[sp_q] <= depth1[3:0];
-            sp_q <= sp_q + SPW'(1);
-          end
-          st <= S_NEXT;
         end
         S_DONE:
           if (px_ready_i) st <= S_IDLE;

@@ -4,7 +4,8 @@
 // as operands: the rays' o and d (world and object space; trace_state's fields of
 // hls/units/trace.c), the rebased origins p, te, t0, the hits' records, and the records' words
 // (the instance's matrix, the triangle's record, the object's bounds): the unit's operand
-// multiplexer over the threads becomes this read.
+// multiplexer over the threads becomes this read. rgs_ctrl keeps its ray-tree stack's rays here
+// (32-bit words, a task written and read a word a cycle).
 // No C function of its own: it only holds words.
 // One write port (the unit whose results the words are), one read port with its output
 // registered, so that Yosys infers block RAM or LUT RAM (synth_xilinx: RAMB18 or RAM64M/RAM32M by
@@ -13,7 +14,8 @@
 // the old word in simulation; trace_core never reads a word in the cycle its thread's result
 // writes it (a thread's batch on a unit starts after the batch that wrote its operands has ended,
 // its hits are read after its last batch, its rays are written as it takes a packet, its
-// records' words two cycles or more before it issues an operation that reads them), so the memory is marked no_rw_check: without it
+// records' words two cycles or more before it issues an operation that reads them; rgs_ctrl reads
+// its stack only after the task written into it is whole), so the memory is marked no_rw_check: without it
 // synth_ice40 adds a bypass per bit (a LUT4 and two flip-flops) to give the old word.
 // Latency 1 cycle (address to data), one read and one write per cycle.
 // Resources: DEPTH x W bits of RAM, W flip-flops (the read register, or the block RAM's own).

@@ -455,26 +455,48 @@ t_accum_mutant_caught() {
     -n 4000
 }
 
-# the RGS's per-block control (rgs_ctrl): every block of cornell at 32x24 and the first 64 of the
-# room (reflections) with shadows and depth 2, the room without shadows; the bench traces the
-# packets with the C and compares them, the pixels and the primary hits with rgs_render_block
-t_rgs_ctrl() {
-  local s
-  for s in cornell room; do
-    "$BIN" render "$s" -o "$T/ctrl_$s.png" --width 32 --height 24 --capture-unit-io "$T/ctrl_$s" --capture-limit 10 >/dev/null
-  done
-  { "$B/rtl/e7m16/tb_rgs_ctrl" --capture "$T/ctrl_cornell" &&
-    "$B/rtl/e7m16/tb_rgs_ctrl" --capture "$T/ctrl_room" --blocks 64 &&
-    "$B/rtl/e7m16/tb_rgs_ctrl" --capture "$T/ctrl_room" --blocks 32 --no-shadows; } | tee "$T/ctrl.log"
-  [[ $(grep -c " 0 mismatches" "$T/ctrl.log") == 3 ]] && grep -q "^rgs_ctrl 192 blocks checked" "$T/ctrl.log"
+# SCENE (a scene's name or a glTF file) rendered at 32x24 with its units' I/O captured in
+# $T/ctrl_NAME (NAME: the file's without .gltf) for tb_rgs_ctrl, once
+ctrl_capture() {
+  local n
+  n=$(basename "$1" .gltf)
+  [[ -f "$T/ctrl_$n/image_0.bin" ]] || "$BIN" render "$1" -o "$T/ctrl_$n.png" --width 32 --height 24 \
+    --capture-unit-io "$T/ctrl_$n" --capture-limit 10 >/dev/null
 }
 
-# children one level short (depth + 1 < max_depth instead of <=): the room without reflections
+# $T/glass.gltf: cornell of glass (scripts/glass_materials.py: smooth dielectrics, half of them
+# transmissive), whose packets push transmission tasks under reflection tasks: the one case that
+# writes rgs_ctrl's stack memory and pops it later (the repository's scenes do it for a few blocks)
+glass_scene() {
+  [[ -f "$T/glass.gltf" ]] || { "$BIN" gen cornell -o "$T/cornell.gltf" >/dev/null &&
+    python3 scripts/glass_materials.py "$T/cornell.gltf" "$T/glass.gltf"; }
+}
+
+# the RGS's per-block control (rgs_ctrl): every block of cornell at 32x24 and the first 64 of the
+# room (reflections) with shadows and depth 2, the room without shadows, and cornell of glass at
+# depth 3, its stack memory written and popped (109 tasks); the bench traces the packets with the
+# C and compares them, the pixels and the primary hits with rgs_render_block
+t_rgs_ctrl() {
+  local s
+  glass_scene
+  for s in cornell room "$T/glass.gltf"; do ctrl_capture "$s"; done
+  { "$B/rtl/e7m16/tb_rgs_ctrl" --capture "$T/ctrl_cornell" &&
+    "$B/rtl/e7m16/tb_rgs_ctrl" --capture "$T/ctrl_room" --blocks 64 &&
+    "$B/rtl/e7m16/tb_rgs_ctrl" --capture "$T/ctrl_room" --blocks 32 --no-shadows &&
+    "$B/rtl/e7m16/tb_rgs_ctrl" --capture "$T/ctrl_glass" --max-depth 3; } | tee "$T/ctrl.log"
+  [[ $(grep -c " 0 mismatches" "$T/ctrl.log") == 4 ]] && grep -q "^rgs_ctrl 192 blocks checked" "$T/ctrl.log" &&
+    grep "^rgs_ctrl stack memory" "$T/ctrl.log" | tail -1 | grep -Eq ": [1-9][0-9]* tasks written, [1-9][0-9]* popped"
+}
+
+# children one level short (depth + 1 < max_depth instead of <=): the room without reflections;
+# the stack's top fetched as its first word over and over (the read address without the word's
+# index): cornell of glass, whose tasks popped from the stack memory come out wrong
 t_rgs_ctrl_mutant_caught() {
-  [[ -f "$T/ctrl_room/image_0.bin" ]] || "$BIN" render room -o "$T/ctrl_room.png" --width 32 --height 24 \
-    --capture-unit-io "$T/ctrl_room" --capture-limit 10 >/dev/null
-  mutant rgs_ctrl rgs_ctrl.sv "s/assign children_on = depth1 <= {1'b0, max_depth_i}/assign children_on = depth1 < {1'b0, max_depth_i}/" \
-    --capture "$T/ctrl_room" --max-depth 1
+  ctrl_capture room && glass_scene && ctrl_capture "$T/glass.gltf" &&
+    mutant rgs_ctrl rgs_ctrl.sv "s/assign children_on = depth1 <= {1'b0, max_depth_i}/assign children_on = depth1 < {1'b0, max_depth_i}/" \
+      --capture "$T/ctrl_room" --max-depth 1 &&
+    mutant rgs_ctrl rgs_ctrl.sv "s/assign raddr = SAW'(top) \* SAW'(CH) + SAW'(pc_q);/assign raddr = SAW'(top) * SAW'(CH);/" \
+      --capture "$T/ctrl_glass" --max-depth 3
 }
 
 # the normal decoder's fold of the lower hemisphere with the x component's sign the wrong way round;

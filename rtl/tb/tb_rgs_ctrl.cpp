@@ -10,7 +10,8 @@
 // packet is traced by the C (trace_begin, trace_step to the end on the image) and its hits come
 // back after 1 to 40 cycles, so the RGS is checked alone. The pixel output gets random back
 // pressure. A mismatch prints the block, the packet, the field and both values; exit code 1 on any
-// mismatch, a packet too many or too few, or a block that does not finish. It prints the cycles a
+// mismatch, a packet too many or too few, or a block that does not finish. It prints the tasks
+// written into and popped from rgs_ctrl's stack memory (the other tasks bypass it), the cycles a
 // block spends in each rgs_ctrl state, rgs_surface's states in SURF, and SURF's cycles per packet
 // by its hits (what the cycle model's surface, surface_hit and surface_miss are fitted on).
 // usage: tb_rgs_ctrl --capture DIR [--max-depth D] [--no-shadows] [--blocks N] [--seed S]
@@ -124,7 +125,10 @@ int main(int argc, char **argv)
     uint64_t mismatches = 0, idle = 0, hits_due = 0, block_start = 0, block_cycles = 0;
     bool in_block = false, hits_pending = false;
     uint64_t state_cycles[32] = {};  // a block's cycles by rgs_ctrl state (its state_t order)
+    uint64_t stack_writes = 0, stack_pops = 0;  // tasks through the stack memory (the rest bypass it)
+    bool popping = false;
     const uint32_t S_SURF = 5;       // rgs_ctrl's S_SURF
+    const uint32_t S_TRACE = 3;
     uint64_t surf_cycles[32] = {};   // SURF's cycles by rgs_surface state
     // SURF's cycles per packet by its hits (0..4): the cycle model's surface, surface_hit and
     // surface_miss are fitted on these (docs/cycle-model.md)
@@ -271,6 +275,9 @@ int main(int argc, char **argv)
         }
         if (in_block)
             state_cycles[top.st_o & 31u]++;
+        stack_writes += top.stk_wr_o;
+        stack_pops += popping && top.st_o == S_TRACE;  // not the packet limit's end
+        popping = top.stk_pop_o;
         if (in_block && top.st_o == S_SURF)
             surf_cycles[top.sst_o & 31u]++, surf_now++;
         if (in_surf && top.st_o != S_SURF)  // a packet's surfaces are done
@@ -284,10 +291,12 @@ int main(int argc, char **argv)
         std::printf("MISMATCH rgs_ctrl: block %zu did not finish (nothing moved for 200000 cycles)\n", done);
     std::printf("rgs_ctrl %zu blocks checked (%zu packets, %.1f cycles per block), %llu mismatches\n", done, packets,
                 done ? (double)block_cycles / (double)done : 0.0, (unsigned long long)mismatches);
+    std::printf("rgs_ctrl stack memory: %llu tasks written, %llu popped\n", (unsigned long long)stack_writes,
+                (unsigned long long)stack_pops);
     static const char *const STATE[] = { "IDLE", "GEN", "NEXT", "TRACE", "HITS", "SURF", "LIGHT", "LREC", "LCALC",
-                                         "STRACE", "SHITS", "ADD", "ACCUM", "PUSH_R", "DONE" };
+                                         "STRACE", "SHITS", "ADD", "ACCUM", "DONE" };
     std::printf("rgs_ctrl cycles per block by state:");
-    for (int s = 0; s < 15; s++)
+    for (size_t s = 0; s < sizeof STATE / sizeof *STATE; s++)
         if (state_cycles[s] && done)
             std::printf(" %s %.1f", STATE[s], (double)state_cycles[s] / (double)done);
     std::printf("\n");

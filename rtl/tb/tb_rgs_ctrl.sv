@@ -49,9 +49,13 @@ module tb_rgs_ctrl #(
   output logic [4*(E+M+1)-1:0]      px_v_o,
   output logic [4*(E+M+1)-1:0]      px_cos_o,
   output logic [4:0]                st_o,       // the control's state: the bench's cycles per state
-  output logic [4:0]                sst_o       // rgs_surface's state (its cycles per state in SURF)
+  output logic [4:0]                sst_o,      // rgs_surface's state (its cycles per state in SURF)
+  output logic                      stk_wr_o,   // a task's first word written into the stack memory
+  output logic                      stk_pop_o   // S_NEXT with the stack's top as the next task
 );
   assign st_o = u_dut.st;
+  assign stk_wr_o = u_dut.wr_q && u_dut.wc_q == '0;
+  assign stk_pop_o = st_o == 5'd2 && !u_dut.nxt_q && u_dut.sp_q != '0;  // S_NEXT (to S_TRACE: the bench)
   assign sst_o = u_units.g_sf[0].u_surface.st;
   localparam int W = 1 + E + M, V = 3 * W;
   localparam int SF_DW = 67 + 2 * V + 4 * W, SR_DW = 205 + 3 * V + 2 * W, LI_DW = 40 + 5 * V + 2 * W, AL_DW = 178, AC_DW = 393 + 3 * V + 2 * W;
