@@ -18,8 +18,9 @@
 //           each burst's address comes from the words before, so a stage's go one after another
 //   back    normal: with vertex normals its hit's from `rgs_normal` (in order): if its squared
 //           length is zero, the geometric normal read here; without vertex normals the front's
-//   frame   d^, n^ facing the ray, t_hat, P, entering (`rgs_frame`): issued here, its result
-//           joins the surface at the output while the next steps and surfaces go on
+//   frame   d^, n^ facing the ray, t_hat, P, entering (`rgs_frame`, outside: rgs_units shares one
+//           among its surface units): the geometry issued on the fr_ ports, its result (in the
+//           order of issue) joins the surface at the output while the next steps and surfaces go on
 //   material  unlit, the highlight exponent k (shader word 0, bits 26..29), the index of
 //           refraction and the kd, kr, kt, ks fields (words 13..15) for the accumulation
 //   colours  9 conversions to Q12 on one `q12_of`, one a cycle from the back's taking the hit (u,
@@ -50,7 +51,9 @@
 // Latency: about 20 + the reads up to the record (3 bursts of 1, 2 and 1 to 5 lines, each waiting
 // for the one before: its address comes from the words of the one before) + `rgs_normal` (89, only with vertex normals; without: the geometric normal's and the
 // material's reads) + the conversions' tail (about 20 from the back's taking it) + per texture
-// lerp 24 + entry 4 + sample 44) + the frame (118), which the next surfaces' steps overlap.
+// lerp 24 + entry 4 + sample 44) + the frame (118, + 1 behind rgs_units' arbiter, + the cycles it
+// waits there for other surface units' operands or stalls on their results), which the next
+// surfaces' steps overlap.
 // Throughput: a surface per its front's reads (3 dependent bursts of lines: about 15 to 25 cycles
 // for a flat hit with a memory answering in 1 to 4 cycles) while the back's part is shorter (about 10 cycles untextured once
 // its normal is there); the second stage holds a hit until the back takes it, the first one
@@ -61,7 +64,7 @@
 // cycle each. Results leave in
 // the order the surfaces came in, with their thread id.
 // Resources: one each of `rgs_normal` (its own `rgs_lerp` for the normals), `rgs_lerp` (texture
-// coordinates), `rgs_frame`, `q12_of`, `tex_bilinear`; 6 `q12_mul` (a texture's modulation, the
+// coordinates), `q12_of`, `tex_bilinear` (the frame is outside); 6 `q12_mul` (a texture's modulation, the
 // tint); per stage (the front's two
 // and the back) the ray and hit (about 0.4 Kbit) and the record (19 words: the first stage's in
 // its reader's buffer); the back a 16-word buffer (the material's) and the matrix (9 W bits), the
@@ -113,6 +116,23 @@ module rgs_surface #(
   output logic [31:0]          mem_addr_o,
   input  logic                 mem_rsp_valid_i,
   input  logic [32*LW-1:0]     mem_rdata_i,
+  // the frame's operand (rgs_frame's inputs but the thread id; fr_ready_i: taken this cycle) and
+  // its results for this unit, in the order of its operands (fr_ready_o: taken this cycle)
+  output logic                 fr_valid_o,
+  input  logic                 fr_ready_i,
+  output logic [3*(E+M+1)-1:0] fr_o_o,
+  output logic [3*(E+M+1)-1:0] fr_d_o,
+  output logic [E+M:0]         fr_t_o,
+  output logic [E+M:0]         fr_cos_n_o,
+  output logic [3*(E+M+1)-1:0] fr_n_o,
+  output logic [9*(E+M+1)-1:0] fr_w2o_o,
+  input  logic                 fr_valid_i,
+  output logic                 fr_ready_o,
+  input  logic [3*(E+M+1)-1:0] fr_d_i,
+  input  logic [3*(E+M+1)-1:0] fr_n_i,
+  input  logic                 fr_entering_i,
+  input  logic [E+M:0]         fr_t_hat_i,
+  input  logic [3*(E+M+1)-1:0] fr_p_i,
   // the surface (hls/units/rgs.h `surface`, and the material's fields the accumulation needs)
   output logic                 valid_o,
   input  logic                 ready_i,
@@ -339,14 +359,10 @@ module rgs_surface #(
     .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(lerp_valid), .ready_o(lerp_ready), .tid_i(1'b0), .a_i(la), .b_i(lb),
     .c_i(lc), .u_i(u_q), .v_i(v_q), .valid_o(lerp_ovalid), .ready_i(1'b1), .tid_o(), .r_o(lerp_r));
 
-  logic fr_ready, fr_ovalid, fr_entering;
-  logic [V-1:0] fr_d, fr_n, fr_p;
-  logic [W-1:0] fr_t_hat;
-  rgs_frame #(.E(E), .M(M), .TID_BITS(1), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES),
-    .SQRT_STAGES(SQRT_STAGES), .DIV_STAGES(DIV_STAGES)) u_frame (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(st == S_FRAME), .ready_o(fr_ready), .tid_i(1'b0),
-    .o_i(o_q), .d_i(d_q), .t_i(t_q), .cos_n_i(cos_q), .n_i(n_q), .w2o_i(w2o_q), .valid_o(fr_ovalid), .ready_i(fr_take),
-    .tid_o(), .d_o(fr_d), .n_o(fr_n), .entering_o(fr_entering), .t_hat_o(fr_t_hat), .p_o(fr_p));
+  // the frame (rgs_frame, outside: rgs_units shares one among its surface units): the geometry
+  // goes out in S_FRAME (fr_ready_i: taken), the results come back in the order of issue
+  assign fr_valid_o = st == S_FRAME;
+  assign {fr_o_o, fr_d_o, fr_t_o, fr_cos_n_o, fr_n_o, fr_w2o_o} = {o_q, d_q, t_q, cos_q, n_q, w2o_q};
 
   // the 9 conversions to Q12, off the sequence's path: issued one a cycle from the back's taking a
   // hit on (its normal's chain or the frame's issue meanwhile), u, v, then the material's factors
@@ -440,7 +456,7 @@ module rgs_surface #(
   logic [12:0] kd_q, kr_q, kt_q, ks_q;
   localparam int QW = TID_BITS + 1 + 32 + 1 + 4 + W + 4 * 13 + 3 * 48;
   logic [QW-1:0] q_in, q_head;
-  logic q_push, q_room, q_any, q_hit, fr_take;
+  logic q_push, q_room, q_any, q_hit;
   // the C's tint (1 - m) + q_mul(m, base) into a free-running register (its product, sum and
   // saturation into the queue's input were 9 LUT6 levels in S_TINT's one cycle): the metallic
   // factor is there from S_Q on, the base colour's last write (S_Q, or its texture's sample) is a
@@ -461,18 +477,18 @@ module rgs_surface #(
                              : {h_tid, (QW - TID_BITS)'(0)};
   sync_fifo #(.W(QW), .DEPTH(SLOTS)) u_queue (
     .clk_i, .rst_ni, .valid_i(q_push), .ready_o(q_room), .data_i(q_in),
-    .valid_o(q_any), .ready_i(ready_i && (!q_hit || fr_ovalid)), .data_o(q_head)
+    .valid_o(q_any), .ready_i(ready_i && (!q_hit || fr_valid_i)), .data_o(q_head)
   );
   assign q_hit = q_head[QW-TID_BITS-1];
-  assign valid_o = q_any && (!q_hit || fr_ovalid);
-  assign fr_take = q_any && q_hit && ready_i;
+  assign valid_o = q_any && (!q_hit || fr_valid_i);
+  assign fr_ready_o = q_any && q_hit && ready_i;
   assign ready_o = f_st == F_IDLE;
   assign {tid_o, sf_valid_o, mat_o, unlit_o, k_o, eta_o, kd_o, kr_o, kt_o, ks_o, base_o, emission_o, tint_o} = q_head;
-  assign p_o = q_hit ? fr_p : '0;
-  assign d_o = q_hit ? fr_d : '0;
-  assign n_o = q_hit ? fr_n : '0;
-  assign t_hat_o = q_hit ? fr_t_hat : '0;
-  assign entering_o = q_hit && fr_entering;
+  assign p_o = q_hit ? fr_p_i : '0;
+  assign d_o = q_hit ? fr_d_i : '0;
+  assign n_o = q_hit ? fr_n_i : '0;
+  assign t_hat_o = q_hit ? fr_t_hat_i : '0;
+  assign entering_o = q_hit && fr_entering_i;
 
   // ---- the front's sequence ----
   logic [31:0] rec_addr, h_mat_at;
@@ -658,7 +674,7 @@ module rgs_surface #(
             st <= S_FRAME;
           end
         S_FRAME:  // the geometry into the frame
-          if (fr_ready) st <= S_Q;
+          if (fr_ready_i) st <= S_Q;
         S_Q: begin
           if (qout_q == 4'd9) begin
             for (int k = 0; k < 3; k++) begin

@@ -27,6 +27,12 @@
 //            it offers its packet's rays, so one controller's 4 surfaces are done before the next
 //            one's (round robin would finish both late). Each surface has a line read port
 //            (mem_*[s]); port 0 is the set-up's until frame_ok_o, then surface 0's
+//   frame    the geometry of a surface unit's hit (d^, n^, t_hat, P: rgs_surface's fr_ ports) into
+//            rgs_frame f = s mod FRAME_UNITS (one by default: a frame takes a ray a cycle, a surface
+//            unit issues one every 40 to 80 cycles) through an rgs_arb, the unit's index as the
+//            frame's thread id; the results come back in order, each to its unit, which takes it
+//            as its surface leaves (a result waits at the frame's output, stalling the frame, until
+//            its unit takes it: none is lost)
 //   light    `rgs_light` on a ray's surface and the controller's light record; `rgs_light_colour`
 //            on the light's colour; `rgs_add_light` on a visible ray's sums; `rgs_accum` on an
 //            active ray (e and the profile's live bit from the set-up, spawn from the controller)
@@ -38,7 +44,7 @@
 //   {ray, sf_valid, P, D^, N^, t_hat, entering, unlit, k, eta, kd, kr, kt, ks, base, emission,
 //   tint} (SR_DW bits).
 // Latency: 1 (the unit's rgs_arb registers the operand) + the units' own (rgs_raygen 30,
-// rgs_surface 215 for a packet's first hit + about 39 a further hit, rgs_light 87,
+// rgs_surface 216 for a packet's first hit with the frame's arbiter register + about 39 a further hit, rgs_light 87,
 // rgs_light_colour 27, rgs_add_light 1, rgs_accum 68 cycles) plus the cycles an operand waits for
 // other controllers' in the same unit (a surface's front takes a hit after the reads of the one
 // before); the set-up about 60 cycles after reset plus its reads (the header's 26 words, the
@@ -48,7 +54,9 @@
 // Throughput: per unit one operand per cycle (II = 1) but a surface (a hit per its front's reads:
 // SURF_UNITS hits at once) and rgs_raygen (a packet per 4 cycles).
 // Resources: one rgs_raygen, rgs_light, rgs_light_colour, rgs_add_light, rgs_accum; SURF_UNITS
-// rgs_surface (about 55,000 LUT6 each, rtl/README.md "The RGS shared"); 5 rgs_arb of N requesters
+// rgs_surface (about 55,000 LUT6 each with its frame before 2026-11-30, rtl/README.md "The RGS
+// shared"); FRAME_UNITS rgs_frame (21,431 LUT6 each), each behind an rgs_arb of
+// ceil(SURF_UNITS / FRAME_UNITS) requesters (3 V + 11 W bits, the frame using 3 V + 10 W + 1); 5 rgs_arb of N requesters
 // (N-to-1 multiplexers of 64, 448, 72, 178 and 657 bits at e7m16 into as many flip-flops, N of the
 // pointer each: 4,407 LUT6 at N = 8 before the output registers) and SURF_UNITS of ceil(N / SURF_UNITS) (307 bits); a FIFO of N controller indices; the set-up's
 // line_reader (26 words), f24_add, f24_cmp, f24_div and the frame's constants (7 x 32 + 10 x W + 5
@@ -67,9 +75,11 @@ module rgs_units #(
   parameter int MOD_STAGES = 16,
   parameter int SURF_UNITS = 4,   // rgs_surface units (1 .. N), unit s serving the controllers k = s mod SURF_UNITS
   parameter int SURF_SLOTS = 16,  // per rgs_surface: surfaces in its frame (its controllers' hits in flight)
+  parameter int FRAME_UNITS = 1,  // rgs_frame units (1 .. SURF_UNITS), frame f serving surface units s = f mod F
   parameter int LW = 4,           // words per line of the read port (the shading cache's 16 bytes)
   localparam int NW = N > 1 ? $clog2(N) : 1,
   localparam int S = SURF_UNITS,
+  localparam int F = FRAME_UNITS,
   localparam int W = 1 + E + M,
   localparam int V = 3 * W,
   localparam int GEN_DW = 64,
@@ -286,6 +296,57 @@ module rgs_units #(
     .valid_i(gen_valid && rg_blk_ready), .ready_o(who_ready), .data_i(gen_idx), .valid_o(who_valid),
     .ready_i(rg_valid), .data_o(who));
 
+  // ---- the frames: F rgs_frame, frame f taking the geometry of the surface units s = f mod F round
+  // robin (the unit's index in the frame as its thread id) and handing each result to that unit.
+  // A unit's results come in the order of its operands (the frame is one in-order pipeline); a
+  // result waits at the frame's output (stalling it) until its unit takes it, which it does as the
+  // surface's other fields reach its queue's head (rgs_surface, not waiting on the frame for that) ----
+  localparam int SF = (S + F - 1) / F;  // surface units per frame, at most
+  localparam int SFW = SF > 1 ? $clog2(SF) : 1;
+  localparam int FR_DW = 3 * V + 11 * W;  // {o, d, t, cos_n, n, w2o}
+  if (F < 1 || F > S) begin : g_fr_check
+    $error("rgs_units: FRAME_UNITS 1 .. SURF_UNITS");
+  end
+  logic [S-1:0] fr_req, fr_ack, fr_out, fr_take;
+  logic [S*FR_DW-1:0] fr_ops;
+  logic [F-1:0] fr_ent;
+  logic [V-1:0] fr_dh [F], fr_nh [F], fr_p [F];
+  logic [W-1:0] fr_that [F];
+  for (genvar f = 0; f < F; f++) begin : g_fr
+    logic [SF-1:0] req, takes;
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic [SF-1:0] ack;  // a missing unit's (S not a multiple of F) is never set
+    /* verilator lint_on UNUSEDSIGNAL */
+    logic [SF*FR_DW-1:0] ops;
+    for (genvar j = 0; j < SF; j++) begin : g_in  // surface unit j F + f, if there is one
+      if (j*F + f < S) begin : g_s
+        assign req[j] = fr_req[j*F + f];
+        assign ops[j*FR_DW +: FR_DW] = fr_ops[(j*F + f)*FR_DW +: FR_DW];
+        assign takes[j] = fr_take[j*F + f];
+        assign fr_ack[j*F + f] = ack[j];
+      end else begin : g_none
+        assign req[j] = 1'b0;
+        assign ops[j*FR_DW +: FR_DW] = '0;
+        assign takes[j] = 1'b0;
+      end
+    end
+    logic op_valid, en, out;
+    logic [SFW-1:0] idx, owner;
+    logic [FR_DW-1:0] op;
+    rgs_arb #(.N(SF), .DW(FR_DW)) u_arb (.clk_i(clk_i), .rst_ni(rst_ni), .req_i(req), .data_i(ops), .ack_o(ack),
+      .valid_o(op_valid), .ready_i(en), .index_o(idx), .data_o(op));
+    rgs_frame #(.E(E), .M(M), .TID_BITS(SFW), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES),
+      .SQRT_STAGES(SQRT_STAGES), .DIV_STAGES(DIV_STAGES)) u_frame (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(op_valid),
+      .ready_o(en), .tid_i(idx), .o_i(op[2*V + 11*W +: V]), .d_i(op[V + 11*W +: V]), .t_i(op[V + 10*W +: W]),
+      .cos_n_i(op[V + 9*W +: W]), .n_i(op[9*W +: V]), .w2o_i(op[0 +: 9*W]), .valid_o(out), .ready_i(takes[owner]),
+      .tid_o(owner), .d_o(fr_dh[f]), .n_o(fr_nh[f]), .entering_o(fr_ent[f]), .t_hat_o(fr_that[f]), .p_o(fr_p[f]));
+    for (genvar j = 0; j < SF; j++) begin : g_out
+      if (j*F + f < S) begin : g_s
+        assign fr_out[j*F + f] = out && owner == SFW'(j);
+      end
+    end
+  end
+
   // ---- the surfaces: S rgs_surface units, unit s taking the rays and hits of the controllers k = s
   // mod S round robin; each takes the next ray while it reads and shades the ones before (several
   // controllers' rays in flight, in order) and gives a surface back to the controller in its id ----
@@ -337,7 +398,12 @@ module rgs_units #(
       .tex_base_i(tex_base_q), .n_tex_i(n_tex_q), .valid_i(op_valid), .ready_o(take),
       .tid_i({owner, op[SF_DW-1 -: 2]}), .active_i(op[SF_DW-3]), .o_i(op[SF_DW-4 -: V]),
       .d_i(op[SF_DW-4-V -: V]), .inst_i(op[4*W + 32 +: 32]), .tri_i(op[4*W +: 32]), .t_i(op[3*W +: W]),
-      .u_i(op[2*W +: W]), .v_i(op[W +: W]), .cos_n_i(op[0 +: W]), .mem_req_valid_o(sf_req[s]),
+      .u_i(op[2*W +: W]), .v_i(op[W +: W]), .cos_n_i(op[0 +: W]), .fr_valid_o(fr_req[s]), .fr_ready_i(fr_ack[s]),
+      .fr_o_o(fr_ops[s*FR_DW + 2*V + 11*W +: V]), .fr_d_o(fr_ops[s*FR_DW + V + 11*W +: V]),
+      .fr_t_o(fr_ops[s*FR_DW + V + 10*W +: W]), .fr_cos_n_o(fr_ops[s*FR_DW + V + 9*W +: W]),
+      .fr_n_o(fr_ops[s*FR_DW + 9*W +: V]), .fr_w2o_o(fr_ops[s*FR_DW +: 9*W]), .fr_valid_i(fr_out[s]),
+      .fr_ready_o(fr_take[s]), .fr_d_i(fr_dh[s % F]), .fr_n_i(fr_nh[s % F]), .fr_entering_i(fr_ent[s % F]),
+      .fr_t_hat_i(fr_that[s % F]), .fr_p_i(fr_p[s % F]), .mem_req_valid_o(sf_req[s]),
       .mem_req_ready_i((s != 0 || sf_port) && mem_req_ready_i[s]), .mem_addr_o(sf_addr[s*32 +: 32]),
       .mem_rsp_valid_i((s != 0 || sf_port) && mem_rsp_valid_i[s]), .mem_rdata_i(mem_rdata_i), .valid_o(sf_out[s]),
       .ready_i(1'b1), .tid_o({sf_who[s], ray}), .sf_valid_o(sfv), .p_o(p), .d_o(d), .n_o(n), .t_hat_o(that),

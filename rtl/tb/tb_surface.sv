@@ -1,6 +1,7 @@
 // tb_surface: test wrapper (not synthesized) around rgs_surface, the surface the RGS shades at a
 // hit (rtl/rgs_surface.sv), with thread ids of 6 bits; the C++ bench (tb_surface.cpp) is its memory
-// and checks every surface and every read against the C model.
+// and checks every surface and every read against the C model. The surface's frame (rgs_frame,
+// which rgs_units shares among its surface units) is its own here, its operand straight in.
 module tb_surface #(
   parameter int E = 7,
   parameter int M = 16
@@ -50,11 +51,25 @@ module tb_surface #(
   output logic [3*16-1:0]           emission_o,
   output logic [3*16-1:0]           tint_o
 );
+  localparam int W = 1 + E + M;
+  logic fr_valid, fr_ready, fr_ovalid, fr_take, fr_entering;
+  logic [3*W-1:0] fr_o, fr_d, fr_n, fr_dh, fr_nh, fr_p;
+  logic [W-1:0] fr_t, fr_cos, fr_t_hat;
+  logic [9*W-1:0] fr_w2o;
+  /* verilator lint_off PINCONNECTEMPTY */
+  rgs_frame #(.E(E), .M(M), .TID_BITS(1)) u_frame (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(fr_valid),
+    .ready_o(fr_ready), .tid_i(1'b0), .o_i(fr_o), .d_i(fr_d), .t_i(fr_t), .cos_n_i(fr_cos), .n_i(fr_n), .w2o_i(fr_w2o),
+    .valid_o(fr_ovalid), .ready_i(fr_take), .tid_o(), .d_o(fr_dh), .n_o(fr_nh), .entering_o(fr_entering),
+    .t_hat_o(fr_t_hat), .p_o(fr_p));
+  /* verilator lint_on PINCONNECTEMPTY */
   rgs_surface #(.E(E), .M(M), .TID_BITS(6)) u_dut (
     .clk_i(clk_i), .rst_ni(rst_ni), .inst_base_i(inst_base_i), .obj_base_i(obj_base_i), .mat_base_i(mat_base_i),
     .tex_base_i(tex_base_i), .n_tex_i(n_tex_i), .valid_i(valid_i), .ready_o(ready_o), .tid_i(tid_i),
     .active_i(active_i), .o_i(o_i), .d_i(d_i), .inst_i(inst_i), .tri_i(tri_i), .t_i(t_i), .u_i(u_i), .v_i(v_i),
-    .cos_n_i(cos_n_i), .mem_req_valid_o(mem_req_valid_o), .mem_req_ready_i(mem_req_ready_i), .mem_addr_o(mem_addr_o),
+    .cos_n_i(cos_n_i), .fr_valid_o(fr_valid), .fr_ready_i(fr_valid && fr_ready), .fr_o_o(fr_o), .fr_d_o(fr_d),
+    .fr_t_o(fr_t), .fr_cos_n_o(fr_cos), .fr_n_o(fr_n), .fr_w2o_o(fr_w2o), .fr_valid_i(fr_ovalid), .fr_ready_o(fr_take),
+    .fr_d_i(fr_dh), .fr_n_i(fr_nh), .fr_entering_i(fr_entering), .fr_t_hat_i(fr_t_hat), .fr_p_i(fr_p),
+    .mem_req_valid_o(mem_req_valid_o), .mem_req_ready_i(mem_req_ready_i), .mem_addr_o(mem_addr_o),
     .mem_rsp_valid_i(mem_rsp_valid_i), .mem_rdata_i(mem_rdata_i), .valid_o(valid_o), .ready_i(ready_i),
     .tid_o(tid_o), .sf_valid_o(sf_valid_o), .p_o(p_o), .d_o(d_o), .n_o(n_o), .t_hat_o(t_hat_o),
     .entering_o(entering_o), .mat_o(mat_o), .unlit_o(unlit_o), .k_o(k_o), .eta_o(eta_o), .kd_o(kd_o), .kr_o(kr_o), .kt_o(kt_o), .ks_o(ks_o), .base_o(base_o), .emission_o(emission_o),
