@@ -8,7 +8,7 @@
 // requester through a FIFO of the requesters of the transfers under way (DEPTH entries; with it
 // full, no request is granted). Combinational between requesters and memory (latency 0 each way),
 // one request and one response per cycle.
-// Resources: the round-robin arbiter (N-bit priority rotation), an N-way mux of AW + BW bits, the
+// Resources: the round-robin arbiter (`rr_pick`, the mask of the requesters after the last grant), an N-way mux of AW + BW bits, the
 // source FIFO DEPTH x log2 N flip-flops with its pointers; the response data is one bus of DW bits
 // to every requester (each takes its low bits).
 module mem_port #(
@@ -41,20 +41,16 @@ module mem_port #(
   logic [PW-1:0] head, tail;
   logic [PW:0] count;
   logic full, grant_any, fire;
-  logic [SW-1:0] last, grant;
+  logic [SW-1:0] grant;
+  logic [N-1:0] after, after_next;
 
   assign full = count == (PW + 1)'(DEPTH);
-  // round robin: the first requester after the last granted one
-  always_comb begin
-    grant = '0;
-    grant_any = 1'b0;
-    for (int k = N; k >= 1; k--) begin
-      if (req_valid_i[SW'((32'(last) + k) % N)]) begin
-        grant = SW'((32'(last) + k) % N);
-        grant_any = 1'b1;
-      end
-    end
-  end
+  // round robin: the first requester after the last granted one (after: the requesters above it),
+  // without an index modulo N, which Yosys maps to a divider per candidate unless N is a power of 2
+  /* verilator lint_off PINCONNECTEMPTY */
+  rr_pick #(.N(N)) u_pick (
+    .req_i(req_valid_i), .after_i(after), .any_o(grant_any), .grant_o(), .index_o(grant), .after_o(after_next));
+  /* verilator lint_on PINCONNECTEMPTY */
   assign mem_req_valid_o = grant_any && !full;
   assign mem_req_addr_o = req_addr_i[32'(grant)*AW +: AW];
   assign mem_req_bytes_o = req_bytes_i[32'(grant)*BW +: BW];
@@ -73,11 +69,11 @@ module mem_port #(
       head <= '0;
       tail <= '0;
       count <= '0;
-      last <= SW'(N - 1);
+      after <= '0;  // before the first grant: the lowest requester
     end else begin
       if (fire) begin
         tail <= tail + 1'b1;
-        last <= grant;
+        after <= after_next;
       end
       if (mem_rsp_valid_i) head <= head + 1'b1;
       count <= count + (PW + 1)'(fire) - (PW + 1)'(mem_rsp_valid_i);
