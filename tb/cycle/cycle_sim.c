@@ -517,7 +517,8 @@ static void occupy(pipe_state *p, uint32_t id, uint64_t start, uint32_t after)
 static void trav_push(pipe_state *p, uint32_t id, uint64_t at)
 {
     p->th[id].node_at = at;
-    p->trav_q[(p->trav_head + p->trav_n++) % p->cfg->threads_per_pipe] = id;
+    const uint32_t slot = p->trav_head + p->trav_n++, cap = p->cfg->threads_per_pipe;
+    p->trav_q[slot < cap ? slot : slot - cap] = id; /* a ring: at < 2 cap, no division on the hot path */
 }
 
 /* The queue's head, if it can take trav_node's slots now (UINT32_MAX: none). */
@@ -570,7 +571,7 @@ static void pipe_cycle(pipe_state *p)
             issue_op(p, u, issue[u]);
     if (slot != UINT32_MAX) {
         const unit_op *op = &p->th[slot].op;
-        p->trav_head = (p->trav_head + 1) % cap;
+        p->trav_head = p->trav_head + 1 == cap ? 0 : p->trav_head + 1;
         p->trav_n--;
         p->trav_free = p->now + op->slots;
         occupy(p, slot, p->now, op_latency(p->cfg, op) - op_front(p->cfg, op) - node_lead(p->cfg, op));
