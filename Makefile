@@ -57,7 +57,10 @@ VERSION := 0.1.0+$(shell git describe --always --dirty 2>/dev/null || echo unkno
 # -Wno-psabi: GCC notes, at every use of the fast path's vector values as a parameter, that their
 # passing changed in GCC 4.6: the functions are static inline, no ABI boundary is crossed
 WARN := -Wall -Wextra -Werror -Wshadow -Wno-unused-label -Wno-psabi
-OPT := -O2
+# Under the sanitizers (SAN=1, make test's ASan build) everything at -O1, the level ASan is made
+# for: make test's ASan build and its tests took 255 + 111 s of CPU with the simulator at -O3 and
+# 149 + 138 s at -O1 (fresh clone, 2026-11-30; its renders as fast: test_golden_asan 24 against 23 s)
+OPT := $(if $(filter 1,$(SAN)),-O1,-O2)
 # the simulator's objects (SIM_SRCS: units, memory image, cycle model, reference, command line;
 # the fp24 arithmetic's: hls/fp24, tb/fp) at
 # -O3: its loop unswitching, peeling and vectorization take 6.8% of a functional render's
@@ -65,7 +68,7 @@ OPT := -O2
 # -ffp-contract=off keeps every binary64 rounding). OPT on the command line (make test's -O0
 # build) leaves them at its level, and the SIM_ARITH=hw build (the reference, not timed) stays at
 # -O2, which saves make test 6 s of CPU a build.
-SIM_OPT := $(if $(filter command line,$(origin OPT))$(filter hw,$(SIM_ARITH)),,-O3)
+SIM_OPT := $(if $(filter command line,$(origin OPT))$(filter hw,$(SIM_ARITH))$(filter 1,$(SAN)),,-O3)
 SAN_ON := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 SANFLAGS := $(if $(filter 1,$(SAN)),$(SAN_ON))
 # no fused multiply-add: the fast fp24 path relies on one binary64 rounding per operation
@@ -155,7 +158,7 @@ endif
 # are the same bits at any level (-ffp-contract=off; scripts/kd_identical.sh). Not SIM_OPT: the
 # SIM_ARITH=hw build shares HOST_BUILD's object, and rebuilding it there at -O2 (after an edit of
 # kdtree.c) left build/saarcor's next link with the slower builder (bunny: 1.739 -> 1.862 G Ir).
-KD_OPT := $(if $(filter command line,$(origin OPT)),,-O3)
+KD_OPT := $(if $(filter command line,$(origin OPT))$(filter 1,$(SAN)),,-O3)
 $(foreach d,$(sort $(BUILD) $(HOST_BUILD)),$(d)/obj/host/host/kdtree/kdtree.o): CFLAGS += $(KD_OPT)
 $(IMG_LIB): $(IMG_OBJ)
 	@echo "  LD    $@"
