@@ -10,8 +10,9 @@
 //     NO_HIT (all ones), next = 0 (list_mailboxes_clear). No result leaves the unit for it.
 // State: per thread and level (index {thread, level}) 4 rays x 8 keys of KW bits and 4 round-robin
 // pointers, held in 32 memories of 2*THREADS x KW bits (one per ray and slot: a clear writes all of
-// them, an entry writes at most one slot per ray) and 4 of 2*THREADS x 3 bits, each with one
-// synchronous read and one write port (block RAM or LUT RAM).
+// them, an entry writes at most one slot per ray) and one of 2*THREADS x 12 bits (the 4 rays'
+// pointers, each written alone), each with one synchronous read and one write port (block RAM or
+// LUT RAM).
 // Pipeline (one operation per cycle, II = 1), not blocking on a list word: an entry's read goes
 // out when the unit takes it, and the entry waits for its word in a queue while later entries'
 // reads go out behind it (up to DEPTH + 1 operations in the unit, their reads in flight at once):
@@ -46,7 +47,9 @@
 // incrementer, 4 3-bit incrementers; the queues DEPTH x (TW + 6 + AW) and 2 DEPTH x KW bits of
 // LUT RAM; about 150 + 3 AW + KW flip-flops of registers. synth_xilinx (scripts/synth.py --levels
 // list_unit THREADS=64 --hier, 2026-11-29): 5 LUT6 levels, 1,008 LUT6, 287 flip-flops, 32 RAMB18E1,
-// 8 RAM64M, 14 RAM32M (before the queue: 4, 974, 230, 32, 8, 0; docs/synth.md).
+// 8 RAM64M, 14 RAM32M (before the queue: 4, 974, 230, 32, 8, 0; docs/synth.md). synth_ice40
+// (scripts/synth.py --ice40 list_unit THREADS=64, 2026-11-30): 2,532 SB_LUT4, 1,306 flip-flops,
+// 65 SB_RAM40_4K (64 for the keys, 128 of 256 rows used; 1 for the pointers, 4 with a memory per ray).
 // Handshake: valid/ready (the pipeline advances when ready_i or nothing is at the output).
 module list_unit #(
   parameter int THREADS = 64,
@@ -150,21 +153,24 @@ module list_unit #(
 
   // mailbox memories: key[ray][slot] and next[ray], read every cycle for the next H, written at
   // the end of S2
+  // The 4 rays' pointers are one memory of 12-bit words, each ray's 3 bits written on their own (a
+  // write mask): one block RAM's 16-bit rows instead of four blocks with 3 of 16 bits used.
   logic [KW-1:0] key_rd [4][SLOTS];
-  logic [2:0] next_rd [4];
+  logic [11:0] next_rd;                   // ray r's pointer at 3 r
+  logic [3:0] wr;
+  logic [11:0] next_mem [2*THREADS];
+  always_ff @(posedge clk_i) begin
+    next_rd <= next_mem[rd_idx];
+    for (int r = 0; r < 4; r++)
+      if (wr[r]) next_mem[s2_idx][3*r +: 3] <= s2_clear ? 3'd0 : s2_next[r] + 3'd1;
+  end
   for (genvar r = 0; r < 4; r++) begin : g_ray
-    logic [2:0] next_mem [2*THREADS];
-    logic wr;
-    assign wr = out && s2_valid && (s2_clear || (s2_mask[r] && !s2_seen[r]));
-    always_ff @(posedge clk_i) begin
-      next_rd[r] <= next_mem[rd_idx];
-      if (wr) next_mem[s2_idx] <= s2_clear ? 3'd0 : s2_next[r] + 3'd1;
-    end
+    assign wr[r] = out && s2_valid && (s2_clear || (s2_mask[r] && !s2_seen[r]));
     for (genvar j = 0; j < SLOTS; j++) begin : g_slot
       logic [KW-1:0] key_mem [2*THREADS];
       always_ff @(posedge clk_i) begin
         key_rd[r][j] <= key_mem[rd_idx];
-        if (wr && (s2_clear || s2_next[r] == 3'(j))) key_mem[s2_idx] <= s2_clear ? NO_HIT : s2_key;
+        if (wr[r] && (s2_clear || s2_next[r] == 3'(j))) key_mem[s2_idx] <= s2_clear ? NO_HIT : s2_key;
       end
     end
   end
@@ -186,7 +192,7 @@ module list_unit #(
       s2_seen <= seen;
       s2_key <= w_head;
       s2_k1 <= h_k1;
-      for (int r = 0; r < 4; r++) s2_next[r] <= next_rd[r];
+      for (int r = 0; r < 4; r++) s2_next[r] <= next_rd[3*r +: 3];
     end
     if (out) begin
       {thread_o, level_o} <= s2_idx;

@@ -24,7 +24,8 @@
 // SB_RAM40_4K; synth_ice40 -dsp -noflatten (python3 scripts/synth.py's per-module flow,
 // 2026-11-29) W = 144 or 72, DEPTH = 64 (a ray's o and d, or one of them, at 64 threads) 9 or 5
 // SB_RAM40_4K, W = 24, DEPTH = 256 2: an SB_RAM40_4K is 16 bits wide at 256 words or fewer, so at
-// DEPTH = 64 three quarters of its bits are unused.
+// DEPTH = 64 three quarters of its bits are unused: a field read one ray at a time belongs in one
+// memory of 4 THREADS words ({thread, ray}), written a ray a cycle (trace_core's world rays).
 module thread_ram #(
   parameter int W = 32,
   parameter int DEPTH = 256,

@@ -53,15 +53,15 @@
 // Resources: the units' (rtl/README.md), thread_sched (6 units, 4-bit slot counters), per unit a
 // 4-bit feed counter and a thread id, THREADS trace_thread (its control and the fields the
 // traversal unit or the FSM read, in registers), thread_ram per field group and reader: THREADS
-// words per ray for the world rays (6 W for the traversal and rebase units, 3 W (d) for the wide
-// transformation and the triangle test) and the traversal unit's object-space rays (so, sd 3 W
-// each), 4 THREADS words for p (6 W, the wide transformation and the triangle test), te (W),
-// so and sd (6 W each, high and low words, the rebase unit), sd's high words (3 W, the triangle
-// test), t0 (W, the adders and the triangle test), THREADS words for the records' operands (the
-// instance's matrix and translation's low words 15 W, the object's bounds 6 W, the triangle's
-// record 15 W + 3) and 4 x THREADS words of 64 + 3 W bits for the hits' records; the per-ray
-// units' issue stage (their other operands, a few W bits, registered once), the traversal and
-// list units' issue FIFOs (two entries of TW + 12 W + 42 and TW + 106 bits) and the traversal's
+// words per ray for the traversal unit's world rays (6 W) and object-space rays (so, sd 3 W each),
+// 4 THREADS words for the per-ray units' world rays (6 W for the rebase unit, 3 W (d) for the wide
+// transformation and the triangle test; written from a queue of 2 packets of 4 x 6 W bits), p
+// (6 W, the wide transformation and the triangle test), te (W), so and sd (6 W each, high and low
+// words, the rebase unit), sd's high words (3 W, the triangle test), t0 (W, the adders and the
+// triangle test), THREADS words for the records' operands (the instance's matrix and
+// translation's low words 15 W, the object's bounds 6 W, the triangle's record 15 W + 3) and 4 x
+// THREADS words of 64 + 3 W bits for the hits' records; the per-ray units' issue stage (their
+// other operands, a few W bits, registered once), the traversal and list units' issue FIFOs (two entries of TW + 12 W + 42 and TW + 106 bits) and the traversal's
 // rays and box beside its FIFO (two entries of 30 W), the registered response (RW words) and one
 // f24_vertex_lo per vertex component, the output register, the header's fields (5 words and the
 // 6 W-bit bounds, once), the word port's FIFO of 2 THREADS requesters of TW + 1 bits, two rr_pick
@@ -70,19 +70,21 @@
 // synth_ice40 -dsp -noflatten at the paper's 64 threads, e7m16, this module's own cells (its
 // submodules black boxes: mapped as python3 scripts/synth.py --dynrtp ice40 maps each module,
 // 2026-11-29): 61,586 SB_LUT4 and 4,715 flip-flops, its thread_ram 290
-// SB_RAM40_4K; with the rays' o and d in the threads' registers 133,921, 3,897 and 70 (the
-// traversal's issue FIFO 1,064 SB_LUT4 and 2,110 flip-flops then, 344 and 670 now); trace_thread
+// SB_RAM40_4K (233 since the per-ray units' world rays are one memory each, 2026-11-30: 76 -> 19
+// blocks, their queue 593 SB_LUT4 and 1,168 flip-flops as sync_fifo alone; not mapped again);
+// with the rays' o and d in the threads' registers 133,921, 3,897 and 70 (the traversal's issue
+// FIFO 1,064 SB_LUT4 and 2,110 flip-flops then, 344 and 670 now); trace_thread
 // 2,989 SB_LUT4, 1,905 flip-flops (5,871 and 3,437). At THREADS = 2 (synth_xilinx, e7m16, python3
 // scripts/synth.py --levels trace_core THREADS=2 --hier, 2026-11-29) 147,530 LUT6, 126,641
 // flip-flops, 11 LUT6 levels (137,189, 126,945 and 8 before the rays and the records' words
 // moved here; the 11: a world ray's read through a shifter into xform_wide, a 4-to-1 choice
-// since, not re-synthesized: rtl/README.md).
-// Handshake: valid/ready at the packet input (into thread thread_i: ready_o when it is free) and
-// at the result output (registered; the lowest finished thread first); word port valid/ready with responses in
-// request order; trav_unit's node port and list_unit's read port as those units define them (a
-// list request held until list_req_ready_i, the answers in request order, always taken: the list
-// cache's). issue_o: the steps each unit took in this cycle (a batch counts its rays: the DynRTP's
-// usage counters).
+// since, now a memory's read of the step's ray; not re-synthesized: rtl/README.md).
+// Handshake: valid/ready at the packet input (into thread thread_i: ready_o when it is free and
+// the world rays' queue has room) and at the result output (registered; the lowest finished
+// thread first); word port valid/ready with responses in request order; trav_unit's node port
+// and list_unit's read port as those units define them (a list request held until
+// list_req_ready_i, the answers in request order, always taken: the list cache's). issue_o: the
+// steps each unit took in this cycle (a batch counts its rays: the DynRTP's usage counters).
 module trace_core #(
   parameter int E = 7,
   parameter int M = 16,
@@ -203,11 +205,12 @@ module trace_core #(
   logic hdr_ok;
   logic [31:0] hdr_instances, hdr_objects, hdr_inst, hdr_top_nodes, hdr_top_lists;
   logic [6*W-1:0] scene_box;
+  logic wq_ready;                         // the world rays' queue takes a packet (below)
 
   /* verilator lint_off PINCONNECTEMPTY */
   for (genvar t = 0; t < THREADS; t++) begin : g_thread
     trace_thread #(.E(E), .M(M)) u_thread (
-      .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(valid_i && thread_i == TW'(t)), .ready_o(t_ready[t]),
+      .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(valid_i && wq_ready && thread_i == TW'(t)), .ready_o(t_ready[t]),
       .flags_i(flags_i), .active_i(active_i), .tmin_i(tmin_i), .tmax_i(tmax_i),
       .valid_o(t_valid[t]), .ready_i(t_out_ready[t]), .hit_o(t_hit[t]), .t_o(t_t[t]), .count_o(t_count[t]),
       .hdr_want_o(t_hdr_want[t]), .hdr_ok_i(hdr_ok), .hdr_instances_i(hdr_instances), .hdr_objects_i(hdr_objects),
@@ -565,25 +568,59 @@ module trace_core #(
     .clk_i(clk_i), .we_i(rsp_we && rsp_ix == 2'd0), .waddr_i(rsp_thread), .wdata_i(tri_wdata),
     .re_i(1'b1), .raddr_i(sel[U_IS]), .rdata_o(tri_rd));
 
-  // the world rays o, d per thread, one memory per ray (a packet's 4 rays enter in one cycle) and
-  // reader: k = 0 the traversal unit (o, d of every ray), 1 the rebase unit (o, d of the step's
-  // ray), 2 the wide transformation (d), 3 the triangle test (d: an identity instance's);
-  // w_rd[k][r] = {o, d} (d alone for k >= 2), read in the issue cycle as the per-ray fields
-  localparam int WRD = 6 * W;
-  logic in_take;
-  logic [16*WRD-1:0] w_rd;
+  // the world rays o, d: the traversal unit's per thread, one memory per ray (it reads a packet's 4
+  // rays at once, written as the packet enters), w_rd[r] = {o, d}; each per-ray unit's (the rebase
+  // unit: o, d; the wide transformation and the triangle test: d) one memory per thread and ray,
+  // {thread, ray} as p's, read as its step's ray: 4 THREADS words fill block RAM's 256 rows where
+  // one memory per ray used a quarter of them (64 threads: 19 SB_RAM40_4K instead of 76). Its one
+  // write port takes a ray a cycle: the packets wait in a queue of WQ_DEPTH (LUT RAM: flip-flops
+  // on the iCE40) and ready_o is low while it is full (more than WQ_DEPTH packets in a row each
+  // less than 4 cycles after the last; cycles unchanged in the frames of rtl/README.md). A
+  // packet's rays are written within 4 WQ_DEPTH cycles of its entry, long before its first per-ray
+  // step reads one: that follows its scene clip's result from the traversal unit (41 cycles or
+  // more).
+  localparam int WRD = 6 * W, WQ_DEPTH = 2;
+  logic in_take, wq_valid;
+  logic [TW+4*WRD-1:0] wq_in, wq_head;    // {thread, ray 3's {o, d}, .. ray 0's}
+  logic [1:0] wq_ray;                     // the head's ray written in this cycle
+  logic [WRD-1:0] wq_word;
+  logic [TW+1:0] wq_addr;
+  logic [4*WRD-1:0] w_rd;
   assign in_take = valid_i && ready_o;
-  for (genvar k = 0; k < 4; k++) begin : g_world
-    localparam int U = k == 0 ? U_TRAV : k == 1 ? U_RB : k == 2 ? U_XW : U_IS;
-    localparam int BW = k < 2 ? 6 * W : 3 * W;
-    for (genvar r = 0; r < 4; r++) begin : g_ray
-      logic [BW-1:0] rdata;
-      thread_ram #(.W(BW), .DEPTH(THREADS)) u_w (
-        .clk_i(clk_i), .we_i(in_take), .waddr_i(thread_i), .wdata_i(BW'({o_i[r*3*W +: 3*W], d_i[r*3*W +: 3*W]})),
-        .re_i(1'b1), .raddr_i(sel[U]), .rdata_o(rdata));
-      assign w_rd[(4*k+r)*WRD +: WRD] = WRD'(rdata);
-    end
+  always_comb begin
+    wq_in[4*WRD +: TW] = thread_i;
+    for (int r = 0; r < 4; r++) wq_in[r*WRD +: WRD] = {o_i[r*3*W +: 3*W], d_i[r*3*W +: 3*W]};
   end
+  sync_fifo #(.W(TW + 4 * WRD), .DEPTH(WQ_DEPTH)) u_world_q (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(in_take), .ready_o(wq_ready), .data_i(wq_in),
+    .valid_o(wq_valid), .ready_i(wq_ray == 2'd3), .data_o(wq_head));
+  always_ff @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) wq_ray <= '0;
+    else if (wq_valid) wq_ray <= wq_ray + 2'd1;
+  always_comb  // a 4-to-1 choice (an index into all of wq_head would be a shifter)
+    unique case (wq_ray)
+      2'd0: wq_word = wq_head[0 +: WRD];
+      2'd1: wq_word = wq_head[WRD +: WRD];
+      2'd2: wq_word = wq_head[2*WRD +: WRD];
+      default: wq_word = wq_head[3*WRD +: WRD];
+    endcase
+  assign wq_addr = {wq_head[4*WRD +: TW], wq_ray};
+  for (genvar r = 0; r < 4; r++) begin : g_world
+    thread_ram #(.W(WRD), .DEPTH(THREADS)) u_w (
+      .clk_i(clk_i), .we_i(in_take), .waddr_i(thread_i), .wdata_i(wq_in[r*WRD +: WRD]),
+      .re_i(1'b1), .raddr_i(sel[U_TRAV]), .rdata_o(w_rd[r*WRD +: WRD]));
+  end
+  logic [WRD-1:0] rb_w;
+  logic [3*W-1:0] xw_w, is_w;
+  thread_ram #(.W(WRD), .DEPTH(RAYS)) u_world_rb (
+    .clk_i(clk_i), .we_i(wq_valid), .waddr_i(wq_addr), .wdata_i(wq_word),
+    .re_i(1'b1), .raddr_i(raddr[U_RB]), .rdata_o(rb_w));
+  thread_ram #(.W(3 * W), .DEPTH(RAYS)) u_world_xw (
+    .clk_i(clk_i), .we_i(wq_valid), .waddr_i(wq_addr), .wdata_i(wq_word[0 +: 3*W]),
+    .re_i(1'b1), .raddr_i(raddr[U_XW]), .rdata_o(xw_w));
+  thread_ram #(.W(3 * W), .DEPTH(RAYS)) u_world_is (
+    .clk_i(clk_i), .we_i(wq_valid), .waddr_i(wq_addr), .wdata_i(wq_word[0 +: 3*W]),
+    .re_i(1'b1), .raddr_i(raddr[U_IS]), .rdata_o(is_w));
   // the object-space rays' high words per thread for the traversal unit, one memory per ray and
   // pass (so, sd)
   logic [8*3*W-1:0] obj_trav;             // ray r's so at 3W r, its sd at 3W (4 + r)
@@ -656,26 +693,14 @@ module trace_core #(
   assign trav_rd[0 +: 6*W] = trav_scene_q ? scene_box : rec_rd[15*W +: 6*W];
   assign {trav_op_o, trav_op_d, trav_op_box} = trav_wr_q && trav_slot_q == trav_head ? trav_rd : trav_rays[trav_head];
 
-  // the per-ray units' rays (the step's ray ray_q of the world rays' memories)
-  logic [WRD-1:0] rb_w;
+  // the per-ray units' rays (their memories' words of the step's thread and ray)
   logic [3*W-1:0] rb_o_hi, rb_d_hi, xw_d, is_d;
-  // reader k's word of ray r: a 4-to-1 choice (an index into all of w_rd was a shifter, 5 LUT6
-  // levels in front of xform_wide at 2 threads)
-  function automatic logic [WRD-1:0] world(input int k, input logic [1:0] r);
-    unique case (r)
-      2'd0: world = w_rd[(4*k) * WRD +: WRD];
-      2'd1: world = w_rd[(4*k+1) * WRD +: WRD];
-      2'd2: world = w_rd[(4*k+2) * WRD +: WRD];
-      default: world = w_rd[(4*k+3) * WRD +: WRD];
-    endcase
-  endfunction
-  assign rb_w = world(1, ray_q[U_RB]);
   assign rb_o_hi = rb_leaf_q ? obj_ray(rb_lo_zero_q, rb_id_sg_q, rb_w[3*W +: 3*W], so_rb[3*W +: 3*W], 1'b1)
                              : rb_w[3*W +: 3*W];
   assign rb_d_hi = rb_leaf_q ? obj_ray(rb_lo_zero_q, rb_id_sg_q, rb_w[0 +: 3*W], sd_rb[3*W +: 3*W], 1'b0)
                              : rb_w[0 +: 3*W];
-  assign xw_d = (3*W)'(world(2, ray_q[U_XW]));
-  assign is_d = obj_ray(is_lo_zero_q, is_id_sg_q, (3*W)'(world(3, ray_q[U_IS])), sd_is, 1'b0);
+  assign xw_d = xw_w;
+  assign is_d = obj_ray(is_lo_zero_q, is_id_sg_q, is_w, sd_is, 1'b0);
 
   logic rb_lo;                            // a leaf's rebase of an instance's rays in double words
   assign rb_lo = rb_leaf_q && !rb_lo_zero_q;
@@ -808,7 +833,7 @@ module trace_core #(
   rr_pick #(.N(THREADS)) u_out_pick (.req_i(t_valid), .after_i('0), .any_o(out_any), .grant_o(out_grant),
                                      .index_o(out_sel), .after_o());
   /* verilator lint_on PINCONNECTEMPTY */
-  assign ready_o = t_ready[thread_i];
+  assign ready_o = t_ready[thread_i] && wq_ready;
   assign out_take = !out_full || ready_i;
   assign t_out_ready = out_take ? out_grant : '0;
   logic [3:0] out_hit;

@@ -23,7 +23,8 @@
    whole fix: those units as measured, the intersection unit's origin path composed from the exact
    sum and the operators.
 6. The whole DynRTP (rtl/dynrtp.sv) at the paper's configuration, per module without flattening:
-   7-series and iCE40 (`synth_ice40 -dsp`) totals, block RAM bits, LUT6 levels across module ports,
+   7-series and iCE40 (`synth_ice40 -dsp`) totals, block RAM bits (and of them the bits the memories
+   store, memory by memory: bram_memories), LUT6 levels across module ports,
    the LUT6 and LUT4 of each unit, beside the prototype (build/synth/synth.json "dynrtp"). Each
    distinct module is mapped by a Yosys run of its own (its submodules black boxes) and kept in
    build/synth/dynrtp/ by the hash of its RTL, so a second run maps only the modules that changed.
@@ -41,8 +42,9 @@ hier_lut_levels), its deepest path flattened after mapping (cell type, a net it 
 --hier, for modules too large to flatten), and per submodule its levels and its own cells' deepest
 path (the named nets); it writes only build/synth/levels_*.
 `python3 scripts/synth.py --ice40 MODULE [PARAM=VALUE ...]` prints one module's synth_ice40 -dsp totals
-(SB_LUT4, flip-flops, SB_RAM40_4K, SB_MAC16) mapped module by module as the DynRTP's are, and per part
-(its own cells, each kind of submodule); it writes only build/synth/ice40_*/.
+(SB_LUT4, flip-flops, SB_RAM40_4K, SB_MAC16) mapped module by module as the DynRTP's are, per part
+(its own cells, each kind of submodule) and per memory in block RAM its SB_RAM40_4K and the bits it
+stores (width x depth); it writes only build/synth/ice40_*/.
 `python3 scripts/synth.py --ports build/synth/levels_MODULE_hier.json PORT ...` prints, from a netlist
 that --levels wrote, each port's LUT6 levels from the top's registers, from its inputs and into its
 registers (the top's IBUF/OBUF as wires): the parts of a path composed across modules.
@@ -296,6 +298,8 @@ def module_ice40(top, params):
     parts = {k: parts_of(own, sub, name, f) for k, f in counts.items()}
     for part in sorted(parts["SB_LUT4"], key=lambda p: -parts["SB_LUT4"][p]):
         print(f"  {part}: " + ", ".join(f"{parts[k][part]} {k}" for k in counts))
+    for mem, (n, blocks, bits) in sorted(bram_memories(mods, name).items(), key=lambda kv: -kv[1][1]):
+        print(f"  block RAM {mem}: {n} memories, {blocks} SB_RAM40_4K, {bits} bits stored")
 
 
 def xilinx(top, e, m, edge_eps=0, terms=0):
@@ -700,8 +704,43 @@ def module_netlists(part, top, params, folder, files=RTL):
     mods = {}
     for m, d in done.items():
         mods[json_name(m)] = dict(d["netlist"], attributes=dict(d["netlist"].get("attributes", {}),
-                                                                top="1" if m == top else "0"))
+                                                                top="1" if m == top else "0"),
+                                  memories=rtlil_memories(texts[m]))
     return mods, json_name(top), {json_name(m): d["cpu_seconds"] for m, d in done.items()}
+
+
+def rtlil_memories(text):
+    """A module's memories before mapping: name -> (width, depth)."""
+    return {n: (int(w), int(d)) for w, d, n in re.findall(r"^  memory width (\d+) size (\d+) \\(\S+)$", text, re.M)}
+
+
+def bram_memories(mods, top):
+    """The memories mapped to SB_RAM40_4K (its cells named <memory>.<row>.<column>) in top's hierarchy, by
+    module kind, memory (its generate blocks' copies together) and shape: "module memory WxD" -> [memories,
+    blocks, bits stored (W x D)], all instances: how full the blocks are (a memory of 64 words uses a
+    quarter of a 256 x 16 block's rows)."""
+    own = module_cells(mods)
+    copies = {}
+
+    def walk(m, n):  # instances of each module under top
+        copies[m] = copies.get(m, 0) + n
+        for typ, k in own[m].items():
+            if typ in own:
+                walk(typ, n * k)
+    walk(top, 1)
+    out = {}
+    for m, n in copies.items():
+        blocks = {}
+        for name, c in mods[m].get("cells", {}).items():
+            if c["type"] == "SB_RAM40_4K":
+                mem = re.sub(r"\.\d+\.\d+$", "", name)
+                blocks[mem] = blocks.get(mem, 0) + 1
+        for mem, b in blocks.items():
+            w, d = mods[m]["memories"][mem]
+            acc = out.setdefault(f"{key_name(m)} {mem.split('.')[-1]} {w}x{d}", [0, 0, 0])
+            for i, v in enumerate((n, n * b, n * w * d)):
+                acc[i] += v
+    return out
 
 
 def json_name(m):
@@ -747,8 +786,10 @@ def dynrtp_ice40():
     sub, tot = hierarchy_totals(own, top)
     c = {k: f(tot) for k, f in ICE40_COUNTS.items()}
     lut4 = ICE40_COUNTS["SB_LUT4"]
+    mems = bram_memories(mods, top)
     return {"ice40_lut4": c["SB_LUT4"], "ice40_ff": c["SB_DFF*"], "ice40_dsp": c["SB_MAC16"],
             "ice40_bram": c["SB_RAM40_4K"], "bram_bits": 4096 * c["SB_RAM40_4K"],
+            "bram_bits_used": sum(v[2] for v in mems.values()), "ice40_bram_memories": mems,
             "ice40_units_lut4": parts_of(own, sub, top, lut4),
             "ice40_unit_parts_lut4": unit_parts(own, sub, top, lut4),
             "ice40_seconds": sum(cpu.values())}
@@ -1098,11 +1139,18 @@ def dynrtp_section():
           f"| iCE40 flip-flops | {get('ice40_ff')} | - |",
           f"| iCE40 multiplier blocks (SB_MAC16) | {get('ice40_dsp')} | - |",
           f"| block RAM bits (iCE40 SB_RAM40_4K x 4096) | {get('bram_bits')} | {TABLE2_BITS:,} (Table 2: 75 KB) |",
+          f"| of them stored (the memories' width x depth) | {get('bram_bits_used')} | - |",
           f"| 7-series LUT6 (`synth_xilinx`) | {get('xilinx_lut6')} | - |",
           f"| 7-series flip-flops / SRL | {get('xilinx_ff')} / {get('xilinx_srl')} | - |",
           f"| 7-series DSP48E1 | {get('xilinx_dsp')} | - |",
           f"| 7-series RAMB18 (RAMB36 as 2) / LUT RAM bits | {get('xilinx_bram18')} / {get('xilinx_lutram_bits')} | - |",
           f"| most LUT6 levels between two registers | {get('max_lut6_levels')} | goal: at most 8 |"]
+    mems = sorted(d.get("ice40_bram_memories", {}).items(), key=lambda kv: -kv[1][1])
+    if mems:
+        md += ["", "The iCE40's block RAM by memory (all copies; a block is 256 x 16 bits or narrower and deeper, "
+               "one read and one write port):", "", "| module memory width x depth | memories | SB_RAM40_4K | bits stored "
+               "(of the blocks') |", "|---|---:|---:|---:|"]
+        md += [f"| {k} | {n:,} | {b:,} | {v:,} ({100 * v / (4096 * b):.0f}%) |" for k, (n, b, v) in mems]
     lut6, lut4 = d.get("xilinx_units_lut6", {}), d.get("ice40_units_lut4", {})
     units = sorted(set(lut6) | set(lut4), key=lambda u: -lut4.get(u, lut6.get(u, 0)))
     if units:
