@@ -64,7 +64,13 @@
 // list units' issue FIFOs (two entries of TW + 12 W + 42 and TW + 106 bits) and the traversal's
 // rays and box beside its FIFO (two entries of 30 W), the registered response (RW words) and one
 // f24_vertex_lo per vertex component, the output register, the header's fields (5 words and the
-// 6 W-bit bounds, once), the word port's FIFO of 2 THREADS requesters of TW + 1 bits, two rr_pick
+// 6 W-bit bounds, once), the packets' trace_counters in 6 thread_count (one per event source:
+// walk results, list results, kd-node answers, the adders', triangle test's and wide
+// transformation's batches; 2 memories of THREADS x 32 or 64 bits each; synth_ice40 at 64 threads,
+// python3 scripts/synth.py --ice40 thread_count THREADS=64 F=1 or F=2, 2026-11-30: 410 or 506
+// SB_LUT4, 143 or 207 flip-flops, 4 or 8 SB_RAM40_4K: 2,748 SB_LUT4 and 36 SB_RAM40_4K for the 6,
+// where the 64 threads' counters were 456 SB_LUT4 and 288 flip-flops each), the word port's FIFO
+// of 2 THREADS requesters of TW + 1 bits, two rr_pick
 // without a pointer (the word port's and the output's lowest thread), the operand multiplexers
 // (THREADS to 1 per unit, now mostly over the threads' flags, masks and distances).
 // synth_ice40 -dsp -noflatten at the paper's 64 threads, e7m16, this module's own cells (its
@@ -158,13 +164,12 @@ module trace_core #(
   end
 
   // ---- the threads' requests, operands and results ----
-  logic [THREADS-1:0] t_ready, t_valid, t_out_ready, t_mem_req, t_waiting, t_node_rsp, t_hdr_want;
+  logic [THREADS-1:0] t_ready, t_valid, t_out_ready, t_mem_req, t_waiting, t_node_rsp, t_hdr_want, t_walk_read;
   logic [THREADS*4-1:0] t_slots;
   logic [31:0] t_mem_addr [THREADS];
   logic [31:0] t_is_inst [THREADS], t_is_tri [THREADS];
   logic [3:0] t_hit [THREADS];
   logic [4*W-1:0] t_t [THREADS];
-  logic [10*32-1:0] t_count [THREADS];
   logic [THREADS-1:0] req [UNITS], req_q [UNITS], grant [UNITS], done [UNITS];
   logic [UNITS-1:0] unit_ready, issue_valid;
   logic [UNITS*TW-1:0] issue_thread;
@@ -209,12 +214,13 @@ module trace_core #(
     trace_thread #(.E(E), .M(M)) u_thread (
       .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(valid_i && thread_i == TW'(t)), .ready_o(t_ready[t]),
       .flags_i(flags_i), .active_i(active_i), .tmin_i(tmin_i), .tmax_i(tmax_i),
-      .valid_o(t_valid[t]), .ready_i(t_out_ready[t]), .hit_o(t_hit[t]), .t_o(t_t[t]), .count_o(t_count[t]),
+      .valid_o(t_valid[t]), .ready_i(t_out_ready[t]), .hit_o(t_hit[t]), .t_o(t_t[t]),
       .hdr_want_o(t_hdr_want[t]), .hdr_ok_i(hdr_ok), .hdr_instances_i(hdr_instances), .hdr_objects_i(hdr_objects),
       .hdr_inst_i(hdr_inst), .hdr_top_nodes_i(hdr_top_nodes), .hdr_top_lists_i(hdr_top_lists),
       .mem_req_valid_o(t_mem_req[t]), .mem_req_ready_i(!hdr_req && word_grant[t] && word_take),
       .mem_addr_o(t_mem_addr[t]), .mem_rsp_valid_i(mem_rsp_valid_i && word_head == {1'b0, TW'(t)}), .ld_got_o(t_ld_got[t]),
-      .mem_rdata_i(mem_rdata_i), .node_rsp_i(t_node_rsp[t]), .waiting_o(t_waiting[t]),
+      .mem_rdata_i(mem_rdata_i), .node_rsp_i(t_node_rsp[t]), .walk_read_o(t_walk_read[t]),
+      .waiting_o(t_waiting[t]),
       .slots_o(t_slots[t*4 +: 4]), .step_ray_o(t_ray[t]), .lo_zero_o(t_lo_zero[t]), .id_sg_o(t_id_sg[t]),
       .trav_req_o(req[U_TRAV][t]), .trav_grant_i(grant[U_TRAV][t]), .trav_kind_o(t_trav_kind[t]),
       .trav_level_o(t_trav_level[t]), .trav_obj_o(t_trav_obj[t]), .trav_lo_zero_o(t_trav_lo_zero[t]),
@@ -227,7 +233,7 @@ module trace_core #(
       .list_req_o(req[U_LIST][t]), .list_grant_i(grant[U_LIST][t]), .list_level_o(t_list_level[t]),
       .list_clear_o(t_list_clear[t]), .list_lists_o(t_list_lists[t]), .list_first_o(t_list_first[t]),
       .list_k_o(t_list_k[t]), .list_leaf_mask_o(t_list_leaf_mask[t]), .list_alive_o(t_list_alive[t]),
-      .list_done_i(done[U_LIST][t]), .list_key_i(list_key), .list_need_i(list_need), .list_skip_i(list_skip),
+      .list_done_i(done[U_LIST][t]), .list_key_i(list_key), .list_need_i(list_need),
       .list_k_i(list_k),
       .rb_req_o(req[U_RB][t]), .rb_grant_i(grant[U_RB][t]), .t0_zero_o(t_t0_zero[t]), .rb_t_o(t_rb_t[t]),
       .rb_leaf_o(t_rb_leaf[t]),
@@ -339,6 +345,7 @@ module trace_core #(
 
   // ---- the units ----
   logic trav_valid_o;
+  logic [1:0] trav_kind;
   logic [TW-1:0] trav_thread, node_thread;
   trav_unit #(.E(E), .M(M), .THREADS(THREADS), .ONE_PER_THREAD(1'b1), .ADD_STAGES(ADD_STAGES),
               .DIV_STAGES(DIV_STAGES), .CMP_STAGES(CMP_STAGES)) u_trav (
@@ -348,7 +355,7 @@ module trace_core #(
     .nodes_i(trav_op_nodes),
     .node_req_valid_o(node_req_valid_o), .node_req_ready_i(node_req_ready_i), .node_addr_o(node_addr_o),
     .node_thread_o(node_thread), .node_level_o(), .node_rsp_valid_i(node_rsp_valid_i), .node_w0_i(node_w0_i),
-    .node_w1_i(node_w1_i), .valid_o(trav_valid_o), .ready_i(1'b1), .thread_o(trav_thread), .level_o(), .kind_o(),
+    .node_w1_i(node_w1_i), .valid_o(trav_valid_o), .ready_i(1'b1), .thread_o(trav_thread), .level_o(), .kind_o(trav_kind),
     .mask_o(trav_mask), .tn_o(trav_tn), .tf_o(trav_tf), .node_o(), .have_cur_o(trav_have_cur), .leaf_o(trav_leaf),
     .list_o(), .leaf_first_o(trav_leaf_first), .leaf_count_o(trav_leaf_count), .leaf_mask_o(trav_leaf_mask),
     .leaf_tn_o(trav_leaf_tn), .sp_o(), .lost_o(), .restarted_o());
@@ -799,8 +806,8 @@ module trace_core #(
   // ---- packets in and out ----
   // A finished packet leaves its thread into the output register (out_full) when that is free or
   // being taken (the lowest finished thread first), and its thread is free from the next cycle;
-  // the register holds the thread's hit flags, t and counters, and its hits' records come from
-  // thread_ram read in the same cycle: a packet's hits leave a cycle after its thread finished.
+  // the register holds the thread's hit flags and t, and its hits' records and counters come from
+  // memories read in the same cycle: a packet's hits leave a cycle after its thread finished.
   logic [TW-1:0] out_sel;
   logic [THREADS-1:0] out_grant;
   logic out_any, out_take, out_full;
@@ -820,7 +827,6 @@ module trace_core #(
       thread_o <= out_sel;
       out_hit <= t_hit[out_sel];
       t_o <= t_t[out_sel];
-      count_o <= t_count[out_sel];
     end
   assign valid_o = out_full;
   // a hit's record per thread, one memory per ray: written by the triangle test's hits (the
@@ -840,6 +846,50 @@ module trace_core #(
     assign v_o[r*W +: W] = out_hit[r] ? rec[W +: W] : '0;
     assign cos_o[r*W +: W] = out_hit[r] ? rec[0 +: W] : '0;
   end
+
+  // ---- the packets' trace_counters (hls/units/trace.c), per thread in memories (thread_count) ----
+  // Each count is kept where the units report it, one memory per event source (they come in the
+  // same cycle for different threads), zeroed as a packet enters its thread and read as it leaves
+  // (beside its hits' records): a walk step's result (C_LEAVES, or C_STEPS if it read a kd node:
+  // its thread's walk_read or a node's answer in this cycle), a list entry (C_ENTRIES, the same
+  // C_LISTS words, C_SKIPS), a kd node's answer (C_NODES: 2 words), an instance's relative
+  // distances' batch (once per instance: C_MATRICES its 17 + 14 words read), a triangle's batch
+  // (C_ISECTS, and C_XFORMS, its rays; C_MATRICES its record's RW words), an instance's wide
+  // batch (C_XFORMS: its steps, 2 per ray). Sums of two memories' counts are formed as they leave.
+  localparam int INST_OBJ_WORDS = 17 + 14;  // trace.c's op_inst_xform: the instance's and object's words
+  logic [63:0] cnt_walk, cnt_list, cnt_tri;
+  logic [31:0] cnt_node, cnt_inst, cnt_xw;
+  thread_count #(.THREADS(THREADS), .F(2)) u_cnt_walk (
+    .clk_i(clk_i), .rst_ni(rst_ni), .clear_i(in_take), .clear_thread_i(thread_i),
+    .add_i(trav_valid_o && trav_kind == 2'd3), .thread_i(trav_thread),
+    .inc_i({32'(trav_leaf), 32'(!trav_leaf && (t_walk_read[trav_thread] || t_node_rsp[trav_thread]))}),
+    .re_i(out_take), .rthread_i(out_sel), .count_o(cnt_walk));
+  thread_count #(.THREADS(THREADS), .F(2)) u_cnt_list (
+    .clk_i(clk_i), .rst_ni(rst_ni), .clear_i(in_take), .clear_thread_i(thread_i),
+    .add_i(list_valid_o), .thread_i(list_thread),
+    .inc_i({32'(list_skip[0]) + 32'(list_skip[1]) + 32'(list_skip[2]) + 32'(list_skip[3]), 32'd1}),
+    .re_i(out_take), .rthread_i(out_sel), .count_o(cnt_list));
+  thread_count #(.THREADS(THREADS), .F(1)) u_cnt_node (
+    .clk_i(clk_i), .rst_ni(rst_ni), .clear_i(in_take), .clear_thread_i(thread_i),
+    .add_i(node_rsp_valid_i), .thread_i(node_q[node_rd[TW-1:0]]), .inc_i(32'd2),
+    .re_i(out_take), .rthread_i(out_sel), .count_o(cnt_node));
+  thread_count #(.THREADS(THREADS), .F(1)) u_cnt_inst (
+    .clk_i(clk_i), .rst_ni(rst_ni), .clear_i(in_take), .clear_thread_i(thread_i),
+    .add_i(accept[U_ADD]), .thread_i(sel[U_ADD]), .inc_i(32'(INST_OBJ_WORDS)),
+    .re_i(out_take), .rthread_i(out_sel), .count_o(cnt_inst));
+  thread_count #(.THREADS(THREADS), .F(2)) u_cnt_tri (
+    .clk_i(clk_i), .rst_ni(rst_ni), .clear_i(in_take), .clear_thread_i(thread_i),
+    .add_i(accept[U_IS]), .thread_i(sel[U_IS]), .inc_i({32'(RW), 32'(issue_slots[U_IS])}),
+    .re_i(out_take), .rthread_i(out_sel), .count_o(cnt_tri));
+  thread_count #(.THREADS(THREADS), .F(1)) u_cnt_xw (
+    .clk_i(clk_i), .rst_ni(rst_ni), .clear_i(in_take), .clear_thread_i(thread_i),
+    .add_i(accept[U_XW]), .thread_i(sel[U_XW]), .inc_i(32'(issue_slots[U_XW])),
+    .re_i(out_take), .rthread_i(out_sel), .count_o(cnt_xw));
+  // trace_counters' order: steps, leaves, entries, skips, transformations, intersections, words
+  // (nodes, lists, matrices, shading: none here)
+  assign count_o = {32'd0, cnt_inst + cnt_tri[63:32], cnt_list[31:0], cnt_node, cnt_tri[31:0],
+                    cnt_xw + cnt_tri[31:0], cnt_list[63:32], cnt_list[31:0], cnt_walk[63:32], cnt_walk[31:0]};
+
   always_comb begin
     inflight_o = '0;
     for (int t = 0; t < THREADS; t++) inflight_o = inflight_o + (TW+1)'(t_waiting[t]);

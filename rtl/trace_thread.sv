@@ -32,10 +32,12 @@
 // and d, p, te, t0, the object-space rays' low words, the hits' records and the records' operand
 // words in trace_core's thread_ram; the triangle's intermediate values in isect_rebased's
 // pipeline), of the descriptor buffer the 4 words and 13 bits its FSM reads, about 15 words of
-// routing state and 10 counters of 32 bits. Yosys 0.23 synth_xilinx at e7m16 (python3
-// scripts/synth.py --levels trace_thread --hier, 2026-11-29): 2,269 LUT6, 1,908 flip-flops, 7 LUT6
-// levels; synth_ice40 -dsp -noflatten (the per-module flow of python3 scripts/synth.py --dynrtp
-// ice40, 2026-11-29) 2,989 SB_LUT4, 1,905 flip-flops, 2 SB_MAC16. With the rays' o and d and the
+// routing state (the packet's trace_counters: trace_core's thread_count memories, counted from the
+// units' reports; the thread says whether its walk step read a node, walk_read_o). synth_ice40
+// -dsp -noflatten (python3 scripts/synth.py --ice40 trace_thread, 2026-11-30): 2,478 SB_LUT4,
+// 1,618 flip-flops, 2 SB_MAC16 (2,988 and 1,905 with the 10 counters of 32 bits here). Yosys
+// 0.23 synth_xilinx at e7m16 (python3 scripts/synth.py --levels trace_thread --hier, 2026-11-29,
+// with the counters): 2,269 LUT6, 1,908 flip-flops, 7 LUT6 levels. With the rays' o and d and the
 // records' words here (ro, rd, so, sd, the 20-word buffer, f24_vertex_lo, xform_identity): 5040
 // LUT6, 3440 flip-flops, 8 levels, and 5,871 SB_LUT4, 3,437 flip-flops (5048 LUT6, 3439
 // flip-flops before done; 5297, 3438 before ld_req; 6449, 5410 and 8 with p, te, t0, the low
@@ -64,7 +66,6 @@ module trace_thread #(
   input  logic                        ready_i,
   output logic [3:0]                  hit_o,      // the rays with a hit (its record: trace_core's)
   output logic [4*(E+M+1)-1:0]        t_o,        // +Inf for a miss
-  output logic [10*32-1:0]            count_o,    // trace_counters in its order (words: 4 kinds)
   // the header's fields (the core's, hdr_ok_i when read)
   output logic                        hdr_want_o,  // waiting for the header
   input  logic                        hdr_ok_i,
@@ -81,6 +82,7 @@ module trace_thread #(
   output logic [1:0]                  ld_got_o,    // the index of a response to this thread in its record
   input  logic [32*RW-1:0]            mem_rdata_i,
   input  logic                        node_rsp_i,  // a kd-node read of this thread answered
+  output logic                        walk_read_o, // the walk step in flight read a kd node (so far)
   output logic                        waiting_o,   // an operation of this thread is in a unit
   output logic [3:0]                  slots_o,     // issue slots of the operation requested (thread_sched)
   output logic [1:0]                  step_ray_o,  // the ray of the batch's next step (the rays' fields in trace_core)
@@ -122,7 +124,6 @@ module trace_thread #(
   input  logic                        list_done_i,
   input  logic [31:0]                 list_key_i,
   input  logic [3:0]                  list_need_i,
-  input  logic [3:0]                  list_skip_i,
   input  logic [31:0]                 list_k_i,
   // rebase unit
   output logic                        rb_req_o,
@@ -165,8 +166,6 @@ module trace_thread #(
   // responses per record (the instance's 17 words the most) and the buffer they fill
   localparam int INST_RSP = (INST_READ + RW - 1) / RW, OBJ_RSP = (OBJ_READ + RW - 1) / RW;
   localparam int LBUF = RW * INST_RSP;
-  localparam int C_STEPS = 0, C_LEAVES = 1, C_ENTRIES = 2, C_SKIPS = 3, C_XFORMS = 4, C_ISECTS = 5;
-  localparam int C_NODES = 6, C_LISTS = 7, C_MATRICES = 8;
 
   // ---- state of the packet in flight (trace_state) ----
   // the FSM's states (trace_step's operations and their unit transactions)
@@ -212,7 +211,8 @@ module trace_thread #(
   logic [W-1:0] leaf_tn [2][4];
   logic have_cur [2];
   logic [31:0] inst, obj, tris, tri_ix;
-  logic [31:0] cnt [10];
+  // walk_read: the walk step in flight read a kd node (trace_core counts the step, C_STEPS, as its
+  // result comes: walk_read_o)
   logic walk_read;
   // the loader: ld_n responses of RW words from ld_base into lbuf, then ld_ret
   logic [31:0] lbuf [LBUF];
@@ -364,8 +364,7 @@ module trace_thread #(
     for (int i = 0; i < 4; i++) begin
       t_o[i*W +: W] = hit[i] ? best_t[i] : POS_INF;
     end
-  always_comb
-    for (int c = 0; c < 10; c++) count_o[c*32 +: 32] = cnt[c];
+  assign walk_read_o = walk_read;
 
   // the loader: reads n responses from base into lbuf through the word port, then goes to next
   task automatic load(input logic [31:0] base, input logic [1:0] n, input logic [5:0] next);
@@ -400,10 +399,7 @@ module trace_thread #(
       ld_req <= 1'b0;
       done <= 1'b0;
     end else begin
-      if (node_rsp_i) begin
-        cnt[C_NODES] <= cnt[C_NODES] + 2;
-        walk_read <= 1'b1;
-      end
+      if (node_rsp_i) walk_read <= 1'b1;
       unique case (st)
         S_IDLE:
           if (valid_i) begin
@@ -420,7 +416,6 @@ module trace_thread #(
               best_rel[i] <= v_tmax[i*W +: W];
               t0_zero[i] <= 1'b1;
             end
-            for (int c = 0; c < 10; c++) cnt[c] <= '0;
             hit <= '0;
             st <= S_CLR0;
           end
@@ -495,8 +490,7 @@ module trace_thread #(
             leaf_mask[level] <= r_leaf_mask;
             k[level] <= '0;
             for (int i = 0; i < 4; i++) leaf_tn[level][i] <= r_leaf_tn[i*W +: W];
-            cnt[C_LEAVES] <= cnt[C_LEAVES] + 1;
-          end else if (walk_read) cnt[C_STEPS] <= cnt[C_STEPS] + 1;
+          end
           st <= S_ROUTE;
         end
         S_LIST_GO: if (list_grant_i) st <= S_LIST_WAIT;
@@ -504,9 +498,6 @@ module trace_thread #(
           if (list_done_i) begin
             k[level] <= list_k_i;
             need <= list_need_i;
-            cnt[C_ENTRIES] <= cnt[C_ENTRIES] + 1;
-            cnt[C_SKIPS] <= cnt[C_SKIPS] + popcount(list_skip_i);
-            cnt[C_LISTS] <= cnt[C_LISTS] + 1;
             if (level) tri_ix <= list_key_i;
             else inst <= list_key_i;
             ret <= list_need_i == 0 ? S_ROUTE : level ? S_TX_LOAD : S_IX_LOAD;
@@ -559,7 +550,6 @@ module trace_thread #(
         S_IX_LOAD: load(hdr_inst_i + INST_WORDS * inst, 2'(INST_RSP), S_IX);
         S_IX: begin
           obj <= hdr_objects_i + 16 * lbuf[12];
-          cnt[C_MATRICES] <= cnt[C_MATRICES] + INST_READ + OBJ_READ;
           // an identity instance, or TRACE_IDENTITY's single one (enter_single_object): the rays pass
           // as wiring, and the clip follows in the same operation
           if (lbuf[13][0] || flags[2]) begin
@@ -571,7 +561,6 @@ module trace_thread #(
               end
             st <= S_IC_LOAD;
           end else begin
-            cnt[C_XFORMS] <= cnt[C_XFORMS] + 2 * popcount(need);
             batch(B_RB_INST, need);  // per ray: rebase to the top-level leaf, then the origins and directions wide
           end
         end
@@ -588,9 +577,6 @@ module trace_thread #(
           end
         // op_tri_xform, op_tri_isect: the triangle's record, then its batches
         S_TX_LOAD: begin
-          cnt[C_MATRICES] <= cnt[C_MATRICES] + TRI_WORDS;
-          cnt[C_XFORMS] <= cnt[C_XFORMS] + popcount(need);
-          cnt[C_ISECTS] <= cnt[C_ISECTS] + popcount(need);
           batch(B_TRI, need);
           load(tris + TRI_WORDS * tri_ix, 2'd1, S_BATCH);
         end
