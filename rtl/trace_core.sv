@@ -150,6 +150,7 @@ module trace_core #(
   localparam int W = 1 + E + M;
   localparam logic [E-1:0] EXP_MAX = '1;
   localparam logic [W-1:0] DNAN = {1'b0, EXP_MAX, 1'b1, {(M-1){1'b0}}};
+  localparam logic [W-1:0] POS_INF = {1'b0, EXP_MAX, {M{1'b0}}};
   localparam int TW = $clog2(THREADS);
   localparam int UNITS = 6;
   localparam int U_TRAV = 0, U_LIST = 1, U_RB = 2, U_XW = 3, U_IS = 4, U_ADD = 5;
@@ -819,6 +820,7 @@ module trace_core #(
   assign out_take = !out_full || ready_i;
   assign t_out_ready = out_take ? out_grant : '0;
   logic [3:0] out_hit;
+  logic [4*W-1:0] out_t;                  // the thread's best_t, a hit's t where out_hit
   always_ff @(posedge clk_i or negedge rst_ni)
     if (!rst_ni) out_full <= 1'b0;
     else if (out_take) out_full <= out_any;
@@ -826,7 +828,7 @@ module trace_core #(
     if (out_take) begin
       thread_o <= out_sel;
       out_hit <= t_hit[out_sel];
-      t_o <= t_t[out_sel];
+      out_t <= t_t[out_sel];
     end
   assign valid_o = out_full;
   // a hit's record per thread, one memory per ray: written by the triangle test's hits (the
@@ -845,6 +847,7 @@ module trace_core #(
     assign u_o[r*W +: W] = out_hit[r] ? rec[2*W +: W] : '0;
     assign v_o[r*W +: W] = out_hit[r] ? rec[W +: W] : '0;
     assign cos_o[r*W +: W] = out_hit[r] ? rec[0 +: W] : '0;
+    assign t_o[r*W +: W] = out_hit[r] ? out_t[r*W +: W] : POS_INF;  // +Inf for a miss (one choice, not one per thread)
   end
 
   // ---- the packets' trace_counters (hls/units/trace.c), per thread in memories (thread_count) ----

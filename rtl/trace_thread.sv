@@ -34,8 +34,9 @@
 // pipeline), of the descriptor buffer the 4 words and 13 bits its FSM reads, about 15 words of
 // routing state (the packet's trace_counters: trace_core's thread_count memories, counted from the
 // units' reports; the thread says whether its walk step read a node, walk_read_o). synth_ice40
-// -dsp -noflatten (python3 scripts/synth.py --ice40 trace_thread, 2026-11-30): 2,478 SB_LUT4,
-// 1,618 flip-flops, 2 SB_MAC16 (2,988 and 1,905 with the 10 counters of 32 bits here). Yosys
+// -dsp -noflatten (python3 scripts/synth.py --ice40 trace_thread, 2026-11-30): 2,133 SB_LUT4,
+// 1,618 flip-flops, 2 SB_MAC16 (2,988 and 1,905 with the 10 counters of 32 bits here, 2,478 and
+// 1,618 before t_o's +Inf for a miss moved to trace_core and the clips took one choice of two). Yosys
 // 0.23 synth_xilinx at e7m16 (python3 scripts/synth.py --levels trace_thread --hier, 2026-11-29,
 // with the counters): 2,269 LUT6, 1,908 flip-flops, 7 LUT6 levels. With the rays' o and d and the
 // records' words here (ro, rd, so, sd, the 20-word buffer, f24_vertex_lo, xform_identity): 5040
@@ -65,7 +66,7 @@ module trace_thread #(
   output logic                        valid_o,
   input  logic                        ready_i,
   output logic [3:0]                  hit_o,      // the rays with a hit (its record: trace_core's)
-  output logic [4*(E+M+1)-1:0]        t_o,        // +Inf for a miss
+  output logic [4*(E+M+1)-1:0]        t_o,        // best_t: a hit's t where hit_o (trace_core puts +Inf for a miss)
   // the header's fields (the core's, hdr_ok_i when read)
   output logic                        hdr_want_o,  // waiting for the header
   input  logic                        hdr_ok_i,
@@ -157,8 +158,6 @@ module trace_thread #(
   input  logic                        add_done_i,
   input  logic [2*(E+M+1)-1:0]        add_r_i
 );
-  localparam logic [E-1:0] EXP_MAX = '1;
-  localparam logic [W-1:0] POS_INF = {1'b0, EXP_MAX, {M{1'b0}}};
   // memory image layout (docs/memory-image.md; hls/units/trace.c)
   localparam int TRI_WORDS = RW;                            // F24_TRIANGLE_RECORD_WORDS
   localparam int INST_WORDS = TRI_WORDS * ((17 + TRI_WORDS - 1) / TRI_WORDS);
@@ -251,11 +250,10 @@ module trace_thread #(
   endfunction
 
   // ---- the units ----
-  logic [4*W-1:0] v_tmin, v_tmax, v_best_t, v_best_rel, v_tmin_rel;
+  logic [4*W-1:0] v_tmax, v_best_t, v_best_rel, v_tmin_rel;
   always_comb
     for (int i = 0; i < 4; i++) begin
       trav_id_sg_o[i*12 +: 12] = id_sg[i];
-      v_tmin[i*W +: W] = tmin[i];
       v_best_t[i*W +: W] = best_t[i];
       v_best_rel[i*W +: W] = best_rel[i];
       v_tmin_rel[i*W +: W] = tmin_rel[i];
@@ -273,22 +271,21 @@ module trace_thread #(
     trav_kind_o = 2'd3;
     trav_level_o = level;
     trav_mask_o = alive;
-    trav_tn_o = clip_tn;
-    trav_tf_o = clip_tf;
+    // the clips' [tn, tf]: the scene's [tmin, tmax] is the packet's [tmin_rel, best_rel] as it
+    // enters (no batch before the scene clip writes them), the object's [tmin_rel, best_rel]: one
+    // choice of two (a third, tmin and best_t, was 2 x 96 LUT4 more)
+    trav_tn_o = st == S_SC_GO || st == S_IC_CLIP ? v_tmin_rel : clip_tn;
+    trav_tf_o = st == S_SC_GO || st == S_IC_CLIP ? v_best_rel : clip_tf;
     unique case (st)
       S_SC_GO: begin
         trav_kind_o = 2'd0;
         trav_level_o = 1'b0;
         trav_mask_o = active;
-        trav_tn_o = v_tmin;
-        trav_tf_o = v_best_t;     // tmax
       end
       S_IC_CLIP: begin
         trav_kind_o = 2'd1;
         trav_level_o = 1'b1;
         trav_mask_o = need;
-        trav_tn_o = v_tmin_rel;
-        trav_tf_o = v_best_rel;
       end
       S_START_GO: begin
         trav_kind_o = 2'd2;
@@ -360,10 +357,7 @@ module trace_thread #(
   assign hdr_want_o = st == S_HDR;
   assign ready_o = st == S_IDLE;
   assign valid_o = done;
-  always_comb
-    for (int i = 0; i < 4; i++) begin
-      t_o[i*W +: W] = hit[i] ? best_t[i] : POS_INF;
-    end
+  assign t_o = v_best_t;
   assign walk_read_o = walk_read;
 
   // the loader: reads n responses from base into lbuf through the word port, then goes to next
