@@ -57,7 +57,9 @@
 // transformation and the triangle test) and the traversal unit's object-space rays (so, sd 3 W
 // each), 4 THREADS words for p (6 W, the wide transformation and the triangle test), te (W),
 // so and sd (6 W each, high and low words, the rebase unit), sd's high words (3 W, the triangle
-// test), t0 (W, the adders and the triangle test), THREADS words for the records' operands (the
+// test), t0 (W, the adders and the triangle test), 2 THREADS words of the leaves' te (4 W: a
+// thread's per level, the rebase unit), THREADS words of the packets' tmin (4 W, the adders),
+// THREADS words for the records' operands (the
 // instance's matrix and translation's low words 15 W, the object's bounds 6 W, the triangle's
 // record 15 W + 3) and 4 x THREADS words of 64 + 3 W bits for the hits' records; the per-ray
 // units' issue stage (their other operands, a few W bits, registered once), the traversal and
@@ -78,7 +80,9 @@
 // 2026-11-29): 61,586 SB_LUT4 and 4,715 flip-flops, its thread_ram 290
 // SB_RAM40_4K; with the rays' o and d in the threads' registers 133,921, 3,897 and 70 (the
 // traversal's issue FIFO 1,064 SB_LUT4 and 2,110 flip-flops then, 344 and 670 now); trace_thread
-// 2,989 SB_LUT4, 1,905 flip-flops (5,871 and 3,437). At THREADS = 2 (synth_xilinx, e7m16, python3
+// 2,989 SB_LUT4, 1,905 flip-flops (5,871 and 3,437), on 2026-11-30 (python3 scripts/synth.py
+// --ice40 trace_thread) 1,845 and 1,234 with its counters, tmin and the leaves' te here (the two
+// memories 6 SB_RAM40_4K each) and t_o's +Inf for a miss at the output. At THREADS = 2 (synth_xilinx, e7m16, python3
 // scripts/synth.py --levels trace_core THREADS=2 --hier, 2026-11-29) 147,530 LUT6, 126,641
 // flip-flops, 11 LUT6 levels (137,189, 126,945 and 8 before the rays and the records' words
 // moved here; the 11: a world ray's read through a shifter into xform_wide, a 4-to-1 choice
@@ -185,8 +189,8 @@ module trace_core #(
   logic [4*W-1:0] t_trav_tn [THREADS], t_trav_tf [THREADS], t_trav_best [THREADS];
   logic [3:0] t_trav_mask [THREADS], t_list_leaf_mask [THREADS], t_list_alive [THREADS];
   logic [31:0] t_trav_nodes [THREADS], t_list_lists [THREADS], t_list_first [THREADS], t_list_k [THREADS];
-  logic [W-1:0] t_rb_t [THREADS], t_is_tmin [THREADS], t_is_tmax [THREADS];
-  logic [2*W-1:0] t_add_a [THREADS];
+  logic [W-1:0] t_is_tmin [THREADS], t_is_tmax [THREADS];
+  logic [W-1:0] t_add_a [THREADS];
   logic [1:0] t_ld_got [THREADS];
   logic [1:0] t_ray [THREADS];
   logic [11:0] t_id_sg [THREADS];
@@ -230,13 +234,13 @@ module trace_core #(
       .trav_nodes_o(t_trav_nodes[t]), .trav_done_i(done[U_TRAV][t]),
       .trav_mask_i(trav_mask), .trav_tn_i(trav_tn), .trav_tf_i(trav_tf), .trav_have_cur_i(trav_have_cur),
       .trav_leaf_i(trav_leaf), .trav_leaf_first_i(trav_leaf_first), .trav_leaf_count_i(trav_leaf_count),
-      .trav_leaf_mask_i(trav_leaf_mask), .trav_leaf_tn_i(trav_leaf_tn),
+      .trav_leaf_mask_i(trav_leaf_mask),
       .list_req_o(req[U_LIST][t]), .list_grant_i(grant[U_LIST][t]), .list_level_o(t_list_level[t]),
       .list_clear_o(t_list_clear[t]), .list_lists_o(t_list_lists[t]), .list_first_o(t_list_first[t]),
       .list_k_o(t_list_k[t]), .list_leaf_mask_o(t_list_leaf_mask[t]), .list_alive_o(t_list_alive[t]),
       .list_done_i(done[U_LIST][t]), .list_key_i(list_key), .list_need_i(list_need),
       .list_k_i(list_k),
-      .rb_req_o(req[U_RB][t]), .rb_grant_i(grant[U_RB][t]), .t0_zero_o(t_t0_zero[t]), .rb_t_o(t_rb_t[t]),
+      .rb_req_o(req[U_RB][t]), .rb_grant_i(grant[U_RB][t]), .t0_zero_o(t_t0_zero[t]),
       .rb_leaf_o(t_rb_leaf[t]),
       .rb_done_i(done[U_RB][t]),
       .xw_req_o(req[U_XW][t]), .xw_grant_i(grant[U_XW][t]), 
@@ -345,7 +349,7 @@ module trace_core #(
           list_op_alive} = list_op;
 
   // ---- the units ----
-  logic trav_valid_o;
+  logic trav_valid_o, trav_level;
   logic [1:0] trav_kind;
   logic [TW-1:0] trav_thread, node_thread;
   trav_unit #(.E(E), .M(M), .THREADS(THREADS), .ONE_PER_THREAD(1'b1), .ADD_STAGES(ADD_STAGES),
@@ -356,7 +360,7 @@ module trace_core #(
     .nodes_i(trav_op_nodes),
     .node_req_valid_o(node_req_valid_o), .node_req_ready_i(node_req_ready_i), .node_addr_o(node_addr_o),
     .node_thread_o(node_thread), .node_level_o(), .node_rsp_valid_i(node_rsp_valid_i), .node_w0_i(node_w0_i),
-    .node_w1_i(node_w1_i), .valid_o(trav_valid_o), .ready_i(1'b1), .thread_o(trav_thread), .level_o(), .kind_o(trav_kind),
+    .node_w1_i(node_w1_i), .valid_o(trav_valid_o), .ready_i(1'b1), .thread_o(trav_thread), .level_o(trav_level), .kind_o(trav_kind),
     .mask_o(trav_mask), .tn_o(trav_tn), .tf_o(trav_tf), .node_o(), .have_cur_o(trav_have_cur), .leaf_o(trav_leaf),
     .list_o(), .leaf_first_o(trav_leaf_first), .leaf_count_o(trav_leaf_count), .leaf_mask_o(trav_leaf_mask),
     .leaf_tn_o(trav_leaf_tn), .sp_o(), .lost_o(), .restarted_o());
@@ -386,9 +390,9 @@ module trace_core #(
   logic [1:0] ray_q [UNITS];
   logic rb_leaf_q, rb_lo_zero_q, is_lo_zero_q, xw_point_q;
   logic [11:0] rb_id_sg_q, is_id_sg_q;
-  logic [W-1:0] rb_t_q, is_tmin_q, is_tmax_q;
+  logic [W-1:0] is_tmin_q, is_tmax_q;
   logic is_t0_zero_q, add_t0_zero_q;
-  logic [2*W-1:0] add_a_q;
+  logic [W-1:0] add_a_q;
   always_ff @(posedge clk_i or negedge rst_ni)
     if (!rst_ni) step_q <= '0;
     else
@@ -398,7 +402,6 @@ module trace_core #(
       sel_q[u] <= sel[u];
       ray_q[u] <= t_ray[sel[u]];
     end
-    rb_t_q <= t_rb_t[sel[U_RB]];
     rb_leaf_q <= t_rb_leaf[sel[U_RB]];
     rb_lo_zero_q <= t_lo_zero[sel[U_RB]];
     rb_id_sg_q <= t_id_sg[sel[U_RB]];
@@ -444,6 +447,15 @@ module trace_core #(
   // by the triangle test
   localparam int RAYS = 4 * THREADS;
   logic [TW+1:0] raddr [U_RB:UNITS-1];   // {thread, ray} of each per-ray unit's issue: its operands' word
+  // ray r's word of the 4 rays' words v read from a memory of a thread's (a 4-to-1 choice)
+  function automatic logic [W-1:0] ray_word(input logic [4*W-1:0] v, input logic [1:0] r);
+    unique case (r)
+      2'd0: ray_word = v[0 +: W];
+      2'd1: ray_word = v[W +: W];
+      2'd2: ray_word = v[2*W +: W];
+      default: ray_word = v[3*W +: W];
+    endcase
+  endfunction
   for (genvar u = U_RB; u < UNITS; u++) begin : g_raddr
     assign raddr[u] = {sel[u], t_ray[sel[u]]};
   end
@@ -685,13 +697,25 @@ module trace_core #(
   assign xw_d = (3*W)'(world(2, ray_q[U_XW]));
   assign is_d = obj_ray(is_lo_zero_q, is_id_sg_q, (3*W)'(world(3, ray_q[U_IS])), sd_is, 1'b0);
 
+  // the leaves' entry distances te per thread and level (rebase_leaf's t, and op_inst_xform's: the
+  // top-level leaf's): written by the traversal unit's results, a walk's leaf at its level and
+  // the scene clip's tn at level 0 (enter_single_object's one-leaf list; where a walk follows, its
+  // leaf writes over it before a rebase reads it), read by the rebase unit's step at the level of
+  // its kind and its ray's word chosen from the 4 (a choice of 8 per thread before: 24 W
+  // flip-flops and about 300 SB_LUT4 in each trace_thread)
+  logic [4*W-1:0] leaf_tn_rd;
+  thread_ram #(.W(4 * W), .DEPTH(2 * THREADS)) u_leaf_tn (
+    .clk_i(clk_i), .we_i(trav_valid_o && (trav_kind == 2'd0 || (trav_kind == 2'd3 && trav_leaf))),
+    .waddr_i({trav_thread, trav_level}), .wdata_i(trav_kind == 2'd0 ? trav_tn : trav_leaf_tn),
+    .re_i(1'b1), .raddr_i({sel[U_RB], t_rb_leaf[sel[U_RB]]}), .rdata_o(leaf_tn_rd));
+
   logic rb_lo;                            // a leaf's rebase of an instance's rays in double words
   assign rb_lo = rb_leaf_q && !rb_lo_zero_q;
 
   rebase_unit #(.E(E), .M(M), .SUM_STAGES(SUM_STAGES)) u_rebase (
     .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(step_q[U_RB]), .ready_o(unit_ready[U_RB]),
     .o_hi_i(rb_o_hi), .o_lo_i(rb_lo ? so_rb[0 +: 3*W] : '0), .d_hi_i(rb_d_hi), .d_lo_i(rb_lo ? sd_rb[0 +: 3*W] : '0),
-    .t_i(rb_t_q),
+    .t_i(ray_word(leaf_tn_rd, ray_q[U_RB])),
     .valid_o(out_valid[U_RB]), .ready_i(1'b1), .p_hi_o(rb_p_hi), .p_lo_o(rb_p_lo), .te_o(rb_te));
 
   // pass 0 of an instance's rays transforms the rebased origin, pass 1 the direction
@@ -709,12 +733,21 @@ module trace_core #(
     .valid_o(out_valid[U_IS]), .hit_o(is_hit), .t_o(is_t), .u_o(is_u), .v_o(is_v), .cos_o(is_cos),
     .t_world_o(is_t_world));
 
+  // the packets' tmin per thread (the 4 rays' words), written as a packet enters, read by the
+  // subtractors' step (tmin_rel = tmin - t0; 4 W flip-flops and a choice of 4 in each thread
+  // before)
+  logic [4*W-1:0] tmin_rd;
+  thread_ram #(.W(4 * W), .DEPTH(THREADS)) u_tmin (
+    .clk_i(clk_i), .we_i(in_take), .waddr_i(thread_i), .wdata_i(tmin_i),
+    .re_i(1'b1), .raddr_i(sel[U_ADD]), .rdata_o(tmin_rd));
+  logic [2*W-1:0] add_a;                  // {tmin, best_t} of the step's ray
+  assign add_a = {ray_word(tmin_rd, ray_q[U_ADD]), add_a_q};
   logic [1:0] add_valid;
   assign unit_ready[U_ADD] = 1'b1;  // the operators have no stall
   for (genvar j = 0; j < 2; j++) begin : g_add
     f24_add #(.E(E), .M(M), .STAGES(ADD_STAGES)) u_add (
       .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(step_q[U_ADD]),
-      .a_i(add_a_q[j*W +: W]), .b_i(add_t0), .sub_i(1'b1),
+      .a_i(add_a[j*W +: W]), .b_i(add_t0), .sub_i(1'b1),
       .valid_o(add_valid[j]), .res_o(add_r[j*W +: W]));
   end
   assign out_valid[U_ADD] = &add_valid;
