@@ -15,7 +15,8 @@
 // writes it (a thread's batch on a unit starts after the batch that wrote its operands has ended,
 // its hits are read after its last batch, its rays are written as it takes a packet, its
 // records' words two cycles or more before it issues an operation that reads them; rgs_ctrl reads
-// its stack only after the task written into it is whole), so the memory is marked no_rw_check: without it
+// its stack only after the task written into it is whole; thread_count's sum, read as a thread's
+// next event comes, is replaced by the sum being written), so the memory is marked no_rw_check: without it
 // synth_ice40 adds a bypass per bit (a LUT4 and two flip-flops) to give the old word.
 // Latency 1 cycle (address to data), one read and one write per cycle.
 // Resources: DEPTH x W bits of RAM, W flip-flops (the read register, or the block RAM's own).

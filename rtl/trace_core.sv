@@ -58,13 +58,21 @@
 // transformation and the triangle test; written from a queue of 2 packets of 4 x 6 W bits), p
 // (6 W, the wide transformation and the triangle test), te (W), so and sd (6 W each, high and low
 // words, the rebase unit), sd's high words (3 W, the triangle test), t0 (W, the adders and the
-// triangle test), THREADS words for the records' operands (the instance's matrix and
-// translation's low words 15 W, the object's bounds 6 W, the triangle's record 15 W + 3) and 4 x
-// THREADS words of 64 + 3 W bits for the hits' records; the per-ray units' issue stage (their
-// other operands, a few W bits, registered once), the traversal and list units' issue FIFOs (two entries of TW + 12 W + 42 and TW + 106 bits) and the traversal's
+// triangle test), 2 THREADS words of the leaves' te (4 W: a thread's per level, the rebase unit),
+// THREADS words of the packets' tmin (4 W, the adders), THREADS words for the records' operands
+// (the instance's matrix and translation's low words 15 W, the object's bounds 6 W, the
+// triangle's record 15 W + 3) and 4 x THREADS words of 64 + 3 W bits for the hits' records; the
+// per-ray units' issue stage (their other operands, a few W bits, registered once), the traversal
+// and list units' issue FIFOs (two entries of TW + 12 W + 42 and TW + 106 bits) and the traversal's
 // rays and box beside its FIFO (two entries of 30 W), the registered response (RW words) and one
 // f24_vertex_lo per vertex component, the output register, the header's fields (5 words and the
-// 6 W-bit bounds, once), the word port's FIFO of 2 THREADS requesters of TW + 1 bits, two rr_pick
+// 6 W-bit bounds, once), the packets' trace_counters in 6 thread_count (one per event source:
+// walk results, list results, kd-node answers, the adders', triangle test's and wide
+// transformation's batches; 2 memories of THREADS x 32 or 64 bits each; synth_ice40 at 64 threads,
+// python3 scripts/synth.py --ice40 thread_count THREADS=64 F=1 or F=2, 2026-11-30: 410 or 506
+// SB_LUT4, 143 or 207 flip-flops, 4 or 8 SB_RAM40_4K: 2,748 SB_LUT4 and 36 SB_RAM40_4K for the 6,
+// where the 64 threads' counters were 456 SB_LUT4 and 288 flip-flops each), the word port's FIFO
+// of 2 THREADS requesters of TW + 1 bits, two rr_pick
 // without a pointer (the word port's and the output's lowest thread), the operand multiplexers
 // (THREADS to 1 per unit, now mostly over the threads' flags, masks and distances).
 // synth_ice40 -dsp -noflatten at the paper's 64 threads, e7m16, this module's own cells (its
@@ -73,8 +81,10 @@
 // SB_RAM40_4K (233 since the per-ray units' world rays are one memory each, 2026-11-30: 76 -> 19
 // blocks, their queue 593 SB_LUT4 and 1,168 flip-flops as sync_fifo alone; not mapped again);
 // with the rays' o and d in the threads' registers 133,921, 3,897 and 70 (the traversal's issue
-// FIFO 1,064 SB_LUT4 and 2,110 flip-flops then, 344 and 670 now); trace_thread
-// 2,989 SB_LUT4, 1,905 flip-flops (5,871 and 3,437). At THREADS = 2 (synth_xilinx, e7m16, python3
+// FIFO 1,064 SB_LUT4 and 2,110 flip-flops then, 344 and 670 now); trace_thread 2,989 SB_LUT4,
+// 1,905 flip-flops (5,871 and 3,437), on 2026-11-30 (python3 scripts/synth.py --ice40
+// trace_thread) 1,845 and 1,234 with its counters, tmin and the leaves' te here (the two memories
+// 6 SB_RAM40_4K each) and t_o's +Inf for a miss at the output. At THREADS = 2 (synth_xilinx, e7m16, python3
 // scripts/synth.py --levels trace_core THREADS=2 --hier, 2026-11-29) 147,530 LUT6, 126,641
 // flip-flops, 11 LUT6 levels (137,189, 126,945 and 8 before the rays and the records' words
 // moved here; the 11: a world ray's read through a shifter into xform_wide, a 4-to-1 choice
@@ -146,6 +156,7 @@ module trace_core #(
   localparam int W = 1 + E + M;
   localparam logic [E-1:0] EXP_MAX = '1;
   localparam logic [W-1:0] DNAN = {1'b0, EXP_MAX, 1'b1, {(M-1){1'b0}}};
+  localparam logic [W-1:0] POS_INF = {1'b0, EXP_MAX, {M{1'b0}}};
   localparam int TW = $clog2(THREADS);
   localparam int UNITS = 6;
   localparam int U_TRAV = 0, U_LIST = 1, U_RB = 2, U_XW = 3, U_IS = 4, U_ADD = 5;
@@ -160,13 +171,12 @@ module trace_core #(
   end
 
   // ---- the threads' requests, operands and results ----
-  logic [THREADS-1:0] t_ready, t_valid, t_out_ready, t_mem_req, t_waiting, t_node_rsp, t_hdr_want;
+  logic [THREADS-1:0] t_ready, t_valid, t_out_ready, t_mem_req, t_waiting, t_node_rsp, t_hdr_want, t_walk_read;
   logic [THREADS*4-1:0] t_slots;
   logic [31:0] t_mem_addr [THREADS];
   logic [31:0] t_is_inst [THREADS], t_is_tri [THREADS];
   logic [3:0] t_hit [THREADS];
   logic [4*W-1:0] t_t [THREADS];
-  logic [10*32-1:0] t_count [THREADS];
   logic [THREADS-1:0] req [UNITS], req_q [UNITS], grant [UNITS], done [UNITS];
   logic [UNITS-1:0] unit_ready, issue_valid;
   logic [UNITS*TW-1:0] issue_thread;
@@ -181,8 +191,8 @@ module trace_core #(
   logic [4*W-1:0] t_trav_tn [THREADS], t_trav_tf [THREADS], t_trav_best [THREADS];
   logic [3:0] t_trav_mask [THREADS], t_list_leaf_mask [THREADS], t_list_alive [THREADS];
   logic [31:0] t_trav_nodes [THREADS], t_list_lists [THREADS], t_list_first [THREADS], t_list_k [THREADS];
-  logic [W-1:0] t_rb_t [THREADS], t_is_tmin [THREADS], t_is_tmax [THREADS];
-  logic [2*W-1:0] t_add_a [THREADS];
+  logic [W-1:0] t_is_tmin [THREADS], t_is_tmax [THREADS];
+  logic [W-1:0] t_add_a [THREADS];
   logic [1:0] t_ld_got [THREADS];
   logic [1:0] t_ray [THREADS];
   logic [11:0] t_id_sg [THREADS];
@@ -212,12 +222,13 @@ module trace_core #(
     trace_thread #(.E(E), .M(M)) u_thread (
       .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(valid_i && wq_ready && thread_i == TW'(t)), .ready_o(t_ready[t]),
       .flags_i(flags_i), .active_i(active_i), .tmin_i(tmin_i), .tmax_i(tmax_i),
-      .valid_o(t_valid[t]), .ready_i(t_out_ready[t]), .hit_o(t_hit[t]), .t_o(t_t[t]), .count_o(t_count[t]),
+      .valid_o(t_valid[t]), .ready_i(t_out_ready[t]), .hit_o(t_hit[t]), .t_o(t_t[t]),
       .hdr_want_o(t_hdr_want[t]), .hdr_ok_i(hdr_ok), .hdr_instances_i(hdr_instances), .hdr_objects_i(hdr_objects),
       .hdr_inst_i(hdr_inst), .hdr_top_nodes_i(hdr_top_nodes), .hdr_top_lists_i(hdr_top_lists),
       .mem_req_valid_o(t_mem_req[t]), .mem_req_ready_i(!hdr_req && word_grant[t] && word_take),
       .mem_addr_o(t_mem_addr[t]), .mem_rsp_valid_i(mem_rsp_valid_i && word_head == {1'b0, TW'(t)}), .ld_got_o(t_ld_got[t]),
-      .mem_rdata_i(mem_rdata_i), .node_rsp_i(t_node_rsp[t]), .waiting_o(t_waiting[t]),
+      .mem_rdata_i(mem_rdata_i), .node_rsp_i(t_node_rsp[t]), .walk_read_o(t_walk_read[t]),
+      .waiting_o(t_waiting[t]),
       .slots_o(t_slots[t*4 +: 4]), .step_ray_o(t_ray[t]), .lo_zero_o(t_lo_zero[t]), .id_sg_o(t_id_sg[t]),
       .trav_req_o(req[U_TRAV][t]), .trav_grant_i(grant[U_TRAV][t]), .trav_kind_o(t_trav_kind[t]),
       .trav_level_o(t_trav_level[t]), .trav_obj_o(t_trav_obj[t]), .trav_lo_zero_o(t_trav_lo_zero[t]),
@@ -226,13 +237,13 @@ module trace_core #(
       .trav_nodes_o(t_trav_nodes[t]), .trav_done_i(done[U_TRAV][t]),
       .trav_mask_i(trav_mask), .trav_tn_i(trav_tn), .trav_tf_i(trav_tf), .trav_have_cur_i(trav_have_cur),
       .trav_leaf_i(trav_leaf), .trav_leaf_first_i(trav_leaf_first), .trav_leaf_count_i(trav_leaf_count),
-      .trav_leaf_mask_i(trav_leaf_mask), .trav_leaf_tn_i(trav_leaf_tn),
+      .trav_leaf_mask_i(trav_leaf_mask),
       .list_req_o(req[U_LIST][t]), .list_grant_i(grant[U_LIST][t]), .list_level_o(t_list_level[t]),
       .list_clear_o(t_list_clear[t]), .list_lists_o(t_list_lists[t]), .list_first_o(t_list_first[t]),
       .list_k_o(t_list_k[t]), .list_leaf_mask_o(t_list_leaf_mask[t]), .list_alive_o(t_list_alive[t]),
-      .list_done_i(done[U_LIST][t]), .list_key_i(list_key), .list_need_i(list_need), .list_skip_i(list_skip),
+      .list_done_i(done[U_LIST][t]), .list_key_i(list_key), .list_need_i(list_need),
       .list_k_i(list_k),
-      .rb_req_o(req[U_RB][t]), .rb_grant_i(grant[U_RB][t]), .t0_zero_o(t_t0_zero[t]), .rb_t_o(t_rb_t[t]),
+      .rb_req_o(req[U_RB][t]), .rb_grant_i(grant[U_RB][t]), .t0_zero_o(t_t0_zero[t]),
       .rb_leaf_o(t_rb_leaf[t]),
       .rb_done_i(done[U_RB][t]),
       .xw_req_o(req[U_XW][t]), .xw_grant_i(grant[U_XW][t]), 
@@ -341,7 +352,8 @@ module trace_core #(
           list_op_alive} = list_op;
 
   // ---- the units ----
-  logic trav_valid_o;
+  logic trav_valid_o, trav_level;
+  logic [1:0] trav_kind;
   logic [TW-1:0] trav_thread, node_thread;
   trav_unit #(.E(E), .M(M), .THREADS(THREADS), .ONE_PER_THREAD(1'b1), .ADD_STAGES(ADD_STAGES),
               .DIV_STAGES(DIV_STAGES), .CMP_STAGES(CMP_STAGES)) u_trav (
@@ -351,7 +363,7 @@ module trace_core #(
     .nodes_i(trav_op_nodes),
     .node_req_valid_o(node_req_valid_o), .node_req_ready_i(node_req_ready_i), .node_addr_o(node_addr_o),
     .node_thread_o(node_thread), .node_level_o(), .node_rsp_valid_i(node_rsp_valid_i), .node_w0_i(node_w0_i),
-    .node_w1_i(node_w1_i), .valid_o(trav_valid_o), .ready_i(1'b1), .thread_o(trav_thread), .level_o(), .kind_o(),
+    .node_w1_i(node_w1_i), .valid_o(trav_valid_o), .ready_i(1'b1), .thread_o(trav_thread), .level_o(trav_level), .kind_o(trav_kind),
     .mask_o(trav_mask), .tn_o(trav_tn), .tf_o(trav_tf), .node_o(), .have_cur_o(trav_have_cur), .leaf_o(trav_leaf),
     .list_o(), .leaf_first_o(trav_leaf_first), .leaf_count_o(trav_leaf_count), .leaf_mask_o(trav_leaf_mask),
     .leaf_tn_o(trav_leaf_tn), .sp_o(), .lost_o(), .restarted_o());
@@ -381,9 +393,9 @@ module trace_core #(
   logic [1:0] ray_q [UNITS];
   logic rb_leaf_q, rb_lo_zero_q, is_lo_zero_q, xw_point_q;
   logic [11:0] rb_id_sg_q, is_id_sg_q;
-  logic [W-1:0] rb_t_q, is_tmin_q, is_tmax_q;
+  logic [W-1:0] is_tmin_q, is_tmax_q;
   logic is_t0_zero_q, add_t0_zero_q;
-  logic [2*W-1:0] add_a_q;
+  logic [W-1:0] add_a_q;
   always_ff @(posedge clk_i or negedge rst_ni)
     if (!rst_ni) step_q <= '0;
     else
@@ -393,7 +405,6 @@ module trace_core #(
       sel_q[u] <= sel[u];
       ray_q[u] <= t_ray[sel[u]];
     end
-    rb_t_q <= t_rb_t[sel[U_RB]];
     rb_leaf_q <= t_rb_leaf[sel[U_RB]];
     rb_lo_zero_q <= t_lo_zero[sel[U_RB]];
     rb_id_sg_q <= t_id_sg[sel[U_RB]];
@@ -439,6 +450,15 @@ module trace_core #(
   // by the triangle test
   localparam int RAYS = 4 * THREADS;
   logic [TW+1:0] raddr [U_RB:UNITS-1];   // {thread, ray} of each per-ray unit's issue: its operands' word
+  // ray r's word of the 4 rays' words v read from a memory of a thread's (a 4-to-1 choice)
+  function automatic logic [W-1:0] ray_word(input logic [4*W-1:0] v, input logic [1:0] r);
+    unique case (r)
+      2'd0: ray_word = v[0 +: W];
+      2'd1: ray_word = v[W +: W];
+      2'd2: ray_word = v[2*W +: W];
+      default: ray_word = v[3*W +: W];
+    endcase
+  endfunction
   for (genvar u = U_RB; u < UNITS; u++) begin : g_raddr
     assign raddr[u] = {sel[u], t_ray[sel[u]]};
   end
@@ -702,13 +722,25 @@ module trace_core #(
   assign xw_d = xw_w;
   assign is_d = obj_ray(is_lo_zero_q, is_id_sg_q, is_w, sd_is, 1'b0);
 
+  // the leaves' entry distances te per thread and level (rebase_leaf's t, and op_inst_xform's: the
+  // top-level leaf's): written by the traversal unit's results, a walk's leaf at its level and
+  // the scene clip's tn at level 0 (enter_single_object's one-leaf list; where a walk follows, its
+  // leaf writes over it before a rebase reads it), read by the rebase unit's step at the level of
+  // its kind and its ray's word chosen from the 4 (a choice of 8 per thread before: 24 W
+  // flip-flops and about 300 SB_LUT4 in each trace_thread)
+  logic [4*W-1:0] leaf_tn_rd;
+  thread_ram #(.W(4 * W), .DEPTH(2 * THREADS)) u_leaf_tn (
+    .clk_i(clk_i), .we_i(trav_valid_o && (trav_kind == 2'd0 || (trav_kind == 2'd3 && trav_leaf))),
+    .waddr_i({trav_thread, trav_level}), .wdata_i(trav_kind == 2'd0 ? trav_tn : trav_leaf_tn),
+    .re_i(1'b1), .raddr_i({sel[U_RB], t_rb_leaf[sel[U_RB]]}), .rdata_o(leaf_tn_rd));
+
   logic rb_lo;                            // a leaf's rebase of an instance's rays in double words
   assign rb_lo = rb_leaf_q && !rb_lo_zero_q;
 
   rebase_unit #(.E(E), .M(M), .SUM_STAGES(SUM_STAGES)) u_rebase (
     .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(step_q[U_RB]), .ready_o(unit_ready[U_RB]),
     .o_hi_i(rb_o_hi), .o_lo_i(rb_lo ? so_rb[0 +: 3*W] : '0), .d_hi_i(rb_d_hi), .d_lo_i(rb_lo ? sd_rb[0 +: 3*W] : '0),
-    .t_i(rb_t_q),
+    .t_i(ray_word(leaf_tn_rd, ray_q[U_RB])),
     .valid_o(out_valid[U_RB]), .ready_i(1'b1), .p_hi_o(rb_p_hi), .p_lo_o(rb_p_lo), .te_o(rb_te));
 
   // pass 0 of an instance's rays transforms the rebased origin, pass 1 the direction
@@ -726,12 +758,21 @@ module trace_core #(
     .valid_o(out_valid[U_IS]), .hit_o(is_hit), .t_o(is_t), .u_o(is_u), .v_o(is_v), .cos_o(is_cos),
     .t_world_o(is_t_world));
 
+  // the packets' tmin per thread (the 4 rays' words), written as a packet enters, read by the
+  // subtractors' step (tmin_rel = tmin - t0; 4 W flip-flops and a choice of 4 in each thread
+  // before)
+  logic [4*W-1:0] tmin_rd;
+  thread_ram #(.W(4 * W), .DEPTH(THREADS)) u_tmin (
+    .clk_i(clk_i), .we_i(in_take), .waddr_i(thread_i), .wdata_i(tmin_i),
+    .re_i(1'b1), .raddr_i(sel[U_ADD]), .rdata_o(tmin_rd));
+  logic [2*W-1:0] add_a;                  // {tmin, best_t} of the step's ray
+  assign add_a = {ray_word(tmin_rd, ray_q[U_ADD]), add_a_q};
   logic [1:0] add_valid;
   assign unit_ready[U_ADD] = 1'b1;  // the operators have no stall
   for (genvar j = 0; j < 2; j++) begin : g_add
     f24_add #(.E(E), .M(M), .STAGES(ADD_STAGES)) u_add (
       .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(step_q[U_ADD]),
-      .a_i(add_a_q[j*W +: W]), .b_i(add_t0), .sub_i(1'b1),
+      .a_i(add_a[j*W +: W]), .b_i(add_t0), .sub_i(1'b1),
       .valid_o(add_valid[j]), .res_o(add_r[j*W +: W]));
   end
   assign out_valid[U_ADD] = &add_valid;
@@ -824,8 +865,8 @@ module trace_core #(
   // ---- packets in and out ----
   // A finished packet leaves its thread into the output register (out_full) when that is free or
   // being taken (the lowest finished thread first), and its thread is free from the next cycle;
-  // the register holds the thread's hit flags, t and counters, and its hits' records come from
-  // thread_ram read in the same cycle: a packet's hits leave a cycle after its thread finished.
+  // the register holds the thread's hit flags and t, and its hits' records and counters come from
+  // memories read in the same cycle: a packet's hits leave a cycle after its thread finished.
   logic [TW-1:0] out_sel;
   logic [THREADS-1:0] out_grant;
   logic out_any, out_take, out_full;
@@ -837,6 +878,7 @@ module trace_core #(
   assign out_take = !out_full || ready_i;
   assign t_out_ready = out_take ? out_grant : '0;
   logic [3:0] out_hit;
+  logic [4*W-1:0] out_t;                  // the thread's best_t, a hit's t where out_hit
   always_ff @(posedge clk_i or negedge rst_ni)
     if (!rst_ni) out_full <= 1'b0;
     else if (out_take) out_full <= out_any;
@@ -844,8 +886,7 @@ module trace_core #(
     if (out_take) begin
       thread_o <= out_sel;
       out_hit <= t_hit[out_sel];
-      t_o <= t_t[out_sel];
-      count_o <= t_count[out_sel];
+      out_t <= t_t[out_sel];
     end
   assign valid_o = out_full;
   // a hit's record per thread, one memory per ray: written by the triangle test's hits (the
@@ -864,7 +905,52 @@ module trace_core #(
     assign u_o[r*W +: W] = out_hit[r] ? rec[2*W +: W] : '0;
     assign v_o[r*W +: W] = out_hit[r] ? rec[W +: W] : '0;
     assign cos_o[r*W +: W] = out_hit[r] ? rec[0 +: W] : '0;
+    assign t_o[r*W +: W] = out_hit[r] ? out_t[r*W +: W] : POS_INF;  // +Inf for a miss (one choice, not one per thread)
   end
+
+  // ---- the packets' trace_counters (hls/units/trace.c), per thread in memories (thread_count) ----
+  // Each count is kept where the units report it, one memory per event source (they come in the
+  // same cycle for different threads), zeroed as a packet enters its thread and read as it leaves
+  // (beside its hits' records): a walk step's result (C_LEAVES, or C_STEPS if it read a kd node:
+  // its thread's walk_read or a node's answer in this cycle), a list entry (C_ENTRIES, the same
+  // C_LISTS words, C_SKIPS), a kd node's answer (C_NODES: 2 words), an instance's relative
+  // distances' batch (once per instance: C_MATRICES its 17 + 14 words read), a triangle's batch
+  // (C_ISECTS, and C_XFORMS, its rays; C_MATRICES its record's RW words), an instance's wide
+  // batch (C_XFORMS: its steps, 2 per ray). Sums of two memories' counts are formed as they leave.
+  localparam int INST_OBJ_WORDS = 17 + 14;  // trace.c's op_inst_xform: the instance's and object's words
+  logic [63:0] cnt_walk, cnt_list, cnt_tri;
+  logic [31:0] cnt_node, cnt_inst, cnt_xw;
+  thread_count #(.THREADS(THREADS), .F(2)) u_cnt_walk (
+    .clk_i(clk_i), .rst_ni(rst_ni), .clear_i(in_take), .clear_thread_i(thread_i),
+    .add_i(trav_valid_o && trav_kind == 2'd3), .thread_i(trav_thread),
+    .inc_i({32'(trav_leaf), 32'(!trav_leaf && (t_walk_read[trav_thread] || t_node_rsp[trav_thread]))}),
+    .re_i(out_take), .rthread_i(out_sel), .count_o(cnt_walk));
+  thread_count #(.THREADS(THREADS), .F(2)) u_cnt_list (
+    .clk_i(clk_i), .rst_ni(rst_ni), .clear_i(in_take), .clear_thread_i(thread_i),
+    .add_i(list_valid_o), .thread_i(list_thread),
+    .inc_i({32'(list_skip[0]) + 32'(list_skip[1]) + 32'(list_skip[2]) + 32'(list_skip[3]), 32'd1}),
+    .re_i(out_take), .rthread_i(out_sel), .count_o(cnt_list));
+  thread_count #(.THREADS(THREADS), .F(1)) u_cnt_node (
+    .clk_i(clk_i), .rst_ni(rst_ni), .clear_i(in_take), .clear_thread_i(thread_i),
+    .add_i(node_rsp_valid_i), .thread_i(node_q[node_rd[TW-1:0]]), .inc_i(32'd2),
+    .re_i(out_take), .rthread_i(out_sel), .count_o(cnt_node));
+  thread_count #(.THREADS(THREADS), .F(1)) u_cnt_inst (
+    .clk_i(clk_i), .rst_ni(rst_ni), .clear_i(in_take), .clear_thread_i(thread_i),
+    .add_i(accept[U_ADD]), .thread_i(sel[U_ADD]), .inc_i(32'(INST_OBJ_WORDS)),
+    .re_i(out_take), .rthread_i(out_sel), .count_o(cnt_inst));
+  thread_count #(.THREADS(THREADS), .F(2)) u_cnt_tri (
+    .clk_i(clk_i), .rst_ni(rst_ni), .clear_i(in_take), .clear_thread_i(thread_i),
+    .add_i(accept[U_IS]), .thread_i(sel[U_IS]), .inc_i({32'(RW), 32'(issue_slots[U_IS])}),
+    .re_i(out_take), .rthread_i(out_sel), .count_o(cnt_tri));
+  thread_count #(.THREADS(THREADS), .F(1)) u_cnt_xw (
+    .clk_i(clk_i), .rst_ni(rst_ni), .clear_i(in_take), .clear_thread_i(thread_i),
+    .add_i(accept[U_XW]), .thread_i(sel[U_XW]), .inc_i(32'(issue_slots[U_XW])),
+    .re_i(out_take), .rthread_i(out_sel), .count_o(cnt_xw));
+  // trace_counters' order: steps, leaves, entries, skips, transformations, intersections, words
+  // (nodes, lists, matrices, shading: none here)
+  assign count_o = {32'd0, cnt_inst + cnt_tri[63:32], cnt_list[31:0], cnt_node, cnt_tri[31:0],
+                    cnt_xw + cnt_tri[31:0], cnt_list[63:32], cnt_list[31:0], cnt_walk[63:32], cnt_walk[31:0]};
+
   always_comb begin
     inflight_o = '0;
     for (int t = 0; t < THREADS; t++) inflight_o = inflight_o + (TW+1)'(t_waiting[t]);

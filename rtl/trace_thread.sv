@@ -2,8 +2,9 @@
 // (trace_state: alive, best_t, a hit flag per ray, the level and per level the leaf, the list
 // address and have_cur, the current instance/object/triangle and need mask, best_rel, tmin_rel;
 // the rays themselves and the fields only the per-ray units read or write, the world and
-// object-space rays' o and d, the rebased origins p, te, t0 and the hits' records, are
-// trace_core's, in thread_ram indexed by thread (and ray), with a flag per ray here where the C
+// object-space rays' o and d, the rebased origins p, te, t0, the hits' records, the packet's
+// tmin, the leaves' entry distances (written by the traversal unit's results) and its
+// trace_counters (counted from the units' reports), are trace_core's, in thread_ram indexed by thread (and ray), with a flag per ray here where the C
 // sets them to zero or to a function of other fields: lo_zero (an identity instance's
 // object-space ray, xform_identity of the world ray with the matrix signs id_sg, low words zero),
 // t0_zero) and the FSM of
@@ -28,21 +29,27 @@
 // algorithm trav_unit has). The stacks and mailboxes live in trav_unit and list_unit.
 // Latency: the sum of the packet's unit operations and batches (a batch: its issue slots plus the
 // unit's latency), their waits for the units and the reads.
-// Resources: the state registers, 9 W bits per ray, 3 flags and 12 matrix signs (the rays' o
-// and d, p, te, t0, the object-space rays' low words, the hits' records and the records' operand
-// words in trace_core's thread_ram; the triangle's intermediate values in isect_rebased's
-// pipeline), of the descriptor buffer the 4 words and 13 bits its FSM reads, about 15 words of
-// routing state and 10 counters of 32 bits. Yosys 0.23 synth_xilinx at e7m16 (python3
-// scripts/synth.py --levels trace_thread --hier, 2026-11-29): 2,269 LUT6, 1,908 flip-flops, 7 LUT6
-// levels; synth_ice40 -dsp -noflatten (the per-module flow of python3 scripts/synth.py --dynrtp
-// ice40, 2026-11-29) 2,989 SB_LUT4, 1,905 flip-flops, 2 SB_MAC16. With the rays' o and d and the
+// Resources: the state registers, 5 W bits per ray (best_t, best_rel, tmin_rel, the last
+// clip's tn and tf), 3 flags and 12 matrix signs (the rays' o and d, p, te, t0, tmin, the
+// leaves' te, the object-space rays' low words, the hits' records and the records' operand words
+// in trace_core's thread_ram; the triangle's intermediate values in isect_rebased's pipeline), of
+// the descriptor buffer the 4 words and 13 bits its FSM reads, about 13 words of routing state
+// (the packet's trace_counters: trace_core's thread_count memories; the thread says whether its
+// walk step read a node, walk_read_o). synth_ice40
+// -dsp -noflatten (python3 scripts/synth.py --ice40 trace_thread, 2026-11-30): 1,845 SB_LUT4,
+// 1,234 flip-flops, 2 SB_MAC16 (2,988 and 1,905 with the 10 counters of 32 bits here; 2,478 and
+// 1,618 without them; 2,133 and 1,618 when t_o's +Inf for a miss moved to trace_core and the
+// clips took one choice of two; 1,910 and 1,330 without the leaves' te, 1,845 and 1,234 without
+// tmin: both trace_core's thread_ram). Yosys 0.23 synth_xilinx at e7m16 (python3
+// scripts/synth.py --levels trace_thread --hier, 2026-11-30): 1,600 LUT6, 1,236 flip-flops, 6 LUT6
+// levels (2,269, 1,908 and 7 on 2026-11-29 with the counters). With the rays' o and d and the
 // records' words here (ro, rd, so, sd, the 20-word buffer, f24_vertex_lo, xform_identity): 5040
 // LUT6, 3440 flip-flops, 8 levels, and 5,871 SB_LUT4, 3,437 flip-flops (5048 LUT6, 3439
 // flip-flops before done; 5297, 3438 before ld_req; 6449, 5410 and 8 with p, te, t0, the low
 // words and the hits' records here; 5718 LUTs and 6183 flip-flops before the header moved to the
-// core and the buffer shrank from 40 words to 20). Its ports (synth.py --ports): valid_o and
-// mem_req_valid_o 0 LUT6 levels from registers, t_o 1, ready_i 3 into registers (2 before the
-// rays and the records' words moved), trav_grant_i 1 (2), list_grant_i 3.
+// core and the buffer shrank from 40 words to 20). Its ports (synth.py --ports, 2026-11-30):
+// valid_o, mem_req_valid_o and t_o 0 LUT6 levels from registers (t_o 1 before it was best_t),
+// ready_i 2 into registers (3 before the counters moved), trav_grant_i 2, list_grant_i 3.
 // Handshake: valid/ready at the packet input and the result output; request/grant to the units.
 module trace_thread #(
   parameter int E = 7,
@@ -63,8 +70,7 @@ module trace_thread #(
   output logic                        valid_o,
   input  logic                        ready_i,
   output logic [3:0]                  hit_o,      // the rays with a hit (its record: trace_core's)
-  output logic [4*(E+M+1)-1:0]        t_o,        // +Inf for a miss
-  output logic [10*32-1:0]            count_o,    // trace_counters in its order (words: 4 kinds)
+  output logic [4*(E+M+1)-1:0]        t_o,        // best_t: a hit's t where hit_o (trace_core puts +Inf for a miss)
   // the header's fields (the core's, hdr_ok_i when read)
   output logic                        hdr_want_o,  // waiting for the header
   input  logic                        hdr_ok_i,
@@ -81,6 +87,7 @@ module trace_thread #(
   output logic [1:0]                  ld_got_o,    // the index of a response to this thread in its record
   input  logic [32*RW-1:0]            mem_rdata_i,
   input  logic                        node_rsp_i,  // a kd-node read of this thread answered
+  output logic                        walk_read_o, // the walk step in flight read a kd node (so far)
   output logic                        waiting_o,   // an operation of this thread is in a unit
   output logic [3:0]                  slots_o,     // issue slots of the operation requested (thread_sched)
   output logic [1:0]                  step_ray_o,  // the ray of the batch's next step (the rays' fields in trace_core)
@@ -108,7 +115,6 @@ module trace_thread #(
   input  logic [31:0]                 trav_leaf_first_i,
   input  logic [31:0]                 trav_leaf_count_i,
   input  logic [3:0]                  trav_leaf_mask_i,
-  input  logic [4*(E+M+1)-1:0]        trav_leaf_tn_i,
   // list unit
   output logic                        list_req_o,
   input  logic                        list_grant_i,
@@ -122,13 +128,11 @@ module trace_thread #(
   input  logic                        list_done_i,
   input  logic [31:0]                 list_key_i,
   input  logic [3:0]                  list_need_i,
-  input  logic [3:0]                  list_skip_i,
   input  logic [31:0]                 list_k_i,
   // rebase unit
   output logic                        rb_req_o,
   input  logic                        rb_grant_i,
   output logic                        t0_zero_o,   // the ray's t0 is +0 (else trace_core's: adders, triangle test)
-  output logic [E+M:0]                rb_t_o,
   output logic                        rb_leaf_o,   // a leaf's rebase: the object-space ray, te (else the world ray's: t0)
   input  logic                        rb_done_i,   // (its operands o, d and results p, te, t0: trace_core's)
   // the transformation unit's wide mode
@@ -152,12 +156,10 @@ module trace_thread #(
   // 2 subtractors (one operation on 2 lanes: the relative distances)
   output logic                        add_req_o,
   input  logic                        add_grant_i,
-  output logic [2*(E+M+1)-1:0]        add_a_o,
+  output logic [E+M:0]                add_a_o,     // best_t (tmin: trace_core's)
   input  logic                        add_done_i,
   input  logic [2*(E+M+1)-1:0]        add_r_i
 );
-  localparam logic [E-1:0] EXP_MAX = '1;
-  localparam logic [W-1:0] POS_INF = {1'b0, EXP_MAX, {M{1'b0}}};
   // memory image layout (docs/memory-image.md; hls/units/trace.c)
   localparam int TRI_WORDS = RW;                            // F24_TRIANGLE_RECORD_WORDS
   localparam int INST_WORDS = TRI_WORDS * ((17 + TRI_WORDS - 1) / TRI_WORDS);
@@ -165,8 +167,6 @@ module trace_thread #(
   // responses per record (the instance's 17 words the most) and the buffer they fill
   localparam int INST_RSP = (INST_READ + RW - 1) / RW, OBJ_RSP = (OBJ_READ + RW - 1) / RW;
   localparam int LBUF = RW * INST_RSP;
-  localparam int C_STEPS = 0, C_LEAVES = 1, C_ENTRIES = 2, C_SKIPS = 3, C_XFORMS = 4, C_ISECTS = 5;
-  localparam int C_NODES = 6, C_LISTS = 7, C_MATRICES = 8;
 
   // ---- state of the packet in flight (trace_state) ----
   // the FSM's states (trace_step's operations and their unit transactions)
@@ -199,7 +199,8 @@ module trace_thread #(
   // which trace_core makes as it reads the world ray
   logic [3:0] lo_zero;
   logic [11:0] id_sg [4];
-  logic [W-1:0] tmin [4], best_t [4], best_rel [4], tmin_rel [4];
+  // the packet's tmin, read only by the subtractors (tmin_rel = tmin - t0), is trace_core's (thread_ram)
+  logic [W-1:0] best_t [4], best_rel [4], tmin_rel [4];
   // t0 (an instance's entry distance, from its rebase) is trace_core's (thread_ram); t0_zero[i]:
   // ray i's is +0 (a new packet, an identity instance), read as +0 in its place
   logic [3:0] t0_zero;
@@ -209,10 +210,10 @@ module trace_thread #(
   logic level;
   logic [31:0] lists [2], leaf_first [2], leaf_count [2], k [2];
   logic [3:0] leaf_mask [2];
-  logic [W-1:0] leaf_tn [2][4];
   logic have_cur [2];
   logic [31:0] inst, obj, tris, tri_ix;
-  logic [31:0] cnt [10];
+  // walk_read: the walk step in flight read a kd node (trace_core counts the step, C_STEPS, as its
+  // result comes: walk_read_o)
   logic walk_read;
   // the loader: ld_n responses of RW words from ld_base into lbuf, then ld_ret
   logic [31:0] lbuf [LBUF];
@@ -251,11 +252,10 @@ module trace_thread #(
   endfunction
 
   // ---- the units ----
-  logic [4*W-1:0] v_tmin, v_tmax, v_best_t, v_best_rel, v_tmin_rel;
+  logic [4*W-1:0] v_tmax, v_best_t, v_best_rel, v_tmin_rel;
   always_comb
     for (int i = 0; i < 4; i++) begin
       trav_id_sg_o[i*12 +: 12] = id_sg[i];
-      v_tmin[i*W +: W] = tmin[i];
       v_best_t[i*W +: W] = best_t[i];
       v_best_rel[i*W +: W] = best_rel[i];
       v_tmin_rel[i*W +: W] = tmin_rel[i];
@@ -265,7 +265,7 @@ module trace_thread #(
   assign trav_obj_o = !(st == S_SC_GO || (st != S_IC_CLIP && !level));
   assign trav_lo_zero_o = lo_zero;
   assign trav_best_o = level ? v_best_rel : v_best_t;
-  logic [4*W-1:0] clip_tn, clip_tf, r_leaf_tn;   // the traversal unit's last result
+  logic [4*W-1:0] clip_tn, clip_tf;   // the traversal unit's last result
   logic [3:0] clip_mask, r_leaf_mask;
   logic r_have_cur, r_leaf;
   logic [31:0] r_leaf_first, r_leaf_count;
@@ -273,22 +273,21 @@ module trace_thread #(
     trav_kind_o = 2'd3;
     trav_level_o = level;
     trav_mask_o = alive;
-    trav_tn_o = clip_tn;
-    trav_tf_o = clip_tf;
+    // the clips' [tn, tf]: the scene's [tmin, tmax] is the packet's [tmin_rel, best_rel] as it
+    // enters (no batch before the scene clip writes them), the object's [tmin_rel, best_rel]: one
+    // choice of two (a third, tmin and best_t, was 2 x 96 LUT4 more)
+    trav_tn_o = st == S_SC_GO || st == S_IC_CLIP ? v_tmin_rel : clip_tn;
+    trav_tf_o = st == S_SC_GO || st == S_IC_CLIP ? v_best_rel : clip_tf;
     unique case (st)
       S_SC_GO: begin
         trav_kind_o = 2'd0;
         trav_level_o = 1'b0;
         trav_mask_o = active;
-        trav_tn_o = v_tmin;
-        trav_tf_o = v_best_t;     // tmax
       end
       S_IC_CLIP: begin
         trav_kind_o = 2'd1;
         trav_level_o = 1'b1;
         trav_mask_o = need;
-        trav_tn_o = v_tmin_rel;
-        trav_tf_o = v_best_rel;
       end
       S_START_GO: begin
         trav_kind_o = 2'd2;
@@ -317,7 +316,6 @@ module trace_thread #(
   assign rb_req_o = batch_req && (bop == B_RB_LEAF || bop == B_RB_INST);
   assign lo_zero_o = lo_zero[ir];
   assign id_sg_o = id_sg[ir];
-  assign rb_t_o = leaf_tn[rb_leaf][ir];
   assign rb_leaf_o = rb_leaf;
   assign step_ray_o = ir;
   assign xw_req_o = batch_req && bop == B_XW;
@@ -332,7 +330,7 @@ module trace_thread #(
 
   // the subtractors: best_rel = best_t - t0, tmin_rel = tmin - t0
   assign add_req_o = batch_req && bop == B_IC_ADD;
-  assign add_a_o = {tmin[ir], best_t[ir]};
+  assign add_a_o = best_t[ir];
 
   // the batch's results: done of its unit, for ray cr of pass cpass
   logic batch_grant, batch_done;
@@ -360,12 +358,8 @@ module trace_thread #(
   assign hdr_want_o = st == S_HDR;
   assign ready_o = st == S_IDLE;
   assign valid_o = done;
-  always_comb
-    for (int i = 0; i < 4; i++) begin
-      t_o[i*W +: W] = hit[i] ? best_t[i] : POS_INF;
-    end
-  always_comb
-    for (int c = 0; c < 10; c++) count_o[c*32 +: 32] = cnt[c];
+  assign t_o = v_best_t;
+  assign walk_read_o = walk_read;
 
   // the loader: reads n responses from base into lbuf through the word port, then goes to next
   task automatic load(input logic [31:0] base, input logic [1:0] n, input logic [5:0] next);
@@ -400,10 +394,7 @@ module trace_thread #(
       ld_req <= 1'b0;
       done <= 1'b0;
     end else begin
-      if (node_rsp_i) begin
-        cnt[C_NODES] <= cnt[C_NODES] + 2;
-        walk_read <= 1'b1;
-      end
+      if (node_rsp_i) walk_read <= 1'b1;
       unique case (st)
         S_IDLE:
           if (valid_i) begin
@@ -414,13 +405,11 @@ module trace_thread #(
             have_cur[0] <= 1'b0;
             have_cur[1] <= 1'b0;
             for (int i = 0; i < 4; i++) begin
-              tmin[i] <= tmin_i[i*W +: W];
               tmin_rel[i] <= tmin_i[i*W +: W];
               best_t[i] <= v_tmax[i*W +: W];
               best_rel[i] <= v_tmax[i*W +: W];
               t0_zero[i] <= 1'b1;
             end
-            for (int c = 0; c < 10; c++) cnt[c] <= '0;
             hit <= '0;
             st <= S_CLR0;
           end
@@ -455,7 +444,6 @@ module trace_thread #(
             r_leaf_first <= trav_leaf_first_i;
             r_leaf_count <= trav_leaf_count_i;
             r_leaf_mask <= trav_leaf_mask_i;
-            r_leaf_tn <= trav_leaf_tn_i;
             st <= ret;
           end
         S_SC_DONE:  // op_scene_clip
@@ -464,7 +452,6 @@ module trace_thread #(
             need <= clip_mask;
             leaf_count[0] <= '0;
             k[0] <= '0;
-            for (int i = 0; i < 4; i++) leaf_tn[0][i] <= clip_tn[i*W +: W];
             load(hdr_top_nodes_i + 1, 2'd1, S_SINGLE_NODE);
           end else begin
             lists[0] <= hdr_top_lists_i;
@@ -494,9 +481,7 @@ module trace_thread #(
             leaf_count[level] <= r_leaf_count;
             leaf_mask[level] <= r_leaf_mask;
             k[level] <= '0;
-            for (int i = 0; i < 4; i++) leaf_tn[level][i] <= r_leaf_tn[i*W +: W];
-            cnt[C_LEAVES] <= cnt[C_LEAVES] + 1;
-          end else if (walk_read) cnt[C_STEPS] <= cnt[C_STEPS] + 1;
+          end
           st <= S_ROUTE;
         end
         S_LIST_GO: if (list_grant_i) st <= S_LIST_WAIT;
@@ -504,9 +489,6 @@ module trace_thread #(
           if (list_done_i) begin
             k[level] <= list_k_i;
             need <= list_need_i;
-            cnt[C_ENTRIES] <= cnt[C_ENTRIES] + 1;
-            cnt[C_SKIPS] <= cnt[C_SKIPS] + popcount(list_skip_i);
-            cnt[C_LISTS] <= cnt[C_LISTS] + 1;
             if (level) tri_ix <= list_key_i;
             else inst <= list_key_i;
             ret <= list_need_i == 0 ? S_ROUTE : level ? S_TX_LOAD : S_IX_LOAD;
@@ -559,7 +541,6 @@ module trace_thread #(
         S_IX_LOAD: load(hdr_inst_i + INST_WORDS * inst, 2'(INST_RSP), S_IX);
         S_IX: begin
           obj <= hdr_objects_i + 16 * lbuf[12];
-          cnt[C_MATRICES] <= cnt[C_MATRICES] + INST_READ + OBJ_READ;
           // an identity instance, or TRACE_IDENTITY's single one (enter_single_object): the rays pass
           // as wiring, and the clip follows in the same operation
           if (lbuf[13][0] || flags[2]) begin
@@ -571,7 +552,6 @@ module trace_thread #(
               end
             st <= S_IC_LOAD;
           end else begin
-            cnt[C_XFORMS] <= cnt[C_XFORMS] + 2 * popcount(need);
             batch(B_RB_INST, need);  // per ray: rebase to the top-level leaf, then the origins and directions wide
           end
         end
@@ -588,9 +568,6 @@ module trace_thread #(
           end
         // op_tri_xform, op_tri_isect: the triangle's record, then its batches
         S_TX_LOAD: begin
-          cnt[C_MATRICES] <= cnt[C_MATRICES] + TRI_WORDS;
-          cnt[C_XFORMS] <= cnt[C_XFORMS] + popcount(need);
-          cnt[C_ISECTS] <= cnt[C_ISECTS] + popcount(need);
           batch(B_TRI, need);
           load(tris + TRI_WORDS * tri_ix, 2'd1, S_BATCH);
         end

@@ -263,13 +263,13 @@ inline unit_check isect_check(const VerilatedContext &ctx, const std::string &co
 }
 
 // the two adders of the relative distances (op_inst_xform's best_t - t0, tmin - t0), watched in
-// trace_core's names: step_q (declared [UNITS-1:U_RB]: bit U_ADD - U_RB), add_a_q, add_t0, add_r
+// trace_core's names: step_q (declared [UNITS-1:U_RB]: bit U_ADD - U_RB), add_a, add_t0, add_r
 inline unit_check add_check(const VerilatedContext &ctx, const std::string &core, const uint32_t &thread)
 {
     constexpr uint32_t U_RB = 2, U_ADD = 5;
     const scope s(ctx, core);
     unit_check u{ "add", s.path + ".g_add" };
-    const signal step = s["step_q"], a = s["add_a_q"], t0 = s["add_t0"], valid = s["add_valid"], r = s["add_r"];
+    const signal step = s["step_q"], a = s["add_a"], t0 = s["add_t0"], valid = s["add_valid"], r = s["add_r"];
     u.taken = [step] { return step.bits(U_ADD - U_RB, 1) != 0; };
     u.given = [valid] { return valid.bits(0, 2) == 3u; };
     u.thread_in = [&thread] { return thread; };
