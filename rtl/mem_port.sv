@@ -44,7 +44,7 @@ module mem_port #(
   logic [PW:0] count;
   logic full, grant_any, fire;
   logic [SW-1:0] grant;
-  logic [N-1:0] after, after_next, in_valid, in_take;
+  logic [N-1:0] after, after_next, in_valid, in_take, grant_1h;
   logic [N*(AW+BW)-1:0] in_data;
 
   // each requester's requests through a queue of 2 (a register pair in LUT RAM): req_ready_o is a
@@ -61,17 +61,19 @@ module mem_port #(
   assign full = count == (PW + 1)'(DEPTH);
   // round robin: the first requester after the last granted one (after: the requesters above it),
   // without an index modulo N, which Yosys maps to a divider per candidate unless N is a power of 2
-  /* verilator lint_off PINCONNECTEMPTY */
   rr_pick #(.N(N)) u_pick (
-    .req_i(in_valid), .after_i(after), .any_o(grant_any), .grant_o(), .index_o(grant), .after_o(after_next));
-  /* verilator lint_on PINCONNECTEMPTY */
+    .req_i(in_valid), .after_i(after), .any_o(grant_any), .grant_o(grant_1h), .index_o(grant),
+    .after_o(after_next));
   assign mem_req_valid_o = grant_any && !full;
-  assign {mem_req_bytes_o, mem_req_addr_o} = in_data[32'(grant)*(AW+BW) +: AW+BW];
   assign mem_req_src_o = grant;
   assign fire = mem_req_valid_o && mem_req_ready_i;
+  // the request and the queue's pop by the one-hot grant (an AND-OR over the queues' heads), not
+  // by its index: the index's encoding and a decoder or multiplexer on it are 2 LUT6 levels more
+  assign in_take = grant_1h & {N{fire}};
   always_comb begin
-    in_take = '0;
-    in_take[grant] = fire;
+    {mem_req_bytes_o, mem_req_addr_o} = '0;
+    for (int i = 0; i < N; i++)
+      {mem_req_bytes_o, mem_req_addr_o} |= in_data[i*(AW+BW) +: AW+BW] & {(AW+BW){grant_1h[i]}};
     rsp_valid_o = '0;
     if (mem_rsp_valid_i) rsp_valid_o[src_fifo[head]] = 1'b1;
   end

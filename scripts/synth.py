@@ -1255,7 +1255,9 @@ def dynrtp_section():
         md += ["", f"{units[0]} dominates. LUT6 levels: `hier_lut_levels` composes, per module, the levels "
                "from its registers to each output bit, from each input bit to the output bits it reaches without a "
                "register, and from each input bit to a register inside; on a small hierarchy it gives the count of "
-               "`lut_levels` on the same netlist flattened after mapping."]
+               "`lut_levels` on the same netlist flattened after mapping. `python3 scripts/synth.py --dynrtp-path "
+               "[UNIT ...]` names the deepest path (the module instances along it, their levels and cells); "
+               "rtl/README.md (\"The deepest paths named\") has the paths of this run and what was fixed."]
     return md
 
 
