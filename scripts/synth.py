@@ -41,6 +41,10 @@ levels between registers and ports as the DynRTP's are counted (synth_xilinx per
 hier_lut_levels), its deepest path flattened after mapping (cell type, a net it drives; not with
 --hier, for modules too large to flatten), and per submodule its levels and its own cells' deepest
 path (the named nets); it writes only build/synth/levels_*.
+`python3 scripts/synth.py --dynrtp-path [UNIT ...]` prints the whole DynRTP's deepest path of LUT6 levels
+as --dynrtp counts them (from the netlists it keeps; a module changed since is mapped again), and each
+named unit's of the top (e.g. trace_core) as its own top: per module instance along it its levels
+and its cells (type, a net it drives; a register at the start, D: the register input at the end).
 `python3 scripts/synth.py --ice40 MODULE [PARAM=VALUE ...]` prints one module's synth_ice40 -dsp totals
 (SB_LUT4, flip-flops, SB_RAM40_4K, SB_MAC16) mapped module by module as the DynRTP's are, per part
 (its own cells, each kind of submodule) and per memory in block RAM its SB_RAM40_4K and the bits it
@@ -234,12 +238,7 @@ def lut_path(js, module=None):
     if not depth:
         return 0, []
     n = max(depth, key=depth.get)
-    names = {}  # a net's name: the shortest user-given one (Yosys's own names start with $)
-    for net, d in mod.get("netnames", {}).items():
-        for b in d["bits"]:
-            if isinstance(b, int) and (b not in names or (names[b].startswith("$"), len(names[b])) >
-                                       (net.startswith("$"), len(net))):
-                names[b] = net
+    names = net_names(mod)
     path = []
     while n is not None:
         c = cells[n]
@@ -248,6 +247,17 @@ def lut_path(js, module=None):
         path.append((c["type"], names.get(outs[0], "?") if outs else "?"))
         n = prev.get(n)
     return depth[max(depth, key=depth.get)], path[::-1]
+
+
+def net_names(mod):
+    """Per net bit its name: the shortest user-given one (Yosys's own names start with $)."""
+    names = {}
+    for net, d in mod.get("netnames", {}).items():
+        for b in d["bits"]:
+            if isinstance(b, int) and (b not in names or (names[b].startswith("$"), len(names[b])) >
+                                       (net.startswith("$"), len(net))):
+                names[b] = net
+    return names
 
 
 def module_levels(top, params, flat=True):
@@ -457,111 +467,16 @@ def hier_summaries(mods, top):
     reaches without a register ("through") and from each input bit to a register inside ("in_to_reg"),
     by (port, bit), submodules composed at every instance (LEVEL_CELLS as lut_levels)."""
     summary = {}
+    for name in hier_order(mods, top):
+        summary[name] = module_summary(mods, name, summary)[0]
+    return summary
 
-    def summarize(name):
-        mod = mods[name]
-        ports = mod.get("ports", {})
-        in_bits = {b: (p, i) for p, d in ports.items() if d["direction"] == "input" for i, b in enumerate(d["bits"])}
-        cells, driver = mod.get("cells", {}), {}
-        for cname, c in cells.items():
-            sub = summary.get(c["type"])
-            for port, bits in c["connections"].items():
-                out = c.get("port_directions", {}).get(port) == "output" if sub is None else \
-                    mods[c["type"]]["ports"].get(port, {}).get("direction") == "output"
-                if out:
-                    for i, b in enumerate(bits):
-                        driver[b] = (cname, port, i)
-        memo, worst = {}, [0]
-        in_to_reg = {}
-        NONE = -1 << 30
 
-        def value(bit):
-            """(levels from a register, {input bit: levels}) of a net, iteratively."""
-            stack = [bit]
-            while stack:
-                b = stack[-1]
-                if b in memo:
-                    stack.pop()
-                    continue
-                if b in in_bits:
-                    memo[b] = (NONE, {b: 0})
-                    stack.pop()
-                    continue
-                if b not in driver:  # a constant or an undriven bit
-                    memo[b] = (NONE, {})
-                    stack.pop()
-                    continue
-                cname, port, i = driver[b]
-                c = cells[cname]
-                sub = summary.get(c["type"])
-                if sub is None and c["type"] not in LEVEL_CELLS:  # a register, RAM, buffer: a start
-                    memo[b] = (0, {})
-                    stack.pop()
-                    continue
-                if sub is None:
-                    ins = [x for p, bits in c["connections"].items()
-                           if c.get("port_directions", {}).get(p) == "input" and comb_input(c, p)
-                           for x in bits]
-                    need = [(x, 0) for x in ins]
-                else:
-                    reg, thr = sub["reg_out"].get((port, i), NONE), sub["through"].get((port, i), {})
-                    need = [(c["connections"][p][j], l) for (p, j), l in thr.items()]
-                todo = [x for x, _ in need if x not in memo and isinstance(x, int)]
-                if todo:
-                    stack.extend(todo)
-                    continue
-                step = LEVEL_CELLS[c["type"]] if sub is None else 0
-                r, d = (reg if sub is not None else 0 if dsp_registered(c) else NONE), {}
-                for x, l in need:
-                    if not isinstance(x, int):
-                        continue
-                    xr, xd = memo[x]
-                    r = max(r, xr + l + step)
-                    for k, v in xd.items():
-                        if d.get(k, NONE) < v + l + step:
-                            d[k] = v + l + step
-                memo[b] = (r, d)
-                stack.pop()
-            return memo[bit]
-
-        def endpoint(bit, extra):
-            """A path ends extra levels after net bit (a register input, or inside a submodule)."""
-            if not isinstance(bit, int):
-                return
-            r, d = value(bit)
-            worst[0] = max(worst[0], r + extra)
-            for k, v in d.items():
-                in_to_reg[k] = max(in_to_reg.get(k, 0), v + extra)
-
-        for cname, c in cells.items():
-            sub = summary.get(c["type"])
-            if sub is not None:
-                worst[0] = max(worst[0], sub["inside"])
-                for port, bits in c["connections"].items():
-                    if mods[c["type"]]["ports"].get(port, {}).get("direction") == "input":
-                        for i, b in enumerate(bits):
-                            if (port, i) in sub["in_to_reg"]:
-                                endpoint(b, sub["in_to_reg"][(port, i)])
-            else:  # a register's inputs, a LUT RAM's written ones
-                for port, bits in c["connections"].items():
-                    if c.get("port_directions", {}).get(port) == "input" and \
-                            (c["type"] not in LEVEL_CELLS or not comb_input(c, port)):
-                        for b in bits:
-                            endpoint(b, 0)
-        reg_out, through = {}, {}
-        for p, d in ports.items():
-            if d["direction"] == "output":
-                for i, b in enumerate(d["bits"]):
-                    if isinstance(b, int):
-                        r, dd = value(b)
-                        reg_out[(p, i)] = r
-                        through[(p, i)] = {in_bits[k]: v for k, v in dd.items()}
-        summary[name] = {"inside": worst[0], "reg_out": reg_out, "through": through,
-                         "in_to_reg": {in_bits[k]: v for k, v in in_to_reg.items()}}
-
+def hier_order(mods, top):
+    """The modules of top's hierarchy, submodules before their parents."""
     order, seen = [], set()
 
-    def visit(name):  # submodules before their parents (the hierarchy is a DAG of modest depth)
+    def visit(name):  # the hierarchy is a DAG of modest depth
         if name in seen:
             return
         seen.add(name)
@@ -570,9 +485,122 @@ def hier_summaries(mods, top):
                 visit(c["type"])
         order.append(name)
     visit(top)
-    for name in order:
-        summarize(name)
-    return summary
+    return order
+
+
+def module_summary(mods, name, summary):
+    """hier_summaries of one module, its submodules' summaries given, and what deepest_path walks back
+    along: its nets' levels (value: levels from a register, {input bit: levels}), their drivers, where
+    its deepest inner path ends ("inside_at") and each input bit's deepest path into a register
+    ("in_to_reg_at"): (the net, None for a register's input or the submodule input (cell, port, bit))."""
+    mod = mods[name]
+    ports = mod.get("ports", {})
+    in_bits = {b: (p, i) for p, d in ports.items() if d["direction"] == "input" for i, b in enumerate(d["bits"])}
+    cells, driver = mod.get("cells", {}), {}
+    for cname, c in cells.items():
+        sub = summary.get(c["type"])
+        for port, bits in c["connections"].items():
+            out = c.get("port_directions", {}).get(port) == "output" if sub is None else \
+                mods[c["type"]]["ports"].get(port, {}).get("direction") == "output"
+            if out:
+                for i, b in enumerate(bits):
+                    driver[b] = (cname, port, i)
+    memo, worst = {}, [0, None]
+    in_to_reg, in_to_reg_at = {}, {}
+
+    def value(bit):
+        """(levels from a register, {input bit: levels}) of a net, iteratively."""
+        stack = [bit]
+        while stack:
+            b = stack[-1]
+            if b in memo:
+                stack.pop()
+                continue
+            if b in in_bits:
+                memo[b] = (NONE, {b: 0})
+                stack.pop()
+                continue
+            if b not in driver:  # a constant or an undriven bit
+                memo[b] = (NONE, {})
+                stack.pop()
+                continue
+            c, port, i = cells[driver[b][0]], driver[b][1], driver[b][2]
+            sub = summary.get(c["type"])
+            if sub is None and c["type"] not in LEVEL_CELLS:  # a register, RAM, buffer: a start
+                memo[b] = (0, {})
+                stack.pop()
+                continue
+            need = cell_inputs(c, port, i, sub)
+            todo = [x for x, _ in need if x not in memo and isinstance(x, int)]
+            if todo:
+                stack.extend(todo)
+                continue
+            step = LEVEL_CELLS[c["type"]] if sub is None else 0
+            r = sub["reg_out"].get((port, i), NONE) if sub is not None else 0 if dsp_registered(c) else NONE
+            d = {}
+            for x, l in need:
+                if not isinstance(x, int):
+                    continue
+                xr, xd = memo[x]
+                r = max(r, xr + l + step)
+                for k, v in xd.items():
+                    if d.get(k, NONE) < v + l + step:
+                        d[k] = v + l + step
+            memo[b] = (r, d)
+            stack.pop()
+        return memo[bit]
+
+    def endpoint(bit, extra, at=None):
+        """A path ends extra levels after net bit (a register input, or at a submodule's input at)."""
+        if not isinstance(bit, int):
+            return
+        r, d = value(bit)
+        if r + extra > worst[0]:
+            worst[:] = [r + extra, (bit, at)]
+        for k, v in d.items():
+            if v + extra > in_to_reg.get(k, -1):
+                in_to_reg[k], in_to_reg_at[k] = v + extra, (bit, at)
+
+    for cname, c in cells.items():
+        sub = summary.get(c["type"])
+        if sub is not None:
+            if sub["inside"] > worst[0]:
+                worst[:] = [sub["inside"], cname]
+            for port, bits in c["connections"].items():
+                if mods[c["type"]]["ports"].get(port, {}).get("direction") == "input":
+                    for i, b in enumerate(bits):
+                        if (port, i) in sub["in_to_reg"]:
+                            endpoint(b, sub["in_to_reg"][(port, i)], (cname, port, i))
+        else:  # a register's inputs, a LUT RAM's written ones
+            for port, bits in c["connections"].items():
+                if c.get("port_directions", {}).get(port) == "input" and \
+                        (c["type"] not in LEVEL_CELLS or not comb_input(c, port)):
+                    for b in bits:
+                        endpoint(b, 0)
+    reg_out, through = {}, {}
+    for p, d in ports.items():
+        if d["direction"] == "output":
+            for i, b in enumerate(d["bits"]):
+                if isinstance(b, int):
+                    r, dd = value(b)
+                    reg_out[(p, i)] = r
+                    through[(p, i)] = {in_bits[k]: v for k, v in dd.items()}
+    entry = {"inside": worst[0], "reg_out": reg_out, "through": through,
+             "in_to_reg": {in_bits[k]: v for k, v in in_to_reg.items()}}
+    return entry, {"value": value, "driver": driver, "cells": cells, "in_bits": in_bits, "names": net_names(mod),
+                   "inside_at": worst[1], "in_to_reg_at": in_to_reg_at}
+
+
+NONE = -1 << 30  # the levels of a path that does not exist
+
+
+def cell_inputs(c, port, i, sub):
+    """The nets a cell's output bit (port, i) is reached from without a register, each with the levels
+    it adds beyond the cell's own: a level cell's inputs (comb_input) 0, a submodule's its "through"."""
+    if sub is None:
+        return [(x, 0) for p, bits in c["connections"].items()
+                if c.get("port_directions", {}).get(p) == "input" and comb_input(c, p) for x in bits]
+    return [(c["connections"][p][j], l) for (p, j), l in sub["through"].get((port, i), {}).items()]
 
 
 def hier_lut_levels(mods, top):
@@ -582,6 +610,99 @@ def hier_lut_levels(mods, top):
         return max([s["inside"]] + list(s["reg_out"].values()) + list(s["in_to_reg"].values()) +
                    [v for t in s["through"].values() for v in t.values()])
     return {name: levels(s) for name, s in hier_summaries(mods, top).items()}
+
+
+def deepest_path(mods, top, summary=None):
+    """The deepest path of hier_lut_levels(mods, top)[top] across module ports: its levels and its steps,
+    first to last, each (instance path, cell type, the net it drives): the register (or top input) it
+    starts from, its level cells, and ("D", net) the register input it ends at (none at a top output).
+    summary: hier_summaries of a hierarchy that holds top's, if made already."""
+    summary = summary or hier_summaries(mods, top)
+    traces = {}
+
+    def trace(name):  # module_summary again for the modules along the path only (its memo is large)
+        if name not in traces:
+            traces[name] = module_summary(mods, name, summary)[1]
+        return traces[name]
+
+    def level(name, bit, src):
+        r, d = trace(name)["value"](bit)
+        return r if src is None else d.get(src, NONE)
+
+    def back(name, inst, bit, src, v):
+        """The steps from src (None: a register; else an input bit) to net bit of module name, v levels."""
+        t, steps = trace(name), []
+        while bit not in t["in_bits"]:
+            cname, port, i = t["driver"][bit]
+            c = t["cells"][cname]
+            sub = summary.get(c["type"])
+            if sub is not None and src is None and sub["reg_out"].get((port, i)) == v:
+                return back(c["type"], inst + (cname,), mods[c["type"]]["ports"][port]["bits"][i], None, v) + steps[::-1]
+            step = 0 if sub is not None else LEVEL_CELLS.get(c["type"])
+            found = step is not None and next(((x, l) for x, l in cell_inputs(c, port, i, sub) if isinstance(x, int)
+                                               and level(name, x, src) + l + step == v), None)
+            if not found:  # a register, RAM or registered DSP48E1: the start
+                steps.append((inst, c["type"], t["names"].get(bit, "?")))
+                break
+            x, l = found
+            if sub is not None:
+                sub_in = mods[c["type"]]["ports"]
+                p, j = next(k for k, lv in sub["through"][(port, i)].items()
+                            if c["connections"][k[0]][k[1]] == x and lv == l)
+                steps += back(c["type"], inst + (cname,), sub_in[port]["bits"][i], sub_in[p]["bits"][j], l)[::-1]
+            else:
+                steps.append((inst, c["type"], t["names"].get(bit, "?")))
+            bit, v = x, v - l - step
+        return steps[::-1]
+
+    def into(name, inst, at, bit, extra):
+        """The steps from net bit on, extra levels, into a register: at None (a register's input) or a
+        submodule's input (cell, port, bit), entered there."""
+        if at is None:
+            return [(inst, "D", trace(name)["names"].get(bit, "?"))]
+        cname, port, i = at
+        sub = trace(name)["cells"][cname]["type"]
+        k = mods[sub]["ports"][port]["bits"][i]
+        nxt, sub_at = trace(sub)["in_to_reg_at"][k]
+        v = level(sub, nxt, k)
+        return back(sub, inst + (cname,), nxt, k, v) + into(sub, inst + (cname,), sub_at, nxt, extra - v)
+
+    def inside(name, inst):
+        at = trace(name)["inside_at"]
+        if isinstance(at, str):  # a submodule's own
+            return inside(mods[name]["cells"][at]["type"], inst + (at,))
+        bit, end = at
+        r = level(name, bit, None)
+        return back(name, inst, bit, None, r) + into(name, inst, end, bit, summary[name]["inside"] - r)
+
+    s = summary[top]
+    ports = [(v, "out", p, None) for p, v in s["reg_out"].items()] + [(v, "in", p, None) for p, v in s["in_to_reg"].items()]
+    ports += [(v, "through", p, q) for p, t in s["through"].items() for q, v in t.items()]
+    v, kind, p, q = max(ports, default=(NONE, None, None, None))
+    bits = lambda port: mods[top]["ports"][port[0]]["bits"][port[1]]
+    if s["inside"] >= v:
+        return s["inside"], inside(top, ())
+    if kind == "in":
+        nxt, at = trace(top)["in_to_reg_at"][bits(p)]
+        return v, back(top, (), nxt, bits(p), level(top, nxt, bits(p))) + into(top, (), at, nxt,
+                                                                               v - level(top, nxt, bits(p)))
+    return v, back(top, (), bits(p), None if kind == "out" else bits(q), v)
+
+
+def print_path(mods, top, levels, steps):
+    """deepest_path's steps by module instance: the instance path, its module, its levels and named nets."""
+    print(f"{key_name(top)}: {levels} LUT6 levels, deepest path:")
+    group = []
+    for n, step in enumerate(steps):
+        group.append(step)
+        if n + 1 == len(steps) or steps[n + 1][0] != step[0]:
+            inst, typ = step[0], top
+            for cname in inst:
+                typ = mods[typ]["cells"][cname]["type"]
+            own = sum(LEVEL_CELLS.get(t, 0) for _, t, _ in group)
+            print(f"  {'/'.join(inst) or '(top)'} ({key_name(typ)}, {own}): " +
+                  " > ".join(t if net.startswith("$") else f"{t}:{net}" for _, t, net in group))
+            group = []
 
 
 def port_levels(hier, ports):  # hier: a file name, or the netlist's modules (changed here)
@@ -773,6 +894,16 @@ def xilinx_figures(mods, top):
             "max_lut6_levels": depth[top], "xilinx_units_lut6": units, "xilinx_units_lut6_levels": levels}
 
 
+def dynrtp_path(units):
+    """--dynrtp-path: the whole DynRTP's deepest path of LUT6 levels (deepest_path) on the 7-series netlists of
+    --dynrtp xilinx (module_netlists: a module whose RTL changed since is mapped again), and each named
+    unit's of the top (a module name: every instance's kind) with its ports as path ends."""
+    mods, top, _ = module_netlists("xilinx", "dynrtp", DYNRTP_PARAMS, DYNRTP_DIR)
+    summary = hier_summaries(mods, top)
+    for name in [top] + sorted({c["type"] for c in mods[top]["cells"].values() if key_name(c["type"]) in units}):
+        print_path(mods, name, *deepest_path(mods, name, summary))
+
+
 def key_name(module):
     """'$paramod$...\\rgs_ctrl' or '$paramod\\rr_pick\\N=...' -> 'rgs_ctrl'."""
     return re.sub(r"^\$paramod\$[0-9a-f]+\\|^\$paramod\\|\\.*$", "", module)
@@ -891,7 +1022,7 @@ def redo(keys):
 def main():
     args = sys.argv[1:]
     if args and (args[0] in ("-h", "--help") or
-                 args[0] not in ("--only-control", "--redo", "--dynrtp", "--levels", "--ports", "--ice40")):
+                 args[0] not in ("--only-control", "--redo", "--dynrtp", "--dynrtp-path", "--levels", "--ports", "--ice40")):
         # a full run takes hours: an unknown argument is an error, never a start
         print(__doc__)
         sys.exit(0 if args[0] in ("-h", "--help") else f"synth.py: unknown argument {args[0]} (see above)")
@@ -915,6 +1046,8 @@ def main():
     if len(sys.argv) > 2 and sys.argv[1] == "--levels":
         return module_levels(sys.argv[2], dict(a.split("=", 1) for a in sys.argv[3:] if a != "--hier"),
                              "--hier" not in sys.argv[3:])
+    if len(sys.argv) > 1 and sys.argv[1] == "--dynrtp-path":
+        return dynrtp_path(sys.argv[2:])
     if len(sys.argv) > 2 and sys.argv[1] == "--ice40":
         return module_ice40(sys.argv[2], dict(a.split("=", 1) for a in sys.argv[3:]))
     if len(sys.argv) > 2 and sys.argv[1] == "--redo":
@@ -1170,7 +1303,9 @@ def dynrtp_section():
         md += ["", f"{units[0]} dominates. LUT6 levels: `hier_lut_levels` composes, per module, the levels "
                "from its registers to each output bit, from each input bit to the output bits it reaches without a "
                "register, and from each input bit to a register inside; on a small hierarchy it gives the count of "
-               "`lut_levels` on the same netlist flattened after mapping."]
+               "`lut_levels` on the same netlist flattened after mapping. `python3 scripts/synth.py --dynrtp-path "
+               "[UNIT ...]` names the deepest path (the module instances along it, their levels and cells); "
+               "rtl/README.md (\"The deepest paths named\") has the paths of this run and what was fixed."]
     return md
 
 

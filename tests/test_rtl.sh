@@ -116,11 +116,16 @@ whole = json.load(open(f"{t}/w.json"))["modules"]
 _, w_tot = S.hierarchy_totals(S.module_cells(whole), "cache_read")
 p, wl = S.hier_lut_levels(pm, pm_top)[pm_top], S.hier_lut_levels(whole, "cache_read")["cache_read"]
 again = S.module_netlists(*args)
+# --dynrtp-path's walk back: the deepest path has the levels counted, from a register to a register's input
+lv, steps = S.deepest_path(mods, top)
+S.print_path(mods, top, lv, steps)
+walked = sum(S.LEVEL_CELLS.get(typ, 0) for _, typ, _ in steps)
 print(f"cache_read: {S.luts_of(tot)} LUTs summed over the hierarchy, {S.luts_of(flat)} by stat; LUT6 levels {h} "
       f"across module ports, {f} flattened; module by module {S.luts_of(pm_tot)} LUTs and {p} levels, the same RTLIL "
       f"as one hierarchy {S.luts_of(w_tot)} and {wl}; modules {sorted(S.key_name(m) for m in cpu)}")
 ok = (h, S.luts_of(tot)) == (f, S.luts_of(flat)) and set(pm) == set(k for k, m in whole.items() if not S.blackbox(m))
 ok = ok and abs(S.luts_of(pm_tot) - S.luts_of(w_tot)) <= 0.05 * S.luts_of(w_tot) and p == wl and again[0] == pm
+ok = ok and lv == walked == h and steps[0][1] not in S.LEVEL_CELLS and steps[-1][1] == "D"
 sys.exit(0 if ok else 1)
 PY
   # a LUT RAM's write ends a path as a flip-flop's D does: a product written into a LUT RAM has

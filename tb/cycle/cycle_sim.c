@@ -60,7 +60,7 @@ void cycle_config_default(cycle_config *c)
                                    * its normal's chain (rgs_normal 89: 88 before f24_from_i32's third stage) */
     c->surface_miss = 13;         /* a packet without hits: rgs_arb's register, rgs_surface's stages and queue,
                                    * nothing read */
-    c->shade_hit = 3;             /* the shading cache_read's hit */
+    c->shade_hit = 4;             /* the RGS's mem_port's request queue 1 + the shading cache_read's hit 3 */
     c->trav_front = 9;            /* trace_core's issue FIFO 1, trav_unit's stages A to E 7 (the walker state's and
                                    * the stack's read, the prune's comparators 4, D, E), its queue 1: a clip's first
                                    * slab plane enters trav_node 9 cycles after the issue */

@@ -55,10 +55,11 @@ void mem_iface_new_frame(mem_iface *m)
     memset(&m->stats, 0, sizeof m->stats);
 }
 
-/* One transfer of n bytes over the port, requested at cycle now: the cycle its data arrives. */
+/* One transfer of n bytes over the port, requested at cycle now: the cycle its data arrives. It
+ * starts the cycle after at the earliest (rtl/mem_port.sv: each requester's queue). */
 static uint64_t port_transfer(mem_iface *m, uint32_t kind, uint64_t bytes, uint64_t now)
 {
-    const uint64_t start = m->port_free > now * FX ? m->port_free : now * FX;
+    const uint64_t start = m->port_free > (now + 1) * FX ? m->port_free : (now + 1) * FX;
     m->port_free = start + bytes * m->fx_per_byte;
     m->stats.bytes[kind] += bytes;
     m->stats.requests[kind]++;

@@ -5,7 +5,8 @@
  * shared by all of them with a fixed latency and a bandwidth.
  *
  * Timing: a request that misses occupies the port for line_bytes / bandwidth (tracked in 1/65536
- * cycle, so 1 GB/s at 90 MHz is 0.09 cycles per byte exactly enough) after the port is free, and
+ * cycle, so 1 GB/s at 90 MHz is 0.09 cycles per byte exactly enough) after the port is free and
+ * from the cycle after the request on (the port's request queue, rtl/mem_port.sv), and
  * its data arrives `latency` cycles after the transfer ends. A line being filled is tagged at once
  * and valid from its arrival: a second miss on it waits for the same fill (no second transfer).
  * Only the thread that missed waits (the scheduler parks it); nothing else stalls.
