@@ -339,23 +339,38 @@ module rgs_surface #(
   // moves to the front's second stage; the results wait in a queue of NRM_SLOTS for the back,
   // which takes its hit's normal and zero test in S_NORM. A unit has at most 2 under way (its
   // second stage's hit, its back's), and asks only while fewer than NRM_SLOTS are (nrm_cnt_q),
-  // so the queue has room for every result (rgs_normal has no back pressure)
+  // so the queue has room for every result (rgs_normal has no back pressure). The request's
+  // conditions are registers of their own (the room; f_vn_q: f_st == F_REC with vertex normals;
+  // h_empty_q: h_st == H_EMPTY), so that the request, through rgs_units' arbiter and back into
+  // h_load, keeps to 8 LUT6 levels (9 on the states' compares)
   localparam int NRM_SLOTS = 2;
-  logic nrm_ovalid, nrm_zero, nrm_take;
-  logic [1:0] nrm_cnt_q;  // asked for and not yet taken by the back
+  logic nrm_ovalid, nrm_zero, nrm_take, nrm_room_q, f_vn_q, h_empty_q;
+  logic [1:0] nrm_cnt_q, nrm_cnt;  // asked for and not yet taken by the back
   logic [V-1:0] nrm_n, n_q;
   assign nrm_codes_o = {f_buf[3][29:0], f_buf[2], f_buf[1], f_buf[0]};  // the 3 codes in the record's 4 normal words
   assign {nrm_u_o, nrm_v_o} = {f_u, f_v};
-  assign nrm_valid_o = h_st == H_EMPTY && f_st == F_REC && f_done && f_flags[0] && nrm_cnt_q != 2'(NRM_SLOTS);
+  assign nrm_valid_o = h_empty_q && f_vn_q && f_done && nrm_room_q;
   assign nrm_take = st == S_NORM && nrm_ovalid;
   /* verilator lint_off PINCONNECTEMPTY */
   sync_fifo #(.W(V + 1), .DEPTH(NRM_SLOTS)) u_nrm_q (
     .clk_i, .rst_ni, .valid_i(nrm_valid_i), .ready_o(), .data_i({nrm_zero_i, nrm_n_i}),
     .valid_o(nrm_ovalid), .ready_i(nrm_take), .data_o({nrm_zero, nrm_n}));
   /* verilator lint_on PINCONNECTEMPTY */
+  assign nrm_cnt = nrm_cnt_q + 2'(nrm_valid_o && nrm_ready_i) - 2'(nrm_take);
   always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) nrm_cnt_q <= '0;
-    else nrm_cnt_q <= nrm_cnt_q + 2'(nrm_valid_o && nrm_ready_i) - 2'(nrm_take);
+    if (!rst_ni) begin
+      nrm_cnt_q <= '0;
+      nrm_room_q <= 1'b1;
+      f_vn_q <= 1'b0;
+      h_empty_q <= 1'b1;
+    end else begin
+      nrm_cnt_q <= nrm_cnt;
+      nrm_room_q <= nrm_cnt != 2'(NRM_SLOTS);
+      if (f_st == F_OBJ && f_done) f_vn_q <= f_buf[5][0];  // as f_flags and F_REC are taken
+      else if (h_load) f_vn_q <= 1'b0;
+      if (h_load) h_empty_q <= 1'b0;
+      else if (f_take) h_empty_q <= 1'b1;
+    end
   end
 
   /* verilator lint_off PINCONNECTEMPTY */
