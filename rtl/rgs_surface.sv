@@ -9,7 +9,8 @@
 //           2..7 (triangle and shading record addresses, flags), the triangle's shading record
 //           (shade_rec_words(flags) words, up to 19); with vertex normals the record's 3 codes
 //           and u, v go out to `rgs_normal` (nrm_ ports: outside, rgs_units shares one among its
-//           surface units) as the hit moves to the second stage (decoded,
+//           surface units) from the second stage's registers, from the cycle after the hit moves
+//           there until rgs_units' arbiter takes them (decoded,
 //           interpolated as `rgs_lerp_normal`, the squared length's zero test as the C's
 //           `f24_is_zero(rgs_dot3(n, n))`: a stream, the next hits' behind);
 //           second (h_): the instance's words 0..11 (the world-to-object 3x3, which only the frame
@@ -50,9 +51,9 @@
 // back reads after the material (vertex normals interpolated to zero length); the two stages'
 // reads interleave; a line also brings the words beside the burst's, which are not kept.
 // Latency: about 20 + the reads up to the record (3 bursts of 1, 2 and 1 to 5 lines, each waiting
-// for the one before: its address comes from the words of the one before) + `rgs_normal` (1 in
-// rgs_units' arbiter + 87 + 1 in its queue here, only with vertex normals; without: the geometric normal's and the
-// material's reads) + the conversions' tail (about 20 from the back's taking it) + per texture
+// for the one before: its address comes from the words of the one before) + `rgs_normal` (1 in the
+// second stage's registers + 1 in rgs_units' arbiter + 87 + 1 in its queue here, only with vertex
+// normals; without: the geometric normal's and the material's reads) + the conversions' tail (about 20 from the back's taking it) + per texture
 // lerp 24 + entry 4 + sample 44) + the frame (118, + 1 behind rgs_units' arbiter, + the cycles it
 // waits there for other surface units' operands or stalls on their results), which the next
 // surfaces' steps overlap.
@@ -223,7 +224,7 @@ module rgs_surface #(
   logic [4:0] h_rd_n;
   logic h_start, h_done;
   // the first stage's hit (with its record, its normal's chain starting) or miss moves on
-  assign h_load = h_st == H_EMPTY && (f_st == F_MISS || f_st == F_REC && f_done && (!f_flags[0] || nrm_ready_i));
+  assign h_load = h_st == H_EMPTY && (f_st == F_MISS || f_st == F_REC && f_done);
 
   // ---- the back's reads (a zero interpolated normal's geometric normal, a texture's entry) ----
   localparam int BBUF = GN_SPAN > 4 ? GN_SPAN : 4;  // the back's bursts: a normal or a texture entry
@@ -335,21 +336,22 @@ module rgs_surface #(
   logic [1:0] in_q, out_q;   // operations issued and results collected in the current state
   logic [3:0] qin_q, qout_q; // the conversions
   // the interpolated vertex normals (rgs_normal, outside: rgs_units shares one among its surface
-  // units), a stream of the front's hits (its records' codes, u, v) in order, asked for as a hit
-  // moves to the front's second stage; the results wait in a queue of NRM_SLOTS for the back,
-  // which takes its hit's normal and zero test in S_NORM. A unit has at most 2 under way (its
-  // second stage's hit, its back's), and asks only while fewer than NRM_SLOTS are (nrm_cnt_q),
-  // so the queue has room for every result (rgs_normal has no back pressure). The request's
-  // conditions are registers of their own (the room; f_vn_q: f_st == F_REC with vertex normals;
-  // h_empty_q: h_st == H_EMPTY), so that the request, through rgs_units' arbiter and back into
-  // h_load, keeps to 8 LUT6 levels (9 on the states' compares)
+  // units), a stream of the front's hits (its records' codes, u, v) in order, asked for from the
+  // second stage's registers (h_rec, h_u, h_v) from the cycle after a hit with vertex normals loads
+  // there (h_nrm_q) until rgs_units' arbiter takes it; the back does not take the hit before
+  // (f_take). The request is registers only and its acknowledge feeds no load, so the path through
+  // the arbiter's req -> ack stays within 8 LUT6 levels (9 when the ack gated h_load and the second
+  // stage's burst). The results wait in a queue of NRM_SLOTS for the back, which takes its hit's
+  // normal and zero test in S_NORM. A unit has at most 2 under way (its second stage's hit, its
+  // back's), and asks only while fewer than NRM_SLOTS are (nrm_cnt_q), so the queue has room for
+  // every result (rgs_normal has no back pressure)
   localparam int NRM_SLOTS = 2;
-  logic nrm_ovalid, nrm_zero, nrm_take, nrm_room_q, f_vn_q, h_empty_q;
+  logic nrm_ovalid, nrm_zero, nrm_take, nrm_room_q, h_nrm_q;
   logic [1:0] nrm_cnt_q, nrm_cnt;  // asked for and not yet taken by the back
   logic [V-1:0] nrm_n, n_q;
-  assign nrm_codes_o = {f_buf[3][29:0], f_buf[2], f_buf[1], f_buf[0]};  // the 3 codes in the record's 4 normal words
-  assign {nrm_u_o, nrm_v_o} = {f_u, f_v};
-  assign nrm_valid_o = h_empty_q && f_vn_q && f_done && nrm_room_q;
+  assign nrm_codes_o = {h_rec[3][29:0], h_rec[2], h_rec[1], h_rec[0]};  // the 3 codes in the record's 4 normal words
+  assign {nrm_u_o, nrm_v_o} = {h_u, h_v};
+  assign nrm_valid_o = h_nrm_q && nrm_room_q;
   assign nrm_take = st == S_NORM && nrm_ovalid;
   /* verilator lint_off PINCONNECTEMPTY */
   sync_fifo #(.W(V + 1), .DEPTH(NRM_SLOTS)) u_nrm_q (
@@ -361,15 +363,12 @@ module rgs_surface #(
     if (!rst_ni) begin
       nrm_cnt_q <= '0;
       nrm_room_q <= 1'b1;
-      f_vn_q <= 1'b0;
-      h_empty_q <= 1'b1;
+      h_nrm_q <= 1'b0;
     end else begin
       nrm_cnt_q <= nrm_cnt;
       nrm_room_q <= nrm_cnt != 2'(NRM_SLOTS);
-      if (f_st == F_OBJ && f_done) f_vn_q <= f_buf[5][0];  // as f_flags and F_REC are taken
-      else if (h_load) f_vn_q <= 1'b0;
-      if (h_load) h_empty_q <= 1'b0;
-      else if (f_take) h_empty_q <= 1'b1;
+      if (h_load) h_nrm_q <= f_st == F_REC && f_flags[0];
+      else if (nrm_ready_i) h_nrm_q <= 1'b0;
     end
   end
 
@@ -508,7 +507,7 @@ module rgs_surface #(
   end
   // a miss joins as the back takes it from the front, with zero fields; a hit at the end of its
   // colours (S_TINT)
-  assign f_take = st == S_IDLE && h_st == H_FULL && q_room;
+  assign f_take = st == S_IDLE && h_st == H_FULL && !h_nrm_q && q_room;  // its normal asked for
   assign q_push = st == S_TINT || (f_take && !h_hit);
   assign q_in = st == S_TINT ? {tid_q, 1'b1, mat_q, unlit_q, k_q, eta_q, kd_q, kr_q, kt_q, ks_q, base_v, emis_v, tint_v}
                              : {h_tid, (QW - TID_BITS)'(0)};

@@ -36,7 +36,8 @@
 //   normal   the vertex normal of a surface unit's hit (its record's 3 codes, u, v: rgs_surface's nrm_
 //            ports) into one `rgs_normal` through an rgs_arb (a unit asks every 40 to 80 cycles, the
 //            decoder takes a hit every 3), the unit's index as its thread id; the results come out in
-//            order, each into its unit's queue of 2, which has room: a unit asks only then (since
+//            order, each into its unit's queue of 2, which has room: a unit asks only then, from
+//            registers, and the acknowledge only clears its request (8 LUT6 levels; since
 //            2026-11-30; one per surface unit before)
 //   light    `rgs_light` on a ray's surface and the controller's light record; `rgs_light_colour`
 //            on the light's colour; `rgs_add_light` on a visible ray's sums; `rgs_accum` on an
