@@ -8,7 +8,9 @@
 //           first (f_): the instance's object index (word 12), the object descriptor's words
 //           2..7 (triangle and shading record addresses, flags), the triangle's shading record
 //           (shade_rec_words(flags) words, up to 19); with vertex normals the record's 3 codes
-//           and u, v go into `rgs_normal` as the hit moves to the second stage (decoded,
+//           and u, v go out to `rgs_normal` (nrm_ ports: outside, rgs_units shares one among its
+//           surface units) from the second stage's registers, from the cycle after the hit moves
+//           there until rgs_units' arbiter takes them (decoded,
 //           interpolated as `rgs_lerp_normal`, the squared length's zero test as the C's
 //           `f24_is_zero(rgs_dot3(n, n))`: a stream, the next hits' behind);
 //           second (h_): the instance's words 0..11 (the world-to-object 3x3, which only the frame
@@ -49,8 +51,9 @@
 // back reads after the material (vertex normals interpolated to zero length); the two stages'
 // reads interleave; a line also brings the words beside the burst's, which are not kept.
 // Latency: about 20 + the reads up to the record (3 bursts of 1, 2 and 1 to 5 lines, each waiting
-// for the one before: its address comes from the words of the one before) + `rgs_normal` (89, only with vertex normals; without: the geometric normal's and the
-// material's reads) + the conversions' tail (about 20 from the back's taking it) + per texture
+// for the one before: its address comes from the words of the one before) + `rgs_normal` (1 in the
+// second stage's registers + 1 in rgs_units' arbiter + 87 + 1 in its queue here, only with vertex
+// normals; without: the geometric normal's and the material's reads) + the conversions' tail (about 20 from the back's taking it) + per texture
 // lerp 24 + entry 4 + sample 44) + the frame (118, + 1 behind rgs_units' arbiter, + the cycles it
 // waits there for other surface units' operands or stalls on their results), which the next
 // surfaces' steps overlap.
@@ -63,8 +66,8 @@
 // between the frame's issue and the output; a miss or an inactive ray passes both stages in a
 // cycle each. Results leave in
 // the order the surfaces came in, with their thread id.
-// Resources: one each of `rgs_normal` (its own `rgs_lerp` for the normals), `rgs_lerp` (texture
-// coordinates), `q12_of`, `tex_bilinear` (the frame is outside); 6 `q12_mul` (a texture's modulation, the
+// Resources: one each of `rgs_lerp` (texture coordinates), `q12_of`, `tex_bilinear` (the frame and
+// the normals are outside); a queue of NRM_SLOTS = 2 normals (3 W + 1 bits); 6 `q12_mul` (a texture's modulation, the
 // tint); per stage (the front's two
 // and the back) the ray and hit (about 0.4 Kbit) and the record (19 words: the first stage's in
 // its reader's buffer); the back a 16-word buffer (the material's) and the matrix (9 W bits), the
@@ -80,8 +83,6 @@ module rgs_surface #(
   parameter int CVT_STAGES = 3,
   parameter int MUL_STAGES = 4,
   parameter int ADD_STAGES = 6,
-  parameter int SQRT_STAGES = 9,
-  parameter int DIV_STAGES = 11,
   parameter int CMP_STAGES = 2,
   parameter int TOI_STAGES = 2,
   parameter int MOD_STAGES = 16,
@@ -133,6 +134,17 @@ module rgs_surface #(
   input  logic                 fr_entering_i,
   input  logic [E+M:0]         fr_t_hat_i,
   input  logic [3*(E+M+1)-1:0] fr_p_i,
+  // a hit's vertex normal (rgs_normal's inputs but the thread id; nrm_ready_i: taken this cycle)
+  // and its results for this unit, in the order of its hits (into a queue of NRM_SLOTS, which
+  // nrm_valid_o never overfills)
+  output logic                 nrm_valid_o,
+  input  logic                 nrm_ready_i,
+  output logic [125:0]         nrm_codes_o,
+  output logic [E+M:0]         nrm_u_o,
+  output logic [E+M:0]         nrm_v_o,
+  input  logic                 nrm_valid_i,
+  input  logic [3*(E+M+1)-1:0] nrm_n_i,
+  input  logic                 nrm_zero_i,
   // the surface (hls/units/rgs.h `surface`, and the material's fields the accumulation needs)
   output logic                 valid_o,
   input  logic                 ready_i,
@@ -212,7 +224,7 @@ module rgs_surface #(
   logic [4:0] h_rd_n;
   logic h_start, h_done;
   // the first stage's hit (with its record, its normal's chain starting) or miss moves on
-  assign h_load = h_st == H_EMPTY && (f_st == F_MISS || f_st == F_REC && f_done && (!f_flags[0] || nrm_ready));
+  assign h_load = h_st == H_EMPTY && (f_st == F_MISS || f_st == F_REC && f_done);
 
   // ---- the back's reads (a zero interpolated normal's geometric normal, a texture's entry) ----
   localparam int BBUF = GN_SPAN > 4 ? GN_SPAN : 4;  // the back's bursts: a normal or a texture entry
@@ -323,18 +335,42 @@ module rgs_surface #(
   // ---- the units ----
   logic [1:0] in_q, out_q;   // operations issued and results collected in the current state
   logic [3:0] qin_q, qout_q; // the conversions
-  // the interpolated vertex normals, a stream of the front's hits (its records' codes, u, v) in
-  // order; the back takes its hit's normal and zero test
-  logic nrm_valid, nrm_ready, nrm_ovalid, nrm_zero, nrm_take;
+  // the interpolated vertex normals (rgs_normal, outside: rgs_units shares one among its surface
+  // units), a stream of the front's hits (its records' codes, u, v) in order, asked for from the
+  // second stage's registers (h_rec, h_u, h_v) from the cycle after a hit with vertex normals loads
+  // there (h_nrm_q) until rgs_units' arbiter takes it; the back does not take the hit before
+  // (f_take). The request is registers only and its acknowledge feeds no load, so the path through
+  // the arbiter's req -> ack stays within 8 LUT6 levels (9 when the ack gated h_load and the second
+  // stage's burst). The results wait in a queue of NRM_SLOTS for the back, which takes its hit's
+  // normal and zero test in S_NORM. A unit has at most 2 under way (its second stage's hit, its
+  // back's), and asks only while fewer than NRM_SLOTS are (nrm_cnt_q), so the queue has room for
+  // every result (rgs_normal has no back pressure)
+  localparam int NRM_SLOTS = 2;
+  logic nrm_ovalid, nrm_zero, nrm_take, nrm_room_q, h_nrm_q;
+  logic [1:0] nrm_cnt_q, nrm_cnt;  // asked for and not yet taken by the back
   logic [V-1:0] nrm_n, n_q;
-  logic [125:0] f_codes;  // the 3 codes in the record's 4 normal words
-  assign f_codes = {f_buf[3][29:0], f_buf[2], f_buf[1], f_buf[0]};
-  rgs_normal #(.E(E), .M(M), .CVT_STAGES(CVT_STAGES), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES),
-    .SQRT_STAGES(SQRT_STAGES), .DIV_STAGES(DIV_STAGES)) u_nrm (
-    .clk_i, .rst_ni, .valid_i(nrm_valid), .ready_o(nrm_ready), .codes_i(f_codes), .u_i(f_u), .v_i(f_v),
-    .valid_o(nrm_ovalid), .ready_i(nrm_take), .n_o(nrm_n), .zero_o(nrm_zero));
+  assign nrm_codes_o = {h_rec[3][29:0], h_rec[2], h_rec[1], h_rec[0]};  // the 3 codes in the record's 4 normal words
+  assign {nrm_u_o, nrm_v_o} = {h_u, h_v};
+  assign nrm_valid_o = h_nrm_q && nrm_room_q;
   assign nrm_take = st == S_NORM && nrm_ovalid;
-  assign nrm_valid = h_load && f_st == F_REC && f_flags[0];
+  /* verilator lint_off PINCONNECTEMPTY */
+  sync_fifo #(.W(V + 1), .DEPTH(NRM_SLOTS)) u_nrm_q (
+    .clk_i, .rst_ni, .valid_i(nrm_valid_i), .ready_o(), .data_i({nrm_zero_i, nrm_n_i}),
+    .valid_o(nrm_ovalid), .ready_i(nrm_take), .data_o({nrm_zero, nrm_n}));
+  /* verilator lint_on PINCONNECTEMPTY */
+  assign nrm_cnt = nrm_cnt_q + 2'(nrm_valid_o && nrm_ready_i) - 2'(nrm_take);
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      nrm_cnt_q <= '0;
+      nrm_room_q <= 1'b1;
+      h_nrm_q <= 1'b0;
+    end else begin
+      nrm_cnt_q <= nrm_cnt;
+      nrm_room_q <= nrm_cnt != 2'(NRM_SLOTS);
+      if (h_load) h_nrm_q <= f_st == F_REC && f_flags[0];
+      else if (nrm_ready_i) h_nrm_q <= 1'b0;
+    end
+  end
 
   /* verilator lint_off PINCONNECTEMPTY */
   // the interpolation of a texture's s and t (tail coordinates i, 2+i, 4+i)
@@ -471,7 +507,7 @@ module rgs_surface #(
   end
   // a miss joins as the back takes it from the front, with zero fields; a hit at the end of its
   // colours (S_TINT)
-  assign f_take = st == S_IDLE && h_st == H_FULL && q_room;
+  assign f_take = st == S_IDLE && h_st == H_FULL && !h_nrm_q && q_room;  // its normal asked for
   assign q_push = st == S_TINT || (f_take && !h_hit);
   assign q_in = st == S_TINT ? {tid_q, 1'b1, mat_q, unlit_q, k_q, eta_q, kd_q, kr_q, kt_q, ks_q, base_v, emis_v, tint_v}
                              : {h_tid, (QW - TID_BITS)'(0)};

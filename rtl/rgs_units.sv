@@ -33,6 +33,12 @@
 //            frame's thread id; the results come back in order, each to its unit, which takes it
 //            as its surface leaves (a result waits at the frame's output, stalling the frame, until
 //            its unit takes it: none is lost)
+//   normal   the vertex normal of a surface unit's hit (its record's 3 codes, u, v: rgs_surface's nrm_
+//            ports) into one `rgs_normal` through an rgs_arb (a unit asks every 40 to 80 cycles, the
+//            decoder takes a hit every 3), the unit's index as its thread id; the results come out in
+//            order, each into its unit's queue of 2, which has room: a unit asks only then, from
+//            registers, and the acknowledge only clears its request (8 LUT6 levels; since
+//            2026-11-30; one per surface unit before)
 //   light    `rgs_light` on a ray's surface and the controller's light record; `rgs_light_colour`
 //            on the light's colour; `rgs_add_light` on a visible ray's sums; `rgs_accum` on an
 //            active ray (e and the profile's live bit from the set-up, spawn from the controller)
@@ -53,7 +59,8 @@
 // LUT6 levels or fewer (synth_xilinx; rtl/README.md "LUT6 levels of the RGS").
 // Throughput: per unit one operand per cycle (II = 1) but a surface (a hit per its front's reads:
 // SURF_UNITS hits at once) and rgs_raygen (a packet per 4 cycles).
-// Resources: one rgs_raygen, rgs_light, rgs_light_colour, rgs_add_light, rgs_accum; SURF_UNITS
+// Resources: one rgs_raygen, rgs_normal (DEPTH 2 SURF_UNITS rounded up to a power of 2) behind an
+// rgs_arb of SURF_UNITS requesters (126 + 2 W bits), rgs_light, rgs_light_colour, rgs_add_light, rgs_accum; SURF_UNITS
 // rgs_surface (about 55,000 LUT6 each with its frame before 2026-11-30, rtl/README.md "The RGS
 // shared"); FRAME_UNITS rgs_frame (21,431 LUT6 each), each behind an rgs_arb of
 // ceil(SURF_UNITS / FRAME_UNITS) requesters (3 V + 11 W bits, the frame using 3 V + 10 W + 1); 5 rgs_arb of N requesters
@@ -347,6 +354,25 @@ module rgs_units #(
     end
   end
 
+  // ---- the vertex normals: one rgs_normal taking the surface units' hits round robin (the unit's
+  // index as its thread id), each result to that unit's queue (which has room: rgs_surface asks only
+  // then); 2 under way per unit at most, so 2 S inside keep every unit's going ----
+  localparam int SW = S > 1 ? $clog2(S) : 1;
+  localparam int NV_DW = 126 + 2 * W;  // {codes, v, u}
+  logic [S-1:0] nv_req, nv_ack;
+  logic [S*NV_DW-1:0] nv_ops;
+  logic nv_valid, nv_ready, nv_out, nv_zero;
+  logic [SW-1:0] nv_idx, nv_who;
+  logic [NV_DW-1:0] nv_op;
+  logic [V-1:0] nv_n;
+  rgs_arb #(.N(S), .DW(NV_DW)) u_nrm_arb (.clk_i(clk_i), .rst_ni(rst_ni), .req_i(nv_req), .data_i(nv_ops),
+    .ack_o(nv_ack), .valid_o(nv_valid), .ready_i(nv_ready), .index_o(nv_idx), .data_o(nv_op));
+  rgs_normal #(.E(E), .M(M), .CVT_STAGES(CVT_STAGES), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES),
+    .SQRT_STAGES(SQRT_STAGES), .DIV_STAGES(DIV_STAGES), .TID_BITS(SW), .DEPTH(1 << $clog2(2 * S))) u_nrm (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(nv_valid), .ready_o(nv_ready), .tid_i(nv_idx),
+    .codes_i(nv_op[2*W +: 126]), .u_i(nv_op[0 +: W]), .v_i(nv_op[W +: W]), .valid_o(nv_out), .tid_o(nv_who),
+    .n_o(nv_n), .zero_o(nv_zero));
+
   // ---- the surfaces: S rgs_surface units, unit s taking the rays and hits of the controllers k = s
   // mod S round robin; each takes the next ray while it reads and shades the ones before (several
   // controllers' rays in flight, in order) and gives a surface back to the controller in its id ----
@@ -392,8 +418,8 @@ module rgs_units #(
     assign owner = NW'(32'(idx) * S + s);
     // the operand from the top: ray, active, o, d, inst, tri, t, u, v, cos_n
     rgs_surface #(.E(E), .M(M), .TID_BITS(NW + 2), .CVT_STAGES(CVT_STAGES), .MUL_STAGES(MUL_STAGES),
-      .ADD_STAGES(ADD_STAGES), .SQRT_STAGES(SQRT_STAGES), .DIV_STAGES(DIV_STAGES), .CMP_STAGES(CMP_STAGES),
-      .TOI_STAGES(TOI_STAGES), .MOD_STAGES(MOD_STAGES), .SLOTS(SURF_SLOTS), .LW(LW)) u_surface (
+      .ADD_STAGES(ADD_STAGES), .CMP_STAGES(CMP_STAGES), .TOI_STAGES(TOI_STAGES), .MOD_STAGES(MOD_STAGES),
+      .SLOTS(SURF_SLOTS), .LW(LW)) u_surface (
       .clk_i(clk_i), .rst_ni(rst_ni), .inst_base_i(inst_base_q), .obj_base_i(obj_base_q), .mat_base_i(mat_base_q),
       .tex_base_i(tex_base_q), .n_tex_i(n_tex_q), .valid_i(op_valid), .ready_o(take),
       .tid_i({owner, op[SF_DW-1 -: 2]}), .active_i(op[SF_DW-3]), .o_i(op[SF_DW-4 -: V]),
@@ -403,7 +429,9 @@ module rgs_units #(
       .fr_t_o(fr_ops[s*FR_DW + V + 10*W +: W]), .fr_cos_n_o(fr_ops[s*FR_DW + V + 9*W +: W]),
       .fr_n_o(fr_ops[s*FR_DW + 9*W +: V]), .fr_w2o_o(fr_ops[s*FR_DW +: 9*W]), .fr_valid_i(fr_out[s]),
       .fr_ready_o(fr_take[s]), .fr_d_i(fr_dh[s % F]), .fr_n_i(fr_nh[s % F]), .fr_entering_i(fr_ent[s % F]),
-      .fr_t_hat_i(fr_that[s % F]), .fr_p_i(fr_p[s % F]), .mem_req_valid_o(sf_req[s]),
+      .fr_t_hat_i(fr_that[s % F]), .fr_p_i(fr_p[s % F]), .nrm_valid_o(nv_req[s]), .nrm_ready_i(nv_ack[s]),
+      .nrm_codes_o(nv_ops[s*NV_DW + 2*W +: 126]), .nrm_u_o(nv_ops[s*NV_DW +: W]), .nrm_v_o(nv_ops[s*NV_DW + W +: W]),
+      .nrm_valid_i(nv_out && nv_who == SW'(s)), .nrm_n_i(nv_n), .nrm_zero_i(nv_zero), .mem_req_valid_o(sf_req[s]),
       .mem_req_ready_i((s != 0 || sf_port) && mem_req_ready_i[s]), .mem_addr_o(sf_addr[s*32 +: 32]),
       .mem_rsp_valid_i((s != 0 || sf_port) && mem_rsp_valid_i[s]), .mem_rdata_i(mem_rdata_i), .valid_o(sf_out[s]),
       .ready_i(1'b1), .tid_o({sf_who[s], ray}), .sf_valid_o(sfv), .p_o(p), .d_o(d), .n_o(n), .t_hat_o(that),

@@ -1,7 +1,8 @@
 // tb_surface: test wrapper (not synthesized) around rgs_surface, the surface the RGS shades at a
 // hit (rtl/rgs_surface.sv), with thread ids of 6 bits; the C++ bench (tb_surface.cpp) is its memory
-// and checks every surface and every read against the C model. The surface's frame (rgs_frame,
-// which rgs_units shares among its surface units) is its own here, its operand straight in.
+// and checks every surface and every read against the C model. The surface's frame (rgs_frame) and
+// vertex normals (rgs_normal), which rgs_units shares among its surface units, are its own here: the
+// frame's operand straight in, the normal's through an rgs_arb of one requester as in rgs_units.
 module tb_surface #(
   parameter int E = 7,
   parameter int M = 16
@@ -61,6 +62,16 @@ module tb_surface #(
     .ready_o(fr_ready), .tid_i(1'b0), .o_i(fr_o), .d_i(fr_d), .t_i(fr_t), .cos_n_i(fr_cos), .n_i(fr_n), .w2o_i(fr_w2o),
     .valid_o(fr_ovalid), .ready_i(fr_take), .tid_o(), .d_o(fr_dh), .n_o(fr_nh), .entering_o(fr_entering),
     .t_hat_o(fr_t_hat), .p_o(fr_p));
+  logic nv_req, nv_ack, nv_valid, nv_ready, nv_out, nv_zero;
+  logic [125:0] nv_codes;
+  logic [W-1:0] nv_u, nv_v;
+  logic [126+2*W-1:0] nv_op;
+  logic [3*W-1:0] nv_n;
+  rgs_arb #(.N(1), .DW(126 + 2 * W)) u_nrm_arb (.clk_i(clk_i), .rst_ni(rst_ni), .req_i(nv_req),
+    .data_i({nv_codes, nv_v, nv_u}), .ack_o(nv_ack), .valid_o(nv_valid), .ready_i(nv_ready), .index_o(), .data_o(nv_op));
+  rgs_normal #(.E(E), .M(M), .TID_BITS(1), .DEPTH(2)) u_nrm (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(nv_valid),
+    .ready_o(nv_ready), .tid_i(1'b0), .codes_i(nv_op[2*W +: 126]), .u_i(nv_op[0 +: W]), .v_i(nv_op[W +: W]),
+    .valid_o(nv_out), .tid_o(), .n_o(nv_n), .zero_o(nv_zero));
   /* verilator lint_on PINCONNECTEMPTY */
   rgs_surface #(.E(E), .M(M), .TID_BITS(6)) u_dut (
     .clk_i(clk_i), .rst_ni(rst_ni), .inst_base_i(inst_base_i), .obj_base_i(obj_base_i), .mat_base_i(mat_base_i),
@@ -69,6 +80,8 @@ module tb_surface #(
     .cos_n_i(cos_n_i), .fr_valid_o(fr_valid), .fr_ready_i(fr_valid && fr_ready), .fr_o_o(fr_o), .fr_d_o(fr_d),
     .fr_t_o(fr_t), .fr_cos_n_o(fr_cos), .fr_n_o(fr_n), .fr_w2o_o(fr_w2o), .fr_valid_i(fr_ovalid), .fr_ready_o(fr_take),
     .fr_d_i(fr_dh), .fr_n_i(fr_nh), .fr_entering_i(fr_entering), .fr_t_hat_i(fr_t_hat), .fr_p_i(fr_p),
+    .nrm_valid_o(nv_req), .nrm_ready_i(nv_ack), .nrm_codes_o(nv_codes), .nrm_u_o(nv_u), .nrm_v_o(nv_v),
+    .nrm_valid_i(nv_out), .nrm_n_i(nv_n), .nrm_zero_i(nv_zero),
     .mem_req_valid_o(mem_req_valid_o), .mem_req_ready_i(mem_req_ready_i), .mem_addr_o(mem_addr_o),
     .mem_rsp_valid_i(mem_rsp_valid_i), .mem_rdata_i(mem_rdata_i), .valid_o(valid_o), .ready_i(ready_i),
     .tid_o(tid_o), .sf_valid_o(sf_valid_o), .p_o(p_o), .d_o(d_o), .n_o(n_o), .t_hat_o(t_hat_o),

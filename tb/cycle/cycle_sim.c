@@ -52,9 +52,10 @@ void cycle_config_default(cycle_config *c)
                                    * best_t = t0 + t (add 6); + 1 since trace_core's output register (a packet's hits
                                    * a cycle later), fitted on subpass 32x24 at 8 threads (2026-11-29: 2.2% under the
                                    * RTL with 35) */
-    c->latency[OP_SURFACE] = 217; /* rgs_arb's register 1, rgs_surface: the first hit's front reads (instance word,
+    c->latency[OP_SURFACE] = 218; /* rgs_arb's register 1, rgs_surface: the first hit's front reads (instance word,
                                    * object, record: 3 bursts of 1, 2 and 1 to 5 lines through the shading cache,
-                                   * about 8), rgs_normal 89, rgs_frame 118 behind its arbiter's register 1 (one
+                                   * about 8), rgs_normal 90 (asked for from the second stage's registers, a cycle
+                                   * after the hit loads there), rgs_frame 118 behind its arbiter's register 1 (one
                                    * frame shared by the surface units) */
     c->surface_hit = 40;          /* each further hit: the front's reads of it, one burst of lines after another, or
                                    * its normal's chain (rgs_normal 89: 88 before f24_from_i32's third stage) */
