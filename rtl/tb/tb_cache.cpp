@@ -58,7 +58,7 @@ struct c_model {
     std::vector<uint64_t> tag[KINDS], valid_at[KINDS];
     uint64_t transfer(uint64_t bytes, uint64_t now)
     {
-        const uint64_t start = std::max(port_free, now * FX);
+        const uint64_t start = std::max(port_free, (now + 1) * FX); // the cycle after: mem_port's queue
         port_free = start + bytes * fxpb;
         return (port_free + FX - 1) / FX + latency;
     }
