@@ -762,9 +762,12 @@ def rtlil_modules(path):
 def renumbered(text):
     """A module's RTLIL with Yosys's automatic name numbers ($procmux$1234, ...) counted from 1 in the
     order they appear: the numbers come from one counter over the whole elaboration, so a change in
-    one module would otherwise change the text of every module elaborated after it."""
+    one module would otherwise change the text of every module elaborated after it (names such as
+    $memwr$...$39627_ADDR included). The sources' folder is left out of the names and attributes that
+    hold it, so that a run in another checkout finds the same netlists."""
     seen = {}
-    return re.sub(r"\$(\d+)\b", lambda g: "$" + str(seen.setdefault(g[1], len(seen) + 1)), text)
+    text = text.replace(ROOT + "/", "")
+    return re.sub(r"\$(\d+)(?!\d)", lambda g: "$" + str(seen.setdefault(g[1], len(seen) + 1)), text)
 
 
 def rtlil_children(text):
