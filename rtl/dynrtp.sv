@@ -240,21 +240,27 @@ module dynrtp #(
     end
   end
 
-  // the packets into the core, round robin; the core's hits back to the controller of their thread
+  // the packets into the core, round robin, through a queue of 2 (LUT RAM): the controllers' ready
+  // comes from its register, so no path runs from a controller's request through the pick and the
+  // core's check that the packet's thread is free back into the controllers (17 LUT6 levels
+  // before, `synth.py --dynrtp-path`); a packet enters the core a cycle later (the cycle model's
+  // raygen, shadow and children latencies count it). The core's hits go back to the controller
+  // of their thread.
+  localparam int PKW = TW + 3 + 4 + 2 * 4 * 3 * W + 2 * 4 * W;
   logic [B-1:0] tr_after_q, tr_after, tr_grant, px_after_q, px_after, px_grant;
   logic [BW-1:0] tr_pick, px_pick;
-  logic tr_any, px_any;
+  logic tr_any, px_any, pk_ready, pk_valid;
+  logic [PKW-1:0] pk_head;
   rr_pick #(.N(B)) u_tr_pick (.req_i(tr_valid), .after_i(tr_after_q), .any_o(tr_any), .grant_o(tr_grant),
     .index_o(tr_pick), .after_o(tr_after));
-  assign tr_ready = core_ready ? tr_grant : '0;
-  assign tr_valid_o = tr_any && core_ready;
-  assign tr_thread_o = tr_tag[tr_pick];
-  assign tr_flags_o = tr_flags[tr_pick];
-  assign tr_active_o = tr_active[tr_pick];
-  assign tr_o_o = tr_o[tr_pick];
-  assign tr_d_o = tr_d[tr_pick];
-  assign tr_tmin_o = tr_tmin[tr_pick];
-  assign tr_tmax_o = tr_tmax[tr_pick];
+  assign tr_ready = pk_ready ? tr_grant : '0;
+  sync_fifo #(.W(PKW), .DEPTH(2)) u_tr_q (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(tr_any), .ready_o(pk_ready),
+    .data_i({tr_tag[tr_pick], tr_flags[tr_pick], tr_active[tr_pick], tr_o[tr_pick], tr_d[tr_pick],
+             tr_tmin[tr_pick], tr_tmax[tr_pick]}),
+    .valid_o(pk_valid), .ready_i(core_ready), .data_o(pk_head));
+  assign {tr_thread_o, tr_flags_o, tr_active_o, tr_o_o, tr_d_o, tr_tmin_o, tr_tmax_o} = pk_head;
+  assign tr_valid_o = pk_valid && core_ready;
 
   // the pixels out, round robin
   rr_pick #(.N(B)) u_px_pick (.req_i(px_valid), .after_i(px_after_q), .any_o(px_any), .grant_o(px_grant),
@@ -275,7 +281,7 @@ module dynrtp #(
       tr_after_q <= '0;
       px_after_q <= '0;
     end else begin
-      if (tr_valid_o) tr_after_q <= tr_after;
+      if (tr_any && pk_ready) tr_after_q <= tr_after;
       if (px_valid_o && px_ready_i) px_after_q <= px_after;
     end
   end
@@ -296,7 +302,7 @@ module dynrtp #(
   end
   /* verilator lint_off PINCONNECTEMPTY */
   trace_core #(.E(E), .M(M), .THREADS(THREADS)) u_core (
-    .clk_i(clk_i), .rst_ni(rst_ni), .flush_i(flush_i), .valid_i(tr_any), .ready_o(core_ready), .thread_i(tr_thread_o),
+    .clk_i(clk_i), .rst_ni(rst_ni), .flush_i(flush_i), .valid_i(pk_valid), .ready_o(core_ready), .thread_i(tr_thread_o),
     .flags_i(tr_flags_o), .active_i(tr_active_o), .o_i(tr_o_o), .d_i(tr_d_o), .tmin_i(tr_tmin_o),
     .tmax_i(tr_tmax_o), .valid_o(valid_o), .ready_i(hits_taken), .thread_o(thread_o), .inst_o(inst_o),
     .tri_o(tri_o), .t_o(t_o), .u_o(u_o), .v_o(v_o),

@@ -26,14 +26,16 @@ void cycle_config_default(cycle_config *c)
      * iCE40; the RGS's units 1 more each for rgs_units' arbiter register, rtl/rgs_arb.sv) and what the DynRTP around them adds (a dependent read's cache hit, trace_thread's
      * states, the operations its thread issues that the C has inside one), measured per kind on
      * the DynRTP (tb_dynrtp's TB_DYNRTP_LOG); docs/cycle-model.md derives each. */
-    c->latency[OP_RAYGEN] = 28;   /* rgs_arb's register 1, rgs_raygen: block register 1 + f24_from_i32 3 + xform_unit
-                                   * 22 + packet 1 */
+    c->latency[OP_RAYGEN] = 29;   /* rgs_arb's register 1, rgs_raygen: block register 1 + f24_from_i32 3 + xform_unit
+                                   * 22 + packet 1, dynrtp's packet queue into the core 1 */
     c->latency[OP_XFORM] = 35;    /* trace_core's issue stage 1 (the operands from thread_ram), isect_rebased's origin
                                    * path (l = p.lo - C.lo, c = h + l: 2 add) + xform_unit 22 */
     c->latency[OP_INSTANCE] = 52; /* rebase_unit 25, then xform_wide 25 (the origins' chain), each after trace_core's
                                    * issue stage 1 */
-    c->latency[OP_SHADOW] = 1;    /* rgs_light forms the shadow rays: its register to the trace port */
-    c->latency[OP_CHILDREN] = 1;  /* rgs_spawn (in rgs_accum) forms the child rays: the stack's register */
+    c->latency[OP_SHADOW] = 2;    /* rgs_light forms the shadow rays: its register to the trace port, dynrtp's packet
+                                   * queue into the core 1 */
+    c->latency[OP_CHILDREN] = 2;  /* rgs_spawn (in rgs_accum) forms the child rays: the stack's register, the packet
+                                   * queue 1 */
     c->latency[OP_TRAV] = 44;     /* trace_core's issue FIFO 1 + trav_unit 38 (state and stack read, prune, queue,
                                    * trav_node 21, split and push, its node read answering in the next cycle) + 2
                                    * (the kd-node cache's hit: 3) + 3 (trace_thread's states from the result to the
