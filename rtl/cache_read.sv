@@ -30,7 +30,8 @@
 // LUT6 levels (synth_xilinx module by module as the DynRTP's, scripts/synth.py module_netlists and
 // hier_lut_levels, 2026-11-30): 6 for the matrix cache (the request's way: cache_dm's ready, the
 // front's first lookup, read_ring's flags; the response's: cache_dm's round-robin choice 3, its
-// table's multiplexer 2, read_ring's flag enables 1), 7 for the kd-node, list and shading caches;
+// table's multiplexer 2, read_ring's flag enables 1), 7 for the kd-node, list and shading caches
+// (in the DynRTP's elaboration the four 7, 6, 6, 7);
 // 9 before (the DynRTP's run of 2026-11-30; 8 in this measure): read_ring rotated the response and
 // compared its slot with each slot's number in the cycle of the cache's choice.
 // Resources: cache_dm's (its ids log2 LW + log2 OUTSTANDING + 1 bits); read_ring's (WORDS x
