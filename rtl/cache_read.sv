@@ -21,15 +21,21 @@
 // the cache's arrays (cache_dm's S0). So the matrix cache keeps the latency it had when cache_dm
 // took a cycle for the index. The second line's index is the first's + 1 (mod LINES), from a
 // register in the second lookup's cycle.
-// The words: read_ring rotates a response's line by the read's offset, which the lookup's id
-// carries, into the slot's words (LUT RAM); its own module, so that its logic after the cache's
-// late response stays short (docs/synth.md: LUT6 levels).
+// The words: read_ring registers a response and rotates its line by the read's offset, which the
+// lookup's id carries, into the slot's words (LUT RAM), at no cycle (the registered response goes
+// straight to the output when its read leaves then); its own module, so that its logic after the
+// cache's late response stays short (docs/synth.md: LUT6 levels).
 // Latency: the cache's (hit 2 cycles; a miss its fill + 1) + 1 for the ring, + 1 for stage F
 // (the matrix cache: hit 4); throughput 1 read per cycle (a read of two lines: 1 per 2 cycles).
-// LUT6 levels (synth_xilinx per module, scripts/synth.py --levels): 8 for the matrix cache (the
-// cache's response choice, its table's multiplexer, read_ring's bookkeeping).
+// LUT6 levels (synth_xilinx module by module as the DynRTP's, scripts/synth.py module_netlists and
+// hier_lut_levels, 2026-11-30): 6 for the matrix cache (the request's way: cache_dm's ready, the
+// front's first lookup, read_ring's flags; the response's: cache_dm's round-robin choice 3, its
+// table's multiplexer 2, read_ring's flag enables 1), 7 for the kd-node, list and shading caches
+// (in the DynRTP's elaboration the four 7, 6, 6, 7);
+// 9 before (the DynRTP's run of 2026-11-30; 8 in this measure): read_ring rotated the response and
+// compared its slot with each slot's number in the cycle of the cache's choice.
 // Resources: cache_dm's (its ids log2 LW + log2 OUTSTANDING + 1 bits); read_ring's (WORDS x
-// OUTSTANDING x 32 bits of LUT RAM); stage F 3 x 7 tables of 32 entries, three adder trees and
+// OUTSTANDING x 32 bits of LUT RAM, a line's register); stage F 3 x 7 tables of 32 entries, three adder trees and
 // its registers; the next cycle up to 9 comparisons of MW + 1 bits.
 module cache_read #(
   parameter int LINE_BYTES = 8,
