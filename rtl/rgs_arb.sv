@@ -1,7 +1,7 @@
 // rgs_arb: N requesters onto one pipelined unit of the RGS (rgs_units: the block controllers'
 // operands into the shared rgs_raygen, rgs_light, rgs_light_colour, rgs_add_light, rgs_accum; a
-// surface unit's controllers into it, with HOLD; the surface units into the shared rgs_frame and
-// rgs_normal). Not a paper unit and no C function: the C steps one block at a time, so there is
+// surface unit's controllers into it, with HOLD; the surface units into the shared rgs_frame,
+// rgs_normal and tex_coords). Not a paper unit and no C function: the C steps one block at a time, so there is
 // nothing to arbitrate; the pick only decides which controller's operand enters the unit in a cycle,
 // never what it computes (each operand carries its controller's index as the unit's thread id).
 // Round robin (rr_pick on the mask of the requesters after the last one taken), so a controller

@@ -30,9 +30,11 @@
 //           weights q(u), q(v), 1 - both, the bytes widened, the C's uint32 arithmetic); per texture
 //           (base colour, then emissive) if its index is below the header's texture count and the
 //           object has texture coordinates: s, t interpolated (`rgs_lerp`), the entry's 4 words
-//           read, `tex_bilinear` sampling through the same read port (its 4 texel reads), the colour
-//           times the sample (`q_mul`); the tint (1 - m) + m base with m clamped to one (`q_mul`,
-//           `q_add`)
+//           read, the sample's texel coordinates from `tex_coords` (tx_ ports: outside, rgs_units
+//           shares one among its surface units; asked from registers), `tex_fetch` reading its 4
+//           texels through the same read port and blending them (the two: the C's
+//           `rgs_sample_bilinear`), the colour times the sample (`q_mul`); the tint (1 - m) + m
+//           base with m clamped to one (`q_mul`, `q_add`)
 // An inactive ray or a miss gives the invalid surface (all zero) without a read. T_R is wiring
 // (d^, n^ and the ray's origin, which the caller keeps). The header's words the C reads as
 // constants (the instance, object, material and texture regions' starts, the texture count) are
@@ -42,7 +44,7 @@
 // the unit takes one every cycle). Each of the three readers (the front's two stages, the back) is
 // a `line_reader`: a burst of n words from word address a takes ceil((a mod LW + n) / LW) line
 // requests, the words it needs taken from each line (a flat hit's instance word, object words 2..7
-// and record about 1 + 2 + 3 lines instead of 1 + 6 + 10 words). tex_bilinear's texel reads are
+// and record about 1 + 2 + 3 lines instead of 1 + 6 + 10 words). tex_fetch's texel reads are
 // words: its request's line goes out, the word's offset in it waits in the source FIFO beside the
 // stage and picks the word from the response. The back's requests go first (its surface is the
 // older one), then the front's first stage's, then its second's; a FIFO of SRC_DEPTH x (2 + 2)
@@ -54,9 +56,10 @@
 // for the one before: its address comes from the words of the one before) + `rgs_normal` (1 in the
 // second stage's registers + 1 in rgs_units' arbiter + 87 + 1 in its queue here, only with vertex
 // normals; without: the geometric normal's and the material's reads) + the conversions' tail (about 20 from the back's taking it) + per texture
-// lerp 24 + entry 4 + sample 44) + the frame (118, + 1 behind rgs_units' arbiter, + the cycles it
-// waits there for other surface units' operands or stalls on their results), which the next
-// surfaces' steps overlap.
+// lerp 24 + entry 4 + the sample: 1 in the request's register, 1 in rgs_units' arbiter, tex_coords
+// 42, tex_fetch 1 + 4 requests + the memory + 1) + the frame (118, + 1 behind rgs_units' arbiter,
+// + the cycles it waits there for other surface units' operands or stalls on their results),
+// which the next surfaces' steps overlap.
 // Throughput: a surface per its front's reads (3 dependent bursts of lines: about 15 to 25 cycles
 // for a flat hit with a memory answering in 1 to 4 cycles) while the back's part is shorter (about 10 cycles untextured once
 // its normal is there); the second stage holds a hit until the back takes it, the first one
@@ -66,8 +69,8 @@
 // between the frame's issue and the output; a miss or an inactive ray passes both stages in a
 // cycle each. Results leave in
 // the order the surfaces came in, with their thread id.
-// Resources: one each of `rgs_lerp` (texture coordinates), `q12_of`, `tex_bilinear` (the frame and
-// the normals are outside); a queue of NRM_SLOTS = 2 normals (3 W + 1 bits); 6 `q12_mul` (a texture's modulation, the
+// Resources: one each of `rgs_lerp` (texture coordinates), `q12_of`, `tex_fetch` (the frame, the
+// normals and the texture samples' coordinates are outside); a queue of NRM_SLOTS = 2 normals (3 W + 1 bits); 6 `q12_mul` (a texture's modulation, the
 // tint); per stage (the front's two
 // and the back) the ray and hit (about 0.4 Kbit) and the record (19 words: the first stage's in
 // its reader's buffer); the back a 16-word buffer (the material's) and the matrix (9 W bits), the
@@ -80,12 +83,9 @@ module rgs_surface #(
   parameter int E = 7,
   parameter int M = 16,
   parameter int TID_BITS = 6,
-  parameter int CVT_STAGES = 3,
   parameter int MUL_STAGES = 4,
   parameter int ADD_STAGES = 6,
-  parameter int CMP_STAGES = 2,
   parameter int TOI_STAGES = 2,
-  parameter int MOD_STAGES = 16,
   parameter int SLOTS = 4,        // surfaces between the frame's issue and the output (a power of 2)
   parameter int SRC_DEPTH = 32,   // reads under way (a power of 2; more wait)
   parameter int LW = 4            // words per line of the read port (the shading cache's 16 bytes)
@@ -145,6 +145,22 @@ module rgs_surface #(
   input  logic                 nrm_valid_i,
   input  logic [3*(E+M+1)-1:0] nrm_n_i,
   input  logic                 nrm_zero_i,
+  // a texture sample's coordinates (tex_coords' inputs but the thread id; tx_ready_i: taken this
+  // cycle) and its result for this unit (one sample under way at a time: tex_fetch takes it as it comes)
+  output logic                 tx_valid_o,
+  input  logic                 tx_ready_i,
+  output logic [E+M:0]         tx_s_o,
+  output logic [E+M:0]         tx_t_o,
+  output logic [31:0]          tx_width_o,
+  output logic [31:0]          tx_height_o,
+  output logic [31:0]          tx_addr_o,
+  input  logic                 tx_valid_i,
+  input  logic [31:0]          tx_row0_i,
+  input  logic [31:0]          tx_row1_i,
+  input  logic [31:0]          tx_x0_i,
+  input  logic [31:0]          tx_x1_i,
+  input  logic [8:0]           tx_fx_i,
+  input  logic [8:0]           tx_fy_i,
   // the surface (hls/units/rgs.h `surface`, and the material's fields the accumulation needs)
   output logic                 valid_o,
   input  logic                 ready_i,
@@ -241,7 +257,7 @@ module rgs_surface #(
 
   // ---- the line port, shared: the back's requests first (its surface is the older one); the
   // responses come in request order, so a FIFO of each request's side (2: the back) routes them,
-  // with a texel read's word in its line (tex_bilinear reads words) ----
+  // with a texel read's word in its line (tex_fetch reads words) ----
   localparam int OW = LW > 1 ? $clog2(LW) : 1;
   logic b_req, f_req, h_req, src_room, rsp_b, rsp_f, rsp_h, port_go, b_rd_req;
   logic [31:0] b_rd_addr, f_rd_addr, h_rd_addr, tex_word;
@@ -426,12 +442,22 @@ module rgs_surface #(
     .clk_i(clk_i), .rst_ni(rst_ni), .en_i(1'b1), .valid_i(q_valid), .x_i(q_x),
     .valid_o(q_ovalid), .q_o(q_r));
 
-  logic tx_ready, tx_ovalid;
+  // the texture sample: its coordinates from tex_coords (outside: rgs_units shares one among its
+  // surface units), asked for from registers (the s, t interpolated, the entry's words) from the
+  // cycle after the entry is read (tx_req_q) until rgs_units' arbiter takes them (the acknowledge
+  // only clears the request: 8 LUT6 levels); the result goes straight into tex_fetch, idle since the
+  // unit's sample before, which reads the 4 texels on this unit's line port and blends them
+  logic tx_req_q, tx_ovalid;
   logic [47:0] tx_rgb;
-  tex_bilinear #(.E(E), .M(M), .TID_BITS(1), .CVT_STAGES(CVT_STAGES), .MUL_STAGES(MUL_STAGES),
-    .ADD_STAGES(ADD_STAGES), .CMP_STAGES(CMP_STAGES), .TOI_STAGES(TOI_STAGES), .MOD_STAGES(MOD_STAGES)) u_tex (
-    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(st == S_TSAMPLE && in_q == 2'd0), .ready_o(tx_ready), .tid_i(1'b0),
-    .s_i(lr_q[0]), .t_i(lr_q[1]), .width_i(b_buf[0]), .height_i(b_buf[1]), .addr_i(b_buf[2]),
+  assign tx_valid_o = tx_req_q;
+  assign {tx_s_o, tx_t_o, tx_width_o, tx_height_o, tx_addr_o} = {lr_q[0], lr_q[1], b_buf[0], b_buf[1], b_buf[2]};
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) tx_req_q <= 1'b0;
+    else if (st == S_TENTRY && burst_done) tx_req_q <= 1'b1;
+    else if (tx_ready_i) tx_req_q <= 1'b0;
+  end
+  tex_fetch #(.TID_BITS(1)) u_tex (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(tx_valid_i), .ready_o(), .tid_i(1'b0),
+    .row0_i(tx_row0_i), .row1_i(tx_row1_i), .x0_i(tx_x0_i), .x1_i(tx_x1_i), .fx_i(tx_fx_i), .fy_i(tx_fy_i),
     .req_valid_o(tex_req_valid), .req_ready_i(tex_port && port_go), .req_addr_o(tex_req_addr),
     .rsp_valid_i(tex_port && rsp_b), .rsp_ready_o(tex_rsp_ready), .rsp_data_i(tex_word),
     .valid_o(tx_ovalid), .ready_i(1'b1), .tid_o(), .rgb_o(tx_rgb));
@@ -736,13 +762,8 @@ module rgs_surface #(
             if (out_q == 2'd1) st <= S_TENTRY;  // the entry's 4 words (b_start)
           end
         end
-        S_TENTRY:
-          if (burst_done) begin
-            in_q <= '0;
-            st <= S_TSAMPLE;
-          end
+        S_TENTRY: if (burst_done) st <= S_TSAMPLE;  // its coordinates asked for (tx_req_q)
         S_TSAMPLE: begin
-          if (in_q == 2'd0 && tx_ready) in_q <= 2'd1;
           if (tx_ovalid) begin
             for (int k = 0; k < 3; k++)
               if (tsel_q) emis_q[k] <= qm_p[k];

@@ -39,6 +39,15 @@
 //            order, each into its unit's queue of 2, which has room: a unit asks only then, from
 //            registers, and the acknowledge only clears its request (8 LUT6 levels; since
 //            2026-11-30; one per surface unit before)
+//   texture  the texel coordinates of a surface unit's texture sample (s, t, the entry's width,
+//            height, address: rgs_surface's tx_ ports) into one `tex_coords` through an rgs_arb (a
+//            unit asks once per texture of a textured hit, it takes a sample a cycle), the unit's
+//            index as its thread id; the results (the texel rows' addresses, the columns, the
+//            fractions) come out in order, each into its unit's `tex_fetch`, which reads the texels
+//            on the unit's line port and blends them: a unit has one sample under way and waits for
+//            it, so it takes the result as it comes. Asked from registers, the acknowledge only
+//            clearing the request (8 LUT6 levels; since 2026-11-30; a whole bilinear sample,
+//            `tex_bilinear`, per surface unit before)
 //   light    `rgs_light` on a ray's surface and the controller's light record; `rgs_light_colour`
 //            on the light's colour; `rgs_add_light` on a visible ray's sums; `rgs_accum` on an
 //            active ray (e and the profile's live bit from the set-up, spawn from the controller)
@@ -60,9 +69,10 @@
 // Throughput: per unit one operand per cycle (II = 1) but a surface (a hit per its front's reads:
 // SURF_UNITS hits at once) and rgs_raygen (a packet per 4 cycles).
 // Resources: one rgs_raygen, rgs_normal (DEPTH 2 SURF_UNITS rounded up to a power of 2) behind an
-// rgs_arb of SURF_UNITS requesters (126 + 2 W bits), rgs_light, rgs_light_colour, rgs_add_light, rgs_accum; SURF_UNITS
-// rgs_surface (about 55,000 LUT6 each with its frame before 2026-11-30, rtl/README.md "The RGS
-// shared"); FRAME_UNITS rgs_frame (21,431 LUT6 each), each behind an rgs_arb of
+// rgs_arb of SURF_UNITS requesters (126 + 2 W bits), tex_coords (15,416 SB_LUT4, its two tex_axis nearly all)
+// behind one of SURF_UNITS (96 + 2 W bits), rgs_light, rgs_light_colour, rgs_add_light, rgs_accum; SURF_UNITS
+// rgs_surface (17,735 SB_LUT4 each with its tex_fetch, rtl/README.md "One tex_coords for the four
+// surface units"; about 55,000 LUT6 each with its frame, normal and sample before 2026-11-30); FRAME_UNITS rgs_frame (21,431 LUT6 each), each behind an rgs_arb of
 // ceil(SURF_UNITS / FRAME_UNITS) requesters (3 V + 11 W bits, the frame using 3 V + 10 W + 1); 5 rgs_arb of N requesters
 // (N-to-1 multiplexers of 64, 448, 72, 178 and 657 bits at e7m16 into as many flip-flops, N of the
 // pointer each: 4,407 LUT6 at N = 8 before the output registers) and SURF_UNITS of ceil(N / SURF_UNITS) (307 bits); a FIFO of N controller indices; the set-up's
@@ -373,6 +383,26 @@ module rgs_units #(
     .codes_i(nv_op[2*W +: 126]), .u_i(nv_op[0 +: W]), .v_i(nv_op[W +: W]), .valid_o(nv_out), .tid_o(nv_who),
     .n_o(nv_n), .zero_o(nv_zero));
 
+  // ---- the texture samples' coordinates: one tex_coords taking the surface units' samples round
+  // robin (the unit's index as its thread id), each result to that unit's tex_fetch (which takes it:
+  // a unit has one sample under way and waits for it, so the unit never stalls) ----
+  localparam int TX_DW = 2 * W + 96;  // {s, t, width, height, addr}
+  logic [S-1:0] tx_req, tx_ack;
+  logic [S*TX_DW-1:0] tx_ops;
+  logic tx_valid, tx_ready, tx_out;
+  logic [SW-1:0] tx_idx, tx_who;
+  logic [TX_DW-1:0] tx_op;
+  logic [31:0] tx_row0, tx_row1, tx_x0, tx_x1;
+  logic [8:0] tx_fx, tx_fy;
+  rgs_arb #(.N(S), .DW(TX_DW)) u_tex_arb (.clk_i(clk_i), .rst_ni(rst_ni), .req_i(tx_req), .data_i(tx_ops),
+    .ack_o(tx_ack), .valid_o(tx_valid), .ready_i(tx_ready), .index_o(tx_idx), .data_o(tx_op));
+  tex_coords #(.E(E), .M(M), .TID_BITS(SW), .CVT_STAGES(CVT_STAGES), .MUL_STAGES(MUL_STAGES),
+    .ADD_STAGES(ADD_STAGES), .CMP_STAGES(CMP_STAGES), .TOI_STAGES(TOI_STAGES), .MOD_STAGES(MOD_STAGES)) u_tex (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(tx_valid), .ready_o(tx_ready), .tid_i(tx_idx),
+    .s_i(tx_op[W + 96 +: W]), .t_i(tx_op[96 +: W]), .width_i(tx_op[64 +: 32]), .height_i(tx_op[32 +: 32]),
+    .addr_i(tx_op[0 +: 32]), .valid_o(tx_out), .ready_i(1'b1), .tid_o(tx_who), .row0_o(tx_row0), .row1_o(tx_row1),
+    .x0_o(tx_x0), .x1_o(tx_x1), .fx_o(tx_fx), .fy_o(tx_fy));
+
   // ---- the surfaces: S rgs_surface units, unit s taking the rays and hits of the controllers k = s
   // mod S round robin; each takes the next ray while it reads and shades the ones before (several
   // controllers' rays in flight, in order) and gives a surface back to the controller in its id ----
@@ -417,9 +447,8 @@ module rgs_units #(
       .ack_o(ack), .valid_o(op_valid), .ready_i(take), .index_o(idx), .data_o(op));
     assign owner = NW'(32'(idx) * S + s);
     // the operand from the top: ray, active, o, d, inst, tri, t, u, v, cos_n
-    rgs_surface #(.E(E), .M(M), .TID_BITS(NW + 2), .CVT_STAGES(CVT_STAGES), .MUL_STAGES(MUL_STAGES),
-      .ADD_STAGES(ADD_STAGES), .CMP_STAGES(CMP_STAGES), .TOI_STAGES(TOI_STAGES), .MOD_STAGES(MOD_STAGES),
-      .SLOTS(SURF_SLOTS), .LW(LW)) u_surface (
+    rgs_surface #(.E(E), .M(M), .TID_BITS(NW + 2), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES),
+      .TOI_STAGES(TOI_STAGES), .SLOTS(SURF_SLOTS), .LW(LW)) u_surface (
       .clk_i(clk_i), .rst_ni(rst_ni), .inst_base_i(inst_base_q), .obj_base_i(obj_base_q), .mat_base_i(mat_base_q),
       .tex_base_i(tex_base_q), .n_tex_i(n_tex_q), .valid_i(op_valid), .ready_o(take),
       .tid_i({owner, op[SF_DW-1 -: 2]}), .active_i(op[SF_DW-3]), .o_i(op[SF_DW-4 -: V]),
@@ -431,7 +460,12 @@ module rgs_units #(
       .fr_ready_o(fr_take[s]), .fr_d_i(fr_dh[s % F]), .fr_n_i(fr_nh[s % F]), .fr_entering_i(fr_ent[s % F]),
       .fr_t_hat_i(fr_that[s % F]), .fr_p_i(fr_p[s % F]), .nrm_valid_o(nv_req[s]), .nrm_ready_i(nv_ack[s]),
       .nrm_codes_o(nv_ops[s*NV_DW + 2*W +: 126]), .nrm_u_o(nv_ops[s*NV_DW +: W]), .nrm_v_o(nv_ops[s*NV_DW + W +: W]),
-      .nrm_valid_i(nv_out && nv_who == SW'(s)), .nrm_n_i(nv_n), .nrm_zero_i(nv_zero), .mem_req_valid_o(sf_req[s]),
+      .nrm_valid_i(nv_out && nv_who == SW'(s)), .nrm_n_i(nv_n), .nrm_zero_i(nv_zero), .tx_valid_o(tx_req[s]),
+      .tx_ready_i(tx_ack[s]), .tx_s_o(tx_ops[s*TX_DW + W + 96 +: W]), .tx_t_o(tx_ops[s*TX_DW + 96 +: W]),
+      .tx_width_o(tx_ops[s*TX_DW + 64 +: 32]), .tx_height_o(tx_ops[s*TX_DW + 32 +: 32]),
+      .tx_addr_o(tx_ops[s*TX_DW +: 32]), .tx_valid_i(tx_out && tx_who == SW'(s)), .tx_row0_i(tx_row0),
+      .tx_row1_i(tx_row1), .tx_x0_i(tx_x0), .tx_x1_i(tx_x1), .tx_fx_i(tx_fx), .tx_fy_i(tx_fy),
+      .mem_req_valid_o(sf_req[s]),
       .mem_req_ready_i((s != 0 || sf_port) && mem_req_ready_i[s]), .mem_addr_o(sf_addr[s*32 +: 32]),
       .mem_rsp_valid_i((s != 0 || sf_port) && mem_rsp_valid_i[s]), .mem_rdata_i(mem_rdata_i), .valid_o(sf_out[s]),
       .ready_i(1'b1), .tid_o({sf_who[s], ray}), .sf_valid_o(sfv), .p_o(p), .d_o(d), .n_o(n), .t_hat_o(that),

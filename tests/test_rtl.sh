@@ -21,7 +21,7 @@
 # (perspective) and an orthographic cornell box, whose block order the tile controller
 # (rtl/tile_ctrl.sv) reproduces, and of a functional frame on 2 threads, and 2 x 10^4 random blocks
 # on random cameras; the RGS's decoding of the shading record's vertex normals
-# (rtl/shade_rec_decode.sv), its bilinear texture sample (rtl/tex_bilinear.sv, tex_axis.sv, its
+# (rtl/shade_rec_decode.sv), its bilinear texture sample (rtl/tex_coords.sv on tex_axis.sv, then tex_fetch.sv, its
 # texel reads served by the bench), the frame of a hit (rtl/rgs_frame.sv: unit direction and
 # normal, t_hat, hit point), a light at a surface (rtl/rgs_light.sv: shadow ray, Q12 weights), its
 # colour and accumulation (rtl/rgs_light_colour.sv, rgs_add_light.sv), the barycentric
@@ -511,7 +511,7 @@ t_rgs_ctrl_mutant_caught() {
 t_shade_mutants_caught() {
   mutant shade shade_rec_decode.sv "s/fx = x < 0 ? ay - OCT_ONE : OCT_ONE - ay;/fx = x < 0 ? OCT_ONE - ay : ay - OCT_ONE;/" \
     -n 2000 &&
-    mutant shade tex_bilinear.sv "s/bottom \* 32'(hfy) + 32'd32768;/bottom * 32'(hfy);/" -n 2000 &&
+    mutant shade tex_fetch.sv "s/bottom \* 32'(hfy) + 32'd32768;/bottom * 32'(hfy);/" -n 2000 &&
     mutant shade rgs_frame.sv "s/\^ !facing\[W-1\]/^ facing[W-1]/" -n 2000 &&
     mutant shade rgs_light.sv "s/4'(j) < k_s\[j\]/4'(j) <= k_s[j]/" -n 2000 &&
     mutant shade rgs_spawn.sv "s/assign t_o_o = !one_l \&\& tir_l/assign t_o_o = one_l || tir_l/" -n 2000

@@ -16,7 +16,7 @@
 //  rgs_spawn (rtl/rgs_spawn.sv): the child rays of each surface (reflection, transmission with
 //    refraction and total internal reflection, their Q12 weights and active bits), against
 //    rgs_spawn_children (hls/units/rgs_spawn.c) on a packet of that one ray.
-//  tex_bilinear (rtl/tex_bilinear.sv): each bilinear texture sample, against rgs_texel_axis and
+//  tex_bilinear (rtl/tex_coords.sv into rtl/tex_fetch.sv): each bilinear texture sample, against rgs_texel_axis and
 //    rgs_bilinear_blend (hls/units/rgs_tex.c, the functions rgs_sample_bilinear is made of). The
 //    bench is the memory: every texel request must carry the C's address (texture address + y w +
 //    x, in the C's order t00, t10, t01, t11) and gets its word back in order, after 1 cycle or, in

@@ -1,7 +1,7 @@
 // tb_shade: test wrapper (not synthesized) around the RGS's shading datapath, each unit with its own
 // input stream and handshake: the decoding of the compact shading record's vertex normals
-// (shade_rec_decode, ports n_*), the bilinear texture sample (tex_bilinear, ports t_*, whose
-// memory port the bench serves), the frame of a hit (rgs_frame, ports f_*), a light at a surface
+// (shade_rec_decode, ports n_*), the bilinear texture sample (tex_coords into tex_fetch, ports t_*,
+// whose memory port the bench serves; the bench names it tex_bilinear), the frame of a hit (rgs_frame, ports f_*), a light at a surface
 // (rgs_light, ports l_*), the barycentric interpolation (rgs_lerp, ports e_*), a light's colour
 // (rgs_light_colour, ports c_*), its accumulation (rgs_add_light, ports a_*) and the child rays of a
 // surface (rgs_spawn, ports s_*). The C++ bench (tb_shade.cpp) drives valid_i and ready_i with gaps
@@ -143,9 +143,19 @@ module tb_shade #(
   shade_rec_decode #(.E(E), .M(M), .TID_BITS(6)) u_dec (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(n_valid_i),
     .ready_o(n_ready_o), .tid_i(n_tid_i), .code_i(n_code_i), .valid_o(n_valid_o), .ready_i(n_ready_i),
     .tid_o(n_tid_o), .n_o(n_o));
-  tex_bilinear #(.E(E), .M(M), .TID_BITS(6)) u_tex (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(t_valid_i),
+  // the bilinear texture sample: its texel coordinates (tex_coords, which rgs_units shares among its
+  // surface units) into its reads and blend (tex_fetch, one per rgs_surface)
+  logic tc_valid, tc_ready;
+  logic [5:0] tc_tid;
+  logic [31:0] tc_row0, tc_row1, tc_x0, tc_x1;
+  logic [8:0] tc_fx, tc_fy;
+  tex_coords #(.E(E), .M(M), .TID_BITS(6)) u_tex (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(t_valid_i),
     .ready_o(t_ready_o), .tid_i(t_tid_i), .s_i(t_s_i), .t_i(t_t_i), .width_i(t_width_i), .height_i(t_height_i),
-    .addr_i(t_addr_i), .req_valid_o(t_req_valid_o), .req_ready_i(t_req_ready_i), .req_addr_o(t_req_addr_o),
+    .addr_i(t_addr_i), .valid_o(tc_valid), .ready_i(tc_ready), .tid_o(tc_tid), .row0_o(tc_row0), .row1_o(tc_row1),
+    .x0_o(tc_x0), .x1_o(tc_x1), .fx_o(tc_fx), .fy_o(tc_fy));
+  tex_fetch #(.TID_BITS(6)) u_fetch (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(tc_valid), .ready_o(tc_ready),
+    .tid_i(tc_tid), .row0_i(tc_row0), .row1_i(tc_row1), .x0_i(tc_x0), .x1_i(tc_x1), .fx_i(tc_fx), .fy_i(tc_fy),
+    .req_valid_o(t_req_valid_o), .req_ready_i(t_req_ready_i), .req_addr_o(t_req_addr_o),
     .rsp_valid_i(t_rsp_valid_i), .rsp_ready_o(t_rsp_ready_o), .rsp_data_i(t_rsp_data_i), .valid_o(t_valid_o),
     .ready_i(t_ready_i), .tid_o(t_tid_o), .rgb_o(t_rgb_o));
   rgs_frame #(.E(E), .M(M), .TID_BITS(6)) u_frame (.clk_i(clk_i), .rst_ni(rst_ni), .valid_i(f_valid_i),

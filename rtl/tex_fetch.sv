@@ -1,47 +1,37 @@
-// tex_bilinear: the RGS's bilinear texture sample (paper section 3: bilinear filtering of 8-bit
-// textures in the shading unit; hls/units/rgs_tex.c `rgs_sample_bilinear`, `rgs_bilinear_blend`;
-// docs/shading.md), what `surface_at` does per texture it samples (base colour, emissive):
-// texture coordinates (s, t) and the texture entry (width, height, texel address) in, the
-// sample's R, G, B in Q12 out, bit for bit as the C.
-//   axes     two `tex_axis` side by side (s over the width, t over the height): x0, x1, fx and
-//            y0, y1, fy; the thread id, the address and the width travel beside the s axis
-//   reads    the 4 texel words at address + y w + x in the C's order t00, t10, t01, t11, one
-//            request a cycle on a memory port (word address out, word back; responses in order,
-//            as `mem_port` returns them); the rows' y0 w and y1 w are two 32-bit products taken
-//            when a sample enters the issuer (truncated to 32 bits as the C's uint32 sums)
+// tex_fetch: the texel reads and the blend of the RGS's bilinear texture sample (paper section 3:
+// bilinear filtering of 8-bit textures in the shading unit; hls/units/rgs_tex.c
+// `rgs_sample_bilinear` from its reads on, `rgs_bilinear_blend`; docs/shading.md): the texel rows'
+// word addresses, the columns and the fractions (`tex_coords`) in, the sample's R, G, B in Q12 out,
+// bit for bit as the C. The second half of the sample (`tex_bilinear` until 2026-11-30); each
+// rgs_surface has one on its own line port, the shared `tex_coords` in rgs_units before it.
+//   reads    the 4 texel words at row + x in the C's order t00, t10, t01, t11 (row0 + x0, row0 + x1,
+//            row1 + x0, row1 + x1), one request a cycle on a memory port (word address out, word
+//            back; responses in order, as `mem_port` returns them)
 //   blend    when the 4th word is back: per channel the bytes widened to Q12 (t << 4 | t >> 4),
 //            top = c00 (256 - fx) + c10 fx, bottom likewise, (top (256 - fy) + bottom fy + 2^15)
 //            >> 16 (integer multipliers of 12 x 9 bits and 21 x 9 bits)
 // Up to OUTSTANDING samples wait for their texels (their fractions and thread ids in a FIFO).
 // Handshake: valid/ready at the input, the memory request and response, and the output.
-// Latency: the axes' (41 at the default operator depths, 38 at CVT 2) + 1 to the issuer, 4 request cycles and
-// the memory's latency, + 1 for the blend register; throughput one sample per 4 cycles (the
-// memory port's one word per cycle: 4 texel reads, as the C notes them). Resources: 2 `tex_axis`,
-// 2 32 x 32-bit multipliers, 3 32-bit adders for the addresses, 12 small multipliers for the
-// blend, the issuer's and collector's registers (about 8 x 32 + 4 x 24 bits), a FIFO of
-// OUTSTANDING x (18 + TID_BITS) bits.
-module tex_bilinear #(
-  parameter int E = 7,
-  parameter int M = 16,
+// Latency: 1 to the issuer, 4 request cycles and the memory's latency, + 1 for the blend register;
+// throughput one sample per 4 cycles (the memory port's one word per cycle: 4 texel reads, as the
+// C notes them). Resources: a 32-bit adder for the address, 12 small multipliers for the blend, the
+// issuer's and collector's registers (about 7 x 32 bits), a FIFO of OUTSTANDING x (18 + TID_BITS)
+// bits.
+module tex_fetch #(
   parameter int TID_BITS = 6,
-  parameter int OUTSTANDING = 8,  // samples issued and not yet blended (a power of two)
-  parameter int CVT_STAGES = 3,
-  parameter int MUL_STAGES = 4,
-  parameter int ADD_STAGES = 6,
-  parameter int CMP_STAGES = 2,
-  parameter int TOI_STAGES = 2,
-  parameter int MOD_STAGES = 16
+  parameter int OUTSTANDING = 8  // samples issued and not yet blended (a power of two)
 ) (
   input  logic                clk_i,
   input  logic                rst_ni,
   input  logic                valid_i,
   output logic                ready_o,
   input  logic [TID_BITS-1:0] tid_i,
-  input  logic [E+M:0]        s_i,
-  input  logic [E+M:0]        t_i,
-  input  logic [31:0]         width_i,   // the texture entry's words 0..2
-  input  logic [31:0]         height_i,
-  input  logic [31:0]         addr_i,
+  input  logic [31:0]         row0_i,
+  input  logic [31:0]         row1_i,
+  input  logic [31:0]         x0_i,
+  input  logic [31:0]         x1_i,
+  input  logic [8:0]          fx_i,
+  input  logic [8:0]          fy_i,
   output logic                req_valid_o,
   input  logic                req_ready_i,
   output logic [31:0]         req_addr_o,
@@ -53,34 +43,16 @@ module tex_bilinear #(
   output logic [TID_BITS-1:0] tid_o,
   output logic [3*16-1:0]     rgb_o      // R, G, B in Q12 from the low half-word up
 );
-  localparam int SIDE = TID_BITS + 64;
   localparam int PW = $clog2(OUTSTANDING);
 
-  // ---- the two axes, advancing while their results can enter the issuer
-  logic en_a, ax_valid, take;
-  logic [31:0] x0, x1, y0, y1, a_addr, a_width;
-  logic [8:0] fx, fy;
-  logic [TID_BITS-1:0] a_tid;
-  assign en_a = !ax_valid || take;
-  assign ready_o = en_a;
-  /* verilator lint_off PINCONNECTEMPTY */
-  tex_axis #(.E(E), .M(M), .SIDE_W(SIDE), .CVT_STAGES(CVT_STAGES), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES),
-    .CMP_STAGES(CMP_STAGES), .TOI_STAGES(TOI_STAGES), .MOD_STAGES(MOD_STAGES)) u_s (.clk_i(clk_i), .rst_ni(rst_ni),
-    .en_i(en_a), .valid_i(valid_i), .s_i(s_i), .n_i(width_i), .side_i({tid_i, addr_i, width_i}), .valid_o(ax_valid),
-    .i0_o(x0), .i1_o(x1), .frac_o(fx), .side_o({a_tid, a_addr, a_width}));
-  tex_axis #(.E(E), .M(M), .SIDE_W(1), .CVT_STAGES(CVT_STAGES), .MUL_STAGES(MUL_STAGES), .ADD_STAGES(ADD_STAGES),
-    .CMP_STAGES(CMP_STAGES), .TOI_STAGES(TOI_STAGES), .MOD_STAGES(MOD_STAGES)) u_t (.clk_i(clk_i), .rst_ni(rst_ni),
-    .en_i(en_a), .valid_i(valid_i), .s_i(t_i), .n_i(height_i), .side_i(1'b0), .valid_o(), .i0_o(y0), .i1_o(y1),
-    .frac_o(fy), .side_o());
-  /* verilator lint_on PINCONNECTEMPTY */
-
   // ---- the issuer: one sample's 4 texel addresses, one request a cycle
-  logic busy_q, fifo_full, req_fire, last_req;
+  logic busy_q, fifo_full, req_fire, last_req, take;
   logic [1:0] cnt_q;
   logic [31:0] row0_q, row1_q, x0_q, x1_q;
   assign req_fire = req_valid_o && req_ready_i;
   assign last_req = cnt_q == 2'd3 && req_fire;
-  assign take = ax_valid && (!busy_q || last_req) && !fifo_full;
+  assign ready_o = (!busy_q || last_req) && !fifo_full;
+  assign take = valid_i && ready_o;
   assign req_valid_o = busy_q;
   assign req_addr_o = (cnt_q[1] ? row1_q : row0_q) + (cnt_q[0] ? x1_q : x0_q);
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -95,10 +67,10 @@ module tex_bilinear #(
   end
   always_ff @(posedge clk_i) begin
     if (take) begin
-      row0_q <= a_addr + y0 * a_width;
-      row1_q <= a_addr + y1 * a_width;
-      x0_q <= x0;
-      x1_q <= x1;
+      row0_q <= row0_i;
+      row1_q <= row1_i;
+      x0_q <= x0_i;
+      x1_q <= x1_i;
     end
   end
 
@@ -116,7 +88,7 @@ module tex_bilinear #(
       if (pop) rd_q <= rd_q + 1'b1;
     end
   end
-  always_ff @(posedge clk_i) if (take) fifo_q[wr_q[PW-1:0]] <= {a_tid, fx, fy};
+  always_ff @(posedge clk_i) if (take) fifo_q[wr_q[PW-1:0]] <= {tid_i, fx_i, fy_i};
 
   // ---- the collector and the blend
   logic [1:0] rcnt_q;
