@@ -860,19 +860,36 @@ module trace_core #(
   localparam int INST_WORDS = TRI_WORDS * ((17 + TRI_WORDS - 1) / TRI_WORDS);
   localparam int OBJ_WORDS = 16;
   localparam logic [2:0] REC_NODE = 3'd0, REC_LIST = 3'd1, REC_INST = 3'd2, REC_OBJ = 3'd3;  // trace_thread's ld_rec_o
-  logic [31:0] rec_ix, rec_base, rec_off;
+  // the thread's fields chosen by the pick's one-hot grant, an AND-OR over the threads (its index
+  // comes 2 LUT6 levels later); the header's load adds its offset to 0
+  logic [2:0] rec_kind;
+  logic [1:0] rec_sent;
+  logic [31:0] rec_ix, rec_tris, rec_base, rec_off;
   always_comb begin
-    rec_ix = t_ld_ix[word_sel];
-    rec_off = 32'(RW) * 32'(t_ld_sent[word_sel]);
-    unique case (t_ld_rec[word_sel])
+    rec_kind = '0;
+    rec_sent = '0;
+    rec_ix = '0;
+    rec_tris = '0;
+    for (int t = 0; t < THREADS; t++) begin
+      rec_kind = rec_kind | (t_ld_rec[t] & {3{word_grant[t]}});
+      rec_sent = rec_sent | (t_ld_sent[t] & {2{word_grant[t]}});
+      rec_ix = rec_ix | (t_ld_ix[t] & {32{word_grant[t]}});
+      rec_tris = rec_tris | (t_tris[t] & {32{word_grant[t]}});
+    end
+    rec_off = 32'(RW) * 32'(rec_sent);
+    unique case (rec_kind)
       REC_NODE: begin rec_base = hdr_top_nodes; rec_off = 32'd1; end  // the top node's word 1
       REC_LIST: rec_base = hdr_top_lists + rec_ix;
       REC_INST: rec_base = hdr_inst + 32'(INST_WORDS) * rec_ix;
       REC_OBJ: rec_base = hdr_objects + 32'(OBJ_WORDS) * rec_ix;
-      default: rec_base = t_tris[word_sel] + 32'(TRI_WORDS) * rec_ix;  // REC_TRI
+      default: rec_base = rec_tris + 32'(TRI_WORDS) * rec_ix;  // REC_TRI
     endcase
+    if (hdr_req) begin
+      rec_base = '0;
+      rec_off = 32'(RW) * 32'(hdr_sent);
+    end
   end
-  assign mem_addr_o = hdr_req ? 32'(RW) * 32'(hdr_sent) : rec_base + rec_off;
+  assign mem_addr_o = rec_base + rec_off;
   assign word_take = mem_req_valid_o && mem_req_ready_i;
   assign word_head = word_q[word_rd[QB-1:0]];
   always_ff @(posedge clk_i or negedge rst_ni)
