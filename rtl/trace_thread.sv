@@ -44,8 +44,9 @@
 // 1,618 without them; 2,133 and 1,618 when t_o's +Inf for a miss moved to trace_core and the
 // clips took one choice of two; 1,910 and 1,330 without the leaves' te, 1,845 and 1,234 without
 // tmin: both trace_core's thread_ram; 2 SB_MAC16 until the records' addresses went to the core). Yosys 0.23 synth_xilinx at e7m16 (python3
-// scripts/synth.py --levels trace_thread --hier, 2026-11-30): 1,600 LUT6, 1,236 flip-flops, 6 LUT6
-// levels (2,269, 1,908 and 7 on 2026-11-29 with the counters). With the rays' o and d and the
+// scripts/synth.py --levels trace_thread --hier, 2026-11-30): 1,430 LUT6, 1,179 flip-flops, 6 LUT6
+// levels (1,600 and 1,236 with the descriptor addresses here; 2,269, 1,908 and 7 on 2026-11-29
+// with the counters). With the rays' o and d and the
 // records' words here (ro, rd, so, sd, the 20-word buffer, f24_vertex_lo, xform_identity): 5040
 // LUT6, 3440 flip-flops, 8 levels, and 5,871 SB_LUT4, 3,437 flip-flops (5048 LUT6, 3439
 // flip-flops before done; 5297, 3438 before ld_req; 6449, 5410 and 8 with p, te, t0, the low
