@@ -34,7 +34,10 @@
 // all threads, HDR_RSP responses; the instance, object and triangle records through the wide word
 // port, RW consecutive words per response (one matrix cache line: a triangle record in one, an
 // instance or object record in two), shared request by request: each cycle the header's load or
-// else the lowest thread with a request sends one, its requester goes into a FIFO (the port
+// else the lowest thread with a request sends one, at the address computed here from the thread's
+// record, index and response (trace_thread's ld_rec_o, ld_ix_o, tris_o, ld_sent_o: the records'
+// sizes and regions once here instead of an address adder and multiplier in each thread), its
+// requester goes into a FIFO (the port
 // answers in request order) and the response goes to the FIFO's oldest; trav_unit's node port (whose
 // responses, in request order, are counted for their thread through a FIFO of thread ids) and
 // list_unit's read port are the core's.
@@ -72,7 +75,10 @@
 // python3 scripts/synth.py --ice40 thread_count THREADS=64 F=1 or F=2, 2026-11-30: 410 or 506
 // SB_LUT4, 143 or 207 flip-flops, 4 or 8 SB_RAM40_4K: 2,748 SB_LUT4 and 36 SB_RAM40_4K for the 6,
 // where the 64 threads' counters were 456 SB_LUT4 and 288 flip-flops each), the word port's FIFO
-// of 2 THREADS requesters of TW + 1 bits, two rr_pick
+// of 2 THREADS requesters of TW + 1 bits and its address (a choice over the threads of 69 bits, the
+// records' sizes times the index, two adders: this module's own cells at 64 threads 44,418 ->
+// 46,442 SB_LUT4 and 0 -> 2 SB_MAC16 against 16,064 SB_LUT4 and 128 SB_MAC16 less in the threads,
+// python3 scripts/synth.py --ice40 trace_core THREADS=64, 2026-11-30), two rr_pick
 // without a pointer (the word port's and the output's lowest thread), the operand multiplexers
 // (THREADS to 1 per unit, now mostly over the threads' flags, masks and distances).
 // synth_ice40 -dsp -noflatten at the paper's 64 threads, e7m16, this module's own cells (its
@@ -173,7 +179,9 @@ module trace_core #(
   // ---- the threads' requests, operands and results ----
   logic [THREADS-1:0] t_ready, t_valid, t_out_ready, t_mem_req, t_waiting, t_node_rsp, t_hdr_want, t_walk_read;
   logic [THREADS*4-1:0] t_slots;
-  logic [31:0] t_mem_addr [THREADS];
+  logic [2:0] t_ld_rec [THREADS];
+  logic [31:0] t_ld_ix [THREADS], t_tris [THREADS];
+  logic [1:0] t_ld_sent [THREADS];
   logic [31:0] t_is_inst [THREADS], t_is_tri [THREADS];
   logic [3:0] t_hit [THREADS];
   logic [4*W-1:0] t_t [THREADS];
@@ -223,10 +231,10 @@ module trace_core #(
       .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(valid_i && wq_ready && thread_i == TW'(t)), .ready_o(t_ready[t]),
       .flags_i(flags_i), .active_i(active_i), .tmin_i(tmin_i), .tmax_i(tmax_i),
       .valid_o(t_valid[t]), .ready_i(t_out_ready[t]), .hit_o(t_hit[t]), .t_o(t_t[t]),
-      .hdr_want_o(t_hdr_want[t]), .hdr_ok_i(hdr_ok), .hdr_instances_i(hdr_instances), .hdr_objects_i(hdr_objects),
-      .hdr_inst_i(hdr_inst), .hdr_top_nodes_i(hdr_top_nodes), .hdr_top_lists_i(hdr_top_lists),
+      .hdr_want_o(t_hdr_want[t]), .hdr_ok_i(hdr_ok), .hdr_instances_i(hdr_instances),
+      .hdr_top_nodes_i(hdr_top_nodes), .hdr_top_lists_i(hdr_top_lists),
       .mem_req_valid_o(t_mem_req[t]), .mem_req_ready_i(!hdr_req && word_grant[t] && word_take),
-      .mem_addr_o(t_mem_addr[t]), .mem_rsp_valid_i(mem_rsp_valid_i && word_head == {1'b0, TW'(t)}), .ld_got_o(t_ld_got[t]),
+      .ld_rec_o(t_ld_rec[t]), .ld_ix_o(t_ld_ix[t]), .tris_o(t_tris[t]), .ld_sent_o(t_ld_sent[t]), .mem_rsp_valid_i(mem_rsp_valid_i && word_head == {1'b0, TW'(t)}), .ld_got_o(t_ld_got[t]),
       .mem_rdata_i(mem_rdata_i), .node_rsp_i(t_node_rsp[t]), .walk_read_o(t_walk_read[t]),
       .waiting_o(t_waiting[t]),
       .slots_o(t_slots[t*4 +: 4]), .step_ray_o(t_ray[t]), .lo_zero_o(t_lo_zero[t]), .id_sg_o(t_id_sg[t]),
@@ -847,7 +855,43 @@ module trace_core #(
                                       .index_o(word_sel), .after_o());
   /* verilator lint_on PINCONNECTEMPTY */
   assign mem_req_valid_o = (hdr_req || |t_mem_req) && word_wr - word_rd != (QB + 1)'(2**QB);
-  assign mem_addr_o = hdr_req ? 32'(RW) * 32'(hdr_sent) : t_mem_addr[word_sel];
+  // a thread's request: its record's address (the region + the record's size x its index; the
+  // records' layout: docs/memory-image.md, hls/units/trace.c) + RW words per response before it,
+  // computed here once for the thread picked instead of in each of the THREADS threads
+  localparam int TRI_WORDS = RW;                            // F24_TRIANGLE_RECORD_WORDS
+  localparam int INST_WORDS = TRI_WORDS * ((17 + TRI_WORDS - 1) / TRI_WORDS);
+  localparam int OBJ_WORDS = 16;
+  localparam logic [2:0] REC_NODE = 3'd0, REC_LIST = 3'd1, REC_INST = 3'd2, REC_OBJ = 3'd3;  // trace_thread's ld_rec_o
+  // the thread's fields chosen by the pick's one-hot grant, an AND-OR over the threads (its index
+  // comes 2 LUT6 levels later); the header's load adds its offset to 0
+  logic [2:0] rec_kind;
+  logic [1:0] rec_sent;
+  logic [31:0] rec_ix, rec_tris, rec_base, rec_off;
+  always_comb begin
+    rec_kind = '0;
+    rec_sent = '0;
+    rec_ix = '0;
+    rec_tris = '0;
+    for (int t = 0; t < THREADS; t++) begin
+      rec_kind = rec_kind | (t_ld_rec[t] & {3{word_grant[t]}});
+      rec_sent = rec_sent | (t_ld_sent[t] & {2{word_grant[t]}});
+      rec_ix = rec_ix | (t_ld_ix[t] & {32{word_grant[t]}});
+      rec_tris = rec_tris | (t_tris[t] & {32{word_grant[t]}});
+    end
+    rec_off = 32'(RW) * 32'(rec_sent);
+    unique case (rec_kind)
+      REC_NODE: begin rec_base = hdr_top_nodes; rec_off = 32'd1; end  // the top node's word 1
+      REC_LIST: rec_base = hdr_top_lists + rec_ix;
+      REC_INST: rec_base = hdr_inst + 32'(INST_WORDS) * rec_ix;
+      REC_OBJ: rec_base = hdr_objects + 32'(OBJ_WORDS) * rec_ix;
+      default: rec_base = rec_tris + 32'(TRI_WORDS) * rec_ix;  // REC_TRI
+    endcase
+    if (hdr_req) begin
+      rec_base = '0;
+      rec_off = 32'(RW) * 32'(hdr_sent);
+    end
+  end
+  assign mem_addr_o = rec_base + rec_off;
   assign word_take = mem_req_valid_o && mem_req_ready_i;
   assign word_head = word_q[word_rd[QB-1:0]];
   always_ff @(posedge clk_i or negedge rst_ni)

@@ -25,7 +25,10 @@
 // table's addresses, the scene bounds) are the core's, read once per memory image and shared by all threads (the thread
 // waits in S_HDR until hdr_ok_i); the instance, object and triangle records come through the wide
 // word port, RW consecutive words (one matrix cache line, one packed triangle record) per response,
-// so a record takes one or two responses (ld_n of them, unpacked from lbuf). TRAV_STACK only (the
+// so a record takes one or two responses (ld_n of them, unpacked from lbuf); a request names the
+// record (ld_rec_o: its region, the object's tris_o for a triangle), its index (ld_ix_o) and the
+// response's place in it (ld_sent_o), and trace_core computes the word address once, for the
+// thread it grants (the records' sizes and the regions are the core's). TRAV_STACK only (the
 // algorithm trav_unit has). The stacks and mailboxes live in trav_unit and list_unit.
 // Latency: the sum of the packet's unit operations and batches (a batch: its issue slots plus the
 // unit's latency), their waits for the units and the reads.
@@ -35,14 +38,15 @@
 // in trace_core's thread_ram; the triangle's intermediate values in isect_rebased's pipeline), of
 // the descriptor buffer the 4 words and 13 bits its FSM reads, about 13 words of routing state
 // (the packet's trace_counters: trace_core's thread_count memories; the thread says whether its
-// walk step read a node, walk_read_o). synth_ice40
-// -dsp -noflatten (python3 scripts/synth.py --ice40 trace_thread, 2026-11-30): 1,845 SB_LUT4,
-// 1,234 flip-flops, 2 SB_MAC16 (2,988 and 1,905 with the 10 counters of 32 bits here; 2,478 and
+// walk step read a node, walk_read_o; the descriptor addresses: trace_core's word port). synth_ice40
+// -dsp -noflatten (python3 scripts/synth.py --ice40 trace_thread, 2026-11-30): 1,539 SB_LUT4,
+// 1,177 flip-flops, 0 SB_MAC16 (2,988 and 1,905 with the 10 counters of 32 bits here; 2,478 and
 // 1,618 without them; 2,133 and 1,618 when t_o's +Inf for a miss moved to trace_core and the
 // clips took one choice of two; 1,910 and 1,330 without the leaves' te, 1,845 and 1,234 without
-// tmin: both trace_core's thread_ram). Yosys 0.23 synth_xilinx at e7m16 (python3
-// scripts/synth.py --levels trace_thread --hier, 2026-11-30): 1,600 LUT6, 1,236 flip-flops, 6 LUT6
-// levels (2,269, 1,908 and 7 on 2026-11-29 with the counters). With the rays' o and d and the
+// tmin: both trace_core's thread_ram; 2 SB_MAC16 until the records' addresses went to the core). Yosys 0.23 synth_xilinx at e7m16 (python3
+// scripts/synth.py --levels trace_thread --hier, 2026-11-30): 1,430 LUT6, 1,179 flip-flops, 6 LUT6
+// levels (1,600 and 1,236 with the descriptor addresses here; 2,269, 1,908 and 7 on 2026-11-29
+// with the counters). With the rays' o and d and the
 // records' words here (ro, rd, so, sd, the 20-word buffer, f24_vertex_lo, xform_identity): 5040
 // LUT6, 3440 flip-flops, 8 levels, and 5,871 SB_LUT4, 3,437 flip-flops (5048 LUT6, 3439
 // flip-flops before done; 5297, 3438 before ld_req; 6449, 5410 and 8 with p, te, t0, the low
@@ -75,14 +79,17 @@ module trace_thread #(
   output logic                        hdr_want_o,  // waiting for the header
   input  logic                        hdr_ok_i,
   input  logic [31:0]                 hdr_instances_i,
-  input  logic [31:0]                 hdr_objects_i,
-  input  logic [31:0]                 hdr_inst_i,
   input  logic [31:0]                 hdr_top_nodes_i,
   input  logic [31:0]                 hdr_top_lists_i,
-  // word read port (descriptors): RW words from the request's word address per response
+  // word read port (descriptors): RW words per response from the word address that trace_core
+  // computes for the request (the record's region + its size x its index + RW x ld_sent_o)
   output logic                        mem_req_valid_o,
   input  logic                        mem_req_ready_i,
-  output logic [31:0]                 mem_addr_o,
+  output logic [2:0]                  ld_rec_o,    // the record: 0 the top node's word 1 (TRACE_SKIP_TOP), 1 a top-level
+                                                   // list entry, 2 an instance, 3 an object, 4 a triangle
+  output logic [31:0]                 ld_ix_o,     // its index (list entry, instance, object, triangle in the object's)
+  output logic [31:0]                 tris_o,      // the object's triangle records' address (a triangle's region)
+  output logic [1:0]                  ld_sent_o,   // the request's index in its record
   input  logic                        mem_rsp_valid_i,
   output logic [1:0]                  ld_got_o,    // the index of a response to this thread in its record
   input  logic [32*RW-1:0]            mem_rdata_i,
@@ -160,10 +167,10 @@ module trace_thread #(
   input  logic                        add_done_i,
   input  logic [2*(E+M+1)-1:0]        add_r_i
 );
-  // memory image layout (docs/memory-image.md; hls/units/trace.c)
-  localparam int TRI_WORDS = RW;                            // F24_TRIANGLE_RECORD_WORDS
-  localparam int INST_WORDS = TRI_WORDS * ((17 + TRI_WORDS - 1) / TRI_WORDS);
+  // memory image layout (docs/memory-image.md; hls/units/trace.c): the words read of a record (the
+  // records' sizes and regions: trace_core's, which computes the requests' addresses)
   localparam int INST_READ = 17, OBJ_READ = 14;
+  localparam logic [2:0] REC_NODE = 3'd0, REC_LIST = 3'd1, REC_INST = 3'd2, REC_OBJ = 3'd3, REC_TRI = 3'd4;
   // responses per record (the instance's 17 words the most) and the buffer they fill
   localparam int INST_RSP = (INST_READ + RW - 1) / RW, OBJ_RSP = (OBJ_READ + RW - 1) / RW;
   localparam int LBUF = RW * INST_RSP;
@@ -211,13 +218,15 @@ module trace_thread #(
   logic [31:0] lists [2], leaf_first [2], leaf_count [2], k [2];
   logic [3:0] leaf_mask [2];
   logic have_cur [2];
-  logic [31:0] inst, obj, tris, tri_ix;
+  // ix: the index of the record the loader reads (the list entry's position, the instance, the
+  // object, the triangle: then is_tri_o, the hit's record); inst: the instance (is_inst_o)
+  logic [31:0] inst, ix, tris;
   // walk_read: the walk step in flight read a kd node (trace_core counts the step, C_STEPS, as its
   // result comes: walk_read_o)
   logic walk_read;
-  // the loader: ld_n responses of RW words from ld_base into lbuf, then ld_ret
+  // the loader: ld_n responses of RW words of record ld_rec (index ix) into lbuf, then ld_ret
   logic [31:0] lbuf [LBUF];
-  logic [31:0] ld_base;
+  logic [2:0] ld_rec;
   logic [1:0] ld_n, ld_sent, ld_got;
   // ld_req: requests of the load left to send (st == S_LOAD && ld_sent != ld_n) in a register of its
   // own, so that the word port's pick over the threads starts at a flip-flop (3 LUT6 levels later
@@ -322,7 +331,7 @@ module trace_thread #(
   assign xw_point_o = !ipass;
   assign is_req_o = batch_req && bop == B_TRI;
   assign is_inst_o = inst;
-  assign is_tri_o = tri_ix;
+  assign is_tri_o = ix;
   assign hit_o = hit;
   assign is_tmin_o = tmin_rel[ir];
   assign is_tmax_o = best_rel[ir];
@@ -354,16 +363,20 @@ module trace_thread #(
   assign waiting_o = st == S_TRAV_WAIT || st == S_LIST_WAIT ||
                      (st == S_BATCH && {idone, ipass, itodo} != {1'b0, cpass, ctodo});
   assign ld_got_o = ld_got;
-  assign mem_addr_o = ld_base + 32'(RW) * 32'(ld_sent);
+  assign ld_rec_o = ld_rec;
+  assign ld_ix_o = ix;
+  assign tris_o = tris;
+  assign ld_sent_o = ld_sent;
   assign hdr_want_o = st == S_HDR;
   assign ready_o = st == S_IDLE;
   assign valid_o = done;
   assign t_o = v_best_t;
   assign walk_read_o = walk_read;
 
-  // the loader: reads n responses from base into lbuf through the word port, then goes to next
-  task automatic load(input logic [31:0] base, input logic [1:0] n, input logic [5:0] next);
-    ld_base <= base;
+  // the loader: reads n responses of record rec (index ix) into lbuf through the word port, then
+  // goes to next
+  task automatic load(input logic [2:0] rec, input logic [1:0] n, input logic [5:0] next);
+    ld_rec <= rec;
     ld_n <= n;
     ld_sent <= '0;
     ld_req <= n != '0;
@@ -452,7 +465,7 @@ module trace_thread #(
             need <= clip_mask;
             leaf_count[0] <= '0;
             k[0] <= '0;
-            load(hdr_top_nodes_i + 1, 2'd1, S_SINGLE_NODE);
+            load(REC_NODE, 2'd1, S_SINGLE_NODE);
           end else begin
             lists[0] <= hdr_top_lists_i;
             st <= S_START_GO;
@@ -463,9 +476,13 @@ module trace_thread #(
           k[level] <= '0;
           st <= S_WALK_GO;
         end
-        S_SINGLE_NODE: load(hdr_top_lists_i + lbuf[0], 2'd1, S_SINGLE_LIST);
+        S_SINGLE_NODE: begin
+          ix <= lbuf[0];
+          load(REC_LIST, 2'd1, S_SINGLE_LIST);
+        end
         S_SINGLE_LIST: begin
           inst <= lbuf[0];
+          ix <= lbuf[0];
           st <= S_IX_LOAD;
         end
         S_ROUTE:  // route_after_list: the next entry, the next walk step, back up, or done
@@ -489,8 +506,8 @@ module trace_thread #(
           if (list_done_i) begin
             k[level] <= list_k_i;
             need <= list_need_i;
-            if (level) tri_ix <= list_key_i;
-            else inst <= list_key_i;
+            ix <= list_key_i;
+            if (!level) inst <= list_key_i;
             ret <= list_need_i == 0 ? S_ROUTE : level ? S_TX_LOAD : S_IX_LOAD;
             // rebase_leaf: the leaf opens
             if (level && k[1] == 0 && (leaf_mask[1] & alive) != 0) batch(B_RB_LEAF, leaf_mask[1] & alive);
@@ -538,9 +555,9 @@ module trace_thread #(
           end
         end
         // op_inst_xform
-        S_IX_LOAD: load(hdr_inst_i + INST_WORDS * inst, 2'(INST_RSP), S_IX);
+        S_IX_LOAD: load(REC_INST, 2'(INST_RSP), S_IX);
         S_IX: begin
-          obj <= hdr_objects_i + 16 * lbuf[12];
+          ix <= lbuf[12];
           // an identity instance, or TRACE_IDENTITY's single one (enter_single_object): the rays pass
           // as wiring, and the clip follows in the same operation
           if (lbuf[13][0] || flags[2]) begin
@@ -556,7 +573,7 @@ module trace_thread #(
           end
         end
         // op_inst_clip / inst_clip
-        S_IC_LOAD: load(obj, 2'(OBJ_RSP), S_IC_CLR);
+        S_IC_LOAD: load(REC_OBJ, 2'(OBJ_RSP), S_IC_CLR);
         S_IC_CLR: if (list_grant_i) batch(B_IC_ADD, need);
         S_IC_DONE:
           if (clip_mask == 0) st <= S_ROUTE;
@@ -569,7 +586,7 @@ module trace_thread #(
         // op_tri_xform, op_tri_isect: the triangle's record, then its batches
         S_TX_LOAD: begin
           batch(B_TRI, need);
-          load(tris + TRI_WORDS * tri_ix, 2'd1, S_BATCH);
+          load(REC_TRI, 2'd1, S_BATCH);
         end
         S_DONE:
           if (ready_i) begin
