@@ -90,6 +90,9 @@
 // flip-flops, 11 LUT6 levels (137,189, 126,945 and 8 before the rays and the records' words
 // moved here; the 11: a world ray's read through a shifter into xform_wide, a 4-to-1 choice
 // since, now a memory's read of the step's ray; not re-synthesized: rtl/README.md).
+// At THREADS = 64 (scripts/synth.py's per-module netlists, deepest_path on trace_core's subtree,
+// 2026-11-30): 11 LUT6 levels, trace_thread's waiting_o through inflight_o's count; 10 between
+// its own registers (10 on 391e0f0's RTL too, before the identity flags; rtl/README.md).
 // Handshake: valid/ready at the packet input (into thread thread_i: ready_o when it is free and
 // the world rays' queue has room) and at the result output (registered; the lowest finished
 // thread first); word port valid/ready with responses in request order; trav_unit's node port
