@@ -57,8 +57,9 @@
 // 4-bit feed counter and a thread id, THREADS trace_thread (its control and the fields the
 // traversal unit or the FSM read, in registers), thread_ram per field group and reader: THREADS
 // words per ray for the traversal unit's world rays (6 W) and object-space rays (so, sd 3 W each),
-// 4 THREADS words for the per-ray units' world rays (6 W for the rebase unit, 3 W (d) for the wide
-// transformation and the triangle test; written from a queue of 2 packets of 4 x 6 W bits), p
+// 4 THREADS words for the per-ray units' world rays (6 W + 12 for the rebase unit: o and d with
+// their identity flags id_flags, 6 bits each; 3 W (d) for the wide transformation, 3 W + 6 for
+// the triangle test; written from a queue of 2 packets of 4 x 6 W bits), p
 // (6 W, the wide transformation and the triangle test), te (W), so and sd (6 W each, high and low
 // words, the rebase unit), sd's high words (3 W, the triangle test), t0 (W, the adders and the
 // triangle test), 2 THREADS words of the leaves' te (4 W: a thread's per level, the rebase unit),
@@ -95,6 +96,9 @@
 // flip-flops, 11 LUT6 levels (137,189, 126,945 and 8 before the rays and the records' words
 // moved here; the 11: a world ray's read through a shifter into xform_wide, a 4-to-1 choice
 // since, now a memory's read of the step's ray; not re-synthesized: rtl/README.md).
+// At THREADS = 64 (scripts/synth.py's per-module netlists, deepest_path on trace_core's subtree,
+// 2026-11-30): 11 LUT6 levels, trace_thread's waiting_o through inflight_o's count; 10 between
+// its own registers (10 on 391e0f0's RTL too, before the identity flags; rtl/README.md).
 // Handshake: valid/ready at the packet input (into thread thread_i: ready_o when it is free and
 // the world rays' queue has room) and at the result output (registered; the lowest finished
 // thread first); word port valid/ready with responses in request order; trav_unit's node port
@@ -638,16 +642,21 @@ module trace_core #(
       .clk_i(clk_i), .we_i(in_take), .waddr_i(thread_i), .wdata_i(wq_in[r*WRD +: WRD]),
       .re_i(1'b1), .raddr_i(sel[U_TRAV]), .rdata_o(w_rd[r*WRD +: WRD]));
   end
-  logic [WRD-1:0] rb_w;
-  logic [3*W-1:0] xw_w, is_w;
-  thread_ram #(.W(WRD), .DEPTH(RAYS)) u_world_rb (
-    .clk_i(clk_i), .we_i(wq_valid), .waddr_i(wq_addr), .wdata_i(wq_word),
+  // the rebase unit's o and d and the triangle test's d with their id_flags (rb_w = {o and its
+  // flags, d and its}), computed from the queue's word as it is written
+  localparam int VF = 3 * W + FLW;
+  logic [2*VF-1:0] rb_w;
+  logic [VF-1:0] is_w;
+  logic [3*W-1:0] xw_w;
+  thread_ram #(.W(2 * VF), .DEPTH(RAYS)) u_world_rb (
+    .clk_i(clk_i), .we_i(wq_valid), .waddr_i(wq_addr),
+    .wdata_i({with_flags(wq_word[3*W +: 3*W]), with_flags(wq_word[0 +: 3*W])}),
     .re_i(1'b1), .raddr_i(raddr[U_RB]), .rdata_o(rb_w));
   thread_ram #(.W(3 * W), .DEPTH(RAYS)) u_world_xw (
     .clk_i(clk_i), .we_i(wq_valid), .waddr_i(wq_addr), .wdata_i(wq_word[0 +: 3*W]),
     .re_i(1'b1), .raddr_i(raddr[U_XW]), .rdata_o(xw_w));
-  thread_ram #(.W(3 * W), .DEPTH(RAYS)) u_world_is (
-    .clk_i(clk_i), .we_i(wq_valid), .waddr_i(wq_addr), .wdata_i(wq_word[0 +: 3*W]),
+  thread_ram #(.W(VF), .DEPTH(RAYS)) u_world_is (
+    .clk_i(clk_i), .we_i(wq_valid), .waddr_i(wq_addr), .wdata_i(with_flags(wq_word[0 +: 3*W])),
     .re_i(1'b1), .raddr_i(raddr[U_IS]), .rdata_o(is_w));
   // the object-space rays' high words per thread for the traversal unit, one memory per ray and
   // pass (so, sd)
@@ -659,27 +668,48 @@ module trace_core #(
       .rdata_o(obj_trav[k*3*W +: 3*W]));
   end
   // xform_identity (op_inst_xform of an identity instance): the bits xform_point/xform_vector give
-  // for an identity with signed zeros, from the matrix's signs sg
-  function automatic logic [3*W-1:0] identity(input logic [11:0] sg, input logic [3*W-1:0] v, input logic point);
+  // for an identity with signed zeros, from the matrix's signs sg and the flags id_flags of the
+  // world vector v: computed where v is written into memory, so that a result bit other than
+  // the sign needs 6 bits after the read with the choice of the memory's word (one LUT6) where
+  // the exponent tests after the read made the rebase unit's operands 6 levels (trace_core's 10
+  // between registers with f24_sum_exact's first segment, rtl/README.md)
+  localparam int FLW = 6;                 // id_flags' bits per vector
+  // per component k: bit k its result is the default NaN (a NaN in it, or an Inf or NaN in
+  // another component), bit 3 + k its exponent is 0 (the result a signed zero)
+  function automatic logic [FLW-1:0] id_flags(input logic [3*W-1:0] v);
+    logic [2:0] inf_nan, nan, zero;
+    for (int k = 0; k < 3; k++) begin
+      inf_nan[k] = v[k*W + M +: E] == EXP_MAX;
+      nan[k] = inf_nan[k] && v[k*W +: M] != 0;
+      zero[k] = v[k*W + M +: E] == 0;
+    end
+    for (int k = 0; k < 3; k++)
+      for (int j = 0; j < 3; j++)
+        if (j != k && inf_nan[j]) nan[k] = 1'b1;
+    id_flags = {zero, nan};
+  endfunction
+  function automatic logic [3*W-1:0] identity(input logic [11:0] sg, input logic [3*W-1:0] v,
+                                              input logic [FLW-1:0] fl, input logic point);
     logic [3*W-1:0] r;
     for (int kk = 0; kk < 3; kk++) begin
-      logic [W-1:0] c;
-      logic nan, neg;
-      c = v[kk*W +: W];
-      nan = c[M +: E] == EXP_MAX && c[M-1:0] != 0;
+      logic neg;
       neg = point ? sg[4*kk+3] : 1'b1;
-      for (int j = 0; j < 3; j++) begin
-        if (j != kk && v[j*W + M +: E] == EXP_MAX) nan = 1'b1;
+      for (int j = 0; j < 3; j++)
         neg &= j == kk ? v[j*W + W-1] : sg[4*kk+j] ^ v[j*W + W-1];
-      end
-      r[kk*W +: W] = nan ? DNAN : c[M +: E] != 0 ? c : {neg, {(W-1){1'b0}}};
+      r[kk*W +: W] = fl[kk] ? DNAN : !fl[3+kk] ? v[kk*W +: W] : {neg, {(W-1){1'b0}}};
     end
     identity = r;
   endfunction
   // an object-space ray's high words: the memory's, or an identity instance's from the world ray
-  function automatic logic [3*W-1:0] obj_ray(input logic lo_zero, input logic [11:0] sg, input logic [3*W-1:0] world,
-                                             input logic [3*W-1:0] obj, input logic point);
-    obj_ray = lo_zero ? identity(sg, world, point) : obj;
+  // (world: a vector and its id_flags)
+  function automatic logic [3*W-1:0] obj_ray(input logic lo_zero, input logic [11:0] sg,
+                                             input logic [3*W+FLW-1:0] world, input logic [3*W-1:0] obj,
+                                             input logic point);
+    obj_ray = lo_zero ? identity(sg, world[FLW +: 3*W], world[0 +: FLW], point) : obj;
+  endfunction
+  // a world vector with its id_flags (the memories' words of a vector)
+  function automatic logic [3*W+FLW-1:0] with_flags(input logic [3*W-1:0] v);
+    with_flags = {v, id_flags(v)};
   endfunction
 
   // the traversal unit's rays: read in the cycle s its operation enters the issue FIFO, they come
@@ -714,19 +744,19 @@ module trace_core #(
       wo = w_rd[r*WRD + 3*W +: 3*W];
       wd = w_rd[r*WRD +: 3*W];
       trav_rd[18*W + r*3*W +: 3*W] = !trav_obj_q ? wo :
-        obj_ray(trav_lo_zero_q[r], trav_id_sg_q[r*12 +: 12], wo, obj_trav[r*3*W +: 3*W], 1'b1);
+        obj_ray(trav_lo_zero_q[r], trav_id_sg_q[r*12 +: 12], with_flags(wo), obj_trav[r*3*W +: 3*W], 1'b1);
       trav_rd[6*W + r*3*W +: 3*W] = !trav_obj_q ? wd :
-        obj_ray(trav_lo_zero_q[r], trav_id_sg_q[r*12 +: 12], wd, obj_trav[(4+r)*3*W +: 3*W], 1'b0);
+        obj_ray(trav_lo_zero_q[r], trav_id_sg_q[r*12 +: 12], with_flags(wd), obj_trav[(4+r)*3*W +: 3*W], 1'b0);
     end
   assign trav_rd[0 +: 6*W] = trav_scene_q ? scene_box : rec_rd[15*W +: 6*W];
   assign {trav_op_o, trav_op_d, trav_op_box} = trav_wr_q && trav_slot_q == trav_head ? trav_rd : trav_rays[trav_head];
 
   // the per-ray units' rays (their memories' words of the step's thread and ray)
   logic [3*W-1:0] rb_o_hi, rb_d_hi, xw_d, is_d;
-  assign rb_o_hi = rb_leaf_q ? obj_ray(rb_lo_zero_q, rb_id_sg_q, rb_w[3*W +: 3*W], so_rb[3*W +: 3*W], 1'b1)
-                             : rb_w[3*W +: 3*W];
-  assign rb_d_hi = rb_leaf_q ? obj_ray(rb_lo_zero_q, rb_id_sg_q, rb_w[0 +: 3*W], sd_rb[3*W +: 3*W], 1'b0)
-                             : rb_w[0 +: 3*W];
+  assign rb_o_hi = rb_leaf_q ? obj_ray(rb_lo_zero_q, rb_id_sg_q, rb_w[VF +: VF], so_rb[3*W +: 3*W], 1'b1)
+                             : rb_w[VF + FLW +: 3*W];
+  assign rb_d_hi = rb_leaf_q ? obj_ray(rb_lo_zero_q, rb_id_sg_q, rb_w[0 +: VF], sd_rb[3*W +: 3*W], 1'b0)
+                             : rb_w[FLW +: 3*W];
   assign xw_d = xw_w;
   assign is_d = obj_ray(is_lo_zero_q, is_id_sg_q, is_w, sd_is, 1'b0);
 
