@@ -412,10 +412,18 @@ module trace_core #(
     if (!rst_ni) step_q <= '0;
     else
       for (int u = U_RB; u < UNITS; u++) step_q[u] <= unit_valid[u] && unit_ready[u];
+  // the step's ray by the one-hot grant (an AND-OR over the threads): an index multiplexer after
+  // the scheduler's index was 10 LUT6 levels into the read address (below) and ray_q
+  logic [1:0] step_ray [U_RB:UNITS-1];
+  always_comb
+    for (int u = U_RB; u < UNITS; u++) begin
+      step_ray[u] = '0;
+      for (int t = 0; t < THREADS; t++) step_ray[u] = step_ray[u] | (t_ray[t] & {2{sel_grant[u][t]}});
+    end
   always_ff @(posedge clk_i) begin
     for (int u = U_RB; u < UNITS; u++) begin
       sel_q[u] <= sel[u];
-      ray_q[u] <= t_ray[sel[u]];
+      ray_q[u] <= step_ray[u];
     end
     rb_leaf_q <= t_rb_leaf[sel[U_RB]];
     rb_lo_zero_q <= t_lo_zero[sel[U_RB]];
@@ -472,7 +480,7 @@ module trace_core #(
     endcase
   endfunction
   for (genvar u = U_RB; u < UNITS; u++) begin : g_raddr
-    assign raddr[u] = {sel[u], t_ray[sel[u]]};
+    assign raddr[u] = {sel[u], step_ray[u]};
   end
   logic [6*W-1:0] p_xw, p_is;
   logic [W-1:0] te_is;
@@ -1025,8 +1033,14 @@ module trace_core #(
   assign count_o = {32'd0, cnt_inst + cnt_tri[63:32], cnt_list[31:0], cnt_node, cnt_tri[31:0],
                     cnt_xw + cnt_tri[31:0], cnt_list[63:32], cnt_list[31:0], cnt_walk[63:32], cnt_walk[31:0]};
 
+  // the count of waiting threads, registered: the adder tree over 64 threads after their
+  // waiting_o was 11 LUT6 levels to the port (tb_core's average counts it a cycle late)
+  logic [TW:0] waiting_n;
   always_comb begin
-    inflight_o = '0;
-    for (int t = 0; t < THREADS; t++) inflight_o = inflight_o + (TW+1)'(t_waiting[t]);
+    waiting_n = '0;
+    for (int t = 0; t < THREADS; t++) waiting_n = waiting_n + (TW+1)'(t_waiting[t]);
   end
+  always_ff @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) inflight_o <= '0;
+    else inflight_o <= waiting_n;
 endmodule
