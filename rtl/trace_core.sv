@@ -219,7 +219,7 @@ module trace_core #(
   logic [W-1:0] rb_te, is_t, is_u, is_v, is_cos, is_t_world;
   // the word port: this cycle's request (the header's load, hdr_req, or thread word_sel), the
   // requester of the oldest response (word_head; its top bit the header's load)
-  logic hdr_req, word_take;
+  logic hdr_req, word_take, w_accept;
   logic [TW-1:0] word_sel;
   logic [THREADS-1:0] word_grant;  // one-hot word_sel
   logic [TW:0] word_head;
@@ -237,7 +237,7 @@ module trace_core #(
       .valid_o(t_valid[t]), .ready_i(t_out_ready[t]), .hit_o(t_hit[t]), .t_o(t_t[t]),
       .hdr_want_o(t_hdr_want[t]), .hdr_ok_i(hdr_ok), .hdr_instances_i(hdr_instances),
       .hdr_top_nodes_i(hdr_top_nodes), .hdr_top_lists_i(hdr_top_lists),
-      .mem_req_valid_o(t_mem_req[t]), .mem_req_ready_i(!hdr_req && word_grant[t] && word_take),
+      .mem_req_valid_o(t_mem_req[t]), .mem_req_ready_i(!hdr_req && word_grant[t] && w_accept),
       .ld_rec_o(t_ld_rec[t]), .ld_ix_o(t_ld_ix[t]), .tris_o(t_tris[t]), .ld_sent_o(t_ld_sent[t]), .mem_rsp_valid_i(mem_rsp_valid_i && word_head == {1'b0, TW'(t)}), .ld_got_o(t_ld_got[t]),
       .mem_rdata_i(mem_rdata_i), .node_rsp_i(t_node_rsp[t]), .walk_read_o(t_walk_read[t]),
       .waiting_o(t_waiting[t]),
@@ -862,7 +862,7 @@ module trace_core #(
       hdr_sent <= '0;
       hdr_got <= '0;
     end else if (hdr_load) begin
-      if (hdr_req && word_take) hdr_sent <= hdr_sent + 1'b1;
+      if (hdr_req && w_accept) hdr_sent <= hdr_sent + 1'b1;
       if (mem_rsp_valid_i && word_head[TW]) begin
         if (hdr_got == HB'(H_INSTANCES / RW)) hdr_instances <= hdr_word(mem_rdata_i, H_INSTANCES);
         if (hdr_got == HB'(H_OBJECTS_AT / RW)) hdr_objects <= hdr_word(mem_rdata_i, H_OBJECTS_AT);
@@ -892,44 +892,64 @@ module trace_core #(
   rr_pick #(.N(THREADS)) u_word_pick (.req_i(t_mem_req), .after_i('0), .any_o(), .grant_o(word_grant),
                                       .index_o(word_sel), .after_o());
   /* verilator lint_on PINCONNECTEMPTY */
-  assign mem_req_valid_o = (hdr_req || |t_mem_req) && word_wr - word_rd != (QB + 1)'(2**QB);
   // a thread's request: its record's address (the region + the record's size x its index; the
   // records' layout: docs/memory-image.md, hls/units/trace.c) + RW words per response before it,
-  // computed here once for the thread picked instead of in each of the THREADS threads
+  // computed here once for the thread picked instead of in each of the THREADS threads. A request
+  // stage: the pick's fields (an AND-OR over the threads by the one-hot grant) are registered as
+  // the thread's request is taken (w_*), the address is computed from them in the next cycle,
+  // when the request leaves: the pick, its choice and the address in one cycle were 9 to 10 LUT6
+  // levels before the matrix cache's index (a read leaves a cycle later; the cycle model counts it).
   localparam int TRI_WORDS = RW;                            // F24_TRIANGLE_RECORD_WORDS
   localparam int INST_WORDS = TRI_WORDS * ((17 + TRI_WORDS - 1) / TRI_WORDS);
   localparam int OBJ_WORDS = 16;
   localparam logic [2:0] REC_NODE = 3'd0, REC_LIST = 3'd1, REC_INST = 3'd2, REC_OBJ = 3'd3;  // trace_thread's ld_rec_o
-  // the thread's fields chosen by the pick's one-hot grant, an AND-OR over the threads (its index
-  // comes 2 LUT6 levels later); the header's load adds its offset to 0
-  logic [2:0] rec_kind;
-  logic [1:0] rec_sent;
-  logic [31:0] rec_ix, rec_tris, rec_base, rec_off;
+  logic [2:0] rec_kind, w_kind;
+  localparam int SB = HB > 2 ? HB : 2;
+  logic [SB-1:0] rec_sent, w_sent;        // responses before this one (the header's or the thread's)
+  logic [31:0] rec_ix, rec_tris, w_ix, w_tris, w_base, w_off;
+  logic w_valid, w_hdr;
+  logic [TW-1:0] w_sel;
   always_comb begin
     rec_kind = '0;
-    rec_sent = '0;
+    rec_sent = hdr_req ? SB'(hdr_sent) : '0;
     rec_ix = '0;
     rec_tris = '0;
     for (int t = 0; t < THREADS; t++) begin
       rec_kind = rec_kind | (t_ld_rec[t] & {3{word_grant[t]}});
-      rec_sent = rec_sent | (t_ld_sent[t] & {2{word_grant[t]}});
+      rec_sent = rec_sent | (SB'(t_ld_sent[t]) & {SB{word_grant[t] && !hdr_req}});
       rec_ix = rec_ix | (t_ld_ix[t] & {32{word_grant[t]}});
       rec_tris = rec_tris | (t_tris[t] & {32{word_grant[t]}});
     end
-    rec_off = 32'(RW) * 32'(rec_sent);
-    unique case (rec_kind)
-      REC_NODE: begin rec_base = hdr_top_nodes; rec_off = 32'd1; end  // the top node's word 1
-      REC_LIST: rec_base = hdr_top_lists + rec_ix;
-      REC_INST: rec_base = hdr_inst + 32'(INST_WORDS) * rec_ix;
-      REC_OBJ: rec_base = hdr_objects + 32'(OBJ_WORDS) * rec_ix;
-      default: rec_base = rec_tris + 32'(TRI_WORDS) * rec_ix;  // REC_TRI
+  end
+  assign w_accept = !w_valid || word_take;
+  always_ff @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) w_valid <= 1'b0;
+    else if (w_accept) w_valid <= hdr_req || |t_mem_req;
+  always_ff @(posedge clk_i)
+    if (w_accept) begin
+      w_hdr <= hdr_req;
+      w_sel <= word_sel;
+      w_kind <= rec_kind;
+      w_sent <= rec_sent;
+      w_ix <= rec_ix;
+      w_tris <= rec_tris;
+    end
+  always_comb begin
+    w_off = 32'(RW) * 32'(w_sent);
+    unique case (w_kind)
+      REC_NODE: begin w_base = hdr_top_nodes; w_off = 32'd1; end  // the top node's word 1
+      REC_LIST: w_base = hdr_top_lists + w_ix;
+      REC_INST: w_base = hdr_inst + 32'(INST_WORDS) * w_ix;
+      REC_OBJ: w_base = hdr_objects + 32'(OBJ_WORDS) * w_ix;
+      default: w_base = w_tris + 32'(TRI_WORDS) * w_ix;  // REC_TRI
     endcase
-    if (hdr_req) begin
-      rec_base = '0;
-      rec_off = 32'(RW) * 32'(hdr_sent);
+    if (w_hdr) begin  // the header's load: its responses from address 0
+      w_base = '0;
+      w_off = 32'(RW) * 32'(w_sent);
     end
   end
-  assign mem_addr_o = rec_base + rec_off;
+  assign mem_req_valid_o = w_valid && word_wr - word_rd != (QB + 1)'(2**QB);
+  assign mem_addr_o = w_base + w_off;
   assign word_take = mem_req_valid_o && mem_req_ready_i;
   assign word_head = word_q[word_rd[QB-1:0]];
   always_ff @(posedge clk_i or negedge rst_ni)
@@ -938,7 +958,7 @@ module trace_core #(
       word_rd <= '0;
     end else begin
       if (word_take) begin
-        word_q[word_wr[QB-1:0]] <= hdr_req ? {1'b1, TW'(0)} : {1'b0, word_sel};
+        word_q[word_wr[QB-1:0]] <= w_hdr ? {1'b1, TW'(0)} : {1'b0, w_sel};
         word_wr <= word_wr + 1'b1;
       end
       if (mem_rsp_valid_i) word_rd <= word_rd + 1'b1;

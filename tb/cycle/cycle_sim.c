@@ -28,10 +28,12 @@ void cycle_config_default(cycle_config *c)
      * the DynRTP (tb_dynrtp's TB_DYNRTP_LOG); docs/cycle-model.md derives each. */
     c->latency[OP_RAYGEN] = 29;   /* rgs_arb's register 1, rgs_raygen: block register 1 + f24_from_i32 3 + xform_unit
                                    * 22 + packet 1, dynrtp's packet queue into the core 1 */
-    c->latency[OP_XFORM] = 35;    /* trace_core's issue stage 1 (the operands from thread_ram), isect_rebased's origin
-                                   * path (l = p.lo - C.lo, c = h + l: 2 add) + xform_unit 22 */
-    c->latency[OP_INSTANCE] = 52; /* rebase_unit 25, then xform_wide 25 (the origins' chain), each after trace_core's
-                                   * issue stage 1 */
+    c->latency[OP_XFORM] = 36;    /* trace_core's issue stage 1 (the operands from thread_ram), isect_rebased's origin
+                                   * path (l = p.lo - C.lo, c = h + l: 2 add) + xform_unit 22; the triangle's record
+                                   * through trace_core's word request stage 1 */
+    c->latency[OP_INSTANCE] = 54; /* rebase_unit 25, then xform_wide 25 (the origins' chain), each after trace_core's
+                                   * issue stage 1; the instance's and the object's records each through trace_core's
+                                   * word request stage 1 */
     c->latency[OP_SHADOW] = 2;    /* rgs_light forms the shadow rays: its register to the trace port, dynrtp's packet
                                    * queue into the core 1 */
     c->latency[OP_CHILDREN] = 2;  /* rgs_spawn (in rgs_accum) forms the child rays: the stack's register, the packet
@@ -41,11 +43,12 @@ void cycle_config_default(cycle_config *c)
                                    * (the kd-node cache's hit: 3) + 3 (trace_thread's states from the result to the
                                    * next request) - the issue slot: 13 of it before its trav_node slot (trav_front
                                    * + node_read), 31 after; the scene clip: 6 slots, trav_clip's chain, the start */
-    c->latency[OP_OBJCLIP] = 67;  /* trace_thread: the object's record (2 matrix cache lines), the mailboxes cleared
+    c->latency[OP_OBJCLIP] = 69;  /* trace_thread: the object's record (2 matrix cache lines), the mailboxes cleared
                                    * (a list unit operation, not waited for), the relative distances (an adder batch
                                    * after trace_core's issue stage), the clip (6 slots, trav_clip), the start (a
                                    * traversal operation of its own): the clip and the start 1 each through
-                                   * trace_core's issue FIFO */
+                                   * trace_core's issue FIFO; the two records 1 each through its word request
+                                   * stage */
     c->latency[OP_LIST] = 19;     /* trace_core's issue FIFO 1, list_unit 3, its word through dynrtp's registers and
                                    * the list cache (hit 3), trace_thread's request and result states */
     c->latency[OP_LEAF] = 48;     /* the list entry's 19, then rebase_unit 25 (a batch after trace_core's issue stage
@@ -68,9 +71,9 @@ void cycle_config_default(cycle_config *c)
                                    * the stack's read, the prune's comparators 4, D, E), its queue 1: a clip's first
                                    * slab plane enters trav_node 9 cycles after the issue */
     c->node_read = 4;             /* a kd-tree entry's node: its request's queue 1, the kd-node cache's hit 3 */
-    c->objclip_front = 22;        /* trace_thread's steps from an object clip's decision to the clip's issue (the
-                                   * records, the mailboxes' clear, the relative distances: 17 + n for an identity
-                                   * instance's n rays, measured on the RTL), so the 36 after its last slot are the
+    c->objclip_front = 24;        /* trace_thread's steps from an object clip's decision to the clip's issue (the
+                                   * records, the mailboxes' clear, the relative distances: 19 + n for an identity
+                                   * instance's n rays, measured on the RTL, 17 + n before the word request stage), so the 36 after its last slot are the
                                    * RTL's (the clip's 28, the start, the thread's states) */
     c->latency[OP_LIGHT] = 93;    /* rgs_arb's register 1 + rgs_light 87 (rgs_light_colour's 27 beside it) + rgs_ctrl's
                                    * state (LCALC 93) */
