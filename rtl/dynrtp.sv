@@ -38,7 +38,9 @@
 // (isect_rebased: a triangle's transformation and test), add, 64 bits each); packets_o the packets traced; reads_o per cache the reads it
 // took (kd nodes, list entries, descriptor responses of RW words, shading lines).
 // Latency and throughput: tile_ctrl 1 block per cycle; rgs_ctrl a block per its sequence
-// (rtl/README.md), RGS_BLOCKS at once; the core's; the memory port 1 transfer per cycle.
+// (rtl/README.md), RGS_BLOCKS at once; a packet from the controllers' pick into the core 1 cycle
+// (a 2-entry queue: no combinational path from a controller's request to its ready); the core's;
+// the memory port 1 transfer per cycle.
 // Resources: trace_core's, rgs_units (one set of the RGS's datapaths, SURF_UNITS surfaces), RGS_BLOCKS x rgs_ctrl (the
 // control, its block's state in registers and its stack's rays in 2 SB_RAM40_4K each), 4 x cache_read
 // (NODE_KB + LIST_KB + MAT_KB + SHADE_KB KB of data arrays and their tags), 2 x mem_port,
@@ -344,9 +346,18 @@ module dynrtp #(
   logic [31:0] sh_addr;
   logic [127:0] sh_line;
   /* verilator lint_off PINCONNECTEMPTY */
+  // the lines back to the RGS's readers a cycle later, registered: the shading cache's answer
+  // through the port's routing into a surface's line reader was 12 LUT6 levels (synth.py
+  // --dynrtp-path; the cycle model's shading hit counts the cycle)
+  logic [B+S-1:0] rd_rsp_n;
+  logic [127:0] rd_line_n;
+  always_ff @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) rd_rsp <= '0;
+    else rd_rsp <= rd_rsp_n;
+  always_ff @(posedge clk_i) rd_line <= rd_line_n;
   mem_port #(.N(B + S), .DW(128), .DEPTH(OUTSTANDING)) u_rgs_reads (
     .clk_i(clk_i), .rst_ni(rst_ni), .req_valid_i(rd_valid), .req_ready_o(rd_ready), .req_addr_i(rd_addr),
-    .req_bytes_i({(B + S){8'd16}}), .rsp_valid_o(rd_rsp), .rsp_data_o(rd_line), .mem_req_valid_o(sh_req),
+    .req_bytes_i({(B + S){8'd16}}), .rsp_valid_o(rd_rsp_n), .rsp_data_o(rd_line_n), .mem_req_valid_o(sh_req),
     .mem_req_ready_i(sh_ready), .mem_req_addr_o(sh_addr), .mem_req_bytes_o(), .mem_req_src_o(),
     .mem_rsp_valid_i(sh_rsp), .mem_rsp_data_i(sh_line));
   /* verilator lint_on PINCONNECTEMPTY */

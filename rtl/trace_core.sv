@@ -1053,12 +1053,15 @@ module trace_core #(
   assign count_o = {32'd0, cnt_inst + cnt_tri[63:32], cnt_list[31:0], cnt_node, cnt_tri[31:0],
                     cnt_xw + cnt_tri[31:0], cnt_list[63:32], cnt_list[31:0], cnt_walk[63:32], cnt_walk[31:0]};
 
-  // the count of waiting threads, registered: the adder tree over 64 threads after their
-  // waiting_o was 11 LUT6 levels to the port (tb_core's average counts it a cycle late)
+  // the count of waiting threads from their waiting_o registered, itself registered: the adder
+  // tree over 64 threads after their waiting_o was 11 LUT6 levels to the port, 10 into one
+  // register (tb_core's average counts it 2 cycles late)
+  logic [THREADS-1:0] waiting_q;
   logic [TW:0] waiting_n;
+  always_ff @(posedge clk_i) waiting_q <= t_waiting;
   always_comb begin
     waiting_n = '0;
-    for (int t = 0; t < THREADS; t++) waiting_n = waiting_n + (TW+1)'(t_waiting[t]);
+    for (int t = 0; t < THREADS; t++) waiting_n = waiting_n + (TW+1)'(waiting_q[t]);
   end
   always_ff @(posedge clk_i or negedge rst_ni)
     if (!rst_ni) inflight_o <= '0;

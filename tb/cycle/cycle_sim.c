@@ -57,16 +57,18 @@ void cycle_config_default(cycle_config *c)
                                    * best_t = t0 + t (add 6); + 1 since trace_core's output register (a packet's hits
                                    * a cycle later), fitted on subpass 32x24 at 8 threads (2026-11-29: 2.2% under the
                                    * RTL with 35) */
-    c->latency[OP_SURFACE] = 218; /* rgs_arb's register 1, rgs_surface: the first hit's front reads (instance word,
+    c->latency[OP_SURFACE] = 221; /* rgs_arb's register 1, rgs_surface: the first hit's front reads (instance word,
                                    * object, record: 3 bursts of 1, 2 and 1 to 5 lines through the shading cache,
-                                   * about 8), rgs_normal 90 (asked for from the second stage's registers, a cycle
-                                   * after the hit loads there), rgs_frame 118 behind its arbiter's register 1 (one
-                                   * frame shared by the surface units) */
+                                   * about 8, + 3: each burst's lines through dynrtp's answer register), rgs_normal
+                                   * 90 (asked for from the second stage's registers, a cycle after the hit loads
+                                   * there), rgs_frame 118 behind its arbiter's register 1 (one frame shared by the
+                                   * surface units) */
     c->surface_hit = 40;          /* each further hit: the front's reads of it, one burst of lines after another, or
                                    * its normal's chain (rgs_normal 89: 88 before f24_from_i32's third stage) */
     c->surface_miss = 13;         /* a packet without hits: rgs_arb's register, rgs_surface's stages and queue,
                                    * nothing read */
-    c->shade_hit = 4;             /* the RGS's mem_port's request queue 1 + the shading cache_read's hit 3 */
+    c->shade_hit = 5;             /* the RGS's mem_port's request queue 1 + the shading cache_read's hit 3 + dynrtp's
+                                   * answer register 1 */
     c->trav_front = 9;            /* trace_core's issue FIFO 1, trav_unit's stages A to E 7 (the walker state's and
                                    * the stack's read, the prune's comparators 4, D, E), its queue 1: a clip's first
                                    * slab plane enters trav_node 9 cycles after the issue */
