@@ -284,7 +284,7 @@ t_render_cycle() {
   cmp "$T/fn.png" "$T/cy.png"
   has '^frame: [0-9]* cycles' "$T/out"; has 'usage rate' "$T/out"; has 'cache hit rate' "$T/out"
   python3 -c "import json; c=json.load(open('$T/cy.json'))['cycle']; assert c['pipes'] == 2 and c['cycles'] > 0 \
-and c['units']['trav']['latencies']['trav'] == 5 and c['units']['rgs']['latencies']['surface'] == 218 \
+and c['units']['trav']['latencies']['trav'] == 5 and c['units']['rgs']['latencies']['surface'] == 221 \
 and c['units']['rgs']['latencies']['surface_hit'] == 9 \
 and c['units']['rgs']['latencies']['surface_miss'] == 4 and c['memory']['kd_nodes']['cache_bytes'] == 1024, c"
   expect 0 "$BIN" render room -o "$T/cy1.png" --width 64 --height 48 --max-depth 1 --mode cycle --pipes 2 \
