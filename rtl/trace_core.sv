@@ -98,7 +98,12 @@
 // since, now a memory's read of the step's ray; not re-synthesized: rtl/README.md).
 // At THREADS = 64 (scripts/synth.py's per-module netlists, deepest_path on trace_core's subtree,
 // 2026-11-30): 11 LUT6 levels, trace_thread's waiting_o through inflight_o's count; 10 between
-// its own registers (10 on 391e0f0's RTL too, before the identity flags; rtl/README.md).
+// its own registers (10 on 391e0f0's RTL too, before the identity flags; rtl/README.md). Since
+// the step's ray by the one-hot grant, the word request stage and the waiting threads' count
+// registered (`python3 scripts/synth.py --dynrtp xilinx`, then `--dynrtp-path trace_core`,
+// 2026-11-30): 10, thread_sched's pick index (4) through the triangle test's operand
+// multiplexers over the threads (t_is_*[sel[U_IS]], 6) into their registers; left to do: those
+// operands chosen by the one-hot grant as the step's ray is.
 // Handshake: valid/ready at the packet input (into thread thread_i: ready_o when it is free and
 // the world rays' queue has room) and at the result output (registered; the lowest finished
 // thread first); word port valid/ready with responses in request order; trav_unit's node port
